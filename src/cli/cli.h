@@ -1,0 +1,24 @@
+/* cli.h - what the subcommands of the swaywatch command share. */
+#ifndef SWAYWATCH_CLI_H
+#define SWAYWATCH_CLI_H
+
+#include <stdio.h>
+
+/* Exit codes (documented in README.md and every --help). */
+enum {
+    SW_EXIT_OK = 0,         /* success */
+    SW_EXIT_OVERTURNED = 1, /* a package overturned and --fail-on-overturn was given */
+    SW_EXIT_USAGE = 2,      /* bad usage or bad input (scene, options, --strict rows) */
+    SW_EXIT_IO = 3          /* a file could not be read or written */
+};
+
+/* One subcommand: argv[0] is the subcommand's name. */
+typedef int (*sw_cmd_fn)(int argc, char **argv);
+
+int cmd_replay(int argc, char **argv);
+int cmd_simulate(int argc, char **argv);
+
+/* "swaywatch: " + printf-style message + newline, on stderr. */
+void sw_cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+#endif

@@ -1,0 +1,73 @@
+/* main.c - the swaywatch command: dispatch to subcommands (git style). */
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+
+#include "cli.h"
+#include "swaywatch/swaywatch.h"
+
+static const struct {
+    const char *name;
+    sw_cmd_fn fn;
+    const char *summary;
+} commands[] = {
+    {"replay", cmd_replay, "replay a recorded log (CSV or lcm-logger) through the model"},
+    {"simulate", cmd_simulate, "run a half-sine or full-sine pulse through the model"},
+};
+
+void sw_cli_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("swaywatch: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: swaywatch <command> [options]\n"
+            "\n"
+            "Tells whether floating cargo on a truck will tip over.\n"
+            "\n"
+            "Commands:\n");
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f,
+            "\n"
+            "Run 'swaywatch <command> --help' for a command's options.\n"
+            "Exit codes: 0 ok, 1 a package overturned (with --fail-on-overturn),\n"
+            "2 bad usage or input, 3 I/O error.\n");
+}
+
+int main(int argc, char **argv)
+{
+    gsl_set_error_handler_off();
+    if (argc < 2) {
+        usage(stderr);
+        return SW_EXIT_USAGE;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return SW_EXIT_OK;
+    }
+    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
+        printf("swaywatch %s\n", sw_version());
+        return SW_EXIT_OK;
+    }
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (!strcmp(argv[1], commands[i].name)) {
+            int rc = commands[i].fn(argc - 1, argv + 1);
+            if (fflush(stdout) != 0 || ferror(stdout)) {
+                sw_cli_error("error writing standard output");
+                return SW_EXIT_IO;
+            }
+            return rc;
+        }
+    sw_cli_error("'%s' is not a command; see 'swaywatch --help'", argv[1]);
+    return SW_EXIT_USAGE;
+}

@@ -1,0 +1,36 @@
+/* pulse.c - half-sine and full-sine excitation pulses (physics.md). */
+#include <math.h>
+#include <string.h>
+
+#include "swaywatch/pulse.h"
+#include "swaywatch/status.h"
+
+int sw_pulse_shape_parse(const char *name, sw_pulse_shape *out)
+{
+    if (name && !strcmp(name, "half-sine")) {
+        *out = SW_PULSE_HALF_SINE;
+        return SW_OK;
+    }
+    if (name && !strcmp(name, "full-sine")) {
+        *out = SW_PULSE_FULL_SINE;
+        return SW_OK;
+    }
+    return SW_ENOTFOUND;
+}
+
+const char *sw_pulse_shape_name(sw_pulse_shape s)
+{
+    return s == SW_PULSE_FULL_SINE ? "full-sine" : "half-sine";
+}
+
+double sw_pulse_duration(const sw_pulse_t *p)
+{
+    return (p->shape == SW_PULSE_FULL_SINE ? 2.0 * M_PI : M_PI) / p->omega;
+}
+
+double sw_pulse_eval(void *pulse, double t)
+{
+    const sw_pulse_t *p = pulse;
+    if (t < 0.0 || t > sw_pulse_duration(p)) return 0.0;
+    return p->amplitude * sin(p->omega * t);
+}

@@ -1,0 +1,21 @@
+/* status.c - text for the status codes of status.h. */
+#include "swaywatch/status.h"
+
+const char *sw_strerror(int code)
+{
+    switch (code) {
+    case SW_OK: return "success";
+    case SW_EVENT: return "event reported";
+    case SW_EINVAL: return "invalid argument or value";
+    case SW_ENOMEM: return "out of memory";
+    case SW_EORDER: return "time not increasing";
+    case SW_ENONFINITE: return "non-finite value";
+    case SW_EUNSTABLE: return "time step above the scheme's stability bound";
+    case SW_EFAULT: return "model fault";
+    case SW_EGSL: return "GSL routine failed";
+    case SW_EPARSE: return "malformed input";
+    case SW_ENOTFOUND: return "no such name";
+    case SW_ETOOBIG: return "input exceeds a limit";
+    default: return code > 0 ? "event reported" : "unknown error";
+    }
+}
