@@ -90,6 +90,8 @@ double sw_cushion_lift(const sw_pkg_t *P, const double y[], double *der);
 double sw_cushion_motion_energy(const sw_pkg_t *P, const double y[]);
 
 /* --- scheme.c --- */
+/* Finite-difference Jacobian in GSL's signature, for the implicit schemes. */
+int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *pkg);
 typedef void (*sw_fixed_step_fn)(sw_pkg_t *P, double t, double h, const double y[], double yout[]);
 struct sw_scheme {
     const char *name;
@@ -99,6 +101,9 @@ struct sw_scheme {
     double default_dt; /* s */
     sw_fixed_step_fn step; /* fixed-step schemes */
     const gsl_odeiv2_step_type *const *gsl_type; /* adaptive schemes */
+    int implicit;      /* 0 explicit; 1 implicit one-step (needs the Jacobian and a
+                          driver); 2 implicit multistep (msbdf: also cannot
+                          re-step from a step's start) */
 };
 
 #endif
