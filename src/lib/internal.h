@@ -54,6 +54,7 @@ typedef struct sw_pkg {
     gsl_odeiv2_control *gctl;
     gsl_odeiv2_evolve *gevo;
     double h_adapt;    /* s, GSL's proposed next step */
+    gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
 
     int beyond_alpha;  /* |theta| >= alpha at the last check */
     double t_lift;     /* s, time of the last uplift */
