@@ -66,9 +66,9 @@ enum {
 #define SW_CLI_COMMON_SHORTOPTS ":hs:o:e:qv"
 
 /* The help of the shared options, and the exit-code paragraph every --help
- * ends with (overturn: the command has --fail-on-overturn). */
+ * ends with (overturn, strict: the command has --fail-on-overturn, --strict). */
 void sw_cli_print_common_help(FILE *f);
-void sw_cli_print_exit_help(FILE *f, int overturn);
+void sw_cli_print_exit_help(FILE *f, int overturn, int strict);
 
 typedef struct {
     const char **scene_files; /* --scene, in order (points into argv) */

@@ -87,7 +87,7 @@ static void usage(FILE *f)
             MAX_PRINTED_REJECTS, DEFAULT_SETTLE);
     sw_cli_print_common_help(f);
     fprintf(f, "\nWith --quiet, rejected rows are only counted (one line on stderr).\n");
-    sw_cli_print_exit_help(f, 1);
+    sw_cli_print_exit_help(f, 1, 1);
 }
 
 typedef struct {

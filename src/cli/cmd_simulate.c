@@ -66,7 +66,7 @@ static void usage(FILE *f)
             FREE_PERIODS, DEFAULT_INTERVAL);
     sw_cli_print_common_help(f);
     fprintf(f, "\nsamples_read and samples_rejected are 0 in the JSON summary: there is no log.\n");
-    sw_cli_print_exit_help(f, 1);
+    sw_cli_print_exit_help(f, 1, 0);
 }
 
 typedef struct {

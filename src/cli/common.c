@@ -46,13 +46,13 @@ void sw_cli_print_common_help(FILE *f)
             "  -h, --help               this help\n");
 }
 
-void sw_cli_print_exit_help(FILE *f, int overturn)
+void sw_cli_print_exit_help(FILE *f, int overturn, int strict)
 {
     fprintf(f, "\nExit codes: 0 ok");
     if (overturn) fprintf(f, ", 1 a package overturned and --fail-on-overturn was given");
-    fprintf(f, ",\n2 bad usage or bad input (options, scene files%s), 3 a file could not be\n"
-               "read or written.\n",
-            overturn ? ", rows under --strict" : "");
+    fprintf(f, ",\n2 bad usage or bad input (options, scene files%s),\n"
+               "3 a file could not be read or written.\n",
+            strict ? ", rows under --strict" : "");
 }
 
 int sw_cli_opts_init(sw_cli_opts_t *o, int argc)
@@ -162,8 +162,12 @@ int sw_cli_common_option(sw_cli_opts_t *o, int c, const char *arg, char **argv)
         if (optopt > 0 && optopt < 256)
             sw_cli_error("%s: unknown option '-%c'; see 'swaywatch %s --help'", argv[0], optopt,
                          argv[0]);
-        else if (optopt >= 256) /* a known long option given a value it does not take */
-            sw_cli_error("%s: option '%s' takes no value", argv[0], argv[optind - 1]);
+        else if (optopt >= 256) { /* a known long option given a value it does not take */
+            const char *opt = argv[optind - 1];
+            const char *eq = strchr(opt, '=');
+            sw_cli_error("%s: option '%.*s' takes no value", argv[0],
+                         (int)(eq ? eq - opt : (long)strlen(opt)), opt);
+        }
         else
             sw_cli_error("%s: unknown option '%s'; see 'swaywatch %s --help'", argv[0],
                          argv[optind - 1], argv[0]);
@@ -311,34 +315,42 @@ sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_e
     return e;
 }
 
+/* One aligned line of --verbose: name, value with unit, what it is. */
+static void derived_line(FILE *f, const char *name, double v, const char *unit, const char *what)
+{
+    char val[48];
+    snprintf(val, sizeof val, "%.6g %s", v, unit);
+    fprintf(f, "  %-8s %-18s %s\n", name, val, what);
+}
+
 void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scenes, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
         const sw_derived_t *d = sw_engine_derived(e, i);
         const sw_scene_t *sc = &scenes[i];
         if (!d) continue;
-        fprintf(f, "swaywatch: %s: %s model, derived quantities\n", sc->name,
-                sw_model_name(d->model));
-        fprintf(f, "  R        %.6g m          half-diagonal sqrt(h^2 + b^2)\n", d->R);
-        fprintf(f, "  alpha    %.6g rad = %.4g deg, uplift at g tan(alpha) = %.4g m/s^2\n",
-                d->alpha, d->alpha * 180.0 / M_PI, sc->g * tan(d->alpha));
-        fprintf(f, "  p        %.6g rad/s      rocking frequency sqrt(3 g / 4 R)\n", d->p);
-        fprintf(f, "  eta      %.6g            bare impact ratio\n", d->eta);
-        if (d->model == SW_MODEL_FRAME || (d->model == SW_MODEL_CUSHION && sc->has_frame)) {
-            fprintf(f, "  gamma    %.6g            m / (m + m_b)\n", d->gamma);
-            fprintf(f, "  omega_b  %.6g rad/s\n", d->omega_b);
-            fprintf(f, "  zeta_b   %.6g\n", d->zeta_b);
-            fprintf(f, "  r_frame  %.6g            frame impact ratio\n", d->r_frame);
+        fprintf(f, "swaywatch: %s: %s model\n", sc->name, sw_model_name(d->model));
+        derived_line(f, "R", d->R, "m", "half-diagonal sqrt(h^2 + b^2)");
+        derived_line(f, "alpha", d->alpha * 180.0 / M_PI, "deg", "atan(b/h), slenderness");
+        derived_line(f, "g tan a", sc->g * tan(d->alpha), "m/s^2", "uplift threshold (rigid support)");
+        derived_line(f, "p", d->p, "rad/s", "rocking frequency sqrt(3 g / 4 R)");
+        derived_line(f, "eta", d->eta, "", "impact ratio on a rigid support");
+        if (sc->has_frame) {
+            derived_line(f, "gamma", d->gamma, "", "m / (m + m_b)");
+            derived_line(f, "omega_b", d->omega_b, "rad/s", "bearing frequency");
+            derived_line(f, "zeta_b", d->zeta_b, "", "bearing damping ratio");
+            derived_line(f, "r_frame", d->r_frame, "", "impact ratio on the frame");
         }
-        if (d->model == SW_MODEL_CUSHION) {
-            fprintf(f, "  omega_c  %.6g rad/s\n", d->omega_c);
-            fprintf(f, "  zeta_c   %.6g\n", d->zeta_c);
+        if (sc->has_cushion) {
+            derived_line(f, "omega_c", d->omega_c, "rad/s", "cushion frequency sqrt(K/m)");
+            derived_line(f, "zeta_c", d->zeta_c, "", "cushion damping ratio");
             if (d->K > 0.0)
-                fprintf(f, "  m g / K  %.6g m          static cushion deflection (linear part)\n",
-                        sc->mass * sc->g / d->K);
+                derived_line(f, "m g / K", sc->mass * sc->g / d->K, "m",
+                             "static cushion deflection (linear part)");
         }
-        fprintf(f, "  dt       %.6g s          internal step, scheme %s\n", sw_engine_dt(e, i),
-                sw_engine_scheme(e));
+        char what[64];
+        snprintf(what, sizeof what, "internal step of scheme %s", sw_engine_scheme(e));
+        derived_line(f, "dt", sw_engine_dt(e, i), "s", what);
     }
 }
 

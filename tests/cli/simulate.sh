@@ -60,7 +60,7 @@ PY
 run "$SW" simulate --scene "$FRAME" --pulse full-sine --amplitude 4 --omega 3 --verbose --json
 expect_rc 0 "--verbose"
 python3 -m json.tool "$TMP/out" >/dev/null || fail "--verbose spoilt the JSON"
-for want in 'alpha' 'p ' 'eta' 'gamma' 'omega_b' 'zeta_b' 'r_frame' 'dt '; do
+for want in 'alpha' '  p ' 'eta' 'gamma' 'omega_b' 'zeta_b' 'r_frame' '  dt '; do
     expect_err "$want" "--verbose lists $want"
 done
 
