@@ -17,8 +17,15 @@ typedef int (*sw_cmd_fn)(int argc, char **argv);
 
 int cmd_replay(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
+int cmd_monitor(int argc, char **argv); /* LCM builds only (SW_HAVE_LCM) */
 
 /* "swaywatch: " + printf-style message + newline, on stderr. */
 void sw_cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* lcm-logger files given to replay (lcmlog.c, LCM builds only): argc/argv
+ * are replay's own, as the user typed them (argv[0] = "replay"). */
+int sw_cli_replay_lcmlog(const char *path, int argc, char **argv);
+/* The paragraph of replay's --help about lcm-logger files. */
+void sw_cli_print_lcmlog_help(FILE *f);
 
 #endif
