@@ -15,6 +15,35 @@
 #include "swaywatch_alarm_t.h"
 #include "swaywatch_state_t.h"
 
+/* The library's enums are copied into the messages as they are. */
+_Static_assert(SWAYWATCH_ALARM_T_KIND_UPLIFT == SW_ALARM_UPLIFT &&
+                   SWAYWATCH_ALARM_T_KIND_IMPACT == SW_ALARM_IMPACT &&
+                   SWAYWATCH_ALARM_T_KIND_WARN == SW_ALARM_WARN &&
+                   SWAYWATCH_ALARM_T_KIND_CRITICAL == SW_ALARM_CRITICAL &&
+                   SWAYWATCH_ALARM_T_KIND_TIP == SW_ALARM_TIP &&
+                   SWAYWATCH_ALARM_T_KIND_OVERTURNED == SW_ALARM_OVERTURNED &&
+                   SWAYWATCH_ALARM_T_KIND_REST == SW_ALARM_REST &&
+                   SWAYWATCH_ALARM_T_KIND_MODEL_FAULT == SW_ALARM_MODEL_FAULT &&
+                   SWAYWATCH_ALARM_T_KIND_SENSOR_GAP == SW_ALARM_SENSOR_GAP &&
+                   SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED == SW_ALARM_INPUT_REJECTED,
+               "alarm_t.KIND_* == sw_alarm_kind");
+_Static_assert(SWAYWATCH_ALARM_T_LEVEL_INFO == SW_ALARM_LEVEL_INFO &&
+                   SWAYWATCH_ALARM_T_LEVEL_WARN == SW_ALARM_LEVEL_WARN &&
+                   SWAYWATCH_ALARM_T_LEVEL_CRITICAL == SW_ALARM_LEVEL_CRITICAL,
+               "alarm_t.LEVEL_* == sw_alarm_level");
+_Static_assert(SWAYWATCH_STATE_T_PHASE_STUCK == SW_PHASE_STUCK &&
+                   SWAYWATCH_STATE_T_PHASE_ROCKING == SW_PHASE_ROCKING &&
+                   SWAYWATCH_STATE_T_PHASE_OVERTURNED == SW_PHASE_OVERTURNED,
+               "state_t.PHASE_* == sw_phase");
+_Static_assert(SWAYWATCH_STATE_T_MODEL_BARE == SW_MODEL_BARE &&
+                   SWAYWATCH_STATE_T_MODEL_FRAME == SW_MODEL_FRAME &&
+                   SWAYWATCH_STATE_T_MODEL_CUSHION == SW_MODEL_CUSHION,
+               "state_t.MODEL_* == sw_model_kind");
+_Static_assert(sizeof(((swaywatch_state_t *)0)->name) == SW_NAME_MAX,
+               "state_t.name holds a scene name");
+_Static_assert(sizeof(((swaywatch_alarm_t *)0)->text) == SW_ALARM_TEXT_MAX,
+               "alarm_t.text holds an alarm text");
+
 /* Messages are fixed-size; this holds the largest encoded one. */
 #define SW_MON_BUF 512
 
