@@ -25,6 +25,9 @@ typedef enum { SW_MODEL_BARE = 0, SW_MODEL_FRAME = 1, SW_MODEL_CUSHION = 2 } sw_
 /* How one of the (stiffness|omega) or (damping|zeta) pairs was given. */
 typedef enum { SW_GIVEN_NONE = 0, SW_GIVEN_DIMENSIONAL = 1, SW_GIVEN_RATIO = 2 } sw_given;
 
+/* A number that was not given is NAN (sw_scene_init); a given one is always
+ * finite.  Of each (stiffness|omega) and (damping|zeta) pair only the form
+ * recorded in *_given holds a value, the other form is NAN. */
 typedef struct {
     /* [package] */
     char name[SW_NAME_MAX]; /* used in messages and reports */
@@ -56,7 +59,7 @@ typedef struct {
     double critical_margin; /* 1, default 0.2 */
 
     /* where each section started, for messages (0 = not from a file) */
-    int line_package, line_frame, line_cushion;
+    int line_package, line_frame, line_cushion, line_alarm;
 } sw_scene_t;
 
 /* Quantities derived by sw_scene_validate(); all SI. */
@@ -83,34 +86,46 @@ typedef struct {
  * none), and a message naming the key and what was expected. */
 typedef void (*sw_diag_fn)(void *user, const char *origin, int line, const char *msg);
 
-/* Fill sc with defaults: no sizes (they are required), g = 9.81, alarm
- * thresholds 0.5 and 0.2, no frame, no cushion. */
+/* Fill sc with defaults: no sizes (they are required; NAN), g = 9.81, alarm
+ * thresholds 0.5 and 0.2, no frame, no cushion (cubic term 0). */
 void sw_scene_init(sw_scene_t *sc);
 
 /* Set one key, e.g. section "frame", key "zeta", value "0.1".  When override
  * is non-zero (the --set path) giving one form of a pair replaces the other
- * form; otherwise giving both forms of a pair is an error.  Errors go to diag
- * (may be NULL).  Returns SW_OK, SW_ENOTFOUND (unknown section or key) or
- * SW_EINVAL (value not a finite number, or both forms of a pair). */
+ * form; otherwise giving both forms of a pair is an error.  Setting any frame
+ * (cushion) key sets has_frame (has_cushion).  Numbers are decimal, finite,
+ * with nothing but white space after them (no "nan", "inf", hex floats).
+ * Ranges are checked later, by sw_scene_validate(), so that an override can
+ * still correct a value.  Errors go to diag (may be NULL).  Returns SW_OK,
+ * SW_ENOTFOUND (unknown section or key) or SW_EINVAL (value not a finite
+ * number, bad name, or both forms of a pair). */
 int sw_scene_set(sw_scene_t *sc, const char *section, const char *key, const char *value,
                  int override, const char *origin, int line, sw_diag_fn diag, void *user);
 
-/* Apply "section.key=value". */
+/* Apply "section.key=value" as an override (origin "--set", line 0).
+ * Returns SW_EINVAL for an assignment of another shape, else as
+ * sw_scene_set(). */
 int sw_scene_set_arg(sw_scene_t *sc, const char *assignment, sw_diag_fn diag, void *user);
 
 /* Parse INI text (a whole scene file) into sc, which should come from
- * sw_scene_init().  Every bad line is reported; returns SW_OK or the first
- * error code.  Does not validate: call sw_scene_validate() afterwards (after
- * any overrides). */
+ * sw_scene_init().  Lines whose first non-blank character is '#' or ';' are
+ * comments, and so is the rest of a line from a '#' or ';' that follows white
+ * space.  Unknown sections and keys, duplicate sections and keys, both forms
+ * of a pair and malformed lines are errors.  A section header alone sets
+ * has_frame / has_cushion (so "[frame]" without keys is reported as missing
+ * keys by validation).  Every bad line is reported, with its line number;
+ * returns SW_OK or the first error code.  Does not validate: call
+ * sw_scene_validate() afterwards (after any overrides). */
 int sw_scene_parse(sw_scene_t *sc, const char *text, const char *origin, sw_diag_fn diag,
                    void *user);
 
 /* Check required keys and ranges, derive d (may be NULL).  Every problem is
- * reported; returns SW_OK or SW_EINVAL. */
+ * reported, with the line of the section it belongs to (0 if none); returns
+ * SW_OK or SW_EINVAL.  d is filled only on SW_OK (zeroed otherwise). */
 int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin, sw_diag_fn diag,
                       void *user);
 
-/* "bare", "frame" or "cushion". */
+/* "bare", "frame" or "cushion" ("unknown" for any other value). */
 const char *sw_model_name(sw_model_kind k);
 
 #ifdef __cplusplus

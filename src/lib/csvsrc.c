@@ -1,0 +1,817 @@
+/* csvsrc.c - streaming CSV ingestion of acceleration logs (csv.h).
+ *
+ * Bytes arrive in chunks of any size.  They are gathered into one physical
+ * line at a time, in a buffer allocated once at create; each complete line is
+ * classified (blank, comment, header, data row) and split into fields, and
+ * only the fields the caller asked for are converted to numbers.
+ *
+ * Why one physical line = one record (rather than streaming everything
+ * through libcsv): libcsv reports no line numbers (its terminator hook has no
+ * user pointer, so counting would need global state), and a stray quote
+ * would swallow the rest of the stream into one field.  Parsing line by line
+ * makes line numbers exact and confines any damage to its own line.  A
+ * quoted field can therefore not span lines; logger exports never need that.
+ *
+ * Lines without a quote character are split on the delimiter directly (the
+ * fast path, most rows of a numeric log); lines with a quote go through
+ * libcsv in strict mode.  The fast path reproduces libcsv's treatment of
+ * unquoted fields exactly (spaces and tabs around a field are dropped), so
+ * both give identical results; the tests compare them.  Likewise plain
+ * decimals are converted without strtod where that is provably exact. */
+#include <float.h>
+#include <locale.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <csv.h>
+
+#include "swaywatch/csv.h"
+#include "swaywatch/status.h"
+
+/* Field slots filled while splitting a line.  PROBE is the field looked at to
+ * decide whether the first line is a header. */
+enum { R_TIME, R_ACCEL, R_VERT, R_PROBE, N_SLOTS };
+#define N_ROLES 3 /* time, accel, vertical: the columns chosen by the caller */
+
+static const char *const role_name[N_ROLES] = {"time", "accel", "vertical"};
+
+/* The line buffer holds SW_CSV_MAX_LINE bytes of content plus a '\r' (CRLF
+ * ends are stripped only once the line is complete) plus a NUL. */
+#define LINE_CAP ((size_t)SW_CSV_MAX_LINE + 1)
+/* Copies of the wanted fields on the libcsv path: at most the line itself
+ * plus one NUL per slot. */
+#define SCRATCH_CAP ((size_t)SW_CSV_MAX_LINE + 2 + N_SLOTS)
+#define EXCERPT_MAX 40 /* bytes of offending text quoted in a reason */
+#define MAX_COLUMN_INDEX ((long)SW_CSV_MAX_LINE) /* a line cannot hold more fields */
+
+#define LIBCSV_OPTS (CSV_STRICT | CSV_STRICT_FINI | CSV_APPEND_NULL)
+
+struct sw_csv {
+    /* options, fixed at create */
+    char delim;     /* 0 until detected */
+    int header;     /* -1 detect, 0 none, 1 present */
+    double tscale, ascale;
+    int flip;
+    char *name[N_ROLES]; /* column name as given, looked up in the header; NULL: by index */
+    long col[N_ROLES];   /* 0-based column index; -1 unknown (named) or unused */
+    long probe;          /* column tested by header detection */
+    int have_vert;
+    sw_csv_row_fn on_row;
+    sw_csv_reject_fn on_reject;
+    void *user;
+    locale_t cloc; /* "C" numeric locale: '.' is the decimal point whatever
+                      the program's locale says */
+
+    /* the physical line being gathered */
+    char *line;
+    size_t len;
+    int overlong; /* the line outgrew the buffer: the rest is dropped */
+    int finished;
+
+    /* one line's split, reset for every data line */
+    long want[N_SLOTS]; /* column index per slot, -1 none */
+    long maxwant;
+    const char *fs[N_SLOTS]; /* NUL-terminated field text, NULL = absent */
+    size_t fl[N_SLOTS];
+    long nf;      /* fields seen so far in the line */
+    int matching; /* header line: look up the column names */
+    long match[N_ROLES];
+    char *scratch;
+    size_t scratch_used;
+    struct csv_parser lp;
+
+    /* stream state */
+    long lineno;
+    int header_open; /* the next data-like line may still be the header */
+    int have_last;
+    double last_t;
+    sw_csv_counts_t n;
+    int status; /* sticky error ending the parse, or SW_OK */
+    char msg[300]; /* "line N: " + a reason */
+    char reason[256];
+};
+
+/* ------------------------------------------------------------------ text */
+
+static int is_blank(char ch)
+{
+    return ch == ' ' || ch == '\t';
+}
+
+/* Case-insensitive ASCII comparison of a header field with a column name,
+ * both trimmed of spaces and tabs (quoted header fields keep them). */
+static int name_equal(const char *a, size_t an, const char *b)
+{
+    while (an && is_blank(*a)) a++, an--;
+    while (an && is_blank(a[an - 1])) an--;
+    size_t bn = strlen(b);
+    if (an != bn) return 0;
+    for (size_t i = 0; i < an; i++) {
+        unsigned char x = (unsigned char)a[i], y = (unsigned char)b[i];
+        if (x >= 'A' && x <= 'Z') x = (unsigned char)(x - 'A' + 'a');
+        if (y >= 'A' && y <= 'Z') y = (unsigned char)(y - 'A' + 'a');
+        if (x != y) return 0;
+    }
+    return 1;
+}
+
+/* Up to EXCERPT_MAX bytes of s, quoted, with anything but printable ASCII
+ * shown as '?': reasons end up on terminals and in logs, and garbage input
+ * must not put control bytes (or a cut UTF-8 sequence) there. */
+static void excerpt(char *dst, size_t cap, const char *s, size_t n)
+{
+    size_t k = 0, lim = n > EXCERPT_MAX ? EXCERPT_MAX : n;
+    if (cap < EXCERPT_MAX + 6) {
+        if (cap) dst[0] = '\0';
+        return;
+    }
+    dst[k++] = '"';
+    for (size_t i = 0; i < lim; i++) {
+        unsigned char ch = (unsigned char)s[i];
+        dst[k++] = (ch >= 0x20 && ch < 0x7f) ? (char)ch : '?';
+    }
+    if (n > lim) {
+        memcpy(dst + k, "...", 3);
+        k += 3;
+    }
+    dst[k++] = '"';
+    dst[k] = '\0';
+}
+
+/* ---------------------------------------------------------------- numbers */
+
+enum { NUM_OK, NUM_EMPTY, NUM_BAD, NUM_COMMA, NUM_RANGE };
+
+#if FLT_EVAL_METHOD == 0
+/* Powers of ten that are exact doubles. */
+static const double pow10_exact[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+/* Logger output ("12.345", "-0.00731", "1.5e-3") without strtod, which
+ * costs most of the parse time otherwise.  When the digits form an integer
+ * m <= 2^53 and the decimal exponent k is within +-22, m and 10^|k| are both
+ * exact doubles and one IEEE multiplication or division rounds correctly
+ * (Clinger's fast path): the result is the one strtod gives, bit for bit.
+ * Anything else returns 0 and is left to strtod. */
+static int fast_decimal(const char *p, const char *end, double *out)
+{
+    int neg = 0, any = 0, k = 0;
+    uint64_t m = 0;
+    if (p < end && (*p == '+' || *p == '-')) neg = *p++ == '-';
+    for (; p < end && *p >= '0' && *p <= '9'; p++, any = 1) {
+        if (m > UINT64_C(1) << 53) return 0;
+        m = m * 10 + (uint64_t)(*p - '0');
+    }
+    if (p < end && *p == '.') {
+        for (p++; p < end && *p >= '0' && *p <= '9'; p++, any = 1, k--) {
+            if (m > UINT64_C(1) << 53) return 0;
+            m = m * 10 + (uint64_t)(*p - '0');
+        }
+    }
+    if (!any) return 0;
+    if (p < end && (*p == 'e' || *p == 'E')) {
+        int eneg = 0, e = 0, edigits = 0;
+        p++;
+        if (p < end && (*p == '+' || *p == '-')) eneg = *p++ == '-';
+        for (; p < end && *p >= '0' && *p <= '9'; p++, edigits++) {
+            if (e > 1000) return 0;
+            e = e * 10 + (*p - '0');
+        }
+        if (!edigits) return 0;
+        k += eneg ? -e : e;
+    }
+    if (p != end || m > UINT64_C(1) << 53) return 0;
+    double v = (double)m;
+    if (m != 0) {
+        if (k < -22 || k > 22) return 0;
+        v = k < 0 ? v / pow10_exact[-k] : v * pow10_exact[k];
+    }
+    *out = neg ? -v : v;
+    return 1;
+}
+#endif
+
+/* s[n] is NUL.  Accepts plain decimal notation only: strtod alone would also
+ * take "nan", "inf", hex floats and leading junk like "\v".  strtod runs in
+ * the "C" locale so that '.' is the decimal point whatever the program's
+ * locale is. */
+static int parse_number(const sw_csv_t *c, const char *s, size_t n, double *out)
+{
+    while (n && is_blank(*s)) s++, n--;
+    while (n && is_blank(s[n - 1])) n--;
+    if (!n) return NUM_EMPTY;
+#if FLT_EVAL_METHOD == 0
+    if (fast_decimal(s, s + n, out)) return NUM_OK;
+#endif
+    int comma = 0, bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        char ch = s[i];
+        if ((ch >= '0' && ch <= '9') || ch == '.' || ch == '-' || ch == '+' || ch == 'e' ||
+            ch == 'E')
+            continue;
+        if (ch == ',')
+            comma = 1;
+        else
+            bad = 1;
+    }
+    if (bad) return NUM_BAD;
+    if (comma) return NUM_COMMA; /* "0,001": a number, but not in this format */
+    char *end;
+    locale_t prev = uselocale(c->cloc);
+    double v = strtod(s, &end);
+    uselocale(prev);
+    if (end != s + n) return NUM_BAD;
+    /* Overflow gives HUGE_VAL; underflow (1e-400) gives a tiny finite
+     * value with ERANGE, which is as good as zero here and accepted. */
+    if (!isfinite(v)) return NUM_RANGE;
+    *out = v;
+    return NUM_OK;
+}
+
+/* ----------------------------------------------------------------- fields */
+
+/* One field of the current line: remember it if a slot wants this column,
+ * and look its text up among the column names while reading a header.
+ * copy: the text lives in libcsv's buffer, which the next field reuses. */
+static void take_field(sw_csv_t *c, char *s, size_t n, int copy)
+{
+    long k = c->nf++;
+    if (c->matching) {
+        for (int r = 0; r < N_ROLES; r++)
+            if (c->name[r] && c->match[r] < 0 && name_equal(s, n, c->name[r])) c->match[r] = k;
+    }
+    if (k > c->maxwant) return;
+    const char *kept = NULL;
+    for (int r = 0; r < N_SLOTS; r++) {
+        if (c->want[r] != k) continue;
+        if (!kept) {
+            if (copy) {
+                if (c->scratch_used + n + 1 > SCRATCH_CAP) return; /* cannot happen */
+                char *d = c->scratch + c->scratch_used;
+                memcpy(d, s, n);
+                d[n] = '\0';
+                c->scratch_used += n + 1;
+                kept = d;
+            } else {
+                s[n] = '\0'; /* within the field or on its delimiter: already scanned */
+                kept = s;
+            }
+        }
+        c->fs[r] = kept;
+        c->fl[r] = n;
+    }
+}
+
+/* Split a line that holds no quote character: exactly what libcsv does with
+ * unquoted fields, without its per-byte state machine and field copies. */
+static void split_plain(sw_csv_t *c, char *s, size_t n)
+{
+    char *p = s, *end = s + n;
+    for (;;) {
+        char *d = memchr(p, c->delim, (size_t)(end - p));
+        char *e = d ? d : end;
+        while (p < e && is_blank(*p)) p++;
+        while (e > p && is_blank(e[-1])) e--;
+        take_field(c, p, (size_t)(e - p), 0);
+        if (!d) return;
+        /* Thousands of columns: stop once every wanted field is in hand. */
+        if (!c->matching && c->nf > c->maxwant) return;
+        p = d + 1;
+    }
+}
+
+static void lcsv_field(void *s, size_t n, void *user)
+{
+    take_field(user, s, n, 1);
+}
+
+/* Lines are handed over without their '\n' and with a final '\r' already
+ * stripped; any other '\r' is data, not the end of a record. */
+static int lcsv_term(unsigned char ch)
+{
+    return ch == '\n';
+}
+
+/* Back to a clean state after an error.  csv_fini does not reset the parser
+ * after a CSV_STRICT_FINI error, so that check is switched off for the
+ * discarding call; no callbacks, so the partial row is dropped. */
+static void lcsv_reset(sw_csv_t *c)
+{
+    csv_set_opts(&c->lp, LIBCSV_OPTS & ~CSV_STRICT_FINI);
+    csv_fini(&c->lp, NULL, NULL, NULL);
+    csv_set_opts(&c->lp, LIBCSV_OPTS);
+}
+
+/* Split a line holding a quote through libcsv.  0 with c->reason set when
+ * the quoting is malformed. */
+static int split_quoted(sw_csv_t *c, char *s, size_t n)
+{
+    size_t used = csv_parse(&c->lp, s, n, lcsv_field, NULL, c);
+    if (used < n) {
+        int err = csv_error(&c->lp);
+        lcsv_reset(c);
+        if (err == CSV_EPARSE) {
+            char ex[EXCERPT_MAX + 8];
+            excerpt(ex, sizeof ex, s + used, n - used);
+            snprintf(c->reason, sizeof c->reason, "malformed quoting in field %ld at %s",
+                     c->nf + 1, ex);
+        } else {
+            snprintf(c->reason, sizeof c->reason, "CSV parser: %s", csv_strerror(err));
+        }
+        return 0;
+    }
+    if (csv_fini(&c->lp, lcsv_field, NULL, c) != 0) {
+        lcsv_reset(c);
+        snprintf(c->reason, sizeof c->reason, "unterminated quote in field %ld", c->nf + 1);
+        return 0;
+    }
+    return 1;
+}
+
+/* ------------------------------------------------------------------ lines */
+
+static void reject(sw_csv_t *c)
+{
+    c->n.rejected++;
+    if (c->on_reject) c->on_reject(c->user, c->lineno, c->reason);
+}
+
+/* "accel (column 2)" or "accel (column 5, \"acc_x\")" */
+static void column_label(const sw_csv_t *c, int r, char *dst, size_t cap)
+{
+    if (c->name[r])
+        snprintf(dst, cap, "%s (column %ld, \"%s\")", role_name[r], c->col[r] + 1, c->name[r]);
+    else
+        snprintf(dst, cap, "%s (column %ld)", role_name[r], c->col[r] + 1);
+}
+
+static void fail(sw_csv_t *c, int code, const char *text)
+{
+    c->status = code;
+    snprintf(c->msg, sizeof c->msg, "line %ld: %s", c->lineno, text);
+}
+
+/* The first data-like line was a header: resolve the named columns. */
+static void take_header(sw_csv_t *c)
+{
+    c->n.headers++;
+    for (int r = 0; r < N_ROLES; r++) {
+        if (!c->name[r]) continue;
+        if (c->match[r] < 0) {
+            char t[160];
+            snprintf(t, sizeof t, "no column named \"%s\" (%s) in the header", c->name[r],
+                     role_name[r]);
+            fail(c, SW_ENOTFOUND, t);
+            return;
+        }
+        c->col[r] = c->match[r];
+    }
+    for (int r = 0; r < N_ROLES; r++)
+        for (int q = r + 1; q < N_ROLES; q++)
+            if (c->col[r] >= 0 && c->col[r] == c->col[q]) {
+                char t[160];
+                snprintf(t, sizeof t, "%s and %s are the same column (%ld)", role_name[r],
+                         role_name[q], c->col[r] + 1);
+                fail(c, SW_EINVAL, t);
+                return;
+            }
+}
+
+/* A delimiter among tab, ';', ',' occurring outside quotes, in that order of
+ * preference: ';' files use ',' as the decimal mark, so a line holding both
+ * is ';'-delimited; tab-delimited headers may well contain commas. */
+static char detect_delim(const char *s, size_t n)
+{
+    int tab = 0, semi = 0, comma = 0, q = 0;
+    for (size_t i = 0; i < n; i++) {
+        char ch = s[i];
+        if (ch == '"')
+            q = !q;
+        else if (!q) {
+            tab |= ch == '\t';
+            semi |= ch == ';';
+            comma |= ch == ',';
+        }
+    }
+    return tab ? '\t' : semi ? ';' : comma ? ',' : 0;
+}
+
+static int names_pending(const sw_csv_t *c)
+{
+    for (int r = 0; r < N_ROLES; r++)
+        if (c->name[r] && c->col[r] < 0) return 1;
+    return 0;
+}
+
+/* A line that is neither blank nor a comment. */
+static void data_line(sw_csv_t *c, char *s, size_t n)
+{
+    int header_here = c->header_open;
+    c->header_open = 0; /* whatever this line is, no later line is a header */
+
+    if (!c->delim) {
+        char d = detect_delim(s, n);
+        if (!d) {
+            if (header_here && c->header == 1) {
+                c->matching = 0;
+                for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
+                take_header(c); /* a one-column header: named columns fail */
+                return;
+            }
+            c->n.rows++;
+            snprintf(c->reason, sizeof c->reason,
+                     "expected at least 2 columns, found 1 (no ',' ';' or tab delimiter)");
+            reject(c);
+            return;
+        }
+        c->delim = d;
+        csv_set_delim(&c->lp, (unsigned char)d);
+    }
+
+    for (int r = 0; r < N_ROLES; r++) c->want[r] = c->col[r];
+    c->want[R_PROBE] = header_here && c->header < 0 ? c->probe : -1;
+    c->maxwant = -1;
+    for (int r = 0; r < N_SLOTS; r++) {
+        c->fs[r] = NULL;
+        if (c->want[r] > c->maxwant) c->maxwant = c->want[r];
+    }
+    c->matching = header_here && names_pending(c);
+    for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
+    c->nf = 0;
+    c->scratch_used = 0;
+
+    int ok = 1;
+    if (memchr(s, '"', n))
+        ok = split_quoted(c, s, n);
+    else
+        split_plain(c, s, n);
+
+    double v[N_ROLES] = {0.0, 0.0, 0.0};
+    if (header_here) {
+        int is_header = c->header == 1;
+        if (c->header < 0 && ok && c->fs[R_PROBE]) {
+            /* "0,001" and "1e400" are numbers as far as this is concerned:
+             * such a first row is reported, not taken for a header. */
+            int res = parse_number(c, c->fs[R_PROBE], c->fl[R_PROBE], &v[R_TIME]);
+            is_header = res == NUM_EMPTY || res == NUM_BAD;
+        }
+        if (is_header) {
+            take_header(c);
+            return;
+        }
+        if (c->matching) {
+            /* Reported like any unusable row, then the parse ends. */
+            int r = 0;
+            while (!(c->name[r] && c->col[r] < 0)) r++;
+            snprintf(c->reason, sizeof c->reason,
+                     "column \"%s\" (%s) is named but the input has no header", c->name[r],
+                     role_name[r]);
+            c->n.rows++;
+            reject(c);
+            fail(c, SW_ENOTFOUND, c->reason);
+            return;
+        }
+    }
+
+    c->n.rows++;
+    if (!ok) {
+        reject(c);
+        return;
+    }
+    for (int r = 0; r < N_ROLES && ok; r++) {
+        if (r == R_VERT && !c->have_vert) break;
+        char label[120];
+        if (!c->fs[r]) {
+            column_label(c, r, label, sizeof label);
+            snprintf(c->reason, sizeof c->reason, "missing field: %s; the line has %ld field%s",
+                     label, c->nf, c->nf == 1 ? "" : "s");
+            ok = 0;
+            break;
+        }
+        int res = parse_number(c, c->fs[r], c->fl[r], &v[r]);
+        if (res == NUM_OK) continue;
+        char ex[EXCERPT_MAX + 8];
+        column_label(c, r, label, sizeof label);
+        excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
+        switch (res) {
+        case NUM_EMPTY: snprintf(c->reason, sizeof c->reason, "%s is empty", label); break;
+        case NUM_COMMA:
+            snprintf(c->reason, sizeof c->reason, "%s is not a number (decimal comma?): %s",
+                     label, ex);
+            break;
+        case NUM_RANGE:
+            snprintf(c->reason, sizeof c->reason, "%s is out of range: %s", label, ex);
+            break;
+        default:
+            snprintf(c->reason, sizeof c->reason, "%s is not a number: %s", label, ex);
+            break;
+        }
+        ok = 0;
+    }
+    if (!ok) {
+        reject(c);
+        return;
+    }
+
+    double t = v[R_TIME] * c->tscale;
+    double a = v[R_ACCEL] * c->ascale;
+    double z = v[R_VERT] * c->ascale;
+    if (!isfinite(t) || !isfinite(a) || !isfinite(z)) {
+        int r = !isfinite(t) ? R_TIME : !isfinite(a) ? R_ACCEL : R_VERT;
+        char label[120], ex[EXCERPT_MAX + 8];
+        column_label(c, r, label, sizeof label);
+        excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
+        snprintf(c->reason, sizeof c->reason, "%s is out of range after unit conversion: %s",
+                 label, ex);
+        reject(c);
+        return;
+    }
+    if (c->flip) a = -a;
+    if (c->have_last && t <= c->last_t) {
+        if (t == c->last_t)
+            snprintf(c->reason, sizeof c->reason,
+                     "duplicate time %.15g s (same as the previous row)", t);
+        else
+            snprintf(c->reason, sizeof c->reason, "time %.15g s not after previous %.15g s", t,
+                     c->last_t);
+        reject(c);
+        return;
+    }
+    if (c->on_row && c->on_row(c->user, c->lineno, t, a, z) != 0) {
+        snprintf(c->reason, sizeof c->reason, "refused by consumer");
+        reject(c);
+        return;
+    }
+    c->n.accepted++;
+    c->have_last = 1;
+    c->last_t = t;
+}
+
+/* A complete physical line is in c->line (without its '\n'). */
+static void end_line(sw_csv_t *c)
+{
+    char *s = c->line;
+    size_t n = c->len;
+    int overlong = c->overlong;
+    c->len = 0;
+    c->overlong = 0;
+    c->lineno++;
+    c->n.lines++;
+
+    if (c->lineno == 1 && n >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3)) s += 3, n -= 3;
+    if (!overlong && n && s[n - 1] == '\r') n--;
+    if (n > (size_t)SW_CSV_MAX_LINE) overlong = 1;
+
+    size_t i = 0;
+    while (i < n && is_blank(s[i])) i++;
+    if (i < n && s[i] == '#') { /* judged on the kept prefix, however long */
+        c->n.comments++;
+        return;
+    }
+    if (i == n && !overlong) {
+        c->n.blanks++;
+        return;
+    }
+    if (overlong) {
+        if (c->header_open && c->header == 1) {
+            c->header_open = 0;
+            c->matching = 0;
+            for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
+            take_header(c);
+            return;
+        }
+        c->header_open = 0;
+        c->n.rows++;
+        snprintf(c->reason, sizeof c->reason, "line longer than %d bytes", SW_CSV_MAX_LINE);
+        reject(c);
+        return;
+    }
+    s[n] = '\0';
+    data_line(c, s, n);
+}
+
+/* ------------------------------------------------------------- public API */
+
+static int bad_opts(int *err, char *msg, size_t msglen, int code, const char *text)
+{
+    if (err) *err = code;
+    if (msg && msglen) snprintf(msg, msglen, "%s", text);
+    return code;
+}
+
+/* Column spec: 1-based index ("3") or a name.  Sets *col (0-based) or
+ * *name (a trimmed copy). */
+static int parse_column(const char *spec, const char *role, long *col, char **name, char *t,
+                        size_t tlen)
+{
+    while (is_blank(*spec)) spec++;
+    size_t n = strlen(spec);
+    while (n && is_blank(spec[n - 1])) n--;
+    if (!n) {
+        snprintf(t, tlen, "%s column: empty name", role);
+        return SW_EINVAL;
+    }
+    size_t digits = 0;
+    while (digits < n && spec[digits] >= '0' && spec[digits] <= '9') digits++;
+    if (digits == n) {
+        long v = 0;
+        for (size_t i = 0; i < n; i++) {
+            v = v * 10 + (spec[i] - '0');
+            if (v > MAX_COLUMN_INDEX) break;
+        }
+        if (v < 1 || v > MAX_COLUMN_INDEX) {
+            snprintf(t, tlen, "%s column %.*s: index out of range (1..%ld)", role, (int)n, spec,
+                     MAX_COLUMN_INDEX);
+            return SW_EINVAL;
+        }
+        *col = v - 1;
+        return SW_OK;
+    }
+    *name = malloc(n + 1);
+    if (!*name) {
+        snprintf(t, tlen, "out of memory");
+        return SW_ENOMEM;
+    }
+    memcpy(*name, spec, n);
+    (*name)[n] = '\0';
+    *col = -1;
+    return SW_OK;
+}
+
+sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_reject_fn on_reject,
+                        void *user, int *err, char *msg, size_t msglen)
+{
+    static const sw_csv_opts_t defaults = {0, NULL, NULL, NULL, 0.0, 0.0, 0, -1};
+    const sw_csv_opts_t *o = opts ? opts : &defaults;
+    char t[200];
+
+    if (o->delim != 0 && o->delim != ',' && o->delim != ';' && o->delim != '\t') {
+        bad_opts(err, msg, msglen, SW_EINVAL, "delimiter must be ',', ';' or tab");
+        return NULL;
+    }
+    if (o->header < -1 || o->header > 1) {
+        bad_opts(err, msg, msglen, SW_EINVAL, "header must be -1 (detect), 0 or 1");
+        return NULL;
+    }
+    double ts = o->time_scale == 0.0 ? 1.0 : o->time_scale;
+    double as = o->accel_scale == 0.0 ? 1.0 : o->accel_scale;
+    if (!(isfinite(ts) && ts > 0.0)) {
+        bad_opts(err, msg, msglen, SW_EINVAL, "time scale must be finite and positive");
+        return NULL;
+    }
+    if (!(isfinite(as) && as > 0.0)) {
+        bad_opts(err, msg, msglen, SW_EINVAL,
+                 "acceleration scale must be finite and positive (flip reverses the axis)");
+        return NULL;
+    }
+
+    sw_csv_t *c = calloc(1, sizeof *c);
+    if (!c) {
+        bad_opts(err, msg, msglen, SW_ENOMEM, "out of memory");
+        return NULL;
+    }
+    c->col[R_VERT] = -1;
+    const char *spec[N_ROLES] = {o->time_col ? o->time_col : "1", o->accel_col ? o->accel_col : "2",
+                                 o->vert_col};
+    for (int r = 0; r < N_ROLES; r++) {
+        if (!spec[r]) continue;
+        int rc = parse_column(spec[r], role_name[r], &c->col[r], &c->name[r], t, sizeof t);
+        if (rc != SW_OK) {
+            bad_opts(err, msg, msglen, rc, t);
+            sw_csv_destroy(c);
+            return NULL;
+        }
+    }
+    c->have_vert = spec[R_VERT] != NULL;
+    for (int r = 0; r < N_ROLES; r++) {
+        for (int q = r + 1; q < N_ROLES; q++) {
+            int same = (c->col[r] >= 0 && c->col[r] == c->col[q]) ||
+                       (c->name[r] && c->name[q] && name_equal(c->name[r], strlen(c->name[r]),
+                                                              c->name[q]));
+            if (same) {
+                snprintf(t, sizeof t, "%s and %s columns are the same", role_name[r],
+                         role_name[q]);
+                bad_opts(err, msg, msglen, SW_EINVAL, t);
+                sw_csv_destroy(c);
+                return NULL;
+            }
+        }
+        if (c->name[r] && o->header == 0) {
+            snprintf(t, sizeof t,
+                     "%s column \"%s\" is named but the input has no header (header = 0); "
+                     "give a 1-based index",
+                     role_name[r], c->name[r]);
+            bad_opts(err, msg, msglen, SW_ENOTFOUND, t);
+            sw_csv_destroy(c);
+            return NULL;
+        }
+    }
+
+    c->delim = o->delim;
+    c->header = o->header;
+    c->header_open = o->header != 0;
+    c->tscale = ts;
+    c->ascale = as;
+    c->flip = o->flip != 0;
+    /* With a named time column its position is unknown until the header is
+     * read, so detection looks at the first column. */
+    c->probe = c->col[R_TIME] >= 0 ? c->col[R_TIME] : 0;
+    c->on_row = on_row;
+    c->on_reject = on_reject;
+    c->user = user;
+
+    c->line = malloc(LINE_CAP + 1);
+    c->scratch = malloc(SCRATCH_CAP);
+    c->cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+    if (!c->line || !c->scratch || c->cloc == (locale_t)0) {
+        bad_opts(err, msg, msglen, SW_ENOMEM, "out of memory");
+        sw_csv_destroy(c);
+        return NULL;
+    }
+    csv_init(&c->lp, LIBCSV_OPTS);
+    csv_set_term_func(&c->lp, lcsv_term);
+    /* libcsv grows its field buffer linearly by this much: the default (128)
+     * would mean thousands of reallocations for one long quoted field. */
+    csv_set_blk_size(&c->lp, 64 * 1024);
+    if (c->delim) csv_set_delim(&c->lp, (unsigned char)c->delim);
+    if (err) *err = SW_OK;
+    if (msg && msglen) msg[0] = '\0';
+    return c;
+}
+
+void sw_csv_destroy(sw_csv_t *c)
+{
+    if (!c) return;
+    csv_free(&c->lp);
+    if (c->cloc != (locale_t)0) freelocale(c->cloc);
+    for (int r = 0; r < N_ROLES; r++) free(c->name[r]);
+    free(c->line);
+    free(c->scratch);
+    free(c);
+}
+
+/* Add bytes of the current line; past the limit keep only the prefix (enough
+ * to recognise a comment) and drop the rest up to the newline. */
+static void append(sw_csv_t *c, const char *s, size_t n)
+{
+    if (c->overlong) return;
+    if (n > LINE_CAP - c->len) {
+        memcpy(c->line + c->len, s, LINE_CAP - c->len);
+        c->len = LINE_CAP;
+        c->overlong = 1;
+        return;
+    }
+    memcpy(c->line + c->len, s, n);
+    c->len += n;
+}
+
+int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len)
+{
+    if (!c || (!buf && len)) return SW_EINVAL;
+    if (c->status < 0) return c->status;
+    if (c->finished) {
+        c->status = SW_EINVAL;
+        snprintf(c->msg, sizeof c->msg, "sw_csv_feed called after sw_csv_finish");
+        return c->status;
+    }
+    while (len) {
+        const char *nl = memchr(buf, '\n', len);
+        size_t seg = nl ? (size_t)(nl - buf) : len;
+        append(c, buf, seg);
+        if (!nl) break;
+        end_line(c);
+        if (c->status < 0) return c->status;
+        buf += seg + 1;
+        len -= seg + 1;
+    }
+    return SW_OK;
+}
+
+int sw_csv_finish(sw_csv_t *c)
+{
+    if (!c) return SW_EINVAL;
+    if (c->status < 0) return c->status;
+    if (c->finished) return SW_OK;
+    c->finished = 1;
+    if (c->len || c->overlong) end_line(c);
+    return c->status;
+}
+
+void sw_csv_counts(const sw_csv_t *c, sw_csv_counts_t *out)
+{
+    if (!out) return;
+    if (!c) {
+        memset(out, 0, sizeof *out);
+        return;
+    }
+    *out = c->n;
+}
+
+const char *sw_csv_error_message(const sw_csv_t *c)
+{
+    return c ? c->msg : "";
+}

@@ -1,0 +1,792 @@
+/* engine.c - the streaming integrator: advances every package to each
+ * pushed sample at fixed internal steps (or GSL's adaptive steps), locates
+ * events inside a step, cuts the step there, applies the event's map and
+ * goes on.
+ *
+ * Event location (GSL has none): after a step, the endpoint values of each
+ * event function are checked; a candidate crossing is confirmed on the cubic
+ * Hermite interpolant of the event function over the step (values and time
+ * derivatives at both ends), split into monotone pieces so that a double
+ * crossing inside one step is not missed, and bracketed by bisection.  The
+ * root is then polished by re-stepping from the step's start with the same
+ * scheme and Newton iterations on the event function, so the event lies on
+ * the scheme's own solution and the result does not depend on where the
+ * sample grid falls.  Events that change the dynamics (uplift, impact,
+ * overturn) cut the step; tipping (|theta| = alpha) is only timed.
+ *
+ * Steps are aligned to samples: each sample interval (or what is left of
+ * it after an event) is split into equal steps no longer than the package's
+ * step h, because the input has a kink at every sample. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+#include "swaywatch/model.h"
+#include "swaywatch/status.h"
+
+struct sw_engine {
+    size_t n;
+    sw_pkg_t *pk;
+    const sw_scheme_t *scheme;
+    sw_engine_opts_t o;
+    double rest_eps;
+    int started;
+    double t;       /* s, time of the last sample */
+    double ag, az;  /* m/s^2, last sample */
+    sw_input_t in;  /* input over the interval being integrated */
+    int events;     /* events reported during the current call */
+};
+
+enum { EV_NONE = 0, EV_IMPACT, EV_OVERTURN, EV_UPLIFT_FWD, EV_UPLIFT_BACK, EV_TIP };
+
+/* ---- reporting -------------------------------------------------------- */
+
+static void emit(sw_engine_t *e, sw_pkg_t *P, sw_event_kind kind, double t, double info)
+{
+    sw_event_t ev;
+    sw_output_t o;
+    sw_model_output(P, t, &o);
+    ev.pkg = (size_t)(P - e->pk);
+    ev.kind = kind;
+    ev.t = t;
+    ev.theta = o.state.theta;
+    ev.theta_dot = o.state.theta_dot;
+    ev.margin = o.margin;
+    ev.info = info;
+    if (o.margin < P->sum.min_margin) P->sum.min_margin = o.margin;
+    e->events++;
+    if (e->o.on_event) e->o.on_event(e->o.user, &ev);
+}
+
+static void track_theta(sw_pkg_t *P, double th)
+{
+    const double a = fabs(th);
+    if (a > P->sum.max_abs_theta) {
+        P->sum.max_abs_theta = a;
+        P->sum.max_theta_ratio = a / P->d.alpha;
+    }
+}
+
+/* ---- stepping --------------------------------------------------------- */
+
+static int step_to(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const double y0[],
+                   double y1[])
+{
+    if (!e->scheme->adaptive) {
+        e->scheme->step(P, t0, h, y0, y1);
+        return SW_OK;
+    }
+    double yerr[SW_NMAX];
+    memcpy(y1, y0, sizeof(double) * (size_t)P->n);
+    return gsl_odeiv2_step_apply(P->gstep, t0, h, y1, yerr, NULL, NULL, &P->sys) == GSL_SUCCESS
+               ? SW_OK
+               : SW_EGSL;
+}
+
+static int finite_state(const sw_pkg_t *P, const double y[])
+{
+    for (int i = 0; i < P->n; i++)
+        if (!isfinite(y[i])) return 0;
+    return 1;
+}
+
+/* ---- event functions -------------------------------------------------- */
+
+/* Value and time derivative of event ev at (t, y) with f = y'.  Every
+ * event is "the function rises through 0". */
+static void event_fn(const sw_pkg_t *P, int ev, double t, const double y[], const double f[],
+                     double *val, double *der)
+{
+    const double s = P->side;
+    switch (ev) {
+    case EV_IMPACT:
+        *val = -s * y[P->ith];
+        *der = -s * f[P->ith];
+        return;
+    case EV_OVERTURN:
+        *val = s * y[P->ith] - M_PI_2;
+        *der = s * f[P->ith];
+        return;
+    case EV_TIP:
+        *val = s * y[P->ith] - P->d.alpha;
+        *der = s * f[P->ith];
+        return;
+    default: {
+        /* frame stuck: support acceleration W = -(2 z w u' + w^2 u) against
+         * the uplift threshold T = tan(alpha) g_eff */
+        const double w = P->d.omega_b, c = 2.0 * P->d.zeta_b * w;
+        const double W = -(c * y[P->idu] + w * w * y[P->iu]);
+        const double Wd = -(c * f[P->idu] + w * w * f[P->iu]);
+        const double T = P->tan_alpha * sw_input_geff(P, t);
+        const double Td = P->in->fn ? 0.0 : P->tan_alpha * P->in->az_slope;
+        const double sg = ev == EV_UPLIFT_BACK ? 1.0 : -1.0; /* back: W >= T; fwd: W <= -T */
+        *val = sg * W - T;
+        *der = sg * Wd - Td;
+        return;
+    }
+    }
+}
+
+/* Cubic Hermite of a scalar over a step of length h, tau in [0, 1]. */
+typedef struct {
+    double c0, c1, c2, c3;
+} herm_t;
+
+static herm_t herm_make(double v0, double d0, double v1, double d1, double h)
+{
+    herm_t H;
+    H.c0 = v0;
+    H.c1 = h * d0;
+    H.c2 = -3.0 * v0 - 2.0 * h * d0 + 3.0 * v1 - h * d1;
+    H.c3 = 2.0 * v0 + h * d0 - 2.0 * v1 + h * d1;
+    return H;
+}
+
+static double herm_at(const herm_t *H, double x)
+{
+    return ((H->c3 * x + H->c2) * x + H->c1) * x + H->c0;
+}
+
+/* Critical points of H inside (0, 1), sorted; returns how many (0..2). */
+static int herm_crit(const herm_t *H, double x[2])
+{
+    const double a = 3.0 * H->c3, b = 2.0 * H->c2, c = H->c1;
+    int k = 0;
+    double r[2];
+    if (fabs(a) < 1e-300) {
+        if (fabs(b) > 1e-300) r[k++] = -c / b;
+    } else {
+        const double disc = b * b - 4.0 * a * c;
+        if (disc >= 0.0) {
+            const double q = -0.5 * (b + copysign(sqrt(disc), b));
+            if (q != 0.0) r[k++] = q / a;
+            if (q != 0.0) r[k++] = c / q;
+            else r[k++] = 0.0;
+        }
+    }
+    int m = 0;
+    for (int i = 0; i < k; i++)
+        if (r[i] > 0.0 && r[i] < 1.0) x[m++] = r[i];
+    if (m == 2 && x[0] > x[1]) {
+        const double tmp = x[0];
+        x[0] = x[1];
+        x[1] = tmp;
+    }
+    return m;
+}
+
+/* Earliest tau in (0, 1] where H rises through 0 (from < 0, or from 0 with
+ * a non-positive slope, to >= 0).  Returns -1 if none. */
+static double herm_first_rise(const herm_t *H)
+{
+    double knots[4];
+    int nk = 0;
+    knots[nk++] = 0.0;
+    double cr[2];
+    const int nc = herm_crit(H, cr);
+    for (int i = 0; i < nc; i++) knots[nk++] = cr[i];
+    knots[nk++] = 1.0;
+    for (int i = 0; i + 1 < nk; i++) {
+        double a = knots[i], b = knots[i + 1];
+        const double va = herm_at(H, a), vb = herm_at(H, b);
+        const int neg_a = va < 0.0 || (va == 0.0 && (i > 0 || H->c1 <= 0.0));
+        if (!(neg_a && vb >= 0.0)) continue;
+        for (int it = 0; it < 64 && b - a > 1e-16; it++) { /* monotone piece */
+            const double m = 0.5 * (a + b);
+            if (herm_at(H, m) >= 0.0) b = m;
+            else a = m;
+        }
+        return b;
+    }
+    return -1.0;
+}
+
+/* ---- one package ------------------------------------------------------ */
+
+static void set_rest(sw_pkg_t *P)
+{
+    memset(P->y, 0, sizeof P->y);
+    P->phase = SW_PHASE_STUCK;
+    P->side = 1;
+    P->beyond_alpha = 0;
+}
+
+static void fault(sw_engine_t *e, sw_pkg_t *P, double t, int code)
+{
+    P->sum.faults++;
+    set_rest(P);
+    if (P->gevo) gsl_odeiv2_evolve_reset(P->gevo);
+    emit(e, P, SW_EV_FAULT, t, code);
+}
+
+static void start_rocking(sw_engine_t *e, sw_pkg_t *P, double t, int side)
+{
+    P->phase = SW_PHASE_ROCKING;
+    P->side = side;
+    P->y[P->ith] = P->y[P->idth] = 0.0;
+    P->sum.uplifts++;
+    if (isnan(P->sum.uplift_time)) P->sum.uplift_time = t;
+    emit(e, P, SW_EV_UPLIFT, t, side);
+}
+
+/* After an impact: the cascade ends (rest) when the rebound energy is below
+ * rest_eps of the barrier; the package then stands, or starts to rock again
+ * at once if its support is still beyond the uplift threshold. */
+static void after_impact(sw_engine_t *e, sw_pkg_t *P, double t)
+{
+    const double p = P->d.p, dth = P->y[P->idth];
+    if (0.5 * dth * dth / (p * p) >= e->rest_eps * (1.0 - cos(P->d.alpha))) return;
+    P->y[P->idth] = 0.0;
+    const int side = sw_model_uplift_side(P, t);
+    if (side == 0) {
+        P->phase = SW_PHASE_STUCK;
+        P->sum.rests++;
+        emit(e, P, SW_EV_REST, t, 0.0);
+    } else {
+        P->side = side;
+    }
+}
+
+/* Bare block, stuck: no dynamics.  Earliest time in [t, t1] at which the bed
+ * acceleration reaches the uplift threshold, or -1; *side gets the
+ * direction.  Exact for sampled (linear) input; for a function input the
+ * interval is scanned at the package's step and the crossing bisected. */
+static double bare_uplift_time(sw_pkg_t *P, double t, double t1, int *side)
+{
+    if ((*side = sw_model_uplift_side(P, t)) != 0) return t;
+    const sw_input_t *in = P->in;
+    if (!in->fn) {
+        const double ta = P->tan_alpha;
+        const double a0 = sw_input_ag(in, t), z0 = sw_input_geff(P, t);
+        const double best_fwd_q0 = a0 + ta * z0, best_fwd_q1 = in->ag_slope + ta * in->az_slope;
+        const double back_q0 = a0 - ta * z0, back_q1 = in->ag_slope - ta * in->az_slope;
+        double tu = INFINITY;
+        /* forward: a + tan(a) g_eff <= 0; back: a - tan(a) g_eff >= 0 */
+        if (best_fwd_q1 < 0.0) {
+            const double tc = t - best_fwd_q0 / best_fwd_q1;
+            if (tc <= t1 && tc < tu) {
+                tu = tc;
+                *side = +1;
+            }
+        }
+        if (back_q1 > 0.0) {
+            const double tc = t - back_q0 / back_q1;
+            if (tc <= t1 && tc < tu) {
+                tu = tc;
+                *side = -1;
+            }
+        }
+        if (tu == INFINITY) return -1.0;
+        return fmax(t, tu);
+    }
+    const int nsub = (int)ceil((t1 - t) / P->h - 1e-9);
+    double ta = t;
+    for (int i = 1; i <= (nsub > 0 ? nsub : 1); i++) {
+        const double tb = i == nsub ? t1 : t + (t1 - t) * i / nsub;
+        const int sb = sw_model_uplift_side(P, tb);
+        if (sb != 0) {
+            double lo = ta, hi = tb;
+            for (int it = 0; it < 60 && hi - lo > 1e-15 * fmax(1.0, fabs(hi)); it++) {
+                const double m = 0.5 * (lo + hi);
+                if (sw_model_uplift_side(P, m) != 0) hi = m;
+                else lo = m;
+            }
+            *side = sw_model_uplift_side(P, hi);
+            if (*side == 0) *side = sb;
+            return hi;
+        }
+        ta = tb;
+    }
+    return -1.0;
+}
+
+/* Earliest cutting event inside the step (t0,y0) -> (t0+h,y1), with the
+ * Hermite interpolants; also times the tip and tracks max |theta|. */
+static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const double y0[],
+                      const double y1[], double *tau_out)
+{
+    const double t1 = t0 + h;
+    int cands[3], nc = 0;
+    const int tipcand = P->phase == SW_PHASE_ROCKING &&
+                        ((P->side * y0[P->ith] < P->d.alpha) != (P->side * y1[P->ith] < P->d.alpha));
+    int maxcand = 0;
+    if (P->phase == SW_PHASE_ROCKING) {
+        const double s0 = P->side * y0[P->ith], s1 = P->side * y1[P->ith];
+        const double v = h * fmax(fabs(y0[P->idth]), fabs(y1[P->idth]));
+        if (s1 <= 0.0 || fmin(s0, s1) < v) cands[nc++] = EV_IMPACT;
+        if (s1 >= M_PI_2 || M_PI_2 - fmax(s0, s1) < v) cands[nc++] = EV_OVERTURN;
+        maxcand = (y0[P->idth] > 0.0) != (y1[P->idth] > 0.0);
+    } else if (P->phase == SW_PHASE_STUCK && P->d.model != SW_MODEL_BARE) {
+        cands[nc++] = EV_UPLIFT_FWD;
+        cands[nc++] = EV_UPLIFT_BACK;
+    }
+    if (nc == 0 && !tipcand && !maxcand) return EV_NONE;
+
+    double f0[SW_NMAX], f1[SW_NMAX];
+    sw_model_rhs(t0, y0, f0, P);
+    sw_model_rhs(t1, y1, f1, P);
+    int best = EV_NONE;
+    double best_tau = 2.0;
+    for (int i = 0; i < nc; i++) {
+        double v0, d0, v1, d1;
+        event_fn(P, cands[i], t0, y0, f0, &v0, &d0);
+        event_fn(P, cands[i], t1, y1, f1, &v1, &d1);
+        if (cands[i] >= EV_UPLIFT_FWD && v1 < 0.0 && v0 < 0.0 &&
+            fmax(v0, v1) < -0.5 * h * (fabs(d0) + fabs(d1)))
+            continue; /* clearly below the threshold all step */
+        const herm_t H = herm_make(v0, d0, v1, d1, h);
+        double tau = herm_first_rise(&H);
+        if (tau < 0.0 && v0 < 0.0 && v1 >= 0.0) tau = 1.0; /* guard against round-off */
+        if (tau >= 0.0 && tau < best_tau) {
+            best_tau = tau;
+            best = cands[i];
+        }
+    }
+    const double lim = best == EV_NONE ? 1.0 : best_tau;
+    if (maxcand) {
+        const herm_t H = herm_make(y0[P->ith], y0[P->idth], y1[P->ith], y1[P->idth], h);
+        double x[2];
+        const int k = herm_crit(&H, x);
+        for (int i = 0; i < k; i++)
+            if (x[i] <= lim) track_theta(P, herm_at(&H, x[i]));
+    }
+    if (tipcand) {
+        double v0, d0, v1, d1;
+        event_fn(P, EV_TIP, t0, y0, f0, &v0, &d0);
+        event_fn(P, EV_TIP, t1, y1, f1, &v1, &d1);
+        const herm_t H = herm_make(v0, d0, v1, d1, h);
+        const double tau = herm_first_rise(&H);
+        if (tau >= 0.0 && tau <= lim) {
+            const double tt = t0 + tau * h;
+            if (isnan(P->sum.tip_time)) P->sum.tip_time = tt;
+            P->beyond_alpha = 1;
+            emit(e, P, SW_EV_TIP, tt, P->side * P->d.alpha);
+        }
+    }
+    *tau_out = best_tau;
+    return best;
+}
+
+/* Polish the event time: re-step from (t0, y0) and Newton on the event
+ * function.  Leaves the state at the event in y and returns its time. */
+static double polish(sw_engine_t *e, sw_pkg_t *P, int ev, double t0, double h, const double y0[],
+                     double tau, double y[])
+{
+    double ts = t0 + tau * h, f[SW_NMAX], v, d;
+    for (int it = 0; it < 8; it++) {
+        if (step_to(e, P, t0, ts - t0, y0, y) != SW_OK) break;
+        sw_model_rhs(ts, y, f, P);
+        event_fn(P, ev, ts, y, f, &v, &d);
+        if (v == 0.0 || d == 0.0) break;
+        double tn = ts - v / d;
+        if (tn <= t0) tn = 0.5 * (t0 + ts);
+        if (tn > t0 + h) tn = t0 + h;
+        const double dt = fabs(tn - ts);
+        ts = tn;
+        if (dt <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(ts))) {
+            step_to(e, P, t0, ts - t0, y0, y);
+            break;
+        }
+    }
+    return ts;
+}
+
+static void handle_event(sw_engine_t *e, sw_pkg_t *P, int ev, double t)
+{
+    switch (ev) {
+    case EV_IMPACT: {
+        const double before = P->y[P->idth];
+        P->y[P->ith] = 0.0;
+        sw_model_impact(P);
+        P->beyond_alpha = 0;
+        P->sum.impacts++;
+        emit(e, P, SW_EV_IMPACT, t, before);
+        after_impact(e, P, t);
+        break;
+    }
+    case EV_OVERTURN: {
+        const double rate = P->y[P->idth];
+        P->y[P->ith] = P->side * M_PI_2;
+        track_theta(P, M_PI_2);
+        P->phase = SW_PHASE_OVERTURNED;
+        P->sum.overturned = 1;
+        P->sum.overturn_time = t;
+        emit(e, P, SW_EV_OVERTURN, t, rate);
+        for (int i = 0; i < P->n; i++)
+            if (i != P->ith) P->y[i] = 0.0;
+        break;
+    }
+    case EV_UPLIFT_FWD:
+    case EV_UPLIFT_BACK:
+        start_rocking(e, P, t, ev == EV_UPLIFT_FWD ? +1 : -1);
+        break;
+    default: break;
+    }
+    if (P->gevo) {
+        gsl_odeiv2_evolve_reset(P->gevo);
+        gsl_odeiv2_step_reset(P->gstep);
+    }
+}
+
+/* Advance one package from P->t to t1 under the input e->in. */
+static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
+{
+    double y1[SW_NMAX], ys[SW_NMAX];
+    int guard = 0;
+    if (sw_input_geff(P, P->t) <= 0.0 || sw_input_geff(P, t1) <= 0.0) {
+        /* airborne: outside the model, never integrated */
+        if (P->phase != SW_PHASE_OVERTURNED) fault(e, P, P->t, SW_EFAULT);
+        P->t = t1;
+        return;
+    }
+    while (P->t < t1) {
+        if (++guard > 100000000) { /* cannot happen with a finite event count */
+            fault(e, P, P->t, SW_EFAULT);
+            break;
+        }
+        if (P->phase == SW_PHASE_OVERTURNED) break;
+        if (P->phase == SW_PHASE_STUCK && P->d.model == SW_MODEL_BARE) {
+            int side;
+            const double tu = bare_uplift_time(P, P->t, t1, &side);
+            if (tu < 0.0) break;
+            P->t = tu;
+            start_rocking(e, P, tu, side);
+            if (tu >= t1) break;
+            continue;
+        }
+        const double t0 = P->t, rem = t1 - t0;
+        double h;
+        if (e->scheme->adaptive) {
+            double tt = t0;
+            memcpy(y1, P->y, sizeof(double) * (size_t)P->n);
+            if (P->h_adapt > rem) P->h_adapt = rem;
+            int st = gsl_odeiv2_evolve_apply(P->gevo, P->gctl, P->gstep, &P->sys, &tt, t1,
+                                             &P->h_adapt, y1);
+            if (st != GSL_SUCCESS || !(tt > t0)) {
+                fault(e, P, t0, SW_EGSL);
+                break;
+            }
+            h = tt - t0;
+        } else {
+            const double nst = ceil(rem / P->h - 1e-9);
+            h = nst <= 1.0 ? rem : rem / nst;
+            e->scheme->step(P, t0, h, P->y, y1);
+        }
+        P->sum.steps++;
+        if (!finite_state(P, y1)) {
+            fault(e, P, t0, SW_EFAULT);
+            break;
+        }
+        double tau;
+        const int ev = find_event(e, P, t0, h, P->y, y1, &tau);
+        if (ev == EV_NONE) {
+            memcpy(P->y, y1, sizeof(double) * (size_t)P->n);
+            P->t = (h == rem) ? t1 : t0 + h;
+            if (P->phase == SW_PHASE_ROCKING) track_theta(P, P->y[P->ith]);
+            continue;
+        }
+        const double te = polish(e, P, ev, t0, h, P->y, tau, ys);
+        memcpy(P->y, ys, sizeof(double) * (size_t)P->n);
+        P->t = te;
+        if (P->phase == SW_PHASE_ROCKING) track_theta(P, P->y[P->ith]);
+        handle_event(e, P, ev, te);
+    }
+    P->t = t1;
+}
+
+static void report_states(sw_engine_t *e, double t)
+{
+    for (size_t i = 0; i < e->n; i++) {
+        sw_pkg_t *P = &e->pk[i];
+        sw_output_t o;
+        sw_model_output(P, t, &o);
+        o.pkg = i;
+        if (o.margin < P->sum.min_margin) P->sum.min_margin = o.margin;
+        if (o.margin_bound < P->sum.min_margin_bound) P->sum.min_margin_bound = o.margin_bound;
+        if (o.uplift_ratio > P->sum.max_uplift_ratio) P->sum.max_uplift_ratio = o.uplift_ratio;
+        if (e->o.on_state) e->o.on_state(e->o.user, &o);
+    }
+}
+
+/* ---- public API ------------------------------------------------------- */
+
+static void pkg_reset(sw_pkg_t *P)
+{
+    set_rest(P);
+    P->t = 0.0;
+    P->h_adapt = P->h;
+    memset(&P->sum, 0, sizeof P->sum);
+    snprintf(P->sum.name, sizeof P->sum.name, "%s", P->scene.name);
+    P->sum.model = P->d.model;
+    P->sum.overturn_time = P->sum.tip_time = P->sum.uplift_time = NAN;
+    P->sum.min_margin = P->sum.min_margin_bound = 1.0;
+    if (P->gevo) {
+        gsl_odeiv2_evolve_reset(P->gevo);
+        gsl_odeiv2_step_reset(P->gstep);
+    }
+}
+
+void sw_engine_reset(sw_engine_t *e)
+{
+    if (!e) return;
+    e->started = 0;
+    e->t = NAN;
+    e->ag = e->az = 0.0;
+    memset(&e->in, 0, sizeof e->in);
+    for (size_t i = 0; i < e->n; i++) pkg_reset(&e->pk[i]);
+}
+
+void sw_engine_destroy(sw_engine_t *e)
+{
+    if (!e) return;
+    for (size_t i = 0; i < e->n; i++) {
+        sw_pkg_t *P = &e->pk[i];
+        if (P->gevo) gsl_odeiv2_evolve_free(P->gevo);
+        if (P->gctl) gsl_odeiv2_control_free(P->gctl);
+        if (P->gstep) gsl_odeiv2_step_free(P->gstep);
+    }
+    free(e->pk);
+    free(e);
+}
+
+static int fail(int *err, int code, char *msg, size_t msglen, const char *text)
+{
+    if (err) *err = code;
+    if (msg && msglen) snprintf(msg, msglen, "%s", text);
+    return code;
+}
+
+sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *opts,
+                              int *err, char *msg, size_t msglen)
+{
+    char buf[512];
+    if (err) *err = SW_OK;
+    if (msg && msglen) msg[0] = '\0';
+    if (!scenes || n == 0) {
+        fail(err, SW_EINVAL, msg, msglen, "no scene");
+        return NULL;
+    }
+    sw_engine_t *e = calloc(1, sizeof *e);
+    if (!e || !(e->pk = calloc(n, sizeof *e->pk))) {
+        free(e);
+        fail(err, SW_ENOMEM, msg, msglen, "out of memory");
+        return NULL;
+    }
+    e->n = n;
+    if (opts) e->o = *opts;
+    e->scheme = sw_scheme_lookup(e->o.scheme ? e->o.scheme : SW_DEFAULT_SCHEME);
+    if (!e->scheme) {
+        snprintf(buf, sizeof buf, "unknown scheme '%s'", e->o.scheme);
+        fail(err, SW_ENOTFOUND, msg, msglen, buf);
+        goto out_fail;
+    }
+    if (e->o.dt < 0.0 || !isfinite(e->o.dt) || e->o.rtol < 0.0 || e->o.atol < 0.0 ||
+        e->o.rest_eps < 0.0) {
+        fail(err, SW_EINVAL, msg, msglen, "dt, rtol, atol and rest_eps must be >= 0");
+        goto out_fail;
+    }
+    e->rest_eps = e->o.rest_eps > 0.0 ? e->o.rest_eps : 1e-9;
+    const double dt = e->o.dt > 0.0 ? e->o.dt : e->scheme->default_dt;
+    for (size_t i = 0; i < n; i++) {
+        sw_pkg_t *P = &e->pk[i];
+        P->scene = scenes[i];
+        if (sw_scene_validate(&P->scene, &P->d, NULL, NULL, NULL) != SW_OK) {
+            snprintf(buf, sizeof buf, "scene '%s' is not valid", scenes[i].name);
+            fail(err, SW_EINVAL, msg, msglen, buf);
+            goto out_fail;
+        }
+        if (P->d.model == SW_MODEL_CUSHION) {
+            snprintf(buf, sizeof buf, "scene '%s': the cushion model is not available in this build",
+                     scenes[i].name);
+            fail(err, SW_EINVAL, msg, msglen, buf);
+            goto out_fail;
+        }
+        sw_model_setup(P);
+        P->in = &e->in;
+        P->h = dt;
+        if (!e->scheme->adaptive && P->d.omega_max > 0.0) {
+            const double bound = e->scheme->stab / P->d.omega_max; /* s */
+            if (e->o.dt_forced && dt > bound) {
+                snprintf(buf, sizeof buf,
+                         "scene '%s': dt = %g s gives omega*dt = %.3g, above the %s stability "
+                         "bound %.3g for the scene's fastest frequency omega = %.4g rad/s "
+                         "(use dt <= %.3g s)",
+                         scenes[i].name, dt, P->d.omega_max * dt, e->scheme->name,
+                         e->scheme->stab, P->d.omega_max, bound);
+                fail(err, SW_EUNSTABLE, msg, msglen, buf);
+                goto out_fail;
+            }
+            if (P->h > 0.5 * bound) P->h = 0.5 * bound; /* sub-step with a safety factor */
+        }
+        P->sys.function = sw_model_rhs;
+        P->sys.jacobian = NULL;
+        P->sys.dimension = (size_t)P->n;
+        P->sys.params = P;
+        if (e->scheme->adaptive) {
+            const double rtol = e->o.rtol > 0.0 ? e->o.rtol : 1e-10;
+            const double atol = e->o.atol > 0.0 ? e->o.atol : 1e-12;
+            P->gstep = gsl_odeiv2_step_alloc(*e->scheme->gsl_type, (size_t)P->n);
+            P->gctl = gsl_odeiv2_control_y_new(atol, rtol);
+            P->gevo = gsl_odeiv2_evolve_alloc((size_t)P->n);
+            if (!P->gstep || !P->gctl || !P->gevo) {
+                fail(err, SW_ENOMEM, msg, msglen, "out of memory");
+                goto out_fail;
+            }
+        }
+    }
+    sw_engine_reset(e);
+    return e;
+out_fail:
+    sw_engine_destroy(e);
+    return NULL;
+}
+
+/* A first sample already beyond the threshold lifts a bare block at once. */
+static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
+{
+    P->t = t;
+    if (P->d.model != SW_MODEL_BARE || P->phase != SW_PHASE_STUCK) return;
+    const int side = sw_model_uplift_side(P, t);
+    if (side) start_rocking(e, P, t, side);
+}
+
+static void start_at(sw_engine_t *e, double t, double ag, double az)
+{
+    e->started = 1;
+    e->t = t;
+    e->ag = ag;
+    e->az = az;
+    e->in = (sw_input_t){.t0 = t, .ag0 = ag, .az0 = az};
+    for (size_t i = 0; i < e->n; i++) initial_uplift(e, &e->pk[i], t);
+}
+
+int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z)
+{
+    if (!e) return SW_EINVAL;
+    if (!isfinite(t) || !isfinite(a_g) || !isfinite(a_z)) return SW_ENONFINITE;
+    e->events = 0;
+    if (!e->started) {
+        start_at(e, t, a_g, a_z);
+        report_states(e, t);
+        return e->events ? SW_EVENT : SW_OK;
+    }
+    if (!(t > e->t)) return SW_EORDER;
+    const double span = t - e->t;
+    e->in = (sw_input_t){.t0 = e->t,
+                         .ag0 = e->ag,
+                         .ag_slope = (a_g - e->ag) / span,
+                         .az0 = e->az,
+                         .az_slope = (a_z - e->az) / span};
+    for (size_t i = 0; i < e->n; i++) advance_pkg(e, &e->pk[i], t);
+    e->t = t;
+    e->ag = a_g;
+    e->az = a_z;
+    e->in = (sw_input_t){.t0 = t, .ag0 = a_g, .az0 = a_z};
+    report_states(e, t);
+    return e->events ? SW_EVENT : SW_OK;
+}
+
+int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
+{
+    if (!e || !f || !isfinite(t1)) return SW_EINVAL;
+    e->events = 0;
+    e->in = (sw_input_t){.fn = f, .fn_user = user};
+    if (!e->started) {
+        e->started = 1;
+        e->t = 0.0;
+        for (size_t i = 0; i < e->n; i++) initial_uplift(e, &e->pk[i], 0.0);
+    }
+    if (!(t1 > e->t)) return t1 == e->t ? SW_OK : SW_EORDER;
+    for (size_t i = 0; i < e->n; i++) advance_pkg(e, &e->pk[i], t1);
+    e->t = t1;
+    e->ag = f(user, t1);
+    e->az = 0.0;
+    report_states(e, t1);
+    e->in = (sw_input_t){.t0 = t1, .ag0 = e->ag};
+    return e->events ? SW_EVENT : SW_OK;
+}
+
+static double zero_input(void *user, double t)
+{
+    (void)user;
+    (void)t;
+    return 0.0;
+}
+
+int sw_engine_finish(sw_engine_t *e, double settle)
+{
+    if (!e) return SW_EINVAL;
+    int any = 0;
+    if (!(settle > 0.0) || !e->started) return SW_OK;
+    const double t_end = e->t + settle;
+    const double chunk = 1e-3; /* s, state reports while settling */
+    while (e->t < t_end) {
+        int moving = 0;
+        for (size_t i = 0; i < e->n; i++)
+            if (e->pk[i].phase == SW_PHASE_ROCKING ||
+                (e->pk[i].phase == SW_PHASE_STUCK && e->pk[i].d.model != SW_MODEL_BARE &&
+                 (fabs(e->pk[i].y[e->pk[i].iu]) > 1e-9 || fabs(e->pk[i].y[e->pk[i].idu]) > 1e-9)))
+                moving = 1;
+        if (!moving) break;
+        const double tn = fmin(t_end, e->t + chunk);
+        if (sw_engine_advance_fn(e, tn, zero_input, NULL) == SW_EVENT) any = 1;
+    }
+    return any ? SW_EVENT : SW_OK;
+}
+
+int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
+{
+    if (!e || pkg >= e->n || !s) return SW_EINVAL;
+    sw_pkg_t *P = &e->pk[pkg];
+    sw_model_from_state(P, s);
+    P->beyond_alpha = fabs(P->y[P->ith]) >= P->d.alpha;
+    if (P->gevo) {
+        gsl_odeiv2_evolve_reset(P->gevo);
+        gsl_odeiv2_step_reset(P->gstep);
+    }
+    return SW_OK;
+}
+
+int sw_engine_get_output(const sw_engine_t *e, size_t pkg, sw_output_t *out)
+{
+    if (!e || pkg >= e->n || !out) return SW_EINVAL;
+    const sw_pkg_t *P = &e->pk[pkg];
+    sw_model_output(P, e->started ? e->t : 0.0, out);
+    out->pkg = pkg;
+    return SW_OK;
+}
+
+size_t sw_engine_count(const sw_engine_t *e)
+{
+    return e ? e->n : 0;
+}
+
+double sw_engine_time(const sw_engine_t *e)
+{
+    return e && e->started ? e->t : NAN;
+}
+
+const sw_derived_t *sw_engine_derived(const sw_engine_t *e, size_t pkg)
+{
+    return e && pkg < e->n ? &e->pk[pkg].d : NULL;
+}
+
+int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s)
+{
+    if (!e || pkg >= e->n || !s) return SW_EINVAL;
+    *s = e->pk[pkg].sum;
+    return SW_OK;
+}
+
+const char *sw_engine_scheme(const sw_engine_t *e)
+{
+    return e ? e->scheme->name : NULL;
+}
+
+double sw_engine_dt(const sw_engine_t *e, size_t pkg)
+{
+    return e && pkg < e->n ? e->pk[pkg].h : NAN;
+}
