@@ -41,7 +41,7 @@ typedef struct {
 static int parse_pulse(int argc, char **argv, int i, pulse_opts_t *p)
 {
     p->rate = 500;
-    p->amplitude = -6;
+    p->amplitude = -9;
     p->omega = 10;
     p->duration = 2;
     p->lead = 0.2;

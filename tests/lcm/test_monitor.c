@@ -30,7 +30,7 @@
 #define UTIME0 1700000000000000LL
 #define MAXMSG 20000
 
-/* A tall crate that rocks hard under a 0.6 g braking pulse but stays up. */
+/* A tall crate that rocks hard under a 0.9 g braking pulse but stays up. */
 static const char *scene_a =
     "[package]\nname = crate-A\nheight = 2.0\nwidth = 0.728\nmass = 1000\n"
     "[alarm]\nwarn_margin = 0.5\ncritical_margin = 0.2\n";
@@ -39,9 +39,9 @@ static const char *scene_b =
 
 static double pulse_a(long k)
 {
-    /* braking half-sine, 6 m/s^2, 10 rad/s, from 0.2 s */
+    /* braking half-sine, 9 m/s^2, 10 rad/s, from 0.2 s */
     double t = (double)k / RATE - 0.2;
-    return (t >= 0.0 && t <= M_PI / 10.0) ? -6.0 * sin(10.0 * t) : 0.0;
+    return (t >= 0.0 && t <= M_PI / 10.0) ? -9.0 * sin(10.0 * t) : 0.0;
 }
 
 /* ---- the bus: everything the monitor published, decoded -------------------- */
