@@ -44,11 +44,20 @@ enum { EV_NONE = 0, EV_IMPACT, EV_OVERTURN, EV_UPLIFT_FWD, EV_UPLIFT_BACK, EV_TI
 
 /* ---- reporting -------------------------------------------------------- */
 
-static void emit(sw_engine_t *e, sw_pkg_t *P, sw_event_kind kind, double t, double info)
+/* Report an event at time t with the package's current state, or with the
+ * state vector y_at when the event lies inside a step (tipping). */
+static void emit_at(sw_engine_t *e, sw_pkg_t *P, sw_event_kind kind, double t, double info,
+                    const double *y_at)
 {
     sw_event_t ev;
     sw_output_t o;
+    double keep[SW_NMAX];
+    if (y_at) {
+        memcpy(keep, P->y, sizeof keep);
+        memcpy(P->y, y_at, sizeof(double) * (size_t)P->n);
+    }
     sw_model_output(P, t, &o);
+    if (y_at) memcpy(P->y, keep, sizeof keep);
     ev.pkg = (size_t)(P - e->pk);
     ev.kind = kind;
     ev.t = t;
@@ -59,6 +68,11 @@ static void emit(sw_engine_t *e, sw_pkg_t *P, sw_event_kind kind, double t, doub
     if (o.margin < P->sum.min_margin) P->sum.min_margin = o.margin;
     e->events++;
     if (e->o.on_event) e->o.on_event(e->o.user, &ev);
+}
+
+static void emit(sw_engine_t *e, sw_pkg_t *P, sw_event_kind kind, double t, double info)
+{
+    emit_at(e, P, kind, t, info, NULL);
 }
 
 static void track_theta(sw_pkg_t *P, double th)
@@ -178,9 +192,12 @@ static int herm_crit(const herm_t *H, double x[2])
     return m;
 }
 
-/* Earliest tau in (0, 1] where H rises through 0 (from < 0, or from 0 with
- * a non-positive slope, to >= 0).  Returns -1 if none. */
-static double herm_first_rise(const herm_t *H)
+/* Earliest tau in (0, 1] where H rises through 0 from below (H(0) = 0
+ * counts as below: the caller handles a function already rising at 0).  A
+ * rise must reach tol, so round-off in a function that only touches 0 (a
+ * package just lifted, theta = theta' = 0) is not taken for an event.
+ * Returns -1 if none. */
+static double herm_first_rise(const herm_t *H, double tol)
 {
     double knots[4];
     int nk = 0;
@@ -192,8 +209,7 @@ static double herm_first_rise(const herm_t *H)
     for (int i = 0; i + 1 < nk; i++) {
         double a = knots[i], b = knots[i + 1];
         const double va = herm_at(H, a), vb = herm_at(H, b);
-        const int neg_a = va < 0.0 || (va == 0.0 && (i > 0 || H->c1 <= 0.0));
-        if (!(neg_a && vb >= 0.0)) continue;
+        if (!(va <= 0.0 && vb >= tol)) continue;
         for (int it = 0; it < 64 && b - a > 1e-16; it++) { /* monotone piece */
             const double m = 0.5 * (a + b);
             if (herm_at(H, m) >= 0.0) b = m;
@@ -209,6 +225,8 @@ static double herm_first_rise(const herm_t *H)
 static void set_rest(sw_pkg_t *P)
 {
     memset(P->y, 0, sizeof P->y);
+    P->hold = 0;
+    P->t_lift = NAN;
     P->phase = SW_PHASE_STUCK;
     P->side = 1;
     P->beyond_alpha = 0;
@@ -226,6 +244,7 @@ static void start_rocking(sw_engine_t *e, sw_pkg_t *P, double t, int side)
 {
     P->phase = SW_PHASE_ROCKING;
     P->side = side;
+    P->t_lift = t;
     P->y[P->ith] = P->y[P->idth] = 0.0;
     P->sum.uplifts++;
     if (isnan(P->sum.uplift_time)) P->sum.uplift_time = t;
@@ -241,6 +260,15 @@ static void after_impact(sw_engine_t *e, sw_pkg_t *P, double t)
     if (0.5 * dth * dth / (p * p) >= e->rest_eps * (1.0 - cos(P->d.alpha))) return;
     P->y[P->idth] = 0.0;
     const int side = sw_model_uplift_side(P, t);
+    if (side != 0 && t == P->t_lift) {
+        /* Lifted and landed at the same instant: the support is at the
+         * threshold and the step's own error pushed the package the wrong
+         * way.  Hold it for one step (the support keeps moving), then look
+         * again, so that time always advances. */
+        P->phase = SW_PHASE_STUCK;
+        P->hold = 1;
+        return;
+    }
     if (side == 0) {
         P->phase = SW_PHASE_STUCK;
         P->sum.rests++;
@@ -326,7 +354,7 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
         if (s1 <= 0.0 || (fmin(s0, s1) < v && !on_pivot)) cands[nc++] = EV_IMPACT;
         if (s1 >= M_PI_2 || M_PI_2 - fmax(s0, s1) < v) cands[nc++] = EV_OVERTURN;
         maxcand = (y0[P->idth] > 0.0) != (y1[P->idth] > 0.0);
-    } else if (P->phase == SW_PHASE_STUCK && P->d.model != SW_MODEL_BARE) {
+    } else if (P->phase == SW_PHASE_STUCK && P->d.model != SW_MODEL_BARE && !P->hold) {
         cands[nc++] = EV_UPLIFT_FWD;
         cands[nc++] = EV_UPLIFT_BACK;
     }
@@ -344,9 +372,16 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
         if (cands[i] >= EV_UPLIFT_FWD && v1 < 0.0 && v0 < 0.0 &&
             fmax(v0, v1) < -0.5 * h * (fabs(d0) + fabs(d1)))
             continue; /* clearly below the threshold all step */
-        const herm_t H = herm_make(v0, d0, v1, d1, h);
-        double tau = herm_first_rise(&H);
-        if (tau < 0.0 && v0 < 0.0 && v1 >= 0.0) tau = 1.0; /* guard against round-off */
+        double tau;
+        if (v0 > 0.0 || (v0 == 0.0 && d0 > 0.0)) {
+            tau = 0.0; /* already through at the start of the step */
+        } else {
+            const herm_t H = herm_make(v0, d0, v1, d1, h);
+            const double tol =
+                64.0 * DBL_EPSILON * (fabs(H.c0) + fabs(H.c1) + fabs(H.c2) + fabs(H.c3));
+            tau = herm_first_rise(&H, tol);
+            if (tau < 0.0 && v0 < 0.0 && v1 > tol) tau = 1.0; /* round-off in the pieces */
+        }
         if (tau >= 0.0 && tau < best_tau) {
             best_tau = tau;
             best = cands[i];
@@ -365,38 +400,56 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
         event_fn(P, EV_TIP, t0, y0, f0, &v0, &d0);
         event_fn(P, EV_TIP, t1, y1, f1, &v1, &d1);
         const herm_t H = herm_make(v0, d0, v1, d1, h);
-        const double tau = herm_first_rise(&H);
+        const double tau = herm_first_rise(&H, 0.0);
         if (tau >= 0.0 && tau <= lim) {
             const double tt = t0 + tau * h;
+            double yt[SW_NMAX];
+            for (int i = 0; i < P->n; i++) {
+                const herm_t Hi = herm_make(y0[i], f0[i], y1[i], f1[i], h);
+                yt[i] = herm_at(&Hi, tau);
+            }
             if (isnan(P->sum.tip_time)) P->sum.tip_time = tt;
             P->beyond_alpha = 1;
-            emit(e, P, SW_EV_TIP, tt, P->side * P->d.alpha);
+            emit_at(e, P, SW_EV_TIP, tt, P->side * P->d.alpha, yt);
         }
     }
     *tau_out = best_tau;
     return best;
 }
 
-/* Polish the event time: re-step from (t0, y0) and Newton on the event
- * function.  Leaves the state at the event in y and returns its time. */
+/* Polish the event time: re-step from (t0, y0) with Newton iterations on
+ * the event function, then make sure the returned instant is at or just
+ * past the crossing (value >= 0): an uplift placed a hair early would leave
+ * the package pushed the wrong way and chatter.  Leaves the state at the
+ * event in y and returns its time. */
 static double polish(sw_engine_t *e, sw_pkg_t *P, int ev, double t0, double h, const double y0[],
                      double tau, double y[])
 {
-    double ts = t0 + tau * h, f[SW_NMAX], v, d;
+    double ts = t0 + tau * h, f[SW_NMAX], v = 0.0, d = 0.0;
+    if (tau == 0.0) {
+        memcpy(y, y0, sizeof(double) * (size_t)P->n);
+        return t0;
+    }
+    const double t1 = t0 + h;
     for (int it = 0; it < 8; it++) {
-        if (step_to(e, P, t0, ts - t0, y0, y) != SW_OK) break;
+        if (step_to(e, P, t0, ts - t0, y0, y) != SW_OK) return ts;
         sw_model_rhs(ts, y, f, P);
         event_fn(P, ev, ts, y, f, &v, &d);
         if (v == 0.0 || d == 0.0) break;
         double tn = ts - v / d;
         if (tn <= t0) tn = 0.5 * (t0 + ts);
-        if (tn > t0 + h) tn = t0 + h;
+        if (tn > t1) tn = t1;
         const double dt = fabs(tn - ts);
+        if (dt <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(ts))) break;
         ts = tn;
-        if (dt <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(ts))) {
-            step_to(e, P, t0, ts - t0, y0, y);
-            break;
-        }
+    }
+    for (int it = 0; it < 8 && v < 0.0 && ts < t1; it++) {
+        double dt = d > 0.0 ? -2.0 * v / d : 0.0;
+        dt = fmax(dt, 8.0 * DBL_EPSILON * fmax(1.0, fabs(ts)) * (1 << it));
+        ts = fmin(t1, ts + dt);
+        if (step_to(e, P, t0, ts - t0, y0, y) != SW_OK) break;
+        sw_model_rhs(ts, y, f, P);
+        event_fn(P, ev, ts, y, f, &v, &d);
     }
     return ts;
 }
@@ -442,7 +495,7 @@ static void handle_event(sw_engine_t *e, sw_pkg_t *P, int ev, double t)
 static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
 {
     double y1[SW_NMAX], ys[SW_NMAX];
-    int guard = 0;
+    int guard = 0, same_t = 0;
     if (sw_input_geff(P, P->t) <= 0.0 || sw_input_geff(P, t1) <= 0.0) {
         /* airborne: outside the model, never integrated */
         if (P->phase != SW_PHASE_OVERTURNED) fault(e, P, P->t, SW_EFAULT);
@@ -489,6 +542,7 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
         }
         double tau;
         const int ev = find_event(e, P, t0, h, P->y, y1, &tau);
+        P->hold = 0;
         if (ev == EV_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->n);
             P->t = (h == rem) ? t1 : t0 + h;
@@ -496,6 +550,11 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
             continue;
         }
         const double te = polish(e, P, ev, t0, h, P->y, tau, ys);
+        same_t = te - t0 <= 1e-12 * fmax(1.0, fabs(t0)) ? same_t + 1 : 0;
+        if (same_t > 64) { /* a map that keeps re-triggering without progress */
+            fault(e, P, t0, SW_EFAULT);
+            break;
+        }
         memcpy(P->y, ys, sizeof(double) * (size_t)P->n);
         P->t = te;
         if (P->phase == SW_PHASE_ROCKING) track_theta(P, P->y[P->ith]);
@@ -626,7 +685,10 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
                 fail(err, SW_EUNSTABLE, msg, msglen, buf);
                 goto out_fail;
             }
-            if (P->h > 0.5 * bound) P->h = 0.5 * bound; /* sub-step with a safety factor */
+            /* Sub-step so that omega_max h <= 0.5: inside every explicit
+             * scheme's stability bound, and accurate enough for the fast
+             * bearing mode that decides uplift. */
+            if (!e->o.dt_forced && P->h > 0.5 / P->d.omega_max) P->h = 0.5 / P->d.omega_max;
         }
         P->sys.function = sw_model_rhs;
         P->sys.jacobian = NULL;

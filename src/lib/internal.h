@@ -51,6 +51,8 @@ typedef struct sw_pkg {
     double h_adapt;    /* s, GSL's proposed next step */
 
     int beyond_alpha;  /* |theta| >= alpha at the last check */
+    double t_lift;     /* s, time of the last uplift */
+    int hold;          /* keep the package stuck for one step (see after_impact) */
     sw_summary_t sum;
 } sw_pkg_t;
 
