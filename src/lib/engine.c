@@ -344,14 +344,7 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
     if (P->phase == SW_PHASE_ROCKING) {
         const double s0 = P->side * y0[P->ith], s1 = P->side * y1[P->ith];
         const double v = h * fmax(fabs(y0[P->idth]), fabs(y1[P->idth]));
-        /* A step that starts on the pivot (theta = 0, just lifted or just
-         * landed) moving outward can only land again if it ends at or below
-         * theta = 0: its Hermite interpolant starts with value and slope 0,
-         * and its curvature there is round-off, which would otherwise put a
-         * spurious impact at the start of the step (and, after an uplift on
-         * the threshold itself, uplift-impact-rest at one instant forever). */
-        const int on_pivot = s0 == 0.0 && P->side * y0[P->idth] >= 0.0;
-        if (s1 <= 0.0 || (fmin(s0, s1) < v && !on_pivot)) cands[nc++] = EV_IMPACT;
+        if (s1 <= 0.0 || fmin(s0, s1) < v) cands[nc++] = EV_IMPACT;
         if (s1 >= M_PI_2 || M_PI_2 - fmax(s0, s1) < v) cands[nc++] = EV_OVERTURN;
         maxcand = (y0[P->idth] > 0.0) != (y1[P->idth] > 0.0);
     } else if (P->phase == SW_PHASE_STUCK && P->d.model != SW_MODEL_BARE && !P->hold) {
