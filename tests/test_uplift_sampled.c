@@ -24,7 +24,8 @@ static void count(void *user, const sw_event_t *ev)
     (void)user;
     (void)ev;
     /* Far more than any of these pulses can cause: fail instead of hanging. */
-    if (++n_events > 10000) fail_msg("event storm at t = %.17g s", ev->t);
+    if (++n_events > 10000)
+        fail_msg("event storm at t = %.17g s", ev->t);
 }
 
 static void test_sampled_half_sine(void **st)
@@ -39,7 +40,7 @@ static void test_sampled_half_sine(void **st)
                      SW_OK);
     assert_int_equal(sw_scene_validate(&sc, NULL, "test", NULL, NULL), SW_OK);
     const double amps[] = {-4.0, -6.0, -9.0, 6.0, -14.0}; /* m/s^2; uplift at 3.57 */
-    const double rates[] = {1000.0, 200.0};                  /* Hz */
+    const double rates[] = {1000.0, 200.0};               /* Hz */
     for (size_t i = 0; i < sizeof amps / sizeof amps[0]; i++)
         for (size_t j = 0; j < sizeof rates / sizeof rates[0]; j++) {
             sw_engine_opts_t eo;

@@ -42,21 +42,11 @@ enum {
     OPT_FLIP,
     OPT_STRICT,
     OPT_SETTLE,
-    OPT_FAIL_ON_OVERTURN,
-    /* lcm-logger files only */
-    OPT_CHANNEL,
-    OPT_PUBLISH,
-    OPT_SPEED,
-    OPT_STATE_CHANNEL,
-    OPT_ALARM_CHANNEL,
-    OPT_STATE_RATE,
-    OPT_AXIS,
-    OPT_VERTICAL,
-    OPT_GAP,
-    OPT_MAX_ACCEL
+    OPT_FAIL_ON_OVERTURN
 };
 
-/* replay's options (cmd_replay.c) and those that only make sense here. */
+/* replay's options (cmd_replay.c), those that only lcm-logger files take
+ * included. */
 static const struct option long_opts[] = {
     SW_CLI_COMMON_LONGOPTS,
     {"time-col", required_argument, NULL, OPT_TIME_COL},
@@ -71,16 +61,7 @@ static const struct option long_opts[] = {
     {"strict", no_argument, NULL, OPT_STRICT},
     {"settle", required_argument, NULL, OPT_SETTLE},
     {"fail-on-overturn", no_argument, NULL, OPT_FAIL_ON_OVERTURN},
-    {"channel", required_argument, NULL, OPT_CHANNEL},
-    {"publish", required_argument, NULL, OPT_PUBLISH},
-    {"speed", required_argument, NULL, OPT_SPEED},
-    {"state-channel", required_argument, NULL, OPT_STATE_CHANNEL},
-    {"alarm-channel", required_argument, NULL, OPT_ALARM_CHANNEL},
-    {"state-rate", required_argument, NULL, OPT_STATE_RATE},
-    {"axis", required_argument, NULL, OPT_AXIS},
-    {"vertical", required_argument, NULL, OPT_VERTICAL},
-    {"gap", required_argument, NULL, OPT_GAP},
-    {"max-accel", required_argument, NULL, OPT_MAX_ACCEL},
+    SW_CLI_LCMLOG_LONGOPTS,
     {NULL, 0, NULL, 0},
 };
 
@@ -374,28 +355,28 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
                                         "a number of seconds >= 0", &settle);
                 break;
             case OPT_FAIL_ON_OVERTURN: fail_on_overturn = 1; break;
-            case OPT_CHANNEL: channel = optarg; break;
-            case OPT_PUBLISH:
+            case SW_OPT_LCM_CHANNEL: channel = optarg; break;
+            case SW_OPT_LCM_PUBLISH:
                 publish = 1;
                 publish_url = optarg;
                 break;
-            case OPT_SPEED:
+            case SW_OPT_LCM_SPEED:
                 r = sw_cli_parse_double("--speed", optarg, SW_NUM_NONNEGATIVE,
                                         "a factor >= 0 (0: as fast as possible)", &speed);
                 break;
-            case OPT_STATE_CHANNEL: mo.state_channel = optarg; break;
-            case OPT_ALARM_CHANNEL: mo.alarm_channel = optarg; break;
-            case OPT_STATE_RATE:
+            case SW_OPT_LCM_STATE_CHANNEL: mo.state_channel = optarg; break;
+            case SW_OPT_LCM_ALARM_CHANNEL: mo.alarm_channel = optarg; break;
+            case SW_OPT_LCM_STATE_RATE:
                 r = sw_cli_parse_double("--state-rate", optarg, SW_NUM_NONNEGATIVE,
                                         "a rate in Hz >= 0 (0: every sample)", &mo.state_rate);
                 break;
-            case OPT_AXIS: r = parse_axis("--axis", optarg, 0, &mo.axis); break;
-            case OPT_VERTICAL: r = parse_axis("--vertical", optarg, 1, &mo.vertical); break;
-            case OPT_GAP:
+            case SW_OPT_LCM_AXIS: r = parse_axis("--axis", optarg, 0, &mo.axis); break;
+            case SW_OPT_LCM_VERTICAL: r = parse_axis("--vertical", optarg, 1, &mo.vertical); break;
+            case SW_OPT_LCM_GAP:
                 r = sw_cli_parse_double("--gap", optarg, SW_NUM_POSITIVE,
                                         "a positive number of seconds", &mo.gap);
                 break;
-            case OPT_MAX_ACCEL: r = parse_accel_limit(optarg, &mo.max_accel); break;
+            case SW_OPT_LCM_MAX_ACCEL: r = parse_accel_limit(optarg, &mo.max_accel); break;
             default: sw_cli_error("replay: unhandled option"); r = SW_EXIT_USAGE;
         }
         if (r != SW_EXIT_OK)
@@ -466,7 +447,8 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
     run.samples_read = k.received;
     run.samples_rejected = k.received - k.accepted;
     run.settle = settle;
-    if (!o.quiet)
+    /* --quiet keeps the counts when they explain a failure. */
+    if (!o.quiet || k.accepted == 0)
         print_lcm_counts(stderr, path, &lc, &k);
     if (k.accepted == 0)
         sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", path, channel);

@@ -49,13 +49,20 @@ static int parse_pulse(int argc, char **argv, int i, pulse_opts_t *p)
     p->channel = "ACCEL";
     for (; i + 1 < argc; i += 2) {
         const char *k = argv[i], *v = argv[i + 1];
-        if (!strcmp(k, "--rate")) p->rate = atof(v);
-        else if (!strcmp(k, "--amplitude")) p->amplitude = atof(v);
-        else if (!strcmp(k, "--omega")) p->omega = atof(v);
-        else if (!strcmp(k, "--duration")) p->duration = atof(v);
-        else if (!strcmp(k, "--lead")) p->lead = atof(v);
-        else if (!strcmp(k, "--bad")) p->bad = atol(v);
-        else if (!strcmp(k, "--channel")) p->channel = v;
+        if (!strcmp(k, "--rate"))
+            p->rate = atof(v);
+        else if (!strcmp(k, "--amplitude"))
+            p->amplitude = atof(v);
+        else if (!strcmp(k, "--omega"))
+            p->omega = atof(v);
+        else if (!strcmp(k, "--duration"))
+            p->duration = atof(v);
+        else if (!strcmp(k, "--lead"))
+            p->lead = atof(v);
+        else if (!strcmp(k, "--bad"))
+            p->bad = atol(v);
+        else if (!strcmp(k, "--channel"))
+            p->channel = v;
         else {
             fprintf(stderr, "sw_lcm_tool: unknown option %s\n", k);
             return -1;
@@ -144,15 +151,18 @@ static int cmd_publish(const char *url, const pulse_opts_t *p)
         }
         clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
         swaywatch_accel_t s = sample(p, k, utime0);
-        if (swaywatch_accel_t_publish(lcm, p->channel, &s) != 0) rc = 1;
+        if (swaywatch_accel_t_publish(lcm, p->channel, &s) != 0)
+            rc = 1;
         if (p->bad > 0 && k % p->bad == p->bad - 1) {
             /* a state_t on the accel channel, then a truncated accel_t */
             swaywatch_state_t st;
             memset(&st, 0, sizeof st);
             int len = swaywatch_state_t_encode(buf, 0, sizeof buf, &st);
-            if (len < 0 || lcm_publish(lcm, p->channel, buf, (unsigned)len) != 0) rc = 1;
+            if (len < 0 || lcm_publish(lcm, p->channel, buf, (unsigned)len) != 0)
+                rc = 1;
             len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
-            if (len < 0 || lcm_publish(lcm, p->channel, buf, (unsigned)len - 5) != 0) rc = 1;
+            if (len < 0 || lcm_publish(lcm, p->channel, buf, (unsigned)len - 5) != 0)
+                rc = 1;
         }
     }
     lcm_destroy(lcm);
@@ -171,8 +181,10 @@ static pkg_t *find_pkg(pkg_t *pk, int *n, const int8_t *name)
     memcpy(s, name, 63);
     s[63] = '\0';
     for (int i = 0; i < *n; i++)
-        if (!strcmp(pk[i].name, s)) return &pk[i];
-    if (*n == MAXPKG) return NULL;
+        if (!strcmp(pk[i].name, s))
+            return &pk[i];
+    if (*n == MAXPKG)
+        return NULL;
     pkg_t *p = &pk[(*n)++];
     memset(p, 0, sizeof *p);
     snprintf(p->name, sizeof p->name, "%s", s);
@@ -201,23 +213,28 @@ static int cmd_dump(const char *path)
                 printf("undecodable state\n");
                 continue;
             }
-            if (state_seq >= 0 && s.seq != state_seq + 1) state_gaps++;
+            if (state_seq >= 0 && s.seq != state_seq + 1)
+                state_gaps++;
             state_seq = s.seq;
-            const double v[] = {s.theta, s.theta_dot, s.u,           s.z_b,
-                                s.margin, s.margin_bound, s.uplift_ratio, s.a_g};
+            const double v[] = {s.theta,        s.theta_dot,    s.u,  s.z_b, s.margin,
+                                s.margin_bound, s.uplift_ratio, s.a_g};
             for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) nonfinite += !isfinite(v[i]);
             pkg_t *p = find_pkg(pk, &npk, s.name);
-            if (!p) continue;
+            if (!p)
+                continue;
             p->count++;
-            if (fabs(s.theta) > p->max_abs_theta) p->max_abs_theta = fabs(s.theta);
-            if (s.margin < p->min_margin) p->min_margin = s.margin;
+            if (fabs(s.theta) > p->max_abs_theta)
+                p->max_abs_theta = fabs(s.theta);
+            if (s.margin < p->min_margin)
+                p->min_margin = s.margin;
         } else if (!strcmp(ev->channel, "SWAY_ALARM")) {
             swaywatch_alarm_t a;
             if (swaywatch_alarm_t_decode(ev->data, 0, ev->datalen, &a) != ev->datalen) {
                 printf("undecodable alarm\n");
                 continue;
             }
-            if (alarm_seq >= 0 && a.seq != alarm_seq + 1) alarm_gaps++;
+            if (alarm_seq >= 0 && a.seq != alarm_seq + 1)
+                alarm_gaps++;
             alarm_seq = a.seq;
             nonfinite += !isfinite(a.theta) + !isfinite(a.margin);
             char name[64], text[128];
@@ -232,8 +249,8 @@ static int cmd_dump(const char *path)
     lcm_eventlog_destroy(log);
     printf("accel %ld\n", accel);
     for (int i = 0; i < npk; i++)
-        printf("state %s count %ld max_abs_theta %.17g min_margin %.17g\n", pk[i].name,
-               pk[i].count, pk[i].max_abs_theta, pk[i].min_margin);
+        printf("state %s count %ld max_abs_theta %.17g min_margin %.17g\n", pk[i].name, pk[i].count,
+               pk[i].max_abs_theta, pk[i].min_margin);
     printf("state_seq_gaps %ld\nalarm_seq_gaps %ld\nnonfinite %ld\n", state_gaps, alarm_gaps,
            nonfinite);
     return 0;
@@ -247,7 +264,8 @@ int main(int argc, char **argv)
         return parse_pulse(argc, argv, 3, &p) ? 2 : cmd_mklog(argv[2], &p);
     if (argc >= 3 && !strcmp(argv[1], "publish"))
         return parse_pulse(argc, argv, 3, &p) ? 2 : cmd_publish(argv[2], &p);
-    if (argc == 3 && !strcmp(argv[1], "dump")) return cmd_dump(argv[2]);
+    if (argc == 3 && !strcmp(argv[1], "dump"))
+        return cmd_dump(argv[2]);
     fprintf(stderr, "usage: sw_lcm_tool mklog OUT [pulse] | publish URL [pulse] | dump LOG\n");
     return 2;
 }

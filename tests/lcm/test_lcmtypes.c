@@ -20,8 +20,8 @@
 static void test_accel_round_trip(void **st)
 {
     (void)st;
-    swaywatch_accel_t a = {.utime = 1700000000123456LL, .seq = 42, .ax = -3.25, .ay = 1e-300,
-                           .az = -0.0};
+    swaywatch_accel_t a = {
+        .utime = 1700000000123456LL, .seq = 42, .ax = -3.25, .ay = 1e-300, .az = -0.0};
     unsigned char buf[256];
     int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &a);
     /* 8-byte fingerprint + 2 int64 + 3 double, whatever the values. */

@@ -25,8 +25,8 @@
 #include "swaywatch_alarm_t.h"
 #include "swaywatch_state_t.h"
 
-#define RATE 1000.0         /* Hz, sample rate */
-#define NSAMP 2001          /* 2 s */
+#define RATE 1000.0 /* Hz, sample rate */
+#define NSAMP 2001  /* 2 s */
 #define UTIME0 1700000000000000LL
 #define MAXMSG 20000
 
@@ -34,8 +34,7 @@
 static const char *scene_a =
     "[package]\nname = crate-A\nheight = 2.0\nwidth = 0.728\nmass = 1000\n"
     "[alarm]\nwarn_margin = 0.5\ncritical_margin = 0.2\n";
-static const char *scene_b =
-    "[package]\nname = crate-B\nheight = 1.2\nwidth = 0.8\nmass = 300\n";
+static const char *scene_b = "[package]\nname = crate-B\nheight = 1.2\nwidth = 0.8\nmass = 300\n";
 
 static double pulse_a(long k)
 {
@@ -62,7 +61,8 @@ static void on_state_msg(const lcm_recv_buf_t *rb, const char *ch, const swaywat
     (void)ch;
     bus_t *b = user;
     b->seen++;
-    if (b->drop_every && b->seen % b->drop_every == 0) return;
+    if (b->drop_every && b->seen % b->drop_every == 0)
+        return;
     assert_true(b->nst < MAXMSG);
     b->st[b->nst++] = *m;
 }
@@ -112,14 +112,16 @@ static rig_t *rig_new(size_t npkg, const sw_mon_opts_t *mo_in)
     r->bus.al = calloc(MAXMSG, sizeof *r->bus.al);
     assert_true(r->bus.st && r->bus.al);
     load_scene(&r->scenes[0], scene_a);
-    if (npkg > 1) load_scene(&r->scenes[1], scene_b);
+    if (npkg > 1)
+        load_scene(&r->scenes[1], scene_b);
     r->lcm = lcm_create("memq://");
     assert_non_null(r->lcm);
     sw_mon_opts_t mo;
     memset(&mo, 0, sizeof mo);
     mo.vertical = -1;
     mo.hysteresis = -1.0;
-    if (mo_in) mo = *mo_in;
+    if (mo_in)
+        mo = *mo_in;
     sw_engine_opts_t eo;
     memset(&eo, 0, sizeof eo);
     char msg[256] = "";
@@ -187,8 +189,8 @@ static void check_all_finite(const bus_t *b)
 {
     for (int i = 0; i < b->nst; i++) {
         const swaywatch_state_t *s = &b->st[i];
-        const double v[] = {s->theta, s->theta_dot,    s->u,            s->z_b,
-                            s->margin, s->margin_bound, s->uplift_ratio, s->a_g};
+        const double v[] = {s->theta,        s->theta_dot,    s->u,  s->z_b, s->margin,
+                            s->margin_bound, s->uplift_ratio, s->a_g};
         for (size_t j = 0; j < sizeof v / sizeof v[0]; j++) assert_true(isfinite(v[j]));
     }
     for (int i = 0; i < b->nal; i++)
@@ -254,8 +256,8 @@ static ref_t *reference_from_csv(const sw_scene_t *sc)
     assert_non_null(csv);
     len += (size_t)snprintf(csv + len, cap - len, "t,ax\n");
     for (long k = 0; k < NSAMP; k++)
-        len += (size_t)snprintf(csv + len, cap - len, "%.17g,%.17g\n",
-                                (double)(k * 1000) / 1e6, pulse_a(k));
+        len += (size_t)snprintf(csv + len, cap - len, "%.17g,%.17g\n", (double)(k * 1000) / 1e6,
+                                pulse_a(k));
     sw_csv_opts_t co;
     memset(&co, 0, sizeof co);
     co.header = -1;
@@ -298,7 +300,8 @@ static void test_lcm_equals_csv(void **st)
         assert_true(s->theta_dot == o->state.theta_dot);
         assert_true(s->margin == o->margin);
         assert_true(s->a_g == o->a_g);
-        if (fabs(s->theta) > max_theta) max_theta = fabs(s->theta);
+        if (fabs(s->theta) > max_theta)
+            max_theta = fabs(s->theta);
     }
     /* The scripted pulse must really rock the crate, or this proves little. */
     assert_true(max_theta > 0.05);
@@ -327,7 +330,8 @@ static int count_alarms(const bus_t *b, int kind, int level)
 {
     int n = 0;
     for (int i = 0; i < b->nal; i++)
-        if (b->al[i].kind == kind && (level < 0 || b->al[i].level == level)) n++;
+        if (b->al[i].kind == kind && (level < 0 || b->al[i].level == level))
+            n++;
     return n;
 }
 
@@ -348,33 +352,33 @@ static void test_bad_samples_leave_model_unharmed(void **st)
         send_k(r, k);
         int64_t u = UTIME0 + k * 1000;
         switch (k) {
-        case 300: send(r, k, u, pulse_a(k), 0, 0); break;               /* duplicate */
-        case 310: send(r, k + 1000, u, 1.0, 0, 0); break;               /* same utime, new seq */
-        case 320: send(r, k - 5, u - 5000, 0.5, 0, 0); break;           /* late */
-        case 330: send(r, k + 1, u + 500, NAN, 0, 0); break;            /* NaN */
-        case 340: send(r, k + 1, u + 500, 0, INFINITY, 0); break;       /* inf on another axis */
-        case 350: send(r, k + 1, u + 500, 1000 * SW_G0, 0, 0); break;   /* implausible */
-        case 360: {                                                      /* wrong type */
-            swaywatch_state_t s;
-            memset(&s, 0, sizeof s);
-            send_raw(r, buf, swaywatch_state_t_encode(buf, 0, sizeof buf, &s));
-            break;
-        }
-        case 370: {                                                      /* truncated, empty */
-            swaywatch_accel_t s = {.utime = u + 500, .seq = k + 1};
-            int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
-            send_raw(r, buf, len - 1);
-            send_raw(r, buf, 0);
-            break;
-        }
-        case 380: {                                                      /* trailing junk */
-            swaywatch_accel_t s = {.utime = u + 500, .seq = k + 1};
-            int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
-            memset(buf + len, 0xAB, 8);
-            send_raw(r, buf, len + 8);
-            break;
-        }
-        default: break;
+            case 300: send(r, k, u, pulse_a(k), 0, 0); break;             /* duplicate */
+            case 310: send(r, k + 1000, u, 1.0, 0, 0); break;             /* same utime, new seq */
+            case 320: send(r, k - 5, u - 5000, 0.5, 0, 0); break;         /* late */
+            case 330: send(r, k + 1, u + 500, NAN, 0, 0); break;          /* NaN */
+            case 340: send(r, k + 1, u + 500, 0, INFINITY, 0); break;     /* inf on another axis */
+            case 350: send(r, k + 1, u + 500, 1000 * SW_G0, 0, 0); break; /* implausible */
+            case 360: {                                                   /* wrong type */
+                swaywatch_state_t s;
+                memset(&s, 0, sizeof s);
+                send_raw(r, buf, swaywatch_state_t_encode(buf, 0, sizeof buf, &s));
+                break;
+            }
+            case 370: { /* truncated, empty */
+                swaywatch_accel_t s = {.utime = u + 500, .seq = k + 1};
+                int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+                send_raw(r, buf, len - 1);
+                send_raw(r, buf, 0);
+                break;
+            }
+            case 380: { /* trailing junk */
+                swaywatch_accel_t s = {.utime = u + 500, .seq = k + 1};
+                int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+                memset(buf + len, 0xAB, 8);
+                send_raw(r, buf, len + 8);
+                break;
+            }
+            default: break;
         }
     }
     sw_output_t got;
@@ -409,7 +413,8 @@ static void test_bad_samples_leave_model_unharmed(void **st)
     assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED, -1), 9);
     int seen_text = 0;
     for (int i = 0; i < r->bus.nal; i++)
-        if (strstr((const char *)r->bus.al[i].text, "2 accel samples rejected: decode")) seen_text++;
+        if (strstr((const char *)r->bus.al[i].text, "2 accel samples rejected: decode"))
+            seen_text++;
     assert_int_equal(seen_text, 1);
     /* Physics alarms as in the clean run. */
     assert_int_equal(r->bus.nal - 9, clean->bus.nal);
@@ -427,7 +432,8 @@ static void test_gap(void **st)
     (void)st;
     rig_t *plain = rig_new(1, NULL), *r = rig_new(1, NULL);
     for (long k = 0; k < NSAMP; k++) {
-        if (k > 500 && k < 800) continue; /* 0.3 s without samples */
+        if (k > 500 && k < 800)
+            continue; /* 0.3 s without samples */
         send_k(plain, k);
         if (k == 800) {
             /* the timer, during the gap */
@@ -447,13 +453,12 @@ static void test_gap(void **st)
         send_k(r, k);
     }
     assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, -1), 2);
-    assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP,
-                                  SWAYWATCH_ALARM_T_LEVEL_INFO),
-                     1);
+    assert_int_equal(
+        count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, SWAYWATCH_ALARM_T_LEVEL_INFO), 1);
     /* Without the timer, the jump itself is the alarm. */
-    assert_int_equal(count_alarms(&plain->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP,
-                                  SWAYWATCH_ALARM_T_LEVEL_WARN),
-                     1);
+    assert_int_equal(
+        count_alarms(&plain->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, SWAYWATCH_ALARM_T_LEVEL_WARN),
+        1);
     sw_output_t a, b;
     final_output(plain, &a);
     final_output(r, &b);
@@ -492,8 +497,7 @@ static void test_seq_reveals_drops(void **st)
     sw_mon_counts(r->mon, &c);
     assert_int_equal(c.states, published);
     /* Both packages on the 100 Hz grid of the sample clock. */
-    for (int i = 0; i < r->bus.nst; i++)
-        assert_int_equal((r->bus.st[i].utime - UTIME0) % 10000, 0);
+    for (int i = 0; i < r->bus.nst; i++) assert_int_equal((r->bus.st[i].utime - UTIME0) % 10000, 0);
     rig_free(r);
 }
 
