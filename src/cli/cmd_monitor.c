@@ -470,10 +470,14 @@ int cmd_monitor(int argc, char **argv)
     }
     lcm = lcm_create(url);
     if (!lcm) {
-        sw_cli_error(
-            "monitor: cannot set up LCM with %s (for udpm, a route must cover "
-            "224.0.0.0/4, e.g. ip route add 224.0.0.0/4 dev lo)",
-            url ? url : "the default URL");
+        /* The usual cause with udpm: no route for multicast (a host or
+         * network namespace with only loopback). */
+        int udpm = !url || !url[0] || !strncmp(url, "udpm://", 7);
+        sw_cli_error("monitor: cannot set up LCM with %s%s",
+                     url && url[0] ? url : "the default URL",
+                     udpm ? " (udpm needs a route for 224.0.0.0/4, e.g. 'ip route add "
+                            "224.0.0.0/4 dev lo')"
+                          : "");
         rc = SW_EXIT_IO;
         goto out;
     }
