@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "lcmcli.h"
 #include "lcmmon.h"
 
 /* Per-subscription queue of LCM (default 30, which loses samples in bursts
@@ -30,35 +31,24 @@
 /* Messages handled per wake-up before the timers get a look. */
 #define BATCH 256
 
-enum {
-    OPT_ACCEL_CHANNEL = SW_OPT_FIRST_OWN,
-    OPT_STATE_CHANNEL,
-    OPT_ALARM_CHANNEL,
-    OPT_AXIS,
-    OPT_VERTICAL,
-    OPT_FLIP,
-    OPT_ACCEL_UNIT,
-    OPT_STATE_RATE,
-    OPT_GAP,
-    OPT_STATUS,
-    OPT_MAX_ACCEL,
-    OPT_MAX_SKEW
-};
+enum { OPT_ACCEL_CHANNEL = SW_OPT_FIRST_OWN, OPT_FLIP, OPT_ACCEL_UNIT, OPT_STATUS, OPT_MAX_SKEW };
 
+/* The options monitor shares with replay of lcm-logger files carry the
+ * SW_OPT_LCM_* codes of cli.h and are read by sw_cli_mon_option(). */
 static const struct option long_opts[] = {
     SW_CLI_COMMON_LONGOPTS,
     {"lcm-url", required_argument, NULL, 'l'},
     {"accel-channel", required_argument, NULL, OPT_ACCEL_CHANNEL},
-    {"state-channel", required_argument, NULL, OPT_STATE_CHANNEL},
-    {"alarm-channel", required_argument, NULL, OPT_ALARM_CHANNEL},
-    {"axis", required_argument, NULL, OPT_AXIS},
-    {"vertical", required_argument, NULL, OPT_VERTICAL},
+    {"state-channel", required_argument, NULL, SW_OPT_LCM_STATE_CHANNEL},
+    {"alarm-channel", required_argument, NULL, SW_OPT_LCM_ALARM_CHANNEL},
+    {"axis", required_argument, NULL, SW_OPT_LCM_AXIS},
+    {"vertical", required_argument, NULL, SW_OPT_LCM_VERTICAL},
     {"flip", no_argument, NULL, OPT_FLIP},
     {"accel-unit", required_argument, NULL, OPT_ACCEL_UNIT},
-    {"state-rate", required_argument, NULL, OPT_STATE_RATE},
-    {"gap", required_argument, NULL, OPT_GAP},
+    {"state-rate", required_argument, NULL, SW_OPT_LCM_STATE_RATE},
+    {"gap", required_argument, NULL, SW_OPT_LCM_GAP},
     {"status", required_argument, NULL, OPT_STATUS},
-    {"max-accel", required_argument, NULL, OPT_MAX_ACCEL},
+    {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL},
     {"max-skew", required_argument, NULL, OPT_MAX_SKEW},
     {NULL, 0, NULL, 0},
 };
@@ -185,13 +175,6 @@ static void remove_signals(void)
 
 /* ---- clocks ------------------------------------------------------------------ */
 
-static double mono_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static int64_t wall_now_us(void)
 {
     struct timespec ts;
@@ -213,7 +196,7 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
 {
     (void)channel;
     mon_ctx_t *c = user;
-    double t0 = mono_now();
+    double t0 = sw_cli_mono_now();
     int rc = sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, t0, NULL);
     if (rc >= 0) {
         double lag = (double)(wall_now_us() - sw_mon_last_utime(c->mon)) / 1e6;
@@ -222,7 +205,7 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
         if (c->accepted == 1 || lag > c->lag_max)
             c->lag_max = lag;
     }
-    c->busy += mono_now() - t0;
+    c->busy += sw_cli_mono_now() - t0;
 }
 
 static void print_rejected(FILE *f, const sw_mon_counts_t *k)
@@ -280,11 +263,11 @@ static void print_final(sw_mon_t *mon, double elapsed)
 static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
 {
     int fd = lcm_get_fileno(lcm);
-    double start = mono_now();
+    double start = sw_cli_mono_now();
     double last_status = start;
     double next_status = status_every > 0.0 ? start + status_every : INFINITY;
     while (!stop_signal) {
-        double now = mono_now();
+        double now = sw_cli_mono_now();
         double deadline = fmin(sw_mon_deadline(c->mon), next_status);
         int timeout = -1;
         if (isfinite(deadline))
@@ -304,7 +287,7 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
             for (int i = 1; i < BATCH && lcm_handle_timeout(lcm, 0) > 0; i++) {
             }
         }
-        now = mono_now();
+        now = sw_cli_mono_now();
         if (now >= sw_mon_deadline(c->mon))
             sw_mon_tick(c->mon, now);
         if (now >= next_status) {
@@ -316,55 +299,11 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
         }
     }
     sw_mon_flush(c->mon);
-    print_final(c->mon, mono_now() - start);
+    print_final(c->mon, sw_cli_mono_now() - start);
     return SW_EXIT_OK;
 }
 
 /* ---- options ------------------------------------------------------------------ */
-
-/* "--max-accel 30g" or "--max-accel 294.2" (m/s^2). */
-static int parse_accel_limit(const char *arg, double *out)
-{
-    char buf[64];
-    size_t len = strlen(arg);
-    double scale = 1.0;
-    if (len > 0 && len < sizeof buf && arg[len - 1] == 'g') {
-        memcpy(buf, arg, len - 1);
-        buf[len - 1] = '\0';
-        arg = buf;
-        scale = SW_G0;
-    }
-    if (sw_cli_parse_double("--max-accel", arg, SW_NUM_POSITIVE,
-                            "a positive acceleration in m/s^2, or in g with a g suffix",
-                            out) != SW_EXIT_OK)
-        return SW_EXIT_USAGE;
-    *out *= scale;
-    return SW_EXIT_OK;
-}
-
-static int parse_axis(const char *opt, const char *arg, int allow_none, int *out)
-{
-    if (allow_none && !strcmp(arg, "none")) {
-        *out = -1;
-        return SW_EXIT_OK;
-    }
-    *out = sw_mon_axis_parse(arg);
-    if (*out >= 0)
-        return SW_EXIT_OK;
-    sw_cli_error("%s: expected x, y or z%s, got '%s'", opt, allow_none ? " or none" : "", arg);
-    return SW_EXIT_USAGE;
-}
-
-static int parse_channel(const char *opt, const char *arg, const char **out)
-{
-    /* LCM's limit on channel names. */
-    if (!arg[0] || strlen(arg) > 63) {
-        sw_cli_error("%s: expected a channel name of 1 to 63 characters, got '%s'", opt, arg);
-        return SW_EXIT_USAGE;
-    }
-    *out = arg;
-    return SW_EXIT_OK;
-}
 
 int cmd_monitor(int argc, char **argv)
 {
@@ -401,44 +340,32 @@ int cmd_monitor(int argc, char **argv)
         }
         if (r != -1)
             goto out;
+        r = sw_cli_mon_option(&mo, c, optarg);
+        if (r != -1) {
+            if (r != SW_EXIT_OK)
+                goto out;
+            continue;
+        }
         r = SW_EXIT_OK;
         switch (c) {
             case 'l': url = optarg; break;
             case OPT_ACCEL_CHANNEL:
-                r = parse_channel("--accel-channel", optarg, &accel_channel);
-                break;
-            case OPT_STATE_CHANNEL:
-                r = parse_channel("--state-channel", optarg, &mo.state_channel);
-                break;
-            case OPT_ALARM_CHANNEL:
-                r = parse_channel("--alarm-channel", optarg, &mo.alarm_channel);
-                break;
-            case OPT_AXIS: r = parse_axis("--axis", optarg, 0, &mo.axis); break;
-            case OPT_VERTICAL: r = parse_axis("--vertical", optarg, 1, &mo.vertical); break;
-            case OPT_FLIP: mo.flip = 1; break;
-            case OPT_ACCEL_UNIT:
-                if (!strcmp(optarg, "m/s2") || !strcmp(optarg, "m/s^2"))
-                    mo.accel_scale = 1.0;
-                else if (!strcmp(optarg, "g"))
-                    mo.accel_scale = SW_G0;
-                else {
-                    sw_cli_error("--accel-unit: expected m/s2 or g, got '%s'", optarg);
+                /* LCM's limit on channel names */
+                if (!optarg[0] || strlen(optarg) > 63) {
+                    sw_cli_error(
+                        "--accel-channel: expected a channel regex of 1 to 63 characters, "
+                        "got '%s'",
+                        optarg);
                     r = SW_EXIT_USAGE;
                 }
+                accel_channel = optarg;
                 break;
-            case OPT_STATE_RATE:
-                r = sw_cli_parse_double("--state-rate", optarg, SW_NUM_NONNEGATIVE,
-                                        "a rate in Hz >= 0 (0: every sample)", &mo.state_rate);
-                break;
-            case OPT_GAP:
-                r = sw_cli_parse_double("--gap", optarg, SW_NUM_POSITIVE,
-                                        "a positive number of seconds", &mo.gap);
-                break;
+            case OPT_FLIP: mo.flip = 1; break;
+            case OPT_ACCEL_UNIT: r = sw_cli_parse_accel_unit(optarg, &mo.accel_scale); break;
             case OPT_STATUS:
                 r = sw_cli_parse_double("--status", optarg, SW_NUM_NONNEGATIVE,
                                         "a number of seconds >= 0 (0: no status)", &status_every);
                 break;
-            case OPT_MAX_ACCEL: r = parse_accel_limit(optarg, &mo.max_accel); break;
             case OPT_MAX_SKEW:
                 r = sw_cli_parse_double("--max-skew", optarg, SW_NUM_NONNEGATIVE,
                                         "a number of seconds >= 0 (0: not checked)", &mo.max_skew);

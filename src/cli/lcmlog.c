@@ -24,6 +24,7 @@
 #include <time.h>
 
 #include "cli.h"
+#include "lcmcli.h"
 #include "lcmmon.h"
 #include "swaywatch_accel_t.h"
 
@@ -113,17 +114,10 @@ typedef struct {
     long corrupt;        /* corrupted regions skipped */
 } log_counts_t;
 
-static double mono_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Sleep until the monotonic clock reads t (s). */
 static void sleep_until(double t)
 {
-    double now = mono_now();
+    double now = sw_cli_mono_now();
     if (t <= now)
         return;
     double d = t - now;
@@ -170,7 +164,7 @@ static void pace(pacer_t *p, const void *data, int len)
     swaywatch_accel_t s;
     if (p->speed <= 0.0 || swaywatch_accel_t_decode(data, 0, len, &s) < 0)
         return;
-    double now = mono_now();
+    double now = sw_cli_mono_now();
     if (!p->started || s.utime - p->base_utime > MAX_PAUSE_US * p->speed) {
         p->started = 1;
         p->start = now;
@@ -239,38 +233,6 @@ static int parse_channel_regex(const char *arg, regex_t *re)
     return r == 0 ? 0 : -1;
 }
 
-static int parse_accel_limit(const char *arg, double *out)
-{
-    char buf[64];
-    size_t len = strlen(arg);
-    double scale = 1.0;
-    if (len > 0 && len < sizeof buf && arg[len - 1] == 'g') {
-        memcpy(buf, arg, len - 1);
-        buf[len - 1] = '\0';
-        arg = buf;
-        scale = SW_G0;
-    }
-    if (sw_cli_parse_double("--max-accel", arg, SW_NUM_POSITIVE,
-                            "a positive acceleration in m/s^2, or in g with a g suffix",
-                            out) != SW_EXIT_OK)
-        return SW_EXIT_USAGE;
-    *out *= scale;
-    return SW_EXIT_OK;
-}
-
-static int parse_axis(const char *opt, const char *arg, int allow_none, int *out)
-{
-    if (allow_none && !strcmp(arg, "none")) {
-        *out = -1;
-        return SW_EXIT_OK;
-    }
-    *out = sw_mon_axis_parse(arg);
-    if (*out >= 0)
-        return SW_EXIT_OK;
-    sw_cli_error("%s: expected x, y or z%s, got '%s'", opt, allow_none ? " or none" : "", arg);
-    return SW_EXIT_USAGE;
-}
-
 static void print_lcm_counts(FILE *f, const char *path, const log_counts_t *lc,
                              const sw_mon_counts_t *k)
 {
@@ -325,6 +287,12 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
             continue;
         if (r != -1)
             goto out;
+        r = sw_cli_mon_option(&mo, c, optarg);
+        if (r != -1) {
+            if (r != SW_EXIT_OK)
+                goto out;
+            continue;
+        }
         r = SW_EXIT_OK;
         switch (c) {
             case OPT_TIME_COL:
@@ -338,16 +306,7 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
                              argv[optind - 1]);
                 r = SW_EXIT_USAGE;
                 break;
-            case OPT_ACCEL_UNIT:
-                if (!strcmp(optarg, "m/s2") || !strcmp(optarg, "m/s^2") || !strcmp(optarg, "mps2"))
-                    mo.accel_scale = 1.0;
-                else if (!strcmp(optarg, "g"))
-                    mo.accel_scale = SW_G0;
-                else {
-                    sw_cli_error("--accel-unit: expected m/s2 or g, got '%s'", optarg);
-                    r = SW_EXIT_USAGE;
-                }
-                break;
+            case OPT_ACCEL_UNIT: r = sw_cli_parse_accel_unit(optarg, &mo.accel_scale); break;
             case OPT_FLIP: mo.flip = 1; break;
             case OPT_STRICT: strict = 1; break;
             case OPT_SETTLE:
@@ -364,19 +323,6 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
                 r = sw_cli_parse_double("--speed", optarg, SW_NUM_NONNEGATIVE,
                                         "a factor >= 0 (0: as fast as possible)", &speed);
                 break;
-            case SW_OPT_LCM_STATE_CHANNEL: mo.state_channel = optarg; break;
-            case SW_OPT_LCM_ALARM_CHANNEL: mo.alarm_channel = optarg; break;
-            case SW_OPT_LCM_STATE_RATE:
-                r = sw_cli_parse_double("--state-rate", optarg, SW_NUM_NONNEGATIVE,
-                                        "a rate in Hz >= 0 (0: every sample)", &mo.state_rate);
-                break;
-            case SW_OPT_LCM_AXIS: r = parse_axis("--axis", optarg, 0, &mo.axis); break;
-            case SW_OPT_LCM_VERTICAL: r = parse_axis("--vertical", optarg, 1, &mo.vertical); break;
-            case SW_OPT_LCM_GAP:
-                r = sw_cli_parse_double("--gap", optarg, SW_NUM_POSITIVE,
-                                        "a positive number of seconds", &mo.gap);
-                break;
-            case SW_OPT_LCM_MAX_ACCEL: r = parse_accel_limit(optarg, &mo.max_accel); break;
             default: sw_cli_error("replay: unhandled option"); r = SW_EXIT_USAGE;
         }
         if (r != SW_EXIT_OK)
