@@ -264,25 +264,29 @@ static void test_safety_factor(void **state)
         const size_t n = sampled_half_sine(xs[k] * unit, w, t, ag, 4000);
         sw_log_t log = {t, ag, NULL, n};
         sw_run_opts_t ro = {.settle = 10.0};
-        sw_threshold_t th;
+        sw_safety_t sf;
         char msg[256];
-        assert_int_equal(sw_safety_factor(&sc, &log, &ro, NULL, &th, msg, sizeof msg), SW_OK);
-        assert_true(th.found);
+        assert_int_equal(sw_safety_factor(&sc, &log, &ro, NULL, &sf, msg, sizeof msg), SW_OK);
+        assert_true(sf.found);
         sw_run_result_t r;
         assert_int_equal(sw_log_run(&sc, &log, 1.0, &ro, &r, msg, sizeof msg), SW_OK);
+        assert_int_equal(sf.overturned, r.overturned);
         if (k == 0) {
             assert_true(r.overturned);
-            assert_true(th.x <= 1.0);
+            assert_true(sf.factor <= 1.0);
         } else {
             assert_false(r.overturned);
-            assert_true(th.x > 1.0);
+            assert_true(sf.factor > 1.0);
+            assert_false(sf.below.found); /* a half-sine: no luck involved */
         }
+        assert_true(sf.factor_safe < sf.factor && sf.factor / sf.factor_safe - 1.0 < 1.01e-3);
+        assert_float_equal(sf.lift_scale * xs[k], 1.0, 1e-5); /* the sampled peak */
         /* the factor times the amplitude is the boundary (sampling aside) */
-        assert_float_equal(th.x * xs[k], 1.801, 0.004);
+        assert_float_equal(sf.factor * xs[k], 1.801, 0.004);
         /* scaling the log by the factor -1% / +1% flips the outcome */
-        assert_int_equal(sw_log_run(&sc, &log, 0.99 * th.x, &ro, &r, msg, sizeof msg), SW_OK);
+        assert_int_equal(sw_log_run(&sc, &log, 0.99 * sf.factor, &ro, &r, msg, sizeof msg), SW_OK);
         assert_false(r.overturned);
-        assert_int_equal(sw_log_run(&sc, &log, 1.01 * th.x, &ro, &r, msg, sizeof msg), SW_OK);
+        assert_int_equal(sw_log_run(&sc, &log, 1.01 * sf.factor, &ro, &r, msg, sizeof msg), SW_OK);
         assert_true(r.overturned);
     }
 }
@@ -298,20 +302,22 @@ static void test_safety_factor_frame(void **state)
     const size_t n = sampled_half_sine(-2.0 * sc.g * tan(d.alpha), 3.0, t, ag, 4000);
     sw_log_t log = {t, ag, NULL, n};
     sw_run_opts_t ro = {.settle = 20.0};
-    sw_threshold_t th;
+    sw_safety_t sf;
     char msg[256];
-    assert_int_equal(sw_safety_factor(&sc, &log, &ro, NULL, &th, msg, sizeof msg), SW_OK);
-    assert_true(th.found);
-    assert_false(th.at_min);
+    assert_int_equal(sw_safety_factor(&sc, &log, &ro, NULL, &sf, msg, sizeof msg), SW_OK);
+    assert_true(sf.found);
+    assert_true(sf.lift_scale < 1.0); /* the frame amplifies this pulse */
     sw_run_result_t r;
-    assert_int_equal(sw_log_run(&sc, &log, 0.99 * th.x, &ro, &r, msg, sizeof msg), SW_OK);
+    assert_int_equal(sw_log_run(&sc, &log, 0.99 * sf.factor, &ro, &r, msg, sizeof msg), SW_OK);
     assert_false(r.overturned);
-    assert_int_equal(sw_log_run(&sc, &log, 1.01 * th.x, &ro, &r, msg, sizeof msg), SW_OK);
+    assert_int_equal(sw_log_run(&sc, &log, 1.01 * sf.factor, &ro, &r, msg, sizeof msg), SW_OK);
     assert_true(r.overturned);
 
     for (size_t i = 0; i < n; i++) ag[i] = 0.0;
-    assert_int_equal(sw_safety_factor(&sc, &log, &ro, NULL, &th, msg, sizeof msg), SW_OK);
-    assert_false(th.found);
+    assert_int_equal(sw_safety_factor(&sc, &log, &ro, NULL, &sf, msg, sizeof msg), SW_OK);
+    assert_false(sf.found);
+    assert_false(sf.overturned);
+    assert_true(isinf(sf.factor));
 }
 
 /* Bad arguments are refused with a reason. */

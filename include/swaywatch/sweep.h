@@ -153,8 +153,9 @@ typedef struct {
     sw_run_opts_t run;
     sw_search_opts_t search; /* x = a_e/(g tan alpha).  x_min 0 = automatic: the lowest
                                 amplitude at which the package can lift at all (1 on the bed;
-                                on a frame, 0.9 times the value found from the linear
-                                response of the stuck frame).  x_max 0 = 20 */
+                                on a frame, 0.99 times the value found from the linear
+                                response of the stuck frame, sampled 400 times a period).
+                                x_max 0 = 20 */
     int threads;             /* worker threads; 0 or 1 = run in the calling thread */
     sw_progress_fn progress; /* may be NULL; called after each point, from any thread,
                                 one call at a time */
@@ -184,15 +185,33 @@ int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ra
 
 /* ---- safety factor of a log --------------------------------------------- */
 
-/* The smallest factor by which the log's longitudinal acceleration must be
- * scaled to overturn the package (<= 1 if the log as recorded overturns
- * it).  so may be NULL; its x_min 0 = automatic (the scale at which the
- * package can first lift, times 0.9 on a frame or with vertical
- * acceleration), x_max 0 = 20 times the scale that lifts a package on the
- * bed.  The log is replayed once per trial (several tens of times).
- * Returns as sw_threshold_search(). */
+typedef struct {
+    int overturned;         /* the log as recorded (scale 1) overturned the package */
+    sw_run_result_t at_one; /* that run */
+    int found;              /* a factor was found below the search's x_max */
+    double factor;          /* the safety factor: the smallest scale that overturns the
+                               package (<= 1 if the log overturned it); if it survived,
+                               the smallest scale above 1 that overturns it (every scale
+                               from 1 up to it was found safe).  INFINITY if not found */
+    double factor_safe;     /* the safe end of the final bracket (just below factor) */
+    sw_threshold_t below;   /* scales from the lifting scale up to 1: for a log that
+                               survived, below.found means a weaker shock of the same shape
+                               would have overturned it (below.x) - it survived by luck */
+    sw_threshold_t above;   /* survived only: the search from 1 up (factor = above.x) */
+    double lift_scale;      /* the scale at which the package can first lift (estimated on
+                               a frame or with vertical acceleration) */
+} sw_safety_t;
+
+/* The safety factor of a log: the factor by which its longitudinal
+ * acceleration would have to be scaled to overturn the package.  so may be
+ * NULL; its x_min 0 = automatic (the lifting scale, times 0.9 on a frame or
+ * with vertical acceleration: below it nothing can lift), x_max 0 = 20
+ * times the scale that lifts a package standing on the bed; step, tol and
+ * islands as in sw_threshold_search().  The log is replayed once per trial
+ * (several tens of times).  Returns SW_OK (found or not), or the first error
+ * of a trial with a reason in msg. */
 int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
-                     const sw_search_opts_t *so, sw_threshold_t *out, char *msg, size_t msglen);
+                     const sw_search_opts_t *so, sw_safety_t *out, char *msg, size_t msglen);
 
 /* ---- parallel jobs ------------------------------------------------------- */
 

@@ -572,12 +572,13 @@ static int log_trial(void *user, double x, sw_run_result_t *r)
 }
 
 int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
-                     const sw_search_opts_t *so_in, sw_threshold_t *out, char *msg, size_t msglen)
+                     const sw_search_opts_t *so_in, sw_safety_t *out, char *msg, size_t msglen)
 {
     int err = SW_OK;
     set_msg(msg, msglen, "%s", "");
     if (!sc || !log || !log->t || !log->a_g || !out) return SW_EINVAL;
     memset(out, 0, sizeof *out);
+    out->factor = out->factor_safe = INFINITY;
     sw_derived_t d;
     if (sw_scene_validate(sc, &d, NULL, NULL, NULL) != SW_OK) {
         set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
@@ -586,37 +587,75 @@ int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opt
     double peak = 0.0; /* m/s^2 */
     for (size_t i = 0; i < log->n; i++)
         if (isfinite(log->a_g[i]) && fabs(log->a_g[i]) > peak) peak = fabs(log->a_g[i]);
-    if (peak == 0.0) return SW_OK; /* no acceleration: no scale overturns anything */
 
     sw_engine_t *e = make_engine(sc, ro, 0.0, &err, msg, msglen);
     if (!e) return err;
     log_trial_t T = {e, log, ro};
+    if ((err = run_log_on(e, log, 1.0, ro, &out->at_one)) < 0) goto out;
+    out->overturned = out->at_one.overturned;
+    if (peak == 0.0) { /* no longitudinal acceleration: no scale changes anything */
+        out->lift_scale = INFINITY;
+        goto out;
+    }
+
     sw_search_opts_t so = {0};
     if (so_in) so = *so_in;
     const double bare_lift = sc->g * tan(d.alpha) / peak; /* scale lifting a package on the bed */
     if (!(so.x_max > 0.0)) so.x_max = DEFAULT_X_MAX * bare_lift;
-    if (!(so.x_min > 0.0)) {
-        if (d.model == SW_MODEL_BARE && !log->a_z) {
-            so.x_min = bare_lift;
-        } else {
-            /* linear while stuck: probe far below lifting and scale */
-            sw_run_result_t r;
-            sw_summary_t s;
-            const double probe = 1e-3 * bare_lift;
-            err = run_log_on(e, log, probe, ro, &r);
-            if (err < 0) goto out;
-            sw_engine_summary(e, 0, &s);
-            so.x_min = s.max_uplift_ratio > 0.0 ? LIFT_MARGIN_LOG * probe / s.max_uplift_ratio
-                                                : so.x_max;
-            if (log->a_z) so.x_min = fmin(so.x_min, LIFT_MARGIN_LOG * bare_lift);
-        }
-        if (!(so.x_min < so.x_max)) goto out; /* nothing can even lift: not found */
+    if (d.model == SW_MODEL_BARE && !log->a_z) {
+        out->lift_scale = bare_lift;
+    } else {
+        /* linear while stuck: probe far below lifting and scale */
+        sw_run_result_t r;
+        sw_summary_t s;
+        const double probe = 1e-3 * bare_lift;
+        if ((err = run_log_on(e, log, probe, ro, &r)) < 0) goto out;
+        sw_engine_summary(e, 0, &s);
+        out->lift_scale = s.max_uplift_ratio > 0.0 ? probe / s.max_uplift_ratio : INFINITY;
     }
-    err = sw_threshold_search(log_trial, &T, &so, out);
+    if (!(so.x_min > 0.0)) {
+        so.x_min = out->lift_scale;
+        if (d.model != SW_MODEL_BARE || log->a_z) so.x_min *= LIFT_MARGIN_LOG;
+        if (log->a_z) so.x_min = fmin(so.x_min, LIFT_MARGIN_LOG * bare_lift);
+    }
+
+    /* below: from lifting up to the recorded shock itself; if the log
+     * overturned the package, 1 overturns and the search ends by 1 */
+    sw_search_opts_t sb = so;
+    sb.x_max = 1.0;
+    if (sb.x_min < 1.0) {
+        if ((err = sw_threshold_search(log_trial, &T, &sb, &out->below)) < 0) goto out;
+    } else if (out->overturned) {
+        /* the estimate of lifting was above 1, yet 1 overturned: bracket from
+         * the recorded shock down is not possible; report 1 itself */
+        out->below.found = out->below.at_min = 1;
+        out->below.x = 1.0;
+        out->below.at_x = out->at_one;
+    }
+    if (out->overturned) {
+        out->found = out->below.found;
+        out->factor = out->below.x;
+        out->factor_safe = out->below.x_safe;
+        goto out;
+    }
+    /* above: it survived; scan up from 1 (or from lifting, if higher) */
+    sw_search_opts_t sa = so;
+    sa.x_min = fmax(1.0, so.x_min);
+    if (sa.x_min < sa.x_max) {
+        if ((err = sw_threshold_search(log_trial, &T, &sa, &out->above)) < 0) goto out;
+        if (out->above.found) {
+            out->found = 1;
+            out->factor = out->above.x;
+            out->factor_safe = out->above.at_min ? 1.0 : out->above.x_safe;
+        }
+    }
 out:
-    if (err == SW_EINVAL) set_msg(msg, msglen, "the log has no usable sample, or a bad range");
-    else if (err == SW_EFAULT) set_msg(msg, msglen, "the model faulted during a trial");
-    else if (err < 0) set_msg(msg, msglen, "%s", sw_strerror(err));
+    if (err == SW_EINVAL)
+        set_msg(msg, msglen, "the log has no usable sample, or the search range is empty");
+    else if (err == SW_EFAULT)
+        set_msg(msg, msglen, "the model faulted during a trial");
+    else if (err < 0)
+        set_msg(msg, msglen, "%s", sw_strerror(err));
     sw_engine_destroy(e);
     return err;
 }
