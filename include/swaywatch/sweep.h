@@ -41,7 +41,8 @@ typedef struct {
     double rtol, atol;   /* adaptive schemes; 0 = engine defaults */
     double free_periods; /* free motion allowed after the input ends, in rocking periods
                             2 pi/p; 0 = 20 */
-    double settle;       /* s; if > 0, replaces free_periods (logs, as replay --settle) */
+    double settle;       /* s; if > 0, replaces free_periods (logs, as replay --settle);
+                            if < 0, no free motion: the run ends with the input */
 } sw_run_opts_t;
 
 /* Why a run stopped. */
@@ -199,7 +200,10 @@ typedef struct {
                                would have overturned it (below.x) - it survived by luck */
     sw_threshold_t above;   /* survived only: the search from 1 up (factor = above.x) */
     double lift_scale;      /* the scale at which the package can first lift (estimated on
-                               a frame or with vertical acceleration) */
+                               a frame or with vertical acceleration); INFINITY if the log
+                               has no longitudinal acceleration */
+    double max_scale;       /* the largest scale the search would try (its x_max) */
+    long trials;            /* runs of the log, all searches and the recorded one */
 } sw_safety_t;
 
 /* The safety factor of a log: the factor by which its longitudinal

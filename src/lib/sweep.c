@@ -94,6 +94,7 @@ static sw_engine_t *make_engine(const sw_scene_t *sc, const sw_run_opts_t *o, do
 static double free_time_of(const sw_run_opts_t *o, double p)
 {
     if (o && o->settle > 0.0) return o->settle;
+    if (o && o->settle < 0.0) return 0.0;
     const double n = o && o->free_periods > 0.0 ? o->free_periods : DEFAULT_FREE_PERIODS;
     return n * 2.0 * M_PI / p;
 }
@@ -602,6 +603,7 @@ int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opt
     if (so_in) so = *so_in;
     const double bare_lift = sc->g * tan(d.alpha) / peak; /* scale lifting a package on the bed */
     if (!(so.x_max > 0.0)) so.x_max = DEFAULT_X_MAX * bare_lift;
+    out->max_scale = so.x_max;
     if (d.model == SW_MODEL_BARE && !log->a_z) {
         out->lift_scale = bare_lift;
     } else {
@@ -650,6 +652,7 @@ int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opt
         }
     }
 out:
+    out->trials = 1 + out->below.trials + out->above.trials;
     if (err == SW_EINVAL)
         set_msg(msg, msglen, "the log has no usable sample, or the search range is empty");
     else if (err == SW_EFAULT)
