@@ -483,8 +483,10 @@ static char *scene_reader(char *str, int num, void *stream)
 
     size_t sep = strcspn(a, "=:");
     if (sep >= n) {
+        /* Quote this line only: a runs on into the rest of the text. */
         report(c->diag, c->user, c->origin, c->lineno,
-               "\"%.40s\": expected key = value, a [section] header or a comment", a);
+               "\"%.*s\": expected key = value, a [section] header or a comment",
+               (int)(n < 40 ? n : 40), a);
         fail(c, SW_EPARSE);
         return str;
     }
