@@ -100,11 +100,15 @@ static int step_to(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const doubl
                : SW_EGSL;
 }
 
+/* The state is still inside the model: finite, and a rocking package not
+ * turned beyond half a turn (a step may overshoot pi/2 slightly before the
+ * overturn event cuts it; one that lands beyond pi computed garbage, and its
+ * numbers must not reach the summary). */
 static int finite_state(const sw_pkg_t *P, const double y[])
 {
     for (int i = 0; i < P->n; i++)
         if (!isfinite(y[i])) return 0;
-    return 1;
+    return !(P->phase == SW_PHASE_ROCKING && fabs(y[P->ith]) > M_PI);
 }
 
 /* ---- event functions -------------------------------------------------- */
