@@ -608,7 +608,9 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
         }
         memcpy(P->y, ys, sizeof(double) * (size_t)P->n);
         P->t = te;
-        if (P->phase == SW_PHASE_ROCKING) track_theta(P, P->y[P->ith]);
+        /* At an overturn the polished state lies just past pi/2 (by up to
+         * a step's worth of theta'); the overturn map records pi/2. */
+        if (P->phase == SW_PHASE_ROCKING && ev != EV_OVERTURN) track_theta(P, P->y[P->ith]);
         handle_event(e, P, ev, te);
     }
     P->t = t1;
