@@ -13,7 +13,7 @@
  *   2: an accel_t from raw bytes: utime step (4 bytes, us), ax, az (8 bytes
  *      each, any double);
  *   3: time passes for the timers (sensor gap, rejection summaries).
- * Samples more than a few seconds apart are not generated: the engine's
+ * Samples more than half a second apart are not generated: the engine's
  * work grows with the length of a gap (see docs/security.md: --max-skew
  * bounds it for a live monitor).
  *
@@ -143,7 +143,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             case 2: {
                 uint32_t step = 0;
                 for (int i = 0; i < 4; i++) step = (step << 8) | fz_byte(&b);
-                utime += (int32_t)step % 3000000; /* within +-3 s */
+                utime += (int32_t)step % 500000; /* within +-0.5 s */
                 seq++;
                 ax = fz_double(&b);
                 az = fz_double(&b);
