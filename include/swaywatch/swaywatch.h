@@ -2,6 +2,7 @@
 #ifndef SWAYWATCH_H
 #define SWAYWATCH_H
 
+#include "swaywatch/alarm.h"
 #include "swaywatch/csv.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/model.h"
