@@ -396,13 +396,16 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
     /* --quiet keeps the counts when they explain a failure. */
     if (!o.quiet || k.accepted == 0)
         print_lcm_counts(stderr, path, &lc, &k);
-    if (k.accepted == 0)
+    if (k.accepted == 0) {
         sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", path, channel);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
     if (o.json)
         sw_cli_print_json(stdout, sw_mon_engine(mon), &run);
     else if (!o.quiet)
         sw_cli_print_summary(stdout, sw_mon_engine(mon), &run);
-    rc = k.accepted == 0 ? SW_EXIT_USAGE : SW_EXIT_OK;
+    rc = SW_EXIT_OK;
     if (rc == SW_EXIT_OK && fail_on_overturn && sw_cli_any_overturned(sw_mon_engine(mon)))
         rc = SW_EXIT_OVERTURNED;
 
