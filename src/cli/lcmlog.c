@@ -405,9 +405,8 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
         sw_cli_print_json(stdout, sw_mon_engine(mon), &run);
     else if (!o.quiet)
         sw_cli_print_summary(stdout, sw_mon_engine(mon), &run);
-    rc = SW_EXIT_OK;
-    if (rc == SW_EXIT_OK && fail_on_overturn && sw_cli_any_overturned(sw_mon_engine(mon)))
-        rc = SW_EXIT_OVERTURNED;
+    rc = fail_on_overturn && sw_cli_any_overturned(sw_mon_engine(mon)) ? SW_EXIT_OVERTURNED
+                                                                       : SW_EXIT_OK;
 
 out:
     sw_cli_states_close(&states);
