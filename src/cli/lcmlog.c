@@ -69,7 +69,7 @@ static const struct option long_opts[] = {
 void sw_cli_print_lcmlog_help(FILE *f)
 {
     fprintf(f,
-            "lcm-logger files (swaywatch.accel_t messages; the CSV options do not apply):\n"
+            "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit and --flip apply):\n"
             "      --channel REGEX        accel channel, an anchored regex as in LCM (default "
             "%s)\n"
             "      --axis x|y|z           message axis along the truck's travel (default x)\n"
