@@ -21,6 +21,8 @@ typedef int (*sw_cmd_fn)(int argc, char **argv);
 int cmd_replay(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
 int cmd_monitor(int argc, char **argv); /* LCM builds only (SW_HAVE_LCM) */
+int cmd_boundary(int argc, char **argv);
+int cmd_forensics(int argc, char **argv);
 
 /* "swaywatch: " + printf-style message + newline, on stderr. */
 void sw_cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
@@ -210,5 +212,79 @@ enum {
         {"vertical", required_argument, NULL, SW_OPT_LCM_VERTICAL},                                \
         {"gap", required_argument, NULL, SW_OPT_LCM_GAP},                                          \
         {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL}
+
+/* ---- CSV logs held in memory (logread.c) -------------------------------------
+ * The CSV input options replay documents, for commands that run one log
+ * many times and so read it into memory first (forensics).  replay streams
+ * its log and parses the same options itself. */
+enum {
+    SW_OPT_CSV_TIME_COL = 1200, /* getopt_long codes, apart from the shared, own and LCM ones */
+    SW_OPT_CSV_ACCEL_COL,
+    SW_OPT_CSV_VERT_COL,
+    SW_OPT_CSV_DELIM,
+    SW_OPT_CSV_HEADER,
+    SW_OPT_CSV_NO_HEADER,
+    SW_OPT_CSV_ACCEL_UNIT,
+    SW_OPT_CSV_TIME_UNIT,
+    SW_OPT_CSV_FLIP,
+    SW_OPT_CSV_STRICT
+};
+
+#define SW_CLI_CSV_LONGOPTS                                                                        \
+    {"time-col", required_argument, NULL, SW_OPT_CSV_TIME_COL},                                    \
+        {"accel-col", required_argument, NULL, SW_OPT_CSV_ACCEL_COL},                              \
+        {"vert-col", required_argument, NULL, SW_OPT_CSV_VERT_COL},                                \
+        {"delimiter", required_argument, NULL, SW_OPT_CSV_DELIM},                                  \
+        {"header", no_argument, NULL, SW_OPT_CSV_HEADER},                                          \
+        {"no-header", no_argument, NULL, SW_OPT_CSV_NO_HEADER},                                    \
+        {"accel-unit", required_argument, NULL, SW_OPT_CSV_ACCEL_UNIT},                            \
+        {"time-unit", required_argument, NULL, SW_OPT_CSV_TIME_UNIT},                              \
+        {"flip", no_argument, NULL, SW_OPT_CSV_FLIP}, {"strict", no_argument, NULL, SW_OPT_CSV_STRICT}
+
+typedef struct {
+    sw_csv_opts_t csv;
+    int strict; /* stop at the first rejected row */
+} sw_cli_csv_opts_t;
+
+void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o);
+void sw_cli_print_csv_help(FILE *f);
+/* Handle a CSV option code; -1 if c is not one, else SW_EXIT_OK or
+ * SW_EXIT_USAGE (reported). */
+int sw_cli_csv_option(sw_cli_csv_opts_t *o, int c, const char *arg);
+
+/* A whole log: accepted rows in file order, SI units. */
+typedef struct {
+    double *t, *a_g, *a_z; /* a_z only with --vert-col (has_z), else NULL */
+    size_t n, cap;
+    int has_z;
+    long rows, rejected; /* data rows seen, and refused (reported on stderr) */
+} sw_cli_log_t;
+
+/* Read path ("-" = stdin) into L; rejected rows reported like replay does
+ * (counted only with quiet).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad rows
+ * under --strict, no usable row, an lcm-logger file) or SW_EXIT_IO.  Free
+ * with sw_cli_log_free(). */
+int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_cli_log_t *L);
+void sw_cli_log_free(sw_cli_log_t *L);
+
+/* ---- figures (plot.c): gnuplot as a subprocess ------------------------------
+ * sw_cli_plot_open() starts gnuplot with the terminal chosen by the file's
+ * extension (.png: pngcairo, or png without cairo; .svg) and its output set;
+ * the caller writes the rest of the script (data as inline datablocks) to
+ * sw_cli_plot_file() and sw_cli_plot_close() waits for gnuplot and reports
+ * its failure with gnuplot's own messages. */
+typedef struct sw_plot sw_plot_t;
+
+/* SW_EXIT_OK if path ends in .png or .svg, else SW_EXIT_USAGE (reported,
+ * naming opt). */
+int sw_cli_plot_check(const char *opt, const char *path);
+sw_plot_t *sw_cli_plot_open(const char *path, int width, int height);
+FILE *sw_cli_plot_file(sw_plot_t *p);
+int sw_cli_plot_close(sw_plot_t *p); /* SW_EXIT_OK or SW_EXIT_IO */
+/* s as a gnuplot string literal (single quotes), as it is (file names). */
+void sw_cli_plot_string(FILE *f, const char *s);
+/* s as a gnuplot string literal to be shown as text: the enhanced-text
+ * markup characters (_ ^ { } @ & ~) escaped. */
+void sw_cli_plot_text(FILE *f, const char *s);
 
 #endif

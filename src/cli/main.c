@@ -18,6 +18,8 @@ static const struct {
 #ifdef SW_HAVE_LCM
     {"monitor", cmd_monitor, "live: subscribe to acceleration over LCM, publish state and alarms"},
 #endif
+    {"boundary", cmd_boundary, "overturning boundary curves: lowest overturning pulse vs omega/p"},
+    {"forensics", cmd_forensics, "a log's outcome, safety factor, and what support would have saved it"},
 };
 
 void sw_cli_error(const char *fmt, ...)

@@ -1,0 +1,150 @@
+/* plot.c - figures drawn by gnuplot, run as a subprocess: the script and
+ * its data (inline datablocks) go down a pipe and gnuplot writes the file.
+ * gnuplot's own messages are caught in a temporary file and passed on with
+ * the "swaywatch: " prefix when it fails. */
+#include <errno.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+struct sw_plot {
+    FILE *gp;
+    const char *path;
+    char errfile[64];
+    struct sigaction old_pipe; /* SIGPIPE is ignored while gnuplot runs */
+};
+
+static const char *ext_of(const char *path)
+{
+    const char *dot = strrchr(path, '.');
+    const char *slash = strrchr(path, '/');
+    return dot && (!slash || dot > slash) ? dot + 1 : "";
+}
+
+int sw_cli_plot_check(const char *opt, const char *path)
+{
+    const char *ext = ext_of(path);
+    if (!strcmp(ext, "png") || !strcmp(ext, "svg")) return SW_EXIT_OK;
+    sw_cli_error("%s: '%s': the file name must end in .png or .svg", opt, path);
+    return SW_EXIT_USAGE;
+}
+
+void sw_cli_plot_string(FILE *f, const char *s)
+{
+    /* gnuplot single-quoted string: no escapes but '' for a quote */
+    fputc('\'', f);
+    for (; *s; s++) {
+        if (*s == '\'') fputc('\'', f);
+        fputc(*s, f);
+    }
+    fputc('\'', f);
+}
+
+void sw_cli_plot_text(FILE *f, const char *s)
+{
+    /* the terminals are set up "enhanced": _ ^ { } @ & ~ are markup unless
+     * escaped, and a backslash is itself escaped by another */
+    fputc('\'', f);
+    for (; *s; s++) {
+        if (*s == '\'') {
+            fputs("''", f);
+            continue;
+        }
+        if (strchr("_^{}@&~\\", *s)) fputc('\\', f);
+        fputc(*s, f);
+    }
+    fputc('\'', f);
+}
+
+sw_plot_t *sw_cli_plot_open(const char *path, int width, int height)
+{
+    sw_plot_t *p = calloc(1, sizeof *p);
+    if (!p) {
+        sw_cli_error("out of memory");
+        return NULL;
+    }
+    p->path = path;
+    const char *tmp = getenv("TMPDIR");
+    snprintf(p->errfile, sizeof p->errfile, "%s/swaywatch-gnuplot-XXXXXX",
+             tmp && *tmp && strlen(tmp) < 32 && !strpbrk(tmp, "'\"\\$` ") ? tmp : "/tmp");
+    int fd = mkstemp(p->errfile);
+    if (fd < 0) {
+        sw_cli_error("%s: cannot create a temporary file for gnuplot: %s", path, strerror(errno));
+        free(p);
+        return NULL;
+    }
+    close(fd);
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "exec gnuplot 2>'%s' >&2", p->errfile);
+    struct sigaction ign;
+    memset(&ign, 0, sizeof ign);
+    ign.sa_handler = SIG_IGN;
+    sigaction(SIGPIPE, &ign, &p->old_pipe);
+    fflush(NULL);
+    p->gp = popen(cmd, "w");
+    if (!p->gp) {
+        sw_cli_error("%s: cannot run gnuplot: %s", path, strerror(errno));
+        sigaction(SIGPIPE, &p->old_pipe, NULL);
+        unlink(p->errfile);
+        free(p);
+        return NULL;
+    }
+    FILE *g = p->gp;
+    const char *ext = ext_of(path);
+    if (!strcmp(ext, "svg")) {
+        fprintf(g, "set terminal svg size %d,%d dynamic enhanced font 'sans,12'\n", width, height);
+    } else {
+        /* pngcairo draws antialiased lines and UTF-8 text; the plain libgd
+         * terminal is the fallback where cairo is missing */
+        fprintf(g,
+                "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+                "  set terminal pngcairo size %d,%d enhanced font 'sans,11'\n"
+                "} else {\n"
+                "  set terminal png size %d,%d\n"
+                "}\n",
+                width, height, width, height);
+    }
+    fputs("set output ", g);
+    sw_cli_plot_string(g, path);
+    fputs("\nset encoding utf8\n", g);
+    return p;
+}
+
+FILE *sw_cli_plot_file(sw_plot_t *p)
+{
+    return p->gp;
+}
+
+int sw_cli_plot_close(sw_plot_t *p)
+{
+    if (!p) return SW_EXIT_OK;
+    int rc = SW_EXIT_OK;
+    fputs("unset output\n", p->gp);
+    int st = pclose(p->gp);
+    sigaction(SIGPIPE, &p->old_pipe, NULL);
+    struct stat sb;
+    if (st == -1 || !WIFEXITED(st) || WEXITSTATUS(st) != 0 || stat(p->path, &sb) != 0 ||
+        sb.st_size == 0) {
+        if (st != -1 && WIFEXITED(st) && WEXITSTATUS(st) == 127)
+            sw_cli_error("%s: gnuplot was not found; install gnuplot (gnuplot-nox)", p->path);
+        else
+            sw_cli_error("%s: gnuplot failed to draw the figure", p->path);
+        FILE *e = fopen(p->errfile, "r");
+        char line[512];
+        for (int n = 0; e && n < 20 && fgets(line, sizeof line, e); n++) {
+            line[strcspn(line, "\n")] = '\0';
+            if (line[0]) sw_cli_error("gnuplot: %s", line);
+        }
+        if (e) fclose(e);
+        rc = SW_EXIT_IO;
+    }
+    unlink(p->errfile);
+    free(p);
+    return rc;
+}
