@@ -2,7 +2,8 @@
  * the search logic on a known predicate, boundary points re-checked with
  * the GSL reference scheme, the bare block against the computed tables of
  * the rocking literature notes, threaded = single-threaded, and the safety
- * factor of logs that do and do not overturn. */
+ * factor of logs that do and do not overturn, on the bed, on a frame and
+ * on a cushion. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -134,6 +135,46 @@ static void test_boundary_rk8pd(void **state)
     const sw_curve_t frame = curve_of(tu_frame(2.0, 2.0 * tan(a20), 250.0, 1.0, 0.1), 0.5);
     check_point(&frame, SW_PULSE_HALF_SINE, 3.0);
     check_point(&frame, SW_PULSE_FULL_SINE, 2.0);
+}
+
+/* The package on a cushion given by omega_c (rad/s) and zeta_c. */
+static sw_scene_t with_cushion(sw_scene_t sc, double omega, double zeta)
+{
+    sc.has_cushion = 1;
+    sc.cushion_omega = omega;
+    sc.cushion_zeta = zeta;
+    sc.cushion_k_given = SW_GIVEN_RATIO;
+    sc.cushion_c_given = SW_GIVEN_RATIO;
+    return sc;
+}
+
+/* On a cushion nothing lifts at once: the search starts where an edge can
+ * first leave the cushion, from the linear response.  The boundary found
+ * from there is the one a scan from far below finds, and it holds against
+ * rk8pd 1 % below and above. */
+static void test_boundary_cushion(void **state)
+{
+    (void)state;
+    const double a20 = 20.0 * M_PI / 180.0;
+    const sw_curve_t on_frame =
+        curve_of(with_cushion(tu_frame(2.0, 2.0 * tan(a20), 250.0, 1.0, 0.1), 60.0, 0.1), 0.5);
+    const sw_curve_t on_bed = curve_of(with_cushion(tu_bare(2.0, 2.0 * tan(a20)), 40.0, 0.2), 0.0);
+    check_point(&on_frame, SW_PULSE_HALF_SINE, 4.0);
+    check_point(&on_bed, SW_PULSE_FULL_SINE, 2.0);
+
+    sw_boundary_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.shape = SW_PULSE_HALF_SINE;
+    sw_boundary_point_t a, b;
+    assert_int_equal(sw_boundary_point(&on_frame, 1.0, &o, &a, NULL, 0), SW_OK);
+    o.search.x_min = 0.02;
+    assert_int_equal(sw_boundary_point(&on_frame, 1.0, &o, &b, NULL, 0), SW_OK);
+    assert_true(a.th.found && b.th.found);
+    assert_false(a.th.at_min);
+    assert_true(a.x_lift < 1.0); /* an edge lifts below the rigid threshold */
+    assert_true(a.th.x_safe >= 0.9 * a.x_lift);
+    /* the same threshold from both starts: the brackets overlap */
+    assert_true(a.th.x_safe <= b.th.x && b.th.x_safe <= a.th.x);
 }
 
 /* ---- the bare block against the computed reference tables -------------------- */
@@ -320,6 +361,29 @@ static void test_safety_factor_frame(void **state)
     assert_true(isinf(sf.factor));
 }
 
+/* On a cushion the safety factor starts where an edge can first lift. */
+static void test_safety_factor_cushion(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = with_cushion(tu_bare(2.0, 2.0 * tan(0.25)), 40.0, 0.2);
+    sw_derived_t d;
+    sw_scene_validate(&sc, &d, NULL, NULL, NULL);
+    static double t[4000], ag[4000];
+    const size_t n = sampled_half_sine(-1.5 * sc.g * tan(d.alpha), 2.0 * d.p, t, ag, 4000);
+    sw_log_t log = {t, ag, NULL, n};
+    sw_run_opts_t ro = {.settle = 10.0};
+    sw_safety_t sf;
+    char msg[256];
+    assert_int_equal(sw_safety_factor(&sc, &log, &ro, NULL, &sf, msg, sizeof msg), SW_OK);
+    assert_true(sf.found);
+    assert_true(sf.lift_scale < 1.0 / 1.5); /* lifts below the rigid threshold */
+    sw_run_result_t r;
+    assert_int_equal(sw_log_run(&sc, &log, 0.99 * sf.factor, &ro, &r, msg, sizeof msg), SW_OK);
+    assert_false(r.overturned);
+    assert_int_equal(sw_log_run(&sc, &log, 1.01 * sf.factor, &ro, &r, msg, sizeof msg), SW_OK);
+    assert_true(r.overturned);
+}
+
 /* Bad arguments are refused with a reason. */
 static void test_bad_arguments(void **state)
 {
@@ -346,9 +410,11 @@ int main(void)
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_search_islands),   cmocka_unit_test(test_boundary_rk8pd),
+        cmocka_unit_test(test_boundary_cushion),
         cmocka_unit_test(test_bare_reference_tables), cmocka_unit_test(test_threads_identical),
         cmocka_unit_test(test_parallel_for),     cmocka_unit_test(test_safety_factor),
-        cmocka_unit_test(test_safety_factor_frame), cmocka_unit_test(test_bad_arguments),
+        cmocka_unit_test(test_safety_factor_frame), cmocka_unit_test(test_safety_factor_cushion),
+        cmocka_unit_test(test_bad_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

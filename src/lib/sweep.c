@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "swaywatch/model.h"
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
 
@@ -31,7 +32,9 @@
 #define CHECKS_PER_PERIOD 16.0  /* stop checks per rocking period of free motion */
 #define PROBE_SAMPLES 400.0     /* samples per period when probing the stuck frame */
 #define LIFT_MARGIN_PULSE 0.99  /* probe of a pulse: sampled to 3e-5 of the peak */
+#define LIFT_MARGIN_CUSHION 0.9 /* probe of a pulse on a cushion: sampling capped, see below */
 #define LIFT_MARGIN_LOG 0.9     /* probe of a log: sampled only at the log's samples */
+#define PROBE_MAX_SAMPLES 20000 /* cap on the samples of one probe run */
 #define MAX_THREADS 256
 
 static void set_msg(char *msg, size_t len, const char *fmt, ...)
@@ -56,7 +59,8 @@ static double zero_input(void *user, double t)
 
 /* An engine for one scene.  dt: the option, or the scheme's default capped
  * at 1/STEPS_PER_PERIOD of the shorter of the pulse period (omega_e > 0)
- * and the rocking period. */
+ * and the rocking period.  No scheme given stays NULL, so that the engine
+ * can choose its scheme for a stiff cushion. */
 static sw_engine_t *make_engine(const sw_scene_t *sc, const sw_run_opts_t *o, double omega_e,
                                 int *err, char *msg, size_t msglen)
 {
@@ -69,10 +73,10 @@ static sw_engine_t *make_engine(const sw_scene_t *sc, const sw_run_opts_t *o, do
     }
     sw_engine_opts_t eo;
     memset(&eo, 0, sizeof eo);
-    eo.scheme = o && o->scheme ? o->scheme : SW_DEFAULT_SCHEME;
+    eo.scheme = o ? o->scheme : NULL;
     eo.rtol = o ? o->rtol : 0.0;
     eo.atol = o ? o->atol : 0.0;
-    const sw_scheme_t *s = sw_scheme_lookup(eo.scheme);
+    const sw_scheme_t *s = sw_scheme_lookup(eo.scheme ? eo.scheme : SW_DEFAULT_SCHEME);
     if (!s) {
         *err = SW_ENOTFOUND;
         set_msg(msg, msglen, "unknown scheme '%s'", eo.scheme);
@@ -411,29 +415,60 @@ static int pulse_trial(void *user, double x, sw_run_result_t *r)
     return run_pulse_on(T->e, &T->pulse, T->ro, r);
 }
 
-/* The lowest x at which a package on a frame can lift at all.  While the
- * package stands on the frame the system is linear, so the support's peak
- * acceleration is proportional to the pulse: run a pulse too small to lift
- * anything, sample the support's acceleration finely over the pulse and the
- * ringing after it, and scale.  The peak of the decaying free oscillation
- * comes within its first period after the pulse. */
-static double frame_lift(sw_engine_t *e, const sw_derived_t *d, sw_pulse_t pulse, double unit)
+/* How far the package is from leaving its rest contact, for the probes
+ * below.  Frame: the support's acceleration over g tan(alpha) (uplift at
+ * 1).  Cushion: the lift drive b |sin theta| - (z - z_s) in m (an edge
+ * leaves the cushion when it exceeds the static deflection z_s). */
+static double probe_value(const sw_derived_t *d, const sw_output_t *o, double z_s)
 {
-    const double probe = 1e-3;
+    if (d->model == SW_MODEL_CUSHION)
+        return d->b * fabs(sin(o->state.theta)) - (o->state.z - z_s);
+    return o->uplift_ratio;
+}
+
+/* The probe's peak turned into the x (or scale) at which the package
+ * first lifts: frame at a ratio of 1, cushion at a drive of z_s. */
+static double probe_lift(const sw_derived_t *d, double probe, double peak, double z_s)
+{
+    if (!(peak > 0.0)) return INFINITY;
+    return probe * (d->model == SW_MODEL_CUSHION ? z_s : 1.0) / peak;
+}
+
+/* The lowest x at which the package can leave its rest contact at all
+ * (bare: 1).  On a frame the package moves with it until the support's
+ * acceleration reaches g tan(alpha); on a cushion it cannot overturn
+ * without an edge leaving the cushion.  Until then the system is linear
+ * (frame), or linear to O(theta^2) with theta below z_s/b (cushion), so the
+ * response is proportional to the pulse: run a pulse far too small to lift
+ * anything, sample the drive finely over the pulse and the ringing after
+ * it, and scale.  The peak of a decaying free oscillation comes within its
+ * first period after the pulse. */
+static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pulse_t pulse,
+                         double unit, double z_s)
+{
+    const double probe = 1e-4;
     pulse.amplitude = probe * unit;
     sw_engine_reset(e);
-    const double wmax = fmax(pulse.omega, d->omega_b);
-    const double dt = 2.0 * M_PI / wmax / PROBE_SAMPLES; /* s */
-    const double t_end = sw_pulse_duration(&pulse) + 1.5 * 2.0 * M_PI / d->omega_b;
+    double wmax = fmax(pulse.omega, d->omega_b), wslow = d->omega_b;
+    if (d->model == SW_MODEL_CUSHION) {
+        double wz, wth;
+        sw_cushion_frequencies(d, g, &wz, &wth);
+        wmax = fmax(wmax, wth);
+        wslow = d->omega_b > 0.0 ? fmin(d->omega_b, wth) : wth;
+    }
+    const double t_end = sw_pulse_duration(&pulse) + 1.5 * 2.0 * M_PI / wslow; /* s */
+    double dt = 2.0 * M_PI / wmax / PROBE_SAMPLES;                            /* s */
+    if (t_end / dt > PROBE_MAX_SAMPLES) dt = t_end / PROBE_MAX_SAMPLES;
     double peak = 0.0;
     for (double t = 0.0; t < t_end;) {
         t = fmin(t_end, t + dt);
         sw_engine_advance_fn(e, t, sw_pulse_eval, &pulse);
         sw_output_t o;
         sw_engine_get_output(e, 0, &o);
-        if (o.uplift_ratio > peak) peak = o.uplift_ratio;
+        const double v = probe_value(d, &o, z_s);
+        if (v > peak) peak = v;
     }
-    return peak > 0.0 ? probe / peak : INFINITY;
+    return probe_lift(d, probe, peak, z_s);
 }
 
 int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary_opts_t *o,
@@ -479,14 +514,16 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
 
     pulse_trial_t T = {e, &o->run, {o->shape, 0.0, omega_e}, sc.g * tan(d.alpha)};
     sw_search_opts_t so = o->search;
-    if (d.model == SW_MODEL_BARE) {
+    const double z_s = d.model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(&d, sc.g) : 0.0;
+    if (d.model == SW_MODEL_BARE)
         out->x_lift = 1.0; /* the bed acceleration itself must reach g tan(alpha) */
-    } else {
-        out->x_lift = frame_lift(e, &d, T.pulse, T.unit);
-    }
+    else
+        out->x_lift = pulse_lift(e, &d, sc.g, T.pulse, T.unit, z_s);
     if (!(so.x_max > 0.0)) so.x_max = DEFAULT_X_MAX;
     if (!(so.x_min > 0.0)) {
-        so.x_min = d.model == SW_MODEL_BARE ? 1.0 : LIFT_MARGIN_PULSE * out->x_lift;
+        so.x_min = d.model == SW_MODEL_BARE      ? 1.0
+                   : d.model == SW_MODEL_CUSHION ? LIFT_MARGIN_CUSHION * out->x_lift
+                                                 : LIFT_MARGIN_PULSE * out->x_lift;
         if (!(so.x_min < so.x_max)) { /* cannot even lift below x_max */
             out->th.found = 0;
             goto out;
@@ -585,35 +622,44 @@ int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opt
         set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
         return SW_EINVAL;
     }
-    double peak = 0.0; /* m/s^2 */
+    double a_peak = 0.0; /* m/s^2 */
     for (size_t i = 0; i < log->n; i++)
-        if (isfinite(log->a_g[i]) && fabs(log->a_g[i]) > peak) peak = fabs(log->a_g[i]);
+        if (isfinite(log->a_g[i]) && fabs(log->a_g[i]) > a_peak) a_peak = fabs(log->a_g[i]);
 
     sw_engine_t *e = make_engine(sc, ro, 0.0, &err, msg, msglen);
     if (!e) return err;
     log_trial_t T = {e, log, ro};
     if ((err = run_log_on(e, log, 1.0, ro, &out->at_one)) < 0) goto out;
     out->overturned = out->at_one.overturned;
-    if (peak == 0.0) { /* no longitudinal acceleration: no scale changes anything */
+    if (a_peak == 0.0) { /* no longitudinal acceleration: no scale changes anything */
         out->lift_scale = INFINITY;
         goto out;
     }
 
     sw_search_opts_t so = {0};
     if (so_in) so = *so_in;
-    const double bare_lift = sc->g * tan(d.alpha) / peak; /* scale lifting a package on the bed */
+    const double bare_lift = sc->g * tan(d.alpha) / a_peak; /* scale lifting a package on the bed */
     if (!(so.x_max > 0.0)) so.x_max = DEFAULT_X_MAX * bare_lift;
     out->max_scale = so.x_max;
     if (d.model == SW_MODEL_BARE && !log->a_z) {
         out->lift_scale = bare_lift;
     } else {
-        /* linear while stuck: probe far below lifting and scale */
-        sw_run_result_t r;
-        sw_summary_t s;
-        const double probe = 1e-3 * bare_lift;
-        if ((err = run_log_on(e, log, probe, ro, &r)) < 0) goto out;
-        sw_engine_summary(e, 0, &s);
-        out->lift_scale = s.max_uplift_ratio > 0.0 ? probe / s.max_uplift_ratio : INFINITY;
+        /* linear until the package leaves its rest contact (pulse_lift()):
+         * replay far below that and scale; the log's own samples are the
+         * probe's, so the margin below is wider than for a pulse */
+        const double probe = 1e-4 * bare_lift;
+        const double z_s = d.model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(&d, sc->g) : 0.0;
+        double peak = 0.0;
+        sw_engine_reset(e);
+        for (size_t i = 0; i < log->n; i++) {
+            if (sw_engine_push(e, log->t[i], probe * log->a_g[i], log->a_z ? log->a_z[i] : 0.0) < 0)
+                continue;
+            sw_output_t o;
+            sw_engine_get_output(e, 0, &o);
+            const double v = probe_value(&d, &o, z_s);
+            if (v > peak) peak = v;
+        }
+        out->lift_scale = probe_lift(&d, probe, peak, z_s);
     }
     if (!(so.x_min > 0.0)) {
         so.x_min = out->lift_scale;
