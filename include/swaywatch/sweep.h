@@ -68,6 +68,11 @@ typedef struct {
     double max_theta_ratio; /* max |theta| / alpha (1.0 at least when it fell) */
     double min_margin;      /* 1 */
     double t_end;           /* s, when the run stopped */
+    int uplift_side;        /* direction of the first uplift: +1 the top forward, -1 back,
+                               0 none (on a cushion: of the first edge lift) */
+    int overturn_side;      /* direction of the overturn (0 if none): the same as
+                               uplift_side for a direct overturn, opposite after a reverse
+                               sway */
 } sw_run_result_t;
 
 /* Run the pulse through a package standing still at t = 0: exactly (the

@@ -125,7 +125,10 @@ static void usage(FILE *f)
             "                            omega_ratio,<curve 1>,<curve 2>,... in units of g tan alpha\n"
             "      --detail FILE.csv     one row per curve and point: the bracket, impacts before\n"
             "                            the overturn at the boundary (0: overturned directly;\n"
-            "                            >= 1: after an impact), times, trials\n"
+            "                            >= 1: after an impact), the directions of the first\n"
+            "                            uplift and of the overturn (+1 the top forward, -1 back;\n"
+            "                            opposite: it overturned after a reverse sway), times,\n"
+            "                            trials\n"
             "      --islands FILE.csv    scan on up to --max-amplitude and list the safe islands\n"
             "                            above the boundary: curve,omega_ratio,from,to,open\n"
             "      --plot FILE.png|.svg  draw the curves (and islands) with gnuplot\n"
@@ -450,8 +453,8 @@ static const char *end_name(sw_run_end e)
 static void write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
                          const sw_boundary_point_t *pts)
 {
-    fputs("curve,omega_ratio,found,boundary,safe_below,lift,impacts,uplift_time,tip_time,"
-          "overturn_time,end,trials\n",
+    fputs("curve,omega_ratio,found,boundary,safe_below,lift,impacts,uplift_side,overturn_side,"
+          "uplift_time,tip_time,overturn_time,end,trials\n",
           f);
     for (size_t c = 0; c < nc; c++)
         for (size_t i = 0; i < nr; i++) {
@@ -465,7 +468,7 @@ static void write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ra
                 if (!P->th.at_min) csv_num(f, P->th.x_safe);
                 fputc(',', f);
                 csv_num(f, P->x_lift);
-                fprintf(f, ",%ld,", r->impacts);
+                fprintf(f, ",%ld,%d,%d,", r->impacts, r->uplift_side, r->overturn_side);
                 csv_num(f, r->uplift_time);
                 fputc(',', f);
                 csv_num(f, r->tip_time);
@@ -475,7 +478,7 @@ static void write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ra
             } else {
                 fputs(",,", f);
                 csv_num(f, P->x_lift);
-                fputs(",,,,,", f);
+                fputs(",,,,,,,", f);
             }
             fprintf(f, ",%ld\n", P->th.trials);
         }

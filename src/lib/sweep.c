@@ -57,19 +57,44 @@ static double zero_input(void *user, double t)
 
 /* ---- one run --------------------------------------------------------------- */
 
+/* An engine and what its event callback records of the current run: the
+ * direction of the first uplift and of the overturn (+1 the top forward),
+ * which tell a direct overturn from one after a reverse sway.  The engine
+ * holds a pointer to the record: a runner must not move once made. */
+typedef struct {
+    sw_engine_t *e;
+    int uplift_side, overturn_side;
+} runner_t;
+
+static void on_run_event(void *user, const sw_event_t *ev)
+{
+    runner_t *R = user;
+    /* a level base leaving a cushion (info 0) has no direction yet */
+    if (ev->kind == SW_EV_UPLIFT && !R->uplift_side && ev->info != 0.0)
+        R->uplift_side = ev->info > 0.0 ? 1 : -1;
+    if (ev->kind == SW_EV_OVERTURN) R->overturn_side = ev->theta > 0.0 ? 1 : -1;
+}
+
+static void runner_reset(runner_t *R)
+{
+    sw_engine_reset(R->e);
+    R->uplift_side = R->overturn_side = 0;
+}
+
 /* An engine for one scene.  dt: the option, or the scheme's default capped
  * at 1/STEPS_PER_PERIOD of the shorter of the pulse period (omega_e > 0)
  * and the rocking period.  No scheme given stays NULL, so that the engine
  * can choose its scheme for a stiff cushion. */
-static sw_engine_t *make_engine(const sw_scene_t *sc, const sw_run_opts_t *o, double omega_e,
-                                int *err, char *msg, size_t msglen)
+static int make_engine(runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o, double omega_e,
+                       int *err, char *msg, size_t msglen)
 {
+    memset(R, 0, sizeof *R);
     sw_derived_t d;
     char why[256];
     if (sw_scene_validate(sc, &d, NULL, NULL, NULL) != SW_OK) {
         *err = SW_EINVAL;
         set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
-        return NULL;
+        return *err;
     }
     sw_engine_opts_t eo;
     memset(&eo, 0, sizeof eo);
@@ -80,7 +105,7 @@ static sw_engine_t *make_engine(const sw_scene_t *sc, const sw_run_opts_t *o, do
     if (!s) {
         *err = SW_ENOTFOUND;
         set_msg(msg, msglen, "unknown scheme '%s'", eo.scheme);
-        return NULL;
+        return *err;
     }
     if (o && o->dt > 0.0) {
         eo.dt = o->dt;
@@ -89,10 +114,12 @@ static sw_engine_t *make_engine(const sw_scene_t *sc, const sw_run_opts_t *o, do
         if (omega_e > 0.0) period = fmin(period, 2.0 * M_PI / omega_e);
         eo.dt = fmin(sw_scheme_default_dt(s), period / STEPS_PER_PERIOD);
     }
+    eo.on_event = on_run_event;
+    eo.user = R;
     why[0] = '\0';
-    sw_engine_t *e = sw_engine_create(sc, 1, &eo, err, why, sizeof why);
-    if (!e) set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
-    return e;
+    R->e = sw_engine_create(sc, 1, &eo, err, why, sizeof why);
+    if (!R->e) set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
+    return R->e ? SW_OK : *err;
 }
 
 static double free_time_of(const sw_run_opts_t *o, double p)
@@ -103,8 +130,10 @@ static double free_time_of(const sw_run_opts_t *o, double p)
     return n * 2.0 * M_PI / p;
 }
 
-static void fill_result(const sw_engine_t *e, sw_run_end end, sw_run_result_t *r)
+static void fill_result(const runner_t *R, sw_run_end end, const sw_output_t *o,
+                        sw_run_result_t *r)
 {
+    const sw_engine_t *e = R->e;
     sw_summary_t s;
     sw_engine_summary(e, 0, &s);
     r->end = end;
@@ -118,17 +147,20 @@ static void fill_result(const sw_engine_t *e, sw_run_end end, sw_run_result_t *r
     r->max_theta_ratio = s.max_theta_ratio;
     r->min_margin = s.min_margin;
     r->t_end = sw_engine_time(e);
+    r->uplift_side = R->uplift_side;
+    r->overturn_side = end == SW_END_FALLING ? (o->state.theta > 0.0 ? 1 : -1) : R->overturn_side;
 }
 
 /* Free motion from the end of the input until the outcome is certain or
  * t_limit (s) passes; checks every chunk seconds. */
-static int free_motion(sw_engine_t *e, double t_limit, double chunk, sw_run_result_t *r)
+static int free_motion(runner_t *R, double t_limit, double chunk, sw_run_result_t *r)
 {
+    sw_engine_t *e = R->e;
     const sw_derived_t *d = sw_engine_derived(e, 0);
     sw_run_end end;
+    sw_output_t o;
     for (;;) {
         sw_summary_t s;
-        sw_output_t o;
         sw_engine_summary(e, 0, &s);
         sw_engine_get_output(e, 0, &o);
         const double t = sw_engine_time(e);
@@ -156,21 +188,21 @@ static int free_motion(sw_engine_t *e, double t_limit, double chunk, sw_run_resu
         const int rc = sw_engine_advance_fn(e, fmin(t_limit, t + chunk), zero_input, NULL);
         if (rc < 0) return rc;
     }
-    fill_result(e, end, r);
+    fill_result(R, end, &o, r);
     return r->faults ? SW_EFAULT : SW_OK;
 }
 
-static int run_pulse_on(sw_engine_t *e, const sw_pulse_t *pulse, const sw_run_opts_t *o,
+static int run_pulse_on(runner_t *R, const sw_pulse_t *pulse, const sw_run_opts_t *o,
                         sw_run_result_t *r)
 {
     sw_pulse_t pl = *pulse;
-    const double p = sw_engine_derived(e, 0)->p;
+    const double p = sw_engine_derived(R->e, 0)->p;
     const double T = sw_pulse_duration(&pl);
-    sw_engine_reset(e);
+    runner_reset(R);
     /* Up to the end of the pulse first, so that a step ends on its kink. */
-    const int rc = sw_engine_advance_fn(e, T, sw_pulse_eval, &pl);
+    const int rc = sw_engine_advance_fn(R->e, T, sw_pulse_eval, &pl);
     if (rc < 0) return rc;
-    return free_motion(e, T + free_time_of(o, p), 2.0 * M_PI / p / CHECKS_PER_PERIOD, r);
+    return free_motion(R, T + free_time_of(o, p), 2.0 * M_PI / p / CHECKS_PER_PERIOD, r);
 }
 
 static int check_pulse(const sw_pulse_t *pulse, char *msg, size_t msglen)
@@ -191,19 +223,20 @@ int sw_pulse_run(const sw_scene_t *sc, const sw_pulse_t *pulse, const sw_run_opt
     if (!sc || !r) return SW_EINVAL;
     memset(r, 0, sizeof *r);
     if ((err = check_pulse(pulse, msg, msglen)) != SW_OK) return err;
-    sw_engine_t *e = make_engine(sc, o, pulse->omega, &err, msg, msglen);
-    if (!e) return err;
-    err = run_pulse_on(e, pulse, o, r);
+    runner_t R;
+    if (make_engine(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK) return err;
+    err = run_pulse_on(&R, pulse, o, r);
     if (err == SW_EFAULT) set_msg(msg, msglen, "the model faulted during the run");
-    sw_engine_destroy(e);
+    sw_engine_destroy(R.e);
     return err;
 }
 
-static int run_log_on(sw_engine_t *e, const sw_log_t *log, double scale, const sw_run_opts_t *o,
+static int run_log_on(runner_t *R, const sw_log_t *log, double scale, const sw_run_opts_t *o,
                       sw_run_result_t *r)
 {
+    sw_engine_t *e = R->e;
     const double p = sw_engine_derived(e, 0)->p;
-    sw_engine_reset(e);
+    runner_reset(R);
     for (size_t i = 0; i < log->n; i++) {
         const int rc =
             sw_engine_push(e, log->t[i], scale * log->a_g[i], log->a_z ? log->a_z[i] : 0.0);
@@ -215,7 +248,7 @@ static int run_log_on(sw_engine_t *e, const sw_log_t *log, double scale, const s
     }
     const double t = sw_engine_time(e);
     if (isnan(t)) return SW_EINVAL; /* no usable sample */
-    return free_motion(e, t + free_time_of(o, p), 2.0 * M_PI / p / CHECKS_PER_PERIOD, r);
+    return free_motion(R, t + free_time_of(o, p), 2.0 * M_PI / p / CHECKS_PER_PERIOD, r);
 }
 
 int sw_log_run(const sw_scene_t *sc, const sw_log_t *log, double scale, const sw_run_opts_t *o,
@@ -225,12 +258,12 @@ int sw_log_run(const sw_scene_t *sc, const sw_log_t *log, double scale, const sw
     set_msg(msg, msglen, "%s", "");
     if (!sc || !r || !log || !log->t || !log->a_g || !isfinite(scale)) return SW_EINVAL;
     memset(r, 0, sizeof *r);
-    sw_engine_t *e = make_engine(sc, o, 0.0, &err, msg, msglen);
-    if (!e) return err;
-    err = run_log_on(e, log, scale, o, r);
+    runner_t R;
+    if (make_engine(&R, sc, o, 0.0, &err, msg, msglen) != SW_OK) return err;
+    err = run_log_on(&R, log, scale, o, r);
     if (err == SW_EINVAL) set_msg(msg, msglen, "the log has no usable sample");
     if (err == SW_EFAULT) set_msg(msg, msglen, "the model faulted during the run");
-    sw_engine_destroy(e);
+    sw_engine_destroy(R.e);
     return err;
 }
 
@@ -402,7 +435,7 @@ void sw_parallel_for(size_t n, int threads, void (*job)(void *user, size_t i), v
 /* ---- boundary curves -------------------------------------------------------- */
 
 typedef struct {
-    sw_engine_t *e;
+    runner_t *R;
     const sw_run_opts_t *ro;
     sw_pulse_t pulse;
     double unit; /* m/s^2, g tan(alpha): x = 1 */
@@ -412,7 +445,7 @@ static int pulse_trial(void *user, double x, sw_run_result_t *r)
 {
     pulse_trial_t *T = user;
     T->pulse.amplitude = x * T->unit;
-    return run_pulse_on(T->e, &T->pulse, T->ro, r);
+    return run_pulse_on(T->R, &T->pulse, T->ro, r);
 }
 
 /* How far the package is from leaving its rest contact, for the probes
@@ -481,7 +514,8 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
     out->omega_ratio = omega_ratio;
     sw_scene_t sc = c->scene;
     sw_derived_t d;
-    sw_engine_t *e = NULL;
+    runner_t R;
+    R.e = NULL;
     if (!(omega_ratio > 0.0) || !isfinite(omega_ratio)) {
         set_msg(msg, msglen, "omega_e/p must be > 0");
         err = SW_EINVAL;
@@ -509,16 +543,15 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
             goto out;
         }
     }
-    e = make_engine(&sc, &o->run, omega_e, &err, msg, msglen);
-    if (!e) goto out;
+    if (make_engine(&R, &sc, &o->run, omega_e, &err, msg, msglen) != SW_OK) goto out;
 
-    pulse_trial_t T = {e, &o->run, {o->shape, 0.0, omega_e}, sc.g * tan(d.alpha)};
+    pulse_trial_t T = {&R, &o->run, {o->shape, 0.0, omega_e}, sc.g * tan(d.alpha)};
     sw_search_opts_t so = o->search;
     const double z_s = d.model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(&d, sc.g) : 0.0;
     if (d.model == SW_MODEL_BARE)
         out->x_lift = 1.0; /* the bed acceleration itself must reach g tan(alpha) */
     else
-        out->x_lift = pulse_lift(e, &d, sc.g, T.pulse, T.unit, z_s);
+        out->x_lift = pulse_lift(R.e, &d, sc.g, T.pulse, T.unit, z_s);
     if (!(so.x_max > 0.0)) so.x_max = DEFAULT_X_MAX;
     if (!(so.x_min > 0.0)) {
         so.x_min = d.model == SW_MODEL_BARE      ? 1.0
@@ -538,7 +571,7 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
     else if (err < 0)
         set_msg(msg, msglen, "%s", sw_strerror(err));
 out:
-    sw_engine_destroy(e);
+    sw_engine_destroy(R.e);
     out->status = err;
     return err;
 }
@@ -598,7 +631,7 @@ int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ra
 /* ---- safety factor -------------------------------------------------------------- */
 
 typedef struct {
-    sw_engine_t *e;
+    runner_t *R;
     const sw_log_t *log;
     const sw_run_opts_t *ro;
 } log_trial_t;
@@ -606,7 +639,7 @@ typedef struct {
 static int log_trial(void *user, double x, sw_run_result_t *r)
 {
     log_trial_t *T = user;
-    return run_log_on(T->e, T->log, x, T->ro, r);
+    return run_log_on(T->R, T->log, x, T->ro, r);
 }
 
 int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
@@ -626,10 +659,11 @@ int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opt
     for (size_t i = 0; i < log->n; i++)
         if (isfinite(log->a_g[i]) && fabs(log->a_g[i]) > a_peak) a_peak = fabs(log->a_g[i]);
 
-    sw_engine_t *e = make_engine(sc, ro, 0.0, &err, msg, msglen);
-    if (!e) return err;
-    log_trial_t T = {e, log, ro};
-    if ((err = run_log_on(e, log, 1.0, ro, &out->at_one)) < 0) goto out;
+    runner_t R;
+    if (make_engine(&R, sc, ro, 0.0, &err, msg, msglen) != SW_OK) return err;
+    sw_engine_t *e = R.e;
+    log_trial_t T = {&R, log, ro};
+    if ((err = run_log_on(&R, log, 1.0, ro, &out->at_one)) < 0) goto out;
     out->overturned = out->at_one.overturned;
     if (a_peak == 0.0) { /* no longitudinal acceleration: no scale changes anything */
         out->lift_scale = INFINITY;
