@@ -1,8 +1,8 @@
 #!/bin/sh
 # Regenerate the figures (docs/img) and the data (docs/data) of
 # docs/paper-reproduction.md; each command is the one quoted there.
-# SW names the swaywatch binary (default build/swaywatch).  Takes about ten
-# minutes on two cores: the scan step is 0.5 % (--step 0.005), because the
+# SW names the swaywatch binary (default build/swaywatch).  Takes about half
+# an hour on two cores: the scan step is 0.5 % (--step 0.005), because the
 # overturning windows of a lightly damped frame under full-sine pulses can
 # be narrower than the default 2 % and a coarser scan steps over them.
 set -eu
@@ -41,6 +41,26 @@ for pulse in half-sine full-sine; do
         --pulse $pulse --omega-ratio $R --max-amplitude 40 --step $STEP \
         --out $D/$f.csv --plot $I/$f.png \
         --title "Fig. 7 ($pulse): bearing damping zeta_b 0.05, 0.1, 0.2, 0.4, omega_b/omega_e 1/2, gamma 0.8"
+done
+
+# Fig. 8: cushion on the frame, omega_c = 10, 20, 40, 80 p (zeta_c 0.1), and Fig. 9:
+# zeta_c = 0.05, 0.1, 0.2, 0.4 (omega_c 20 p); with the bare package and the frame
+# without a cushion for reference; omega_b/omega_e = 1/2.  A coarser omega grid:
+# each cushion run costs more.
+RC=0.5:15:0.5
+for pulse in half-sine full-sine; do
+    f=fig8-$pulse
+    "$SW" boundary --scene $S/paper-bare.ini --scene $S/paper-frame.ini --scene $S/paper-cushion.ini \
+        --bearing-ratio 1/2 --vary cushion.omega=27.12,54.25,108.5,217 \
+        --pulse $pulse --omega-ratio $RC --max-amplitude 40 --step $STEP \
+        --out $D/$f.csv --detail $D/$f-detail.csv --plot $I/$f.png \
+        --title "Fig. 8 ($pulse): cushion on the frame, omega_c 27, 54, 108, 217 rad/s (10-80 p), zeta_c 0.1, omega_b/omega_e 1/2"
+    f=fig9-$pulse
+    "$SW" boundary --scene $S/paper-bare.ini --scene $S/paper-frame.ini --scene $S/paper-cushion.ini \
+        --bearing-ratio 1/2 --vary cushion.zeta=0.05,0.1,0.2,0.4 \
+        --pulse $pulse --omega-ratio $RC --max-amplitude 40 --step $STEP \
+        --out $D/$f.csv --plot $I/$f.png \
+        --title "Fig. 9 ($pulse): cushion damping zeta_c 0.05, 0.1, 0.2, 0.4, omega_c 54 rad/s (20 p), omega_b/omega_e 1/2"
 done
 
 # Frame / bare: the ratio of the boundaries of Fig. 5 (> 1: the frame helps)
