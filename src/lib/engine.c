@@ -743,6 +743,10 @@ out_fail:
 static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
 {
     P->t = t;
+    if (!(sw_input_geff(P, t) > 0.0)) {
+        fault(e, P, t, SW_EFAULT);
+        return;
+    }
     if (P->d.model != SW_MODEL_BARE || P->phase != SW_PHASE_STUCK) return;
     const int side = sw_model_uplift_side(P, t);
     if (side) start_rocking(e, P, t, side);
