@@ -24,6 +24,27 @@ install(FILES ${PROJECT_SOURCE_DIR}/docs/deployment.md
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
         COMPONENT runtime FILES_MATCHING PATTERN "*.c" PATTERN "*.py" PATTERN "README*")
 
+# LCM message definitions and the bindings lcmtypes/ generates, for
+# consumers of the monitor's messages (C sources, Python modules, the jar
+# for lcm-spy), all under share/swaywatch/lcmtypes.
+if(TARGET swaywatch_lcmtypes)
+  set(SW_LCM_DEST ${CMAKE_INSTALL_DATADIR}/swaywatch/lcmtypes)
+  file(GLOB SW_LCM_DEFS ${PROJECT_SOURCE_DIR}/lcmtypes/*.lcm)
+  get_target_property(SW_LCM_C_SOURCES swaywatch_lcmtypes SOURCES)
+  list(FILTER SW_LCM_C_SOURCES INCLUDE REGEX "\\.c$")
+  string(REGEX REPLACE "\\.c(;|$)" ".h\\1" SW_LCM_C_HEADERS "${SW_LCM_C_SOURCES}")
+  install(FILES ${SW_LCM_DEFS} DESTINATION ${SW_LCM_DEST} COMPONENT runtime)
+  install(FILES ${SW_LCM_C_SOURCES} ${SW_LCM_C_HEADERS} DESTINATION ${SW_LCM_DEST}/c
+          COMPONENT runtime)
+  if(SW_LCM_PYTHON_DIR)
+    install(DIRECTORY ${SW_LCM_PYTHON_DIR}/swaywatch DESTINATION ${SW_LCM_DEST}/python
+            COMPONENT runtime FILES_MATCHING PATTERN "*.py")
+  endif()
+  if(SW_LCM_JAVA_JAR)
+    install(FILES ${SW_LCM_JAVA_JAR} DESTINATION ${SW_LCM_DEST}/java COMPONENT runtime)
+  endif()
+endif()
+
 set(SW_DEB_MAINTAINER "swaywatch developers <dev@swaywatch.invalid>"
     CACHE STRING "Maintainer field of the Debian packages")
 
