@@ -46,6 +46,17 @@ if [ "${SW_LCM:-0}" = 1 ]; then
 fi
 bin/swaywatch --version | grep -qx "swaywatch $SW_VERSION" || fail "swaywatch --version"
 
+# The LCM examples build and run on the installed bindings alone.
+if [ "${SW_LCM:-0}" = 1 ]; then
+    L=share/swaywatch/lcmtypes
+    cc -o "$T/alarm_listener" "$SRC/docs/examples/alarm_listener.c" "$L/c/swaywatch_alarm_t.c" \
+        -I"$L/c" -llcm
+    "$T/alarm_listener" -h >/dev/null
+    PYTHONPATH="$P/$L/python" python3 "$SRC/tests/package/mkaccel.py" "$T/a.lcmlog" --duration 0.1
+    PYTHONPATH="$P/$L/python" python3 "$SRC/docs/examples/decode_states.py" "$T/a.lcmlog" \
+        --expect 0 >/dev/null
+fi
+
 # The relocatable .pc file points into this prefix.
 export PKG_CONFIG_PATH="$P/$libdir/pkgconfig"
 pkg-config --exists --print-errors swaywatch
