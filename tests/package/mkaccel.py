@@ -4,7 +4,10 @@ braking half-sine on x, sampled at --rate Hz, with the generated Python
 types and the event log written by hand (no LCM Python module needed).
 
 usage: PYTHONPATH=GENERATED_PYTHON mkaccel.py OUT --amplitude A --omega W
-                                              [--rate HZ] [--duration S] [--lead S]
+                          [--rate HZ] [--duration S] [--lead S] [--start S]
+
+--start S makes a log that continues one that ended before S seconds: its
+samples start at S (utime and seq), the pulse at S + lead.
 """
 import argparse
 import math
@@ -19,6 +22,7 @@ ap.add_argument("--omega", type=float, default=10.0)      # rad/s
 ap.add_argument("--rate", type=float, default=1000.0)     # Hz
 ap.add_argument("--duration", type=float, default=3.0)    # s
 ap.add_argument("--lead", type=float, default=0.1)        # s of still bed first
+ap.add_argument("--start", type=float, default=0.0)    # s, time of the first sample
 ap.add_argument("--channel", default="ACCEL")
 a = ap.parse_args()
 
@@ -26,11 +30,11 @@ t0_us = 1_700_000_000_000_000  # a fixed start: the log is the same every run
 n = int(round(a.duration * a.rate)) + 1
 with open(a.out, "wb") as f:
     for i in range(n):
-        t = i / a.rate
-        tp = t - a.lead
+        t = a.start + i / a.rate
+        tp = t - a.start - a.lead
         m = accel_t()
         m.utime = t0_us + int(round(t * 1e6))
-        m.seq = i
+        m.seq = int(round(a.start * a.rate)) + i
         m.ax = a.amplitude * math.sin(a.omega * tp) if 0 <= tp <= math.pi / a.omega else 0.0
         data = m.encode()
         ch = a.channel.encode()
