@@ -50,13 +50,27 @@ static sw_scene_t named(sw_scene_t sc, const char *name)
     return sc;
 }
 
-static void run_scheme(const char *scheme)
+/* B's new scene: on a frame (by default), or on a cushion. */
+static sw_scene_t new_b(int cushion)
+{
+    if (!cushion) return named(tu_frame(2.0, 0.728, 250.0, 5.59, 0.1), "B2");
+    sw_scene_t sc = named(tu_bare(2.0, 0.728), "B2");
+    sc.has_cushion = 1;
+    sc.cushion_stiffness = 2.0e6;
+    sc.cushion_damping = 4.0e3;
+    sc.cushion_cubic = 0.0;
+    sc.cushion_k_given = sc.cushion_c_given = SW_GIVEN_DIMENSIONAL;
+    return sc;
+}
+
+static void run_scheme(const char *scheme, int cushion)
 {
     static trace_t ref, rep, fresh;
     const sw_scene_t scenes[2] = {named(tu_bare(2.0, 0.728), "A"),
                                   named(tu_bare(2.0, 0.728), "B")};
-    /* B's new scene: on a frame, so the model (and state length) changes. */
-    const sw_scene_t b2 = named(tu_frame(2.0, 0.728, 250.0, 5.59, 0.1), "B2");
+    /* B's new scene: the model (and the state's length) changes. */
+    const sw_scene_t b2 = new_b(cushion);
+    const sw_model_kind b2_model = cushion ? SW_MODEL_CUSHION : SW_MODEL_FRAME;
     sw_scene_t bad = named(tu_bare(2.0, 0.728), "bad");
     bad.height = -1.0;
     char msg[256];
@@ -101,14 +115,14 @@ static void run_scheme(const char *scheme)
             assert_int_equal(sw_engine_replace(E, 1, &b2, msg, sizeof msg), SW_OK);
             sw_output_t out;
             assert_int_equal(sw_engine_get_output(E, 1, &out), SW_OK);
-            assert_int_equal(out.state.phase, SW_PHASE_STUCK);
+            if (!cushion) assert_int_equal(out.state.phase, SW_PHASE_STUCK);
             assert_true(out.state.theta == 0.0 && out.state.theta_dot == 0.0);
             assert_true(out.t == t);
             assert_int_equal(sw_engine_summary(E, 1, &after), SW_OK);
             assert_string_equal(after.name, "B2");
-            assert_int_equal(after.model, SW_MODEL_FRAME);
+            assert_int_equal(after.model, b2_model);
             assert_int_equal(after.uplifts, 0);
-            assert_int_equal(sw_engine_derived(E, 1)->model, SW_MODEL_FRAME);
+            assert_int_equal(sw_engine_derived(E, 1)->model, b2_model);
         }
     }
     ref.i = N_SAMPLES; /* settling states are not traced */
@@ -147,14 +161,21 @@ static void run_scheme(const char *scheme)
 static void test_replace_rk4(void **state)
 {
     (void)state;
-    run_scheme("rk4");
+    run_scheme("rk4", 0);
 }
 
 /* An adaptive scheme: the GSL work space moves with the package. */
 static void test_replace_rkck(void **state)
 {
     (void)state;
-    run_scheme("rkck");
+    run_scheme("rkck", 0);
+}
+
+/* An implicit one: its driver points back into the package. */
+static void test_replace_cushion_implicit(void **state)
+{
+    (void)state;
+    run_scheme("rk4imp", 1);
 }
 
 int main(void)
@@ -163,6 +184,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_replace_rk4),
         cmocka_unit_test(test_replace_rkck),
+        cmocka_unit_test(test_replace_cushion_implicit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

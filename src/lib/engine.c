@@ -1163,9 +1163,9 @@ static void pkg_free(sw_pkg_t *P)
 
 /* The new package is built by sw_engine_create() itself (one scene, same
  * options), so it is checked and set up exactly like the others, then moved
- * into place.  Its GSL work space moves with it; the two pointers into the
- * package's surroundings (the input, the ODE system's parameters) are set
- * again. */
+ * into place.  Its GSL work space moves with it; the pointers that lead
+ * back into the package or its engine (the input, the ODE system's
+ * parameters, an implicit stepper's driver) are set again. */
 int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char *msg,
                       size_t msglen)
 {
@@ -1186,6 +1186,10 @@ int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char 
     *P = tmp->pk[0];
     P->in = &e->in;
     P->sys.params = P;
+    if (P->gstep && P->gdrv.s) {
+        P->gdrv.sys = &P->sys;
+        gsl_odeiv2_step_set_driver(P->gstep, &P->gdrv);
+    }
     P->t = e->started ? e->t : 0.0;
     free(tmp->pk);
     free(tmp);
