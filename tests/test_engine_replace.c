@@ -3,13 +3,12 @@
  * nothing happened (same numbers, bit for bit), the replaced one starts from
  * rest and then moves exactly like a fresh engine started at that instant,
  * and a scene that does not validate changes nothing. */
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-
-#include <cmocka.h>
-#include <gsl/gsl_errno.h>
 
 #include "testutil.h"
 
@@ -21,8 +20,10 @@
 static double input(int i)
 {
     const double t = i * 1e-3, w = 10.0;
-    if (t < M_PI / w) return -5.0 * sin(w * t);
-    if (t >= 1.0 && t < 1.0 + M_PI / w) return -6.0 * sin(w * (t - 1.0));
+    if (t < M_PI / w)
+        return -5.0 * sin(w * t);
+    if (t >= 1.0 && t < 1.0 + M_PI / w)
+        return -6.0 * sin(w * (t - 1.0));
     return 0.0;
 }
 
@@ -53,7 +54,8 @@ static sw_scene_t named(sw_scene_t sc, const char *name)
 /* B's new scene: on a frame (by default), or on a cushion. */
 static sw_scene_t new_b(int cushion)
 {
-    if (!cushion) return named(tu_frame(2.0, 0.728, 250.0, 5.59, 0.1), "B2");
+    if (!cushion)
+        return named(tu_frame(2.0, 0.728, 250.0, 5.59, 0.1), "B2");
     sw_scene_t sc = named(tu_bare(2.0, 0.728), "B2");
     sc.has_cushion = 1;
     sc.cushion_stiffness = 2.0e6;
@@ -66,8 +68,7 @@ static sw_scene_t new_b(int cushion)
 static void run_scheme(const char *scheme, int cushion)
 {
     static trace_t ref, rep, fresh;
-    const sw_scene_t scenes[2] = {named(tu_bare(2.0, 0.728), "A"),
-                                  named(tu_bare(2.0, 0.728), "B")};
+    const sw_scene_t scenes[2] = {named(tu_bare(2.0, 0.728), "A"), named(tu_bare(2.0, 0.728), "B")};
     /* B's new scene: the model (and the state's length) changes. */
     const sw_scene_t b2 = new_b(cushion);
     const sw_model_kind b2_model = cushion ? SW_MODEL_CUSHION : SW_MODEL_FRAME;
@@ -98,7 +99,8 @@ static void run_scheme(const char *scheme, int cushion)
         ref.i = rep.i = fresh.i = i;
         assert_true(sw_engine_push(R, t, input(i), 0.0) >= 0);
         assert_true(sw_engine_push(E, t, input(i), 0.0) >= 0);
-        if (i >= T_REPLACE) assert_true(sw_engine_push(F, t, input(i), 0.0) >= 0);
+        if (i >= T_REPLACE)
+            assert_true(sw_engine_push(F, t, input(i), 0.0) >= 0);
         if (i == T_REPLACE) {
             /* A is still rocking from the first pulse, B too. */
             assert_int_equal(rep.phase[0][i], SW_PHASE_ROCKING);
@@ -115,7 +117,8 @@ static void run_scheme(const char *scheme, int cushion)
             assert_int_equal(sw_engine_replace(E, 1, &b2, msg, sizeof msg), SW_OK);
             sw_output_t out;
             assert_int_equal(sw_engine_get_output(E, 1, &out), SW_OK);
-            if (!cushion) assert_int_equal(out.state.phase, SW_PHASE_STUCK);
+            if (!cushion)
+                assert_int_equal(out.state.phase, SW_PHASE_STUCK);
             assert_true(out.state.theta == 0.0 && out.state.theta_dot == 0.0);
             assert_true(out.t == t);
             assert_int_equal(sw_engine_summary(E, 1, &after), SW_OK);

@@ -16,13 +16,12 @@
 #define _XOPEN_SOURCE 700 /* getopt, sigaction */
 #endif
 #include <inttypes.h>
+#include <lcm/lcm.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-#include <lcm/lcm.h>
 
 #include "swaywatch_alarm_t.h"
 
@@ -41,8 +40,8 @@ typedef struct {
 
 static const char *kind_name(int k)
 {
-    static const char *const names[] = {"?",          "UPLIFT", "IMPACT", "WARN",
-                                        "CRITICAL",   "TIP",    "OVERTURNED", "REST",
+    static const char *const names[] = {"?",           "UPLIFT",     "IMPACT",        "WARN",
+                                        "CRITICAL",    "TIP",        "OVERTURNED",    "REST",
                                         "MODEL_FAULT", "SENSOR_GAP", "INPUT_REJECTED"};
     return k > 0 && k < (int)(sizeof names / sizeof names[0]) ? names[k] : "?";
 }

@@ -7,10 +7,9 @@
  * Run: prints the summary of a gentle and of a hard stop; exits 0 when the
  * crate rocks but stands after the gentle one and overturns in the hard one,
  * 1 otherwise. */
+#include <gsl/gsl_errno.h>
 #include <math.h>
 #include <stdio.h>
-
-#include <gsl/gsl_errno.h>
 #include <swaywatch/swaywatch.h>
 
 static void on_diag(void *user, const char *origin, int line, const char *msg)
