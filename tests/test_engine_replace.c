@@ -3,12 +3,13 @@
  * nothing happened (same numbers, bit for bit), the replaced one starts from
  * rest and then moves exactly like a fresh engine started at that instant,
  * and a scene that does not validate changes nothing. */
-#include <cmocka.h>
-#include <gsl/gsl_errno.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
 
 #include "testutil.h"
 

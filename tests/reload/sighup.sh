@@ -9,7 +9,8 @@
 #     the reload (its state was kept: it was rocking at the reload);
 #   - crate-B of M is at rest right after the reload while R's still rocks,
 #     and rocks again in the next pulse (rebuilt from the new scene);
-#   - M's state and alarm seq numbers go on without a gap;
+#   - M's state and alarm seq numbers go on across the reload (no restart),
+#     up to the counts M reports;
 #   - a reload with a broken scene file changes nothing and M keeps running.
 # Needs a network namespace (root, or user namespaces): exits 77 otherwise.
 # usage: sighup.sh SWAYWATCH SOURCE_DIR PYTHON_TYPES_DIR
@@ -45,6 +46,9 @@ fail() {
 export PYTHONPATH="$PYDIR"
 URL="udpm://239.255.76.67:7667?ttl=0"
 RATE=200
+# States at 50 Hz per package: less for the logger to keep up with on a
+# busy machine (UDP drops silently).
+MON_OPTS="-l $URL --state-rate 50"
 
 crate() { # FILE NAME WIDTH
     printf '[package]\nname = %s\nheight = 2.0\nwidth = %s\nmass = 1000\n' "$2" "$3" >"$1"
@@ -63,10 +67,10 @@ python3 "$SRC/tests/package/mkaccel.py" "$T/part2.lcmlog" --rate $RATE --amplitu
 
 lcm-logger -q -f --lcm-url="$URL" "$T/bus.lcmlog" 2>"$T/logger.err" &
 PIDS="$PIDS $!"
-"$SW" monitor -l "$URL" --scene "$T/m/a.ini" --scene "$T/m/b.ini" 2>"$T/m.err" &
+"$SW" monitor $MON_OPTS --scene "$T/m/a.ini" --scene "$T/m/b.ini" 2>"$T/m.err" &
 M=$!
 PIDS="$PIDS $M"
-"$SW" monitor -l "$URL" --scene "$T/r/a.ini" --scene "$T/r/b.ini" \
+"$SW" monitor $MON_OPTS --scene "$T/r/a.ini" --scene "$T/r/b.ini" \
     --state-channel REF_STATE --alarm-channel REF_ALARM 2>"$T/r.err" &
 R=$!
 PIDS="$PIDS $R"
@@ -112,7 +116,16 @@ kill -INT $PIDS 2>/dev/null || true
 wait 2>/dev/null || true
 PIDS=""
 
-python3 - "$T/bus.lcmlog" "$RATE" <<'PY' || fail "the recorded states do not show a clean reload"
+# Both monitors must have had every sample, or their crate-A cannot be
+# compared: a sample lost on the way makes the run inconclusive.
+for f in m r; do
+    grep -q 'lost 0 (by seq)' "$T/$f.err" || {
+        echo "sighup.sh: monitor $f lost samples on the way (busy machine): skipped"
+        exit 77
+    }
+done
+published() { sed -n "s/.*published \([0-9]*\) states.*, \([0-9]*\) alarms;.*/\\$1/p" "$T/m.err"; }
+python3 - "$T/bus.lcmlog" "$(published 1)" "$(published 2)" <<'PY' || fail "no clean reload"
 import struct, sys
 from swaywatch import state_t, alarm_t
 
@@ -139,29 +152,35 @@ def check(cond, what):
 
 M, R = states["SWAY_STATE"], states["REF_STATE"]
 reload_us = T0 + 605000  # first sample after the reload
+def first_after(d):
+    later = [u for u in d if u >= reload_us]
+    return d[min(later)] if later else None
 for name in ("crate-A", "crate-B"):
     check(name in M and name in R, name + " seen from both monitors")
 common = sorted(set(M["crate-A"]) & set(R["crate-A"]))
-check(len(common) > 300, "%d samples of crate-A in both" % len(common))
+check(len(common) > 50, "%d states of crate-A in both" % len(common))
 same = all(M["crate-A"][u].theta == R["crate-A"][u].theta and
            M["crate-A"][u].theta_dot == R["crate-A"][u].theta_dot for u in common)
 check(same, "crate-A of M equals crate-A of R at every sample")
-a0 = M["crate-A"].get(reload_us)
+a0 = first_after(M["crate-A"])
 check(a0 is not None and a0.phase == state_t.PHASE_ROCKING and a0.theta != 0.0,
       "crate-A still rocking right after the reload (state kept)")
 b_before = [u for u in M["crate-B"] if u < reload_us]
 check(b_before and M["crate-B"][max(b_before)].phase == state_t.PHASE_ROCKING,
       "crate-B rocking before the reload")
-b0 = M["crate-B"].get(reload_us)
+b0 = first_after(M["crate-B"])
 check(b0 is not None and b0.phase == state_t.PHASE_STUCK and b0.theta == 0.0,
       "crate-B at rest right after the reload (rebuilt)")
-rb0 = R["crate-B"].get(reload_us)
+rb0 = R["crate-B"].get(b0.utime) if b0 else None
 check(rb0 is not None and rb0.theta != 0.0, "the reference's crate-B still rocking then")
 check(any(s.phase == state_t.PHASE_ROCKING for u, s in M["crate-B"].items() if u > reload_us),
       "crate-B rocks again in the second pulse")
-for ch, s in seqs.items():
-    check(len(s) > 0 and s == list(range(s[0], s[0] + len(s))),
-          "%s: %d messages, seq without a gap" % (ch, len(s)))
+# The logger may miss a message (UDP); the seq must still rise across the
+# reload without restarting and end at the count M reports.
+for ch, s, n in (("SWAY_STATE", seqs["SWAY_STATE"], int(sys.argv[2])),
+                 ("SWAY_ALARM", seqs["SWAY_ALARM"], int(sys.argv[3]))):
+    check(len(s) > 0 and all(b > a for a, b in zip(s, s[1:])) and s[-1] == n - 1,
+          "%s: %d of %d messages recorded, seq rising to %d" % (ch, len(s), n, n - 1))
 sys.exit(0 if ok else 1)
 PY
 echo "sighup.sh: ok"

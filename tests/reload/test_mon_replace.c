@@ -11,10 +11,11 @@
 #include <string.h>
 
 /* cmocka needs these first */
-#include <cmocka.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+
+#include <cmocka.h>
 
 #include "lcmmon.h"
 #include "swaywatch/swaywatch.h"
