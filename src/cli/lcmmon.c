@@ -464,6 +464,5 @@ int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, si
         return rc;
     m->watch[k] = w;
     snprintf(m->names[k], sizeof m->names[k], "%s", scene->name);
-    m->models[k] = sw_engine_derived(m->engine, k)->model;
     return SW_OK;
 }
