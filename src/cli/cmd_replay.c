@@ -258,6 +258,7 @@ int cmd_replay(int argc, char **argv)
             continue;
         }
         if (r != -1) goto out;
+        r = SW_EXIT_OK;
         switch (c) {
         case OPT_TIME_COL: copts.time_col = optarg; r = check_col("--time-col", optarg); break;
         case OPT_ACCEL_COL: copts.accel_col = optarg; r = check_col("--accel-col", optarg); break;

@@ -127,6 +127,7 @@ int cmd_simulate(int argc, char **argv)
             continue;
         }
         if (r != -1) goto out;
+        r = SW_EXIT_OK;
         switch (c) {
         case OPT_PULSE:
             r = sw_pulse_shape_parse(optarg, &pulse.shape) == SW_OK ? SW_EXIT_OK : SW_EXIT_USAGE;
