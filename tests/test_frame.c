@@ -175,7 +175,8 @@ static void test_stiff_limit_is_bare(void **state)
     print_message("peak %.4g rad, worst |dtheta| %.3g rad, impacts %ld / %ld\n", peak, worst,
                   sb.impacts, sf.impacts);
     assert_true(sb.impacts >= 3);
-    assert_true(worst < 0.01 * peak);
+    /* the frame follows the bed to O(2 zeta_b da/dt / omega_b), about 0.3 % of a_g here */
+    assert_true(worst < 2e-3 * peak);
     assert_float_equal(sb.max_abs_theta, sf.max_abs_theta, 0.005 * sb.max_abs_theta);
     sw_engine_destroy(eb);
     sw_engine_destroy(ef);

@@ -16,7 +16,14 @@
  *
  * Steps are aligned to samples: each sample interval (or what is left of
  * it after an event) is split into equal steps no longer than the package's
- * step h, because the input has a kink at every sample. */
+ * step h, because the input has a kink at every sample.
+ *
+ * A package on a cushion (scene 3) moves from the start: it is never stuck
+ * and never impacts.  Overturn cuts its steps, and so, for the fixed-step
+ * schemes, does an edge of the base meeting the cushion's surface (a kink
+ * in the contact force); tipping, the first lift of an edge (uplift) and
+ * the peaks of |theta| are timed inside a step, and "rest" is checked at
+ * the end of each step. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -38,17 +45,34 @@ struct sw_engine {
     double ag, az;  /* m/s^2, last sample */
     sw_input_t in;  /* input over the interval being integrated */
     int events;     /* events reported during the current call */
+    const double *step_y1; /* end of the step being examined (multistep schemes) */
+    double step_h;         /* s, its length */
 };
 
-enum { EV_NONE = 0, EV_IMPACT, EV_OVERTURN, EV_UPLIFT_FWD, EV_UPLIFT_BACK, EV_TIP };
+enum {
+    EV_NONE = 0, EV_IMPACT, EV_OVERTURN, EV_UPLIFT_FWD, EV_UPLIFT_BACK, EV_TIP, EV_TURN,
+    /* cushion: an edge leaves / regains the cushion (B below the surface:
+     * full <-> partial contact), the last edge does (B above: partial <->
+     * free flight); the _IN variants are the reverse crossings */
+    EV_LIFT, EV_LIFT_IN, EV_FLY, EV_FLY_IN
+};
 
 /* ---- reporting -------------------------------------------------------- */
 
-static void emit(sw_engine_t *e, sw_pkg_t *P, sw_event_kind kind, double t, double info)
+/* Report an event at time t with the package's current state, or with the
+ * state vector y_at when the event lies inside a step (tipping). */
+static void emit_at(sw_engine_t *e, sw_pkg_t *P, sw_event_kind kind, double t, double info,
+                    const double *y_at)
 {
     sw_event_t ev;
     sw_output_t o;
+    double keep[SW_NMAX];
+    if (y_at) {
+        memcpy(keep, P->y, sizeof keep);
+        memcpy(P->y, y_at, sizeof(double) * (size_t)P->n);
+    }
     sw_model_output(P, t, &o);
+    if (y_at) memcpy(P->y, keep, sizeof keep);
     ev.pkg = (size_t)(P - e->pk);
     ev.kind = kind;
     ev.t = t;
@@ -59,6 +83,11 @@ static void emit(sw_engine_t *e, sw_pkg_t *P, sw_event_kind kind, double t, doub
     if (o.margin < P->sum.min_margin) P->sum.min_margin = o.margin;
     e->events++;
     if (e->o.on_event) e->o.on_event(e->o.user, &ev);
+}
+
+static void emit(sw_engine_t *e, sw_pkg_t *P, sw_event_kind kind, double t, double info)
+{
+    emit_at(e, P, kind, t, info, NULL);
 }
 
 static void track_theta(sw_pkg_t *P, double th)
@@ -72,11 +101,24 @@ static void track_theta(sw_pkg_t *P, double th)
 
 /* ---- stepping --------------------------------------------------------- */
 
+static void herm_state(const sw_pkg_t *P, double h, const double y0[], const double f0[],
+                       const double y1[], const double f1[], double tau, double yt[]);
+
 static int step_to(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const double y0[],
                    double y1[])
 {
     if (!e->scheme->adaptive) {
         e->scheme->step(P, t0, h, y0, y1);
+        return SW_OK;
+    }
+    if (e->scheme->implicit == 2) {
+        /* A multistep method cannot restart from the step's start without
+         * losing its history: interpolate the step being examined (cubic
+         * Hermite, O(h^4)) instead of re-stepping. */
+        double f0[SW_NMAX], f1[SW_NMAX];
+        sw_model_rhs(t0, y0, f0, P);
+        sw_model_rhs(t0 + e->step_h, e->step_y1, f1, P);
+        herm_state(P, e->step_h, y0, f0, e->step_y1, f1, h / e->step_h, y1);
         return SW_OK;
     }
     double yerr[SW_NMAX];
@@ -101,6 +143,38 @@ static void event_fn(const sw_pkg_t *P, int ev, double t, const double y[], cons
                      double *val, double *der)
 {
     const double s = P->side;
+    if (P->d.model == SW_MODEL_CUSHION) {
+        /* theta changes sign smoothly on a cushion: events on theta^2 */
+        const double th = y[P->ith], w = y[P->idth];
+        switch (ev) {
+        case EV_OVERTURN:
+            *val = th * th - M_PI_2 * M_PI_2;
+            *der = 2.0 * th * w;
+            return;
+        case EV_TIP:
+            *val = th * th - P->d.alpha * P->d.alpha;
+            *der = 2.0 * th * w;
+            return;
+        case EV_TURN: /* |theta| stops growing */
+            *val = -th * w;
+            *der = -(w * w + th * f[P->idth]);
+            return;
+        case EV_LIFT:
+        case EV_LIFT_IN: {
+            const double v = sw_cushion_lift(P, y, der), sg = ev == EV_LIFT ? 1.0 : -1.0;
+            *val = sg * v;
+            *der *= sg;
+            return;
+        }
+        default: { /* b^2 sin^2(theta) + z |z| */
+            const double b = P->d.b, sn = sin(th), z = y[P->iz];
+            const double sg = ev == EV_FLY_IN ? 1.0 : -1.0; /* rises when the base flies */
+            *val = sg * (b * b * sn * sn + z * fabs(z));
+            *der = sg * (2.0 * b * b * sn * cos(th) * w + 2.0 * fabs(z) * y[P->idz]);
+            return;
+        }
+        }
+    }
     switch (ev) {
     case EV_IMPACT:
         *val = -s * y[P->ith];
@@ -113,6 +187,10 @@ static void event_fn(const sw_pkg_t *P, int ev, double t, const double y[], cons
     case EV_TIP:
         *val = s * y[P->ith] - P->d.alpha;
         *der = s * f[P->ith];
+        return;
+    case EV_TURN: /* the package stops swinging outward: the peak of |theta| */
+        *val = -s * y[P->idth];
+        *der = -s * f[P->idth];
         return;
     default: {
         /* frame stuck: support acceleration W = -(2 z w u' + w^2 u) against
@@ -178,9 +256,12 @@ static int herm_crit(const herm_t *H, double x[2])
     return m;
 }
 
-/* Earliest tau in (0, 1] where H rises through 0 (from < 0, or from 0 with
- * a non-positive slope, to >= 0).  Returns -1 if none. */
-static double herm_first_rise(const herm_t *H)
+/* Earliest tau in (0, 1] where H rises through 0 from below (the caller
+ * handles a function already rising at 0).  A
+ * rise must reach tol, so round-off in a function that only touches 0 (a
+ * package just lifted, theta = theta' = 0) is not taken for an event.
+ * Returns -1 if none. */
+static double herm_first_rise(const herm_t *H, double tol)
 {
     double knots[4];
     int nk = 0;
@@ -192,8 +273,11 @@ static double herm_first_rise(const herm_t *H)
     for (int i = 0; i + 1 < nk; i++) {
         double a = knots[i], b = knots[i + 1];
         const double va = herm_at(H, a), vb = herm_at(H, b);
-        const int neg_a = va < 0.0 || (va == 0.0 && (i > 0 || H->c1 <= 0.0));
-        if (!(neg_a && vb >= 0.0)) continue;
+        /* A rise straight from an exact 0 at the start (a package just
+         * lifted or just landed, whose true motion starts the other way by
+         * construction) is the interpolant's artefact, not a crossing. */
+        if (i == 0 && va == 0.0) continue;
+        if (!(va <= 0.0 && vb >= tol)) continue;
         for (int it = 0; it < 64 && b - a > 1e-16; it++) { /* monotone piece */
             const double m = 0.5 * (a + b);
             if (herm_at(H, m) >= 0.0) b = m;
@@ -209,9 +293,12 @@ static double herm_first_rise(const herm_t *H)
 static void set_rest(sw_pkg_t *P)
 {
     memset(P->y, 0, sizeof P->y);
+    P->hold = 0;
+    P->t_lift = NAN;
     P->phase = SW_PHASE_STUCK;
     P->side = 1;
     P->beyond_alpha = 0;
+    if (P->d.model == SW_MODEL_CUSHION) sw_cushion_rest(P);
 }
 
 static void fault(sw_engine_t *e, sw_pkg_t *P, double t, int code)
@@ -226,6 +313,7 @@ static void start_rocking(sw_engine_t *e, sw_pkg_t *P, double t, int side)
 {
     P->phase = SW_PHASE_ROCKING;
     P->side = side;
+    P->t_lift = t;
     P->y[P->ith] = P->y[P->idth] = 0.0;
     P->sum.uplifts++;
     if (isnan(P->sum.uplift_time)) P->sum.uplift_time = t;
@@ -235,12 +323,27 @@ static void start_rocking(sw_engine_t *e, sw_pkg_t *P, double t, int side)
 /* After an impact: the cascade ends (rest) when the rebound energy is below
  * rest_eps of the barrier; the package then stands, or starts to rock again
  * at once if its support is still beyond the uplift threshold. */
+/* Kinetic energy of theta' below rest_eps of the energy barrier? */
+static int below_rest(const sw_engine_t *e, const sw_pkg_t *P, double theta_dot)
+{
+    const double p = P->d.p;
+    return 0.5 * theta_dot * theta_dot / (p * p) < e->rest_eps * (1.0 - cos(P->d.alpha));
+}
+
 static void after_impact(sw_engine_t *e, sw_pkg_t *P, double t)
 {
-    const double p = P->d.p, dth = P->y[P->idth];
-    if (0.5 * dth * dth / (p * p) >= e->rest_eps * (1.0 - cos(P->d.alpha))) return;
+    if (!below_rest(e, P, P->y[P->idth])) return;
     P->y[P->idth] = 0.0;
     const int side = sw_model_uplift_side(P, t);
+    if (side != 0 && t == P->t_lift) {
+        /* Lifted and landed at the same instant: the support is at the
+         * threshold and the step's own error pushed the package the wrong
+         * way.  Hold it for one step (the support keeps moving), then look
+         * again, so that time always advances. */
+        P->phase = SW_PHASE_STUCK;
+        P->hold = 1;
+        return;
+    }
     if (side == 0) {
         P->phase = SW_PHASE_STUCK;
         P->sum.rests++;
@@ -303,11 +406,18 @@ static double bare_uplift_time(sw_pkg_t *P, double t, double t1, int *side)
     return -1.0;
 }
 
+static double polish(sw_engine_t *e, sw_pkg_t *P, int ev, double t0, double h, const double y0[],
+                     double tau, double y[]);
+
 /* Earliest cutting event inside the step (t0,y0) -> (t0+h,y1), with the
  * Hermite interpolants; also times the tip and tracks max |theta|. */
+static int find_event_cushion(sw_engine_t *e, sw_pkg_t *P, double t0, double h,
+                              const double y0[], const double y1[], double *tau_out);
+
 static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const double y0[],
                       const double y1[], double *tau_out)
 {
+    if (P->d.model == SW_MODEL_CUSHION) return find_event_cushion(e, P, t0, h, y0, y1, tau_out);
     const double t1 = t0 + h;
     int cands[3], nc = 0;
     const int tipcand = P->phase == SW_PHASE_ROCKING &&
@@ -319,7 +429,7 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
         if (s1 <= 0.0 || fmin(s0, s1) < v) cands[nc++] = EV_IMPACT;
         if (s1 >= M_PI_2 || M_PI_2 - fmax(s0, s1) < v) cands[nc++] = EV_OVERTURN;
         maxcand = (y0[P->idth] > 0.0) != (y1[P->idth] > 0.0);
-    } else if (P->phase == SW_PHASE_STUCK && P->d.model != SW_MODEL_BARE) {
+    } else if (P->phase == SW_PHASE_STUCK && P->d.model != SW_MODEL_BARE && !P->hold) {
         cands[nc++] = EV_UPLIFT_FWD;
         cands[nc++] = EV_UPLIFT_BACK;
     }
@@ -337,9 +447,16 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
         if (cands[i] >= EV_UPLIFT_FWD && v1 < 0.0 && v0 < 0.0 &&
             fmax(v0, v1) < -0.5 * h * (fabs(d0) + fabs(d1)))
             continue; /* clearly below the threshold all step */
-        const herm_t H = herm_make(v0, d0, v1, d1, h);
-        double tau = herm_first_rise(&H);
-        if (tau < 0.0 && v0 < 0.0 && v1 >= 0.0) tau = 1.0; /* guard against round-off */
+        double tau;
+        if (v0 > 0.0 || (v0 == 0.0 && d0 > 0.0)) {
+            tau = 0.0; /* already through at the start of the step */
+        } else {
+            const herm_t H = herm_make(v0, d0, v1, d1, h);
+            const double tol =
+                64.0 * DBL_EPSILON * (fabs(H.c0) + fabs(H.c1) + fabs(H.c2) + fabs(H.c3));
+            tau = herm_first_rise(&H, tol);
+            if (tau < 0.0 && v0 < 0.0 && v1 > tol) tau = 1.0; /* round-off in the pieces */
+        }
         if (tau >= 0.0 && tau < best_tau) {
             best_tau = tau;
             best = cands[i];
@@ -347,49 +464,204 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
     }
     const double lim = best == EV_NONE ? 1.0 : best_tau;
     if (maxcand) {
-        const herm_t H = herm_make(y0[P->ith], y0[P->idth], y1[P->ith], y1[P->idth], h);
-        double x[2];
-        const int k = herm_crit(&H, x);
-        for (int i = 0; i < k; i++)
-            if (x[i] <= lim) track_theta(P, herm_at(&H, x[i]));
+        /* the peak: where theta' changes sign, polished by re-stepping so
+         * that max |theta| is as accurate as the scheme, even for long
+         * adaptive steps */
+        double v0, d0, v1, d1, yt[SW_NMAX];
+        event_fn(P, EV_TURN, t0, y0, f0, &v0, &d0);
+        event_fn(P, EV_TURN, t1, y1, f1, &v1, &d1);
+        const herm_t H = herm_make(v0, d0, v1, d1, h);
+        const double tau = herm_first_rise(&H, 0.0);
+        if (tau > 0.0 && tau <= lim) {
+            polish(e, P, EV_TURN, t0, h, y0, tau, yt);
+            track_theta(P, yt[P->ith]);
+        }
     }
     if (tipcand) {
         double v0, d0, v1, d1;
         event_fn(P, EV_TIP, t0, y0, f0, &v0, &d0);
         event_fn(P, EV_TIP, t1, y1, f1, &v1, &d1);
         const herm_t H = herm_make(v0, d0, v1, d1, h);
-        const double tau = herm_first_rise(&H);
+        const double tau = herm_first_rise(&H, 0.0);
         if (tau >= 0.0 && tau <= lim) {
             const double tt = t0 + tau * h;
+            double yt[SW_NMAX];
+            for (int i = 0; i < P->n; i++) {
+                const herm_t Hi = herm_make(y0[i], f0[i], y1[i], f1[i], h);
+                yt[i] = herm_at(&Hi, tau);
+            }
             if (isnan(P->sum.tip_time)) P->sum.tip_time = tt;
             P->beyond_alpha = 1;
-            emit(e, P, SW_EV_TIP, tt, P->side * P->d.alpha);
+            emit_at(e, P, SW_EV_TIP, tt, P->side * P->d.alpha, yt);
         }
     }
     *tau_out = best_tau;
     return best;
 }
 
-/* Polish the event time: re-step from (t0, y0) and Newton on the event
- * function.  Leaves the state at the event in y and returns its time. */
+/* State at tau in [0, 1] of the step, on the Hermite interpolants. */
+static void herm_state(const sw_pkg_t *P, double h, const double y0[], const double f0[],
+                       const double y1[], const double f1[], double tau, double yt[])
+{
+    for (int i = 0; i < P->n; i++) {
+        const herm_t Hi = herm_make(y0[i], f0[i], y1[i], f1[i], h);
+        yt[i] = herm_at(&Hi, tau);
+    }
+}
+
+/* Earliest rise through 0 of event ev over the step, or -1. */
+static double cushion_rise(const sw_pkg_t *P, int ev, double t0, double h, const double y0[],
+                           const double f0[], const double y1[], const double f1[])
+{
+    double v0, d0, v1, d1;
+    event_fn(P, ev, t0, y0, f0, &v0, &d0);
+    event_fn(P, ev, t0 + h, y1, f1, &v1, &d1);
+    if (v0 > 0.0 || (v0 == 0.0 && d0 > 0.0)) return 0.0;
+    const herm_t H = herm_make(v0, d0, v1, d1, h);
+    const double tol = 64.0 * DBL_EPSILON * (fabs(H.c0) + fabs(H.c1) + fabs(H.c2) + fabs(H.c3));
+    double tau = herm_first_rise(&H, tol);
+    if (tau < 0.0 && v0 < 0.0 && v1 > tol) tau = 1.0;
+    return tau;
+}
+
+/* The cushion's events inside the step (t0,y0) -> (t0+h,y1): overturn, and
+ * for fixed steps an edge meeting the surface, cut it (the earliest is
+ * returned); the peaks of |theta| are tracked, tipping and the first lift
+ * of an edge since rest are reported where they happen. */
+static int find_event_cushion(sw_engine_t *e, sw_pkg_t *P, double t0, double h,
+                              const double y0[], const double y1[], double *tau_out)
+{
+    const double t1 = t0 + h, al = P->d.alpha;
+    const double a0 = fabs(y0[P->ith]), a1 = fabs(y1[P->ith]);
+    const double v = h * fmax(fabs(y0[P->idth]), fabs(y1[P->idth]));
+    const int ovcand = a1 >= M_PI_2 || M_PI_2 - fmax(a0, a1) < v;
+    const int tipcand = a0 < al && (a1 >= al || al - fmax(a0, a1) < v);
+    const int maxcand = (y0[P->ith] * y0[P->idth] > 0.0) != (y1[P->ith] * y1[P->idth] > 0.0);
+    const int liftcand = isnan(P->t_lift);
+    /* Where an edge of the base reaches the cushion's surface the contact
+     * force has a kink (with damping, a kink in F itself): a fixed step
+     * across it loses the scheme's order, so the step is cut there.  The
+     * adaptive schemes' error control shortens their steps instead (a cut
+     * would also restart msbdf at order 1, and chatter where a loose
+     * tolerance leaves the contact unresolved). */
+    const int kinks = !e->scheme->adaptive;
+    if (!ovcand && !tipcand && !maxcand && !liftcand && !kinks) return EV_NONE;
+
+    double f0[SW_NMAX], f1[SW_NMAX], yt[SW_NMAX];
+    sw_model_rhs(t0, y0, f0, P);
+    sw_model_rhs(t1, y1, f1, P);
+    int best = EV_NONE;
+    double lim = 1.0;
+    if (ovcand) {
+        const double tau = cushion_rise(P, EV_OVERTURN, t0, h, y0, f0, y1, f1);
+        if (tau >= 0.0) {
+            best = EV_OVERTURN;
+            lim = tau;
+        }
+    }
+    for (int ev = EV_LIFT; kinks && ev <= EV_FLY_IN; ev++) {
+        double v0, d0, v1, d1;
+        event_fn(P, ev, t0, y0, f0, &v0, &d0);
+        event_fn(P, ev, t1, y1, f1, &v1, &d1);
+        if (v0 > 0.0) continue; /* crossed already: we are past this kink */
+        const herm_t H = herm_make(v0, d0, v1, d1, h);
+        const double tol =
+            64.0 * DBL_EPSILON * (fabs(H.c0) + fabs(H.c1) + fabs(H.c2) + fabs(H.c3));
+        double tau = herm_first_rise(&H, tol);
+        if (tau < 0.0 && v0 < 0.0 && v1 > tol) tau = 1.0;
+        if (tau > 0.0 && tau < lim) {
+            best = ev;
+            lim = tau;
+        }
+    }
+    if (maxcand) {
+        double v0, d0, v1, d1;
+        event_fn(P, EV_TURN, t0, y0, f0, &v0, &d0);
+        event_fn(P, EV_TURN, t1, y1, f1, &v1, &d1);
+        const herm_t H = herm_make(v0, d0, v1, d1, h);
+        const double tau = herm_first_rise(&H, 0.0);
+        if (tau > 0.0 && tau <= lim) {
+            polish(e, P, EV_TURN, t0, h, y0, tau, yt);
+            track_theta(P, yt[P->ith]);
+        }
+    }
+    if (tipcand) {
+        const double tau = cushion_rise(P, EV_TIP, t0, h, y0, f0, y1, f1);
+        if (tau >= 0.0 && tau <= lim) {
+            const double tt = t0 + tau * h;
+            herm_state(P, h, y0, f0, y1, f1, tau, yt);
+            if (isnan(P->sum.tip_time)) P->sum.tip_time = tt;
+            P->beyond_alpha = 1;
+            emit_at(e, P, SW_EV_TIP, tt, (yt[P->ith] < 0.0 ? -1.0 : 1.0) * al, yt);
+        }
+    }
+    if (liftcand) {
+        const double tau = cushion_rise(P, EV_LIFT, t0, h, y0, f0, y1, f1);
+        if (tau >= 0.0 && tau <= lim) {
+            const double tt = t0 + tau * h;
+            herm_state(P, h, y0, f0, y1, f1, tau, yt);
+            /* info: +1 when the rear edge lifts (the top tips forward), -1
+             * the front, 0 when the level base leaves the cushion at once */
+            const double th = yt[P->ith];
+            const double side = th == 0.0 ? 0.0 : th < 0.0 ? -1.0 : 1.0;
+            P->t_lift = tt;
+            P->sum.uplifts++;
+            if (isnan(P->sum.uplift_time)) P->sum.uplift_time = tt;
+            emit_at(e, P, SW_EV_UPLIFT, tt, side, yt);
+        }
+    }
+    *tau_out = lim;
+    return best;
+}
+
+/* After an accepted cushion step: side follows theta; "rest" once the
+ * package, lifted before, is back in full contact with less energy than
+ * it takes to lift an edge again (with no input it never will). */
+static void cushion_after_step(sw_engine_t *e, sw_pkg_t *P, double t)
+{
+    P->side = P->y[P->ith] < 0.0 ? -1 : 1;
+    if (P->phase != SW_PHASE_ROCKING || isnan(P->t_lift)) return;
+    if (sw_cushion_lift(P, P->y, NULL) >= 0.0) return;
+    if (sw_cushion_motion_energy(P, P->y) >= P->e_lift) return;
+    P->t_lift = NAN;
+    P->beyond_alpha = 0;
+    P->sum.rests++;
+    emit(e, P, SW_EV_REST, t, 0.0);
+}
+
+/* Polish the event time: re-step from (t0, y0) with Newton iterations on
+ * the event function, then make sure the returned instant is at or just
+ * past the crossing (value >= 0): an uplift placed a hair early would leave
+ * the package pushed the wrong way and chatter.  Leaves the state at the
+ * event in y and returns its time. */
 static double polish(sw_engine_t *e, sw_pkg_t *P, int ev, double t0, double h, const double y0[],
                      double tau, double y[])
 {
-    double ts = t0 + tau * h, f[SW_NMAX], v, d;
+    double ts = t0 + tau * h, f[SW_NMAX], v = 0.0, d = 0.0;
+    if (tau == 0.0) {
+        memcpy(y, y0, sizeof(double) * (size_t)P->n);
+        return t0;
+    }
+    const double t1 = t0 + h;
     for (int it = 0; it < 8; it++) {
-        if (step_to(e, P, t0, ts - t0, y0, y) != SW_OK) break;
+        if (step_to(e, P, t0, ts - t0, y0, y) != SW_OK) return ts;
         sw_model_rhs(ts, y, f, P);
         event_fn(P, ev, ts, y, f, &v, &d);
         if (v == 0.0 || d == 0.0) break;
         double tn = ts - v / d;
         if (tn <= t0) tn = 0.5 * (t0 + ts);
-        if (tn > t0 + h) tn = t0 + h;
+        if (tn > t1) tn = t1;
         const double dt = fabs(tn - ts);
+        if (dt <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(ts))) break;
         ts = tn;
-        if (dt <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(ts))) {
-            step_to(e, P, t0, ts - t0, y0, y);
-            break;
-        }
+    }
+    for (int it = 0; it < 8 && v < 0.0 && ts < t1; it++) {
+        double dt = d > 0.0 ? -2.0 * v / d : 0.0;
+        dt = fmax(dt, 8.0 * DBL_EPSILON * fmax(1.0, fabs(ts)) * (1 << it));
+        ts = fmin(t1, ts + dt);
+        if (step_to(e, P, t0, ts - t0, y0, y) != SW_OK) break;
+        sw_model_rhs(ts, y, f, P);
+        event_fn(P, ev, ts, y, f, &v, &d);
     }
     return ts;
 }
@@ -399,6 +671,15 @@ static void handle_event(sw_engine_t *e, sw_pkg_t *P, int ev, double t)
     switch (ev) {
     case EV_IMPACT: {
         const double before = P->y[P->idth];
+        if (below_rest(e, P, before)) {
+            /* arriving with less than the rest energy: a landing, not an
+             * impact (the step's round-off after a lift, or the end of a
+             * cascade) */
+            P->y[P->ith] = 0.0;
+            P->y[P->idth] = 0.0;
+            after_impact(e, P, t);
+            break;
+        }
         P->y[P->ith] = 0.0;
         sw_model_impact(P);
         P->beyond_alpha = 0;
@@ -431,11 +712,39 @@ static void handle_event(sw_engine_t *e, sw_pkg_t *P, int ev, double t)
     }
 }
 
+/* One fixed step from (P->t, P->y) into y1, no longer than the package's
+ * step h nor than rem, splitting rem into equal steps; returns its length.
+ * A cushion can pass through states far stiffer than rest (a landing on a
+ * corner or flat, a cubic cushion compressed hard) where a step that is
+ * stable at rest blows up or skips the landing: its right-hand side reports
+ * the fastest contact rate its stages met, and the step is retaken shorter
+ * until that rate times h is within the bound the package's h keeps at
+ * rest (0.5, or the scheme's stability bound for a forced dt). */
+static double fixed_step(sw_engine_t *e, sw_pkg_t *P, double t0, double rem, double y1[])
+{
+    double hmax = P->h, h = rem; /* s */
+    const double bound = e->o.dt_forced ? e->scheme->stab : 0.5;
+    for (int tries = 0;; tries++) {
+        const double nst = ceil(rem / hmax - 1e-9);
+        h = nst <= 1.0 ? rem : rem / nst;
+        if (P->d.model != SW_MODEL_CUSHION) {
+            e->scheme->step(P, t0, h, P->y, y1);
+            return h;
+        }
+        P->rate_seen = 0.0;
+        P->track_rate = 1;
+        e->scheme->step(P, t0, h, P->y, y1);
+        P->track_rate = 0;
+        if (P->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60) return h;
+        hmax = fmin(0.5 * h, bound / P->rate_seen);
+    }
+}
+
 /* Advance one package from P->t to t1 under the input e->in. */
 static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
 {
     double y1[SW_NMAX], ys[SW_NMAX];
-    int guard = 0;
+    int guard = 0, same_t = 0;
     if (sw_input_geff(P, P->t) <= 0.0 || sw_input_geff(P, t1) <= 0.0) {
         /* airborne: outside the model, never integrated */
         if (P->phase != SW_PHASE_OVERTURNED) fault(e, P, P->t, SW_EFAULT);
@@ -471,27 +780,35 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
             }
             h = tt - t0;
         } else {
-            const double nst = ceil(rem / P->h - 1e-9);
-            h = nst <= 1.0 ? rem : rem / nst;
-            e->scheme->step(P, t0, h, P->y, y1);
+            h = fixed_step(e, P, t0, rem, y1);
         }
         P->sum.steps++;
         if (!finite_state(P, y1)) {
             fault(e, P, t0, SW_EFAULT);
             break;
         }
+        e->step_y1 = y1;
+        e->step_h = h;
         double tau;
         const int ev = find_event(e, P, t0, h, P->y, y1, &tau);
+        P->hold = 0;
         if (ev == EV_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->n);
             P->t = (h == rem) ? t1 : t0 + h;
             if (P->phase == SW_PHASE_ROCKING) track_theta(P, P->y[P->ith]);
+            if (P->d.model == SW_MODEL_CUSHION) cushion_after_step(e, P, P->t);
             continue;
         }
         const double te = polish(e, P, ev, t0, h, P->y, tau, ys);
+        same_t = te - t0 <= 1e-12 * fmax(1.0, fabs(t0)) ? same_t + 1 : 0;
+        if (same_t > 64) { /* a map that keeps re-triggering without progress */
+            fault(e, P, t0, SW_EFAULT);
+            break;
+        }
         memcpy(P->y, ys, sizeof(double) * (size_t)P->n);
         P->t = te;
         if (P->phase == SW_PHASE_ROCKING) track_theta(P, P->y[P->ith]);
+        if (P->d.model == SW_MODEL_CUSHION) P->side = P->y[P->ith] < 0.0 ? -1 : 1;
         handle_event(e, P, ev, te);
     }
     P->t = t1;
@@ -559,6 +876,26 @@ static int fail(int *err, int code, char *msg, size_t msglen, const char *text)
     return code;
 }
 
+/* The scheme when none is asked for: rk4 at its default step, unless a
+ * cushion is stiff, omega_max dt > 0.05 (a landing on the cushion then
+ * lasts fewer than about 20 fixed steps and rk4's error there grows to
+ * 1e-5..1e-3 rad); then GSL's adaptive rkck, which was the fastest for a
+ * given accuracy on every stiff cushion measured, ahead of the implicit
+ * schemes and far ahead of sub-stepped rk4 (docs/cushion.md).  A forced dt
+ * keeps rk4, so that the dt is honoured or refused. */
+static const char *default_scheme(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *o)
+{
+    if (o->dt_forced) return SW_DEFAULT_SCHEME;
+    const double dt = o->dt > 0.0 ? o->dt : SW_DEFAULT_DT; /* s */
+    for (size_t i = 0; i < n; i++) {
+        sw_derived_t d;
+        if (sw_scene_validate(&scenes[i], &d, NULL, NULL, NULL) != SW_OK) continue;
+        if (d.model == SW_MODEL_CUSHION && d.omega_max * dt > SW_STIFF_OMEGA_DT)
+            return SW_STIFF_SCHEME;
+    }
+    return SW_DEFAULT_SCHEME;
+}
+
 sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *opts,
                               int *err, char *msg, size_t msglen)
 {
@@ -577,7 +914,7 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
     }
     e->n = n;
     if (opts) e->o = *opts;
-    e->scheme = sw_scheme_lookup(e->o.scheme ? e->o.scheme : SW_DEFAULT_SCHEME);
+    e->scheme = sw_scheme_lookup(e->o.scheme ? e->o.scheme : default_scheme(scenes, n, &e->o));
     if (!e->scheme) {
         snprintf(buf, sizeof buf, "unknown scheme '%s'", e->o.scheme);
         fail(err, SW_ENOTFOUND, msg, msglen, buf);
@@ -598,12 +935,6 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
             fail(err, SW_EINVAL, msg, msglen, buf);
             goto out_fail;
         }
-        if (P->d.model == SW_MODEL_CUSHION) {
-            snprintf(buf, sizeof buf, "scene '%s': the cushion model is not available in this build",
-                     scenes[i].name);
-            fail(err, SW_EINVAL, msg, msglen, buf);
-            goto out_fail;
-        }
         sw_model_setup(P);
         P->in = &e->in;
         P->h = dt;
@@ -619,21 +950,39 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
                 fail(err, SW_EUNSTABLE, msg, msglen, buf);
                 goto out_fail;
             }
-            if (P->h > 0.5 * bound) P->h = 0.5 * bound; /* sub-step with a safety factor */
+            /* Sub-step so that omega_max h <= 0.5: inside every explicit
+             * scheme's stability bound, and accurate enough for the fast
+             * bearing mode that decides uplift. */
+            if (!e->o.dt_forced && P->h > 0.5 / P->d.omega_max) P->h = 0.5 / P->d.omega_max;
         }
         P->sys.function = sw_model_rhs;
-        P->sys.jacobian = NULL;
+        P->sys.jacobian = e->scheme->implicit ? sw_model_jacobian : NULL;
         P->sys.dimension = (size_t)P->n;
         P->sys.params = P;
         if (e->scheme->adaptive) {
             const double rtol = e->o.rtol > 0.0 ? e->o.rtol : 1e-10;
-            const double atol = e->o.atol > 0.0 ? e->o.atol : 1e-12;
+            double atol = e->o.atol > 0.0 ? e->o.atol : 1e-12;
+            if (P->d.model == SW_MODEL_CUSHION) {
+                /* resolve the contact: an absolute tolerance above the
+                 * static deflection (m) or the lift angle z_s/b (rad) of
+                 * a very stiff cushion would leave it to noise */
+                const double zs = P->yscale[P->iz];
+                atol = fmin(atol, 1e-3 * fmin(zs, zs / P->d.b));
+            }
             P->gstep = gsl_odeiv2_step_alloc(*e->scheme->gsl_type, (size_t)P->n);
             P->gctl = gsl_odeiv2_control_y_new(atol, rtol);
             P->gevo = gsl_odeiv2_evolve_alloc((size_t)P->n);
             if (!P->gstep || !P->gctl || !P->gevo) {
                 fail(err, SW_ENOMEM, msg, msglen, "out of memory");
                 goto out_fail;
+            }
+            if (e->scheme->implicit) {
+                /* GSL's implicit steppers read their Newton tolerances from
+                 * the control through a driver (without one they fail with
+                 * GSL_EFAULT): hand them one that only points at ours */
+                P->gdrv = (gsl_odeiv2_driver){.sys = &P->sys, .s = P->gstep, .c = P->gctl,
+                                              .e = P->gevo, .h = P->h, .hmax = DBL_MAX};
+                gsl_odeiv2_step_set_driver(P->gstep, &P->gdrv);
             }
         }
     }
@@ -648,6 +997,10 @@ out_fail:
 static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
 {
     P->t = t;
+    if (!(sw_input_geff(P, t) > 0.0)) {
+        fault(e, P, t, SW_EFAULT);
+        return;
+    }
     if (P->d.model != SW_MODEL_BARE || P->phase != SW_PHASE_STUCK) return;
     const int side = sw_model_uplift_side(P, t);
     if (side) start_rocking(e, P, t, side);
@@ -716,6 +1069,14 @@ static double zero_input(void *user, double t)
     return 0.0;
 }
 
+/* A cushioned package whose energy of motion is below rest_eps of the
+ * barrier: settled, for sw_engine_finish(). */
+static int cushion_quiet(const sw_engine_t *e, const sw_pkg_t *P)
+{
+    if (P->d.model != SW_MODEL_CUSHION) return 0;
+    return sw_cushion_motion_energy(P, P->y) < e->rest_eps * sw_cushion_barrier(&P->d, P->g);
+}
+
 int sw_engine_finish(sw_engine_t *e, double settle)
 {
     if (!e) return SW_EINVAL;
@@ -726,7 +1087,7 @@ int sw_engine_finish(sw_engine_t *e, double settle)
     while (e->t < t_end) {
         int moving = 0;
         for (size_t i = 0; i < e->n; i++)
-            if (e->pk[i].phase == SW_PHASE_ROCKING ||
+            if ((e->pk[i].phase == SW_PHASE_ROCKING && !cushion_quiet(e, &e->pk[i])) ||
                 (e->pk[i].phase == SW_PHASE_STUCK && e->pk[i].d.model != SW_MODEL_BARE &&
                  (fabs(e->pk[i].y[e->pk[i].iu]) > 1e-9 || fabs(e->pk[i].y[e->pk[i].idu]) > 1e-9)))
                 moving = 1;

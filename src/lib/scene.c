@@ -19,6 +19,7 @@
  * come from our own reader instead, see scene_reader(). */
 #include <ini.h>
 
+#include "swaywatch/model.h"
 #include "swaywatch/scene.h"
 #include "swaywatch/status.h"
 
@@ -834,10 +835,11 @@ int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
     double w = 0; /* rad/s */
     if (sc->has_frame)
         w = omega_b / sqrt(1 - 0.75 * gamma);
-    if (sc->has_cushion) {
-        const double rocking = sqrt((K * bb * bb / 3 - m * g * h) / (d->I_C + m * h * h));
-        w = fmax(w, fmax(omega_c, rocking));
-    }
+    /* The cushion's vertical and rocking modes, damping included (an
+     * overdamped mode's fast real root exceeds omega_c: 3.7 omega_c at
+     * zeta_c = 2), the rocking mode coupled to the frame if there is one. */
+    if (sc->has_cushion)
+        w = fmax(w, sw_cushion_omega_max(d, g));
     d->omega_max = w;
     return SW_OK;
 }
