@@ -106,6 +106,7 @@ typedef struct {
 
 static void report_reject(replay_ctx_t *c, long line, const char *reason)
 {
+    if (c->stop) return; /* --strict: the run already ended at an earlier row */
     c->reported++;
     if (c->strict) c->stop = 1;
     if (c->quiet || c->printed >= MAX_PRINTED_REJECTS) return;

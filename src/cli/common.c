@@ -594,12 +594,14 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
                     run->samples_read - run->samples_rejected, run->samples_rejected);
         fputs("  first uplift    ", f);
         print_time(f, s.uplift_time, "none (never left the upright position)");
+        if (s.uplifts > 1) fprintf(f, " (%ld uplifts in all)", s.uplifts);
         fprintf(f, "\n  impacts         %ld\n", s.impacts);
         fprintf(f, "  peak |theta|    %.3f deg = %.3f alpha (alpha = %.2f deg)\n",
                 s.max_abs_theta * 180.0 / M_PI, s.max_theta_ratio, alpha * 180.0 / M_PI);
         fputs("  tipped (alpha)  ", f);
         print_time(f, s.tip_time, "no (|theta| stayed below alpha)");
-        fprintf(f, "\n  minimum margin  %.4f\n", s.min_margin);
+        fprintf(f, "\n  minimum margin  %.4f (1 at rest, 0 at the edge of overturning)\n",
+                s.min_margin);
         fputs("  outcome         ", f);
         if (s.overturned) {
             fputs("OVERTURNED at ", f);
