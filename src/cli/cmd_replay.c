@@ -331,6 +331,8 @@ int cmd_replay(int argc, char **argv)
         goto out;
     }
 
+    rc = sw_cli_check_outputs(&o, in);
+    if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;
 

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 
@@ -352,6 +353,39 @@ void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scene
         snprintf(what, sizeof what, "internal step of scheme %s", sw_engine_scheme(e));
         derived_line(f, "dt", sw_engine_dt(e, i), "s", what);
     }
+}
+
+/* ---- output files ---------------------------------------------------------- */
+
+/* Non-zero if path exists and is the file st describes. */
+static int is_file(const char *path, const struct stat *st)
+{
+    struct stat ps;
+    return path && stat(path, &ps) == 0 && ps.st_dev == st->st_dev && ps.st_ino == st->st_ino;
+}
+
+int sw_cli_check_outputs(const sw_cli_opts_t *o, FILE *in)
+{
+    struct stat st;
+    /* Opening an output truncates it: it must be neither the log being
+     * read nor the other output. */
+    if (in && in != stdin && fstat(fileno(in), &st) == 0) {
+        if (is_file(o->out_path, &st)) {
+            sw_cli_error("--out %s: that is the log being read", o->out_path);
+            return SW_EXIT_USAGE;
+        }
+        if (is_file(o->events_path, &st)) {
+            sw_cli_error("--events %s: that is the log being read", o->events_path);
+            return SW_EXIT_USAGE;
+        }
+    }
+    if (o->out_path && o->events_path &&
+        (!strcmp(o->out_path, o->events_path) ||
+         (stat(o->out_path, &st) == 0 && is_file(o->events_path, &st)))) {
+        sw_cli_error("--out and --events name the same file '%s'", o->out_path);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
 }
 
 /* ---- CSV writers ------------------------------------------------------------ */
