@@ -123,7 +123,13 @@ void sw_engine_reset(sw_engine_t *e);
 /* Push one sample: bed acceleration a_g (m/s^2, x forward) and vertical
  * acceleration a_z (m/s^2, up; 0 if not measured) at time t (s).  The first
  * sample sets the start time.  Returns SW_OK, SW_EVENT if an event was
- * reported, or SW_EORDER / SW_ENONFINITE (sample ignored, state untouched). */
+ * reported, or SW_EORDER / SW_ENONFINITE / SW_ETOOBIG (|a_g| or |a_z| above
+ * SW_MAX_ACCEL) with the sample ignored and the state untouched.
+ *
+ * A package whose state leaves the model (not finite, g + a_z <= 0, or an
+ * input so large that the fixed step exceeds the scheme's stability bound
+ * for it) gets an SW_EV_FAULT event and is reset to rest; the others go on.
+ * Outputs and events never carry a non-finite number. */
 int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z);
 
 /* Input given as a function of time instead of samples (pulses, tests):
@@ -158,6 +164,10 @@ const char *sw_scheme_name(const sw_scheme_t *s);
 int sw_scheme_order(const sw_scheme_t *s);
 int sw_scheme_adaptive(const sw_scheme_t *s);
 double sw_scheme_default_dt(const sw_scheme_t *s); /* s */
+
+/* m/s^2 (about 10,000 g): no accelerometer on a vehicle reads more; a
+ * larger value is a corrupt sample, refused by sw_engine_push(). */
+#define SW_MAX_ACCEL 1e5
 
 #define SW_DEFAULT_SCHEME "rk4"
 #define SW_DEFAULT_DT 1e-3

@@ -20,6 +20,7 @@ typedef int (*sw_cmd_fn)(int argc, char **argv);
 
 int cmd_replay(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
+int cmd_monitor(int argc, char **argv); /* LCM builds only (SW_HAVE_LCM) */
 
 /* "swaywatch: " + printf-style message + newline, on stderr. */
 void sw_cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
@@ -183,5 +184,35 @@ int sw_cli_any_overturned(const sw_engine_t *e);
 /* lcm-logger files given to replay (lcmlog.c, LCM builds only): argc/argv
  * are replay's own, as the user typed them (argv[0] = "replay"). */
 int sw_cli_replay_lcmlog(const char *path, int argc, char **argv);
+/* The paragraph of replay's --help about lcm-logger files. */
+void sw_cli_print_lcmlog_help(FILE *f);
+
+/* Options of replay that only lcm-logger files take.  replay accepts them
+ * in its option table (a CSV log given one is an error) and hands the file
+ * and its arguments to sw_cli_replay_lcmlog(), which reads them. */
+enum {
+    SW_OPT_LCM_CHANNEL = 1100,
+    SW_OPT_LCM_PUBLISH,
+    SW_OPT_LCM_SPEED,
+    SW_OPT_LCM_STATE_CHANNEL,
+    SW_OPT_LCM_ALARM_CHANNEL,
+    SW_OPT_LCM_STATE_RATE,
+    SW_OPT_LCM_AXIS,
+    SW_OPT_LCM_VERTICAL,
+    SW_OPT_LCM_GAP,
+    SW_OPT_LCM_MAX_ACCEL,
+    SW_OPT_LCM_END /* one past the last */
+};
+#define SW_CLI_LCMLOG_LONGOPTS                                                                     \
+    {"channel", required_argument, NULL, SW_OPT_LCM_CHANNEL},                                      \
+        {"publish", required_argument, NULL, SW_OPT_LCM_PUBLISH},                                  \
+        {"speed", required_argument, NULL, SW_OPT_LCM_SPEED},                                      \
+        {"state-channel", required_argument, NULL, SW_OPT_LCM_STATE_CHANNEL},                      \
+        {"alarm-channel", required_argument, NULL, SW_OPT_LCM_ALARM_CHANNEL},                      \
+        {"state-rate", required_argument, NULL, SW_OPT_LCM_STATE_RATE},                            \
+        {"axis", required_argument, NULL, SW_OPT_LCM_AXIS},                                        \
+        {"vertical", required_argument, NULL, SW_OPT_LCM_VERTICAL},                                \
+        {"gap", required_argument, NULL, SW_OPT_LCM_GAP},                                          \
+        {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL}
 
 #endif

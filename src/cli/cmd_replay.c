@@ -48,6 +48,7 @@ static const struct option long_opts[] = {
     {"strict", no_argument, NULL, OPT_STRICT},
     {"settle", required_argument, NULL, OPT_SETTLE},
     {"fail-on-overturn", no_argument, NULL, OPT_FAIL_ON_OVERTURN},
+    SW_CLI_LCMLOG_LONGOPTS,
     {NULL, 0, NULL, 0},
 };
 
@@ -85,6 +86,10 @@ static void usage(FILE *f)
             "      --fail-on-overturn   exit 1 if any package overturned\n"
             "\n",
             MAX_PRINTED_REJECTS, DEFAULT_SETTLE);
+#ifdef SW_HAVE_LCM
+    sw_cli_print_lcmlog_help(f);
+    fputc('\n', f);
+#endif
     sw_cli_print_common_help(f);
     fprintf(f, "\nWith --quiet, rejected rows are only counted (one line on stderr).\n");
     sw_cli_print_exit_help(f, 1, 1);
@@ -225,6 +230,7 @@ int cmd_replay(int argc, char **argv)
     double settle = DEFAULT_SETTLE;
     int fail_on_overturn = 0;
     const char *log = NULL;
+    int lcm_only = 0; /* an option only lcm-logger files take */
     char **orig = NULL;
     FILE *in = NULL;
     char *buf = NULL;
@@ -276,7 +282,13 @@ int cmd_replay(int argc, char **argv)
                                     "a number of seconds >= 0", &settle);
             break;
         case OPT_FAIL_ON_OVERTURN: fail_on_overturn = 1; break;
-        default: sw_cli_error("replay: unhandled option"); r = SW_EXIT_USAGE;
+        default:
+            if (c >= SW_OPT_LCM_CHANNEL && c < SW_OPT_LCM_END) { /* read by lcmlog.c */
+                lcm_only = c;
+                break;
+            }
+            sw_cli_error("replay: unhandled option");
+            r = SW_EXIT_USAGE;
         }
         if (r != SW_EXIT_OK) goto out;
     }
@@ -331,6 +343,15 @@ int cmd_replay(int argc, char **argv)
         goto out;
     }
 
+    if (lcm_only) {
+        const char *name = "?";
+        for (const struct option *op = long_opts; op->name; op++)
+            if (op->val == lcm_only) name = op->name;
+        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log", ctx.name,
+                     name);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
     rc = sw_cli_check_outputs(&o, in);
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);

@@ -15,6 +15,9 @@ static const struct {
 } commands[] = {
     {"replay", cmd_replay, "replay a recorded log (CSV or lcm-logger) through the model"},
     {"simulate", cmd_simulate, "run a half-sine or full-sine pulse through the model"},
+#ifdef SW_HAVE_LCM
+    {"monitor", cmd_monitor, "live: subscribe to acceleration over LCM, publish state and alarms"},
+#endif
 };
 
 void sw_cli_error(const char *fmt, ...)

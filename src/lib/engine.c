@@ -128,11 +128,15 @@ static int step_to(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const doubl
                : SW_EGSL;
 }
 
+/* The state is still inside the model: finite, and a rocking package not
+ * turned beyond half a turn (a step may overshoot pi/2 slightly before the
+ * overturn event cuts it; one that lands beyond pi computed garbage, and its
+ * numbers must not reach the summary). */
 static int finite_state(const sw_pkg_t *P, const double y[])
 {
     for (int i = 0; i < P->n; i++)
         if (!isfinite(y[i])) return 0;
-    return 1;
+    return !(P->phase == SW_PHASE_ROCKING && fabs(y[P->ith]) > M_PI);
 }
 
 /* ---- event functions -------------------------------------------------- */
@@ -712,6 +716,20 @@ static void handle_event(sw_engine_t *e, sw_pkg_t *P, int ev, double t)
     }
 }
 
+/* The input sets the stiffness of the rocking equation: theta'' is of the
+ * order kR |a| theta for an acceleration a (bed or gravity), a rate of
+ * sqrt(kR |a|).  A fixed step beyond the scheme's stability bound for that
+ * rate computes garbage, not a motion (states of 1e260 that still look
+ * finite): a fault, not an integration.  Checked at the ends of the
+ * interval, where the sampled input is largest. */
+static int input_unstable(const sw_engine_t *e, const sw_pkg_t *P, double t0, double t1)
+{
+    if (e->scheme->adaptive) return 0; /* GSL shortens its steps itself */
+    const double a = fmax(fmax(fabs(sw_input_ag(P->in, t0)), fabs(sw_input_ag(P->in, t1))),
+                          fmax(fabs(sw_input_geff(P, t0)), fabs(sw_input_geff(P, t1))));
+    return !(sqrt(P->kR * a) * P->h <= e->scheme->stab);
+}
+
 /* One fixed step from (P->t, P->y) into y1, no longer than the package's
  * step h nor than rem, splitting rem into equal steps; returns its length.
  * A cushion can pass through states far stiffer than rest (a landing on a
@@ -744,7 +762,7 @@ static double fixed_step(sw_engine_t *e, sw_pkg_t *P, double t0, double rem, dou
 static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
 {
     double y1[SW_NMAX], ys[SW_NMAX];
-    int guard = 0, same_t = 0;
+    int guard = 0, same_t = 0, checked = 0;
     if (sw_input_geff(P, P->t) <= 0.0 || sw_input_geff(P, t1) <= 0.0) {
         /* airborne: outside the model, never integrated */
         if (P->phase != SW_PHASE_OVERTURNED) fault(e, P, P->t, SW_EFAULT);
@@ -768,6 +786,13 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
         }
         const double t0 = P->t, rem = t1 - t0;
         double h;
+        if (!checked) {
+            if (input_unstable(e, P, t0, t1)) {
+                fault(e, P, t0, SW_EUNSTABLE);
+                break;
+            }
+            checked = 1;
+        }
         if (e->scheme->adaptive) {
             double tt = t0;
             memcpy(y1, P->y, sizeof(double) * (size_t)P->n);
@@ -807,11 +832,24 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
         }
         memcpy(P->y, ys, sizeof(double) * (size_t)P->n);
         P->t = te;
-        if (P->phase == SW_PHASE_ROCKING) track_theta(P, P->y[P->ith]);
+        /* At an overturn the polished state lies just past pi/2 (by up to
+         * a step's worth of theta'); the overturn map records pi/2. */
+        if (P->phase == SW_PHASE_ROCKING && ev != EV_OVERTURN) track_theta(P, P->y[P->ith]);
         if (P->d.model == SW_MODEL_CUSHION) P->side = P->y[P->ith] < 0.0 ? -1 : 1;
         handle_event(e, P, ev, te);
     }
     P->t = t1;
+}
+
+/* Every number of an output, finite? */
+static int output_finite(const sw_output_t *o)
+{
+    const double v[] = {o->t,         o->state.u,      o->state.u_dot,  o->state.theta,
+                        o->state.theta_dot, o->state.z,    o->state.z_dot, o->margin,
+                        o->margin_bound, o->uplift_ratio, o->a_g,          o->a_support};
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
+        if (!isfinite(v[i])) return 0;
+    return 1;
 }
 
 static void report_states(sw_engine_t *e, double t)
@@ -820,6 +858,12 @@ static void report_states(sw_engine_t *e, double t)
         sw_pkg_t *P = &e->pk[i];
         sw_output_t o;
         sw_model_output(P, t, &o);
+        /* Last line of defence: a non-finite number is never reported; the
+         * package faults and is reported at rest instead. */
+        if (!output_finite(&o)) {
+            fault(e, P, t, SW_EFAULT);
+            sw_model_output(P, t, &o);
+        }
         o.pkg = i;
         if (o.margin < P->sum.min_margin) P->sum.min_margin = o.margin;
         if (o.margin_bound < P->sum.min_margin_bound) P->sum.min_margin_bound = o.margin_bound;
@@ -1020,6 +1064,7 @@ int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z)
 {
     if (!e) return SW_EINVAL;
     if (!isfinite(t) || !isfinite(a_g) || !isfinite(a_z)) return SW_ENONFINITE;
+    if (fabs(a_g) > SW_MAX_ACCEL || fabs(a_z) > SW_MAX_ACCEL) return SW_ETOOBIG;
     e->events = 0;
     if (!e->started) {
         start_at(e, t, a_g, a_z);

@@ -254,7 +254,11 @@ void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o)
     memset(o, 0, sizeof *o);
     o->t = t;
     sw_model_to_state(P, &o->state);
-    const double ge = sw_input_geff(P, t);
+    double ge = sw_input_geff(P, t);
+    /* Airborne (g + a_z <= 0): the engine has faulted the package and reset
+     * it; its energy bound is judged under nominal gravity, not divided by
+     * a zero or negative barrier. */
+    if (!(ge > 0.0)) ge = P->g;
     sw_model_rhs(t, P->y, f, (void *)P);
     o->a_g = sw_input_ag(P->in, t);
     o->a_support = sw_model_support_accel(P, t, f);
