@@ -345,9 +345,14 @@ void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scene
         if (sc->has_cushion) {
             derived_line(f, "omega_c", d->omega_c, "rad/s", "cushion frequency sqrt(K/m)");
             derived_line(f, "zeta_c", d->zeta_c, "", "cushion damping ratio");
-            if (d->K > 0.0)
-                derived_line(f, "m g / K", sc->mass * sc->g / d->K, "m",
-                             "static cushion deflection (linear part)");
+            if (d->K > 0.0) {
+                double wz, wr;
+                sw_cushion_frequencies(d, sc->g, &wz, &wr);
+                derived_line(f, "z_static", sw_cushion_static_deflection(d, sc->g), "m",
+                             "static cushion deflection, root of K z + B3 z^3 = m g");
+                derived_line(f, "omega_z", wz, "rad/s", "vertical natural frequency (undamped)");
+                derived_line(f, "omega_r", wr, "rad/s", "rocking natural frequency on the cushion");
+            }
         }
         char what[64];
         snprintf(what, sizeof what, "internal step of scheme %s", sw_engine_scheme(e));
