@@ -444,3 +444,25 @@ int64_t sw_mon_last_utime(const sw_mon_t *m)
 {
     return m->have_last ? m->last_us : 0;
 }
+
+int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, size_t msglen)
+{
+    sw_alarm_watch_t w;
+    if (!m || !scene || k >= m->n) {
+        if (msg)
+            snprintf(msg, msglen, "no such package");
+        return SW_EINVAL;
+    }
+    if (sw_alarm_init(&w, k, scene->warn_margin, scene->critical_margin, m->o.hysteresis) !=
+        SW_OK) {
+        if (msg)
+            snprintf(msg, msglen, "%s: alarm thresholds not finite", scene->name);
+        return SW_EINVAL;
+    }
+    int rc = sw_engine_replace(m->engine, k, scene, msg, msglen);
+    if (rc != SW_OK)
+        return rc;
+    m->watch[k] = w;
+    snprintf(m->names[k], sizeof m->names[k], "%s", scene->name);
+    return SW_OK;
+}
