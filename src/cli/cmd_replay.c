@@ -111,6 +111,9 @@ typedef struct {
 
 static void report_reject(replay_ctx_t *c, long line, const char *reason)
 {
+    /* --strict: the first bad row ended the run; the rows after it in the
+     * same chunk are neither reported nor counted. */
+    if (c->stop) return;
     c->reported++;
     if (c->strict) c->stop = 1;
     if (c->quiet || c->printed >= MAX_PRINTED_REJECTS) return;
