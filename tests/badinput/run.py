@@ -12,7 +12,7 @@ Arguments are split like a shell would split them, after replacing {d}
 (this folder), {src} (the source tree), {gen} (inputs made at test time,
 see make_inputs()) and {tmp} (a scratch folder of the case).  Counts are
 "key=value" pairs checked against the JSON summary; a key may be a dotted
-path into it ("lcm.rejected.decode=3").
+path into it ("packages.0.faults=0"); stderr_lines counts lines on stderr.
 
 Besides what a case states, every run must:
   - end with its exit code, never by a signal, with nothing from a
@@ -151,19 +151,26 @@ def run_case(sw, case, subst, tmp):
             problems.append("stderr line without the prefix: %r" % line[:100])
             break
 
+    want = dict(case["counts"])
+    if "stderr_lines" in want:
+        got = len(err.splitlines())
+        if got != want["stderr_lines"]:
+            problems.append("%d lines on stderr, expected %d" % (got, want["stderr_lines"]))
+        del want["stderr_lines"]
+
     j = None
     if full:
         try:
             j = strict_json(p.stdout.decode("utf-8"))
         except ValueError as e:
             problems.append("stdout is not strict JSON: %s" % e)
-    elif case["counts"]:
+    elif want:
         try:
             j = strict_json(p.stdout.decode("utf-8"))
         except ValueError as e:
             problems.append("stdout is not strict JSON: %s" % e)
     if j is not None:
-        for k, v in case["counts"].items():
+        for k, v in want.items():
             try:
                 got = (j["samples_read"] - j["samples_rejected"] if k == "accepted"
                        else dig(j, k))
