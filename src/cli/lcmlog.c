@@ -78,6 +78,9 @@ void sw_cli_print_lcmlog_help(FILE *f)
             "      --gap SECONDS          samples further apart raise SENSOR_GAP (default %g)\n"
             "      --max-accel A          refuse samples beyond A, m/s^2 or e.g. 30g (default "
             "50g)\n"
+            "      --max-skew SECONDS     refuse samples whose utime is further than this from\n"
+            "                             the time lcm-logger received them (default: not\n"
+            "                             checked)\n"
             "      --publish URL          also publish states and alarms over LCM ('' = LCM's\n"
             "                             default URL; file:///path?mode=w writes a log)\n"
             "      --speed X              with --publish: X times real time by the samples'\n"
@@ -211,8 +214,11 @@ static int read_log(lcm_eventlog_t *log, off_t size, const regex_t *channel, sw_
         }
         lc->on_channel++;
         pace(&pacer, ev->data, ev->datalen);
-        int rc =
-            sw_mon_feed(mon, ev->data, (size_t)ev->datalen, 0, (double)ev->timestamp / 1e6, NULL);
+        /* The logger's receive time is the clock --max-skew compares with:
+         * a sample stamped far from when it arrived (a corrupt or hostile
+         * utime) would otherwise be accepted and make every later one late. */
+        int rc = sw_mon_feed(mon, ev->data, (size_t)ev->datalen, ev->timestamp,
+                             (double)ev->timestamp / 1e6, NULL);
         lcm_eventlog_free_event(ev);
         if (rc < 0 && strict)
             return SW_EXIT_USAGE;
