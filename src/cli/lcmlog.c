@@ -287,7 +287,8 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
         return SW_EXIT_IO;
     optind = 0; /* a fresh scan: replay has parsed these arguments once already */
     opterr = 0;
-    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, NULL)) != -1;) {
+    int li = -1; /* index in long_opts of the option just read */
+    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, &li)) != -1;) {
         int r = sw_cli_common_option(&o, c, optarg, argv);
         if (r == SW_EXIT_OK)
             continue;
@@ -308,8 +309,9 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
             case OPT_HEADER:
             case OPT_NO_HEADER:
             case OPT_TIME_UNIT:
-                sw_cli_error("%s: %s is for CSV logs; this is an lcm-logger file", path,
-                             argv[optind - 1]);
+                /* argv[optind - 1] would be the value of --time-unit ms */
+                sw_cli_error("%s: --%s is for CSV logs; this is an lcm-logger file", path,
+                             li >= 0 ? long_opts[li].name : "that option");
                 r = SW_EXIT_USAGE;
                 break;
             case OPT_ACCEL_UNIT: r = sw_cli_parse_accel_unit(optarg, &mo.accel_scale); break;
