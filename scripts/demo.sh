@@ -8,6 +8,8 @@ scripts/setup-debian.sh
 BUILD=${BUILD:-build}
 cmake -S . -B "$BUILD" >/dev/null
 cmake --build "$BUILD" -j "$(nproc)" >/dev/null
-set -x
-"$BUILD"/swaywatch replay sample_logs/braking-pothole.csv \
+set -- replay sample_logs/braking-pothole.csv \
     --scene sample_logs/crate.ini --scene sample_logs/crate-on-frame.ini
+echo "\$ swaywatch $*"
+echo
+"$BUILD"/swaywatch "$@"

@@ -85,13 +85,15 @@ def plateau(t, t0, ramp, hold, level):
 
 
 def shock(t, t0, length, peak, freq):
-    """A damped oscillation starting at t0 (pothole, collision ringing)."""
+    """A damped oscillation starting at t0 (pothole, collision ringing) whose
+    first swing reaches peak; it decays to e^-3 by t0 + length."""
     if t < t0 or t > t0 + length:
         return 0.0
     u = t - t0
-    decay = 3.0 / length  # e^-3 of the peak by the end
+    decay = 3.0 / length
+    first = math.exp(-decay * 0.25 / freq)  # envelope at the first extremum
     taper = math.sin(math.pi * min(u / (0.25 / freq), 1.0) / 2)  # no step at t0
-    return peak * taper * math.exp(-decay * u) * math.sin(2 * math.pi * freq * u)
+    return peak / first * taper * math.exp(-decay * u) * math.sin(2 * math.pi * freq * u)
 
 
 # --- the drives (parameters chosen with swaywatch, see sample_logs/README.md) ---

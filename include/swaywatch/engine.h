@@ -120,6 +120,16 @@ void sw_engine_destroy(sw_engine_t *e);
 /* Back to the state after create: all packages at rest, no time yet. */
 void sw_engine_reset(sw_engine_t *e);
 
+/* Replace package pkg by a new scene (a scene file edited while the stream
+ * runs): the package is rebuilt as sw_engine_create() would build it, with
+ * the engine's options, and starts at rest at the current time with a fresh
+ * summary; every other package keeps its state and summary untouched.
+ * Allocates (the new package's work space).  Returns SW_OK, or an error
+ * (SW_EINVAL, SW_EUNSTABLE, SW_ENOMEM, ...; msg says why) with the engine
+ * unchanged. */
+int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char *msg,
+                      size_t msglen);
+
 /* Push one sample: bed acceleration a_g (m/s^2, x forward) and vertical
  * acceleration a_z (m/s^2, up; 0 if not measured) at time t (s).  The first
  * sample sets the start time.  Returns SW_OK, SW_EVENT if an event was

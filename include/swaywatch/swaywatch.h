@@ -9,6 +9,7 @@
 #include "swaywatch/pulse.h"
 #include "swaywatch/scene.h"
 #include "swaywatch/status.h"
+#include "swaywatch/sweep.h"
 
 #define SW_VERSION "0.1.0"
 const char *sw_version(void);

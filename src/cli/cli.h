@@ -119,6 +119,10 @@ sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_e
 /* Derived quantities of every package (--verbose), on f. */
 void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scenes, size_t n);
 
+/* Refuse (message, SW_EXIT_USAGE) an --out or --events that names the input
+ * being read (in, may be NULL) or each other: opening them truncates. */
+int sw_cli_check_outputs(const sw_cli_opts_t *o, FILE *in);
+
 /* --out: the state time series, one row per package and output instant:
  * t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,
  * uplift_ratio,a_g.  Numbers as %.9g; a non-finite value is written as an

@@ -24,6 +24,7 @@
 #include "cli.h"
 #include "lcmcli.h"
 #include "lcmmon.h"
+#include "monreload.h"
 
 /* Per-subscription queue of LCM (default 30, which loses samples in bursts
  * at 1 kHz): two seconds of samples at 1 kHz. */
@@ -63,6 +64,10 @@ static void usage(FILE *f)
             "state (swaywatch.state_t) and alarms (swaywatch.alarm_t).  Runs until SIGINT or\n"
             "SIGTERM, then prints a summary on stderr.  Samples are integrated by their own\n"
             "utime, never by arrival time.\n"
+            "\n"
+            "SIGHUP (systemctl reload) re-reads the scene files: a package whose scene values\n"
+            "changed is rebuilt and starts from rest; the others keep their state, alarms and\n"
+            "message sequence.  If a file is unreadable or invalid, nothing changes.\n"
             "\n"
             "LCM:\n"
             "  -l, --lcm-url URL          LCM URL (default: $LCM_DEFAULT_URL, else LCM's default,\n"
@@ -131,12 +136,16 @@ static void usage(FILE *f)
 /* ---- signals --------------------------------------------------------------- */
 
 static volatile sig_atomic_t stop_signal;
+static volatile sig_atomic_t reload_signal; /* SIGHUP: re-read the scene files */
 static int wake_pipe[2] = {-1, -1};
 
 static void on_signal(int sig)
 {
     int saved = errno;
-    stop_signal = sig;
+    if (sig == SIGHUP)
+        reload_signal = 1;
+    else
+        stop_signal = sig;
     if (wake_pipe[1] >= 0) {
         ssize_t r = write(wake_pipe[1], "", 1);
         (void)r; /* a full pipe already wakes the loop */
@@ -157,7 +166,8 @@ static int install_signals(void)
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    if (sigaction(SIGINT, &sa, NULL) != 0 || sigaction(SIGTERM, &sa, NULL) != 0)
+    if (sigaction(SIGINT, &sa, NULL) != 0 || sigaction(SIGTERM, &sa, NULL) != 0 ||
+        sigaction(SIGHUP, &sa, NULL) != 0)
         return -1;
     return 0;
 }
@@ -166,6 +176,7 @@ static void remove_signals(void)
 {
     signal(SIGINT, SIG_DFL);
     signal(SIGTERM, SIG_DFL);
+    signal(SIGHUP, SIG_DFL);
     for (int i = 0; i < 2; i++)
         if (wake_pipe[i] >= 0) {
             close(wake_pipe[i]);
@@ -186,6 +197,9 @@ static int64_t wall_now_us(void)
 
 typedef struct {
     sw_mon_t *mon;
+    const sw_cli_opts_t *opts; /* for a reload: the scene files and --set */
+    sw_scene_t *scenes;
+    size_t n;
     /* since the last status line */
     long accepted;
     double lag_sum, lag_max; /* s, wall clock at handling minus sample utime */
@@ -286,6 +300,15 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
             }
             for (int i = 1; i < BATCH && lcm_handle_timeout(lcm, 0) > 0; i++) {
             }
+        }
+        if (reload_signal) {
+            /* Empty the wake-up pipe first: a SIGHUP after this point
+             * writes to it again and is not lost. */
+            char junk[64];
+            while (read(wake_pipe[0], junk, sizeof junk) > 0) {
+            }
+            reload_signal = 0;
+            sw_cli_monitor_reload(c->mon, c->opts, c->scenes, c->n);
         }
         now = sw_cli_mono_now();
         if (now >= sw_mon_deadline(c->mon))
@@ -413,6 +436,9 @@ int cmd_monitor(int argc, char **argv)
     sw_cli_engine_opts(&o, &eo);
     char msg[512] = "";
     ctx.mon = sw_mon_create(scenes, n, &eo, &mo, lcm, msg, sizeof msg);
+    ctx.opts = &o;
+    ctx.scenes = scenes;
+    ctx.n = n;
     if (!ctx.mon) {
         sw_cli_error("monitor: %s", msg[0] ? msg : "cannot start");
         rc = SW_EXIT_USAGE;

@@ -111,9 +111,7 @@ typedef struct {
 
 static void report_reject(replay_ctx_t *c, long line, const char *reason)
 {
-    /* --strict: the first bad row ended the run; the rows after it in the
-     * same chunk are neither reported nor counted. */
-    if (c->stop) return;
+    if (c->stop) return; /* --strict: the run already ended at an earlier row */
     c->reported++;
     if (c->strict) c->stop = 1;
     if (c->quiet || c->printed >= MAX_PRINTED_REJECTS) return;
@@ -354,6 +352,8 @@ int cmd_replay(int argc, char **argv)
         rc = SW_EXIT_USAGE;
         goto out;
     }
+    rc = sw_cli_check_outputs(&o, in);
+    if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;
 

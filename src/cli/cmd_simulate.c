@@ -188,6 +188,8 @@ int cmd_simulate(int argc, char **argv)
         goto out;
     }
 
+    rc = sw_cli_check_outputs(&o, NULL);
+    if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;
 

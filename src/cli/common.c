@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 
@@ -344,14 +345,52 @@ void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scene
         if (sc->has_cushion) {
             derived_line(f, "omega_c", d->omega_c, "rad/s", "cushion frequency sqrt(K/m)");
             derived_line(f, "zeta_c", d->zeta_c, "", "cushion damping ratio");
-            if (d->K > 0.0)
-                derived_line(f, "m g / K", sc->mass * sc->g / d->K, "m",
-                             "static cushion deflection (linear part)");
+            if (d->K > 0.0) {
+                double wz, wr;
+                sw_cushion_frequencies(d, sc->g, &wz, &wr);
+                derived_line(f, "z_static", sw_cushion_static_deflection(d, sc->g), "m",
+                             "static cushion deflection, root of K z + B3 z^3 = m g");
+                derived_line(f, "omega_z", wz, "rad/s", "vertical natural frequency (undamped)");
+                derived_line(f, "omega_r", wr, "rad/s", "rocking natural frequency on the cushion");
+            }
         }
         char what[64];
         snprintf(what, sizeof what, "internal step of scheme %s", sw_engine_scheme(e));
         derived_line(f, "dt", sw_engine_dt(e, i), "s", what);
     }
+}
+
+/* ---- output files ---------------------------------------------------------- */
+
+/* Non-zero if path exists and is the file st describes. */
+static int is_file(const char *path, const struct stat *st)
+{
+    struct stat ps;
+    return path && stat(path, &ps) == 0 && ps.st_dev == st->st_dev && ps.st_ino == st->st_ino;
+}
+
+int sw_cli_check_outputs(const sw_cli_opts_t *o, FILE *in)
+{
+    struct stat st;
+    /* Opening an output truncates it: it must be neither the log being
+     * read nor the other output. */
+    if (in && in != stdin && fstat(fileno(in), &st) == 0) {
+        if (is_file(o->out_path, &st)) {
+            sw_cli_error("--out %s: that is the log being read", o->out_path);
+            return SW_EXIT_USAGE;
+        }
+        if (is_file(o->events_path, &st)) {
+            sw_cli_error("--events %s: that is the log being read", o->events_path);
+            return SW_EXIT_USAGE;
+        }
+    }
+    if (o->out_path && o->events_path &&
+        (!strcmp(o->out_path, o->events_path) ||
+         (stat(o->out_path, &st) == 0 && is_file(o->events_path, &st)))) {
+        sw_cli_error("--out and --events name the same file '%s'", o->out_path);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
 }
 
 /* ---- CSV writers ------------------------------------------------------------ */
@@ -594,12 +633,14 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
                     run->samples_read - run->samples_rejected, run->samples_rejected);
         fputs("  first uplift    ", f);
         print_time(f, s.uplift_time, "none (never left the upright position)");
+        if (s.uplifts > 1) fprintf(f, " (%ld uplifts in all)", s.uplifts);
         fprintf(f, "\n  impacts         %ld\n", s.impacts);
         fprintf(f, "  peak |theta|    %.3f deg = %.3f alpha (alpha = %.2f deg)\n",
                 s.max_abs_theta * 180.0 / M_PI, s.max_theta_ratio, alpha * 180.0 / M_PI);
         fputs("  tipped (alpha)  ", f);
         print_time(f, s.tip_time, "no (|theta| stayed below alpha)");
-        fprintf(f, "\n  minimum margin  %.4f\n", s.min_margin);
+        fprintf(f, "\n  minimum margin  %.4f (1 at rest, 0 at the edge of overturning)\n",
+                s.min_margin);
         fputs("  outcome         ", f);
         if (s.overturned) {
             fputs("OVERTURNED at ", f);

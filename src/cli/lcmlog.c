@@ -69,7 +69,7 @@ static const struct option long_opts[] = {
 void sw_cli_print_lcmlog_help(FILE *f)
 {
     fprintf(f,
-            "lcm-logger files (swaywatch.accel_t messages; the CSV options do not apply):\n"
+            "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit and --flip apply):\n"
             "      --channel REGEX        accel channel, an anchored regex as in LCM (default "
             "%s)\n"
             "      --axis x|y|z           message axis along the truck's travel (default x)\n"
@@ -404,15 +404,17 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
     /* --quiet keeps the counts when they explain a failure. */
     if (!o.quiet || k.accepted == 0)
         print_lcm_counts(stderr, path, &lc, &k);
-    if (k.accepted == 0)
+    if (k.accepted == 0) {
         sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", path, channel);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
     if (o.json)
         sw_cli_print_json(stdout, sw_mon_engine(mon), &run);
     else if (!o.quiet)
         sw_cli_print_summary(stdout, sw_mon_engine(mon), &run);
-    rc = k.accepted == 0 ? SW_EXIT_USAGE : SW_EXIT_OK;
-    if (rc == SW_EXIT_OK && fail_on_overturn && sw_cli_any_overturned(sw_mon_engine(mon)))
-        rc = SW_EXIT_OVERTURNED;
+    rc = fail_on_overturn && sw_cli_any_overturned(sw_mon_engine(mon)) ? SW_EXIT_OVERTURNED
+                                                                       : SW_EXIT_OK;
 
 out:
     sw_cli_states_close(&states);

@@ -52,7 +52,6 @@ struct sw_mon {
     size_t n;
     sw_alarm_watch_t *watch; /* one per package */
     char (*names)[SW_NAME_MAX];
-    sw_model_kind *models;
     int64_t *next_state_us;  /* per package: sample utime of the next state due */
     int64_t state_period_us; /* 0: every sample */
 
@@ -189,7 +188,7 @@ static void on_state(void *user, const sw_output_t *out)
     msg.utime = utime;
     msg.seq = m->state_seq++;
     set_name(msg.name, sizeof msg.name, m->names[k]);
-    msg.model = (int8_t)m->models[k];
+    msg.model = (int8_t)sw_engine_derived(m->engine, k)->model;
     msg.phase = (int8_t)out->state.phase;
     msg.side = (int8_t)out->state.side;
     msg.theta = out->state.theta;
@@ -238,10 +237,9 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
 
     m->watch = calloc(n ? n : 1, sizeof *m->watch);
     m->names = calloc(n ? n : 1, sizeof *m->names);
-    m->models = calloc(n ? n : 1, sizeof *m->models);
     m->next_state_us = calloc(n ? n : 1, sizeof *m->next_state_us);
     m->buf = malloc(SW_MON_BUF);
-    if (!m->watch || !m->names || !m->models || !m->next_state_us || !m->buf)
+    if (!m->watch || !m->names || !m->next_state_us || !m->buf)
         goto nomem;
 
     sw_engine_opts_t e = *eo;
@@ -263,7 +261,6 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
             return NULL;
         }
         snprintf(m->names[k], sizeof m->names[k], "%s", scenes[k].name);
-        m->models[k] = sw_engine_derived(m->engine, k)->model;
     }
     return m;
 
@@ -281,7 +278,6 @@ void sw_mon_destroy(sw_mon_t *m)
     sw_engine_destroy(m->engine);
     free(m->watch);
     free(m->names);
-    free(m->models);
     free(m->next_state_us);
     free(m->buf);
     free(m);
@@ -447,4 +443,26 @@ int64_t sw_mon_origin(const sw_mon_t *m)
 int64_t sw_mon_last_utime(const sw_mon_t *m)
 {
     return m->have_last ? m->last_us : 0;
+}
+
+int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, size_t msglen)
+{
+    sw_alarm_watch_t w;
+    if (!m || !scene || k >= m->n) {
+        if (msg)
+            snprintf(msg, msglen, "no such package");
+        return SW_EINVAL;
+    }
+    if (sw_alarm_init(&w, k, scene->warn_margin, scene->critical_margin, m->o.hysteresis) !=
+        SW_OK) {
+        if (msg)
+            snprintf(msg, msglen, "%s: alarm thresholds not finite", scene->name);
+        return SW_EINVAL;
+    }
+    int rc = sw_engine_replace(m->engine, k, scene, msg, msglen);
+    if (rc != SW_OK)
+        return rc;
+    m->watch[k] = w;
+    snprintf(m->names[k], sizeof m->names[k], "%s", scene->name);
+    return SW_OK;
 }

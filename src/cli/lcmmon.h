@@ -110,6 +110,14 @@ double sw_mon_deadline(const sw_mon_t *m);
 /* End of input: publish rejection summaries still held back. */
 void sw_mon_flush(sw_mon_t *m);
 
+/* Replace package k by a new, validated scene (a scene file edited while
+ * the monitor runs): its model restarts from rest at the current sample
+ * time, with a fresh alarm state; the other packages, the input stream, the
+ * counters and the seq numbers of the channels go on untouched.  Allocates.
+ * Returns SW_OK, or an error with the reason in msg and the monitor
+ * unchanged. */
+int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, size_t msglen);
+
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c);
 sw_engine_t *sw_mon_engine(sw_mon_t *m);
 int64_t sw_mon_origin(const sw_mon_t *m); /* utime of t = 0 (us), 0 before the first sample */

@@ -1196,3 +1196,47 @@ double sw_engine_dt(const sw_engine_t *e, size_t pkg)
 {
     return e && pkg < e->n ? e->pk[pkg].h : NAN;
 }
+
+/* ---- replacing one package ---------------------------------------------- */
+
+static void pkg_free(sw_pkg_t *P)
+{
+    if (P->gevo) gsl_odeiv2_evolve_free(P->gevo);
+    if (P->gctl) gsl_odeiv2_control_free(P->gctl);
+    if (P->gstep) gsl_odeiv2_step_free(P->gstep);
+}
+
+/* The new package is built by sw_engine_create() itself (one scene, same
+ * options), so it is checked and set up exactly like the others, then moved
+ * into place.  Its GSL work space moves with it; the pointers that lead
+ * back into the package or its engine (the input, the ODE system's
+ * parameters, an implicit stepper's driver) are set again. */
+int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char *msg,
+                      size_t msglen)
+{
+    if (msg && msglen) msg[0] = '\0';
+    if (!e || !scene || pkg >= e->n) {
+        if (msg && msglen) snprintf(msg, msglen, "no such package");
+        return SW_EINVAL;
+    }
+    int err = SW_OK;
+    sw_engine_opts_t o = e->o;
+    o.on_event = NULL;
+    o.on_state = NULL;
+    sw_engine_t *tmp = sw_engine_create(scene, 1, &o, &err, msg, msglen);
+    if (!tmp) return err != SW_OK ? err : SW_ENOMEM;
+
+    sw_pkg_t *P = &e->pk[pkg];
+    pkg_free(P);
+    *P = tmp->pk[0];
+    P->in = &e->in;
+    P->sys.params = P;
+    if (P->gstep && P->gdrv.s) {
+        P->gdrv.sys = &P->sys;
+        gsl_odeiv2_step_set_driver(P->gstep, &P->gdrv);
+    }
+    P->t = e->started ? e->t : 0.0;
+    free(tmp->pk);
+    free(tmp);
+    return SW_OK;
+}

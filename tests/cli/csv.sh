@@ -36,7 +36,8 @@ json_check "$TMP/bad.json" 'j["packages"][0]["uplift_time"] is not None and j["p
 run "$SW" replay "$TMP/bad.csv" --scene "$SCENE" --strict --json
 expect_rc 2 "--strict"
 expect_err "swaywatch: $TMP/bad.csv:502: " "--strict names the first bad row"
-grep -qF ":1003:" "$TMP/err" && fail "--strict went on after the first bad row"
+[ "$(wc -l <"$TMP/err")" -eq 2 ] || { show; fail "--strict: expected the bad row and the stop message"; }
+expect_err "stopped at the first rejected row (--strict)" "--strict says why it stopped"
 [ ! -s "$TMP/out" ] || fail "--strict printed a summary"
 
 # More than 20 bad rows: 20 listed, the rest counted.

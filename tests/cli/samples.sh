@@ -7,6 +7,11 @@ run "$SW" replay "$LOGS/braking-pothole.csv" --scene "$LOGS/crate.ini" --fail-on
 expect_rc 0 "braking-pothole: the crate stays upright"
 json_check "$TMP/out" 'not j["packages"][0]["overturned"] and j["packages"][0]["uplift_time"] is not None and j["packages"][0]["impacts"] > 0'
 
+# The same drive overturns the crate on its soft frame (README's claim).
+run "$SW" replay "$LOGS/braking-pothole.csv" --scene "$LOGS/crate-on-frame.ini" --json
+expect_rc 0 "braking-pothole on the frame"
+json_check "$TMP/out" 'j["packages"][0]["model"] == "frame" and j["packages"][0]["overturned"]'
+
 run "$SW" replay "$LOGS/hard-stop-overturn.csv" --scene "$LOGS/crate.ini" --fail-on-overturn --json
 expect_rc 1 "hard-stop-overturn: the crate overturns"
 json_check "$TMP/out" 'j["packages"][0]["overturned"] and j["packages"][0]["overturn_time"] > j["packages"][0]["tip_time"] > j["packages"][0]["uplift_time"]'

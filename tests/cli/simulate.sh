@@ -74,3 +74,22 @@ for s in $schemes; do
     json_check "$TMP/out" "j['packages'][0]['scheme'] == '$s'"
 done
 echo "ok"
+
+# --verbose on a cushion scene prints the static deflection and the natural
+# frequencies: K = 1000 kg * (200 rad/s)^2 = 4e7 N/m, b = 0.364 m, h = 1 m,
+# R^2 = h^2 + b^2: z = m g / K = 2.4525e-4 m, omega_z = 200 rad/s,
+# omega_r = sqrt((K b^2/3 - m g h) / (m R^2/3 + m h^2)) = 35.712 rad/s.
+printf '[package]\nname = c1\nheight = 2.0\nwidth = 0.728\nmass = 1000\n[cushion]\nomega = 200\nzeta = 0.1\n' > "$TMP/cushion.ini"
+run "$SW" simulate --scene "$TMP/cushion.ini" --pulse half-sine --amplitude -5 --omega 10 --verbose
+expect_rc 0 "cushion --verbose"
+python3 - "$TMP/err" <<'PY' || fail "cushion --verbose quantities"
+import re, sys, math
+t = open(sys.argv[1]).read()
+def val(name):
+    return float(re.search(r"^\s*%s\s+(\S+)" % re.escape(name), t, re.M).group(1))
+K, b, h, m, g = 4e7, 0.364, 1.0, 1000.0, 9.81
+assert math.isclose(val("z_static"), m * g / K, rel_tol=1e-4)
+assert math.isclose(val("omega_z"), 200.0, rel_tol=1e-4)
+wr = math.sqrt((K * b * b / 3 - m * g * h) / (m * (h * h + b * b) / 3 + m * h * h))
+assert math.isclose(val("omega_r"), wr, rel_tol=1e-4), (val("omega_r"), wr)
+PY

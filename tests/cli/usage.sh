@@ -83,6 +83,15 @@ run "$SW" replay "$LOG" --scene "$SCENE" --out "$TMP/no-such-dir/out.csv"
 expect_rc 3 "--out into a missing directory"
 expect_prefixed_err "--out into a missing directory"
 
+# An output that would overwrite the log (or the other output) is refused.
+cp "$LOG" "$TMP/log.csv"
+run "$SW" replay "$TMP/log.csv" --scene "$SCENE" --out "$TMP/log.csv"
+expect_rc 2 "--out naming the log"
+expect_err "that is the log being read" "--out naming the log"
+cmp -s "$LOG" "$TMP/log.csv" || fail "--out naming the log changed the log"
+run "$SW" replay "$TMP/log.csv" --scene "$SCENE" --out "$TMP/x.csv" --events "$TMP/x.csv"
+expect_rc 2 "--out and --events the same file"
+
 # Bad scenes: FILE:LINE: message.
 cat >"$TMP/bad.ini" <<'INI'
 [package]
