@@ -9,7 +9,8 @@ set -eu
 cd "$(dirname "$0")/.."
 ROOT=$PWD
 BUILD=${BUILD:-build}
-SW=$ROOT/$BUILD/swaywatch
+case $BUILD in /*) ;; *) BUILD=$ROOT/$BUILD ;; esac
+SW=$BUILD/swaywatch
 OUT=$ROOT/docs/img
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
@@ -58,8 +59,8 @@ monitor() {
         ip link set lo up
         ip route add 224.0.0.0/4 dev lo
     fi
-    LISTENER=$ROOT/$BUILD/docs/examples/sw_example_alarm_listener
-    export PYTHONPATH="$ROOT/$BUILD/lcmtypes/python"
+    LISTENER=$BUILD/docs/examples/sw_example_alarm_listener
+    export PYTHONPATH="$BUILD/lcmtypes/python"
     "$SW" monitor --scene sample_logs/crate.ini --scene sample_logs/crate-on-frame.ini \
         --status 2 2>"$T/monitor.txt" &
     mon=$!
@@ -91,7 +92,17 @@ monitor() {
     echo "make-doc-images.sh: $OUT/monitor.txt"
 }
 
-[ $# -gt 0 ] || set -- replay monitor
+# The lowest half-sine braking pulse that overturns each crate, against its
+# frequency (the boundary command draws it with gnuplot).
+boundary() {
+    "$SW" boundary --scene sample_logs/crate.ini --scene sample_logs/crate-on-frame.ini \
+        --pulse half-sine --omega-ratio 1:8:0.5 --out "$T/boundary.csv" --quiet \
+        --title "swaywatch boundary: half-sine pulse, the crate on the bed and on a frame" \
+        --plot "$OUT/boundary.png"
+    echo "make-doc-images.sh: $OUT/boundary.png"
+}
+
+[ $# -gt 0 ] || set -- replay monitor boundary
 for what in "$@"; do
     "$what"
 done

@@ -4,7 +4,7 @@
 # the installed command runs, a program builds against the installed
 # library through pkg-config and runs; the packages are purged again, so
 # the machine is left as it was.  Needs root: exits 77 (skipped) otherwise.
-# usage: deb.sh BUILD_DIR SOURCE_DIR   (env: SW_VERSION, SW_LCM, SW_MAN)
+# usage: deb.sh BUILD_DIR SOURCE_DIR   (env: SW_VERSION, SW_LCM, SW_MAN, SW_CC_FLAGS)
 set -eu
 BUILD=$1 SRC=$2
 if [ "$(id -u)" -ne 0 ]; then
@@ -84,7 +84,7 @@ fi
 
 # A program against the installed library, through pkg-config only.
 cd "$T"
-cc -o tipcheck "$SRC/docs/examples/tipcheck.c" $(pkg-config --cflags --libs swaywatch)
+cc ${SW_CC_FLAGS:-} -o tipcheck "$SRC/docs/examples/tipcheck.c" $(pkg-config --cflags --libs swaywatch)
 ldd ./tipcheck | grep -Eq 'libswaywatch\.so\.0 => (/usr)?/lib/' ||
     fail "tipcheck does not use the installed libswaywatch.so.0"
 ./tipcheck

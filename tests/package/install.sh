@@ -2,7 +2,7 @@
 # 'cmake --install' into a scratch prefix puts every piece in place, and a
 # program builds and runs against the installed library through
 # pkg-config, shared and static.
-# usage: install.sh BUILD_DIR SOURCE_DIR   (env: SW_VERSION, SW_LCM, SW_MAN)
+# usage: install.sh BUILD_DIR SOURCE_DIR   (env: SW_VERSION, SW_LCM, SW_MAN, SW_CC_FLAGS)
 set -eu
 BUILD=$1 SRC=$2
 T=$(mktemp -d)
@@ -49,7 +49,7 @@ bin/swaywatch --version | grep -qx "swaywatch $SW_VERSION" || fail "swaywatch --
 # The LCM examples build and run on the installed bindings alone.
 if [ "${SW_LCM:-0}" = 1 ]; then
     L=share/swaywatch/lcmtypes
-    cc -o "$T/alarm_listener" "$SRC/docs/examples/alarm_listener.c" "$L/c/swaywatch_alarm_t.c" \
+    cc ${SW_CC_FLAGS:-} -o "$T/alarm_listener" "$SRC/docs/examples/alarm_listener.c" "$L/c/swaywatch_alarm_t.c" \
         -I"$L/c" -llcm
     "$T/alarm_listener" -h >/dev/null
     PYTHONPATH="$P/$L/python" python3 "$SRC/tests/package/mkaccel.py" "$T/a.lcmlog" --duration 0.1
@@ -61,13 +61,13 @@ fi
 export PKG_CONFIG_PATH="$P/$libdir/pkgconfig"
 pkg-config --exists --print-errors swaywatch
 [ "$(pkg-config --modversion swaywatch)" = "$SW_VERSION" ] || fail "pkg-config --modversion"
-cc -o "$T/tipcheck" "$SRC/docs/examples/tipcheck.c" $(pkg-config --cflags --libs swaywatch)
+cc ${SW_CC_FLAGS:-} -o "$T/tipcheck" "$SRC/docs/examples/tipcheck.c" $(pkg-config --cflags --libs swaywatch)
 LD_LIBRARY_PATH="$P/$libdir" ldd "$T/tipcheck" | grep -q "$P/$libdir/libswaywatch.so.0" ||
     fail "tipcheck is not linked against the installed libswaywatch.so.0"
 LD_LIBRARY_PATH="$P/$libdir" "$T/tipcheck"
 # Static: the archive plus Libs.private and Requires.private.
 libs=$(pkg-config --static --libs swaywatch | sed 's/-lswaywatch\b/-l:libswaywatch.a/')
-cc -o "$T/tipcheck-static" "$SRC/docs/examples/tipcheck.c" $(pkg-config --cflags swaywatch) $libs
+cc ${SW_CC_FLAGS:-} -o "$T/tipcheck-static" "$SRC/docs/examples/tipcheck.c" $(pkg-config --cflags swaywatch) $libs
 if ldd "$T/tipcheck-static" | grep -q libswaywatch; then fail "tipcheck-static uses the .so"; fi
 "$T/tipcheck-static" >/dev/null
 echo "install.sh: ok ($(wc -l <"$T/install.log") lines of install log)"
