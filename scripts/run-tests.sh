@@ -24,15 +24,17 @@ elapsed "build and tests"
 [ "${SW_QUICK:-0}" = 1 ] && exit 0
 
 # The same suite with ASan + UBSan: any report aborts the test (the build
-# uses -fno-sanitize-recover).  Valgrind tests are left out (they are in the
-# first pass: valgrind cannot run ASan binaries), and so is the soak test,
-# whose long monitor run the first pass already watches for growth.
+# uses -fno-sanitize-recover).  Left out: valgrind tests (they are in the
+# first pass: valgrind cannot run ASan binaries), the soak test, whose long
+# monitor run the first pass already watches for growth, and the packaging
+# tests (a sanitized library is no package: programs built without ASan
+# cannot link it, and the .deb would depend on libasan).
 ASAN_BUILD=${ASAN_BUILD:-build-asan}
 cmake -S . -B "$ASAN_BUILD" -DSW_WERROR=ON -DSW_SANITIZE=ON >/dev/null
 cmake --build "$ASAN_BUILD" -j "$JOBS"
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1} \
     UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
-    ctest --test-dir "$ASAN_BUILD" --output-on-failure -j "$JOBS" -LE 'soak|valgrind'
+    ctest --test-dir "$ASAN_BUILD" --output-on-failure -j "$JOBS" -LE 'soak|valgrind|package'
 elapsed "sanitizer build and tests"
 
 FUZZ_SECONDS=${FUZZ_SECONDS:-30}

@@ -203,6 +203,7 @@ enum {
     SW_OPT_LCM_VERTICAL,
     SW_OPT_LCM_GAP,
     SW_OPT_LCM_MAX_ACCEL,
+    SW_OPT_LCM_MAX_SKEW,
     SW_OPT_LCM_END /* one past the last */
 };
 #define SW_CLI_LCMLOG_LONGOPTS                                                                     \
@@ -215,7 +216,8 @@ enum {
         {"axis", required_argument, NULL, SW_OPT_LCM_AXIS},                                        \
         {"vertical", required_argument, NULL, SW_OPT_LCM_VERTICAL},                                \
         {"gap", required_argument, NULL, SW_OPT_LCM_GAP},                                          \
-        {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL}
+        {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL},                              \
+        {"max-skew", required_argument, NULL, SW_OPT_LCM_MAX_SKEW}
 
 /* ---- CSV logs held in memory (logread.c) -------------------------------------
  * The CSV input options replay documents, for commands that run one log

@@ -120,6 +120,7 @@ int cmd_simulate(int argc, char **argv)
     sw_cli_opts_t o;
     sw_pulse_t pulse = {0};
     int have_shape = 0, have_amp = 0, have_omega = 0, fail_on_overturn = 0;
+    const char *amp_opt = "--amplitude";
     double duration = 0.0, interval = DEFAULT_INTERVAL, amp_g = 0.0;
     sw_scene_t *scenes = NULL;
     size_t n = 0;
@@ -153,12 +154,14 @@ int cmd_simulate(int argc, char **argv)
             r = sw_cli_parse_double("--amplitude", optarg, SW_NUM_NONZERO,
                                     "a non-zero acceleration in m/s^2", &pulse.amplitude);
             have_amp = 1;
+            amp_opt = "--amplitude";
             break;
         case OPT_AMPLITUDE_G:
             r = sw_cli_parse_double("--amplitude-g", optarg, SW_NUM_NONZERO,
                                     "a non-zero acceleration in g", &amp_g);
             pulse.amplitude = amp_g * STANDARD_GRAVITY;
             have_amp = 1;
+            amp_opt = "--amplitude-g";
             break;
         case OPT_OMEGA:
             r = sw_cli_parse_double("--omega", optarg, SW_NUM_POSITIVE,
@@ -188,6 +191,14 @@ int cmd_simulate(int argc, char **argv)
                      !have_shape ? "--pulse half-sine|full-sine"
                      : !have_amp ? "--amplitude A (m/s^2) or --amplitude-g A"
                                  : "--omega W (rad/s)");
+        goto out;
+    }
+    /* The limit sw_engine_push() puts on samples; the pulse reaches the
+     * engine as a function, unchecked, and beyond it the outputs overflow. */
+    if (!(fabs(pulse.amplitude) <= SW_MAX_ACCEL)) {
+        sw_cli_error("%s: the pulse amplitude is beyond any accelerometer: expected at most %g "
+                     "m/s^2 (about %.0f g)",
+                     amp_opt, SW_MAX_ACCEL, SW_MAX_ACCEL / STANDARD_GRAVITY);
         goto out;
     }
 

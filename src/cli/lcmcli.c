@@ -66,6 +66,9 @@ int sw_cli_mon_option(sw_mon_opts_t *mo, int c, const char *arg)
             return sw_cli_parse_double("--gap", arg, SW_NUM_POSITIVE,
                                        "a positive number of seconds", &mo->gap);
         case SW_OPT_LCM_MAX_ACCEL: return parse_accel_limit(arg, &mo->max_accel);
+        case SW_OPT_LCM_MAX_SKEW:
+            return sw_cli_parse_double("--max-skew", arg, SW_NUM_NONNEGATIVE,
+                                       "a number of seconds >= 0 (0: not checked)", &mo->max_skew);
         default: return -1;
     }
 }

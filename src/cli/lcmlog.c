@@ -78,6 +78,9 @@ void sw_cli_print_lcmlog_help(FILE *f)
             "      --gap SECONDS          samples further apart raise SENSOR_GAP (default %g)\n"
             "      --max-accel A          refuse samples beyond A, m/s^2 or e.g. 30g (default "
             "50g)\n"
+            "      --max-skew SECONDS     refuse samples whose utime is further than this from\n"
+            "                             the time lcm-logger received them (default: not\n"
+            "                             checked)\n"
             "      --publish URL          also publish states and alarms over LCM ('' = LCM's\n"
             "                             default URL; file:///path?mode=w writes a log)\n"
             "      --speed X              with --publish: X times real time by the samples'\n"
@@ -211,8 +214,11 @@ static int read_log(lcm_eventlog_t *log, off_t size, const regex_t *channel, sw_
         }
         lc->on_channel++;
         pace(&pacer, ev->data, ev->datalen);
-        int rc =
-            sw_mon_feed(mon, ev->data, (size_t)ev->datalen, 0, (double)ev->timestamp / 1e6, NULL);
+        /* The logger's receive time is the clock --max-skew compares with:
+         * a sample stamped far from when it arrived (a corrupt or hostile
+         * utime) would otherwise be accepted and make every later one late. */
+        int rc = sw_mon_feed(mon, ev->data, (size_t)ev->datalen, ev->timestamp,
+                             (double)ev->timestamp / 1e6, NULL);
         lcm_eventlog_free_event(ev);
         if (rc < 0 && strict)
             return SW_EXIT_USAGE;
@@ -281,7 +287,8 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
         return SW_EXIT_IO;
     optind = 0; /* a fresh scan: replay has parsed these arguments once already */
     opterr = 0;
-    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, NULL)) != -1;) {
+    int li = -1; /* index in long_opts of the option just read */
+    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, &li)) != -1;) {
         int r = sw_cli_common_option(&o, c, optarg, argv);
         if (r == SW_EXIT_OK)
             continue;
@@ -302,8 +309,9 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
             case OPT_HEADER:
             case OPT_NO_HEADER:
             case OPT_TIME_UNIT:
-                sw_cli_error("%s: %s is for CSV logs; this is an lcm-logger file", path,
-                             argv[optind - 1]);
+                /* argv[optind - 1] would be the value of --time-unit ms */
+                sw_cli_error("%s: --%s is for CSV logs; this is an lcm-logger file", path,
+                             li >= 0 ? long_opts[li].name : "that option");
                 r = SW_EXIT_USAGE;
                 break;
             case OPT_ACCEL_UNIT: r = sw_cli_parse_accel_unit(optarg, &mo.accel_scale); break;

@@ -2,7 +2,7 @@
 """run.py - the bad-input catalogue: runs every case of MANIFEST through the
 swaywatch command and checks what it promises.
 
-    run.py SWAYWATCH SOURCE_DIR WORK_DIR [NAME_PREFIX...]
+    run.py SWAYWATCH SOURCE_DIR WORK_DIR [--feed SW_ACCEL_FEED] [NAME_PREFIX...]
 
 MANIFEST has one case per line, fields separated by '|':
 
@@ -10,9 +10,10 @@ MANIFEST has one case per line, fields separated by '|':
 
 Arguments are split like a shell would split them, after replacing {d}
 (this folder), {src} (the source tree), {gen} (inputs made at test time,
-see make_inputs()) and {tmp} (a scratch folder of the case).  Counts are
+see make_inputs(); lcm-logger files need --feed) and {tmp} (a scratch
+folder of the case).  Counts are
 "key=value" pairs checked against the JSON summary; a key may be a dotted
-path into it ("lcm.rejected.decode=3").
+path into it ("packages.0.faults=0"); stderr_lines counts lines on stderr.
 
 Besides what a case states, every run must:
   - end with its exit code, never by a signal, with nothing from a
@@ -38,9 +39,25 @@ import sys
 TIMEOUT = 120  # s per run; the 10 MB line and an hour-long gap take < 5 s
 
 
-def make_inputs(gen):
+# lcm-logger files: name -> sw_accel_feed arguments.  The feed is seeded,
+# so the counts in MANIFEST are exact.
+LCM_LOGS = {
+    "clean": ["--count", "2000"],
+    "all-kinds": ["--count", "2000", "--garbage", "100"],
+    "only-garbage": ["--count", "0", "--empty", "50"],
+}
+for _k in ("fingerprint", "other_type", "truncated", "empty", "trailing", "oversized",
+           "nonfinite", "implausible", "duplicate", "out_of_order", "past", "future"):
+    LCM_LOGS[_k] = ["--count", "200", "--garbage", "1000", "--kinds", _k]
+
+
+def make_inputs(gen, feed):
     """Inputs too big (or too binary) to keep in the repository."""
     os.makedirs(gen, exist_ok=True)
+    if feed:
+        for name, args in LCM_LOGS.items():
+            subprocess.run([feed, "log", os.path.join(gen, "lcm-%s.lcmlog" % name)] + args,
+                           check=True, stdout=subprocess.DEVNULL)
     rows = "".join("%.3f,%.3f\n" % (i * 1e-3, -0.5 * (i % 7)) for i in range(200))
     rows2 = "".join("%.3f,%.3f\n" % (0.2 + i * 1e-3, 0.1) for i in range(200))
     # A 10 MB line in the middle of a good log: rejected, the rest read.
@@ -151,19 +168,26 @@ def run_case(sw, case, subst, tmp):
             problems.append("stderr line without the prefix: %r" % line[:100])
             break
 
+    want = dict(case["counts"])
+    if "stderr_lines" in want:
+        got = len(err.splitlines())
+        if got != want["stderr_lines"]:
+            problems.append("%d lines on stderr, expected %d" % (got, want["stderr_lines"]))
+        del want["stderr_lines"]
+
     j = None
     if full:
         try:
             j = strict_json(p.stdout.decode("utf-8"))
         except ValueError as e:
             problems.append("stdout is not strict JSON: %s" % e)
-    elif case["counts"]:
+    elif want:
         try:
             j = strict_json(p.stdout.decode("utf-8"))
         except ValueError as e:
             problems.append("stdout is not strict JSON: %s" % e)
     if j is not None:
-        for k, v in case["counts"].items():
+        for k, v in want.items():
             try:
                 got = (j["samples_read"] - j["samples_rejected"] if k == "accepted"
                        else dig(j, k))
@@ -186,7 +210,8 @@ def run_case(sw, case, subst, tmp):
                                 % (pk["name"], rows, accepted))
             if pk.get("samples_read") != read or pk.get("samples_rejected") != rej:
                 problems.append("package %s: counts differ from the top level" % pk["name"])
-        if cmd == "replay" and "lcm" not in j and "--strict" not in args:
+        lcmlog = any(a.endswith(".lcmlog") for a in args)
+        if cmd == "replay" and not lcmlog and "--strict" not in args:
             listed = len(re.findall(r"^swaywatch: .*:\d+: ", err, re.M))
             more = re.search(r"\.\.\. (\d+) more rejected rows", err)
             listed += int(more.group(1)) if more else 0
@@ -200,10 +225,14 @@ def main():
     if len(sys.argv) < 4:
         sys.exit(__doc__)
     sw, src, work = sys.argv[1:4]
-    prefixes = sys.argv[4:]
+    rest = sys.argv[4:]
+    feed = None
+    if len(rest) >= 2 and rest[0] == "--feed":
+        feed, rest = rest[1], rest[2:]
+    prefixes = rest
     here = os.path.dirname(os.path.abspath(__file__))
     gen = os.path.join(work, "gen")
-    make_inputs(gen)
+    make_inputs(gen, feed)
     subst = dict(d=here, src=src, gen=gen)
     cases = [c for c in load_manifest(os.path.join(here, "MANIFEST"))
              if not prefixes or any(c["name"].startswith(p) for p in prefixes)]

@@ -66,12 +66,13 @@ static const double specials[] = {NAN, INFINITY,  -INFINITY, 1e300,  -1e300,  1e
 
 static void run_engine(const sw_scene_t *sc, fz_bytes_t *b, int have_samples)
 {
-    static const char *const schemes[] = {NULL, "rk4", "heun", "euler", "rkf45", "rkck", "rk8pd"};
+    static const char *const schemes[] = {NULL,    "rk4",   "heun",   "euler", "rkf45",
+                                          "rkck", "rk8pd", "rk4imp", "bsimp", "msbdf"};
     ctx_t c = {0};
     sw_engine_opts_t o;
     memset(&o, 0, sizeof o);
     const uint8_t s0 = fz_byte(b), s1 = fz_byte(b);
-    o.scheme = schemes[s0 % 7];
+    o.scheme = schemes[s0 % (sizeof schemes / sizeof schemes[0])];
     /* Euler's default step is tiny; keep the run short with the others'. */
     if (o.scheme && !strcmp(o.scheme, "euler"))
         o.dt = 1e-4;

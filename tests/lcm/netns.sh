@@ -27,6 +27,32 @@ fail() {
     exit 1
 }
 
+# wait_subscribed N: LCM has no handshake.  lcm_create() joins the
+# multicast group with the send socket, lcm_subscribe() with the receive
+# socket and then runs a self-test during which every other message is
+# dropped.  Wait until the group 239.255.76.67 (434CFFEF in /proc/net/igmp)
+# has N members - two per subscribed process - then leave the self-tests a
+# moment.  A fixed sleep lost messages when the machine was busy.
+wait_subscribed() {
+    n=0
+    until [ "$(awk '$1 == "434CFFEF" { print $2 }' /proc/net/igmp)" -ge "$1" ] 2>/dev/null; do
+        n=$((n + 1))
+        [ "$n" -le 300 ] || fail "fewer than $1 members in the LCM group after 30 s"
+        sleep 0.1
+    done
+    sleep 0.3
+}
+
+# wait_for FILE TEXT: until FILE holds TEXT (e.g. a status line's counts).
+wait_for() {
+    n=0
+    until grep -qF -- "$2" "$1"; do
+        n=$((n + 1))
+        [ "$n" -le 300 ] || fail "no '$2' in $1 after 30 s"
+        sleep 0.1
+    done
+}
+
 # Physics lines of a dump (states, and alarms other than the input-level
 # SENSOR_GAP (9) and INPUT_REJECTED (10), whose timing depends on arrival).
 physics() {

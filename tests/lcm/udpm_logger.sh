@@ -16,9 +16,10 @@ PIDS="$LOGGER"
 "$SW" monitor -l "$URL" --scene "$SCENE" --status 1 2>"$T/monitor.err" &
 MON=$!
 PIDS="$PIDS $MON"
-sleep 0.5 # LCM has no handshake: let both subscribe first
+wait_subscribed 4 # the logger and the monitor
 "$TOOL" publish "$URL" --rate 500 --duration 3 --bad 100
-sleep 0.4 # the last messages through, and the sensor-gap timer (0.1 s)
+wait_for "$T/monitor.err" 'accepted 1501, rejected 30'
+sleep 0.4 # the logger's last messages, and the sensor-gap timer (0.1 s)
 kill -INT "$MON"
 wait "$MON" || fail "monitor exited with $?"
 kill -INT "$LOGGER"

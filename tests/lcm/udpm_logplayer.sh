@@ -14,12 +14,13 @@ lcm-logger -q -f -c 'SWAY_.*' --lcm-url="$URL" "$T/rec.lcmlog" &
 LOGGER=$!
 PIDS="$LOGGER"
 # The log's utime is from 2023: no --max-skew for a replayed log.
-"$SW" monitor -l "$URL" --scene "$SCENE" 2>"$T/monitor.err" &
+"$SW" monitor -l "$URL" --scene "$SCENE" --status 1 2>"$T/monitor.err" &
 MON=$!
 PIDS="$PIDS $MON"
-sleep 0.5
+wait_subscribed 4 # the logger and the monitor
 lcm-logplayer --lcm-url="$URL" "$T/accel.lcmlog"
-sleep 0.4
+wait_for "$T/monitor.err" 'accepted 1501, rejected 0'
+sleep 0.4 # the logger's last messages
 kill -INT "$MON"
 wait "$MON" || fail "monitor exited with $?"
 kill -INT "$LOGGER"

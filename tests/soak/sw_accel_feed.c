@@ -21,7 +21,9 @@
  *                      (extra bytes), oversized (64 KiB after the sample),
  *                      nonfinite (NaN or infinity), implausible (1e4 m/s^2),
  *                      duplicate (the last good utime again), out_of_order
- *                      (1 ms before the last good sample)
+ *                      (1 ms before the last good sample); and, only when
+ *                      named here, past and future (a day before or after:
+ *                      refused as skew when the monitor checks --max-skew)
  *   --utime0 US        utime of the first sample (default 1700000000000000)
  *   --seq0 N           seq of the first good sample (default 0)
  *   --seed S           placement of the bad messages (default 1)
@@ -34,8 +36,10 @@
  * Output on stdout, one "key value" per line: published (all messages),
  * good, then the bad messages by the monitor's reason names: decode
  * (fingerprint, other_type, truncated, empty), trailing (trailing,
- * oversized), nonfinite, implausible, duplicate, out_of_order; and
- * last_utime (us).  The seq of good samples increases by one per good
+ * oversized), nonfinite, implausible, duplicate, out_of_order, skew (past,
+ * future); and last_utime (us).  In a log, each event is stamped with its
+ * sample's utime plus 0.2 ms, as lcm-logger would receive it from a sensor
+ * whose clock is synchronised.  The seq of good samples increases by one per good
  * sample: bad messages take none, so a seq gap in what the monitor
  * accepted is a message lost on the way. */
 #include <errno.h>
@@ -63,17 +67,19 @@ enum {
     K_IMPLAUSIBLE,
     K_DUPLICATE,
     K_OUT_OF_ORDER,
+    K_PAST,
+    K_FUTURE,
     NKIND
 };
 static const char *const kind_name[NKIND] = {
-    "fingerprint", "other_type", "truncated",   "empty",     "trailing",
-    "oversized",   "nonfinite",  "implausible", "duplicate", "out_of_order"};
+    "fingerprint", "other_type",  "truncated", "empty",        "trailing", "oversized",
+    "nonfinite",   "implausible", "duplicate", "out_of_order", "past",     "future"};
 /* The monitor's reason for each kind (sw_mon_reject_name). */
-static const char *const reason_of[NKIND] = {"decode",    "decode",      "decode",    "decode",
-                                             "trailing",  "trailing",    "nonfinite", "implausible",
-                                             "duplicate", "out_of_order"};
-static const char *const reasons[] = {"decode",      "trailing",  "nonfinite",
-                                      "implausible", "duplicate", "out_of_order"};
+static const char *const reason_of[NKIND] = {
+    "decode",    "decode",      "decode",    "decode",       "trailing", "trailing",
+    "nonfinite", "implausible", "duplicate", "out_of_order", "skew",     "skew"};
+static const char *const reasons[] = {"decode",    "trailing",     "nonfinite", "implausible",
+                                      "duplicate", "out_of_order", "skew"};
 #define NREASON (sizeof reasons / sizeof reasons[0])
 
 #define OVERSIZE (64 * 1024)
@@ -94,6 +100,7 @@ typedef struct {
     lcm_eventlog_t *log; /* log */
     const char *channel;
     long published, good, by_kind[NKIND];
+    int64_t stamp;      /* us, the log's receive time for the next event */
     unsigned char *buf; /* OVERSIZE + room for a message */
     int failed;
 } sink_t;
@@ -132,7 +139,7 @@ static void parse(int argc, char **argv, opts_t *o)
     o->utime0 = 1700000000000000LL;
     o->seq0 = 0;
     o->seed = 1;
-    for (int k = 0; k < NKIND; k++) o->use[k] = 1;
+    for (int k = 0; k < NKIND; k++) o->use[k] = k != K_PAST && k != K_FUTURE;
     for (int i = 3; i < argc; i += 2) {
         if (i + 1 >= argc)
             die_usage("option without a value");
@@ -195,9 +202,7 @@ static void emit(sink_t *s, const void *data, int len)
     } else {
         lcm_eventlog_event_t ev;
         memset(&ev, 0, sizeof ev);
-        struct timespec now;
-        clock_gettime(CLOCK_REALTIME, &now);
-        ev.timestamp = (int64_t)now.tv_sec * 1000000 + now.tv_nsec / 1000;
+        ev.timestamp = s->stamp;
         ev.channellen = (int32_t)strlen(s->channel);
         ev.channel = (char *)s->channel;
         ev.datalen = len;
@@ -263,6 +268,11 @@ static void send_bad(sink_t *s, int k, const swaywatch_accel_t *last, uint64_t *
         case K_DUPLICATE: emit(s, s->buf, encode(s, &m)); break;
         case K_OUT_OF_ORDER:
             m.utime -= 1000;
+            emit(s, s->buf, encode(s, &m));
+            break;
+        case K_PAST:
+        case K_FUTURE:
+            m.utime += (k == K_PAST ? -1 : 1) * 86400LL * 1000000;
             emit(s, s->buf, encode(s, &m));
             break;
     }
@@ -379,6 +389,7 @@ int main(int argc, char **argv)
     clock_gettime(CLOCK_MONOTONIC, &t0);
     swaywatch_accel_t last;
     memset(&last, 0, sizeof last);
+    s.stamp = o.utime0;
     for (long k = 0; k < o.empty && !s.failed; k++) {
         emit(&s, s.buf, 0);
         s.by_kind[K_EMPTY]++;
@@ -387,6 +398,7 @@ int main(int argc, char **argv)
         if (live && o.pace > 0)
             sleep_until(&t0, (double)k / o.pace);
         last = sample(&o, k);
+        s.stamp = last.utime + 200;
         emit(&s, s.buf, encode(&s, &last));
         s.good++;
         if (nk && o.garbage && (long)(next_rand(&rnd) % 1000) < o.garbage)
