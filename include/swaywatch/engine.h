@@ -78,6 +78,8 @@ typedef struct {
                            bound instead of sub-stepping */
     double rtol, atol;  /* adaptive schemes; 0 = defaults (1e-10, 1e-12) */
     double rest_eps;    /* rest threshold as a fraction of the energy barrier; 0 = 1e-9 */
+    int stuck_stepped;  /* non-zero: step a stuck frame with the fixed-step scheme instead of
+                           its exact solution (comparisons; the default is exact and cheaper) */
     sw_event_fn on_event;
     sw_state_fn on_state; /* called once per pushed sample and package; may be NULL */
     void *user;
