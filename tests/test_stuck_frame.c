@@ -3,12 +3,13 @@
  * closed-form step and ramp responses for under-, critically and
  * over-damped bearings, across a long gap between samples, uplift located
  * on the exact solution, and agreement with the frame stepped by RK4. */
-#include <cmocka.h>
-#include <gsl/gsl_errno.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+/* cmocka needs the four above first */
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
 
 #include "testutil.h"
 

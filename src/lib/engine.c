@@ -405,6 +405,31 @@ static void nj_coef(const sw_pkg_t *P, double H, nj_t *c)
     c->i2 = (H - c->g - 2.0 * zw * c->i1) / w2;
 }
 
+/* nj_coef for the sample interval: sample times such as i / 1000 give
+ * intervals that differ in the last bits, so the coefficients of the last
+ * interval H0 are reused for H within 1e-6 H0, corrected to first order
+ * with their derivatives (g' , g'' = -2 zeta w g' - w^2 g, g, I1); the
+ * second-order remainder is below 1e-12 H^2 |g''|, far under round-off. */
+static void nj_coef_cached(sw_pkg_t *P, double H, nj_t *c)
+{
+    double *k = P->nj_cache;
+    const double dH = H - k[0];
+    if (!(fabs(dH) <= 1e-6 * k[0])) {
+        nj_coef(P, H, c);
+        k[0] = H;
+        k[1] = c->g;
+        k[2] = c->gd;
+        k[3] = c->i1;
+        k[4] = c->i2;
+        return;
+    }
+    const double w = P->d.omega_b, zw = P->d.zeta_b * w;
+    c->g = k[1] + dH * k[2];
+    c->gd = k[2] + dH * (-2.0 * zw * k[2] - w * w * k[1]);
+    c->i1 = k[3] + dH * k[1];
+    c->i2 = k[4] + dH * k[3];
+}
+
 /* State of the stuck frame after H under a_g = a0 + s t. */
 static void nj_state(const sw_pkg_t *P, const nj_t *c, double a0, double s, const double u0[2],
                      double u1[2])
@@ -546,11 +571,24 @@ static double frame_stuck_advance(sw_pkg_t *P, double t1, int *side)
         const int last = L >= t1 - tp;
         if (last) L = t1 - tp;
         const double tb = last ? t1 : tp + L;
-        const double lin = fmax(fabs(sw_input_ag(P->in, tp)) - ta * sw_input_geff(P, tp),
-                                fabs(sw_input_ag(P->in, tb)) - ta * sw_input_geff(P, tb));
+        nj_t c;
+        double y1[2], d1[2];
+        const double a_tp = sw_input_ag(P->in, tp), a_tb = sw_input_ag(P->in, tb);
+        nj_coef_cached(P, L, &c);
+        nj_state(P, &c, a_tp, s, y, y1);
+        nj_free(P, &c, d, d1);
+        /* Largest G = |W| - T on the piece, bounded two ways: |a_g| + |D|
+         * (good over long pieces once D has decayed), and the chord of W
+         * between its exact end values plus L^2/8 max|W''| with W'' = D''
+         * (good over short pieces, where a_g and D nearly cancel). */
+        const double T0 = ta * sw_input_geff(P, tp), T1 = ta * sw_input_geff(P, tb);
+        const double g_far = fmax(fabs(a_tp) - T0, fabs(a_tb) - T1) + nj_bound(P, d, L);
+        const double dd[2] = {-2.0 * zw * d[1] - w * w * d[0], 0.0};
+        const double ddd[2] = {dd[0], -2.0 * zw * dd[0] - w * w * d[1]};
+        const double g_near = fmax(fabs(a_tp + d[0]), fabs(a_tb + d1[0])) - fmin(T0, T1) +
+                              0.125 * L * L * nj_bound(P, ddd, L);
         double tu = -1.0;
-        int su = 0;
-        if (lin + nj_bound(P, d, L) >= 0.0) {
+        if (fmin(g_far, g_near) >= 0.0) {
             if (L > small) {
                 L *= 0.5;
                 continue;
@@ -558,30 +596,35 @@ static double frame_stuck_advance(sw_pkg_t *P, double t1, int *side)
             for (int k = 0; k < 2; k++) {
                 const nj_piece_t pc = {P, tp, {d[0], d[1]}, k == 0 ? 1.0 : -1.0};
                 const double r = nj_rise(&pc, L);
-                if (r >= 0.0 && (tu < 0.0 || r < tu)) {
-                    tu = r;
-                    su = k == 0 ? -1 : +1;
-                }
+                if (r >= 0.0 && (tu < 0.0 || r < tu)) tu = r;
             }
         }
-        nj_t c;
-        nj_coef(P, tu >= 0.0 ? tu : L, &c);
-        double y1[2], d1[2];
-        nj_state(P, &c, sw_input_ag(P->in, tp), s, y, y1);
-        y[0] = y1[0];
-        y[1] = y1[1];
-        if (tu >= 0.0) {
-            P->t = tp + tu;
+        for (int it = 0; tu >= 0.0; it++) {
+            /* Confirm on the state itself, as the rocking phase will see it
+             * (the search works on a_g + D, which rounds differently), moving
+             * on by a few ulps if needed: a package lifted a hair before the
+             * crossing is pushed the wrong way and lands at once. */
+            nj_t cu;
+            double yu[2];
+            nj_coef(P, tu, &cu);
+            nj_state(P, &cu, a_tp, s, y, yu);
+            P->y[P->iu] = yu[0];
+            P->y[P->idu] = yu[1];
+            const int now = sw_model_uplift_side(P, tp + tu);
+            if (now != 0) {
+                P->t = tp + tu;
+                *side = now;
+                return P->t;
+            }
             P->y[P->iu] = y[0];
             P->y[P->idu] = y[1];
-            *side = su;
-            return P->t;
+            if (tu >= L || it >= 40) break;
+            tu = fmin(L, tu + 4.0 * DBL_EPSILON * fmax(1.0, fabs(tp + tu)) * (double)(1L << it));
         }
-        if (!last) {
-            nj_free(P, &c, d, d1);
-            d[0] = d1[0];
-            d[1] = d1[1];
-        }
+        y[0] = y1[0];
+        y[1] = y1[1];
+        d[0] = d1[0];
+        d[1] = d1[1];
         tp = tb;
         L *= 2.0;
     }
@@ -763,6 +806,12 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
         if (P->phase == SW_PHASE_OVERTURNED) break;
         if (P->phase == SW_PHASE_STUCK && P->d.model == SW_MODEL_BARE) {
             int side;
+            if (P->hold) { /* see after_impact: stand for one step, then look again */
+                P->hold = 0;
+                if (t1 - P->t <= P->h) break;
+                P->t += P->h;
+                continue;
+            }
             const double tu = bare_uplift_time(P, P->t, t1, &side);
             if (tu < 0.0) break;
             P->t = tu;

@@ -64,11 +64,13 @@ int sw_model_rhs(double t, const double y[], double f[], void *pkg)
     const double s = P->side;
     const double th = y[P->ith], dth = y[P->idth];
 
+    /* A2 = s A1 exactly (s = +-1), so sin(A2) = s sin(A1): one angle,
+     * whose sin and cos the compiler computes in one sincos call. */
     if (P->d.model == SW_MODEL_BARE) {
         f[0] = dth;
         if (P->phase == SW_PHASE_ROCKING) {
-            const double A1 = P->d.alpha - s * th, A2 = s * P->d.alpha - th;
-            f[1] = -P->kR * (ge * sin(A2) + ag * cos(A1));
+            const double A1 = P->d.alpha - s * th;
+            f[1] = -P->kR * (ge * s * sin(A1) + ag * cos(A1));
         } else {
             f[1] = 0.0;
         }
@@ -79,8 +81,8 @@ int sw_model_rhs(double t, const double y[], double f[], void *pkg)
     f[P->iu] = y[P->idu];
     f[P->ith] = dth;
     if (P->phase == SW_PHASE_ROCKING) {
-        const double A1 = P->d.alpha - s * th, A2 = s * P->d.alpha - th;
-        const double c1 = cos(A1), s2 = sin(A2);
+        const double A1 = P->d.alpha - s * th;
+        const double c1 = cos(A1), s2 = s * sin(A1);
         const double gR = P->d.gamma * P->d.R;
         const double D = 1.0 - 0.75 * P->d.gamma * c1 * c1;
         f[P->idu] = (-F + gR * s2 * (P->kR * ge * c1 - dth * dth)) / D - ag;
@@ -160,9 +162,15 @@ void sw_model_from_state(sw_pkg_t *P, const sw_state_t *s)
     }
 }
 
+/* cos(alpha) = h/R exactly: no cos() per output sample. */
+static double cos_alpha(const sw_derived_t *d)
+{
+    return d->h / d->R;
+}
+
 double sw_margin_rocking(const sw_derived_t *d, double r, double theta, double theta_dot)
 {
-    const double ca = cos(d->alpha), one = 1.0 - ca;
+    const double ca = cos_alpha(d), one = 1.0 - ca;
     const double ath = fabs(theta);
     const double PE = (cos(d->alpha - ath) - ca) / one;
     const double KE = theta_dot * theta_dot / (2.0 * d->p * d->p * one);
@@ -178,7 +186,7 @@ double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 {
     const double A1 = d->alpha - fabs(s->theta);
     return (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
-           g_eff * d->R * (cos(A1) - cos(d->alpha));
+           g_eff * d->R * (cos(A1) - cos_alpha(d));
 }
 
 double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
@@ -187,13 +195,13 @@ double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
     const double A1 = d->alpha - fabs(s->theta);
     return 0.5 * s->u_dot * s->u_dot / d->gamma + d->R * cos(A1) * s->u_dot * s->theta_dot +
            (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
-           g_eff * d->R * (cos(A1) - cos(d->alpha)) +
+           g_eff * d->R * (cos(A1) - cos_alpha(d)) +
            0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
 }
 
 double sw_margin_bound_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 {
-    const double Eb = g_eff * d->R * (1.0 - cos(d->alpha));
+    const double Eb = g_eff * d->R * (1.0 - cos_alpha(d));
     const double m = 1.0 - sw_energy_frame(d, g_eff, s) / Eb;
     return fabs(s->theta) < d->alpha ? m : fmin(m, 0.0);
 }
@@ -205,7 +213,8 @@ void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o)
     o->t = t;
     sw_model_to_state(P, &o->state);
     const double ge = sw_input_geff(P, t);
-    sw_model_rhs(t, P->y, f, (void *)P);
+    if (P->d.model == SW_MODEL_BARE) f[0] = f[1] = 0.0; /* the support is the bed */
+    else sw_model_rhs(t, P->y, f, (void *)P);
     o->a_g = sw_input_ag(P->in, t);
     o->a_support = sw_model_support_accel(P, t, f);
     o->uplift_ratio = fabs(o->a_support) / (P->tan_alpha * P->g);
