@@ -355,6 +355,7 @@ static int cmd_run(int quick, int runs, const char *data)
             dat = fopen(path, "w");
             if (dat) fprintf(dat, "# scheme dt rtol ns_per_sample err_theta err_tover agree total\n");
         }
+        cres_t all[NCFGS];
         for (size_t c = 0; c < NCFGS; c++) {
             const bcfg_t *C = &cfgs[c];
             char lab[64];
@@ -393,6 +394,7 @@ static int cmd_run(int quick, int runs, const char *data)
             char dts[32];
             if (C->rtol > 0) snprintf(dts, sizeof dts, "rtol %.0e", C->rtol);
             else snprintf(dts, sizeof dts, "%.2g", C->dt);
+            all[c] = R;
             printf("| %s | %s | %.0f | %.0f | %.2f | %s | %s | %d / %d | %d |\n", C->scheme, dts,
                    R.ns_sample, ns_step, steps_ps, e1, e2, R.agree, R.total, R.faults);
             fflush(stdout);
@@ -402,7 +404,35 @@ static int cmd_run(int quick, int runs, const char *data)
                         R.acc_flips ? 1.0 : fmax(R.err_tover, 1e-16), R.agree, R.total);
         }
         if (dat) fclose(dat);
-        printf("\n");
+        /* the accuracy option's table: per decade of tolerance the cheapest
+         * setting whose max-theta error was at most half of it (adaptive
+         * schemes only at the engine's default rtol 1e-10) */
+        printf("\nAccuracy option rows for `%s` (src/lib/accuracy.c):\n\n```\n",
+               models[m].name);
+        const char *prev = NULL;
+        double prev_dt = -1.0;
+        for (int e10 = -2; e10 >= -15; e10--) {
+            const double tol = pow(10.0, e10);
+            int best = -1;
+            for (size_t c = 0; c < NCFGS; c++) {
+                const cres_t *R = &all[c];
+                if (R->acc_flips || R->faults || R->agree < R->total) continue;
+                if (cfgs[c].rtol > 0 && cfgs[c].rtol != 1e-10) continue;
+                if (!(R->err_theta <= 0.5 * tol)) continue;
+                if (best < 0 || R->ns_sample < all[best].ns_sample) best = (int)c;
+            }
+            if (best < 0) break;
+            const double dtv = cfgs[best].rtol > 0 ? 0.0 : cfgs[best].dt;
+            if (prev && !strcmp(prev, cfgs[best].scheme) && prev_dt == dtv) {
+                printf("    (also %.0e)\n", tol);
+                continue;
+            }
+            printf("    {SW_MODEL_%s, %.0e, \"%s\", %g},\n",
+                   d.model == SW_MODEL_FRAME ? "FRAME" : "BARE", tol, cfgs[best].scheme, dtv);
+            prev = cfgs[best].scheme;
+            prev_dt = dtv;
+        }
+        printf("```\n\n");
     }
 
     /* ---- an hour of road ---- */

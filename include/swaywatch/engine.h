@@ -153,6 +153,16 @@ int sw_scheme_order(const sw_scheme_t *s);
 int sw_scheme_adaptive(const sw_scheme_t *s);
 double sw_scheme_default_dt(const sw_scheme_t *s); /* s */
 
+/* Accuracy option: the cheapest scheme and internal step dt (s; 0 = the
+ * scheme's default, for the adaptive ones) that kept the error of max|theta|
+ * within theta_tol (rad) in the benchmark of docs/accuracy-speed.md, for the
+ * model's reference scene (errors of fixed steps grow as (p dt)^order: a
+ * package rocking faster than that scene needs a tighter tolerance).
+ * *scheme is a static string for sw_engine_opts_t.scheme.  Returns SW_OK,
+ * SW_ENOTFOUND when theta_tol is tighter than any setting measured, or
+ * SW_EINVAL (theta_tol not > 0, NULL pointers, a model without a table). */
+int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const char **scheme, double *dt);
+
 #define SW_DEFAULT_SCHEME "rk4"
 #define SW_DEFAULT_DT 1e-3
 

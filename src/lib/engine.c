@@ -582,13 +582,14 @@ static double frame_stuck_advance(sw_pkg_t *P, double t1, int *side)
          * between its exact end values plus L^2/8 max|W''| with W'' = D''
          * (good over short pieces, where a_g and D nearly cancel). */
         const double T0 = ta * sw_input_geff(P, tp), T1 = ta * sw_input_geff(P, tb);
-        const double g_far = fmax(fabs(a_tp) - T0, fabs(a_tb) - T1) + nj_bound(P, d, L);
-        const double dd[2] = {-2.0 * zw * d[1] - w * w * d[0], 0.0};
-        const double ddd[2] = {dd[0], -2.0 * zw * dd[0] - w * w * d[1]};
-        const double g_near = fmax(fabs(a_tp + d[0]), fabs(a_tb + d1[0])) - fmin(T0, T1) +
-                              0.125 * L * L * nj_bound(P, ddd, L);
+        const double dd = -2.0 * zw * d[1] - w * w * d[0]; /* D'' and its rate */
+        const double ddd[2] = {dd, -2.0 * zw * dd - w * w * d[1]};
+        const int clear =
+            fmax(fabs(a_tp + d[0]), fabs(a_tb + d1[0])) - fmin(T0, T1) +
+                    0.125 * L * L * nj_bound(P, ddd, L) < 0.0 ||
+            fmax(fabs(a_tp) - T0, fabs(a_tb) - T1) + nj_bound(P, d, L) < 0.0;
         double tu = -1.0;
-        if (fmin(g_far, g_near) >= 0.0) {
+        if (!clear) {
             if (L > small) {
                 L *= 0.5;
                 continue;

@@ -192,10 +192,11 @@ double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 {
     if (d->gamma <= 0.0) return sw_energy_bare(d, g_eff, s);
-    const double A1 = d->alpha - fabs(s->theta);
-    return 0.5 * s->u_dot * s->u_dot / d->gamma + d->R * cos(A1) * s->u_dot * s->theta_dot +
+    /* upright (stuck, most of the time): no cos() */
+    const double cA1 = s->theta == 0.0 ? cos_alpha(d) : cos(d->alpha - fabs(s->theta));
+    return 0.5 * s->u_dot * s->u_dot / d->gamma + d->R * cA1 * s->u_dot * s->theta_dot +
            (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
-           g_eff * d->R * (cos(A1) - cos_alpha(d)) +
+           g_eff * d->R * (cA1 - cos_alpha(d)) +
            0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
 }
 

@@ -1,0 +1,100 @@
+#!/bin/sh
+# Regenerate docs/accuracy-speed.md's measured part and docs/img/pareto.png:
+# build with the benchmarks, run sw_bench, time CSV replay of an hour-long
+# 1 kHz log (and ten hours, for peak memory), record the machine.
+#   scripts/run-bench.sh           full run (about half an hour on 2 vCPU)
+#   QUICK=1 scripts/run-bench.sh   a smoke run (shorter workloads, 1 run)
+# Uses gnuplot; times the swaywatch replay command as well when it exists.
+set -eu
+cd "$(dirname "$0")/.."
+BUILD=${BUILD:-build}
+RUNS=${RUNS:-5}
+DOC=docs/accuracy-speed.md
+cmake -S . -B "$BUILD" -DSW_WERROR=ON -DSW_BUILD_BENCH=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$BUILD" -j 2 --target sw_bench
+B="$BUILD/bench/sw_bench"
+TMP=$(mktemp -d /tmp/sw-bench.XXXXXX)
+trap 'rm -rf "$TMP"' EXIT
+OUT="$TMP/results.md"
+
+{
+    echo "Measured $(date -u '+%Y-%m-%d %H:%M UTC') on $(lscpu | sed -n 's/^Model name: *//p'),"
+    echo "$(nproc) vCPU, $(uname -sr), $(cc --version | head -1), build type RelWithDebInfo (-O2)."
+    echo "Load average at the start: $(cut -d' ' -f1-3 /proc/loadavg)"
+    echo "(a load above 1 means the machine was shared with other work while measuring)."
+    echo
+} >"$OUT"
+
+if [ -n "${QUICK:-}" ]; then
+    "$B" run --quick --runs 1 --data "$TMP" >>"$OUT"
+    HOURS=0.1
+else
+    "$B" run --runs "$RUNS" --data "$TMP" >>"$OUT"
+    HOURS=1
+fi
+
+# ---- CSV replay: parse + engine, end to end --------------------------------
+median() { sort -g | awk '{v[NR]=$1} END {print (NR%2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2)}'; }
+"$B" gen-csv --hours "$HOURS" >"$TMP/road.csv"
+rows=$(($(wc -l <"$TMP/road.csv") - 1))
+{
+    echo "### CSV replay of the road log ($rows rows, $(du -m "$TMP/road.csv" | cut -f1) MB)"
+    echo
+    echo "Wall time from the first byte read to the last sample integrated, CSV"
+    echo "parsing included; median of $RUNS runs.  'max RSS' is the process's peak"
+    echo "resident memory; the 10x row streams ten times the log through a pipe."
+    echo
+    echo "| path | model | rows | wall (s) | ns per row | max RSS (KiB) |"
+    echo "|---|---|---|---|---|---|"
+} >>"$OUT"
+for m in bare frame; do
+    : >"$TMP/t"
+    for _ in $(seq "$RUNS"); do
+        "$B" replay-csv "$TMP/road.csv" --model "$m" >"$TMP/r"
+        sed -n 's/.* wall \([0-9.]*\) s.*/\1/p' "$TMP/r" >>"$TMP/t"
+    done
+    w=$(median <"$TMP/t")
+    rss=$(sed -n 's/.*max_rss_kib \([0-9]*\).*/\1/p' "$TMP/r")
+    echo "| library (sw_csv + engine, file) | $m | $rows | $w | $(awk -v w="$w" -v n="$rows" 'BEGIN{printf "%.0f", 1e9*w/n}') | $rss |" >>"$OUT"
+    for k in 1 10; do
+        h=$(awk -v h="$HOURS" -v k="$k" 'BEGIN{print h*k}')
+        "$B" gen-csv --hours "$h" | "$B" replay-csv - --model "$m" >"$TMP/r"
+        n=$(sed -n 's/.* rows \([0-9]*\) .*/\1/p' "$TMP/r")
+        w=$(sed -n 's/.* wall \([0-9.]*\) s.*/\1/p' "$TMP/r")
+        rss=$(sed -n 's/.*max_rss_kib \([0-9]*\).*/\1/p' "$TMP/r")
+        echo "| library, ${k}x log through a pipe | $m | $n | $w | $(awk -v w="$w" -v n="$n" 'BEGIN{printf "%.0f", 1e9*w/n}') | $rss |" >>"$OUT"
+    done
+done
+SW="$BUILD/swaywatch"
+if cmake --build "$BUILD" -j 2 --target swaywatch-cli >/dev/null 2>&1 && "$SW" replay --help >/dev/null 2>&1; then
+    for m in bare frame; do
+        : >"$TMP/t"
+        for _ in $(seq "$RUNS"); do
+            /usr/bin/time -f "%e %M" -o "$TMP/tm" "$SW" replay "$TMP/road.csv" \
+                --scene "tests/scenes/crate-a-$m.ini" >/dev/null
+            cat "$TMP/tm" >>"$TMP/t"
+        done
+        w=$(cut -d' ' -f1 "$TMP/t" | median)
+        rss=$(cut -d' ' -f2 "$TMP/t" | sort -n | tail -1)
+        echo "| \`swaywatch replay\` (whole process) | $m | $rows | $w | $(awk -v w="$w" -v n="$rows" 'BEGIN{printf "%.0f", 1e9*w/n}') | $rss |" >>"$OUT"
+    done
+else
+    echo "| \`swaywatch replay\` | - | - | not built in this tree | | |" >>"$OUT"
+fi
+echo >>"$OUT"
+echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)." >>"$OUT"
+
+# ---- plot --------------------------------------------------------------------
+for m in bare frame; do
+    # Pareto front: settings sorted by cost, keeping each that beats every cheaper one
+    grep -v '^#' "$TMP/pareto-$m.dat" | sort -k4,4g |
+        awk 'BEGIN{best=2} $5<best {best=$5; print $4, $5}' >"$TMP/front-$m.dat"
+done
+gnuplot -e "dir='$TMP'; out='docs/img/pareto.png'" bench/pareto.gp
+
+# ---- splice into the document -------------------------------------------------
+awk -v res="$OUT" '
+    /<!-- results:begin -->/ {print; while ((getline l < res) > 0) print l; skip=1; next}
+    /<!-- results:end -->/ {skip=0}
+    !skip {print}' "$DOC" >"$TMP/doc" && cp "$TMP/doc" "$DOC"
+echo "run-bench: updated $DOC and docs/img/pareto.png" >&2
