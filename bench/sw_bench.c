@@ -484,7 +484,7 @@ static int cmd_run(int quick, int runs, const char *data)
             fflush(stdout);
         }
         if (isfinite(base_wall) && isfinite(def_wall))
-            printf("| %s | **baseline / default** | | **%.0f x** | | | | | | |\n", models[m].name,
+            printf("| %s | **baseline / default** | | **%.2f x** | | | | | | |\n", models[m].name,
                    base_wall / def_wall);
     }
     printf("\nPeak memory of this benchmark process (max RSS): %ld KiB.\n\n", max_rss_kib());
