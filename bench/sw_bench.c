@@ -5,6 +5,8 @@
  *   sw_bench run [--quick] [--runs N] [--data DIR]   all measurements
  *   sw_bench gen-csv [--hours H] [--seed S]          the road log as CSV
  *   sw_bench replay-csv FILE|- [--model bare|frame]  CSV parse + engine
+ *   sw_bench rock|road|baseline|gen [--model M] [--scheme S] [--dt DT]
+ *            [--rtol R] [--stepped] [--seconds N]   one workload (profiling)
  *
  * What "run" measures, per model (table below) and scheme setting:
  * - cost while rocking: the package is kept rocking (free rocking from
@@ -345,9 +347,9 @@ static int cmd_run(int quick, int runs, const char *data)
         printf("; at 1.1 x boundary: overturn time (s) =");
         for (int k = 0; k < NW; k++) printf(" %.4f", ref_acc[k][1].t_over);
         printf(".\n\n");
-        printf("| scheme | dt (s) / rtol | ns per sample (rocking) | ns per step | steps per "
-               "sample | max-theta error (rad) | overturn-time error (s) | decisions agreeing "
-               "| faults |\n|---|---|---|---|---|---|---|---|---|\n");
+        printf("| scheme | dt (s) / rtol | ns per sample (rocking) | ns per step | M steps/s | "
+               "steps per sample | max-theta error (rad) | overturn-time error (s) | decisions "
+               "agreeing | faults |\n|---|---|---|---|---|---|---|---|---|---|\n");
         FILE *dat = NULL;
         if (data) {
             char path[512];
@@ -395,8 +397,9 @@ static int cmd_run(int quick, int runs, const char *data)
             if (C->rtol > 0) snprintf(dts, sizeof dts, "rtol %.0e", C->rtol);
             else snprintf(dts, sizeof dts, "%.2g", C->dt);
             all[c] = R;
-            printf("| %s | %s | %.0f | %.0f | %.2f | %s | %s | %d / %d | %d |\n", C->scheme, dts,
-                   R.ns_sample, ns_step, steps_ps, e1, e2, R.agree, R.total, R.faults);
+            printf("| %s | %s | %.0f | %.0f | %.2f | %.2f | %s | %s | %d / %d | %d |\n", C->scheme,
+                   dts, R.ns_sample, ns_step, 1e3 / ns_step, steps_ps, e1, e2, R.agree, R.total,
+                   R.faults);
             fflush(stdout);
             if (dat)
                 fprintf(dat, "%s %g %g %.1f %.3e %.3e %d %d\n", C->scheme, C->dt, C->rtol,
@@ -422,6 +425,13 @@ static int cmd_run(int quick, int runs, const char *data)
                 if (best < 0 || R->ns_sample < all[best].ns_sample) best = (int)c;
             }
             if (best < 0) break;
+            /* timings on a shared machine are noisy: keep the default when it
+             * meets the tolerance and is within 25 % of the cheapest */
+            for (size_t c = 0; c < NCFGS; c++)
+                if (!strcmp(cfgs[c].scheme, SW_DEFAULT_SCHEME) && cfgs[c].dt == SW_DEFAULT_DT &&
+                    !all[c].acc_flips && !all[c].faults && all[c].agree == all[c].total &&
+                    all[c].err_theta <= 0.5 * tol && all[c].ns_sample <= 1.25 * all[best].ns_sample)
+                    best = (int)c;
             const double dtv = cfgs[best].rtol > 0 ? 0.0 : cfgs[best].dt;
             if (prev && !strcmp(prev, cfgs[best].scheme) && prev_dt == dtv) {
                 printf("    (also %.0e)\n", tol);
@@ -591,6 +601,10 @@ static int cmd_one(const char *what, const char *model, const bcfg_t *C, int ste
     }
     bench_log_t log;
     if (bench_log_make(&log, seconds, RATE, 20240611ULL) != 0) return 1;
+    if (!strcmp(what, "gen")) { /* the log alone, to subtract its cost */
+        bench_log_free(&log);
+        return 0;
+    }
     sw_summary_t s;
     const double el = !strcmp(what, "baseline") ? (bench_baseline_run(&sc, &log, 1e-8, &s), 0.0)
                                                 : run_road(&sc, C, stepped, &log, &s);
@@ -605,7 +619,7 @@ static void usage(FILE *f)
     fprintf(f, "usage: sw_bench run [--quick] [--runs N] [--data DIR]\n"
                "       sw_bench gen-csv [--hours H] [--seed S]\n"
                "       sw_bench replay-csv FILE|- [--model bare|frame]\n"
-               "       sw_bench rock|road|baseline [--model M] [--scheme S] [--dt DT] "
+               "       sw_bench rock|road|baseline|gen [--model M] [--scheme S] [--dt DT] "
                "[--rtol R] [--stepped] [--seconds N]\n");
 }
 
@@ -655,7 +669,8 @@ int main(int argc, char **argv)
     if (runs < 1 || runs > 64) runs = 5;
     if (!strcmp(cmd, "run")) return cmd_run(quick, runs, data);
     if (!strcmp(cmd, "gen-csv")) return cmd_gen_csv(hours, seed);
-    if (!strcmp(cmd, "rock") || !strcmp(cmd, "road") || !strcmp(cmd, "baseline"))
+    if (!strcmp(cmd, "rock") || !strcmp(cmd, "road") || !strcmp(cmd, "baseline") ||
+        !strcmp(cmd, "gen"))
         return cmd_one(cmd, model, &one, stepped, seconds);
     if (!strcmp(cmd, "replay-csv") && optind < argc) return cmd_replay_csv(argv[optind], model);
     usage(stderr);

@@ -82,6 +82,37 @@ else
     echo "| \`swaywatch replay\` | - | - | not built in this tree | | |" >>"$OUT"
 fi
 echo >>"$OUT"
+
+# ---- instruction counts (callgrind): noise-free, per sample -------------------
+if command -v valgrind >/dev/null 2>&1; then
+    # instructions of one workload per input sample: difference of 25 s and 5 s
+    ipc() {
+        a=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null "$B" "$@" --seconds 5 2>&1 |
+            sed -n 's/.*refs: *//p' | tr -d ,)
+        b=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null "$B" "$@" --seconds 25 2>&1 |
+            sed -n 's/.*refs: *//p' | tr -d ,)
+        echo $(((b - a) / 20000))
+    }
+    gen=$(ipc gen)
+    {
+        echo "### Instructions per input sample (callgrind)"
+        echo
+        echo "Counted, not timed: the same on a busy or an idle machine.  Road rows have"
+        echo "the cost of generating the log ($gen per sample) subtracted."
+        echo
+        echo "| workload | model | instructions per sample |"
+        echo "|---|---|---|"
+        for m in bare frame; do
+            echo "| rocking, rk4 dt 1e-3 (one step per sample) | $m | $(ipc rock --model $m --dt 1e-3) |"
+            echo "| rocking, rk4 dt 1e-4 (ten steps per sample) | $m | $(ipc rock --model $m --dt 1e-4) |"
+            echo "| road, default (rk4 dt 1e-3) | $m | $(($(ipc road --model $m) - gen)) |"
+            [ "$m" = frame ] &&
+                echo "| road, rk4 dt 1e-3, stuck frame stepped | $m | $(($(ipc road --model $m --stepped) - gen)) |"
+            echo "| road, GSL driver baseline | $m | $(($(ipc baseline --model $m) - gen)) |"
+        done
+        echo
+    } >>"$OUT"
+fi
 echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)." >>"$OUT"
 
 # ---- plot --------------------------------------------------------------------
