@@ -254,6 +254,34 @@ static void test_bad_samples(void **state)
     sw_engine_destroy(NULL);
 }
 
+/* A vertical acceleration a_z changes gravity to g + a_z in every gravity
+ * term: with the bed dropping at 0.5 g the uplift threshold halves; below
+ * -g the package is airborne, outside the model: a fault, never integrated. */
+static void test_vertical_acceleration(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = crate();
+    const double thr = G * tan(alpha_of(2.0, 0.728));
+    for (int k = 0; k < 3; k++) {
+        const double az = k == 0 ? 0.0 : (k == 1 ? -0.5 * G : -1.2 * G);
+        tu_events_t rec = {0};
+        sw_engine_t *e = tu_engine(&sc, "rk4", 1e-3, &rec);
+        for (int i = 0; i <= 100; i++) sw_engine_push(e, i * 1e-3, -0.6 * thr, az);
+        sw_summary_t s;
+        sw_engine_summary(e, 0, &s);
+        if (k == 0) assert_int_equal(s.uplifts, 0); /* 0.6 of the threshold */
+        if (k == 1) assert_int_equal(s.uplifts, 1); /* 1.2 of the halved threshold */
+        if (k == 2) {
+            assert_true(s.faults > 0);
+            assert_int_equal(s.uplifts, 0);
+            const sw_event_t *f = tu_first(&rec, SW_EV_FAULT);
+            assert_non_null(f);
+            assert_true(isfinite(f->theta) && isfinite(f->margin));
+        }
+        sw_engine_destroy(e);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -261,6 +289,7 @@ int main(void)
         cmocka_unit_test(test_uplift_threshold), cmocka_unit_test(test_uplift_between_samples),
         cmocka_unit_test(test_free_rocking),     cmocka_unit_test(test_grid_independence),
         cmocka_unit_test(test_overturn_and_tip), cmocka_unit_test(test_bad_samples),
+        cmocka_unit_test(test_vertical_acceleration),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -46,7 +46,7 @@ struct sw_engine {
     int events;     /* events reported during the current call */
 };
 
-enum { EV_NONE = 0, EV_IMPACT, EV_OVERTURN, EV_UPLIFT_FWD, EV_UPLIFT_BACK, EV_TIP };
+enum { EV_NONE = 0, EV_IMPACT, EV_OVERTURN, EV_UPLIFT_FWD, EV_UPLIFT_BACK, EV_TIP, EV_TURN };
 
 /* ---- reporting -------------------------------------------------------- */
 
@@ -134,6 +134,10 @@ static void event_fn(const sw_pkg_t *P, int ev, double t, const double y[], cons
         *val = s * y[P->ith] - P->d.alpha;
         *der = s * f[P->ith];
         return;
+    case EV_TURN: /* the package stops swinging outward: the peak of |theta| */
+        *val = -s * y[P->idth];
+        *der = -s * f[P->idth];
+        return;
     default: {
         /* frame stuck: support acceleration W = -(2 z w u' + w^2 u) against
          * the uplift threshold T = tan(alpha) g_eff */
@@ -198,8 +202,8 @@ static int herm_crit(const herm_t *H, double x[2])
     return m;
 }
 
-/* Earliest tau in (0, 1] where H rises through 0 from below (H(0) = 0
- * counts as below: the caller handles a function already rising at 0).  A
+/* Earliest tau in (0, 1] where H rises through 0 from below (the caller
+ * handles a function already rising at 0).  A
  * rise must reach tol, so round-off in a function that only touches 0 (a
  * package just lifted, theta = theta' = 0) is not taken for an event.
  * Returns -1 if none. */
@@ -215,6 +219,10 @@ static double herm_first_rise(const herm_t *H, double tol)
     for (int i = 0; i + 1 < nk; i++) {
         double a = knots[i], b = knots[i + 1];
         const double va = herm_at(H, a), vb = herm_at(H, b);
+        /* A rise straight from an exact 0 at the start (a package just
+         * lifted or just landed, whose true motion starts the other way by
+         * construction) is the interpolant's artefact, not a crossing. */
+        if (i == 0 && va == 0.0) continue;
         if (!(va <= 0.0 && vb >= tol)) continue;
         for (int it = 0; it < 64 && b - a > 1e-16; it++) { /* monotone piece */
             const double m = 0.5 * (a + b);
@@ -260,10 +268,16 @@ static void start_rocking(sw_engine_t *e, sw_pkg_t *P, double t, int side)
 /* After an impact: the cascade ends (rest) when the rebound energy is below
  * rest_eps of the barrier; the package then stands, or starts to rock again
  * at once if its support is still beyond the uplift threshold. */
+/* Kinetic energy of theta' below rest_eps of the energy barrier? */
+static int below_rest(const sw_engine_t *e, const sw_pkg_t *P, double theta_dot)
+{
+    const double p = P->d.p;
+    return 0.5 * theta_dot * theta_dot / (p * p) < e->rest_eps * (1.0 - cos(P->d.alpha));
+}
+
 static void after_impact(sw_engine_t *e, sw_pkg_t *P, double t)
 {
-    const double p = P->d.p, dth = P->y[P->idth];
-    if (0.5 * dth * dth / (p * p) >= e->rest_eps * (1.0 - cos(P->d.alpha))) return;
+    if (!below_rest(e, P, P->y[P->idth])) return;
     P->y[P->idth] = 0.0;
     const int side = sw_model_uplift_side(P, t);
     if (side != 0 && t == P->t_lift) {
@@ -635,6 +649,9 @@ static double frame_stuck_advance(sw_pkg_t *P, double t1, int *side)
     return -1.0;
 }
 
+static double polish(sw_engine_t *e, sw_pkg_t *P, int ev, double t0, double h, const double y0[],
+                     double tau, double y[]);
+
 /* Earliest cutting event inside the step (t0,y0) -> (t0+h,y1), with the
  * Hermite interpolants; also times the tip and tracks max |theta|. */
 static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const double y0[],
@@ -686,11 +703,18 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
     }
     const double lim = best == EV_NONE ? 1.0 : best_tau;
     if (maxcand) {
-        const herm_t H = herm_make(y0[P->ith], y0[P->idth], y1[P->ith], y1[P->idth], h);
-        double x[2];
-        const int k = herm_crit(&H, x);
-        for (int i = 0; i < k; i++)
-            if (x[i] <= lim) track_theta(P, herm_at(&H, x[i]));
+        /* the peak: where theta' changes sign, polished by re-stepping so
+         * that max |theta| is as accurate as the scheme, even for long
+         * adaptive steps */
+        double v0, d0, v1, d1, yt[SW_NMAX];
+        event_fn(P, EV_TURN, t0, y0, f0, &v0, &d0);
+        event_fn(P, EV_TURN, t1, y1, f1, &v1, &d1);
+        const herm_t H = herm_make(v0, d0, v1, d1, h);
+        const double tau = herm_first_rise(&H, 0.0);
+        if (tau > 0.0 && tau <= lim) {
+            polish(e, P, EV_TURN, t0, h, y0, tau, yt);
+            track_theta(P, yt[P->ith]);
+        }
     }
     if (tipcand) {
         double v0, d0, v1, d1;
@@ -756,6 +780,15 @@ static void handle_event(sw_engine_t *e, sw_pkg_t *P, int ev, double t)
     switch (ev) {
     case EV_IMPACT: {
         const double before = P->y[P->idth];
+        if (below_rest(e, P, before)) {
+            /* arriving with less than the rest energy: a landing, not an
+             * impact (the step's round-off after a lift, or the end of a
+             * cascade) */
+            P->y[P->ith] = 0.0;
+            P->y[P->idth] = 0.0;
+            after_impact(e, P, t);
+            break;
+        }
         P->y[P->ith] = 0.0;
         sw_model_impact(P);
         P->beyond_alpha = 0;
@@ -1028,6 +1061,10 @@ out_fail:
 static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
 {
     P->t = t;
+    if (!(sw_input_geff(P, t) > 0.0)) {
+        fault(e, P, t, SW_EFAULT);
+        return;
+    }
     if (P->d.model != SW_MODEL_BARE || P->phase != SW_PHASE_STUCK) return;
     const int side = sw_model_uplift_side(P, t);
     if (side) start_rocking(e, P, t, side);

@@ -136,7 +136,9 @@ int sw_model_uplift_side(const sw_pkg_t *P, double t)
     /* While stuck the support's acceleration is a_g (bare) or a_g + u'' =
      * -(2 zeta_b w_b u' + w_b^2 u) (frame); it does not depend on theta. */
     const double A = P->d.model == SW_MODEL_BARE ? sw_input_ag(P->in, t) : -bearing(P, P->y);
-    const double thr = P->tan_alpha * sw_input_geff(P, t);
+    const double ge = sw_input_geff(P, t);
+    if (!(ge > 0.0)) return 0; /* airborne: outside the model (the engine faults) */
+    const double thr = P->tan_alpha * ge;
     if (A <= -thr) return +1; /* braking tips the top forward */
     if (A >= thr) return -1;
     return 0;
