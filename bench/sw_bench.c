@@ -10,8 +10,8 @@
  *
  * What "run" measures, per model (table below) and scheme setting:
  * - cost while rocking: the package is kept rocking (free rocking from
- *   0.9 alpha, restarted when it comes to rest) under 1 kHz samples; ns per
- *   input sample and per internal step, median of --runs runs;
+ *   0.9 alpha, restarted when it comes to rest) under 1 kHz samples; CPU ns
+ *   per input sample and per internal step, median of --runs runs;
  * - accuracy on pulses: half-sine braking pulses at 0.9 and 1.1 times the
  *   overturning boundary for four omega_e/p, sampled at 1 kHz; error of
  *   max|theta| (survivors) and of the overturn time (overturners) against
@@ -156,6 +156,15 @@ static double now(void)
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+/* CPU time of this process: leaves out the time it waited while other
+ * work ran on a shared machine (wall time is reported beside it). */
+static double cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
 static int cmp_dbl(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -208,7 +217,7 @@ static prun_t run_pulse(const sw_scene_t *sc, const bcfg_t *c, double ratio, dou
 
 /* Keep the package rocking for `seconds` of 1 kHz zero input: free rocking
  * from 0.9 alpha, alternately forward and back, restarted at rest.  Returns
- * the wall time; steps and samples through the pointers. */
+ * the CPU time; steps and samples through the pointers. */
 static double run_rocking(const sw_scene_t *sc, const bcfg_t *c, double seconds, long *steps,
                           long *samples)
 {
@@ -218,7 +227,7 @@ static double run_rocking(const sw_scene_t *sc, const bcfg_t *c, double seconds,
     const sw_derived_t *d = sw_engine_derived(e, 0);
     const long n = (long)(seconds * RATE);
     int side = 1;
-    const double t0 = now();
+    const double t0 = cpu_now();
     sw_engine_push(e, 0.0, 0.0, 0.0);
     for (long i = 1; i <= n; i++) {
         if (!w.moving) {
@@ -232,7 +241,7 @@ static double run_rocking(const sw_scene_t *sc, const bcfg_t *c, double seconds,
         }
         sw_engine_push(e, i / RATE, 0.0, 0.0);
     }
-    const double el = now() - t0;
+    const double el = cpu_now() - t0;
     sw_summary_t s;
     sw_engine_summary(e, 0, &s);
     *steps = s.steps;
@@ -241,15 +250,17 @@ static double run_rocking(const sw_scene_t *sc, const bcfg_t *c, double seconds,
     return el;
 }
 
-/* The hour of road through one engine; wall time, summary. */
+/* The hour of road through one engine; CPU time (wall time in *wall),
+ * summary. */
 static double run_road(const sw_scene_t *sc, const bcfg_t *c, int stepped, const bench_log_t *log,
-                       sw_summary_t *s)
+                       sw_summary_t *s, double *wall)
 {
     sw_engine_t *e = engine(sc, c, stepped, NULL);
     if (!e) return NAN;
-    const double t0 = now();
+    const double w0 = now(), t0 = cpu_now();
     for (size_t i = 0; i < log->n; i++) sw_engine_push(e, log->t[i], log->a[i], 0.0);
-    const double el = now() - t0;
+    const double el = cpu_now() - t0;
+    if (wall) *wall = now() - w0;
     sw_engine_summary(e, 0, s);
     sw_engine_destroy(e);
     return el;
@@ -382,9 +393,12 @@ static int cmd_run(int quick, int runs, const char *data)
                 }
             }
             double tw[64], steps_ps = 0.0, ns_step = 0.0;
+            /* about the same number of steps for every setting */
+            const double per = C->dt > 0.0 && C->dt < 1e-3 ? 1e-3 / C->dt : 1.0;
+            const double secs = fmax(rock_s / per, fmin(rock_s, 10.0));
             for (int r = 0; r < runs; r++) {
                 long st = 0, sa = 1;
-                tw[r] = run_rocking(&sc, C, rock_s, &st, &sa);
+                tw[r] = run_rocking(&sc, C, secs, &st, &sa);
                 tw[r] /= (double)sa;
                 steps_ps = (double)st / sa;
             }
@@ -450,9 +464,12 @@ static int cmd_run(int quick, int runs, const char *data)
     bench_log_t log;
     if (bench_log_make(&log, road_s, RATE, 20240611ULL) != 0) return 1;
     printf("### %.0f s of road at 1 kHz (%zu samples, in memory)\n\n", road_s, log.n);
-    printf("Median of %d runs.  Real-time factor = log duration / wall time.\n\n", runs);
-    printf("| model | setting | wall (s) | ns per sample | real-time factor | steps | uplifts "
-           "| impacts | max theta / alpha | overturned |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    printf("Median of %d runs.  CPU time of the process; ns per sample and the "
+           "real-time factor (log duration / time) from it.\n\n",
+           runs);
+    printf("| model | setting | CPU (s) | wall (s) | ns per sample | real-time factor | steps | "
+           "uplifts | impacts | max theta / alpha | overturned |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (size_t m = 0; m < NMODELS; m++) {
         const sw_scene_t sc = models[m].scene();
         sw_derived_t d;
@@ -470,31 +487,32 @@ static int cmd_run(int quick, int runs, const char *data)
             }
             if (stepped && d.model != SW_MODEL_FRAME) continue;
             if (base && !models[m].baseline) continue;
-            double tw[64];
+            double tw[64], tc[64];
             sw_summary_t s;
             for (int r = 0; r < runs; r++) {
                 if (base) {
-                    const double t0 = now();
+                    const double w0 = now(), t0 = cpu_now();
                     bench_baseline_run(&sc, &log, 1e-8, &s);
-                    tw[r] = now() - t0;
+                    tc[r] = cpu_now() - t0;
+                    tw[r] = now() - w0;
                 } else {
-                    tw[r] = run_road(&sc, &C, stepped, &log, &s);
+                    tc[r] = run_road(&sc, &C, stepped, &log, &s, &tw[r]);
                 }
             }
-            const double wall = median(tw, runs);
+            const double wall = median(tw, runs), cpu = median(tc, runs);
             char lab[96];
             if (base) snprintf(lab, sizeof lab, "GSL driver baseline (rkf45, eps 1e-8)");
             else if (stepped) snprintf(lab, sizeof lab, "rk4 dt 0.001, stuck frame stepped");
             else cfg_label(&C, lab, sizeof lab);
-            if (base) base_wall = wall;
-            if (!base && !stepped && !strcmp(C.scheme, "rk4") && C.dt == 1e-3) def_wall = wall;
-            printf("| %s | %s | %.3f | %.1f | %.0f | %ld | %ld | %ld | %.4f | %s |\n",
-                   models[m].name, lab, wall, 1e9 * wall / log.n, road_s / wall, s.steps,
+            if (base) base_wall = cpu;
+            if (!base && !stepped && !strcmp(C.scheme, "rk4") && C.dt == 1e-3) def_wall = cpu;
+            printf("| %s | %s | %.3f | %.3f | %.1f | %.0f | %ld | %ld | %ld | %.4f | %s |\n",
+                   models[m].name, lab, cpu, wall, 1e9 * cpu / log.n, road_s / cpu, s.steps,
                    s.uplifts, s.impacts, s.max_theta_ratio, s.overturned ? "yes" : "no");
             fflush(stdout);
         }
         if (isfinite(base_wall) && isfinite(def_wall))
-            printf("| %s | **baseline / default** | | **%.2f x** | | | | | | |\n", models[m].name,
+            printf("| %s | **baseline / default** | | | **%.2f x** | | | | | | |\n", models[m].name,
                    base_wall / def_wall);
     }
     printf("\nPeak memory of this benchmark process (max RSS): %ld KiB.\n\n", max_rss_kib());
@@ -555,19 +573,19 @@ static int cmd_replay_csv(const char *path, const char *model)
     char msg[256];
     sw_csv_t *csv = sw_csv_create(&co, on_row, NULL, &f, &err, msg, sizeof msg);
     if (!f.e || !csv) return 2;
-    const double t0 = now();
+    const double w0 = now(), t0 = cpu_now();
     static char buf[1 << 18];
     ssize_t got;
     while ((got = read(fd, buf, sizeof buf)) > 0) sw_csv_feed(csv, buf, (size_t)got);
     sw_csv_finish(csv);
-    const double el = now() - t0;
+    const double el = cpu_now() - t0, wall = now() - w0;
     sw_csv_counts_t cnt;
     sw_csv_counts(csv, &cnt);
     sw_summary_t s;
     sw_engine_summary(f.e, 0, &s);
-    printf("model %s rows %ld rejected %ld wall %.3f s (%.0f ns/row) uplifts %ld impacts %ld "
-           "max_rss_kib %ld\n",
-           bm->name, cnt.accepted, cnt.rejected, el, 1e9 * el / (double)cnt.rows, s.uplifts,
+    printf("model %s rows %ld rejected %ld cpu %.3f s wall %.3f s (%.0f ns/row) uplifts %ld "
+           "impacts %ld max_rss_kib %ld\n",
+           bm->name, cnt.accepted, cnt.rejected, el, wall, 1e9 * el / (double)cnt.rows, s.uplifts,
            s.impacts, max_rss_kib());
     sw_csv_destroy(csv);
     sw_engine_destroy(f.e);
@@ -607,7 +625,7 @@ static int cmd_one(const char *what, const char *model, const bcfg_t *C, int ste
     }
     sw_summary_t s;
     const double el = !strcmp(what, "baseline") ? (bench_baseline_run(&sc, &log, 1e-8, &s), 0.0)
-                                                : run_road(&sc, C, stepped, &log, &s);
+                                                : run_road(&sc, C, stepped, &log, &s, NULL);
     printf("road %s %s: %.3f s, %.1f ns/sample, steps %ld uplifts %ld impacts %ld\n", model,
            C->scheme, el, 1e9 * el / log.n, s.steps, s.uplifts, s.impacts);
     bench_log_free(&log);

@@ -40,29 +40,35 @@ rows=$(($(wc -l <"$TMP/road.csv") - 1))
 {
     echo "### CSV replay of the road log ($rows rows, $(du -m "$TMP/road.csv" | cut -f1) MB)"
     echo
-    echo "Wall time from the first byte read to the last sample integrated, CSV"
-    echo "parsing included; median of $RUNS runs.  'max RSS' is the process's peak"
-    echo "resident memory; the 10x row streams ten times the log through a pipe."
+    echo "From the first byte read to the last sample integrated, CSV parsing"
+    echo "included; median of $RUNS runs.  CPU time of the process (what the"
+    echo "software costs) and wall time (what it took on the shared machine);"
+    echo "ns per row from the CPU time.  'max RSS' is the process's peak resident"
+    echo "memory; the 10x row streams ten times the log through a pipe (its wall"
+    echo "time is the generator's)."
     echo
-    echo "| path | model | rows | wall (s) | ns per row | max RSS (KiB) |"
-    echo "|---|---|---|---|---|---|"
+    echo "| path | model | rows | CPU (s) | wall (s) | ns per row | max RSS (KiB) |"
+    echo "|---|---|---|---|---|---|---|"
 } >>"$OUT"
+field() { sed -n "s/.* $1 \([0-9.]*\).*/\1/p" "$TMP/r"; }
 for m in bare frame; do
     : >"$TMP/t"
+    : >"$TMP/w"
     for _ in $(seq "$RUNS"); do
         "$B" replay-csv "$TMP/road.csv" --model "$m" >"$TMP/r"
-        sed -n 's/.* wall \([0-9.]*\) s.*/\1/p' "$TMP/r" >>"$TMP/t"
+        field cpu >>"$TMP/t"
+        field wall >>"$TMP/w"
     done
-    w=$(median <"$TMP/t")
-    rss=$(sed -n 's/.*max_rss_kib \([0-9]*\).*/\1/p' "$TMP/r")
-    echo "| library (sw_csv + engine, file) | $m | $rows | $w | $(awk -v w="$w" -v n="$rows" 'BEGIN{printf "%.0f", 1e9*w/n}') | $rss |" >>"$OUT"
+    c=$(median <"$TMP/t")
+    w=$(median <"$TMP/w")
+    rss=$(field max_rss_kib)
+    echo "| library (sw_csv + engine, file) | $m | $rows | $c | $w | $(awk -v c="$c" -v n="$rows" 'BEGIN{printf "%.0f", 1e9*c/n}') | $rss |" >>"$OUT"
     for k in 1 10; do
         h=$(awk -v h="$HOURS" -v k="$k" 'BEGIN{print h*k}')
         "$B" gen-csv --hours "$h" | "$B" replay-csv - --model "$m" >"$TMP/r"
-        n=$(sed -n 's/.* rows \([0-9]*\) .*/\1/p' "$TMP/r")
-        w=$(sed -n 's/.* wall \([0-9.]*\) s.*/\1/p' "$TMP/r")
-        rss=$(sed -n 's/.*max_rss_kib \([0-9]*\).*/\1/p' "$TMP/r")
-        echo "| library, ${k}x log through a pipe | $m | $n | $w | $(awk -v w="$w" -v n="$n" 'BEGIN{printf "%.0f", 1e9*w/n}') | $rss |" >>"$OUT"
+        n=$(field rows)
+        c=$(field cpu)
+        echo "| library, ${k}x log through a pipe | $m | $n | $c | - | $(awk -v c="$c" -v n="$n" 'BEGIN{printf "%.0f", 1e9*c/n}') | $(field max_rss_kib) |" >>"$OUT"
     done
 done
 SW="$BUILD/swaywatch"
@@ -70,16 +76,17 @@ if cmake --build "$BUILD" -j 2 --target swaywatch-cli >/dev/null 2>&1 && "$SW" r
     for m in bare frame; do
         : >"$TMP/t"
         for _ in $(seq "$RUNS"); do
-            /usr/bin/time -f "%e %M" -o "$TMP/tm" "$SW" replay "$TMP/road.csv" \
+            /usr/bin/time -f "%U %S %e %M" -o "$TMP/tm" "$SW" replay "$TMP/road.csv" \
                 --scene "tests/scenes/crate-a-$m.ini" >/dev/null
             cat "$TMP/tm" >>"$TMP/t"
         done
-        w=$(cut -d' ' -f1 "$TMP/t" | median)
-        rss=$(cut -d' ' -f2 "$TMP/t" | sort -n | tail -1)
-        echo "| \`swaywatch replay\` (whole process) | $m | $rows | $w | $(awk -v w="$w" -v n="$rows" 'BEGIN{printf "%.0f", 1e9*w/n}') | $rss |" >>"$OUT"
+        c=$(awk '{print $1 + $2}' "$TMP/t" | median)
+        w=$(cut -d' ' -f3 "$TMP/t" | median)
+        rss=$(cut -d' ' -f4 "$TMP/t" | sort -n | tail -1)
+        echo "| \`swaywatch replay\` (whole process) | $m | $rows | $c | $w | $(awk -v c="$c" -v n="$rows" 'BEGIN{printf "%.0f", 1e9*c/n}') | $rss |" >>"$OUT"
     done
 else
-    echo "| \`swaywatch replay\` | - | - | not built in this tree | | |" >>"$OUT"
+    echo "| \`swaywatch replay\` | - | - | not built in this tree | | | |" >>"$OUT"
 fi
 echo >>"$OUT"
 
