@@ -15,8 +15,8 @@ typedef struct {
     double *t, *a;
 } bench_log_t;
 
-/* Road vibration (band-limited noise, ~0.07 g rms) with braking manoeuvres
- * (up to 0.3 g, seconds long) and pothole/bump shocks (tens of ms, up to
+/* Road vibration (band-limited noise, ~0.06 g rms) with braking manoeuvres
+ * (up to 0.17 g, seconds long) and pothole/bump shocks (tens of ms, up to
  * ~0.7 g) at random times; deterministic for a seed.  Returns 0, or -1 when
  * out of memory. */
 int bench_log_make(bench_log_t *log, double seconds, double rate, unsigned long long seed);

@@ -3,9 +3,9 @@
  * road, with events now and then that make a tall crate rock.
  *
  * - vibration: two resonances driven by white noise (body pitch near
- *   1.6 Hz, axle hop near 12 Hz), about 0.07 g rms together;
- * - braking (and speeding up): ramps of 0.5 s to a plateau of 1-4 s, up to
- *   0.3 g braking and 0.15 g speeding up, on average once a minute each;
+ *   1.6 Hz, axle hop near 12 Hz), about 0.06 g rms together;
+ * - braking (and speeding up): ramps of 1 s to a plateau of 1-4 s, up to
+ *   0.17 g braking and 0.15 g speeding up, on average once a minute each;
  * - potholes and bumps: half-sine shocks of 20-80 ms, up to about 0.7 g,
  *   on average every 15 s.
  * Everything is drawn from one seeded generator (splitmix64), so the log is
@@ -72,8 +72,8 @@ bench_road_t *bench_road_create(double rate, unsigned long long seed)
     if (!r) return NULL;
     r->rate = rate;
     r->s = seed;
-    resonance(r->c1, 1.6, 0.15, 0.055 * G0, rate);
-    resonance(r->c2, 12.0, 0.10, 0.045 * G0, rate);
+    resonance(r->c1, 1.6, 0.15, 0.045 * G0, rate);
+    resonance(r->c2, 12.0, 0.10, 0.040 * G0, rate);
     r->next_man = wait(r, 30.0);
     r->next_sh = wait(r, 15.0);
     r->man_len = r->sh_len = 0;
@@ -94,9 +94,9 @@ double bench_road_next(bench_road_t *r)
     }
     if (i == r->next_man) {
         const int brake = uni(r) < 0.5;
-        r->man_level = brake ? -(0.05 + 0.25 * uni(r)) * G0 : (0.03 + 0.12 * uni(r)) * G0;
+        r->man_level = brake ? -(0.05 + 0.12 * uni(r)) * G0 : (0.03 + 0.12 * uni(r)) * G0;
         r->man_start = i;
-        r->man_ramp = (long)(0.5 * r->rate);
+        r->man_ramp = (long)(1.0 * r->rate);
         r->man_len = (long)((1.0 + 3.0 * uni(r)) * r->rate) + 2 * r->man_ramp;
         r->next_man = i + r->man_len + wait(r, 30.0);
     }

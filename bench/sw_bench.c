@@ -93,7 +93,7 @@ typedef struct {
 } bcfg_t;
 
 static const bcfg_t cfgs[] = {
-    {"euler", 1e-3, 0, 0},   {"euler", 1e-4, 0, 1},   {"euler", 1e-5, 0, 0},
+    {"euler", 1e-3, 0, 0},   {"euler", 1e-4, 0, 1},   {"euler", 3e-5, 0, 0},
     {"heun", 1e-3, 0, 1},    {"heun", 5e-4, 0, 0},    {"heun", 2.5e-4, 0, 0},
     {"heun", 1e-4, 0, 0},    {"heun", 5e-5, 0, 0},    {"rk4", 1e-3, 0, 1},
     {"rk4", 5e-4, 0, 0},     {"rk4", 2.5e-4, 0, 1},   {"rk4", 1e-4, 0, 0},
@@ -424,37 +424,35 @@ static int cmd_run(int quick, int runs, const char *data)
         /* the accuracy option's table: per decade of tolerance the cheapest
          * setting whose max-theta error was at most half of it (adaptive
          * schemes only at the engine's default rtol 1e-10) */
-        printf("\nAccuracy option rows for `%s` (src/lib/accuracy.c):\n\n```\n",
+        printf("\nAccuracy option rows for `%s` (src/lib/accuracy.c; a row serves the "
+               "tolerances from the one before it down to its own):\n\n```\n",
                models[m].name);
-        const char *prev = NULL;
-        double prev_dt = -1.0;
+        int prev = -1;
+        double prev_tol = 0.0;
         for (int e10 = -2; e10 >= -15; e10--) {
-            const double tol = pow(10.0, e10);
+            const double tol = e10 >= -14 ? pow(10.0, e10) : 0.0; /* 0: flush the last row */
             int best = -1;
-            for (size_t c = 0; c < NCFGS; c++) {
+            for (size_t c = 0; c < NCFGS && tol > 0.0; c++) {
                 const cres_t *R = &all[c];
                 if (R->acc_flips || R->faults || R->agree < R->total) continue;
                 if (cfgs[c].rtol > 0 && cfgs[c].rtol != 1e-10) continue;
                 if (!(R->err_theta <= 0.5 * tol)) continue;
                 if (best < 0 || R->ns_sample < all[best].ns_sample) best = (int)c;
             }
-            if (best < 0) break;
             /* timings on a shared machine are noisy: keep the default when it
              * meets the tolerance and is within 25 % of the cheapest */
-            for (size_t c = 0; c < NCFGS; c++)
+            for (size_t c = 0; c < NCFGS && best >= 0; c++)
                 if (!strcmp(cfgs[c].scheme, SW_DEFAULT_SCHEME) && cfgs[c].dt == SW_DEFAULT_DT &&
                     !all[c].acc_flips && !all[c].faults && all[c].agree == all[c].total &&
                     all[c].err_theta <= 0.5 * tol && all[c].ns_sample <= 1.25 * all[best].ns_sample)
                     best = (int)c;
-            const double dtv = cfgs[best].rtol > 0 ? 0.0 : cfgs[best].dt;
-            if (prev && !strcmp(prev, cfgs[best].scheme) && prev_dt == dtv) {
-                printf("    (also %.0e)\n", tol);
-                continue;
-            }
-            printf("    {SW_MODEL_%s, %.0e, \"%s\", %g},\n",
-                   d.model == SW_MODEL_FRAME ? "FRAME" : "BARE", tol, cfgs[best].scheme, dtv);
-            prev = cfgs[best].scheme;
-            prev_dt = dtv;
+            if (prev >= 0 && best != prev)
+                printf("    {SW_MODEL_%s, %.0e, \"%s\", %g},\n",
+                       d.model == SW_MODEL_FRAME ? "FRAME" : "BARE", prev_tol, cfgs[prev].scheme,
+                       cfgs[prev].rtol > 0 ? 0.0 : cfgs[prev].dt);
+            if (best < 0) break;
+            prev = best;
+            prev_tol = tol;
         }
         printf("```\n\n");
     }
@@ -626,8 +624,10 @@ static int cmd_one(const char *what, const char *model, const bcfg_t *C, int ste
     sw_summary_t s;
     const double el = !strcmp(what, "baseline") ? (bench_baseline_run(&sc, &log, 1e-8, &s), 0.0)
                                                 : run_road(&sc, C, stepped, &log, &s, NULL);
-    printf("road %s %s: %.3f s, %.1f ns/sample, steps %ld uplifts %ld impacts %ld\n", model,
-           C->scheme, el, 1e9 * el / log.n, s.steps, s.uplifts, s.impacts);
+    printf("road %s %s: %.3f s, %.1f ns/sample, steps %ld uplifts %ld impacts %ld max "
+           "theta/alpha %.4f%s\n",
+           model, C->scheme, el, 1e9 * el / log.n, s.steps, s.uplifts, s.impacts,
+           s.max_theta_ratio, s.overturned ? " OVERTURNED" : "");
     bench_log_free(&log);
     return 0;
 }
