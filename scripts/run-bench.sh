@@ -1,7 +1,8 @@
 #!/bin/sh
-# Regenerate docs/accuracy-speed.md's measured part and docs/img/pareto.png:
-# build with the benchmarks, run sw_bench, time CSV replay of an hour-long
-# 1 kHz log (and ten hours, for peak memory), record the machine.
+# Regenerate docs/accuracy-speed.md's measured part, docs/img/pareto.png and
+# its data in bench/results/: build with the benchmarks, run sw_bench, time
+# CSV replay of an hour-long 1 kHz log (and ten hours, for peak memory),
+# count instructions with callgrind, record the machine.
 #   scripts/run-bench.sh           full run (about half an hour on 2 vCPU)
 #   QUICK=1 scripts/run-bench.sh   a smoke run (shorter workloads, 1 run)
 # Uses gnuplot; times the swaywatch replay command as well when it exists.
@@ -16,6 +17,8 @@ B="$BUILD/bench/sw_bench"
 TMP=$(mktemp -d /tmp/sw-bench.XXXXXX)
 trap 'rm -rf "$TMP"' EXIT
 OUT="$TMP/results.md"
+DATA=bench/results   # recorded with the document: the plot's data
+mkdir -p "$DATA"
 
 {
     echo "Measured $(date -u '+%Y-%m-%d %H:%M UTC') on $(lscpu | sed -n 's/^Model name: *//p'),"
@@ -26,10 +29,10 @@ OUT="$TMP/results.md"
 } >"$OUT"
 
 if [ -n "${QUICK:-}" ]; then
-    "$B" run --quick --runs 1 --data "$TMP" >>"$OUT"
+    "$B" run --quick --runs 1 --data "$DATA" >>"$OUT"
     HOURS=0.1
 else
-    "$B" run --runs "$RUNS" --data "$TMP" >>"$OUT"
+    "$B" run --runs "$RUNS" --data "$DATA" >>"$OUT"
     HOURS=1
 fi
 
@@ -125,10 +128,10 @@ echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)." >>"$OUT"
 # ---- plot --------------------------------------------------------------------
 for m in bare frame; do
     # Pareto front: settings sorted by cost, keeping each that beats every cheaper one
-    grep -v '^#' "$TMP/pareto-$m.dat" | sort -k4,4g |
-        awk 'BEGIN{best=2} $5<best {best=$5; print $4, $5}' >"$TMP/front-$m.dat"
+    grep -v '^#' "$DATA/pareto-$m.dat" | sort -k4,4g |
+        awk 'BEGIN{best=2} $5<best {best=$5; print $4, $5}' >"$DATA/front-$m.dat"
 done
-gnuplot -e "dir='$TMP'; out='docs/img/pareto.png'" bench/pareto.gp
+gnuplot -e "dir='$DATA'; out='docs/img/pareto.png'" bench/pareto.gp
 
 # ---- splice into the document -------------------------------------------------
 awk -v res="$OUT" '
