@@ -1,10 +1,42 @@
 #!/bin/sh
-# Set up (Debian packages), build with warnings as errors, run the whole test
-# suite.  Used by .ci/run and by README's Quick start.
+# Set up (Debian packages), build with warnings as errors and run the whole
+# test suite; then build and run it a second time under AddressSanitizer and
+# UndefinedBehaviorSanitizer (separate build folder), and run each fuzz
+# target briefly.  Used by .ci/run and by README's Quick start.
+#
+#   SW_QUICK=1       only the first pass (a quick local check)
+#   FUZZ_SECONDS=N   seconds per fuzz target (default 30; 0: no fuzzing)
+#   BUILD, ASAN_BUILD, FUZZ_BUILD   build folders (build, build-asan, build-fuzz)
 set -eu
 cd "$(dirname "$0")/.."
 scripts/setup-debian.sh
+JOBS=$(nproc)
+START=$(date +%s)
+elapsed() {
+    echo "swaywatch tests: $1 done after $(($(date +%s) - START)) s" >&2
+}
+
 BUILD=${BUILD:-build}
 cmake -S . -B "$BUILD" -DSW_WERROR=ON >/dev/null
-cmake --build "$BUILD" -j "$(nproc)"
-ctest --test-dir "$BUILD" --output-on-failure -j "$(nproc)"
+cmake --build "$BUILD" -j "$JOBS"
+ctest --test-dir "$BUILD" --output-on-failure -j "$JOBS"
+elapsed "build and tests"
+[ "${SW_QUICK:-0}" = 1 ] && exit 0
+
+# The same suite with ASan + UBSan: any report aborts the test (the build
+# uses -fno-sanitize-recover).  Valgrind tests are left out (they are in the
+# first pass: valgrind cannot run ASan binaries), and so is the soak test,
+# whose long monitor run the first pass already watches for growth.
+ASAN_BUILD=${ASAN_BUILD:-build-asan}
+cmake -S . -B "$ASAN_BUILD" -DSW_WERROR=ON -DSW_SANITIZE=ON >/dev/null
+cmake --build "$ASAN_BUILD" -j "$JOBS"
+ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1} \
+    UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
+    ctest --test-dir "$ASAN_BUILD" --output-on-failure -j "$JOBS" -LE 'soak|valgrind'
+elapsed "sanitizer build and tests"
+
+FUZZ_SECONDS=${FUZZ_SECONDS:-30}
+if [ "$FUZZ_SECONDS" -gt 0 ]; then
+    scripts/fuzz.sh "$FUZZ_SECONDS"
+    elapsed "fuzzing"
+fi

@@ -367,6 +367,8 @@ static void test_bad_sizes_and_absurd_values(void **state)
         {PKG "[frame]\nmass = 250\nstiffness = -1\nzeta = 0\n", "frame.stiffness", "positive"},
         {PKG "[frame]\nmass = 250\nomega = 5\ndamping = -3\n", "frame.damping", "non-negative"},
         {PKG "[frame]\nmass = 250\nomega = 5\nzeta = -0.1\n", "frame.zeta", "non-negative"},
+        {PKG "[frame]\nmass = 250\nomega = 5.59\nzeta = 1e30\n", "frame.zeta", "absurd"},
+        {PKG "[frame]\nmass = 250\nomega = 5.59\ndamping = 1e12\n", "frame.damping", "absurd"},
         {PKG "[cushion]\nomega = 50\nzeta = -1\n", "cushion.zeta", "non-negative"},
         {PKG "[cushion]\nomega = 50\ncubic = -1\n", "cushion.cubic", "non-negative"},
         {PKG "[alarm]\nwarn_margin = 1.5\n", "alarm.warn_margin", "(0, 1]"},

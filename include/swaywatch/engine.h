@@ -29,6 +29,11 @@ typedef enum {
     SW_PHASE_OVERTURNED = 2 /* |theta| reached pi/2: frozen */
 } sw_phase;
 
+/* On a cushion nothing impacts: UPLIFT is the first time an edge of the
+ * base leaves the cushion (info +1 the rear edge, the top tipping forward;
+ * -1 the front; 0 the whole base), REST the first end of a step after that
+ * with the base in full contact again and too little energy of motion to
+ * lift an edge with no input (docs/cushion.md). */
 typedef enum {
     SW_EV_UPLIFT = 1,   /* rocking started; info = direction s (+1 forward) */
     SW_EV_IMPACT = 2,   /* the other corner landed; info = theta_dot before (rad/s) */
@@ -44,7 +49,8 @@ typedef struct {
     double theta, theta_dot; /* rad, rad/s: tilt, > 0 top forward */
     double z, z_dot;         /* m, m/s: cushion compression at the base midpoint */
     sw_phase phase;
-    int side; /* +1 rocking about the front corner, -1 the rear, 0 stuck */
+    int side; /* +1 rocking about the front corner, -1 the rear, 0 stuck;
+                 on a cushion the sign of theta */
 } sw_state_t;
 
 typedef struct {
@@ -72,7 +78,8 @@ typedef void (*sw_event_fn)(void *user, const sw_event_t *ev);
 typedef void (*sw_state_fn)(void *user, const sw_output_t *out);
 
 typedef struct {
-    const char *scheme; /* name from the scheme table (sw_scheme_lookup); NULL = default */
+    const char *scheme; /* name from the scheme table (sw_scheme_lookup); NULL = default:
+                           SW_DEFAULT_SCHEME, or SW_STIFF_SCHEME for a stiff cushion */
     double dt;          /* s, largest internal step; 0 = the scheme's default */
     int dt_forced;      /* non-zero: refuse (SW_EUNSTABLE) a dt above the stability
                            bound instead of sub-stepping */
@@ -115,10 +122,26 @@ void sw_engine_destroy(sw_engine_t *e);
 /* Back to the state after create: all packages at rest, no time yet. */
 void sw_engine_reset(sw_engine_t *e);
 
+/* Replace package pkg by a new scene (a scene file edited while the stream
+ * runs): the package is rebuilt as sw_engine_create() would build it, with
+ * the engine's options, and starts at rest at the current time with a fresh
+ * summary; every other package keeps its state and summary untouched.
+ * Allocates (the new package's work space).  Returns SW_OK, or an error
+ * (SW_EINVAL, SW_EUNSTABLE, SW_ENOMEM, ...; msg says why) with the engine
+ * unchanged. */
+int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char *msg,
+                      size_t msglen);
+
 /* Push one sample: bed acceleration a_g (m/s^2, x forward) and vertical
  * acceleration a_z (m/s^2, up; 0 if not measured) at time t (s).  The first
  * sample sets the start time.  Returns SW_OK, SW_EVENT if an event was
- * reported, or SW_EORDER / SW_ENONFINITE (sample ignored, state untouched). */
+ * reported, or SW_EORDER / SW_ENONFINITE / SW_ETOOBIG (|a_g| or |a_z| above
+ * SW_MAX_ACCEL) with the sample ignored and the state untouched.
+ *
+ * A package whose state leaves the model (not finite, g + a_z <= 0, or an
+ * input so large that the fixed step exceeds the scheme's stability bound
+ * for it) gets an SW_EV_FAULT event and is reset to rest; the others go on.
+ * Outputs and events never carry a non-finite number. */
 int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z);
 
 /* Input given as a function of time instead of samples (pulses, tests):
@@ -144,7 +167,8 @@ const char *sw_engine_scheme(const sw_engine_t *e);
 double sw_engine_dt(const sw_engine_t *e, size_t pkg); /* s, internal step in use */
 
 /* Steppers, looked up by name.  Fixed-step: "euler", "heun", "rk4";
- * adaptive through GSL odeiv2: "rkf45", "rkck", "rk8pd". */
+ * adaptive through GSL odeiv2: "rkf45", "rkck", "rk8pd", and the implicit
+ * "rk4imp", "bsimp", "msbdf" (Jacobian by finite differences). */
 typedef struct sw_scheme sw_scheme_t;
 const sw_scheme_t *sw_scheme_lookup(const char *name);
 const sw_scheme_t *sw_scheme_at(size_t i); /* NULL past the end */
@@ -163,8 +187,16 @@ double sw_scheme_default_dt(const sw_scheme_t *s); /* s */
  * SW_EINVAL (theta_tol not > 0, NULL pointers, a model without a table). */
 int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const char **scheme, double *dt);
 
+/* m/s^2 (about 10,000 g): no accelerometer on a vehicle reads more; a
+ * larger value is a corrupt sample, refused by sw_engine_push(). */
+#define SW_MAX_ACCEL 1e5
+
 #define SW_DEFAULT_SCHEME "rk4"
 #define SW_DEFAULT_DT 1e-3
+/* Used instead when no scheme is given, no dt is forced and a cushion
+ * scene is stiff: omega_max * dt > SW_STIFF_OMEGA_DT (docs/cushion.md). */
+#define SW_STIFF_SCHEME "rkck"
+#define SW_STIFF_OMEGA_DT 0.05
 
 #ifdef __cplusplus
 }

@@ -1,5 +1,6 @@
 /* model.h - pure functions of the rocking models (physics.md): margins to
- * overturn, energies, impact ratios.  No allocation, no I/O, no state. */
+ * overturn, energies, impact ratios, and the cushion's static deflection
+ * and natural frequencies.  No allocation, no I/O, no state. */
 #ifndef SWAYWATCH_MODEL_H
 #define SWAYWATCH_MODEL_H
 
@@ -26,6 +27,45 @@ double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 
 /* Energy of the bare block per unit mass (J/kg), from upright. */
 double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s);
+
+/* --- cushion (scene 3) ---------------------------------------------------
+ * d comes from sw_scene_validate() of a cushion scene; g is the gravity to
+ * use (m/s^2, the scene's g, or g_eff = g + a_z). */
+
+/* Static deflection z_B at rest (m): the root of K z + B3 z^3 = m g. */
+double sw_cushion_static_deflection(const sw_derived_t *d, double g);
+
+/* Undamped natural frequencies (rad/s) about rest, with the tangent
+ * stiffness K_t = K + 3 B3 z_s^2: vertical sqrt(K_t/m) and rocking
+ * sqrt((K_t b^2/3 - m g h) / (I_C + m h^2)) (rocking about B with the frame,
+ * if any, held fixed).  Either pointer may be NULL. */
+void sw_cushion_frequencies(const sw_derived_t *d, double g, double *omega_z,
+                            double *omega_theta);
+
+/* The fastest rate of the model linearised about rest (rad/s): the
+ * largest |lambda| of the vertical mode and of the rocking mode (coupled
+ * to the frame, if any), damping included -- an overdamped mode's fast
+ * real root exceeds its natural frequency: 3.7 omega_c at zeta_c = 2.
+ * This is the scene's omega_max, the bound for an explicit step; the
+ * engine shortens the step further in states stiffer than rest. */
+double sw_cushion_omega_max(const sw_derived_t *d, double g);
+
+/* The energy barrier (J/kg): the least potential energy (gravity + cushion
+ * strain, from rest) at |theta| = alpha. */
+double sw_cushion_barrier(const sw_derived_t *d, double g);
+
+/* Total mechanical energy per unit package mass (J/kg) from rest: kinetic
+ * (package and frame) + gravity + cushion strain + bearing strain. */
+double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s);
+
+/* margin and margin_bound of physics.md for the cushion (either pointer
+ * may be NULL).  margin: 1 - (package energy relative to its support) /
+ * barrier inside |theta| < alpha, <= 0 beyond; margin_bound: the same with
+ * the total energy (frame and bearing included), a guarantee once the
+ * excitation stops.  No impact factor: nothing on a cushion impacts.
+ * docs/cushion.md gives their limits. */
+void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s, double *margin,
+                       double *margin_bound);
 
 #ifdef __cplusplus
 }

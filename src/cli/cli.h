@@ -2,7 +2,10 @@
 #ifndef SWAYWATCH_CLI_H
 #define SWAYWATCH_CLI_H
 
+#include <getopt.h>
 #include <stdio.h>
+
+#include "swaywatch/swaywatch.h"
 
 /* Exit codes (documented in README.md and every --help). */
 enum {
@@ -17,8 +20,199 @@ typedef int (*sw_cmd_fn)(int argc, char **argv);
 
 int cmd_replay(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
+int cmd_monitor(int argc, char **argv); /* LCM builds only (SW_HAVE_LCM) */
 
 /* "swaywatch: " + printf-style message + newline, on stderr. */
 void sw_cli_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* ---- shared plumbing (common.c) ----------------------------------------
+ * replay and simulate (and later monitor, forensics) take the same scene,
+ * engine and output options; each command's getopt_long loop hands the
+ * options it does not know itself to sw_cli_common_option(). */
+
+/* getopt_long codes of the shared options (outside the char range). */
+enum {
+    SW_OPT_SCENE = 1000,
+    SW_OPT_SET,
+    SW_OPT_SCHEME,
+    SW_OPT_DT,
+    SW_OPT_RTOL,
+    SW_OPT_ATOL,
+    SW_OPT_OUT,
+    SW_OPT_EVERY,
+    SW_OPT_EVENTS,
+    SW_OPT_JSON,
+    SW_OPT_QUIET,
+    SW_OPT_VERBOSE,
+    SW_OPT_HELP,
+    SW_OPT_FIRST_OWN /* a command's own options start here */
+};
+
+/* Entries for a command's struct option table. */
+#define SW_CLI_COMMON_LONGOPTS                                                                     \
+    {"scene", required_argument, NULL, SW_OPT_SCENE},                                              \
+        {"set", required_argument, NULL, SW_OPT_SET},                                              \
+        {"scheme", required_argument, NULL, SW_OPT_SCHEME},                                        \
+        {"dt", required_argument, NULL, SW_OPT_DT},                                                \
+        {"rtol", required_argument, NULL, SW_OPT_RTOL},                                            \
+        {"atol", required_argument, NULL, SW_OPT_ATOL},                                            \
+        {"out", required_argument, NULL, SW_OPT_OUT},                                              \
+        {"every", required_argument, NULL, SW_OPT_EVERY},                                          \
+        {"events", required_argument, NULL, SW_OPT_EVENTS},                                        \
+        {"json", no_argument, NULL, SW_OPT_JSON}, {"quiet", no_argument, NULL, SW_OPT_QUIET},     \
+        {"verbose", no_argument, NULL, SW_OPT_VERBOSE}, {"help", no_argument, NULL, SW_OPT_HELP}
+
+/* Short forms of the shared options, for the optstring (leading ':' so a
+ * missing value is reported by us, with our prefix). */
+#define SW_CLI_COMMON_SHORTOPTS ":hs:o:e:qv"
+
+/* The help of the shared options, and the exit-code paragraph every --help
+ * ends with (overturn, strict: the command has --fail-on-overturn, --strict). */
+void sw_cli_print_common_help(FILE *f);
+void sw_cli_print_exit_help(FILE *f, int overturn, int strict);
+
+typedef struct {
+    const char **scene_files; /* --scene, in order (points into argv) */
+    size_t n_scene_files;
+    const char **sets; /* --set section.key=value, in order */
+    size_t n_sets;
+    const char *scheme; /* --scheme, NULL = engine default */
+    double dt;          /* s, --dt; 0 = scheme default */
+    double rtol, atol;  /* 0 = engine defaults */
+    const char *out_path;    /* --out: state time series CSV */
+    long every;              /* --every: write every Nth state row of each package */
+    const char *events_path; /* --events: event list CSV */
+    int json, quiet, verbose, help;
+} sw_cli_opts_t;
+
+/* Prepare o for at most argc repeated options.  Returns SW_EXIT_OK or
+ * SW_EXIT_IO (out of memory, reported).  Free with sw_cli_opts_fini(). */
+int sw_cli_opts_init(sw_cli_opts_t *o, int argc);
+void sw_cli_opts_fini(sw_cli_opts_t *o);
+
+/* Handle getopt_long's result c (with optarg arg) if it is a shared option.
+ * Returns -1 if c is not a shared option, otherwise SW_EXIT_OK or
+ * SW_EXIT_USAGE (reported).  Also turns '?' and ':' into the usual
+ * messages, using argv[optind - 1] to name the option. */
+int sw_cli_common_option(sw_cli_opts_t *o, int c, const char *arg, char **argv);
+
+/* Number options: strtod with an end pointer and isfinite().  what is the
+ * expectation in words ("a positive number of seconds").  On a bad value
+ * prints "swaywatch: OPT: expected WHAT, got 'ARG'" and returns
+ * SW_EXIT_USAGE. */
+enum { SW_NUM_ANY = 0, SW_NUM_POSITIVE = 1, SW_NUM_NONNEGATIVE = 2, SW_NUM_NONZERO = 3 };
+int sw_cli_parse_double(const char *opt, const char *arg, int rule, const char *what, double *out);
+int sw_cli_parse_long(const char *opt, const char *arg, long min, const char *what, long *out);
+
+/* Read every --scene file, apply every --set to every scene, validate.
+ * Each problem is printed as "swaywatch: FILE:LINE: message".  Returns
+ * SW_EXIT_OK with *scenes (free()) and *n set, SW_EXIT_USAGE for bad
+ * scenes or no --scene, SW_EXIT_IO if a file cannot be read. */
+int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n);
+
+/* Engine options from the shared options (callbacks left NULL). */
+void sw_cli_engine_opts(const sw_cli_opts_t *o, sw_engine_opts_t *eo);
+
+/* Create the engine; on failure print the reason, return NULL. */
+sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo);
+
+/* Derived quantities of every package (--verbose), on f. */
+void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scenes, size_t n);
+
+/* Refuse (message, SW_EXIT_USAGE) an --out or --events that names the input
+ * being read (in, may be NULL) or each other: opening them truncates. */
+int sw_cli_check_outputs(const sw_cli_opts_t *o, FILE *in);
+
+/* --out: the state time series, one row per package and output instant:
+ * t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,
+ * uplift_ratio,a_g.  Numbers as %.9g; a non-finite value is written as an
+ * empty field and counted. */
+typedef struct {
+    FILE *f;
+    const char *path;
+    const sw_scene_t *scenes; /* for package names */
+    size_t n;
+    long every;
+    long *seen;      /* per package: rows offered, for --every */
+    long rows;       /* rows written */
+    long nonfinite;  /* fields left empty because the value was not finite */
+} sw_cli_states_t;
+
+/* Open (path NULL: a disabled writer whose write does nothing). */
+int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const sw_scene_t *scenes,
+                       size_t n);
+void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *out);
+/* Flush and close; returns SW_EXIT_OK or SW_EXIT_IO (reported). */
+int sw_cli_states_close(sw_cli_states_t *w);
+
+/* --events: t,package,event,theta,theta_dot,margin,info. */
+typedef struct {
+    FILE *f;
+    const char *path;
+    const sw_scene_t *scenes;
+    size_t n;
+    long rows, nonfinite;
+} sw_cli_events_t;
+
+int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *scenes, size_t n);
+void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev);
+int sw_cli_events_close(sw_cli_events_t *w);
+
+const char *sw_cli_event_name(sw_event_kind k);
+const char *sw_cli_phase_name(sw_phase p);
+
+/* What fed the engine, for the summaries. */
+typedef struct {
+    const char *log;         /* LOG as given ("-" for stdin), or NULL */
+    const sw_pulse_t *pulse; /* simulate: the pulse, or NULL */
+    double duration;         /* s, simulate: time simulated */
+    long samples_read;       /* data rows seen */
+    long samples_rejected;   /* data rows refused (CSV layer or engine) */
+    double settle;           /* s, replay: --settle */
+} sw_cli_run_t;
+
+/* The one-screen human summary / the JSON summary (DESIGN.md contract). */
+void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
+void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
+
+/* s as a JSON string literal (quotes included). */
+void sw_cli_json_string(FILE *f, const char *s);
+
+/* Non-zero if any package overturned. */
+int sw_cli_any_overturned(const sw_engine_t *e);
+
+/* lcm-logger files given to replay (lcmlog.c, LCM builds only): argc/argv
+ * are replay's own, as the user typed them (argv[0] = "replay"). */
+int sw_cli_replay_lcmlog(const char *path, int argc, char **argv);
+/* The paragraph of replay's --help about lcm-logger files. */
+void sw_cli_print_lcmlog_help(FILE *f);
+
+/* Options of replay that only lcm-logger files take.  replay accepts them
+ * in its option table (a CSV log given one is an error) and hands the file
+ * and its arguments to sw_cli_replay_lcmlog(), which reads them. */
+enum {
+    SW_OPT_LCM_CHANNEL = 1100,
+    SW_OPT_LCM_PUBLISH,
+    SW_OPT_LCM_SPEED,
+    SW_OPT_LCM_STATE_CHANNEL,
+    SW_OPT_LCM_ALARM_CHANNEL,
+    SW_OPT_LCM_STATE_RATE,
+    SW_OPT_LCM_AXIS,
+    SW_OPT_LCM_VERTICAL,
+    SW_OPT_LCM_GAP,
+    SW_OPT_LCM_MAX_ACCEL,
+    SW_OPT_LCM_END /* one past the last */
+};
+#define SW_CLI_LCMLOG_LONGOPTS                                                                     \
+    {"channel", required_argument, NULL, SW_OPT_LCM_CHANNEL},                                      \
+        {"publish", required_argument, NULL, SW_OPT_LCM_PUBLISH},                                  \
+        {"speed", required_argument, NULL, SW_OPT_LCM_SPEED},                                      \
+        {"state-channel", required_argument, NULL, SW_OPT_LCM_STATE_CHANNEL},                      \
+        {"alarm-channel", required_argument, NULL, SW_OPT_LCM_ALARM_CHANNEL},                      \
+        {"state-rate", required_argument, NULL, SW_OPT_LCM_STATE_RATE},                            \
+        {"axis", required_argument, NULL, SW_OPT_LCM_AXIS},                                        \
+        {"vertical", required_argument, NULL, SW_OPT_LCM_VERTICAL},                                \
+        {"gap", required_argument, NULL, SW_OPT_LCM_GAP},                                          \
+        {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL}
 
 #endif

@@ -15,6 +15,9 @@ static const struct {
 } commands[] = {
     {"replay", cmd_replay, "replay a recorded log (CSV or lcm-logger) through the model"},
     {"simulate", cmd_simulate, "run a half-sine or full-sine pulse through the model"},
+#ifdef SW_HAVE_LCM
+    {"monitor", cmd_monitor, "live: subscribe to acceleration over LCM, publish state and alarms"},
+#endif
 };
 
 void sw_cli_error(const char *fmt, ...)
@@ -39,9 +42,24 @@ static void usage(FILE *f)
         fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
     fprintf(f,
             "\n"
+            "Options:\n"
+            "  -h, --help     this help\n"
+            "  -V, --version  the version (also after a command: swaywatch replay --version)\n"
+            "\n"
             "Run 'swaywatch <command> --help' for a command's options.\n"
             "Exit codes: 0 ok, 1 a package overturned (with --fail-on-overturn),\n"
             "2 bad usage or input, 3 I/O error.\n");
+}
+
+/* "swaywatch CMD --version", for every command alike (and for help2man,
+ * which makes a manual page per command from its --help and --version).
+ * Options after "--" are operands, not options. */
+static int wants_version(int argc, char **argv)
+{
+    for (int i = 2; i < argc && strcmp(argv[i], "--"); i++)
+        if (!strcmp(argv[i], "--version"))
+            return 1;
+    return 0;
 }
 
 int main(int argc, char **argv)
@@ -61,6 +79,10 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (!strcmp(argv[1], commands[i].name)) {
+            if (wants_version(argc, argv)) {
+                printf("swaywatch %s %s\n", commands[i].name, sw_version());
+                return SW_EXIT_OK;
+            }
             int rc = commands[i].fn(argc - 1, argv + 1);
             if (fflush(stdout) != 0 || ferror(stdout)) {
                 sw_cli_error("error writing standard output");

@@ -34,6 +34,11 @@ typedef struct sw_pkg {
     int ith, idth;     /* indices of theta and theta_dot in y */
     int iu, idu;       /* u, u_dot (-1 without a frame) */
     int iz, idz;       /* z, z_dot (-1 without a cushion) */
+    double yscale[SW_NMAX]; /* typical size of each component (finite-difference Jacobian) */
+    double e_lift;     /* J/kg, cushion: least energy above rest that lifts an edge */
+    int track_rate;    /* cushion: the right-hand side records rate_seen */
+    double rate_seen;  /* rad/s, fastest contact rate met by the stages of a step */
+    double rate_rest;  /* 1/s, the contact's rate bound at rest (model_cushion.c) */
 
     /* integration state */
     double t;          /* s */
@@ -49,6 +54,7 @@ typedef struct sw_pkg {
     gsl_odeiv2_control *gctl;
     gsl_odeiv2_evolve *gevo;
     double h_adapt;    /* s, GSL's proposed next step */
+    gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
 
     double nj_cache[5]; /* engine.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
     double trig[3];     /* model.c: an angle (NAN: none yet), its sin and cos */
@@ -72,7 +78,23 @@ void sw_model_from_state(sw_pkg_t *P, const sw_state_t *s);
 void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o);
 int sw_model_uplift_side(const sw_pkg_t *P, double t); /* +1/-1 if above uplift, 0 else */
 
+/* --- model_cushion.c --- */
+/* With P->track_rate set, also raises P->rate_seen to the contact's
+ * fastest rate at y (rad/s; omega_max at rest, more where the contact is
+ * stiffer, 0 without contact). */
+int sw_cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[]);
+void sw_cushion_setup(sw_pkg_t *P); /* e_lift, rate_rest; after the layout */
+void sw_cushion_rest(sw_pkg_t *P);  /* upright at the static deflection, nominal g */
+/* b^2 sin^2(theta) - z |z| (m^2): > 0 while an edge of the base is off the
+ * cushion; *der (may be NULL) gets its time derivative. */
+double sw_cushion_lift(const sw_pkg_t *P, const double y[], double *der);
+/* Energy of motion about rest at nominal g (J/kg): kinetic + gravity +
+ * cushion strain + bearing strain. */
+double sw_cushion_motion_energy(const sw_pkg_t *P, const double y[]);
+
 /* --- scheme.c --- */
+/* Finite-difference Jacobian in GSL's signature, for the implicit schemes. */
+int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *pkg);
 typedef void (*sw_fixed_step_fn)(sw_pkg_t *P, double t, double h, const double y[], double yout[]);
 struct sw_scheme {
     const char *name;
@@ -82,6 +104,9 @@ struct sw_scheme {
     double default_dt; /* s */
     sw_fixed_step_fn step; /* fixed-step schemes */
     const gsl_odeiv2_step_type *const *gsl_type; /* adaptive schemes */
+    int implicit;      /* 0 explicit; 1 implicit one-step (needs the Jacobian and a
+                          driver); 2 implicit multistep (msbdf: also cannot
+                          re-step from a step's start) */
 };
 
 #endif

@@ -4,6 +4,9 @@
  *
  * State vectors:  bare     y = (theta, theta')
  *                 frame    y = (u, theta, u', theta')
+ *                 cushion  y = (u, theta, z, u', theta', z') on a frame,
+ *                          y = (theta, z, theta', z') on the bed
+ *                          (its physics is in model_cushion.c)
  * theta > 0 when the top tips forward (rocking about the front corner, side
  * s = +1); A1 = alpha - s theta, A2 = s alpha - theta.  Gravity appears as
  * g_eff = g + a_z in every gravity term; p^2 = kR g with kR = 3/(4R). */
@@ -22,6 +25,23 @@ void sw_model_setup(sw_pkg_t *P)
         P->ith = 0;
         P->idth = 1;
         break;
+    case SW_MODEL_CUSHION:
+        if (P->scene.has_frame) {
+            P->n = 6;
+            P->iu = 0;
+            P->ith = 1;
+            P->iz = 2;
+            P->idu = 3;
+            P->idth = 4;
+            P->idz = 5;
+        } else {
+            P->n = 4;
+            P->ith = 0;
+            P->iz = 1;
+            P->idth = 2;
+            P->idz = 3;
+        }
+        break;
     case SW_MODEL_FRAME:
     default:
         P->n = 4;
@@ -35,6 +55,25 @@ void sw_model_setup(sw_pkg_t *P)
     P->g = P->scene.g;
     P->kR = 0.75 / P->d.R;
     P->tan_alpha = tan(P->d.alpha);
+
+    /* Typical sizes of the components, for finite-difference Jacobians:
+     * the angle at which an edge of a cushioned base lifts (z_s/b) or
+     * alpha, the static deflection, the bearings' deflection under 1 g;
+     * rates at the scene's fastest frequency. */
+    const double w = fmax(P->d.omega_max, P->d.p); /* rad/s */
+    const int cushion = P->d.model == SW_MODEL_CUSHION;
+    const double zs = cushion ? sw_cushion_static_deflection(&P->d, P->g) : 0.0; /* m */
+    P->yscale[P->ith] = cushion ? zs / P->d.b : P->d.alpha;
+    P->yscale[P->idth] = w * P->yscale[P->ith];
+    if (P->iu >= 0) {
+        P->yscale[P->iu] = P->g / (P->d.omega_b * P->d.omega_b);
+        P->yscale[P->idu] = w * P->yscale[P->iu];
+    }
+    if (P->iz >= 0) {
+        P->yscale[P->iz] = zs;
+        P->yscale[P->idz] = w * zs;
+    }
+    if (cushion) sw_cushion_setup(P);
 }
 
 double sw_input_ag(const sw_input_t *in, double t)
@@ -88,12 +127,13 @@ static double bearing(const sw_pkg_t *P, const double y[])
 
 int sw_model_rhs(double t, const double y[], double f[], void *pkg)
 {
-    sw_pkg_t *P = pkg; /* only its sin/cos cache changes */
+    sw_pkg_t *P = pkg; /* not const: the sin/cos cache, the cushion's state */
     const double ag = sw_input_ag(P->in, t);
     const double ge = sw_input_geff(P, t);
     const double s = P->side;
     const double th = y[P->ith], dth = y[P->idth];
 
+    if (P->d.model == SW_MODEL_CUSHION) return sw_cushion_rhs(P, t, y, f);
     /* A2 = s A1 exactly (s = +-1), so sin(A2) = s sin(A1): one angle. */
     if (P->d.model == SW_MODEL_BARE) {
         f[0] = dth;
@@ -127,14 +167,16 @@ int sw_model_rhs(double t, const double y[], double f[], void *pkg)
 
 double sw_model_support_accel(const sw_pkg_t *P, double t, const double f[])
 {
-    if (P->d.model == SW_MODEL_BARE) return sw_input_ag(P->in, t);
+    if (P->iu < 0) return sw_input_ag(P->in, t); /* bare, or cushion on the bed */
     return sw_input_ag(P->in, t) + f[P->idu];
 }
 
 int sw_model_uplift_side(const sw_pkg_t *P, double t)
 {
     /* While stuck the support's acceleration is a_g (bare) or a_g + u'' =
-     * -(2 zeta_b w_b u' + w_b^2 u) (frame); it does not depend on theta. */
+     * -(2 zeta_b w_b u' + w_b^2 u) (frame); it does not depend on theta.
+     * A cushioned package is never stuck. */
+    if (P->d.model == SW_MODEL_CUSHION) return 0;
     const double A = P->d.model == SW_MODEL_BARE ? sw_input_ag(P->in, t) : -bearing(P, P->y);
     const double ge = sw_input_geff(P, t);
     if (!(ge > 0.0)) return 0; /* airborne: outside the model (the engine faults) */
@@ -190,6 +232,12 @@ void sw_model_from_state(sw_pkg_t *P, const sw_state_t *s)
     }
     P->phase = s->phase;
     P->side = s->side ? (s->side > 0 ? 1 : -1) : (s->theta < 0 ? -1 : 1);
+    if (P->d.model == SW_MODEL_CUSHION) {
+        /* nothing is stuck on a cushion; side follows theta */
+        if (P->phase == SW_PHASE_STUCK) P->phase = SW_PHASE_ROCKING;
+        P->side = s->theta < 0.0 ? -1 : 1;
+        return;
+    }
     if (P->phase == SW_PHASE_STUCK) {
         P->y[P->ith] = P->y[P->idth] = 0.0;
     }
@@ -246,7 +294,11 @@ void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o)
     memset(o, 0, sizeof *o);
     o->t = t;
     sw_model_to_state(P, &o->state);
-    const double ge = sw_input_geff(P, t);
+    double ge = sw_input_geff(P, t);
+    /* Airborne (g + a_z <= 0): the engine has faulted the package and reset
+     * it; its energy bound is judged under nominal gravity, not divided by
+     * a zero or negative barrier. */
+    if (!(ge > 0.0)) ge = P->g;
     if (P->d.model == SW_MODEL_BARE) f[0] = f[1] = 0.0; /* the support is the bed */
     else sw_model_rhs(t, P->y, f, (void *)P);
     o->a_g = sw_input_ag(P->in, t);
@@ -254,6 +306,10 @@ void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o)
     o->uplift_ratio = fabs(o->a_support) / (P->tan_alpha * P->g);
     if (P->phase == SW_PHASE_OVERTURNED) {
         o->margin = o->margin_bound = -1.0;
+        return;
+    }
+    if (P->d.model == SW_MODEL_CUSHION) {
+        sw_margin_cushion(&P->d, ge, &o->state, &o->margin, &o->margin_bound);
         return;
     }
     if (P->phase == SW_PHASE_STUCK) {

@@ -19,6 +19,7 @@
  * come from our own reader instead, see scene_reader(). */
 #include <ini.h>
 
+#include "swaywatch/model.h"
 #include "swaywatch/scene.h"
 #include "swaywatch/status.h"
 
@@ -99,6 +100,15 @@ static const key_info keys[K_COUNT] = {
 #define G_MIN 1.0          /* m/s^2 */
 #define G_MAX 100.0        /* m/s^2 */
 #define OMEGA_MAX 1e6      /* rad/s */
+
+/* Fastest rate (1/s) of a spring-damper mode of frequency w (rad/s) and
+ * damping ratio z: w while underdamped; an overdamped mode also has a fast
+ * decay, w (z + sqrt(z^2 - 1)), which bounds an explicit stepper's step
+ * just as a stiff spring does. */
+static double mode_rate(double w, double z)
+{
+    return z > 1 ? w * (z + sqrt(z * z - 1)) : w;
+}
 
 static int find_section(const char *name)
 {
@@ -483,8 +493,10 @@ static char *scene_reader(char *str, int num, void *stream)
 
     size_t sep = strcspn(a, "=:");
     if (sep >= n) {
+        /* Quote this line only: a runs on into the rest of the text. */
         report(c->diag, c->user, c->origin, c->lineno,
-               "\"%.40s\": expected key = value, a [section] header or a comment", a);
+               "\"%.*s\": expected key = value, a [section] header or a comment",
+               (int)(n < 40 ? n : 40), a);
         fail(c, SW_EPARSE);
         return str;
     }
@@ -725,6 +737,12 @@ int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
                 c_b = sc->frame_damping;
                 zeta_b = c_b / (2 * omega_b * mt);
             }
+            if (omega_b <= OMEGA_MAX && mode_rate(omega_b, zeta_b) > OMEGA_MAX)
+                VREPORT(&v, lf,
+                        "frame.%s: zeta_b = %g with omega_b = %g rad/s makes the bearings decay "
+                        "at %g 1/s, which is absurd: expected at most %g 1/s",
+                        sc->frame_c_given == SW_GIVEN_RATIO ? "zeta" : "damping", zeta_b, omega_b,
+                        mode_rate(omega_b, zeta_b), OMEGA_MAX);
         }
     }
 
@@ -763,6 +781,12 @@ int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
                 C = sc->cushion_damping;
                 zeta_c = C / (2 * m * omega_c);
             }
+            if (omega_c <= OMEGA_MAX && mode_rate(omega_c, zeta_c) > OMEGA_MAX)
+                VREPORT(&v, lc,
+                        "cushion.%s: zeta_c = %g with omega_c = %g rad/s makes the cushion decay "
+                        "at %g 1/s, which is absurd: expected at most %g 1/s",
+                        sc->cushion_c_given == SW_GIVEN_RATIO ? "zeta" : "damping", zeta_c,
+                        omega_c, mode_rate(omega_c, zeta_c), OMEGA_MAX);
             B3 = sc->cushion_cubic;
             /* physics.md, static stability: tilting by a small angle the
              * cushion's restoring moment K b^2/3 per radian must beat the
@@ -830,14 +854,16 @@ int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
     /* The fastest natural frequency bounds an explicit stepper's step.  The
      * coupled frame frequency lies below omega_b / sqrt(1 - 3 gamma/4): the
      * package's inertia seen by the frame is at most reduced by the factor
-     * D = 1 - (3/4) gamma cos^2 of physics.md. */
+     * D = 1 - (3/4) gamma cos^2 of physics.md.  Overdamped modes count with
+     * their fast decay rate (mode_rate). */
     double w = 0; /* rad/s */
     if (sc->has_frame)
-        w = omega_b / sqrt(1 - 0.75 * gamma);
-    if (sc->has_cushion) {
-        const double rocking = sqrt((K * bb * bb / 3 - m * g * h) / (d->I_C + m * h * h));
-        w = fmax(w, fmax(omega_c, rocking));
-    }
+        w = mode_rate(omega_b, zeta_b) / sqrt(1 - 0.75 * gamma);
+    /* The cushion's vertical and rocking modes, damping included (an
+     * overdamped mode's fast real root exceeds omega_c: 3.7 omega_c at
+     * zeta_c = 2), the rocking mode coupled to the frame if there is one. */
+    if (sc->has_cushion)
+        w = fmax(w, sw_cushion_omega_max(d, g));
     d->omega_max = w;
     return SW_OK;
 }

@@ -2,6 +2,10 @@
  * GSL's step types.  Fixed-step explicit Runge-Kutta schemes are written out
  * here (GSL's rk4 does step doubling, 11 evaluations a step); the adaptive
  * schemes are GSL odeiv2 steppers driven by the engine with error control.
+ * The implicit ones (rk4imp, bsimp, msbdf) are offered for stiff cushions
+ * (docs/cushion.md measures them against rkck, the default there); they
+ * need the Jacobian (GSL does not check: without one they crash), which is
+ * taken here by forward differences.
  *
  * stab is the scheme's stability bound |lambda h| for the fastest mode of a
  * scene (negative real axis: Euler and Heun 2, RK4 2.785; RK4 also covers
@@ -46,14 +50,45 @@ static void rk4_step(sw_pkg_t *P, double t, double h, const double y[], double y
         yout[i] = y[i] + (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
 }
 
+int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *pkg)
+{
+    /* Forward differences, step sqrt(eps) times the component's size or
+     * its typical size (the model's right-hand sides are only piecewise
+     * smooth: a contact end or a clamp may lie inside a step, which Newton
+     * iterations tolerate). */
+    sw_pkg_t *P = pkg;
+    const int n = P->n;
+    const double rt_eps = 1.4901161193847656e-08; /* sqrt(DBL_EPSILON) */
+    double f0[SW_NMAX], f1[SW_NMAX], yp[SW_NMAX];
+    sw_model_rhs(t, y, f0, P);
+    memcpy(yp, y, sizeof(double) * (size_t)n);
+    for (int j = 0; j < n; j++) {
+        yp[j] = y[j] + rt_eps * (fabs(y[j]) + P->yscale[j]);
+        const double dj = yp[j] - y[j]; /* the step as represented */
+        sw_model_rhs(t, yp, f1, P);
+        for (int i = 0; i < n; i++) dfdy[i * n + j] = (f1[i] - f0[i]) / dj;
+        yp[j] = y[j];
+    }
+    const double tp = t + rt_eps * fmax(fabs(t), 1e-3), dt = tp - t;
+    sw_model_rhs(tp, y, f1, P);
+    for (int i = 0; i < n; i++) dfdt[i] = (f1[i] - f0[i]) / dt;
+    return GSL_SUCCESS;
+}
+
 /* gsl_odeiv2_step_* are variables, not constants: store their addresses. */
 static const sw_scheme_t schemes[] = {
-    {"rk4", 4, 0, 2.785, 1e-3, rk4_step, NULL},
-    {"heun", 2, 0, 2.0, 2.5e-4, heun_step, NULL},
-    {"euler", 1, 0, 2.0, 1e-5, euler_step, NULL},
-    {"rkf45", 5, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rkf45},
-    {"rkck", 5, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rkck},
-    {"rk8pd", 8, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rk8pd},
+    {"rk4", 4, 0, 2.785, 1e-3, rk4_step, NULL, 0},
+    {"heun", 2, 0, 2.0, 2.5e-4, heun_step, NULL, 0},
+    {"euler", 1, 0, 2.0, 1e-5, euler_step, NULL, 0},
+    {"rkf45", 5, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rkf45, 0},
+    {"rkck", 5, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rkck, 0},
+    {"rk8pd", 8, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rk8pd, 0},
+    /* implicit Gauss RK (step doubling for the error), Bader-Deuflhard
+     * semi-implicit extrapolation, variable-order BDF; order as GSL reports
+     * it (the highest for bsimp and msbdf, which vary it) */
+    {"rk4imp", 4, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rk4imp, 1},
+    {"bsimp", 12, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_bsimp, 1},
+    {"msbdf", 5, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_msbdf, 2},
 };
 
 const sw_scheme_t *sw_scheme_at(size_t i)

@@ -1,0 +1,129 @@
+/* alarm_listener.c - a downstream consumer of `swaywatch monitor`: it
+ * subscribes to the alarm channel and prints every alarm, one line each,
+ * and tells when alarms were lost on the way (by the publisher's seq).
+ *
+ * Build with the generated C types (installed in share/swaywatch/lcmtypes/c,
+ * or made with 'lcm-gen -c alarm_t.lcm'):
+ *     cc -o alarm_listener alarm_listener.c swaywatch_alarm_t.c -I. -llcm
+ *
+ * usage: alarm_listener [-l URL] [-c CHANNEL] [-n COUNT] [-t SECONDS]
+ *   -l URL      LCM URL (default: $LCM_DEFAULT_URL, else LCM's default)
+ *   -c CHANNEL  alarm channel (default SWAY_ALARM)
+ *   -n COUNT    exit after COUNT alarms (default: run until SIGINT/SIGTERM)
+ *   -t SECONDS  exit when no alarm came for SECONDS (default: never)
+ * Exit status: 0, or 1 if LCM could not be set up, 2 on bad usage. */
+#ifndef _XOPEN_SOURCE
+#define _XOPEN_SOURCE 700 /* getopt, sigaction */
+#endif
+#include <inttypes.h>
+#include <lcm/lcm.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "swaywatch_alarm_t.h"
+
+static volatile sig_atomic_t stop;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop = 1;
+}
+
+typedef struct {
+    long received, lost;
+    int64_t last_seq;
+} listener_t;
+
+static const char *kind_name(int k)
+{
+    static const char *const names[] = {"?",           "UPLIFT",     "IMPACT",        "WARN",
+                                        "CRITICAL",    "TIP",        "OVERTURNED",    "REST",
+                                        "MODEL_FAULT", "SENSOR_GAP", "INPUT_REJECTED"};
+    return k > 0 && k < (int)(sizeof names / sizeof names[0]) ? names[k] : "?";
+}
+
+static const char *level_name(int l)
+{
+    switch (l) {
+        case SWAYWATCH_ALARM_T_LEVEL_INFO: return "info";
+        case SWAYWATCH_ALARM_T_LEVEL_WARN: return "warn";
+        case SWAYWATCH_ALARM_T_LEVEL_CRITICAL: return "CRITICAL";
+        default: return "?";
+    }
+}
+
+static void on_alarm(const lcm_recv_buf_t *rbuf, const char *channel, const swaywatch_alarm_t *a,
+                     void *user)
+{
+    (void)rbuf;
+    (void)channel;
+    listener_t *L = user;
+    /* The texts are fixed arrays, NUL-padded; copy them to be sure of the
+     * terminating NUL whatever the sender put there. */
+    char name[sizeof a->name + 1], text[sizeof a->text + 1];
+    memcpy(name, a->name, sizeof a->name);
+    name[sizeof a->name] = '\0';
+    memcpy(text, a->text, sizeof a->text);
+    text[sizeof a->text] = '\0';
+
+    if (L->received > 0 && a->seq > L->last_seq + 1)
+        L->lost += (long)(a->seq - L->last_seq - 1);
+    L->last_seq = a->seq;
+    L->received++;
+    printf("%.6f seq %" PRId64 " %-8s %-14s %-12s theta %+.4f margin %+.3f  %s\n",
+           (double)a->utime / 1e6, a->seq, level_name(a->level), kind_name(a->kind),
+           name[0] ? name : "(input)", a->theta, a->margin, text);
+    fflush(stdout);
+}
+
+int main(int argc, char **argv)
+{
+    const char *url = NULL, *channel = "SWAY_ALARM";
+    long count = 0;
+    double idle = 0.0;
+    for (int c; (c = getopt(argc, argv, "l:c:n:t:h")) != -1;) {
+        switch (c) {
+            case 'l': url = optarg; break;
+            case 'c': channel = optarg; break;
+            case 'n': count = strtol(optarg, NULL, 10); break;
+            case 't': idle = strtod(optarg, NULL); break;
+            case 'h':
+                printf("usage: alarm_listener [-l URL] [-c CHANNEL] [-n COUNT] [-t SECONDS]\n");
+                return 0;
+            default: return 2;
+        }
+    }
+    lcm_t *lcm = lcm_create(url);
+    if (!lcm) {
+        fprintf(stderr, "alarm_listener: cannot set up LCM (%s)\n", url ? url : "default URL");
+        return 1;
+    }
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+
+    listener_t L = {0};
+    swaywatch_alarm_t_subscription_t *sub = swaywatch_alarm_t_subscribe(lcm, channel, on_alarm, &L);
+    /* Alarms come in bursts (an impact cascade): keep them all. */
+    swaywatch_alarm_t_subscription_set_queue_capacity(sub, 0);
+    fprintf(stderr, "alarm_listener: listening on %s\n", channel);
+
+    /* Wait in slices of 100 ms so that signals and the idle limit are seen. */
+    double waited = 0.0;
+    while (!stop && (count <= 0 || L.received < count) && (idle <= 0.0 || waited < idle)) {
+        int r = lcm_handle_timeout(lcm, 100);
+        if (r < 0)
+            break;
+        waited = r > 0 ? 0.0 : waited + 0.1;
+    }
+    fprintf(stderr, "alarm_listener: %ld alarms, %ld lost\n", L.received, L.lost);
+    swaywatch_alarm_t_unsubscribe(lcm, sub);
+    lcm_destroy(lcm);
+    return 0;
+}

@@ -1,0 +1,67 @@
+#!/bin/sh
+# Build the libFuzzer targets of tests/fuzz with clang, AddressSanitizer and
+# UndefinedBehaviorSanitizer, and run each one in turn for SECONDS (default
+# 60), starting from the seed corpus in tests/fuzz/corpus/<target>/.
+#
+#   scripts/fuzz.sh [SECONDS] [TARGET...]
+#
+# Fails on a crash, a leak, a sanitizer report or a timeout.  The input that
+# did it is left in $FUZZ_BUILD/artifacts/<target>/; after fixing the bug,
+# keep it as a regression test in tests/fuzz/regressions/<target>/ (the
+# normal build replays that folder).  New inputs the fuzzer finds go to
+# $FUZZ_BUILD/corpus/<target>/, never into the source tree.
+#
+# Targets run one after the other (CI machines have 2 cores, and the time
+# budget is total).  FUZZ_BUILD defaults to build-fuzz.
+set -eu
+cd "$(dirname "$0")/.."
+SECS=${1:-60}
+[ $# -gt 0 ] && shift
+B=${FUZZ_BUILD:-build-fuzz}
+JOBS=${JOBS:-2}
+
+if ! command -v clang >/dev/null 2>&1; then
+    echo "swaywatch fuzz: clang not found (scripts/setup-debian.sh installs it)" >&2
+    exit 1
+fi
+cmake -S . -B "$B" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSW_FUZZ=ON -DSW_SANITIZE=ON -DSW_WERROR=ON >/dev/null
+TARGETS=${*:-csv scene accel}
+# Targets that need optional dependencies (accel: LCM) exist only when those
+# were found.
+BUILT=""
+for t in $TARGETS; do
+    cmake --build "$B" --target help 2>/dev/null | grep " fuzz_$t\$" >/dev/null && BUILT="$BUILT $t"
+done
+# shellcheck disable=SC2086
+if ! cmake --build "$B" -j "$JOBS" $(for t in $BUILT; do printf ' --target fuzz_%s' "$t"; done) \
+    >"$B/build.log" 2>&1; then
+    tail -40 "$B/build.log" >&2
+    exit 1
+fi
+
+# Leaks are findings too; a wrong result aborts, and abort is a crash.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+status=0
+for t in $BUILT; do
+    work="$B/corpus/$t"
+    art="$B/artifacts/$t"
+    mkdir -p "$work" "$art"
+    dict=""
+    [ -f "tests/fuzz/$t.dict" ] && dict="-dict=tests/fuzz/$t.dict"
+    echo "swaywatch fuzz: $t for $SECS s" >&2
+    # The first folder receives new inputs; the seed corpus is only read.
+    # shellcheck disable=SC2086
+    if ! "$B/tests/fuzz/fuzz_$t" -max_total_time="$SECS" -timeout=20 -rss_limit_mb=2048 \
+        -max_len=65536 -print_final_stats=1 -artifact_prefix="$art/" $dict \
+        "$work" "tests/fuzz/corpus/$t" >"$B/fuzz-$t.log" 2>&1; then
+        tail -60 "$B/fuzz-$t.log" >&2
+        echo "swaywatch fuzz: $t FAILED; input kept in $art/" >&2
+        status=1
+    else
+        grep -E '^stat::(number_of_executed_units|peak_rss_mb)' "$B/fuzz-$t.log" |
+            sed "s/^/swaywatch fuzz: $t: /" >&2 || true
+    fi
+done
+exit $status

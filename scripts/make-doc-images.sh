@@ -1,0 +1,108 @@
+#!/bin/sh
+# Make the pictures of README.md (docs/img/) by running the commands its
+# walkthrough shows: a replay plotted with gnuplot, a terminal capture of
+# the live monitor on loopback, the boundary plot.  Needs a build (BUILD,
+# default build) with LCM; the monitor part runs in a private network
+# namespace (root or user namespaces), as the README's loopback set-up.
+# usage: scripts/make-doc-images.sh [replay|monitor|boundary]...
+set -eu
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+BUILD=${BUILD:-build}
+case $BUILD in /*) ;; *) BUILD=$ROOT/$BUILD ;; esac
+SW=$BUILD/swaywatch
+OUT=$ROOT/docs/img
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+mkdir -p "$OUT"
+[ -x "$SW" ] || { echo "make-doc-images.sh: no $SW: build first" >&2; exit 1; }
+
+replay() {
+    "$SW" replay sample_logs/braking-pothole.csv --scene sample_logs/crate.ini \
+        --scene sample_logs/crate-on-frame.ini --out "$T/states.csv" --json >"$T/summary.json"
+    over=$(python3 -c 'import json, sys
+p = [p for p in json.load(open(sys.argv[1]))["packages"] if p["overturned"]]
+print("%.2f" % p[0]["overturn_time"] if p else "never")' "$T/summary.json")
+    # One file per package: gnuplot breaks a line at every skipped row.
+    awk -F, -v d="$T" 'NR > 1 {print > (d "/" $2 ".csv")}' "$T/states.csv"
+    gnuplot <<GP
+set terminal pngcairo size 900,620 font "sans,10" noenhanced
+set output "$OUT/replay.png"
+set datafile separator ","
+set multiplot layout 2,1 title "swaywatch replay sample_logs/braking-pothole.csv, a crate standing on the bed and the same crate on a frame"
+set xrange [5.5:9.5]
+set grid
+set ylabel "bed acceleration (m/s²)"
+set key off
+plot "$T/crate-A.csv" using 1:13 with lines lw 1.5 lc rgb "#444444"
+set ylabel "tilt θ (deg)"
+set xlabel "time (s)"
+set yrange [-25:95]
+set key top left
+set arrow from 5.5,20 to 9.5,20 nohead dt 2 lc rgb "#aa0000"
+set label "α = 20°: centre of mass over the corner" at 5.6,26 tc rgb "#aa0000"
+plot "$T/crate-A.csv" using 1:(\$4*180/pi) with lines lw 1.5 title "crate-A on the bed: rocks, stays upright", \
+     "$T/crate-A-on-frame.csv" using 1:(\$4*180/pi) with lines lw 1.5 title "crate-A-on-frame: overturns at $over s"
+unset multiplot
+GP
+    echo "make-doc-images.sh: $OUT/replay.png"
+}
+
+# The live monitor on loopback, as a terminal shows it: a CSV drive made
+# into an lcm-logger file, played by lcm-logplayer at real time into the
+# monitor, its alarms printed by the example listener.
+monitor() {
+    if [ -z "${SW_IN_NETNS:-}" ] && ! ip route get 239.255.76.67 >/dev/null 2>&1; then
+        SW_IN_NETNS=1 exec unshare -n sh "$0" monitor
+    fi
+    if [ -n "${SW_IN_NETNS:-}" ]; then
+        ip link set lo up
+        ip route add 224.0.0.0/4 dev lo
+    fi
+    LISTENER=$BUILD/docs/examples/sw_example_alarm_listener
+    export PYTHONPATH="$BUILD/lcmtypes/python"
+    "$SW" monitor --scene sample_logs/crate.ini --scene sample_logs/crate-on-frame.ini \
+        --status 2 2>"$T/monitor.txt" &
+    mon=$!
+    "$LISTENER" 2>/dev/null >"$T/alarms.txt" &
+    lis=$!
+    # The samples' utimes start 1 s from now, when the player starts: the
+    # monitor's lag (wall clock minus sample time) is then its own.
+    start=$(python3 -c 'import time; print(int(time.time() * 1e6) + 1000000)')
+    python3 docs/examples/csv2lcmlog.py sample_logs/hard-stop-overturn.csv "$T/drive.lcmlog" \
+        --start-utime "$start" >/dev/null
+    python3 -c "import time; time.sleep(max(0.0, $start / 1e6 - time.time()))"
+    lcm-logplayer "$T/drive.lcmlog" >/dev/null
+    sleep 0.5
+    kill -INT "$mon"
+    wait "$mon" || true
+    kill -INT "$lis"
+    wait "$lis" || true
+    {
+        echo '$ python3 docs/examples/csv2lcmlog.py sample_logs/hard-stop-overturn.csv drive.lcmlog'
+        echo '$ swaywatch monitor --scene sample_logs/crate.ini --scene sample_logs/crate-on-frame.ini --status 2 &'
+        echo '$ alarm_listener &            # docs/examples/alarm_listener.c'
+        echo '$ lcm-logplayer drive.lcmlog  # the "sensor": 8 s of a hard stop, in real time'
+        # Interleave by order of appearance is lost between two processes:
+        # the monitor's lines, then the alarms.
+        sed "s|$ROOT/||g" "$T/monitor.txt"
+        echo '$ # what alarm_listener printed:'
+        cat "$T/alarms.txt"
+    } >"$OUT/monitor.txt"
+    echo "make-doc-images.sh: $OUT/monitor.txt"
+}
+
+# The lowest half-sine braking pulse that overturns each crate, against its
+# frequency (the boundary command draws it with gnuplot).
+boundary() {
+    "$SW" boundary --scene sample_logs/crate.ini --scene sample_logs/crate-on-frame.ini \
+        --pulse half-sine --omega-ratio 1:8:0.5 --out "$T/boundary.csv" --quiet \
+        --title "swaywatch boundary: half-sine pulse, the crate on the bed and on a frame" \
+        --plot "$OUT/boundary.png"
+    echo "make-doc-images.sh: $OUT/boundary.png"
+}
+
+[ $# -gt 0 ] || set -- replay monitor boundary
+for what in "$@"; do
+    "$what"
+done

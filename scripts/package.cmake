@@ -1,0 +1,102 @@
+# Installing the command and its deployment files, and the Debian packages
+# made by CPack ('cpack -G DEB' in the build folder; docs/deployment.md).
+# The library, its headers and swaywatch.pc are installed by src/lib, the
+# manual pages by docs, the LCM definitions and bindings by lcmtypes.
+#
+# Two packages, as Debian splits a library:
+#   swaywatch         the command, libswaywatch.so.0, manual pages, bash
+#                     completion, the systemd unit, LCM types and bindings;
+#   libswaywatch-dev  headers, libswaywatch.a, the .so link, swaywatch.pc.
+# Install rules without a COMPONENT land in swaywatch (see the default
+# component set at the top of the top-level CMakeLists.txt).
+
+install(TARGETS swaywatch-cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/scripts/bash-completion/swaywatch
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions COMPONENT runtime)
+# Relative to the prefix, not LIBDIR: systemd looks in /usr/lib/systemd/system
+# and /usr/local/lib/systemd/system, never in a multiarch folder.
+install(FILES ${PROJECT_SOURCE_DIR}/scripts/systemd/swaywatch-monitor.service
+        DESTINATION lib/systemd/system COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/scripts/systemd/monitor.default
+        DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/docs/deployment.md
+        DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
+        COMPONENT runtime FILES_MATCHING PATTERN "*.c" PATTERN "*.py" PATTERN "README*")
+
+# LCM message definitions and the bindings lcmtypes/ generates, for
+# consumers of the monitor's messages (C sources, Python modules, the jar
+# for lcm-spy), all under share/swaywatch/lcmtypes.
+if(TARGET swaywatch_lcmtypes)
+  set(SW_LCM_DEST ${CMAKE_INSTALL_DATADIR}/swaywatch/lcmtypes)
+  file(GLOB SW_LCM_DEFS ${PROJECT_SOURCE_DIR}/lcmtypes/*.lcm)
+  get_target_property(SW_LCM_C_SOURCES swaywatch_lcmtypes SOURCES)
+  list(FILTER SW_LCM_C_SOURCES INCLUDE REGEX "\\.c$")
+  string(REGEX REPLACE "\\.c(;|$)" ".h\\1" SW_LCM_C_HEADERS "${SW_LCM_C_SOURCES}")
+  install(FILES ${SW_LCM_DEFS} DESTINATION ${SW_LCM_DEST} COMPONENT runtime)
+  install(FILES ${SW_LCM_C_SOURCES} ${SW_LCM_C_HEADERS} DESTINATION ${SW_LCM_DEST}/c
+          COMPONENT runtime)
+  if(SW_LCM_PYTHON_DIR)
+    install(DIRECTORY ${SW_LCM_PYTHON_DIR}/swaywatch DESTINATION ${SW_LCM_DEST}/python
+            COMPONENT runtime FILES_MATCHING PATTERN "*.py")
+  endif()
+  if(SW_LCM_JAVA_JAR)
+    install(FILES ${SW_LCM_JAVA_JAR} DESTINATION ${SW_LCM_DEST}/java COMPONENT runtime)
+  endif()
+endif()
+
+set(SW_DEB_MAINTAINER "swaywatch developers <dev@swaywatch.invalid>"
+    CACHE STRING "Maintainer field of the Debian packages")
+
+set(CPACK_PACKAGE_NAME swaywatch)
+set(CPACK_PACKAGE_VENDOR "swaywatch developers")
+set(CPACK_PACKAGE_CONTACT "${SW_DEB_MAINTAINER}")
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_GENERATOR DEB)
+set(CPACK_COMPONENTS_ALL runtime dev)
+set(CPACK_DEB_COMPONENT_INSTALL ON)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_RELEASE 1)
+set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${SW_DEB_MAINTAINER}")
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
+
+# swaywatch: run-time dependencies from the ELF files (dpkg-shlibdeps, from
+# dpkg-dev), a shlibs file and the ldconfig trigger for libswaywatch.so.0.
+# The first line of each description is the package's synopsis (no
+# CPACK_PACKAGE_DESCRIPTION_SUMMARY: CPack would put it in front of both).
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME swaywatch)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_SUGGESTS "liblcm-bin, liblcm-java, python3")
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_CONTROL_EXTRA
+    ${PROJECT_SOURCE_DIR}/scripts/debian/postinst
+    ${PROJECT_SOURCE_DIR}/scripts/debian/prerm
+    ${PROJECT_SOURCE_DIR}/scripts/debian/postrm
+    ${PROJECT_SOURCE_DIR}/scripts/debian/triggers)
+set(CPACK_DEBIAN_RUNTIME_DESCRIPTION
+"tip-over watch for floating cargo on a truck
+swaywatch reads the longitudinal acceleration of a truck bed (CSV logs,
+lcm-logger logs or live LCM messages), advances a rocking model of each
+package standing on the bed, on a support frame or on a cushion, and
+reports the sway angle, a margin to overturn and alarms.
+.
+This package has the swaywatch command (replay, simulate, monitor, ...),
+the shared library, a systemd unit for the live monitor, and the LCM
+message definitions with their C, Java and Python bindings.")
+
+# libswaywatch-dev: what building against the library needs, including the
+# -dev packages named by swaywatch.pc (Requires.private, -lcsv).
+set(CPACK_DEBIAN_DEV_PACKAGE_NAME libswaywatch-dev)
+set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
+set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
+    "swaywatch (= ${PROJECT_VERSION}-${CPACK_DEBIAN_PACKAGE_RELEASE}), libgsl-dev, libcsv-dev, libinih-dev, pkg-config")
+set(CPACK_DEBIAN_DEV_DESCRIPTION
+"tip-over watch for floating cargo on a truck - development files
+The C11 library of swaywatch: scene files, rocking models, the streaming
+engine and the CSV reader.  Headers, static library and swaywatch.pc:
+  cc app.c $(pkg-config --cflags --libs swaywatch)")
+
+set(CPACK_SOURCE_GENERATOR TGZ)
+set(CPACK_SOURCE_IGNORE_FILES "/\\\\.git/" "/build[^/]*/")
+include(CPack)

@@ -1,0 +1,471 @@
+/* cmd_monitor.c - "swaywatch monitor": the live monitor on the vehicle's
+ * LCM bus.  Subscribes to acceleration samples, advances every package's
+ * model as they arrive, publishes states and alarms (the work is done by
+ * the monitor core, lcmmon.c).
+ *
+ * One thread: poll() on LCM's file descriptor and on a self-pipe written by
+ * the signal handler, with a timeout that wakes the loop for the sensor-gap
+ * timer and the status line.  The self-pipe (not a bare flag) because the
+ * signal may be delivered to LCM's receive thread while this one sleeps in
+ * poll().  Nothing in the loop writes files; publishing over udpm does not
+ * block. */
+#include <errno.h>
+#include <fcntl.h>
+#include <lcm/lcm.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "lcmcli.h"
+#include "lcmmon.h"
+#include "monreload.h"
+
+/* Per-subscription queue of LCM (default 30, which loses samples in bursts
+ * at 1 kHz): two seconds of samples at 1 kHz. */
+#define ACCEL_QUEUE 2000
+/* Messages handled per wake-up before the timers get a look. */
+#define BATCH 256
+
+enum { OPT_ACCEL_CHANNEL = SW_OPT_FIRST_OWN, OPT_FLIP, OPT_ACCEL_UNIT, OPT_STATUS, OPT_MAX_SKEW };
+
+/* The options monitor shares with replay of lcm-logger files carry the
+ * SW_OPT_LCM_* codes of cli.h and are read by sw_cli_mon_option(). */
+static const struct option long_opts[] = {
+    SW_CLI_COMMON_LONGOPTS,
+    {"lcm-url", required_argument, NULL, 'l'},
+    {"accel-channel", required_argument, NULL, OPT_ACCEL_CHANNEL},
+    {"state-channel", required_argument, NULL, SW_OPT_LCM_STATE_CHANNEL},
+    {"alarm-channel", required_argument, NULL, SW_OPT_LCM_ALARM_CHANNEL},
+    {"axis", required_argument, NULL, SW_OPT_LCM_AXIS},
+    {"vertical", required_argument, NULL, SW_OPT_LCM_VERTICAL},
+    {"flip", no_argument, NULL, OPT_FLIP},
+    {"accel-unit", required_argument, NULL, OPT_ACCEL_UNIT},
+    {"state-rate", required_argument, NULL, SW_OPT_LCM_STATE_RATE},
+    {"gap", required_argument, NULL, SW_OPT_LCM_GAP},
+    {"status", required_argument, NULL, OPT_STATUS},
+    {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL},
+    {"max-skew", required_argument, NULL, OPT_MAX_SKEW},
+    {NULL, 0, NULL, 0},
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: swaywatch monitor --scene S.ini [--scene T.ini ...] [options]\n"
+            "\n"
+            "Live monitor: subscribes to acceleration samples (swaywatch.accel_t) over LCM,\n"
+            "advances the model of every package as they arrive, and publishes each package's\n"
+            "state (swaywatch.state_t) and alarms (swaywatch.alarm_t).  Runs until SIGINT or\n"
+            "SIGTERM, then prints a summary on stderr.  Samples are integrated by their own\n"
+            "utime, never by arrival time.\n"
+            "\n"
+            "SIGHUP (systemctl reload) re-reads the scene files: a package whose scene values\n"
+            "changed is rebuilt and starts from rest; the others keep their state, alarms and\n"
+            "message sequence.  If a file is unreadable or invalid, nothing changes.\n"
+            "\n"
+            "LCM:\n"
+            "  -l, --lcm-url URL          LCM URL (default: $LCM_DEFAULT_URL, else LCM's default,\n"
+            "                             udpm://239.255.76.67:7667?ttl=0)\n"
+            "      --accel-channel CHAN   input channel (default %s)\n"
+            "      --state-channel CHAN   states (default %s)\n"
+            "      --alarm-channel CHAN   alarms (default %s)\n"
+            "      --state-rate HZ        states per package per second of sample time\n"
+            "                             (default 0: one per sample)\n"
+            "\n"
+            "Input:\n"
+            "      --axis x|y|z           message axis along the truck's travel (default x)\n"
+            "      --flip                 negate that axis (sensor mounted backwards)\n"
+            "      --vertical x|y|z|none  message axis used as vertical acceleration (up, gravity\n"
+            "                             removed; default none: gravity only)\n"
+            "      --accel-unit m/s2|g    unit of the message's values (default m/s2)\n"
+            "      --max-accel A          refuse samples with any axis beyond A, in m/s^2 or with\n"
+            "                             a g suffix, e.g. 30g (default 50g)\n"
+            "      --max-skew SECONDS     refuse samples whose utime is further than this from\n"
+            "                             the wall clock (default: not checked; e.g. 10 for a\n"
+            "                             sensor with a synchronised clock; leave it off when\n"
+            "                             lcm-logplayer replays an old log)\n"
+            "      --gap SECONDS          sensor gap threshold (default %g)\n"
+            "      --status SECONDS       one status line on stderr every SECONDS: sample rate,\n"
+            "                             lag behind the sensor clock, CPU share, counts\n"
+            "                             (default 0: none)\n"
+            "\n"
+            "Sensor gaps: when no sample has arrived for --gap seconds, a SENSOR_GAP alarm\n"
+            "(warn) is published and the model waits: it is not advanced and publishes no\n"
+            "state.  When samples resume, the input over the gap is bridged by linear\n"
+            "interpolation between the last sample before it and the first after it, and a\n"
+            "SENSOR_GAP alarm (info) says so.  Consecutive samples further apart in utime than\n"
+            "--gap (samples lost upstream) raise SENSOR_GAP (warn) when the later one arrives\n"
+            "and are bridged the same way.\n"
+            "\n"
+            "Bad input: messages that are not accel_t (wrong type, truncated, trailing bytes),\n"
+            "samples with a non-finite value or beyond --max-accel or --max-skew, duplicates\n"
+            "(same utime as the last accepted sample) and late samples (utime before it) are\n"
+            "refused and counted by reason: the model never integrates backwards.  The first\n"
+            "refusal of each reason raises INPUT_REJECTED at once, later ones at most once a\n"
+            "second with their count.  Samples lost on the way are counted from the sender's\n"
+            "seq.  A state whose numbers are not all finite is never published: a MODEL_FAULT\n"
+            "alarm is, instead.\n"
+            "\n"
+            "Scene and integration:\n"
+            "  -s, --scene FILE           scene file (INI); at least one, repeatable\n"
+            "      --set SEC.KEY=VALUE    override a key in every scene\n"
+            "      --scheme NAME          time stepper:",
+            SW_MON_ACCEL_CHANNEL, SW_MON_STATE_CHANNEL, SW_MON_ALARM_CHANNEL, SW_MON_GAP);
+    for (size_t i = 0; sw_scheme_at(i); i++)
+        fprintf(f, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
+    fprintf(f,
+            " (default %s)\n"
+            "      --dt SECONDS           internal step (default: the scheme's own)\n"
+            "      --rtol X, --atol X     tolerances of the adaptive schemes\n"
+            "  -v, --verbose              derived quantities of each scene, on stderr\n"
+            "  -h, --help                 this help\n"
+            "\n"
+            "The monitor writes no files: record its output with lcm-logger.\n"
+            "\n"
+            "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
+            "3 LCM could not be set up (URL, network) or a scene file could not be read.\n",
+            SW_DEFAULT_SCHEME);
+}
+
+/* ---- signals --------------------------------------------------------------- */
+
+static volatile sig_atomic_t stop_signal;
+static volatile sig_atomic_t reload_signal; /* SIGHUP: re-read the scene files */
+static int wake_pipe[2] = {-1, -1};
+
+static void on_signal(int sig)
+{
+    int saved = errno;
+    if (sig == SIGHUP)
+        reload_signal = 1;
+    else
+        stop_signal = sig;
+    if (wake_pipe[1] >= 0) {
+        ssize_t r = write(wake_pipe[1], "", 1);
+        (void)r; /* a full pipe already wakes the loop */
+    }
+    errno = saved;
+}
+
+static int install_signals(void)
+{
+    if (pipe(wake_pipe) != 0)
+        return -1;
+    for (int i = 0; i < 2; i++) {
+        int fl = fcntl(wake_pipe[i], F_GETFL);
+        if (fl < 0 || fcntl(wake_pipe[i], F_SETFL, fl | O_NONBLOCK) != 0)
+            return -1;
+    }
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    if (sigaction(SIGINT, &sa, NULL) != 0 || sigaction(SIGTERM, &sa, NULL) != 0 ||
+        sigaction(SIGHUP, &sa, NULL) != 0)
+        return -1;
+    return 0;
+}
+
+static void remove_signals(void)
+{
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    signal(SIGHUP, SIG_DFL);
+    for (int i = 0; i < 2; i++)
+        if (wake_pipe[i] >= 0) {
+            close(wake_pipe[i]);
+            wake_pipe[i] = -1;
+        }
+}
+
+/* ---- clocks ------------------------------------------------------------------ */
+
+static int64_t wall_now_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+/* ---- the loop ------------------------------------------------------------------ */
+
+typedef struct {
+    sw_mon_t *mon;
+    const sw_cli_opts_t *opts; /* for a reload: the scene files and --set */
+    sw_scene_t *scenes;
+    size_t n;
+    /* since the last status line */
+    long accepted;
+    double lag_sum, lag_max; /* s, wall clock at handling minus sample utime */
+    double busy;             /* s spent handling samples */
+} mon_ctx_t;
+
+static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
+{
+    (void)channel;
+    mon_ctx_t *c = user;
+    double t0 = sw_cli_mono_now();
+    int rc = sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, t0, NULL);
+    if (rc >= 0) {
+        double lag = (double)(wall_now_us() - sw_mon_last_utime(c->mon)) / 1e6;
+        c->accepted++;
+        c->lag_sum += lag;
+        if (c->accepted == 1 || lag > c->lag_max)
+            c->lag_max = lag;
+    }
+    c->busy += sw_cli_mono_now() - t0;
+}
+
+static void print_rejected(FILE *f, const sw_mon_counts_t *k)
+{
+    long total = 0;
+    for (int r = 0; r < SW_MON_NREJ; r++) total += k->rejected[r];
+    fprintf(f, "rejected %ld", total);
+    if (!total)
+        return;
+    const char *sep = " (";
+    for (int r = 0; r < SW_MON_NREJ; r++)
+        if (k->rejected[r]) {
+            fprintf(f, "%s%s %ld", sep, sw_mon_reject_name((sw_mon_reject)r), k->rejected[r]);
+            sep = ", ";
+        }
+    fputc(')', f);
+}
+
+static void print_status(mon_ctx_t *c, double elapsed, double interval)
+{
+    sw_mon_counts_t k;
+    sw_mon_counts(c->mon, &k);
+    fprintf(stderr, "swaywatch: monitor %.0f s: %.1f samples/s", elapsed,
+            (double)c->accepted / interval);
+    if (c->accepted)
+        fprintf(stderr, ", lag %.2f ms (max %.2f)", 1e3 * c->lag_sum / (double)c->accepted,
+                1e3 * c->lag_max);
+    fprintf(stderr, ", busy %.1f%%; accepted %ld, ", 100.0 * c->busy / interval, k.accepted);
+    print_rejected(stderr, &k);
+    fprintf(stderr, ", lost %ld, gaps %ld, states %ld, alarms %ld\n", k.lost, k.gaps, k.states,
+            k.alarms);
+    c->accepted = 0;
+    c->lag_sum = c->lag_max = c->busy = 0.0;
+}
+
+static void print_final(sw_mon_t *mon, double elapsed)
+{
+    sw_mon_counts_t k;
+    sw_mon_counts(mon, &k);
+    fprintf(stderr, "swaywatch: monitor stopped (%s) after %.1f s: received %ld = accepted %ld + ",
+            stop_signal == SIGTERM ? "SIGTERM" : "SIGINT", elapsed, k.received, k.accepted);
+    print_rejected(stderr, &k);
+    fprintf(stderr,
+            "; lost %ld (by seq), seq restarts %ld, gaps %ld; published %ld states (%ld "
+            "withheld), %ld alarms; %ld publish errors\n",
+            k.lost, k.seq_restarts, k.gaps, k.states, k.states_withheld, k.alarms,
+            k.publish_errors);
+    sw_cli_run_t run;
+    memset(&run, 0, sizeof run);
+    run.samples_read = k.received;
+    run.samples_rejected = k.received - k.accepted;
+    sw_cli_print_summary(stderr, sw_mon_engine(mon), &run);
+}
+
+static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
+{
+    int fd = lcm_get_fileno(lcm);
+    double start = sw_cli_mono_now();
+    double last_status = start;
+    double next_status = status_every > 0.0 ? start + status_every : INFINITY;
+    while (!stop_signal) {
+        double now = sw_cli_mono_now();
+        double deadline = fmin(sw_mon_deadline(c->mon), next_status);
+        int timeout = -1;
+        if (isfinite(deadline))
+            timeout = deadline <= now ? 0 : (int)ceil((deadline - now) * 1e3);
+        struct pollfd p[2] = {{.fd = fd, .events = POLLIN}, {.fd = wake_pipe[0], .events = POLLIN}};
+        int r = poll(p, 2, timeout);
+        if (r < 0 && errno != EINTR) {
+            sw_cli_error("monitor: poll: %s", strerror(errno));
+            return SW_EXIT_IO;
+        }
+        if (r > 0 && (p[0].revents & POLLIN)) {
+            /* Drain what is queued, a batch at a time, without blocking. */
+            if (lcm_handle(lcm) != 0) {
+                sw_cli_error("monitor: lcm_handle failed");
+                return SW_EXIT_IO;
+            }
+            for (int i = 1; i < BATCH && lcm_handle_timeout(lcm, 0) > 0; i++) {
+            }
+        }
+        if (reload_signal) {
+            /* Empty the wake-up pipe first: a SIGHUP after this point
+             * writes to it again and is not lost. */
+            char junk[64];
+            while (read(wake_pipe[0], junk, sizeof junk) > 0) {
+            }
+            reload_signal = 0;
+            sw_cli_monitor_reload(c->mon, c->opts, c->scenes, c->n);
+        }
+        now = sw_cli_mono_now();
+        if (now >= sw_mon_deadline(c->mon))
+            sw_mon_tick(c->mon, now);
+        if (now >= next_status) {
+            print_status(c, now - start, now - last_status);
+            last_status = now;
+            next_status += status_every;
+            if (next_status <= now)
+                next_status = now + status_every;
+        }
+    }
+    sw_mon_flush(c->mon);
+    print_final(c->mon, sw_cli_mono_now() - start);
+    return SW_EXIT_OK;
+}
+
+/* ---- options ------------------------------------------------------------------ */
+
+int cmd_monitor(int argc, char **argv)
+{
+    int rc = SW_EXIT_USAGE;
+    sw_cli_opts_t o;
+    sw_mon_opts_t mo;
+    const char *url = NULL;
+    const char *accel_channel = SW_MON_ACCEL_CHANNEL;
+    double status_every = 0.0;
+    sw_scene_t *scenes = NULL;
+    size_t n = 0;
+    lcm_t *lcm = NULL;
+    lcm_subscription_t *sub = NULL;
+    mon_ctx_t ctx;
+
+    memset(&mo, 0, sizeof mo);
+    memset(&ctx, 0, sizeof ctx);
+    mo.vertical = -1;
+    mo.hysteresis = -1.0;
+    if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK)
+        return SW_EXIT_IO;
+
+    opterr = 0;
+    for (int c;
+         (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS "l:", long_opts, NULL)) != -1;) {
+        int r = sw_cli_common_option(&o, c, optarg, argv);
+        if (r == SW_EXIT_OK) {
+            if (o.help) {
+                usage(stdout);
+                rc = SW_EXIT_OK;
+                goto out;
+            }
+            continue;
+        }
+        if (r != -1)
+            goto out;
+        r = sw_cli_mon_option(&mo, c, optarg);
+        if (r != -1) {
+            if (r != SW_EXIT_OK)
+                goto out;
+            continue;
+        }
+        r = SW_EXIT_OK;
+        switch (c) {
+            case 'l': url = optarg; break;
+            case OPT_ACCEL_CHANNEL:
+                /* LCM's limit on channel names */
+                if (!optarg[0] || strlen(optarg) > 63) {
+                    sw_cli_error(
+                        "--accel-channel: expected a channel regex of 1 to 63 characters, "
+                        "got '%s'",
+                        optarg);
+                    r = SW_EXIT_USAGE;
+                }
+                accel_channel = optarg;
+                break;
+            case OPT_FLIP: mo.flip = 1; break;
+            case OPT_ACCEL_UNIT: r = sw_cli_parse_accel_unit(optarg, &mo.accel_scale); break;
+            case OPT_STATUS:
+                r = sw_cli_parse_double("--status", optarg, SW_NUM_NONNEGATIVE,
+                                        "a number of seconds >= 0 (0: no status)", &status_every);
+                break;
+            case OPT_MAX_SKEW:
+                r = sw_cli_parse_double("--max-skew", optarg, SW_NUM_NONNEGATIVE,
+                                        "a number of seconds >= 0 (0: not checked)", &mo.max_skew);
+                break;
+            default: sw_cli_error("monitor: unhandled option"); r = SW_EXIT_USAGE;
+        }
+        if (r != SW_EXIT_OK)
+            goto out;
+    }
+    if (optind < argc) {
+        sw_cli_error("monitor: unexpected argument '%s'; see 'swaywatch monitor --help'",
+                     argv[optind]);
+        goto out;
+    }
+    if (o.out_path || o.events_path || o.json || o.every != 1) {
+        sw_cli_error(
+            "monitor: --out, --events, --every and --json are for replay and "
+            "simulate; record the monitor's output with lcm-logger");
+        goto out;
+    }
+    rc = sw_cli_load_scenes(&o, &scenes, &n);
+    if (rc != SW_EXIT_OK)
+        goto out;
+
+    if (install_signals() != 0) {
+        sw_cli_error("monitor: cannot install signal handlers: %s", strerror(errno));
+        rc = SW_EXIT_IO;
+        goto out;
+    }
+    lcm = lcm_create(url);
+    if (!lcm) {
+        /* The usual cause with udpm: no route for multicast (a host or
+         * network namespace with only loopback). */
+        int udpm = !url || !url[0] || !strncmp(url, "udpm://", 7);
+        sw_cli_error("monitor: cannot set up LCM with %s%s",
+                     url && url[0] ? url : "the default URL",
+                     udpm ? " (udpm needs a route for 224.0.0.0/4, e.g. 'ip route add "
+                            "224.0.0.0/4 dev lo')"
+                          : "");
+        rc = SW_EXIT_IO;
+        goto out;
+    }
+
+    sw_engine_opts_t eo;
+    sw_cli_engine_opts(&o, &eo);
+    char msg[512] = "";
+    ctx.mon = sw_mon_create(scenes, n, &eo, &mo, lcm, msg, sizeof msg);
+    ctx.opts = &o;
+    ctx.scenes = scenes;
+    ctx.n = n;
+    if (!ctx.mon) {
+        sw_cli_error("monitor: %s", msg[0] ? msg : "cannot start");
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+    if (o.verbose)
+        sw_cli_print_derived(stderr, sw_mon_engine(ctx.mon), scenes, n);
+
+    /* Raw subscription: the generated one drops bad messages with a line
+     * on stderr and no count. */
+    sub = lcm_subscribe(lcm, accel_channel, on_accel, &ctx);
+    if (!sub) {
+        sw_cli_error("monitor: cannot subscribe to %s", accel_channel);
+        rc = SW_EXIT_IO;
+        goto out;
+    }
+    lcm_subscription_set_queue_capacity(sub, ACCEL_QUEUE);
+    rc = run_loop(lcm, &ctx, status_every);
+
+out:
+    if (sub)
+        lcm_unsubscribe(lcm, sub);
+    sw_mon_destroy(ctx.mon);
+    if (lcm)
+        lcm_destroy(lcm);
+    remove_signals();
+    free(scenes);
+    sw_cli_opts_fini(&o);
+    return rc;
+}

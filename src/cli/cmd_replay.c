@@ -1,0 +1,465 @@
+/* cmd_replay.c - "swaywatch replay": run a recorded acceleration log (CSV
+ * file, standard input, or an lcm-logger file) through the model of every
+ * package and report whether, when and how close each came to overturning.
+ *
+ * The log is streamed in fixed chunks through the CSV reader into the
+ * engine, so memory does not grow with the length of the log. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+#define CHUNK (64 * 1024)       /* bytes read and fed at a time */
+#define MAX_PRINTED_REJECTS 20  /* rejected rows listed one by one; the rest only counted */
+#define DEFAULT_SETTLE 30.0     /* s of zero input after the end of the log */
+
+/* The first four bytes of an lcm-logger event log (big-endian). */
+static const unsigned char lcm_sync[4] = {0xED, 0xA1, 0xDA, 0x01};
+
+enum {
+    OPT_TIME_COL = SW_OPT_FIRST_OWN,
+    OPT_ACCEL_COL,
+    OPT_VERT_COL,
+    OPT_DELIM,
+    OPT_HEADER,
+    OPT_NO_HEADER,
+    OPT_ACCEL_UNIT,
+    OPT_TIME_UNIT,
+    OPT_FLIP,
+    OPT_STRICT,
+    OPT_SETTLE,
+    OPT_FAIL_ON_OVERTURN
+};
+
+static const struct option long_opts[] = {
+    SW_CLI_COMMON_LONGOPTS,
+    {"time-col", required_argument, NULL, OPT_TIME_COL},
+    {"accel-col", required_argument, NULL, OPT_ACCEL_COL},
+    {"vert-col", required_argument, NULL, OPT_VERT_COL},
+    {"delimiter", required_argument, NULL, OPT_DELIM},
+    {"header", no_argument, NULL, OPT_HEADER},
+    {"no-header", no_argument, NULL, OPT_NO_HEADER},
+    {"accel-unit", required_argument, NULL, OPT_ACCEL_UNIT},
+    {"time-unit", required_argument, NULL, OPT_TIME_UNIT},
+    {"flip", no_argument, NULL, OPT_FLIP},
+    {"strict", no_argument, NULL, OPT_STRICT},
+    {"settle", required_argument, NULL, OPT_SETTLE},
+    {"fail-on-overturn", no_argument, NULL, OPT_FAIL_ON_OVERTURN},
+    SW_CLI_LCMLOG_LONGOPTS,
+    {NULL, 0, NULL, 0},
+};
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: swaywatch replay LOG --scene S.ini [--scene T.ini ...] [options]\n"
+            "\n"
+            "Replays a recorded acceleration log of the truck bed through the rocking model of\n"
+            "each package and reports whether, when and how close it came to overturning.\n"
+            "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
+            "its first bytes; needs a build with LCM).\n"
+            "\n"
+            "CSV input (default: column 1 time in s, column 2 longitudinal acceleration in\n"
+            "m/s^2, x forward: braking is negative; optional header row; '#' comments):\n"
+            "      --time-col NAME|N    time column, by header name or 1-based index (default 1)\n"
+            "      --accel-col NAME|N   longitudinal acceleration column (default 2)\n"
+            "      --vert-col NAME|N    vertical acceleration column, up positive, same unit as\n"
+            "                           --accel-unit (default: none, gravity only)\n"
+            "      --delimiter D        ',', ';' or tab (default: detected from the first line)\n"
+            "      --header             the first row is a header (default: detected)\n"
+            "      --no-header          the first row is data\n"
+            "      --accel-unit U       m/s2 or g, 1 g = 9.80665 m/s^2 (default m/s2)\n"
+            "      --time-unit U        s, ms or us (default s)\n"
+            "      --flip               negate the longitudinal axis (logger mounted backwards)\n"
+            "      --strict             stop at the first rejected row, exit 2\n"
+            "Rows that cannot be used (missing field, not a number, not finite, time not\n"
+            "increasing) are counted and reported on stderr with their line number (the first\n"
+            "%d one by one); the run goes on without them unless --strict.\n"
+            "\n"
+            "Run:\n"
+            "      --settle SECONDS     after the log ends, go on with zero acceleration for up to\n"
+            "                           this long, or until every package is at rest or has\n"
+            "                           overturned (default %g; 0: stop at the end of the log)\n"
+            "      --fail-on-overturn   exit 1 if any package overturned\n"
+            "\n",
+            MAX_PRINTED_REJECTS, DEFAULT_SETTLE);
+#ifdef SW_HAVE_LCM
+    sw_cli_print_lcmlog_help(f);
+    fputc('\n', f);
+#endif
+    sw_cli_print_common_help(f);
+    fprintf(f, "\nWith --quiet, rejected rows are only counted (one line on stderr).\n");
+    sw_cli_print_exit_help(f, 1, 1);
+}
+
+typedef struct {
+    sw_engine_t *e;
+    const char *name; /* the log, as quoted in messages */
+    sw_cli_states_t *states;
+    sw_cli_events_t *events;
+    int strict, quiet;
+    int stop;          /* --strict saw a rejected row */
+    long reported;     /* rejected rows seen (printed or not) */
+    long printed;      /* rejected rows printed one by one */
+    long refused_line; /* a row the engine refused, awaiting its report */
+    int refused_rc;
+    long engine_refused; /* rows the CSV layer accepted and the engine did not */
+} replay_ctx_t;
+
+static void report_reject(replay_ctx_t *c, long line, const char *reason)
+{
+    if (c->stop) return; /* --strict: the run already ended at an earlier row */
+    c->reported++;
+    if (c->strict) c->stop = 1;
+    if (c->quiet || c->printed >= MAX_PRINTED_REJECTS) return;
+    c->printed++;
+    sw_cli_error("%s:%ld: %s", c->name, line, reason);
+}
+
+static int on_row(void *user, long line, double t, double a_g, double a_z)
+{
+    replay_ctx_t *c = user;
+    if (c->stop) return 1; /* --strict: nothing after the first bad row counts */
+    int rc = sw_engine_push(c->e, t, a_g, a_z);
+    if (rc >= 0) return 0;
+    /* The CSV layer already checks order and finiteness, so this should not
+     * happen; if it does the row is counted as rejected all the same. */
+    c->engine_refused++;
+    c->refused_line = line;
+    c->refused_rc = rc;
+    return 1;
+}
+
+static void on_reject(void *user, long line, const char *reason)
+{
+    replay_ctx_t *c = user;
+    if (c->refused_line && line == c->refused_line) {
+        char buf[160];
+        snprintf(buf, sizeof buf, "sample refused by the engine: %s", sw_strerror(c->refused_rc));
+        c->refused_line = 0;
+        report_reject(c, line, buf);
+        return;
+    }
+    report_reject(c, line, reason);
+}
+
+/* An engine refusal the CSV layer did not pass back through on_reject. */
+static void flush_refusal(replay_ctx_t *c)
+{
+    if (!c->refused_line) return;
+    long line = c->refused_line;
+    on_reject(c, line, "");
+}
+
+static void on_state(void *user, const sw_output_t *out)
+{
+    replay_ctx_t *c = user;
+    sw_cli_states_write(c->states, out);
+}
+
+static void on_event(void *user, const sw_event_t *ev)
+{
+    replay_ctx_t *c = user;
+    sw_cli_events_write(c->events, ev);
+}
+
+static int parse_delim(const char *arg, char *out)
+{
+    if (!strcmp(arg, ",") || !strcmp(arg, "comma"))
+        *out = ',';
+    else if (!strcmp(arg, ";") || !strcmp(arg, "semicolon"))
+        *out = ';';
+    else if (!strcmp(arg, "tab") || !strcmp(arg, "\t") || !strcmp(arg, "\\t"))
+        *out = '\t';
+    else {
+        sw_cli_error("--delimiter: expected ',', ';' or tab, got '%s'", arg);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+static int parse_accel_unit(const char *arg, double *scale)
+{
+    if (!strcmp(arg, "m/s2") || !strcmp(arg, "m/s^2") || !strcmp(arg, "mps2"))
+        *scale = 1.0;
+    else if (!strcmp(arg, "g"))
+        *scale = 9.80665;
+    else {
+        sw_cli_error("--accel-unit: expected m/s2 or g, got '%s'", arg);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+static int parse_time_unit(const char *arg, double *scale)
+{
+    if (!strcmp(arg, "s"))
+        *scale = 1.0;
+    else if (!strcmp(arg, "ms"))
+        *scale = 1e-3;
+    else if (!strcmp(arg, "us"))
+        *scale = 1e-6;
+    else {
+        sw_cli_error("--time-unit: expected s, ms or us, got '%s'", arg);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+/* Column choice: a header name or a 1-based index; "0" is neither. */
+static int check_col(const char *opt, const char *arg)
+{
+    char *end = NULL;
+    long v = strtol(arg, &end, 10);
+    if (*arg == '\0' || (end != arg && *end == '\0' && v < 1)) {
+        sw_cli_error("%s: expected a column name or a 1-based index, got '%s'", opt, arg);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+int cmd_replay(int argc, char **argv)
+{
+    int rc = SW_EXIT_USAGE;
+    sw_cli_opts_t o;
+    sw_csv_opts_t copts = {0};
+    copts.header = -1;
+    double settle = DEFAULT_SETTLE;
+    int fail_on_overturn = 0;
+    const char *log = NULL;
+    int lcm_only = 0; /* an option only lcm-logger files take */
+    char **orig = NULL;
+    FILE *in = NULL;
+    char *buf = NULL;
+    sw_scene_t *scenes = NULL;
+    size_t n = 0;
+    sw_engine_t *e = NULL;
+    sw_csv_t *csv = NULL;
+    sw_cli_states_t states = {0};
+    sw_cli_events_t events = {0};
+    replay_ctx_t ctx = {0};
+
+    if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK) return SW_EXIT_IO;
+    /* getopt_long permutes argv; an lcm-logger file is handed the
+     * arguments as typed. */
+    orig = malloc(((size_t)argc + 1) * sizeof *orig);
+    if (!orig) {
+        sw_cli_error("out of memory");
+        rc = SW_EXIT_IO;
+        goto out;
+    }
+    memcpy(orig, argv, ((size_t)argc + 1) * sizeof *orig);
+
+    opterr = 0;
+    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, NULL)) != -1;) {
+        int r = sw_cli_common_option(&o, c, optarg, argv);
+        if (r == SW_EXIT_OK) {
+            if (o.help) {
+                usage(stdout);
+                rc = SW_EXIT_OK;
+                goto out;
+            }
+            continue;
+        }
+        if (r != -1) goto out;
+        r = SW_EXIT_OK;
+        switch (c) {
+        case OPT_TIME_COL: copts.time_col = optarg; r = check_col("--time-col", optarg); break;
+        case OPT_ACCEL_COL: copts.accel_col = optarg; r = check_col("--accel-col", optarg); break;
+        case OPT_VERT_COL: copts.vert_col = optarg; r = check_col("--vert-col", optarg); break;
+        case OPT_DELIM: r = parse_delim(optarg, &copts.delim); break;
+        case OPT_HEADER: copts.header = 1; break;
+        case OPT_NO_HEADER: copts.header = 0; break;
+        case OPT_ACCEL_UNIT: r = parse_accel_unit(optarg, &copts.accel_scale); break;
+        case OPT_TIME_UNIT: r = parse_time_unit(optarg, &copts.time_scale); break;
+        case OPT_FLIP: copts.flip = 1; break;
+        case OPT_STRICT: ctx.strict = 1; break;
+        case OPT_SETTLE:
+            r = sw_cli_parse_double("--settle", optarg, SW_NUM_NONNEGATIVE,
+                                    "a number of seconds >= 0", &settle);
+            break;
+        case OPT_FAIL_ON_OVERTURN: fail_on_overturn = 1; break;
+        default:
+            if (c >= SW_OPT_LCM_CHANNEL && c < SW_OPT_LCM_END) { /* read by lcmlog.c */
+                lcm_only = c;
+                break;
+            }
+            sw_cli_error("replay: unhandled option");
+            r = SW_EXIT_USAGE;
+        }
+        if (r != SW_EXIT_OK) goto out;
+    }
+    if (optind >= argc) {
+        sw_cli_error("replay: missing LOG (a CSV file, or - for standard input); see 'swaywatch "
+                     "replay --help'");
+        goto out;
+    }
+    if (optind + 1 < argc) {
+        sw_cli_error("replay: one LOG at a time; unexpected '%s'", argv[optind + 1]);
+        goto out;
+    }
+    log = argv[optind];
+    ctx.name = strcmp(log, "-") ? log : "(stdin)";
+    ctx.quiet = o.quiet;
+
+    /* Open the log first: a missing file is an I/O error (3) whatever else
+     * is wrong, and the first bytes decide CSV or lcm-logger. */
+    in = strcmp(log, "-") ? fopen(log, "rb") : stdin;
+    if (!in) {
+        sw_cli_error("%s: cannot open: %s", log, strerror(errno));
+        rc = SW_EXIT_IO;
+        goto out;
+    }
+    buf = malloc(CHUNK);
+    if (!buf) {
+        sw_cli_error("out of memory");
+        rc = SW_EXIT_IO;
+        goto out;
+    }
+    size_t len = fread(buf, 1, CHUNK, in);
+    if (ferror(in)) {
+        sw_cli_error("%s: cannot read: %s", ctx.name, strerror(errno));
+        rc = SW_EXIT_IO;
+        goto out;
+    }
+    if (len >= sizeof lcm_sync && !memcmp(buf, lcm_sync, sizeof lcm_sync)) {
+        if (in == stdin) {
+            sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
+                         "file name",
+                         ctx.name);
+            goto out;
+        }
+        fclose(in);
+        in = NULL;
+#ifdef SW_HAVE_LCM
+        rc = sw_cli_replay_lcmlog(log, argc, orig);
+#else
+        sw_cli_error("%s: lcm-logger files need the LCM build", log);
+        rc = SW_EXIT_USAGE;
+#endif
+        goto out;
+    }
+
+    if (lcm_only) {
+        const char *name = "?";
+        for (const struct option *op = long_opts; op->name; op++)
+            if (op->val == lcm_only) name = op->name;
+        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log", ctx.name,
+                     name);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+    rc = sw_cli_check_outputs(&o, in);
+    if (rc != SW_EXIT_OK) goto out;
+    rc = sw_cli_load_scenes(&o, &scenes, &n);
+    if (rc != SW_EXIT_OK) goto out;
+
+    sw_engine_opts_t eo;
+    sw_cli_engine_opts(&o, &eo);
+    eo.on_event = on_event;
+    eo.on_state = o.out_path ? on_state : NULL;
+    eo.user = &ctx;
+    rc = SW_EXIT_USAGE;
+    e = sw_cli_engine_create(scenes, n, &eo);
+    if (!e) goto out;
+    ctx.e = e;
+    if (o.verbose) sw_cli_print_derived(stderr, e, scenes, n);
+
+    rc = sw_cli_states_open(&states, o.out_path, o.every, scenes, n);
+    if (rc != SW_EXIT_OK) goto out;
+    rc = sw_cli_events_open(&events, o.events_path, scenes, n);
+    if (rc != SW_EXIT_OK) goto out;
+    ctx.states = &states;
+    ctx.events = &events;
+
+    int err = 0;
+    char msg[256] = "";
+    csv = sw_csv_create(&copts, on_row, on_reject, &ctx, &err, msg, sizeof msg);
+    if (!csv) {
+        sw_cli_error("%s: %s", ctx.name, msg[0] ? msg : sw_strerror(err));
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+
+    int fr = SW_OK;
+    while (len > 0 && !ctx.stop) {
+        fr = sw_csv_feed(csv, buf, len);
+        flush_refusal(&ctx);
+        if (fr < 0) break;
+        len = fread(buf, 1, CHUNK, in);
+        if (ferror(in)) {
+            sw_cli_error("%s: cannot read: %s", ctx.name, strerror(errno));
+            rc = SW_EXIT_IO;
+            goto out;
+        }
+    }
+    if (fr >= 0 && !ctx.stop) {
+        fr = sw_csv_finish(csv);
+        flush_refusal(&ctx);
+    }
+    if (fr < 0) {
+        /* The reader reports why through on_reject where it can (e.g. the
+         * header line lacking a named column); this names the failure. */
+        sw_cli_error("%s: %s", ctx.name,
+                     fr == SW_ENOTFOUND ? "a column given by name is not in the header"
+                                        : sw_strerror(fr));
+        rc = fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
+        goto out;
+    }
+    if (ctx.stop) {
+        sw_cli_error("%s: stopped at the first rejected row (--strict)", ctx.name);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+
+    sw_csv_counts_t counts;
+    sw_csv_counts(csv, &counts);
+    long rejected = counts.rejected;
+    /* Rows the engine refused are normally counted by the reader too (the
+     * consumer's non-zero return); make sure they are never lost. */
+    if (rejected < ctx.reported) rejected = ctx.reported;
+    if (ctx.reported > ctx.printed) {
+        if (o.quiet)
+            sw_cli_error("%s: %ld rejected rows", ctx.name, ctx.reported);
+        else
+            sw_cli_error("%s: ... %ld more rejected rows", ctx.name, ctx.reported - ctx.printed);
+    }
+    if (counts.rows - rejected <= 0) {
+        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", ctx.name, counts.rows,
+                     rejected);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+
+    sw_engine_finish(e, settle);
+
+    rc = sw_cli_states_close(&states);
+    int rc2 = sw_cli_events_close(&events);
+    if (rc == SW_EXIT_OK) rc = rc2;
+
+    sw_cli_run_t run = {
+        .log = log,
+        .samples_read = counts.rows,
+        .samples_rejected = rejected,
+        .settle = settle,
+    };
+    if (o.json)
+        sw_cli_print_json(stdout, e, &run);
+    else if (!o.quiet)
+        sw_cli_print_summary(stdout, e, &run);
+    if (rc == SW_EXIT_OK && fail_on_overturn && sw_cli_any_overturned(e)) rc = SW_EXIT_OVERTURNED;
+out:
+    sw_csv_destroy(csv);
+    sw_cli_states_close(&states);
+    sw_cli_events_close(&events);
+    sw_engine_destroy(e);
+    free(scenes);
+    free(buf);
+    if (in && in != stdin) fclose(in);
+    free(orig);
+    sw_cli_opts_fini(&o);
+    return rc;
+}

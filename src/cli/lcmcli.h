@@ -1,0 +1,22 @@
+/* lcmcli.h - what the LCM commands (monitor, and replay of lcm-logger
+ * files) share on top of the monitor core: their common options and a
+ * clock.  LCM builds only. */
+#ifndef SWAYWATCH_LCMCLI_H
+#define SWAYWATCH_LCMCLI_H
+
+#include "lcmmon.h"
+
+/* Handle c (an SW_OPT_LCM_* code of cli.h) if it is one of the options
+ * both commands take: --state-channel, --alarm-channel, --state-rate,
+ * --axis, --vertical, --gap, --max-accel.  Returns -1 if it is not, else
+ * SW_EXIT_OK or SW_EXIT_USAGE (reported). */
+int sw_cli_mon_option(sw_mon_opts_t *mo, int c, const char *arg);
+
+/* --accel-unit m/s2|g: m/s^2 per unit in *scale; SW_EXIT_OK or
+ * SW_EXIT_USAGE (reported). */
+int sw_cli_parse_accel_unit(const char *arg, double *scale);
+
+/* Monotonic clock, s. */
+double sw_cli_mono_now(void);
+
+#endif

@@ -1,0 +1,424 @@
+/* lcmlog.c - "swaywatch replay" of lcm-logger files: reads the event log
+ * in-process with LCM's event-log API (never through the network), feeds
+ * the accel_t messages of one channel to the monitor core by their own
+ * utime, and prints the same summaries as a CSV replay.  With --publish,
+ * states and alarms also go out over LCM, paced in real time (or faster)
+ * by the samples' utime.
+ *
+ * Event logs have no checksum.  lcm_eventlog_read_next_event() returns NULL
+ * both at the end of the file and on a bad header; a bad header is told
+ * from the end by feof(), and the next call resynchronises on the next
+ * sync word.  A length field that points past the end of the file looks
+ * like the end too: when bytes are left after the last good event, the
+ * reader rewinds to just after the failed sync word and scans on, so one
+ * corrupted length cannot hide the rest of the log. */
+#include <errno.h>
+#include <lcm/eventlog.h>
+#include <lcm/lcm.h>
+#include <math.h>
+#include <regex.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#include "cli.h"
+#include "lcmcli.h"
+#include "lcmmon.h"
+#include "swaywatch_accel_t.h"
+
+#define DEFAULT_SETTLE 30.0 /* s, as for CSV logs */
+#define LCM_SYNC 0xEDA1DA01u
+
+enum {
+    OPT_TIME_COL = SW_OPT_FIRST_OWN,
+    OPT_ACCEL_COL,
+    OPT_VERT_COL,
+    OPT_DELIM,
+    OPT_HEADER,
+    OPT_NO_HEADER,
+    OPT_ACCEL_UNIT,
+    OPT_TIME_UNIT,
+    OPT_FLIP,
+    OPT_STRICT,
+    OPT_SETTLE,
+    OPT_FAIL_ON_OVERTURN
+};
+
+/* replay's options (cmd_replay.c), those that only lcm-logger files take
+ * included. */
+static const struct option long_opts[] = {
+    SW_CLI_COMMON_LONGOPTS,
+    {"time-col", required_argument, NULL, OPT_TIME_COL},
+    {"accel-col", required_argument, NULL, OPT_ACCEL_COL},
+    {"vert-col", required_argument, NULL, OPT_VERT_COL},
+    {"delimiter", required_argument, NULL, OPT_DELIM},
+    {"header", no_argument, NULL, OPT_HEADER},
+    {"no-header", no_argument, NULL, OPT_NO_HEADER},
+    {"accel-unit", required_argument, NULL, OPT_ACCEL_UNIT},
+    {"time-unit", required_argument, NULL, OPT_TIME_UNIT},
+    {"flip", no_argument, NULL, OPT_FLIP},
+    {"strict", no_argument, NULL, OPT_STRICT},
+    {"settle", required_argument, NULL, OPT_SETTLE},
+    {"fail-on-overturn", no_argument, NULL, OPT_FAIL_ON_OVERTURN},
+    SW_CLI_LCMLOG_LONGOPTS,
+    {NULL, 0, NULL, 0},
+};
+
+void sw_cli_print_lcmlog_help(FILE *f)
+{
+    fprintf(f,
+            "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit and --flip apply):\n"
+            "      --channel REGEX        accel channel, an anchored regex as in LCM (default "
+            "%s)\n"
+            "      --axis x|y|z           message axis along the truck's travel (default x)\n"
+            "      --vertical x|y|z|none  message axis used as vertical acceleration (default "
+            "none)\n"
+            "      --gap SECONDS          samples further apart raise SENSOR_GAP (default %g)\n"
+            "      --max-accel A          refuse samples beyond A, m/s^2 or e.g. 30g (default "
+            "50g)\n"
+            "      --publish URL          also publish states and alarms over LCM ('' = LCM's\n"
+            "                             default URL; file:///path?mode=w writes a log)\n"
+            "      --speed X              with --publish: X times real time by the samples'\n"
+            "                             utime (default 1; 0 = as fast as possible)\n"
+            "      --state-channel CHAN, --alarm-channel CHAN, --state-rate HZ  as for monitor\n"
+            "Samples are integrated by their own utime, not the log's timestamps.  Messages\n"
+            "on other channels are counted and skipped; corrupted regions of the log are\n"
+            "skipped and counted (--strict: exit 2); bad, duplicate and late samples are\n"
+            "refused as by the monitor.\n",
+            SW_MON_ACCEL_CHANNEL, SW_MON_GAP);
+}
+
+typedef struct {
+    sw_cli_states_t *states;
+    sw_cli_events_t *events;
+} sinks_t;
+
+static void on_state(void *user, const sw_output_t *out)
+{
+    sinks_t *s = user;
+    sw_cli_states_write(s->states, out);
+}
+
+static void on_event(void *user, const sw_event_t *ev)
+{
+    sinks_t *s = user;
+    sw_cli_events_write(s->events, ev);
+}
+
+typedef struct {
+    long events;         /* events read */
+    long on_channel;     /* events on the accel channel */
+    long other_channels; /* events on other channels, skipped */
+    long corrupt;        /* corrupted regions skipped */
+} log_counts_t;
+
+/* Sleep until the monotonic clock reads t (s). */
+static void sleep_until(double t)
+{
+    double now = sw_cli_mono_now();
+    if (t <= now)
+        return;
+    double d = t - now;
+    struct timespec ts = {(time_t)d, (long)((d - floor(d)) * 1e9)};
+    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
+    }
+}
+
+/* Big-endian uint32 at the current position (no advance); 0 if none. */
+static uint32_t peek_sync(FILE *f, off_t at)
+{
+    unsigned char b[4];
+    if (fseeko(f, at, SEEK_SET) != 0 || fread(b, 1, 4, f) != 4)
+        return 0;
+    return (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | b[3];
+}
+
+/* After a NULL at end of file with bytes left from `from`: position the
+ * log just past the first sync word at or after `from`, so scanning goes
+ * on behind it.  Returns 0 if there is one, -1 if the rest is junk. */
+static int skip_bad_sync(FILE *f, off_t from, off_t size)
+{
+    clearerr(f);
+    for (off_t at = from; at + 4 <= size; at++)
+        if (peek_sync(f, at) == LCM_SYNC)
+            return fseeko(f, at + 1, SEEK_SET) == 0 ? 0 : -1;
+    return -1;
+}
+
+/* Real-time pacing of --publish by the samples' own utime. */
+typedef struct {
+    double speed; /* 0: no pacing */
+    int started;
+    double start; /* mono s at base_utime */
+    int64_t base_utime;
+} pacer_t;
+
+/* Longest pause honoured between two samples: a corrupted (but decodable)
+ * utime must not stall the replay for days. */
+#define MAX_PAUSE_US 3600000000LL
+
+static void pace(pacer_t *p, const void *data, int len)
+{
+    swaywatch_accel_t s;
+    if (p->speed <= 0.0 || swaywatch_accel_t_decode(data, 0, len, &s) < 0)
+        return;
+    double now = sw_cli_mono_now();
+    if (!p->started || s.utime - p->base_utime > MAX_PAUSE_US * p->speed) {
+        p->started = 1;
+        p->start = now;
+        p->base_utime = s.utime;
+        return;
+    }
+    sleep_until(p->start + (double)(s.utime - p->base_utime) / 1e6 / p->speed);
+}
+
+/* Read every event; feed the accel channel to the monitor core.  A
+ * corrupted region is a stretch of bytes between two good events; each is
+ * counted once however many reads it takes to get past it. */
+static int read_log(lcm_eventlog_t *log, off_t size, const regex_t *channel, sw_mon_t *mon,
+                    double speed, int strict, log_counts_t *lc)
+{
+    pacer_t pacer = {.speed = speed};
+    int in_bad = 0;
+    for (;;) {
+        off_t at = ftello(log->f);
+        lcm_eventlog_event_t *ev = lcm_eventlog_read_next_event(log);
+        if (!ev) {
+            int eof = feof(log->f);
+            /* Clean end: nothing left after the last event. */
+            if (eof && at >= size)
+                break;
+            if (!in_bad)
+                lc->corrupt++;
+            in_bad = 1;
+            if (strict)
+                return SW_EXIT_USAGE;
+            /* Not at the end: a bad header, and the next call resynchronises.
+             * At the end with bytes left: a truncated last event, or a length
+             * pointing past the end; scan on behind its sync word. */
+            if (eof && skip_bad_sync(log->f, at, size) != 0)
+                break;
+            continue;
+        }
+        in_bad = 0;
+        lc->events++;
+        if (regexec(channel, ev->channel, 0, NULL, 0) != 0) {
+            lc->other_channels++;
+            lcm_eventlog_free_event(ev);
+            continue;
+        }
+        lc->on_channel++;
+        pace(&pacer, ev->data, ev->datalen);
+        int rc =
+            sw_mon_feed(mon, ev->data, (size_t)ev->datalen, 0, (double)ev->timestamp / 1e6, NULL);
+        lcm_eventlog_free_event(ev);
+        if (rc < 0 && strict)
+            return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+static int parse_channel_regex(const char *arg, regex_t *re)
+{
+    /* LCM anchors channel regexes at both ends. */
+    size_t len = strlen(arg);
+    char *anchored = malloc(len + 5);
+    if (!anchored)
+        return -1;
+    snprintf(anchored, len + 5, "^(%s)$", arg);
+    int r = regcomp(re, anchored, REG_EXTENDED | REG_NOSUB);
+    free(anchored);
+    return r == 0 ? 0 : -1;
+}
+
+static void print_lcm_counts(FILE *f, const char *path, const log_counts_t *lc,
+                             const sw_mon_counts_t *k)
+{
+    fprintf(f,
+            "swaywatch: %s: %ld events, %ld on the accel channel, %ld on other channels, "
+            "%ld corrupted regions skipped\n",
+            path, lc->events, lc->on_channel, lc->other_channels, lc->corrupt);
+    long rej = 0;
+    for (int r = 0; r < SW_MON_NREJ; r++) rej += k->rejected[r];
+    fprintf(f, "swaywatch: %s: accel samples: %ld = accepted %ld + rejected %ld", path, k->received,
+            k->accepted, rej);
+    const char *sep = " (";
+    for (int r = 0; r < SW_MON_NREJ; r++)
+        if (k->rejected[r]) {
+            fprintf(f, "%s%s %ld", sep, sw_mon_reject_name((sw_mon_reject)r), k->rejected[r]);
+            sep = ", ";
+        }
+    fprintf(f, "%s; lost %ld (by seq), gaps %ld; %ld states, %ld alarms\n", rej ? ")" : "", k->lost,
+            k->gaps, k->states, k->alarms);
+}
+
+int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
+{
+    int rc = SW_EXIT_USAGE;
+    sw_cli_opts_t o;
+    sw_mon_opts_t mo;
+    const char *channel = SW_MON_ACCEL_CHANNEL;
+    const char *publish_url = NULL;
+    int publish = 0, strict = 0, fail_on_overturn = 0, have_re = 0;
+    double speed = 1.0, settle = DEFAULT_SETTLE;
+    regex_t re;
+    sw_scene_t *scenes = NULL;
+    size_t n = 0;
+    lcm_t *lcm = NULL;
+    sw_mon_t *mon = NULL;
+    lcm_eventlog_t *log = NULL;
+    sw_cli_states_t states = {0};
+    sw_cli_events_t events = {0};
+    sinks_t sinks = {&states, &events};
+    log_counts_t lc = {0};
+
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.hysteresis = -1.0;
+    if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK)
+        return SW_EXIT_IO;
+    optind = 0; /* a fresh scan: replay has parsed these arguments once already */
+    opterr = 0;
+    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, NULL)) != -1;) {
+        int r = sw_cli_common_option(&o, c, optarg, argv);
+        if (r == SW_EXIT_OK)
+            continue;
+        if (r != -1)
+            goto out;
+        r = sw_cli_mon_option(&mo, c, optarg);
+        if (r != -1) {
+            if (r != SW_EXIT_OK)
+                goto out;
+            continue;
+        }
+        r = SW_EXIT_OK;
+        switch (c) {
+            case OPT_TIME_COL:
+            case OPT_ACCEL_COL:
+            case OPT_VERT_COL:
+            case OPT_DELIM:
+            case OPT_HEADER:
+            case OPT_NO_HEADER:
+            case OPT_TIME_UNIT:
+                sw_cli_error("%s: %s is for CSV logs; this is an lcm-logger file", path,
+                             argv[optind - 1]);
+                r = SW_EXIT_USAGE;
+                break;
+            case OPT_ACCEL_UNIT: r = sw_cli_parse_accel_unit(optarg, &mo.accel_scale); break;
+            case OPT_FLIP: mo.flip = 1; break;
+            case OPT_STRICT: strict = 1; break;
+            case OPT_SETTLE:
+                r = sw_cli_parse_double("--settle", optarg, SW_NUM_NONNEGATIVE,
+                                        "a number of seconds >= 0", &settle);
+                break;
+            case OPT_FAIL_ON_OVERTURN: fail_on_overturn = 1; break;
+            case SW_OPT_LCM_CHANNEL: channel = optarg; break;
+            case SW_OPT_LCM_PUBLISH:
+                publish = 1;
+                publish_url = optarg;
+                break;
+            case SW_OPT_LCM_SPEED:
+                r = sw_cli_parse_double("--speed", optarg, SW_NUM_NONNEGATIVE,
+                                        "a factor >= 0 (0: as fast as possible)", &speed);
+                break;
+            default: sw_cli_error("replay: unhandled option"); r = SW_EXIT_USAGE;
+        }
+        if (r != SW_EXIT_OK)
+            goto out;
+    }
+    if (parse_channel_regex(channel, &re) != 0) {
+        sw_cli_error("--channel: not a valid regular expression: '%s'", channel);
+        goto out;
+    }
+    have_re = 1;
+
+    struct stat st;
+    log = lcm_eventlog_create(path, "r");
+    if (!log || fstat(fileno(log->f), &st) != 0) {
+        sw_cli_error("%s: cannot open: %s", path, strerror(errno));
+        rc = SW_EXIT_IO;
+        goto out;
+    }
+    rc = sw_cli_load_scenes(&o, &scenes, &n);
+    if (rc != SW_EXIT_OK)
+        goto out;
+
+    if (publish) {
+        lcm = lcm_create(publish_url);
+        if (!lcm) {
+            sw_cli_error("--publish: cannot set up LCM with '%s'", publish_url);
+            rc = SW_EXIT_IO;
+            goto out;
+        }
+    }
+    if ((rc = sw_cli_states_open(&states, o.out_path, o.every, scenes, n)) != SW_EXIT_OK ||
+        (rc = sw_cli_events_open(&events, o.events_path, scenes, n)) != SW_EXIT_OK)
+        goto out;
+
+    sw_engine_opts_t eo;
+    sw_cli_engine_opts(&o, &eo);
+    mo.on_state = o.out_path ? on_state : NULL;
+    mo.on_event = on_event;
+    mo.user = &sinks;
+    char msg[512] = "";
+    mon = sw_mon_create(scenes, n, &eo, &mo, lcm, msg, sizeof msg);
+    if (!mon) {
+        sw_cli_error("cannot start the engine: %s", msg[0] ? msg : "unknown reason");
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+    if (o.verbose)
+        sw_cli_print_derived(stderr, sw_mon_engine(mon), scenes, n);
+
+    rc = read_log(log, st.st_size, &re, mon, publish ? speed : 0.0, strict, &lc);
+    if (rc != SW_EXIT_OK) {
+        sw_cli_error("%s: stopped at the first bad event or sample (--strict)", path);
+        goto out;
+    }
+    sw_mon_flush(mon);
+    sw_mon_counts_t k;
+    sw_mon_counts(mon, &k);
+    if (k.accepted > 0 && settle > 0.0)
+        sw_engine_finish(sw_mon_engine(mon), settle);
+
+    if ((rc = sw_cli_states_close(&states)) != SW_EXIT_OK ||
+        (rc = sw_cli_events_close(&events)) != SW_EXIT_OK)
+        goto out;
+    sw_mon_counts(mon, &k);
+    sw_cli_run_t run;
+    memset(&run, 0, sizeof run);
+    run.log = path;
+    run.samples_read = k.received;
+    run.samples_rejected = k.received - k.accepted;
+    run.settle = settle;
+    /* --quiet keeps the counts when they explain a failure. */
+    if (!o.quiet || k.accepted == 0)
+        print_lcm_counts(stderr, path, &lc, &k);
+    if (k.accepted == 0) {
+        sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", path, channel);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+    if (o.json)
+        sw_cli_print_json(stdout, sw_mon_engine(mon), &run);
+    else if (!o.quiet)
+        sw_cli_print_summary(stdout, sw_mon_engine(mon), &run);
+    rc = fail_on_overturn && sw_cli_any_overturned(sw_mon_engine(mon)) ? SW_EXIT_OVERTURNED
+                                                                       : SW_EXIT_OK;
+
+out:
+    sw_cli_states_close(&states);
+    sw_cli_events_close(&events);
+    sw_mon_destroy(mon);
+    if (lcm)
+        lcm_destroy(lcm);
+    if (log)
+        lcm_eventlog_destroy(log);
+    if (have_re)
+        regfree(&re);
+    free(scenes);
+    sw_cli_opts_fini(&o);
+    return rc;
+}

@@ -1,0 +1,134 @@
+/* lcmmon.h - the core of the LCM monitor, shared by `swaywatch monitor`
+ * (live), `swaywatch replay` of lcm-logger files and the tests.
+ *
+ * It takes raw accel_t messages (bytes, as LCM delivers them), checks each
+ * one, pushes the good ones into the engine, runs the alarm logic, and
+ * publishes state_t and alarm_t messages on an lcm_t (if one is given).  It
+ * owns no thread, no socket and no timer: the caller delivers messages and
+ * calls sw_mon_tick() when sw_mon_deadline() says so.  Nothing here blocks
+ * (LCM publishing over udpm does not), prints or touches files.
+ *
+ * Every message received is accounted for exactly once:
+ *   received = accepted + sum of rejected[reason].
+ * Time: samples are integrated by their own utime (the sensor's clock),
+ * never by arrival time; the first accepted sample is t = 0 of the engine.
+ * A sample at or before the last accepted one is refused: the model never
+ * integrates backwards. */
+#ifndef SWAYWATCH_LCMMON_H
+#define SWAYWATCH_LCMMON_H
+
+#include <lcm/lcm.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "swaywatch/alarm.h"
+#include "swaywatch/engine.h"
+#include "swaywatch/scene.h"
+
+#define SW_MON_STATE_CHANNEL "SWAY_STATE"
+#define SW_MON_ALARM_CHANNEL "SWAY_ALARM"
+#define SW_MON_ACCEL_CHANNEL "ACCEL"
+#define SW_G0 9.80665                 /* m/s^2, standard gravity (unit "g") */
+#define SW_MON_GAP 0.1                /* s, default sensor gap threshold */
+#define SW_MON_MAX_ACCEL (50 * SW_G0) /* m/s^2, default plausibility limit */
+
+/* Why a message on the accel channel was refused. */
+typedef enum {
+    SW_MON_REJ_DECODE = 0,   /* not an accel_t: wrong fingerprint, or truncated */
+    SW_MON_REJ_TRAILING,     /* an accel_t followed by extra bytes */
+    SW_MON_REJ_NONFINITE,    /* ax, ay or az is NaN or infinite */
+    SW_MON_REJ_IMPLAUSIBLE,  /* |ax|, |ay| or |az| above the plausibility limit */
+    SW_MON_REJ_SKEW,         /* utime too far from the wall clock */
+    SW_MON_REJ_DUPLICATE,    /* same utime as the last accepted sample */
+    SW_MON_REJ_OUT_OF_ORDER, /* utime before the last accepted sample (late) */
+    SW_MON_REJ_ENGINE,       /* refused by the engine (should not happen) */
+    SW_MON_NREJ
+} sw_mon_reject;
+
+typedef struct {
+    const char *state_channel; /* NULL = SW_MON_STATE_CHANNEL */
+    const char *alarm_channel; /* NULL = SW_MON_ALARM_CHANNEL */
+    int axis;                  /* 0 x, 1 y, 2 z: message axis along the truck's travel */
+    int vertical;              /* message axis giving the vertical input a_z, or -1: none */
+    int flip;                  /* non-zero: negate the longitudinal axis */
+    double accel_scale;        /* m/s^2 per message unit: 1, or SW_G0; 0 = 1 */
+    double state_rate;         /* Hz, states per package per second of sample time; 0 = all */
+    double gap;                /* s, sensor gap threshold; 0 = SW_MON_GAP */
+    double max_accel;          /* m/s^2, plausibility limit (in m/s^2 after scaling);
+                                  0 = SW_MON_MAX_ACCEL */
+    double max_skew;           /* s, largest |utime - wall clock|; 0 = not checked */
+    double hysteresis;         /* 1, margin alarms; < 0 = SW_ALARM_HYSTERESIS */
+    double reject_interval;    /* s, at most one INPUT_REJECTED alarm per reason per
+                                  interval (later ones are summed up); 0 = 1 s */
+    sw_state_fn on_state;      /* optional: every engine output (t relative to the first
+                                  sample), published or not */
+    sw_event_fn on_event;      /* optional: every engine event */
+    sw_alarm_fn on_alarm;      /* optional: every alarm raised (t relative, as on_state) */
+    void *user;
+} sw_mon_opts_t;
+
+typedef struct {
+    long received;              /* messages handed to sw_mon_feed() */
+    long accepted;              /* pushed into the engine */
+    long rejected[SW_MON_NREJ]; /* received = accepted + sum(rejected) */
+    long lost;                  /* samples missing by the sender's seq (dropped on the way) */
+    long seq_restarts;          /* seq went back while utime went on: sender restarted */
+    long gaps;                  /* sensor gaps (between samples or seen by the timer) */
+    long states;                /* state_t messages published */
+    long states_withheld;       /* states not published because a value was not finite */
+    long alarms;                /* alarm_t messages raised (published if there is an lcm) */
+    long publish_errors;        /* lcm_publish failures */
+} sw_mon_counts_t;
+
+typedef struct sw_mon sw_mon_t;
+
+/* Create a monitor for n validated scenes.  eo gives scheme, dt, ... (its
+ * callbacks are ignored: the monitor uses its own); out (may be NULL: no
+ * publishing) is borrowed, not owned.  NULL on failure with the reason in
+ * msg. */
+sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo,
+                        const sw_mon_opts_t *mo, lcm_t *out, char *msg, size_t msglen);
+void sw_mon_destroy(sw_mon_t *m); /* NULL ok */
+
+/* One message from the accel channel.  wall_us: wall clock now (us since
+ * 1970, for the skew check; ignored when max_skew is 0); mono: a monotonic
+ * clock in s (arrival time: sensor gaps and alarm rate limits).  Returns
+ * SW_OK or SW_EVENT when accepted, or a negative status when refused
+ * (*why, if not NULL, gets the reason). */
+int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, double mono,
+                sw_mon_reject *why);
+
+/* Timers: detects a sensor gap (no sample for longer than the gap
+ * threshold since the last one arrived) and publishes rejection summaries
+ * that were held back.  Call it when mono reaches sw_mon_deadline(). */
+void sw_mon_tick(sw_mon_t *m, double mono);
+
+/* Monotonic time (s) at which sw_mon_tick() next has work; INFINITY if
+ * none. */
+double sw_mon_deadline(const sw_mon_t *m);
+
+/* End of input: publish rejection summaries still held back. */
+void sw_mon_flush(sw_mon_t *m);
+
+/* Replace package k by a new, validated scene (a scene file edited while
+ * the monitor runs): its model restarts from rest at the current sample
+ * time, with a fresh alarm state; the other packages, the input stream, the
+ * counters and the seq numbers of the channels go on untouched.  Allocates.
+ * Returns SW_OK, or an error with the reason in msg and the monitor
+ * unchanged. */
+int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, size_t msglen);
+
+void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c);
+sw_engine_t *sw_mon_engine(sw_mon_t *m);
+int64_t sw_mon_origin(const sw_mon_t *m); /* utime of t = 0 (us), 0 before the first sample */
+int64_t sw_mon_last_utime(
+    const sw_mon_t *m); /* utime of the last accepted sample (us), 0 if none */
+
+/* "decode", "trailing", "nonfinite", "implausible", "skew", "duplicate",
+ * "out_of_order", "engine". */
+const char *sw_mon_reject_name(sw_mon_reject r);
+
+/* Axis name "x" | "y" | "z" to 0..2; -1 if none of them. */
+int sw_mon_axis_parse(const char *s);
+
+#endif

@@ -1,0 +1,117 @@
+/* monreload.c - "swaywatch monitor" re-reads its scene files on SIGHUP
+ * (systemctl reload), without losing the state of the packages whose scene
+ * did not change.
+ *
+ * Every --scene file is read again, with the --set overrides, exactly as at
+ * start.  A package whose scene values are the same as before (comments,
+ * layout and the order of keys do not count) is left alone: its state, its
+ * alarm state and its place in the message streams go on.  A package whose
+ * scene changed is rebuilt and starts from rest at the current sample time
+ * (sw_mon_replace).  All or nothing: if a file cannot be read or is not a
+ * valid scene, or a changed scene cannot be built, nothing is changed and
+ * the monitor goes on with the scenes it had.  The file list itself is the
+ * one given at start. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef SW_HAVE_LCM
+#include "monreload.h"
+
+static int same_number(double a, double b)
+{
+    return a == b || (isnan(a) && isnan(b));
+}
+
+/* Same values; the line numbers of the sections (where they were in the
+ * file) do not count. */
+static int same_scene(const sw_scene_t *a, const sw_scene_t *b)
+{
+    return !strcmp(a->name, b->name) && same_number(a->height, b->height) &&
+           same_number(a->width, b->width) && same_number(a->mass, b->mass) &&
+           same_number(a->g, b->g) && a->has_frame == b->has_frame &&
+           same_number(a->frame_mass, b->frame_mass) &&
+           same_number(a->frame_stiffness, b->frame_stiffness) &&
+           same_number(a->frame_omega, b->frame_omega) &&
+           same_number(a->frame_damping, b->frame_damping) &&
+           same_number(a->frame_zeta, b->frame_zeta) && a->frame_k_given == b->frame_k_given &&
+           a->frame_c_given == b->frame_c_given && a->has_cushion == b->has_cushion &&
+           same_number(a->cushion_stiffness, b->cushion_stiffness) &&
+           same_number(a->cushion_omega, b->cushion_omega) &&
+           same_number(a->cushion_damping, b->cushion_damping) &&
+           same_number(a->cushion_zeta, b->cushion_zeta) &&
+           same_number(a->cushion_cubic, b->cushion_cubic) &&
+           a->cushion_k_given == b->cushion_k_given && a->cushion_c_given == b->cushion_c_given &&
+           same_number(a->warn_margin, b->warn_margin) &&
+           same_number(a->critical_margin, b->critical_margin);
+}
+
+int sw_cli_monitor_reload(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scenes, size_t n)
+{
+    sw_scene_t *fresh = NULL, *changed = NULL;
+    size_t nf = 0, nchanged = 0;
+    sw_engine_t *trial = NULL;
+    char msg[512] = "";
+
+    int rc = sw_cli_load_scenes(o, &fresh, &nf);
+    if (rc != SW_EXIT_OK)
+        goto keep;
+    if (nf != n) { /* the same files as at start: cannot happen */
+        sw_cli_error("monitor: reload: %zu scenes instead of %zu", nf, n);
+        rc = SW_EXIT_USAGE;
+        goto keep;
+    }
+    changed = calloc(n, sizeof *changed);
+    if (!changed) {
+        sw_cli_error("monitor: reload: out of memory");
+        rc = SW_EXIT_IO;
+        goto keep;
+    }
+    for (size_t k = 0; k < n; k++)
+        if (!same_scene(&scenes[k], &fresh[k]))
+            changed[nchanged++] = fresh[k];
+    if (nchanged == 0) {
+        fprintf(stderr, "swaywatch: monitor: reload: no scene changed; %zu packages kept\n", n);
+        goto done;
+    }
+    /* Build the changed packages once on the side with the monitor's
+     * options: what passes here cannot fail in sw_mon_replace() but for
+     * memory, so a reload does not stop half-way. */
+    sw_engine_opts_t eo;
+    sw_cli_engine_opts(o, &eo);
+    int err = 0;
+    trial = sw_engine_create(changed, nchanged, &eo, &err, msg, sizeof msg);
+    if (!trial) {
+        sw_cli_error("monitor: reload: %s", msg[0] ? msg : sw_strerror(err));
+        rc = SW_EXIT_USAGE;
+        goto keep;
+    }
+    for (size_t k = 0; k < n; k++) {
+        if (same_scene(&scenes[k], &fresh[k]))
+            continue;
+        if (sw_mon_replace(mon, k, &fresh[k], msg, sizeof msg) != SW_OK) {
+            sw_cli_error("monitor: reload: %s: %s", fresh[k].name, msg);
+            rc = SW_EXIT_IO;
+            continue; /* only memory: the package keeps its old scene */
+        }
+        fprintf(stderr, "swaywatch: monitor: reload: %s rebuilt from %s (scene changed)\n",
+                fresh[k].name, o->scene_files[k]);
+        scenes[k] = fresh[k];
+    }
+    fprintf(stderr, "swaywatch: monitor: reload: %zu of %zu packages rebuilt, the others kept\n",
+            nchanged, n);
+    goto done;
+
+keep:
+    sw_cli_error("monitor: reload: scene files not applied; going on with the scenes of before");
+done:
+    sw_engine_destroy(trial);
+    free(changed);
+    free(fresh);
+    return rc;
+}
+
+#else
+/* Without LCM there is no monitor; ISO C wants a declaration in a file. */
+typedef int sw_monreload_unused_t;
+#endif

@@ -1,0 +1,517 @@
+/* model_cushion.c - scene 3 of physics.md: the package on a Winkler cushion,
+ * on the support frame (u, theta, z_B) or directly on the bed (theta, z_B).
+ * Pure functions of a package's parameters, state and input: no allocation,
+ * no I/O.
+ *
+ * State vectors:  on a frame  y = (u, theta, z, u', theta', z')
+ *                 on the bed  y = (theta, z, theta', z')
+ * z is z_B, the downward displacement of the base midpoint B from the
+ * unloaded cushion surface (m).  Everything below is per unit package mass:
+ * the cushion constants k', beta', c' of physics.md (per unit base length)
+ * become kp = k'/m = w_c^2/(2b), bp = beta'/m = (B3/K) w_c^2/(2b) and
+ * cp = c'/m = 2 zeta_c w_c/(2b), so the derived quantities of the scene
+ * are all that is needed.
+ *
+ * Contact.  A base point at sigma in [-b, b] sinks by z + sigma sin(theta)
+ * and pushes back with f = kp z + bp z^3 + cp z' where it is compressed and
+ * f > 0.  Where it is compressed f is a cubic in sigma whose second
+ * derivative 6 bp sin^2(theta) z(sigma) is >= 0: f is convex there, so the
+ * set where it pushes is the compressed interval minus at most one
+ * sub-interval where damping would pull (the trailing edge of a rising
+ * base).  That one rule covers full contact, partial contact (an edge or
+ * both ends lifted) and free flight.  The ends where f = 0 are found by
+ * Newton's method started from the side where f > 0: on a convex function
+ * it converges monotonically, and exactly in one step when bp = 0.  (Not
+ * gsl_poly_solve_cubic: the cubic's leading coefficient bp sin^3(theta)
+ * vanishes with theta, where its monic form loses all accuracy.)  The
+ * integrands of F_B, M_B and of the strain energy are polynomials in sigma
+ * of degree <= 4, so the 3-point Gauss-Legendre rule integrates them
+ * exactly: a closed form that stays free of cancellation for short pieces.
+ *
+ * Equations of motion M(theta) q'' = r as physics.md writes them, divided
+ * by m; the 3x3 (2x2 on the bed) system is solved by its adjugate, det > 0
+ * for every theta. */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include <gsl/gsl_poly.h>
+
+#include "internal.h"
+#include "swaywatch/model.h"
+
+/* Cushion constants per unit package mass and base length. */
+typedef struct {
+    double b;  /* m, half width */
+    double kp; /* 1/(s^2 m): k'/m */
+    double bp; /* 1/(s^2 m^3): beta'/m */
+    double cp; /* 1/(s m): c'/m */
+} cush_t;
+
+static cush_t cush_of(const sw_derived_t *d)
+{
+    cush_t c;
+    const double w2 = d->omega_c * d->omega_c, len = 2.0 * d->b;
+    c.b = d->b;
+    c.kp = w2 / len;
+    c.bp = d->K > 0.0 ? d->B3 / d->K * w2 / len : 0.0;
+    c.cp = 2.0 * d->zeta_c * d->omega_c / len;
+    return c;
+}
+
+/* What the cushion does to the package at one state, per unit mass. */
+typedef struct {
+    double F;  /* m/s^2: F_B / m, upward */
+    double Ms; /* m^2/s^2: (integral of f sigma) / m; M_B = cos(theta) Ms */
+    double S;  /* 1/s^2: tangent stiffness dF/dz over the pushing part */
+    double U;  /* J/kg: strain energy over the compressed part */
+    /* moments of the tangent stiffness density (k' + 3 beta' z^2)/m and
+     * of the length over the pushing part: sigma^1, sigma^2 (S and L0 are
+     * the zeroth) -- the contact's stiffness and damping matrices */
+    double S1, S2, L0, L1, L2;
+} contact_t;
+
+/* Base kinematics: z(sigma) = z0 + s1 sigma, z'(sigma) = v0 + v1 sigma. */
+typedef struct {
+    double z0, s1, v0, v1;
+} kin_t;
+
+static double f_at(const cush_t *c, const kin_t *k, double x)
+{
+    const double z = k->z0 + k->s1 * x;
+    return c->kp * z + c->bp * z * z * z + c->cp * (k->v0 + k->v1 * x);
+}
+
+static double df_at(const cush_t *c, const kin_t *k, double x)
+{
+    const double z = k->z0 + k->s1 * x;
+    return (c->kp + 3.0 * c->bp * z * z) * k->s1 + c->cp * k->v1;
+}
+
+/* Root of the convex f on [p, q], f(p) and f(q) of opposite signs: Newton
+ * from the end where f > 0 never overshoots. */
+static double f_root(const cush_t *c, const kin_t *k, double p, double q)
+{
+    double x = f_at(c, k, p) > 0.0 ? p : q;
+    for (int it = 0; it < 60; it++) {
+        const double fx = f_at(c, k, x), dx = df_at(c, k, x);
+        if (fx == 0.0 || dx == 0.0) break;
+        double xn = x - fx / dx;
+        if (xn < p) xn = p;
+        if (xn > q) xn = q;
+        const double step = fabs(xn - x);
+        x = xn;
+        if (step <= 4.0 * DBL_EPSILON * (c->b + fabs(x))) break;
+    }
+    return x;
+}
+
+/* 3-point Gauss-Legendre nodes on [-1, 1] and weights: exact to degree 5. */
+static const double GL_X = 0.77459666924148337704; /* sqrt(3/5) */
+static const double GL_W0 = 8.0 / 9.0, GL_W1 = 5.0 / 9.0;
+
+/* Add F, Ms and S of the pushing piece [p, q]. */
+static void add_piece(const cush_t *c, const kin_t *k, double p, double q, contact_t *o)
+{
+    const double mid = 0.5 * (p + q), half = 0.5 * (q - p);
+    const double xs[3] = {mid - half * GL_X, mid, mid + half * GL_X};
+    const double ws[3] = {GL_W1 * half, GL_W0 * half, GL_W1 * half};
+    for (int i = 0; i < 3; i++) {
+        const double z = k->z0 + k->s1 * xs[i];
+        const double f = c->kp * z + c->bp * z * z * z + c->cp * (k->v0 + k->v1 * xs[i]);
+        const double kt = c->kp + 3.0 * c->bp * z * z;
+        o->F += ws[i] * f;
+        o->Ms += ws[i] * f * xs[i];
+        o->S += ws[i] * kt;
+        o->S1 += ws[i] * kt * xs[i];
+        o->S2 += ws[i] * kt * xs[i] * xs[i];
+        o->L0 += ws[i];
+        o->L1 += ws[i] * xs[i];
+        o->L2 += ws[i] * xs[i] * xs[i];
+    }
+}
+
+/* Forces, tangent stiffness and strain energy of the cushion at (theta, z)
+ * moving at (theta', z'). */
+static void contact(const cush_t *c, double th, double z, double dth, double dz, contact_t *o)
+{
+    memset(o, 0, sizeof *o);
+    const double s = sin(th), b = c->b;
+    const double zr = z - b * s, zf = z + b * s; /* m, compression of the rear / front edge */
+    if (zr <= 0.0 && zf <= 0.0) return;          /* free flight */
+    /* the compressed interval [l, r]; where an edge is not compressed the
+     * end is the zero of z(sigma), which lies inside [-b, b] */
+    const double l = zr > 0.0 ? -b : -z / s;
+    const double r = zf > 0.0 ? b : -z / s;
+    const kin_t k = {z, s, dz, dth * cos(th)};
+
+    /* strain energy, over the compressed part whatever the damping does */
+    {
+        const double mid = 0.5 * (l + r), half = 0.5 * (r - l);
+        const double xs[3] = {mid - half * GL_X, mid, mid + half * GL_X};
+        const double ws[3] = {GL_W1 * half, GL_W0 * half, GL_W1 * half};
+        for (int i = 0; i < 3; i++) {
+            const double zi = z + s * xs[i], z2 = zi * zi;
+            o->U += ws[i] * (0.5 * c->kp * z2 + 0.25 * c->bp * z2 * z2);
+        }
+    }
+
+    /* f is convex on [l, r]: find its lowest point m */
+    const double dl = df_at(c, &k, l), dr = df_at(c, &k, r);
+    double m;
+    if (dl >= 0.0) {
+        m = l;
+    } else if (dr <= 0.0) {
+        m = r;
+    } else {
+        /* bp s != 0 here (otherwise f' would be constant): f' = 0 where
+         * z^2 = -(kp s + cp v1) / (3 bp s) */
+        const double z2 = -(c->kp * s + c->cp * k.v1) / (3.0 * c->bp * s);
+        m = z2 > 0.0 ? (sqrt(z2) - z) / s : 0.5 * (l + r);
+        if (!(m > l && m < r)) m = 0.5 * (l + r);
+    }
+    const double fl = f_at(c, &k, l), fr = f_at(c, &k, r), fm = f_at(c, &k, m);
+    if (fm >= 0.0) {
+        /* pushes everywhere (an end can only be < 0 by round-off in m) */
+        add_piece(c, &k, fl < 0.0 ? f_root(c, &k, l, m) : l, fr < 0.0 ? f_root(c, &k, m, r) : r,
+                  o);
+        return;
+    }
+    /* convex: f < 0 on one interval around m, >= 0 outside it */
+    if (fl > 0.0) add_piece(c, &k, l, f_root(c, &k, l, m), o);
+    if (fr > 0.0) add_piece(c, &k, f_root(c, &k, m, r), r, o);
+}
+
+/* ---- rest --------------------------------------------------------------- */
+
+double sw_cushion_static_deflection(const sw_derived_t *d, double g)
+{
+    const double w2 = d->omega_c * d->omega_c;      /* 1/s^2, K/m */
+    const double q = d->K > 0.0 ? d->B3 / d->K * w2 : 0.0; /* 1/(s^2 m^2), B3/m */
+    if (!(w2 > 0.0)) return NAN;
+    if (q <= 0.0) return g / w2;
+    /* w2 z + q z^3 = g has one real root; the hyperbolic form of Cardano's
+     * formula has no cancellation when the cubic term is small. */
+    const double P = w2 / q, Q = g / q;
+    double z = 2.0 * sqrt(P / 3.0) * sinh(asinh(1.5 * Q / P * sqrt(3.0 / P)) / 3.0);
+    z -= (w2 * z + q * z * z * z - g) / (w2 + 3.0 * q * z * z); /* one Newton polish */
+    return z;
+}
+
+/* Tangent stiffness K_t/m = (K + 3 B3 z_s^2)/m at the static deflection. */
+static double tangent_w2(const sw_derived_t *d, double g)
+{
+    const double w2 = d->omega_c * d->omega_c, zs = sw_cushion_static_deflection(d, g);
+    const double q = d->K > 0.0 ? d->B3 / d->K * w2 : 0.0;
+    return w2 + 3.0 * q * zs * zs;
+}
+
+void sw_cushion_frequencies(const sw_derived_t *d, double g, double *omega_z, double *omega_theta)
+{
+    const double kt = tangent_w2(d, g);
+    const double J = d->R * d->R / 3.0 + d->h * d->h; /* m^2, (I_C + m h^2)/m */
+    const double kr = kt * d->b * d->b / 3.0 - g * d->h;
+    if (omega_z) *omega_z = sqrt(kt);
+    if (omega_theta) *omega_theta = kr > 0.0 ? sqrt(kr / J) : 0.0;
+}
+
+/* Largest |lambda| of m x'' + c x' + k x = 0 (rad/s). */
+static double rate_1dof(double m, double c, double k)
+{
+    const double disc = c * c - 4.0 * m * k;
+    if (disc <= 0.0) return sqrt(k / m);
+    return (c + sqrt(disc)) / (2.0 * m);
+}
+
+double sw_cushion_omega_max(const sw_derived_t *d, double g)
+{
+    /* Linearised about rest, theta and z decouple: the vertical mode has
+     * K_t/m and C/m (damping enters: at zeta_c = 2 its fast real root is
+     * 3.7 w_c), the rocking mode the moment K_t b^2/3 - m g h and the
+     * Winkler damping moment C b^2/3 about B, coupled to u on a frame.
+     * States stiffer than rest (a corner landing of a heavily damped
+     * cushion, a cubic cushion compressed hard) are handled step by step,
+     * see contact_rate(). */
+    const double kt = tangent_w2(d, g), cz = 2.0 * d->zeta_c * d->omega_c;
+    const double J = d->R * d->R / 3.0 + d->h * d->h; /* m^2, (I_C + m h^2)/m */
+    const double b2 = d->b * d->b / 3.0, kr = kt * b2 - g * d->h, cr = cz * b2;
+    double w = rate_1dof(1.0, cz, kt);
+    if (!(d->gamma > 0.0)) return fmax(w, rate_1dof(J, cr, fabs(kr)));
+    /* frame: det(l^2 M + l C + K) = 0 with M = [1/gam, h; h, J],
+     * C = diag(2 zeta_b w_b/gam, cr), K = diag(w_b^2/gam, kr): a quartic,
+     * solved on its companion matrix without allocation */
+    const double gi = 1.0 / d->gamma, h = d->h;
+    const double c1 = 2.0 * d->zeta_b * d->omega_b * gi, k1 = d->omega_b * d->omega_b * gi;
+    const double a[5] = {k1 * kr, c1 * kr + k1 * cr, kr * gi + c1 * cr + k1 * J, cr * gi + c1 * J,
+                         J * gi - h * h};
+    double mat[16], zr[8];
+    gsl_poly_complex_workspace ws = {4, mat};
+    if (gsl_poly_complex_solve(a, 5, &ws, zr) == GSL_SUCCESS) {
+        for (int i = 0; i < 4; i++) w = fmax(w, hypot(zr[2 * i], zr[2 * i + 1]));
+    } else {
+        /* not expected for these coefficients: bound each mode by its
+         * reduced mass */
+        w = fmax(w, rate_1dof(gi - h * h / J, c1, k1));
+        w = fmax(w, rate_1dof(J - h * h * d->gamma, cr, fabs(kr)));
+    }
+    return w;
+}
+
+/* Largest eigenvalue of M^-1 A for symmetric 2x2 A (a11, a12, a22) and
+ * positive definite M (m11, m12, m22). */
+static double eig2(double a11, double a12, double a22, double m11, double m12, double m22)
+{
+    const double dm = m11 * m22 - m12 * m12, da = a11 * a22 - a12 * a12;
+    const double tr = a11 * m22 + a22 * m11 - 2.0 * a12 * m12;
+    return (tr + sqrt(fmax(tr * tr - 4.0 * dm * da, 0.0))) / (2.0 * dm);
+}
+
+/* The fastest rate of the contact k at tilt th (rad/s), for explicit step
+ * control.  With the contact's stiffness and damping matrices K and C in
+ * (theta, z) and the mass matrix M (the frame, if any, free to move: the
+ * fast modes do not wait for the bearings), every eigenvalue of l^2 M + l C
+ * + K has |l| <= max(sqrt(eig(M^-1 K)), eig(M^-1 C)).  That bound, relative
+ * to its value at rest, scales omega_max: at rest the rate is omega_max, a
+ * corner landing on a heavily damped cushion (the contact's damping no
+ * longer balanced by its stiffness, on a lighter effective mass) or a
+ * cubic cushion compressed far beyond its static deflection is faster.
+ * No contact: 0. */
+static double contact_rate(const sw_pkg_t *P, double th, const contact_t *k)
+{
+    const sw_derived_t *d = &P->d;
+    if (!(k->L0 > 0.0)) return 0.0;
+    const double h = d->h, s = sin(th), co = cos(th), cp = cush_of(d).cp;
+    const double m11 = d->R * d->R / 3.0 + h * h - d->gamma * h * h * co * co;
+    const double m12 = h * s, m22 = 1.0;
+    const double kK = eig2(co * co * k->S2, co * k->S1, k->S, m11, m12, m22);
+    const double kC = cp * eig2(co * co * k->L2, co * k->L1, k->L0, m11, m12, m22);
+    return d->omega_max * fmax(1.0, fmax(sqrt(kK), kC) / P->rate_rest);
+}
+
+
+/* ---- equations of motion ------------------------------------------------ */
+
+/* An adaptive explicit step that grew in free flight can send its trial
+ * stages deep into a stiff cushion, where they overflow.  GSL takes a
+ * non-finite error estimate for a small one (its comparisons with NaN are
+ * false) and would accept the step; a failure status instead makes it
+ * halve the step and try again. */
+static int finite_or_fail(const sw_pkg_t *P, const double f[])
+{
+    for (int i = 0; i < P->n; i++)
+        if (!isfinite(f[i])) return GSL_ERANGE;
+    return GSL_SUCCESS;
+}
+
+int sw_cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[])
+{
+    const sw_derived_t *d = &P->d;
+    const cush_t c = cush_of(d);
+    const double ag = sw_input_ag(P->in, t), ge = sw_input_geff(P, t);
+    const double th = y[P->ith], z = y[P->iz], dth = y[P->idth], dz = y[P->idz];
+    contact_t k;
+    contact(&c, th, z, dth, dz, &k);
+    if (P->track_rate) P->rate_seen = fmax(P->rate_seen, contact_rate(P, th, &k));
+    const double s = sin(th), co = cos(th), h = d->h;
+    const double J = d->R * d->R / 3.0 + h * h; /* m^2, (I_C + m h^2)/m */
+    const double hs = h * s, hc = h * co;
+    /* right-hand sides of physics.md divided by m */
+    const double r2 = -co * k.Ms + ge * hs - ag * hc;
+    const double r3 = -k.F + ge - hc * dth * dth;
+    f[P->ith] = dth;
+    f[P->iz] = dz;
+    if (P->iu < 0) {
+        /* on the bed: [J, h s; h s, 1] (theta'', z'') = (r2, r3) */
+        const double det = J - hs * hs;
+        f[P->idth] = (r2 - hs * r3) / det;
+        f[P->idz] = (J * r3 - hs * r2) / det;
+        return finite_or_fail(P, f);
+    }
+    /* on a frame: M = [1/gam, h c, 0; h c, J, h s; 0, h s, 1] */
+    const double gi = 1.0 / d->gamma, w = d->omega_b;
+    const double r1 =
+        -(2.0 * d->zeta_b * w * y[P->idu] + w * w * y[P->iu]) * gi + hs * dth * dth - ag * gi;
+    const double A11 = J - hs * hs, A12 = -hc, A13 = hc * hs;
+    const double A22 = gi, A23 = -gi * hs, A33 = gi * J - hc * hc;
+    const double det = gi * A11 - hc * hc; /* = gi (J - h^2 s^2) - h^2 c^2 > 0 */
+    f[P->iu] = y[P->idu];
+    f[P->idu] = (A11 * r1 + A12 * r2 + A13 * r3) / det;
+    f[P->idth] = (A12 * r1 + A22 * r2 + A23 * r3) / det;
+    f[P->idz] = (A13 * r1 + A23 * r2 + A33 * r3) / det;
+    return finite_or_fail(P, f);
+}
+
+void sw_cushion_rest(sw_pkg_t *P)
+{
+    memset(P->y, 0, sizeof P->y);
+    P->y[P->iz] = sw_cushion_static_deflection(&P->d, P->g);
+    P->phase = SW_PHASE_ROCKING; /* no stuck stage on a compliant cushion */
+    P->side = 1;
+}
+
+double sw_cushion_lift(const sw_pkg_t *P, const double y[], double *der)
+{
+    /* b^2 sin^2(theta) - z |z|: > 0 when an edge is above the unloaded
+     * surface (b |sin theta| > z), smooth through theta = 0 and z = 0 */
+    const double b = P->d.b, th = y[P->ith], z = y[P->iz];
+    const double s = sin(th);
+    if (der) *der = 2.0 * b * b * s * cos(th) * y[P->idth] - 2.0 * fabs(z) * y[P->idz];
+    return b * b * s * s - z * fabs(z);
+}
+
+/* ---- energies and margins ------------------------------------------------ */
+
+/* Potential energy per unit mass (J/kg) at (theta, z) relative to the
+ * package upright at z = 0: cushion strain + gravity. */
+static double potential(const cush_t *c, const sw_derived_t *d, double g, double th, double z)
+{
+    contact_t k;
+    contact(c, th, z, 0.0, 0.0, &k);
+    return k.U - g * z + g * d->h * (cos(th) - 1.0);
+}
+
+/* Potential at rest (theta = 0, z = z_s), J/kg. */
+static double potential_rest(const cush_t *c, const sw_derived_t *d, double g)
+{
+    return potential(c, d, g, 0.0, sw_cushion_static_deflection(d, g));
+}
+
+double sw_cushion_barrier(const sw_derived_t *d, double g)
+{
+    /* least potential over theta = alpha: V(alpha, z) is convex in z, its
+     * minimum where the cushion carries the weight, F(alpha, z) = g.  F is
+     * increasing and convex in z, so Newton from above converges
+     * monotonically; z_s + b sin(alpha) is above (every point of the base
+     * is then compressed by at least z_s). */
+    const cush_t c = cush_of(d);
+    const double zs = sw_cushion_static_deflection(d, g);
+    double z = zs + d->b * sin(d->alpha);
+    for (int it = 0; it < 200; it++) {
+        contact_t k;
+        contact(&c, d->alpha, z, 0.0, 0.0, &k);
+        if (!(k.S > 0.0)) break;
+        const double dz = (k.F - g) / k.S;
+        z -= dz;
+        if (fabs(dz) <= 1e-14 * (fabs(z) + zs)) break;
+    }
+    return potential(&c, d, g, d->alpha, z) - potential_rest(&c, d, g);
+}
+
+/* Least energy above rest (J/kg) that lifts an edge off the cushion. */
+static double lift_energy(const sw_derived_t *d, double g)
+{
+    /* least potential above rest on the uplift boundary z = b sin(theta),
+     * theta in [0, alpha] (symmetric for theta < 0): a log-spaced scan
+     * (the minimum sits near theta ~ z_s/b, tiny for a stiff cushion), then
+     * golden-section search between the best point's neighbours */
+    const cush_t c = cush_of(d);
+    const double V0 = potential_rest(&c, d, g);
+    double best_th = 0.0, best = potential(&c, d, g, 0.0, 0.0) - V0;
+    double lo = 0.0, hi = d->alpha, prev = 0.0;
+    const int nk = 96;
+    for (int k = nk; k >= 0; k--) { /* theta from alpha 1e-12 up to alpha */
+        const double th = d->alpha * pow(10.0, -12.0 * k / nk);
+        const double v = potential(&c, d, g, th, d->b * sin(th)) - V0;
+        if (v < best) {
+            best = v;
+            best_th = th;
+            lo = prev;
+            hi = k > 0 ? d->alpha * pow(10.0, -12.0 * (k - 1) / nk) : d->alpha;
+        }
+        prev = th;
+    }
+    if (best_th == 0.0) return best;
+    const double gr = 0.5 * (sqrt(5.0) - 1.0);
+    double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+    double v1 = potential(&c, d, g, x1, d->b * sin(x1)) - V0;
+    double v2 = potential(&c, d, g, x2, d->b * sin(x2)) - V0;
+    for (int it = 0; it < 120 && hi - lo > 1e-15 * d->alpha; it++) {
+        if (v1 < v2) {
+            hi = x2;
+            x2 = x1;
+            v2 = v1;
+            x1 = hi - gr * (hi - lo);
+            v1 = potential(&c, d, g, x1, d->b * sin(x1)) - V0;
+        } else {
+            lo = x1;
+            x1 = x2;
+            v1 = v2;
+            x2 = lo + gr * (hi - lo);
+            v2 = potential(&c, d, g, x2, d->b * sin(x2)) - V0;
+        }
+    }
+    return fmin(best, fmin(v1, v2));
+}
+
+/* Kinetic energy per unit mass of the package relative to its support
+ * (u' = 0) and of package + frame (J/kg). */
+static void kinetic(const sw_derived_t *d, const sw_state_t *s, double *rel, double *tot)
+{
+    const double h = d->h, J = d->R * d->R / 3.0 + h * h;
+    const double st = sin(s->theta), ct = cos(s->theta), w = s->theta_dot;
+    *rel = 0.5 * J * w * w + h * st * w * s->z_dot + 0.5 * s->z_dot * s->z_dot;
+    *tot = *rel;
+    if (d->gamma > 0.0) *tot += 0.5 * s->u_dot * s->u_dot / d->gamma + h * ct * s->u_dot * w;
+}
+
+double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s)
+{
+    const cush_t c = cush_of(d);
+    double rel, tot;
+    kinetic(d, s, &rel, &tot);
+    double E = tot + potential(&c, d, g_eff, s->theta, s->z) - potential_rest(&c, d, g_eff);
+    if (d->gamma > 0.0) E += 0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
+    return E;
+}
+
+void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s, double *margin,
+                       double *margin_bound)
+{
+    const cush_t c = cush_of(d);
+    const double Eb = sw_cushion_barrier(d, g_eff);
+    double rel, tot;
+    kinetic(d, s, &rel, &tot);
+    const double V = potential(&c, d, g_eff, s->theta, s->z) - potential_rest(&c, d, g_eff);
+    const double PE = V / Eb, KE = rel / Eb, E = PE + KE;
+    const int inside = fabs(s->theta) < d->alpha;
+    if (margin) {
+        if (inside) {
+            *margin = 1.0 - E;
+        } else {
+            /* beyond alpha: coming back over the barrier with energy to
+             * spare, or falling; either way not positive */
+            const int inward = s->theta * s->theta_dot < 0.0;
+            *margin = fmin(0.0, inward && E > 1.0 ? 1.0 - E : PE - KE - 1.0);
+        }
+    }
+    if (margin_bound) {
+        double Et = tot + V;
+        if (d->gamma > 0.0) Et += 0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
+        const double mb = 1.0 - Et / Eb;
+        *margin_bound = inside ? mb : fmin(mb, 0.0);
+    }
+}
+
+double sw_cushion_motion_energy(const sw_pkg_t *P, const double y[])
+{
+    sw_state_t s;
+    memset(&s, 0, sizeof s);
+    s.theta = y[P->ith];
+    s.theta_dot = y[P->idth];
+    s.z = y[P->iz];
+    s.z_dot = y[P->idz];
+    if (P->iu >= 0) {
+        s.u = y[P->iu];
+        s.u_dot = y[P->idu];
+    }
+    return sw_energy_cushion(&P->d, P->g, &s);
+}
+
+void sw_cushion_setup(sw_pkg_t *P)
+{
+    /* contact_rate()'s bound at rest: full contact, theta = 0, where
+     * M^-1 K and M^-1 C have the vertical mode's K_t/m and C/m as their
+     * largest eigenvalues */
+    P->rate_rest = fmax(sqrt(tangent_w2(&P->d, P->g)), 2.0 * P->d.zeta_c * P->d.omega_c);
+    P->e_lift = lift_energy(&P->d, P->g);
+}

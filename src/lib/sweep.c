@@ -1,0 +1,664 @@
+/* sweep.c - overturning boundaries and safety factors: many independent
+ * runs of the engine, a scan-then-bisect threshold search, and a small
+ * pthread work queue.
+ *
+ * A run stops as soon as its outcome is certain, which is what makes a
+ * sweep of thousands of runs affordable:
+ *   - |theta| reached pi/2 (the engine's overturn event);
+ *   - bare package, no input left, beyond alpha and moving outward: gravity
+ *     only pulls it further (physics.md), so it overturns;
+ *   - bare package at rest after the input: nothing moves it again;
+ *   - frame: margin_bound > 0 after the input: the total energy cannot
+ *     grow and is below the barrier, so it cannot overturn;
+ *   - otherwise the free-motion time limit (20 rocking periods by default).
+ * The checks are made on a fixed grid of the free motion (16 per rocking
+ * period), so a run is the same computation whichever thread makes it. */
+#include <math.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "swaywatch/status.h"
+#include "swaywatch/sweep.h"
+
+#define DEFAULT_FREE_PERIODS 20.0
+#define DEFAULT_STEP 0.02
+#define DEFAULT_TOL 1e-3
+#define DEFAULT_X_MAX 20.0
+#define STEPS_PER_PERIOD 400.0  /* automatic dt: steps per shortest period */
+#define CHECKS_PER_PERIOD 16.0  /* stop checks per rocking period of free motion */
+#define PROBE_SAMPLES 400.0     /* samples per period when probing the stuck frame */
+#define LIFT_MARGIN_PULSE 0.99  /* probe of a pulse: sampled to 3e-5 of the peak */
+#define LIFT_MARGIN_LOG 0.9     /* probe of a log: sampled only at the log's samples */
+#define MAX_THREADS 256
+
+static void set_msg(char *msg, size_t len, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static void set_msg(char *msg, size_t len, const char *fmt, ...)
+{
+    if (!msg || !len) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, len, fmt, ap);
+    va_end(ap);
+}
+
+static double zero_input(void *user, double t)
+{
+    (void)user;
+    (void)t;
+    return 0.0;
+}
+
+/* ---- one run --------------------------------------------------------------- */
+
+/* An engine for one scene.  dt: the option, or the scheme's default capped
+ * at 1/STEPS_PER_PERIOD of the shorter of the pulse period (omega_e > 0)
+ * and the rocking period. */
+static sw_engine_t *make_engine(const sw_scene_t *sc, const sw_run_opts_t *o, double omega_e,
+                                int *err, char *msg, size_t msglen)
+{
+    sw_derived_t d;
+    char why[256];
+    if (sw_scene_validate(sc, &d, NULL, NULL, NULL) != SW_OK) {
+        *err = SW_EINVAL;
+        set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
+        return NULL;
+    }
+    sw_engine_opts_t eo;
+    memset(&eo, 0, sizeof eo);
+    eo.scheme = o && o->scheme ? o->scheme : SW_DEFAULT_SCHEME;
+    eo.rtol = o ? o->rtol : 0.0;
+    eo.atol = o ? o->atol : 0.0;
+    const sw_scheme_t *s = sw_scheme_lookup(eo.scheme);
+    if (!s) {
+        *err = SW_ENOTFOUND;
+        set_msg(msg, msglen, "unknown scheme '%s'", eo.scheme);
+        return NULL;
+    }
+    if (o && o->dt > 0.0) {
+        eo.dt = o->dt;
+    } else {
+        double period = 2.0 * M_PI / d.p; /* s */
+        if (omega_e > 0.0) period = fmin(period, 2.0 * M_PI / omega_e);
+        eo.dt = fmin(sw_scheme_default_dt(s), period / STEPS_PER_PERIOD);
+    }
+    why[0] = '\0';
+    sw_engine_t *e = sw_engine_create(sc, 1, &eo, err, why, sizeof why);
+    if (!e) set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
+    return e;
+}
+
+static double free_time_of(const sw_run_opts_t *o, double p)
+{
+    if (o && o->settle > 0.0) return o->settle;
+    if (o && o->settle < 0.0) return 0.0;
+    const double n = o && o->free_periods > 0.0 ? o->free_periods : DEFAULT_FREE_PERIODS;
+    return n * 2.0 * M_PI / p;
+}
+
+static void fill_result(const sw_engine_t *e, sw_run_end end, sw_run_result_t *r)
+{
+    sw_summary_t s;
+    sw_engine_summary(e, 0, &s);
+    r->end = end;
+    r->overturned = end == SW_END_OVERTURN || end == SW_END_FALLING;
+    r->impacts = s.impacts;
+    r->uplifts = s.uplifts;
+    r->faults = s.faults;
+    r->uplift_time = s.uplift_time;
+    r->tip_time = s.tip_time;
+    r->overturn_time = s.overturn_time;
+    r->max_theta_ratio = s.max_theta_ratio;
+    r->min_margin = s.min_margin;
+    r->t_end = sw_engine_time(e);
+}
+
+/* Free motion from the end of the input until the outcome is certain or
+ * t_limit (s) passes; checks every chunk seconds. */
+static int free_motion(sw_engine_t *e, double t_limit, double chunk, sw_run_result_t *r)
+{
+    const sw_derived_t *d = sw_engine_derived(e, 0);
+    sw_run_end end;
+    for (;;) {
+        sw_summary_t s;
+        sw_output_t o;
+        sw_engine_summary(e, 0, &s);
+        sw_engine_get_output(e, 0, &o);
+        const double t = sw_engine_time(e);
+        if (s.overturned) {
+            end = SW_END_OVERTURN;
+            break;
+        }
+        if (d->model == SW_MODEL_BARE) {
+            if (o.state.phase == SW_PHASE_STUCK) {
+                end = SW_END_REST;
+                break;
+            }
+            if (fabs(o.state.theta) >= d->alpha && o.state.theta * o.state.theta_dot > 0.0) {
+                end = SW_END_FALLING;
+                break;
+            }
+        } else if (o.margin_bound > 0.0) {
+            end = SW_END_BOUND;
+            break;
+        }
+        if (!(t < t_limit)) {
+            end = SW_END_TIMEOUT;
+            break;
+        }
+        const int rc = sw_engine_advance_fn(e, fmin(t_limit, t + chunk), zero_input, NULL);
+        if (rc < 0) return rc;
+    }
+    fill_result(e, end, r);
+    return r->faults ? SW_EFAULT : SW_OK;
+}
+
+static int run_pulse_on(sw_engine_t *e, const sw_pulse_t *pulse, const sw_run_opts_t *o,
+                        sw_run_result_t *r)
+{
+    sw_pulse_t pl = *pulse;
+    const double p = sw_engine_derived(e, 0)->p;
+    const double T = sw_pulse_duration(&pl);
+    sw_engine_reset(e);
+    /* Up to the end of the pulse first, so that a step ends on its kink. */
+    const int rc = sw_engine_advance_fn(e, T, sw_pulse_eval, &pl);
+    if (rc < 0) return rc;
+    return free_motion(e, T + free_time_of(o, p), 2.0 * M_PI / p / CHECKS_PER_PERIOD, r);
+}
+
+static int check_pulse(const sw_pulse_t *pulse, char *msg, size_t msglen)
+{
+    if (!pulse || !(pulse->omega > 0.0) || !isfinite(pulse->omega) ||
+        !isfinite(pulse->amplitude)) {
+        set_msg(msg, msglen, "the pulse needs a finite amplitude and omega > 0");
+        return SW_EINVAL;
+    }
+    return SW_OK;
+}
+
+int sw_pulse_run(const sw_scene_t *sc, const sw_pulse_t *pulse, const sw_run_opts_t *o,
+                 sw_run_result_t *r, char *msg, size_t msglen)
+{
+    int err = SW_OK;
+    set_msg(msg, msglen, "%s", "");
+    if (!sc || !r) return SW_EINVAL;
+    memset(r, 0, sizeof *r);
+    if ((err = check_pulse(pulse, msg, msglen)) != SW_OK) return err;
+    sw_engine_t *e = make_engine(sc, o, pulse->omega, &err, msg, msglen);
+    if (!e) return err;
+    err = run_pulse_on(e, pulse, o, r);
+    if (err == SW_EFAULT) set_msg(msg, msglen, "the model faulted during the run");
+    sw_engine_destroy(e);
+    return err;
+}
+
+static int run_log_on(sw_engine_t *e, const sw_log_t *log, double scale, const sw_run_opts_t *o,
+                      sw_run_result_t *r)
+{
+    const double p = sw_engine_derived(e, 0)->p;
+    sw_engine_reset(e);
+    for (size_t i = 0; i < log->n; i++) {
+        const int rc =
+            sw_engine_push(e, log->t[i], scale * log->a_g[i], log->a_z ? log->a_z[i] : 0.0);
+        if (rc == SW_EVENT) {
+            sw_summary_t s;
+            sw_engine_summary(e, 0, &s);
+            if (s.overturned) break; /* frozen from here on */
+        }
+    }
+    const double t = sw_engine_time(e);
+    if (isnan(t)) return SW_EINVAL; /* no usable sample */
+    return free_motion(e, t + free_time_of(o, p), 2.0 * M_PI / p / CHECKS_PER_PERIOD, r);
+}
+
+int sw_log_run(const sw_scene_t *sc, const sw_log_t *log, double scale, const sw_run_opts_t *o,
+               sw_run_result_t *r, char *msg, size_t msglen)
+{
+    int err = SW_OK;
+    set_msg(msg, msglen, "%s", "");
+    if (!sc || !r || !log || !log->t || !log->a_g || !isfinite(scale)) return SW_EINVAL;
+    memset(r, 0, sizeof *r);
+    sw_engine_t *e = make_engine(sc, o, 0.0, &err, msg, msglen);
+    if (!e) return err;
+    err = run_log_on(e, log, scale, o, r);
+    if (err == SW_EINVAL) set_msg(msg, msglen, "the log has no usable sample");
+    if (err == SW_EFAULT) set_msg(msg, msglen, "the model faulted during the run");
+    sw_engine_destroy(e);
+    return err;
+}
+
+/* ---- threshold search ----------------------------------------------------- */
+
+typedef struct {
+    sw_trial_fn f;
+    void *user;
+    double tol;
+    long *trials;
+} search_t;
+
+static int trial(const search_t *S, double x, sw_run_result_t *r)
+{
+    memset(r, 0, sizeof *r);
+    (*S->trials)++;
+    return S->f(S->user, x, r);
+}
+
+/* Bisect between xs (safe) and xo (overturning, run result *ro), in
+ * either order, to the relative tolerance; *safe and *over get the final
+ * ends and *r_over (may be NULL) the run at *over.  Geometric midpoints:
+ * the scan is geometric too. */
+static int bisect(const search_t *S, double xs, double xo, const sw_run_result_t *ro,
+                  double *safe, double *over, sw_run_result_t *r_over)
+{
+    sw_run_result_t r, r_o = *ro;
+    for (;;) {
+        const double lo = fmin(xs, xo), hi = fmax(xs, xo);
+        if (hi / lo - 1.0 <= S->tol) break;
+        const double m = sqrt(lo * hi);
+        if (!(m > lo && m < hi)) break;
+        const int rc = trial(S, m, &r);
+        if (rc < 0) return rc;
+        if (r.overturned) {
+            xo = m;
+            r_o = r;
+        } else {
+            xs = m;
+        }
+    }
+    *safe = xs;
+    *over = xo;
+    if (r_over) *r_over = r_o;
+    return SW_OK;
+}
+
+int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw_threshold_t *out)
+{
+    if (!f || !o || !out) return SW_EINVAL;
+    memset(out, 0, sizeof *out);
+    const double step = o->step > 0.0 ? o->step : DEFAULT_STEP;
+    const double tol = o->tol > 0.0 ? o->tol : DEFAULT_TOL;
+    if (!(o->x_min > 0.0) || !(o->x_max > o->x_min) || !isfinite(o->x_max) || !isfinite(step) ||
+        !isfinite(tol))
+        return SW_EINVAL;
+    search_t S = {f, user, tol, &out->trials};
+    sw_run_result_t r;
+    double x = o->x_min, last = 0.0;
+    int k = 0, rc;
+
+    /* scan for the first overturn */
+    for (;; k++) {
+        x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
+        if ((rc = trial(&S, x, &r)) < 0) return rc;
+        if (r.overturned) break;
+        last = x;
+        if (x >= o->x_max) return SW_OK; /* nothing overturns up to x_max */
+    }
+    out->found = 1;
+    if (k == 0) {
+        out->at_min = 1;
+        out->x = x;
+        out->x_safe = 0.0;
+        out->at_x = r;
+    } else {
+        rc = bisect(&S, last, x, &r, &out->x_safe, &out->x, &out->at_x);
+        if (rc < 0) return rc;
+    }
+    if (!o->islands) return SW_OK;
+
+    /* map the safe islands above: walk the same scan grid to x_max */
+    int over = 1;
+    double prev = x;
+    sw_run_result_t r_prev = r;
+    sw_island_t cur = {0.0, 0.0, 0};
+    while (prev < o->x_max) {
+        k++;
+        x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
+        if ((rc = trial(&S, x, &r)) < 0) return rc;
+        if (over && !r.overturned) {
+            double safe, ov;
+            rc = bisect(&S, x, prev, &r_prev, &safe, &ov, NULL);
+            if (rc < 0) return rc;
+            cur.lo = safe;
+            over = 0;
+        } else if (!over && r.overturned) {
+            double safe, ov;
+            rc = bisect(&S, prev, x, &r, &safe, &ov, NULL);
+            if (rc < 0) return rc;
+            cur.hi = safe;
+            cur.open = 0;
+            if (out->n_islands < SW_MAX_ISLANDS)
+                out->islands[out->n_islands++] = cur;
+            else
+                out->islands_truncated = 1;
+            over = 1;
+        }
+        prev = x;
+        r_prev = r;
+    }
+    if (!over) {
+        cur.hi = o->x_max;
+        cur.open = 1;
+        if (out->n_islands < SW_MAX_ISLANDS)
+            out->islands[out->n_islands++] = cur;
+        else
+            out->islands_truncated = 1;
+    }
+    return SW_OK;
+}
+
+/* ---- parallel jobs ---------------------------------------------------------- */
+
+typedef struct {
+    pthread_mutex_t mu;
+    size_t next, n;
+    void (*job)(void *user, size_t i);
+    void *user;
+} pool_t;
+
+static void *pool_worker(void *arg)
+{
+    pool_t *p = arg;
+    for (;;) {
+        pthread_mutex_lock(&p->mu);
+        const size_t i = p->next++;
+        pthread_mutex_unlock(&p->mu);
+        if (i >= p->n) break;
+        p->job(p->user, i);
+    }
+    return NULL;
+}
+
+void sw_parallel_for(size_t n, int threads, void (*job)(void *user, size_t i), void *user)
+{
+    if (!job || n == 0) return;
+    if (threads <= 1 || n == 1) {
+        for (size_t i = 0; i < n; i++) job(user, i);
+        return;
+    }
+    pool_t p = {.next = 0, .n = n, .job = job, .user = user};
+    if (pthread_mutex_init(&p.mu, NULL) != 0) {
+        for (size_t i = 0; i < n; i++) job(user, i);
+        return;
+    }
+    pthread_t tid[MAX_THREADS];
+    size_t want = (size_t)threads;
+    if (want > MAX_THREADS) want = MAX_THREADS;
+    if (want > n) want = n;
+    size_t started = 0;
+    for (; started < want; started++)
+        if (pthread_create(&tid[started], NULL, pool_worker, &p) != 0) break;
+    if (started == 0) pool_worker(&p); /* no thread at all: do it here */
+    for (size_t i = 0; i < started; i++) pthread_join(tid[i], NULL);
+    pthread_mutex_destroy(&p.mu);
+}
+
+/* ---- boundary curves -------------------------------------------------------- */
+
+typedef struct {
+    sw_engine_t *e;
+    const sw_run_opts_t *ro;
+    sw_pulse_t pulse;
+    double unit; /* m/s^2, g tan(alpha): x = 1 */
+} pulse_trial_t;
+
+static int pulse_trial(void *user, double x, sw_run_result_t *r)
+{
+    pulse_trial_t *T = user;
+    T->pulse.amplitude = x * T->unit;
+    return run_pulse_on(T->e, &T->pulse, T->ro, r);
+}
+
+/* The lowest x at which a package on a frame can lift at all.  While the
+ * package stands on the frame the system is linear, so the support's peak
+ * acceleration is proportional to the pulse: run a pulse too small to lift
+ * anything, sample the support's acceleration finely over the pulse and the
+ * ringing after it, and scale.  The peak of the decaying free oscillation
+ * comes within its first period after the pulse. */
+static double frame_lift(sw_engine_t *e, const sw_derived_t *d, sw_pulse_t pulse, double unit)
+{
+    const double probe = 1e-3;
+    pulse.amplitude = probe * unit;
+    sw_engine_reset(e);
+    const double wmax = fmax(pulse.omega, d->omega_b);
+    const double dt = 2.0 * M_PI / wmax / PROBE_SAMPLES; /* s */
+    const double t_end = sw_pulse_duration(&pulse) + 1.5 * 2.0 * M_PI / d->omega_b;
+    double peak = 0.0;
+    for (double t = 0.0; t < t_end;) {
+        t = fmin(t_end, t + dt);
+        sw_engine_advance_fn(e, t, sw_pulse_eval, &pulse);
+        sw_output_t o;
+        sw_engine_get_output(e, 0, &o);
+        if (o.uplift_ratio > peak) peak = o.uplift_ratio;
+    }
+    return peak > 0.0 ? probe / peak : INFINITY;
+}
+
+int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary_opts_t *o,
+                      sw_boundary_point_t *out, char *msg, size_t msglen)
+{
+    int err = SW_OK;
+    set_msg(msg, msglen, "%s", "");
+    if (!c || !o || !out) return SW_EINVAL;
+    memset(out, 0, sizeof *out);
+    out->omega_ratio = omega_ratio;
+    sw_scene_t sc = c->scene;
+    sw_derived_t d;
+    sw_engine_t *e = NULL;
+    if (!(omega_ratio > 0.0) || !isfinite(omega_ratio)) {
+        set_msg(msg, msglen, "omega_e/p must be > 0");
+        err = SW_EINVAL;
+        goto out;
+    }
+    if (sw_scene_validate(&sc, &d, NULL, NULL, NULL) != SW_OK) {
+        set_msg(msg, msglen, "scene '%s' is not valid", sc.name);
+        err = SW_EINVAL;
+        goto out;
+    }
+    const double omega_e = omega_ratio * d.p; /* rad/s */
+    if (c->bearing_ratio > 0.0) {
+        if (!sc.has_frame) {
+            set_msg(msg, msglen, "scene '%s' has no frame to set omega_b/omega_e on", sc.name);
+            err = SW_EINVAL;
+            goto out;
+        }
+        sc.frame_omega = c->bearing_ratio * omega_e;
+        sc.frame_stiffness = NAN;
+        sc.frame_k_given = SW_GIVEN_RATIO;
+        if (sw_scene_validate(&sc, &d, NULL, NULL, NULL) != SW_OK) {
+            set_msg(msg, msglen, "scene '%s' with omega_b = %g rad/s is not valid", sc.name,
+                    sc.frame_omega);
+            err = SW_EINVAL;
+            goto out;
+        }
+    }
+    e = make_engine(&sc, &o->run, omega_e, &err, msg, msglen);
+    if (!e) goto out;
+
+    pulse_trial_t T = {e, &o->run, {o->shape, 0.0, omega_e}, sc.g * tan(d.alpha)};
+    sw_search_opts_t so = o->search;
+    if (d.model == SW_MODEL_BARE) {
+        out->x_lift = 1.0; /* the bed acceleration itself must reach g tan(alpha) */
+    } else {
+        out->x_lift = frame_lift(e, &d, T.pulse, T.unit);
+    }
+    if (!(so.x_max > 0.0)) so.x_max = DEFAULT_X_MAX;
+    if (!(so.x_min > 0.0)) {
+        so.x_min = d.model == SW_MODEL_BARE ? 1.0 : LIFT_MARGIN_PULSE * out->x_lift;
+        if (!(so.x_min < so.x_max)) { /* cannot even lift below x_max */
+            out->th.found = 0;
+            goto out;
+        }
+    }
+    err = sw_threshold_search(pulse_trial, &T, &so, &out->th);
+    if (err == SW_EINVAL)
+        set_msg(msg, msglen, "bad search range or steps (x_min %g, x_max %g)", so.x_min,
+                so.x_max);
+    else if (err == SW_EFAULT)
+        set_msg(msg, msglen, "the model faulted at omega_e/p = %g", omega_ratio);
+    else if (err < 0)
+        set_msg(msg, msglen, "%s", sw_strerror(err));
+out:
+    sw_engine_destroy(e);
+    out->status = err;
+    return err;
+}
+
+typedef struct {
+    const sw_curve_t *curves;
+    const double *ratios;
+    size_t nratios, total;
+    const sw_boundary_opts_t *o;
+    sw_boundary_point_t *out;
+    char (*msgs)[256];
+    pthread_mutex_t mu;
+    size_t done;
+} sweep_t;
+
+static void sweep_job(void *user, size_t i)
+{
+    sweep_t *S = user;
+    const size_t c = i / S->nratios, k = i % S->nratios;
+    sw_boundary_point(&S->curves[c], S->ratios[k], S->o, &S->out[i], S->msgs[i],
+                      sizeof S->msgs[i]);
+    if (S->o->progress) {
+        pthread_mutex_lock(&S->mu);
+        S->done++;
+        S->o->progress(S->o->user, S->done, S->total);
+        pthread_mutex_unlock(&S->mu);
+    }
+}
+
+int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ratios,
+                      size_t nratios, const sw_boundary_opts_t *o, sw_boundary_point_t *out,
+                      char *msg, size_t msglen)
+{
+    set_msg(msg, msglen, "%s", "");
+    if (!curves || !ratios || !o || !out || ncurves == 0 || nratios == 0) return SW_EINVAL;
+    sweep_t S = {curves, ratios, nratios, ncurves * nratios, o, out, NULL,
+                 PTHREAD_MUTEX_INITIALIZER, 0};
+    S.msgs = calloc(S.total, sizeof *S.msgs);
+    if (!S.msgs) {
+        set_msg(msg, msglen, "out of memory");
+        return SW_ENOMEM;
+    }
+    sw_parallel_for(S.total, o->threads, sweep_job, &S);
+    int rc = SW_OK;
+    for (size_t i = 0; i < S.total; i++)
+        if (out[i].status < 0) {
+            rc = out[i].status;
+            set_msg(msg, msglen, "curve %zu, omega_e/p = %g: %s", i / nratios + 1,
+                    out[i].omega_ratio, S.msgs[i][0] ? S.msgs[i] : sw_strerror(rc));
+            break;
+        }
+    free(S.msgs);
+    pthread_mutex_destroy(&S.mu);
+    return rc;
+}
+
+/* ---- safety factor -------------------------------------------------------------- */
+
+typedef struct {
+    sw_engine_t *e;
+    const sw_log_t *log;
+    const sw_run_opts_t *ro;
+} log_trial_t;
+
+static int log_trial(void *user, double x, sw_run_result_t *r)
+{
+    log_trial_t *T = user;
+    return run_log_on(T->e, T->log, x, T->ro, r);
+}
+
+int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
+                     const sw_search_opts_t *so_in, sw_safety_t *out, char *msg, size_t msglen)
+{
+    int err = SW_OK;
+    set_msg(msg, msglen, "%s", "");
+    if (!sc || !log || !log->t || !log->a_g || !out) return SW_EINVAL;
+    memset(out, 0, sizeof *out);
+    out->factor = out->factor_safe = INFINITY;
+    sw_derived_t d;
+    if (sw_scene_validate(sc, &d, NULL, NULL, NULL) != SW_OK) {
+        set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
+        return SW_EINVAL;
+    }
+    double peak = 0.0; /* m/s^2 */
+    for (size_t i = 0; i < log->n; i++)
+        if (isfinite(log->a_g[i]) && fabs(log->a_g[i]) > peak) peak = fabs(log->a_g[i]);
+
+    sw_engine_t *e = make_engine(sc, ro, 0.0, &err, msg, msglen);
+    if (!e) return err;
+    log_trial_t T = {e, log, ro};
+    if ((err = run_log_on(e, log, 1.0, ro, &out->at_one)) < 0) goto out;
+    out->overturned = out->at_one.overturned;
+    if (peak == 0.0) { /* no longitudinal acceleration: no scale changes anything */
+        out->lift_scale = INFINITY;
+        goto out;
+    }
+
+    sw_search_opts_t so = {0};
+    if (so_in) so = *so_in;
+    const double bare_lift = sc->g * tan(d.alpha) / peak; /* scale lifting a package on the bed */
+    if (!(so.x_max > 0.0)) so.x_max = DEFAULT_X_MAX * bare_lift;
+    out->max_scale = so.x_max;
+    if (d.model == SW_MODEL_BARE && !log->a_z) {
+        out->lift_scale = bare_lift;
+    } else {
+        /* linear while stuck: probe far below lifting and scale */
+        sw_run_result_t r;
+        sw_summary_t s;
+        const double probe = 1e-3 * bare_lift;
+        if ((err = run_log_on(e, log, probe, ro, &r)) < 0) goto out;
+        sw_engine_summary(e, 0, &s);
+        out->lift_scale = s.max_uplift_ratio > 0.0 ? probe / s.max_uplift_ratio : INFINITY;
+    }
+    if (!(so.x_min > 0.0)) {
+        so.x_min = out->lift_scale;
+        if (d.model != SW_MODEL_BARE || log->a_z) so.x_min *= LIFT_MARGIN_LOG;
+        if (log->a_z) so.x_min = fmin(so.x_min, LIFT_MARGIN_LOG * bare_lift);
+    }
+
+    /* below: from lifting up to the recorded shock itself; if the log
+     * overturned the package, 1 overturns and the search ends by 1 */
+    sw_search_opts_t sb = so;
+    sb.x_max = 1.0;
+    if (sb.x_min < 1.0) {
+        if ((err = sw_threshold_search(log_trial, &T, &sb, &out->below)) < 0) goto out;
+    } else if (out->overturned) {
+        /* the estimate of lifting was above 1, yet 1 overturned: bracket from
+         * the recorded shock down is not possible; report 1 itself */
+        out->below.found = out->below.at_min = 1;
+        out->below.x = 1.0;
+        out->below.at_x = out->at_one;
+    }
+    if (out->overturned) {
+        out->found = out->below.found;
+        out->factor = out->below.x;
+        out->factor_safe = out->below.x_safe;
+        goto out;
+    }
+    /* above: it survived; scan up from 1 (or from lifting, if higher) */
+    sw_search_opts_t sa = so;
+    sa.x_min = fmax(1.0, so.x_min);
+    if (sa.x_min < sa.x_max) {
+        if ((err = sw_threshold_search(log_trial, &T, &sa, &out->above)) < 0) goto out;
+        if (out->above.found) {
+            out->found = 1;
+            out->factor = out->above.x;
+            out->factor_safe = out->above.at_min ? 1.0 : out->above.x_safe;
+        }
+    }
+out:
+    out->trials = 1 + out->below.trials + out->above.trials;
+    if (err == SW_EINVAL)
+        set_msg(msg, msglen, "the log has no usable sample, or the search range is empty");
+    else if (err == SW_EFAULT)
+        set_msg(msg, msglen, "the model faulted during a trial");
+    else if (err < 0)
+        set_msg(msg, msglen, "%s", sw_strerror(err));
+    sw_engine_destroy(e);
+    return err;
+}

@@ -1,0 +1,95 @@
+# simulate.sh - pulses through the model: outcomes, outputs, units, options.
+. "$(dirname "$0")/lib.sh"
+SCENE=$SRC/sample_logs/crate.ini
+FRAME=$SRC/sample_logs/crate-on-frame.ini
+
+# Below the uplift threshold g tan(alpha) = 3.57 m/s^2 nothing moves.
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -3 --omega 5 --json --fail-on-overturn
+expect_rc 0 "small pulse"
+json_check "$TMP/out" 'j["log"] is None and j["pulse"]["shape"] == "half-sine" and j["samples_read"] == 0'
+json_check "$TMP/out" 'j["packages"][0]["uplift_time"] is None and j["packages"][0]["max_abs_theta"] == 0 and j["packages"][0]["min_margin"] == 1'
+
+# A hard, short braking pulse overturns the crate.
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -20 --omega 10 --json --fail-on-overturn
+expect_rc 1 "big pulse"
+cp "$TMP/out" "$TMP/big.json"
+json_check "$TMP/big.json" 'j["packages"][0]["overturned"] and j["packages"][0]["overturn_time"] > j["packages"][0]["tip_time"] > j["packages"][0]["uplift_time"] > 0'
+grep -Eqi 'nan|infinity' "$TMP/big.json" && fail "NaN or Infinity in the JSON"
+
+# --amplitude-g is the same pulse in g.
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude-g -2.0394324 --omega 10 --json
+python3 - "$TMP/big.json" "$TMP/out" <<'PY' || fail "--amplitude-g differs from --amplitude"
+import json, math, sys
+a, b = (json.load(open(p))["packages"][0] for p in sys.argv[1:3])
+assert math.isclose(a["overturn_time"], b["overturn_time"], rel_tol=1e-4), (a, b)
+PY
+
+# A medium pulse: it rocks, comes back, and the outputs are complete.
+run "$SW" simulate --scene "$SCENE" --scene "$FRAME" --pulse half-sine --amplitude -6 --omega 6.2832 \
+    --out "$TMP/state.csv" --events "$TMP/events.csv" --sample-interval 0.01 --duration 5 --json
+expect_rc 0 "medium pulse"
+cp "$TMP/out" "$TMP/medium.json"
+json_check "$TMP/medium.json" 'j["packages"][0]["uplift_time"] is not None and not j["packages"][0]["overturned"]'
+json_check "$TMP/medium.json" 'all(set(["name", "model", "overturned", "overturn_time", "tip_time", "max_abs_theta", "max_theta_ratio", "min_margin", "uplift_time", "impacts", "samples_read", "samples_rejected", "scheme", "dt"]) <= set(p) for p in j["packages"])'
+[ "$(head -1 "$TMP/state.csv")" = "t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,uplift_ratio,a_g" ] ||
+    fail "--out header"
+tail -n +2 "$TMP/state.csv" | grep -Eqi 'nan|inf' && fail "--out holds nan or inf"
+# One row per package at t = 0, 0.01, ..., 5 (or until both are at rest).
+python3 - "$TMP/state.csv" <<'PY' || fail "--out rows not on the sample grid"
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+ts = sorted({float(r["t"]) for r in rows if r["package"] == "crate-A"})
+assert ts[0] == 0.0, ts[:3]
+assert all(math.isclose(b - a, 0.01, abs_tol=1e-9) for a, b in zip(ts, ts[1:])), "grid"
+assert len(ts) > 100, len(ts)
+assert any(r["phase"] == "rocking" for r in rows)
+PY
+grep -q ',crate-A,uplift,' "$TMP/events.csv" || fail "--events: no uplift"
+
+# The pulse is exact input: the sample interval does not change the physics.
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -6 --omega 6.2832 \
+    --sample-interval 0.001 --duration 5 --json
+python3 - "$TMP/medium.json" "$TMP/out" <<'PY' || fail "--sample-interval changed the result"
+import json, math, sys
+a, b = (json.load(open(p))["packages"][0] for p in sys.argv[1:3])
+for k in ("uplift_time", "max_abs_theta", "min_margin"):
+    assert math.isclose(a[k], b[k], rel_tol=1e-6, abs_tol=1e-9), (k, a[k], b[k])
+PY
+
+# --verbose: derived quantities on stderr, stdout untouched.
+run "$SW" simulate --scene "$FRAME" --pulse full-sine --amplitude 4 --omega 3 --verbose --json
+expect_rc 0 "--verbose"
+python3 -m json.tool "$TMP/out" >/dev/null || fail "--verbose spoilt the JSON"
+for want in 'alpha' '  p ' 'eta' 'gamma' 'omega_b' 'zeta_b' 'r_frame' '  dt '; do
+    expect_err "$want" "--verbose lists $want"
+done
+
+# Every scheme named in the table runs and is echoed in the summary.
+run "$SW" simulate --help
+schemes=$(sed -n 's/.*--scheme NAME *time stepper: *\(.*\) (default.*/\1/p' "$TMP/out" | tr -d ,)
+[ -n "$schemes" ] || fail "no schemes listed in --help"
+for s in $schemes; do
+    run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -6 --omega 6.2832 --duration 3 --scheme "$s" --json
+    expect_rc 0 "--scheme $s"
+    json_check "$TMP/out" "j['packages'][0]['scheme'] == '$s'"
+done
+echo "ok"
+
+# --verbose on a cushion scene prints the static deflection and the natural
+# frequencies: K = 1000 kg * (200 rad/s)^2 = 4e7 N/m, b = 0.364 m, h = 1 m,
+# R^2 = h^2 + b^2: z = m g / K = 2.4525e-4 m, omega_z = 200 rad/s,
+# omega_r = sqrt((K b^2/3 - m g h) / (m R^2/3 + m h^2)) = 35.712 rad/s.
+printf '[package]\nname = c1\nheight = 2.0\nwidth = 0.728\nmass = 1000\n[cushion]\nomega = 200\nzeta = 0.1\n' > "$TMP/cushion.ini"
+run "$SW" simulate --scene "$TMP/cushion.ini" --pulse half-sine --amplitude -5 --omega 10 --verbose
+expect_rc 0 "cushion --verbose"
+python3 - "$TMP/err" <<'PY' || fail "cushion --verbose quantities"
+import re, sys, math
+t = open(sys.argv[1]).read()
+def val(name):
+    return float(re.search(r"^\s*%s\s+(\S+)" % re.escape(name), t, re.M).group(1))
+K, b, h, m, g = 4e7, 0.364, 1.0, 1000.0, 9.81
+assert math.isclose(val("z_static"), m * g / K, rel_tol=1e-4)
+assert math.isclose(val("omega_z"), 200.0, rel_tol=1e-4)
+wr = math.sqrt((K * b * b / 3 - m * g * h) / (m * (h * h + b * b) / 3 + m * h * h))
+assert math.isclose(val("omega_r"), wr, rel_tol=1e-4), (val("omega_r"), wr)
+PY

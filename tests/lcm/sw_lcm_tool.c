@@ -1,0 +1,271 @@
+/* sw_lcm_tool.c - test helper for the LCM integration tests.
+ *
+ *   sw_lcm_tool mklog OUT.lcmlog PULSE...       accel_t log written with the event-log API
+ *   sw_lcm_tool publish URL PULSE... [--bad N]  the same samples published live, paced
+ *   sw_lcm_tool dump LOG                        what a log holds, one fact per line
+ *
+ * PULSE: --rate HZ --amplitude A --omega W --duration T [--lead S]: a
+ * half-sine pulse of A m/s^2 (negative brakes) and W rad/s on the x axis,
+ * starting S seconds into a recording of T seconds sampled at HZ; y gets a
+ * small wobble that the monitor must ignore.  --bad N puts a wrong-type and
+ * a truncated message on the channel after every N samples.
+ *
+ * dump prints, for the swaywatch channels:
+ *   accel COUNT
+ *   state NAME count N seq_gaps G max_abs_theta X min_margin M
+ *   alarm UTIME NAME KIND LEVEL          (in order)
+ *   nonfinite N                           (doubles that were not finite)
+ * so that shell tests can compare two logs with grep and diff. */
+#include <gsl/gsl_errno.h>
+#include <lcm/eventlog.h>
+#include <lcm/lcm.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "swaywatch/pulse.h"
+#include "swaywatch_accel_t.h"
+#include "swaywatch_alarm_t.h"
+#include "swaywatch_state_t.h"
+
+#define MAXPKG 16
+
+typedef struct {
+    double rate, amplitude, omega, duration, lead;
+    long bad;
+    const char *channel;
+} pulse_opts_t;
+
+static int parse_pulse(int argc, char **argv, int i, pulse_opts_t *p)
+{
+    p->rate = 500;
+    p->amplitude = -9;
+    p->omega = 10;
+    p->duration = 2;
+    p->lead = 0.2;
+    p->bad = 0;
+    p->channel = "ACCEL";
+    for (; i + 1 < argc; i += 2) {
+        const char *k = argv[i], *v = argv[i + 1];
+        if (!strcmp(k, "--rate"))
+            p->rate = atof(v);
+        else if (!strcmp(k, "--amplitude"))
+            p->amplitude = atof(v);
+        else if (!strcmp(k, "--omega"))
+            p->omega = atof(v);
+        else if (!strcmp(k, "--duration"))
+            p->duration = atof(v);
+        else if (!strcmp(k, "--lead"))
+            p->lead = atof(v);
+        else if (!strcmp(k, "--bad"))
+            p->bad = atol(v);
+        else if (!strcmp(k, "--channel"))
+            p->channel = v;
+        else {
+            fprintf(stderr, "sw_lcm_tool: unknown option %s\n", k);
+            return -1;
+        }
+    }
+    if (i != argc || !(p->rate > 0) || !(p->duration > 0)) {
+        fprintf(stderr, "sw_lcm_tool: bad pulse options\n");
+        return -1;
+    }
+    return 0;
+}
+
+static swaywatch_accel_t sample(const pulse_opts_t *p, long k, int64_t utime0)
+{
+    sw_pulse_t pulse = {SW_PULSE_HALF_SINE, p->amplitude, p->omega};
+    double t = (double)k / p->rate;
+    swaywatch_accel_t s;
+    s.utime = utime0 + (int64_t)llround(t * 1e6);
+    s.seq = k;
+    s.ax = sw_pulse_eval(&pulse, t - p->lead);
+    s.ay = 0.3 * sin(40.0 * t);
+    s.az = 0.0;
+    return s;
+}
+
+static long n_samples(const pulse_opts_t *p)
+{
+    return (long)floor(p->duration * p->rate) + 1;
+}
+
+static int write_event(lcm_eventlog_t *log, const char *channel, int64_t ts, void *data, int len)
+{
+    lcm_eventlog_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.timestamp = ts;
+    ev.channellen = (int32_t)strlen(channel);
+    ev.channel = (char *)channel;
+    ev.datalen = len;
+    ev.data = data;
+    return lcm_eventlog_write_event(log, &ev);
+}
+
+static int cmd_mklog(const char *path, const pulse_opts_t *p)
+{
+    lcm_eventlog_t *log = lcm_eventlog_create(path, "w");
+    if (!log) {
+        perror(path);
+        return 1;
+    }
+    unsigned char buf[256];
+    const int64_t utime0 = 1700000000000000LL; /* a fixed, realistic epoch time */
+    for (long k = 0; k < n_samples(p); k++) {
+        swaywatch_accel_t s = sample(p, k, utime0);
+        int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+        if (len < 0 || write_event(log, p->channel, s.utime, buf, len) != 0) {
+            fprintf(stderr, "sw_lcm_tool: cannot write %s\n", path);
+            lcm_eventlog_destroy(log);
+            return 1;
+        }
+    }
+    lcm_eventlog_destroy(log);
+    return 0;
+}
+
+static int cmd_publish(const char *url, const pulse_opts_t *p)
+{
+    lcm_t *lcm = lcm_create(url);
+    if (!lcm) {
+        fprintf(stderr, "sw_lcm_tool: cannot create LCM %s\n", url);
+        return 1;
+    }
+    struct timespec t0, wall;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    clock_gettime(CLOCK_REALTIME, &wall);
+    int64_t utime0 = (int64_t)wall.tv_sec * 1000000 + wall.tv_nsec / 1000;
+    unsigned char buf[256];
+    int rc = 0;
+    for (long k = 0; k < n_samples(p) && rc == 0; k++) {
+        double due = (double)k / p->rate;
+        struct timespec ts = t0;
+        ts.tv_sec += (time_t)due;
+        ts.tv_nsec += (long)((due - floor(due)) * 1e9);
+        if (ts.tv_nsec >= 1000000000L) {
+            ts.tv_sec++;
+            ts.tv_nsec -= 1000000000L;
+        }
+        clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
+        swaywatch_accel_t s = sample(p, k, utime0);
+        if (swaywatch_accel_t_publish(lcm, p->channel, &s) != 0)
+            rc = 1;
+        if (p->bad > 0 && k % p->bad == p->bad - 1) {
+            /* a state_t on the accel channel, then a truncated accel_t */
+            swaywatch_state_t st;
+            memset(&st, 0, sizeof st);
+            int len = swaywatch_state_t_encode(buf, 0, sizeof buf, &st);
+            if (len < 0 || lcm_publish(lcm, p->channel, buf, (unsigned)len) != 0)
+                rc = 1;
+            len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+            if (len < 0 || lcm_publish(lcm, p->channel, buf, (unsigned)len - 5) != 0)
+                rc = 1;
+        }
+    }
+    lcm_destroy(lcm);
+    return rc;
+}
+
+typedef struct {
+    char name[64];
+    long count;
+    double max_abs_theta, min_margin;
+} pkg_t;
+
+static pkg_t *find_pkg(pkg_t *pk, int *n, const int8_t *name)
+{
+    char s[64];
+    memcpy(s, name, 63);
+    s[63] = '\0';
+    for (int i = 0; i < *n; i++)
+        if (!strcmp(pk[i].name, s))
+            return &pk[i];
+    if (*n == MAXPKG)
+        return NULL;
+    pkg_t *p = &pk[(*n)++];
+    memset(p, 0, sizeof *p);
+    snprintf(p->name, sizeof p->name, "%s", s);
+    p->min_margin = INFINITY;
+    return p;
+}
+
+static int cmd_dump(const char *path)
+{
+    lcm_eventlog_t *log = lcm_eventlog_create(path, "r");
+    if (!log) {
+        perror(path);
+        return 1;
+    }
+    pkg_t pk[MAXPKG];
+    int npk = 0;
+    long accel = 0, nonfinite = 0, state_gaps = 0, alarm_gaps = 0;
+    int64_t state_seq = -1, alarm_seq = -1;
+    for (lcm_eventlog_event_t *ev; (ev = lcm_eventlog_read_next_event(log));
+         lcm_eventlog_free_event(ev)) {
+        if (!strcmp(ev->channel, "ACCEL")) {
+            accel++;
+        } else if (!strcmp(ev->channel, "SWAY_STATE")) {
+            swaywatch_state_t s;
+            if (swaywatch_state_t_decode(ev->data, 0, ev->datalen, &s) != ev->datalen) {
+                printf("undecodable state\n");
+                continue;
+            }
+            if (state_seq >= 0 && s.seq != state_seq + 1)
+                state_gaps++;
+            state_seq = s.seq;
+            const double v[] = {s.theta,        s.theta_dot,    s.u,  s.z_b, s.margin,
+                                s.margin_bound, s.uplift_ratio, s.a_g};
+            for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) nonfinite += !isfinite(v[i]);
+            pkg_t *p = find_pkg(pk, &npk, s.name);
+            if (!p)
+                continue;
+            p->count++;
+            if (fabs(s.theta) > p->max_abs_theta)
+                p->max_abs_theta = fabs(s.theta);
+            if (s.margin < p->min_margin)
+                p->min_margin = s.margin;
+        } else if (!strcmp(ev->channel, "SWAY_ALARM")) {
+            swaywatch_alarm_t a;
+            if (swaywatch_alarm_t_decode(ev->data, 0, ev->datalen, &a) != ev->datalen) {
+                printf("undecodable alarm\n");
+                continue;
+            }
+            if (alarm_seq >= 0 && a.seq != alarm_seq + 1)
+                alarm_gaps++;
+            alarm_seq = a.seq;
+            nonfinite += !isfinite(a.theta) + !isfinite(a.margin);
+            char name[64], text[128];
+            memcpy(name, a.name, 63);
+            name[63] = '\0';
+            memcpy(text, a.text, 127);
+            text[127] = '\0';
+            printf("alarm %lld %s %d %d %s\n", (long long)a.utime, name[0] ? name : "-", a.kind,
+                   a.level, text);
+        }
+    }
+    lcm_eventlog_destroy(log);
+    printf("accel %ld\n", accel);
+    for (int i = 0; i < npk; i++)
+        printf("state %s count %ld max_abs_theta %.17g min_margin %.17g\n", pk[i].name, pk[i].count,
+               pk[i].max_abs_theta, pk[i].min_margin);
+    printf("state_seq_gaps %ld\nalarm_seq_gaps %ld\nnonfinite %ld\n", state_gaps, alarm_gaps,
+           nonfinite);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    gsl_set_error_handler_off();
+    pulse_opts_t p;
+    if (argc >= 3 && !strcmp(argv[1], "mklog"))
+        return parse_pulse(argc, argv, 3, &p) ? 2 : cmd_mklog(argv[2], &p);
+    if (argc >= 3 && !strcmp(argv[1], "publish"))
+        return parse_pulse(argc, argv, 3, &p) ? 2 : cmd_publish(argv[2], &p);
+    if (argc == 3 && !strcmp(argv[1], "dump"))
+        return cmd_dump(argv[2]);
+    fprintf(stderr, "usage: sw_lcm_tool mklog OUT [pulse] | publish URL [pulse] | dump LOG\n");
+    return 2;
+}

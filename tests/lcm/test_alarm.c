@@ -1,0 +1,213 @@
+/* test_alarm.c - the alarm module: event mapping, margin thresholds with
+ * hysteresis, non-finite outputs.  Pure logic, no engine needed: outputs
+ * and events are made up here. */
+#include <gsl/gsl_errno.h>
+#include <math.h>
+#include <string.h>
+
+/* cmocka.h needs these before it. */
+// clang-format off
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+// clang-format on
+
+#include "swaywatch/alarm.h"
+#include "swaywatch/status.h"
+
+#define MAXA 64
+
+typedef struct {
+    sw_alarm_t a[MAXA];
+    int n;
+} sink_t;
+
+static void collect(void *user, const sw_alarm_t *a)
+{
+    sink_t *s = user;
+    assert_true(s->n < MAXA);
+    /* Whatever is raised must be publishable as is. */
+    assert_true(isfinite(a->t) && isfinite(a->theta) && isfinite(a->margin));
+    assert_non_null(memchr(a->text, '\0', sizeof a->text));
+    s->a[s->n++] = *a;
+}
+
+static sw_output_t out_at(double t, double margin)
+{
+    sw_output_t o;
+    memset(&o, 0, sizeof o);
+    o.t = t;
+    o.margin = margin;
+    o.margin_bound = margin;
+    o.state.theta = 0.01;
+    o.state.phase = SW_PHASE_ROCKING;
+    return o;
+}
+
+static int feed(sw_alarm_watch_t *w, sink_t *s, double t, double margin)
+{
+    sw_output_t o = out_at(t, margin);
+    return sw_alarm_on_output(w, &o, collect, s);
+}
+
+/* A margin oscillating around warn_margin, within the hysteresis band,
+ * raises exactly one WARN; rising above warn + hysteresis re-arms it. */
+static void test_warn_hysteresis(void **st)
+{
+    (void)st;
+    sw_alarm_watch_t w;
+    sink_t s = {.n = 0};
+    assert_int_equal(sw_alarm_init(&w, 3, 0.5, 0.2, 0.05), SW_OK);
+    assert_int_equal(feed(&w, &s, 0.0, 1.0), 0);
+    for (int i = 0; i < 200; i++) {
+        double m = 0.5 + 0.04 * sin(0.7 * i); /* crosses 0.5 about 45 times */
+        feed(&w, &s, 0.001 * i, m);
+    }
+    assert_int_equal(s.n, 1);
+    assert_int_equal(s.a[0].kind, SW_ALARM_WARN);
+    assert_int_equal(s.a[0].level, SW_ALARM_LEVEL_WARN);
+    assert_int_equal(s.a[0].pkg, 3);
+    assert_true(s.a[0].margin < 0.5);
+    assert_non_null(strstr(s.a[0].text, "warn"));
+
+    /* Exactly at threshold + hysteresis is not above it: still disarmed. */
+    feed(&w, &s, 1.0, 0.55);
+    feed(&w, &s, 1.1, 0.45);
+    assert_int_equal(s.n, 1);
+    /* Above it: re-armed, and the next fall raises a second WARN. */
+    feed(&w, &s, 1.2, 0.5501);
+    feed(&w, &s, 1.3, 0.499);
+    assert_int_equal(s.n, 2);
+    assert_int_equal(s.a[1].kind, SW_ALARM_WARN);
+    assert_true(fabs(s.a[1].t - 1.3) < 1e-15);
+}
+
+/* Falling below both thresholds in one step raises WARN then CRITICAL;
+ * each threshold has its own hysteresis. */
+static void test_warn_and_critical(void **st)
+{
+    (void)st;
+    sw_alarm_watch_t w;
+    sink_t s = {.n = 0};
+    assert_int_equal(sw_alarm_init(&w, 0, 0.5, 0.2, -1.0), SW_OK);
+    assert_true(fabs(w.hysteresis - SW_ALARM_HYSTERESIS) < 1e-15);
+    assert_int_equal(feed(&w, &s, 0.0, 0.1), 2);
+    assert_int_equal(s.a[0].kind, SW_ALARM_WARN);
+    assert_int_equal(s.a[1].kind, SW_ALARM_CRITICAL);
+    assert_int_equal(s.a[1].level, SW_ALARM_LEVEL_CRITICAL);
+    /* Back to 0.3: critical re-arms (0.3 > 0.25), warn does not. */
+    assert_int_equal(feed(&w, &s, 0.1, 0.3), 0);
+    assert_int_equal(feed(&w, &s, 0.2, 0.19), 1);
+    assert_int_equal(s.a[2].kind, SW_ALARM_CRITICAL);
+    /* Overturned: margin stays negative, nothing more is raised. */
+    for (int i = 0; i < 10; i++) assert_int_equal(feed(&w, &s, 0.3 + i, -0.5), 0);
+    assert_int_equal(s.n, 3);
+}
+
+static void test_events(void **st)
+{
+    (void)st;
+    static const struct {
+        sw_event_kind ev;
+        double info;
+        sw_alarm_kind kind;
+        sw_alarm_level level;
+        const char *word;
+    } cases[] = {
+        {SW_EV_UPLIFT, +1, SW_ALARM_UPLIFT, SW_ALARM_LEVEL_INFO, "forward"},
+        {SW_EV_UPLIFT, -1, SW_ALARM_UPLIFT, SW_ALARM_LEVEL_INFO, "backward"},
+        {SW_EV_IMPACT, -0.25, SW_ALARM_IMPACT, SW_ALARM_LEVEL_INFO, "impact"},
+        {SW_EV_REST, 0, SW_ALARM_REST, SW_ALARM_LEVEL_INFO, "rest"},
+        {SW_EV_TIP, 0, SW_ALARM_TIP, SW_ALARM_LEVEL_CRITICAL, "corner"},
+        {SW_EV_OVERTURN, 0, SW_ALARM_OVERTURNED, SW_ALARM_LEVEL_CRITICAL, "overturned"},
+        {SW_EV_FAULT, SW_EFAULT, SW_ALARM_MODEL_FAULT, SW_ALARM_LEVEL_CRITICAL, "model fault"},
+    };
+    sw_alarm_watch_t w;
+    sink_t s = {.n = 0};
+    assert_int_equal(sw_alarm_init(&w, 1, 0.5, 0.2, 0.05), SW_OK);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sw_event_t ev = {.pkg = 1,
+                         .kind = cases[i].ev,
+                         .t = 2.5,
+                         .theta = 0.1 * (double)i,
+                         .theta_dot = 0.0,
+                         .margin = 0.7,
+                         .info = cases[i].info};
+        assert_int_equal(sw_alarm_on_event(&w, &ev, collect, &s), 1);
+        assert_int_equal(s.a[i].kind, cases[i].kind);
+        assert_int_equal(s.a[i].level, cases[i].level);
+        assert_non_null(strstr(s.a[i].text, cases[i].word));
+        assert_true(fabs(s.a[i].theta - 0.1 * (double)i) < 1e-15);
+        assert_true(fabs(s.a[i].t - 2.5) < 1e-15);
+    }
+    /* An unknown event kind raises nothing; a NaN in an event never reaches
+     * the alarm. */
+    sw_event_t odd = {.kind = (sw_event_kind)99};
+    assert_int_equal(sw_alarm_on_event(&w, &odd, collect, &s), 0);
+    sw_event_t nan_ev = {.kind = SW_EV_IMPACT, .t = 1, .theta = NAN, .margin = NAN, .info = NAN};
+    assert_int_equal(sw_alarm_on_event(&w, &nan_ev, collect, &s), 1);
+    assert_true(s.a[s.n - 1].theta == 0.0 && s.a[s.n - 1].margin == 0.0);
+    assert_int_equal(w.raised, s.n);
+}
+
+/* A non-finite output raises one MODEL_FAULT (not one per sample), does not
+ * touch the margin alarms, and re-arms once outputs are finite again. */
+static void test_nonfinite_output(void **st)
+{
+    (void)st;
+    sw_alarm_watch_t w;
+    sink_t s = {.n = 0};
+    assert_int_equal(sw_alarm_init(&w, 0, 0.5, 0.2, 0.05), SW_OK);
+    sw_output_t o = out_at(0.0, 1.0);
+    assert_true(sw_alarm_output_finite(&o));
+    o.state.theta_dot = NAN;
+    assert_false(sw_alarm_output_finite(&o));
+    assert_int_equal(sw_alarm_on_output(&w, &o, collect, &s), 1);
+    o.margin = NAN; /* a NaN margin must not look like "below warn" */
+    assert_int_equal(sw_alarm_on_output(&w, &o, collect, &s), 0);
+    o.a_g = INFINITY;
+    assert_int_equal(sw_alarm_on_output(&w, &o, collect, &s), 0);
+    assert_int_equal(s.n, 1);
+    assert_int_equal(s.a[0].kind, SW_ALARM_MODEL_FAULT);
+    assert_int_equal(s.a[0].level, SW_ALARM_LEVEL_CRITICAL);
+    assert_true(s.a[0].margin == 1.0); /* finite values are kept */
+
+    assert_int_equal(feed(&w, &s, 1.0, 0.9), 0);
+    o = out_at(2.0, NAN);
+    o.state.theta = -INFINITY;
+    assert_int_equal(sw_alarm_on_output(&w, &o, collect, &s), 1);
+    assert_int_equal(s.n, 2);
+    assert_true(s.a[1].theta == 0.0 && s.a[1].margin == 0.0); /* stand-ins for non-finite */
+}
+
+static void test_input_and_names(void **st)
+{
+    (void)st;
+    sw_alarm_t a;
+    char longtext[400];
+    memset(longtext, 'x', sizeof longtext - 1);
+    longtext[sizeof longtext - 1] = '\0';
+    sw_alarm_input(&a, SW_ALARM_SENSOR_GAP, SW_ALARM_LEVEL_WARN, NAN, longtext);
+    assert_int_equal(a.pkg, SW_ALARM_ALL);
+    assert_true(a.t == 0.0 && a.theta == 0.0 && a.margin == 0.0);
+    assert_int_equal(strlen(a.text), SW_ALARM_TEXT_MAX - 1);
+    assert_string_equal(sw_alarm_kind_name(SW_ALARM_SENSOR_GAP), "sensor_gap");
+    assert_string_equal(sw_alarm_kind_name(SW_ALARM_INPUT_REJECTED), "input_rejected");
+    assert_string_equal(sw_alarm_kind_name((sw_alarm_kind)0), "unknown");
+    assert_string_equal(sw_alarm_level_name(SW_ALARM_LEVEL_CRITICAL), "critical");
+    sw_alarm_watch_t w;
+    assert_int_equal(sw_alarm_init(&w, 0, NAN, 0.2, 0.05), SW_EINVAL);
+    assert_int_equal(sw_alarm_init(NULL, 0, 0.5, 0.2, 0.05), SW_EINVAL);
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_warn_hysteresis), cmocka_unit_test(test_warn_and_critical),
+        cmocka_unit_test(test_events),          cmocka_unit_test(test_nonfinite_output),
+        cmocka_unit_test(test_input_and_names),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

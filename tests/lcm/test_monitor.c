@@ -1,0 +1,587 @@
+/* test_monitor.c - the monitor core over memq:// (in-process LCM, no
+ * network): samples published on ACCEL give the same states and alarms as
+ * the same samples replayed from CSV; bad input (duplicate, late, NaN,
+ * wrong type, truncated, trailing bytes, implausible, gaps) is counted,
+ * raises its alarm and leaves the model unharmed; sequence numbers reveal
+ * dropped states; no NaN is ever published. */
+#include <gsl/gsl_errno.h>
+#include <lcm/lcm.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* cmocka.h needs these before it. */
+// clang-format off
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+// clang-format on
+
+#include "lcmmon.h"
+#include "swaywatch/swaywatch.h"
+#include "swaywatch_accel_t.h"
+#include "swaywatch_alarm_t.h"
+#include "swaywatch_state_t.h"
+
+#define RATE 1000.0 /* Hz, sample rate */
+#define NSAMP 2001  /* 2 s */
+#define UTIME0 1700000000000000LL
+#define MAXMSG 20000
+
+/* A tall crate that rocks hard under a 0.9 g braking pulse but stays up. */
+static const char *scene_a =
+    "[package]\nname = crate-A\nheight = 2.0\nwidth = 0.728\nmass = 1000\n"
+    "[alarm]\nwarn_margin = 0.5\ncritical_margin = 0.2\n";
+static const char *scene_b = "[package]\nname = crate-B\nheight = 1.2\nwidth = 0.8\nmass = 300\n";
+
+static double pulse_a(long k)
+{
+    /* braking half-sine, 9 m/s^2, 10 rad/s, from 0.2 s */
+    double t = (double)k / RATE - 0.2;
+    return (t >= 0.0 && t <= M_PI / 10.0) ? -9.0 * sin(10.0 * t) : 0.0;
+}
+
+/* ---- the bus: everything the monitor published, decoded -------------------- */
+
+typedef struct {
+    swaywatch_state_t *st;
+    int nst;
+    swaywatch_alarm_t *al;
+    int nal;
+    int drop_every; /* consumer side: ignore every Nth state (0: none) */
+    long seen;
+} bus_t;
+
+static void on_state_msg(const lcm_recv_buf_t *rb, const char *ch, const swaywatch_state_t *m,
+                         void *user)
+{
+    (void)rb;
+    (void)ch;
+    bus_t *b = user;
+    b->seen++;
+    if (b->drop_every && b->seen % b->drop_every == 0)
+        return;
+    assert_true(b->nst < MAXMSG);
+    b->st[b->nst++] = *m;
+}
+
+static void on_alarm_msg(const lcm_recv_buf_t *rb, const char *ch, const swaywatch_alarm_t *m,
+                         void *user)
+{
+    (void)rb;
+    (void)ch;
+    bus_t *b = user;
+    assert_true(b->nal < MAXMSG);
+    b->al[b->nal++] = *m;
+}
+
+/* ---- a monitor on memq ----------------------------------------------------- */
+
+typedef struct {
+    lcm_t *lcm;
+    sw_mon_t *mon;
+    lcm_subscription_t *raw;
+    swaywatch_state_t_subscription_t *ss;
+    swaywatch_alarm_t_subscription_t *as;
+    sw_scene_t scenes[2];
+    bus_t bus;
+    double mono; /* s, the fake arrival clock */
+} rig_t;
+
+static void on_accel(const lcm_recv_buf_t *rb, const char *ch, void *user)
+{
+    (void)ch;
+    rig_t *r = user;
+    sw_mon_feed(r->mon, rb->data, rb->data_size, 0, r->mono, NULL);
+}
+
+static void load_scene(sw_scene_t *sc, const char *text)
+{
+    sw_scene_init(sc);
+    assert_int_equal(sw_scene_parse(sc, text, "test", NULL, NULL), SW_OK);
+    assert_int_equal(sw_scene_validate(sc, NULL, "test", NULL, NULL), SW_OK);
+}
+
+static rig_t *rig_new(size_t npkg, const sw_mon_opts_t *mo_in)
+{
+    rig_t *r = calloc(1, sizeof *r);
+    assert_non_null(r);
+    r->bus.st = calloc(MAXMSG, sizeof *r->bus.st);
+    r->bus.al = calloc(MAXMSG, sizeof *r->bus.al);
+    assert_true(r->bus.st && r->bus.al);
+    load_scene(&r->scenes[0], scene_a);
+    if (npkg > 1)
+        load_scene(&r->scenes[1], scene_b);
+    r->lcm = lcm_create("memq://");
+    assert_non_null(r->lcm);
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.hysteresis = -1.0;
+    if (mo_in)
+        mo = *mo_in;
+    sw_engine_opts_t eo;
+    memset(&eo, 0, sizeof eo);
+    char msg[256] = "";
+    r->mon = sw_mon_create(r->scenes, npkg, &eo, &mo, r->lcm, msg, sizeof msg);
+    assert_non_null(r->mon);
+    r->raw = lcm_subscribe(r->lcm, "ACCEL", on_accel, r);
+    r->ss = swaywatch_state_t_subscribe(r->lcm, "SWAY_STATE", on_state_msg, &r->bus);
+    r->as = swaywatch_alarm_t_subscribe(r->lcm, "SWAY_ALARM", on_alarm_msg, &r->bus);
+    assert_true(r->raw && r->ss && r->as);
+    swaywatch_state_t_subscription_set_queue_capacity(r->ss, 0);
+    swaywatch_alarm_t_subscription_set_queue_capacity(r->as, 0);
+    lcm_subscription_set_queue_capacity(r->raw, 0);
+    return r;
+}
+
+static void rig_free(rig_t *r)
+{
+    lcm_unsubscribe(r->lcm, r->raw);
+    swaywatch_state_t_unsubscribe(r->lcm, r->ss);
+    swaywatch_alarm_t_unsubscribe(r->lcm, r->as);
+    sw_mon_destroy(r->mon);
+    lcm_destroy(r->lcm);
+    free(r->bus.st);
+    free(r->bus.al);
+    free(r);
+}
+
+static void drain(rig_t *r)
+{
+    while (lcm_handle_timeout(r->lcm, 0) > 0) {
+    }
+}
+
+static void send_raw(rig_t *r, const void *buf, int len)
+{
+    assert_int_equal(lcm_publish(r->lcm, "ACCEL", buf, (unsigned)len), 0);
+    drain(r);
+}
+
+static void send(rig_t *r, int64_t seq, int64_t utime, double ax, double ay, double az)
+{
+    swaywatch_accel_t s = {.utime = utime, .seq = seq, .ax = ax, .ay = ay, .az = az};
+    unsigned char buf[128];
+    int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+    assert_true(len > 0);
+    r->mono = (double)(utime - UTIME0) / 1e6; /* arrives on time */
+    send_raw(r, buf, len);
+}
+
+static void send_k(rig_t *r, long k)
+{
+    send(r, k, UTIME0 + k * 1000, pulse_a(k), 0.25 * sin(0.03 * (double)k), 0.0);
+}
+
+static void check_counts_add_up(const sw_mon_t *mon)
+{
+    sw_mon_counts_t c;
+    sw_mon_counts(mon, &c);
+    long rej = 0;
+    for (int i = 0; i < SW_MON_NREJ; i++) rej += c.rejected[i];
+    assert_int_equal(c.received, c.accepted + rej);
+}
+
+static void check_all_finite(const bus_t *b)
+{
+    for (int i = 0; i < b->nst; i++) {
+        const swaywatch_state_t *s = &b->st[i];
+        const double v[] = {s->theta,        s->theta_dot,    s->u,  s->z_b, s->margin,
+                            s->margin_bound, s->uplift_ratio, s->a_g};
+        for (size_t j = 0; j < sizeof v / sizeof v[0]; j++) assert_true(isfinite(v[j]));
+    }
+    for (int i = 0; i < b->nal; i++)
+        assert_true(isfinite(b->al[i].theta) && isfinite(b->al[i].margin));
+}
+
+/* ---- reference: the same samples through CSV, engine and alarms -------------- */
+
+typedef struct {
+    sw_engine_t *e;
+    sw_alarm_watch_t w;
+    sw_output_t *out;
+    int nout;
+    sw_alarm_t al[MAXMSG];
+    int nal;
+} ref_t;
+
+static void ref_alarm(void *user, const sw_alarm_t *a)
+{
+    ref_t *r = user;
+    r->al[r->nal++] = *a;
+}
+
+static void ref_state(void *user, const sw_output_t *o)
+{
+    ref_t *r = user;
+    r->out[r->nout++] = *o;
+    sw_alarm_on_output(&r->w, o, ref_alarm, r);
+}
+
+static void ref_event(void *user, const sw_event_t *ev)
+{
+    ref_t *r = user;
+    sw_alarm_on_event(&r->w, ev, ref_alarm, r);
+}
+
+static int ref_row(void *user, long line, double t, double a_g, double a_z)
+{
+    (void)line;
+    ref_t *r = user;
+    return sw_engine_push(r->e, t, a_g, a_z) < 0;
+}
+
+static ref_t *reference_from_csv(const sw_scene_t *sc)
+{
+    ref_t *r = calloc(1, sizeof *r);
+    assert_non_null(r);
+    r->out = calloc(MAXMSG, sizeof *r->out);
+    assert_non_null(r->out);
+    assert_int_equal(sw_alarm_init(&r->w, 0, sc->warn_margin, sc->critical_margin, -1), SW_OK);
+    sw_engine_opts_t eo;
+    memset(&eo, 0, sizeof eo);
+    eo.on_state = ref_state;
+    eo.on_event = ref_event;
+    eo.user = r;
+    r->e = sw_engine_create(sc, 1, &eo, NULL, NULL, 0);
+    assert_non_null(r->e);
+
+    /* The text a user would export: time in s relative to the first
+     * sample, acceleration in m/s^2, printed to round-trip exactly. */
+    size_t cap = 64 * NSAMP + 64, len = 0;
+    char *csv = malloc(cap);
+    assert_non_null(csv);
+    len += (size_t)snprintf(csv + len, cap - len, "t,ax\n");
+    for (long k = 0; k < NSAMP; k++)
+        len += (size_t)snprintf(csv + len, cap - len, "%.17g,%.17g\n", (double)(k * 1000) / 1e6,
+                                pulse_a(k));
+    sw_csv_opts_t co;
+    memset(&co, 0, sizeof co);
+    co.header = -1;
+    int err = 0;
+    sw_csv_t *c = sw_csv_create(&co, ref_row, NULL, r, &err, NULL, 0);
+    assert_non_null(c);
+    assert_int_equal(sw_csv_feed(c, csv, len), SW_OK);
+    assert_int_equal(sw_csv_finish(c), SW_OK);
+    sw_csv_destroy(c);
+    free(csv);
+    return r;
+}
+
+static void ref_free(ref_t *r)
+{
+    sw_engine_destroy(r->e);
+    free(r->out);
+    free(r);
+}
+
+/* Published over LCM == replayed from CSV: every state, every alarm. */
+static void test_lcm_equals_csv(void **st)
+{
+    (void)st;
+    rig_t *r = rig_new(1, NULL);
+    for (long k = 0; k < NSAMP; k++) send_k(r, k);
+    ref_t *ref = reference_from_csv(&r->scenes[0]);
+
+    assert_int_equal(r->bus.nst, NSAMP);
+    assert_int_equal(ref->nout, NSAMP);
+    double max_theta = 0.0;
+    for (int i = 0; i < NSAMP; i++) {
+        const swaywatch_state_t *s = &r->bus.st[i];
+        const sw_output_t *o = &ref->out[i];
+        assert_int_equal(s->seq, i);
+        assert_int_equal(s->utime, UTIME0 + (int64_t)i * 1000);
+        assert_string_equal((const char *)s->name, "crate-A");
+        assert_int_equal(s->phase, (int)o->state.phase);
+        assert_true(s->theta == o->state.theta);
+        assert_true(s->theta_dot == o->state.theta_dot);
+        assert_true(s->margin == o->margin);
+        assert_true(s->a_g == o->a_g);
+        if (fabs(s->theta) > max_theta)
+            max_theta = fabs(s->theta);
+    }
+    /* The scripted pulse must really rock the crate, or this proves little. */
+    assert_true(max_theta > 0.05);
+    assert_int_equal(r->bus.nal, ref->nal);
+    assert_true(ref->nal >= 3); /* uplift, impacts, warn at least */
+    for (int i = 0; i < ref->nal; i++) {
+        assert_int_equal(r->bus.al[i].kind, (int)ref->al[i].kind);
+        assert_int_equal(r->bus.al[i].level, (int)ref->al[i].level);
+        assert_int_equal(r->bus.al[i].seq, i);
+        assert_int_equal(r->bus.al[i].utime, UTIME0 + llround(ref->al[i].t * 1e6));
+        assert_true(r->bus.al[i].theta == ref->al[i].theta);
+        assert_string_equal((const char *)r->bus.al[i].text, ref->al[i].text);
+    }
+    check_all_finite(&r->bus);
+    check_counts_add_up(r->mon);
+    ref_free(ref);
+    rig_free(r);
+}
+
+static void final_output(rig_t *r, sw_output_t *o)
+{
+    assert_int_equal(sw_engine_get_output(sw_mon_engine(r->mon), 0, o), SW_OK);
+}
+
+static int count_alarms(const bus_t *b, int kind, int level)
+{
+    int n = 0;
+    for (int i = 0; i < b->nal; i++)
+        if (b->al[i].kind == kind && (level < 0 || b->al[i].level == level))
+            n++;
+    return n;
+}
+
+/* Bad samples in the middle of the stream: each is refused and counted
+ * under its reason, raises INPUT_REJECTED, and the final state equals that
+ * of the clean run bit for bit. */
+static void test_bad_samples_leave_model_unharmed(void **st)
+{
+    (void)st;
+    rig_t *clean = rig_new(1, NULL);
+    for (long k = 0; k < NSAMP; k++) send_k(clean, k);
+    sw_output_t want;
+    final_output(clean, &want);
+
+    rig_t *r = rig_new(1, NULL);
+    unsigned char buf[256];
+    for (long k = 0; k < NSAMP; k++) {
+        send_k(r, k);
+        int64_t u = UTIME0 + k * 1000;
+        switch (k) {
+            case 300: send(r, k, u, pulse_a(k), 0, 0); break;             /* duplicate */
+            case 310: send(r, k + 1000, u, 1.0, 0, 0); break;             /* same utime, new seq */
+            case 320: send(r, k - 5, u - 5000, 0.5, 0, 0); break;         /* late */
+            case 330: send(r, k + 1, u + 500, NAN, 0, 0); break;          /* NaN */
+            case 340: send(r, k + 1, u + 500, 0, INFINITY, 0); break;     /* inf on another axis */
+            case 350: send(r, k + 1, u + 500, 1000 * SW_G0, 0, 0); break; /* implausible */
+            case 360: {                                                   /* wrong type */
+                swaywatch_state_t s;
+                memset(&s, 0, sizeof s);
+                send_raw(r, buf, swaywatch_state_t_encode(buf, 0, sizeof buf, &s));
+                break;
+            }
+            case 370: { /* truncated, empty */
+                swaywatch_accel_t s = {.utime = u + 500, .seq = k + 1};
+                int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+                send_raw(r, buf, len - 1);
+                send_raw(r, buf, 0);
+                break;
+            }
+            case 380: { /* trailing junk */
+                swaywatch_accel_t s = {.utime = u + 500, .seq = k + 1};
+                int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+                memset(buf + len, 0xAB, 8);
+                send_raw(r, buf, len + 8);
+                break;
+            }
+            default: break;
+        }
+    }
+    sw_output_t got;
+    final_output(r, &got);
+    assert_true(got.t == want.t);
+    assert_true(got.state.theta == want.state.theta);
+    assert_true(got.state.theta_dot == want.state.theta_dot);
+    assert_true(got.margin == want.margin);
+    assert_int_equal(got.state.phase, want.state.phase);
+
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.accepted, NSAMP);
+    assert_int_equal(c.rejected[SW_MON_REJ_DUPLICATE], 2);
+    assert_int_equal(c.rejected[SW_MON_REJ_OUT_OF_ORDER], 1);
+    assert_int_equal(c.rejected[SW_MON_REJ_NONFINITE], 2);
+    assert_int_equal(c.rejected[SW_MON_REJ_IMPLAUSIBLE], 1);
+    assert_int_equal(c.rejected[SW_MON_REJ_DECODE], 3);
+    assert_int_equal(c.rejected[SW_MON_REJ_TRAILING], 1);
+    assert_int_equal(c.rejected[SW_MON_REJ_SKEW], 0);
+    assert_int_equal(c.rejected[SW_MON_REJ_ENGINE], 0);
+    check_counts_add_up(r->mon);
+    /* The states published are exactly the clean run's. */
+    assert_int_equal(r->bus.nst, clean->bus.nst);
+    for (int i = 0; i < r->bus.nst; i++) assert_true(r->bus.st[i].theta == clean->bus.st[i].theta);
+
+    /* One INPUT_REJECTED per reason at once; repeats within the second
+     * (duplicate, nonfinite, decode) are held back and summed up later. */
+    assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED, -1), 6);
+    sw_mon_flush(r->mon);
+    drain(r);
+    assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED, -1), 9);
+    int seen_text = 0;
+    for (int i = 0; i < r->bus.nal; i++)
+        if (strstr((const char *)r->bus.al[i].text, "2 accel samples rejected: decode"))
+            seen_text++;
+    assert_int_equal(seen_text, 1);
+    /* Physics alarms as in the clean run. */
+    assert_int_equal(r->bus.nal - 9, clean->bus.nal);
+    check_all_finite(&r->bus);
+    rig_free(clean);
+    rig_free(r);
+}
+
+/* A gap: samples stop, the timer raises SENSOR_GAP (warn), the next sample
+ * ends it (info) and is bridged by interpolation; the model ends where a
+ * run of the same samples without the timer ends.  A jump in utime that
+ * the timer did not see raises SENSOR_GAP (warn) on arrival. */
+static void test_gap(void **st)
+{
+    (void)st;
+    rig_t *plain = rig_new(1, NULL), *r = rig_new(1, NULL);
+    for (long k = 0; k < NSAMP; k++) {
+        if (k > 500 && k < 800)
+            continue; /* 0.3 s without samples */
+        send_k(plain, k);
+        if (k == 800) {
+            /* the timer, during the gap */
+            double due = sw_mon_deadline(r->mon);
+            assert_true(fabs(due - (0.5 + 0.1)) < 1e-9);
+            sw_mon_tick(r->mon, 0.55); /* too early: nothing */
+            drain(r);
+            assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, -1), 0);
+            sw_mon_tick(r->mon, 0.65);
+            drain(r);
+            assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP,
+                                          SWAYWATCH_ALARM_T_LEVEL_WARN),
+                             1);
+            assert_true(isinf(sw_mon_deadline(r->mon))); /* once per gap */
+            sw_mon_tick(r->mon, 0.75);
+        }
+        send_k(r, k);
+    }
+    assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, -1), 2);
+    assert_int_equal(
+        count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, SWAYWATCH_ALARM_T_LEVEL_INFO), 1);
+    /* Without the timer, the jump itself is the alarm. */
+    assert_int_equal(
+        count_alarms(&plain->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, SWAYWATCH_ALARM_T_LEVEL_WARN),
+        1);
+    sw_output_t a, b;
+    final_output(plain, &a);
+    final_output(r, &b);
+    assert_true(a.state.theta == b.state.theta && a.margin == b.margin);
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.gaps, 1);
+    assert_int_equal(c.accepted, NSAMP - 299);
+    /* The accel seq jumped by 300: lost samples are counted, not refused. */
+    assert_int_equal(c.lost, 299);
+    check_counts_add_up(r->mon);
+    rig_free(plain);
+    rig_free(r);
+}
+
+/* A consumer that drops state messages finds out from seq, exactly. */
+static void test_seq_reveals_drops(void **st)
+{
+    (void)st;
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.hysteresis = -1;
+    mo.state_rate = 100.0; /* 1 state per 10 samples per package */
+    rig_t *r = rig_new(2, &mo);
+    r->bus.drop_every = 7;
+    for (long k = 0; k < NSAMP; k++) send_k(r, k);
+    long published = r->bus.seen;
+    assert_int_equal(published, 2 * 201); /* 2 packages, 0..2 s at 100 Hz */
+    long dropped = published / 7, detected = 0;
+    for (int i = 1; i < r->bus.nst; i++) detected += r->bus.st[i].seq - r->bus.st[i - 1].seq - 1;
+    detected += r->bus.st[0].seq; /* drops before the first one kept */
+    detected += (published - 1) - r->bus.st[r->bus.nst - 1].seq;
+    assert_int_equal(detected, dropped);
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.states, published);
+    /* Both packages on the 100 Hz grid of the sample clock. */
+    for (int i = 0; i < r->bus.nst; i++) assert_int_equal((r->bus.st[i].utime - UTIME0) % 10000, 0);
+    rig_free(r);
+}
+
+/* Vertical input that leaves the package weightless is outside the model:
+ * MODEL_FAULT is published, never a NaN; the monitor goes on. */
+static void test_model_fault_never_nan(void **st)
+{
+    (void)st;
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = 2;
+    mo.hysteresis = -1;
+    rig_t *r = rig_new(1, &mo);
+    for (long k = 0; k < 600; k++)
+        send(r, k, UTIME0 + k * 1000, pulse_a(k), 0.0, (k >= 250 && k < 260) ? -15.0 : 0.0);
+    assert_true(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_MODEL_FAULT, -1) >= 1);
+    check_all_finite(&r->bus);
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.accepted + c.rejected[SW_MON_REJ_ENGINE], 600);
+    assert_int_equal(c.states + c.states_withheld, c.accepted);
+    check_counts_add_up(r->mon);
+    rig_free(r);
+}
+
+/* Options: axis, flip and unit are applied before the model sees a sample. */
+static void test_axis_flip_unit(void **st)
+{
+    (void)st;
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.hysteresis = -1;
+    mo.axis = 1;
+    mo.flip = 1;
+    mo.accel_scale = SW_G0;
+    rig_t *r = rig_new(1, &mo);
+    send(r, 0, UTIME0, 5.0, 0.25, 0.0);
+    assert_int_equal(r->bus.nst, 1);
+    assert_true(fabs(r->bus.st[0].a_g - (-0.25 * SW_G0)) < 1e-12);
+    /* 60 g on an axis that is not used is still implausible. */
+    send(r, 1, UTIME0 + 1000, 60.0, 0.0, 0.0);
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.rejected[SW_MON_REJ_IMPLAUSIBLE], 1);
+    assert_int_equal(sw_mon_axis_parse("z"), 2);
+    assert_int_equal(sw_mon_axis_parse("w"), -1);
+    assert_int_equal(sw_mon_axis_parse("xy"), -1);
+    rig_free(r);
+}
+
+/* The skew check refuses samples far from the wall clock. */
+static void test_skew(void **st)
+{
+    (void)st;
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.hysteresis = -1;
+    mo.max_skew = 10.0;
+    rig_t *r = rig_new(1, &mo);
+    swaywatch_accel_t s = {.utime = UTIME0, .seq = 0};
+    unsigned char buf[128];
+    int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+    assert_true(sw_mon_feed(r->mon, buf, (size_t)len, UTIME0 + 11000000, 0.0, NULL) < 0);
+    sw_mon_reject why = SW_MON_NREJ;
+    assert_true(sw_mon_feed(r->mon, buf, (size_t)len, UTIME0 - 11000000, 0.0, &why) < 0);
+    assert_int_equal(why, SW_MON_REJ_SKEW);
+    assert_true(sw_mon_feed(r->mon, buf, (size_t)len, UTIME0 + 9000000, 0.0, NULL) >= 0);
+    check_counts_add_up(r->mon);
+    rig_free(r);
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lcm_equals_csv),
+        cmocka_unit_test(test_bad_samples_leave_model_unharmed),
+        cmocka_unit_test(test_gap),
+        cmocka_unit_test(test_seq_reveals_drops),
+        cmocka_unit_test(test_model_fault_never_nan),
+        cmocka_unit_test(test_axis_flip_unit),
+        cmocka_unit_test(test_skew),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

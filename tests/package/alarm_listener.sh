@@ -1,0 +1,79 @@
+#!/bin/sh
+# docs/examples/alarm_listener.c receives and prints the alarms swaywatch
+# publishes over UDP multicast: in a private network namespace (only
+# loopback, with the multicast route LCM needs), the listener runs while
+# 'swaywatch replay --publish' replays a braking pulse; it must print every
+# alarm that the same replay writes to a log file, in the same order.
+# Needs a network namespace (root, or user namespaces): exits 77 otherwise.
+# usage: alarm_listener.sh SWAYWATCH LISTENER SOURCE_DIR PYTHON_TYPES_DIR
+set -eu
+if [ -z "${SW_IN_NETNS:-}" ]; then
+    export SW_IN_NETNS=1
+    for u in "unshare -n" "unshare -rn"; do
+        if $u true 2>/dev/null; then exec $u sh "$0" "$@"; fi
+    done
+    echo "alarm_listener.sh: cannot make a network namespace: skipped"
+    exit 77
+fi
+ip link set lo up
+ip route add 224.0.0.0/4 dev lo
+
+SW=$1 LISTENER=$2 SRC=$3 PYDIR=$4
+T=$(mktemp -d)
+pid=""
+trap '[ -z "$pid" ] || kill "$pid" 2>/dev/null; rm -rf "$T"' EXIT
+fail() { echo "alarm_listener.sh: $*" >&2; exit 1; }
+export PYTHONPATH="$PYDIR"
+URL="udpm://239.255.76.67:7667?ttl=0"
+
+# The pulse starts after a second of still bed: LCM has no handshake, and a
+# busy machine may take a moment to start the listener's receive thread.
+python3 "$SRC/tests/package/mkaccel.py" "$T/accel.lcmlog" --amplitude -5 --omega 10 \
+    --duration 3 --lead 1
+cat >"$T/crate.ini" <<INI
+[package]
+name = crate-A
+height = 2.0
+width = 0.728
+mass = 1000
+INI
+
+# The alarms, as a log file.
+"$SW" replay "$T/accel.lcmlog" --scene "$T/crate.ini" --quiet --speed 0 \
+    --publish "file://$T/alarms.lcmlog?mode=w"
+python3 - "$T/alarms.lcmlog" >"$T/expected" <<'PY'
+import struct, sys
+from swaywatch import alarm_t
+f = open(sys.argv[1], "rb")
+while (h := f.read(28)) and len(h) == 28:
+    _, _, _, cl, dl = struct.unpack(">IqqII", h)
+    ch, data = f.read(cl).decode(), f.read(dl)
+    if ch == "SWAY_ALARM":
+        a = alarm_t.decode(data)
+        print(a.seq, a.kind)
+PY
+n=$(wc -l <"$T/expected")
+[ "$n" -ge 3 ] || fail "the replay raised only $n alarms"
+
+# The same alarms, live.  Real-time speed: the listener keeps up easily.
+"$LISTENER" -l "$URL" -n "$n" -t 10 >"$T/printed" 2>"$T/listener.err" &
+pid=$!
+i=0
+until grep -q listening "$T/listener.err"; do
+    i=$((i + 1))
+    [ $i -lt 100 ] || fail "the listener did not start"
+    sleep 0.05
+done
+sleep 0.3
+"$SW" replay "$T/accel.lcmlog" --scene "$T/crate.ini" --quiet --speed 1 --publish "$URL"
+wait "$pid" || fail "the listener failed"
+pid=""
+cat "$T/printed"
+[ "$(wc -l <"$T/printed")" -eq "$n" ] || fail "printed $(wc -l <"$T/printed") alarms, expected $n"
+# seq and kind of every alarm, in order (kind by name in the printout).
+awk '{print $3}' "$T/printed" >"$T/seqs"
+awk '{print $1}' "$T/expected" | diff - "$T/seqs" >/dev/null || fail "seq numbers differ"
+grep -q 'UPLIFT' "$T/printed" || fail "no UPLIFT alarm printed"
+grep -q 'crate-A' "$T/printed" || fail "no package name printed"
+grep -q '0 lost' "$T/listener.err" || fail "the listener lost alarms: $(cat "$T/listener.err")"
+echo "alarm_listener.sh: ok ($n alarms)"

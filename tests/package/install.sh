@@ -1,0 +1,73 @@
+#!/bin/sh
+# 'cmake --install' into a scratch prefix puts every piece in place, and a
+# program builds and runs against the installed library through
+# pkg-config, shared and static.
+# usage: install.sh BUILD_DIR SOURCE_DIR   (env: SW_VERSION, SW_LCM, SW_MAN, SW_CC_FLAGS)
+set -eu
+BUILD=$1 SRC=$2
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+P=$T/prefix
+fail() { echo "install.sh: $*" >&2; exit 1; }
+
+cmake --install "$BUILD" --prefix "$P" >"$T/install.log"
+cd "$P"
+libdir=$(cd "$P" && ls -d lib/pkgconfig lib/*/pkgconfig 2>/dev/null | head -n 1 | sed 's|/pkgconfig$||')
+[ -n "$libdir" ] || fail "no pkgconfig folder under $P/lib"
+for f in bin/swaywatch "$libdir/libswaywatch.a" "$libdir/libswaywatch.so" \
+    "$libdir/libswaywatch.so.0" "$libdir/pkgconfig/swaywatch.pc" \
+    include/swaywatch/swaywatch.h include/swaywatch/engine.h \
+    share/bash-completion/completions/swaywatch lib/systemd/system/swaywatch-monitor.service \
+    share/doc/swaywatch/deployment.md share/doc/swaywatch/examples/tipcheck.c; do
+    [ -e "$f" ] || fail "not installed: $f"
+done
+[ "$(readlink "$libdir/libswaywatch.so")" = libswaywatch.so.0 ] ||
+    fail "libswaywatch.so does not point to libswaywatch.so.0"
+objdump -p "$libdir/libswaywatch.so.0" | grep -q 'SONAME *libswaywatch.so.0$' ||
+    fail "SONAME of libswaywatch.so.0"
+for h in "$SRC"/include/swaywatch/*.h; do
+    [ -e "include/swaywatch/$(basename "$h")" ] || fail "header not installed: $h"
+done
+if [ "${SW_MAN:-0}" = 1 ]; then
+    [ -e share/man/man1/swaywatch.1 ] || fail "no swaywatch.1"
+    for c in $(bin/swaywatch --help | awk '/^Commands:/ {on = 1; next}
+                on && /^$/ {exit} on && /^  [a-z]/ {print $1}'); do
+        [ -e "share/man/man1/swaywatch-$c.1" ] || fail "no manual page for '$c'"
+        bin/swaywatch "$c" --version | grep -qx "swaywatch $c $SW_VERSION" ||
+            fail "swaywatch $c --version"
+    done
+fi
+if [ "${SW_LCM:-0}" = 1 ]; then
+    for t in accel_t state_t alarm_t; do
+        [ -e "share/swaywatch/lcmtypes/$t.lcm" ] || fail "no $t.lcm"
+        [ -e "share/swaywatch/lcmtypes/c/swaywatch_$t.h" ] || fail "no C header of $t"
+        [ -e "share/swaywatch/lcmtypes/python/swaywatch/$t.py" ] || fail "no Python $t"
+    done
+fi
+bin/swaywatch --version | grep -qx "swaywatch $SW_VERSION" || fail "swaywatch --version"
+
+# The LCM examples build and run on the installed bindings alone.
+if [ "${SW_LCM:-0}" = 1 ]; then
+    L=share/swaywatch/lcmtypes
+    cc ${SW_CC_FLAGS:-} -o "$T/alarm_listener" "$SRC/docs/examples/alarm_listener.c" "$L/c/swaywatch_alarm_t.c" \
+        -I"$L/c" -llcm
+    "$T/alarm_listener" -h >/dev/null
+    PYTHONPATH="$P/$L/python" python3 "$SRC/tests/package/mkaccel.py" "$T/a.lcmlog" --duration 0.1
+    PYTHONPATH="$P/$L/python" python3 "$SRC/docs/examples/decode_states.py" "$T/a.lcmlog" \
+        --expect 0 >/dev/null
+fi
+
+# The relocatable .pc file points into this prefix.
+export PKG_CONFIG_PATH="$P/$libdir/pkgconfig"
+pkg-config --exists --print-errors swaywatch
+[ "$(pkg-config --modversion swaywatch)" = "$SW_VERSION" ] || fail "pkg-config --modversion"
+cc ${SW_CC_FLAGS:-} -o "$T/tipcheck" "$SRC/docs/examples/tipcheck.c" $(pkg-config --cflags --libs swaywatch)
+LD_LIBRARY_PATH="$P/$libdir" ldd "$T/tipcheck" | grep -q "$P/$libdir/libswaywatch.so.0" ||
+    fail "tipcheck is not linked against the installed libswaywatch.so.0"
+LD_LIBRARY_PATH="$P/$libdir" "$T/tipcheck"
+# Static: the archive plus Libs.private and Requires.private.
+libs=$(pkg-config --static --libs swaywatch | sed 's/-lswaywatch\b/-l:libswaywatch.a/')
+cc ${SW_CC_FLAGS:-} -o "$T/tipcheck-static" "$SRC/docs/examples/tipcheck.c" $(pkg-config --cflags swaywatch) $libs
+if ldd "$T/tipcheck-static" | grep -q libswaywatch; then fail "tipcheck-static uses the .so"; fi
+"$T/tipcheck-static" >/dev/null
+echo "install.sh: ok ($(wc -l <"$T/install.log") lines of install log)"

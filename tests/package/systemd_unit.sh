@@ -1,0 +1,49 @@
+#!/bin/sh
+# The systemd unit of the monitor: systemd accepts it (when systemd-analyze
+# is there), it runs no root process, and its ExecStart, run by the shell as
+# systemd would run it, starts 'swaywatch monitor' with one --scene per
+# scene file and the options of /etc/default/swaywatch.
+# usage: systemd_unit.sh UNIT_FILE
+set -eu
+UNIT=$1
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fail() { echo "systemd_unit.sh: $*" >&2; exit 1; }
+
+if command -v systemd-analyze >/dev/null 2>&1; then
+    # --man=no: the manual page it names is installed with the package.
+    systemd-analyze verify --man=no "$UNIT" || fail "systemd-analyze verify"
+else
+    echo "systemd_unit.sh: no systemd-analyze: only the static checks"
+fi
+for line in DynamicUser=yes Restart=on-failure 'ExecReload=/bin/kill -HUP $MAINPID' \
+    RestartPreventExitStatus=2 EnvironmentFile=-/etc/default/swaywatch; do
+    grep -qxF "$line" "$UNIT" || fail "no '$line'"
+done
+if grep -Eq '^(User=root|AmbientCapabilities=.)' "$UNIT"; then fail "runs with privileges"; fi
+
+# ExecStart through the shell: '$$' is systemd's escape of '$'; the scene
+# folder and the command are replaced by a scratch folder and a stand-in
+# that prints its arguments one per line.
+cmd=$(sed -n 's/^ExecStart=//p' "$UNIT")
+[ -n "$cmd" ] || fail "no ExecStart"
+mkdir -p "$T/etc/swaywatch" "$T/bin"
+touch "$T/etc/swaywatch/a.ini" "$T/etc/swaywatch/b.ini" "$T/etc/swaywatch/README"
+printf '#!/bin/sh\nfor a; do printf "%%s\\n" "$a"; done\n' >"$T/bin/swaywatch"
+chmod +x "$T/bin/swaywatch"
+cmd=$(printf '%s\n' "$cmd" | sed "s|\\\$\\\$|\$|g; s|/etc/swaywatch|$T/etc/swaywatch|g")
+# systemd splits ExecStart like a shell: the quoted script is one word.
+eval "set -- $cmd"
+[ "$1" = /bin/sh ] && [ "$2" = -c ] || fail "ExecStart is not '/bin/sh -c SCRIPT': $cmd"
+out=$(PATH="$T/bin:$PATH" SWAYWATCH_MONITOR_OPTS="--axis y --status 60" /bin/sh -c "$3")
+want="monitor
+--scene
+$T/etc/swaywatch/a.ini
+--scene
+$T/etc/swaywatch/b.ini
+--axis
+y
+--status
+60"
+[ "$out" = "$want" ] || fail "ExecStart ran: $(echo $out)"
+echo "systemd_unit.sh: ok"
