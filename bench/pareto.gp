@@ -1,9 +1,9 @@
 # Error against cost of every scheme setting (sw_bench run --data DIR), one
-# panel per model, with the Pareto front.  Called by scripts/run-bench.sh:
-#   gnuplot -e "dir='bench/results'; out='docs/img/pareto.png'" bench/pareto.gp
-set terminal pngcairo size 1300,540 font ",10"
+# panel per model (up to four), with the Pareto front.  Called by scripts/run-bench.sh:
+#   gnuplot -e "dir='bench/results'; out='docs/img/pareto.png'; models='bare frame'" bench/pareto.gp
+set terminal pngcairo size 1300,1080 font ",10"
 set output out
-set multiplot layout 1,2
+set multiplot layout 2,2
 set logscale xy
 set format y "10^{%L}"
 set xlabel "CPU ns per input sample while rocking (1 kHz samples; median of 5)"
@@ -11,8 +11,8 @@ set ylabel "worst error of max|theta| (rad) vs rk8pd rtol 1e-12"
 set grid
 set key outside right top box opaque
 set yrange [1e-16:2]
-schemes = "euler heun rk4 rkf45 rkck rk8pd"
-do for [m in "bare frame"] {
+schemes = "euler heun rk4 rkf45 rkck rk8pd rk4imp bsimp msbdf"
+do for [m in models] {
     set title sprintf("model %s (error 1 = wrong overturn decision)", m)
     f = sprintf("%s/pareto-%s.dat", dir, m)
     g = sprintf("%s/front-%s.dat", dir, m)

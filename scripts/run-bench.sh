@@ -126,12 +126,16 @@ fi
 echo "Load average at the end: $(cut -d' ' -f1-3 /proc/loadavg)." >>"$OUT"
 
 # ---- plot --------------------------------------------------------------------
-for m in bare frame; do
+models=""
+for f in "$DATA"/pareto-*.dat; do
+    m=$(basename "$f" .dat)
+    m=${m#pareto-}
+    models="$models $m"
     # Pareto front: settings sorted by cost, keeping each that beats every cheaper one
-    grep -v '^#' "$DATA/pareto-$m.dat" | sort -k4,4g |
+    grep -v '^#' "$f" | sort -k4,4g |
         awk 'BEGIN{best=2} $5<best {best=$5; print $4, $5}' >"$DATA/front-$m.dat"
 done
-gnuplot -e "dir='$DATA'; out='docs/img/pareto.png'" bench/pareto.gp
+gnuplot -e "dir='$DATA'; out='docs/img/pareto.png'; models='${models# }'" bench/pareto.gp
 
 # ---- splice into the document -------------------------------------------------
 awk -v res="$OUT" '
