@@ -85,6 +85,8 @@ typedef struct {
                            bound instead of sub-stepping */
     double rtol, atol;  /* adaptive schemes; 0 = defaults (1e-10, 1e-12) */
     double rest_eps;    /* rest threshold as a fraction of the energy barrier; 0 = 1e-9 */
+    int stuck_stepped;  /* non-zero: step a stuck frame with the fixed-step scheme instead of
+                           its exact solution (comparisons; the default is exact and cheaper) */
     sw_event_fn on_event;
     sw_state_fn on_state; /* called once per pushed sample and package; may be NULL */
     void *user;
@@ -174,6 +176,16 @@ const char *sw_scheme_name(const sw_scheme_t *s);
 int sw_scheme_order(const sw_scheme_t *s);
 int sw_scheme_adaptive(const sw_scheme_t *s);
 double sw_scheme_default_dt(const sw_scheme_t *s); /* s */
+
+/* Accuracy option: the cheapest scheme and internal step dt (s; 0 = the
+ * scheme's default, for the adaptive ones) that kept the error of max|theta|
+ * within theta_tol (rad) in the benchmark of docs/accuracy-speed.md, for the
+ * model's reference scene (errors of fixed steps grow as (p dt)^order: a
+ * package rocking faster than that scene needs a tighter tolerance).
+ * *scheme is a static string for sw_engine_opts_t.scheme.  Returns SW_OK,
+ * SW_ENOTFOUND when theta_tol is tighter than any setting measured, or
+ * SW_EINVAL (theta_tol not > 0, NULL pointers, a model without a table). */
+int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const char **scheme, double *dt);
 
 /* m/s^2 (about 10,000 g): no accelerometer on a vehicle reads more; a
  * larger value is a corrupt sample, refused by sw_engine_push(). */

@@ -56,6 +56,8 @@ typedef struct sw_pkg {
     double h_adapt;    /* s, GSL's proposed next step */
     gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
 
+    double nj_cache[5]; /* engine.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
+    double trig[3];     /* model.c: an angle (NAN: none yet), its sin and cos */
     int beyond_alpha;  /* |theta| >= alpha at the last check */
     double t_lift;     /* s, time of the last uplift */
     int hold;          /* keep the package stuck for one step (see after_impact) */
