@@ -19,33 +19,11 @@
 /* The first four bytes of an lcm-logger event log (big-endian). */
 static const unsigned char lcm_sync[4] = {0xED, 0xA1, 0xDA, 0x01};
 
-enum {
-    OPT_TIME_COL = SW_OPT_FIRST_OWN,
-    OPT_ACCEL_COL,
-    OPT_VERT_COL,
-    OPT_DELIM,
-    OPT_HEADER,
-    OPT_NO_HEADER,
-    OPT_ACCEL_UNIT,
-    OPT_TIME_UNIT,
-    OPT_FLIP,
-    OPT_STRICT,
-    OPT_SETTLE,
-    OPT_FAIL_ON_OVERTURN
-};
+enum { OPT_SETTLE = SW_OPT_FIRST_OWN, OPT_FAIL_ON_OVERTURN };
 
 static const struct option long_opts[] = {
     SW_CLI_COMMON_LONGOPTS,
-    {"time-col", required_argument, NULL, OPT_TIME_COL},
-    {"accel-col", required_argument, NULL, OPT_ACCEL_COL},
-    {"vert-col", required_argument, NULL, OPT_VERT_COL},
-    {"delimiter", required_argument, NULL, OPT_DELIM},
-    {"header", no_argument, NULL, OPT_HEADER},
-    {"no-header", no_argument, NULL, OPT_NO_HEADER},
-    {"accel-unit", required_argument, NULL, OPT_ACCEL_UNIT},
-    {"time-unit", required_argument, NULL, OPT_TIME_UNIT},
-    {"flip", no_argument, NULL, OPT_FLIP},
-    {"strict", no_argument, NULL, OPT_STRICT},
+    SW_CLI_CSV_LONGOPTS,
     {"settle", required_argument, NULL, OPT_SETTLE},
     {"fail-on-overturn", no_argument, NULL, OPT_FAIL_ON_OVERTURN},
     SW_CLI_LCMLOG_LONGOPTS,
@@ -61,23 +39,9 @@ static void usage(FILE *f)
             "each package and reports whether, when and how close it came to overturning.\n"
             "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
             "its first bytes; needs a build with LCM).\n"
-            "\n"
-            "CSV input (default: column 1 time in s, column 2 longitudinal acceleration in\n"
-            "m/s^2, x forward: braking is negative; optional header row; '#' comments):\n"
-            "      --time-col NAME|N    time column, by header name or 1-based index (default 1)\n"
-            "      --accel-col NAME|N   longitudinal acceleration column (default 2)\n"
-            "      --vert-col NAME|N    vertical acceleration column, up positive, same unit as\n"
-            "                           --accel-unit (default: none, gravity only)\n"
-            "      --delimiter D        ',', ';' or tab (default: detected from the first line)\n"
-            "      --header             the first row is a header (default: detected)\n"
-            "      --no-header          the first row is data\n"
-            "      --accel-unit U       m/s2 or g, 1 g = 9.80665 m/s^2 (default m/s2)\n"
-            "      --time-unit U        s, ms or us (default s)\n"
-            "      --flip               negate the longitudinal axis (logger mounted backwards)\n"
-            "      --strict             stop at the first rejected row, exit 2\n"
-            "Rows that cannot be used (missing field, not a number, not finite, time not\n"
-            "increasing) are counted and reported on stderr with their line number (the first\n"
-            "%d one by one); the run goes on without them unless --strict.\n"
+            "\n");
+    sw_cli_print_csv_help(f);
+    fprintf(f,
             "\n"
             "Run:\n"
             "      --settle SECONDS     after the log ends, go on with zero acceleration for up to\n"
@@ -85,7 +49,7 @@ static void usage(FILE *f)
             "                           overturned (default %g; 0: stop at the end of the log)\n"
             "      --fail-on-overturn   exit 1 if any package overturned\n"
             "\n",
-            MAX_PRINTED_REJECTS, DEFAULT_SETTLE);
+            DEFAULT_SETTLE);
 #ifdef SW_HAVE_LCM
     sw_cli_print_lcmlog_help(f);
     fputc('\n', f);
@@ -166,67 +130,12 @@ static void on_event(void *user, const sw_event_t *ev)
     sw_cli_events_write(c->events, ev);
 }
 
-static int parse_delim(const char *arg, char *out)
-{
-    if (!strcmp(arg, ",") || !strcmp(arg, "comma"))
-        *out = ',';
-    else if (!strcmp(arg, ";") || !strcmp(arg, "semicolon"))
-        *out = ';';
-    else if (!strcmp(arg, "tab") || !strcmp(arg, "\t") || !strcmp(arg, "\\t"))
-        *out = '\t';
-    else {
-        sw_cli_error("--delimiter: expected ',', ';' or tab, got '%s'", arg);
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
-}
-
-static int parse_accel_unit(const char *arg, double *scale)
-{
-    if (!strcmp(arg, "m/s2") || !strcmp(arg, "m/s^2") || !strcmp(arg, "mps2"))
-        *scale = 1.0;
-    else if (!strcmp(arg, "g"))
-        *scale = 9.80665;
-    else {
-        sw_cli_error("--accel-unit: expected m/s2 or g, got '%s'", arg);
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
-}
-
-static int parse_time_unit(const char *arg, double *scale)
-{
-    if (!strcmp(arg, "s"))
-        *scale = 1.0;
-    else if (!strcmp(arg, "ms"))
-        *scale = 1e-3;
-    else if (!strcmp(arg, "us"))
-        *scale = 1e-6;
-    else {
-        sw_cli_error("--time-unit: expected s, ms or us, got '%s'", arg);
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
-}
-
-/* Column choice: a header name or a 1-based index; "0" is neither. */
-static int check_col(const char *opt, const char *arg)
-{
-    char *end = NULL;
-    long v = strtol(arg, &end, 10);
-    if (*arg == '\0' || (end != arg && *end == '\0' && v < 1)) {
-        sw_cli_error("%s: expected a column name or a 1-based index, got '%s'", opt, arg);
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
-}
-
 int cmd_replay(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
     sw_cli_opts_t o;
-    sw_csv_opts_t copts = {0};
-    copts.header = -1;
+    sw_cli_csv_opts_t copts;
+    sw_cli_csv_opts_init(&copts);
     double settle = DEFAULT_SETTLE;
     int fail_on_overturn = 0;
     const char *log = NULL;
@@ -267,22 +176,14 @@ int cmd_replay(int argc, char **argv)
         if (r != -1) goto out;
         r = SW_EXIT_OK;
         switch (c) {
-        case OPT_TIME_COL: copts.time_col = optarg; r = check_col("--time-col", optarg); break;
-        case OPT_ACCEL_COL: copts.accel_col = optarg; r = check_col("--accel-col", optarg); break;
-        case OPT_VERT_COL: copts.vert_col = optarg; r = check_col("--vert-col", optarg); break;
-        case OPT_DELIM: r = parse_delim(optarg, &copts.delim); break;
-        case OPT_HEADER: copts.header = 1; break;
-        case OPT_NO_HEADER: copts.header = 0; break;
-        case OPT_ACCEL_UNIT: r = parse_accel_unit(optarg, &copts.accel_scale); break;
-        case OPT_TIME_UNIT: r = parse_time_unit(optarg, &copts.time_scale); break;
-        case OPT_FLIP: copts.flip = 1; break;
-        case OPT_STRICT: ctx.strict = 1; break;
         case OPT_SETTLE:
             r = sw_cli_parse_double("--settle", optarg, SW_NUM_NONNEGATIVE,
                                     "a number of seconds >= 0", &settle);
             break;
         case OPT_FAIL_ON_OVERTURN: fail_on_overturn = 1; break;
         default:
+            if ((r = sw_cli_csv_option(&copts, c, optarg)) != -1) break;
+            r = SW_EXIT_OK;
             if (c >= SW_OPT_LCM_CHANNEL && c < SW_OPT_LCM_END) { /* read by lcmlog.c */
                 lcm_only = c;
                 break;
@@ -304,6 +205,7 @@ int cmd_replay(int argc, char **argv)
     log = argv[optind];
     ctx.name = strcmp(log, "-") ? log : "(stdin)";
     ctx.quiet = o.quiet;
+    ctx.strict = copts.strict;
 
     /* Open the log first: a missing file is an I/O error (3) whatever else
      * is wrong, and the first bytes decide CSV or lcm-logger. */
@@ -377,7 +279,7 @@ int cmd_replay(int argc, char **argv)
 
     int err = 0;
     char msg[256] = "";
-    csv = sw_csv_create(&copts, on_row, on_reject, &ctx, &err, msg, sizeof msg);
+    csv = sw_csv_create(&copts.csv, on_row, on_reject, &ctx, &err, msg, sizeof msg);
     if (!csv) {
         sw_cli_error("%s: %s", ctx.name, msg[0] ? msg : sw_strerror(err));
         rc = SW_EXIT_USAGE;
