@@ -257,6 +257,9 @@ void sw_cli_print_csv_help(FILE *f);
 /* Handle a CSV option code; -1 if c is not one, else SW_EXIT_OK or
  * SW_EXIT_USAGE (reported). */
 int sw_cli_csv_option(sw_cli_csv_opts_t *o, int c, const char *arg);
+/* --accel-unit m/s2|g: m/s^2 per unit in *scale (1 g = 9.80665 m/s^2);
+ * SW_EXIT_OK or SW_EXIT_USAGE (reported).  Shared by CSV and LCM input. */
+int sw_cli_parse_accel_unit(const char *arg, double *scale);
 
 /* A whole log: accepted rows in file order, SI units. */
 typedef struct {

@@ -73,19 +73,6 @@ int sw_cli_mon_option(sw_mon_opts_t *mo, int c, const char *arg)
     }
 }
 
-int sw_cli_parse_accel_unit(const char *arg, double *scale)
-{
-    if (!strcmp(arg, "m/s2") || !strcmp(arg, "m/s^2") || !strcmp(arg, "mps2"))
-        *scale = 1.0;
-    else if (!strcmp(arg, "g"))
-        *scale = SW_G0;
-    else {
-        sw_cli_error("--accel-unit: expected m/s2 or g, got '%s'", arg);
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
-}
-
 double sw_cli_mono_now(void)
 {
     struct timespec ts;

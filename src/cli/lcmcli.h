@@ -12,10 +12,6 @@
  * SW_EXIT_OK or SW_EXIT_USAGE (reported). */
 int sw_cli_mon_option(sw_mon_opts_t *mo, int c, const char *arg);
 
-/* --accel-unit m/s2|g: m/s^2 per unit in *scale; SW_EXIT_OK or
- * SW_EXIT_USAGE (reported). */
-int sw_cli_parse_accel_unit(const char *arg, double *scale);
-
 /* Monotonic clock, s. */
 double sw_cli_mono_now(void);
 

@@ -61,7 +61,7 @@ static int parse_delim(const char *arg, char *out)
     return SW_EXIT_OK;
 }
 
-static int parse_accel_unit(const char *arg, double *scale)
+int sw_cli_parse_accel_unit(const char *arg, double *scale)
 {
     if (!strcmp(arg, "m/s2") || !strcmp(arg, "m/s^2") || !strcmp(arg, "mps2"))
         *scale = 1.0;
@@ -110,7 +110,7 @@ int sw_cli_csv_option(sw_cli_csv_opts_t *o, int c, const char *arg)
     case SW_OPT_CSV_DELIM: return parse_delim(arg, &o->csv.delim);
     case SW_OPT_CSV_HEADER: o->csv.header = 1; return SW_EXIT_OK;
     case SW_OPT_CSV_NO_HEADER: o->csv.header = 0; return SW_EXIT_OK;
-    case SW_OPT_CSV_ACCEL_UNIT: return parse_accel_unit(arg, &o->csv.accel_scale);
+    case SW_OPT_CSV_ACCEL_UNIT: return sw_cli_parse_accel_unit(arg, &o->csv.accel_scale);
     case SW_OPT_CSV_TIME_UNIT: return parse_time_unit(arg, &o->csv.time_scale);
     case SW_OPT_CSV_FLIP: o->csv.flip = 1; return SW_EXIT_OK;
     case SW_OPT_CSV_STRICT: o->strict = 1; return SW_EXIT_OK;

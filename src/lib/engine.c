@@ -717,6 +717,23 @@ static double frame_stuck_advance(sw_pkg_t *P, double t1, int *side)
 static double polish(sw_engine_t *e, sw_pkg_t *P, int ev, double t0, double h, const double y0[],
                      double tau, double y[]);
 
+/* The peak of |theta| inside a step: where theta' changes sign before
+ * tau = lim, polished by re-stepping so that max |theta| is as accurate as
+ * the scheme, even for long adaptive steps. */
+static void track_peak(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const double y0[],
+                       const double f0[], const double y1[], const double f1[], double lim)
+{
+    double v0, d0, v1, d1, yt[SW_NMAX];
+    event_fn(P, EV_TURN, t0, y0, f0, &v0, &d0);
+    event_fn(P, EV_TURN, t0 + h, y1, f1, &v1, &d1);
+    const herm_t H = herm_make(v0, d0, v1, d1, h);
+    const double tau = herm_first_rise(&H, 0.0);
+    if (tau > 0.0 && tau <= lim) {
+        polish(e, P, EV_TURN, t0, h, y0, tau, yt);
+        track_theta(P, yt[P->ith]);
+    }
+}
+
 /* Earliest cutting event inside the step (t0,y0) -> (t0+h,y1), with the
  * Hermite interpolants; also times the tip and tracks max |theta|. */
 static int find_event_cushion(sw_engine_t *e, sw_pkg_t *P, double t0, double h,
@@ -771,20 +788,7 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
         }
     }
     const double lim = best == EV_NONE ? 1.0 : best_tau;
-    if (maxcand) {
-        /* the peak: where theta' changes sign, polished by re-stepping so
-         * that max |theta| is as accurate as the scheme, even for long
-         * adaptive steps */
-        double v0, d0, v1, d1, yt[SW_NMAX];
-        event_fn(P, EV_TURN, t0, y0, f0, &v0, &d0);
-        event_fn(P, EV_TURN, t1, y1, f1, &v1, &d1);
-        const herm_t H = herm_make(v0, d0, v1, d1, h);
-        const double tau = herm_first_rise(&H, 0.0);
-        if (tau > 0.0 && tau <= lim) {
-            polish(e, P, EV_TURN, t0, h, y0, tau, yt);
-            track_theta(P, yt[P->ith]);
-        }
-    }
+    if (maxcand) track_peak(e, P, t0, h, y0, f0, y1, f1, lim);
     if (tipcand) {
         double v0, d0, v1, d1;
         event_fn(P, EV_TIP, t0, y0, f0, &v0, &d0);
@@ -794,10 +798,7 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
         if (tau >= 0.0 && tau <= lim) {
             const double tt = t0 + tau * h;
             double yt[SW_NMAX];
-            for (int i = 0; i < P->n; i++) {
-                const herm_t Hi = herm_make(y0[i], f0[i], y1[i], f1[i], h);
-                yt[i] = herm_at(&Hi, tau);
-            }
+            herm_state(P, h, y0, f0, y1, f1, tau, yt);
             if (isnan(P->sum.tip_time)) P->sum.tip_time = tt;
             P->beyond_alpha = 1;
             emit_at(e, P, SW_EV_TIP, tt, P->side * P->d.alpha, yt);
@@ -882,17 +883,7 @@ static int find_event_cushion(sw_engine_t *e, sw_pkg_t *P, double t0, double h,
             lim = tau;
         }
     }
-    if (maxcand) {
-        double v0, d0, v1, d1;
-        event_fn(P, EV_TURN, t0, y0, f0, &v0, &d0);
-        event_fn(P, EV_TURN, t1, y1, f1, &v1, &d1);
-        const herm_t H = herm_make(v0, d0, v1, d1, h);
-        const double tau = herm_first_rise(&H, 0.0);
-        if (tau > 0.0 && tau <= lim) {
-            polish(e, P, EV_TURN, t0, h, y0, tau, yt);
-            track_theta(P, yt[P->ith]);
-        }
-    }
+    if (maxcand) track_peak(e, P, t0, h, y0, f0, y1, f1, lim);
     if (tipcand) {
         const double tau = cushion_rise(P, EV_TIP, t0, h, y0, f0, y1, f1);
         if (tau >= 0.0 && tau <= lim) {
