@@ -40,6 +40,7 @@ enum {
     SW_OPT_DT,
     SW_OPT_RTOL,
     SW_OPT_ATOL,
+    SW_OPT_ACCURACY,
     SW_OPT_OUT,
     SW_OPT_EVERY,
     SW_OPT_EVENTS,
@@ -57,6 +58,7 @@ enum {
         {"scheme", required_argument, NULL, SW_OPT_SCHEME},                                        \
         {"dt", required_argument, NULL, SW_OPT_DT},                                                \
         {"rtol", required_argument, NULL, SW_OPT_RTOL},                                            \
+        {"accuracy", required_argument, NULL, SW_OPT_ACCURACY},                                    \
         {"atol", required_argument, NULL, SW_OPT_ATOL},                                            \
         {"out", required_argument, NULL, SW_OPT_OUT},                                              \
         {"every", required_argument, NULL, SW_OPT_EVERY},                                          \
@@ -81,6 +83,7 @@ typedef struct {
     const char *scheme; /* --scheme, NULL = engine default */
     double dt;          /* s, --dt; 0 = scheme default */
     double rtol, atol;  /* 0 = engine defaults */
+    double accuracy;    /* rad, --accuracy: pick scheme and dt for this error in theta; 0 = off */
     const char *out_path;    /* --out: state time series CSV */
     long every;              /* --every: write every Nth state row of each package */
     const char *events_path; /* --events: event list CSV */
@@ -111,6 +114,13 @@ int sw_cli_parse_long(const char *opt, const char *arg, long min, const char *wh
  * SW_EXIT_OK with *scenes (free()) and *n set, SW_EXIT_USAGE for bad
  * scenes or no --scene, SW_EXIT_IO if a file cannot be read. */
 int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n);
+
+/* With --accuracy, set eo's scheme and dt to the cheapest measured setting
+ * (sw_scheme_for_accuracy) that reaches it for every scene's model.
+ * Returns SW_EXIT_OK, or SW_EXIT_USAGE (reported) when no measured setting
+ * reaches it or a scene's model has no table. */
+int sw_cli_resolve_accuracy(const sw_cli_opts_t *o, const sw_scene_t *scenes, size_t n,
+                            sw_engine_opts_t *eo);
 
 /* Engine options from the shared options (callbacks left NULL). */
 void sw_cli_engine_opts(const sw_cli_opts_t *o, sw_engine_opts_t *eo);

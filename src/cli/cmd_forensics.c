@@ -712,6 +712,7 @@ int cmd_forensics(int argc, char **argv)
     /* 1. the replay, exactly as replay runs it */
     sw_engine_opts_t eo;
     sw_cli_engine_opts(&o, &eo);
+    if ((rc = sw_cli_resolve_accuracy(&o, scenes, nsc, &eo)) != SW_EXIT_OK) goto out;
     R.keep = plot_path != NULL;
     if (R.keep) {
         R.ev = calloc(MAX_EVENTS, sizeof *R.ev);

@@ -434,6 +434,7 @@ int cmd_monitor(int argc, char **argv)
 
     sw_engine_opts_t eo;
     sw_cli_engine_opts(&o, &eo);
+    if ((rc = sw_cli_resolve_accuracy(&o, scenes, n, &eo)) != SW_EXIT_OK) goto out;
     char msg[512] = "";
     ctx.mon = sw_mon_create(scenes, n, &eo, &mo, lcm, msg, sizeof msg);
     ctx.opts = &o;

@@ -209,6 +209,7 @@ int cmd_simulate(int argc, char **argv)
 
     sw_engine_opts_t eo;
     sw_cli_engine_opts(&o, &eo);
+    if ((rc = sw_cli_resolve_accuracy(&o, scenes, n, &eo)) != SW_EXIT_OK) goto out;
     eo.on_event = on_event;
     eo.user = &ctx;
     rc = SW_EXIT_USAGE;

@@ -35,6 +35,8 @@ void sw_cli_print_common_help(FILE *f)
             "      --dt SECONDS         internal step; refused if above the scheme's stability\n"
             "                           bound (default: the scheme's own, sub-stepped as needed)\n"
             "      --rtol X, --atol X   tolerances of the adaptive schemes (default 1e-10, 1e-12)\n"
+            "      --accuracy RAD       pick the cheapest scheme and step measured to keep the\n"
+            "                           error of theta within RAD (docs/accuracy-speed.md)\n"
             "\n"
             "Output:\n"
             "  -o, --out FILE.csv       state time series: t,package,phase,theta,theta_dot,u,u_dot,\n"
@@ -142,6 +144,9 @@ int sw_cli_common_option(sw_cli_opts_t *o, int c, const char *arg, char **argv)
     case SW_OPT_ATOL:
         return sw_cli_parse_double("--atol", arg, SW_NUM_POSITIVE, "a positive tolerance",
                                    &o->atol);
+    case SW_OPT_ACCURACY:
+        return sw_cli_parse_double("--accuracy", arg, SW_NUM_POSITIVE,
+                                   "a positive angle in radians", &o->accuracy);
     case 'o':
     case SW_OPT_OUT: o->out_path = arg; return SW_EXIT_OK;
     case SW_OPT_EVERY:
@@ -305,6 +310,44 @@ void sw_cli_engine_opts(const sw_cli_opts_t *o, sw_engine_opts_t *eo)
     eo->dt_forced = o->dt > 0.0;
     eo->rtol = o->rtol;
     eo->atol = o->atol;
+}
+
+int sw_cli_resolve_accuracy(const sw_cli_opts_t *o, const sw_scene_t *scenes, size_t n,
+                            sw_engine_opts_t *eo)
+{
+    if (!(o->accuracy > 0.0)) return SW_EXIT_OK;
+    if (o->scheme || o->dt > 0.0) {
+        sw_cli_error("--accuracy chooses the scheme and the step: give it without --scheme and "
+                     "--dt");
+        return SW_EXIT_USAGE;
+    }
+    /* The table's rows are ordered from cheap to accurate; for several
+     * packages keep the most accurate (smallest step, adaptive last). */
+    int best = -1;
+    for (size_t i = 0; i < n; i++) {
+        sw_derived_t d;
+        if (sw_scene_validate(&scenes[i], &d, NULL, NULL, NULL) != SW_OK) return SW_EXIT_USAGE;
+        const char *scheme = NULL;
+        double dt = 0.0;
+        const int r = sw_scheme_for_accuracy(d.model, o->accuracy, &scheme, &dt);
+        if (r != SW_OK) {
+            sw_cli_error("--accuracy %g rad: %s", o->accuracy,
+                         r == SW_ENOTFOUND ? "tighter than any measured setting reaches "
+                                             "(about 1e-14 rad); use --scheme rk8pd --rtol"
+                                           : "no measured table for this model; choose --scheme "
+                                             "and --dt or --rtol");
+            return SW_EXIT_USAGE;
+        }
+        const sw_scheme_t *T = sw_scheme_lookup(scheme);
+        const int rank = T ? 2 * sw_scheme_adaptive(T) * 100 + sw_scheme_order(T) : 0;
+        if (rank > best || (rank == best && dt > 0.0 && (eo->dt == 0.0 || dt < eo->dt))) {
+            best = rank;
+            eo->scheme = scheme;
+            eo->dt = dt;
+        }
+    }
+    eo->dt_forced = 0;
+    return SW_EXIT_OK;
 }
 
 sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo)

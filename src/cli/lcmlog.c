@@ -367,6 +367,7 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
 
     sw_engine_opts_t eo;
     sw_cli_engine_opts(&o, &eo);
+    if ((rc = sw_cli_resolve_accuracy(&o, scenes, n, &eo)) != SW_EXIT_OK) goto out;
     mo.on_state = o.out_path ? on_state : NULL;
     mo.on_event = on_event;
     mo.user = &sinks;

@@ -93,3 +93,18 @@ assert math.isclose(val("omega_z"), 200.0, rel_tol=1e-4)
 wr = math.sqrt((K * b * b / 3 - m * g * h) / (m * (h * h + b * b) / 3 + m * h * h))
 assert math.isclose(val("omega_r"), wr, rel_tol=1e-4), (val("omega_r"), wr)
 PY
+
+# --accuracy picks the setting from the measured table (the errors it
+# promises are checked against rk8pd in tests/test_accuracy.c).
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -6 --omega 6.2832 --accuracy 1e-6 --json
+expect_rc 0 "--accuracy 1e-6"
+json_check "$TMP/out" 'j["packages"][0]["scheme"] == "rk4" and abs(j["packages"][0]["dt"] - 1e-3) < 1e-12'
+run "$SW" simulate --scene "$SCENE" --scene "$FRAME" --pulse half-sine --amplitude -6 --omega 6.2832 --accuracy 5e-14 --json
+expect_rc 0 "--accuracy 5e-14"
+json_check "$TMP/out" 'all(p["scheme"] == "rkck" for p in j["packages"])'
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -6 --omega 6.2832 --accuracy 1e-20
+expect_rc 2 "--accuracy beyond the table"
+expect_err "tighter than any measured setting"
+expect_prefixed_err "--accuracy beyond the table"
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -6 --omega 6.2832 --accuracy 1e-6 --scheme heun
+expect_rc 2 "--accuracy with --scheme"
