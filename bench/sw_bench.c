@@ -257,9 +257,9 @@ static prun_t run_pulse(const sw_scene_t *sc, const bcfg_t *c, double ratio, dou
 
 /* Keep the package rocking for `seconds` of 1 kHz zero input: free rocking
  * from 0.9 alpha, alternately forward and back, restarted at rest.  A
- * package on a cushion is never at rest and never impacts: it gets a
- * braking or speeding-up half-sine of 1.5 g tan(alpha) at omega_e = 3 p
- * every 4 s instead.  Returns the CPU time; steps and samples through the
+ * package on a cushion has no rigid rocking to start from: it gets a
+ * braking or speeding-up half-sine of 0.8 g tan(alpha) at omega_e = 3 p
+ * every 4 s instead (below every boundary measured).  Returns the CPU time; steps and samples through the
  * pointers. */
 static double run_rocking(const sw_scene_t *sc, const bcfg_t *c, double seconds, long *steps,
                           long *samples)
@@ -270,7 +270,7 @@ static double run_rocking(const sw_scene_t *sc, const bcfg_t *c, double seconds,
     const sw_derived_t *d = sw_engine_derived(e, 0);
     const long n = (long)(seconds * RATE);
     const int cushion = d->model == SW_MODEL_CUSHION;
-    sw_pulse_t pu = {SW_PULSE_HALF_SINE, 1.5 * sc->g * tan(d->alpha), 3.0 * d->p};
+    sw_pulse_t pu = {SW_PULSE_HALF_SINE, 0.8 * sc->g * tan(d->alpha), 3.0 * d->p};
     int side = 1;
     const double t0 = cpu_now();
     sw_engine_push(e, 0.0, 0.0, 0.0);
@@ -323,15 +323,23 @@ static double run_road(const sw_scene_t *sc, const bcfg_t *c, int stepped, const
 static const double wps[NW] = {1.5, 3.0, 6.0, 12.0}; /* omega_e / p */
 #define NDEC 50                                        /* pulses per frequency */
 
-/* Smallest overturning amplitude ratio by the reference: scan up by 10 %,
- * then bisect to 1e-6. */
+/* Smallest overturning amplitude ratio by the reference: scan up by 10 %
+ * from the rigid uplift threshold (down, for a soft cushion that overturns
+ * below it), then bisect to 1e-6. */
 static double boundary(const sw_scene_t *sc, double wp)
 {
     double lo = 1.0, hi = 1.0;
-    while (hi < 100.0) {
-        if (run_pulse(sc, &ref_cfg, hi, wp).over) break;
-        lo = hi;
-        hi *= 1.1;
+    if (run_pulse(sc, &ref_cfg, 1.0, wp).over) {
+        while (lo > 0.01 && run_pulse(sc, &ref_cfg, lo, wp).over) {
+            hi = lo;
+            lo /= 1.1;
+        }
+    } else {
+        while (hi < 100.0) {
+            if (run_pulse(sc, &ref_cfg, hi, wp).over) break;
+            lo = hi;
+            hi *= 1.1;
+        }
     }
     while (hi - lo > 1e-6 * hi) {
         const double m = 0.5 * (lo + hi);
