@@ -281,6 +281,13 @@ int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n)
                 goto out;
             }
         }
+        if (sc[i].name[0] == '\0') {
+            /* no package.name: messages and reports name the file instead */
+            const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+            const char *dot = strrchr(base, '.');
+            const int len = dot && dot > base ? (int)(dot - base) : (int)strlen(base);
+            snprintf(sc[i].name, sizeof sc[i].name, "%.*s", len, base);
+        }
         before = diag.errors;
         if (sw_scene_validate(&sc[i], NULL, path, print_diag, &diag) != SW_OK) {
             if (diag.errors == before) sw_cli_error("%s: invalid scene", path);

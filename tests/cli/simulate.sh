@@ -108,3 +108,9 @@ expect_err "tighter than any measured setting"
 expect_prefixed_err "--accuracy beyond the table"
 run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -6 --omega 6.2832 --accuracy 1e-6 --scheme heun
 expect_rc 2 "--accuracy with --scheme"
+
+# A scene without package.name is named after its file.
+printf '[package]\nheight = 2.0\nwidth = 0.728\nmass = 1000\n' > "$TMP/unnamed-crate.ini"
+run "$SW" simulate --scene "$TMP/unnamed-crate.ini" --pulse half-sine --amplitude -3 --omega 5 --json
+expect_rc 0 "scene without a name"
+json_check "$TMP/out" 'j["packages"][0]["name"] == "unnamed-crate"'
