@@ -115,6 +115,16 @@ int sw_cli_parse_long(const char *opt, const char *arg, long min, const char *wh
  * scenes or no --scene, SW_EXIT_IO if a file cannot be read. */
 int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n);
 
+/* A sw_diag_fn printing "swaywatch: ORIGIN:LINE: message" and counting the
+ * diagnostics in user, a sw_cli_diag_t. */
+typedef struct {
+    long errors;
+} sw_cli_diag_t;
+void sw_cli_print_diag(void *user, const char *origin, int line, const char *msg);
+
+/* Do the first len bytes of buf start like an lcm-logger event log? */
+int sw_cli_is_lcmlog(const void *buf, size_t len);
+
 /* With --accuracy, set eo's scheme and dt to the cheapest measured setting
  * (sw_scheme_for_accuracy) that reaches it for every scene's model.
  * Returns SW_EXIT_OK, or SW_EXIT_USAGE (reported) when no measured setting

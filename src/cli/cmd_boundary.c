@@ -278,19 +278,6 @@ typedef struct {
     char label[256];
 } curve_t;
 
-typedef struct {
-    long errors;
-} diag_t;
-
-static void print_diag(void *user, const char *origin, int line, const char *msg)
-{
-    diag_t *d = user;
-    d->errors++;
-    if (line > 0)
-        sw_cli_error("%s:%d: %s", origin ? origin : "scene", line, msg);
-    else
-        sw_cli_error("%s: %s", origin ? origin : "scene", msg);
-}
 
 static void append(char *buf, size_t len, const char *fmt, const char *a, const char *b)
 {
@@ -337,7 +324,7 @@ static int build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary
         return SW_EXIT_IO;
     }
     size_t m = 0;
-    diag_t diag = {0};
+    sw_cli_diag_t diag = {0};
     for (size_t s = 0; s < nsc; s++) {
         size_t combos = 1;
         for (size_t k = 0; k < nvary; k++)
@@ -356,7 +343,7 @@ static int build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary
                     char assign[512];
                     snprintf(assign, sizeof assign, "%s=%s", vary[k].key, val);
                     const long before = diag.errors;
-                    if (sw_scene_set_arg(&C->c.scene, assign, print_diag, &diag) != SW_OK) {
+                    if (sw_scene_set_arg(&C->c.scene, assign, sw_cli_print_diag, &diag) != SW_OK) {
                         if (diag.errors == before) sw_cli_error("--vary %s: rejected", assign);
                         free(cv);
                         return SW_EXIT_USAGE;
@@ -373,7 +360,7 @@ static int build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary
                     check.frame_k_given = SW_GIVEN_RATIO;
                 }
                 const long before = diag.errors;
-                if (sw_scene_validate(&check, NULL, C->label, print_diag, &diag) != SW_OK) {
+                if (sw_scene_validate(&check, NULL, C->label, sw_cli_print_diag, &diag) != SW_OK) {
                     if (diag.errors == before) sw_cli_error("%s: invalid scene", C->label);
                     free(cv);
                     return SW_EXIT_USAGE;

@@ -16,8 +16,6 @@
 #define MAX_PRINTED_REJECTS 20  /* rejected rows listed one by one; the rest only counted */
 #define DEFAULT_SETTLE 30.0     /* s of zero input after the end of the log */
 
-/* The first four bytes of an lcm-logger event log (big-endian). */
-static const unsigned char lcm_sync[4] = {0xED, 0xA1, 0xDA, 0x01};
 
 enum { OPT_SETTLE = SW_OPT_FIRST_OWN, OPT_FAIL_ON_OVERTURN };
 
@@ -227,7 +225,7 @@ int cmd_replay(int argc, char **argv)
         rc = SW_EXIT_IO;
         goto out;
     }
-    if (len >= sizeof lcm_sync && !memcmp(buf, lcm_sync, sizeof lcm_sync)) {
+    if (sw_cli_is_lcmlog(buf, len)) {
         if (in == stdin) {
             sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
                          "file name",

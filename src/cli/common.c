@@ -184,13 +184,16 @@ int sw_cli_common_option(sw_cli_opts_t *o, int c, const char *arg, char **argv)
 
 /* ---- scenes --------------------------------------------------------------- */
 
-typedef struct {
-    long errors;
-} diag_ctx_t;
-
-static void print_diag(void *user, const char *origin, int line, const char *msg)
+int sw_cli_is_lcmlog(const void *buf, size_t len)
 {
-    diag_ctx_t *d = user;
+    /* The first four bytes of an lcm-logger event log (big-endian). */
+    static const unsigned char sync[4] = {0xED, 0xA1, 0xDA, 0x01};
+    return len >= sizeof sync && !memcmp(buf, sync, sizeof sync);
+}
+
+void sw_cli_print_diag(void *user, const char *origin, int line, const char *msg)
+{
+    sw_cli_diag_t *d = user;
     d->errors++;
     if (line > 0)
         sw_cli_error("%s:%d: %s", origin ? origin : "scene", line, msg);
@@ -244,7 +247,7 @@ int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n)
     int rc = SW_EXIT_USAGE;
     sw_scene_t *sc = NULL;
     char *text = NULL;
-    diag_ctx_t diag = {0};
+    sw_cli_diag_t diag = {0};
 
     if (o->n_scene_files == 0) {
         sw_cli_error("no scene: give at least one --scene FILE");
@@ -265,7 +268,7 @@ int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n)
         }
         sw_scene_init(&sc[i]);
         long before = diag.errors;
-        int pr = sw_scene_parse(&sc[i], text, path, print_diag, &diag);
+        int pr = sw_scene_parse(&sc[i], text, path, sw_cli_print_diag, &diag);
         free(text);
         text = NULL;
         if (pr != SW_OK) {
@@ -275,7 +278,7 @@ int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n)
         }
         for (size_t k = 0; k < o->n_sets; k++) {
             before = diag.errors;
-            if (sw_scene_set_arg(&sc[i], o->sets[k], print_diag, &diag) != SW_OK) {
+            if (sw_scene_set_arg(&sc[i], o->sets[k], sw_cli_print_diag, &diag) != SW_OK) {
                 if (diag.errors == before) sw_cli_error("--set %s: rejected", o->sets[k]);
                 /* The same override would fail the same way on every scene. */
                 goto out;
@@ -289,7 +292,7 @@ int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n)
             snprintf(sc[i].name, sizeof sc[i].name, "%.*s", len, base);
         }
         before = diag.errors;
-        if (sw_scene_validate(&sc[i], NULL, path, print_diag, &diag) != SW_OK) {
+        if (sw_scene_validate(&sc[i], NULL, path, sw_cli_print_diag, &diag) != SW_OK) {
             if (diag.errors == before) sw_cli_error("%s: invalid scene", path);
             diag.errors++;
         }

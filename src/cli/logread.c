@@ -15,9 +15,6 @@
 #define CHUNK (64 * 1024)      /* bytes read and fed at a time */
 #define MAX_PRINTED_REJECTS 20 /* rejected rows listed one by one; the rest only counted */
 
-/* The first four bytes of an lcm-logger event log (big-endian). */
-static const unsigned char lcm_sync[4] = {0xED, 0xA1, 0xDA, 0x01};
-
 void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o)
 {
     memset(o, 0, sizeof *o);
@@ -203,7 +200,7 @@ int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_
         rc = SW_EXIT_IO;
         goto out;
     }
-    if (len >= sizeof lcm_sync && !memcmp(buf, lcm_sync, sizeof lcm_sync)) {
+    if (sw_cli_is_lcmlog(buf, len)) {
         sw_cli_error("%s: an lcm-logger file; this command reads CSV logs (replay reads both)",
                      ctx.name);
         goto out;
