@@ -16,7 +16,6 @@
 #define MAX_PRINTED_REJECTS 20  /* rejected rows listed one by one; the rest only counted */
 #define DEFAULT_SETTLE 30.0     /* s of zero input after the end of the log */
 
-
 enum { OPT_SETTLE = SW_OPT_FIRST_OWN, OPT_FAIL_ON_OVERTURN };
 
 static const struct option long_opts[] = {
