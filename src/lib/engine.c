@@ -140,9 +140,21 @@ static int step_to(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const doubl
  * numbers must not reach the summary). */
 static int finite_state(const sw_pkg_t *P, const double y[])
 {
-    for (int i = 0; i < P->n; i++)
-        if (!isfinite(y[i])) return 0;
-    return !(P->phase == SW_PHASE_ROCKING && fabs(y[P->ith]) > M_PI);
+    double z = 0.0; /* 0 y is 0 for a finite y and NaN for an infinite or NaN one */
+    for (int i = 0; i < P->n; i++) z += 0.0 * y[i];
+    return z == 0.0 && !(P->phase == SW_PHASE_ROCKING && fabs(y[P->ith]) > M_PI);
+}
+
+/* max and min of numbers known to be finite: inline where libm's fmax and
+ * fmin are calls (they must handle NaN), for the per-step checks. */
+static inline double max2(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+static inline double min2(double a, double b)
+{
+    return a < b ? a : b;
 }
 
 /* ---- event functions -------------------------------------------------- */
@@ -750,9 +762,9 @@ static int find_event(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const do
     int maxcand = 0;
     if (P->phase == SW_PHASE_ROCKING) {
         const double s0 = P->side * y0[P->ith], s1 = P->side * y1[P->ith];
-        const double v = h * fmax(fabs(y0[P->idth]), fabs(y1[P->idth]));
-        if (s1 <= 0.0 || fmin(s0, s1) < v) cands[nc++] = EV_IMPACT;
-        if (s1 >= M_PI_2 || M_PI_2 - fmax(s0, s1) < v) cands[nc++] = EV_OVERTURN;
+        const double v = h * max2(fabs(y0[P->idth]), fabs(y1[P->idth]));
+        if (s1 <= 0.0 || min2(s0, s1) < v) cands[nc++] = EV_IMPACT;
+        if (s1 >= M_PI_2 || M_PI_2 - max2(s0, s1) < v) cands[nc++] = EV_OVERTURN;
         maxcand = (y0[P->idth] > 0.0) != (y1[P->idth] > 0.0);
     } else if (P->phase == SW_PHASE_STUCK && P->d.model != SW_MODEL_BARE && !P->hold) {
         cands[nc++] = EV_UPLIFT_FWD;

@@ -67,8 +67,19 @@ typedef struct sw_pkg {
 /* --- model.c --- */
 void sw_model_setup(sw_pkg_t *P);                  /* layout of y from the scene */
 int sw_model_rhs(double t, const double y[], double f[], void *pkg); /* GSL signature */
-double sw_input_ag(const sw_input_t *in, double t); /* m/s^2 */
-double sw_input_geff(const sw_pkg_t *P, double t);  /* m/s^2, g + a_z */
+/* The input at time t (s): a_g, and g_eff = g + a_z (m/s^2).  Inline: a
+ * right-hand side evaluates them at every stage. */
+static inline double sw_input_ag(const sw_input_t *in, double t)
+{
+    if (in->fn) return in->fn(in->fn_user, t);
+    return in->ag0 + in->ag_slope * (t - in->t0);
+}
+static inline double sw_input_geff(const sw_pkg_t *P, double t)
+{
+    const sw_input_t *in = P->in;
+    if (in->fn) return P->g;
+    return P->g + in->az0 + in->az_slope * (t - in->t0);
+}
 /* Absolute acceleration of the package's support (m/s^2): a_g for bare,
  * a_g + u'' for frame, given f = y'. */
 double sw_model_support_accel(const sw_pkg_t *P, double t, const double f[]);

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "internal.h"
+#include "model_rigid.h"
 #include "swaywatch/model.h"
 
 void sw_model_setup(sw_pkg_t *P)
@@ -76,92 +77,11 @@ void sw_model_setup(sw_pkg_t *P)
     if (cushion) sw_cushion_setup(P);
 }
 
-double sw_input_ag(const sw_input_t *in, double t)
-{
-    if (in->fn) return in->fn(in->fn_user, t);
-    return in->ag0 + in->ag_slope * (t - in->t0);
-}
-
-double sw_input_geff(const sw_pkg_t *P, double t)
-{
-    const sw_input_t *in = P->in;
-    if (in->fn) return P->g;
-    return P->g + in->az0 + in->az_slope * (t - in->t0);
-}
-
-/* sin and cos of A1 for a right-hand side.  Successive evaluations (the
- * stages of a step, the next steps) see nearby angles, so they come from
- * the last angle computed by libm through the addition formulas, with the
- * series of sin and cos of the small difference d (|d| <= 1/64 rad: the
- * first term left out is below 1e-21); libm only when the angle has moved
- * further.  This halves the cost of an RK4 step; the result differs from
- * libm's by an ulp or two. */
-static void rhs_sincos(sw_pkg_t *P, double A, double *sn, double *cs)
-{
-    const double d = A - P->trig[0];
-    if (fabs(d) <= 0.015625) {
-        const double d2 = d * d;
-        const double sd =
-            d * (1.0 - d2 * (1.0 / 6.0) * (1.0 - d2 * (1.0 / 20.0) * (1.0 - d2 * (1.0 / 42.0))));
-        const double cd =
-            1.0 - d2 * 0.5 *
-                      (1.0 - d2 * (1.0 / 12.0) *
-                                 (1.0 - d2 * (1.0 / 30.0) * (1.0 - d2 * (1.0 / 56.0))));
-        *sn = P->trig[1] * cd + P->trig[2] * sd;
-        *cs = P->trig[2] * cd - P->trig[1] * sd;
-        return;
-    }
-    *sn = sin(A);
-    *cs = cos(A);
-    P->trig[0] = A;
-    P->trig[1] = *sn;
-    P->trig[2] = *cs;
-}
-
-/* Bearing force per unit total mass (m/s^2): 2 zeta_b w_b u' + w_b^2 u. */
-static double bearing(const sw_pkg_t *P, const double y[])
-{
-    const double w = P->d.omega_b;
-    return 2.0 * P->d.zeta_b * w * y[P->idu] + w * w * y[P->iu];
-}
-
 int sw_model_rhs(double t, const double y[], double f[], void *pkg)
 {
     sw_pkg_t *P = pkg; /* not const: the sin/cos cache, the cushion's state */
-    const double ag = sw_input_ag(P->in, t);
-    const double ge = sw_input_geff(P, t);
-    const double s = P->side;
-    const double th = y[P->ith], dth = y[P->idth];
-
     if (P->d.model == SW_MODEL_CUSHION) return sw_cushion_rhs(P, t, y, f);
-    /* A2 = s A1 exactly (s = +-1), so sin(A2) = s sin(A1): one angle. */
-    if (P->d.model == SW_MODEL_BARE) {
-        f[0] = dth;
-        if (P->phase == SW_PHASE_ROCKING) {
-            double sn, cs;
-            rhs_sincos(P, P->d.alpha - s * th, &sn, &cs);
-            f[1] = -P->kR * (ge * s * sn + ag * cs);
-        } else {
-            f[1] = 0.0;
-        }
-        return GSL_SUCCESS;
-    }
-    /* frame */
-    const double F = bearing(P, y);
-    f[P->iu] = y[P->idu];
-    f[P->ith] = dth;
-    if (P->phase == SW_PHASE_ROCKING) {
-        double sn, c1;
-        rhs_sincos(P, P->d.alpha - s * th, &sn, &c1);
-        const double s2 = s * sn;
-        const double gR = P->d.gamma * P->d.R;
-        const double D = 1.0 - 0.75 * P->d.gamma * c1 * c1;
-        f[P->idu] = (-F + gR * s2 * (P->kR * ge * c1 - dth * dth)) / D - ag;
-        f[P->idth] = (P->kR * c1 * (F + gR * dth * dth * s2) - P->kR * ge * s2) / D;
-    } else {
-        f[P->idu] = -F - ag;
-        f[P->idth] = 0.0;
-    }
+    sw_rigid_rhs(P, sw_input_ag(P->in, t), sw_input_geff(P, t), y, f);
     return GSL_SUCCESS;
 }
 
@@ -177,7 +97,7 @@ int sw_model_uplift_side(const sw_pkg_t *P, double t)
      * -(2 zeta_b w_b u' + w_b^2 u) (frame); it does not depend on theta.
      * A cushioned package is never stuck. */
     if (P->d.model == SW_MODEL_CUSHION) return 0;
-    const double A = P->d.model == SW_MODEL_BARE ? sw_input_ag(P->in, t) : -bearing(P, P->y);
+    const double A = P->d.model == SW_MODEL_BARE ? sw_input_ag(P->in, t) : -sw_rigid_bearing(P, P->y);
     const double ge = sw_input_geff(P, t);
     if (!(ge > 0.0)) return 0; /* airborne: outside the model (the engine faults) */
     const double thr = P->tan_alpha * ge;
@@ -249,11 +169,15 @@ static double cos_alpha(const sw_derived_t *d)
     return d->h / d->R;
 }
 
-double sw_margin_rocking(const sw_derived_t *d, double r, double theta, double theta_dot)
+/* The margins and energies below take cA = cos(alpha - |theta|) from the
+ * caller: the state report gets it from the right-hand side's sin/cos
+ * cache instead of calling cos() twice per sample. */
+static double margin_rocking_c(const sw_derived_t *d, double r, double theta, double theta_dot,
+                               double cA)
 {
     const double ca = cos_alpha(d), one = 1.0 - ca;
     const double ath = fabs(theta);
-    const double PE = (cos(d->alpha - ath) - ca) / one;
+    const double PE = (cA - ca) / one;
     const double KE = theta_dot * theta_dot / (2.0 * d->p * d->p * one);
     const double E = PE + KE;
     const int outward = theta * theta_dot > 0.0 || (theta == 0.0 && theta_dot != 0.0);
@@ -263,46 +187,89 @@ double sw_margin_rocking(const sw_derived_t *d, double r, double theta, double t
     return PE - KE - 1.0;
 }
 
+/* cos(alpha - |theta|); upright (stuck, most of the time) without cos(). */
+static double cos_A(const sw_derived_t *d, double theta)
+{
+    return theta == 0.0 ? cos_alpha(d) : cos(d->alpha - fabs(theta));
+}
+
+double sw_margin_rocking(const sw_derived_t *d, double r, double theta, double theta_dot)
+{
+    return margin_rocking_c(d, r, theta, theta_dot, cos_A(d, theta));
+}
+
+static double energy_bare_c(const sw_derived_t *d, double g_eff, const sw_state_t *s, double cA)
+{
+    return (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
+           g_eff * d->R * (cA - cos_alpha(d));
+}
+
 double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 {
-    const double A1 = d->alpha - fabs(s->theta);
-    return (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
-           g_eff * d->R * (cos(A1) - cos_alpha(d));
+    return energy_bare_c(d, g_eff, s, cos_A(d, s->theta));
+}
+
+static double energy_frame_c(const sw_derived_t *d, double g_eff, const sw_state_t *s, double cA)
+{
+    if (d->gamma <= 0.0) return energy_bare_c(d, g_eff, s, cA);
+    return 0.5 * s->u_dot * s->u_dot / d->gamma + d->R * cA * s->u_dot * s->theta_dot +
+           (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
+           g_eff * d->R * (cA - cos_alpha(d)) +
+           0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
 }
 
 double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 {
-    if (d->gamma <= 0.0) return sw_energy_bare(d, g_eff, s);
-    /* upright (stuck, most of the time): no cos() */
-    const double cA1 = s->theta == 0.0 ? cos_alpha(d) : cos(d->alpha - fabs(s->theta));
-    return 0.5 * s->u_dot * s->u_dot / d->gamma + d->R * cA1 * s->u_dot * s->theta_dot +
-           (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
-           g_eff * d->R * (cA1 - cos_alpha(d)) +
-           0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
+    return energy_frame_c(d, g_eff, s, cos_A(d, s->theta));
+}
+
+static double margin_bound_frame_c(const sw_derived_t *d, double g_eff, const sw_state_t *s,
+                                   double cA)
+{
+    const double Eb = g_eff * d->R * (1.0 - cos_alpha(d));
+    const double m = 1.0 - energy_frame_c(d, g_eff, s, cA) / Eb;
+    return fabs(s->theta) < d->alpha ? m : fmin(m, 0.0);
 }
 
 double sw_margin_bound_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 {
-    const double Eb = g_eff * d->R * (1.0 - cos_alpha(d));
-    const double m = 1.0 - sw_energy_frame(d, g_eff, s) / Eb;
-    return fabs(s->theta) < d->alpha ? m : fmin(m, 0.0);
+    return margin_bound_frame_c(d, g_eff, s, cos_A(d, s->theta));
 }
 
 void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o)
 {
-    double f[SW_NMAX];
     memset(o, 0, sizeof *o);
     o->t = t;
     sw_model_to_state(P, &o->state);
+    o->a_g = sw_input_ag(P->in, t);
     double ge = sw_input_geff(P, t);
+    if (P->d.model == SW_MODEL_CUSHION) {
+        double f[SW_NMAX];
+        sw_cushion_rhs((sw_pkg_t *)P, t, P->y, f); /* const but for its rate tracking, off here */
+        o->a_support = sw_model_support_accel(P, t, f);
+    }
     /* Airborne (g + a_z <= 0): the engine has faulted the package and reset
      * it; its energy bound is judged under nominal gravity, not divided by
      * a zero or negative barrier. */
     if (!(ge > 0.0)) ge = P->g;
-    if (P->d.model == SW_MODEL_BARE) f[0] = f[1] = 0.0; /* the support is the bed */
-    else sw_model_rhs(t, P->y, f, (void *)P);
-    o->a_g = sw_input_ag(P->in, t);
-    o->a_support = sw_model_support_accel(P, t, f);
+    double cA = cos_alpha(&P->d); /* cos(alpha - |theta|) */
+    if (P->d.model != SW_MODEL_CUSHION) {
+        /* bare: the support is the bed; frame: a_g + u''.  sin and cos of
+         * A1 = alpha - s theta (which is alpha - |theta| but in the
+         * instant of a landing) near the right-hand side's last angle. */
+        double sn = 0.0, c1 = 0.0;
+        if (P->phase == SW_PHASE_ROCKING) {
+            const double sth = P->side * P->y[P->ith];
+            sw_rigid_sincos_near(P->trig, P->d.alpha - sth, &sn, &c1);
+            cA = sth >= 0.0 ? c1 : cos(P->d.alpha + sth);
+        }
+        o->a_support = o->a_g;
+        if (P->d.model == SW_MODEL_FRAME) {
+            double f[SW_NMAX];
+            sw_rigid_rhs_trig(P, SW_MODEL_FRAME, o->a_g, sw_input_geff(P, t), P->y, sn, c1, f);
+            o->a_support += f[P->idu];
+        }
+    }
     o->uplift_ratio = fabs(o->a_support) / (P->tan_alpha * P->g);
     if (P->phase == SW_PHASE_OVERTURNED) {
         o->margin = o->margin_bound = -1.0;
@@ -316,10 +283,10 @@ void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o)
         o->margin = 1.0;
     } else {
         const double r = P->d.model == SW_MODEL_BARE ? P->d.eta : P->d.r_frame;
-        o->margin = sw_margin_rocking(&P->d, r, o->state.theta, o->state.theta_dot);
+        o->margin = margin_rocking_c(&P->d, r, o->state.theta, o->state.theta_dot, cA);
     }
     if (P->d.model == SW_MODEL_BARE)
         o->margin_bound = o->margin;
     else
-        o->margin_bound = sw_margin_bound_frame(&P->d, ge, &o->state);
+        o->margin_bound = margin_bound_frame_c(&P->d, ge, &o->state, cA);
 }

@@ -16,39 +16,85 @@
 #include <string.h>
 
 #include "internal.h"
+#include "model_rigid.h"
 
-static void euler_step(sw_pkg_t *P, double t, double h, const double y[], double yout[])
+/* The fixed-step schemes are written once, as inline bodies taking the
+ * model and the state's length; the step functions in the table call them
+ * with constants, so that the bare and frame models each get a body with
+ * their right-hand side inlined into every stage (the cushion's is a
+ * call).  The input is evaluated once per distinct stage time. */
+
+/* One stage: f = y'(t, y), with the input (ag, ge) already at t for a bare
+ * or framed package (the cushion evaluates its own). */
+static SW_ALWAYS_INLINE void stage(sw_pkg_t *P, sw_model_kind model, double t, double ag,
+                                   double ge, const double y[], double f[])
 {
-    double k1[SW_NMAX];
-    sw_model_rhs(t, y, k1, P);
-    for (int i = 0; i < P->n; i++) yout[i] = y[i] + h * k1[i];
+    if (model == SW_MODEL_CUSHION) sw_cushion_rhs(P, t, y, f);
+    else sw_rigid_rhs_of(P, model, ag, ge, y, f);
 }
 
-static void heun_step(sw_pkg_t *P, double t, double h, const double y[], double yout[])
+static SW_ALWAYS_INLINE void stage_input(const sw_pkg_t *P, sw_model_kind model, double t,
+                                         double *ag, double *ge)
 {
-    double k1[SW_NMAX], k2[SW_NMAX], yt[SW_NMAX];
-    const int n = P->n;
-    sw_model_rhs(t, y, k1, P);
+    if (model == SW_MODEL_CUSHION) return;
+    *ag = sw_input_ag(P->in, t);
+    *ge = sw_input_geff(P, t);
+}
+
+static SW_ALWAYS_INLINE void euler_of(sw_pkg_t *P, sw_model_kind model, int n, double t,
+                                      double h, const double y[], double yout[])
+{
+    double k1[SW_NMAX], ag = 0.0, ge = 0.0;
+    stage_input(P, model, t, &ag, &ge);
+    stage(P, model, t, ag, ge, y, k1);
+    for (int i = 0; i < n; i++) yout[i] = y[i] + h * k1[i];
+}
+
+static SW_ALWAYS_INLINE void heun_of(sw_pkg_t *P, sw_model_kind model, int n, double t, double h,
+                                     const double y[], double yout[])
+{
+    double k1[SW_NMAX], k2[SW_NMAX], yt[SW_NMAX], ag = 0.0, ge = 0.0;
+    stage_input(P, model, t, &ag, &ge);
+    stage(P, model, t, ag, ge, y, k1);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h * k1[i];
-    sw_model_rhs(t + h, yt, k2, P);
+    stage_input(P, model, t + h, &ag, &ge);
+    stage(P, model, t + h, ag, ge, yt, k2);
     for (int i = 0; i < n; i++) yout[i] = y[i] + 0.5 * h * (k1[i] + k2[i]);
 }
 
-static void rk4_step(sw_pkg_t *P, double t, double h, const double y[], double yout[])
+static SW_ALWAYS_INLINE void rk4_of(sw_pkg_t *P, sw_model_kind model, int n, double t, double h,
+                                    const double y[], double yout[])
 {
     double k1[SW_NMAX], k2[SW_NMAX], k3[SW_NMAX], k4[SW_NMAX], yt[SW_NMAX];
-    const int n = P->n;
+    double ag = 0.0, ge = 0.0;
     const double h2 = 0.5 * h;
-    sw_model_rhs(t, y, k1, P);
+    stage_input(P, model, t, &ag, &ge);
+    stage(P, model, t, ag, ge, y, k1);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h2 * k1[i];
-    sw_model_rhs(t + h2, yt, k2, P);
+    stage_input(P, model, t + h2, &ag, &ge);
+    stage(P, model, t + h2, ag, ge, yt, k2);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h2 * k2[i];
-    sw_model_rhs(t + h2, yt, k3, P);
+    stage(P, model, t + h2, ag, ge, yt, k3);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h * k3[i];
-    sw_model_rhs(t + h, yt, k4, P);
+    stage_input(P, model, t + h, &ag, &ge);
+    stage(P, model, t + h, ag, ge, yt, k4);
     for (int i = 0; i < n; i++)
         yout[i] = y[i] + (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
 }
+
+/* A table entry per scheme; the model picks the body. */
+#define SW_FIXED_STEP(name, body)                                                          \
+    static void name(sw_pkg_t *P, double t, double h, const double y[], double yout[])     \
+    {                                                                                      \
+        switch (P->d.model) {                                                              \
+        case SW_MODEL_BARE: body(P, SW_MODEL_BARE, 2, t, h, y, yout); return;              \
+        case SW_MODEL_FRAME: body(P, SW_MODEL_FRAME, 4, t, h, y, yout); return;            \
+        default: body(P, SW_MODEL_CUSHION, P->n, t, h, y, yout); return;                   \
+        }                                                                                  \
+    }
+SW_FIXED_STEP(euler_step, euler_of)
+SW_FIXED_STEP(heun_step, heun_of)
+SW_FIXED_STEP(rk4_step, rk4_of)
 
 int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *pkg)
 {
