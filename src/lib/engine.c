@@ -138,11 +138,19 @@ static int step_to(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const doubl
  * turned beyond half a turn (a step may overshoot pi/2 slightly before the
  * overturn event cuts it; one that lands beyond pi computed garbage, and its
  * numbers must not reach the summary). */
+/* Every v[i] finite?  Without a branch or a chain of additions per number:
+ * the state and the report are checked on every step and sample. */
+static int all_finite(const double v[], size_t n)
+{
+    int ok = 1;
+    for (size_t i = 0; i < n; i++) ok &= fabs(v[i]) <= DBL_MAX; /* false for NaN */
+    return ok;
+}
+
 static int finite_state(const sw_pkg_t *P, const double y[])
 {
-    double z = 0.0; /* 0 y is 0 for a finite y and NaN for an infinite or NaN one */
-    for (int i = 0; i < P->n; i++) z += 0.0 * y[i];
-    return z == 0.0 && !(P->phase == SW_PHASE_ROCKING && fabs(y[P->ith]) > M_PI);
+    return all_finite(y, (size_t)P->n) &&
+           !(P->phase == SW_PHASE_ROCKING && fabs(y[P->ith]) > M_PI);
 }
 
 /* max and min of numbers known to be finite: inline where libm's fmax and
@@ -1050,8 +1058,12 @@ static double fixed_step(sw_engine_t *e, sw_pkg_t *P, double t0, double rem, dou
     double hmax = P->h, h = rem; /* s */
     const double bound = e->o.dt_forced ? e->scheme->stab : 0.5;
     for (int tries = 0;; tries++) {
-        const double nst = ceil(rem / hmax - 1e-9);
-        h = nst <= 1.0 ? rem : rem / nst;
+        if (rem <= hmax) {
+            h = rem; /* the common case: a step per sample */
+        } else {
+            const double nst = ceil(rem / hmax - 1e-9);
+            h = nst <= 1.0 ? rem : rem / nst;
+        }
         if (P->d.model != SW_MODEL_CUSHION) {
             e->scheme->step(P, t0, h, P->y, y1);
             return h;
@@ -1168,9 +1180,7 @@ static int output_finite(const sw_output_t *o)
     const double v[] = {o->t,         o->state.u,      o->state.u_dot,  o->state.theta,
                         o->state.theta_dot, o->state.z,    o->state.z_dot, o->margin,
                         o->margin_bound, o->uplift_ratio, o->a_g,          o->a_support};
-    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
-        if (!isfinite(v[i])) return 0;
-    return 1;
+    return all_finite(v, sizeof v / sizeof v[0]);
 }
 
 static void report_states(sw_engine_t *e, double t)
