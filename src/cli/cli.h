@@ -101,6 +101,30 @@ void sw_cli_opts_fini(sw_cli_opts_t *o);
  * messages, using argv[optind - 1] to name the option. */
 int sw_cli_common_option(sw_cli_opts_t *o, int c, const char *arg, char **argv);
 
+/* A group of options that several commands share (the CSV reader's, the
+ * monitor's): like sw_cli_common_option, returns -1 if c is not one of its
+ * options, otherwise SW_EXIT_OK or SW_EXIT_USAGE (reported). */
+typedef struct {
+    int (*fn)(void *ctx, int c, const char *arg);
+    void *ctx;
+} sw_cli_group_t;
+
+/* The option loop of every command: getopt_long over argv (opterr off),
+ * each option offered first to sw_cli_common_option, then to the n groups
+ * in turn; returns the first that none of them takes, for the command's
+ * own switch (> 0), SW_CLI_OPT_END after the last option (optind is then
+ * the first operand), SW_CLI_OPT_HELP at --help (usage, if not NULL, has
+ * printed the help on stdout), or SW_CLI_OPT_BAD after a misuse was
+ * reported.  longindex as getopt_long's. */
+enum { SW_CLI_OPT_END = -1, SW_CLI_OPT_HELP = -2, SW_CLI_OPT_BAD = -3 };
+int sw_cli_getopt(sw_cli_opts_t *o, int argc, char **argv, const char *shortopts,
+                  const struct option *longopts, int *longindex, const sw_cli_group_t *groups,
+                  size_t n, void (*usage)(FILE *));
+
+/* The one LOG operand left after the options (argv[optind]); NULL, with
+ * the message, if there is none or more than one.  cmd names the command. */
+const char *sw_cli_log_operand(const char *cmd, int argc, char **argv);
+
 /* Number options: strtod with an end pointer and isfinite().  what is the
  * expectation in words ("a positive number of seconds").  On a bad value
  * prints "swaywatch: OPT: expected WHAT, got 'ARG'" and returns
@@ -224,6 +248,7 @@ enum {
     SW_OPT_LCM_GAP,
     SW_OPT_LCM_MAX_ACCEL,
     SW_OPT_LCM_MAX_SKEW,
+    SW_OPT_LCM_MAX_JUMP,
     SW_OPT_LCM_END /* one past the last */
 };
 #define SW_CLI_LCMLOG_LONGOPTS                                                                     \
@@ -237,7 +262,8 @@ enum {
         {"vertical", required_argument, NULL, SW_OPT_LCM_VERTICAL},                                \
         {"gap", required_argument, NULL, SW_OPT_LCM_GAP},                                          \
         {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL},                              \
-        {"max-skew", required_argument, NULL, SW_OPT_LCM_MAX_SKEW}
+        {"max-skew", required_argument, NULL, SW_OPT_LCM_MAX_SKEW},                                \
+        {"max-jump", required_argument, NULL, SW_OPT_LCM_MAX_JUMP}
 
 /* ---- CSV logs held in memory (logread.c) -------------------------------------
  * The CSV input options replay documents, for commands that run one log
@@ -274,12 +300,48 @@ typedef struct {
 
 void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o);
 void sw_cli_print_csv_help(FILE *f);
-/* Handle a CSV option code; -1 if c is not one, else SW_EXIT_OK or
- * SW_EXIT_USAGE (reported). */
-int sw_cli_csv_option(sw_cli_csv_opts_t *o, int c, const char *arg);
+/* Handle a CSV option code for opts, a sw_cli_csv_opts_t (the form of a
+ * sw_cli_group_t); -1 if c is not one, else SW_EXIT_OK or SW_EXIT_USAGE
+ * (reported). */
+int sw_cli_csv_option(void *opts, int c, const char *arg);
 /* --accel-unit m/s2|g: m/s^2 per unit in *scale (1 g = 9.80665 m/s^2);
  * SW_EXIT_OK or SW_EXIT_USAGE (reported).  Shared by CSV and LCM input. */
 int sw_cli_parse_accel_unit(const char *arg, double *scale);
+
+/* Rejected rows of a CSV log: each one counted, the first
+ * SW_CLI_MAX_PRINTED_REJECTS printed as "NAME:LINE: reason" (none with
+ * quiet); with strict the first one stops the run and later ones are not
+ * counted. */
+#define SW_CLI_MAX_PRINTED_REJECTS 20
+typedef struct {
+    const char *name; /* the log, as quoted in messages */
+    int strict, quiet;
+    int stop;      /* strict saw a rejected row */
+    long reported; /* rejected rows seen (printed or not) */
+    long printed;  /* printed one by one */
+} sw_cli_rejects_t;
+void sw_cli_rejects_add(sw_cli_rejects_t *r, long line, const char *reason);
+/* The line for the rows not printed one by one ("... N more rejected rows",
+ * or "N rejected rows" with quiet); nothing if there are none. */
+void sw_cli_rejects_summary(const sw_cli_rejects_t *r);
+
+/* A log read in chunks: path, or "-" for standard input.  Open reads the
+ * first chunk, whose first bytes tell CSV (sw_cli_is_lcmlog() false) from
+ * an lcm-logger file.  Both return SW_EXIT_OK or SW_EXIT_IO (reported). */
+typedef struct {
+    FILE *in;
+    char *buf;
+    size_t len;       /* bytes in buf */
+    const char *name; /* path, or "(stdin)" */
+} sw_cli_logfile_t;
+int sw_cli_logfile_open(sw_cli_logfile_t *f, const char *path);
+/* Feed the chunks to csv, from the one read, until the end of the file,
+ * then finish it; stops early when the reader fails or *stop is set (after
+ * any chunk; after(user), if not NULL, runs after each feed and the
+ * finish).  *fr gets the reader's last status (< 0: it failed). */
+int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop,
+                        void (*after)(void *), void *user, int *fr);
+void sw_cli_logfile_close(sw_cli_logfile_t *f); /* zeroed or open; closes stdin never */
 
 /* A whole log: accepted rows in file order, SI units. */
 typedef struct {

@@ -585,20 +585,10 @@ int cmd_boundary(int argc, char **argv)
         rc = SW_EXIT_IO;
         goto out;
     }
-    opterr = 0;
-    for (int c; (c = getopt_long(argc, argv, ":hs:o:qv", long_opts, NULL)) != -1;) {
-        int r = sw_cli_common_option(&o, c, optarg, argv);
-        if (r == SW_EXIT_OK) {
-            if (o.help) {
-                usage(stdout);
-                rc = SW_EXIT_OK;
-                goto out;
-            }
-            continue;
-        }
-        if (r != -1) goto out;
-        r = SW_EXIT_OK;
-        switch (c) {
+    int opt;
+    while ((opt = sw_cli_getopt(&o, argc, argv, ":hs:o:qv", long_opts, NULL, NULL, 0, usage)) > 0) {
+        int r = SW_EXIT_OK;
+        switch (opt) {
         case OPT_PULSE:
             if (sw_pulse_shape_parse(optarg, &bo.shape) != SW_OK) {
                 sw_cli_error("--pulse: expected half-sine or full-sine, got '%s'", optarg);
@@ -659,6 +649,10 @@ int cmd_boundary(int argc, char **argv)
             rc = r;
             goto out;
         }
+    }
+    if (opt != SW_CLI_OPT_END) {
+        if (opt == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
+        goto out;
     }
     if (optind < argc) {
         sw_cli_error("boundary: unexpected argument '%s'; see 'swaywatch boundary --help'",

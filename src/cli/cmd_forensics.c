@@ -620,22 +620,11 @@ int cmd_forensics(int argc, char **argv)
         rc = SW_EXIT_IO;
         goto out;
     }
-    opterr = 0;
-    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, NULL)) != -1;) {
-        int r = sw_cli_common_option(&o, c, optarg, argv);
-        if (r == SW_EXIT_OK) {
-            if (o.help) {
-                usage(stdout);
-                rc = SW_EXIT_OK;
-                goto out;
-            }
-            continue;
-        }
-        if (r != -1) goto out;
-        r = sw_cli_csv_option(&copts, c, optarg);
-        if (r == SW_EXIT_OK) continue;
-        if (r != -1) goto out;
-        r = SW_EXIT_OK;
+    const sw_cli_group_t groups[] = {{sw_cli_csv_option, &copts}};
+    int c;
+    while ((c = sw_cli_getopt(&o, argc, argv,
+                              SW_CLI_COMMON_SHORTOPTS, long_opts, NULL, groups, 1, usage)) > 0) {
+        int r = SW_EXIT_OK;
         switch (c) {
         case OPT_SETTLE:
             r = sw_cli_parse_double("--settle", optarg, SW_NUM_NONNEGATIVE,
@@ -685,16 +674,11 @@ int cmd_forensics(int argc, char **argv)
             goto out;
         }
     }
-    if (optind >= argc) {
-        sw_cli_error("forensics: missing LOG (a CSV file, or - for standard input); see "
-                     "'swaywatch forensics --help'");
+    if (c != SW_CLI_OPT_END) {
+        if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
         goto out;
     }
-    if (optind + 1 < argc) {
-        sw_cli_error("forensics: one LOG at a time; unexpected '%s'", argv[optind + 1]);
-        goto out;
-    }
-    log_path = argv[optind];
+    if (!(log_path = sw_cli_log_operand("forensics", argc, argv))) goto out;
     if (o.n_scene_files > 1) {
         sw_cli_error("forensics: one --scene (one package) at a time");
         goto out;

@@ -32,7 +32,7 @@
 /* Messages handled per wake-up before the timers get a look. */
 #define BATCH 256
 
-enum { OPT_ACCEL_CHANNEL = SW_OPT_FIRST_OWN, OPT_FLIP, OPT_ACCEL_UNIT, OPT_STATUS, OPT_MAX_SKEW };
+enum { OPT_ACCEL_CHANNEL = SW_OPT_FIRST_OWN, OPT_FLIP, OPT_ACCEL_UNIT, OPT_STATUS };
 
 /* The options monitor shares with replay of lcm-logger files carry the
  * SW_OPT_LCM_* codes of cli.h and are read by sw_cli_mon_option(). */
@@ -50,7 +50,8 @@ static const struct option long_opts[] = {
     {"gap", required_argument, NULL, SW_OPT_LCM_GAP},
     {"status", required_argument, NULL, OPT_STATUS},
     {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL},
-    {"max-skew", required_argument, NULL, OPT_MAX_SKEW},
+    {"max-skew", required_argument, NULL, SW_OPT_LCM_MAX_SKEW},
+    {"max-jump", required_argument, NULL, SW_OPT_LCM_MAX_JUMP},
     {NULL, 0, NULL, 0},
 };
 
@@ -90,11 +91,17 @@ static void usage(FILE *f)
             "                             the wall clock (default: not checked; e.g. 10 for a\n"
             "                             sensor with a synchronised clock; leave it off when\n"
             "                             lcm-logplayer replays an old log)\n"
+            "      --max-jump SECONDS     hold a sample whose utime is further than this after\n"
+            "                             the last one until the next sample confirms it\n"
+            "                             (default %g; 0: take any jump at once)\n"
             "      --gap SECONDS          sensor gap threshold (default %g)\n"
             "      --status SECONDS       one status line on stderr every SECONDS: sample rate,\n"
             "                             lag behind the sensor clock, CPU share, counts\n"
             "                             (default 0: none)\n"
-            "\n"
+            "\n",
+            SW_MON_ACCEL_CHANNEL, SW_MON_STATE_CHANNEL, SW_MON_ALARM_CHANNEL, SW_MON_MAX_JUMP,
+            SW_MON_GAP);
+    fprintf(f,
             "Sensor gaps: when no sample has arrived for --gap seconds, a SENSOR_GAP alarm\n"
             "(warn) is published and the model waits: it is not advanced and publishes no\n"
             "state.  When samples resume, the input over the gap is bridged by linear\n"
@@ -102,6 +109,12 @@ static void usage(FILE *f)
             "SENSOR_GAP alarm (info) says so.  Consecutive samples further apart in utime than\n"
             "--gap (samples lost upstream) raise SENSOR_GAP (warn) when the later one arrives\n"
             "and are bridged the same way.\n"
+            "\n"
+            "Jumps: a sample whose utime is more than --max-jump after the last accepted one\n"
+            "(and the very first sample) waits for the next.  If the next follows it within\n"
+            "--max-jump, the sensor's clock did jump (an outage, a restart) and both are taken,\n"
+            "the gap bridged as above; otherwise the waiting sample is refused as a jump.  One\n"
+            "sample stamped far in the future therefore cannot make the later ones late.\n"
             "\n"
             "Bad input: messages that are not accel_t (wrong type, truncated, trailing bytes),\n"
             "samples with a non-finite value or beyond --max-accel or --max-skew, duplicates\n"
@@ -115,8 +128,7 @@ static void usage(FILE *f)
             "Scene and integration:\n"
             "  -s, --scene FILE           scene file (INI); at least one, repeatable\n"
             "      --set SEC.KEY=VALUE    override a key in every scene\n"
-            "      --scheme NAME          time stepper:",
-            SW_MON_ACCEL_CHANNEL, SW_MON_STATE_CHANNEL, SW_MON_ALARM_CHANNEL, SW_MON_GAP);
+            "      --scheme NAME          time stepper:");
     for (size_t i = 0; sw_scheme_at(i); i++)
         fprintf(f, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
     fprintf(f,
@@ -211,10 +223,13 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
     (void)channel;
     mon_ctx_t *c = user;
     double t0 = sw_cli_mono_now();
-    int rc = sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, t0, NULL);
-    if (rc >= 0) {
+    sw_mon_counts_t k0, k1;
+    sw_mon_counts(c->mon, &k0);
+    sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, t0, NULL);
+    sw_mon_counts(c->mon, &k1);
+    if (k1.accepted > k0.accepted) { /* none while a sample is held; two when it is confirmed */
         double lag = (double)(wall_now_us() - sw_mon_last_utime(c->mon)) / 1e6;
-        c->accepted++;
+        c->accepted += k1.accepted - k0.accepted;
         c->lag_sum += lag;
         if (c->accepted == 1 || lag > c->lag_max)
             c->lag_max = lag;
@@ -224,8 +239,7 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
 
 static void print_rejected(FILE *f, const sw_mon_counts_t *k)
 {
-    long total = 0;
-    for (int r = 0; r < SW_MON_NREJ; r++) total += k->rejected[r];
+    const long total = sw_mon_rejected(k);
     fprintf(f, "rejected %ld", total);
     if (!total)
         return;
@@ -349,27 +363,11 @@ int cmd_monitor(int argc, char **argv)
     if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK)
         return SW_EXIT_IO;
 
-    opterr = 0;
-    for (int c;
-         (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS "l:", long_opts, NULL)) != -1;) {
-        int r = sw_cli_common_option(&o, c, optarg, argv);
-        if (r == SW_EXIT_OK) {
-            if (o.help) {
-                usage(stdout);
-                rc = SW_EXIT_OK;
-                goto out;
-            }
-            continue;
-        }
-        if (r != -1)
-            goto out;
-        r = sw_cli_mon_option(&mo, c, optarg);
-        if (r != -1) {
-            if (r != SW_EXIT_OK)
-                goto out;
-            continue;
-        }
-        r = SW_EXIT_OK;
+    const sw_cli_group_t groups[] = {{sw_cli_mon_option, &mo}};
+    int c;
+    while ((c = sw_cli_getopt(&o, argc, argv, SW_CLI_COMMON_SHORTOPTS "l:", long_opts,
+                              NULL, groups, 1, usage)) > 0) {
+        int r = SW_EXIT_OK;
         switch (c) {
             case 'l': url = optarg; break;
             case OPT_ACCEL_CHANNEL:
@@ -389,14 +387,14 @@ int cmd_monitor(int argc, char **argv)
                 r = sw_cli_parse_double("--status", optarg, SW_NUM_NONNEGATIVE,
                                         "a number of seconds >= 0 (0: no status)", &status_every);
                 break;
-            case OPT_MAX_SKEW:
-                r = sw_cli_parse_double("--max-skew", optarg, SW_NUM_NONNEGATIVE,
-                                        "a number of seconds >= 0 (0: not checked)", &mo.max_skew);
-                break;
             default: sw_cli_error("monitor: unhandled option"); r = SW_EXIT_USAGE;
         }
         if (r != SW_EXIT_OK)
             goto out;
+    }
+    if (c != SW_CLI_OPT_END) {
+        if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
+        goto out;
     }
     if (optind < argc) {
         sw_cli_error("monitor: unexpected argument '%s'; see 'swaywatch monitor --help'",

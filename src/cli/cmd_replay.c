@@ -12,8 +12,6 @@
 
 #include "cli.h"
 
-#define CHUNK (64 * 1024)       /* bytes read and fed at a time */
-#define MAX_PRINTED_REJECTS 20  /* rejected rows listed one by one; the rest only counted */
 #define DEFAULT_SETTLE 30.0     /* s of zero input after the end of the log */
 
 enum { OPT_SETTLE = SW_OPT_FIRST_OWN, OPT_FAIL_ON_OVERTURN };
@@ -58,32 +56,18 @@ static void usage(FILE *f)
 
 typedef struct {
     sw_engine_t *e;
-    const char *name; /* the log, as quoted in messages */
     sw_cli_states_t *states;
     sw_cli_events_t *events;
-    int strict, quiet;
-    int stop;          /* --strict saw a rejected row */
-    long reported;     /* rejected rows seen (printed or not) */
-    long printed;      /* rejected rows printed one by one */
+    sw_cli_rejects_t rej;
     long refused_line; /* a row the engine refused, awaiting its report */
     int refused_rc;
     long engine_refused; /* rows the CSV layer accepted and the engine did not */
 } replay_ctx_t;
 
-static void report_reject(replay_ctx_t *c, long line, const char *reason)
-{
-    if (c->stop) return; /* --strict: the run already ended at an earlier row */
-    c->reported++;
-    if (c->strict) c->stop = 1;
-    if (c->quiet || c->printed >= MAX_PRINTED_REJECTS) return;
-    c->printed++;
-    sw_cli_error("%s:%ld: %s", c->name, line, reason);
-}
-
 static int on_row(void *user, long line, double t, double a_g, double a_z)
 {
     replay_ctx_t *c = user;
-    if (c->stop) return 1; /* --strict: nothing after the first bad row counts */
+    if (c->rej.stop) return 1; /* --strict: nothing after the first bad row counts */
     int rc = sw_engine_push(c->e, t, a_g, a_z);
     if (rc >= 0) return 0;
     /* The CSV layer already checks order and finiteness, so this should not
@@ -101,15 +85,16 @@ static void on_reject(void *user, long line, const char *reason)
         char buf[160];
         snprintf(buf, sizeof buf, "sample refused by the engine: %s", sw_strerror(c->refused_rc));
         c->refused_line = 0;
-        report_reject(c, line, buf);
+        sw_cli_rejects_add(&c->rej, line, buf);
         return;
     }
-    report_reject(c, line, reason);
+    sw_cli_rejects_add(&c->rej, line, reason);
 }
 
 /* An engine refusal the CSV layer did not pass back through on_reject. */
-static void flush_refusal(replay_ctx_t *c)
+static void flush_refusal(void *user)
 {
+    replay_ctx_t *c = user;
     if (!c->refused_line) return;
     long line = c->refused_line;
     on_reject(c, line, "");
@@ -138,8 +123,7 @@ int cmd_replay(int argc, char **argv)
     const char *log = NULL;
     int lcm_only = 0; /* an option only lcm-logger files take */
     char **orig = NULL;
-    FILE *in = NULL;
-    char *buf = NULL;
+    sw_cli_logfile_t lf = {0};
     sw_scene_t *scenes = NULL;
     size_t n = 0;
     sw_engine_t *e = NULL;
@@ -159,19 +143,11 @@ int cmd_replay(int argc, char **argv)
     }
     memcpy(orig, argv, ((size_t)argc + 1) * sizeof *orig);
 
-    opterr = 0;
-    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, NULL)) != -1;) {
-        int r = sw_cli_common_option(&o, c, optarg, argv);
-        if (r == SW_EXIT_OK) {
-            if (o.help) {
-                usage(stdout);
-                rc = SW_EXIT_OK;
-                goto out;
-            }
-            continue;
-        }
-        if (r != -1) goto out;
-        r = SW_EXIT_OK;
+    const sw_cli_group_t groups[] = {{sw_cli_csv_option, &copts}};
+    int c;
+    while ((c = sw_cli_getopt(&o, argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, NULL, groups, 1,
+                              usage)) > 0) {
+        int r = SW_EXIT_OK;
         switch (c) {
         case OPT_SETTLE:
             r = sw_cli_parse_double("--settle", optarg, SW_NUM_NONNEGATIVE,
@@ -179,8 +155,6 @@ int cmd_replay(int argc, char **argv)
             break;
         case OPT_FAIL_ON_OVERTURN: fail_on_overturn = 1; break;
         default:
-            if ((r = sw_cli_csv_option(&copts, c, optarg)) != -1) break;
-            r = SW_EXIT_OK;
             if (c >= SW_OPT_LCM_CHANNEL && c < SW_OPT_LCM_END) { /* read by lcmlog.c */
                 lcm_only = c;
                 break;
@@ -190,49 +164,27 @@ int cmd_replay(int argc, char **argv)
         }
         if (r != SW_EXIT_OK) goto out;
     }
-    if (optind >= argc) {
-        sw_cli_error("replay: missing LOG (a CSV file, or - for standard input); see 'swaywatch "
-                     "replay --help'");
+    if (c != SW_CLI_OPT_END) {
+        if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
         goto out;
     }
-    if (optind + 1 < argc) {
-        sw_cli_error("replay: one LOG at a time; unexpected '%s'", argv[optind + 1]);
-        goto out;
-    }
-    log = argv[optind];
-    ctx.name = strcmp(log, "-") ? log : "(stdin)";
-    ctx.quiet = o.quiet;
-    ctx.strict = copts.strict;
+    if (!(log = sw_cli_log_operand("replay", argc, argv))) goto out;
 
     /* Open the log first: a missing file is an I/O error (3) whatever else
      * is wrong, and the first bytes decide CSV or lcm-logger. */
-    in = strcmp(log, "-") ? fopen(log, "rb") : stdin;
-    if (!in) {
-        sw_cli_error("%s: cannot open: %s", log, strerror(errno));
+    if (sw_cli_logfile_open(&lf, log) != SW_EXIT_OK) {
         rc = SW_EXIT_IO;
         goto out;
     }
-    buf = malloc(CHUNK);
-    if (!buf) {
-        sw_cli_error("out of memory");
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    size_t len = fread(buf, 1, CHUNK, in);
-    if (ferror(in)) {
-        sw_cli_error("%s: cannot read: %s", ctx.name, strerror(errno));
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    if (sw_cli_is_lcmlog(buf, len)) {
-        if (in == stdin) {
+    ctx.rej = (sw_cli_rejects_t){.name = lf.name, .quiet = o.quiet, .strict = copts.strict};
+    if (sw_cli_is_lcmlog(lf.buf, lf.len)) {
+        if (lf.in == stdin) {
             sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
                          "file name",
-                         ctx.name);
+                         lf.name);
             goto out;
         }
-        fclose(in);
-        in = NULL;
+        sw_cli_logfile_close(&lf);
 #ifdef SW_HAVE_LCM
         rc = sw_cli_replay_lcmlog(log, argc, orig);
 #else
@@ -246,12 +198,12 @@ int cmd_replay(int argc, char **argv)
         const char *name = "?";
         for (const struct option *op = long_opts; op->name; op++)
             if (op->val == lcm_only) name = op->name;
-        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log", ctx.name,
+        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log", lf.name,
                      name);
         rc = SW_EXIT_USAGE;
         goto out;
     }
-    rc = sw_cli_check_outputs(&o, in);
+    rc = sw_cli_check_outputs(&o, lf.in);
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;
@@ -279,38 +231,26 @@ int cmd_replay(int argc, char **argv)
     char msg[256] = "";
     csv = sw_csv_create(&copts.csv, on_row, on_reject, &ctx, &err, msg, sizeof msg);
     if (!csv) {
-        sw_cli_error("%s: %s", ctx.name, msg[0] ? msg : sw_strerror(err));
+        sw_cli_error("%s: %s", lf.name, msg[0] ? msg : sw_strerror(err));
         rc = SW_EXIT_USAGE;
         goto out;
     }
 
-    int fr = SW_OK;
-    while (len > 0 && !ctx.stop) {
-        fr = sw_csv_feed(csv, buf, len);
-        flush_refusal(&ctx);
-        if (fr < 0) break;
-        len = fread(buf, 1, CHUNK, in);
-        if (ferror(in)) {
-            sw_cli_error("%s: cannot read: %s", ctx.name, strerror(errno));
-            rc = SW_EXIT_IO;
-            goto out;
-        }
-    }
-    if (fr >= 0 && !ctx.stop) {
-        fr = sw_csv_finish(csv);
-        flush_refusal(&ctx);
-    }
+    int fr;
+    rc = sw_cli_logfile_pump(&lf, csv, &ctx.rej.stop, flush_refusal, &ctx, &fr);
+    if (rc != SW_EXIT_OK) goto out;
+    rc = SW_EXIT_USAGE;
     if (fr < 0) {
         /* The reader reports why through on_reject where it can (e.g. the
          * header line lacking a named column); this names the failure. */
-        sw_cli_error("%s: %s", ctx.name,
+        sw_cli_error("%s: %s", lf.name,
                      fr == SW_ENOTFOUND ? "a column given by name is not in the header"
                                         : sw_strerror(fr));
         rc = fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
         goto out;
     }
-    if (ctx.stop) {
-        sw_cli_error("%s: stopped at the first rejected row (--strict)", ctx.name);
+    if (ctx.rej.stop) {
+        sw_cli_error("%s: stopped at the first rejected row (--strict)", lf.name);
         rc = SW_EXIT_USAGE;
         goto out;
     }
@@ -320,15 +260,10 @@ int cmd_replay(int argc, char **argv)
     long rejected = counts.rejected;
     /* Rows the engine refused are normally counted by the reader too (the
      * consumer's non-zero return); make sure they are never lost. */
-    if (rejected < ctx.reported) rejected = ctx.reported;
-    if (ctx.reported > ctx.printed) {
-        if (o.quiet)
-            sw_cli_error("%s: %ld rejected rows", ctx.name, ctx.reported);
-        else
-            sw_cli_error("%s: ... %ld more rejected rows", ctx.name, ctx.reported - ctx.printed);
-    }
+    if (rejected < ctx.rej.reported) rejected = ctx.rej.reported;
+    sw_cli_rejects_summary(&ctx.rej);
     if (counts.rows - rejected <= 0) {
-        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", ctx.name, counts.rows,
+        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", lf.name, counts.rows,
                      rejected);
         rc = SW_EXIT_USAGE;
         goto out;
@@ -357,8 +292,7 @@ out:
     sw_cli_events_close(&events);
     sw_engine_destroy(e);
     free(scenes);
-    free(buf);
-    if (in && in != stdin) fclose(in);
+    sw_cli_logfile_close(&lf);
     free(orig);
     sw_cli_opts_fini(&o);
     return rc;

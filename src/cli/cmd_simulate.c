@@ -130,19 +130,10 @@ int cmd_simulate(int argc, char **argv)
     sim_ctx_t ctx = {&events};
 
     if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK) return SW_EXIT_IO;
-    opterr = 0;
-    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, NULL)) != -1;) {
-        int r = sw_cli_common_option(&o, c, optarg, argv);
-        if (r == SW_EXIT_OK) {
-            if (o.help) {
-                usage(stdout);
-                rc = SW_EXIT_OK;
-                goto out;
-            }
-            continue;
-        }
-        if (r != -1) goto out;
-        r = SW_EXIT_OK;
+    int c;
+    while ((c = sw_cli_getopt(&o, argc, argv,
+                              SW_CLI_COMMON_SHORTOPTS, long_opts, NULL, NULL, 0, usage)) > 0) {
+        int r = SW_EXIT_OK;
         switch (c) {
         case OPT_PULSE:
             r = sw_pulse_shape_parse(optarg, &pulse.shape) == SW_OK ? SW_EXIT_OK : SW_EXIT_USAGE;
@@ -180,6 +171,10 @@ int cmd_simulate(int argc, char **argv)
         default: sw_cli_error("simulate: unhandled option"); r = SW_EXIT_USAGE;
         }
         if (r != SW_EXIT_OK) goto out;
+    }
+    if (c != SW_CLI_OPT_END) {
+        if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
+        goto out;
     }
     if (optind < argc) {
         sw_cli_error("simulate: unexpected argument '%s'; see 'swaywatch simulate --help'",

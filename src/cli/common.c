@@ -182,6 +182,39 @@ int sw_cli_common_option(sw_cli_opts_t *o, int c, const char *arg, char **argv)
     }
 }
 
+int sw_cli_getopt(sw_cli_opts_t *o, int argc, char **argv, const char *shortopts,
+                  const struct option *longopts, int *longindex, const sw_cli_group_t *groups,
+                  size_t n, void (*usage)(FILE *))
+{
+    opterr = 0; /* sw_cli_common_option words the errors */
+    for (int c; (c = getopt_long(argc, argv, shortopts, longopts, longindex)) != -1;) {
+        int r = sw_cli_common_option(o, c, optarg, argv);
+        for (size_t i = 0; r == -1 && i < n; i++) r = groups[i].fn(groups[i].ctx, c, optarg);
+        if (r == -1) return c;
+        if (r != SW_EXIT_OK) return SW_CLI_OPT_BAD;
+        if (o->help) {
+            if (usage) usage(stdout);
+            return SW_CLI_OPT_HELP;
+        }
+    }
+    return SW_CLI_OPT_END;
+}
+
+const char *sw_cli_log_operand(const char *cmd, int argc, char **argv)
+{
+    if (optind >= argc) {
+        sw_cli_error("%s: missing LOG (a CSV file, or - for standard input); see 'swaywatch %s "
+                     "--help'",
+                     cmd, cmd);
+        return NULL;
+    }
+    if (optind + 1 < argc) {
+        sw_cli_error("%s: one LOG at a time; unexpected '%s'", cmd, argv[optind + 1]);
+        return NULL;
+    }
+    return argv[optind];
+}
+
 /* ---- scenes --------------------------------------------------------------- */
 
 int sw_cli_is_lcmlog(const void *buf, size_t len)

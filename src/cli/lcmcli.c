@@ -50,8 +50,9 @@ static int parse_channel(const char *opt, const char *arg, const char **out)
     return SW_EXIT_OK;
 }
 
-int sw_cli_mon_option(sw_mon_opts_t *mo, int c, const char *arg)
+int sw_cli_mon_option(void *opts, int c, const char *arg)
 {
+    sw_mon_opts_t *mo = opts;
     switch (c) {
         case SW_OPT_LCM_STATE_CHANNEL:
             return parse_channel("--state-channel", arg, &mo->state_channel);
@@ -69,6 +70,17 @@ int sw_cli_mon_option(sw_mon_opts_t *mo, int c, const char *arg)
         case SW_OPT_LCM_MAX_SKEW:
             return sw_cli_parse_double("--max-skew", arg, SW_NUM_NONNEGATIVE,
                                        "a number of seconds >= 0 (0: not checked)", &mo->max_skew);
+        case SW_OPT_LCM_MAX_JUMP: {
+            int r = sw_cli_parse_double("--max-jump", arg, SW_NUM_NONNEGATIVE,
+                                        "a number of seconds >= 0 (0: take any jump)",
+                                        &mo->max_jump);
+            if (r == SW_EXIT_OK && mo->max_jump == 0.0) mo->max_jump = -1.0; /* lcmmon.h: any */
+            else if (r == SW_EXIT_OK && !(mo->max_jump < 1e9)) {
+                sw_cli_error("--max-jump: expected at most 1e9 s, got '%s'", arg);
+                r = SW_EXIT_USAGE;
+            }
+            return r;
+        }
         default: return -1;
     }
 }

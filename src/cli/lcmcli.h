@@ -6,11 +6,12 @@
 
 #include "lcmmon.h"
 
-/* Handle c (an SW_OPT_LCM_* code of cli.h) if it is one of the options
- * both commands take: --state-channel, --alarm-channel, --state-rate,
- * --axis, --vertical, --gap, --max-accel.  Returns -1 if it is not, else
+/* Handle c (an SW_OPT_LCM_* code of cli.h) for opts, a sw_mon_opts_t (the
+ * form of a sw_cli_group_t), if it is one of the options both commands
+ * take: --state-channel, --alarm-channel, --state-rate, --axis,
+ * --vertical, --gap, --max-accel.  Returns -1 if it is not, else
  * SW_EXIT_OK or SW_EXIT_USAGE (reported). */
-int sw_cli_mon_option(sw_mon_opts_t *mo, int c, const char *arg);
+int sw_cli_mon_option(void *opts, int c, const char *arg);
 
 /* Monotonic clock, s. */
 double sw_cli_mono_now(void);

@@ -81,6 +81,8 @@ void sw_cli_print_lcmlog_help(FILE *f)
             "      --max-skew SECONDS     refuse samples whose utime is further than this from\n"
             "                             the time lcm-logger received them (default: not\n"
             "                             checked)\n"
+            "      --max-jump SECONDS     hold a sample further than this after the last one\n"
+            "                             until the next confirms it (default %g; 0: off)\n"
             "      --publish URL          also publish states and alarms over LCM ('' = LCM's\n"
             "                             default URL; file:///path?mode=w writes a log)\n"
             "      --speed X              with --publish: X times real time by the samples'\n"
@@ -90,7 +92,7 @@ void sw_cli_print_lcmlog_help(FILE *f)
             "on other channels are counted and skipped; corrupted regions of the log are\n"
             "skipped and counted (--strict: exit 2); bad, duplicate and late samples are\n"
             "refused as by the monitor.\n",
-            SW_MON_ACCEL_CHANNEL, SW_MON_GAP);
+            SW_MON_ACCEL_CHANNEL, SW_MON_GAP, SW_MON_MAX_JUMP);
 }
 
 typedef struct {
@@ -217,10 +219,13 @@ static int read_log(lcm_eventlog_t *log, off_t size, const regex_t *channel, sw_
         /* The logger's receive time is the clock --max-skew compares with:
          * a sample stamped far from when it arrived (a corrupt or hostile
          * utime) would otherwise be accepted and make every later one late. */
-        int rc = sw_mon_feed(mon, ev->data, (size_t)ev->datalen, ev->timestamp,
-                             (double)ev->timestamp / 1e6, NULL);
+        sw_mon_feed(mon, ev->data, (size_t)ev->datalen, ev->timestamp,
+                    (double)ev->timestamp / 1e6, NULL);
         lcm_eventlog_free_event(ev);
-        if (rc < 0 && strict)
+        /* a refusal, of this sample or of one held before it */
+        sw_mon_counts_t k;
+        sw_mon_counts(mon, &k);
+        if (strict && sw_mon_rejected(&k) > 0)
             return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
@@ -246,8 +251,7 @@ static void print_lcm_counts(FILE *f, const char *path, const log_counts_t *lc,
             "swaywatch: %s: %ld events, %ld on the accel channel, %ld on other channels, "
             "%ld corrupted regions skipped\n",
             path, lc->events, lc->on_channel, lc->other_channels, lc->corrupt);
-    long rej = 0;
-    for (int r = 0; r < SW_MON_NREJ; r++) rej += k->rejected[r];
+    const long rej = sw_mon_rejected(k);
     fprintf(f, "swaywatch: %s: accel samples: %ld = accepted %ld + rejected %ld", path, k->received,
             k->accepted, rej);
     const char *sep = " (";
@@ -286,21 +290,12 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
     if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK)
         return SW_EXIT_IO;
     optind = 0; /* a fresh scan: replay has parsed these arguments once already */
-    opterr = 0;
     int li = -1; /* index in long_opts of the option just read */
-    for (int c; (c = getopt_long(argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, &li)) != -1;) {
-        int r = sw_cli_common_option(&o, c, optarg, argv);
-        if (r == SW_EXIT_OK)
-            continue;
-        if (r != -1)
-            goto out;
-        r = sw_cli_mon_option(&mo, c, optarg);
-        if (r != -1) {
-            if (r != SW_EXIT_OK)
-                goto out;
-            continue;
-        }
-        r = SW_EXIT_OK;
+    const sw_cli_group_t groups[] = {{sw_cli_mon_option, &mo}};
+    int c;
+    while ((c = sw_cli_getopt(&o, argc, argv,
+                              SW_CLI_COMMON_SHORTOPTS, long_opts, &li, groups, 1, NULL)) > 0) {
+        int r = SW_EXIT_OK;
         switch (c) {
             case OPT_TIME_COL:
             case OPT_ACCEL_COL:
@@ -335,6 +330,10 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
         }
         if (r != SW_EXIT_OK)
             goto out;
+    }
+    if (c != SW_CLI_OPT_END) {
+        if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
+        goto out;
     }
     if (parse_channel_regex(channel, &re) != 0) {
         sw_cli_error("--channel: not a valid regular expression: '%s'", channel);
@@ -389,6 +388,11 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
     sw_mon_flush(mon);
     sw_mon_counts_t k;
     sw_mon_counts(mon, &k);
+    if (strict && sw_mon_rejected(&k) > 0) { /* the last sample, held and never confirmed */
+        sw_cli_error("%s: stopped at the first bad event or sample (--strict)", path);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
     if (k.accepted > 0 && settle > 0.0)
         sw_engine_finish(sw_mon_engine(mon), settle);
 

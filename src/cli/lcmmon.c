@@ -68,6 +68,10 @@ struct sw_mon {
     double last_rx; /* mono s, arrival of the last accepted sample */
     int64_t gap_us;
     int gap_open; /* the timer saw the input stop; it has not resumed */
+    int64_t jump_us; /* 0: no sample is held */
+    swaywatch_accel_t held[SW_MON_HELD_MAX]; /* samples far ahead, oldest first */
+    double held_rx[SW_MON_HELD_MAX];         /* mono s, their arrival */
+    int nheld;
 
     /* INPUT_REJECTED rate limit, per reason */
     double rej_last_alarm[SW_MON_NREJ]; /* mono s; -INFINITY: never */
@@ -78,9 +82,9 @@ struct sw_mon {
     sw_mon_counts_t c;
 };
 
-static const char *const reject_names[SW_MON_NREJ] = {"decode",       "trailing", "nonfinite",
-                                                      "implausible",  "skew",     "duplicate",
-                                                      "out_of_order", "engine"};
+static const char *const reject_names[SW_MON_NREJ] = {
+    "decode", "trailing", "nonfinite", "implausible", "skew",
+    "duplicate", "out_of_order", "jump", "engine"};
 
 const char *sw_mon_reject_name(sw_mon_reject r)
 {
@@ -215,10 +219,12 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         m->o.gap = SW_MON_GAP;
     if (m->o.max_accel == 0.0)
         m->o.max_accel = SW_MON_MAX_ACCEL;
+    if (m->o.max_jump == 0.0)
+        m->o.max_jump = SW_MON_MAX_JUMP;
     if (m->o.axis < 0 || m->o.axis > 2 || m->o.vertical < -1 || m->o.vertical > 2 ||
         !(m->o.accel_scale > 0.0) || !(m->o.gap > 0.0) || !(m->o.max_accel > 0.0) ||
         !(m->o.state_rate >= 0.0) || !(m->o.max_skew >= 0.0) || !(m->o.reject_interval >= 0.0) ||
-        !isfinite(m->o.gap) || !isfinite(m->o.state_rate)) {
+        !isfinite(m->o.gap) || !isfinite(m->o.state_rate) || !(m->o.max_jump < 1e9)) {
         if (msg)
             snprintf(msg, msglen, "invalid monitor options");
         free(m);
@@ -229,6 +235,7 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     m->out = out;
     m->n = n;
     m->gap_us = (int64_t)llround(m->o.gap * 1e6);
+    m->jump_us = m->o.max_jump < 0.0 ? 0 : (int64_t)llround(m->o.max_jump * 1e6);
     m->state_period_us = m->o.state_rate > 0.0 ? (int64_t)llround(1e6 / m->o.state_rate) : 0;
     if (m->o.state_rate > 0.0 && m->state_period_us < 1)
         m->state_period_us = 1;
@@ -318,8 +325,9 @@ static void reject_alarm(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utim
 
 static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_mon_reject *why)
 {
-    static const int code[SW_MON_NREJ] = {SW_EPARSE,  SW_EPARSE, SW_ENONFINITE, SW_ETOOBIG,
-                                          SW_ETOOBIG, SW_EORDER, SW_EORDER,     SW_EINVAL};
+    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE, SW_ENONFINITE,
+                                          SW_ETOOBIG, SW_ETOOBIG, SW_EORDER,
+                                          SW_EORDER, SW_EORDER, SW_EINVAL};
     m->c.rejected[r]++;
     m->rej_pending[r]++;
     reject_alarm(m, r, mono, input_utime(m, utime));
@@ -327,6 +335,9 @@ static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_m
         *why = r;
     return code[r];
 }
+
+static int accept(sw_mon_t *m, const swaywatch_accel_t *s, double mono, sw_mon_reject *why);
+static void drop_held(sw_mon_t *m, int keep, double mono);
 
 int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, double mono,
                 sw_mon_reject *why)
@@ -352,6 +363,59 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
     if (m->have_last && s.utime < m->last_us)
         return refuse(m, SW_MON_REJ_OUT_OF_ORDER, mono, s.utime, why);
 
+    /* Held samples (far from the last accepted one) and the next one s:
+     * s on the old timeline refutes them all; s within max_jump of a held
+     * one confirms it (the clock did jump), which is taken, then s (or s is
+     * refused as late if it is before it), and the other held one is
+     * refused; s far from all of them is held as well, the oldest of two
+     * refused to make room.  Two places, not one: a glitch that
+     * alternates with good samples, or a bad first sample, does not refute
+     * the good ones. */
+    const int on_old = m->have_last && s.utime - m->last_us <= m->jump_us;
+    if (m->jump_us <= 0 || on_old) {
+        drop_held(m, -1, mono);
+        return accept(m, &s, mono, why);
+    }
+    for (int i = 0; i < m->nheld; i++) {
+        const swaywatch_accel_t h = m->held[i];
+        if (s.utime == h.utime)
+            return refuse(m, SW_MON_REJ_DUPLICATE, mono, s.utime, why);
+        if (llabs(s.utime - h.utime) <= m->jump_us) {
+            const double rx = m->held_rx[i];
+            drop_held(m, i, mono);
+            accept(m, &h, rx, NULL);
+            if (s.utime < h.utime)
+                return refuse(m, SW_MON_REJ_OUT_OF_ORDER, mono, s.utime, why);
+            return accept(m, &s, mono, why);
+        }
+    }
+    if (m->nheld == SW_MON_HELD_MAX) {
+        refuse(m, SW_MON_REJ_JUMP, mono, m->held[0].utime, NULL);
+        m->held[0] = m->held[1];
+        m->held_rx[0] = m->held_rx[1];
+        m->nheld--;
+    }
+    m->held[m->nheld] = s;
+    m->held_rx[m->nheld++] = mono;
+    m->c.held = m->nheld;
+    return SW_MON_HELD;
+}
+
+/* Refuse every held sample as a jump but the one at index keep (-1: all). */
+static void drop_held(sw_mon_t *m, int keep, double mono)
+{
+    for (int i = 0; i < m->nheld; i++)
+        if (i != keep) refuse(m, SW_MON_REJ_JUMP, mono, m->held[i].utime, NULL);
+    m->nheld = 0;
+    m->c.held = 0;
+}
+
+
+/* Push a checked sample into the engine; its gap and seq bookkeeping. */
+static int accept(sw_mon_t *m, const swaywatch_accel_t *sp, double mono, sw_mon_reject *why)
+{
+    const swaywatch_accel_t s = *sp;
+    const double v[3] = {s.ax * m->o.accel_scale, s.ay * m->o.accel_scale, s.az * m->o.accel_scale};
     double a_g = m->o.flip ? -v[m->o.axis] : v[m->o.axis];
     double a_z = m->o.vertical >= 0 ? v[m->o.vertical] : 0.0;
     if (!m->have_last)
@@ -422,12 +486,20 @@ void sw_mon_tick(sw_mon_t *m, double mono)
 
 void sw_mon_flush(sw_mon_t *m)
 {
+    drop_held(m, -1, INFINITY);
     for (int r = 0; r < SW_MON_NREJ; r++) reject_alarm(m, (sw_mon_reject)r, INFINITY, m->last_us);
 }
 
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
 {
     *c = m->c;
+}
+
+long sw_mon_rejected(const sw_mon_counts_t *c)
+{
+    long n = 0;
+    for (int r = 0; r < SW_MON_NREJ; r++) n += c->rejected[r];
+    return n;
 }
 
 sw_engine_t *sw_mon_engine(sw_mon_t *m)

@@ -9,11 +9,17 @@
  * (LCM publishing over udpm does not), prints or touches files.
  *
  * Every message received is accounted for exactly once:
- *   received = accepted + sum of rejected[reason].
+ *   received = accepted + sum of rejected[reason] + held.
  * Time: samples are integrated by their own utime (the sensor's clock),
  * never by arrival time; the first accepted sample is t = 0 of the engine.
  * A sample at or before the last accepted one is refused: the model never
- * integrates backwards. */
+ * integrates backwards.  A sample further than max_jump after the last
+ * accepted one (or the very first sample) is held: a later sample within
+ * max_jump of it confirms it (the clock did jump: a sensor back after an
+ * outage) and both are taken; a sample on the old timeline refutes it, and
+ * it is refused as a jump.  At most SW_MON_HELD_MAX wait at a time.  So
+ * one sample with a wrong utime far in the future cannot make every later
+ * sample "late", nor make the engine integrate across a year. */
 #ifndef SWAYWATCH_LCMMON_H
 #define SWAYWATCH_LCMMON_H
 
@@ -31,6 +37,8 @@
 #define SW_G0 9.80665                 /* m/s^2, standard gravity (unit "g") */
 #define SW_MON_GAP 0.1                /* s, default sensor gap threshold */
 #define SW_MON_MAX_ACCEL (50 * SW_G0) /* m/s^2, default plausibility limit */
+#define SW_MON_MAX_JUMP 10.0          /* s, default largest step of utime taken unconfirmed */
+#define SW_MON_HELD_MAX 2             /* samples held at most, waiting for confirmation */
 
 /* Why a message on the accel channel was refused. */
 typedef enum {
@@ -41,6 +49,7 @@ typedef enum {
     SW_MON_REJ_SKEW,         /* utime too far from the wall clock */
     SW_MON_REJ_DUPLICATE,    /* same utime as the last accepted sample */
     SW_MON_REJ_OUT_OF_ORDER, /* utime before the last accepted sample (late) */
+    SW_MON_REJ_JUMP,         /* utime far ahead, and the next sample did not follow it */
     SW_MON_REJ_ENGINE,       /* refused by the engine (should not happen) */
     SW_MON_NREJ
 } sw_mon_reject;
@@ -57,6 +66,8 @@ typedef struct {
     double max_accel;          /* m/s^2, plausibility limit (in m/s^2 after scaling);
                                   0 = SW_MON_MAX_ACCEL */
     double max_skew;           /* s, largest |utime - wall clock|; 0 = not checked */
+    double max_jump;           /* s, largest step of utime taken without confirmation;
+                                  0 = SW_MON_MAX_JUMP, < 0 = any (no sample held) */
     double hysteresis;         /* 1, margin alarms; < 0 = SW_ALARM_HYSTERESIS */
     double reject_interval;    /* s, at most one INPUT_REJECTED alarm per reason per
                                   interval (later ones are summed up); 0 = 1 s */
@@ -70,6 +81,7 @@ typedef struct {
 typedef struct {
     long received;              /* messages handed to sw_mon_feed() */
     long accepted;              /* pushed into the engine */
+    long held;                  /* samples waiting to be confirmed (0..SW_MON_HELD_MAX) */
     long rejected[SW_MON_NREJ]; /* received = accepted + sum(rejected) */
     long lost;                  /* samples missing by the sender's seq (dropped on the way) */
     long seq_restarts;          /* seq went back while utime went on: sender restarted */
@@ -93,8 +105,9 @@ void sw_mon_destroy(sw_mon_t *m); /* NULL ok */
 /* One message from the accel channel.  wall_us: wall clock now (us since
  * 1970, for the skew check; ignored when max_skew is 0); mono: a monotonic
  * clock in s (arrival time: sensor gaps and alarm rate limits).  Returns
- * SW_OK or SW_EVENT when accepted, or a negative status when refused
- * (*why, if not NULL, gets the reason). */
+ * SW_OK or SW_EVENT when accepted, SW_MON_HELD when held (see above), or a
+ * negative status when refused (*why, if not NULL, gets the reason). */
+#define SW_MON_HELD 100
 int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, double mono,
                 sw_mon_reject *why);
 
@@ -107,7 +120,8 @@ void sw_mon_tick(sw_mon_t *m, double mono);
  * none. */
 double sw_mon_deadline(const sw_mon_t *m);
 
-/* End of input: publish rejection summaries still held back. */
+/* End of input: refuse samples still held (nothing confirmed them) and
+ * publish rejection summaries still held back. */
 void sw_mon_flush(sw_mon_t *m);
 
 /* Replace package k by a new, validated scene (a scene file edited while
@@ -119,13 +133,14 @@ void sw_mon_flush(sw_mon_t *m);
 int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, size_t msglen);
 
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c);
+long sw_mon_rejected(const sw_mon_counts_t *c); /* sum of rejected[] */
 sw_engine_t *sw_mon_engine(sw_mon_t *m);
 int64_t sw_mon_origin(const sw_mon_t *m); /* utime of t = 0 (us), 0 before the first sample */
 int64_t sw_mon_last_utime(
     const sw_mon_t *m); /* utime of the last accepted sample (us), 0 if none */
 
 /* "decode", "trailing", "nonfinite", "implausible", "skew", "duplicate",
- * "out_of_order", "engine". */
+ * "out_of_order", "jump", "engine". */
 const char *sw_mon_reject_name(sw_mon_reject r);
 
 /* Axis name "x" | "y" | "z" to 0..2; -1 if none of them. */

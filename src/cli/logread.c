@@ -13,7 +13,6 @@
 #include "cli.h"
 
 #define CHUNK (64 * 1024)      /* bytes read and fed at a time */
-#define MAX_PRINTED_REJECTS 20 /* rejected rows listed one by one; the rest only counted */
 
 void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o)
 {
@@ -40,7 +39,7 @@ void sw_cli_print_csv_help(FILE *f)
             "Rows that cannot be used (missing field, not a number, not finite, time not\n"
             "increasing) are counted and reported on stderr with their line number (the first\n"
             "%d one by one); the run goes on without them unless --strict.\n",
-            MAX_PRINTED_REJECTS);
+            SW_CLI_MAX_PRINTED_REJECTS);
 }
 
 static int parse_delim(const char *arg, char *out)
@@ -98,8 +97,9 @@ static int check_col(const char *opt, const char *arg)
     return SW_EXIT_OK;
 }
 
-int sw_cli_csv_option(sw_cli_csv_opts_t *o, int c, const char *arg)
+int sw_cli_csv_option(void *opts, int c, const char *arg)
 {
+    sw_cli_csv_opts_t *o = opts;
     switch (c) {
     case SW_OPT_CSV_TIME_COL: o->csv.time_col = arg; return check_col("--time-col", arg);
     case SW_OPT_CSV_ACCEL_COL: o->csv.accel_col = arg; return check_col("--accel-col", arg);
@@ -115,13 +115,84 @@ int sw_cli_csv_option(sw_cli_csv_opts_t *o, int c, const char *arg)
     }
 }
 
+/* ---- rejected rows, log files ------------------------------------------------- */
+
+void sw_cli_rejects_add(sw_cli_rejects_t *r, long line, const char *reason)
+{
+    if (r->stop) return; /* strict: the run already ended at an earlier row */
+    r->reported++;
+    if (r->strict) r->stop = 1;
+    if (r->quiet || r->printed >= SW_CLI_MAX_PRINTED_REJECTS) return;
+    r->printed++;
+    sw_cli_error("%s:%ld: %s", r->name, line, reason);
+}
+
+void sw_cli_rejects_summary(const sw_cli_rejects_t *r)
+{
+    if (r->reported <= r->printed) return;
+    if (r->quiet)
+        sw_cli_error("%s: %ld rejected rows", r->name, r->reported);
+    else
+        sw_cli_error("%s: ... %ld more rejected rows", r->name, r->reported - r->printed);
+}
+
+int sw_cli_logfile_open(sw_cli_logfile_t *f, const char *path)
+{
+    memset(f, 0, sizeof *f);
+    f->name = strcmp(path, "-") ? path : "(stdin)";
+    f->in = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+    if (!f->in) {
+        sw_cli_error("%s: cannot open: %s", path, strerror(errno));
+        return SW_EXIT_IO;
+    }
+    f->buf = malloc(CHUNK);
+    if (!f->buf) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    f->len = fread(f->buf, 1, CHUNK, f->in);
+    if (ferror(f->in)) {
+        sw_cli_error("%s: cannot read: %s", f->name, strerror(errno));
+        return SW_EXIT_IO;
+    }
+    return SW_EXIT_OK;
+}
+
+int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop,
+                        void (*after)(void *), void *user, int *fr)
+{
+    *fr = SW_OK;
+    while (f->len > 0 && !*stop) {
+        *fr = sw_csv_feed(csv, f->buf, f->len);
+        if (after) after(user);
+        if (*fr < 0) return SW_EXIT_OK;
+        f->len = fread(f->buf, 1, CHUNK, f->in);
+        if (ferror(f->in)) {
+            sw_cli_error("%s: cannot read: %s", f->name, strerror(errno));
+            return SW_EXIT_IO;
+        }
+    }
+    if (!*stop) {
+        *fr = sw_csv_finish(csv);
+        if (after) after(user);
+    }
+    return SW_EXIT_OK;
+}
+
+void sw_cli_logfile_close(sw_cli_logfile_t *f)
+{
+    free(f->buf);
+    if (f->in && f->in != stdin) fclose(f->in);
+    memset(f, 0, sizeof *f);
+}
+
 /* ---- reading ------------------------------------------------------------------ */
 
 typedef struct {
     sw_cli_log_t *log;
-    const char *name;
-    int strict, quiet, stop, oom;
-    long reported, printed;
+    sw_cli_rejects_t rej;
+    int halt; /* rej.stop, or out of memory */
+    int oom;
 } read_ctx_t;
 
 static int grow(sw_cli_log_t *L)
@@ -142,23 +213,14 @@ static int grow(sw_cli_log_t *L)
     return 0;
 }
 
-static void report_reject(read_ctx_t *c, long line, const char *reason)
-{
-    c->reported++;
-    if (c->strict) c->stop = 1;
-    if (c->quiet || c->printed >= MAX_PRINTED_REJECTS) return;
-    c->printed++;
-    sw_cli_error("%s:%ld: %s", c->name, line, reason);
-}
-
 static int on_row(void *user, long line, double t, double a_g, double a_z)
 {
     read_ctx_t *c = user;
     sw_cli_log_t *L = c->log;
     (void)line;
-    if (c->stop || c->oom) return 1;
+    if (c->halt) return 1;
     if (L->n == L->cap && grow(L) != 0) {
-        c->oom = 1;
+        c->oom = c->halt = 1;
         return 1;
     }
     L->t[L->n] = t;
@@ -172,7 +234,8 @@ static void on_reject(void *user, long line, const char *reason)
 {
     read_ctx_t *c = user;
     if (c->oom) return;
-    report_reject(c, line, reason);
+    sw_cli_rejects_add(&c->rej, line, reason);
+    c->halt = c->rej.stop;
 }
 
 int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_cli_log_t *L)
@@ -180,85 +243,59 @@ int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_
     int rc = SW_EXIT_USAGE;
     memset(L, 0, sizeof *L);
     L->has_z = o->csv.vert_col != NULL;
-    read_ctx_t ctx = {L, strcmp(path, "-") ? path : "(stdin)", o->strict, quiet, 0, 0, 0, 0};
-    FILE *in = strcmp(path, "-") ? fopen(path, "rb") : stdin;
-    char *buf = NULL;
     sw_csv_t *csv = NULL;
-    if (!in) {
-        sw_cli_error("%s: cannot open: %s", path, strerror(errno));
-        return SW_EXIT_IO;
-    }
-    buf = malloc(CHUNK);
-    if (!buf) {
-        sw_cli_error("out of memory");
+    sw_cli_logfile_t f;
+    if (sw_cli_logfile_open(&f, path) != SW_EXIT_OK) {
         rc = SW_EXIT_IO;
         goto out;
     }
-    size_t len = fread(buf, 1, CHUNK, in);
-    if (ferror(in)) {
-        sw_cli_error("%s: cannot read: %s", ctx.name, strerror(errno));
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    if (sw_cli_is_lcmlog(buf, len)) {
+    read_ctx_t ctx = {L, {f.name, o->strict, quiet, 0, 0, 0}, 0, 0};
+    if (sw_cli_is_lcmlog(f.buf, f.len)) {
         sw_cli_error("%s: an lcm-logger file; this command reads CSV logs (replay reads both)",
-                     ctx.name);
+                     f.name);
         goto out;
     }
     int err = 0;
     char msg[256] = "";
     csv = sw_csv_create(&o->csv, on_row, on_reject, &ctx, &err, msg, sizeof msg);
     if (!csv) {
-        sw_cli_error("%s: %s", ctx.name, msg[0] ? msg : sw_strerror(err));
+        sw_cli_error("%s: %s", f.name, msg[0] ? msg : sw_strerror(err));
         goto out;
     }
-    int fr = SW_OK;
-    while (len > 0 && !ctx.stop && !ctx.oom) {
-        fr = sw_csv_feed(csv, buf, len);
-        if (fr < 0) break;
-        len = fread(buf, 1, CHUNK, in);
-        if (ferror(in)) {
-            sw_cli_error("%s: cannot read: %s", ctx.name, strerror(errno));
-            rc = SW_EXIT_IO;
-            goto out;
-        }
+    int fr;
+    if (sw_cli_logfile_pump(&f, csv, &ctx.halt, NULL, NULL, &fr) != SW_EXIT_OK) {
+        rc = SW_EXIT_IO;
+        goto out;
     }
-    if (fr >= 0 && !ctx.stop && !ctx.oom) fr = sw_csv_finish(csv);
     if (ctx.oom) {
-        sw_cli_error("%s: out of memory after %zu samples", ctx.name, L->n);
+        sw_cli_error("%s: out of memory after %zu samples", f.name, L->n);
         rc = SW_EXIT_IO;
         goto out;
     }
     if (fr < 0) {
         const char *why = sw_csv_error_message(csv);
-        sw_cli_error("%s: %s", ctx.name, why && why[0] ? why : sw_strerror(fr));
+        sw_cli_error("%s: %s", f.name, why && why[0] ? why : sw_strerror(fr));
         rc = fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
         goto out;
     }
-    if (ctx.stop) {
-        sw_cli_error("%s: stopped at the first rejected row (--strict)", ctx.name);
+    if (ctx.rej.stop) {
+        sw_cli_error("%s: stopped at the first rejected row (--strict)", f.name);
         goto out;
     }
     sw_csv_counts_t counts;
     sw_csv_counts(csv, &counts);
     L->rows = counts.rows;
     L->rejected = counts.rejected;
-    if (ctx.reported > ctx.printed) {
-        if (quiet)
-            sw_cli_error("%s: %ld rejected rows", ctx.name, ctx.reported);
-        else
-            sw_cli_error("%s: ... %ld more rejected rows", ctx.name, ctx.reported - ctx.printed);
-    }
+    sw_cli_rejects_summary(&ctx.rej);
     if (L->n == 0) {
-        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", ctx.name, counts.rows,
+        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", f.name, counts.rows,
                      counts.rejected);
         goto out;
     }
     rc = SW_EXIT_OK;
 out:
     sw_csv_destroy(csv);
-    free(buf);
-    if (in && in != stdin) fclose(in);
+    sw_cli_logfile_close(&f);
     if (rc != SW_EXIT_OK) sw_cli_log_free(L);
     return rc;
 }

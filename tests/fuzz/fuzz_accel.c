@@ -171,7 +171,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         wall += 1000;
         const int rc = sw_mon_feed(m, buf, (size_t)len, wall, mono, &why);
         fed++;
-        if (rc >= 0) {
+        if (rc == SW_MON_HELD) {
+            sw_mon_counts_t c;
+            sw_mon_counts(m, &c);
+            FZ_CHECK(c.held >= 1 && c.held <= SW_MON_HELD_MAX);
+        } else if (rc >= 0) {
             /* Accepted: it decoded exactly, and its values are sane. */
             swaywatch_accel_t d;
             FZ_CHECK(swaywatch_accel_t_decode(buf, 0, len, &d) == len);
@@ -196,6 +200,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     long rejected = 0;
     for (int r = 0; r < SW_MON_NREJ; r++) rejected += c.rejected[r];
     FZ_CHECK(c.received == fed);
+    FZ_CHECK(c.held == 0); /* the flush refused what was held */
     FZ_CHECK(c.received == c.accepted + rejected);
     FZ_CHECK(c.publish_errors == 0);
     FZ_CHECK(c.states == seen.states && c.alarms == seen.alarms);

@@ -180,9 +180,10 @@ static void check_counts_add_up(const sw_mon_t *mon)
 {
     sw_mon_counts_t c;
     sw_mon_counts(mon, &c);
-    long rej = 0;
+    long rej = 0; /* summed here, not by sw_mon_rejected(): that is under test too */
     for (int i = 0; i < SW_MON_NREJ; i++) rej += c.rejected[i];
-    assert_int_equal(c.received, c.accepted + rej);
+    assert_int_equal(rej, sw_mon_rejected(&c));
+    assert_int_equal(c.received, c.accepted + rej + c.held);
 }
 
 static void check_all_finite(const bus_t *b)
@@ -536,10 +537,12 @@ static void test_axis_flip_unit(void **st)
     mo.accel_scale = SW_G0;
     rig_t *r = rig_new(1, &mo);
     send(r, 0, UTIME0, 5.0, 0.25, 0.0);
-    assert_int_equal(r->bus.nst, 1);
+    assert_int_equal(r->bus.nst, 0); /* the first sample waits for the second */
+    send(r, 1, UTIME0 + 1000, 5.0, 0.25, 0.0);
+    assert_int_equal(r->bus.nst, 2);
     assert_true(fabs(r->bus.st[0].a_g - (-0.25 * SW_G0)) < 1e-12);
     /* 60 g on an axis that is not used is still implausible. */
-    send(r, 1, UTIME0 + 1000, 60.0, 0.0, 0.0);
+    send(r, 2, UTIME0 + 2000, 60.0, 0.0, 0.0);
     sw_mon_counts_t c;
     sw_mon_counts(r->mon, &c);
     assert_int_equal(c.rejected[SW_MON_REJ_IMPLAUSIBLE], 1);
@@ -571,6 +574,86 @@ static void test_skew(void **st)
     rig_free(r);
 }
 
+/* One sample stamped a year ahead (a clock glitch) is held, then refused
+ * as a jump when the next sample is on the old timeline: the stream goes on,
+ * the model ends exactly where a run without the glitch ends, and no gap
+ * of a year is bridged.  A real outage of a minute is confirmed by the
+ * sample after it and bridged.  A bogus first sample is refused the same
+ * way; a sample held at the end of the input is refused by the flush. */
+static void test_jump(void **st)
+{
+    (void)st;
+    const int64_t year = 365LL * 86400 * 1000000;
+    rig_t *clean = rig_new(1, NULL), *r = rig_new(1, NULL);
+    send(r, 0, UTIME0 + year, 0.0, 0, 0); /* bogus first sample */
+    for (long k = 0; k < NSAMP; k++) {
+        send_k(clean, k);
+        send_k(r, k);
+        if (k == 700) send(r, k + 1, UTIME0 + k * 1000 + year, 0.0, 0, 0); /* glitch */
+        if (k >= 1000 && k < 1010) /* a glitch that alternates with good samples */
+            send(r, k + 1, UTIME0 + k * 1000 + year + k, 0.0, 0, 0);
+    }
+    sw_output_t want, got;
+    final_output(clean, &want);
+    final_output(r, &got);
+    assert_true(got.t == want.t);
+    assert_true(got.state.theta == want.state.theta && got.margin == want.margin);
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.accepted, NSAMP);
+    assert_int_equal(c.rejected[SW_MON_REJ_JUMP], 12);
+    assert_int_equal(c.rejected[SW_MON_REJ_OUT_OF_ORDER], 0);
+    assert_int_equal(c.gaps, 0);
+    assert_int_equal(c.held, 0);
+    assert_int_equal(sw_mon_last_utime(r->mon), UTIME0 + (NSAMP - 1) * 1000);
+    check_counts_add_up(r->mon);
+    /* the same states were published as without the glitches */
+    assert_int_equal(r->bus.nst, clean->bus.nst);
+
+    /* An outage of a minute: the first sample after it waits, the next
+     * confirms it, both are taken and the minute is bridged (one gap). */
+    const int64_t after = UTIME0 + (NSAMP - 1) * 1000 + 60000000LL;
+    send(r, NSAMP, after, 0.0, 0, 0);
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.held, 1);
+    check_counts_add_up(r->mon);
+    send(r, NSAMP + 1, after + 1000, 0.0, 0, 0);
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.held, 0);
+    assert_int_equal(c.accepted, NSAMP + 2);
+    assert_int_equal(c.gaps, 1);
+    assert_int_equal(sw_mon_last_utime(r->mon), after + 1000);
+
+    /* Held at the end: the flush refuses it. */
+    send(r, NSAMP + 2, after + year, 0.0, 0, 0);
+    sw_mon_flush(r->mon);
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.held, 0);
+    assert_int_equal(c.rejected[SW_MON_REJ_JUMP], 13);
+    check_counts_add_up(r->mon);
+    check_all_finite(&r->bus);
+    rig_free(clean);
+    rig_free(r);
+
+    /* max_jump < 0: nothing is held; the glitch is taken and every later
+     * sample is late (the behaviour the hold prevents). */
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.hysteresis = -1;
+    mo.max_jump = -1.0;
+    r = rig_new(1, &mo);
+    for (long k = 0; k < 100; k++) {
+        send_k(r, k);
+        if (k == 50) send(r, k + 1, UTIME0 + k * 1000 + 20000000LL, 0.0, 0, 0); /* +20 s */
+    }
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.accepted, 52);
+    assert_int_equal(c.rejected[SW_MON_REJ_OUT_OF_ORDER], 49);
+    check_counts_add_up(r->mon);
+    rig_free(r);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -582,6 +665,7 @@ int main(void)
         cmocka_unit_test(test_model_fault_never_nan),
         cmocka_unit_test(test_axis_flip_unit),
         cmocka_unit_test(test_skew),
+        cmocka_unit_test(test_jump),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
