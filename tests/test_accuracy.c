@@ -74,10 +74,15 @@ static void test_refusals(void **state)
     assert_int_equal(sw_scheme_for_accuracy(SW_MODEL_BARE, NAN, &scheme, &dt), SW_EINVAL);
     assert_int_equal(sw_scheme_for_accuracy(SW_MODEL_BARE, 1e-3, NULL, &dt), SW_EINVAL);
     assert_int_equal(sw_scheme_for_accuracy((sw_model_kind)99, 1e-3, &scheme, &dt), SW_EINVAL);
-    /* a loose tolerance gets the default */
-    assert_int_equal(sw_scheme_for_accuracy(SW_MODEL_FRAME, 1.0, &scheme, &dt), SW_OK);
-    assert_string_equal(scheme, SW_DEFAULT_SCHEME);
-    assert_true(dt == SW_DEFAULT_DT);
+    /* a tolerance looser than any row gets the loosest row, a fixed step
+     * no longer than the default (1e-3, checked above, passes through the
+     * same row) */
+    const char *loose = NULL;
+    double loose_dt = 0.0;
+    assert_int_equal(sw_scheme_for_accuracy(SW_MODEL_FRAME, 1.0, &loose, &loose_dt), SW_OK);
+    assert_int_equal(sw_scheme_for_accuracy(SW_MODEL_FRAME, 1e-3, &scheme, &dt), SW_OK);
+    assert_string_equal(loose, scheme);
+    assert_true(loose_dt == dt && dt > 0.0 && dt <= SW_DEFAULT_DT);
 }
 
 int main(void)

@@ -138,13 +138,20 @@ static int step_to(sw_engine_t *e, sw_pkg_t *P, double t0, double h, const doubl
  * turned beyond half a turn (a step may overshoot pi/2 slightly before the
  * overturn event cuts it; one that lands beyond pi computed garbage, and its
  * numbers must not reach the summary). */
-/* Every v[i] finite?  Without a branch or a chain of additions per number:
- * the state and the report are checked on every step and sample. */
+/* Every v[i] finite?  0 v is 0 for a finite v and NaN for an infinite or
+ * NaN one, so the sum of them is 0 exactly when all are finite: two
+ * multiply-adds a number and no branch, in two chains that overlap (the
+ * state and the report are checked on every step and sample). */
 static int all_finite(const double v[], size_t n)
 {
-    int ok = 1;
-    for (size_t i = 0; i < n; i++) ok &= fabs(v[i]) <= DBL_MAX; /* false for NaN */
-    return ok;
+    double s0 = 0.0, s1 = 0.0;
+    size_t i = 0;
+    for (; i + 1 < n; i += 2) {
+        s0 += 0.0 * v[i];
+        s1 += 0.0 * v[i + 1];
+    }
+    if (i < n) s0 += 0.0 * v[i];
+    return s0 + s1 == 0.0;
 }
 
 static int finite_state(const sw_pkg_t *P, const double y[])
@@ -1040,9 +1047,10 @@ static void handle_event(sw_engine_t *e, sw_pkg_t *P, int ev, double t)
 static int input_unstable(const sw_engine_t *e, const sw_pkg_t *P, double t0, double t1)
 {
     if (e->scheme->adaptive) return 0; /* GSL shortens its steps itself */
-    const double a = fmax(fmax(fabs(sw_input_ag(P->in, t0)), fabs(sw_input_ag(P->in, t1))),
-                          fmax(fabs(sw_input_geff(P, t0)), fabs(sw_input_geff(P, t1))));
-    return !(sqrt(P->kR * a) * P->h <= e->scheme->stab);
+    const double a = max2(max2(fabs(sw_input_ag(P->in, t0)), fabs(sw_input_ag(P->in, t1))),
+                          max2(fabs(sw_input_geff(P, t0)), fabs(sw_input_geff(P, t1))));
+    const double stab = e->scheme->stab;
+    return !(P->kR * a * P->h * P->h <= stab * stab); /* NaN: unstable */
 }
 
 /* One fixed step from (P->t, P->y) into y1, no longer than the package's

@@ -175,10 +175,12 @@ static double cos_alpha(const sw_derived_t *d)
 static double margin_rocking_c(const sw_derived_t *d, double r, double theta, double theta_dot,
                                double cA)
 {
-    const double ca = cos_alpha(d), one = 1.0 - ca;
+    /* energy above rest in units of the barrier, potential and kinetic */
+    const double ca = cos_alpha(d), p2 = 2.0 * d->p * d->p;
+    const double k = 1.0 / (p2 * (1.0 - ca)); /* one division per report */
     const double ath = fabs(theta);
-    const double PE = (cA - ca) / one;
-    const double KE = theta_dot * theta_dot / (2.0 * d->p * d->p * one);
+    const double PE = (cA - ca) * p2 * k;
+    const double KE = theta_dot * theta_dot * k;
     const double E = PE + KE;
     const int outward = theta * theta_dot > 0.0 || (theta == 0.0 && theta_dot != 0.0);
     if (theta == 0.0 && theta_dot == 0.0) return 1.0;
@@ -212,10 +214,11 @@ double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 static double energy_frame_c(const sw_derived_t *d, double g_eff, const sw_state_t *s, double cA)
 {
     if (d->gamma <= 0.0) return energy_bare_c(d, g_eff, s, cA);
-    return 0.5 * s->u_dot * s->u_dot / d->gamma + d->R * cA * s->u_dot * s->theta_dot +
+    const double wb = d->omega_b;
+    return (0.5 / d->gamma) * (s->u_dot * s->u_dot + wb * wb * s->u * s->u) +
+           d->R * cA * s->u_dot * s->theta_dot +
            (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
-           g_eff * d->R * (cA - cos_alpha(d)) +
-           0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
+           g_eff * d->R * (cA - cos_alpha(d));
 }
 
 double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
