@@ -670,6 +670,49 @@ static int check_pair(vctx *v, int line, const char *sec, sw_given given, double
                : check_value(v, line, key, dim, keys[k].unit, dim_what, zero_ok, 0, INFINITY);
 }
 
+/* A spring-damper given either dimensionally (stiffness N/m, damping
+ * N*s/m) or as a frequency and damping ratio, on a moving mass mt (kg):
+ * both forms out, and a report when the pair is absurd.  sec is the
+ * section ("frame", "cushion"), sym the subscript ("b", "c"), what names
+ * what decays ("the bearings").  Neither damping given: none. */
+typedef struct {
+    double k, omega, c, zeta; /* N/m, rad/s, N*s/m, 1 */
+} spring_t;
+
+static spring_t spring_of(vctx *v, int line, const char *sec, const char *sym, const char *what,
+                          double mt, int k_given, double stiffness, double omega, int c_given,
+                          double damping, double zeta)
+{
+    char a[64];
+    spring_t r = {0, 0, 0, 0};
+    if (k_given == SW_GIVEN_RATIO) {
+        r.omega = omega;
+        r.k = omega * omega * mt;
+    } else {
+        r.k = stiffness;
+        r.omega = sqrt(r.k / mt);
+        if (r.omega > OMEGA_MAX)
+            VREPORT(v, line,
+                    "%s.stiffness = %s gives omega_%s = %g rad/s, which is absurd: expected at "
+                    "most %g rad/s",
+                    sec, qty(a, sizeof a, r.k, "N/m"), sym, r.omega, OMEGA_MAX);
+    }
+    if (c_given == SW_GIVEN_RATIO) {
+        r.zeta = zeta;
+        r.c = 2 * zeta * r.omega * mt;
+    } else if (c_given == SW_GIVEN_DIMENSIONAL) {
+        r.c = damping;
+        r.zeta = r.c / (2 * r.omega * mt);
+    }
+    if (r.omega <= OMEGA_MAX && mode_rate(r.omega, r.zeta) > OMEGA_MAX)
+        VREPORT(v, line,
+                "%s.%s: zeta_%s = %g with omega_%s = %g rad/s makes %s decay at %g 1/s, which "
+                "is absurd: expected at most %g 1/s",
+                sec, c_given == SW_GIVEN_RATIO ? "zeta" : "damping", sym, r.zeta, sym, r.omega,
+                what, mode_rate(r.omega, r.zeta), OMEGA_MAX);
+    return r;
+}
+
 int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin, sw_diag_fn diag,
                       void *user)
 {
@@ -718,31 +761,13 @@ int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
             m_b = sc->frame_mass;
             const double mt = m + m_b; /* kg, package and frame move together */
             gamma = m / mt;
-            if (sc->frame_k_given == SW_GIVEN_RATIO) {
-                omega_b = sc->frame_omega;
-                k_b = omega_b * omega_b * mt;
-            } else {
-                k_b = sc->frame_stiffness;
-                omega_b = sqrt(k_b / mt);
-                if (omega_b > OMEGA_MAX)
-                    VREPORT(&v, lf,
-                            "frame.stiffness = %s gives omega_b = %g rad/s, which is absurd: "
-                            "expected at most %g rad/s",
-                            qty(a, sizeof a, k_b, "N/m"), omega_b, OMEGA_MAX);
-            }
-            if (sc->frame_c_given == SW_GIVEN_RATIO) {
-                zeta_b = sc->frame_zeta;
-                c_b = 2 * zeta_b * omega_b * mt;
-            } else {
-                c_b = sc->frame_damping;
-                zeta_b = c_b / (2 * omega_b * mt);
-            }
-            if (omega_b <= OMEGA_MAX && mode_rate(omega_b, zeta_b) > OMEGA_MAX)
-                VREPORT(&v, lf,
-                        "frame.%s: zeta_b = %g with omega_b = %g rad/s makes the bearings decay "
-                        "at %g 1/s, which is absurd: expected at most %g 1/s",
-                        sc->frame_c_given == SW_GIVEN_RATIO ? "zeta" : "damping", zeta_b, omega_b,
-                        mode_rate(omega_b, zeta_b), OMEGA_MAX);
+            const spring_t br = spring_of(&v, lf, "frame", "b", "the bearings", mt,
+                                          sc->frame_k_given, sc->frame_stiffness, sc->frame_omega,
+                                          sc->frame_c_given, sc->frame_damping, sc->frame_zeta);
+            k_b = br.k;
+            omega_b = br.omega;
+            c_b = br.c;
+            zeta_b = br.zeta;
         }
     }
 
@@ -760,33 +785,16 @@ int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
         int b_ok = check_value(&v, lc, "cushion.cubic", sc->cushion_cubic, "N/m^3",
                                "the total cubic cushion stiffness B3", 1, 0, INFINITY);
         if (pkg_ok && k_ok && c_ok && b_ok) {
-            const char *kkey = "cushion.stiffness";
-            if (sc->cushion_k_given == SW_GIVEN_RATIO) {
-                kkey = "cushion.omega";
-                omega_c = sc->cushion_omega;
-                K = omega_c * omega_c * m;
-            } else {
-                K = sc->cushion_stiffness;
-                omega_c = sqrt(K / m);
-                if (omega_c > OMEGA_MAX)
-                    VREPORT(&v, lc,
-                            "cushion.stiffness = %s gives omega_c = %g rad/s, which is absurd: "
-                            "expected at most %g rad/s",
-                            qty(a, sizeof a, K, "N/m"), omega_c, OMEGA_MAX);
-            }
-            if (sc->cushion_c_given == SW_GIVEN_RATIO) {
-                zeta_c = sc->cushion_zeta;
-                C = 2 * zeta_c * m * omega_c;
-            } else if (sc->cushion_c_given == SW_GIVEN_DIMENSIONAL) {
-                C = sc->cushion_damping;
-                zeta_c = C / (2 * m * omega_c);
-            }
-            if (omega_c <= OMEGA_MAX && mode_rate(omega_c, zeta_c) > OMEGA_MAX)
-                VREPORT(&v, lc,
-                        "cushion.%s: zeta_c = %g with omega_c = %g rad/s makes the cushion decay "
-                        "at %g 1/s, which is absurd: expected at most %g 1/s",
-                        sc->cushion_c_given == SW_GIVEN_RATIO ? "zeta" : "damping", zeta_c,
-                        omega_c, mode_rate(omega_c, zeta_c), OMEGA_MAX);
+            const char *kkey =
+                sc->cushion_k_given == SW_GIVEN_RATIO ? "cushion.omega" : "cushion.stiffness";
+            const spring_t cu = spring_of(&v, lc, "cushion", "c", "the cushion", m,
+                                          sc->cushion_k_given, sc->cushion_stiffness,
+                                          sc->cushion_omega, sc->cushion_c_given,
+                                          sc->cushion_damping, sc->cushion_zeta);
+            K = cu.k;
+            omega_c = cu.omega;
+            C = cu.c;
+            zeta_c = cu.zeta;
             B3 = sc->cushion_cubic;
             /* physics.md, static stability: tilting by a small angle the
              * cushion's restoring moment K b^2/3 per radian must beat the
