@@ -70,9 +70,12 @@ enum {
  * missing value is reported by us, with our prefix). */
 #define SW_CLI_COMMON_SHORTOPTS ":hs:o:e:qv"
 
-/* The help of the shared options, and the exit-code paragraph every --help
- * ends with (overturn, strict: the command has --fail-on-overturn, --strict). */
+/* The help of the shared options (scene and integration, then output;
+ * the first part alone for a command that writes no files), and the
+ * exit-code paragraph every --help ends with (overturn, strict: the
+ * command has --fail-on-overturn, --strict). */
 void sw_cli_print_common_help(FILE *f);
+void sw_cli_print_scene_help(FILE *f);
 void sw_cli_print_exit_help(FILE *f, int overturn, int strict);
 
 typedef struct {
@@ -188,6 +191,8 @@ typedef struct {
 int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const sw_scene_t *scenes,
                        size_t n);
 void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *out);
+/* A CSV text field, quoted only when it has to be (RFC 4180). */
+void sw_cli_csv_text(FILE *f, const char *s);
 /* Flush and close; returns SW_EXIT_OK or SW_EXIT_IO (reported). */
 int sw_cli_states_close(sw_cli_states_t *w);
 

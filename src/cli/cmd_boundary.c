@@ -385,21 +385,6 @@ static void on_progress(void *user, size_t done, size_t total)
 
 /* ---- output -------------------------------------------------------------------- */
 
-/* A CSV text field, quoted only when it has to be. */
-static void csv_text(FILE *f, const char *s)
-{
-    if (!strpbrk(s, ",;\t\"\r\n")) {
-        fputs(s, f);
-        return;
-    }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"') fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 static void csv_num(FILE *f, double v)
 {
     if (isfinite(v)) fprintf(f, "%.6g", v);
@@ -411,7 +396,7 @@ static void write_curves(FILE *f, const curve_t *cv, size_t nc, const double *ra
     fputs("omega_ratio", f);
     for (size_t c = 0; c < nc; c++) {
         fputc(',', f);
-        csv_text(f, cv[c].label);
+        sw_cli_csv_text(f, cv[c].label);
     }
     fputc('\n', f);
     for (size_t i = 0; i < nr; i++) {
@@ -447,7 +432,7 @@ static void write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ra
         for (size_t i = 0; i < nr; i++) {
             const sw_boundary_point_t *P = &pts[c * nr + i];
             const sw_run_result_t *r = &P->th.at_x;
-            csv_text(f, cv[c].label);
+            sw_cli_csv_text(f, cv[c].label);
             fprintf(f, ",%.6g,%d,", ratios[i], P->th.found);
             if (P->th.found) {
                 csv_num(f, P->th.x);
@@ -479,7 +464,7 @@ static void write_islands(FILE *f, const curve_t *cv, size_t nc, const double *r
         for (size_t i = 0; i < nr; i++) {
             const sw_threshold_t *T = &pts[c * nr + i].th;
             for (int k = 0; k < T->n_islands; k++) {
-                csv_text(f, cv[c].label);
+                sw_cli_csv_text(f, cv[c].label);
                 fprintf(f, ",%.6g,%.6g,%.6g,%d\n", ratios[i], T->islands[k].lo, T->islands[k].hi,
                         T->islands[k].open);
             }

@@ -124,25 +124,16 @@ static void usage(FILE *f)
             "second with their count.  Samples lost on the way are counted from the sender's\n"
             "seq.  A state whose numbers are not all finite is never published: a MODEL_FAULT\n"
             "alarm is, instead.\n"
-            "\n"
-            "Scene and integration:\n"
-            "  -s, --scene FILE           scene file (INI); at least one, repeatable\n"
-            "      --set SEC.KEY=VALUE    override a key in every scene\n"
-            "      --scheme NAME          time stepper:");
-    for (size_t i = 0; sw_scheme_at(i); i++)
-        fprintf(f, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
+            "\n");
+    sw_cli_print_scene_help(f);
     fprintf(f,
-            " (default %s)\n"
-            "      --dt SECONDS           internal step (default: the scheme's own)\n"
-            "      --rtol X, --atol X     tolerances of the adaptive schemes\n"
-            "  -v, --verbose              derived quantities of each scene, on stderr\n"
-            "  -h, --help                 this help\n"
+            "  -v, --verbose            derived quantities of each scene, on stderr\n"
+            "  -h, --help               this help\n"
             "\n"
             "The monitor writes no files: record its output with lcm-logger.\n"
             "\n"
             "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
-            "3 LCM could not be set up (URL, network) or a scene file could not be read.\n",
-            SW_DEFAULT_SCHEME);
+            "3 LCM could not be set up (URL, network) or a scene file could not be read.\n");
 }
 
 /* ---- signals --------------------------------------------------------------- */

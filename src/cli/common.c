@@ -19,7 +19,7 @@
 
 /* ---- options ------------------------------------------------------------ */
 
-void sw_cli_print_common_help(FILE *f)
+void sw_cli_print_scene_help(FILE *f)
 {
     fprintf(f,
             "Scene (one package per file; several files, several packages):\n"
@@ -36,7 +36,13 @@ void sw_cli_print_common_help(FILE *f)
             "                           bound (default: the scheme's own, sub-stepped as needed)\n"
             "      --rtol X, --atol X   tolerances of the adaptive schemes (default 1e-10, 1e-12)\n"
             "      --accuracy RAD       pick the cheapest scheme and step measured to keep the\n"
-            "                           error of theta within RAD (docs/accuracy-speed.md)\n"
+            "                           error of theta within RAD (docs/accuracy-speed.md)\n");
+}
+
+void sw_cli_print_common_help(FILE *f)
+{
+    sw_cli_print_scene_help(f);
+    fprintf(f,
             "\n"
             "Output:\n"
             "  -o, --out FILE.csv       state time series: t,package,phase,theta,theta_dot,u,u_dot,\n"
@@ -504,8 +510,7 @@ const char *sw_cli_phase_name(sw_phase p)
     return "unknown";
 }
 
-/* A text field, quoted only when it has to be (RFC 4180). */
-static void csv_text(FILE *f, const char *s)
+void sw_cli_csv_text(FILE *f, const char *s)
 {
     if (!strpbrk(s, ",;\t\"\r\n")) {
         fputs(s, f);
@@ -596,7 +601,7 @@ void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *o)
         fputc(',', w->f);
         (*nf)++;
     }
-    csv_text(w->f, pkg_name(w->scenes, w->n, o->pkg));
+    sw_cli_csv_text(w->f, pkg_name(w->scenes, w->n, o->pkg));
     fprintf(w->f, ",%s", sw_cli_phase_name(s->phase));
     csv_num(w->f, s->theta, nf);
     csv_num(w->f, s->theta_dot, nf);
@@ -646,7 +651,7 @@ void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev)
         fputc(',', w->f);
         (*nf)++;
     }
-    csv_text(w->f, pkg_name(w->scenes, w->n, ev->pkg));
+    sw_cli_csv_text(w->f, pkg_name(w->scenes, w->n, ev->pkg));
     fprintf(w->f, ",%s", sw_cli_event_name(ev->kind));
     csv_num(w->f, ev->theta, nf);
     csv_num(w->f, ev->theta_dot, nf);

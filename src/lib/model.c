@@ -245,7 +245,8 @@ void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o)
     o->t = t;
     sw_model_to_state(P, &o->state);
     o->a_g = sw_input_ag(P->in, t);
-    double ge = sw_input_geff(P, t);
+    const double ge_in = sw_input_geff(P, t); /* m/s^2, as the right-hand side sees it */
+    double ge = ge_in;
     if (P->d.model == SW_MODEL_CUSHION) {
         double f[SW_NMAX];
         sw_cushion_rhs((sw_pkg_t *)P, t, P->y, f); /* const but for its rate tracking, off here */
@@ -269,7 +270,7 @@ void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o)
         o->a_support = o->a_g;
         if (P->d.model == SW_MODEL_FRAME) {
             double f[SW_NMAX];
-            sw_rigid_rhs_trig(P, SW_MODEL_FRAME, o->a_g, sw_input_geff(P, t), P->y, sn, c1, f);
+            sw_rigid_rhs_trig(P, SW_MODEL_FRAME, o->a_g, ge_in, P->y, sn, c1, f);
             o->a_support += f[P->idu];
         }
     }
