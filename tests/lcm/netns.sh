@@ -1,18 +1,7 @@
-# Sourced by the UDP multicast tests (sh).  Re-runs the calling script in a
-# new network namespace that has only loopback, and gives it the multicast
-# route LCM's udpm provider needs (a fresh namespace has none, and
-# lcm_create() then fails).  Nothing leaves the namespace: parallel tests
-# and other LCM users on the host never see each other's traffic.  No skip:
-# CI runs these as root, where both forms of unshare work.
-if [ -z "${SW_IN_NETNS:-}" ]; then
-    export SW_IN_NETNS=1
-    if unshare -rn true 2>/dev/null; then exec unshare -rn sh "$0" "$@"; fi
-    if unshare -n true 2>/dev/null; then exec unshare -n sh "$0" "$@"; fi
-    echo "$0: cannot create a network namespace (needs root or user namespaces)" >&2
-    exit 1
-fi
-ip link set lo up
-ip route add 224.0.0.0/4 dev lo
+# Sourced by the UDP multicast tests of this folder (sh): a network
+# namespace of their own (../netns_enter.sh; no skip: CI runs these as
+# root, where both forms of unshare work), a work folder, and helpers.
+. "$(dirname "$0")/../netns_enter.sh"
 
 T=$(mktemp -d)
 PIDS=""
@@ -67,4 +56,25 @@ json_theta() {
 # |a - b| <= tol
 close() {
     python3 -c 'import sys; a,b,t=map(float,sys.argv[1:]); sys.exit(abs(a-b) > t)' "$1" "$2" "$3"
+}
+
+# replay_published LOG: `swaywatch replay` of LOG ($SW, $SCENE), publishing
+# to a log; its dump in $T/replay.txt, its summary in $T/replay.json.
+replay_published() {
+    "$SW" replay "$1" --scene "$SCENE" --settle 0 --speed 0 \
+        --publish "file://$T/replay.lcmlog?mode=w" --json >"$T/replay.json"
+    "$TOOL" dump "$T/replay.lcmlog" >"$T/replay.txt"
+}
+
+# same_physics PATTERN WHAT: the live dump ($T/live.txt) has an alarm line
+# matching PATTERN (else fail WHAT), publishes the same states and alarms
+# as the replay, and its peak theta agrees with the replay's summary to
+# 1e-4 rad; sets $peak.
+same_physics() {
+    physics "$T/live.txt" >"$T/live.phys"
+    physics "$T/replay.txt" >"$T/replay.phys"
+    grep -q "$1" "$T/live.phys" || fail "$2"
+    diff "$T/live.phys" "$T/replay.phys" || fail "live and replayed states or alarms differ"
+    peak=$(sed -n 's/^state crate-A count [0-9]* max_abs_theta \([^ ]*\) .*/\1/p' "$T/live.txt")
+    close "$(json_theta "$T/replay.json")" "$peak" 1e-4 || fail "peak theta"
 }

@@ -15,16 +15,8 @@
 # Needs a network namespace (root, or user namespaces): exits 77 otherwise.
 # usage: sighup.sh SWAYWATCH SOURCE_DIR PYTHON_TYPES_DIR
 set -eu
-if [ -z "${SW_IN_NETNS:-}" ]; then
-    export SW_IN_NETNS=1
-    for u in "unshare -n" "unshare -rn"; do
-        if $u true 2>/dev/null; then exec $u sh "$0" "$@"; fi
-    done
-    echo "sighup.sh: cannot make a network namespace: skipped"
-    exit 77
-fi
-ip link set lo up
-ip route add 224.0.0.0/4 dev lo
+NETNS_SKIP=1
+. "$(dirname "$0")/../netns_enter.sh"
 
 SW=$1 SRC=$2 PYDIR=$3
 command -v lcm-logger >/dev/null && command -v lcm-logplayer >/dev/null || {
