@@ -22,6 +22,7 @@
  * numbers; a non-finite or implausible sample is never accepted. */
 #include <lcm/lcm.h>
 
+#include "../testutil.h"
 #include "fuzz.h"
 #include "lcmmon.h"
 #include "swaywatch_accel_t.h"
@@ -61,19 +62,8 @@ static void on_alarm_msg(const lcm_recv_buf_t *rb, const char *ch, void *user)
 
 static sw_scene_t crate(int frame)
 {
-    sw_scene_t sc;
-    sw_scene_init(&sc);
+    sw_scene_t sc = frame ? tu_frame(2.0, 0.728, 250.0, 5.59, 0.1) : tu_bare(2.0, 0.728);
     snprintf(sc.name, sizeof sc.name, frame ? "crate-frame" : "crate");
-    sc.height = 2.0;
-    sc.width = 0.728;
-    sc.mass = 1000.0;
-    if (frame) {
-        sc.has_frame = 1;
-        sc.frame_mass = 250.0;
-        sc.frame_omega = 5.59;
-        sc.frame_zeta = 0.1;
-        sc.frame_k_given = sc.frame_c_given = SW_GIVEN_RATIO;
-    }
     return sc;
 }
 
