@@ -397,7 +397,6 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
     }
     m->held[m->nheld] = s;
     m->held_rx[m->nheld++] = mono;
-    m->c.held = m->nheld;
     return SW_MON_HELD;
 }
 
@@ -407,9 +406,7 @@ static void drop_held(sw_mon_t *m, int keep, double mono)
     for (int i = 0; i < m->nheld; i++)
         if (i != keep) refuse(m, SW_MON_REJ_JUMP, mono, m->held[i].utime, NULL);
     m->nheld = 0;
-    m->c.held = 0;
 }
-
 
 /* Push a checked sample into the engine; its gap and seq bookkeeping. */
 static int accept(sw_mon_t *m, const swaywatch_accel_t *sp, double mono, sw_mon_reject *why)
@@ -493,6 +490,7 @@ void sw_mon_flush(sw_mon_t *m)
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
 {
     *c = m->c;
+    c->held = m->nheld;
 }
 
 long sw_mon_rejected(const sw_mon_counts_t *c)
