@@ -99,7 +99,7 @@ static int overturns_rk8pd(const sw_scene_t *sc, sw_pulse_shape shape, double om
         assert_int_equal(sw_scene_validate(&s, &d, NULL, NULL, NULL), SW_OK);
     }
     sw_pulse_t pulse = {shape, x * s.g * tan(d.alpha), omega};
-    sw_run_opts_t ro = {.scheme = "rk8pd", .free_periods = 40.0};
+    sw_run_opts_t ro = {.engine.scheme = "rk8pd", .free_periods = 40.0};
     sw_run_result_t r;
     char msg[256];
     assert_int_equal(sw_pulse_run(&s, &pulse, &ro, &r, msg, sizeof msg), SW_OK);
@@ -385,6 +385,38 @@ static void test_safety_factor_cushion(void **state)
 }
 
 /* Bad arguments are refused with a reason. */
+/* The run options carry the engine's: an accuracy reaches the run's
+ * engine (the scheme it picks, here rkf45 for 1e-13 rad, gives the same
+ * run bit for bit), and a model without a measured table is refused
+ * rather than run at the defaults. */
+static void test_run_accuracy(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = block025();
+    sw_derived_t d;
+    sw_scene_validate(&sc, &d, NULL, NULL, NULL);
+    static double t[4000], ag[4000];
+    const size_t n = sampled_half_sine(2.2 * sc.g * tan(d.alpha), 2.0 * d.p, t, ag, 4000);
+    sw_log_t log = {t, ag, NULL, n};
+    char msg[256];
+    sw_run_result_t acc, fixed, dflt;
+    sw_run_opts_t ro = {.settle = 10.0};
+    assert_int_equal(sw_log_run(&sc, &log, 1.0, &ro, &dflt, msg, sizeof msg), SW_OK);
+    ro.engine.scheme = "rkf45"; /* at its default step, as the accuracy table gives it */
+    ro.engine.dt = sw_scheme_default_dt(sw_scheme_lookup("rkf45"));
+    assert_int_equal(sw_log_run(&sc, &log, 1.0, &ro, &fixed, msg, sizeof msg), SW_OK);
+    ro.engine.scheme = NULL;
+    ro.engine.dt = 0.0;
+    ro.engine.accuracy = 1e-13;
+    assert_int_equal(sw_log_run(&sc, &log, 1.0, &ro, &acc, msg, sizeof msg), SW_OK);
+    assert_true(acc.overturned && fixed.overturned && dflt.overturned);
+    assert_true(acc.tip_time == fixed.tip_time);
+    assert_true(acc.tip_time != dflt.tip_time);
+    const sw_scene_t cu = with_cushion(block025(), 60.0, 0.1);
+    assert_int_equal(sw_log_run(&cu, &log, 1.0, &ro, &acc, msg, sizeof msg), SW_EINVAL);
+    assert_non_null(strstr(msg, "no measured table"));
+}
+
 static void test_bad_arguments(void **state)
 {
     (void)state;
@@ -397,7 +429,7 @@ static void test_bad_arguments(void **state)
     assert_non_null(strstr(msg, "no frame"));
     c.bearing_ratio = 0.0;
     assert_int_equal(sw_boundary_point(&c, -1.0, &o, &pt, msg, sizeof msg), SW_EINVAL);
-    o.run.scheme = "nonesuch";
+    o.run.engine.scheme = "nonesuch";
     assert_int_equal(sw_boundary_point(&c, 1.0, &o, &pt, msg, sizeof msg), SW_ENOTFOUND);
     assert_int_equal(pt.status, SW_ENOTFOUND);
     sw_pulse_t pulse = {SW_PULSE_HALF_SINE, 1.0, 0.0};
@@ -414,7 +446,7 @@ int main(void)
         cmocka_unit_test(test_bare_reference_tables), cmocka_unit_test(test_threads_identical),
         cmocka_unit_test(test_parallel_for),     cmocka_unit_test(test_safety_factor),
         cmocka_unit_test(test_safety_factor_frame), cmocka_unit_test(test_safety_factor_cushion),
-        cmocka_unit_test(test_bad_arguments),
+        cmocka_unit_test(test_run_accuracy),     cmocka_unit_test(test_bad_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

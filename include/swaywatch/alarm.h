@@ -21,6 +21,7 @@
 #include <stddef.h>
 
 #include "engine.h"
+#include "export.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -76,32 +77,33 @@ typedef struct {
 /* Set up w for package pkg with the scene's thresholds (1) and a hysteresis
  * (1; < 0 means SW_ALARM_HYSTERESIS).  Returns SW_OK, or SW_EINVAL when a
  * value is not finite. */
-int sw_alarm_init(sw_alarm_watch_t *w, size_t pkg, double warn_margin, double critical_margin,
+SW_API int sw_alarm_init(sw_alarm_watch_t *w, size_t pkg, double warn_margin, double critical_margin,
                   double hysteresis);
 
 /* Feed one engine event of w's package.  Calls emit (may be NULL) with the
  * alarm it maps to; returns the number of alarms raised (0 or 1). */
-int sw_alarm_on_event(sw_alarm_watch_t *w, const sw_event_t *ev, sw_alarm_fn emit, void *user);
+SW_API int sw_alarm_on_event(sw_alarm_watch_t *w, const sw_event_t *ev, sw_alarm_fn emit, void *user);
 
 /* Feed one engine output (state) of w's package.  Raises WARN / CRITICAL
  * (both, WARN first, when the margin falls below both at once) and
  * MODEL_FAULT when an output value is not finite (once, until the output is
  * finite again).  Returns the number of alarms raised (0..2). */
-int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *out, sw_alarm_fn emit, void *user);
+SW_API int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *out, sw_alarm_fn emit, void *user);
 
-/* Non-zero when every number of out is finite, i.e. it may be published. */
-int sw_alarm_output_finite(const sw_output_t *out);
+/* Non-zero when every number of out is finite, i.e. it may be published:
+ * sw_output_finite() (engine.h), under the name earlier releases had. */
+SW_API int sw_alarm_output_finite(const sw_output_t *out);
 
 /* Fill a with an input-level alarm (pkg = SW_ALARM_ALL, theta = margin =
  * 0) at time t (s); text is copied and truncated to fit. */
-void sw_alarm_input(sw_alarm_t *a, sw_alarm_kind kind, sw_alarm_level level, double t,
+SW_API void sw_alarm_input(sw_alarm_t *a, sw_alarm_kind kind, sw_alarm_level level, double t,
                     const char *text);
 
 /* "uplift", "impact", "warn", "critical", "tip", "overturned", "rest",
  * "model_fault", "sensor_gap", "input_rejected"; "unknown" otherwise. */
-const char *sw_alarm_kind_name(sw_alarm_kind k);
+SW_API const char *sw_alarm_kind_name(sw_alarm_kind k);
 /* "info", "warn", "critical"; "unknown" otherwise. */
-const char *sw_alarm_level_name(sw_alarm_level l);
+SW_API const char *sw_alarm_level_name(sw_alarm_level l);
 
 #ifdef __cplusplus
 }

@@ -26,6 +26,8 @@
 
 #include <stddef.h>
 
+#include "export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -65,9 +67,9 @@ typedef struct sw_csv sw_csv_t;
  * named column with header = 0 is SW_ENOTFOUND).  on_row and on_reject may
  * be NULL.  A non-zero return from on_row rejects that row: it is counted
  * and reported to on_reject with reason "refused by consumer". */
-sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_reject_fn on_reject,
+SW_API sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_reject_fn on_reject,
                         void *user, int *err, char *msg, size_t msglen);
-void sw_csv_destroy(sw_csv_t *c);
+SW_API void sw_csv_destroy(sw_csv_t *c);
 
 /* Feed bytes; returns SW_OK or a negative code that ends the parse and is
  * returned again by every later call: SW_ENOTFOUND when a named column is
@@ -75,17 +77,17 @@ void sw_csv_destroy(sw_csv_t *c);
  * reported as rejected), SW_EINVAL when two roles resolve to the same header
  * field.  sw_csv_error_message() says which column and line.  Bad rows are
  * not errors: they are counted and reported. */
-int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len);
+SW_API int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len);
 
 /* Flush the last line (with or without a final newline).  Feeding after
  * finish is an error (SW_EINVAL). */
-int sw_csv_finish(sw_csv_t *c);
+SW_API int sw_csv_finish(sw_csv_t *c);
 
-void sw_csv_counts(const sw_csv_t *c, sw_csv_counts_t *out);
+SW_API void sw_csv_counts(const sw_csv_t *c, sw_csv_counts_t *out);
 
 /* Details of the error that ended the parse ("line 1: no column named
  * \"acc\" (accel) in the header"); "" when there was none. */
-const char *sw_csv_error_message(const sw_csv_t *c);
+SW_API const char *sw_csv_error_message(const sw_csv_t *c);
 
 #ifdef __cplusplus
 }

@@ -16,18 +16,14 @@
 
 #include <stddef.h>
 
+#include "export.h"
+#include "model.h"
 #include "scene.h"
+#include "scheme.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-typedef enum {
-    SW_PHASE_STUCK = 0,     /* package moves with its support (theta = 0) */
-    SW_PHASE_ROCKING = 1,   /* rocking about a base corner (bare/frame), or
-                               moving on the cushion (cushion) */
-    SW_PHASE_OVERTURNED = 2 /* |theta| reached pi/2: frozen */
-} sw_phase;
 
 /* On a cushion nothing impacts: UPLIFT is the first time an edge of the
  * base leaves the cushion (info +1 the rear edge, the top tipping forward;
@@ -43,15 +39,9 @@ typedef enum {
     SW_EV_FAULT = 6     /* model fault (info = status code); package reset to rest */
 } sw_event_kind;
 
-/* State of one package.  Unused coordinates of simpler models stay 0. */
-typedef struct {
-    double u, u_dot;         /* m, m/s: frame displacement relative to the bed */
-    double theta, theta_dot; /* rad, rad/s: tilt, > 0 top forward */
-    double z, z_dot;         /* m, m/s: cushion compression at the base midpoint */
-    sw_phase phase;
-    int side; /* +1 rocking about the front corner, -1 the rear, 0 stuck;
-                 on a cushion the sign of theta */
-} sw_state_t;
+/* "uplift", "impact", "rest", "tip", "overturn", "fault" (the events CSV's
+ * event column); "unknown" for a value outside the enum. */
+SW_API const char *sw_event_name(sw_event_kind k);
 
 typedef struct {
     size_t pkg;   /* index of the package (scene) */
@@ -74,6 +64,10 @@ typedef struct {
     double a_support;     /* m/s^2, absolute acceleration of the package's support */
 } sw_output_t;
 
+/* Non-zero if every number of o is finite (the engine never reports one
+ * that is not; a consumer that copies or alters outputs can check its own). */
+SW_API int sw_output_finite(const sw_output_t *o);
+
 typedef void (*sw_event_fn)(void *user, const sw_event_t *ev);
 typedef void (*sw_state_fn)(void *user, const sw_output_t *out);
 
@@ -84,6 +78,9 @@ typedef struct {
     int dt_forced;      /* non-zero: refuse (SW_EUNSTABLE) a dt above the stability
                            bound instead of sub-stepping */
     double rtol, atol;  /* adaptive schemes; 0 = defaults (1e-10, 1e-12) */
+    double accuracy;    /* rad; > 0: choose the scheme and dt by sw_scheme_for_accuracy_n()
+                           for the engine's scenes (scheme must be NULL and dt 0, else
+                           SW_EINVAL); 0 = off */
     double rest_eps;    /* rest threshold as a fraction of the energy barrier; 0 = 1e-9 */
     int stuck_stepped;  /* non-zero: step a stuck frame with the fixed-step scheme instead of
                            its exact solution (comparisons; the default is exact and cheaper) */
@@ -113,14 +110,14 @@ typedef struct sw_engine sw_engine_t;
 /* Create an engine for n validated scenes.  On failure returns NULL and, if
  * err is not NULL, stores the code; msg (may be NULL) gets the reason, e.g.
  * the stability numbers for a forced dt. */
-sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *opts,
+SW_API sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *opts,
                               int *err, char *msg, size_t msglen);
 
 /* Free everything; NULL is accepted. */
-void sw_engine_destroy(sw_engine_t *e);
+SW_API void sw_engine_destroy(sw_engine_t *e);
 
 /* Back to the state after create: all packages at rest, no time yet. */
-void sw_engine_reset(sw_engine_t *e);
+SW_API void sw_engine_reset(sw_engine_t *e);
 
 /* Replace package pkg by a new scene (a scene file edited while the stream
  * runs): the package is rebuilt as sw_engine_create() would build it, with
@@ -129,7 +126,7 @@ void sw_engine_reset(sw_engine_t *e);
  * Allocates (the new package's work space).  Returns SW_OK, or an error
  * (SW_EINVAL, SW_EUNSTABLE, SW_ENOMEM, ...; msg says why) with the engine
  * unchanged. */
-int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char *msg,
+SW_API int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char *msg,
                       size_t msglen);
 
 /* Push one sample: bed acceleration a_g (m/s^2, x forward) and vertical
@@ -142,61 +139,33 @@ int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char 
  * input so large that the fixed step exceeds the scheme's stability bound
  * for it) gets an SW_EV_FAULT event and is reset to rest; the others go on.
  * Outputs and events never carry a non-finite number. */
-int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z);
+SW_API int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z);
 
 /* Input given as a function of time instead of samples (pulses, tests):
  * advance from the current time to t1 with a_g = f(t), a_z = 0.  The start
  * time is 0 if nothing was pushed. */
 typedef double (*sw_input_fn)(void *user, double t);
-int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user);
+SW_API int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user);
 
 /* End of stream: with settle > 0, continue with zero input for up to settle
  * seconds or until every package is at rest or overturned.  Returns SW_OK or
  * SW_EVENT. */
-int sw_engine_finish(sw_engine_t *e, double settle);
+SW_API int sw_engine_finish(sw_engine_t *e, double settle);
 
 /* Replace a package's state at the current time (tests, what-if runs). */
-int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s);
-int sw_engine_get_output(const sw_engine_t *e, size_t pkg, sw_output_t *out);
+SW_API int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s);
+SW_API int sw_engine_get_output(const sw_engine_t *e, size_t pkg, sw_output_t *out);
 
-size_t sw_engine_count(const sw_engine_t *e);
-double sw_engine_time(const sw_engine_t *e); /* s, NAN before the first sample */
-const sw_derived_t *sw_engine_derived(const sw_engine_t *e, size_t pkg);
-int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s);
-const char *sw_engine_scheme(const sw_engine_t *e);
-double sw_engine_dt(const sw_engine_t *e, size_t pkg); /* s, internal step in use */
-
-/* Steppers, looked up by name.  Fixed-step: "euler", "heun", "rk4";
- * adaptive through GSL odeiv2: "rkf45", "rkck", "rk8pd", and the implicit
- * "rk4imp", "bsimp", "msbdf" (Jacobian by finite differences). */
-typedef struct sw_scheme sw_scheme_t;
-const sw_scheme_t *sw_scheme_lookup(const char *name);
-const sw_scheme_t *sw_scheme_at(size_t i); /* NULL past the end */
-const char *sw_scheme_name(const sw_scheme_t *s);
-int sw_scheme_order(const sw_scheme_t *s);
-int sw_scheme_adaptive(const sw_scheme_t *s);
-double sw_scheme_default_dt(const sw_scheme_t *s); /* s */
-
-/* Accuracy option: the cheapest scheme and internal step dt (s; 0 = the
- * scheme's default, for the adaptive ones) that kept the error of max|theta|
- * within theta_tol (rad) in the benchmark of docs/accuracy-speed.md, for the
- * model's reference scene (errors of fixed steps grow as (p dt)^order: a
- * package rocking faster than that scene needs a tighter tolerance).
- * *scheme is a static string for sw_engine_opts_t.scheme.  Returns SW_OK,
- * SW_ENOTFOUND when theta_tol is tighter than any setting measured, or
- * SW_EINVAL (theta_tol not > 0, NULL pointers, a model without a table). */
-int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const char **scheme, double *dt);
+SW_API size_t sw_engine_count(const sw_engine_t *e);
+SW_API double sw_engine_time(const sw_engine_t *e); /* s, NAN before the first sample */
+SW_API const sw_derived_t *sw_engine_derived(const sw_engine_t *e, size_t pkg);
+SW_API int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s);
+SW_API const char *sw_engine_scheme(const sw_engine_t *e);
+SW_API double sw_engine_dt(const sw_engine_t *e, size_t pkg); /* s, internal step in use */
 
 /* m/s^2 (about 10,000 g): no accelerometer on a vehicle reads more; a
  * larger value is a corrupt sample, refused by sw_engine_push(). */
 #define SW_MAX_ACCEL 1e5
-
-#define SW_DEFAULT_SCHEME "rk4"
-#define SW_DEFAULT_DT 1e-3
-/* Used instead when no scheme is given, no dt is forced and a cushion
- * scene is stiff: omega_max * dt > SW_STIFF_OMEGA_DT (docs/cushion.md). */
-#define SW_STIFF_SCHEME "rkck"
-#define SW_STIFF_OMEGA_DT 0.05
 
 #ifdef __cplusplus
 }

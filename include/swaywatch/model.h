@@ -1,45 +1,67 @@
-/* model.h - pure functions of the rocking models (physics.md): margins to
- * overturn, energies, impact ratios, and the cushion's static deflection
- * and natural frequencies.  No allocation, no I/O, no state. */
+/* model.h - the state of a package and pure functions of the rocking
+ * models (physics.md): margins to overturn, energies, impact ratios, and
+ * the cushion's static deflection and natural frequencies.  No allocation,
+ * no I/O, no state. */
 #ifndef SWAYWATCH_MODEL_H
 #define SWAYWATCH_MODEL_H
 
-#include "engine.h"
+#include "export.h"
 #include "scene.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
+typedef enum {
+    SW_PHASE_STUCK = 0,     /* package moves with its support (theta = 0) */
+    SW_PHASE_ROCKING = 1,   /* rocking about a base corner (bare/frame), or
+                               moving on the cushion (cushion) */
+    SW_PHASE_OVERTURNED = 2 /* |theta| reached pi/2: frozen */
+} sw_phase;
+
+/* State of one package.  Unused coordinates of simpler models stay 0. */
+typedef struct {
+    double u, u_dot;         /* m, m/s: frame displacement relative to the bed */
+    double theta, theta_dot; /* rad, rad/s: tilt, > 0 top forward */
+    double z, z_dot;         /* m, m/s: cushion compression at the base midpoint */
+    sw_phase phase;
+    int side; /* +1 rocking about the front corner, -1 the rear, 0 stuck;
+                 on a cushion the sign of theta */
+} sw_state_t;
+
+/* "stuck", "rocking", "overturned" (the state CSV's phase column);
+ * "unknown" for a value outside the enum. */
+SW_API const char *sw_phase_name(sw_phase p);
+
 /* Margin to overturn of a rigidly rocking package (bare, or frame with the
  * package's energy relative to the frame): 1 at rest, 0 at the edge, < 0
  * beyond.  r is the impact ratio (eta for bare, r_frame for the frame). */
-double sw_margin_rocking(const sw_derived_t *d, double r, double theta, double theta_dot);
+SW_API double sw_margin_rocking(const sw_derived_t *d, double r, double theta, double theta_dot);
 
 /* margin_bound of physics.md for the frame: 1 - E_tot / (m g R (1 - cos a)),
  * a guarantee once the excitation stops.  g_eff in m/s^2. */
-double sw_margin_bound_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s);
+SW_API double sw_margin_bound_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s);
 
 /* Total mechanical energy per unit package mass (J/kg) of the frame model
  * while rocking or stuck: kinetic + gravity + bearing strain, gravity
  * measured from the upright package. */
-double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s);
+SW_API double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s);
 
 /* Energy of the bare block per unit mass (J/kg), from upright. */
-double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s);
+SW_API double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s);
 
 /* --- cushion (scene 3) ---------------------------------------------------
  * d comes from sw_scene_validate() of a cushion scene; g is the gravity to
  * use (m/s^2, the scene's g, or g_eff = g + a_z). */
 
 /* Static deflection z_B at rest (m): the root of K z + B3 z^3 = m g. */
-double sw_cushion_static_deflection(const sw_derived_t *d, double g);
+SW_API double sw_cushion_static_deflection(const sw_derived_t *d, double g);
 
 /* Undamped natural frequencies (rad/s) about rest, with the tangent
  * stiffness K_t = K + 3 B3 z_s^2: vertical sqrt(K_t/m) and rocking
  * sqrt((K_t b^2/3 - m g h) / (I_C + m h^2)) (rocking about B with the frame,
  * if any, held fixed).  Either pointer may be NULL. */
-void sw_cushion_frequencies(const sw_derived_t *d, double g, double *omega_z,
+SW_API void sw_cushion_frequencies(const sw_derived_t *d, double g, double *omega_z,
                             double *omega_theta);
 
 /* The fastest rate of the model linearised about rest (rad/s): the
@@ -48,15 +70,15 @@ void sw_cushion_frequencies(const sw_derived_t *d, double g, double *omega_z,
  * real root exceeds its natural frequency: 3.7 omega_c at zeta_c = 2.
  * This is the scene's omega_max, the bound for an explicit step; the
  * engine shortens the step further in states stiffer than rest. */
-double sw_cushion_omega_max(const sw_derived_t *d, double g);
+SW_API double sw_cushion_omega_max(const sw_derived_t *d, double g);
 
 /* The energy barrier (J/kg): the least potential energy (gravity + cushion
  * strain, from rest) at |theta| = alpha. */
-double sw_cushion_barrier(const sw_derived_t *d, double g);
+SW_API double sw_cushion_barrier(const sw_derived_t *d, double g);
 
 /* Total mechanical energy per unit package mass (J/kg) from rest: kinetic
  * (package and frame) + gravity + cushion strain + bearing strain. */
-double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s);
+SW_API double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s);
 
 /* margin and margin_bound of physics.md for the cushion (either pointer
  * may be NULL).  margin: 1 - (package energy relative to its support) /
@@ -64,7 +86,7 @@ double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *
  * the total energy (frame and bearing included), a guarantee once the
  * excitation stops.  No impact factor: nothing on a cushion impacts.
  * docs/cushion.md gives their limits. */
-void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s, double *margin,
+SW_API void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s, double *margin,
                        double *margin_bound);
 
 #ifdef __cplusplus

@@ -4,6 +4,8 @@
 #ifndef SWAYWATCH_PULSE_H
 #define SWAYWATCH_PULSE_H
 
+#include "export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -17,13 +19,13 @@ typedef struct {
 } sw_pulse_t;
 
 /* Parse "half-sine" or "full-sine"; SW_OK or SW_ENOTFOUND. */
-int sw_pulse_shape_parse(const char *name, sw_pulse_shape *out);
-const char *sw_pulse_shape_name(sw_pulse_shape s);
+SW_API int sw_pulse_shape_parse(const char *name, sw_pulse_shape *out);
+SW_API const char *sw_pulse_shape_name(sw_pulse_shape s);
 
-double sw_pulse_duration(const sw_pulse_t *p); /* s */
+SW_API double sw_pulse_duration(const sw_pulse_t *p); /* s */
 
 /* a_g(t), m/s^2.  The signature fits sw_input_fn (user = the pulse). */
-double sw_pulse_eval(void *pulse, double t);
+SW_API double sw_pulse_eval(void *pulse, double t);
 
 #ifdef __cplusplus
 }

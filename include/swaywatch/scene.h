@@ -14,6 +14,8 @@
 
 #include <stddef.h>
 
+#include "export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -88,7 +90,7 @@ typedef void (*sw_diag_fn)(void *user, const char *origin, int line, const char 
 
 /* Fill sc with defaults: no sizes (they are required; NAN), g = 9.81, alarm
  * thresholds 0.5 and 0.2, no frame, no cushion (cubic term 0). */
-void sw_scene_init(sw_scene_t *sc);
+SW_API void sw_scene_init(sw_scene_t *sc);
 
 /* Set one key, e.g. section "frame", key "zeta", value "0.1".  When override
  * is non-zero (the --set path) giving one form of a pair replaces the other
@@ -99,13 +101,13 @@ void sw_scene_init(sw_scene_t *sc);
  * still correct a value.  Errors go to diag (may be NULL).  Returns SW_OK,
  * SW_ENOTFOUND (unknown section or key) or SW_EINVAL (value not a finite
  * number, bad name, or both forms of a pair). */
-int sw_scene_set(sw_scene_t *sc, const char *section, const char *key, const char *value,
+SW_API int sw_scene_set(sw_scene_t *sc, const char *section, const char *key, const char *value,
                  int override, const char *origin, int line, sw_diag_fn diag, void *user);
 
 /* Apply "section.key=value" as an override (origin "--set", line 0).
  * Returns SW_EINVAL for an assignment of another shape, else as
  * sw_scene_set(). */
-int sw_scene_set_arg(sw_scene_t *sc, const char *assignment, sw_diag_fn diag, void *user);
+SW_API int sw_scene_set_arg(sw_scene_t *sc, const char *assignment, sw_diag_fn diag, void *user);
 
 /* Parse INI text (a whole scene file) into sc, which should come from
  * sw_scene_init().  Lines whose first non-blank character is '#' or ';' are
@@ -116,17 +118,23 @@ int sw_scene_set_arg(sw_scene_t *sc, const char *assignment, sw_diag_fn diag, vo
  * keys by validation).  Every bad line is reported, with its line number;
  * returns SW_OK or the first error code.  Does not validate: call
  * sw_scene_validate() afterwards (after any overrides). */
-int sw_scene_parse(sw_scene_t *sc, const char *text, const char *origin, sw_diag_fn diag,
+SW_API int sw_scene_parse(sw_scene_t *sc, const char *text, const char *origin, sw_diag_fn diag,
                    void *user);
 
 /* Check required keys and ranges, derive d (may be NULL).  Every problem is
  * reported, with the line of the section it belongs to (0 if none); returns
  * SW_OK or SW_EINVAL.  d is filled only on SW_OK (zeroed otherwise). */
-int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin, sw_diag_fn diag,
+SW_API int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin, sw_diag_fn diag,
                       void *user);
 
 /* "bare", "frame" or "cushion" ("unknown" for any other value). */
-const char *sw_model_name(sw_model_kind k);
+SW_API const char *sw_model_name(sw_model_kind k);
+
+/* Non-zero if a and b hold the same values (numbers not given compare
+ * equal); the line numbers of the sections, where they were in a file, do
+ * not count.  A reload uses it to tell a changed scene from an unchanged
+ * one. */
+SW_API int sw_scene_equal(const sw_scene_t *a, const sw_scene_t *b);
 
 #ifdef __cplusplus
 }

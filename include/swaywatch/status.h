@@ -7,6 +7,8 @@
 #ifndef SWAYWATCH_STATUS_H
 #define SWAYWATCH_STATUS_H
 
+#include "export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -27,7 +29,7 @@ enum {
 };
 
 /* A constant string describing code; never NULL. */
-const char *sw_strerror(int code);
+SW_API const char *sw_strerror(int code);
 
 #ifdef __cplusplus
 }

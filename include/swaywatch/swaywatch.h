@@ -3,15 +3,19 @@
 #define SWAYWATCH_H
 
 #include "swaywatch/alarm.h"
+#include "swaywatch/export.h"
 #include "swaywatch/csv.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/model.h"
 #include "swaywatch/pulse.h"
+#include "swaywatch/scheme.h"
 #include "swaywatch/scene.h"
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
 
-#define SW_VERSION "0.1.0"
-const char *sw_version(void);
+#include "swaywatch/version.h"
+
+/* The library's version (SW_VERSION is the headers'). */
+SW_API const char *sw_version(void);
 
 #endif

@@ -24,6 +24,7 @@
 #include <stddef.h>
 
 #include "engine.h"
+#include "export.h"
 #include "pulse.h"
 #include "scene.h"
 
@@ -34,11 +35,12 @@ extern "C" {
 /* ---- one run ------------------------------------------------------------ */
 
 typedef struct {
-    const char *scheme;  /* NULL = SW_DEFAULT_SCHEME */
-    double dt;           /* s, largest internal step; 0 = automatic: the scheme's default,
-                            at most 1/400 of the shorter of the pulse period 2 pi/omega_e and
-                            the rocking period 2 pi/p */
-    double rtol, atol;   /* adaptive schemes; 0 = engine defaults */
+    sw_engine_opts_t engine; /* scheme, dt, rtol, atol, accuracy, rest_eps, stuck_stepped as
+                                for sw_engine_create(), except: dt 0 = automatic, the
+                                scheme's default at most 1/400 of the shorter of the pulse
+                                period 2 pi/omega_e and the rocking period 2 pi/p, and never
+                                forced (dt_forced is ignored); the callbacks are the run's
+                                own (on_event, on_state and user are ignored) */
     double free_periods; /* free motion allowed after the input ends, in rocking periods
                             2 pi/p; 0 = 20 */
     double settle;       /* s; if > 0, replaces free_periods (logs, as replay --settle);
@@ -80,7 +82,7 @@ typedef struct {
  * motion until overturn, rest, a guarantee of safety, or the time limit.
  * Returns SW_OK, SW_EINVAL (bad scene or pulse; msg says why), SW_ENOMEM,
  * or SW_EFAULT if the model faulted (r is still filled). */
-int sw_pulse_run(const sw_scene_t *sc, const sw_pulse_t *pulse, const sw_run_opts_t *o,
+SW_API int sw_pulse_run(const sw_scene_t *sc, const sw_pulse_t *pulse, const sw_run_opts_t *o,
                  sw_run_result_t *r, char *msg, size_t msglen);
 
 /* A recorded log held in memory: n samples, time increasing (s), bed
@@ -97,7 +99,7 @@ typedef struct {
  * (vertical acceleration unchanged), then free motion as for pulses (time
  * limit: o->settle if > 0, else free_periods).  Samples the engine refuses
  * (non-finite, not increasing) are skipped.  Returns as sw_pulse_run(). */
-int sw_log_run(const sw_scene_t *sc, const sw_log_t *log, double scale, const sw_run_opts_t *o,
+SW_API int sw_log_run(const sw_scene_t *sc, const sw_log_t *log, double scale, const sw_run_opts_t *o,
                sw_run_result_t *r, char *msg, size_t msglen);
 
 /* ---- threshold search --------------------------------------------------- */
@@ -140,7 +142,7 @@ typedef struct {
  * x_max) until a trial overturns, then bisect the last safe / first
  * overturning pair to tol.  Returns SW_OK (found or not), SW_EINVAL for bad
  * options, or the first error of a trial. */
-int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw_threshold_t *out);
+SW_API int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw_threshold_t *out);
 
 /* ---- overturning boundary curves ---------------------------------------- */
 
@@ -151,6 +153,13 @@ typedef struct {
                              bearing_ratio * omega_e (the paper's omega_b/omega_e); the scene
                              must have a frame.  0: the scene as it is */
 } sw_curve_t;
+
+/* The scene of curve c under a pulse of omega_e (rad/s): the curve's scene,
+ * with omega_b = bearing_ratio * omega_e when it has a ratio (omega_e <= 0:
+ * any pulse; omega_b is then 1 rad/s, for checking and describing the rest
+ * of the scene).  Returns SW_OK, or SW_EINVAL (out holds the scene as it
+ * is) for a ratio on a scene without a frame. */
+SW_API int sw_curve_scene(const sw_curve_t *c, double omega_e, sw_scene_t *out);
 
 typedef void (*sw_progress_fn)(void *user, size_t done, size_t total);
 
@@ -178,14 +187,14 @@ typedef struct {
 
 /* The boundary of one curve at one omega_e/p.  Returns the point's status
  * (also stored in out->status); msg (may be NULL) says why on error. */
-int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary_opts_t *o,
+SW_API int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary_opts_t *o,
                       sw_boundary_point_t *out, char *msg, size_t msglen);
 
 /* Every curve at every ratio; out has ncurves * nratios slots, curve-major
  * (out[c * nratios + i]).  Points run in parallel on o->threads threads.
  * Returns SW_OK if every point succeeded, else the first failing point's
  * status in (curve, ratio) order, with its message in msg. */
-int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ratios,
+SW_API int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ratios,
                       size_t nratios, const sw_boundary_opts_t *o, sw_boundary_point_t *out,
                       char *msg, size_t msglen);
 
@@ -219,7 +228,7 @@ typedef struct {
  * islands as in sw_threshold_search().  The log is replayed once per trial
  * (several tens of times).  Returns SW_OK (found or not), or the first error
  * of a trial with a reason in msg. */
-int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
+SW_API int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
                      const sw_search_opts_t *so, sw_safety_t *out, char *msg, size_t msglen);
 
 /* ---- parallel jobs ------------------------------------------------------- */
@@ -229,7 +238,7 @@ int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opt
  * it is free.  Jobs must be independent: each writes only its own results.
  * If a thread cannot be started its share runs on the others (or in the
  * calling thread); every job runs exactly once. */
-void sw_parallel_for(size_t n, int threads, void (*job)(void *user, size_t i), void *user);
+SW_API void sw_parallel_for(size_t n, int threads, void (*job)(void *user, size_t i), void *user);
 
 #ifdef __cplusplus
 }

@@ -209,8 +209,6 @@ int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *s
 void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev);
 int sw_cli_events_close(sw_cli_events_t *w);
 
-const char *sw_cli_event_name(sw_event_kind k);
-const char *sw_cli_phase_name(sw_phase p);
 
 /* What fed the engine, for the summaries. */
 typedef struct {

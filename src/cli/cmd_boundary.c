@@ -350,15 +350,12 @@ static int build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary
                     }
                     append(C->label, sizeof C->label, " %s=%s", vary[k].key, val);
                 }
-                sw_scene_t check = C->c.scene;
                 if (scenes[s].has_frame && nbear) {
                     C->c.bearing_ratio = bearing[b];
                     append(C->label, sizeof C->label, " wb/we=%s%s", bear_text[b], "");
-                    /* omega_b is set at each point; any value validates the rest */
-                    check.frame_omega = 1.0;
-                    check.frame_stiffness = NAN;
-                    check.frame_k_given = SW_GIVEN_RATIO;
                 }
+                sw_scene_t check; /* omega_b is set at each point */
+                sw_curve_scene(&C->c, 0.0, &check);
                 const long before = diag.errors;
                 if (sw_scene_validate(&check, NULL, C->label, sw_cli_print_diag, &diag) != SW_OK) {
                     if (diag.errors == before) sw_cli_error("%s: invalid scene", C->label);
@@ -662,10 +659,7 @@ int cmd_boundary(int argc, char **argv)
         goto out;
     }
     bo.search.islands = islands_path != NULL;
-    bo.run.scheme = o.scheme;
-    bo.run.dt = o.dt;
-    bo.run.rtol = o.rtol;
-    bo.run.atol = o.atol;
+    sw_cli_engine_opts(&o, &bo.run.engine);
 
     /* labels of the bearing ratios as the user wrote them ("1/3") */
     if (nbear) {
@@ -690,11 +684,8 @@ int cmd_boundary(int argc, char **argv)
     if (o.verbose)
         for (size_t c = 0; c < nc; c++) {
             sw_derived_t d;
-            sw_scene_t s = cv[c].c.scene;
-            if (cv[c].c.bearing_ratio > 0.0) {
-                s.frame_omega = 1.0; /* set per point */
-                s.frame_k_given = SW_GIVEN_RATIO;
-            }
+            sw_scene_t s; /* omega_b is set per point */
+            sw_curve_scene(&cv[c].c, 0.0, &s);
             if (sw_scene_validate(&s, &d, NULL, NULL, NULL) != SW_OK) continue;
             fprintf(stderr,
                     "swaywatch: curve %zu '%s': %s model, alpha %.4g deg, p %.6g rad/s, "

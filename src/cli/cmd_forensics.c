@@ -348,12 +348,7 @@ static void case_job(void *user, size_t i)
     C->status = sw_safety_factor(&C->scene, J->log, J->ro, J->so, &C->sf, msg, sizeof msg);
     if (C->status == SW_OK) return;
     C->available = 0;
-    /* A valid cushion scene that the engine refuses: this build has no
-     * cushion model yet. */
-    if (C->model == SW_MODEL_CUSHION && C->status == SW_EINVAL)
-        snprintf(C->note, sizeof C->note, "cushion model not in this build");
-    else
-        snprintf(C->note, sizeof C->note, "%s", msg[0] ? msg : sw_strerror(C->status));
+    snprintf(C->note, sizeof C->note, "%s", msg[0] ? msg : sw_strerror(C->status));
 }
 
 /* ---- report ---------------------------------------------------------------------- */
@@ -739,10 +734,7 @@ int cmd_forensics(int argc, char **argv)
     }
     sw_run_opts_t ro;
     memset(&ro, 0, sizeof ro);
-    ro.scheme = o.scheme;
-    ro.dt = o.dt;
-    ro.rtol = o.rtol;
-    ro.atol = o.atol;
+    ro.engine = eo; /* the replay's integration options, --accuracy included */
     ro.settle = settle > 0.0 ? settle : -1.0; /* negative: no free motion at all */
     sw_log_t lg = {L.t, L.a_g, L.has_z ? L.a_z : NULL, L.n};
     cases_job_t J = {cases, &lg, &ro, &so};

@@ -370,32 +370,23 @@ int sw_cli_resolve_accuracy(const sw_cli_opts_t *o, const sw_scene_t *scenes, si
                      "--dt");
         return SW_EXIT_USAGE;
     }
-    /* The table's rows are ordered from cheap to accurate; for several
-     * packages keep the most accurate (smallest step, adaptive last). */
-    int best = -1;
-    for (size_t i = 0; i < n; i++) {
-        sw_derived_t d;
-        if (sw_scene_validate(&scenes[i], &d, NULL, NULL, NULL) != SW_OK) return SW_EXIT_USAGE;
-        const char *scheme = NULL;
-        double dt = 0.0;
-        const int r = sw_scheme_for_accuracy(d.model, o->accuracy, &scheme, &dt);
-        if (r != SW_OK) {
-            sw_cli_error("--accuracy %g rad: %s", o->accuracy,
-                         r == SW_ENOTFOUND ? "tighter than any measured setting reaches "
-                                             "(about 1e-14 rad); use --scheme rk8pd --rtol"
-                                           : "no measured table for this model; choose --scheme "
-                                             "and --dt or --rtol");
-            return SW_EXIT_USAGE;
-        }
-        const sw_scheme_t *T = sw_scheme_lookup(scheme);
-        const int rank = T ? 2 * sw_scheme_adaptive(T) * 100 + sw_scheme_order(T) : 0;
-        if (rank > best || (rank == best && dt > 0.0 && (eo->dt == 0.0 || dt < eo->dt))) {
-            best = rank;
-            eo->scheme = scheme;
-            eo->dt = dt;
-        }
+    /* The engine applies the policy (so do the sweeps' engines, each for
+     * its own scene); asked here first to word a refusal as options. */
+    const char *scheme = NULL;
+    double dt = 0.0;
+    const int r = sw_scheme_for_accuracy_n(scenes, n, o->accuracy, &scheme, &dt, NULL);
+    if (r != SW_OK) {
+        sw_cli_error("--accuracy %g rad: %s", o->accuracy,
+                     r == SW_ENOTFOUND ? "tighter than any measured setting reaches "
+                                         "(about 1e-14 rad); use --scheme rk8pd --rtol"
+                                       : "no measured table for this model; choose --scheme "
+                                         "and --dt or --rtol");
+        return SW_EXIT_USAGE;
     }
+    eo->scheme = NULL;
+    eo->dt = 0.0;
     eo->dt_forced = 0;
+    eo->accuracy = o->accuracy;
     return SW_EXIT_OK;
 }
 
@@ -486,29 +477,6 @@ int sw_cli_check_outputs(const sw_cli_opts_t *o, FILE *in)
 }
 
 /* ---- CSV writers ------------------------------------------------------------ */
-
-const char *sw_cli_event_name(sw_event_kind k)
-{
-    switch (k) {
-    case SW_EV_UPLIFT: return "uplift";
-    case SW_EV_IMPACT: return "impact";
-    case SW_EV_REST: return "rest";
-    case SW_EV_TIP: return "tip";
-    case SW_EV_OVERTURN: return "overturn";
-    case SW_EV_FAULT: return "fault";
-    }
-    return "unknown";
-}
-
-const char *sw_cli_phase_name(sw_phase p)
-{
-    switch (p) {
-    case SW_PHASE_STUCK: return "stuck";
-    case SW_PHASE_ROCKING: return "rocking";
-    case SW_PHASE_OVERTURNED: return "overturned";
-    }
-    return "unknown";
-}
 
 void sw_cli_csv_text(FILE *f, const char *s)
 {
@@ -602,7 +570,7 @@ void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *o)
         (*nf)++;
     }
     sw_cli_csv_text(w->f, pkg_name(w->scenes, w->n, o->pkg));
-    fprintf(w->f, ",%s", sw_cli_phase_name(s->phase));
+    fprintf(w->f, ",%s", sw_phase_name(s->phase));
     csv_num(w->f, s->theta, nf);
     csv_num(w->f, s->theta_dot, nf);
     csv_num(w->f, s->u, nf);
@@ -652,7 +620,7 @@ void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev)
         (*nf)++;
     }
     sw_cli_csv_text(w->f, pkg_name(w->scenes, w->n, ev->pkg));
-    fprintf(w->f, ",%s", sw_cli_event_name(ev->kind));
+    fprintf(w->f, ",%s", sw_event_name(ev->kind));
     csv_num(w->f, ev->theta, nf);
     csv_num(w->f, ev->theta_dot, nf);
     csv_num(w->f, ev->margin, nf);

@@ -170,7 +170,7 @@ static void on_state(void *user, const sw_output_t *out)
     sw_alarm_on_output(&m->watch[k], out, on_alarm, m);
     /* Outputs come at sample times (and at the settling steps after the
      * end of a log): t = (utime - origin) / 1e6 maps back exactly. */
-    int finite = sw_alarm_output_finite(out);
+    int finite = sw_output_finite(out);
     int64_t utime = finite ? utime_of(m, out->t) : m->last_us;
     if (m->state_period_us > 0) {
         if (utime < m->next_state_us[k])

@@ -18,34 +18,6 @@
 #ifdef SW_HAVE_LCM
 #include "monreload.h"
 
-static int same_number(double a, double b)
-{
-    return a == b || (isnan(a) && isnan(b));
-}
-
-/* Same values; the line numbers of the sections (where they were in the
- * file) do not count. */
-static int same_scene(const sw_scene_t *a, const sw_scene_t *b)
-{
-    return !strcmp(a->name, b->name) && same_number(a->height, b->height) &&
-           same_number(a->width, b->width) && same_number(a->mass, b->mass) &&
-           same_number(a->g, b->g) && a->has_frame == b->has_frame &&
-           same_number(a->frame_mass, b->frame_mass) &&
-           same_number(a->frame_stiffness, b->frame_stiffness) &&
-           same_number(a->frame_omega, b->frame_omega) &&
-           same_number(a->frame_damping, b->frame_damping) &&
-           same_number(a->frame_zeta, b->frame_zeta) && a->frame_k_given == b->frame_k_given &&
-           a->frame_c_given == b->frame_c_given && a->has_cushion == b->has_cushion &&
-           same_number(a->cushion_stiffness, b->cushion_stiffness) &&
-           same_number(a->cushion_omega, b->cushion_omega) &&
-           same_number(a->cushion_damping, b->cushion_damping) &&
-           same_number(a->cushion_zeta, b->cushion_zeta) &&
-           same_number(a->cushion_cubic, b->cushion_cubic) &&
-           a->cushion_k_given == b->cushion_k_given && a->cushion_c_given == b->cushion_c_given &&
-           same_number(a->warn_margin, b->warn_margin) &&
-           same_number(a->critical_margin, b->critical_margin);
-}
-
 int sw_cli_monitor_reload(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scenes, size_t n)
 {
     sw_scene_t *fresh = NULL, *changed = NULL;
@@ -68,7 +40,7 @@ int sw_cli_monitor_reload(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *sce
         goto keep;
     }
     for (size_t k = 0; k < n; k++)
-        if (!same_scene(&scenes[k], &fresh[k]))
+        if (!sw_scene_equal(&scenes[k], &fresh[k]))
             changed[nchanged++] = fresh[k];
     if (nchanged == 0) {
         fprintf(stderr, "swaywatch: monitor: reload: no scene changed; %zu packages kept\n", n);
@@ -87,7 +59,7 @@ int sw_cli_monitor_reload(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *sce
         goto keep;
     }
     for (size_t k = 0; k < n; k++) {
-        if (same_scene(&scenes[k], &fresh[k]))
+        if (sw_scene_equal(&scenes[k], &fresh[k]))
             continue;
         if (sw_mon_replace(mon, k, &fresh[k], msg, sizeof msg) != SW_OK) {
             sw_cli_error("monitor: reload: %s: %s", fresh[k].name, msg);

@@ -14,7 +14,7 @@
 #include <math.h>
 #include <stddef.h>
 
-#include "swaywatch/engine.h"
+#include "swaywatch/scheme.h"
 #include "swaywatch/status.h"
 
 typedef struct {
@@ -57,4 +57,35 @@ int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const char **s
         }
     }
     return known ? SW_ENOTFOUND : SW_EINVAL;
+}
+
+int sw_scheme_for_accuracy_n(const sw_scene_t *scenes, size_t n, double theta_tol,
+                             const char **scheme, double *dt, size_t *bad)
+{
+    if (!scenes || n == 0 || !scheme || !dt) return SW_EINVAL;
+    /* The table's rows are ordered from cheap to accurate; for several
+     * packages keep the most accurate (adaptive first, then the higher
+     * order, then the smaller step). */
+    int best = -1;
+    *scheme = NULL;
+    *dt = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        sw_derived_t d;
+        const char *si = NULL;
+        double dti = 0.0;
+        int r = sw_scene_validate(&scenes[i], &d, NULL, NULL, NULL);
+        if (r == SW_OK) r = sw_scheme_for_accuracy(d.model, theta_tol, &si, &dti);
+        if (r != SW_OK) {
+            if (bad) *bad = i;
+            return r;
+        }
+        const sw_scheme_t *T = sw_scheme_lookup(si);
+        const int rank = T ? 2 * sw_scheme_adaptive(T) * 100 + sw_scheme_order(T) : 0;
+        if (rank > best || (rank == best && dti > 0.0 && (*dt == 0.0 || dti < *dt))) {
+            best = rank;
+            *scheme = si;
+            *dt = dti;
+        }
+    }
+    return SW_OK;
 }

@@ -88,14 +88,7 @@ int sw_alarm_on_event(sw_alarm_watch_t *w, const sw_event_t *ev, sw_alarm_fn emi
 
 int sw_alarm_output_finite(const sw_output_t *o)
 {
-    const double v[] = {
-        o->t,       o->state.u,     o->state.u_dot, o->state.theta,  o->state.theta_dot,
-        o->state.z, o->state.z_dot, o->margin,      o->margin_bound, o->uplift_ratio,
-        o->a_g,     o->a_support};
-    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
-        if (!isfinite(v[i]))
-            return 0;
-    return 1;
+    return sw_output_finite(o);
 }
 
 /* One threshold with hysteresis: fires on the way down while armed, re-arms
@@ -116,7 +109,7 @@ int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *o, sw_alarm_fn em
     char text[SW_ALARM_TEXT_MAX];
     int n = 0;
 
-    if (!sw_alarm_output_finite(o)) {
+    if (!sw_output_finite(o)) {
         if (!w->fault_armed)
             return 0;
         w->fault_armed = 0;

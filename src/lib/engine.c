@@ -1182,8 +1182,7 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
     P->t = t1;
 }
 
-/* Every number of an output, finite? */
-static int output_finite(const sw_output_t *o)
+int sw_output_finite(const sw_output_t *o)
 {
     const double v[] = {o->t,         o->state.u,      o->state.u_dot,  o->state.theta,
                         o->state.theta_dot, o->state.z,    o->state.z_dot, o->margin,
@@ -1199,7 +1198,7 @@ static void report_states(sw_engine_t *e, double t)
         sw_model_output(P, t, &o);
         /* Last line of defence: a non-finite number is never reported; the
          * package faults and is reported at rest instead. */
-        if (!output_finite(&o)) {
+        if (!sw_output_finite(&o)) {
             fault(e, P, t, SW_EFAULT);
             sw_model_output(P, t, &o);
         }
@@ -1297,6 +1296,29 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
     }
     e->n = n;
     if (opts) e->o = *opts;
+    if (e->o.accuracy != 0.0) {
+        if (e->o.scheme || e->o.dt != 0.0 || !(e->o.accuracy > 0.0)) {
+            fail(err, SW_EINVAL, msg, msglen,
+                 "accuracy must be > 0 and chooses the scheme and the step: give it without "
+                 "scheme and dt");
+            goto out_fail;
+        }
+        size_t bad = 0;
+        const int r = sw_scheme_for_accuracy_n(scenes, n, e->o.accuracy, &e->o.scheme, &e->o.dt,
+                                               &bad);
+        if (r != SW_OK) {
+            snprintf(buf, sizeof buf, "accuracy %g rad, scene '%s': %s", e->o.accuracy,
+                     scenes[bad].name,
+                     r == SW_ENOTFOUND ? "tighter than any measured setting reaches (about "
+                                         "1e-14 rad); choose the scheme rk8pd and rtol instead"
+                                       : "no measured table for this model; choose the scheme "
+                                         "and dt or rtol instead");
+            fail(err, r, msg, msglen, buf);
+            goto out_fail;
+        }
+        e->o.dt_forced = 0;
+        e->o.accuracy = 0.0; /* resolved: e->o now names the scheme (sw_engine_replace) */
+    }
     e->scheme = sw_scheme_lookup(e->o.scheme ? e->o.scheme : default_scheme(scenes, n, &e->o));
     if (!e->scheme) {
         snprintf(buf, sizeof buf, "unknown scheme '%s'", e->o.scheme);
@@ -1534,6 +1556,19 @@ const char *sw_engine_scheme(const sw_engine_t *e)
 double sw_engine_dt(const sw_engine_t *e, size_t pkg)
 {
     return e && pkg < e->n ? e->pk[pkg].h : NAN;
+}
+
+const char *sw_event_name(sw_event_kind k)
+{
+    switch (k) {
+    case SW_EV_UPLIFT: return "uplift";
+    case SW_EV_IMPACT: return "impact";
+    case SW_EV_REST: return "rest";
+    case SW_EV_TIP: return "tip";
+    case SW_EV_OVERTURN: return "overturn";
+    case SW_EV_FAULT: return "fault";
+    }
+    return "unknown";
 }
 
 /* ---- replacing one package ---------------------------------------------- */

@@ -17,6 +17,16 @@
 #include "model_rigid.h"
 #include "swaywatch/model.h"
 
+const char *sw_phase_name(sw_phase p)
+{
+    switch (p) {
+    case SW_PHASE_STUCK: return "stuck";
+    case SW_PHASE_ROCKING: return "rocking";
+    case SW_PHASE_OVERTURNED: return "overturned";
+    }
+    return "unknown";
+}
+
 void sw_model_setup(sw_pkg_t *P)
 {
     P->iu = P->idu = P->iz = P->idz = -1;

@@ -876,6 +876,34 @@ int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
     return SW_OK;
 }
 
+static int same_number(double a, double b)
+{
+    return a == b || (isnan(a) && isnan(b));
+}
+
+/* Every field but the line numbers; a new field of sw_scene_t must be
+ * added here. */
+int sw_scene_equal(const sw_scene_t *a, const sw_scene_t *b)
+{
+    return !strcmp(a->name, b->name) && same_number(a->height, b->height) &&
+           same_number(a->width, b->width) && same_number(a->mass, b->mass) &&
+           same_number(a->g, b->g) && a->has_frame == b->has_frame &&
+           same_number(a->frame_mass, b->frame_mass) &&
+           same_number(a->frame_stiffness, b->frame_stiffness) &&
+           same_number(a->frame_omega, b->frame_omega) &&
+           same_number(a->frame_damping, b->frame_damping) &&
+           same_number(a->frame_zeta, b->frame_zeta) && a->frame_k_given == b->frame_k_given &&
+           a->frame_c_given == b->frame_c_given && a->has_cushion == b->has_cushion &&
+           same_number(a->cushion_stiffness, b->cushion_stiffness) &&
+           same_number(a->cushion_omega, b->cushion_omega) &&
+           same_number(a->cushion_damping, b->cushion_damping) &&
+           same_number(a->cushion_zeta, b->cushion_zeta) &&
+           same_number(a->cushion_cubic, b->cushion_cubic) &&
+           a->cushion_k_given == b->cushion_k_given && a->cushion_c_given == b->cushion_c_given &&
+           same_number(a->warn_margin, b->warn_margin) &&
+           same_number(a->critical_margin, b->critical_margin);
+}
+
 const char *sw_model_name(sw_model_kind k)
 {
     switch (k) {

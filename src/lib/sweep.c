@@ -98,17 +98,18 @@ static int make_engine(runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o
     }
     sw_engine_opts_t eo;
     memset(&eo, 0, sizeof eo);
-    eo.scheme = o ? o->scheme : NULL;
-    eo.rtol = o ? o->rtol : 0.0;
-    eo.atol = o ? o->atol : 0.0;
+    if (o) eo = o->engine;
+    eo.dt_forced = 0;
+    eo.on_event = NULL;
+    eo.on_state = NULL;
     const sw_scheme_t *s = sw_scheme_lookup(eo.scheme ? eo.scheme : SW_DEFAULT_SCHEME);
     if (!s) {
         *err = SW_ENOTFOUND;
         set_msg(msg, msglen, "unknown scheme '%s'", eo.scheme);
         return *err;
     }
-    if (o && o->dt > 0.0) {
-        eo.dt = o->dt;
+    if (eo.dt > 0.0 || eo.accuracy > 0.0) {
+        /* as given, or chosen by the engine for the accuracy */
     } else {
         double period = 2.0 * M_PI / d.p; /* s */
         if (omega_e > 0.0) period = fmin(period, 2.0 * M_PI / omega_e);
@@ -504,6 +505,17 @@ static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pul
     return probe_lift(d, probe, peak, z_s);
 }
 
+int sw_curve_scene(const sw_curve_t *c, double omega_e, sw_scene_t *out)
+{
+    *out = c->scene;
+    if (!(c->bearing_ratio > 0.0)) return SW_OK;
+    if (!c->scene.has_frame) return SW_EINVAL;
+    out->frame_omega = omega_e > 0.0 ? c->bearing_ratio * omega_e : 1.0;
+    out->frame_stiffness = NAN;
+    out->frame_k_given = SW_GIVEN_RATIO;
+    return SW_OK;
+}
+
 int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary_opts_t *o,
                       sw_boundary_point_t *out, char *msg, size_t msglen)
 {
@@ -528,14 +540,11 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
     }
     const double omega_e = omega_ratio * d.p; /* rad/s */
     if (c->bearing_ratio > 0.0) {
-        if (!sc.has_frame) {
+        if (sw_curve_scene(c, omega_e, &sc) != SW_OK) {
             set_msg(msg, msglen, "scene '%s' has no frame to set omega_b/omega_e on", sc.name);
             err = SW_EINVAL;
             goto out;
         }
-        sc.frame_omega = c->bearing_ratio * omega_e;
-        sc.frame_stiffness = NAN;
-        sc.frame_k_given = SW_GIVEN_RATIO;
         if (sw_scene_validate(&sc, &d, NULL, NULL, NULL) != SW_OK) {
             set_msg(msg, msglen, "scene '%s' with omega_b = %g rad/s is not valid", sc.name,
                     sc.frame_omega);

@@ -97,6 +97,15 @@ cmp "$TMP/one.json" "$TMP/out" || fail "what-if differs between 1 and 2 threads"
 # --fail-on-overturn, --plot
 run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --fail-on-overturn --no-what-if
 expect_rc 1 "--fail-on-overturn"
+# --accuracy reaches the safety-factor and what-if runs: the cushion has
+# no measured table, so its row says so instead of running at defaults.
+run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --cushion-omega 30 \
+    --accuracy 1e-6
+expect_rc 0 "--accuracy"
+grep -q "cushion *n/a: accuracy 1e-06 rad.*no measured table" "$TMP/out" || {
+    show
+    fail "--accuracy did not reach the cushion what-if"
+}
 if command -v gnuplot >/dev/null 2>&1; then
     run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --no-what-if --plot "$TMP/f.png"
     expect_rc 0 "--plot"
