@@ -182,6 +182,57 @@ static void test_replace_cushion_implicit(void **state)
     run_scheme("rk4imp", 1);
 }
 
+/* The engine's scheme is the engine's: beside a stiff cushion the default
+ * is the adaptive rkck for every package, and a package rebuilt by a
+ * reload gets rkck's work space too (it once got the rk4 that its scene
+ * alone would get, and the first step after the reload crashed).  The new
+ * package then moves as in a fresh engine of the same scenes. */
+static void test_replace_beside_stiff_cushion(void **state)
+{
+    (void)state;
+    static trace_t rep, fresh;
+    sw_scene_t stiff = named(tu_bare(2.0, 0.728), "S");
+    stiff.has_cushion = 1;
+    stiff.cushion_omega = 300.0; /* rad/s: omega_max dt >> 0.05 at 1 ms */
+    stiff.cushion_zeta = 0.05;
+    stiff.cushion_cubic = 0.0;
+    stiff.cushion_k_given = stiff.cushion_c_given = SW_GIVEN_RATIO;
+    const sw_scene_t scenes[2] = {stiff, named(tu_bare(2.0, 0.728), "B")};
+    const sw_scene_t changed[2] = {stiff, named(tu_bare(2.0, 0.6), "B2")};
+    char msg[256];
+    int err;
+    memset(&rep, 0, sizeof rep);
+    memset(&fresh, 0, sizeof fresh);
+    sw_engine_opts_t o = {.on_state = on_state}; /* no scheme: the engine chooses */
+    o.user = &rep;
+    sw_engine_t *E = sw_engine_create(scenes, 2, &o, &err, msg, sizeof msg);
+    o.user = &fresh;
+    sw_engine_t *F = sw_engine_create(changed, 2, &o, &err, msg, sizeof msg);
+    assert_non_null(E);
+    assert_non_null(F);
+    assert_string_equal(sw_engine_scheme(E), SW_STIFF_SCHEME);
+    for (int i = 0; i < N_SAMPLES; i++) {
+        const double t = i * 1e-3;
+        rep.i = fresh.i = i;
+        if (i == T_REPLACE) assert_int_equal(sw_engine_replace(E, 1, &changed[1], msg, sizeof msg), SW_OK);
+        assert_true(sw_engine_push(E, t, input(i), 0.0) >= 0);
+        if (i >= T_REPLACE) assert_true(sw_engine_push(F, t, input(i), 0.0) >= 0);
+    }
+    int rocked = 0;
+    for (int i = T_REPLACE + 1; i < N_SAMPLES; i++) {
+        assert_true(fabs(rep.theta[1][i] - fresh.theta[1][i]) <= 1e-12);
+        assert_int_equal(rep.phase[1][i], fresh.phase[1][i]);
+        rocked |= rep.phase[1][i] == SW_PHASE_ROCKING;
+    }
+    assert_true(rocked);
+    sw_summary_t s;
+    assert_int_equal(sw_engine_summary(E, 1, &s), SW_OK);
+    assert_int_equal(s.faults, 0);
+    assert_string_equal(s.name, "B2");
+    sw_engine_destroy(E);
+    sw_engine_destroy(F);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -189,6 +240,7 @@ int main(void)
         cmocka_unit_test(test_replace_rk4),
         cmocka_unit_test(test_replace_rkck),
         cmocka_unit_test(test_replace_cushion_implicit),
+        cmocka_unit_test(test_replace_beside_stiff_cushion),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,8 +1,26 @@
-/* internal.h - what the library's modules share and the public API hides:
- * a package's parameters, its integration state, the model's right-hand
- * sides and maps (model.c), the fixed-step schemes (scheme.c). */
+/* internal.h - what the library's modules share and the public API hides.
+ *
+ * The engine is built in layers, as GSL's ode-initval2 (step -> evolve ->
+ * driver) and CVODE's root finding are:
+ *
+ *   engine.c   the API and the sample loop: create, push, finish, reports
+ *   pkg.c      one package's phase machine: uplift, impact, rest, overturn,
+ *              fault, and the summary; emits events
+ *   event.c    events inside a step: candidates from the model, roots on
+ *              the cubic Hermite interpolant (hermite.h), polished by
+ *              re-stepping
+ *   step.c     one step with the engine's scheme (a row of scheme.c)
+ *   stuck.c    exact solutions while a package stands on its support
+ *   model*.c   the physics, one ops table per model (right-hand side,
+ *              events, impact map, margins, rest test)
+ *
+ * Calls go down only: engine -> pkg/event -> step -> model.  The engine
+ * never branches on the scheme or the model: it reads the scheme's row and
+ * the package's model ops. */
 #ifndef SWAYWATCH_INTERNAL_H
 #define SWAYWATCH_INTERNAL_H
+
+#include <math.h>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -22,11 +40,38 @@ typedef struct {
     void *fn_user;
 } sw_input_t;
 
+typedef struct sw_pkg sw_pkg_t;
+typedef struct sw_model_ops sw_model_ops_t;
+
+/* One fixed step of length h (s) from (t, y) into yout. */
+typedef void (*sw_fixed_step_fn)(sw_pkg_t *P, double t, double h, const double y[], double yout[]);
+
+/* What the layers of one engine share: its scheme and options, where its
+ * events go, and the step being examined (for a multistep re-step).
+ * Owned by the engine, embedded in it. */
+typedef struct {
+    const sw_scheme_t *scheme;
+    double rest_eps;       /* rest threshold, a fraction of the energy barrier */
+    int dt_forced;         /* a forced dt is refused, never sub-stepped */
+    int stuck_stepped;     /* step a stuck frame instead of its exact solution */
+    sw_event_fn on_event;  /* may be NULL */
+    void *user;
+    int events;            /* events reported during the current call */
+    const double *step_y1; /* end of the step being examined */
+    double step_h;         /* s, its length */
+} sw_ctx_t;
+
+/* One step from (P->t, P->y) toward t1 into y1; *h gets its length. */
+typedef int (*sw_advance_fn)(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h);
+
 /* One package: parameters, state, summary, work space.  Everything is
- * allocated once, in sw_engine_create(). */
-typedef struct sw_pkg {
+ * allocated once, when the package is built (pkg_init in engine.c). */
+struct sw_pkg {
+    /* the scene and what is derived from it: set once, read by all */
     sw_scene_t scene;
     sw_derived_t d;
+    const sw_model_ops_t *ops; /* the model's behaviour table */
+    size_t index;      /* its place in the engine (events and states say it) */
     double g;          /* m/s^2, nominal gravity */
     double kR;         /* 1/m, 3/(4R) = p^2/g */
     double tan_alpha;
@@ -36,37 +81,75 @@ typedef struct sw_pkg {
     int iz, idz;       /* z, z_dot (-1 without a cushion) */
     double yscale[SW_NMAX]; /* typical size of each component (finite-difference Jacobian) */
     double e_lift;     /* J/kg, cushion: least energy above rest that lifts an edge */
-    int track_rate;    /* cushion: the right-hand side records rate_seen */
-    double rate_seen;  /* rad/s, fastest contact rate met by the stages of a step */
     double rate_rest;  /* 1/s, the contact's rate bound at rest (model_cushion.c) */
 
-    /* integration state */
+    /* the model's scratch, written by its right-hand side */
+    int track_rate;    /* cushion: the right-hand side records rate_seen */
+    double rate_seen;  /* rad/s, fastest contact rate met by the stages of a step */
+    double trig[3];    /* model_rigid.h: an angle (NAN: none yet), its sin and cos */
+
+    /* integration state: the phase machine (pkg.c) and the loop (engine.c) */
     double t;          /* s */
     double y[SW_NMAX];
     sw_phase phase;
     int side;          /* s = +1 / -1 while rocking */
-    const sw_input_t *in;
+    const sw_input_t *in; /* the engine's input over the interval being integrated */
+    int beyond_alpha;  /* |theta| >= alpha at the last check */
+    double t_lift;     /* s, time of the last uplift */
+    int hold;          /* keep the package stuck for one step (see pkg_after_impact) */
+    sw_summary_t sum;
 
-    /* stepping */
+    /* stepping (step.c): the scheme's work space for this package */
     double h;          /* s, largest internal step for this package */
+    sw_advance_fn advance; /* the scheme's advance for this model */
+    sw_fixed_step_fn step; /* fixed-step schemes: the body for this model */
     gsl_odeiv2_system sys;
     gsl_odeiv2_step *gstep;   /* adaptive schemes only */
     gsl_odeiv2_control *gctl;
     gsl_odeiv2_evolve *gevo;
     double h_adapt;    /* s, GSL's proposed next step */
     gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
+    double nj_cache[5]; /* stuck.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
+};
 
-    double nj_cache[5]; /* engine.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
-    double trig[3];     /* model.c: an angle (NAN: none yet), its sin and cos */
-    int beyond_alpha;  /* |theta| >= alpha at the last check */
-    double t_lift;     /* s, time of the last uplift */
-    int hold;          /* keep the package stuck for one step (see after_impact) */
-    sw_summary_t sum;
-} sw_pkg_t;
+/* ---- small numerical helpers ---------------------------------------------- */
 
-/* --- model.c --- */
-void sw_model_setup(sw_pkg_t *P);                  /* layout of y from the scene */
-int sw_model_rhs(double t, const double y[], double f[], void *pkg); /* GSL signature */
+/* GCC and clang: inline even where the size heuristics would not (each
+ * scheme's stages are where the time goes). */
+#if defined(__GNUC__)
+#define SW_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SW_ALWAYS_INLINE inline
+#endif
+
+/* Every v[i] finite?  0 v is 0 for a finite v and NaN for an infinite or
+ * NaN one, so the sum of them is 0 exactly when all are finite: two
+ * multiply-adds a number and no branch, in two chains that overlap (the
+ * state and the report are checked on every step and sample). */
+static inline int sw_all_finite(const double v[], size_t n)
+{
+    double s0 = 0.0, s1 = 0.0;
+    size_t i = 0;
+    for (; i + 1 < n; i += 2) {
+        s0 += 0.0 * v[i];
+        s1 += 0.0 * v[i + 1];
+    }
+    if (i < n) s0 += 0.0 * v[i];
+    return s0 + s1 == 0.0;
+}
+
+/* max and min of numbers known to be finite: inline where libm's fmax and
+ * fmin are calls (they must handle NaN), for the per-step checks. */
+static inline double sw_max2(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+static inline double sw_min2(double a, double b)
+{
+    return a < b ? a : b;
+}
+
 /* The input at time t (s): a_g, and g_eff = g + a_z (m/s^2).  Inline: a
  * right-hand side evaluates them at every stage. */
 static inline double sw_input_ag(const sw_input_t *in, double t)
@@ -80,44 +163,261 @@ static inline double sw_input_geff(const sw_pkg_t *P, double t)
     if (in->fn) return P->g;
     return P->g + in->az0 + in->az_slope * (t - in->t0);
 }
-/* Absolute acceleration of the package's support (m/s^2): a_g for bare,
- * a_g + u'' for frame, given f = y'. */
-double sw_model_support_accel(const sw_pkg_t *P, double t, const double f[]);
-void sw_model_impact(sw_pkg_t *P);                  /* at theta = 0: velocity map, side flips */
+
+/* ---- models (model.c, model_rigid.c, model_cushion.c) ---------------------- */
+
+/* Event functions: each "rises through 0" at its event.  The cutting ones
+ * end the step there and apply their map (pkg.c); the others are timed
+ * inside the step. */
+enum {
+    SW_EVF_NONE = 0,
+    SW_EVF_IMPACT,       /* the rocking corner's other side lands */
+    SW_EVF_OVERTURN,     /* |theta| reaches pi/2 */
+    SW_EVF_UPLIFT_FWD,   /* a stuck frame's support reaches the threshold, top forward */
+    SW_EVF_UPLIFT_BACK,  /* ... backward */
+    SW_EVF_TIP,          /* |theta| reaches alpha */
+    SW_EVF_TURN,         /* |theta| stops growing: a peak */
+    /* cushion: an edge leaves / regains the cushion (B below the surface:
+     * full <-> partial contact), the last edge does (B above: partial <->
+     * free flight); the _IN variants are the reverse crossings */
+    SW_EVF_LIFT, SW_EVF_LIFT_IN, SW_EVF_FLY, SW_EVF_FLY_IN
+};
+
+/* What the event layer does with a candidate. */
+enum {
+    SW_ROLE_CUT,  /* the earliest of these ends the step (its map follows) */
+    SW_ROLE_PEAK, /* a peak of |theta| inside the step: max |theta| */
+    SW_ROLE_TIP,  /* |theta| = alpha: timed and reported */
+    SW_ROLE_LIFT  /* the first lift since rest of a package that never impacts */
+};
+
+/* How its root is searched on the interpolant over [0, 1]. */
+enum {
+    SW_RULE_RISE,  /* through at the start (value > 0, or 0 and rising): 0; else the first
+                      rise above round-off, or the end if only round-off hid it */
+    SW_RULE_PLAIN, /* the first rise from below 0 to >= 0; none at the start */
+    SW_RULE_KINK   /* a kink of the right-hand side to cut at: only from below, strictly
+                      inside the step */
+};
+
+typedef struct {
+    unsigned char ev;    /* SW_EVF_* */
+    unsigned char role;  /* SW_ROLE_* */
+    unsigned char rule;  /* SW_RULE_* */
+    unsigned char clear; /* skip when clearly below 0 over the whole step (uplift) */
+} sw_evcand_t;
+
+#define SW_MAX_CANDS 8
+
+/* What a stuck package's exact advance did (ops->stuck_advance). */
+enum {
+    SW_STUCK_STEP = -1, /* not handled: step the package with the scheme */
+    SW_STUCK_STILL = 0, /* stuck up to the end of the interval */
+    SW_STUCK_MOVED = 1, /* P->t moved on: look again */
+    SW_STUCK_LIFT = 2   /* lifted at P->t, direction *side */
+};
+
+/* A model's behaviour: everything the layers above need to know of it.
+ * Adding a model is one model_X.c with one of these and a row in
+ * sw_model_ops_of() (model.c). */
+struct sw_model_ops {
+    const char *name;
+    /* layout of y, typical sizes, constants (after the common set-up) */
+    void (*setup)(sw_pkg_t *P);
+    /* f = y' at (t, y); GSL_SUCCESS, or a GSL error that makes an adaptive
+     * step retry shorter.  May write the package's scratch. */
+    int (*rhs)(sw_pkg_t *P, double t, const double y[], double f[]);
+    /* the state at rest (y is zeroed before) */
+    void (*rest)(sw_pkg_t *P);
+    /* the events to look for over the step (t0, y0) -> (t0 + h, y1), in the
+     * order they are handled; cut_kinks: the scheme's steps must be cut at
+     * kinks of the right-hand side.  Returns how many (<= SW_MAX_CANDS). */
+    int (*candidates)(const sw_pkg_t *P, int cut_kinks, double h, const double y0[],
+                      const double y1[], sw_evcand_t c[]);
+    /* value and time derivative of event function ev at (t, y), f = y' */
+    void (*event_fn)(const sw_pkg_t *P, int ev, double t, const double y[], const double f[],
+                     double *val, double *der);
+    /* at theta = 0: the velocity map, the side flips; NULL: never impacts */
+    void (*impact)(sw_pkg_t *P);
+    /* +1 / -1 if the support is beyond the uplift threshold at t, else 0 */
+    int (*uplift_side)(const sw_pkg_t *P, double t);
+    /* advance a stuck package toward t1 exactly (SW_STUCK_*); NULL: never stuck */
+    int (*stuck_advance)(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
+    /* the rest of the report after the common part (sw_model_output) */
+    void (*output)(const sw_pkg_t *P, double t, sw_output_t *o);
+    /* after an accepted step with no cut (the rest test); NULL: none */
+    void (*after_step)(sw_ctx_t *C, sw_pkg_t *P, double t);
+    /* at a cut event, before its map; NULL: none */
+    void (*at_cut)(sw_pkg_t *P);
+    /* still moving, for sw_engine_finish (settled packages end it early) */
+    int (*moving)(const sw_pkg_t *P, double rest_eps);
+    /* the right-hand side reports the fastest contact rate of its stages,
+     * and a fixed step is retaken shorter where that rate is too fast */
+    int tracks_rate;
+};
+
+extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
+const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind);
+
+void sw_model_setup(sw_pkg_t *P); /* common constants, then ops->setup */
+int sw_model_rhs(double t, const double y[], double f[], void *pkg); /* GSL signature */
 void sw_model_to_state(const sw_pkg_t *P, sw_state_t *s);
 void sw_model_from_state(sw_pkg_t *P, const sw_state_t *s);
 void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o);
-int sw_model_uplift_side(const sw_pkg_t *P, double t); /* +1/-1 if above uplift, 0 else */
 
-/* --- model_cushion.c --- */
-/* With P->track_rate set, also raises P->rate_seen to the contact's
- * fastest rate at y (rad/s; omega_max at rest, more where the contact is
- * stiffer, 0 without contact). */
-int sw_cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[]);
-void sw_cushion_setup(sw_pkg_t *P); /* e_lift, rate_rest; after the layout */
-void sw_cushion_rest(sw_pkg_t *P);  /* upright at the static deflection, nominal g */
-/* b^2 sin^2(theta) - z |z| (m^2): > 0 while an edge of the base is off the
- * cushion; *der (may be NULL) gets its time derivative. */
-double sw_cushion_lift(const sw_pkg_t *P, const double y[], double *der);
-/* Energy of motion about rest at nominal g (J/kg): kinetic + gravity +
- * cushion strain + bearing strain. */
-double sw_cushion_motion_energy(const sw_pkg_t *P, const double y[]);
+/* ---- stuck.c: exact solutions of a package standing on its support ---------- */
 
-/* --- scheme.c --- */
+/* ops->stuck_advance of the bare block (its uplift time solved for on the
+ * linear input, or the pulse scanned at the package's step and the
+ * crossing bisected) and of the frame (the exact solution of its linear
+ * oscillator under sampled input; SW_STUCK_STEP otherwise). */
+int sw_stuck_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
+int sw_stuck_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
+
+/* ---- scheme.c ------------------------------------------------------------------ */
+
 /* Finite-difference Jacobian in GSL's signature, for the implicit schemes. */
 int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *pkg);
-typedef void (*sw_fixed_step_fn)(sw_pkg_t *P, double t, double h, const double y[], double yout[]);
+
+/* A scheme's behaviour.  The engine reads its row, never its name. */
 struct sw_scheme {
     const char *name;
     int order;
-    int adaptive;
-    double stab;       /* |lambda h| bound on the imaginary / negative real axis */
+    int adaptive;      /* GSL's error control chooses the steps */
+    double stab;       /* |lambda h| bound on the imaginary / negative real axis
+                          (fixed steps; 0: none to check, the error control keeps it) */
     double default_dt; /* s */
-    sw_fixed_step_fn step; /* fixed-step schemes */
+    /* one step toward t1 (step.c: fixed sub-steps, or GSL's evolve); for
+     * the fixed schemes also one per model with its body inlined (NULL:
+     * the generic one serves) */
+    sw_advance_fn advance;
+    sw_advance_fn advance_for[3];
+    /* the solution at t0 + h inside the step being examined (step.c:
+     * re-step from its start, or the Hermite interpolant of a multistep
+     * scheme, which cannot restart without losing its history) */
+    int (*restep)(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                  double y1[]);
+    /* fixed steps: the body specialised for a model (the right-hand side
+     * inlined per stage), or NULL for the generic body below */
+    sw_fixed_step_fn step_for[3];
+    sw_fixed_step_fn step;     /* the generic body (the model's rhs per stage) */
     const gsl_odeiv2_step_type *const *gsl_type; /* adaptive schemes */
-    int implicit;      /* 0 explicit; 1 implicit one-step (needs the Jacobian and a
-                          driver); 2 implicit multistep (msbdf: also cannot
-                          re-step from a step's start) */
+    int implicit;      /* needs the Jacobian, and a driver for its Newton tolerances */
+    int cut_kinks;     /* fixed steps lose their order across a kink of the
+                          right-hand side: cut them there */
+    int exact_stuck;   /* a stuck frame may take its exact solution (the adaptive
+                          schemes step it, under their own error control) */
 };
+
+/* One fixed step from (P->t, P->y) into y1, no longer than the package's
+ * step h nor than what is left of the interval, splitting that into equal
+ * steps; body is the scheme's step for the model.  A model that tracks its
+ * contact rate (track: it may) can pass through states far stiffer than
+ * rest (a cushion landing on a corner or flat, a cubic cushion compressed
+ * hard) where a step that is stable at rest blows up or skips the
+ * landing: its right-hand side reports the fastest contact rate its
+ * stages met, and the step is retaken shorter until that rate times h is
+ * within the bound the package's h keeps at rest (0.5, or the scheme's
+ * stability bound for a forced dt).  A template: scheme.c instantiates it
+ * per scheme and model with the body known, so that a step is one call. */
+static SW_ALWAYS_INLINE int sw_step_fixed_with(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[],
+                                               double *hout, sw_fixed_step_fn body, int track)
+{
+    const double t0 = P->t, rem = t1 - t0;
+    double hmax = P->h, h = rem; /* s */
+    for (int tries = 0;; tries++) {
+        if (rem <= hmax) {
+            h = rem; /* the common case: a step per sample */
+        } else {
+            const double nst = ceil(rem / hmax - 1e-9);
+            h = nst <= 1.0 ? rem : rem / nst;
+        }
+        if (!track || !P->ops->tracks_rate) {
+            body(P, t0, h, P->y, y1);
+            break;
+        }
+        const double bound = C->dt_forced ? C->scheme->stab : 0.5;
+        P->rate_seen = 0.0;
+        P->track_rate = 1;
+        body(P, t0, h, P->y, y1);
+        P->track_rate = 0;
+        if (P->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60) break;
+        hmax = fmin(0.5 * h, bound / P->rate_seen);
+    }
+    *hout = h;
+    return 0; /* SW_OK */
+}
+
+/* step.c: the rows' behaviours (the generic fixed advance: the package's
+ * body, its rate tracked if its model asks) */
+int sw_step_fixed(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h);
+int sw_step_evolve(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h);
+int sw_restep_fixed(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                    double y1[]);
+int sw_restep_gsl(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                  double y1[]);
+int sw_restep_hermite(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                      double y1[]);
+
+/* ---- step.c: one step with the engine's scheme -------------------------------- */
+
+/* Set up the scheme's work space for P (after the model's set-up).
+ * Returns SW_OK, SW_EUNSTABLE (forced dt above the stability bound; msg
+ * says why) or SW_ENOMEM. */
+int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double atol, char *msg,
+                 size_t msglen);
+/* Point the package's GSL system (and an implicit stepper's driver) at P:
+ * after sw_step_init, and again after the package is moved in memory. */
+void sw_step_bind(sw_pkg_t *P);
+void sw_step_free(sw_pkg_t *P);
+void sw_step_reset(sw_pkg_t *P); /* forget the scheme's history (after a map) */
+/* The input over [t0, t1] makes a fixed step unstable for P? */
+int sw_step_input_unstable(const sw_ctx_t *C, const sw_pkg_t *P, double t0, double t1);
+/* One step from (P->t, P->y) toward t1 (at most t1 - P->t) into y1; *h
+ * gets its length.  SW_OK or an error (the package must fault). */
+static inline int sw_step_advance(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h)
+{
+    return P->advance(C, P, t1, y1, h);
+}
+/* The scheme's solution at t0 + h from (t0, y0), h inside the step being
+ * examined: events lie on the scheme's own solution. */
+static inline int sw_step_restep(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h,
+                                 const double y0[], double y1[])
+{
+    return C->scheme->restep(C, P, t0, h, y0, y1);
+}
+
+/* ---- event.c: events inside a step ------------------------------------------- */
+
+/* The earliest cutting event among the model's candidates c[0..nc) inside
+ * the step (t0, y0) -> (t0 + h, y1) (SW_EVF_NONE if none; *tau its place
+ * in [0, 1]); the timed events before it are reported on the way. */
+int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                    const double y1[], const sw_evcand_t c[], int nc, double *tau);
+/* The same, asking the model for its candidates first: inline, because
+ * most steps have none and the question is then all the work. */
+static inline int sw_event_find(sw_ctx_t *C, sw_pkg_t *P, double t0, double h,
+                                const double y0[], const double y1[], double *tau)
+{
+    sw_evcand_t c[SW_MAX_CANDS];
+    const int nc = P->ops->candidates(P, C->scheme->cut_kinks, h, y0, y1, c);
+    return nc ? sw_event_locate(C, P, t0, h, y0, y1, c, nc, tau) : SW_EVF_NONE;
+}
+/* Polish the event time by re-stepping; the state there in y; its time. */
+double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double h,
+                       const double y0[], double tau, double y[]);
+
+/* ---- pkg.c: one package's phase machine ---------------------------------------- */
+
+void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info,
+                    const double *y_at);
+void sw_pkg_track_theta(sw_pkg_t *P, double theta);
+void sw_pkg_rest(sw_pkg_t *P);
+void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code);
+void sw_pkg_start_rocking(sw_ctx_t *C, sw_pkg_t *P, double t, int side);
+void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
+void sw_pkg_lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
+/* The map of a cutting event at t (the state is there). */
+void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t);
 
 #endif

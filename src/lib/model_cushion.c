@@ -303,7 +303,7 @@ static int finite_or_fail(const sw_pkg_t *P, const double f[])
     return GSL_SUCCESS;
 }
 
-int sw_cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[])
+static int cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[])
 {
     const sw_derived_t *d = &P->d;
     const cush_t c = cush_of(d);
@@ -341,7 +341,7 @@ int sw_cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[])
     return finite_or_fail(P, f);
 }
 
-void sw_cushion_rest(sw_pkg_t *P)
+static void cushion_rest(sw_pkg_t *P)
 {
     memset(P->y, 0, sizeof P->y);
     P->y[P->iz] = sw_cushion_static_deflection(&P->d, P->g);
@@ -349,7 +349,9 @@ void sw_cushion_rest(sw_pkg_t *P)
     P->side = 1;
 }
 
-double sw_cushion_lift(const sw_pkg_t *P, const double y[], double *der)
+/* b^2 sin^2(theta) - z |z| (m^2): > 0 while an edge of the base is off the
+ * cushion; *der (may be NULL) gets its time derivative. */
+static double cushion_lift(const sw_pkg_t *P, const double y[], double *der)
 {
     /* b^2 sin^2(theta) - z |z|: > 0 when an edge is above the unloaded
      * surface (b |sin theta| > z), smooth through theta = 0 and z = 0 */
@@ -492,7 +494,7 @@ void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s,
     }
 }
 
-double sw_cushion_motion_energy(const sw_pkg_t *P, const double y[])
+static double motion_energy(const sw_pkg_t *P, const double y[])
 {
     sw_state_t s;
     memset(&s, 0, sizeof s);
@@ -507,11 +509,165 @@ double sw_cushion_motion_energy(const sw_pkg_t *P, const double y[])
     return sw_energy_cushion(&P->d, P->g, &s);
 }
 
-void sw_cushion_setup(sw_pkg_t *P)
+/* ---- the engine's view: layout, events, rest -------------------------------- */
+
+static void cushion_setup(sw_pkg_t *P)
 {
+    if (P->scene.has_frame) {
+        P->n = 6;
+        P->iu = 0;
+        P->ith = 1;
+        P->iz = 2;
+        P->idu = 3;
+        P->idth = 4;
+        P->idz = 5;
+    } else {
+        P->n = 4;
+        P->ith = 0;
+        P->iz = 1;
+        P->idth = 2;
+        P->idz = 3;
+    }
     /* contact_rate()'s bound at rest: full contact, theta = 0, where
      * M^-1 K and M^-1 C have the vertical mode's K_t/m and C/m as their
      * largest eigenvalues */
     P->rate_rest = fmax(sqrt(tangent_w2(&P->d, P->g)), 2.0 * P->d.zeta_c * P->d.omega_c);
     P->e_lift = lift_energy(&P->d, P->g);
 }
+
+/* A package on a cushion moves from the start: it is never stuck and never
+ * impacts.  Overturn cuts its steps, and so, for the fixed-step schemes,
+ * does an edge of the base meeting the cushion's surface (a kink in the
+ * contact force); tipping, the first lift of an edge (uplift) and the
+ * peaks of |theta| are timed inside a step, and "rest" is checked at the
+ * end of each step. */
+static int cushion_candidates(const sw_pkg_t *P, int cut_kinks, double h, const double y0[],
+                              const double y1[], sw_evcand_t c[])
+{
+    const double al = P->d.alpha;
+    const double a0 = fabs(y0[P->ith]), a1 = fabs(y1[P->ith]);
+    const double v = h * fmax(fabs(y0[P->idth]), fabs(y1[P->idth]));
+    int n = 0;
+    if (a1 >= M_PI_2 || M_PI_2 - fmax(a0, a1) < v)
+        c[n++] = (sw_evcand_t){SW_EVF_OVERTURN, SW_ROLE_CUT, SW_RULE_RISE, 0};
+    /* Where an edge of the base reaches the cushion's surface the contact
+     * force has a kink (with damping, a kink in F itself): a fixed step
+     * across it loses the scheme's order, so the step is cut there.  The
+     * adaptive schemes' error control shortens their steps instead (a cut
+     * would also restart msbdf at order 1, and chatter where a loose
+     * tolerance leaves the contact unresolved). */
+    if (cut_kinks)
+        for (int ev = SW_EVF_LIFT; ev <= SW_EVF_FLY_IN; ev++)
+            c[n++] = (sw_evcand_t){(unsigned char)ev, SW_ROLE_CUT, SW_RULE_KINK, 0};
+    if ((y0[P->ith] * y0[P->idth] > 0.0) != (y1[P->ith] * y1[P->idth] > 0.0))
+        c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};
+    if (a0 < al && (a1 >= al || al - fmax(a0, a1) < v))
+        c[n++] = (sw_evcand_t){SW_EVF_TIP, SW_ROLE_TIP, SW_RULE_RISE, 0};
+    if (isnan(P->t_lift)) c[n++] = (sw_evcand_t){SW_EVF_LIFT, SW_ROLE_LIFT, SW_RULE_RISE, 0};
+    return n;
+}
+
+/* Value and time derivative of event ev at (t, y) with f = y'; theta
+ * changes sign smoothly on a cushion: events on theta^2. */
+static void cushion_event_fn(const sw_pkg_t *P, int ev, double t, const double y[],
+                             const double f[], double *val, double *der)
+{
+    (void)t;
+    const double th = y[P->ith], w = y[P->idth];
+    switch (ev) {
+    case SW_EVF_OVERTURN:
+        *val = th * th - M_PI_2 * M_PI_2;
+        *der = 2.0 * th * w;
+        return;
+    case SW_EVF_TIP:
+        *val = th * th - P->d.alpha * P->d.alpha;
+        *der = 2.0 * th * w;
+        return;
+    case SW_EVF_TURN: /* |theta| stops growing */
+        *val = -th * w;
+        *der = -(w * w + th * f[P->idth]);
+        return;
+    case SW_EVF_LIFT:
+    case SW_EVF_LIFT_IN: {
+        const double v = cushion_lift(P, y, der), sg = ev == SW_EVF_LIFT ? 1.0 : -1.0;
+        *val = sg * v;
+        *der *= sg;
+        return;
+    }
+    default: { /* b^2 sin^2(theta) + z |z| */
+        const double b = P->d.b, sn = sin(th), z = y[P->iz];
+        const double sg = ev == SW_EVF_FLY_IN ? 1.0 : -1.0; /* rises when the base flies */
+        *val = sg * (b * b * sn * sn + z * fabs(z));
+        *der = sg * (2.0 * b * b * sn * cos(th) * w + 2.0 * fabs(z) * y[P->idz]);
+        return;
+    }
+    }
+}
+
+static int cushion_uplift_side(const sw_pkg_t *P, double t)
+{
+    (void)P;
+    (void)t;
+    return 0; /* never stuck: its uplift is the first lift of an edge */
+}
+
+/* After an accepted step: side follows theta; "rest" once the package,
+ * lifted before, is back in full contact with less energy than it takes
+ * to lift an edge again (with no input it never will). */
+static void cushion_after_step(sw_ctx_t *C, sw_pkg_t *P, double t)
+{
+    P->side = P->y[P->ith] < 0.0 ? -1 : 1;
+    if (P->phase != SW_PHASE_ROCKING || isnan(P->t_lift)) return;
+    if (cushion_lift(P, P->y, NULL) >= 0.0) return;
+    if (motion_energy(P, P->y) >= P->e_lift) return;
+    P->t_lift = NAN;
+    P->beyond_alpha = 0;
+    P->sum.rests++;
+    sw_pkg_emit_at(C, P, SW_EV_REST, t, 0.0, NULL);
+}
+
+static void cushion_at_cut(sw_pkg_t *P)
+{
+    P->side = P->y[P->ith] < 0.0 ? -1 : 1;
+}
+
+/* Moving unless its energy of motion is below rest_eps of the barrier. */
+static int cushion_moving(const sw_pkg_t *P, double rest_eps)
+{
+    return P->phase == SW_PHASE_ROCKING &&
+           !(motion_energy(P, P->y) < rest_eps * sw_cushion_barrier(&P->d, P->g));
+}
+
+/* After the common part: the support's acceleration (the bed, or a_g + u''
+ * on a frame), the uplift ratio and the margins. */
+static void cushion_output(const sw_pkg_t *P, double t, sw_output_t *o)
+{
+    double ge = sw_input_geff(P, t); /* m/s^2, as the right-hand side sees it */
+    double f[SW_NMAX];
+    cushion_rhs((sw_pkg_t *)P, t, P->y, f); /* const but for its rate tracking, off here */
+    o->a_support = P->iu < 0 ? sw_input_ag(P->in, t) : sw_input_ag(P->in, t) + f[P->idu];
+    /* Airborne (g + a_z <= 0): the engine has faulted the package and
+     * reset it; its energy is judged under nominal gravity. */
+    if (!(ge > 0.0)) ge = P->g;
+    o->uplift_ratio = fabs(o->a_support) / (P->tan_alpha * P->g);
+    if (P->phase == SW_PHASE_OVERTURNED) {
+        o->margin = o->margin_bound = -1.0;
+        return;
+    }
+    sw_margin_cushion(&P->d, ge, &o->state, &o->margin, &o->margin_bound);
+}
+
+const sw_model_ops_t sw_model_cushion = {
+    .name = "cushion",
+    .setup = cushion_setup,
+    .rhs = cushion_rhs,
+    .rest = cushion_rest,
+    .candidates = cushion_candidates,
+    .event_fn = cushion_event_fn,
+    .uplift_side = cushion_uplift_side,
+    .output = cushion_output,
+    .after_step = cushion_after_step,
+    .at_cut = cushion_at_cut,
+    .moving = cushion_moving,
+    .tracks_rate = 1,
+};

@@ -49,14 +49,6 @@ static inline void sw_rigid_sincos(sw_pkg_t *P, double A, double *sn, double *cs
     P->trig[2] = *cs;
 }
 
-/* GCC and clang: inline even where the size heuristics would not (each
- * scheme's stages are where the time goes). */
-#if defined(__GNUC__)
-#define SW_ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define SW_ALWAYS_INLINE inline
-#endif
-
 /* Bearing force per unit total mass (m/s^2): 2 zeta_b w_b u' + w_b^2 u,
  * from u and u' (m, m/s). */
 static inline double sw_rigid_bearing_of(const sw_pkg_t *P, double u, double du)
@@ -117,6 +109,30 @@ static inline void sw_rigid_rhs(sw_pkg_t *P, double ag, double ge, const double 
 {
     if (P->d.model == SW_MODEL_BARE) sw_rigid_rhs_of(P, SW_MODEL_BARE, ag, ge, y, f);
     else sw_rigid_rhs_of(P, SW_MODEL_FRAME, ag, ge, y, f);
+}
+
+/* While stuck the support's acceleration A is a_g (bare) or a_g + u'' =
+ * -(2 zeta_b w_b u' + w_b^2 u) (frame); it does not depend on theta.
+ * +1 / -1 if A is beyond the uplift threshold tan(alpha) g_eff at t (the
+ * direction the top tips), else 0. */
+static inline int sw_rigid_side_of(const sw_pkg_t *P, double A, double t)
+{
+    const double ge = sw_input_geff(P, t);
+    if (!(ge > 0.0)) return 0; /* airborne: outside the model (the engine faults) */
+    const double thr = P->tan_alpha * ge;
+    if (A <= -thr) return +1; /* braking tips the top forward */
+    if (A >= thr) return -1;
+    return 0;
+}
+
+static inline int sw_bare_uplift_side(const sw_pkg_t *P, double t)
+{
+    return sw_rigid_side_of(P, sw_input_ag(P->in, t), t);
+}
+
+static inline int sw_frame_uplift_side(const sw_pkg_t *P, double t)
+{
+    return sw_rigid_side_of(P, -sw_rigid_bearing(P, P->y), t);
 }
 
 #endif

@@ -24,24 +24,28 @@
  * their right-hand side inlined into every stage (the cushion's is a
  * call).  The input is evaluated once per distinct stage time. */
 
+/* The bodies below are specialised for a model kind, or generic: the
+ * model's right-hand side through its ops table, once per stage. */
+#define GENERIC (-1)
+
 /* One stage: f = y'(t, y), with the input (ag, ge) already at t for a bare
- * or framed package (the cushion evaluates its own). */
-static SW_ALWAYS_INLINE void stage(sw_pkg_t *P, sw_model_kind model, double t, double ag,
-                                   double ge, const double y[], double f[])
+ * or framed package (a generic body's right-hand side evaluates its own). */
+static SW_ALWAYS_INLINE void stage(sw_pkg_t *P, int model, double t, double ag, double ge,
+                                   const double y[], double f[])
 {
-    if (model == SW_MODEL_CUSHION) sw_cushion_rhs(P, t, y, f);
-    else sw_rigid_rhs_of(P, model, ag, ge, y, f);
+    if (model == GENERIC) P->ops->rhs(P, t, y, f);
+    else sw_rigid_rhs_of(P, (sw_model_kind)model, ag, ge, y, f);
 }
 
-static SW_ALWAYS_INLINE void stage_input(const sw_pkg_t *P, sw_model_kind model, double t,
-                                         double *ag, double *ge)
+static SW_ALWAYS_INLINE void stage_input(const sw_pkg_t *P, int model, double t, double *ag,
+                                         double *ge)
 {
-    if (model == SW_MODEL_CUSHION) return;
+    if (model == GENERIC) return;
     *ag = sw_input_ag(P->in, t);
     *ge = sw_input_geff(P, t);
 }
 
-static SW_ALWAYS_INLINE void euler_of(sw_pkg_t *P, sw_model_kind model, int n, double t,
+static SW_ALWAYS_INLINE void euler_of(sw_pkg_t *P, int model, int n, double t,
                                       double h, const double y[], double yout[])
 {
     double k1[SW_NMAX], ag = 0.0, ge = 0.0;
@@ -50,7 +54,7 @@ static SW_ALWAYS_INLINE void euler_of(sw_pkg_t *P, sw_model_kind model, int n, d
     for (int i = 0; i < n; i++) yout[i] = y[i] + h * k1[i];
 }
 
-static SW_ALWAYS_INLINE void heun_of(sw_pkg_t *P, sw_model_kind model, int n, double t, double h,
+static SW_ALWAYS_INLINE void heun_of(sw_pkg_t *P, int model, int n, double t, double h,
                                      const double y[], double yout[])
 {
     double k1[SW_NMAX], k2[SW_NMAX], yt[SW_NMAX], ag = 0.0, ge = 0.0;
@@ -62,7 +66,7 @@ static SW_ALWAYS_INLINE void heun_of(sw_pkg_t *P, sw_model_kind model, int n, do
     for (int i = 0; i < n; i++) yout[i] = y[i] + 0.5 * h * (k1[i] + k2[i]);
 }
 
-static SW_ALWAYS_INLINE void rk4_of(sw_pkg_t *P, sw_model_kind model, int n, double t, double h,
+static SW_ALWAYS_INLINE void rk4_of(sw_pkg_t *P, int model, int n, double t, double h,
                                     const double y[], double yout[])
 {
     double k1[SW_NMAX], k2[SW_NMAX], k3[SW_NMAX], k4[SW_NMAX], yt[SW_NMAX];
@@ -82,19 +86,42 @@ static SW_ALWAYS_INLINE void rk4_of(sw_pkg_t *P, sw_model_kind model, int n, dou
         yout[i] = y[i] + (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
 }
 
-/* A table entry per scheme; the model picks the body. */
-#define SW_FIXED_STEP(name, body)                                                          \
-    static void name(sw_pkg_t *P, double t, double h, const double y[], double yout[])     \
+/* The bodies of a scheme: the bare and frame models with their right-hand
+ * side inlined per stage, and the generic one (the cushion; any model
+ * added without a body of its own).  The package picks its body once, when
+ * it is built: no dispatch per step or per stage. */
+#define SW_FIXED_STEPS(name, body)                                                         \
+    static void name##_bare(sw_pkg_t *P, double t, double h, const double y[], double yout[]) \
     {                                                                                      \
-        switch (P->d.model) {                                                              \
-        case SW_MODEL_BARE: body(P, SW_MODEL_BARE, 2, t, h, y, yout); return;              \
-        case SW_MODEL_FRAME: body(P, SW_MODEL_FRAME, 4, t, h, y, yout); return;            \
-        default: body(P, SW_MODEL_CUSHION, P->n, t, h, y, yout); return;                   \
-        }                                                                                  \
+        body(P, SW_MODEL_BARE, 2, t, h, y, yout);                                          \
+    }                                                                                      \
+    static void name##_frame(sw_pkg_t *P, double t, double h, const double y[],            \
+                             double yout[])                                                \
+    {                                                                                      \
+        body(P, SW_MODEL_FRAME, 4, t, h, y, yout);                                         \
+    }                                                                                      \
+    static void name##_generic(sw_pkg_t *P, double t, double h, const double y[],          \
+                               double yout[])                                              \
+    {                                                                                      \
+        body(P, GENERIC, P->n, t, h, y, yout);                                             \
     }
-SW_FIXED_STEP(euler_step, euler_of)
-SW_FIXED_STEP(heun_step, heun_of)
-SW_FIXED_STEP(rk4_step, rk4_of)
+/* ... and the advance of each, the sub-step logic around the body. */
+#define SW_FIXED_ADVANCES(name)                                                            \
+    static int name##_adv_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h) \
+    {                                                                                      \
+        return sw_step_fixed_with(C, P, t1, y1, h, name##_bare, 0);                        \
+    }                                                                                      \
+    static int name##_adv_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[],          \
+                                double *h)                                                 \
+    {                                                                                      \
+        return sw_step_fixed_with(C, P, t1, y1, h, name##_frame, 0);                       \
+    }
+SW_FIXED_STEPS(euler_step, euler_of)
+SW_FIXED_STEPS(heun_step, heun_of)
+SW_FIXED_STEPS(rk4_step, rk4_of)
+SW_FIXED_ADVANCES(euler_step)
+SW_FIXED_ADVANCES(heun_step)
+SW_FIXED_ADVANCES(rk4_step)
 
 int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *pkg)
 {
@@ -121,20 +148,35 @@ int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], v
     return GSL_SUCCESS;
 }
 
-/* gsl_odeiv2_step_* are variables, not constants: store their addresses. */
+/* One row per scheme: adding a scheme is adding a row.  stab: see the top
+ * of this file.  gsl_odeiv2_step_* are variables, not constants: the rows
+ * store their addresses. */
+#define FIXED(body)                                                                        \
+    .advance = sw_step_fixed, .restep = sw_restep_fixed,                                   \
+    .advance_for = {[SW_MODEL_BARE] = body##_adv_bare, [SW_MODEL_FRAME] = body##_adv_frame}, \
+    .step_for = {[SW_MODEL_BARE] = body##_bare, [SW_MODEL_FRAME] = body##_frame},          \
+    .step = body##_generic, .cut_kinks = 1, .exact_stuck = 1
+#define ADAPTIVE(type) .adaptive = 1, .advance = sw_step_evolve, .gsl_type = &type
 static const sw_scheme_t schemes[] = {
-    {"rk4", 4, 0, 2.785, 1e-3, rk4_step, NULL, 0},
-    {"heun", 2, 0, 2.0, 2.5e-4, heun_step, NULL, 0},
-    {"euler", 1, 0, 2.0, 1e-5, euler_step, NULL, 0},
-    {"rkf45", 5, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rkf45, 0},
-    {"rkck", 5, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rkck, 0},
-    {"rk8pd", 8, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rk8pd, 0},
+    {.name = "rk4", .order = 4, .stab = 2.785, .default_dt = 1e-3, FIXED(rk4_step)},
+    {.name = "heun", .order = 2, .stab = 2.0, .default_dt = 2.5e-4, FIXED(heun_step)},
+    {.name = "euler", .order = 1, .stab = 2.0, .default_dt = 1e-5, FIXED(euler_step)},
+    {.name = "rkf45", .order = 5, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_rkf45),
+     .restep = sw_restep_gsl},
+    {.name = "rkck", .order = 5, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_rkck),
+     .restep = sw_restep_gsl},
+    {.name = "rk8pd", .order = 8, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_rk8pd),
+     .restep = sw_restep_gsl},
     /* implicit Gauss RK (step doubling for the error), Bader-Deuflhard
      * semi-implicit extrapolation, variable-order BDF; order as GSL reports
-     * it (the highest for bsimp and msbdf, which vary it) */
-    {"rk4imp", 4, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_rk4imp, 1},
-    {"bsimp", 12, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_bsimp, 1},
-    {"msbdf", 5, 1, 0.0, 1e-3, NULL, &gsl_odeiv2_step_msbdf, 2},
+     * it (the highest for bsimp and msbdf, which vary it); msbdf, a
+     * multistep method, is re-stepped on the Hermite interpolant */
+    {.name = "rk4imp", .order = 4, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_rk4imp),
+     .restep = sw_restep_gsl, .implicit = 1},
+    {.name = "bsimp", .order = 12, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_bsimp),
+     .restep = sw_restep_gsl, .implicit = 1},
+    {.name = "msbdf", .order = 5, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_msbdf),
+     .restep = sw_restep_hermite, .implicit = 1},
 };
 
 const sw_scheme_t *sw_scheme_at(size_t i)

@@ -1,0 +1,142 @@
+/* event.c - the event layer (GSL has none; CVODE's root check and root
+ * find): events inside a step, for every model alike.
+ *
+ * After a step the model names the events that may have happened in it
+ * (ops->candidates, from the endpoint values).  A candidate crossing is
+ * confirmed on the cubic Hermite interpolant of its event function over
+ * the step (values and time derivatives at both ends, hermite.h), split
+ * into monotone pieces so that a double crossing inside one step is not
+ * missed, and bracketed by bisection.  The root is then polished by
+ * re-stepping from the step's start with the same scheme and Newton
+ * iterations on the event function, so the event lies on the scheme's own
+ * solution and the result does not depend on where the sample grid falls.
+ * Events that change the dynamics (uplift, impact, overturn, a kink to cut
+ * at) end the step; tipping, peaks of |theta| and a cushion's first lift
+ * are only timed.  The maps themselves are the package's (pkg.c). */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "hermite.h"
+#include "internal.h"
+#include "swaywatch/status.h"
+
+/* The event function's interpolant over the step. */
+static sw_herm_t interpolant(const sw_pkg_t *P, int ev, double t0, double h, const double y0[],
+                             const double f0[], const double y1[], const double f1[], double v[2],
+                             double d[2])
+{
+    P->ops->event_fn(P, ev, t0, y0, f0, &v[0], &d[0]);
+    P->ops->event_fn(P, ev, t0 + h, y1, f1, &v[1], &d[1]);
+    return sw_herm_make(v[0], d[0], v[1], d[1], h);
+}
+
+/* Where the candidate's function rises through 0 over the step, in [0, 1]
+ * by its rule (SW_RULE_*), or -1. */
+static double root_of(const sw_pkg_t *P, const sw_evcand_t *c, double t0, double h,
+                      const double y0[], const double f0[], const double y1[], const double f1[])
+{
+    double v[2], d[2];
+    const sw_herm_t H = interpolant(P, c->ev, t0, h, y0, f0, y1, f1, v, d);
+    if (c->clear && v[1] < 0.0 && v[0] < 0.0 && fmax(v[0], v[1]) < -0.5 * h * (fabs(d[0]) + fabs(d[1])))
+        return -1.0; /* clearly below the threshold all step */
+    if (c->rule == SW_RULE_PLAIN) return sw_herm_first_rise(&H, 0.0);
+    if (c->rule == SW_RULE_KINK) {
+        if (v[0] > 0.0) return -1.0; /* crossed already: we are past this kink */
+    } else if (v[0] > 0.0 || (v[0] == 0.0 && d[0] > 0.0)) {
+        return 0.0; /* already through at the start of the step */
+    }
+    const double tol = sw_herm_tol(&H);
+    double tau = sw_herm_first_rise(&H, tol);
+    if (tau < 0.0 && v[0] < 0.0 && v[1] > tol) tau = 1.0; /* round-off in the pieces */
+    return tau;
+}
+
+/* The peak of |theta| inside a step: where the turn function rises before
+ * tau = lim, polished by re-stepping so that max |theta| is as accurate as
+ * the scheme, even for long adaptive steps. */
+static void track_peak(const sw_ctx_t *C, sw_pkg_t *P, const sw_evcand_t *c, double t0, double h,
+                       const double y0[], const double f0[], const double y1[],
+                       const double f1[], double lim)
+{
+    double yt[SW_NMAX];
+    const double tau = root_of(P, c, t0, h, y0, f0, y1, f1);
+    if (tau > 0.0 && tau <= lim) {
+        sw_event_polish(C, P, c->ev, t0, h, y0, tau, yt);
+        sw_pkg_track_theta(P, yt[P->ith]);
+    }
+}
+
+int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                    const double y1[], const sw_evcand_t c[], int nc, double *tau_out)
+{
+    const double t1 = t0 + h;
+    double f0[SW_NMAX], f1[SW_NMAX], yt[SW_NMAX];
+    sw_model_rhs(t0, y0, f0, P);
+    sw_model_rhs(t1, y1, f1, P);
+    /* the earliest cutting event ends the step */
+    int best = SW_EVF_NONE;
+    double best_tau = 2.0;
+    for (int i = 0; i < nc; i++) {
+        if (c[i].role != SW_ROLE_CUT) continue;
+        const double tau = root_of(P, &c[i], t0, h, y0, f0, y1, f1);
+        const int inside = c[i].rule == SW_RULE_KINK ? tau > 0.0 && tau < 1.0 : tau >= 0.0;
+        if (inside && tau < best_tau) {
+            best_tau = tau;
+            best = c[i].ev;
+        }
+    }
+    /* what happens before it is timed */
+    const double lim = best == SW_EVF_NONE ? 1.0 : best_tau;
+    for (int i = 0; i < nc; i++) {
+        if (c[i].role == SW_ROLE_CUT) continue;
+        if (c[i].role == SW_ROLE_PEAK) {
+            track_peak(C, P, &c[i], t0, h, y0, f0, y1, f1, lim);
+            continue;
+        }
+        const double tau = root_of(P, &c[i], t0, h, y0, f0, y1, f1);
+        if (!(tau >= 0.0 && tau <= lim)) continue;
+        sw_herm_state(P->n, h, y0, f0, y1, f1, tau, yt);
+        if (c[i].role == SW_ROLE_TIP) sw_pkg_tip(C, P, t0 + tau * h, yt);
+        else sw_pkg_lift(C, P, t0 + tau * h, yt);
+    }
+    *tau_out = lim;
+    return best;
+}
+
+/* Polish the event time: re-step from (t0, y0) with Newton iterations on
+ * the event function, then make sure the returned instant is at or just
+ * past the crossing (value >= 0): an uplift placed a hair early would leave
+ * the package pushed the wrong way and chatter.  Leaves the state at the
+ * event in y and returns its time. */
+double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double h,
+                       const double y0[], double tau, double y[])
+{
+    double ts = t0 + tau * h, f[SW_NMAX], v = 0.0, d = 0.0;
+    if (tau == 0.0) {
+        memcpy(y, y0, sizeof(double) * (size_t)P->n);
+        return t0;
+    }
+    const double t1 = t0 + h;
+    for (int it = 0; it < 8; it++) {
+        if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK) return ts;
+        sw_model_rhs(ts, y, f, P);
+        P->ops->event_fn(P, ev, ts, y, f, &v, &d);
+        if (v == 0.0 || d == 0.0) break;
+        double tn = ts - v / d;
+        if (tn <= t0) tn = 0.5 * (t0 + ts);
+        if (tn > t1) tn = t1;
+        const double dt = fabs(tn - ts);
+        if (dt <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(ts))) break;
+        ts = tn;
+    }
+    for (int it = 0; it < 8 && v < 0.0 && ts < t1; it++) {
+        double dt = d > 0.0 ? -2.0 * v / d : 0.0;
+        dt = fmax(dt, 8.0 * DBL_EPSILON * fmax(1.0, fabs(ts)) * (1 << it));
+        ts = fmin(t1, ts + dt);
+        if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK) break;
+        sw_model_rhs(ts, y, f, P);
+        P->ops->event_fn(P, ev, ts, y, f, &v, &d);
+    }
+    return ts;
+}

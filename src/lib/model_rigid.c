@@ -1,0 +1,320 @@
+/* model_rigid.c - the bare block and the package on a frame (physics.md,
+ * scenes 1 and 2) as the engine sees them: their ops tables (layout,
+ * events, impact map, uplift test, exact stuck advance, report), and the
+ * margins and energies of model.h.  The right-hand sides are inline in
+ * model_rigid.h, where the fixed-step schemes inline them per stage.
+ *
+ * State vectors:  bare   y = (theta, theta')
+ *                 frame  y = (u, theta, u', theta')
+ * theta > 0 when the top tips forward (rocking about the front corner, side
+ * s = +1); A1 = alpha - s theta, A2 = s alpha - theta.  Gravity appears as
+ * g_eff = g + a_z in every gravity term; p^2 = kR g with kR = 3/(4R). */
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+#include "model_rigid.h"
+#include "swaywatch/model.h"
+#include "swaywatch/status.h"
+
+/* ---- margins and energies (model.h) ----------------------------------------- */
+
+/* cos(alpha) = h/R exactly: no cos() per output sample. */
+static double cos_alpha(const sw_derived_t *d)
+{
+    return d->h / d->R;
+}
+
+/* The margins and energies below take cA = cos(alpha - |theta|) from the
+ * caller: the state report gets it from the right-hand side's sin/cos
+ * cache instead of calling cos() twice per sample. */
+static double margin_rocking_c(const sw_derived_t *d, double r, double theta, double theta_dot,
+                               double cA)
+{
+    /* energy above rest in units of the barrier, potential and kinetic */
+    const double ca = cos_alpha(d), p2 = 2.0 * d->p * d->p;
+    const double k = 1.0 / (p2 * (1.0 - ca)); /* one division per report */
+    const double ath = fabs(theta);
+    const double PE = (cA - ca) * p2 * k;
+    const double KE = theta_dot * theta_dot * k;
+    const double E = PE + KE;
+    const int outward = theta * theta_dot > 0.0 || (theta == 0.0 && theta_dot != 0.0);
+    if (theta == 0.0 && theta_dot == 0.0) return 1.0;
+    if (ath < d->alpha) return outward ? 1.0 - E : 1.0 - r * r * E;
+    if (!outward && E > 1.0) return 1.0 - r * r * E;
+    return PE - KE - 1.0;
+}
+
+/* cos(alpha - |theta|); upright (stuck, most of the time) without cos(). */
+static double cos_A(const sw_derived_t *d, double theta)
+{
+    return theta == 0.0 ? cos_alpha(d) : cos(d->alpha - fabs(theta));
+}
+
+double sw_margin_rocking(const sw_derived_t *d, double r, double theta, double theta_dot)
+{
+    return margin_rocking_c(d, r, theta, theta_dot, cos_A(d, theta));
+}
+
+static double energy_bare_c(const sw_derived_t *d, double g_eff, const sw_state_t *s, double cA)
+{
+    return (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
+           g_eff * d->R * (cA - cos_alpha(d));
+}
+
+double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s)
+{
+    return energy_bare_c(d, g_eff, s, cos_A(d, s->theta));
+}
+
+static double energy_frame_c(const sw_derived_t *d, double g_eff, const sw_state_t *s, double cA)
+{
+    if (d->gamma <= 0.0) return energy_bare_c(d, g_eff, s, cA);
+    const double wb = d->omega_b;
+    return (0.5 / d->gamma) * (s->u_dot * s->u_dot + wb * wb * s->u * s->u) +
+           d->R * cA * s->u_dot * s->theta_dot +
+           (2.0 / 3.0) * d->R * d->R * s->theta_dot * s->theta_dot +
+           g_eff * d->R * (cA - cos_alpha(d));
+}
+
+double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
+{
+    return energy_frame_c(d, g_eff, s, cos_A(d, s->theta));
+}
+
+static double margin_bound_frame_c(const sw_derived_t *d, double g_eff, const sw_state_t *s,
+                                   double cA)
+{
+    const double Eb = g_eff * d->R * (1.0 - cos_alpha(d));
+    const double m = 1.0 - energy_frame_c(d, g_eff, s, cA) / Eb;
+    return fabs(s->theta) < d->alpha ? m : fmin(m, 0.0);
+}
+
+double sw_margin_bound_frame(const sw_derived_t *d, double g_eff, const sw_state_t *s)
+{
+    return margin_bound_frame_c(d, g_eff, s, cos_A(d, s->theta));
+}
+
+/* ---- layout and right-hand sides -------------------------------------------- */
+
+static void bare_setup(sw_pkg_t *P)
+{
+    P->n = 2;
+    P->ith = 0;
+    P->idth = 1;
+}
+
+static void frame_setup(sw_pkg_t *P)
+{
+    P->n = 4;
+    P->iu = 0;
+    P->ith = 1;
+    P->idu = 2;
+    P->idth = 3;
+}
+
+static int bare_rhs(sw_pkg_t *P, double t, const double y[], double f[])
+{
+    sw_rigid_rhs_of(P, SW_MODEL_BARE, sw_input_ag(P->in, t), sw_input_geff(P, t), y, f);
+    return GSL_SUCCESS;
+}
+
+static int frame_rhs(sw_pkg_t *P, double t, const double y[], double f[])
+{
+    sw_rigid_rhs_of(P, SW_MODEL_FRAME, sw_input_ag(P->in, t), sw_input_geff(P, t), y, f);
+    return GSL_SUCCESS;
+}
+
+/* ---- events ----------------------------------------------------------------- */
+
+/* Rocking: the impact (theta back to 0) and the overturn (pi/2) cut the
+ * step when an endpoint is through or close enough that the step's motion
+ * could reach it; the peak of |theta| where theta' changes sign; the tip
+ * where s theta crosses alpha.  A stuck frame: uplift either way (the bare
+ * block is never stepped while stuck: stuck.c solves for its uplift). */
+static int rigid_candidates(const sw_pkg_t *P, int cut_kinks, double h, const double y0[],
+                            const double y1[], sw_evcand_t c[])
+{
+    (void)cut_kinks; /* the rigid right-hand sides are smooth within a phase */
+    int n = 0;
+    if (P->phase == SW_PHASE_ROCKING) {
+        const double s0 = P->side * y0[P->ith], s1 = P->side * y1[P->ith];
+        const double v = h * sw_max2(fabs(y0[P->idth]), fabs(y1[P->idth]));
+        if (s1 <= 0.0 || sw_min2(s0, s1) < v)
+            c[n++] = (sw_evcand_t){SW_EVF_IMPACT, SW_ROLE_CUT, SW_RULE_RISE, 0};
+        if (s1 >= M_PI_2 || M_PI_2 - sw_max2(s0, s1) < v)
+            c[n++] = (sw_evcand_t){SW_EVF_OVERTURN, SW_ROLE_CUT, SW_RULE_RISE, 0};
+        if ((y0[P->idth] > 0.0) != (y1[P->idth] > 0.0))
+            c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};
+        if ((s0 < P->d.alpha) != (s1 < P->d.alpha))
+            c[n++] = (sw_evcand_t){SW_EVF_TIP, SW_ROLE_TIP, SW_RULE_PLAIN, 0};
+    } else if (P->phase == SW_PHASE_STUCK && P->iu >= 0 && !P->hold) {
+        c[n++] = (sw_evcand_t){SW_EVF_UPLIFT_FWD, SW_ROLE_CUT, SW_RULE_RISE, 1};
+        c[n++] = (sw_evcand_t){SW_EVF_UPLIFT_BACK, SW_ROLE_CUT, SW_RULE_RISE, 1};
+    }
+    return n;
+}
+
+/* Value and time derivative of event ev at (t, y) with f = y'.  Every
+ * event is "the function rises through 0". */
+static void rigid_event_fn(const sw_pkg_t *P, int ev, double t, const double y[],
+                           const double f[], double *val, double *der)
+{
+    const double s = P->side;
+    switch (ev) {
+    case SW_EVF_IMPACT:
+        *val = -s * y[P->ith];
+        *der = -s * f[P->ith];
+        return;
+    case SW_EVF_OVERTURN:
+        *val = s * y[P->ith] - M_PI_2;
+        *der = s * f[P->ith];
+        return;
+    case SW_EVF_TIP:
+        *val = s * y[P->ith] - P->d.alpha;
+        *der = s * f[P->ith];
+        return;
+    case SW_EVF_TURN: /* the package stops swinging outward: the peak of |theta| */
+        *val = -s * y[P->idth];
+        *der = -s * f[P->idth];
+        return;
+    default: {
+        /* frame stuck: support acceleration W = -(2 z w u' + w^2 u) against
+         * the uplift threshold T = tan(alpha) g_eff */
+        const double w = P->d.omega_b, c = 2.0 * P->d.zeta_b * w;
+        const double W = -(c * y[P->idu] + w * w * y[P->iu]);
+        const double Wd = -(c * f[P->idu] + w * w * f[P->iu]);
+        const double T = P->tan_alpha * sw_input_geff(P, t);
+        const double Td = P->in->fn ? 0.0 : P->tan_alpha * P->in->az_slope;
+        const double sg = ev == SW_EVF_UPLIFT_BACK ? 1.0 : -1.0; /* back: W >= T; fwd: W <= -T */
+        *val = sg * W - T;
+        *der = sg * Wd - Td;
+        return;
+    }
+    }
+}
+
+/* ---- maps and tests ------------------------------------------------------------ */
+
+/* At theta = 0 (physics.md): theta' times the impact ratio; on a frame the
+ * frame takes the momentum the package loses. */
+static void bare_impact(sw_pkg_t *P)
+{
+    P->y[P->idth] = P->d.eta * P->y[P->idth];
+    P->y[P->ith] = 0.0;
+    P->side = -P->side;
+}
+
+static void frame_impact(sw_pkg_t *P)
+{
+    const double before = P->y[P->idth];
+    const double after = P->d.r_frame * before;
+    P->y[P->idth] = after;
+    P->y[P->idu] += P->d.gamma * P->d.h * (before - after);
+    P->y[P->ith] = 0.0;
+    P->side = -P->side;
+}
+
+static int bare_uplift_side(const sw_pkg_t *P, double t)
+{
+    return sw_bare_uplift_side(P, t);
+}
+
+static int frame_uplift_side(const sw_pkg_t *P, double t)
+{
+    return sw_frame_uplift_side(P, t);
+}
+
+static int bare_moving(const sw_pkg_t *P, double rest_eps)
+{
+    (void)rest_eps;
+    return P->phase == SW_PHASE_ROCKING;
+}
+
+static int frame_moving(const sw_pkg_t *P, double rest_eps)
+{
+    (void)rest_eps;
+    return P->phase == SW_PHASE_ROCKING ||
+           (P->phase == SW_PHASE_STUCK &&
+            (fabs(P->y[P->iu]) > 1e-9 || fabs(P->y[P->idu]) > 1e-9));
+}
+
+/* ---- the report ---------------------------------------------------------------- */
+
+/* After the common part (time, state, a_g): the support's acceleration, the
+ * uplift ratio and the margins. */
+static inline void rigid_output(const sw_pkg_t *P, sw_model_kind model, double t, sw_output_t *o)
+{
+    const double ge_in = sw_input_geff(P, t); /* m/s^2, as the right-hand side sees it */
+    /* Airborne (g + a_z <= 0): the engine has faulted the package and reset
+     * it; its energy bound is judged under nominal gravity, not divided by
+     * a zero or negative barrier. */
+    const double ge = ge_in > 0.0 ? ge_in : P->g;
+    double cA = cos_alpha(&P->d); /* cos(alpha - |theta|) */
+    /* bare: the support is the bed; frame: a_g + u''.  sin and cos of
+     * A1 = alpha - s theta (which is alpha - |theta| but in the instant of
+     * a landing) near the right-hand side's last angle. */
+    double sn = 0.0, c1 = 0.0;
+    if (P->phase == SW_PHASE_ROCKING) {
+        const double sth = P->side * P->y[P->ith];
+        sw_rigid_sincos_near(P->trig, P->d.alpha - sth, &sn, &c1);
+        cA = sth >= 0.0 ? c1 : cos(P->d.alpha + sth);
+    }
+    o->a_support = o->a_g;
+    if (model == SW_MODEL_FRAME) {
+        double f[SW_NMAX];
+        sw_rigid_rhs_trig(P, SW_MODEL_FRAME, o->a_g, ge_in, P->y, sn, c1, f);
+        o->a_support += f[P->idu];
+    }
+    o->uplift_ratio = fabs(o->a_support) / (P->tan_alpha * P->g);
+    if (P->phase == SW_PHASE_OVERTURNED) {
+        o->margin = o->margin_bound = -1.0;
+        return;
+    }
+    if (P->phase == SW_PHASE_STUCK) {
+        o->margin = 1.0;
+    } else {
+        const double r = model == SW_MODEL_BARE ? P->d.eta : P->d.r_frame;
+        o->margin = margin_rocking_c(&P->d, r, o->state.theta, o->state.theta_dot, cA);
+    }
+    if (model == SW_MODEL_BARE)
+        o->margin_bound = o->margin;
+    else
+        o->margin_bound = margin_bound_frame_c(&P->d, ge, &o->state, cA);
+}
+
+static void bare_output(const sw_pkg_t *P, double t, sw_output_t *o)
+{
+    rigid_output(P, SW_MODEL_BARE, t, o);
+}
+
+static void frame_output(const sw_pkg_t *P, double t, sw_output_t *o)
+{
+    rigid_output(P, SW_MODEL_FRAME, t, o);
+}
+
+const sw_model_ops_t sw_model_bare = {
+    .name = "bare",
+    .setup = bare_setup,
+    .rhs = bare_rhs,
+    .candidates = rigid_candidates,
+    .event_fn = rigid_event_fn,
+    .impact = bare_impact,
+    .uplift_side = bare_uplift_side,
+    .stuck_advance = sw_stuck_bare,
+    .output = bare_output,
+    .moving = bare_moving,
+};
+
+const sw_model_ops_t sw_model_frame = {
+    .name = "frame",
+    .setup = frame_setup,
+    .rhs = frame_rhs,
+    .candidates = rigid_candidates,
+    .event_fn = rigid_event_fn,
+    .impact = frame_impact,
+    .uplift_side = frame_uplift_side,
+    .stuck_advance = sw_stuck_frame,
+    .output = frame_output,
+    .moving = frame_moving,
+};

@@ -1,0 +1,177 @@
+/* pkg.c - one package's phase machine: standing (stuck), rocking, at rest
+ * again, overturned, faulted; the maps of the events that change the
+ * dynamics (uplift, impact, overturn), the summary, and the events it
+ * reports through the engine's callback.  The physics of each map is the
+ * model's (its ops); what follows from it is here. */
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+#include "swaywatch/status.h"
+
+/* Report an event at time t with the package's current state, or with the
+ * state vector y_at when the event lies inside a step (tipping). */
+void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info,
+                    const double *y_at)
+{
+    sw_event_t ev;
+    sw_output_t o;
+    double keep[SW_NMAX];
+    if (y_at) {
+        memcpy(keep, P->y, sizeof keep);
+        memcpy(P->y, y_at, sizeof(double) * (size_t)P->n);
+    }
+    sw_model_output(P, t, &o);
+    if (y_at) memcpy(P->y, keep, sizeof keep);
+    ev.pkg = P->index;
+    ev.kind = kind;
+    ev.t = t;
+    ev.theta = o.state.theta;
+    ev.theta_dot = o.state.theta_dot;
+    ev.margin = o.margin;
+    ev.info = info;
+    if (o.margin < P->sum.min_margin) P->sum.min_margin = o.margin;
+    C->events++;
+    if (C->on_event) C->on_event(C->user, &ev);
+}
+
+static void emit(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info)
+{
+    sw_pkg_emit_at(C, P, kind, t, info, NULL);
+}
+
+void sw_pkg_track_theta(sw_pkg_t *P, double th)
+{
+    const double a = fabs(th);
+    if (a > P->sum.max_abs_theta) {
+        P->sum.max_abs_theta = a;
+        P->sum.max_theta_ratio = a / P->d.alpha;
+    }
+}
+
+void sw_pkg_rest(sw_pkg_t *P)
+{
+    memset(P->y, 0, sizeof P->y);
+    P->hold = 0;
+    P->t_lift = NAN;
+    P->phase = SW_PHASE_STUCK;
+    P->side = 1;
+    P->beyond_alpha = 0;
+    if (P->ops->rest) P->ops->rest(P);
+}
+
+void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code)
+{
+    P->sum.faults++;
+    sw_pkg_rest(P);
+    if (P->gevo) gsl_odeiv2_evolve_reset(P->gevo);
+    emit(C, P, SW_EV_FAULT, t, code);
+}
+
+void sw_pkg_start_rocking(sw_ctx_t *C, sw_pkg_t *P, double t, int side)
+{
+    P->phase = SW_PHASE_ROCKING;
+    P->side = side;
+    P->t_lift = t;
+    P->y[P->ith] = P->y[P->idth] = 0.0;
+    P->sum.uplifts++;
+    if (isnan(P->sum.uplift_time)) P->sum.uplift_time = t;
+    emit(C, P, SW_EV_UPLIFT, t, side);
+}
+
+/* |theta| reached alpha at t (the state there: y_at). */
+void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
+{
+    if (isnan(P->sum.tip_time)) P->sum.tip_time = t;
+    P->beyond_alpha = 1;
+    sw_pkg_emit_at(C, P, SW_EV_TIP, t, (y_at[P->ith] < 0.0 ? -1.0 : 1.0) * P->d.alpha, y_at);
+}
+
+/* The first edge of a package that never impacts (a cushion's) left its
+ * support at t: uplift; info +1 when the rear edge lifts (the top tips
+ * forward), -1 the front, 0 when the level base leaves at once. */
+void sw_pkg_lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
+{
+    const double th = y_at[P->ith];
+    const double side = th == 0.0 ? 0.0 : th < 0.0 ? -1.0 : 1.0;
+    P->t_lift = t;
+    P->sum.uplifts++;
+    if (isnan(P->sum.uplift_time)) P->sum.uplift_time = t;
+    sw_pkg_emit_at(C, P, SW_EV_UPLIFT, t, side, y_at);
+}
+
+/* Kinetic energy of theta' below rest_eps of the energy barrier? */
+static int below_rest(const sw_ctx_t *C, const sw_pkg_t *P, double theta_dot)
+{
+    const double p = P->d.p;
+    return 0.5 * theta_dot * theta_dot / (p * p) < C->rest_eps * (1.0 - cos(P->d.alpha));
+}
+
+/* After an impact: the cascade ends (rest) when the rebound energy is below
+ * rest_eps of the barrier; the package then stands, or starts to rock again
+ * at once if its support is still beyond the uplift threshold. */
+static void after_impact(sw_ctx_t *C, sw_pkg_t *P, double t)
+{
+    if (!below_rest(C, P, P->y[P->idth])) return;
+    P->y[P->idth] = 0.0;
+    const int side = P->ops->uplift_side(P, t);
+    if (side != 0 && t == P->t_lift) {
+        /* Lifted and landed at the same instant: the support is at the
+         * threshold and the step's own error pushed the package the wrong
+         * way.  Hold it for one step (the support keeps moving), then look
+         * again, so that time always advances. */
+        P->phase = SW_PHASE_STUCK;
+        P->hold = 1;
+        return;
+    }
+    if (side == 0) {
+        P->phase = SW_PHASE_STUCK;
+        P->sum.rests++;
+        emit(C, P, SW_EV_REST, t, 0.0);
+    } else {
+        P->side = side;
+    }
+}
+
+void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t)
+{
+    switch (ev) {
+    case SW_EVF_IMPACT: {
+        const double before = P->y[P->idth];
+        if (below_rest(C, P, before)) {
+            /* arriving with less than the rest energy: a landing, not an
+             * impact (the step's round-off after a lift, or the end of a
+             * cascade) */
+            P->y[P->ith] = 0.0;
+            P->y[P->idth] = 0.0;
+            after_impact(C, P, t);
+            break;
+        }
+        P->y[P->ith] = 0.0;
+        P->ops->impact(P);
+        P->beyond_alpha = 0;
+        P->sum.impacts++;
+        emit(C, P, SW_EV_IMPACT, t, before);
+        after_impact(C, P, t);
+        break;
+    }
+    case SW_EVF_OVERTURN: {
+        const double rate = P->y[P->idth];
+        P->y[P->ith] = P->side * M_PI_2;
+        sw_pkg_track_theta(P, M_PI_2);
+        P->phase = SW_PHASE_OVERTURNED;
+        P->sum.overturned = 1;
+        P->sum.overturn_time = t;
+        emit(C, P, SW_EV_OVERTURN, t, rate);
+        for (int i = 0; i < P->n; i++)
+            if (i != P->ith) P->y[i] = 0.0;
+        break;
+    }
+    case SW_EVF_UPLIFT_FWD:
+    case SW_EVF_UPLIFT_BACK:
+        sw_pkg_start_rocking(C, P, t, ev == SW_EVF_UPLIFT_FWD ? +1 : -1);
+        break;
+    default: break; /* a kink: the step was cut there, nothing changes */
+    }
+    sw_step_reset(P);
+}

@@ -1,0 +1,163 @@
+/* step.c - the step layer (GSL's step/evolve): one step of a package with
+ * the engine's scheme, and the re-steps the event layer takes inside it.
+ * The scheme's row (scheme.c) points at one advance and one re-step below;
+ * nothing here knows which model it steps.
+ *
+ * Fixed steps are aligned to samples: each sample interval (or what is left
+ * of it after an event) is split into equal steps no longer than the
+ * package's step h, because the input has a kink at every sample.  The
+ * adaptive schemes are GSL odeiv2 steppers under its error control. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "hermite.h"
+#include "internal.h"
+#include "swaywatch/status.h"
+
+int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double atol, char *msg,
+                 size_t msglen)
+{
+    const sw_scheme_t *S = C->scheme;
+    P->h = dt;
+    if (S->stab > 0.0 && P->d.omega_max > 0.0) {
+        const double bound = S->stab / P->d.omega_max; /* s */
+        if (C->dt_forced && dt > bound) {
+            if (msg && msglen)
+                snprintf(msg, msglen,
+                         "scene '%s': dt = %g s gives omega*dt = %.3g, above the %s stability "
+                         "bound %.3g for the scene's fastest frequency omega = %.4g rad/s "
+                         "(use dt <= %.3g s)",
+                         P->scene.name, dt, P->d.omega_max * dt, S->name, S->stab,
+                         P->d.omega_max, bound);
+            return SW_EUNSTABLE;
+        }
+        /* Sub-step so that omega_max h <= 0.5: inside every explicit
+         * scheme's stability bound, and accurate enough for the fast
+         * bearing mode that decides uplift. */
+        if (!C->dt_forced && P->h > 0.5 / P->d.omega_max) P->h = 0.5 / P->d.omega_max;
+    }
+    P->step = S->step_for[P->d.model] ? S->step_for[P->d.model] : S->step;
+    P->advance = S->advance_for[P->d.model] ? S->advance_for[P->d.model] : S->advance;
+    P->sys.function = sw_model_rhs;
+    P->sys.jacobian = S->implicit ? sw_model_jacobian : NULL;
+    P->sys.dimension = (size_t)P->n;
+    P->sys.params = P;
+    if (!S->gsl_type) return SW_OK;
+    rtol = rtol > 0.0 ? rtol : 1e-10;
+    atol = atol > 0.0 ? atol : 1e-12;
+    if (P->iz >= 0) {
+        /* resolve the contact: an absolute tolerance above the static
+         * deflection (m) or the lift angle z_s/b (rad) of a very stiff
+         * cushion would leave it to noise */
+        const double zs = P->yscale[P->iz];
+        atol = fmin(atol, 1e-3 * fmin(zs, zs / P->d.b));
+    }
+    P->gstep = gsl_odeiv2_step_alloc(*S->gsl_type, (size_t)P->n);
+    P->gctl = gsl_odeiv2_control_y_new(atol, rtol);
+    P->gevo = gsl_odeiv2_evolve_alloc((size_t)P->n);
+    if (!P->gstep || !P->gctl || !P->gevo) {
+        if (msg && msglen) snprintf(msg, msglen, "out of memory");
+        return SW_ENOMEM;
+    }
+    sw_step_bind(P);
+    return SW_OK;
+}
+
+void sw_step_bind(sw_pkg_t *P)
+{
+    P->sys.params = P;
+    if (!P->gstep || !P->sys.jacobian) return;
+    /* GSL's implicit steppers read their Newton tolerances from the
+     * control through a driver (without one they fail with GSL_EFAULT):
+     * hand them one that only points at ours */
+    P->gdrv = (gsl_odeiv2_driver){.sys = &P->sys, .s = P->gstep, .c = P->gctl, .e = P->gevo,
+                                  .h = P->h, .hmax = DBL_MAX};
+    gsl_odeiv2_step_set_driver(P->gstep, &P->gdrv);
+}
+
+void sw_step_free(sw_pkg_t *P)
+{
+    if (P->gevo) gsl_odeiv2_evolve_free(P->gevo);
+    if (P->gctl) gsl_odeiv2_control_free(P->gctl);
+    if (P->gstep) gsl_odeiv2_step_free(P->gstep);
+    P->gevo = NULL;
+    P->gctl = NULL;
+    P->gstep = NULL;
+}
+
+void sw_step_reset(sw_pkg_t *P)
+{
+    if (!P->gevo) return;
+    gsl_odeiv2_evolve_reset(P->gevo);
+    gsl_odeiv2_step_reset(P->gstep);
+}
+
+/* The input sets the stiffness of the rocking equation: theta'' is of the
+ * order kR |a| theta for an acceleration a (bed or gravity), a rate of
+ * sqrt(kR |a|).  A fixed step beyond the scheme's stability bound for that
+ * rate computes garbage, not a motion (states of 1e260 that still look
+ * finite): a fault, not an integration.  Checked at the ends of the
+ * interval, where the sampled input is largest. */
+int sw_step_input_unstable(const sw_ctx_t *C, const sw_pkg_t *P, double t0, double t1)
+{
+    const double stab = C->scheme->stab;
+    if (!(stab > 0.0)) return 0; /* GSL shortens its steps itself */
+    const double a =
+        sw_max2(sw_max2(fabs(sw_input_ag(P->in, t0)), fabs(sw_input_ag(P->in, t1))),
+                sw_max2(fabs(sw_input_geff(P, t0)), fabs(sw_input_geff(P, t1))));
+    return !(P->kR * a * P->h * P->h <= stab * stab); /* NaN: unstable */
+}
+
+int sw_step_fixed(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *hout)
+{
+    return sw_step_fixed_with(C, P, t1, y1, hout, P->step, 1);
+}
+
+/* One step of GSL's evolve under its error control, toward t1. */
+int sw_step_evolve(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h)
+{
+    (void)C;
+    const double t0 = P->t, rem = t1 - t0;
+    double tt = t0;
+    memcpy(y1, P->y, sizeof(double) * (size_t)P->n);
+    if (P->h_adapt > rem) P->h_adapt = rem;
+    const int st =
+        gsl_odeiv2_evolve_apply(P->gevo, P->gctl, P->gstep, &P->sys, &tt, t1, &P->h_adapt, y1);
+    if (st != GSL_SUCCESS || !(tt > t0)) return SW_EGSL;
+    *h = tt - t0;
+    return SW_OK;
+}
+
+int sw_restep_fixed(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                    double y1[])
+{
+    (void)C;
+    P->step(P, t0, h, y0, y1);
+    return SW_OK;
+}
+
+int sw_restep_gsl(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                  double y1[])
+{
+    (void)C;
+    double yerr[SW_NMAX];
+    memcpy(y1, y0, sizeof(double) * (size_t)P->n);
+    return gsl_odeiv2_step_apply(P->gstep, t0, h, y1, yerr, NULL, NULL, &P->sys) == GSL_SUCCESS
+               ? SW_OK
+               : SW_EGSL;
+}
+
+/* A multistep method cannot restart from the step's start without losing
+ * its history: interpolate the step being examined (cubic Hermite, O(h^4))
+ * instead of re-stepping. */
+int sw_restep_hermite(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                      double y1[])
+{
+    double f0[SW_NMAX], f1[SW_NMAX];
+    sw_model_rhs(t0, y0, f0, P);
+    sw_model_rhs(t0 + C->step_h, C->step_y1, f1, P);
+    sw_herm_state(P->n, C->step_h, y0, f0, C->step_y1, f1, h / C->step_h, y1);
+    return SW_OK;
+}
