@@ -2,11 +2,8 @@
 # (PEER AT2 format: 4 header lines, then 8 values per line in g, dt 0.02 s),
 # converted to CSV here and replayed in g; every sample must be accounted for.
 . "$(dirname "$0")/lib.sh"
-AT2=$SHARED/data/elcentro-1940-ns.AT2
-[ -r "$AT2" ] || {
-    echo "skipped: $AT2 not found"
-    exit 77
-}
+AT2=$SRC/tests/data/elcentro-1940-ns.AT2 # provenance: tests/data/README.md
+[ -r "$AT2" ] || fail "$AT2 not found"
 
 # Fixed-width 8F10.5: cut by columns, not by blanks, so touching negative
 # numbers are still split correctly.

@@ -1,9 +1,8 @@
 # lib.sh - helpers sourced by the command-line tests (POSIX sh).
-# Every test is run by ctest as: sh TEST.sh SWAYWATCH SOURCE_DIR SHARED_DIR
+# Every test is run by ctest as: sh TEST.sh SWAYWATCH SOURCE_DIR
 set -eu
 SW=$1
 SRC=$2
-SHARED=${3:-}
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT INT TERM
 
