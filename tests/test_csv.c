@@ -168,7 +168,7 @@ static void run3(const char *in, size_t len, const sw_csv_opts_t *o, result_t *r
 
 static sw_csv_opts_t defaults(void)
 {
-    sw_csv_opts_t o = {0, NULL, NULL, NULL, 0.0, 0.0, 0, -1};
+    sw_csv_opts_t o = {0, NULL, NULL, NULL, 0.0, 0.0, 0, -1, 0, 0};
     return o;
 }
 
@@ -561,18 +561,18 @@ static void test_bad_options(void **state)
         sw_csv_opts_t o;
         int err;
     } cases[] = {
-        {{'|', NULL, NULL, NULL, 0, 0, 0, -1}, SW_EINVAL},
-        {{0, NULL, NULL, NULL, 0, 0, 0, 2}, SW_EINVAL},
-        {{0, NULL, NULL, NULL, -1.0, 0, 0, -1}, SW_EINVAL},
-        {{0, NULL, NULL, NULL, 0, NAN, 0, -1}, SW_EINVAL},
-        {{0, NULL, NULL, NULL, 0, -9.80665, 0, -1}, SW_EINVAL},
-        {{0, "0", NULL, NULL, 0, 0, 0, -1}, SW_EINVAL},
-        {{0, "  ", NULL, NULL, 0, 0, 0, -1}, SW_EINVAL},
-        {{0, "99999999999999999999", NULL, NULL, 0, 0, 0, -1}, SW_EINVAL},
-        {{0, "2", NULL, NULL, 0, 0, 0, -1}, SW_EINVAL},          /* same as accel */
-        {{0, "t", "T", NULL, 0, 0, 0, -1}, SW_EINVAL},           /* same name */
-        {{0, NULL, NULL, "1", 0, 0, 0, -1}, SW_EINVAL},          /* vertical = time */
-        {{0, "time", NULL, NULL, 0, 0, 0, 0}, SW_ENOTFOUND},     /* named, no header */
+        {{'|', NULL, NULL, NULL, 0, 0, 0, -1, 0, 0}, SW_EINVAL},
+        {{0, NULL, NULL, NULL, 0, 0, 0, 2, 0, 0}, SW_EINVAL},
+        {{0, NULL, NULL, NULL, -1.0, 0, 0, -1, 0, 0}, SW_EINVAL},
+        {{0, NULL, NULL, NULL, 0, NAN, 0, -1, 0, 0}, SW_EINVAL},
+        {{0, NULL, NULL, NULL, 0, -9.80665, 0, -1, 0, 0}, SW_EINVAL},
+        {{0, "0", NULL, NULL, 0, 0, 0, -1, 0, 0}, SW_EINVAL},
+        {{0, "  ", NULL, NULL, 0, 0, 0, -1, 0, 0}, SW_EINVAL},
+        {{0, "99999999999999999999", NULL, NULL, 0, 0, 0, -1, 0, 0}, SW_EINVAL},
+        {{0, "2", NULL, NULL, 0, 0, 0, -1, 0, 0}, SW_EINVAL},          /* same as accel */
+        {{0, "t", "T", NULL, 0, 0, 0, -1, 0, 0}, SW_EINVAL},           /* same name */
+        {{0, NULL, NULL, "1", 0, 0, 0, -1, 0, 0}, SW_EINVAL},          /* vertical = time */
+        {{0, "time", NULL, NULL, 0, 0, 0, 0, 0, 0}, SW_ENOTFOUND},     /* named, no header */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         int err = 0;

@@ -13,11 +13,21 @@
  * physical line is one record: a quote cannot span lines.
  *
  * Rows are rejected when a field is missing, empty, not a plain decimal
- * number ("nan", "inf", "1.0x", hex, and decimal commas such as "0,001" in a
- * ';' file are refused), out of range ("1e400"), when time does not increase
- * (duplicates included), when the quoting is malformed, or when the line is
- * longer than SW_CSV_MAX_LINE bytes.  A gap in time is not an error.
- * Numbers are read with '.' as the decimal point whatever the locale.
+ * number ("nan", "inf", "1.0x", hex, and decimal commas such as "0,001"
+ * unless the decimal comma is on), out of range ("1e400"), when time does
+ * not increase (duplicates included), when the quoting is malformed, or
+ * when the line is longer than SW_CSV_MAX_LINE bytes.  A gap in time is not
+ * an error.  Numbers are read with '.' as the decimal point whatever the
+ * locale (',' with decimal_comma).  The time column may hold ISO-8601
+ * date-times instead of numbers ("2024-05-20T12:00:00.000Z", "2018-04-08
+ * 10:31:37.005628"; no zone: UTC), delivered as seconds since 1970 UTC; all
+ * its rows then must.
+ *
+ * With infer, a header's names choose the columns and units nobody gave
+ * ("Time (ms)", "X (g)", "time_ms;accel_g"): sw_csv_layout() says what was
+ * chosen and from where; when the names do not say it without doubt the
+ * parse ends with SW_EAMBIGUOUS, because a wrong guess gives a confident
+ * wrong answer.
  *
  * Counts always satisfy rows == accepted + rejected and
  * lines == rows + comments + blanks + headers. */
@@ -33,6 +43,23 @@ extern "C" {
 #endif
 
 #define SW_CSV_MAX_LINE (1 << 20) /* bytes; longer lines are rejected, not buffered */
+#define SW_CSV_NAME_MAX 64        /* bytes kept of a header field's name */
+#define SW_CSV_MAX_FIELDS 64      /* header fields kept (inference, messages) */
+#define SW_G0 9.80665             /* m/s^2 per g: standard gravity, the logger's g */
+
+/* Units of the time and acceleration columns. */
+enum {
+    SW_CSV_UNIT_NONE = 0, /* not known (a name without a unit; a custom scale) */
+    SW_CSV_UNIT_S,
+    SW_CSV_UNIT_MS,
+    SW_CSV_UNIT_US,
+    SW_CSV_UNIT_DATETIME, /* ISO-8601 date-times, in s since 1970 UTC */
+    SW_CSV_UNIT_MPS2,
+    SW_CSV_UNIT_G
+};
+
+/* Where a column or a unit came from. */
+enum { SW_CSV_FROM_DEFAULT = 0, SW_CSV_FROM_OPTION, SW_CSV_FROM_HEADER };
 
 typedef struct {
     char delim;            /* ',', ';', '\t', or 0 to detect */
@@ -47,7 +74,29 @@ typedef struct {
                               numeric ("0,5" and "1e400" count as numeric: such a row is
                               reported, not skipped); 0 none; 1 that line is the header.  Named
                               columns match the trimmed header fields case-insensitively. */
+    int infer;             /* non-zero: the columns and units not given above are read from
+                              the header's names (see the top of this file); without a
+                              header the defaults apply (column 1 in s, column 2 in m/s^2) */
+    int decimal_comma;     /* 1: ',' is the decimal mark; -1: detect it in a ';' or tab
+                              delimited file from the first number holding ',' or '.'; 0: a
+                              ',' in a number is refused */
 } sw_csv_opts_t;
+
+/* The layout in use, once the header (or the first data row) has fixed it.
+ * Roles: 0 time, 1 longitudinal acceleration, 2 vertical acceleration. */
+typedef struct {
+    int ready;                     /* 0 until the layout is fixed */
+    char delim;                    /* 0 while not detected */
+    int has_header;
+    int decimal_comma;             /* -1 not decided yet, 0, 1 */
+    long col[3];                   /* 0-based; -1: the role is not read */
+    char name[3][SW_CSV_NAME_MAX]; /* the header's name of the column ("" without one) */
+    int unit[3];                   /* SW_CSV_UNIT_* in use */
+    double scale[3];               /* s or m/s^2 per unit of the column */
+    int col_from[3], unit_from[3]; /* SW_CSV_FROM_* */
+    int header_unit[3];            /* the unit the column's name says (NONE: none); when it
+                                      differs from unit, the option given overrode it */
+} sw_csv_layout_t;
 
 typedef struct {
     long lines;    /* physical lines seen */
@@ -75,7 +124,7 @@ SW_API void sw_csv_destroy(sw_csv_t *c);
  * returned again by every later call: SW_ENOTFOUND when a named column is
  * not in the header or the input has no header (that first data row is also
  * reported as rejected), SW_EINVAL when two roles resolve to the same header
- * field.  sw_csv_error_message() says which column and line.  Bad rows are
+ * field, SW_EAMBIGUOUS when infer cannot tell the columns from the header.  sw_csv_error_message() says which column and line.  Bad rows are
  * not errors: they are counted and reported. */
 SW_API int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len);
 
@@ -84,6 +133,19 @@ SW_API int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len);
 SW_API int sw_csv_finish(sw_csv_t *c);
 
 SW_API void sw_csv_counts(const sw_csv_t *c, sw_csv_counts_t *out);
+
+/* The layout in use: SW_OK once it is fixed (out->ready), SW_EINVAL for
+ * NULL arguments; before that out->ready is 0. */
+SW_API int sw_csv_layout(const sw_csv_t *c, sw_csv_layout_t *out);
+
+/* The header's fields, as read (trimmed, at most SW_CSV_NAME_MAX - 1
+ * bytes, the first SW_CSV_MAX_FIELDS): for messages that list them.  NULL
+ * past the last or without a header. */
+SW_API long sw_csv_header_count(const sw_csv_t *c);
+SW_API const char *sw_csv_header_field(const sw_csv_t *c, long i);
+
+/* "s", "ms", "us", "date-time", "m/s^2", "g", or "" for SW_CSV_UNIT_NONE. */
+SW_API const char *sw_csv_unit_name(int unit);
 
 /* Details of the error that ended the parse ("line 1: no column named
  * \"acc\" (accel) in the header"); "" when there was none. */

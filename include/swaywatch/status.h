@@ -25,7 +25,9 @@ enum {
     SW_EGSL = -7,       /* a GSL routine failed */
     SW_EPARSE = -8,     /* malformed text (scene file, CSV row) */
     SW_ENOTFOUND = -9,  /* no such name (scheme, column, key) */
-    SW_ETOOBIG = -10    /* input exceeds a documented limit */
+    SW_ETOOBIG = -10,   /* input exceeds a documented limit */
+    SW_EAMBIGUOUS = -11 /* the input does not say what it holds (which column is which, in
+                           what unit): the caller must say it */
 };
 
 /* A constant string describing code; never NULL. */

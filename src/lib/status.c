@@ -16,6 +16,7 @@ const char *sw_strerror(int code)
     case SW_EPARSE: return "malformed input";
     case SW_ENOTFOUND: return "no such name";
     case SW_ETOOBIG: return "input exceeds a limit";
+    case SW_EAMBIGUOUS: return "the input does not say what it holds";
     default: return code > 0 ? "event reported" : "unknown error";
     }
 }

@@ -120,6 +120,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static const double ascale[] = {0, 1, 9.80665, 1e300};
     o.time_scale = tscale[(o2 >> 4) & 3];
     o.accel_scale = ascale[(o2 >> 6) & 3];
+    /* header inference and the decimal comma: seed bits 6 and 7 */
+    o.infer = (seed >> 6) & 1;
+    o.decimal_comma = (seed >> 7) & 1 ? -1 : (o1 & 1);
+    if (o.infer && (o2 & 1)) o.time_col = o.accel_col = NULL; /* let the header choose */
 
     size_t len = b.n > MAX_TEXT ? MAX_TEXT : b.n;
     run_t whole, chunked;

@@ -1,4 +1,4 @@
-/* csvsrc.c - streaming CSV ingestion of acceleration logs (csv.h).
+/* csv.c - streaming CSV ingestion of acceleration logs (csv.h).
  *
  * Bytes arrive in chunks of any size.  They are gathered into one physical
  * line at a time, in a buffer allocated once at create; each complete line is
@@ -16,8 +16,8 @@
  * fast path, most rows of a numeric log); lines with a quote go through
  * libcsv in strict mode.  The fast path reproduces libcsv's treatment of
  * unquoted fields exactly (spaces and tabs around a field are dropped), so
- * both give identical results; the tests compare them.  Likewise plain
- * decimals are converted without strtod where that is provably exact. */
+ * both give identical results; the tests compare them.  Numbers and
+ * date-times are read by csv_num.c, a header's names by csv_infer.c. */
 #include <float.h>
 #include <locale.h>
 #include <math.h>
@@ -28,6 +28,7 @@
 
 #include <csv.h>
 
+#include "csv_int.h"
 #include "swaywatch/csv.h"
 #include "swaywatch/status.h"
 
@@ -64,6 +65,15 @@ struct sw_csv {
     void *user;
     locale_t cloc; /* "C" numeric locale: '.' is the decimal point whatever
                       the program's locale says */
+    int infer;                  /* read unnamed columns and units from the header */
+    int col_given[N_ROLES];     /* the caller named or numbered the column */
+    int tscale_given, ascale_given;
+    int dcomma;                 /* decimal comma: -1 not decided yet, 0, 1 */
+    int tkind;                  /* time column: 0 not seen yet, 1 numbers, 2 date-times */
+    sw_csv_layout_t lay;
+    char hdr[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
+    long nhdr;
+    int capturing;              /* keep the fields of this line: it may be the header */
 
     /* the physical line being gathered */
     char *line;
@@ -90,7 +100,7 @@ struct sw_csv {
     double last_t;
     sw_csv_counts_t n;
     int status; /* sticky error ending the parse, or SW_OK */
-    char msg[300]; /* "line N: " + a reason */
+    char msg[400]; /* "line N: " + a reason */
     char reason[256];
 };
 
@@ -143,93 +153,12 @@ static void excerpt(char *dst, size_t cap, const char *s, size_t n)
 
 /* ---------------------------------------------------------------- numbers */
 
-enum { NUM_OK, NUM_EMPTY, NUM_BAD, NUM_COMMA, NUM_RANGE };
+enum { NUM_OK = SW_NUM_OK, NUM_EMPTY = SW_NUM_EMPTY, NUM_BAD = SW_NUM_BAD,
+       NUM_COMMA = SW_NUM_COMMA, NUM_RANGE = SW_NUM_RANGE };
 
-#if FLT_EVAL_METHOD == 0
-/* Powers of ten that are exact doubles. */
-static const double pow10_exact[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-
-/* Logger output ("12.345", "-0.00731", "1.5e-3") without strtod, which
- * costs most of the parse time otherwise.  When the digits form an integer
- * m <= 2^53 and the decimal exponent k is within +-22, m and 10^|k| are both
- * exact doubles and one IEEE multiplication or division rounds correctly
- * (Clinger's fast path): the result is the one strtod gives, bit for bit.
- * Anything else returns 0 and is left to strtod. */
-static int fast_decimal(const char *p, const char *end, double *out)
-{
-    int neg = 0, any = 0, k = 0;
-    uint64_t m = 0;
-    if (p < end && (*p == '+' || *p == '-')) neg = *p++ == '-';
-    for (; p < end && *p >= '0' && *p <= '9'; p++, any = 1) {
-        if (m > UINT64_C(1) << 53) return 0;
-        m = m * 10 + (uint64_t)(*p - '0');
-    }
-    if (p < end && *p == '.') {
-        for (p++; p < end && *p >= '0' && *p <= '9'; p++, any = 1, k--) {
-            if (m > UINT64_C(1) << 53) return 0;
-            m = m * 10 + (uint64_t)(*p - '0');
-        }
-    }
-    if (!any) return 0;
-    if (p < end && (*p == 'e' || *p == 'E')) {
-        int eneg = 0, e = 0, edigits = 0;
-        p++;
-        if (p < end && (*p == '+' || *p == '-')) eneg = *p++ == '-';
-        for (; p < end && *p >= '0' && *p <= '9'; p++, edigits++) {
-            if (e > 1000) return 0;
-            e = e * 10 + (*p - '0');
-        }
-        if (!edigits) return 0;
-        k += eneg ? -e : e;
-    }
-    if (p != end || m > UINT64_C(1) << 53) return 0;
-    double v = (double)m;
-    if (m != 0) {
-        if (k < -22 || k > 22) return 0;
-        v = k < 0 ? v / pow10_exact[-k] : v * pow10_exact[k];
-    }
-    *out = neg ? -v : v;
-    return 1;
-}
-#endif
-
-/* s[n] is NUL.  Accepts plain decimal notation only: strtod alone would also
- * take "nan", "inf", hex floats and leading junk like "\v".  strtod runs in
- * the "C" locale so that '.' is the decimal point whatever the program's
- * locale is. */
 static int parse_number(const sw_csv_t *c, const char *s, size_t n, double *out)
 {
-    while (n && is_blank(*s)) s++, n--;
-    while (n && is_blank(s[n - 1])) n--;
-    if (!n) return NUM_EMPTY;
-#if FLT_EVAL_METHOD == 0
-    if (fast_decimal(s, s + n, out)) return NUM_OK;
-#endif
-    int comma = 0, bad = 0;
-    for (size_t i = 0; i < n; i++) {
-        char ch = s[i];
-        if ((ch >= '0' && ch <= '9') || ch == '.' || ch == '-' || ch == '+' || ch == 'e' ||
-            ch == 'E')
-            continue;
-        if (ch == ',')
-            comma = 1;
-        else
-            bad = 1;
-    }
-    if (bad) return NUM_BAD;
-    if (comma) return NUM_COMMA; /* "0,001": a number, but not in this format */
-    char *end;
-    locale_t prev = uselocale(c->cloc);
-    double v = strtod(s, &end);
-    uselocale(prev);
-    if (end != s + n) return NUM_BAD;
-    /* Overflow gives HUGE_VAL; underflow (1e-400) gives a tiny finite
-     * value with ERANGE, which is as good as zero here and accepted. */
-    if (!isfinite(v)) return NUM_RANGE;
-    *out = v;
-    return NUM_OK;
+    return sw_csv_number(c->cloc, s, n, c->dcomma == 1, out);
 }
 
 /* ----------------------------------------------------------------- fields */
@@ -240,6 +169,16 @@ static int parse_number(const sw_csv_t *c, const char *s, size_t n, double *out)
 static void take_field(sw_csv_t *c, char *s, size_t n, int copy)
 {
     long k = c->nf++;
+    if (c->capturing && k < SW_CSV_MAX_FIELDS) {
+        const char *a = s;
+        size_t an = n;
+        while (an && is_blank(*a)) a++, an--;
+        while (an && is_blank(a[an - 1])) an--;
+        if (an >= SW_CSV_NAME_MAX) an = SW_CSV_NAME_MAX - 1;
+        memcpy(c->hdr[k], a, an);
+        c->hdr[k][an] = '\0';
+        c->nhdr = k + 1;
+    }
     if (c->matching) {
         for (int r = 0; r < N_ROLES; r++)
             if (c->name[r] && c->match[r] < 0 && name_equal(s, n, c->name[r])) c->match[r] = k;
@@ -279,7 +218,7 @@ static void split_plain(sw_csv_t *c, char *s, size_t n)
         take_field(c, p, (size_t)(e - p), 0);
         if (!d) return;
         /* Thousands of columns: stop once every wanted field is in hand. */
-        if (!c->matching && c->nf > c->maxwant) return;
+        if (!c->matching && !c->capturing && c->nf > c->maxwant) return;
         p = d + 1;
     }
 }
@@ -355,6 +294,69 @@ static void fail(sw_csv_t *c, int code, const char *text)
     snprintf(c->msg, sizeof c->msg, "line %ld: %s", c->lineno, text);
 }
 
+/* The unit a scale stands for: s, ms, us for time; m/s^2 or g. */
+static int unit_of_scale(int r, double scale)
+{
+    if (r == R_TIME)
+        return scale == 1.0 ? SW_CSV_UNIT_S : scale == 1e-3 ? SW_CSV_UNIT_MS
+               : scale == 1e-6 ? SW_CSV_UNIT_US : SW_CSV_UNIT_NONE;
+    return scale == 1.0 ? SW_CSV_UNIT_MPS2 : scale == SW_G0 ? SW_CSV_UNIT_G : SW_CSV_UNIT_NONE;
+}
+
+/* The columns are known (from the options, the header, or the defaults):
+ * the layout says which, in which units, and where each came from. */
+static void fix_layout(sw_csv_t *c, int has_header)
+{
+    sw_csv_layout_t *L = &c->lay;
+    L->ready = 1;
+    L->delim = c->delim;
+    L->has_header = has_header;
+    L->decimal_comma = c->dcomma;
+    for (int r = 0; r < N_ROLES; r++) {
+        L->col[r] = c->col[r];
+        L->name[r][0] = '\0';
+        if (has_header && c->col[r] >= 0 && c->col[r] < c->nhdr)
+            snprintf(L->name[r], sizeof L->name[r], "%s", c->hdr[c->col[r]]);
+        L->scale[r] = r == R_TIME ? c->tscale : c->ascale;
+        L->unit[r] = unit_of_scale(r, L->scale[r]);
+        L->header_unit[r] = L->name[r][0] ? sw_csv_name_unit(L->name[r], r == R_TIME)
+                                          : SW_CSV_UNIT_NONE;
+        if (L->col_from[r] != SW_CSV_FROM_HEADER)
+            L->col_from[r] = c->col_given[r] ? SW_CSV_FROM_OPTION : SW_CSV_FROM_DEFAULT;
+        const int given = r == R_TIME ? c->tscale_given : c->ascale_given;
+        L->unit_from[r] = given ? SW_CSV_FROM_OPTION : SW_CSV_FROM_DEFAULT;
+    }
+    if (c->tkind == 2) L->unit[R_TIME] = SW_CSV_UNIT_DATETIME;
+}
+
+/* infer: the columns and units nobody gave, from the header's names.  0, or
+ * -1 with the parse ended (SW_EAMBIGUOUS) when the names do not tell. */
+static int infer_columns(sw_csv_t *c)
+{
+    const int want[SW_CSV_NROLES] = {!c->col_given[R_TIME], !c->col_given[R_ACCEL], 0};
+    sw_csv_guess_t g;
+    if ((want[0] || want[1]) && sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])c->hdr, c->nhdr,
+                                             want, &g) != 0) {
+        char t[300];
+        snprintf(t, sizeof t, "cannot tell the columns from the header: %s", g.why);
+        fail(c, SW_EAMBIGUOUS, t);
+        return -1;
+    }
+    for (int r = 0; r < 2; r++)
+        if (want[r]) {
+            c->col[r] = g.col[r];
+            c->lay.col_from[r] = SW_CSV_FROM_HEADER;
+        }
+    /* units the options did not give, from the chosen columns' names */
+    const int tu = c->col[R_TIME] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_TIME]], 1)
+                                            : SW_CSV_UNIT_NONE;
+    const int au = c->col[R_ACCEL] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_ACCEL]], 0)
+                                             : SW_CSV_UNIT_NONE;
+    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE) c->tscale = sw_csv_unit_scale(tu);
+    if (!c->ascale_given && au != SW_CSV_UNIT_NONE) c->ascale = sw_csv_unit_scale(au);
+    return 0;
+}
+
 /* The first data-like line was a header: resolve the named columns. */
 static void take_header(sw_csv_t *c)
 {
@@ -370,6 +372,7 @@ static void take_header(sw_csv_t *c)
         }
         c->col[r] = c->match[r];
     }
+    if (c->infer && infer_columns(c) != 0) return;
     for (int r = 0; r < N_ROLES; r++)
         for (int q = r + 1; q < N_ROLES; q++)
             if (c->col[r] >= 0 && c->col[r] == c->col[q]) {
@@ -379,6 +382,13 @@ static void take_header(sw_csv_t *c)
                 fail(c, SW_EINVAL, t);
                 return;
             }
+    fix_layout(c, 1);
+    const int tu = c->lay.header_unit[R_TIME], au = c->lay.header_unit[R_ACCEL];
+    if (c->tscale_given && tu != SW_CSV_UNIT_NONE && tu != c->lay.unit[R_TIME])
+        c->lay.unit_from[R_TIME] = SW_CSV_FROM_OPTION; /* overrides the header */
+    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE) c->lay.unit_from[R_TIME] = SW_CSV_FROM_HEADER;
+    if (!c->ascale_given && au != SW_CSV_UNIT_NONE)
+        c->lay.unit_from[R_ACCEL] = c->lay.unit_from[R_VERT] = SW_CSV_FROM_HEADER;
 }
 
 /* A delimiter among tab, ';', ',' occurring outside quotes, in that order of
@@ -407,31 +417,33 @@ static int names_pending(const sw_csv_t *c)
     return 0;
 }
 
-/* A line that is neither blank nor a comment. */
-static void data_line(sw_csv_t *c, char *s, size_t n)
+/* The delimiter of the first data-like line, if not given.  0 when the line
+ * has none: a one-column header, or a row reported as such. */
+static int choose_delim(sw_csv_t *c, const char *s, size_t n, int header_here)
 {
-    int header_here = c->header_open;
-    c->header_open = 0; /* whatever this line is, no later line is a header */
-
-    if (!c->delim) {
-        char d = detect_delim(s, n);
-        if (!d) {
-            if (header_here && c->header == 1) {
-                c->matching = 0;
-                for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
-                take_header(c); /* a one-column header: named columns fail */
-                return;
-            }
-            c->n.rows++;
-            snprintf(c->reason, sizeof c->reason,
-                     "expected at least 2 columns, found 1 (no ',' ';' or tab delimiter)");
-            reject(c);
-            return;
-        }
+    const char d = detect_delim(s, n);
+    if (d) {
         c->delim = d;
         csv_set_delim(&c->lp, (unsigned char)d);
+        return 1;
     }
+    if (header_here && c->header == 1) {
+        c->matching = 0;
+        for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
+        take_header(c); /* a one-column header: named columns fail */
+        return 0;
+    }
+    c->n.rows++;
+    snprintf(c->reason, sizeof c->reason,
+             "expected at least 2 columns, found 1 (no ',' ';' or tab delimiter)");
+    reject(c);
+    return 0;
+}
 
+/* Split the line into the slots wanted; 0 with c->reason when its quoting
+ * is malformed. */
+static int split_line(sw_csv_t *c, char *s, size_t n, int header_here)
+{
     for (int r = 0; r < N_ROLES; r++) c->want[r] = c->col[r];
     c->want[R_PROBE] = header_here && c->header < 0 ? c->probe : -1;
     c->maxwant = -1;
@@ -440,81 +452,144 @@ static void data_line(sw_csv_t *c, char *s, size_t n)
         if (c->want[r] > c->maxwant) c->maxwant = c->want[r];
     }
     c->matching = header_here && names_pending(c);
+    c->capturing = header_here;
     for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
     c->nf = 0;
     c->scratch_used = 0;
+    const int ok = memchr(s, '"', n) ? split_quoted(c, s, n) : (split_plain(c, s, n), 1);
+    c->capturing = 0;
+    return ok;
+}
 
-    int ok = 1;
-    if (memchr(s, '"', n))
-        ok = split_quoted(c, s, n);
-    else
-        split_plain(c, s, n);
+/* The first data-like line: a header (taken; returns 1), or the first data
+ * row (0; also when the parse ended, with c->status set). */
+static int first_line(sw_csv_t *c, int ok)
+{
+    int is_header = c->header == 1;
+    if (c->header < 0 && ok && c->fs[R_PROBE]) {
+        /* "0,001", "1e400" and date-times are data as far as this is
+         * concerned: such a first row is reported, not taken for a header. */
+        double v;
+        const int res = parse_number(c, c->fs[R_PROBE], c->fl[R_PROBE], &v);
+        is_header = (res == NUM_EMPTY || res == NUM_BAD) &&
+                    !sw_csv_datetime(c->fs[R_PROBE], c->fl[R_PROBE], &v);
+    }
+    if (is_header) {
+        take_header(c);
+        return 1;
+    }
+    c->nhdr = 0;
+    if (c->matching) {
+        /* Reported like any unusable row, then the parse ends. */
+        int r = 0;
+        while (!(c->name[r] && c->col[r] < 0)) r++;
+        snprintf(c->reason, sizeof c->reason,
+                 "column \"%s\" (%s) is named but the input has no header", c->name[r],
+                 role_name[r]);
+        c->n.rows++;
+        reject(c);
+        fail(c, SW_ENOTFOUND, c->reason);
+        return 0;
+    }
+    fix_layout(c, 0);
+    return 0;
+}
 
-    double v[N_ROLES] = {0.0, 0.0, 0.0};
-    if (header_here) {
-        int is_header = c->header == 1;
-        if (c->header < 0 && ok && c->fs[R_PROBE]) {
-            /* "0,001" and "1e400" are numbers as far as this is concerned:
-             * such a first row is reported, not taken for a header. */
-            int res = parse_number(c, c->fs[R_PROBE], c->fl[R_PROBE], &v[R_TIME]);
-            is_header = res == NUM_EMPTY || res == NUM_BAD;
-        }
-        if (is_header) {
-            take_header(c);
+/* The decimal mark of a ';' or tab export, from the first number that shows
+ * one (a ',' file cannot use ',' as its decimal mark). */
+static void decide_comma(sw_csv_t *c)
+{
+    if (c->dcomma != -1) return;
+    if (c->delim == ',') {
+        c->dcomma = c->lay.decimal_comma = 0;
+        return;
+    }
+    for (int r = 0; r < N_ROLES; r++) {
+        if (!c->fs[r]) continue;
+        if (memchr(c->fs[r], ',', c->fl[r])) {
+            c->dcomma = c->lay.decimal_comma = 1;
             return;
         }
-        if (c->matching) {
-            /* Reported like any unusable row, then the parse ends. */
-            int r = 0;
-            while (!(c->name[r] && c->col[r] < 0)) r++;
-            snprintf(c->reason, sizeof c->reason,
-                     "column \"%s\" (%s) is named but the input has no header", c->name[r],
-                     role_name[r]);
-            c->n.rows++;
-            reject(c);
-            fail(c, SW_ENOTFOUND, c->reason);
+        if (memchr(c->fs[r], '.', c->fl[r])) {
+            c->dcomma = c->lay.decimal_comma = 0;
             return;
         }
     }
+}
 
+/* The time field: a number, or a date-time (all rows as the first). */
+static int parse_time(sw_csv_t *c, double *out)
+{
+    const char *s = c->fs[R_TIME];
+    const size_t n = c->fl[R_TIME];
+    if (c->tkind != 2) {
+        const int res = parse_number(c, s, n, out);
+        if (res == NUM_OK) c->tkind = 1;
+        if (res != NUM_BAD || c->tkind == 1) return res;
+    }
+    if (sw_csv_datetime(s, n, out)) {
+        if (c->tkind == 0) {
+            c->tkind = 2;
+            c->tscale = 1.0;
+            c->lay.unit[R_TIME] = SW_CSV_UNIT_DATETIME;
+        }
+        return NUM_OK;
+    }
+    return NUM_BAD;
+}
+
+/* Why field r of a row could not be used, into c->reason. */
+static void field_reason(sw_csv_t *c, int r, int res)
+{
+    char label[120], ex[EXCERPT_MAX + 8];
+    column_label(c, r, label, sizeof label);
+    excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
+    switch (res) {
+    case NUM_EMPTY: snprintf(c->reason, sizeof c->reason, "%s is empty", label); break;
+    case NUM_COMMA:
+        snprintf(c->reason, sizeof c->reason, "%s is not a number (decimal comma?): %s", label,
+                 ex);
+        break;
+    case NUM_RANGE:
+        snprintf(c->reason, sizeof c->reason, "%s is out of range: %s", label, ex);
+        break;
+    default:
+        if (r == R_TIME && c->tkind == 2)
+            snprintf(c->reason, sizeof c->reason,
+                     "%s is not a date-time like the rows before it: %s", label, ex);
+        else
+            snprintf(c->reason, sizeof c->reason, "%s is not a number: %s", label, ex);
+        break;
+    }
+}
+
+/* A data row split into its fields: check, convert, deliver. */
+static void data_row(sw_csv_t *c, int ok)
+{
     c->n.rows++;
     if (!ok) {
         reject(c);
         return;
     }
-    for (int r = 0; r < N_ROLES && ok; r++) {
+    decide_comma(c);
+    double v[N_ROLES] = {0.0, 0.0, 0.0};
+    for (int r = 0; r < N_ROLES; r++) {
         if (r == R_VERT && !c->have_vert) break;
-        char label[120];
         if (!c->fs[r]) {
+            char label[120];
             column_label(c, r, label, sizeof label);
             snprintf(c->reason, sizeof c->reason, "missing field: %s; the line has %ld field%s",
                      label, c->nf, c->nf == 1 ? "" : "s");
-            ok = 0;
-            break;
+            reject(c);
+            return;
         }
-        int res = parse_number(c, c->fs[r], c->fl[r], &v[r]);
-        if (res == NUM_OK) continue;
-        char ex[EXCERPT_MAX + 8];
-        column_label(c, r, label, sizeof label);
-        excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
-        switch (res) {
-        case NUM_EMPTY: snprintf(c->reason, sizeof c->reason, "%s is empty", label); break;
-        case NUM_COMMA:
-            snprintf(c->reason, sizeof c->reason, "%s is not a number (decimal comma?): %s",
-                     label, ex);
-            break;
-        case NUM_RANGE:
-            snprintf(c->reason, sizeof c->reason, "%s is out of range: %s", label, ex);
-            break;
-        default:
-            snprintf(c->reason, sizeof c->reason, "%s is not a number: %s", label, ex);
-            break;
+        const int res = r == R_TIME ? parse_time(c, &v[r]) : parse_number(c, c->fs[r], c->fl[r],
+                                                                          &v[r]);
+        if (res != NUM_OK) {
+            field_reason(c, r, res);
+            reject(c);
+            return;
         }
-        ok = 0;
-    }
-    if (!ok) {
-        reject(c);
-        return;
     }
 
     double t = v[R_TIME] * c->tscale;
@@ -549,6 +624,17 @@ static void data_line(sw_csv_t *c, char *s, size_t n)
     c->n.accepted++;
     c->have_last = 1;
     c->last_t = t;
+}
+
+/* A line that is neither blank nor a comment. */
+static void data_line(sw_csv_t *c, char *s, size_t n)
+{
+    const int header_here = c->header_open;
+    c->header_open = 0; /* whatever this line is, no later line is a header */
+    if (!c->delim && !choose_delim(c, s, n, header_here)) return;
+    const int ok = split_line(c, s, n, header_here);
+    if (header_here && (first_line(c, ok) || c->status < 0)) return;
+    data_row(c, ok);
 }
 
 /* A complete physical line is in c->line (without its '\n'). */
@@ -642,10 +728,45 @@ static int parse_column(const char *spec, const char *role, long *col, char **na
     return SW_OK;
 }
 
+/* The columns of the options: parsed, and refused (code, the reason in t)
+ * when two are the same or a named one cannot be found without a header. */
+static int set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen)
+{
+    c->col[R_VERT] = -1;
+    const char *spec[N_ROLES] = {o->time_col ? o->time_col : "1", o->accel_col ? o->accel_col : "2",
+                                 o->vert_col};
+    for (int r = 0; r < N_ROLES; r++) {
+        if (!spec[r]) continue;
+        int rc = parse_column(spec[r], role_name[r], &c->col[r], &c->name[r], t, tlen);
+        if (rc != SW_OK) return rc;
+    }
+    c->have_vert = spec[R_VERT] != NULL;
+    for (int r = 0; r < N_ROLES; r++) {
+        for (int q = r + 1; q < N_ROLES; q++) {
+            int same = (c->col[r] >= 0 && c->col[r] == c->col[q]) ||
+                       (c->name[r] && c->name[q] && name_equal(c->name[r], strlen(c->name[r]),
+                                                              c->name[q]));
+            if (same) {
+                snprintf(t, tlen, "%s and %s columns are the same", role_name[r],
+                         role_name[q]);
+                return SW_EINVAL;
+            }
+        }
+        if (c->name[r] && o->header == 0) {
+            snprintf(t, tlen,
+                     "%s column \"%s\" is named but the input has no header (header = 0); "
+                     "give a 1-based index",
+                     role_name[r], c->name[r]);
+            return SW_ENOTFOUND;
+        }
+    }
+    return SW_OK;
+}
+
 sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_reject_fn on_reject,
                         void *user, int *err, char *msg, size_t msglen)
 {
-    static const sw_csv_opts_t defaults = {0, NULL, NULL, NULL, 0.0, 0.0, 0, -1};
+    static const sw_csv_opts_t defaults = {0, NULL, NULL, NULL, 0.0, 0.0, 0, -1, 0, 0};
     const sw_csv_opts_t *o = opts ? opts : &defaults;
     char t[200];
 
@@ -674,43 +795,24 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
         bad_opts(err, msg, msglen, SW_ENOMEM, "out of memory");
         return NULL;
     }
-    c->col[R_VERT] = -1;
-    const char *spec[N_ROLES] = {o->time_col ? o->time_col : "1", o->accel_col ? o->accel_col : "2",
-                                 o->vert_col};
-    for (int r = 0; r < N_ROLES; r++) {
-        if (!spec[r]) continue;
-        int rc = parse_column(spec[r], role_name[r], &c->col[r], &c->name[r], t, sizeof t);
-        if (rc != SW_OK) {
-            bad_opts(err, msg, msglen, rc, t);
-            sw_csv_destroy(c);
-            return NULL;
-        }
+    const int rc = set_columns(c, o, t, sizeof t);
+    if (rc != SW_OK) {
+        bad_opts(err, msg, msglen, rc, t);
+        sw_csv_destroy(c);
+        return NULL;
     }
-    c->have_vert = spec[R_VERT] != NULL;
-    for (int r = 0; r < N_ROLES; r++) {
-        for (int q = r + 1; q < N_ROLES; q++) {
-            int same = (c->col[r] >= 0 && c->col[r] == c->col[q]) ||
-                       (c->name[r] && c->name[q] && name_equal(c->name[r], strlen(c->name[r]),
-                                                              c->name[q]));
-            if (same) {
-                snprintf(t, sizeof t, "%s and %s columns are the same", role_name[r],
-                         role_name[q]);
-                bad_opts(err, msg, msglen, SW_EINVAL, t);
-                sw_csv_destroy(c);
-                return NULL;
-            }
-        }
-        if (c->name[r] && o->header == 0) {
-            snprintf(t, sizeof t,
-                     "%s column \"%s\" is named but the input has no header (header = 0); "
-                     "give a 1-based index",
-                     role_name[r], c->name[r]);
-            bad_opts(err, msg, msglen, SW_ENOTFOUND, t);
-            sw_csv_destroy(c);
-            return NULL;
-        }
+    if (o->decimal_comma < -1 || o->decimal_comma > 1) {
+        bad_opts(err, msg, msglen, SW_EINVAL, "decimal_comma must be -1 (detect), 0 or 1");
+        sw_csv_destroy(c);
+        return NULL;
     }
-
+    c->infer = o->infer != 0;
+    c->col_given[R_TIME] = o->time_col != NULL;
+    c->col_given[R_ACCEL] = o->accel_col != NULL;
+    c->col_given[R_VERT] = o->vert_col != NULL;
+    c->tscale_given = o->time_scale != 0.0;
+    c->ascale_given = o->accel_scale != 0.0;
+    c->dcomma = o->decimal_comma;
     c->delim = o->delim;
     c->header = o->header;
     c->header_open = o->header != 0;
@@ -814,4 +916,34 @@ void sw_csv_counts(const sw_csv_t *c, sw_csv_counts_t *out)
 const char *sw_csv_error_message(const sw_csv_t *c)
 {
     return c ? c->msg : "";
+}
+
+int sw_csv_layout(const sw_csv_t *c, sw_csv_layout_t *out)
+{
+    if (!c || !out) return SW_EINVAL;
+    *out = c->lay;
+    return SW_OK;
+}
+
+long sw_csv_header_count(const sw_csv_t *c)
+{
+    return c && c->lay.has_header ? c->nhdr : 0;
+}
+
+const char *sw_csv_header_field(const sw_csv_t *c, long i)
+{
+    return c && c->lay.has_header && i >= 0 && i < c->nhdr ? c->hdr[i] : NULL;
+}
+
+const char *sw_csv_unit_name(int unit)
+{
+    switch (unit) {
+    case SW_CSV_UNIT_S: return "s";
+    case SW_CSV_UNIT_MS: return "ms";
+    case SW_CSV_UNIT_US: return "us";
+    case SW_CSV_UNIT_DATETIME: return "date-time";
+    case SW_CSV_UNIT_MPS2: return "m/s^2";
+    case SW_CSV_UNIT_G: return "g";
+    default: return "";
+    }
 }

@@ -1,0 +1,247 @@
+/* csv_infer.c - a logger export's header read as a person reads it: which
+ * column is time and which is the longitudinal acceleration, and in what
+ * units ("Time (ms)", "X (g)", "time_ms;accel_g", "Acceleration Gs",
+ * "ax [m/s²]").  It decides only what the names say without doubt; when
+ * two columns fit equally, or none does, it says so and the caller asks the
+ * user, because a wrong guess gives a confident wrong verdict.
+ *
+ * A name is split into words (letters and digits; a bracketed part is its
+ * unit); a unit may also be the last word ("time_ms", "accel_g").  Time is
+ * a word such as time, t, timestamp or elapsed (not sample, index, count);
+ * acceleration a word such as accel, acc, acceleration, ax, or any name
+ * whose unit is an acceleration ("X (g)").  Among several acceleration
+ * columns the longitudinal one is the x axis (the vehicle frame: x points
+ * forward) or one named longitudinal or forward; among several time
+ * columns the one with a unit (elapsed seconds) is preferred to one without
+ * (a date-time). */
+#include <stdio.h>
+#include <string.h>
+
+#include "csv_int.h"
+
+#define MAX_WORDS 8
+#define WORD_MAX 24
+
+typedef struct {
+    char w[MAX_WORDS][WORD_MAX]; /* lowercase words, the unit left out */
+    int nw;
+    char unit[WORD_MAX * 2];     /* unit text, spaces removed, lowercase */
+} words_t;
+
+static char lower(char c)
+{
+    return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c;
+}
+
+static int is_alnum(unsigned char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+           c >= 0x80; /* UTF-8 (µ, ², ...) stays inside words and units */
+}
+
+/* Split a header name into words and a bracketed unit. */
+static void split_words(const char *name, words_t *o)
+{
+    memset(o, 0, sizeof *o);
+    const char *p = name;
+    while (*p) {
+        if (*p == '(' || *p == '[' || *p == '{') {
+            const char close = *p == '(' ? ')' : *p == '[' ? ']' : '}';
+            size_t k = 0;
+            for (p++; *p && *p != close; p++)
+                if (*p != ' ' && k + 1 < sizeof o->unit) o->unit[k++] = lower(*p);
+            o->unit[k] = '\0';
+            if (*p) p++;
+            continue;
+        }
+        if (!is_alnum((unsigned char)*p)) {
+            p++;
+            continue;
+        }
+        size_t k = 0;
+        char *w = o->nw < MAX_WORDS ? o->w[o->nw] : NULL;
+        for (; *p && is_alnum((unsigned char)*p); p++)
+            if (w && k + 1 < WORD_MAX) w[k++] = lower(*p);
+        if (w) {
+            w[k] = '\0';
+            o->nw++;
+        }
+    }
+}
+
+static int in(const char *w, const char *const *set)
+{
+    for (; *set; set++)
+        if (!strcmp(w, *set)) return 1;
+    return 0;
+}
+
+/* The unit of a unit text, for the time role or an acceleration. */
+static int unit_of(const char *u, int time_role)
+{
+    static const char *const s[] = {"s", "sec", "secs", "second", "seconds", NULL};
+    static const char *const ms[] = {"ms", "msec", "msecs", "millis", "millisecond",
+                                     "milliseconds", NULL};
+    static const char *const us[] = {"us", "\xc2\xb5s", "\xce\xbcs", "usec", "usecs", "micros",
+                                     "microsecond", "microseconds", NULL};
+    static const char *const g[] = {"g", "gs", "g0", "gee", "gees", NULL};
+    static const char *const mps2[] = {"m/s2",      "m/s^2",   "m/s\xc2\xb2", "ms2",  "ms^-2",
+                                       "ms-2",      "mps2",    "m/s/s",       "mss",  "m*s^-2",
+                                       "m.s-2",     "m.s^-2",  "ms\xe2\x81\xbb\xc2\xb2",
+                                       "m\xc2\xb7s\xe2\x81\xbb\xc2\xb2", "m/sec2", "m/sec^2",
+                                       NULL};
+    if (!u[0]) return SW_CSV_UNIT_NONE;
+    if (time_role) {
+        if (in(u, s)) return SW_CSV_UNIT_S;
+        if (in(u, ms)) return SW_CSV_UNIT_MS;
+        if (in(u, us)) return SW_CSV_UNIT_US;
+        return SW_CSV_UNIT_NONE;
+    }
+    if (in(u, g)) return SW_CSV_UNIT_G;
+    if (in(u, mps2)) return SW_CSV_UNIT_MPS2;
+    return SW_CSV_UNIT_NONE;
+}
+
+/* The unit of a name: its bracketed part, else its last word when it is a
+ * unit and not the only word ("accel_g", "time_ms"; "g" alone is a name). */
+static int unit_in(const words_t *w, int time_role, int *last_is_unit)
+{
+    *last_is_unit = 0;
+    if (w->unit[0]) return unit_of(w->unit, time_role);
+    if (w->nw >= 2) {
+        const int u = unit_of(w->w[w->nw - 1], time_role);
+        if (u != SW_CSV_UNIT_NONE) *last_is_unit = 1;
+        return u;
+    }
+    return SW_CSV_UNIT_NONE;
+}
+
+int sw_csv_name_unit(const char *name, int time_role)
+{
+    words_t w;
+    int last;
+    split_words(name, &w);
+    return unit_in(&w, time_role, &last);
+}
+
+double sw_csv_unit_scale(int unit)
+{
+    switch (unit) {
+    case SW_CSV_UNIT_MS: return 1e-3;
+    case SW_CSV_UNIT_US: return 1e-6;
+    case SW_CSV_UNIT_G: return SW_G0;
+    default: return 1.0;
+    }
+}
+
+typedef struct {
+    int time, index, accel; /* the name reads as time, a sample index, an acceleration */
+    int axis;               /* 'x' (longitudinal), 'y', 'z', or 0 */
+    int tunit, aunit;       /* units read for the time role and as an acceleration */
+} kind_t;
+
+static void classify(const char *name, kind_t *k)
+{
+    static const char *const time_w[] = {"time", "t", "timestamp", "ts", "elapsed", "date",
+                                         "datetime", "utc", "epoch", "clock", NULL};
+    static const char *const index_w[] = {"sample", "samples", "index", "idx", "n", "no", "nr",
+                                          "num", "count", "seq", "id", "record", "row", NULL};
+    static const char *const accel_w[] = {"accel", "acc", "acceleration", "accelerometer", "a",
+                                          NULL};
+    static const char *const x_w[] = {"x", "ax", "accx", "accelx", "xaccel", "xacc",
+                                      "long", "longitudinal", "lon", "forward", "fwd", "surge",
+                                      NULL};
+    static const char *const y_w[] = {"y", "ay", "accy", "accely", "yaccel", "yacc", "lat",
+                                      "lateral", "sway", NULL};
+    static const char *const z_w[] = {"z", "az", "accz", "accelz", "zaccel", "zacc", "vert",
+                                      "vertical", "heave", "up", NULL};
+    words_t w;
+    int tlast, alast;
+    split_words(name, &w);
+    memset(k, 0, sizeof *k);
+    k->tunit = unit_in(&w, 1, &tlast);
+    k->aunit = unit_in(&w, 0, &alast);
+    for (int i = 0; i < w.nw; i++) {
+        /* a numbered name reads as its word: "acc1", "time2" */
+        char x[WORD_MAX];
+        snprintf(x, sizeof x, "%s", w.w[i]);
+        size_t xl = strlen(x);
+        while (xl > 1 && x[xl - 1] >= '0' && x[xl - 1] <= '9') x[--xl] = '\0';
+        if (in(x, index_w)) k->index = 1;
+        if (in(x, time_w) && !(tlast && i == w.nw - 1)) k->time = 1;
+        if (alast && i == w.nw - 1) continue; /* the unit word */
+        if (in(x, accel_w)) k->accel = 1;
+        if (in(x, x_w)) k->axis = 'x';
+        if (in(x, y_w)) k->axis = 'y';
+        if (in(x, z_w)) k->axis = 'z';
+    }
+    if (k->aunit != SW_CSV_UNIT_NONE || (k->axis && !k->time)) k->accel = 1;
+    if (k->index || k->accel) k->time = 0;
+    if (k->time) k->accel = 0;
+}
+
+/* "\"a\", \"b\"" of the columns in set, into dst. */
+static void list_names(const char names[][SW_CSV_NAME_MAX], const long *set, int n, char *dst,
+                       size_t cap)
+{
+    size_t k = 0;
+    dst[0] = '\0';
+    for (int i = 0; i < n && k + 8 < cap; i++)
+        k += (size_t)snprintf(dst + k, cap - k, "%s\"%s\" (column %ld)", i ? ", " : "",
+                              names[set[i]], set[i] + 1);
+}
+
+int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
+                 sw_csv_guess_t *g)
+{
+    enum { CAP = 16 };
+    long tc[CAP] = {0}, tu[CAP] = {0}, ac[CAP] = {0}, ax[CAP] = {0};
+    int ntc = 0, ntu = 0, nac = 0, nax = 0;
+    char list[200];
+    memset(g, 0, sizeof *g);
+    for (int r = 0; r < SW_CSV_NROLES; r++) g->col[r] = -1;
+    for (long i = 0; i < n; i++) {
+        kind_t k;
+        classify(names[i], &k);
+        if (k.time && ntc < CAP) {
+            tc[ntc++] = i;
+            if (k.tunit != SW_CSV_UNIT_NONE && ntu < CAP) tu[ntu++] = i;
+        }
+        if (k.accel && nac < CAP) {
+            ac[nac++] = i;
+            if (k.axis == 'x' && nax < CAP) ax[nax++] = i;
+        }
+    }
+    if (want[SW_CSV_ROLE_TIME]) {
+        /* elapsed time with a unit beats a date-time or a bare name */
+        const long *set = ntu ? tu : tc;
+        const int ns = ntu ? ntu : ntc;
+        if (ns != 1) {
+            list_names(names, set, ns, list, sizeof list);
+            if (ns == 0)
+                snprintf(g->why, sizeof g->why, "no column is named as time");
+            else
+                snprintf(g->why, sizeof g->why, "several columns could be time: %s", list);
+            return -1;
+        }
+        g->col[SW_CSV_ROLE_TIME] = set[0];
+        g->unit[SW_CSV_ROLE_TIME] = sw_csv_name_unit(names[set[0]], 1);
+    }
+    if (want[SW_CSV_ROLE_ACCEL]) {
+        /* one acceleration column, or among several the one along x */
+        const long *set = nac == 1 ? ac : ax;
+        const int ns = nac == 1 ? 1 : nax;
+        if (ns != 1) {
+            list_names(names, nac ? ac : ax, nac ? nac : nax, list, sizeof list);
+            if (nac == 0)
+                snprintf(g->why, sizeof g->why, "no column is named as an acceleration");
+            else
+                snprintf(g->why, sizeof g->why,
+                         "several columns could be the longitudinal acceleration: %s", list);
+            return -1;
+        }
+        g->col[SW_CSV_ROLE_ACCEL] = set[0];
+        g->unit[SW_CSV_ROLE_ACCEL] = sw_csv_name_unit(names[set[0]], 0);
+    }
+    return 0;
+}
