@@ -32,125 +32,6 @@
 #include "swaywatch/csv.h"
 #include "swaywatch/status.h"
 
-/* Field slots filled while splitting a line.  PROBE is the field looked at to
- * decide whether the first line is a header. */
-enum { R_TIME, R_ACCEL, R_VERT, R_PROBE, N_SLOTS };
-#define N_ROLES 3 /* time, accel, vertical: the columns chosen by the caller */
-
-static const char *const role_name[N_ROLES] = {"time", "accel", "vertical"};
-
-/* The line buffer holds SW_CSV_MAX_LINE bytes of content plus a '\r' (CRLF
- * ends are stripped only once the line is complete) plus a NUL. */
-#define LINE_CAP ((size_t)SW_CSV_MAX_LINE + 1)
-/* Copies of the wanted fields on the libcsv path: at most the line itself
- * plus one NUL per slot. */
-#define SCRATCH_CAP ((size_t)SW_CSV_MAX_LINE + 2 + N_SLOTS)
-#define EXCERPT_MAX 40 /* bytes of offending text quoted in a reason */
-#define MAX_COLUMN_INDEX ((long)SW_CSV_MAX_LINE) /* a line cannot hold more fields */
-
-#define LIBCSV_OPTS (CSV_STRICT | CSV_STRICT_FINI | CSV_APPEND_NULL)
-
-struct sw_csv {
-    /* options, fixed at create */
-    char delim;     /* 0 until detected */
-    int header;     /* -1 detect, 0 none, 1 present */
-    double tscale, ascale;
-    int flip;
-    char *name[N_ROLES]; /* column name as given, looked up in the header; NULL: by index */
-    long col[N_ROLES];   /* 0-based column index; -1 unknown (named) or unused */
-    long probe;          /* column tested by header detection */
-    int have_vert;
-    sw_csv_row_fn on_row;
-    sw_csv_reject_fn on_reject;
-    void *user;
-    locale_t cloc; /* "C" numeric locale: '.' is the decimal point whatever
-                      the program's locale says */
-    int infer;                  /* read unnamed columns and units from the header */
-    int col_given[N_ROLES];     /* the caller named or numbered the column */
-    int tscale_given, ascale_given;
-    int dcomma;                 /* decimal comma: -1 not decided yet, 0, 1 */
-    int tkind;                  /* time column: 0 not seen yet, 1 numbers, 2 date-times */
-    sw_csv_layout_t lay;
-    char hdr[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
-    long nhdr;
-    int capturing;              /* keep the fields of this line: it may be the header */
-
-    /* the physical line being gathered */
-    char *line;
-    size_t len;
-    int overlong; /* the line outgrew the buffer: the rest is dropped */
-    int finished;
-
-    /* one line's split, reset for every data line */
-    long want[N_SLOTS]; /* column index per slot, -1 none */
-    long maxwant;
-    const char *fs[N_SLOTS]; /* NUL-terminated field text, NULL = absent */
-    size_t fl[N_SLOTS];
-    long nf;      /* fields seen so far in the line */
-    int matching; /* header line: look up the column names */
-    long match[N_ROLES];
-    char *scratch;
-    size_t scratch_used;
-    struct csv_parser lp;
-
-    /* stream state */
-    long lineno;
-    int header_open; /* the next data-like line may still be the header */
-    int have_last;
-    double last_t;
-    sw_csv_counts_t n;
-    int status; /* sticky error ending the parse, or SW_OK */
-    char msg[400]; /* "line N: " + a reason */
-    char reason[256];
-};
-
-/* ------------------------------------------------------------------ text */
-
-static int is_blank(char ch)
-{
-    return ch == ' ' || ch == '\t';
-}
-
-/* Case-insensitive ASCII comparison of a header field with a column name,
- * both trimmed of spaces and tabs (quoted header fields keep them). */
-static int name_equal(const char *a, size_t an, const char *b)
-{
-    while (an && is_blank(*a)) a++, an--;
-    while (an && is_blank(a[an - 1])) an--;
-    size_t bn = strlen(b);
-    if (an != bn) return 0;
-    for (size_t i = 0; i < an; i++) {
-        unsigned char x = (unsigned char)a[i], y = (unsigned char)b[i];
-        if (x >= 'A' && x <= 'Z') x = (unsigned char)(x - 'A' + 'a');
-        if (y >= 'A' && y <= 'Z') y = (unsigned char)(y - 'A' + 'a');
-        if (x != y) return 0;
-    }
-    return 1;
-}
-
-/* Up to EXCERPT_MAX bytes of s, quoted, with anything but printable ASCII
- * shown as '?': reasons end up on terminals and in logs, and garbage input
- * must not put control bytes (or a cut UTF-8 sequence) there. */
-static void excerpt(char *dst, size_t cap, const char *s, size_t n)
-{
-    size_t k = 0, lim = n > EXCERPT_MAX ? EXCERPT_MAX : n;
-    if (cap < EXCERPT_MAX + 6) {
-        if (cap) dst[0] = '\0';
-        return;
-    }
-    dst[k++] = '"';
-    for (size_t i = 0; i < lim; i++) {
-        unsigned char ch = (unsigned char)s[i];
-        dst[k++] = (ch >= 0x20 && ch < 0x7f) ? (char)ch : '?';
-    }
-    if (n > lim) {
-        memcpy(dst + k, "...", 3);
-        k += 3;
-    }
-    dst[k++] = '"';
-    dst[k] = '\0';
-}
-
 /* ---------------------------------------------------------------- numbers */
 
 enum { NUM_OK = SW_NUM_OK, NUM_EMPTY = SW_NUM_EMPTY, NUM_BAD = SW_NUM_BAD,
@@ -159,116 +40,6 @@ enum { NUM_OK = SW_NUM_OK, NUM_EMPTY = SW_NUM_EMPTY, NUM_BAD = SW_NUM_BAD,
 static int parse_number(const sw_csv_t *c, const char *s, size_t n, double *out)
 {
     return sw_csv_number(c->cloc, s, n, c->dcomma == 1, out);
-}
-
-/* ----------------------------------------------------------------- fields */
-
-/* One field of the current line: remember it if a slot wants this column,
- * and look its text up among the column names while reading a header.
- * copy: the text lives in libcsv's buffer, which the next field reuses. */
-static void take_field(sw_csv_t *c, char *s, size_t n, int copy)
-{
-    long k = c->nf++;
-    if (c->capturing && k < SW_CSV_MAX_FIELDS) {
-        const char *a = s;
-        size_t an = n;
-        while (an && is_blank(*a)) a++, an--;
-        while (an && is_blank(a[an - 1])) an--;
-        if (an >= SW_CSV_NAME_MAX) an = SW_CSV_NAME_MAX - 1;
-        memcpy(c->hdr[k], a, an);
-        c->hdr[k][an] = '\0';
-        c->nhdr = k + 1;
-    }
-    if (c->matching) {
-        for (int r = 0; r < N_ROLES; r++)
-            if (c->name[r] && c->match[r] < 0 && name_equal(s, n, c->name[r])) c->match[r] = k;
-    }
-    if (k > c->maxwant) return;
-    const char *kept = NULL;
-    for (int r = 0; r < N_SLOTS; r++) {
-        if (c->want[r] != k) continue;
-        if (!kept) {
-            if (copy) {
-                if (c->scratch_used + n + 1 > SCRATCH_CAP) return; /* cannot happen */
-                char *d = c->scratch + c->scratch_used;
-                memcpy(d, s, n);
-                d[n] = '\0';
-                c->scratch_used += n + 1;
-                kept = d;
-            } else {
-                s[n] = '\0'; /* within the field or on its delimiter: already scanned */
-                kept = s;
-            }
-        }
-        c->fs[r] = kept;
-        c->fl[r] = n;
-    }
-}
-
-/* Split a line that holds no quote character: exactly what libcsv does with
- * unquoted fields, without its per-byte state machine and field copies. */
-static void split_plain(sw_csv_t *c, char *s, size_t n)
-{
-    char *p = s, *end = s + n;
-    for (;;) {
-        char *d = memchr(p, c->delim, (size_t)(end - p));
-        char *e = d ? d : end;
-        while (p < e && is_blank(*p)) p++;
-        while (e > p && is_blank(e[-1])) e--;
-        take_field(c, p, (size_t)(e - p), 0);
-        if (!d) return;
-        /* Thousands of columns: stop once every wanted field is in hand. */
-        if (!c->matching && !c->capturing && c->nf > c->maxwant) return;
-        p = d + 1;
-    }
-}
-
-static void lcsv_field(void *s, size_t n, void *user)
-{
-    take_field(user, s, n, 1);
-}
-
-/* Lines are handed over without their '\n' and with a final '\r' already
- * stripped; any other '\r' is data, not the end of a record. */
-static int lcsv_term(unsigned char ch)
-{
-    return ch == '\n';
-}
-
-/* Back to a clean state after an error.  csv_fini does not reset the parser
- * after a CSV_STRICT_FINI error, so that check is switched off for the
- * discarding call; no callbacks, so the partial row is dropped. */
-static void lcsv_reset(sw_csv_t *c)
-{
-    csv_set_opts(&c->lp, LIBCSV_OPTS & ~CSV_STRICT_FINI);
-    csv_fini(&c->lp, NULL, NULL, NULL);
-    csv_set_opts(&c->lp, LIBCSV_OPTS);
-}
-
-/* Split a line holding a quote through libcsv.  0 with c->reason set when
- * the quoting is malformed. */
-static int split_quoted(sw_csv_t *c, char *s, size_t n)
-{
-    size_t used = csv_parse(&c->lp, s, n, lcsv_field, NULL, c);
-    if (used < n) {
-        int err = csv_error(&c->lp);
-        lcsv_reset(c);
-        if (err == CSV_EPARSE) {
-            char ex[EXCERPT_MAX + 8];
-            excerpt(ex, sizeof ex, s + used, n - used);
-            snprintf(c->reason, sizeof c->reason, "malformed quoting in field %ld at %s",
-                     c->nf + 1, ex);
-        } else {
-            snprintf(c->reason, sizeof c->reason, "CSV parser: %s", csv_strerror(err));
-        }
-        return 0;
-    }
-    if (csv_fini(&c->lp, lcsv_field, NULL, c) != 0) {
-        lcsv_reset(c);
-        snprintf(c->reason, sizeof c->reason, "unterminated quote in field %ld", c->nf + 1);
-        return 0;
-    }
-    return 1;
 }
 
 /* ------------------------------------------------------------------ lines */
@@ -456,7 +227,7 @@ static int split_line(sw_csv_t *c, char *s, size_t n, int header_here)
     for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
     c->nf = 0;
     c->scratch_used = 0;
-    const int ok = memchr(s, '"', n) ? split_quoted(c, s, n) : (split_plain(c, s, n), 1);
+    const int ok = memchr(s, '"', n) ? sw_csv_split_quoted(c, s, n) : (sw_csv_split_plain(c, s, n), 1);
     c->capturing = 0;
     return ok;
 }
@@ -543,7 +314,7 @@ static void field_reason(sw_csv_t *c, int r, int res)
 {
     char label[120], ex[EXCERPT_MAX + 8];
     column_label(c, r, label, sizeof label);
-    excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
+    sw_csv_excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
     switch (res) {
     case NUM_EMPTY: snprintf(c->reason, sizeof c->reason, "%s is empty", label); break;
     case NUM_COMMA:
@@ -599,7 +370,7 @@ static void data_row(sw_csv_t *c, int ok)
         int r = !isfinite(t) ? R_TIME : !isfinite(a) ? R_ACCEL : R_VERT;
         char label[120], ex[EXCERPT_MAX + 8];
         column_label(c, r, label, sizeof label);
-        excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
+        sw_csv_excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
         snprintf(c->reason, sizeof c->reason, "%s is out of range after unit conversion: %s",
                  label, ex);
         reject(c);
@@ -653,7 +424,7 @@ static void end_line(sw_csv_t *c)
     if (n > (size_t)SW_CSV_MAX_LINE) overlong = 1;
 
     size_t i = 0;
-    while (i < n && is_blank(s[i])) i++;
+    while (i < n && sw_csv_is_blank(s[i])) i++;
     if (i < n && s[i] == '#') { /* judged on the kept prefix, however long */
         c->n.comments++;
         return;
@@ -694,9 +465,9 @@ static int bad_opts(int *err, char *msg, size_t msglen, int code, const char *te
 static int parse_column(const char *spec, const char *role, long *col, char **name, char *t,
                         size_t tlen)
 {
-    while (is_blank(*spec)) spec++;
+    while (sw_csv_is_blank(*spec)) spec++;
     size_t n = strlen(spec);
-    while (n && is_blank(spec[n - 1])) n--;
+    while (n && sw_csv_is_blank(spec[n - 1])) n--;
     if (!n) {
         snprintf(t, tlen, "%s column: empty name", role);
         return SW_EINVAL;
@@ -744,7 +515,7 @@ static int set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen
     for (int r = 0; r < N_ROLES; r++) {
         for (int q = r + 1; q < N_ROLES; q++) {
             int same = (c->col[r] >= 0 && c->col[r] == c->col[q]) ||
-                       (c->name[r] && c->name[q] && name_equal(c->name[r], strlen(c->name[r]),
+                       (c->name[r] && c->name[q] && sw_csv_name_equal(c->name[r], strlen(c->name[r]),
                                                               c->name[q]));
             if (same) {
                 snprintf(t, tlen, "%s and %s columns are the same", role_name[r],
@@ -834,12 +605,7 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
         sw_csv_destroy(c);
         return NULL;
     }
-    csv_init(&c->lp, LIBCSV_OPTS);
-    csv_set_term_func(&c->lp, lcsv_term);
-    /* libcsv grows its field buffer linearly by this much: the default (128)
-     * would mean thousands of reallocations for one long quoted field. */
-    csv_set_blk_size(&c->lp, 64 * 1024);
-    if (c->delim) csv_set_delim(&c->lp, (unsigned char)c->delim);
+    sw_csv_lcsv_init(c);
     if (err) *err = SW_OK;
     if (msg && msglen) msg[0] = '\0';
     return c;

@@ -7,7 +7,100 @@
 #include <locale.h>
 #include <stddef.h>
 
+#include <csv.h>
+
 #include "swaywatch/csv.h"
+
+/* ---- the reader's state (csv.c) ----------------------------------------------- */
+
+/* Field slots filled while splitting a line.  PROBE is the field looked at to
+ * decide whether the first line is a header. */
+enum { R_TIME, R_ACCEL, R_VERT, R_PROBE, N_SLOTS };
+#define N_ROLES 3 /* time, accel, vertical: the columns chosen by the caller */
+
+static const char *const role_name[N_ROLES] = {"time", "accel", "vertical"};
+
+/* The line buffer holds SW_CSV_MAX_LINE bytes of content plus a '\r' (CRLF
+ * ends are stripped only once the line is complete) plus a NUL. */
+#define LINE_CAP ((size_t)SW_CSV_MAX_LINE + 1)
+/* Copies of the wanted fields on the libcsv path: at most the line itself
+ * plus one NUL per slot. */
+#define SCRATCH_CAP ((size_t)SW_CSV_MAX_LINE + 2 + N_SLOTS)
+#define EXCERPT_MAX 40 /* bytes of offending text quoted in a reason */
+#define MAX_COLUMN_INDEX ((long)SW_CSV_MAX_LINE) /* a line cannot hold more fields */
+
+#define LIBCSV_OPTS (CSV_STRICT | CSV_STRICT_FINI | CSV_APPEND_NULL)
+
+struct sw_csv {
+    /* options, fixed at create */
+    char delim;     /* 0 until detected */
+    int header;     /* -1 detect, 0 none, 1 present */
+    double tscale, ascale;
+    int flip;
+    char *name[N_ROLES]; /* column name as given, looked up in the header; NULL: by index */
+    long col[N_ROLES];   /* 0-based column index; -1 unknown (named) or unused */
+    long probe;          /* column tested by header detection */
+    int have_vert;
+    sw_csv_row_fn on_row;
+    sw_csv_reject_fn on_reject;
+    void *user;
+    locale_t cloc; /* "C" numeric locale: '.' is the decimal point whatever
+                      the program's locale says */
+    int infer;                  /* read unnamed columns and units from the header */
+    int col_given[N_ROLES];     /* the caller named or numbered the column */
+    int tscale_given, ascale_given;
+    int dcomma;                 /* decimal comma: -1 not decided yet, 0, 1 */
+    int tkind;                  /* time column: 0 not seen yet, 1 numbers, 2 date-times */
+    sw_csv_layout_t lay;
+    char hdr[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
+    long nhdr;
+    int capturing;              /* keep the fields of this line: it may be the header */
+
+    /* the physical line being gathered */
+    char *line;
+    size_t len;
+    int overlong; /* the line outgrew the buffer: the rest is dropped */
+    int finished;
+
+    /* one line's split, reset for every data line */
+    long want[N_SLOTS]; /* column index per slot, -1 none */
+    long maxwant;
+    const char *fs[N_SLOTS]; /* NUL-terminated field text, NULL = absent */
+    size_t fl[N_SLOTS];
+    long nf;      /* fields seen so far in the line */
+    int matching; /* header line: look up the column names */
+    long match[N_ROLES];
+    char *scratch;
+    size_t scratch_used;
+    struct csv_parser lp;
+
+    /* stream state */
+    long lineno;
+    int header_open; /* the next data-like line may still be the header */
+    int have_last;
+    double last_t;
+    sw_csv_counts_t n;
+    int status; /* sticky error ending the parse, or SW_OK */
+    char msg[400]; /* "line N: " + a reason */
+    char reason[256];
+};
+
+/* ---- csv_split.c ------------------------------------------------------------- */
+
+int sw_csv_is_blank(char ch);
+/* Case-insensitive ASCII comparison of a header field with a column name,
+ * both trimmed of spaces and tabs. */
+int sw_csv_name_equal(const char *a, size_t an, const char *b);
+/* s[0..n) quoted for a message, at most EXCERPT_MAX bytes, non-ASCII as '?'. */
+void sw_csv_excerpt(char *dst, size_t cap, const char *s, size_t n);
+/* Split a line without / with a quote character into c's slots (the
+ * latter: 0 with c->reason set when its quoting is malformed). */
+void sw_csv_split_plain(sw_csv_t *c, char *s, size_t n);
+int sw_csv_split_quoted(sw_csv_t *c, char *s, size_t n);
+/* libcsv set up for one line at a time (after the options are known), and
+ * back to a clean state after an error. */
+void sw_csv_lcsv_init(sw_csv_t *c);
+void sw_csv_lcsv_reset(sw_csv_t *c);
 
 /* ---- csv_num.c ------------------------------------------------------------- */
 
