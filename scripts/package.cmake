@@ -23,6 +23,10 @@ install(FILES ${PROJECT_SOURCE_DIR}/docs/deployment.md
         DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
         COMPONENT runtime FILES_MATCHING PATTERN "*.c" PATTERN "*.py" PATTERN "README*")
+# The licence in Debian's machine-readable form (the full text is LICENSE in
+# the source; Debian systems have it in /usr/share/common-licenses/GPL-3).
+install(FILES ${PROJECT_SOURCE_DIR}/scripts/debian/copyright
+        DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
 
 # LCM message definitions and the bindings lcmtypes/ generates, for
 # consumers of the monitor's messages (C sources, Python modules, the jar
