@@ -64,6 +64,17 @@ set(CPACK_DEBIAN_PACKAGE_RELEASE 1)
 set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${SW_DEB_MAINTAINER}")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
+# Debian policy for what goes into a package, beyond what 'cmake --install'
+# does for any prefix: stripped ELF files (CPack), and, in the staging folder
+# of each package (scripts/debian/stage.cmake): manual pages compressed,
+# /usr/share/doc/PACKAGE/copyright and changelog.Debian.gz.
+set(CPACK_STRIP_FILES ON)
+string(TIMESTAMP SW_DEB_DATE "%a, %d %b %Y %H:%M:%S +0000" UTC)   # honours SOURCE_DATE_EPOCH
+configure_file(${PROJECT_SOURCE_DIR}/scripts/debian/changelog.in
+               ${PROJECT_BINARY_DIR}/debian/changelog @ONLY)
+set(CPACK_SW_DEB_CHANGELOG ${PROJECT_BINARY_DIR}/debian/changelog)
+set(CPACK_SW_DEB_COPYRIGHT ${PROJECT_SOURCE_DIR}/scripts/debian/copyright)
+set(CPACK_PRE_BUILD_SCRIPTS ${PROJECT_SOURCE_DIR}/scripts/debian/stage.cmake)
 
 # swaywatch: run-time dependencies from the ELF files (dpkg-shlibdeps, from
 # dpkg-dev), a shlibs file and the ldconfig trigger for libswaywatch.so.0.
@@ -72,6 +83,7 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME swaywatch)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "bash-completion")
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SUGGESTS "liblcm-bin, liblcm-java, python3")
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_CONTROL_EXTRA
     ${PROJECT_SOURCE_DIR}/scripts/debian/postinst
