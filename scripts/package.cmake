@@ -13,10 +13,6 @@
 install(TARGETS swaywatch-cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/scripts/bash-completion/swaywatch
         DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions COMPONENT runtime)
-# Relative to the prefix, not LIBDIR: systemd looks in /usr/lib/systemd/system
-# and /usr/local/lib/systemd/system, never in a multiarch folder.
-install(FILES ${PROJECT_SOURCE_DIR}/scripts/systemd/swaywatch-monitor.service
-        DESTINATION lib/systemd/system COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/scripts/systemd/monitor.default
         DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/deployment.md
@@ -48,6 +44,30 @@ if(TARGET swaywatch_lcmtypes)
     install(FILES ${SW_LCM_JAVA_JAR} DESTINATION ${SW_LCM_DEST}/java COMPONENT runtime)
   endif()
 endif()
+
+# Last of the runtime rules (install rules run in the order they are
+# declared, and this file is included after every subdirectory), so that
+# the library is in place: scripts/install.cmake installs the systemd unit
+# with ExecStart naming PREFIX/bin/swaywatch, the prefix being the one given
+# at install time (--prefix, CPack's /usr), and runs ldconfig where needed.
+# The unit goes relative to the prefix, not LIBDIR: systemd looks in
+# /usr/lib/systemd/system and /usr/local/lib/systemd/system, never in a
+# multiarch folder.
+install(CODE "
+  set(SW_UNIT_IN \"${PROJECT_SOURCE_DIR}/scripts/systemd/swaywatch-monitor.service.in\")
+  set(SW_UNIT_DIR lib/systemd/system)
+  set(SW_BINDIR_REL \"${CMAKE_INSTALL_BINDIR}\")
+  set(SW_LIBDIR_REL \"${CMAKE_INSTALL_LIBDIR}\")
+  set(SW_WORK_DIR \"${PROJECT_BINARY_DIR}/scripts\")" COMPONENT runtime)
+install(SCRIPT ${PROJECT_SOURCE_DIR}/scripts/install.cmake COMPONENT runtime)
+
+# 'cmake --build build --target uninstall': removes what the last
+# 'cmake --install build' installed (build/install_manifest.txt).
+add_custom_target(uninstall
+  COMMAND ${CMAKE_COMMAND} -DSW_MANIFEST=${PROJECT_BINARY_DIR}/install_manifest.txt
+          -P ${PROJECT_SOURCE_DIR}/scripts/uninstall.cmake
+  COMMENT "Removing the files of build/install_manifest.txt"
+  VERBATIM)
 
 set(SW_DEB_MAINTAINER "swaywatch developers <dev@swaywatch.invalid>"
     CACHE STRING "Maintainer field of the Debian packages")

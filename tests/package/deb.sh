@@ -106,6 +106,8 @@ dpkg -s swaywatch | grep -q '^Status: install ok installed' || fail "swaywatch n
 /usr/bin/swaywatch --help >/dev/null
 U=/usr/lib/systemd/system/swaywatch-monitor.service
 [ -e "$U" ] || fail "no systemd unit"
+grep -q '^ExecStart=.*exec /usr/bin/swaywatch monitor ' "$U" ||
+    fail "the unit does not run /usr/bin/swaywatch by full path: $(grep ExecStart "$U")"
 [ -e /usr/share/bash-completion/completions/swaywatch ] || fail "no bash completion"
 if [ "${SW_MAN:-0}" = 1 ]; then
     [ -e /usr/share/man/man1/swaywatch-replay.1.gz ] || fail "no manual page of replay"
