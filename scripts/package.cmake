@@ -5,7 +5,8 @@
 #
 # Two packages, as Debian splits a library:
 #   swaywatch         the command, libswaywatch.so.0, manual pages, bash
-#                     completion, the systemd unit, LCM types and bindings;
+#                     completion, the systemd unit, example scenes and
+#                     drives, LCM types and bindings;
 #   libswaywatch-dev  headers, libswaywatch.a, the .so link, swaywatch.pc.
 # Install rules without a COMPONENT land in swaywatch (see the default
 # component set at the top of the top-level CMakeLists.txt).
@@ -23,6 +24,14 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/examples/ DESTINATION ${CMAKE_INSTA
 # the source; Debian systems have it in /usr/share/common-licenses/GPL-3).
 install(FILES ${PROJECT_SOURCE_DIR}/scripts/debian/copyright
         DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
+# Example scenes and the two sample drives the manual pages' EXAMPLES use,
+# outside the doc folder: they are input to the commands, not reading.
+install(FILES ${PROJECT_SOURCE_DIR}/sample_logs/crate.ini
+              ${PROJECT_SOURCE_DIR}/sample_logs/crate-on-frame.ini
+              ${PROJECT_SOURCE_DIR}/sample_logs/crate-on-cushion.ini
+              ${PROJECT_SOURCE_DIR}/sample_logs/braking-pothole.csv
+              ${PROJECT_SOURCE_DIR}/sample_logs/hard-stop-overturn.csv
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/swaywatch/examples COMPONENT runtime)
 
 # LCM message definitions and the bindings lcmtypes/ generates, for
 # consumers of the monitor's messages (C sources, Python modules, the jar

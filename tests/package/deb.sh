@@ -67,6 +67,8 @@ dpkg-deb -f "$main" Recommends | grep -q '\bbash-completion\b' || fail "swaywatc
 for f in Section Priority; do
     [ -n "$(dpkg-deb -f "$main" $f)" ] && [ -n "$(dpkg-deb -f "$dev" $f)" ] || fail "no $f"
 done
+dpkg-deb -c "$main" | grep -q ' ./usr/share/man/man5/swaywatch-scene.5.gz$' ||
+    fail "no swaywatch-scene(5), compressed, in the package"
 for deb in "$main" "$dev"; do
     pkg=$(dpkg-deb -f "$deb" Package)
     for f in copyright changelog.Debian.gz; do
@@ -112,6 +114,13 @@ grep -q '^ExecStart=.*exec /usr/bin/swaywatch monitor ' "$U" ||
 if [ "${SW_MAN:-0}" = 1 ]; then
     [ -e /usr/share/man/man1/swaywatch-replay.1.gz ] || fail "no manual page of replay"
 fi
+[ -e /usr/share/man/man5/swaywatch-scene.5.gz ] || fail "no manual page of the scene format"
+# The example scenes run on the sample drive.
+E=/usr/share/swaywatch/examples
+/usr/bin/swaywatch replay "$E/hard-stop-overturn.csv" --scene "$E/crate.ini" \
+    --scene "$E/crate-on-frame.ini" --scene "$E/crate-on-cushion.ini" >"$T/examples.txt" ||
+    fail "replay of the installed example scenes"
+[ "$(grep -c 'OVERTURNED' "$T/examples.txt")" -eq 3 ] || fail "the example scenes: $(cat "$T/examples.txt")"
 if [ "${SW_LCM:-0}" = 1 ]; then
     [ -e /usr/share/swaywatch/lcmtypes/state_t.lcm ] || fail "no LCM definitions"
 fi
@@ -131,7 +140,7 @@ for p in $PKGS; do
         fail "$p still installed"
     fi
 done
-for f in /usr/bin/swaywatch /usr/share/doc/swaywatch "$U"; do
+for f in /usr/bin/swaywatch /usr/share/swaywatch /usr/share/doc/swaywatch "$U"; do
     [ ! -e "$f" ] || fail "$f left behind"
 done
 echo "deb.sh: ok"

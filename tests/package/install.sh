@@ -40,6 +40,21 @@ grep -q "/$U\$" "$M" || fail "the unit is not in $M"
 # A scratch libdir is not a folder of the linker's cache: no ldconfig, a note.
 grep -q "is not a folder of the dynamic linker's cache" "$T/install.log" ||
     fail "no note about the linker's cache in the install log"
+
+# The example scenes are valid and run on the sample drives.
+E=share/swaywatch/examples
+for s in crate.ini crate-on-frame.ini crate-on-cushion.ini; do
+    [ -e "$E/$s" ] || fail "no example scene $s"
+done
+bin/swaywatch replay "$E/hard-stop-overturn.csv" --json --scene "$E/crate.ini" \
+    --scene "$E/crate-on-frame.ini" --scene "$E/crate-on-cushion.ini" >"$T/examples.json" ||
+    fail "replay of the installed examples"
+python3 -c '
+import json, sys
+p = json.load(open(sys.argv[1]))["packages"]
+assert [x["model"] for x in p] == ["bare", "frame", "cushion"], p
+assert all(x["overturned"] for x in p)' "$T/examples.json" ||
+    fail "the installed examples: unexpected summary"
 [ "$(readlink "$libdir/libswaywatch.so")" = libswaywatch.so.0 ] ||
     fail "libswaywatch.so does not point to libswaywatch.so.0"
 objdump -p "$libdir/libswaywatch.so.0" | grep -q 'SONAME *libswaywatch.so.0$' ||
@@ -47,8 +62,18 @@ objdump -p "$libdir/libswaywatch.so.0" | grep -q 'SONAME *libswaywatch.so.0$' ||
 for h in "$SRC"/include/swaywatch/*.h; do
     [ -e "include/swaywatch/$(basename "$h")" ] || fail "header not installed: $h"
 done
+[ -e share/man/man5/swaywatch-scene.5 ] || fail "no swaywatch-scene.5"
 if [ "${SW_MAN:-0}" = 1 ]; then
     [ -e share/man/man1/swaywatch.1 ] || fail "no swaywatch.1"
+    # The hand-written EXAMPLES made it into the pages, and every page
+    # points to the scene format.
+    for h in "$SRC"/docs/man/swaywatch-*.h2m; do
+        p=share/man/man1/$(basename "$h" .h2m).1
+        grep -q '^\.SH EXAMPLES' "$p" || fail "no EXAMPLES in $p"
+    done
+    for p in share/man/man1/swaywatch*.1; do
+        grep -q 'swaywatch\\-scene (5)' "$p" || fail "no SEE ALSO swaywatch-scene(5) in $p"
+    done
     for c in $(bin/swaywatch --help | awk '/^Commands:/ {on = 1; next}
                 on && /^$/ {exit} on && /^  [a-z]/ {print $1}'); do
         [ -e "share/man/man1/swaywatch-$c.1" ] || fail "no manual page for '$c'"
