@@ -66,23 +66,23 @@ monitor() {
     mon=$!
     "$LISTENER" 2>/dev/null >"$T/alarms.txt" &
     lis=$!
-    # The samples' utimes start 1 s from now, when the player starts: the
-    # monitor's lag (wall clock minus sample time) is then its own.
-    start=$(python3 -c 'import time; print(int(time.time() * 1e6) + 1000000)')
+    # As the README does it: converted (samples stamped from now) and played
+    # at once, so the monitor's lag is what a user following it sees.
+    sleep 0.5
     python3 docs/examples/csv2lcmlog.py sample_logs/hard-stop-overturn.csv "$T/drive.lcmlog" \
-        --start-utime "$start" >/dev/null
-    python3 -c "import time; time.sleep(max(0.0, $start / 1e6 - time.time()))"
-    lcm-logplayer "$T/drive.lcmlog" >/dev/null
+        >"$T/convert.txt" &&
+        lcm-logplayer "$T/drive.lcmlog" >/dev/null
     sleep 0.5
     kill -INT "$mon"
     wait "$mon" || true
     kill -INT "$lis"
     wait "$lis" || true
     {
-        echo '$ python3 docs/examples/csv2lcmlog.py sample_logs/hard-stop-overturn.csv drive.lcmlog'
         echo '$ swaywatch monitor --scene sample_logs/crate.ini --scene sample_logs/crate-on-frame.ini --status 2 &'
         echo '$ alarm_listener &            # docs/examples/alarm_listener.c'
-        echo '$ lcm-logplayer drive.lcmlog  # the "sensor": 8 s of a hard stop, in real time'
+        echo '$ python3 docs/examples/csv2lcmlog.py sample_logs/hard-stop-overturn.csv drive.lcmlog &&'
+        echo '>     lcm-logplayer drive.lcmlog  # the "sensor": 8 s of a hard stop, in real time'
+        sed "s|$T/||g" "$T/convert.txt"
         # Interleave by order of appearance is lost between two processes:
         # the monitor's lines, then the alarms.
         sed "s|$ROOT/||g" "$T/monitor.txt"

@@ -5,7 +5,8 @@
 #
 # Two packages, as Debian splits a library:
 #   swaywatch         the command, libswaywatch.so.0, manual pages, bash
-#                     completion, the systemd unit, LCM types and bindings;
+#                     completion, the systemd unit, example scenes and
+#                     drives, LCM types and bindings;
 #   libswaywatch-dev  headers, libswaywatch.a, the .so link, swaywatch.pc.
 # Install rules without a COMPONENT land in swaywatch (see the default
 # component set at the top of the top-level CMakeLists.txt).
@@ -13,16 +14,24 @@
 install(TARGETS swaywatch-cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/scripts/bash-completion/swaywatch
         DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions COMPONENT runtime)
-# Relative to the prefix, not LIBDIR: systemd looks in /usr/lib/systemd/system
-# and /usr/local/lib/systemd/system, never in a multiarch folder.
-install(FILES ${PROJECT_SOURCE_DIR}/scripts/systemd/swaywatch-monitor.service
-        DESTINATION lib/systemd/system COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/scripts/systemd/monitor.default
         DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/deployment.md
         DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
         COMPONENT runtime FILES_MATCHING PATTERN "*.c" PATTERN "*.py" PATTERN "README*")
+# The licence in Debian's machine-readable form (the full text is LICENSE in
+# the source; Debian systems have it in /usr/share/common-licenses/GPL-3).
+install(FILES ${PROJECT_SOURCE_DIR}/scripts/debian/copyright
+        DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT runtime)
+# Example scenes and the two sample drives the manual pages' EXAMPLES use,
+# outside the doc folder: they are input to the commands, not reading.
+install(FILES ${PROJECT_SOURCE_DIR}/sample_logs/crate.ini
+              ${PROJECT_SOURCE_DIR}/sample_logs/crate-on-frame.ini
+              ${PROJECT_SOURCE_DIR}/sample_logs/crate-on-cushion.ini
+              ${PROJECT_SOURCE_DIR}/sample_logs/braking-pothole.csv
+              ${PROJECT_SOURCE_DIR}/sample_logs/hard-stop-overturn.csv
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/swaywatch/examples COMPONENT runtime)
 
 # LCM message definitions and the bindings lcmtypes/ generates, for
 # consumers of the monitor's messages (C sources, Python modules, the jar
@@ -45,6 +54,30 @@ if(TARGET swaywatch_lcmtypes)
   endif()
 endif()
 
+# Last of the runtime rules (install rules run in the order they are
+# declared, and this file is included after every subdirectory), so that
+# the library is in place: scripts/install.cmake installs the systemd unit
+# with ExecStart naming PREFIX/bin/swaywatch, the prefix being the one given
+# at install time (--prefix, CPack's /usr), and runs ldconfig where needed.
+# The unit goes relative to the prefix, not LIBDIR: systemd looks in
+# /usr/lib/systemd/system and /usr/local/lib/systemd/system, never in a
+# multiarch folder.
+install(CODE "
+  set(SW_UNIT_IN \"${PROJECT_SOURCE_DIR}/scripts/systemd/swaywatch-monitor.service.in\")
+  set(SW_UNIT_DIR lib/systemd/system)
+  set(SW_BINDIR_REL \"${CMAKE_INSTALL_BINDIR}\")
+  set(SW_LIBDIR_REL \"${CMAKE_INSTALL_LIBDIR}\")
+  set(SW_WORK_DIR \"${PROJECT_BINARY_DIR}/scripts\")" COMPONENT runtime)
+install(SCRIPT ${PROJECT_SOURCE_DIR}/scripts/install.cmake COMPONENT runtime)
+
+# 'cmake --build build --target uninstall': removes what the last
+# 'cmake --install build' installed (build/install_manifest.txt).
+add_custom_target(uninstall
+  COMMAND ${CMAKE_COMMAND} -DSW_MANIFEST=${PROJECT_BINARY_DIR}/install_manifest.txt
+          -P ${PROJECT_SOURCE_DIR}/scripts/uninstall.cmake
+  COMMENT "Removing the files of build/install_manifest.txt"
+  VERBATIM)
+
 set(SW_DEB_MAINTAINER "swaywatch developers <dev@swaywatch.invalid>"
     CACHE STRING "Maintainer field of the Debian packages")
 
@@ -60,6 +93,17 @@ set(CPACK_DEBIAN_PACKAGE_RELEASE 1)
 set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${SW_DEB_MAINTAINER}")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
+# Debian policy for what goes into a package, beyond what 'cmake --install'
+# does for any prefix: stripped ELF files (CPack), and, in the staging folder
+# of each package (scripts/debian/stage.cmake): manual pages compressed,
+# /usr/share/doc/PACKAGE/copyright and changelog.Debian.gz.
+set(CPACK_STRIP_FILES ON)
+string(TIMESTAMP SW_DEB_DATE "%a, %d %b %Y %H:%M:%S +0000" UTC)   # honours SOURCE_DATE_EPOCH
+configure_file(${PROJECT_SOURCE_DIR}/scripts/debian/changelog.in
+               ${PROJECT_BINARY_DIR}/debian/changelog @ONLY)
+set(CPACK_SW_DEB_CHANGELOG ${PROJECT_BINARY_DIR}/debian/changelog)
+set(CPACK_SW_DEB_COPYRIGHT ${PROJECT_SOURCE_DIR}/scripts/debian/copyright)
+set(CPACK_PRE_BUILD_SCRIPTS ${PROJECT_SOURCE_DIR}/scripts/debian/stage.cmake)
 
 # swaywatch: run-time dependencies from the ELF files (dpkg-shlibdeps, from
 # dpkg-dev), a shlibs file and the ldconfig trigger for libswaywatch.so.0.
@@ -68,6 +112,7 @@ set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME swaywatch)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "bash-completion")
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SUGGESTS "liblcm-bin, liblcm-java, python3")
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_CONTROL_EXTRA
     ${PROJECT_SOURCE_DIR}/scripts/debian/postinst

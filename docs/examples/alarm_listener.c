@@ -1,6 +1,8 @@
 /* alarm_listener.c - a downstream consumer of `swaywatch monitor`: it
  * subscribes to the alarm channel and prints every alarm, one line each,
- * and tells when alarms were lost on the way (by the publisher's seq).
+ * stamped with the time of the sample it refers to (ISO 8601, UTC, to the
+ * millisecond), and tells when alarms were lost on the way (by the
+ * publisher's seq).
  *
  * Build with the generated C types (installed in share/swaywatch/lcmtypes/c,
  * or made with 'lcm-gen -c alarm_t.lcm'):
@@ -21,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "swaywatch_alarm_t.h"
@@ -56,6 +59,25 @@ static const char *level_name(int l)
     }
 }
 
+/* utime (microseconds since the epoch, UTC) as "2026-11-24T15:40:12.345Z";
+ * the raw number if the system cannot convert it. */
+static const char *iso_time(int64_t utime, char *buf, size_t size)
+{
+    int64_t sec = utime / 1000000, us = utime % 1000000;
+    if (us < 0) { /* before 1970: round the seconds down */
+        us += 1000000;
+        sec -= 1;
+    }
+    time_t t = (time_t)sec;
+    struct tm tm;
+    size_t n = gmtime_r(&t, &tm) ? strftime(buf, size, "%Y-%m-%dT%H:%M:%S", &tm) : 0;
+    if (n == 0)
+        snprintf(buf, size, "utime %" PRId64, utime);
+    else
+        snprintf(buf + n, size - n, ".%03dZ", (int)(us / 1000));
+    return buf;
+}
+
 static void on_alarm(const lcm_recv_buf_t *rbuf, const char *channel, const swaywatch_alarm_t *a,
                      void *user)
 {
@@ -74,9 +96,10 @@ static void on_alarm(const lcm_recv_buf_t *rbuf, const char *channel, const sway
         L->lost += (long)(a->seq - L->last_seq - 1);
     L->last_seq = a->seq;
     L->received++;
-    printf("%.6f seq %" PRId64 " %-8s %-14s %-12s theta %+.4f margin %+.3f  %s\n",
-           (double)a->utime / 1e6, a->seq, level_name(a->level), kind_name(a->kind),
-           name[0] ? name : "(input)", a->theta, a->margin, text);
+    char when[48];
+    printf("%s seq %" PRId64 " %-8s %-14s %-12s theta %+.4f margin %+.3f  %s\n",
+           iso_time(a->utime, when, sizeof when), a->seq, level_name(a->level),
+           kind_name(a->kind), name[0] ? name : "(input)", a->theta, a->margin, text);
     fflush(stdout);
 }
 

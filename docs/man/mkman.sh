@@ -11,9 +11,14 @@
 # wrapper named swaywatch-CMD that prints "swaywatch-CMD (swaywatch) VERSION"
 # and capitalises "usage:" (help2man turns "Usage:" into the SYNOPSIS),
 # joining the usage line's indented continuation lines to it.
+#
+# A command's page also gets the sections of swaywatch-CMD.h2m beside this
+# script (its EXAMPLES), when there is one; every page's SEE ALSO names
+# swaywatch-scene(5), the scene file format.
 set -eu
 SW=$1
 OUT=$2
+HERE=$(cd "$(dirname "$0")" && pwd)
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 mkdir -p "$OUT"
@@ -36,9 +41,10 @@ ta
 export USAGE
 
 page() { # NAME SUMMARY PROGRAM SEEALSO
-    printf '[SEE ALSO]\n%s\n' "$4" >"$TMP/include"
+    printf '[SEE ALSO]\n%s,\n.BR swaywatch\\-scene (5)\n' "$4" >"$TMP/include"
     "${HELP2MAN:-help2man}" --no-info --section=1 --name="$2" --source="swaywatch $version" \
-        --manual="swaywatch manual" --include="$TMP/include" --output="$OUT/$1.1" "$3"
+        --manual="swaywatch manual" --include="$TMP/include" --opt-include="$HERE/$1.h2m" \
+        --output="$OUT/$1.1" "$3"
 }
 
 all_cmds=""

@@ -3,7 +3,8 @@
 # publishes over UDP multicast: in a private network namespace (only
 # loopback, with the multicast route LCM needs), the listener runs while
 # 'swaywatch replay --publish' replays a braking pulse; it must print every
-# alarm that the same replay writes to a log file, in the same order.
+# alarm that the same replay writes to a log file, in the same order, each
+# stamped with its utime as ISO 8601 UTC to the millisecond.
 # Needs a network namespace (root, or user namespaces): exits 77 otherwise.
 # usage: alarm_listener.sh SWAYWATCH LISTENER SOURCE_DIR PYTHON_TYPES_DIR
 set -eu
@@ -34,7 +35,7 @@ INI
 "$SW" replay "$T/accel.lcmlog" --scene "$T/crate.ini" --quiet --speed 0 \
     --publish "file://$T/alarms.lcmlog?mode=w"
 python3 - "$T/alarms.lcmlog" >"$T/expected" <<'PY'
-import struct, sys
+import datetime, struct, sys
 from swaywatch import alarm_t
 f = open(sys.argv[1], "rb")
 while (h := f.read(28)) and len(h) == 28:
@@ -42,7 +43,8 @@ while (h := f.read(28)) and len(h) == 28:
     ch, data = f.read(cl).decode(), f.read(dl)
     if ch == "SWAY_ALARM":
         a = alarm_t.decode(data)
-        print(a.seq, a.kind)
+        t = datetime.datetime.fromtimestamp(a.utime // 1000000, datetime.timezone.utc)
+        print(a.seq, a.kind, "%s.%03dZ" % (t.strftime("%Y-%m-%dT%H:%M:%S"), a.utime % 1000000 // 1000))
 PY
 n=$(wc -l <"$T/expected")
 [ "$n" -ge 3 ] || fail "the replay raised only $n alarms"
@@ -65,6 +67,12 @@ cat "$T/printed"
 # seq and kind of every alarm, in order (kind by name in the printout).
 awk '{print $3}' "$T/printed" >"$T/seqs"
 awk '{print $1}' "$T/expected" | diff - "$T/seqs" >/dev/null || fail "seq numbers differ"
+# The time of each: ISO 8601 UTC with milliseconds, that of the alarm's utime.
+awk '{print $1}' "$T/printed" >"$T/times"
+awk '{print $3}' "$T/expected" | diff - "$T/times" >/dev/null ||
+    fail "times differ from the alarms' utime: $(head -n 2 "$T/times" | tr '\n' ' ')"
+grep -Eqv '^[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}\.[0-9]{3}Z seq ' "$T/printed" &&
+    fail "a line without an ISO 8601 time: $(grep -Ev '^[0-9-]{10}T' "$T/printed" | head -n 1)"
 grep -q 'UPLIFT' "$T/printed" || fail "no UPLIFT alarm printed"
 grep -q 'crate-A' "$T/printed" || fail "no package name printed"
 grep -q '0 lost' "$T/listener.err" || fail "the listener lost alarms: $(cat "$T/listener.err")"

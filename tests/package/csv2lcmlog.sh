@@ -34,3 +34,26 @@ assert a["samples_read"] == b["samples_read"] == 4001
 assert abs(a["overturn_time"] - b["overturn_time"]) < 1e-6
 assert abs(a["uplift_time"] - b["uplift_time"]) < 1e-6
 PY
+
+# Without --start-utime the first sample is stamped with the time the file
+# is written, and the others follow it by their CSV time: played at once,
+# the stamps are those of a live sensor (the monitor's lag stays its own).
+before=$(python3 -c 'import time; print(int(time.time() * 1e6))')
+python3 "$SRC/docs/examples/csv2lcmlog.py" "$T/drive.csv" "$T/now.lcmlog" --g >/dev/null
+python3 - "$T/now.lcmlog" "$before" <<'PY' || fail "default stamps are not the time of writing"
+import struct, sys, time
+from swaywatch import accel_t
+after = int(time.time() * 1e6)
+f = open(sys.argv[1], "rb")
+u = []
+while (h := f.read(28)) and len(h) == 28:
+    _, _, ts, cl, dl = struct.unpack(">IqqII", h)
+    f.read(cl)
+    m = accel_t.decode(f.read(dl))
+    assert m.utime == ts, (m.utime, ts)
+    u.append(m.utime)
+print("default start: %.3f s after the converter started, %.3f s before it ended"
+      % ((u[0] - int(sys.argv[2])) / 1e6, (after - u[0]) / 1e6))
+assert int(sys.argv[2]) <= u[0] <= after
+assert len(u) == 4001 and u[-1] - u[0] == 4000000
+PY

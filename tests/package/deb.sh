@@ -1,5 +1,7 @@
 #!/bin/sh
-# The Debian packages: cpack builds them from the build folder; apt-get
+# The Debian packages: cpack builds them from the build folder; their
+# control fields and contents are checked and lintian finds no error in them
+# (its warnings are the ones docs/deployment.md explains); apt-get
 # installs them (offline: every dependency is already on a build machine);
 # the installed command runs, a program builds against the installed
 # library through pkg-config and runs; the packages are purged again, so
@@ -61,6 +63,37 @@ dpkg-deb -f "$main" Description | grep -q 'floating cargo' || fail "no Descripti
 dpkg-deb -f "$dev" Depends | grep -q "swaywatch (= $SW_VERSION-" || fail "-dev does not depend on swaywatch"
 dpkg-deb -c "$main" | grep ' ./usr/bin/swaywatch$' >/dev/null || fail "no /usr/bin/swaywatch in the package"
 dpkg-deb -c "$dev" | grep '/pkgconfig/swaywatch.pc$' >/dev/null || fail "no swaywatch.pc in the -dev package"
+dpkg-deb -f "$main" Recommends | grep -q '\bbash-completion\b' || fail "swaywatch does not recommend bash-completion"
+for f in Section Priority; do
+    [ -n "$(dpkg-deb -f "$main" $f)" ] && [ -n "$(dpkg-deb -f "$dev" $f)" ] || fail "no $f"
+done
+dpkg-deb -c "$main" | grep -q ' ./usr/share/man/man5/swaywatch-scene.5.gz$' ||
+    fail "no swaywatch-scene(5), compressed, in the package"
+for deb in "$main" "$dev"; do
+    pkg=$(dpkg-deb -f "$deb" Package)
+    for f in copyright changelog.Debian.gz; do
+        dpkg-deb -c "$deb" | grep -q " ./usr/share/doc/$pkg/$f\$" || fail "$pkg: no /usr/share/doc/$pkg/$f"
+    done
+done
+
+# Debian's policy checker: no error; every warning it still gives is one
+# that docs/deployment.md explains (by its tag).
+command -v lintian >/dev/null 2>&1 ||
+    fail "lintian is not installed (scripts/setup-debian.sh installs it)"
+# Exit status 0: nothing at error level, 1: errors, 2: lintian itself failed.
+rc=0
+lintian --no-tag-display-limit "$main" "$dev" >"$T/lintian.log" 2>"$T/lintian.err" || rc=$?
+grep -v '^running with root privileges' "$T/lintian.err" >&2 || true
+[ "$rc" -le 1 ] || fail "lintian did not run (exit $rc)"
+errors=$(grep -c '^E: ' "$T/lintian.log" || true)
+warnings=$(grep -c '^W: ' "$T/lintian.log" || true)
+echo "deb.sh: lintian: $errors errors, $warnings warnings"
+sed 's/^/  /' "$T/lintian.log"
+[ "$errors" -eq 0 ] || fail "lintian reports $errors errors"
+for tag in $(sed -n 's/^W: [^:]*: \([a-z0-9.+-]*\).*/\1/p' "$T/lintian.log" | sort -u); do
+    grep -Eq "\`$tag[\` ]" "$SRC/docs/deployment.md" ||
+        fail "lintian warning $tag is not explained in docs/deployment.md"
+done
 
 touch "$MARK"
 installed=1
@@ -73,11 +106,21 @@ dpkg -s swaywatch | grep -q '^Status: install ok installed' || fail "swaywatch n
 /usr/bin/swaywatch replay --version | grep -qx "swaywatch replay $SW_VERSION" ||
     fail "swaywatch replay --version"
 /usr/bin/swaywatch --help >/dev/null
-[ -e /usr/lib/systemd/system/swaywatch-monitor.service ] || fail "no systemd unit"
+U=/usr/lib/systemd/system/swaywatch-monitor.service
+[ -e "$U" ] || fail "no systemd unit"
+grep -q '^ExecStart=.*exec /usr/bin/swaywatch monitor ' "$U" ||
+    fail "the unit does not run /usr/bin/swaywatch by full path: $(grep ExecStart "$U")"
 [ -e /usr/share/bash-completion/completions/swaywatch ] || fail "no bash completion"
 if [ "${SW_MAN:-0}" = 1 ]; then
-    [ -e /usr/share/man/man1/swaywatch-replay.1 ] || fail "no manual page of replay"
+    [ -e /usr/share/man/man1/swaywatch-replay.1.gz ] || fail "no manual page of replay"
 fi
+[ -e /usr/share/man/man5/swaywatch-scene.5.gz ] || fail "no manual page of the scene format"
+# The example scenes run on the sample drive.
+E=/usr/share/swaywatch/examples
+/usr/bin/swaywatch replay "$E/hard-stop-overturn.csv" --scene "$E/crate.ini" \
+    --scene "$E/crate-on-frame.ini" --scene "$E/crate-on-cushion.ini" >"$T/examples.txt" ||
+    fail "replay of the installed example scenes"
+[ "$(grep -c 'OVERTURNED' "$T/examples.txt")" -eq 3 ] || fail "the example scenes: $(cat "$T/examples.txt")"
 if [ "${SW_LCM:-0}" = 1 ]; then
     [ -e /usr/share/swaywatch/lcmtypes/state_t.lcm ] || fail "no LCM definitions"
 fi
@@ -97,5 +140,7 @@ for p in $PKGS; do
         fail "$p still installed"
     fi
 done
-[ ! -e /usr/bin/swaywatch ] || fail "/usr/bin/swaywatch left behind"
+for f in /usr/bin/swaywatch /usr/share/swaywatch /usr/share/doc/swaywatch "$U"; do
+    [ ! -e "$f" ] || fail "$f left behind"
+done
 echo "deb.sh: ok"
