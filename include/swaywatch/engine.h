@@ -131,15 +131,26 @@ SW_API int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene
 
 /* Push one sample: bed acceleration a_g (m/s^2, x forward) and vertical
  * acceleration a_z (m/s^2, up; 0 if not measured) at time t (s).  The first
- * sample sets the start time.  Returns SW_OK, SW_EVENT if an event was
- * reported, or SW_EORDER / SW_ENONFINITE / SW_ETOOBIG (|a_g| or |a_z| above
- * SW_MAX_ACCEL) with the sample ignored and the state untouched.
+ * sample sets the start time; the engine integrates on time relative to it
+ * (outputs, events and summaries give the caller's times), so epoch times
+ * cost no accuracy.  Returns SW_OK, SW_EVENT if an event was reported, or
+ * SW_EORDER / SW_ENONFINITE / SW_ETOOBIG (|a_g| or |a_z| above
+ * SW_MAX_ACCEL) / SW_ERESOLUTION (|t| >= 2^33 s, whose steps are coarser
+ * than 2e-6 s: a time unit mistake) with the sample ignored and the state
+ * untouched.
  *
  * A package whose state leaves the model (not finite, g + a_z <= 0, or an
  * input so large that the fixed step exceeds the scheme's stability bound
  * for it) gets an SW_EV_FAULT event and is reset to rest; the others go on.
  * Outputs and events never carry a non-finite number. */
 SW_API int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z);
+
+/* The stream goes on after an interruption that is not to be bridged (a
+ * sensor restart, an outage too long to interpolate over): every package
+ * not overturned is put back at rest, and the next pushed sample starts the
+ * input afresh, with nothing interpolated from the last one.  Summaries
+ * are kept.  Time must still increase.  Returns SW_OK (SW_EINVAL for NULL). */
+SW_API int sw_engine_restart(sw_engine_t *e);
 
 /* Input given as a function of time instead of samples (pulses, tests):
  * advance from the current time to t1 with a_g = f(t), a_z = 0.  The start

@@ -26,8 +26,11 @@ enum {
     SW_EPARSE = -8,     /* malformed text (scene file, CSV row) */
     SW_ENOTFOUND = -9,  /* no such name (scheme, column, key) */
     SW_ETOOBIG = -10,   /* input exceeds a documented limit */
-    SW_EAMBIGUOUS = -11 /* the input does not say what it holds (which column is which, in
-                           what unit): the caller must say it */
+    SW_EAMBIGUOUS = -11, /* the input does not say what it holds (which column is which, in
+                            what unit): the caller must say it */
+    SW_ERESOLUTION = -12 /* a time so large that its resolution is not far finer than the
+                            samples' spacing (|t| >= 2^33 s, steps above 2e-6 s): most
+                            often a time unit mistake */
 };
 
 /* A constant string describing code; never NULL. */

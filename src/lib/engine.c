@@ -23,7 +23,9 @@ struct sw_engine {
     sw_engine_opts_t o;
     sw_ctx_t C;     /* what the layers share: scheme, options, event sink */
     int started;
-    double t;       /* s, time of the last sample */
+    int restart;    /* the next sample starts afresh: packages at rest, no bridge */
+    double t;       /* s, time of the last sample, relative to C.origin */
+    double t_abs;   /* s, the same as the caller gave it */
     double ag, az;  /* m/s^2, last sample */
     sw_input_t in;  /* input over the interval being integrated */
 };
@@ -67,6 +69,10 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
             const int r = P->ops->stuck_advance(C, P, t1, &side);
             if (r == SW_STUCK_STILL) break;
             if (r == SW_STUCK_MOVED) continue;
+            if (r == SW_STUCK_FAULT) {
+                sw_pkg_fault(C, P, P->t, SW_EFAULT);
+                break;
+            }
             if (r == SW_STUCK_LIFT) {
                 sw_pkg_start_rocking(C, P, P->t, side);
                 continue;
@@ -148,6 +154,7 @@ static void report_states(sw_engine_t *e, double t)
             sw_model_output(P, t, &o);
         }
         o.pkg = i;
+        o.t = e->C.origin + t;
         if (o.margin < P->sum.min_margin) P->sum.min_margin = o.margin;
         if (o.margin_bound < P->sum.min_margin_bound) P->sum.min_margin_bound = o.margin_bound;
         if (o.uplift_ratio > P->sum.max_uplift_ratio) P->sum.max_uplift_ratio = o.uplift_ratio;
@@ -194,7 +201,9 @@ void sw_engine_reset(sw_engine_t *e)
 {
     if (!e) return;
     e->started = 0;
-    e->t = NAN;
+    e->restart = 0;
+    e->t = e->t_abs = NAN;
+    e->C.origin = 0.0;
     e->ag = e->az = 0.0;
     memset(&e->in, 0, sizeof e->in);
     for (size_t i = 0; i < e->n; i++) pkg_reset(&e->pk[i]);
@@ -328,6 +337,8 @@ static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
     if (side) sw_pkg_start_rocking(&e->C, P, t, side);
 }
 
+/* The stream starts (or starts again, after sw_engine_restart()) at t
+ * (relative): every package from its state at t, with no input before. */
 static void start_at(sw_engine_t *e, double t, double ag, double az)
 {
     e->started = 1;
@@ -338,18 +349,41 @@ static void start_at(sw_engine_t *e, double t, double ag, double az)
     for (size_t i = 0; i < e->n; i++) initial_uplift(e, &e->pk[i], t);
 }
 
-int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z)
+/* A time whose own resolution is coarse (an absolute time of 1.7e15 s, a
+ * microsecond clock read as seconds, has steps of 0.25 s) cannot be
+ * integrated on: refused, never a hang.  Below 2^33 s (272 years) the steps
+ * of a double are at most 2e-6 s, and the engine, which runs on time
+ * relative to its first sample, sees every sample after the last. */
+static inline int coarse_time(double t_abs)
+{
+    return !(fabs(t_abs) < 8589934592.0);
+}
+
+int sw_engine_push(sw_engine_t *e, double t_abs, double a_g, double a_z)
 {
     if (!e) return SW_EINVAL;
-    if (!isfinite(t) || !isfinite(a_g) || !isfinite(a_z)) return SW_ENONFINITE;
+    if (!isfinite(t_abs) || !isfinite(a_g) || !isfinite(a_z)) return SW_ENONFINITE;
     if (fabs(a_g) > SW_MAX_ACCEL || fabs(a_z) > SW_MAX_ACCEL) return SW_ETOOBIG;
     e->C.events = 0;
     if (!e->started) {
+        if (coarse_time(t_abs)) return SW_ERESOLUTION;
+        e->C.origin = t_abs;
+        e->t_abs = t_abs;
+        start_at(e, 0.0, a_g, a_z);
+        report_states(e, 0.0);
+        return e->C.events ? SW_EVENT : SW_OK;
+    }
+    if (!(t_abs > e->t_abs)) return SW_EORDER;
+    if (coarse_time(t_abs)) return SW_ERESOLUTION;
+    const double t = t_abs - e->C.origin; /* s, relative */
+    if (!(t > e->t)) return SW_ERESOLUTION; /* cannot happen: rounding is monotonic */
+    e->t_abs = t_abs;
+    if (e->restart) {
+        e->restart = 0;
         start_at(e, t, a_g, a_z);
         report_states(e, t);
         return e->C.events ? SW_EVENT : SW_OK;
     }
-    if (!(t > e->t)) return SW_EORDER;
     const double span = t - e->t;
     e->in = (sw_input_t){.t0 = e->t,
                          .ag0 = e->ag,
@@ -365,24 +399,49 @@ int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z)
     return e->C.events ? SW_EVENT : SW_OK;
 }
 
-int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
+/* Advance to t1 (relative) with a_g = f(user, absolute time). */
+static int advance_to(sw_engine_t *e, double t1, sw_input_fn f, void *user)
 {
-    if (!e || !f || !isfinite(t1)) return SW_EINVAL;
     e->C.events = 0;
-    e->in = (sw_input_t){.fn = f, .fn_user = user};
+    e->in = (sw_input_t){.fn = f, .fn_user = user, .fn_t0 = e->C.origin};
     if (!e->started) {
         e->started = 1;
         e->t = 0.0;
+        e->t_abs = e->C.origin;
         for (size_t i = 0; i < e->n; i++) initial_uplift(e, &e->pk[i], 0.0);
     }
     if (!(t1 > e->t)) return t1 == e->t ? SW_OK : SW_EORDER;
+    e->restart = 0; /* a function input is defined everywhere: nothing to bridge */
     for (size_t i = 0; i < e->n; i++) advance_pkg(e, &e->pk[i], t1);
     e->t = t1;
-    e->ag = f(user, t1);
+    e->t_abs = e->C.origin + t1;
+    e->ag = f(user, e->t_abs);
     e->az = 0.0;
     report_states(e, t1);
     e->in = (sw_input_t){.t0 = t1, .ag0 = e->ag};
     return e->C.events ? SW_EVENT : SW_OK;
+}
+
+int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
+{
+    if (!e || !f || !isfinite(t1)) return SW_EINVAL;
+    if (coarse_time(t1)) return SW_ERESOLUTION;
+    return advance_to(e, t1 - e->C.origin, f, user);
+}
+
+int sw_engine_restart(sw_engine_t *e)
+{
+    if (!e) return SW_EINVAL;
+    if (!e->started) return SW_OK;
+    for (size_t i = 0; i < e->n; i++) {
+        sw_pkg_t *P = &e->pk[i];
+        if (P->phase != SW_PHASE_OVERTURNED) {
+            sw_pkg_rest(P);
+            sw_step_reset(P);
+        }
+    }
+    e->restart = 1;
+    return SW_OK;
 }
 
 static double zero_input(void *user, double t)
@@ -405,7 +464,8 @@ int sw_engine_finish(sw_engine_t *e, double settle)
             if (e->pk[i].ops->moving(&e->pk[i], e->C.rest_eps)) moving = 1;
         if (!moving) break;
         const double tn = fmin(t_end, e->t + chunk);
-        if (sw_engine_advance_fn(e, tn, zero_input, NULL) == SW_EVENT) any = 1;
+        if (!(tn > e->t)) break; /* beyond the clock's resolution: no progress */
+        if (advance_to(e, tn, zero_input, NULL) == SW_EVENT) any = 1;
     }
     return any ? SW_EVENT : SW_OK;
 }
@@ -424,7 +484,9 @@ int sw_engine_get_output(const sw_engine_t *e, size_t pkg, sw_output_t *out)
 {
     if (!e || pkg >= e->n || !out) return SW_EINVAL;
     const sw_pkg_t *P = &e->pk[pkg];
-    sw_model_output(P, e->started ? e->t : 0.0, out);
+    const double t = e->started ? e->t : 0.0;
+    sw_model_output(P, t, out);
+    out->t = e->C.origin + t;
     out->pkg = pkg;
     return SW_OK;
 }
@@ -436,7 +498,7 @@ size_t sw_engine_count(const sw_engine_t *e)
 
 double sw_engine_time(const sw_engine_t *e)
 {
-    return e && e->started ? e->t : NAN;
+    return e && e->started ? e->t_abs : NAN;
 }
 
 const sw_derived_t *sw_engine_derived(const sw_engine_t *e, size_t pkg)
@@ -448,6 +510,10 @@ int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s)
 {
     if (!e || pkg >= e->n || !s) return SW_EINVAL;
     *s = e->pk[pkg].sum;
+    /* kept relative, reported as the caller's times (NAN stays NAN) */
+    s->overturn_time += e->C.origin;
+    s->tip_time += e->C.origin;
+    s->uplift_time += e->C.origin;
     return SW_OK;
 }
 

@@ -36,8 +36,9 @@ typedef struct {
     double t0;                /* s */
     double ag0, ag_slope;     /* m/s^2, m/s^3 */
     double az0, az_slope;     /* m/s^2, m/s^3 (vertical, up) */
-    sw_input_fn fn;           /* if not NULL: a_g = fn(fn_user, t), a_z = 0 */
+    sw_input_fn fn;           /* if not NULL: a_g = fn(fn_user, fn_t0 + t), a_z = 0 */
     void *fn_user;
+    double fn_t0;             /* s: the engine's origin (fn takes absolute time) */
 } sw_input_t;
 
 typedef struct sw_pkg sw_pkg_t;
@@ -56,6 +57,8 @@ typedef struct {
     int stuck_stepped;     /* step a stuck frame instead of its exact solution */
     sw_event_fn on_event;  /* may be NULL */
     void *user;
+    double origin;         /* s: the absolute time of the engine's t = 0 (the first
+                              sample's); the layers run on time relative to it */
     int events;            /* events reported during the current call */
     const double *step_y1; /* end of the step being examined */
     double step_h;         /* s, its length */
@@ -154,7 +157,7 @@ static inline double sw_min2(double a, double b)
  * right-hand side evaluates them at every stage. */
 static inline double sw_input_ag(const sw_input_t *in, double t)
 {
-    if (in->fn) return in->fn(in->fn_user, t);
+    if (in->fn) return in->fn(in->fn_user, in->fn_t0 + t);
     return in->ag0 + in->ag_slope * (t - in->t0);
 }
 static inline double sw_input_geff(const sw_pkg_t *P, double t)
@@ -214,7 +217,8 @@ enum {
     SW_STUCK_STEP = -1, /* not handled: step the package with the scheme */
     SW_STUCK_STILL = 0, /* stuck up to the end of the interval */
     SW_STUCK_MOVED = 1, /* P->t moved on: look again */
-    SW_STUCK_LIFT = 2   /* lifted at P->t, direction *side */
+    SW_STUCK_LIFT = 2,  /* lifted at P->t, direction *side */
+    SW_STUCK_FAULT = 3  /* the exact advance made no progress: a fault, never a hang */
 };
 
 /* A model's behaviour: everything the layers above need to know of it.

@@ -25,7 +25,7 @@ void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, doub
     if (y_at) memcpy(P->y, keep, sizeof keep);
     ev.pkg = P->index;
     ev.kind = kind;
-    ev.t = t;
+    ev.t = C->origin + t;
     ev.theta = o.state.theta;
     ev.theta_dot = o.state.theta_dot;
     ev.margin = o.margin;

@@ -17,6 +17,7 @@ const char *sw_strerror(int code)
     case SW_ENOTFOUND: return "no such name";
     case SW_ETOOBIG: return "input exceeds a limit";
     case SW_EAMBIGUOUS: return "the input does not say what it holds";
+    case SW_ERESOLUTION: return "time too large for its resolution (a time unit mistake?)";
     default: return code > 0 ? "event reported" : "unknown error";
     }
 }

@@ -43,7 +43,10 @@ static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
         if (tu == INFINITY) return -1.0;
         return fmax(t, tu);
     }
-    const int nsub = (int)ceil((t1 - t) / P->h - 1e-9);
+    /* (capped: a scan of more than 1e8 pieces is a caller's absurd
+     * interval, and the count must stay an int) */
+    const double pieces = ceil((t1 - t) / P->h - 1e-9);
+    const int nsub = pieces < 1e8 ? (int)pieces : 100000000;
     double ta = t;
     for (int i = 1; i <= (nsub > 0 ? nsub : 1); i++) {
         const double tb = i == nsub ? t1 : t + (t1 - t) * i / nsub;
@@ -276,8 +279,8 @@ static double nj_rise(const nj_piece_t *pc, double L)
 
 /* Advance a stuck frame from P->t toward t1 under the sampled (linear)
  * input with the exact solution.  Returns the uplift time (P->t and P->y
- * are then the state there and *side the direction), or -1 with the state
- * at t1.  The uplift condition is checked exactly: on pieces of the
+ * are then the state there and *side the direction), -1 with the state
+ * at t1, or -2 when it cannot make progress.  The uplift condition is checked exactly: on pieces of the
  * interval, a bound on the free part D rules out a crossing at once
  * (always, for a quiet road or a frame at rest across a long gap); pieces
  * it does not clear are halved down to w L <= 0.5 and searched. */
@@ -292,10 +295,17 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
     d[0] = -(2.0 * zw * y[1] + w * w * y[0]) - sw_input_ag(P->in, P->t);
     d[1] = -2.0 * zw * d[0] - w * w * y[1] - s;
     double tp = P->t, L = t1 - tp;
+    long pieces = 0;
     while (tp < t1) {
+        /* Each piece moves on or halves down to w L = 0.5, so an interval T
+         * takes at most about 2 w T pieces; ten million (days bridged) or a
+         * piece that cannot move tp (an interval beyond the arithmetic's
+         * resolution) is a fault, never a hang (-2). */
+        if (++pieces > 10000000L) return -2.0;
         const int last = L >= t1 - tp;
         if (last) L = t1 - tp;
         const double tb = last ? t1 : tp + L;
+        if (!(tb > tp)) return -2.0;
         nj_t c;
         double y1[2], d1[2];
         const double a_tp = sw_input_ag(P->in, tp), a_tb = sw_input_ag(P->in, tb);
@@ -382,5 +392,6 @@ int sw_stuck_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
 {
     if (P->in->fn || P->hold || !C->scheme->exact_stuck || C->stuck_stepped) return SW_STUCK_STEP;
     P->sum.steps++;
-    return frame_advance(P, t1, side) < 0.0 ? SW_STUCK_STILL : SW_STUCK_LIFT;
+    const double tu = frame_advance(P, t1, side);
+    return tu >= 0.0 ? SW_STUCK_LIFT : tu == -1.0 ? SW_STUCK_STILL : SW_STUCK_FAULT;
 }
