@@ -82,18 +82,18 @@ static void test_static_deflection(void **state)
         const sw_scene_t sc = cushion(2.0, 0.728, cases[k].wc, 0.1, cases[k].B3, cases[k].wb, 0.1);
         const double K = MASS * cases[k].wc * cases[k].wc;
         const double zs = static_root(K, cases[k].B3, MASS * G);
-        if (cases[k].B3 == 0.0) assert_float_equal(zs, MASS * G / K, 1e-15 * zs);
+        if (cases[k].B3 == 0.0) tu_near(zs, MASS * G / K, 1e-15 * zs);
         sw_engine_t *e = engine(&sc, NULL, 0.0, NULL);
         const double zs_lib = sw_cushion_static_deflection(sw_engine_derived(e, 0), G);
-        assert_float_equal(zs_lib, zs, 1e-13 * zs);
+        tu_near(zs_lib, zs, 1e-13 * zs);
         for (int i = 0; i <= 200; i++) sw_engine_push(e, i * 1e-3, 0.0, 0.0);
         sw_output_t o;
         sw_engine_get_output(e, 0, &o);
-        assert_float_equal(o.state.z, zs, 1e-9 * zs);
+        tu_near(o.state.z, zs, 1e-9 * zs);
         assert_true(fabs(o.state.theta) < 1e-15);
         assert_int_equal(o.state.phase, SW_PHASE_ROCKING); /* no stuck stage on a cushion */
-        assert_float_equal(o.margin, 1.0, 1e-9);
-        assert_float_equal(o.margin_bound, 1.0, 1e-9);
+        tu_near(o.margin, 1.0, 1e-9);
+        tu_near(o.margin_bound, 1.0, 1e-9);
         sw_summary_t s;
         sw_engine_summary(e, 0, &s);
         assert_int_equal(s.uplifts, 0);
@@ -171,7 +171,7 @@ static void test_vertical_frequency(void **state)
         free_run(&sc, &st, zs, 0, dt, n, x);
         const double w = crossing_frequency(x, n, dt);
         print_message("w_c %g zeta %g B3 %g: %.8g rad/s, expected %.8g\n", wc, zc, B3, w, wd);
-        assert_float_equal(w, wd, 1e-5 * wd);
+        tu_near(w, wd, 1e-5 * wd);
     }
 }
 
@@ -198,7 +198,7 @@ static void test_rocking_frequency(void **state)
         free_run(&sc, &st, 0.0, 1, dt, N, x);
         const double w = crossing_frequency(x, N, dt);
         print_message("w_c %g: rocking %.8g rad/s, expected %.8g\n", wc, w, wr);
-        assert_float_equal(w, wr, 1e-5 * wr);
+        tu_near(w, wr, 1e-5 * wr);
     }
 }
 
@@ -226,7 +226,7 @@ static void test_quasistatic_uplift(void **state)
     const sw_event_t *up = tu_first(&rec, SW_EV_UPLIFT);
     assert_non_null(up);
     print_message("uplift at %.6f s, quasi-static %.6f s\n", up->t, t_lift);
-    assert_float_equal(up->t, t_lift, 2e-4 * t_lift);
+    tu_near(up->t, t_lift, 2e-4 * t_lift);
     assert_int_equal((int)up->info, 1); /* braking: the rear edge lifts, the top tips forward */
     assert_int_equal(tu_count(&rec, SW_EV_UPLIFT), 1);
     const sw_event_t *rest = tu_first(&rec, SW_EV_REST);
@@ -262,8 +262,8 @@ static void test_damping_clamp(void **state)
         sw_engine_get_output(e, 0, &o);
         const double z = zs + v0 * t + 0.5 * G * t * t;
         assert_true(o.state.z + 2.0 * zc * o.state.z_dot / wc < 0.0);
-        assert_float_equal(o.state.z, z, 1e-9 * zs);
-        assert_float_equal(o.state.z_dot, v0 + G * t, 1e-9 * fabs(v0));
+        tu_near(o.state.z, z, 1e-9 * zs);
+        tu_near(o.state.z_dot, v0 + G * t, 1e-9 * fabs(v0));
         assert_true(o.state.theta == 0.0);
     }
     sw_engine_destroy(e);
@@ -317,8 +317,8 @@ static void test_partial_contact_equilibrium(void **state)
     sw_engine_get_output(e, 0, &o);
     print_message("tilt %.9f rad, closed form %.9f; z %.6g m, closed form %.6g\n", o.state.theta,
                   th_eq, o.state.z, z_eq);
-    assert_float_equal(o.state.theta, th_eq, 1e-7 * th_eq);
-    assert_float_equal(o.state.z, z_eq, 1e-7 * fabs(z_eq) + 1e-12);
+    tu_near(o.state.theta, th_eq, 1e-7 * th_eq);
+    tu_near(o.state.z, z_eq, 1e-7 * fabs(z_eq) + 1e-12);
     assert_int_equal(tu_count(&rec, SW_EV_UPLIFT), 1);
     assert_int_equal(tu_count(&rec, SW_EV_TIP), 0);
     sw_engine_destroy(e);
@@ -509,7 +509,7 @@ static void test_barrier_limit(void **state)
     sw_derived_t d;
     sw_scene_t sc = cushion(2.0 * h, 2.0 * b, 1e5, 0.1, 0.0, 0, 0.0);
     assert_int_equal(sw_scene_validate(&sc, &d, NULL, NULL, NULL), SW_OK);
-    assert_float_equal(sw_cushion_barrier(&d, G), Eb, 1e-3 * Eb);
+    tu_near(sw_cushion_barrier(&d, G), Eb, 1e-3 * Eb);
     sc = cushion(2.0 * h, 2.0 * b, 50.0, 0.1, 0.0, 0, 0.0);
     assert_int_equal(sw_scene_validate(&sc, &d, NULL, NULL, NULL), SW_OK);
     assert_true(sw_cushion_barrier(&d, G) < 0.9 * Eb);
@@ -598,11 +598,11 @@ static void test_tip_and_overturn(void **state)
             sw_engine_get_output(e, 0, &out);
             assert_true(s[j].overturned);
             assert_int_equal(out.state.phase, SW_PHASE_OVERTURNED);
-            assert_float_equal(out.state.theta, M_PI_2, 1e-15); /* braking: forward */
+            tu_near(out.state.theta, M_PI_2, 1e-15); /* braking: forward */
             assert_true(s[j].uplift_time < s[j].tip_time && s[j].tip_time < s[j].overturn_time);
             const sw_event_t *tip = tu_first(rec, SW_EV_TIP);
             assert_non_null(tip);
-            assert_float_equal(tip->theta, sw_engine_derived(e, 0)->alpha, 1e-6);
+            tu_near(tip->theta, sw_engine_derived(e, 0)->alpha, 1e-6);
             assert_non_null(tu_first(rec, SW_EV_OVERTURN));
             assert_int_equal(tu_count(rec, SW_EV_IMPACT), 0);
             sw_engine_destroy(e);
@@ -610,8 +610,8 @@ static void test_tip_and_overturn(void **state)
         }
         print_message("w_c %g: tip %.9f / %.9f s, overturn %.9f / %.9f s\n", wcs[k], s[0].tip_time,
                       s[1].tip_time, s[0].overturn_time, s[1].overturn_time);
-        assert_float_equal(s[0].tip_time, s[1].tip_time, 1e-7);
-        assert_float_equal(s[0].overturn_time, s[1].overturn_time, 1e-7);
+        tu_near(s[0].tip_time, s[1].tip_time, 1e-7);
+        tu_near(s[0].overturn_time, s[1].overturn_time, 1e-7);
     }
 }
 
@@ -720,17 +720,17 @@ static void test_schemes_and_forced_dt(void **state)
     sw_scene_t sc = cushion(2.0, 0.728, 30.0, 0.1, 0.0, 0, 0.0);
     sw_engine_t *e = engine(&sc, NULL, 0.0, NULL);
     assert_string_equal(sw_engine_scheme(e), "rk4");
-    assert_float_equal(sw_engine_dt(e, 0), 1e-3, 1e-15);
+    tu_near(sw_engine_dt(e, 0), 1e-3, 1e-15);
     sw_engine_destroy(e);
     sc = cushion(2.0, 0.728, 1e4, 2.0, 0.0, 1, 0.1);
     e = engine(&sc, NULL, 0.0, NULL);
     assert_string_equal(sw_engine_scheme(e), SW_STIFF_SCHEME);
     const double wmax = sw_engine_derived(e, 0)->omega_max;
-    assert_float_equal(wmax, 1e4 * (2.0 + sqrt(3.0)), 1e-9 * wmax);
+    tu_near(wmax, 1e4 * (2.0 + sqrt(3.0)), 1e-9 * wmax);
     sw_engine_destroy(e);
     /* rk4 asked for: sub-stepped to omega_max h <= 0.5 */
     e = engine(&sc, "rk4", 1e-3, NULL);
-    assert_float_equal(sw_engine_dt(e, 0), 0.5 / wmax, 1e-12);
+    tu_near(sw_engine_dt(e, 0), 0.5 / wmax, 1e-12);
     sw_engine_destroy(e);
 
     sw_engine_opts_t o = {0};

@@ -17,6 +17,7 @@
 /* clang-format on */
 #include <gsl/gsl_errno.h>
 
+#include "near.h"
 #include "swaywatch/scene.h"
 #include "swaywatch/status.h"
 

@@ -1,5 +1,6 @@
 /* testutil.h - small helpers shared by the physics tests: scenes built in
- * code, event recording, pulse runs. */
+ * code, event recording, pulse runs, tu_near() (near.h).  Include after
+ * cmocka.h. */
 #ifndef SW_TESTUTIL_H
 #define SW_TESTUTIL_H
 
@@ -7,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "near.h"
 #include "swaywatch/swaywatch.h"
 
 /* A bare block of height 2h and width 2b (m), mass 1000 kg. */
