@@ -6,6 +6,7 @@
 #include "swaywatch/export.h"
 #include "swaywatch/csv.h"
 #include "swaywatch/engine.h"
+#include "swaywatch/gate.h"
 #include "swaywatch/model.h"
 #include "swaywatch/pulse.h"
 #include "swaywatch/scheme.h"

@@ -1,0 +1,188 @@
+/* gate.h - one input gate for every source.  CSV replay, lcm-logger replay
+ * and the live monitor hand their samples to a gate; it decides, the same
+ * way for all of them, which samples the engine gets and what happened to
+ * the stream, and it keeps the facts that expose a misread log.
+ *
+ * Per sample: a value that is not finite, or beyond max_accel (a spike), is
+ * refused; a time at or before the last accepted one is a duplicate or
+ * late.  Time follows the stream, not a sample that leaps: a sample further
+ * ahead than the jump tolerance (beyond the time that really passed, where
+ * the receive time is known), or behind the timeline, waits in a chain of
+ * mutually consistent samples; the stream confirms the chain (confirm
+ * samples in a row) or refutes it (a sample on the old timeline), so one
+ * forged or corrupt time costs that sample, never the rest.  A confirmed
+ * chain is
+ *   - a gap (the stream resumed later; the receive time says so, or a log
+ *     has no receive time), handled by the gap policy: bridged linearly up
+ *     to max_bridge, else the packages restart from rest
+ *     (sw_engine_restart), at a cost independent of its length;
+ *   - a clock step (the source's clock moved while little real time
+ *     passed: known from the receive time): re-timed, the motion goes on;
+ *   - a restart (time went back in a log: a sensor restart, a log played
+ *     twice): the packages restart from rest.
+ * Every refused sample is counted by reason and reported with where it
+ * came from; every gap, step and restart is an event.  A gap that overlaps
+ * rocking, or a bed acceleration past a package's uplift threshold, leaves
+ * the verdict incomplete (counted, and the first such time kept).
+ *
+ * Times handed to the engine are the source's (relative to the first
+ * sample when relative is set, or when the source's times look like an
+ * epoch), shifted past every step and restart so that they always
+ * increase.  Memory is fixed at create; arithmetic on any int64 seq and any
+ * time is overflow-free.  No I/O, no global state. */
+#ifndef SWAYWATCH_GATE_H
+#define SWAYWATCH_GATE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "engine.h"
+#include "export.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SW_GATE_NO_SEQ INT64_MIN /* sw_sample_t.seq: the source has none */
+#define SW_GATE_CONFIRM_MAX 8    /* largest confirm */
+
+typedef struct {
+    double t;        /* s, the source's time */
+    double a_g;      /* m/s^2, longitudinal (x forward), in SI after units and flip */
+    double a_z;      /* m/s^2, vertical up, as read (see vert_gravity); 0 if none */
+    double a_max;    /* m/s^2, largest |value| of all the sample's axes for the spike
+                        check; NAN: max(|a_g|, |a_z|) */
+    int64_t seq;     /* the sender's sequence number, or SW_GATE_NO_SEQ */
+    double rx;       /* s, receive time on a monotonic clock; NAN if none (a CSV log) */
+    double wall;     /* s since 1970 at receipt, for the skew check; NAN if none */
+    long where;      /* the source's place of it (line, event number), for messages */
+} sw_sample_t;
+
+typedef enum {
+    SW_GATE_REJ_NONFINITE = 0, /* a value not finite */
+    SW_GATE_REJ_IMPLAUSIBLE,   /* an axis beyond max_accel: a spike */
+    SW_GATE_REJ_TIME,          /* a time too large for its resolution (2^33 s) */
+    SW_GATE_REJ_SKEW,          /* too far from the wall clock at receipt */
+    SW_GATE_REJ_DUPLICATE,     /* the same time as the last accepted sample */
+    SW_GATE_REJ_LATE,          /* before the last accepted sample, and not confirmed */
+    SW_GATE_REJ_JUMP,          /* far ahead, and the stream did not follow it */
+    SW_GATE_REJ_ENGINE,        /* refused by the engine (should not happen) */
+    SW_GATE_NREJ
+} sw_gate_reject;
+
+typedef enum {
+    SW_GATE_EV_GAP = 1,        /* span s, from t (source time of the last sample before) */
+    SW_GATE_EV_CLOCK_STEP = 2, /* the source clock stepped by span s (+ ahead, - back) */
+    SW_GATE_EV_RESTART = 3,    /* time went back by span s with no receive time: restart */
+    SW_GATE_EV_SEQ_RESTART = 4 /* seq went back while time went on: the sender restarted */
+} sw_gate_event_kind;
+
+typedef struct {
+    sw_gate_event_kind kind;
+    double t;        /* s, the source's time where it happened (the last sample before) */
+    double t_engine; /* s, the engine's time of the first sample after */
+    double span;     /* s, see the kind */
+    int restarted;   /* the packages were restarted from rest (gap policy, restart) */
+    int incomplete;  /* it overlapped rocking or an acceleration past the uplift threshold */
+    int bridged;     /* the gap was bridged by linear interpolation */
+    long where;      /* the source's place of the first sample after */
+} sw_gate_event_t;
+
+typedef void (*sw_gate_event_fn)(void *user, const sw_gate_event_t *ev);
+/* One refused sample: its reason, and a sentence saying why. */
+typedef void (*sw_gate_reject_fn)(void *user, const sw_sample_t *s, sw_gate_reject r,
+                                  const char *text);
+
+typedef enum {
+    SW_GAP_BRIDGE = 0, /* interpolate linearly across (up to max_bridge) */
+    SW_GAP_RESTART = 1 /* treat as missing: the packages restart from rest after it */
+} sw_gap_policy;
+
+typedef struct {
+    double gap;          /* s: samples further apart are a gap; 0 = 5 typical intervals
+                            (the median of the last five), at least 1 ms */
+    sw_gap_policy gap_policy;
+    double max_bridge;   /* s: longest gap bridged under SW_GAP_BRIDGE; 0 = 10 s */
+    double max_accel;    /* m/s^2: any axis beyond is a spike; 0 = 50 g */
+    double jump;         /* s: a sample further ahead (beyond the time that really passed,
+                            where the receive time is known) waits for confirmation; 0 =
+                            the gap threshold; < 0 = never (every sample taken at once) */
+    double max_skew;     /* s: |t - wall| beyond is refused; 0 = not checked */
+    int confirm;         /* consistent samples that confirm a chain; 0 = 3, at most
+                            SW_GATE_CONFIRM_MAX */
+    int relative;        /* 1: engine times from the first sample; 0: the source's times;
+                            -1 (default 0 means -1): relative when the first |t| >= 1e6 s */
+    int vert_gravity;    /* a_z includes gravity (an accelerometer reads +1 g at rest):
+                            1 yes, subtracted (SW_G0); 0 no; the facts say what a_z read */
+    sw_gate_event_fn on_event;
+    sw_gate_reject_fn on_reject;
+    void *user;
+} sw_gate_opts_t;
+
+/* What the stream was: for the summaries, and for the plausibility check. */
+typedef struct {
+    long received;                 /* samples handed to the gate */
+    long accepted;                 /* pushed into the engine */
+    long held;                     /* waiting in chains now */
+    long rejected[SW_GATE_NREJ];   /* received = accepted + held + sum(rejected) */
+    long lost;                     /* missing by the sender's seq */
+    long gaps, clock_steps, restarts, seq_restarts;
+    long incomplete;               /* gaps and restarts that leave the verdict incomplete */
+    double first_incomplete;       /* s, source time of the first (NAN: none) */
+    double gap_total, gap_max;     /* s, spans of the gaps */
+    double t_first, t_last;        /* s, source times of the first and last accepted (NAN) */
+    double t_origin;               /* s, the source time of engine t = 0 */
+    double duration;               /* s, covered by accepted samples (steps excluded) */
+    double dt_min, dt_median, dt_max; /* s, intervals between accepted samples (NAN) */
+    double rate;                   /* Hz, 1 / dt_median (NAN) */
+    double peak_a, peak_z;         /* m/s^2, largest |a_g| and |a_z| accepted */
+    double mean_z;                 /* m/s^2, mean a_z as read (before gravity removal) */
+} sw_gate_facts_t;
+
+typedef struct sw_gate sw_gate_t;
+
+/* A gate in front of engine e (borrowed; it must outlive the gate).  NULL
+ * on failure (bad options; msg says why). */
+SW_API sw_gate_t *sw_gate_create(sw_engine_t *e, const sw_gate_opts_t *o, char *msg,
+                                 size_t msglen);
+SW_API void sw_gate_destroy(sw_gate_t *g); /* NULL ok */
+
+/* One sample.  Returns SW_OK or SW_EVENT (taken: the engine's status), 1000
+ * (SW_GATE_HELD) when it waits in a chain, or a negative status when it was
+ * refused (on_reject said why). */
+#define SW_GATE_HELD 1000
+SW_API int sw_gate_push(sw_gate_t *g, const sw_sample_t *s);
+
+/* End of the stream: chains nobody confirmed are refused (as late or
+ * jumps).  Returns SW_OK. */
+SW_API int sw_gate_flush(sw_gate_t *g);
+
+SW_API void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f);
+SW_API long sw_gate_rejected(const sw_gate_facts_t *f); /* sum of rejected[] */
+
+/* "nonfinite", "implausible", "time", "skew", "duplicate", "late", "jump",
+ * "engine"; "gap", "clock step", "restart", "seq restart". */
+SW_API const char *sw_gate_reject_name(sw_gate_reject r);
+SW_API const char *sw_gate_event_name(sw_gate_event_kind k);
+
+/* ---- plausibility: is this a log a vehicle can have written? ---------------- */
+
+typedef struct {
+    double max_rejected; /* share of received samples refused; 0 = 0.01 */
+    double min_rate;     /* Hz, below: refused; 0 = 1 */
+    double warn_rate;    /* Hz, below: a warning (short shocks not resolved); 0 = 20 */
+    double max_duration; /* s; 0 = 366 days */
+    double max_peak;     /* m/s^2, largest |a_g| a truck bed sees; 0 = 25 g */
+} sw_gate_limits_t;
+
+/* SW_OK, SW_GATE_WARN (a verdict, with the warning in why) or SW_GATE_REFUSE
+ * (no verdict: why says what is implausible and what it most often means). */
+#define SW_GATE_WARN 1
+#define SW_GATE_REFUSE (-1)
+SW_API int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *why,
+                         size_t whylen);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
