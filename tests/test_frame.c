@@ -203,6 +203,42 @@ static void test_forced_dt_refused(void **state)
     sw_engine_destroy(e);
 }
 
+static double zero(void *user, double t)
+{
+    (void)user;
+    (void)t;
+    return 0.0;
+}
+
+/* The rest transition is an impact whose theta'^+ is 0 (physics.md): the
+ * frame takes the package's last momentum, u'^+ = u'^- + gamma h theta'^-.
+ * A package landing at theta = 0 with too little energy to rebound comes
+ * to rest, and the frame then swings freely from u = 0 at that velocity: a
+ * damped oscillator whose velocity after 1 ms is known in closed form. */
+static void test_rest_takes_momentum(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_frame(2.0, 0.728, 250.0, 5.59, 0.1);
+    tu_events_t rec;
+    memset(&rec, 0, sizeof rec);
+    sw_engine_t *e = tu_engine(&sc, NULL, 0.0, &rec);
+    assert_non_null(e);
+    const sw_derived_t *d = sw_engine_derived(e, 0);
+    const double w0 = -1e-6; /* rad/s: landing, below the rest energy */
+    const sw_state_t s0 = {.theta = 0.0, .theta_dot = w0, .phase = SW_PHASE_ROCKING, .side = 1};
+    assert_int_equal(sw_engine_set_state(e, 0, &s0), SW_OK);
+    assert_true(sw_engine_advance_fn(e, 1e-3, zero, NULL) >= 0);
+    assert_non_null(tu_first(&rec, SW_EV_REST));
+    sw_output_t o;
+    assert_int_equal(sw_engine_get_output(e, 0, &o), SW_OK);
+    assert_int_equal(o.state.phase, SW_PHASE_STUCK);
+    const double v0 = d->gamma * d->h * w0; /* m/s, the frame's share */
+    const double w = d->omega_b, z = d->zeta_b, wd = w * sqrt(1.0 - z * z), t = 1e-3;
+    const double v = v0 * exp(-z * w * t) * (cos(wd * t) - z * w / wd * sin(wd * t));
+    tu_near(o.state.u_dot, v, 1e-9 * fabs(v));
+    sw_engine_destroy(e);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -212,6 +248,7 @@ int main(void)
         cmocka_unit_test(test_energy_conservation),
         cmocka_unit_test(test_stiff_limit_is_bare),
         cmocka_unit_test(test_forced_dt_refused),
+        cmocka_unit_test(test_rest_takes_momentum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -243,6 +243,9 @@ struct sw_model_ops {
                      double *val, double *der);
     /* at theta = 0: the velocity map, the side flips; NULL: never impacts */
     void (*impact)(sw_pkg_t *P);
+    /* at theta = 0: theta' to 0 (a landing, the end of a cascade), whatever
+     * the support takes of the package's momentum; NULL with impact */
+    void (*land)(sw_pkg_t *P);
     /* +1 / -1 if the support is beyond the uplift threshold at t, else 0 */
     int (*uplift_side)(const sw_pkg_t *P, double t);
     /* advance a stuck package toward t1 exactly (SW_STUCK_*); NULL: never stuck */

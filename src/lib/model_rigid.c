@@ -215,6 +215,20 @@ static void frame_impact(sw_pkg_t *P)
     P->side = -P->side;
 }
 
+/* The rest transition is an impact whose theta'^+ is 0 (physics.md): on
+ * the bed the package just stops; on a frame the frame takes its last
+ * momentum, u'^+ = u'^- + gamma h theta'^-. */
+static void bare_land(sw_pkg_t *P)
+{
+    P->y[P->idth] = 0.0;
+}
+
+static void frame_land(sw_pkg_t *P)
+{
+    P->y[P->idu] += P->d.gamma * P->d.h * P->y[P->idth];
+    P->y[P->idth] = 0.0;
+}
+
 static int bare_uplift_side(const sw_pkg_t *P, double t)
 {
     return sw_bare_uplift_side(P, t);
@@ -300,6 +314,7 @@ const sw_model_ops_t sw_model_bare = {
     .candidates = rigid_candidates,
     .event_fn = rigid_event_fn,
     .impact = bare_impact,
+    .land = bare_land,
     .uplift_side = bare_uplift_side,
     .stuck_advance = sw_stuck_bare,
     .output = bare_output,
@@ -313,6 +328,7 @@ const sw_model_ops_t sw_model_frame = {
     .candidates = rigid_candidates,
     .event_fn = rigid_event_fn,
     .impact = frame_impact,
+    .land = frame_land,
     .uplift_side = frame_uplift_side,
     .stuck_advance = sw_stuck_frame,
     .output = frame_output,

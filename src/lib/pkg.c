@@ -113,7 +113,7 @@ static int below_rest(const sw_ctx_t *C, const sw_pkg_t *P, double theta_dot)
 static void after_impact(sw_ctx_t *C, sw_pkg_t *P, double t)
 {
     if (!below_rest(C, P, P->y[P->idth])) return;
-    P->y[P->idth] = 0.0;
+    P->ops->land(P);
     const int side = P->ops->uplift_side(P, t);
     if (side != 0 && t == P->t_lift) {
         /* Lifted and landed at the same instant: the support is at the
@@ -143,7 +143,7 @@ void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t)
              * impact (the step's round-off after a lift, or the end of a
              * cascade) */
             P->y[P->ith] = 0.0;
-            P->y[P->idth] = 0.0;
+            P->ops->land(P);
             after_impact(C, P, t);
             break;
         }
