@@ -149,9 +149,6 @@ typedef struct {
 } sw_cli_diag_t;
 void sw_cli_print_diag(void *user, const char *origin, int line, const char *msg);
 
-/* Do the first len bytes of buf start like an lcm-logger event log? */
-int sw_cli_is_lcmlog(const void *buf, size_t len);
-
 /* With --accuracy, set eo's scheme and dt to the cheapest measured setting
  * (sw_scheme_for_accuracy) that reaches it for every scene's model.
  * Returns SW_EXIT_OK, or SW_EXIT_USAGE (reported) when no measured setting
@@ -329,7 +326,7 @@ void sw_cli_rejects_add(sw_cli_rejects_t *r, long line, const char *reason);
 void sw_cli_rejects_summary(const sw_cli_rejects_t *r);
 
 /* A log read in chunks: path, or "-" for standard input.  Open reads the
- * first chunk, whose first bytes tell CSV (sw_cli_is_lcmlog() false) from
+ * first chunk, whose first bytes tell CSV (sw_lcmlog_sniff() false) from
  * an lcm-logger file.  Both return SW_EXIT_OK or SW_EXIT_IO (reported). */
 typedef struct {
     FILE *in;

@@ -1,7 +1,7 @@
 /* cmd_monitor.c - "swaywatch monitor": the live monitor on the vehicle's
  * LCM bus.  Subscribes to acceleration samples, advances every package's
  * model as they arrive, publishes states and alarms (the work is done by
- * the monitor core, lcmmon.c).
+ * the monitor core, src/lcm/monitor.c).
  *
  * One thread: poll() on LCM's file descriptor and on a self-pipe written by
  * the signal handler, with a timeout that wakes the loop for the sensor-gap
@@ -23,7 +23,7 @@
 
 #include "cli.h"
 #include "lcmcli.h"
-#include "lcmmon.h"
+#include "monitor.h"
 #include "monreload.h"
 
 /* Per-subscription queue of LCM (default 30, which loses samples in bursts
@@ -213,7 +213,7 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
 {
     (void)channel;
     mon_ctx_t *c = user;
-    double t0 = sw_cli_mono_now();
+    double t0 = sw_mon_clock();
     sw_mon_counts_t k0, k1;
     sw_mon_counts(c->mon, &k0);
     sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, t0, NULL);
@@ -225,7 +225,7 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
         if (c->accepted == 1 || lag > c->lag_max)
             c->lag_max = lag;
     }
-    c->busy += sw_cli_mono_now() - t0;
+    c->busy += sw_mon_clock() - t0;
 }
 
 static void print_rejected(FILE *f, const sw_mon_counts_t *k)
@@ -282,11 +282,11 @@ static void print_final(sw_mon_t *mon, double elapsed)
 static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
 {
     int fd = lcm_get_fileno(lcm);
-    double start = sw_cli_mono_now();
+    double start = sw_mon_clock();
     double last_status = start;
     double next_status = status_every > 0.0 ? start + status_every : INFINITY;
     while (!stop_signal) {
-        double now = sw_cli_mono_now();
+        double now = sw_mon_clock();
         double deadline = fmin(sw_mon_deadline(c->mon), next_status);
         int timeout = -1;
         if (isfinite(deadline))
@@ -315,7 +315,7 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
             reload_signal = 0;
             sw_cli_monitor_reload(c->mon, c->opts, c->scenes, c->n);
         }
-        now = sw_cli_mono_now();
+        now = sw_mon_clock();
         if (now >= sw_mon_deadline(c->mon))
             sw_mon_tick(c->mon, now);
         if (now >= next_status) {
@@ -327,7 +327,7 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
         }
     }
     sw_mon_flush(c->mon);
-    print_final(c->mon, sw_cli_mono_now() - start);
+    print_final(c->mon, sw_mon_clock() - start);
     return SW_EXIT_OK;
 }
 

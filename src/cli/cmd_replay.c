@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "eventlog.h"
 
 #define DEFAULT_SETTLE 30.0     /* s of zero input after the end of the log */
 
@@ -177,7 +178,7 @@ int cmd_replay(int argc, char **argv)
         goto out;
     }
     ctx.rej = (sw_cli_rejects_t){.name = lf.name, .quiet = o.quiet, .strict = copts.strict};
-    if (sw_cli_is_lcmlog(lf.buf, lf.len)) {
+    if (sw_lcmlog_sniff(lf.buf, lf.len)) {
         if (lf.in == stdin) {
             sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
                          "file name",

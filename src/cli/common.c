@@ -223,13 +223,6 @@ const char *sw_cli_log_operand(const char *cmd, int argc, char **argv)
 
 /* ---- scenes --------------------------------------------------------------- */
 
-int sw_cli_is_lcmlog(const void *buf, size_t len)
-{
-    /* The first four bytes of an lcm-logger event log (big-endian). */
-    static const unsigned char sync[4] = {0xED, 0xA1, 0xDA, 0x01};
-    return len >= sizeof sync && !memcmp(buf, sync, sizeof sync);
-}
-
 void sw_cli_print_diag(void *user, const char *origin, int line, const char *msg)
 {
     sw_cli_diag_t *d = user;

@@ -1,8 +1,7 @@
-/* lcmcli.c - options and clock shared by the LCM commands (lcmcli.h). */
+/* lcmcli.c - options shared by the LCM commands (lcmcli.h). */
 #include "lcmcli.h"
 
 #include <string.h>
-#include <time.h>
 
 #include "cli.h"
 
@@ -74,7 +73,7 @@ int sw_cli_mon_option(void *opts, int c, const char *arg)
             int r = sw_cli_parse_double("--max-jump", arg, SW_NUM_NONNEGATIVE,
                                         "a number of seconds >= 0 (0: take any jump)",
                                         &mo->max_jump);
-            if (r == SW_EXIT_OK && mo->max_jump == 0.0) mo->max_jump = -1.0; /* lcmmon.h: any */
+            if (r == SW_EXIT_OK && mo->max_jump == 0.0) mo->max_jump = -1.0; /* monitor.h: any */
             else if (r == SW_EXIT_OK && !(mo->max_jump < 1e9)) {
                 sw_cli_error("--max-jump: expected at most 1e9 s, got '%s'", arg);
                 r = SW_EXIT_USAGE;
@@ -83,11 +82,4 @@ int sw_cli_mon_option(void *opts, int c, const char *arg)
         }
         default: return -1;
     }
-}
-
-double sw_cli_mono_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }

@@ -1,10 +1,10 @@
 /* lcmcli.h - what the LCM commands (monitor, and replay of lcm-logger
- * files) share on top of the monitor core: their common options and a
- * clock.  LCM builds only. */
+ * files) share on top of the monitor core: their common options.  LCM
+ * builds only. */
 #ifndef SWAYWATCH_LCMCLI_H
 #define SWAYWATCH_LCMCLI_H
 
-#include "lcmmon.h"
+#include "monitor.h"
 
 /* Handle c (an SW_OPT_LCM_* code of cli.h) for opts, a sw_mon_opts_t (the
  * form of a sw_cli_group_t), if it is one of the options both commands
@@ -12,8 +12,5 @@
  * --vertical, --gap, --max-accel.  Returns -1 if it is not, else
  * SW_EXIT_OK or SW_EXIT_USAGE (reported). */
 int sw_cli_mon_option(void *opts, int c, const char *arg);
-
-/* Monotonic clock, s. */
-double sw_cli_mono_now(void);
 
 #endif

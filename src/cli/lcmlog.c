@@ -1,35 +1,20 @@
-/* lcmlog.c - "swaywatch replay" of lcm-logger files: reads the event log
- * in-process with LCM's event-log API (never through the network), feeds
- * the accel_t messages of one channel to the monitor core by their own
- * utime, and prints the same summaries as a CSV replay.  With --publish,
+/* lcmlog.c - "swaywatch replay" of lcm-logger files: the event log is read
+ * in-process (eventlog.h, never through the network) into the monitor core,
+ * and the same summaries as for a CSV replay are printed.  With --publish,
  * states and alarms also go out over LCM, paced in real time (or faster)
- * by the samples' utime.
- *
- * Event logs have no checksum.  lcm_eventlog_read_next_event() returns NULL
- * both at the end of the file and on a bad header; a bad header is told
- * from the end by feof(), and the next call resynchronises on the next
- * sync word.  A length field that points past the end of the file looks
- * like the end too: when bytes are left after the last good event, the
- * reader rewinds to just after the failed sync word and scans on, so one
- * corrupted length cannot hide the rest of the log. */
+ * by the samples' utime. */
 #include <errno.h>
-#include <lcm/eventlog.h>
 #include <lcm/lcm.h>
-#include <math.h>
-#include <regex.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <time.h>
 
 #include "cli.h"
+#include "eventlog.h"
 #include "lcmcli.h"
-#include "lcmmon.h"
-#include "swaywatch_accel_t.h"
+#include "monitor.h"
 
 #define DEFAULT_SETTLE 30.0 /* s, as for CSV logs */
-#define LCM_SYNC 0xEDA1DA01u
 
 enum {
     OPT_TIME_COL = SW_OPT_FIRST_OWN,
@@ -112,140 +97,7 @@ static void on_event(void *user, const sw_event_t *ev)
     sw_cli_events_write(s->events, ev);
 }
 
-typedef struct {
-    long events;         /* events read */
-    long on_channel;     /* events on the accel channel */
-    long other_channels; /* events on other channels, skipped */
-    long corrupt;        /* corrupted regions skipped */
-} log_counts_t;
-
-/* Sleep until the monotonic clock reads t (s). */
-static void sleep_until(double t)
-{
-    double now = sw_cli_mono_now();
-    if (t <= now)
-        return;
-    double d = t - now;
-    struct timespec ts = {(time_t)d, (long)((d - floor(d)) * 1e9)};
-    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
-    }
-}
-
-/* Big-endian uint32 at the current position (no advance); 0 if none. */
-static uint32_t peek_sync(FILE *f, off_t at)
-{
-    unsigned char b[4];
-    if (fseeko(f, at, SEEK_SET) != 0 || fread(b, 1, 4, f) != 4)
-        return 0;
-    return (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | b[3];
-}
-
-/* After a NULL at end of file with bytes left from `from`: position the
- * log just past the first sync word at or after `from`, so scanning goes
- * on behind it.  Returns 0 if there is one, -1 if the rest is junk. */
-static int skip_bad_sync(FILE *f, off_t from, off_t size)
-{
-    clearerr(f);
-    for (off_t at = from; at + 4 <= size; at++)
-        if (peek_sync(f, at) == LCM_SYNC)
-            return fseeko(f, at + 1, SEEK_SET) == 0 ? 0 : -1;
-    return -1;
-}
-
-/* Real-time pacing of --publish by the samples' own utime. */
-typedef struct {
-    double speed; /* 0: no pacing */
-    int started;
-    double start; /* mono s at base_utime */
-    int64_t base_utime;
-} pacer_t;
-
-/* Longest pause honoured between two samples: a corrupted (but decodable)
- * utime must not stall the replay for days. */
-#define MAX_PAUSE_US 3600000000LL
-
-static void pace(pacer_t *p, const void *data, int len)
-{
-    swaywatch_accel_t s;
-    if (p->speed <= 0.0 || swaywatch_accel_t_decode(data, 0, len, &s) < 0)
-        return;
-    double now = sw_cli_mono_now();
-    if (!p->started || s.utime - p->base_utime > MAX_PAUSE_US * p->speed) {
-        p->started = 1;
-        p->start = now;
-        p->base_utime = s.utime;
-        return;
-    }
-    sleep_until(p->start + (double)(s.utime - p->base_utime) / 1e6 / p->speed);
-}
-
-/* Read every event; feed the accel channel to the monitor core.  A
- * corrupted region is a stretch of bytes between two good events; each is
- * counted once however many reads it takes to get past it. */
-static int read_log(lcm_eventlog_t *log, off_t size, const regex_t *channel, sw_mon_t *mon,
-                    double speed, int strict, log_counts_t *lc)
-{
-    pacer_t pacer = {.speed = speed};
-    int in_bad = 0;
-    for (;;) {
-        off_t at = ftello(log->f);
-        lcm_eventlog_event_t *ev = lcm_eventlog_read_next_event(log);
-        if (!ev) {
-            int eof = feof(log->f);
-            /* Clean end: nothing left after the last event. */
-            if (eof && at >= size)
-                break;
-            if (!in_bad)
-                lc->corrupt++;
-            in_bad = 1;
-            if (strict)
-                return SW_EXIT_USAGE;
-            /* Not at the end: a bad header, and the next call resynchronises.
-             * At the end with bytes left: a truncated last event, or a length
-             * pointing past the end; scan on behind its sync word. */
-            if (eof && skip_bad_sync(log->f, at, size) != 0)
-                break;
-            continue;
-        }
-        in_bad = 0;
-        lc->events++;
-        if (regexec(channel, ev->channel, 0, NULL, 0) != 0) {
-            lc->other_channels++;
-            lcm_eventlog_free_event(ev);
-            continue;
-        }
-        lc->on_channel++;
-        pace(&pacer, ev->data, ev->datalen);
-        /* The logger's receive time is the clock --max-skew compares with:
-         * a sample stamped far from when it arrived (a corrupt or hostile
-         * utime) would otherwise be accepted and make every later one late. */
-        sw_mon_feed(mon, ev->data, (size_t)ev->datalen, ev->timestamp,
-                    (double)ev->timestamp / 1e6, NULL);
-        lcm_eventlog_free_event(ev);
-        if (strict) { /* a refusal, of this sample or of one held before it */
-            sw_mon_counts_t k;
-            sw_mon_counts(mon, &k);
-            if (sw_mon_rejected(&k) > 0)
-                return SW_EXIT_USAGE;
-        }
-    }
-    return SW_EXIT_OK;
-}
-
-static int parse_channel_regex(const char *arg, regex_t *re)
-{
-    /* LCM anchors channel regexes at both ends. */
-    size_t len = strlen(arg);
-    char *anchored = malloc(len + 5);
-    if (!anchored)
-        return -1;
-    snprintf(anchored, len + 5, "^(%s)$", arg);
-    int r = regcomp(re, anchored, REG_EXTENDED | REG_NOSUB);
-    free(anchored);
-    return r == 0 ? 0 : -1;
-}
-
-static void print_lcm_counts(FILE *f, const char *path, const log_counts_t *lc,
+static void print_lcm_counts(FILE *f, const char *path, const sw_lcmlog_counts_t *lc,
                              const sw_mon_counts_t *k)
 {
     fprintf(f,
@@ -272,18 +124,17 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
     sw_mon_opts_t mo;
     const char *channel = SW_MON_ACCEL_CHANNEL;
     const char *publish_url = NULL;
-    int publish = 0, strict = 0, fail_on_overturn = 0, have_re = 0;
+    int publish = 0, strict = 0, fail_on_overturn = 0;
     double speed = 1.0, settle = DEFAULT_SETTLE;
-    regex_t re;
     sw_scene_t *scenes = NULL;
     size_t n = 0;
     lcm_t *lcm = NULL;
     sw_mon_t *mon = NULL;
-    lcm_eventlog_t *log = NULL;
+    sw_lcmlog_t *log = NULL;
     sw_cli_states_t states = {0};
     sw_cli_events_t events = {0};
     sinks_t sinks = {&states, &events};
-    log_counts_t lc = {0};
+    sw_lcmlog_counts_t lc = {0};
 
     memset(&mo, 0, sizeof mo);
     mo.vertical = -1;
@@ -336,17 +187,17 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
         if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
         goto out;
     }
-    if (parse_channel_regex(channel, &re) != 0) {
-        sw_cli_error("--channel: not a valid regular expression: '%s'", channel);
-        goto out;
-    }
-    have_re = 1;
-
-    struct stat st;
-    log = lcm_eventlog_create(path, "r");
-    if (!log || fstat(fileno(log->f), &st) != 0) {
-        sw_cli_error("%s: cannot open: %s", path, strerror(errno));
-        rc = SW_EXIT_IO;
+    int err = 0;
+    sw_lcmlog_opts_t lo = {.channel = channel, .speed = publish ? speed : 0.0, .strict = strict};
+    log = sw_lcmlog_open(path, &lo, &err);
+    if (!log) {
+        if (err == SW_EINVAL)
+            sw_cli_error("--channel: not a valid regular expression: '%s'", channel);
+        else if (err == SW_ENOMEM)
+            sw_cli_error("out of memory");
+        else
+            sw_cli_error("%s: cannot open: %s", path, strerror(errno));
+        rc = err == SW_EINVAL ? SW_EXIT_USAGE : SW_EXIT_IO;
         goto out;
     }
     rc = sw_cli_load_scenes(&o, &scenes, &n);
@@ -381,7 +232,8 @@ int sw_cli_replay_lcmlog(const char *path, int argc, char **argv)
     if (o.verbose)
         sw_cli_print_derived(stderr, sw_mon_engine(mon), scenes, n);
 
-    rc = read_log(log, st.st_size, &re, mon, publish ? speed : 0.0, strict, &lc);
+    rc = sw_lcmlog_read(log, mon) == SW_OK ? SW_EXIT_OK : SW_EXIT_USAGE;
+    sw_lcmlog_counts(log, &lc);
     if (rc != SW_EXIT_OK) {
         sw_cli_error("%s: stopped at the first bad event or sample (--strict)", path);
         goto out;
@@ -428,10 +280,7 @@ out:
     sw_mon_destroy(mon);
     if (lcm)
         lcm_destroy(lcm);
-    if (log)
-        lcm_eventlog_destroy(log);
-    if (have_re)
-        regfree(&re);
+    sw_lcmlog_close(log);
     free(scenes);
     sw_cli_opts_fini(&o);
     return rc;

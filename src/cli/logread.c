@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "eventlog.h"
 
 #define CHUNK (64 * 1024)      /* bytes read and fed at a time */
 
@@ -250,7 +251,7 @@ int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_
         goto out;
     }
     read_ctx_t ctx = {L, {f.name, o->strict, quiet, 0, 0, 0}, 0, 0};
-    if (sw_cli_is_lcmlog(f.buf, f.len)) {
+    if (sw_lcmlog_sniff(f.buf, f.len)) {
         sw_cli_error("%s: an lcm-logger file; this command reads CSV logs (replay reads both)",
                      f.name);
         goto out;

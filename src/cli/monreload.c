@@ -15,7 +15,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef SW_HAVE_LCM
 #include "monreload.h"
 
 int sw_cli_monitor_reload(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scenes, size_t n)
@@ -82,8 +81,3 @@ done:
     free(fresh);
     return rc;
 }
-
-#else
-/* Without LCM there is no monitor; ISO C wants a declaration in a file. */
-typedef int sw_monreload_unused_t;
-#endif

@@ -4,7 +4,7 @@
 #define SWAYWATCH_MONRELOAD_H
 
 #include "cli.h"
-#include "lcmmon.h"
+#include "monitor.h"
 
 /* Re-read the scene files of o (with its --set overrides) and rebuild the
  * packages of mon whose scene changed; scenes[0..n) are the monitor's
