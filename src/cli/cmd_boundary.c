@@ -13,7 +13,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "opts.h"
+#include "output.h"
+#include "plot.h"
 
 #define MAX_POINTS 100000 /* omega_e/p values; a typo such as 1:12:0.0001 is refused */
 #define MAX_CURVES 1000

@@ -14,7 +14,7 @@
  *   - optionally a figure of a_g(t), theta(t)/alpha and margin(t) with the
  *     events, and the whole report as JSON.
  *
- * Unlike replay, forensics holds the whole log in memory (logread.c): the
+ * Unlike replay, forensics holds the whole log in memory (input.c): the
  * safety-factor search replays it tens of times per case, and re-reading
  * and re-parsing the file for each trial would cost more than the physics.
  * The figure also keeps the state series in memory. */
@@ -23,7 +23,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include "input.h"
+#include "opts.h"
+#include "output.h"
+#include "plot.h"
 
 #define DEFAULT_SETTLE 30.0   /* s of zero input after the end of the log, as replay */
 #define DEFAULT_THREADS 2

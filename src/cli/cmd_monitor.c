@@ -21,10 +21,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cli.h"
-#include "lcmcli.h"
+#include "input.h"
+#include "lcmopts.h"
 #include "monitor.h"
-#include "monreload.h"
+#include "opts.h"
+#include "output.h"
 
 /* Per-subscription queue of LCM (default 30, which loses samples in bursts
  * at 1 kHz): two seconds of samples at 1 kHz. */
@@ -196,6 +197,89 @@ static int64_t wall_now_us(void)
     return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
 }
 
+/* ---- reload (SIGHUP) ---------------------------------------------------------
+ * The monitor re-reads its scene files on SIGHUP (systemctl reload),
+ * without losing the state of the packages whose scene did not change.
+ *
+ * Every --scene file is read again, with the --set overrides, exactly as at
+ * start.  A package whose scene values are the same as before (comments,
+ * layout and the order of keys do not count) is left alone: its state, its
+ * alarm state and its place in the message streams go on.  A package whose
+ * scene changed is rebuilt and starts from rest at the current sample time
+ * (sw_mon_replace).  All or nothing: if a file cannot be read or is not a
+ * valid scene, or a changed scene cannot be built, nothing is changed and
+ * the monitor goes on with the scenes it had.  The file list itself is the
+ * one given at start. */
+
+/* Re-read the scene files of o (with its --set overrides) and rebuild the
+ * packages of mon whose scene changed; scenes[0..n) are the monitor's
+ * current scenes, updated in place.  Says what it did on stderr.  Returns
+ * SW_EXIT_OK, or SW_EXIT_USAGE / SW_EXIT_IO with nothing changed. */
+static int reload_scenes(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scenes, size_t n)
+{
+    sw_scene_t *fresh = NULL, *changed = NULL;
+    size_t nf = 0, nchanged = 0;
+    sw_engine_t *trial = NULL;
+    char msg[512] = "";
+
+    int rc = sw_cli_load_scenes(o, &fresh, &nf);
+    if (rc != SW_EXIT_OK)
+        goto keep;
+    if (nf != n) { /* the same files as at start: cannot happen */
+        sw_cli_error("monitor: reload: %zu scenes instead of %zu", nf, n);
+        rc = SW_EXIT_USAGE;
+        goto keep;
+    }
+    changed = calloc(n, sizeof *changed);
+    if (!changed) {
+        sw_cli_error("monitor: reload: out of memory");
+        rc = SW_EXIT_IO;
+        goto keep;
+    }
+    for (size_t k = 0; k < n; k++)
+        if (!sw_scene_equal(&scenes[k], &fresh[k]))
+            changed[nchanged++] = fresh[k];
+    if (nchanged == 0) {
+        fprintf(stderr, "swaywatch: monitor: reload: no scene changed; %zu packages kept\n", n);
+        goto done;
+    }
+    /* Build the changed packages once on the side with the monitor's
+     * options: what passes here cannot fail in sw_mon_replace() but for
+     * memory, so a reload does not stop half-way. */
+    sw_engine_opts_t eo;
+    sw_cli_engine_opts(o, &eo);
+    int err = 0;
+    trial = sw_engine_create(changed, nchanged, &eo, &err, msg, sizeof msg);
+    if (!trial) {
+        sw_cli_error("monitor: reload: %s", msg[0] ? msg : sw_strerror(err));
+        rc = SW_EXIT_USAGE;
+        goto keep;
+    }
+    for (size_t k = 0; k < n; k++) {
+        if (sw_scene_equal(&scenes[k], &fresh[k]))
+            continue;
+        if (sw_mon_replace(mon, k, &fresh[k], msg, sizeof msg) != SW_OK) {
+            sw_cli_error("monitor: reload: %s: %s", fresh[k].name, msg);
+            rc = SW_EXIT_IO;
+            continue; /* only memory: the package keeps its old scene */
+        }
+        fprintf(stderr, "swaywatch: monitor: reload: %s rebuilt from %s (scene changed)\n",
+                fresh[k].name, o->scene_files[k]);
+        scenes[k] = fresh[k];
+    }
+    fprintf(stderr, "swaywatch: monitor: reload: %zu of %zu packages rebuilt, the others kept\n",
+            nchanged, n);
+    goto done;
+
+keep:
+    sw_cli_error("monitor: reload: scene files not applied; going on with the scenes of before");
+done:
+    sw_engine_destroy(trial);
+    free(changed);
+    free(fresh);
+    return rc;
+}
+
 /* ---- the loop ------------------------------------------------------------------ */
 
 typedef struct {
@@ -313,7 +397,7 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
             while (read(wake_pipe[0], junk, sizeof junk) > 0) {
             }
             reload_signal = 0;
-            sw_cli_monitor_reload(c->mon, c->opts, c->scenes, c->n);
+            reload_scenes(c->mon, c->opts, c->scenes, c->n);
         }
         now = sw_mon_clock();
         if (now >= sw_mon_deadline(c->mon))

@@ -10,8 +10,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
 #include "eventlog.h"
+#include "input.h"
+#include "opts.h"
+#include "output.h"
 
 #define DEFAULT_SETTLE 30.0     /* s of zero input after the end of the log */
 
@@ -204,7 +206,7 @@ int cmd_replay(int argc, char **argv)
         rc = SW_EXIT_USAGE;
         goto out;
     }
-    rc = sw_cli_check_outputs(&o, lf.in);
+    rc = sw_cli_check_outputs(o.out_path, o.events_path, lf.in);
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;

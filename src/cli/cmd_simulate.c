@@ -11,7 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include "opts.h"
+#include "output.h"
 
 #define STANDARD_GRAVITY 9.80665   /* m/s^2, for --amplitude-g */
 #define DEFAULT_INTERVAL 1e-3      /* s, --sample-interval */
@@ -197,7 +198,7 @@ int cmd_simulate(int argc, char **argv)
         goto out;
     }
 
-    rc = sw_cli_check_outputs(&o, NULL);
+    rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL);
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;

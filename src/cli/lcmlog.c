@@ -9,10 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
 #include "eventlog.h"
-#include "lcmcli.h"
+#include "input.h"
+#include "lcmopts.h"
 #include "monitor.h"
+#include "opts.h"
+#include "output.h"
 
 #define DEFAULT_SETTLE 30.0 /* s, as for CSV logs */
 

@@ -11,7 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "plot.h"
 
 struct sw_plot {
     FILE *gp;

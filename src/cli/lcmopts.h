@@ -1,8 +1,8 @@
-/* lcmcli.h - what the LCM commands (monitor, and replay of lcm-logger
+/* lcmopts.h - what the LCM commands (monitor, and replay of lcm-logger
  * files) share on top of the monitor core: their common options.  LCM
  * builds only. */
-#ifndef SWAYWATCH_LCMCLI_H
-#define SWAYWATCH_LCMCLI_H
+#ifndef SWAYWATCH_CLI_LCMOPTS_H
+#define SWAYWATCH_CLI_LCMOPTS_H
 
 #include "monitor.h"
 

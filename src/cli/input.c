@@ -1,16 +1,17 @@
-/* logread.c - CSV input options (the ones replay documents) and reading a
+/* input.c - CSV input options (the ones replay documents) and reading a
  * whole CSV log into memory, for the commands that run one log many times
  * (forensics: one replay per trial of the safety-factor search).  replay
  * itself streams the log and never holds it.
  *
  * Memory: 16 bytes per accepted row (24 with a vertical column); a 1 kHz
  * log of one hour is about 58 MB. */
+#include "input.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
 #include "eventlog.h"
 
 #define CHUNK (64 * 1024)      /* bytes read and fed at a time */

@@ -1,9 +1,9 @@
-/* lcmcli.c - options shared by the LCM commands (lcmcli.h). */
-#include "lcmcli.h"
+/* lcmopts.c - options shared by the LCM commands (lcmopts.h). */
+#include "lcmopts.h"
 
 #include <string.h>
 
-#include "cli.h"
+#include "opts.h"
 
 /* "--max-accel 30g" or "--max-accel 294.2" (m/s^2). */
 static int parse_accel_limit(const char *arg, double *out)
