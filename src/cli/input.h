@@ -1,40 +1,15 @@
 /* input.h - acceleration logs: CSV input options, rejected rows, log files
- * read in chunks, and whole CSV logs held in memory. */
+ * read in chunks and their source (CSV or lcm-logger) told by their first
+ * bytes, and whole CSV logs held in memory. */
 #ifndef SWAYWATCH_CLI_INPUT_H
 #define SWAYWATCH_CLI_INPUT_H
 
-#include <getopt.h>
 #include <stdio.h>
 
 #include "cli.h"
+#include "opts.h"
 
-/* ---- CSV logs held in memory ---------------------------------------------------
- * The CSV input options replay documents, for commands that run one log
- * many times and so read it into memory first (forensics).  replay streams
- * its log and parses the same options itself. */
-enum {
-    SW_OPT_CSV_TIME_COL = 1200, /* getopt_long codes, apart from the shared, own and LCM ones */
-    SW_OPT_CSV_ACCEL_COL,
-    SW_OPT_CSV_VERT_COL,
-    SW_OPT_CSV_DELIM,
-    SW_OPT_CSV_HEADER,
-    SW_OPT_CSV_NO_HEADER,
-    SW_OPT_CSV_ACCEL_UNIT,
-    SW_OPT_CSV_TIME_UNIT,
-    SW_OPT_CSV_FLIP,
-    SW_OPT_CSV_STRICT
-};
-
-#define SW_CLI_CSV_LONGOPTS                                                                        \
-    {"time-col", required_argument, NULL, SW_OPT_CSV_TIME_COL},                                    \
-        {"accel-col", required_argument, NULL, SW_OPT_CSV_ACCEL_COL},                              \
-        {"vert-col", required_argument, NULL, SW_OPT_CSV_VERT_COL},                                \
-        {"delimiter", required_argument, NULL, SW_OPT_CSV_DELIM},                                  \
-        {"header", no_argument, NULL, SW_OPT_CSV_HEADER},                                          \
-        {"no-header", no_argument, NULL, SW_OPT_CSV_NO_HEADER},                                    \
-        {"accel-unit", required_argument, NULL, SW_OPT_CSV_ACCEL_UNIT},                            \
-        {"time-unit", required_argument, NULL, SW_OPT_CSV_TIME_UNIT},                              \
-        {"flip", no_argument, NULL, SW_OPT_CSV_FLIP}, {"strict", no_argument, NULL, SW_OPT_CSV_STRICT}
+/* ---- CSV input options ------------------------------------------------------- */
 
 typedef struct {
     sw_csv_opts_t csv;
@@ -42,14 +17,16 @@ typedef struct {
 } sw_cli_csv_opts_t;
 
 void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o);
-void sw_cli_print_csv_help(FILE *f);
-/* Handle a CSV option code for opts, a sw_cli_csv_opts_t (the form of a
- * sw_cli_group_t); -1 if c is not one, else SW_EXIT_OK or SW_EXIT_USAGE
- * (reported). */
-int sw_cli_csv_option(void *opts, int c, const char *arg);
-/* --accel-unit m/s2|g: m/s^2 per unit in *scale (1 g = 9.80665 m/s^2);
- * SW_EXIT_OK or SW_EXIT_USAGE (reported).  Shared by CSV and LCM input. */
-int sw_cli_parse_accel_unit(const char *arg, double *scale);
+
+/* Rows into a sw_cli_csv_opts_t, in the CSV input section: the options of
+ * CSV logs alone (columns, delimiter, header, time unit), and those that
+ * also apply to lcm-logger files (--accel-unit, --flip, --strict). */
+extern const sw_cli_option_t sw_cli_csv_options[];
+extern const sw_cli_option_t sw_cli_sample_options[];
+
+/* fn of an --accel-unit row: m/s2 or g into dest, a double of m/s^2 per
+ * unit (1 g = 9.80665 m/s^2).  Shared by CSV and LCM input. */
+int sw_cli_accel_unit(const sw_cli_option_t *o, const char *arg, void *dest);
 
 /* Rejected rows of a CSV log: each one counted, the first
  * SW_CLI_MAX_PRINTED_REJECTS printed as "NAME:LINE: reason" (none with
@@ -69,8 +46,8 @@ void sw_cli_rejects_add(sw_cli_rejects_t *r, long line, const char *reason);
 void sw_cli_rejects_summary(const sw_cli_rejects_t *r);
 
 /* A log read in chunks: path, or "-" for standard input.  Open reads the
- * first chunk, whose first bytes tell CSV (sw_lcmlog_sniff() false) from
- * an lcm-logger file.  Both return SW_EXIT_OK or SW_EXIT_IO (reported). */
+ * first chunk, whose first bytes tell its source (sw_cli_logfile_source).
+ * Both return SW_EXIT_OK or SW_EXIT_IO (reported). */
 typedef struct {
     FILE *in;
     char *buf;
@@ -85,6 +62,19 @@ int sw_cli_logfile_open(sw_cli_logfile_t *f, const char *path);
 int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop,
                         void (*after)(void *), void *user, int *fr);
 void sw_cli_logfile_close(sw_cli_logfile_t *f); /* zeroed or open; closes stdin never */
+
+/* What a log file holds, told by its first bytes: a row per kind, the
+ * first whose sniff matches (the last row, CSV, has none: anything else
+ * is read as CSV).  available: this build reads it (lcm-logger files need
+ * LCM). */
+typedef enum { SW_CLI_SRC_LCMLOG, SW_CLI_SRC_CSV } sw_cli_source_kind;
+typedef struct {
+    sw_cli_source_kind kind;
+    const char *name; /* "an lcm-logger file", "a CSV log" */
+    int (*sniff)(const void *buf, size_t len);
+    int available;
+} sw_cli_source_t;
+const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f);
 
 /* A whole log: accepted rows in file order, SI units. */
 typedef struct {

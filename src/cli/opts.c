@@ -1,5 +1,5 @@
-/* opts.c - the options every command shares (scene, integration, output),
- * the number parsers, and loading and checking the scene files.
+/* opts.c - options from one table (opts.h): the parser over getopt_long,
+ * the --help generated from the rows, the number and list parsers.
  *
  * Everything here prints its own messages ("swaywatch: ..." on stderr) and
  * returns an exit code, so a command is a short sequence of calls with one
@@ -7,385 +7,486 @@
 #include "opts.h"
 
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* Scene files are small; anything this big is not a scene. */
-#define SCENE_MAX_BYTES (1L << 20)
+/* --help: lines of at most HELP_WIDTH columns; the help of the options
+ * starts in one column per command, past the longest option (at most
+ * HELP_COLUMN: a longer option has its help on the next line). */
+#define HELP_WIDTH 80
+#define HELP_COLUMN 30
 
-/* ---- options ------------------------------------------------------------ */
+/* getopt_long codes of the rows: ROW_CODE + the row's index over all the
+ * groups, beyond the characters of the short options. */
+#define ROW_CODE 256
 
-void sw_cli_print_scene_help(FILE *f)
+/* ---- numbers ---------------------------------------------------------- */
+
+static int bad_value(const sw_cli_option_t *o, const char *arg)
 {
-    fprintf(f,
-            "Scene (one package per file; several files, several packages):\n"
-            "  -s, --scene FILE         scene file (INI); at least one, repeatable\n"
-            "      --set SEC.KEY=VALUE  override a key in every scene, e.g. --set frame.zeta=0.2\n"
-            "\n"
-            "Integration:\n"
-            "      --scheme NAME        time stepper:");
-    for (size_t i = 0; sw_scheme_at(i); i++)
-        fprintf(f, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
-    fprintf(f, " (default %s)\n", SW_DEFAULT_SCHEME);
-    fprintf(f,
-            "      --dt SECONDS         internal step; refused if above the scheme's stability\n"
-            "                           bound (default: the scheme's own, sub-stepped as needed)\n"
-            "      --rtol X, --atol X   tolerances of the adaptive schemes (default 1e-10, 1e-12)\n"
-            "      --accuracy RAD       pick the cheapest scheme and step measured to keep the\n"
-            "                           error of theta within RAD (docs/accuracy-speed.md)\n");
+    sw_cli_error("--%s: expected %s, got '%s'", o->long_name, o->what, arg ? arg : "");
+    return SW_EXIT_USAGE;
 }
 
-void sw_cli_print_common_help(FILE *f)
-{
-    sw_cli_print_scene_help(f);
-    fprintf(f,
-            "\n"
-            "Output:\n"
-            "  -o, --out FILE.csv       state time series: t,package,phase,theta,theta_dot,u,u_dot,\n"
-            "                           z,z_dot,margin,margin_bound,uplift_ratio,a_g (SI units, rad)\n"
-            "      --every N            keep every Nth state row of each package (default 1)\n"
-            "  -e, --events FILE.csv    events: t,package,event,theta,theta_dot,margin,info\n"
-            "      --json               JSON summary on stdout instead of the human summary\n"
-            "  -q, --quiet              no human summary\n"
-            "  -v, --verbose            derived quantities of each scene, on stderr\n"
-            "  -h, --help               this help\n");
-}
-
-void sw_cli_print_exit_help(FILE *f, int overturn, int strict)
-{
-    fprintf(f, "\nExit codes: 0 ok");
-    if (overturn) fprintf(f, ", 1 a package overturned and --fail-on-overturn was given");
-    fprintf(f, ",\n2 bad usage or bad input (options, scene files%s),\n"
-               "3 a file could not be read or written.\n",
-            strict ? ", rows under --strict" : "");
-}
-
-int sw_cli_opts_init(sw_cli_opts_t *o, int argc)
-{
-    memset(o, 0, sizeof *o);
-    o->every = 1;
-    /* No option can repeat more often than there are arguments. */
-    size_t cap = argc > 0 ? (size_t)argc : 1;
-    o->scene_files = calloc(cap, sizeof *o->scene_files);
-    o->sets = calloc(cap, sizeof *o->sets);
-    if (!o->scene_files || !o->sets) {
-        sw_cli_error("out of memory");
-        sw_cli_opts_fini(o);
-        return SW_EXIT_IO;
-    }
-    return SW_EXIT_OK;
-}
-
-void sw_cli_opts_fini(sw_cli_opts_t *o)
-{
-    free(o->scene_files);
-    free(o->sets);
-    o->scene_files = NULL;
-    o->sets = NULL;
-}
-
-int sw_cli_parse_double(const char *opt, const char *arg, int rule, const char *what, double *out)
+int sw_cli_opt_double(const sw_cli_option_t *o, const char *arg, double *out)
 {
     char *end = NULL;
     errno = 0;
     double v = arg ? strtod(arg, &end) : NAN;
     int ok = arg && end != arg && *end == '\0' && errno != ERANGE && isfinite(v);
-    if (ok && rule == SW_NUM_POSITIVE) ok = v > 0.0;
-    if (ok && rule == SW_NUM_NONNEGATIVE) ok = v >= 0.0;
-    if (ok && rule == SW_NUM_NONZERO) ok = v != 0.0;
-    if (!ok) {
-        sw_cli_error("%s: expected %s, got '%s'", opt, what, arg ? arg : "");
-        return SW_EXIT_USAGE;
-    }
+    if (ok && o->rule == SW_NUM_POSITIVE) ok = v > 0.0;
+    if (ok && o->rule == SW_NUM_NONNEGATIVE) ok = v >= 0.0;
+    if (ok && o->rule == SW_NUM_NONZERO) ok = v != 0.0;
+    if (!ok) return bad_value(o, arg);
     *out = v;
     return SW_EXIT_OK;
 }
 
-int sw_cli_parse_long(const char *opt, const char *arg, long min, const char *what, long *out)
+int sw_cli_opt_long(const sw_cli_option_t *o, const char *arg, long *out)
 {
     char *end = NULL;
     errno = 0;
     long v = arg ? strtol(arg, &end, 10) : 0;
-    if (!arg || end == arg || *end != '\0' || errno == ERANGE || v < min) {
-        sw_cli_error("%s: expected %s, got '%s'", opt, what, arg ? arg : "");
-        return SW_EXIT_USAGE;
-    }
-    *out = v;
+    if (!arg || end == arg || *end != '\0' || errno == ERANGE || v < o->min)
+        return bad_value(o, arg);
+    /* An upper bound is a cap (threads), not a reason to refuse. */
+    *out = o->max > 0 && v > o->max ? o->max : v;
     return SW_EXIT_OK;
 }
 
-static int check_scheme(const char *name)
+/* "1/3" or a decimal number. */
+static int parse_fraction(const char *s, double *out)
 {
-    if (sw_scheme_lookup(name)) return SW_EXIT_OK;
-    fprintf(stderr, "swaywatch: --scheme: unknown scheme '%s'; valid:", name);
-    for (size_t i = 0; sw_scheme_at(i); i++)
-        fprintf(stderr, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
-    fputc('\n', stderr);
+    char *end = NULL;
+    double a = strtod(s, &end);
+    if (end == s) return -1;
+    if (*end == '/') {
+        const char *q = end + 1;
+        double b = strtod(q, &end);
+        if (end == q || b == 0.0) return -1;
+        a /= b;
+    }
+    if (*end != '\0' || !isfinite(a)) return -1;
+    *out = a;
+    return 0;
+}
+
+int sw_cli_parse_list(const char *opt, const char *arg, int positive, double **vals, size_t *n)
+{
+    size_t cap = 1;
+    for (const char *p = arg; *p; p++) cap += *p == ',';
+    double *v = calloc(cap, sizeof *v);
+    char *copy = strdup(arg);
+    if (!v || !copy) {
+        free(v);
+        free(copy);
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    size_t k = 0;
+    for (char *tok = copy, *next; tok; tok = next) {
+        next = strchr(tok, ',');
+        if (next) *next++ = '\0'; /* an empty item ("1,,2") is an error, not skipped */
+        double x;
+        if (parse_fraction(tok, &x) != 0 || (positive && !(x > 0.0))) {
+            sw_cli_error("%s: expected %snumbers separated by commas, got '%s'", opt,
+                         positive ? "positive " : "", tok);
+            free(v);
+            free(copy);
+            return SW_EXIT_USAGE;
+        }
+        v[k++] = x;
+    }
+    free(copy);
+    if (k == 0) {
+        sw_cli_error("%s: expected at least one value, got '%s'", opt, arg);
+        free(v);
+        return SW_EXIT_USAGE;
+    }
+    *vals = v;
+    *n = k;
+    return SW_EXIT_OK;
+}
+
+int sw_cli_parse_range(const char *opt, const char *arg, size_t max, double **vals, size_t *n)
+{
+    if (!strchr(arg, ':')) return sw_cli_parse_list(opt, arg, 1, vals, n);
+    double a, b, s;
+    char tail;
+    if (sscanf(arg, "%lf:%lf:%lf%c", &a, &b, &s, &tail) != 3 || !isfinite(a) || !isfinite(b) ||
+        !isfinite(s) || !(a > 0.0) || !(b >= a) || !(s > 0.0)) {
+        sw_cli_error("%s: expected FROM:TO:STEP with 0 < FROM <= TO and STEP > 0, got '%s'", opt,
+                     arg);
+        return SW_EXIT_USAGE;
+    }
+    const double count = floor((b - a) / s * (1.0 + 1e-12) + 1e-9) + 1.0;
+    if (count > (double)max) {
+        sw_cli_error("%s: '%s' gives %.0f points, more than %zu", opt, arg, count, max);
+        return SW_EXIT_USAGE;
+    }
+    double *v = calloc((size_t)count, sizeof *v);
+    if (!v) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    for (size_t i = 0; i < (size_t)count; i++) v[i] = a + (double)i * s;
+    *vals = v;
+    *n = (size_t)count;
+    return SW_EXIT_OK;
+}
+
+/* ---- parsing ------------------------------------------------------------ */
+
+/* Every option row of the groups, flattened: its getopt_long code is
+ * ROW_CODE + its index here. */
+typedef struct {
+    const sw_cli_option_t *o;
+    sw_cli_group_t *g;
+} row_t;
+
+static int is_option(const sw_cli_option_t *o)
+{
+    return o->kind != SW_CLI_SECTION && o->kind != SW_CLI_TEXT;
+}
+
+static void *dest_of(const row_t *r)
+{
+    return (char *)r->g->base + r->o->offset;
+}
+
+static int list_append(sw_cli_list_t *l, const char *arg)
+{
+    if (l->n == l->cap) {
+        size_t cap = l->cap ? 2 * l->cap : 8;
+        const char **v = realloc(l->v, cap * sizeof *v);
+        if (!v) {
+            sw_cli_error("out of memory");
+            return SW_EXIT_IO;
+        }
+        l->v = v;
+        l->cap = cap;
+    }
+    l->v[l->n++] = arg;
+    return SW_EXIT_OK;
+}
+
+/* Read one option's value into its destination. */
+static int take(const row_t *r, const char *arg)
+{
+    const sw_cli_option_t *o = r->o;
+    void *dest = dest_of(r);
+    int rc = SW_EXIT_OK;
+    switch (o->kind) {
+    case SW_CLI_FLAG: *(int *)dest = o->value; break;
+    case SW_CLI_STRING:
+        if (o->fn) rc = o->fn(o, arg, dest);
+        if (rc == SW_EXIT_OK) *(const char **)dest = arg;
+        break;
+    case SW_CLI_LIST:
+        if (o->fn) rc = o->fn(o, arg, dest);
+        if (rc == SW_EXIT_OK) rc = list_append(dest, arg);
+        break;
+    case SW_CLI_DOUBLE:
+        rc = sw_cli_opt_double(o, arg, dest);
+        if (rc == SW_EXIT_OK && o->fn) rc = o->fn(o, arg, dest);
+        break;
+    case SW_CLI_LONG:
+        rc = sw_cli_opt_long(o, arg, dest);
+        if (rc == SW_EXIT_OK && o->fn) rc = o->fn(o, arg, dest);
+        break;
+    case SW_CLI_CALL: rc = o->fn(o, arg, dest); break;
+    default: break;
+    }
+    return rc;
+}
+
+/* getopt_long's complaints, worded as ours; argv[optind - 1] is the option
+ * it was reading. */
+static int misuse(int c, char **argv)
+{
+    if (c == ':') {
+        sw_cli_error("%s: option '%s' needs a value", argv[0], argv[optind - 1]);
+    } else if (optopt > 0 && optopt < ROW_CODE) {
+        sw_cli_error("%s: unknown option '-%c'; see 'swaywatch %s --help'", argv[0], optopt,
+                     argv[0]);
+    } else if (optopt >= ROW_CODE) { /* a known long option given a value it does not take */
+        const char *opt = argv[optind - 1];
+        const char *eq = strchr(opt, '=');
+        sw_cli_error("%s: option '%.*s' takes no value", argv[0],
+                     (int)(eq ? eq - opt : (long)strlen(opt)), opt);
+    } else {
+        sw_cli_error("%s: unknown option '%s'; see 'swaywatch %s --help'", argv[0],
+                     argv[optind - 1], argv[0]);
+    }
     return SW_EXIT_USAGE;
 }
 
-int sw_cli_common_option(sw_cli_opts_t *o, int c, const char *arg, char **argv)
+/* The rows, getopt_long's table and its short options (leading ':' so a
+ * missing value is reported by us, with our prefix). */
+typedef struct {
+    row_t *rows;
+    struct option *longopts;
+    char *shortopts;
+    size_t n;
+} table_t;
+
+static int build_table(table_t *t, sw_cli_group_t *g, size_t n)
 {
-    switch (c) {
-    case 's':
-    case SW_OPT_SCENE: o->scene_files[o->n_scene_files++] = arg; return SW_EXIT_OK;
-    case SW_OPT_SET:
-        if (!strchr(arg, '=') || !strchr(arg, '.') || strchr(arg, '.') > strchr(arg, '=')) {
-            sw_cli_error("--set: expected SECTION.KEY=VALUE, got '%s'", arg);
-            return SW_EXIT_USAGE;
+    size_t count = 0;
+    for (size_t i = 0; i < n; i++)
+        for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) count += is_option(o);
+    t->rows = calloc(count + 1, sizeof *t->rows);
+    t->longopts = calloc(count + 1, sizeof *t->longopts);
+    t->shortopts = calloc(3 * count + 2, 1);
+    if (!t->rows || !t->longopts || !t->shortopts) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    char *s = t->shortopts;
+    *s++ = ':';
+    for (size_t i = 0; i < n; i++)
+        for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) {
+            if (!is_option(o)) continue;
+            const int has_arg = o->arg ? required_argument : no_argument;
+            t->rows[t->n] = (row_t){o, &g[i]};
+            t->longopts[t->n] = (struct option){o->long_name, has_arg, NULL,
+                                                ROW_CODE + (int)t->n};
+            if (o->short_name) {
+                *s++ = (char)o->short_name;
+                if (o->arg) *s++ = ':';
+            }
+            t->n++;
         }
-        o->sets[o->n_sets++] = arg;
-        return SW_EXIT_OK;
-    case SW_OPT_SCHEME: o->scheme = arg; return check_scheme(arg);
-    case SW_OPT_DT:
-        return sw_cli_parse_double("--dt", arg, SW_NUM_POSITIVE, "a positive number of seconds",
-                                   &o->dt);
-    case SW_OPT_RTOL:
-        return sw_cli_parse_double("--rtol", arg, SW_NUM_POSITIVE, "a positive tolerance",
-                                   &o->rtol);
-    case SW_OPT_ATOL:
-        return sw_cli_parse_double("--atol", arg, SW_NUM_POSITIVE, "a positive tolerance",
-                                   &o->atol);
-    case SW_OPT_ACCURACY:
-        return sw_cli_parse_double("--accuracy", arg, SW_NUM_POSITIVE,
-                                   "a positive angle in radians", &o->accuracy);
-    case 'o':
-    case SW_OPT_OUT: o->out_path = arg; return SW_EXIT_OK;
-    case SW_OPT_EVERY:
-        return sw_cli_parse_long("--every", arg, 1, "a whole number of rows >= 1", &o->every);
-    case 'e':
-    case SW_OPT_EVENTS: o->events_path = arg; return SW_EXIT_OK;
-    case SW_OPT_JSON: o->json = 1; return SW_EXIT_OK;
-    case 'q':
-    case SW_OPT_QUIET: o->quiet = 1; return SW_EXIT_OK;
-    case 'v':
-    case SW_OPT_VERBOSE: o->verbose = 1; return SW_EXIT_OK;
-    case 'h':
-    case SW_OPT_HELP: o->help = 1; return SW_EXIT_OK;
-    case ':':
-        /* getopt leaves the option it was parsing in argv[optind - 1]. */
-        sw_cli_error("%s: option '%s' needs a value", argv[0], argv[optind - 1]);
-        return SW_EXIT_USAGE;
-    case '?':
-        if (optopt > 0 && optopt < 256)
-            sw_cli_error("%s: unknown option '-%c'; see 'swaywatch %s --help'", argv[0], optopt,
-                         argv[0]);
-        else if (optopt >= 256) { /* a known long option given a value it does not take */
-            const char *opt = argv[optind - 1];
-            const char *eq = strchr(opt, '=');
-            sw_cli_error("%s: option '%.*s' takes no value", argv[0],
-                         (int)(eq ? eq - opt : (long)strlen(opt)), opt);
-        }
-        else
-            sw_cli_error("%s: unknown option '%s'; see 'swaywatch %s --help'", argv[0],
-                         argv[optind - 1], argv[0]);
-        return SW_EXIT_USAGE;
-    default: return -1;
+    return SW_EXIT_OK;
+}
+
+static void free_table(table_t *t)
+{
+    free(t->rows);
+    free(t->longopts);
+    free(t->shortopts);
+}
+
+/* Defaults stored before parsing: a DOUBLE or LONG row's def is its
+ * value when the option is not given. */
+static void store_defaults(const table_t *t)
+{
+    for (size_t k = 0; k < t->n; k++) {
+        const row_t *r = &t->rows[k];
+        if (r->o->kind == SW_CLI_DOUBLE) *(double *)dest_of(r) = r->o->def;
+        if (r->o->kind == SW_CLI_LONG) *(long *)dest_of(r) = (long)r->o->def;
     }
 }
 
-int sw_cli_getopt(sw_cli_opts_t *o, int argc, char **argv, const char *shortopts,
-                  const struct option *longopts, int *longindex, const sw_cli_group_t *groups,
-                  size_t n, void (*usage)(FILE *))
+int sw_cli_parse(const sw_cli_command_t *cmd, sw_cli_group_t *g, size_t n, int argc, char **argv,
+                 int *operand)
 {
-    opterr = 0; /* sw_cli_common_option words the errors */
-    for (int c; (c = getopt_long(argc, argv, shortopts, longopts, longindex)) != -1;) {
-        int r = sw_cli_common_option(o, c, optarg, argv);
-        for (size_t i = 0; r == -1 && i < n; i++) r = groups[i].fn(groups[i].ctx, c, optarg);
-        if (r == -1) return c;
-        if (r != SW_EXIT_OK) return SW_CLI_OPT_BAD;
-        if (o->help) {
-            if (usage) usage(stdout);
-            return SW_CLI_OPT_HELP;
-        }
+    table_t t = {0};
+    int rc = build_table(&t, g, n);
+    if (rc != SW_EXIT_OK) goto out;
+    store_defaults(&t);
+    for (size_t i = 0; i < n; i++) {
+        g[i].given = NULL;
+        g[i].given_at = 0;
     }
-    return SW_CLI_OPT_END;
+    opterr = 0; /* misuse() words the errors */
+    optind = 0; /* a fresh scan */
+    int given = 0;
+    for (int c; (c = getopt_long(argc, argv, t.shortopts, t.longopts, NULL)) != -1;) {
+        const row_t *r = NULL;
+        if (c >= ROW_CODE && (size_t)(c - ROW_CODE) < t.n)
+            r = &t.rows[c - ROW_CODE];
+        for (size_t k = 0; !r && c != '?' && c != ':' && k < t.n; k++)
+            if (t.rows[k].o->short_name == c) r = &t.rows[k];
+        if (!r) {
+            rc = misuse(c, argv);
+            goto out;
+        }
+        given++;
+        if (!r->g->given) {
+            r->g->given = r->o;
+            r->g->given_at = given;
+        }
+        if (r->o->kind == SW_CLI_HELP) {
+            sw_cli_print_help(stdout, cmd, g, n);
+            rc = SW_EXIT_OK;
+            goto out;
+        }
+        rc = take(r, optarg);
+        if (rc != SW_EXIT_OK) goto out;
+    }
+    *operand = optind;
+    rc = SW_CLI_CONTINUE;
+out:
+    free_table(&t);
+    return rc;
 }
 
-const char *sw_cli_log_operand(const char *cmd, int argc, char **argv)
+void sw_cli_parse_free(const sw_cli_group_t *g, size_t n)
 {
-    if (optind >= argc) {
+    for (size_t i = 0; i < n; i++)
+        for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++)
+            if (o->kind == SW_CLI_LIST) {
+                sw_cli_list_t *l = (sw_cli_list_t *)((char *)g[i].base + o->offset);
+                free(l->v);
+                memset(l, 0, sizeof *l);
+            }
+}
+
+const char *sw_cli_log_operand(const char *cmd, int argc, char **argv, int first)
+{
+    if (first >= argc) {
         sw_cli_error("%s: missing LOG (a CSV file, or - for standard input); see 'swaywatch %s "
                      "--help'",
                      cmd, cmd);
         return NULL;
     }
-    if (optind + 1 < argc) {
-        sw_cli_error("%s: one LOG at a time; unexpected '%s'", cmd, argv[optind + 1]);
+    if (first + 1 < argc) {
+        sw_cli_error("%s: one LOG at a time; unexpected '%s'", cmd, argv[first + 1]);
         return NULL;
     }
-    return argv[optind];
+    return argv[first];
 }
 
-/* ---- scenes --------------------------------------------------------------- */
-
-void sw_cli_print_diag(void *user, const char *origin, int line, const char *msg)
+int sw_cli_no_operand(const char *cmd, int argc, char **argv, int first)
 {
-    sw_cli_diag_t *d = user;
-    d->errors++;
-    if (line > 0)
-        sw_cli_error("%s:%d: %s", origin ? origin : "scene", line, msg);
-    else
-        sw_cli_error("%s: %s", origin ? origin : "scene", msg);
+    if (first >= argc) return SW_EXIT_OK;
+    sw_cli_error("%s: unexpected argument '%s'; see 'swaywatch %s --help'", cmd, argv[first], cmd);
+    return SW_EXIT_USAGE;
 }
 
-/* Whole file into a NUL-terminated buffer; prints its own errors. */
-static int read_text(const char *path, char **text)
+/* ---- --help ------------------------------------------------------------- */
+
+static int visible(const sw_cli_group_t *g, const sw_cli_option_t *o)
 {
-    int rc = SW_EXIT_IO;
-    char *buf = NULL;
-    size_t len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        sw_cli_error("%s: cannot open: %s", path, strerror(errno));
-        goto out;
-    }
-    buf = malloc((size_t)SCENE_MAX_BYTES + 1);
-    if (!buf) {
-        sw_cli_error("%s: out of memory", path);
-        goto out;
-    }
-    len = fread(buf, 1, (size_t)SCENE_MAX_BYTES + 1, f);
-    if (ferror(f)) {
-        sw_cli_error("%s: cannot read: %s", path, strerror(errno));
-        goto out;
-    }
-    if (len > (size_t)SCENE_MAX_BYTES) {
-        sw_cli_error("%s: larger than %ld bytes: not a scene file", path, SCENE_MAX_BYTES);
-        rc = SW_EXIT_USAGE;
-        goto out;
-    }
-    buf[len] = '\0';
-    if (strlen(buf) != len) {
-        sw_cli_error("%s: contains a NUL byte: not a scene file", path);
-        rc = SW_EXIT_USAGE;
-        goto out;
-    }
-    *text = buf;
-    buf = NULL;
-    rc = SW_EXIT_OK;
-out:
-    free(buf);
-    if (f) fclose(f);
-    return rc;
+    return !(g->flags & SW_CLI_HIDDEN) && !(o->flags & SW_CLI_HIDDEN);
 }
 
-int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n)
+/* "  -s, --scene FILE" or "      --set SEC.KEY=VALUE". */
+static int label(char *buf, size_t len, const sw_cli_option_t *o)
 {
-    int rc = SW_EXIT_USAGE;
-    sw_scene_t *sc = NULL;
-    char *text = NULL;
-    sw_cli_diag_t diag = {0};
+    char sh[8] = "    ";
+    if (o->short_name) snprintf(sh, sizeof sh, "-%c, ", o->short_name);
+    return snprintf(buf, len, "  %s--%s%s%s", sh, o->long_name, o->arg ? " " : "",
+                    o->arg ? o->arg : "");
+}
 
-    if (o->n_scene_files == 0) {
-        sw_cli_error("no scene: give at least one --scene FILE");
-        goto out;
+/* The help of o, with "%g" replaced by its default. */
+static void help_text(char *buf, size_t len, const sw_cli_option_t *o)
+{
+    if (o->help_fn) {
+        o->help_fn(buf, len);
+        return;
     }
-    sc = calloc(o->n_scene_files, sizeof *sc);
-    if (!sc) {
-        sw_cli_error("out of memory");
-        rc = SW_EXIT_IO;
-        goto out;
+    const char *h = o->help ? o->help : "";
+    const char *at = strstr(h, "%g");
+    if (!at) {
+        snprintf(buf, len, "%s", h);
+        return;
     }
-    for (size_t i = 0; i < o->n_scene_files; i++) {
-        const char *path = o->scene_files[i];
-        int r = read_text(path, &text);
-        if (r != SW_EXIT_OK) {
-            rc = r;
-            goto out;
+    snprintf(buf, len, "%.*s%g%s", (int)(at - h), h, o->def, at + 2);
+}
+
+/* text from column col, wrapped at HELP_WIDTH at spaces, continuation
+ * lines indented to col.  A word longer than a line (a CSV header) is cut
+ * after a comma, filling the line it starts on. */
+static void wrap(FILE *f, const char *text, int col)
+{
+    const int width = HELP_WIDTH - col;
+    int first = 1;
+    while (*text) {
+        int cut = (int)strlen(text);
+        if (cut > width) {
+            cut = width;
+            while (cut > 0 && text[cut] != ' ') cut--;
+            const int next = cut ? cut + 1 : 0;
+            if ((int)strcspn(text + next, " ") > width)
+                for (int i = width; i > next; i--)
+                    if (text[i - 1] == ',') {
+                        cut = i;
+                        break;
+                    }
+            if (cut == 0) cut = (int)strcspn(text, " "); /* no place to cut: the word whole */
         }
-        sw_scene_init(&sc[i]);
-        long before = diag.errors;
-        int pr = sw_scene_parse(&sc[i], text, path, sw_cli_print_diag, &diag);
-        free(text);
-        text = NULL;
-        if (pr != SW_OK) {
-            if (diag.errors == before) sw_cli_error("%s: %s", path, sw_strerror(pr));
-            diag.errors++;
-            continue; /* report every file's problems before giving up */
+        if (!first) fprintf(f, "%*s", col, "");
+        fprintf(f, "%.*s\n", cut, text);
+        text += cut;
+        while (*text == ' ') text++;
+        first = 0;
+    }
+}
+
+static int help_column(const sw_cli_group_t *g, size_t n)
+{
+    int col = 0;
+    char buf[128];
+    for (size_t i = 0; i < n; i++)
+        for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) {
+            if (!is_option(o) || !visible(&g[i], o)) continue;
+            int w = label(buf, sizeof buf, o) + 2;
+            if (w > col) col = w;
         }
-        for (size_t k = 0; k < o->n_sets; k++) {
-            before = diag.errors;
-            if (sw_scene_set_arg(&sc[i], o->sets[k], sw_cli_print_diag, &diag) != SW_OK) {
-                if (diag.errors == before) sw_cli_error("--set %s: rejected", o->sets[k]);
-                /* The same override would fail the same way on every scene. */
-                goto out;
+    return col < HELP_COLUMN ? col : HELP_COLUMN;
+}
+
+/* Print the rows of section title (options first, then paragraphs). */
+static void print_section(FILE *f, const char *title, const sw_cli_group_t *g, size_t n, int col)
+{
+    fprintf(f, "\n%s\n", title);
+    for (int texts = 0; texts < 2; texts++)
+        for (size_t i = 0; i < n; i++) {
+            if (g[i].flags & SW_CLI_HIDDEN) continue;
+            const char *sec = g[i].section;
+            for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) {
+                if (o->kind == SW_CLI_SECTION) sec = o->help;
+                if (!sec || strcmp(sec, title) != 0 || !visible(&g[i], o)) continue;
+                if (texts && o->kind == SW_CLI_TEXT) fprintf(f, "%s\n", o->help);
+                if (texts || !is_option(o)) continue;
+                char lab[128], help[1024];
+                int w = label(lab, sizeof lab, o);
+                if (w + 2 > col)
+                    fprintf(f, "%s\n%*s", lab, col, "");
+                else
+                    fprintf(f, "%-*s", col, lab);
+                help_text(help, sizeof help, o);
+                wrap(f, help, col);
             }
         }
-        if (sc[i].name[0] == '\0') {
-            /* no package.name: messages and reports name the file instead */
-            const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
-            const char *dot = strrchr(base, '.');
-            const int len = dot && dot > base ? (int)(dot - base) : (int)strlen(base);
-            snprintf(sc[i].name, sizeof sc[i].name, "%.*s", len, base);
+}
+
+/* Titles in the order they first appear; a section once. */
+#define MAX_SECTIONS 32
+
+void sw_cli_print_help(FILE *f, const sw_cli_command_t *cmd, const sw_cli_group_t *g, size_t n)
+{
+    const char *titles[MAX_SECTIONS];
+    size_t nt = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (g[i].flags & SW_CLI_HIDDEN) continue;
+        const char *sec = g[i].section;
+        for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) {
+            if (o->kind == SW_CLI_SECTION) sec = o->help;
+            if (o->kind == SW_CLI_SECTION || !sec || !visible(&g[i], o)) continue;
+            size_t k = 0;
+            while (k < nt && strcmp(titles[k], sec) != 0) k++;
+            if (k == nt && nt < MAX_SECTIONS) titles[nt++] = sec;
         }
-        before = diag.errors;
-        if (sw_scene_validate(&sc[i], NULL, path, sw_cli_print_diag, &diag) != SW_OK) {
-            if (diag.errors == before) sw_cli_error("%s: invalid scene", path);
-            diag.errors++;
-        }
     }
-    if (diag.errors) goto out;
-    *scenes = sc;
-    *n = o->n_scene_files;
-    sc = NULL;
-    rc = SW_EXIT_OK;
-out:
-    free(text);
-    free(sc);
-    return rc;
-}
-
-/* ---- engine --------------------------------------------------------------- */
-
-void sw_cli_engine_opts(const sw_cli_opts_t *o, sw_engine_opts_t *eo)
-{
-    memset(eo, 0, sizeof *eo);
-    eo->scheme = o->scheme;
-    eo->dt = o->dt;
-    /* A step the user chose is taken as given: better refused than quietly
-     * replaced by a smaller one. */
-    eo->dt_forced = o->dt > 0.0;
-    eo->rtol = o->rtol;
-    eo->atol = o->atol;
-}
-
-int sw_cli_resolve_accuracy(const sw_cli_opts_t *o, const sw_scene_t *scenes, size_t n,
-                            sw_engine_opts_t *eo)
-{
-    if (!(o->accuracy > 0.0)) return SW_EXIT_OK;
-    if (o->scheme || o->dt > 0.0) {
-        sw_cli_error("--accuracy chooses the scheme and the step: give it without --scheme and "
-                     "--dt");
-        return SW_EXIT_USAGE;
+    fprintf(f, "usage: swaywatch %s\n", cmd->usage);
+    if (cmd->about) fprintf(f, "\n%s", cmd->about);
+    const int col = help_column(g, n);
+    for (size_t k = 0; k < nt; k++) print_section(f, titles[k], g, n, col);
+    if (cmd->exit_text) {
+        fprintf(f, "\n%s", cmd->exit_text);
+        return;
     }
-    /* The engine applies the policy (so do the sweeps' engines, each for
-     * its own scene); asked here first to word a refusal as options. */
-    const char *scheme = NULL;
-    double dt = 0.0;
-    const int r = sw_scheme_for_accuracy_n(scenes, n, o->accuracy, &scheme, &dt, NULL);
-    if (r != SW_OK) {
-        sw_cli_error("--accuracy %g rad: %s", o->accuracy,
-                     r == SW_ENOTFOUND ? "tighter than any measured setting reaches "
-                                         "(about 1e-14 rad); use --scheme rk8pd --rtol"
-                                       : "no measured table for this model; choose --scheme "
-                                         "and --dt or --rtol");
-        return SW_EXIT_USAGE;
-    }
-    eo->scheme = NULL;
-    eo->dt = 0.0;
-    eo->dt_forced = 0;
-    eo->accuracy = o->accuracy;
-    return SW_EXIT_OK;
-}
-
-sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo)
-{
-    int err = 0;
-    char msg[512] = "";
-    sw_engine_t *e = sw_engine_create(scenes, n, eo, &err, msg, sizeof msg);
-    if (!e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
-    return e;
+    fprintf(f, "\nExit codes: 0 ok");
+    if (cmd->exits & SW_CLI_EXIT_OVERTURN)
+        fprintf(f, ", 1 a package overturned and --fail-on-overturn was given");
+    fprintf(f, ",\n2 bad usage or bad input (options, scene files%s),\n"
+               "3 a file could not be read or written.\n",
+            cmd->exits & SW_CLI_EXIT_STRICT ? ", rows under --strict" : "");
 }

@@ -1,120 +1,177 @@
-/* opts.h - the options every command shares (scene, integration, output),
- * number parsing, scene loading and the engine built from the options. */
+/* opts.h - options from one table, in the manner of git's parse-options.
+ *
+ * One row describes one option: its long and short name, its kind, where
+ * its value goes (an offset in the struct its group points at), the rule
+ * its value must follow and its help.  A command binds tables of rows to
+ * its structs (sw_cli_group_t) and parses argv once with sw_cli_parse(),
+ * which also prints --help, generated from the same rows.  Tables shared by
+ * several commands: scene and integration, output (here), CSV input
+ * (input.h), LCM input and publishing (lcmopts.h).
+ *
+ * Everything here prints its own messages ("swaywatch: ..." on stderr) and
+ * returns an exit code, so a command is a short sequence of calls with one
+ * cleanup path.  opts.c holds the parser and the help, scenes.c the shared
+ * rows and the scenes and engine they make. */
 #ifndef SWAYWATCH_CLI_OPTS_H
 #define SWAYWATCH_CLI_OPTS_H
 
-#include <getopt.h>
+#include <stddef.h>
 #include <stdio.h>
 
 #include "cli.h"
 
-/* replay and simulate (and later monitor, forensics) take the same scene,
- * engine and output options; each command's getopt_long loop hands the
- * options it does not know itself to sw_cli_common_option(). */
+/* ---- the table --------------------------------------------------------- */
 
-/* getopt_long codes of the shared options (outside the char range). */
-enum {
-    SW_OPT_SCENE = 1000,
-    SW_OPT_SET,
-    SW_OPT_SCHEME,
-    SW_OPT_DT,
-    SW_OPT_RTOL,
-    SW_OPT_ATOL,
-    SW_OPT_ACCURACY,
-    SW_OPT_OUT,
-    SW_OPT_EVERY,
-    SW_OPT_EVENTS,
-    SW_OPT_JSON,
-    SW_OPT_QUIET,
-    SW_OPT_VERBOSE,
-    SW_OPT_HELP,
-    SW_OPT_FIRST_OWN /* a command's own options start here */
+typedef enum {
+    SW_CLI_END = 0, /* ends a table */
+    SW_CLI_SECTION, /* a --help section: help is its title; the rows after it belong to it */
+    SW_CLI_TEXT,    /* a paragraph printed after the options of its section */
+    SW_CLI_FLAG,    /* no value: stores the row's value (an int) */
+    SW_CLI_STRING,  /* stores the argument (a const char *, pointing into argv) */
+    SW_CLI_DOUBLE,  /* a number (double) that follows the row's rule */
+    SW_CLI_LONG,    /* a whole number (long), at least min; above max (if > 0) taken as max */
+    SW_CLI_LIST,    /* repeatable: appends the argument to a sw_cli_list_t */
+    SW_CLI_CALL,    /* fn reads the argument (or none, if the row has no arg) */
+    SW_CLI_HELP     /* -h, --help: the help on stdout, exit 0 */
+} sw_cli_kind;
+
+/* Rules of SW_CLI_DOUBLE rows. */
+enum { SW_NUM_ANY = 0, SW_NUM_POSITIVE, SW_NUM_NONNEGATIVE, SW_NUM_NONZERO };
+
+#define SW_CLI_HIDDEN 1u /* a row or a group left out of --help (aliases, refused options) */
+
+typedef struct sw_cli_option sw_cli_option_t;
+
+/* Reads arg (NULL for an option without a value) for option o into dest
+ * (the row's destination).  Returns SW_EXIT_OK, or SW_EXIT_USAGE /
+ * SW_EXIT_IO after printing why. */
+typedef int (*sw_cli_option_fn)(const sw_cli_option_t *o, const char *arg, void *dest);
+
+struct sw_cli_option {
+    sw_cli_kind kind;
+    int short_name;        /* 0: none */
+    const char *long_name; /* without the dashes */
+    const char *arg;       /* the value's name in --help ("FILE"); NULL: takes no value */
+    size_t offset;         /* where the value goes, in the struct the group points at */
+    int rule;              /* SW_CLI_DOUBLE: SW_NUM_* */
+    long min, max;         /* SW_CLI_LONG */
+    double def;            /* SW_CLI_DOUBLE, SW_CLI_LONG: stored before parsing; and the
+                              value of "%g" in help, for every kind */
+    int value;             /* SW_CLI_FLAG: what it stores */
+    const char *what;      /* the expected value in words: "expected WHAT, got 'ARG'" */
+    const char *help;      /* one line, wrapped when printed; SECTION and TEXT: as printed */
+    sw_cli_option_fn fn;   /* SW_CLI_CALL: reads the value; STRING, LIST: checks it before it
+                              is stored; DOUBLE, LONG: checks (or adjusts) it after the rule */
+    void (*help_fn)(char *buf, size_t len); /* help made at run time, instead of help */
+    unsigned flags;                         /* SW_CLI_HIDDEN */
 };
 
-/* Entries for a command's struct option table. */
-#define SW_CLI_COMMON_LONGOPTS                                                                     \
-    {"scene", required_argument, NULL, SW_OPT_SCENE},                                              \
-        {"set", required_argument, NULL, SW_OPT_SET},                                              \
-        {"scheme", required_argument, NULL, SW_OPT_SCHEME},                                        \
-        {"dt", required_argument, NULL, SW_OPT_DT},                                                \
-        {"rtol", required_argument, NULL, SW_OPT_RTOL},                                            \
-        {"accuracy", required_argument, NULL, SW_OPT_ACCURACY},                                    \
-        {"atol", required_argument, NULL, SW_OPT_ATOL},                                            \
-        {"out", required_argument, NULL, SW_OPT_OUT},                                              \
-        {"every", required_argument, NULL, SW_OPT_EVERY},                                          \
-        {"events", required_argument, NULL, SW_OPT_EVENTS},                                        \
-        {"json", no_argument, NULL, SW_OPT_JSON}, {"quiet", no_argument, NULL, SW_OPT_QUIET},     \
-        {"verbose", no_argument, NULL, SW_OPT_VERBOSE}, {"help", no_argument, NULL, SW_OPT_HELP}
+/* A macro's value as a string, for help texts ("20"). */
+#define SW_CLI_STR_(x) #x
+#define SW_CLI_STR(x) SW_CLI_STR_(x)
 
-/* Short forms of the shared options, for the optstring (leading ':' so a
- * missing value is reported by us, with our prefix). */
-#define SW_CLI_COMMON_SHORTOPTS ":hs:o:e:qv"
+/* .offset of a row: the member f of the group's struct T. */
+#define SW_CLI_AT(T, f) .offset = offsetof(T, f)
 
-/* The help of the shared options (scene and integration, then output;
- * the first part alone for a command that writes no files), and the
- * exit-code paragraph every --help ends with (overturn, strict: the
- * command has --fail-on-overturn, --strict). */
-void sw_cli_print_common_help(FILE *f);
-void sw_cli_print_scene_help(FILE *f);
-void sw_cli_print_exit_help(FILE *f, int overturn, int strict);
-
+/* The destination of a SW_CLI_LIST row. */
 typedef struct {
-    const char **scene_files; /* --scene, in order (points into argv) */
-    size_t n_scene_files;
-    const char **sets; /* --set section.key=value, in order */
-    size_t n_sets;
-    const char *scheme; /* --scheme, NULL = engine default */
-    double dt;          /* s, --dt; 0 = scheme default */
-    double rtol, atol;  /* 0 = engine defaults */
-    double accuracy;    /* rad, --accuracy: pick scheme and dt for this error in theta; 0 = off */
-    const char *out_path;    /* --out: state time series CSV */
-    long every;              /* --every: write every Nth state row of each package */
-    const char *events_path; /* --events: event list CSV */
-    int json, quiet, verbose, help;
-} sw_cli_opts_t;
+    const char **v; /* the arguments in order (pointing into argv) */
+    size_t n, cap;
+} sw_cli_list_t;
 
-/* Prepare o for at most argc repeated options.  Returns SW_EXIT_OK or
- * SW_EXIT_IO (out of memory, reported).  Free with sw_cli_opts_fini(). */
-int sw_cli_opts_init(sw_cli_opts_t *o, int argc);
-void sw_cli_opts_fini(sw_cli_opts_t *o);
-
-/* Handle getopt_long's result c (with optarg arg) if it is a shared option.
- * Returns -1 if c is not a shared option, otherwise SW_EXIT_OK or
- * SW_EXIT_USAGE (reported).  Also turns '?' and ':' into the usual
- * messages, using argv[optind - 1] to name the option. */
-int sw_cli_common_option(sw_cli_opts_t *o, int c, const char *arg, char **argv);
-
-/* A group of options that several commands share (the CSV reader's, the
- * monitor's): like sw_cli_common_option, returns -1 if c is not one of its
- * options, otherwise SW_EXIT_OK or SW_EXIT_USAGE (reported). */
+/* A table bound to the struct its offsets point into. */
 typedef struct {
-    int (*fn)(void *ctx, int c, const char *arg);
-    void *ctx;
+    const sw_cli_option_t *rows; /* ended by a SW_CLI_END row */
+    void *base;
+    const char *section; /* --help section of the rows before the table's first SECTION */
+    unsigned flags;      /* SW_CLI_HIDDEN: parsed, left out of --help */
+    /* set by sw_cli_parse(): the group's first option given and its place
+     * among all the options given (1, 2, ...); NULL and 0 if none */
+    const sw_cli_option_t *given;
+    int given_at;
 } sw_cli_group_t;
 
-/* The option loop of every command: getopt_long over argv (opterr off),
- * each option offered first to sw_cli_common_option, then to the n groups
- * in turn; returns the first that none of them takes, for the command's
- * own switch (> 0), SW_CLI_OPT_END after the last option (optind is then
- * the first operand), SW_CLI_OPT_HELP at --help (usage, if not NULL, has
- * printed the help on stdout), or SW_CLI_OPT_BAD after a misuse was
- * reported.  longindex as getopt_long's. */
-enum { SW_CLI_OPT_END = -1, SW_CLI_OPT_HELP = -2, SW_CLI_OPT_BAD = -3 };
-int sw_cli_getopt(sw_cli_opts_t *o, int argc, char **argv, const char *shortopts,
-                  const struct option *longopts, int *longindex, const sw_cli_group_t *groups,
-                  size_t n, void (*usage)(FILE *));
+/* A group of rows into base; in section sec (the rows before the table's
+ * first SECTION row). */
+#define SW_CLI_GROUP(rows_, base_) {.rows = (rows_), .base = (base_)}
+#define SW_CLI_GROUP_IN(rows_, base_, sec) {.rows = (rows_), .base = (base_), .section = (sec)}
 
-/* The one LOG operand left after the options (argv[optind]); NULL, with
- * the message, if there is none or more than one.  cmd names the command. */
-const char *sw_cli_log_operand(const char *cmd, int argc, char **argv);
+/* What --help says besides the options. */
+enum { SW_CLI_EXIT_OVERTURN = 1, SW_CLI_EXIT_STRICT = 2 };
+typedef struct {
+    const char *name;      /* "replay", as in messages */
+    const char *usage;     /* after "usage: swaywatch " (may go on over indented lines) */
+    const char *about;     /* the paragraphs after the usage line, as printed */
+    unsigned exits;        /* SW_CLI_EXIT_*: the codes 1 and the --strict case */
+    const char *exit_text; /* the exit-code paragraph, instead of the usual one */
+} sw_cli_command_t;
 
-/* Number options: strtod with an end pointer and isfinite().  what is the
- * expectation in words ("a positive number of seconds").  On a bad value
- * prints "swaywatch: OPT: expected WHAT, got 'ARG'" and returns
- * SW_EXIT_USAGE. */
-enum { SW_NUM_ANY = 0, SW_NUM_POSITIVE = 1, SW_NUM_NONNEGATIVE = 2, SW_NUM_NONZERO = 3 };
-int sw_cli_parse_double(const char *opt, const char *arg, int rule, const char *what, double *out);
-int sw_cli_parse_long(const char *opt, const char *arg, long min, const char *what, long *out);
+/* sw_cli_parse(): the options are read, go on with the operands. */
+#define SW_CLI_CONTINUE (-1)
+
+/* Parse argv (argv[0] is the command's name) once, against the rows of the
+ * n groups: the defaults of DOUBLE and LONG rows are stored, then each
+ * option read and checked, in order.  Returns SW_CLI_CONTINUE with the
+ * first operand's index in *operand (getopt_long has moved the operands
+ * behind the options), or the command's exit code: SW_EXIT_OK after
+ * --help (printed on stdout), SW_EXIT_USAGE or SW_EXIT_IO after the first
+ * bad option (reported).  Free the lists with sw_cli_parse_free(). */
+int sw_cli_parse(const sw_cli_command_t *cmd, sw_cli_group_t *g, size_t n, int argc, char **argv,
+                 int *operand);
+void sw_cli_parse_free(const sw_cli_group_t *g, size_t n);
+
+/* The command's --help: usage, about, every visible section with its
+ * options and paragraphs, the exit codes.  A section gathers every row
+ * under its title, in the order of the groups, where the title first
+ * appears. */
+void sw_cli_print_help(FILE *f, const sw_cli_command_t *cmd, const sw_cli_group_t *g, size_t n);
+
+/* Number values, checked as rows check them (an end pointer, finite, the
+ * rule or the minimum): on a bad value "swaywatch: --NAME: expected WHAT,
+ * got 'ARG'" and SW_EXIT_USAGE.  For fn of SW_CLI_CALL rows that parse a
+ * number with their row's rule. */
+int sw_cli_opt_double(const sw_cli_option_t *o, const char *arg, double *out);
+int sw_cli_opt_long(const sw_cli_option_t *o, const char *arg, long *out);
+
+/* Comma-separated numbers, fractions such as 1/3 allowed, into a new
+ * array (free()); positive: each must be > 0.  FROM:TO:STEP (inclusive;
+ * the values FROM + i STEP, computed from i) or such a list, at most max
+ * values.  SW_EXIT_OK, or SW_EXIT_USAGE / SW_EXIT_IO (reported, naming
+ * opt). */
+int sw_cli_parse_list(const char *opt, const char *arg, int positive, double **vals, size_t *n);
+int sw_cli_parse_range(const char *opt, const char *arg, size_t max, double **vals, size_t *n);
+
+/* The operands: exactly one LOG (NULL, reported, otherwise), or none
+ * (SW_EXIT_OK, or SW_EXIT_USAGE reported). */
+const char *sw_cli_log_operand(const char *cmd, int argc, char **argv, int first);
+int sw_cli_no_operand(const char *cmd, int argc, char **argv, int first);
+
+/* ---- scene, integration and output options -------------------------------- */
+
+typedef struct {
+    sw_cli_list_t scenes; /* --scene, in order */
+    sw_cli_list_t sets;   /* --set section.key=value, in order */
+    const char *scheme;   /* --scheme, NULL = engine default */
+    double dt;            /* s, --dt; 0 = scheme default */
+    double rtol, atol;    /* 0 = engine defaults */
+    double accuracy;      /* rad, --accuracy: pick scheme and dt for this error in theta; 0 = off */
+    const char *out_path; /* --out: state time series CSV */
+    long every;           /* --every: write every Nth state row of each package */
+    const char *events_path; /* --events: event list CSV */
+    int json, quiet, verbose;
+} sw_cli_opts_t;
+
+/* Rows into a sw_cli_opts_t. */
+extern const sw_cli_option_t sw_cli_scene_options[];       /* Scene: --scene, --set */
+extern const sw_cli_option_t sw_cli_integration_options[]; /* Integration: --scheme, --dt,
+                                                              --rtol, --atol */
+extern const sw_cli_option_t sw_cli_accuracy_options[];    /* Integration: --accuracy */
+extern const sw_cli_option_t sw_cli_output_options[];      /* Output: --out, --every, --events,
+                                                              --json, --quiet */
+/* --verbose and --help, with no section of their own. */
+extern const sw_cli_option_t sw_cli_common_options[];
+
+/* ---- scenes and the engine -------------------------------------------------- */
 
 /* Read every --scene file, apply every --set to every scene, validate.
  * Each problem is printed as "swaywatch: FILE:LINE: message".  Returns
@@ -141,43 +198,5 @@ void sw_cli_engine_opts(const sw_cli_opts_t *o, sw_engine_opts_t *eo);
 
 /* Create the engine; on failure print the reason, return NULL. */
 sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo);
-
-/* lcm-logger files given to replay (lcmlog.c, LCM builds only): argc/argv
- * are replay's own, as the user typed them (argv[0] = "replay"). */
-int sw_cli_replay_lcmlog(const char *path, int argc, char **argv);
-/* The paragraph of replay's --help about lcm-logger files. */
-void sw_cli_print_lcmlog_help(FILE *f);
-
-/* Options of replay that only lcm-logger files take.  replay accepts them
- * in its option table (a CSV log given one is an error) and hands the file
- * and its arguments to sw_cli_replay_lcmlog(), which reads them. */
-enum {
-    SW_OPT_LCM_CHANNEL = 1100,
-    SW_OPT_LCM_PUBLISH,
-    SW_OPT_LCM_SPEED,
-    SW_OPT_LCM_STATE_CHANNEL,
-    SW_OPT_LCM_ALARM_CHANNEL,
-    SW_OPT_LCM_STATE_RATE,
-    SW_OPT_LCM_AXIS,
-    SW_OPT_LCM_VERTICAL,
-    SW_OPT_LCM_GAP,
-    SW_OPT_LCM_MAX_ACCEL,
-    SW_OPT_LCM_MAX_SKEW,
-    SW_OPT_LCM_MAX_JUMP,
-    SW_OPT_LCM_END /* one past the last */
-};
-#define SW_CLI_LCMLOG_LONGOPTS                                                                     \
-    {"channel", required_argument, NULL, SW_OPT_LCM_CHANNEL},                                      \
-        {"publish", required_argument, NULL, SW_OPT_LCM_PUBLISH},                                  \
-        {"speed", required_argument, NULL, SW_OPT_LCM_SPEED},                                      \
-        {"state-channel", required_argument, NULL, SW_OPT_LCM_STATE_CHANNEL},                      \
-        {"alarm-channel", required_argument, NULL, SW_OPT_LCM_ALARM_CHANNEL},                      \
-        {"state-rate", required_argument, NULL, SW_OPT_LCM_STATE_RATE},                            \
-        {"axis", required_argument, NULL, SW_OPT_LCM_AXIS},                                        \
-        {"vertical", required_argument, NULL, SW_OPT_LCM_VERTICAL},                                \
-        {"gap", required_argument, NULL, SW_OPT_LCM_GAP},                                          \
-        {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL},                              \
-        {"max-skew", required_argument, NULL, SW_OPT_LCM_MAX_SKEW},                                \
-        {"max-jump", required_argument, NULL, SW_OPT_LCM_MAX_JUMP}
 
 #endif

@@ -348,8 +348,7 @@ void sw_cli_json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
-/* A JSON number, or null: JSON has no NaN or infinity. */
-static void json_num(FILE *f, double v)
+void sw_cli_json_num(FILE *f, double v)
 {
     if (isfinite(v))
         fprintf(f, "%.9g", v);
@@ -370,17 +369,17 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
         fprintf(f, ",\n  \"pulse\": {\"shape\": ");
         sw_cli_json_string(f, sw_pulse_shape_name(run->pulse->shape));
         fprintf(f, ", \"amplitude\": ");
-        json_num(f, run->pulse->amplitude);
+        sw_cli_json_num(f, run->pulse->amplitude);
         fprintf(f, ", \"omega\": ");
-        json_num(f, run->pulse->omega);
+        sw_cli_json_num(f, run->pulse->omega);
         fprintf(f, ", \"duration\": ");
-        json_num(f, sw_pulse_duration(run->pulse));
+        sw_cli_json_num(f, sw_pulse_duration(run->pulse));
         fprintf(f, "},\n  \"simulated\": ");
-        json_num(f, run->duration);
+        sw_cli_json_num(f, run->duration);
     }
     if (run->log) {
         fprintf(f, ",\n  \"settle\": ");
-        json_num(f, run->settle);
+        sw_cli_json_num(f, run->settle);
     }
     fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld,\n  \"packages\": [",
             run->samples_read, run->samples_rejected);
@@ -393,23 +392,23 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
         sw_cli_json_string(f, sw_model_name(s.model));
         fprintf(f, ", \"overturned\": %s", s.overturned ? "true" : "false");
         fprintf(f, ",\n     \"overturn_time\": ");
-        json_num(f, s.overturn_time);
+        sw_cli_json_num(f, s.overturn_time);
         fprintf(f, ", \"tip_time\": ");
-        json_num(f, s.tip_time);
+        sw_cli_json_num(f, s.tip_time);
         fprintf(f, ", \"uplift_time\": ");
-        json_num(f, s.uplift_time);
+        sw_cli_json_num(f, s.uplift_time);
         fprintf(f, ",\n     \"max_abs_theta\": ");
-        json_num(f, s.max_abs_theta);
+        sw_cli_json_num(f, s.max_abs_theta);
         fprintf(f, ", \"max_theta_ratio\": ");
-        json_num(f, s.max_theta_ratio);
+        sw_cli_json_num(f, s.max_theta_ratio);
         fprintf(f, ", \"alpha\": ");
-        json_num(f, alpha_of(e, i));
+        sw_cli_json_num(f, alpha_of(e, i));
         fprintf(f, ",\n     \"min_margin\": ");
-        json_num(f, s.min_margin);
+        sw_cli_json_num(f, s.min_margin);
         fprintf(f, ", \"min_margin_bound\": ");
-        json_num(f, s.min_margin_bound);
+        sw_cli_json_num(f, s.min_margin_bound);
         fprintf(f, ", \"max_uplift_ratio\": ");
-        json_num(f, s.max_uplift_ratio);
+        sw_cli_json_num(f, s.max_uplift_ratio);
         fprintf(f, ",\n     \"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld",
                 s.impacts, s.uplifts, s.rests, s.faults);
         fprintf(f, ",\n     \"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,
@@ -417,7 +416,7 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
         fprintf(f, ",\n     \"scheme\": ");
         sw_cli_json_string(f, sw_engine_scheme(e));
         fprintf(f, ", \"dt\": ");
-        json_num(f, sw_engine_dt(e, i));
+        sw_cli_json_num(f, sw_engine_dt(e, i));
         fprintf(f, ", \"steps\": %ld}", s.steps);
     }
     fprintf(f, "\n  ]\n}\n");

@@ -68,6 +68,8 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
 
 /* s as a JSON string literal (quotes included). */
 void sw_cli_json_string(FILE *f, const char *s);
+/* v as a JSON number, or null: JSON has no NaN or infinity. */
+void sw_cli_json_num(FILE *f, double v);
 
 /* Non-zero if any package overturned. */
 int sw_cli_any_overturned(const sw_engine_t *e);

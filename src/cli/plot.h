@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "opts.h"
 
 /* sw_cli_plot_open() starts gnuplot with the terminal chosen by the file's
  * extension (.png: pngcairo, or png without cairo; .svg) and its output set;
@@ -13,9 +14,9 @@
  * its failure with gnuplot's own messages. */
 typedef struct sw_plot sw_plot_t;
 
-/* SW_EXIT_OK if path ends in .png or .svg, else SW_EXIT_USAGE (reported,
- * naming opt). */
-int sw_cli_plot_check(const char *opt, const char *path);
+/* fn of a figure option's row: SW_EXIT_OK if path ends in .png or .svg,
+ * else SW_EXIT_USAGE (reported, naming the option). */
+int sw_cli_plot_check(const sw_cli_option_t *o, const char *path, void *dest);
 sw_plot_t *sw_cli_plot_open(const char *path, int width, int height);
 FILE *sw_cli_plot_file(sw_plot_t *p);
 int sw_cli_plot_close(sw_plot_t *p); /* SW_EXIT_OK or SW_EXIT_IO */
