@@ -168,16 +168,16 @@ static const sw_cli_option_t boundary_options[] = {
              "sub-stepped, not refused."},
     {SW_CLI_SECTION, .help = "Output:"},
     {SW_CLI_STRING, 'o', "out", "FILE.csv", BO(out),
-     .help = "the curves (default: standard output): omega_ratio,<curve 1>,<curve 2>,... in "
+     .help = "the curves (default, or '-': standard output): omega_ratio,<curve 1>,<curve 2>,... in "
              "units of g tan alpha"},
     {SW_CLI_STRING, 0, "detail", "FILE.csv", BO(detail),
-     .help = "one row per curve and point: the bracket, impacts before the overturn at the "
+     .help = "one row per curve and point ('-': standard output, if --out names a file): the bracket, impacts before the overturn at the "
              "boundary (0: overturned directly; >= 1: after an impact), the directions of the "
              "first uplift and of the overturn (+1 the top forward, -1 back; opposite: it "
              "overturned after a reverse sway), times, trials"},
     {SW_CLI_STRING, 0, "islands", "FILE.csv", BO(islands),
-     .help = "scan on up to --max-amplitude and list the safe islands above the boundary: "
-             "curve,omega_ratio,from,to,open"},
+     .help = "scan on up to --max-amplitude and list the safe islands above the boundary "
+             "('-' as for --detail): curve,omega_ratio,from,to,open"},
     {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", BO(plot), .fn = sw_cli_plot_check,
      .help = "draw the curves (and islands) with gnuplot"},
     {SW_CLI_STRING, 0, "title", "TEXT", BO(title), .help = "title of the figure"},
@@ -407,19 +407,10 @@ static int write_file(const char *path, const curve_t *cv, size_t nc, const doub
                       void (*fn)(FILE *, const curve_t *, size_t, const double *, size_t,
                                  const sw_boundary_point_t *))
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        sw_cli_error("%s: cannot create: %s", path, strerror(errno));
-        return SW_EXIT_IO;
-    }
+    FILE *f = sw_cli_out_open(path);
+    if (!f) return SW_EXIT_IO;
     fn(f, cv, nc, ratios, nr, pts);
-    int bad = ferror(f);
-    if (fclose(f) != 0) bad = 1;
-    if (bad) {
-        sw_cli_error("%s: write failed", path);
-        return SW_EXIT_IO;
-    }
-    return SW_EXIT_OK;
+    return sw_cli_out_close(f, path);
 }
 
 static int plot(const char *path, const char *title, sw_pulse_shape shape, const curve_t *cv,
@@ -509,6 +500,21 @@ static int check_options(boundary_t *B, int argc, char **argv, int first)
                      bo->search.x_min, bo->search.x_max);
         return SW_EXIT_USAGE;
     }
+    /* The curves go to standard output unless --out names a file; "-"
+     * gives it to one of the CSV files. */
+    const char *taken = !B->b.out || !strcmp(B->b.out, "-") ? "the curves (give --out a file)"
+                                                             : NULL;
+    if (B->b.detail && !strcmp(B->b.detail, "-")) {
+        if (taken) {
+            sw_cli_error("--detail -: standard output already carries %s", taken);
+            return SW_EXIT_USAGE;
+        }
+        taken = "--detail";
+    }
+    if (taken && B->b.islands && !strcmp(B->b.islands, "-")) {
+        sw_cli_error("--islands -: standard output already carries %s", taken);
+        return SW_EXIT_USAGE;
+    }
     bo->search.islands = B->b.islands != NULL;
     bo->threads = (int)B->b.threads;
     sw_cli_engine_opts(&B->o, &bo->run.engine);
@@ -584,11 +590,7 @@ static int write_outputs(const boundary_t *B)
         missing += !pts[i].th.found;
         truncated += pts[i].th.islands_truncated;
     }
-    int rc = SW_EXIT_OK;
-    if (B->b.out)
-        rc = write_file(B->b.out, cv, nc, ratios, nr, pts, write_curves);
-    else
-        write_curves(stdout, cv, nc, ratios, nr, pts);
+    int rc = write_file(B->b.out ? B->b.out : "-", cv, nc, ratios, nr, pts, write_curves);
     if (rc == SW_EXIT_OK && B->b.detail)
         rc = write_file(B->b.detail, cv, nc, ratios, nr, pts, write_detail);
     if (rc == SW_EXIT_OK && B->b.islands)

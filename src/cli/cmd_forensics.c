@@ -402,7 +402,9 @@ int cmd_forensics(int argc, char **argv)
         sw_cli_error("--max-factor: expected a factor above 1, got %g", F.fo.so.x_max);
         goto out;
     }
-    if ((rc = sw_cli_log_read(F.log_path, &F.copts, F.o.quiet, &F.L)) != SW_EXIT_OK ||
+    if ((rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
+            SW_EXIT_OK ||
+        (rc = sw_cli_log_read(F.log_path, &F.copts, F.o.quiet, &F.L)) != SW_EXIT_OK ||
         (rc = sw_cli_load_scenes(&F.o, &F.scenes, &F.nsc)) != SW_EXIT_OK ||
         (rc = replay_log(&F)) != SW_EXIT_OK || (rc = run_cases(&F)) != SW_EXIT_OK)
         goto out;

@@ -387,7 +387,8 @@ static const sw_cli_source_t *open_log(replay_t *r, const sw_cli_group_t *g, siz
     if ((*rc = sw_cli_logfile_open(&r->lf, r->log)) != SW_EXIT_OK) return NULL;
     const sw_cli_source_t *src = sw_cli_logfile_source(&r->lf);
     if ((*rc = check_source(src, r, &g[0], &g[3], nlcm)) != SW_EXIT_OK ||
-        (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, r->lf.in)) != SW_EXIT_OK)
+        (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, r->lf.in, r->o.json,
+                                     r->o.quiet)) != SW_EXIT_OK)
         return NULL;
 #ifdef SW_HAVE_LCM
     if (src->kind == SW_CLI_SRC_LCMLOG) {

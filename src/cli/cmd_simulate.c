@@ -219,7 +219,7 @@ int cmd_simulate(int argc, char **argv)
         goto out;
     }
 
-    rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL);
+    rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL, o.json, o.quiet);
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;

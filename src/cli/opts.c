@@ -392,7 +392,7 @@ static void help_text(char *buf, size_t len, const sw_cli_option_t *o)
 
 /* text from column col, wrapped at HELP_WIDTH at spaces, continuation
  * lines indented to col.  A word longer than a line (a CSV header) is cut
- * after a comma, filling the line it starts on. */
+ * after a comma, beginning on the line before when a fair piece fits. */
 static void wrap(FILE *f, const char *text, int col)
 {
     const int width = HELP_WIDTH - col;
@@ -403,8 +403,9 @@ static void wrap(FILE *f, const char *text, int col)
             cut = width;
             while (cut > 0 && text[cut] != ' ') cut--;
             const int next = cut ? cut + 1 : 0;
+            /* a piece of it on this line, if the piece is not a scrap */
             if ((int)strcspn(text + next, " ") > width)
-                for (int i = width; i > next; i--)
+                for (int i = width; i > next + 12 || (next == 0 && i > 0); i--)
                     if (text[i - 1] == ',') {
                         cut = i;
                         break;

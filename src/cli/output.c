@@ -60,16 +60,34 @@ void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scene
 
 /* ---- output files ---------------------------------------------------------- */
 
+static int is_stdout(const char *path)
+{
+    return path && !strcmp(path, "-");
+}
+
 /* Non-zero if path exists and is the file st describes. */
 static int is_file(const char *path, const struct stat *st)
 {
     struct stat ps;
-    return path && stat(path, &ps) == 0 && ps.st_dev == st->st_dev && ps.st_ino == st->st_ino;
+    return path && !is_stdout(path) && stat(path, &ps) == 0 && ps.st_dev == st->st_dev &&
+           ps.st_ino == st->st_ino;
 }
 
-int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in)
+int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in, int json,
+                         int quiet)
 {
     struct stat st;
+    /* "-" is standard output: for one of them, and only if no summary goes
+     * there too. */
+    if (is_stdout(out_path) && is_stdout(events_path)) {
+        sw_cli_error("--out and --events cannot both be standard output");
+        return SW_EXIT_USAGE;
+    }
+    if ((is_stdout(out_path) || is_stdout(events_path)) && (json || !quiet)) {
+        sw_cli_error("--%s -: standard output carries the %s", is_stdout(out_path) ? "out" : "events",
+                     json ? "JSON summary (--json)" : "summary; add -q to leave it out");
+        return SW_EXIT_USAGE;
+    }
     /* Opening an output truncates it: it must be neither the log being
      * read nor the other output. */
     if (in && in != stdin && fstat(fileno(in), &st) == 0) {
@@ -82,7 +100,7 @@ int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in
             return SW_EXIT_USAGE;
         }
     }
-    if (out_path && events_path &&
+    if (out_path && events_path && !is_stdout(out_path) &&
         (!strcmp(out_path, events_path) ||
          (stat(out_path, &st) == 0 && is_file(events_path, &st)))) {
         sw_cli_error("--out and --events name the same file '%s'", out_path);
@@ -123,25 +141,31 @@ static const char *pkg_name(const sw_scene_t *scenes, size_t n, size_t pkg)
     return pkg < n ? scenes[pkg].name : "?";
 }
 
-static FILE *open_out(const char *path)
+const char *sw_cli_out_name(const char *path)
 {
+    return is_stdout(path) ? "standard output" : path;
+}
+
+FILE *sw_cli_out_open(const char *path)
+{
+    if (is_stdout(path)) return stdout;
     FILE *f = fopen(path, "w");
     if (!f) sw_cli_error("%s: cannot create: %s", path, strerror(errno));
     return f;
 }
 
-/* Flush, close and report a write error on path; SW_EXIT_OK or SW_EXIT_IO. */
-static int close_out(FILE *f, const char *path)
+int sw_cli_out_close(FILE *f, const char *path)
 {
     if (!f) return SW_EXIT_OK;
     int bad = ferror(f);
     int saved = errno;
-    if (fclose(f) != 0) {
+    /* Standard output stays open: main() checks it once more at the end. */
+    if (f == stdout ? fflush(f) != 0 : fclose(f) != 0) {
         bad = 1;
         saved = errno;
     }
     if (bad) {
-        sw_cli_error("%s: write failed: %s", path, strerror(saved));
+        sw_cli_error("%s: write failed: %s", sw_cli_out_name(path), strerror(saved));
         return SW_EXIT_IO;
     }
     return SW_EXIT_OK;
@@ -161,7 +185,7 @@ int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const s
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
     }
-    w->f = open_out(path);
+    w->f = sw_cli_out_open(path);
     if (!w->f) {
         free(w->seen);
         w->seen = NULL;
@@ -202,9 +226,10 @@ void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *o)
 
 int sw_cli_states_close(sw_cli_states_t *w)
 {
-    int rc = close_out(w->f, w->path);
+    int rc = sw_cli_out_close(w->f, w->path);
     if (w->f && w->nonfinite)
-        sw_cli_error("%s: %ld non-finite values written as empty fields", w->path, w->nonfinite);
+        sw_cli_error("%s: %ld non-finite values written as empty fields", sw_cli_out_name(w->path),
+                     w->nonfinite);
     free(w->seen);
     w->seen = NULL;
     w->f = NULL;
@@ -218,7 +243,7 @@ int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *s
     w->scenes = scenes;
     w->n = n;
     if (!path) return SW_EXIT_OK;
-    w->f = open_out(path);
+    w->f = sw_cli_out_open(path);
     if (!w->f) return SW_EXIT_IO;
     fputs("t,package,event,theta,theta_dot,margin,info\n", w->f);
     return SW_EXIT_OK;
@@ -246,9 +271,10 @@ void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev)
 
 int sw_cli_events_close(sw_cli_events_t *w)
 {
-    int rc = close_out(w->f, w->path);
+    int rc = sw_cli_out_close(w->f, w->path);
     if (w->f && w->nonfinite)
-        sw_cli_error("%s: %ld non-finite values written as empty fields", w->path, w->nonfinite);
+        sw_cli_error("%s: %ld non-finite values written as empty fields", sw_cli_out_name(w->path),
+                     w->nonfinite);
     w->f = NULL;
     return rc;
 }

@@ -11,8 +11,18 @@ void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scene
 
 /* Refuse (message, SW_EXIT_USAGE) an --out or --events (paths, may be
  * NULL) that names the input being read (in, may be NULL) or each other:
- * opening them truncates. */
-int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in);
+ * opening them truncates.  "-" is standard output, for one of them, and
+ * only when no summary is printed there (json, or not quiet). */
+int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in, int json,
+                         int quiet);
+
+/* An output file: path, or "-" for standard output.  Open reports its
+ * failure; close flushes, closes (standard output stays open) and reports
+ * a write error: SW_EXIT_OK or SW_EXIT_IO.  The name is what messages call
+ * it. */
+FILE *sw_cli_out_open(const char *path);
+int sw_cli_out_close(FILE *f, const char *path);
+const char *sw_cli_out_name(const char *path);
 
 /* --out: the state time series, one row per package and output instant:
  * t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,

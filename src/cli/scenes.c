@@ -87,13 +87,13 @@ const sw_cli_option_t sw_cli_accuracy_options[] = {
 const sw_cli_option_t sw_cli_output_options[] = {
     {SW_CLI_SECTION, .help = "Output:"},
     {SW_CLI_STRING, 'o', "out", "FILE.csv", OPTS(out_path),
-     .help = "state time series: t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,"
+     .help = "state time series ('-': standard output): t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,"
              "margin_bound,uplift_ratio,a_g (SI units, rad)"},
     {SW_CLI_LONG, 0, "every", "N", OPTS(every), .min = 1, .def = 1,
      .what = "a whole number of rows >= 1",
      .help = "every Nth state row of each package (default %g)"},
     {SW_CLI_STRING, 'e', "events", "FILE.csv", OPTS(events_path),
-     .help = "events: t,package,event,theta,theta_dot,margin,info"},
+     .help = "events ('-': standard output): t,package,event,theta,theta_dot,margin,info"},
     {SW_CLI_FLAG, 0, "json", OPTS(json), .value = 1,
      .help = "JSON summary on stdout instead of the human summary"},
     {SW_CLI_FLAG, 'q', "quiet", OPTS(quiet), .value = 1, .help = "no human summary"},
