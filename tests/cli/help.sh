@@ -28,4 +28,22 @@ run "$SW" simulate --help
 for opt in --pulse --amplitude --amplitude-g --omega --duration --sample-interval rad/s; do
     grep -q -- "$opt" "$TMP/out" || fail "simulate --help: $opt not listed"
 done
+# "swaywatch help CMD" is "swaywatch CMD --help" (as git does), on stdout
+# with exit 0; "swaywatch help" is "swaywatch --help".
+"$SW" --help >"$TMP/main" 2>/dev/null
+run "$SW" help
+expect_rc 0 "swaywatch help"
+cmp -s "$TMP/out" "$TMP/main" || fail "swaywatch help differs from swaywatch --help"
+for cmd in $(awk '/^Commands:/ {on = 1; next} on && /^$/ {exit} on {print $1}' "$TMP/main"); do
+    "$SW" "$cmd" --help >"$TMP/want" 2>/dev/null
+    run "$SW" help "$cmd"
+    expect_rc 0 "swaywatch help $cmd"
+    [ ! -s "$TMP/err" ] || fail "swaywatch help $cmd wrote to stderr"
+    cmp -s "$TMP/out" "$TMP/want" || fail "swaywatch help $cmd differs from $cmd --help"
+done
+run "$SW" help no-such-command
+expect_rc 2 "help of an unknown command"
+expect_prefixed_err "help of an unknown command"
+run "$SW" help replay simulate
+expect_rc 2 "help of two commands"
 echo "ok"
