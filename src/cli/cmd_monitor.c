@@ -104,6 +104,13 @@ static const sw_cli_option_t monitor_input_options[] = {
     {SW_CLI_END},
 };
 
+/* What the monitor publishes: the states and alarms (sw_cli_lcm_publish_options). */
+static const sw_cli_option_t monitor_output_notes[] = {
+    {SW_CLI_SECTION, .help = "Output:"},
+    {SW_CLI_TEXT, .help = "\nThe monitor writes no files: record its output with lcm-logger."},
+    {SW_CLI_END},
+};
+
 static const sw_cli_command_t monitor_cmd = {
     .name = "monitor",
     .usage = "monitor --scene S.ini [--scene T.ini ...] [options]",
@@ -116,9 +123,7 @@ static const sw_cli_command_t monitor_cmd = {
              "SIGHUP (systemctl reload) re-reads the scene files: a package whose scene values\n"
              "changed is rebuilt and starts from rest; the others keep their state, alarms and\n"
              "message sequence.  If a file is unreadable or invalid, nothing changes.\n",
-    .exit_text = "The monitor writes no files: record its output with lcm-logger.\n"
-                 "\n"
-                 "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
+    .exit_text = "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
                  "3 LCM could not be set up (URL, network) or a scene file could not be read.\n",
 };
 
@@ -417,13 +422,14 @@ int cmd_monitor(int argc, char **argv)
     sw_cli_mon_opts_init(&m.mo);
     sw_cli_group_t g[] = {
         SW_CLI_GROUP(monitor_lcm_options, &m),
-        SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &m.mo, "LCM:"),
         SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &m.mo, "Input:"),
         SW_CLI_GROUP(monitor_input_options, &m),
         SW_CLI_GROUP(sw_cli_scene_options, &o),
         SW_CLI_GROUP(sw_cli_integration_options, &o),
         SW_CLI_GROUP(sw_cli_accuracy_options, &o),
-        SW_CLI_GROUP_IN(sw_cli_common_options, &o, "Integration:"),
+        SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &m.mo, "Output:"),
+        SW_CLI_GROUP(monitor_output_notes, NULL),
+        SW_CLI_GROUP_IN(sw_cli_common_options, &o, "Output:"),
         /* taken, to be refused below with the reason */
         {.rows = sw_cli_output_options, .base = &o, .flags = SW_CLI_HIDDEN},
     };

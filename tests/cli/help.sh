@@ -41,6 +41,15 @@ for cmd in $(awk '/^Commands:/ {on = 1; next} on && /^$/ {exit} on {print $1}' "
     [ ! -s "$TMP/err" ] || fail "swaywatch help $cmd wrote to stderr"
     cmp -s "$TMP/out" "$TMP/want" || fail "swaywatch help $cmd differs from $cmd --help"
 done
+# Every command's help has one Output section, where --help itself is.
+for cmd in $(awk '/^Commands:/ {on = 1; next} on && /^$/ {exit} on {print $1}' "$TMP/main"); do
+    run "$SW" "$cmd" --help
+    n=$(grep -c '^Output' "$TMP/out" || true)
+    [ "$n" -eq 1 ] || fail "$cmd --help: $n Output sections, expected 1"
+    sed -n '/^Output/,/^$/p' "$TMP/out" | grep -q -- '-h, --help' ||
+        fail "$cmd --help: --help is not in the Output section"
+done
+
 run "$SW" help no-such-command
 expect_rc 2 "help of an unknown command"
 expect_prefixed_err "help of an unknown command"
