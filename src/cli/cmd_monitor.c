@@ -60,8 +60,9 @@ static const sw_cli_option_t monitor_lcm_options[] = {
     {SW_CLI_STRING, 'l', "lcm-url", "URL", MO(url),
      .help = "LCM URL (default: $LCM_DEFAULT_URL, else LCM's default, "
              "udpm://239.255.76.67:7667?ttl=0)"},
-    {SW_CLI_STRING, 0, "accel-channel", "CHAN", MO(accel_channel), .fn = check_accel_channel,
-     .help = "input channel (default " SW_MON_ACCEL_CHANNEL ")"},
+    {SW_CLI_STRING, 0, "accel-channel", "REGEX", MO(accel_channel), .fn = check_accel_channel,
+     .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
+             SW_MON_ACCEL_CHANNEL ")"},
     {SW_CLI_END},
 };
 

@@ -55,9 +55,13 @@ static const sw_cli_option_t replay_options[] = {
     "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit, --flip\n"             \
     "and --strict apply):"
 
+/* --accel-channel, as monitor calls it; --channel, its name before, still
+ * works. */
 static const sw_cli_option_t replay_channel_options[] = {
-    {SW_CLI_STRING, 0, "channel", "REGEX", RO(channel),
-     .help = "accel channel, an anchored regex as in LCM (default " SW_MON_ACCEL_CHANNEL ")"},
+    {SW_CLI_STRING, 0, "accel-channel", "REGEX", RO(channel),
+     .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
+             SW_MON_ACCEL_CHANNEL ")"},
+    {SW_CLI_STRING, 0, "channel", "REGEX", RO(channel), .flags = SW_CLI_HIDDEN},
     {SW_CLI_END},
 };
 
@@ -236,7 +240,7 @@ static int lcmlog_open(replay_t *r)
     r->lcmlog = sw_lcmlog_open(r->log, &lo, &err);
     if (!r->lcmlog) {
         if (err == SW_EINVAL)
-            sw_cli_error("--channel: not a valid regular expression: '%s'", r->ro.channel);
+            sw_cli_error("--accel-channel: not a valid regular expression: '%s'", r->ro.channel);
         else if (err == SW_ENOMEM)
             sw_cli_error("out of memory");
         else

@@ -50,6 +50,22 @@ for cmd in $(awk '/^Commands:/ {on = 1; next} on && /^$/ {exit} on {print $1}' "
         fail "$cmd --help: --help is not in the Output section"
 done
 
+# The accel channel has one name in replay and monitor (LCM builds):
+# --accel-channel; replay's old --channel still works, unlisted.
+if grep -q '^  monitor ' "$TMP/main"; then
+    for cmd in replay monitor; do
+        run "$SW" "$cmd" --help
+        grep -q -- '--accel-channel ' "$TMP/out" || fail "$cmd --help: no --accel-channel"
+        if grep -q -- ' --channel ' "$TMP/out"; then fail "$cmd --help lists --channel"; fi
+    done
+    printf '0,0\n0.001,0\n' >"$TMP/x.csv"
+    for opt in --accel-channel --channel; do
+        run "$SW" replay "$TMP/x.csv" --scene "$SRC/sample_logs/crate.ini" "$opt" ACCEL
+        expect_rc 2 "replay $opt on a CSV log"
+        expect_err "'$opt' is for lcm-logger files" "replay $opt on a CSV log"
+    done
+fi
+
 run "$SW" help no-such-command
 expect_rc 2 "help of an unknown command"
 expect_prefixed_err "help of an unknown command"
