@@ -321,7 +321,7 @@ static void csv_num(FILE *f, double v)
     if (isfinite(v)) fprintf(f, "%.6g", v);
 }
 
-static void write_curves(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
+static long write_curves(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
                          const sw_boundary_point_t *pts)
 {
     fputs("omega_ratio", f);
@@ -339,6 +339,7 @@ static void write_curves(FILE *f, const curve_t *cv, size_t nc, const double *ra
         }
         fputc('\n', f);
     }
+    return (long)nr;
 }
 
 static const char *end_name(sw_run_end e)
@@ -353,7 +354,7 @@ static const char *end_name(sw_run_end e)
     return "unknown";
 }
 
-static void write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
+static long write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
                          const sw_boundary_point_t *pts)
 {
     fputs("curve,omega_ratio,found,boundary,safe_below,lift,impacts,uplift_side,overturn_side,"
@@ -385,31 +386,36 @@ static void write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ra
             }
             fprintf(f, ",%ld\n", P->th.trials);
         }
+    return (long)(nc * nr);
 }
 
-static void write_islands(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
+static long write_islands(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
                           const sw_boundary_point_t *pts)
 {
     fputs("curve,omega_ratio,from,to,open\n", f);
+    long rows = 0;
     for (size_t c = 0; c < nc; c++)
         for (size_t i = 0; i < nr; i++) {
             const sw_threshold_t *T = &pts[c * nr + i].th;
-            for (int k = 0; k < T->n_islands; k++) {
+            for (int k = 0; k < T->n_islands; k++, rows++) {
                 sw_cli_csv_text(f, cv[c].label);
                 fprintf(f, ",%.6g,%.6g,%.6g,%d\n", ratios[i], T->islands[k].lo, T->islands[k].hi,
                         T->islands[k].open);
             }
         }
+    return rows;
 }
 
+/* Write path with fn; *rows gets the data rows written. */
 static int write_file(const char *path, const curve_t *cv, size_t nc, const double *ratios,
                       size_t nr, const sw_boundary_point_t *pts,
-                      void (*fn)(FILE *, const curve_t *, size_t, const double *, size_t,
-                                 const sw_boundary_point_t *))
+                      long (*fn)(FILE *, const curve_t *, size_t, const double *, size_t,
+                                 const sw_boundary_point_t *),
+                      long *rows)
 {
     FILE *f = sw_cli_out_open(path);
     if (!f) return SW_EXIT_IO;
-    fn(f, cv, nc, ratios, nr, pts);
+    *rows = fn(f, cv, nc, ratios, nr, pts);
     return sw_cli_out_close(f, path);
 }
 
@@ -577,32 +583,21 @@ static int sweep(boundary_t *B)
     return SW_EXIT_USAGE;
 }
 
-/* The files, and on stderr the points that need a word. */
-static int write_outputs(const boundary_t *B)
+/* The points that need a word: not overturned, an upper bound, more
+ * islands than listed. */
+static void notes(const boundary_t *B)
 {
-    const curve_t *cv = B->cv;
-    const size_t nc = B->nc, nr = B->b.nr;
-    const double *ratios = B->b.ratios;
-    const sw_boundary_point_t *pts = B->pts;
     long at_min = 0, missing = 0, truncated = 0;
-    for (size_t i = 0; i < nc * nr; i++) {
-        at_min += pts[i].th.found && pts[i].th.at_min;
-        missing += !pts[i].th.found;
-        truncated += pts[i].th.islands_truncated;
+    const size_t np = B->nc * B->b.nr;
+    for (size_t i = 0; i < np; i++) {
+        at_min += B->pts[i].th.found && B->pts[i].th.at_min;
+        missing += !B->pts[i].th.found;
+        truncated += B->pts[i].th.islands_truncated;
     }
-    int rc = write_file(B->b.out ? B->b.out : "-", cv, nc, ratios, nr, pts, write_curves);
-    if (rc == SW_EXIT_OK && B->b.detail)
-        rc = write_file(B->b.detail, cv, nc, ratios, nr, pts, write_detail);
-    if (rc == SW_EXIT_OK && B->b.islands)
-        rc = write_file(B->b.islands, cv, nc, ratios, nr, pts, write_islands);
-    if (rc == SW_EXIT_OK && B->b.plot)
-        rc = plot(B->b.plot, B->b.title, B->b.bo.shape, cv, nc, ratios, nr, pts,
-                  B->b.islands != NULL);
-    if (B->b.quiet) return rc;
     if (missing)
         sw_cli_error("boundary: %ld of %zu points did not overturn up to --max-amplitude %g "
                      "(empty fields)",
-                     missing, nc * nr, B->b.bo.search.x_max);
+                     missing, np, B->b.bo.search.x_max);
     if (at_min)
         sw_cli_error("boundary: %ld points overturned at --min-amplitude already: their "
                      "value is an upper bound",
@@ -611,6 +606,44 @@ static int write_outputs(const boundary_t *B)
         sw_cli_error("boundary: %ld points have more than %d safe islands; the rest are "
                      "not listed",
                      truncated, SW_MAX_ISLANDS);
+}
+
+/* The files, each said on stderr with what it holds, then the points that
+ * need a word (unless --quiet). */
+static int write_outputs(const boundary_t *B)
+{
+    const curve_t *cv = B->cv;
+    const size_t nc = B->nc, nr = B->b.nr;
+    const double *ratios = B->b.ratios;
+    const sw_boundary_point_t *pts = B->pts;
+    const int say = !B->b.quiet;
+    const char *out = B->b.out ? B->b.out : "-";
+    long rows = 0;
+    int rc = write_file(out, cv, nc, ratios, nr, pts, write_curves, &rows);
+    if (rc == SW_EXIT_OK && say)
+        sw_cli_error("boundary: wrote %s: %zu curve%s at %ld point%s", sw_cli_out_name(out), nc,
+                     nc == 1 ? "" : "s", rows, rows == 1 ? "" : "s");
+    if (rc == SW_EXIT_OK && B->b.detail) {
+        rc = write_file(B->b.detail, cv, nc, ratios, nr, pts, write_detail, &rows);
+        if (rc == SW_EXIT_OK && say)
+            sw_cli_error("boundary: wrote %s: %ld row%s, one per curve and point",
+                         sw_cli_out_name(B->b.detail), rows, rows == 1 ? "" : "s");
+    }
+    if (rc == SW_EXIT_OK && B->b.islands) {
+        rc = write_file(B->b.islands, cv, nc, ratios, nr, pts, write_islands, &rows);
+        if (rc == SW_EXIT_OK && say)
+            sw_cli_error("boundary: wrote %s: %ld safe island%s", sw_cli_out_name(B->b.islands),
+                         rows, rows == 1 ? "" : "s");
+    }
+    if (rc == SW_EXIT_OK && B->b.plot) {
+        rc = plot(B->b.plot, B->b.title, B->b.bo.shape, cv, nc, ratios, nr, pts,
+                  B->b.islands != NULL);
+        if (rc == SW_EXIT_OK && say)
+            sw_cli_error("boundary: wrote %s: a figure of %zu curve%s", B->b.plot, nc,
+                         nc == 1 ? "" : "s");
+    }
+    if (!say) return rc;
+    notes(B);
     return rc;
 }
 
