@@ -409,6 +409,25 @@ static lcm_t *open_lcm(const char *url)
     return NULL;
 }
 
+/* The monitor core on c's scenes, publishing on lcm. */
+static int start(mon_ctx_t *c, const sw_mon_opts_t *mo, lcm_t *lcm)
+{
+    sw_engine_opts_t eo;
+    sw_cli_engine_opts(c->opts, &eo);
+    int rc = sw_cli_resolve_accuracy(c->opts, c->scenes, c->n, &eo);
+    if (rc != SW_EXIT_OK)
+        return rc;
+    char msg[512] = "";
+    c->mon = sw_mon_create(c->scenes, c->n, &eo, mo, lcm, msg, sizeof msg);
+    if (!c->mon) {
+        sw_cli_error("monitor: %s", msg[0] ? msg : "cannot start");
+        return SW_EXIT_USAGE;
+    }
+    if (c->opts->verbose)
+        sw_cli_print_derived(stderr, sw_mon_engine(c->mon), c->scenes, c->n);
+    return SW_EXIT_OK;
+}
+
 int cmd_monitor(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
@@ -457,22 +476,11 @@ int cmd_monitor(int argc, char **argv)
     if (!(lcm = open_lcm(m.url)))
         goto out;
 
-    sw_engine_opts_t eo;
-    sw_cli_engine_opts(&o, &eo);
-    if ((rc = sw_cli_resolve_accuracy(&o, scenes, n, &eo)) != SW_EXIT_OK)
-        goto out;
-    char msg[512] = "";
-    ctx.mon = sw_mon_create(scenes, n, &eo, &m.mo, lcm, msg, sizeof msg);
     ctx.opts = &o;
     ctx.scenes = scenes;
     ctx.n = n;
-    if (!ctx.mon) {
-        sw_cli_error("monitor: %s", msg[0] ? msg : "cannot start");
-        rc = SW_EXIT_USAGE;
+    if ((rc = start(&ctx, &m.mo, lcm)) != SW_EXIT_OK)
         goto out;
-    }
-    if (o.verbose)
-        sw_cli_print_derived(stderr, sw_mon_engine(ctx.mon), scenes, n);
 
     /* Raw subscription: the generated one drops bad messages with a line
      * on stderr and no count. */

@@ -139,6 +139,27 @@ static int all_settled(const sw_engine_t *e)
     return 1;
 }
 
+/* The pulse is whole, and within what an accelerometer reads. */
+static int check_pulse(const sim_opts_t *so)
+{
+    if (!so->have_shape || !so->have_amp || !(so->pulse.omega > 0.0)) {
+        sw_cli_error("simulate: missing %s; see 'swaywatch simulate --help'",
+                     !so->have_shape ? "--pulse half-sine|full-sine"
+                     : !so->have_amp ? "--amplitude A (m/s^2) or --amplitude-g A"
+                                     : "--omega W (rad/s)");
+        return SW_EXIT_USAGE;
+    }
+    /* The limit sw_engine_push() puts on samples; the pulse reaches the
+     * engine as a function, unchecked, and beyond it the outputs overflow. */
+    if (!(fabs(so->pulse.amplitude) <= SW_MAX_ACCEL)) {
+        sw_cli_error("--%s: the pulse amplitude is beyond any accelerometer: expected at most %g "
+                     "m/s^2 (about %.0f g)",
+                     so->amp_opt->long_name, SW_MAX_ACCEL, SW_MAX_ACCEL / STANDARD_GRAVITY);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
 /* Drive the engine with the pulse, a state row every --sample-interval,
  * until --duration or until nothing can happen any more; *t_end gets the
  * time reached.  SW_EXIT_OK, or SW_EXIT_USAGE (reported) if the engine
@@ -203,21 +224,7 @@ int cmd_simulate(int argc, char **argv)
         goto out;
     rc = SW_EXIT_USAGE;
     if (sw_cli_no_operand("simulate", argc, argv, first) != SW_EXIT_OK) goto out;
-    if (!so.have_shape || !so.have_amp || !(pulse->omega > 0.0)) {
-        sw_cli_error("simulate: missing %s; see 'swaywatch simulate --help'",
-                     !so.have_shape ? "--pulse half-sine|full-sine"
-                     : !so.have_amp ? "--amplitude A (m/s^2) or --amplitude-g A"
-                                    : "--omega W (rad/s)");
-        goto out;
-    }
-    /* The limit sw_engine_push() puts on samples; the pulse reaches the
-     * engine as a function, unchecked, and beyond it the outputs overflow. */
-    if (!(fabs(pulse->amplitude) <= SW_MAX_ACCEL)) {
-        sw_cli_error("--%s: the pulse amplitude is beyond any accelerometer: expected at most %g "
-                     "m/s^2 (about %.0f g)",
-                     so.amp_opt->long_name, SW_MAX_ACCEL, SW_MAX_ACCEL / STANDARD_GRAVITY);
-        goto out;
-    }
+    if (check_pulse(&so) != SW_EXIT_OK) goto out;
 
     rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL, o.json, o.quiet);
     if (rc != SW_EXIT_OK) goto out;

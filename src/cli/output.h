@@ -11,8 +11,9 @@ void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scene
 
 /* Refuse (message, SW_EXIT_USAGE) an --out or --events (paths, may be
  * NULL) that names the input being read (in, may be NULL) or each other:
- * opening them truncates.  "-" is standard output, for one of them, and
- * only when no summary is printed there (json, or not quiet). */
+ * opening them truncates.  "-" is standard output: for one of them, and
+ * only if no summary goes there (neither json nor, without quiet, the
+ * human summary). */
 int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in, int json,
                          int quiet);
 

@@ -74,6 +74,52 @@ static void describe(sw_cli_case_t *C)
 }
 
 /* The cases of the table; the first is the scene as given. */
+/* The package on a frame, no cushion: the scene's frame with the options'
+ * values, or one made of them. */
+static void frame_case(sw_cli_case_t *C, const sw_scene_t *sc, const sw_cli_whatif_t *w)
+{
+    snprintf(C->name, sizeof C->name, "frame");
+    C->scene = *sc;
+    C->scene.has_cushion = 0;
+    C->available = 1;
+    if (!sc->has_frame && !w->frame_omega) {
+        C->available = 0;
+        snprintf(C->note, sizeof C->note,
+                 "no frame given (--frame-omega, --frame-mass, --frame-zeta)");
+        return;
+    }
+    char mass[32];
+    snprintf(mass, sizeof mass, "%.17g", FRAME_MASS_RATIO * sc->mass);
+    const char *fm = w->frame_mass ? w->frame_mass : sc->has_frame ? NULL : mass;
+    const char *fz = w->frame_zeta ? w->frame_zeta
+                     : sc->has_frame ? NULL
+                                     : SW_CLI_FRAME_ZETA;
+    if (fm) case_set(C, "frame", "mass", fm, "--frame-mass");
+    if (C->available && w->frame_omega)
+        case_set(C, "frame", "omega", w->frame_omega, "--frame-omega");
+    if (C->available && fz) case_set(C, "frame", "zeta", fz, "--frame-zeta");
+    if (C->available) describe(C);
+}
+
+/* The package on a cushion, on the scene's support. */
+static void cushion_case(sw_cli_case_t *C, const sw_scene_t *sc, const sw_cli_whatif_t *w)
+{
+    snprintf(C->name, sizeof C->name, "cushion");
+    C->scene = *sc;
+    C->available = 1;
+    if (!sc->has_cushion && !w->cushion_omega) {
+        C->available = 0;
+        snprintf(C->note, sizeof C->note, "no cushion given (--cushion-omega, --cushion-zeta)");
+        return;
+    }
+    const char *cz = w->cushion_zeta ? w->cushion_zeta
+                     : sc->has_cushion ? NULL
+                                       : SW_CLI_CUSHION_ZETA;
+    if (w->cushion_omega) case_set(C, "cushion", "omega", w->cushion_omega, "--cushion-omega");
+    if (C->available && cz) case_set(C, "cushion", "zeta", cz, "--cushion-zeta");
+    if (C->available) describe(C);
+}
+
 sw_cli_case_t *sw_cli_whatif_build(const sw_scene_t *sc, const sw_cli_whatif_t *w, size_t *n)
 {
     const size_t cap = 4 + w->sizes.n;
@@ -103,47 +149,11 @@ sw_cli_case_t *sw_cli_whatif_build(const sw_scene_t *sc, const sw_cli_whatif_t *
     }
 
     if (!sc->has_frame || frame_opts || sc->has_cushion) { /* on a frame, no cushion */
-        C = &cs[m++];
-        snprintf(C->name, sizeof C->name, "frame");
-        C->scene = *sc;
-        C->scene.has_cushion = 0;
-        C->available = 1;
-        if (!sc->has_frame && !w->frame_omega) {
-            C->available = 0;
-            snprintf(C->note, sizeof C->note,
-                     "no frame given (--frame-omega, --frame-mass, --frame-zeta)");
-        } else {
-            char mass[32];
-            snprintf(mass, sizeof mass, "%.17g", FRAME_MASS_RATIO * sc->mass);
-            const char *fm = w->frame_mass ? w->frame_mass : sc->has_frame ? NULL : mass;
-            const char *fz = w->frame_zeta ? w->frame_zeta
-                             : sc->has_frame ? NULL
-                                             : SW_CLI_FRAME_ZETA;
-            if (fm) case_set(C, "frame", "mass", fm, "--frame-mass");
-            if (C->available && w->frame_omega)
-                case_set(C, "frame", "omega", w->frame_omega, "--frame-omega");
-            if (C->available && fz) case_set(C, "frame", "zeta", fz, "--frame-zeta");
-            if (C->available) describe(C);
-        }
+        frame_case(&cs[m++], sc, w);
     }
 
     if (!sc->has_cushion || cushion_opts) { /* on a cushion, on the scene's support */
-        C = &cs[m++];
-        snprintf(C->name, sizeof C->name, "cushion");
-        C->scene = *sc;
-        C->available = 1;
-        if (!sc->has_cushion && !w->cushion_omega) {
-            C->available = 0;
-            snprintf(C->note, sizeof C->note, "no cushion given (--cushion-omega, --cushion-zeta)");
-        } else {
-            const char *cz = w->cushion_zeta ? w->cushion_zeta
-                             : sc->has_cushion ? NULL
-                                               : SW_CLI_CUSHION_ZETA;
-            if (w->cushion_omega) case_set(C, "cushion", "omega", w->cushion_omega,
-                                           "--cushion-omega");
-            if (C->available && cz) case_set(C, "cushion", "zeta", cz, "--cushion-zeta");
-            if (C->available) describe(C);
-        }
+        cushion_case(&cs[m++], sc, w);
     }
 
     for (size_t i = 0; i < w->sizes.n; i++) {
