@@ -13,221 +13,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "opts.h"
+#include "output.h"
+#include "plot.h"
 
 #define MAX_POINTS 100000 /* omega_e/p values; a typo such as 1:12:0.0001 is refused */
 #define MAX_CURVES 1000
-#define DEFAULT_THREADS 2
-
-enum {
-    OPT_PULSE = SW_OPT_FIRST_OWN,
-    OPT_RATIO,
-    OPT_VARY,
-    OPT_BEARING,
-    OPT_THREADS,
-    OPT_PLOT,
-    OPT_PROGRESS,
-    OPT_NO_PROGRESS,
-    OPT_STEP,
-    OPT_TOL,
-    OPT_MIN,
-    OPT_MAX,
-    OPT_FREE,
-    OPT_ISLANDS,
-    OPT_DETAIL,
-    OPT_TITLE
-};
-
-static const struct option long_opts[] = {
-    {"scene", required_argument, NULL, SW_OPT_SCENE},
-    {"set", required_argument, NULL, SW_OPT_SET},
-    {"scheme", required_argument, NULL, SW_OPT_SCHEME},
-    {"dt", required_argument, NULL, SW_OPT_DT},
-    {"rtol", required_argument, NULL, SW_OPT_RTOL},
-    {"atol", required_argument, NULL, SW_OPT_ATOL},
-    {"out", required_argument, NULL, SW_OPT_OUT},
-    {"quiet", no_argument, NULL, SW_OPT_QUIET},
-    {"verbose", no_argument, NULL, SW_OPT_VERBOSE},
-    {"help", no_argument, NULL, SW_OPT_HELP},
-    {"pulse", required_argument, NULL, OPT_PULSE},
-    {"omega-ratio", required_argument, NULL, OPT_RATIO},
-    {"vary", required_argument, NULL, OPT_VARY},
-    {"bearing-ratio", required_argument, NULL, OPT_BEARING},
-    {"threads", required_argument, NULL, OPT_THREADS},
-    {"plot", required_argument, NULL, OPT_PLOT},
-    {"progress", no_argument, NULL, OPT_PROGRESS},
-    {"no-progress", no_argument, NULL, OPT_NO_PROGRESS},
-    {"step", required_argument, NULL, OPT_STEP},
-    {"tol", required_argument, NULL, OPT_TOL},
-    {"min-amplitude", required_argument, NULL, OPT_MIN},
-    {"max-amplitude", required_argument, NULL, OPT_MAX},
-    {"free-periods", required_argument, NULL, OPT_FREE},
-    {"islands", required_argument, NULL, OPT_ISLANDS},
-    {"detail", required_argument, NULL, OPT_DETAIL},
-    {"title", required_argument, NULL, OPT_TITLE},
-    {NULL, 0, NULL, 0},
-};
-
-static void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: swaywatch boundary --scene S.ini --pulse half-sine|full-sine\n"
-            "                          --omega-ratio FROM:TO:STEP [options]\n"
-            "\n"
-            "Overturning boundary curves: for each omega_e/p, the lowest amplitude\n"
-            "a_e/(g tan alpha) of a pulse a(t) = a_e sin(omega_e t) (half-sine: one half wave;\n"
-            "full-sine: one whole wave) that overturns the package standing still, with p the\n"
-            "package's rocking frequency sqrt(3 g / 4 R) and g tan alpha the bed acceleration\n"
-            "that lifts it.  Each amplitude is run exactly (the pulse is a function of time),\n"
-            "then free motion until the outcome is certain or --free-periods pass.  Amplitudes\n"
-            "are scanned upward in --step relative steps from the lowest one that can lift the\n"
-            "package, then bisected to --tol: overturning is not monotonic for full-sine\n"
-            "pulses (a bigger pulse can be survived), so the lowest overturning amplitude is\n"
-            "reported, and with --islands the safe islands above it.\n"
-            "\n"
-            "Curves (one CSV column each): every --scene, times every --vary value, times\n"
-            "every --bearing-ratio value for scenes with a frame.\n"
-            "  -s, --scene FILE          scene file (INI); repeatable\n"
-            "      --set SEC.KEY=VALUE   override a key in every scene\n"
-            "      --pulse SHAPE         half-sine or full-sine (required)\n"
-            "      --omega-ratio R       omega_e/p values: FROM:TO:STEP (inclusive) or a list\n"
-            "                            R1,R2,... (required)\n"
-            "      --vary SEC.KEY=V1,V2  one curve per value of a scene key, e.g.\n"
-            "                            --vary frame.zeta=0.05,0.1,0.2; repeatable (all\n"
-            "                            combinations); a frame or cushion key leaves scenes\n"
-            "                            without that section as they are\n"
-            "      --bearing-ratio B1,B2 omega_b = B * omega_e at every point (the paper's\n"
-            "                            omega_b/omega_e); values may be fractions such as 1/3;\n"
-            "                            scenes without a [frame] are drawn once, as they are\n"
-            "\n"
-            "Search:\n"
-            "      --step X              relative scan step (default 0.02)\n"
-            "      --tol X               relative width of the final bracket (default 0.001)\n"
-            "      --min-amplitude X     start of the scan, in g tan alpha (default: the lowest\n"
-            "                            amplitude that can lift the package at all)\n"
-            "      --max-amplitude X     end of the scan (default 20); a curve with no overturn\n"
-            "                            up to it has an empty field at that point\n"
-            "      --free-periods N      free motion after the pulse, in rocking periods 2 pi/p\n"
-            "                            (default 20)\n"
-            "      --threads N           worker threads (default %d); results do not depend on it\n"
-            "      --scheme NAME         time stepper:",
-            DEFAULT_THREADS);
-    for (size_t i = 0; sw_scheme_at(i); i++)
-        fprintf(f, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
-    fprintf(f,
-            " (default %s)\n"
-            "      --dt SECONDS          internal step (default: the scheme's, at most 1/400 of the\n"
-            "                            pulse period and of the rocking period)\n"
-            "      --rtol X, --atol X    tolerances of the adaptive schemes\n"
-            "\n"
-            "Output:\n"
-            "  -o, --out FILE.csv        the curves (default: standard output):\n"
-            "                            omega_ratio,<curve 1>,<curve 2>,... in units of g tan alpha\n"
-            "      --detail FILE.csv     one row per curve and point: the bracket, impacts before\n"
-            "                            the overturn at the boundary (0: overturned directly;\n"
-            "                            >= 1: after an impact), the directions of the first\n"
-            "                            uplift and of the overturn (+1 the top forward, -1 back;\n"
-            "                            opposite: it overturned after a reverse sway), times,\n"
-            "                            trials\n"
-            "      --islands FILE.csv    scan on up to --max-amplitude and list the safe islands\n"
-            "                            above the boundary: curve,omega_ratio,from,to,open\n"
-            "      --plot FILE.png|.svg  draw the curves (and islands) with gnuplot\n"
-            "      --title TEXT          title of the figure\n"
-            "      --progress            percentage on stderr (default: only when stderr is a\n"
-            "                            terminal); --no-progress: never\n"
-            "  -q, --quiet               no summary on stderr\n"
-            "  -v, --verbose             the derived quantities of each curve's scene, on stderr\n"
-            "  -h, --help                this help\n",
-            SW_DEFAULT_SCHEME);
-    sw_cli_print_exit_help(f, 0, 0);
-}
-
-/* ---- option values ----------------------------------------------------------- */
-
-/* "1/3" or a decimal number. */
-static int parse_fraction(const char *s, double *out)
-{
-    char *end = NULL;
-    double a = strtod(s, &end);
-    if (end == s) return -1;
-    if (*end == '/') {
-        const char *q = end + 1;
-        double b = strtod(q, &end);
-        if (end == q || b == 0.0) return -1;
-        a /= b;
-    }
-    if (*end != '\0' || !isfinite(a)) return -1;
-    *out = a;
-    return 0;
-}
-
-/* A comma-separated list of numbers (fractions allowed) into a new array. */
-static int parse_list(const char *opt, const char *arg, int positive, double **vals, size_t *n)
-{
-    size_t cap = 1;
-    for (const char *p = arg; *p; p++) cap += *p == ',';
-    double *v = calloc(cap, sizeof *v);
-    char *copy = strdup(arg);
-    if (!v || !copy) {
-        free(v);
-        free(copy);
-        sw_cli_error("out of memory");
-        return SW_EXIT_IO;
-    }
-    size_t k = 0;
-    for (char *tok = copy, *next; tok; tok = next) {
-        next = strchr(tok, ',');
-        if (next) *next++ = '\0'; /* an empty item ("1,,2") is an error, not skipped */
-        double x;
-        if (parse_fraction(tok, &x) != 0 || (positive && !(x > 0.0))) {
-            sw_cli_error("%s: expected %snumbers separated by commas, got '%s'", opt,
-                         positive ? "positive " : "", tok);
-            free(v);
-            free(copy);
-            return SW_EXIT_USAGE;
-        }
-        v[k++] = x;
-    }
-    free(copy);
-    if (k == 0) {
-        sw_cli_error("%s: expected at least one value, got '%s'", opt, arg);
-        free(v);
-        return SW_EXIT_USAGE;
-    }
-    *vals = v;
-    *n = k;
-    return SW_EXIT_OK;
-}
-
-/* FROM:TO:STEP (inclusive, values FROM + i STEP computed from i), or a list. */
-static int parse_ratios(const char *arg, double **vals, size_t *n)
-{
-    if (!strchr(arg, ':')) return parse_list("--omega-ratio", arg, 1, vals, n);
-    double a, b, s;
-    char tail;
-    if (sscanf(arg, "%lf:%lf:%lf%c", &a, &b, &s, &tail) != 3 || !isfinite(a) || !isfinite(b) ||
-        !isfinite(s) || !(a > 0.0) || !(b >= a) || !(s > 0.0)) {
-        sw_cli_error("--omega-ratio: expected FROM:TO:STEP with 0 < FROM <= TO and STEP > 0, "
-                     "got '%s'",
-                     arg);
-        return SW_EXIT_USAGE;
-    }
-    const double count = floor((b - a) / s * (1.0 + 1e-12) + 1e-9) + 1.0;
-    if (count > MAX_POINTS) {
-        sw_cli_error("--omega-ratio: '%s' gives %.0f points, more than %d", arg, count,
-                     MAX_POINTS);
-        return SW_EXIT_USAGE;
-    }
-    double *v = calloc((size_t)count, sizeof *v);
-    if (!v) {
-        sw_cli_error("out of memory");
-        return SW_EXIT_IO;
-    }
-    for (size_t i = 0; i < (size_t)count; i++) v[i] = a + (double)i * s;
-    *vals = v;
-    *n = (size_t)count;
-    return SW_EXIT_OK;
-}
 
 /* --vary SEC.KEY=V1,V2,...: the key and its values (pointers into a copy). */
 typedef struct {
@@ -270,6 +61,149 @@ static void vary_free(vary_t *v)
     free(v->key);
     free(v->values);
 }
+
+/* boundary's own options. */
+typedef struct {
+    sw_boundary_opts_t bo;
+    int have_shape, progress;
+    long threads;
+    double *ratios; /* --omega-ratio */
+    size_t nr;
+    double *bearing; /* --bearing-ratio, and as written ("1/3") */
+    size_t nbear;
+    const char *bear_arg;
+    vary_t *vary;
+    size_t nvary;
+    const char *out; /* the curves; NULL: standard output */
+    const char *plot, *islands, *detail, *title;
+    int quiet;
+} boundary_opts_t;
+
+static int parse_shape(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    boundary_opts_t *b = dest;
+    b->have_shape = 1;
+    if (sw_pulse_shape_parse(arg, &b->bo.shape) == SW_OK) return SW_EXIT_OK;
+    sw_cli_error("--%s: expected half-sine or full-sine, got '%s'", o->long_name, arg);
+    return SW_EXIT_USAGE;
+}
+
+static int parse_ratios(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    boundary_opts_t *b = dest;
+    free(b->ratios);
+    b->ratios = NULL;
+    b->nr = 0;
+    char opt[64];
+    snprintf(opt, sizeof opt, "--%s", o->long_name);
+    return sw_cli_parse_range(opt, arg, MAX_POINTS, &b->ratios, &b->nr);
+}
+
+static int parse_bearing(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    boundary_opts_t *b = dest;
+    free(b->bearing);
+    b->bearing = NULL;
+    b->nbear = 0;
+    b->bear_arg = arg;
+    char opt[64];
+    snprintf(opt, sizeof opt, "--%s", o->long_name);
+    return sw_cli_parse_list(opt, arg, 1, &b->bearing, &b->nbear);
+}
+
+static int add_vary(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    (void)o;
+    boundary_opts_t *b = dest;
+    vary_t *v = realloc(b->vary, (b->nvary + 1) * sizeof *v);
+    if (!v) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    b->vary = v;
+    return parse_vary(arg, &b->vary[b->nvary++]);
+}
+
+#define BO(f) SW_CLI_AT(boundary_opts_t, f)
+
+static const sw_cli_option_t boundary_options[] = {
+    {SW_CLI_SECTION,
+     .help = "Curves (one CSV column each): every --scene, times every --vary value, times\n"
+             "every --bearing-ratio value for scenes with a frame."},
+    {SW_CLI_CALL, 0, "pulse", "SHAPE", .fn = parse_shape,
+     .help = "half-sine or full-sine (required)"},
+    {SW_CLI_CALL, 0, "omega-ratio", "R", .fn = parse_ratios,
+     .help = "omega_e/p values: FROM:TO:STEP (inclusive) or a list R1,R2,... (required)"},
+    {SW_CLI_CALL, 0, "vary", "SEC.KEY=V1,V2", .fn = add_vary,
+     .help = "one curve per value of a scene key, e.g. --vary frame.zeta=0.05,0.1,0.2; "
+             "repeatable (all combinations); a frame or cushion key leaves scenes without that "
+             "section as they are"},
+    {SW_CLI_CALL, 0, "bearing-ratio", "B1,B2", .fn = parse_bearing,
+     .help = "omega_b = B * omega_e at every point (the paper's omega_b/omega_e); values may be "
+             "fractions such as 1/3; scenes without a [frame] are drawn once, as they are"},
+    {SW_CLI_SECTION, .help = "Search:"},
+    {SW_CLI_DOUBLE, 0, "step", "X", BO(bo.search.step), .rule = SW_NUM_POSITIVE,
+     .what = "a positive relative step", .help = "relative scan step (default 0.02)"},
+    {SW_CLI_DOUBLE, 0, "tol", "X", BO(bo.search.tol), .rule = SW_NUM_POSITIVE,
+     .what = "a positive relative tolerance",
+     .help = "relative width of the final bracket (default 0.001)"},
+    {SW_CLI_DOUBLE, 0, "min-amplitude", "X", BO(bo.search.x_min), .rule = SW_NUM_POSITIVE,
+     .what = "a positive amplitude in g tan alpha",
+     .help = "start of the scan, in g tan alpha (default: the lowest amplitude that can lift "
+             "the package at all)"},
+    {SW_CLI_DOUBLE, 0, "max-amplitude", "X", BO(bo.search.x_max), .rule = SW_NUM_POSITIVE,
+     .what = "a positive amplitude in g tan alpha",
+     .help = "end of the scan (default 20); a curve with no overturn up to it has an empty "
+             "field at that point"},
+    {SW_CLI_DOUBLE, 0, "free-periods", "N", BO(bo.run.free_periods), .rule = SW_NUM_POSITIVE,
+     .what = "a positive number of rocking periods",
+     .help = "free motion after the pulse, in rocking periods 2 pi/p (default 20)"},
+    {SW_CLI_LONG, 0, "threads", "N", BO(threads), .min = 1, .max = 256, .def = 2,
+     .what = "a whole number of threads >= 1",
+     .help = "worker threads (default %g); results do not depend on it"},
+    {SW_CLI_SECTION, .help = "Integration:"},
+    {SW_CLI_TEXT,
+     .help = "Without --dt, each run's step is the scheme's, at most 1/400 of the pulse period\n"
+             "and of the rocking period; a --dt above the scheme's stability bound is\n"
+             "sub-stepped, not refused."},
+    {SW_CLI_SECTION, .help = "Output:"},
+    {SW_CLI_STRING, 'o', "out", "FILE.csv", BO(out),
+     .help = "the curves (default, or '-': standard output): omega_ratio,<curve 1>,<curve 2>,... in "
+             "units of g tan alpha"},
+    {SW_CLI_STRING, 0, "detail", "FILE.csv", BO(detail),
+     .help = "one row per curve and point ('-': standard output, if --out names a file): the bracket, impacts before the overturn at the "
+             "boundary (0: overturned directly; >= 1: after an impact), the directions of the "
+             "first uplift and of the overturn (+1 the top forward, -1 back; opposite: it "
+             "overturned after a reverse sway), times, trials"},
+    {SW_CLI_STRING, 0, "islands", "FILE.csv", BO(islands),
+     .help = "scan on up to --max-amplitude and list the safe islands above the boundary "
+             "('-' as for --detail): curve,omega_ratio,from,to,open"},
+    {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", BO(plot), .fn = sw_cli_plot_check,
+     .help = "draw the curves (and islands) with gnuplot"},
+    {SW_CLI_STRING, 0, "title", "TEXT", BO(title), .help = "title of the figure"},
+    {SW_CLI_FLAG, 0, "progress", BO(progress), .value = 1,
+     .help = "percentage on stderr (default: only when stderr is a terminal)"},
+    {SW_CLI_FLAG, 0, "no-progress", BO(progress), .value = 0, .help = "no percentage"},
+    {SW_CLI_FLAG, 'q', "quiet", BO(quiet), .value = 1, .help = "no summary on stderr"},
+    {SW_CLI_END},
+};
+
+static const sw_cli_command_t boundary_cmd = {
+    .name = "boundary",
+    .usage = "boundary --scene S.ini --pulse half-sine|full-sine\n"
+             "                          --omega-ratio FROM:TO:STEP [options]",
+    .about =
+        "Overturning boundary curves: for each omega_e/p, the lowest amplitude\n"
+        "a_e/(g tan alpha) of a pulse a(t) = a_e sin(omega_e t) (half-sine: one half wave;\n"
+        "full-sine: one whole wave) that overturns the package standing still, with p the\n"
+        "package's rocking frequency sqrt(3 g / 4 R) and g tan alpha the bed acceleration\n"
+        "that lifts it.  Each amplitude is run exactly (the pulse is a function of time),\n"
+        "then free motion until the outcome is certain or --free-periods pass.  Amplitudes\n"
+        "are scanned upward in --step relative steps from the lowest one that can lift the\n"
+        "package, then bisected to --tol: overturning is not monotonic for full-sine\n"
+        "pulses (a bigger pulse can be survived), so the lowest overturning amplitude is\n"
+        "reported, and with --islands the safe islands above it.\n",
+};
 
 /* ---- curves -------------------------------------------------------------------- */
 
@@ -387,7 +321,7 @@ static void csv_num(FILE *f, double v)
     if (isfinite(v)) fprintf(f, "%.6g", v);
 }
 
-static void write_curves(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
+static long write_curves(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
                          const sw_boundary_point_t *pts)
 {
     fputs("omega_ratio", f);
@@ -405,6 +339,7 @@ static void write_curves(FILE *f, const curve_t *cv, size_t nc, const double *ra
         }
         fputc('\n', f);
     }
+    return (long)nr;
 }
 
 static const char *end_name(sw_run_end e)
@@ -419,7 +354,7 @@ static const char *end_name(sw_run_end e)
     return "unknown";
 }
 
-static void write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
+static long write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
                          const sw_boundary_point_t *pts)
 {
     fputs("curve,omega_ratio,found,boundary,safe_below,lift,impacts,uplift_side,overturn_side,"
@@ -451,41 +386,37 @@ static void write_detail(FILE *f, const curve_t *cv, size_t nc, const double *ra
             }
             fprintf(f, ",%ld\n", P->th.trials);
         }
+    return (long)(nc * nr);
 }
 
-static void write_islands(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
+static long write_islands(FILE *f, const curve_t *cv, size_t nc, const double *ratios, size_t nr,
                           const sw_boundary_point_t *pts)
 {
     fputs("curve,omega_ratio,from,to,open\n", f);
+    long rows = 0;
     for (size_t c = 0; c < nc; c++)
         for (size_t i = 0; i < nr; i++) {
             const sw_threshold_t *T = &pts[c * nr + i].th;
-            for (int k = 0; k < T->n_islands; k++) {
+            for (int k = 0; k < T->n_islands; k++, rows++) {
                 sw_cli_csv_text(f, cv[c].label);
                 fprintf(f, ",%.6g,%.6g,%.6g,%d\n", ratios[i], T->islands[k].lo, T->islands[k].hi,
                         T->islands[k].open);
             }
         }
+    return rows;
 }
 
+/* Write path with fn; *rows gets the data rows written. */
 static int write_file(const char *path, const curve_t *cv, size_t nc, const double *ratios,
                       size_t nr, const sw_boundary_point_t *pts,
-                      void (*fn)(FILE *, const curve_t *, size_t, const double *, size_t,
-                                 const sw_boundary_point_t *))
+                      long (*fn)(FILE *, const curve_t *, size_t, const double *, size_t,
+                                 const sw_boundary_point_t *),
+                      long *rows)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        sw_cli_error("%s: cannot create: %s", path, strerror(errno));
-        return SW_EXIT_IO;
-    }
-    fn(f, cv, nc, ratios, nr, pts);
-    int bad = ferror(f);
-    if (fclose(f) != 0) bad = 1;
-    if (bad) {
-        sw_cli_error("%s: write failed", path);
-        return SW_EXIT_IO;
-    }
-    return SW_EXIT_OK;
+    FILE *f = sw_cli_out_open(path);
+    if (!f) return SW_EXIT_IO;
+    *rows = fn(f, cv, nc, ratios, nr, pts);
+    return sw_cli_out_close(f, path);
 }
 
 static int plot(const char *path, const char *title, sw_pulse_shape shape, const curve_t *cv,
@@ -540,226 +471,217 @@ static int plot(const char *path, const char *title, sw_pulse_shape shape, const
 
 /* ---- the command --------------------------------------------------------------- */
 
+/* Everything a boundary run uses. */
+typedef struct {
+    sw_cli_opts_t o;
+    boundary_opts_t b;
+    char *bear_copy;         /* --bearing-ratio, split at the commas: */
+    const char **bear_text;  /* the ratios as written, for the labels ("1/3") */
+    sw_scene_t *scenes;
+    size_t nsc;
+    curve_t *cv;
+    size_t nc;
+    sw_boundary_point_t *pts;
+} boundary_t;
+
+/* What the options leave to check together; the search's defaults. */
+static int check_options(boundary_t *B, int argc, char **argv, int first)
+{
+    sw_boundary_opts_t *bo = &B->b.bo;
+    if (sw_cli_no_operand("boundary", argc, argv, first) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    if (!B->b.have_shape || !B->b.nr) {
+        sw_cli_error("boundary: missing %s; see 'swaywatch boundary --help'",
+                     !B->b.have_shape ? "--pulse half-sine|full-sine"
+                                      : "--omega-ratio FROM:TO:STEP");
+        return SW_EXIT_USAGE;
+    }
+    if (bo->search.x_min > 0.0 && bo->search.x_max > 0.0 && bo->search.x_min >= bo->search.x_max) {
+        sw_cli_error("--min-amplitude %g is not below --max-amplitude %g", bo->search.x_min,
+                     bo->search.x_max);
+        return SW_EXIT_USAGE;
+    }
+    if (!(bo->search.x_max > 0.0)) bo->search.x_max = 20.0;
+    if (bo->search.x_min >= bo->search.x_max) {
+        sw_cli_error("--min-amplitude %g is not below the default --max-amplitude %g",
+                     bo->search.x_min, bo->search.x_max);
+        return SW_EXIT_USAGE;
+    }
+    /* The curves go to standard output unless --out names a file; "-"
+     * gives it to one of the CSV files. */
+    const char *taken = !B->b.out || !strcmp(B->b.out, "-") ? "the curves (give --out a file)"
+                                                             : NULL;
+    if (B->b.detail && !strcmp(B->b.detail, "-")) {
+        if (taken) {
+            sw_cli_error("--detail -: standard output already carries %s", taken);
+            return SW_EXIT_USAGE;
+        }
+        taken = "--detail";
+    }
+    if (taken && B->b.islands && !strcmp(B->b.islands, "-")) {
+        sw_cli_error("--islands -: standard output already carries %s", taken);
+        return SW_EXIT_USAGE;
+    }
+    bo->search.islands = B->b.islands != NULL;
+    bo->threads = (int)B->b.threads;
+    sw_cli_engine_opts(&B->o, &bo->run.engine);
+    if (!B->b.nbear) return SW_EXIT_OK;
+    /* labels of the bearing ratios as the user wrote them ("1/3") */
+    B->bear_copy = strdup(B->b.bear_arg);
+    B->bear_text = calloc(B->b.nbear, sizeof *B->bear_text);
+    if (!B->bear_copy || !B->bear_text) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    size_t k = 0;
+    char *save = NULL;
+    for (char *t = strtok_r(B->bear_copy, ",", &save); t && k < B->b.nbear;
+         t = strtok_r(NULL, ",", &save))
+        B->bear_text[k++] = t;
+    return SW_EXIT_OK;
+}
+
+/* --verbose: what each curve's scene is. */
+static void print_curves(const boundary_t *B)
+{
+    for (size_t c = 0; c < B->nc; c++) {
+        const curve_t *C = &B->cv[c];
+        sw_derived_t d;
+        sw_scene_t s; /* omega_b is set per point */
+        sw_curve_scene(&C->c, 0.0, &s);
+        if (sw_scene_validate(&s, &d, NULL, NULL, NULL) != SW_OK) continue;
+        fprintf(stderr,
+                "swaywatch: curve %zu '%s': %s model, alpha %.4g deg, p %.6g rad/s, "
+                "g tan alpha %.6g m/s^2",
+                c + 1, C->label, sw_model_name(d.model), d.alpha * 180.0 / M_PI, d.p,
+                s.g * tan(d.alpha));
+        if (d.model == SW_MODEL_FRAME)
+            fprintf(stderr, ", gamma %.4g, zeta_b %.4g, omega_b %s", d.gamma, d.zeta_b,
+                    C->c.bearing_ratio > 0.0 ? "per point" : "");
+        if (d.model == SW_MODEL_FRAME && !(C->c.bearing_ratio > 0.0))
+            fprintf(stderr, "%.6g rad/s", d.omega_b);
+        fputc('\n', stderr);
+    }
+}
+
+static int sweep(boundary_t *B)
+{
+    B->pts = calloc(B->nc * B->b.nr, sizeof *B->pts);
+    sw_curve_t *curves = calloc(B->nc, sizeof *curves);
+    if (!B->pts || !curves) {
+        free(curves);
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    for (size_t c = 0; c < B->nc; c++) curves[c] = B->cv[c].c;
+    if (B->b.progress) B->b.bo.progress = on_progress;
+    char msg[512] = "";
+    int sr = sw_boundary_sweep(curves, B->nc, B->b.ratios, B->b.nr, &B->b.bo, B->pts, msg,
+                               sizeof msg);
+    free(curves);
+    if (sr == SW_OK) return SW_EXIT_OK;
+    sw_cli_error("boundary: %s", msg[0] ? msg : sw_strerror(sr));
+    return SW_EXIT_USAGE;
+}
+
+/* The points that need a word: not overturned, an upper bound, more
+ * islands than listed. */
+static void notes(const boundary_t *B)
+{
+    long at_min = 0, missing = 0, truncated = 0;
+    const size_t np = B->nc * B->b.nr;
+    for (size_t i = 0; i < np; i++) {
+        at_min += B->pts[i].th.found && B->pts[i].th.at_min;
+        missing += !B->pts[i].th.found;
+        truncated += B->pts[i].th.islands_truncated;
+    }
+    if (missing)
+        sw_cli_error("boundary: %ld of %zu points did not overturn up to --max-amplitude %g "
+                     "(empty fields)",
+                     missing, np, B->b.bo.search.x_max);
+    if (at_min)
+        sw_cli_error("boundary: %ld points overturned at --min-amplitude already: their "
+                     "value is an upper bound",
+                     at_min);
+    if (truncated)
+        sw_cli_error("boundary: %ld points have more than %d safe islands; the rest are "
+                     "not listed",
+                     truncated, SW_MAX_ISLANDS);
+}
+
+/* The files, each said on stderr with what it holds, then the points that
+ * need a word (unless --quiet). */
+static int write_outputs(const boundary_t *B)
+{
+    const curve_t *cv = B->cv;
+    const size_t nc = B->nc, nr = B->b.nr;
+    const double *ratios = B->b.ratios;
+    const sw_boundary_point_t *pts = B->pts;
+    const int say = !B->b.quiet;
+    const char *out = B->b.out ? B->b.out : "-";
+    long rows = 0;
+    int rc = write_file(out, cv, nc, ratios, nr, pts, write_curves, &rows);
+    if (rc == SW_EXIT_OK && say)
+        sw_cli_error("boundary: wrote %s: %zu curve%s at %ld point%s", sw_cli_out_name(out), nc,
+                     nc == 1 ? "" : "s", rows, rows == 1 ? "" : "s");
+    if (rc == SW_EXIT_OK && B->b.detail) {
+        rc = write_file(B->b.detail, cv, nc, ratios, nr, pts, write_detail, &rows);
+        if (rc == SW_EXIT_OK && say)
+            sw_cli_error("boundary: wrote %s: %ld row%s, one per curve and point",
+                         sw_cli_out_name(B->b.detail), rows, rows == 1 ? "" : "s");
+    }
+    if (rc == SW_EXIT_OK && B->b.islands) {
+        rc = write_file(B->b.islands, cv, nc, ratios, nr, pts, write_islands, &rows);
+        if (rc == SW_EXIT_OK && say)
+            sw_cli_error("boundary: wrote %s: %ld safe island%s", sw_cli_out_name(B->b.islands),
+                         rows, rows == 1 ? "" : "s");
+    }
+    if (rc == SW_EXIT_OK && B->b.plot) {
+        rc = plot(B->b.plot, B->b.title, B->b.bo.shape, cv, nc, ratios, nr, pts,
+                  B->b.islands != NULL);
+        if (rc == SW_EXIT_OK && say)
+            sw_cli_error("boundary: wrote %s: a figure of %zu curve%s", B->b.plot, nc,
+                         nc == 1 ? "" : "s");
+    }
+    if (!say) return rc;
+    notes(B);
+    return rc;
+}
+
 int cmd_boundary(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
-    sw_cli_opts_t o;
-    sw_boundary_opts_t bo;
-    memset(&bo, 0, sizeof bo);
-    bo.threads = DEFAULT_THREADS;
-    int have_shape = 0, progress = isatty(fileno(stderr)) ? 1 : 0;
-    long threads = DEFAULT_THREADS;
-    double *ratios = NULL, *bearing = NULL;
-    size_t nr = 0, nbear = 0, nvary = 0, nsc = 0, nc = 0;
-    const char *plot_path = NULL, *islands_path = NULL, *detail_path = NULL, *title = NULL;
-    const char *bear_arg = NULL;
-    char *bear_copy = NULL;
-    const char **bear_text = NULL;
-    vary_t *vary = NULL;
-    sw_scene_t *scenes = NULL;
-    curve_t *cv = NULL;
-    sw_boundary_point_t *pts = NULL;
+    boundary_t B;
+    memset(&B, 0, sizeof B);
+    B.b.progress = isatty(fileno(stderr)) ? 1 : 0;
+    sw_cli_group_t g[] = {
+        SW_CLI_GROUP(sw_cli_scene_options, &B.o),
+        SW_CLI_GROUP(boundary_options, &B.b),
+        SW_CLI_GROUP(sw_cli_integration_options, &B.o),
+        SW_CLI_GROUP_IN(sw_cli_common_options, &B.o, "Output:"),
+    };
+    const size_t ng = sizeof g / sizeof g[0];
 
-    if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK) return SW_EXIT_IO;
-    vary = calloc((size_t)argc + 1, sizeof *vary);
-    if (!vary) {
-        sw_cli_error("out of memory");
-        rc = SW_EXIT_IO;
+    int first;
+    if ((rc = sw_cli_parse(&boundary_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
         goto out;
-    }
-    int opt;
-    while ((opt = sw_cli_getopt(&o, argc, argv, ":hs:o:qv", long_opts, NULL, NULL, 0, usage)) > 0) {
-        int r = SW_EXIT_OK;
-        switch (opt) {
-        case OPT_PULSE:
-            if (sw_pulse_shape_parse(optarg, &bo.shape) != SW_OK) {
-                sw_cli_error("--pulse: expected half-sine or full-sine, got '%s'", optarg);
-                r = SW_EXIT_USAGE;
-            }
-            have_shape = 1;
-            break;
-        case OPT_RATIO:
-            free(ratios);
-            ratios = NULL;
-            r = parse_ratios(optarg, &ratios, &nr);
-            break;
-        case OPT_VARY: r = parse_vary(optarg, &vary[nvary++]); break;
-        case OPT_BEARING:
-            free(bearing);
-            bearing = NULL;
-            bear_arg = optarg;
-            r = parse_list("--bearing-ratio", optarg, 1, &bearing, &nbear);
-            break;
-        case OPT_THREADS:
-            r = sw_cli_parse_long("--threads", optarg, 1, "a whole number of threads >= 1",
-                                  &threads);
-            if (r == SW_EXIT_OK && threads > 256) threads = 256;
-            bo.threads = (int)threads;
-            break;
-        case OPT_PLOT:
-            plot_path = optarg;
-            r = sw_cli_plot_check("--plot", optarg);
-            break;
-        case OPT_PROGRESS: progress = 1; break;
-        case OPT_NO_PROGRESS: progress = 0; break;
-        case OPT_STEP:
-            r = sw_cli_parse_double("--step", optarg, SW_NUM_POSITIVE, "a positive relative step",
-                                    &bo.search.step);
-            break;
-        case OPT_TOL:
-            r = sw_cli_parse_double("--tol", optarg, SW_NUM_POSITIVE,
-                                    "a positive relative tolerance", &bo.search.tol);
-            break;
-        case OPT_MIN:
-            r = sw_cli_parse_double("--min-amplitude", optarg, SW_NUM_POSITIVE,
-                                    "a positive amplitude in g tan alpha", &bo.search.x_min);
-            break;
-        case OPT_MAX:
-            r = sw_cli_parse_double("--max-amplitude", optarg, SW_NUM_POSITIVE,
-                                    "a positive amplitude in g tan alpha", &bo.search.x_max);
-            break;
-        case OPT_FREE:
-            r = sw_cli_parse_double("--free-periods", optarg, SW_NUM_POSITIVE,
-                                    "a positive number of rocking periods", &bo.run.free_periods);
-            break;
-        case OPT_ISLANDS: islands_path = optarg; break;
-        case OPT_DETAIL: detail_path = optarg; break;
-        case OPT_TITLE: title = optarg; break;
-        default: sw_cli_error("boundary: unhandled option"); r = SW_EXIT_USAGE;
-        }
-        if (r != SW_EXIT_OK) {
-            rc = r;
-            goto out;
-        }
-    }
-    if (opt != SW_CLI_OPT_END) {
-        if (opt == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
+    if ((rc = check_options(&B, argc, argv, first)) != SW_EXIT_OK ||
+        (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) != SW_EXIT_OK ||
+        (rc = build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
+                           B.bear_text, &B.cv, &B.nc)) != SW_EXIT_OK)
         goto out;
-    }
-    if (optind < argc) {
-        sw_cli_error("boundary: unexpected argument '%s'; see 'swaywatch boundary --help'",
-                     argv[optind]);
-        goto out;
-    }
-    if (!have_shape || !nr) {
-        sw_cli_error("boundary: missing %s; see 'swaywatch boundary --help'",
-                     !have_shape ? "--pulse half-sine|full-sine"
-                                 : "--omega-ratio FROM:TO:STEP");
-        goto out;
-    }
-    if (bo.search.x_min > 0.0 && bo.search.x_max > 0.0 && bo.search.x_min >= bo.search.x_max) {
-        sw_cli_error("--min-amplitude %g is not below --max-amplitude %g", bo.search.x_min,
-                     bo.search.x_max);
-        goto out;
-    }
-    if (!(bo.search.x_max > 0.0)) bo.search.x_max = 20.0;
-    if (bo.search.x_min >= bo.search.x_max) {
-        sw_cli_error("--min-amplitude %g is not below the default --max-amplitude %g",
-                     bo.search.x_min, bo.search.x_max);
-        goto out;
-    }
-    bo.search.islands = islands_path != NULL;
-    sw_cli_engine_opts(&o, &bo.run.engine);
-
-    /* labels of the bearing ratios as the user wrote them ("1/3") */
-    if (nbear) {
-        bear_copy = strdup(bear_arg);
-        bear_text = calloc(nbear, sizeof *bear_text);
-        if (!bear_copy || !bear_text) {
-            sw_cli_error("out of memory");
-            rc = SW_EXIT_IO;
-            goto out;
-        }
-        size_t k = 0;
-        char *save = NULL;
-        for (char *t = strtok_r(bear_copy, ",", &save); t && k < nbear;
-             t = strtok_r(NULL, ",", &save))
-            bear_text[k++] = t;
-    }
-
-    rc = sw_cli_load_scenes(&o, &scenes, &nsc);
-    if (rc != SW_EXIT_OK) goto out;
-    rc = build_curves(scenes, nsc, vary, nvary, bearing, nbear, bear_text, &cv, &nc);
-    if (rc != SW_EXIT_OK) goto out;
-    if (o.verbose)
-        for (size_t c = 0; c < nc; c++) {
-            sw_derived_t d;
-            sw_scene_t s; /* omega_b is set per point */
-            sw_curve_scene(&cv[c].c, 0.0, &s);
-            if (sw_scene_validate(&s, &d, NULL, NULL, NULL) != SW_OK) continue;
-            fprintf(stderr,
-                    "swaywatch: curve %zu '%s': %s model, alpha %.4g deg, p %.6g rad/s, "
-                    "g tan alpha %.6g m/s^2",
-                    c + 1, cv[c].label, sw_model_name(d.model), d.alpha * 180.0 / M_PI, d.p,
-                    s.g * tan(d.alpha));
-            if (d.model == SW_MODEL_FRAME)
-                fprintf(stderr, ", gamma %.4g, zeta_b %.4g, omega_b %s", d.gamma, d.zeta_b,
-                        cv[c].c.bearing_ratio > 0.0 ? "per point" : "");
-            if (d.model == SW_MODEL_FRAME && !(cv[c].c.bearing_ratio > 0.0))
-                fprintf(stderr, "%.6g rad/s", d.omega_b);
-            fputc('\n', stderr);
-        }
-
-    pts = calloc(nc * nr, sizeof *pts);
-    sw_curve_t *curves = calloc(nc, sizeof *curves);
-    if (!pts || !curves) {
-        free(curves);
-        sw_cli_error("out of memory");
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    for (size_t c = 0; c < nc; c++) curves[c] = cv[c].c;
-    if (progress) bo.progress = on_progress;
-    char msg[512] = "";
-    int sr = sw_boundary_sweep(curves, nc, ratios, nr, &bo, pts, msg, sizeof msg);
-    free(curves);
-    if (sr != SW_OK) {
-        sw_cli_error("boundary: %s", msg[0] ? msg : sw_strerror(sr));
-        rc = SW_EXIT_USAGE;
-        goto out;
-    }
-
-    long at_min = 0, missing = 0, truncated = 0;
-    for (size_t i = 0; i < nc * nr; i++) {
-        at_min += pts[i].th.found && pts[i].th.at_min;
-        missing += !pts[i].th.found;
-        truncated += pts[i].th.islands_truncated;
-    }
-    rc = SW_EXIT_OK;
-    if (o.out_path)
-        rc = write_file(o.out_path, cv, nc, ratios, nr, pts, write_curves);
-    else
-        write_curves(stdout, cv, nc, ratios, nr, pts);
-    if (rc == SW_EXIT_OK && detail_path)
-        rc = write_file(detail_path, cv, nc, ratios, nr, pts, write_detail);
-    if (rc == SW_EXIT_OK && islands_path)
-        rc = write_file(islands_path, cv, nc, ratios, nr, pts, write_islands);
-    if (rc == SW_EXIT_OK && plot_path)
-        rc = plot(plot_path, title, bo.shape, cv, nc, ratios, nr, pts, islands_path != NULL);
-    if (!o.quiet) {
-        if (missing)
-            sw_cli_error("boundary: %ld of %zu points did not overturn up to --max-amplitude %g "
-                         "(empty fields)",
-                         missing, nc * nr, bo.search.x_max);
-        if (at_min)
-            sw_cli_error("boundary: %ld points overturned at --min-amplitude already: their "
-                         "value is an upper bound",
-                         at_min);
-        if (truncated)
-            sw_cli_error("boundary: %ld points have more than %d safe islands; the rest are "
-                         "not listed",
-                         truncated, SW_MAX_ISLANDS);
-    }
+    if (B.o.verbose) print_curves(&B);
+    if ((rc = sweep(&B)) != SW_EXIT_OK) goto out;
+    rc = write_outputs(&B);
 out:
-    free(pts);
-    free(cv);
-    free(scenes);
-    for (size_t k = 0; vary && k < nvary; k++) vary_free(&vary[k]);
-    free(vary);
-    free(ratios);
-    free(bearing);
-    free(bear_copy);
-    free(bear_text);
-    sw_cli_opts_fini(&o);
+    free(B.pts);
+    free(B.cv);
+    free(B.scenes);
+    for (size_t k = 0; k < B.b.nvary; k++) vary_free(&B.b.vary[k]);
+    free(B.b.vary);
+    free(B.b.ratios);
+    free(B.b.bearing);
+    free(B.bear_copy);
+    free(B.bear_text);
+    sw_cli_parse_free(g, ng);
     return rc;
 }

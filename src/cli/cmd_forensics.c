@@ -14,113 +14,114 @@
  *   - optionally a figure of a_g(t), theta(t)/alpha and margin(t) with the
  *     events, and the whole report as JSON.
  *
- * Unlike replay, forensics holds the whole log in memory (logread.c): the
+ * Unlike replay, forensics holds the whole log in memory (input.c): the
  * safety-factor search replays it tens of times per case, and re-reading
  * and re-parsing the file for each trial would cost more than the physics.
- * The figure also keeps the state series in memory. */
+ * The figure also keeps the state series in memory.  The what-if cases are
+ * built, run and reported by whatif.c. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include "input.h"
+#include "opts.h"
+#include "output.h"
+#include "plot.h"
+#include "whatif.h"
 
-#define DEFAULT_SETTLE 30.0   /* s of zero input after the end of the log, as replay */
-#define DEFAULT_THREADS 2
-#define DEFAULT_FRAME_ZETA "0.1"   /* the paper's Table I */
-#define DEFAULT_CUSHION_ZETA "0.1"
-#define FRAME_MASS_RATIO 0.25 /* m_b = m/4: gamma = 0.8, the paper's Table I */
 #define MAX_EVENTS 100000     /* events kept for the figure */
 #define PLOT_BUCKETS 3000     /* the figure keeps each series' extremes per bucket */
 
-enum {
-    OPT_SETTLE = SW_OPT_FIRST_OWN,
-    OPT_FAIL_ON_OVERTURN,
-    OPT_FRAME_MASS,
-    OPT_FRAME_OMEGA,
-    OPT_FRAME_ZETA,
-    OPT_CUSHION_OMEGA,
-    OPT_CUSHION_ZETA,
-    OPT_SIZE,
-    OPT_PLOT,
-    OPT_THREADS,
-    OPT_STEP,
-    OPT_TOL,
-    OPT_MAX_FACTOR,
-    OPT_NO_WHAT_IF
-};
+/* forensics' own options. */
+typedef struct {
+    double settle; /* s of zero input after the end of the log, as replay */
+    int fail_on_overturn;
+    long threads;
+    sw_search_opts_t so;
+    sw_cli_whatif_t w;
+    const char *plot;
+} forensics_opts_t;
 
-static const struct option long_opts[] = {
-    SW_CLI_COMMON_LONGOPTS,
-    SW_CLI_CSV_LONGOPTS,
-    {"settle", required_argument, NULL, OPT_SETTLE},
-    {"fail-on-overturn", no_argument, NULL, OPT_FAIL_ON_OVERTURN},
-    {"frame-mass", required_argument, NULL, OPT_FRAME_MASS},
-    {"frame-omega", required_argument, NULL, OPT_FRAME_OMEGA},
-    {"frame-zeta", required_argument, NULL, OPT_FRAME_ZETA},
-    {"cushion-omega", required_argument, NULL, OPT_CUSHION_OMEGA},
-    {"cushion-zeta", required_argument, NULL, OPT_CUSHION_ZETA},
-    {"size", required_argument, NULL, OPT_SIZE},
-    {"plot", required_argument, NULL, OPT_PLOT},
-    {"threads", required_argument, NULL, OPT_THREADS},
-    {"step", required_argument, NULL, OPT_STEP},
-    {"tol", required_argument, NULL, OPT_TOL},
-    {"max-factor", required_argument, NULL, OPT_MAX_FACTOR},
-    {"no-what-if", no_argument, NULL, OPT_NO_WHAT_IF},
-    {NULL, 0, NULL, 0},
-};
-
-static void usage(FILE *f)
+static int check_size(const sw_cli_option_t *o, const char *arg, void *dest)
 {
-    fprintf(f,
-            "usage: swaywatch forensics LOG --scene S.ini [options]\n"
-            "\n"
-            "After an incident: replays the CSV log LOG ('-' for standard input) through the\n"
-            "package of S.ini and prints what replay prints, then\n"
-            "  - the safety factor: the smallest factor by which the recorded longitudinal\n"
-            "    acceleration would have to be scaled to overturn the package (at most 1 if it\n"
-            "    overturned; for a log it survived, also any weaker scale of the same shock\n"
-            "    that would have overturned it: overturning is not monotonic in the amplitude);\n"
-            "  - a what-if table: the same log with the package on the bed, on a frame, on a\n"
-            "    cushion and in other sizes, each with its outcome and safety factor.\n"
-            "The log is held in memory (about 16 bytes a sample): the search replays it tens\n"
-            "of times for every case.\n"
-            "\n");
-    sw_cli_print_csv_help(f);
-    fprintf(f,
-            "\n"
-            "Run:\n"
-            "      --settle SECONDS     after the log, zero acceleration for up to this long or\n"
-            "                           until the outcome is certain (default %g; 0: none)\n"
-            "      --fail-on-overturn   exit 1 if the package as given overturned\n"
-            "\n"
-            "Safety factor (scale of the whole longitudinal acceleration):\n"
-            "      --step X             relative scan step (default 0.02)\n"
-            "      --tol X              relative width of the final bracket (default 0.001)\n"
-            "      --max-factor X       largest scale tried (default: 20 times the scale at\n"
-            "                           which the log's peak lifts a package on the bed)\n"
-            "      --threads N          what-if cases computed in parallel (default %d)\n"
-            "\n"
-            "What if (each case replaces part of the scene; scene values are the defaults):\n"
-            "      --frame-mass KG      frame mass m_b (default: the scene's, else m/4)\n"
-            "      --frame-omega W      bearing frequency omega_b, rad/s (needed if the scene\n"
-            "                           has no [frame])\n"
-            "      --frame-zeta Z       bearing damping ratio (default: the scene's, else %s)\n"
-            "      --cushion-omega W    cushion frequency omega_c, rad/s (needed if the scene\n"
-            "                           has no [cushion]); on the frame if the scene has one\n"
-            "      --cushion-zeta Z     cushion damping ratio (default: the scene's, else %s)\n"
-            "      --size HxW           the package with height H and width W (m), on the\n"
-            "                           scene's support; repeatable\n"
-            "      --no-what-if         only the replay and the safety factor\n"
-            "\n"
-            "Output:\n"
-            "      --plot FILE.png|.svg a_g(t), theta(t)/alpha and margin(t) with the events\n",
-            DEFAULT_SETTLE, DEFAULT_THREADS, DEFAULT_FRAME_ZETA, DEFAULT_CUSHION_ZETA);
-    sw_cli_print_common_help(f);
-    fprintf(f, "\nWith --json the whole report is one JSON object on stdout: 'replay' (replay's\n"
-               "JSON summary), 'safety_factor' and 'what_if'.\n");
-    sw_cli_print_exit_help(f, 1, 1);
+    (void)dest;
+    double h, w;
+    if (sw_cli_parse_size(arg, &h, &w) == 0) return SW_EXIT_OK;
+    sw_cli_error("--%s: expected HEIGHTxWIDTH in m, e.g. 2.4x0.8, got '%s'", o->long_name, arg);
+    return SW_EXIT_USAGE;
 }
+
+#define FO(f) SW_CLI_AT(forensics_opts_t, f)
+
+static const sw_cli_option_t forensics_options[] = {
+    {SW_CLI_SECTION, .help = "Run:"},
+    {SW_CLI_DOUBLE, 0, "settle", "SECONDS", FO(settle), .rule = SW_NUM_NONNEGATIVE, .def = 30,
+     .what = "a number of seconds >= 0",
+     .help = "after the log, zero acceleration for up to this long or until the outcome is "
+             "certain (default %g; 0: none)"},
+    {SW_CLI_FLAG, 0, "fail-on-overturn", FO(fail_on_overturn), .value = 1,
+     .help = "exit 1 if the package as given overturned"},
+    {SW_CLI_SECTION, .help = "Safety factor (scale of the whole longitudinal acceleration):"},
+    {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE,
+     .what = "a positive relative step", .help = "relative scan step (default 0.02)"},
+    {SW_CLI_DOUBLE, 0, "tol", "X", FO(so.tol), .rule = SW_NUM_POSITIVE,
+     .what = "a positive relative tolerance",
+     .help = "relative width of the final bracket (default 0.001)"},
+    {SW_CLI_DOUBLE, 0, "max-factor", "X", FO(so.x_max), .rule = SW_NUM_POSITIVE,
+     .what = "a positive scale factor",
+     .help = "largest scale tried (default: 20 times the scale at which the log's peak lifts a "
+             "package on the bed)"},
+    {SW_CLI_LONG, 0, "threads", "N", FO(threads), .min = 1, .max = 256, .def = 2,
+     .what = "a whole number of threads >= 1",
+     .help = "what-if cases computed in parallel (default %g)"},
+    {SW_CLI_SECTION,
+     .help = "What if (each case replaces part of the scene; scene values are the defaults):"},
+    {SW_CLI_STRING, 0, "frame-mass", "KG", FO(w.frame_mass),
+     .help = "frame mass m_b (default: the scene's, else m/4)"},
+    {SW_CLI_STRING, 0, "frame-omega", "W", FO(w.frame_omega),
+     .help = "bearing frequency omega_b, rad/s (needed if the scene has no [frame])"},
+    {SW_CLI_STRING, 0, "frame-zeta", "Z", FO(w.frame_zeta),
+     .help = "bearing damping ratio (default: the scene's, else " SW_CLI_FRAME_ZETA ")"},
+    {SW_CLI_STRING, 0, "cushion-omega", "W", FO(w.cushion_omega),
+     .help = "cushion frequency omega_c, rad/s (needed if the scene has no [cushion]); on the "
+             "frame if the scene has one"},
+    {SW_CLI_STRING, 0, "cushion-zeta", "Z", FO(w.cushion_zeta),
+     .help = "cushion damping ratio (default: the scene's, else " SW_CLI_CUSHION_ZETA ")"},
+    {SW_CLI_LIST, 0, "size", "HxW", FO(w.sizes), .fn = check_size,
+     .help = "the package with height H and width W (m), on the scene's support; repeatable"},
+    {SW_CLI_FLAG, 0, "no-what-if", FO(w.no_what_if), .value = 1,
+     .help = "only the replay and the safety factor"},
+    {SW_CLI_END},
+};
+
+/* forensics' figure, in the Output section with the shared rows. */
+static const sw_cli_option_t forensics_output_options[] = {
+    {SW_CLI_SECTION, .help = "Output:"},
+    {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", FO(plot), .fn = sw_cli_plot_check,
+     .help = "a_g(t), theta(t)/alpha and margin(t) with the events"},
+    {SW_CLI_TEXT,
+     .help = "\nWith --json the whole report is one JSON object on stdout: 'replay' (replay's\n"
+             "JSON summary), 'safety_factor' and 'what_if'."},
+    {SW_CLI_END},
+};
+
+static const sw_cli_command_t forensics_cmd = {
+    .name = "forensics",
+    .usage = "forensics LOG --scene S.ini [options]",
+    .about =
+        "After an incident: replays the CSV log LOG ('-' for standard input) through the\n"
+        "package of S.ini and prints what replay prints, then\n"
+        "  - the safety factor: the smallest factor by which the recorded longitudinal\n"
+        "    acceleration would have to be scaled to overturn the package (at most 1 if it\n"
+        "    overturned; for a log it survived, also any weaker scale of the same shock\n"
+        "    that would have overturned it: overturning is not monotonic in the amplitude);\n"
+        "  - a what-if table: the same log with the package on the bed, on a frame, on a\n"
+        "    cushion and in other sizes, each with its outcome and safety factor.\n"
+        "The log is held in memory (about 16 bytes a sample): the search replays it tens\n"
+        "of times for every case.\n",
+    .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
+};
 
 /* ---- the replay, with what the figure needs ----------------------------------- */
 
@@ -163,326 +164,6 @@ static void on_event(void *user, const sw_event_t *ev)
     replay_t *R = user;
     sw_cli_events_write(R->events, ev);
     if (R->keep && R->ev && R->nev < MAX_EVENTS) R->ev[R->nev++] = *ev;
-}
-
-/* ---- what-if cases -------------------------------------------------------------- */
-
-typedef struct {
-    char name[64];  /* "as given", "bed", "frame", "cushion", "size 2.4x0.8 m" */
-    char desc[192]; /* the support, in words and numbers */
-    int is_scene;
-    int available;  /* 0: not computed, note says why */
-    char note[256];
-    sw_scene_t scene;
-    sw_model_kind model;
-    int status;
-    sw_safety_t sf;
-} case_t;
-
-typedef struct {
-    const char *frame_mass, *frame_omega, *frame_zeta;
-    const char *cushion_omega, *cushion_zeta;
-    const char **sizes;
-    size_t nsizes;
-} whatif_opts_t;
-
-typedef struct {
-    char *buf;
-    size_t len;
-} note_t;
-
-static void note_diag(void *user, const char *origin, int line, const char *msg)
-{
-    note_t *n = user;
-    (void)line;
-    if (n->buf[0] == '\0') snprintf(n->buf, n->len, "%s: %s", origin ? origin : "scene", msg);
-}
-
-static int case_set(case_t *C, const char *sec, const char *key, const char *val,
-                    const char *origin)
-{
-    note_t n = {C->note, sizeof C->note};
-    if (sw_scene_set(&C->scene, sec, key, val, 1, origin, 0, note_diag, &n) != SW_OK) {
-        C->available = 0;
-        if (!C->note[0]) snprintf(C->note, sizeof C->note, "%s: rejected", origin);
-        return -1;
-    }
-    return 0;
-}
-
-static void describe(case_t *C)
-{
-    sw_derived_t d;
-    note_t n = {C->note, sizeof C->note};
-    if (sw_scene_validate(&C->scene, &d, C->name, note_diag, &n) != SW_OK) {
-        C->available = 0;
-        if (!C->note[0]) snprintf(C->note, sizeof C->note, "invalid scene");
-        return;
-    }
-    C->model = d.model;
-    int k = snprintf(C->desc, sizeof C->desc, "%gx%g m, %g kg", C->scene.height, C->scene.width,
-                     C->scene.mass);
-    if (d.model == SW_MODEL_BARE) {
-        snprintf(C->desc + k, sizeof C->desc - (size_t)k, ", on the bed");
-        return;
-    }
-    if (C->scene.has_frame)
-        k += snprintf(C->desc + k, sizeof C->desc - (size_t)k,
-                      ", frame m_b %g kg, w_b %.4g rad/s, zeta_b %.3g", C->scene.frame_mass,
-                      d.omega_b, d.zeta_b);
-    if (C->scene.has_cushion && k < (int)sizeof C->desc)
-        snprintf(C->desc + k, sizeof C->desc - (size_t)k, ", cushion w_c %.4g rad/s, zeta_c %.3g",
-                 d.omega_c, d.zeta_c);
-}
-
-static int parse_size(const char *arg, double *h, double *w)
-{
-    char tail;
-    return sscanf(arg, "%lfx%lf%c", h, w, &tail) == 2 && isfinite(*h) && isfinite(*w) &&
-                   *h > 0.0 && *w > 0.0
-               ? 0
-               : -1;
-}
-
-/* The cases of the table; the first is the scene as given. */
-static case_t *build_cases(const sw_scene_t *sc, const whatif_opts_t *w, int what_if, size_t *n)
-{
-    const size_t cap = 4 + w->nsizes;
-    case_t *cs = calloc(cap, sizeof *cs);
-    if (!cs) return NULL;
-    size_t m = 0;
-    case_t *C = &cs[m++];
-    snprintf(C->name, sizeof C->name, "as given");
-    C->scene = *sc;
-    C->is_scene = C->available = 1;
-    describe(C);
-    if (!what_if) {
-        *n = m;
-        return cs;
-    }
-
-    const int frame_opts = w->frame_mass || w->frame_omega || w->frame_zeta;
-    const int cushion_opts = w->cushion_omega || w->cushion_zeta;
-
-    if (sc->has_frame || sc->has_cushion) { /* the package alone on the bed */
-        C = &cs[m++];
-        snprintf(C->name, sizeof C->name, "bed");
-        C->scene = *sc;
-        C->scene.has_frame = C->scene.has_cushion = 0;
-        C->available = 1;
-        describe(C);
-    }
-
-    if (!sc->has_frame || frame_opts || sc->has_cushion) { /* on a frame, no cushion */
-        C = &cs[m++];
-        snprintf(C->name, sizeof C->name, "frame");
-        C->scene = *sc;
-        C->scene.has_cushion = 0;
-        C->available = 1;
-        if (!sc->has_frame && !w->frame_omega) {
-            C->available = 0;
-            snprintf(C->note, sizeof C->note,
-                     "no frame given (--frame-omega, --frame-mass, --frame-zeta)");
-        } else {
-            char mass[32];
-            snprintf(mass, sizeof mass, "%.17g", FRAME_MASS_RATIO * sc->mass);
-            const char *fm = w->frame_mass ? w->frame_mass : sc->has_frame ? NULL : mass;
-            const char *fz = w->frame_zeta ? w->frame_zeta
-                             : sc->has_frame ? NULL
-                                             : DEFAULT_FRAME_ZETA;
-            if (fm) case_set(C, "frame", "mass", fm, "--frame-mass");
-            if (C->available && w->frame_omega)
-                case_set(C, "frame", "omega", w->frame_omega, "--frame-omega");
-            if (C->available && fz) case_set(C, "frame", "zeta", fz, "--frame-zeta");
-            if (C->available) describe(C);
-        }
-    }
-
-    if (!sc->has_cushion || cushion_opts) { /* on a cushion, on the scene's support */
-        C = &cs[m++];
-        snprintf(C->name, sizeof C->name, "cushion");
-        C->scene = *sc;
-        C->available = 1;
-        if (!sc->has_cushion && !w->cushion_omega) {
-            C->available = 0;
-            snprintf(C->note, sizeof C->note, "no cushion given (--cushion-omega, --cushion-zeta)");
-        } else {
-            const char *cz = w->cushion_zeta ? w->cushion_zeta
-                             : sc->has_cushion ? NULL
-                                               : DEFAULT_CUSHION_ZETA;
-            if (w->cushion_omega) case_set(C, "cushion", "omega", w->cushion_omega,
-                                           "--cushion-omega");
-            if (C->available && cz) case_set(C, "cushion", "zeta", cz, "--cushion-zeta");
-            if (C->available) describe(C);
-        }
-    }
-
-    for (size_t i = 0; i < w->nsizes; i++) {
-        C = &cs[m++];
-        double h = 0.0, wd = 0.0;
-        parse_size(w->sizes[i], &h, &wd); /* checked while parsing options */
-        snprintf(C->name, sizeof C->name, "size %.6gx%.6g m", h, wd);
-        C->scene = *sc;
-        C->scene.height = h;
-        C->scene.width = wd;
-        C->available = 1;
-        describe(C);
-    }
-    *n = m;
-    return cs;
-}
-
-typedef struct {
-    case_t *cases;
-    const sw_log_t *log;
-    const sw_run_opts_t *ro;
-    const sw_search_opts_t *so;
-} cases_job_t;
-
-static void case_job(void *user, size_t i)
-{
-    cases_job_t *J = user;
-    case_t *C = &J->cases[i];
-    if (!C->available) return;
-    char msg[256] = "";
-    C->status = sw_safety_factor(&C->scene, J->log, J->ro, J->so, &C->sf, msg, sizeof msg);
-    if (C->status == SW_OK) return;
-    C->available = 0;
-    snprintf(C->note, sizeof C->note, "%s", msg[0] ? msg : sw_strerror(C->status));
-}
-
-/* ---- report ---------------------------------------------------------------------- */
-
-static void print_safety(FILE *f, const case_t *C)
-{
-    const sw_safety_t *s = &C->sf;
-    fprintf(f, "\nsafety factor   ");
-    if (isinf(s->lift_scale)) {
-        fprintf(f, "none: the log has no longitudinal acceleration\n");
-        return;
-    }
-    if (!s->found) {
-        fprintf(f, "> %.4g: no scale of the recorded acceleration up to %.4g overturns it\n",
-                s->max_scale, s->max_scale);
-    } else if (s->overturned) {
-        fprintf(f, "%.4g: it OVERTURNED; %.4g times the recorded acceleration already\n"
-                   "                overturns it (%.4g times does not)\n",
-                s->factor, s->factor, s->factor_safe);
-    } else {
-        fprintf(f, "%.4g: the recorded acceleration would have had to be %.4g times\n"
-                   "                larger to overturn it (%.4g times did not)\n",
-                s->factor, s->factor, s->factor_safe);
-    }
-    if (!s->overturned && s->below.found)
-        fprintf(f, "                but a weaker shock of the same shape, %.4g times the recorded "
-                   "one,\n"
-                   "                would have overturned it: it survived by luck of timing\n",
-                s->below.x);
-    fprintf(f, "                (it starts to rock at %.4g times the recorded acceleration; %ld "
-               "runs)\n",
-            s->lift_scale, s->trials);
-}
-
-/* The factor column: "1.234", "1.234*" (a weaker shock overturns), "> 20"
- * (nothing up to the largest scale tried), "none" (no acceleration). */
-static void factor_text(char *buf, size_t len, const sw_safety_t *s)
-{
-    if (isinf(s->lift_scale))
-        snprintf(buf, len, "none");
-    else if (!s->found)
-        snprintf(buf, len, "> %.3g", s->max_scale);
-    else
-        snprintf(buf, len, "%.4g%s", s->factor, !s->overturned && s->below.found ? "*" : "");
-}
-
-static void print_table(FILE *f, const case_t *cs, size_t n)
-{
-    fprintf(f, "\nwhat if (the same log):\n");
-    fprintf(f, "  %-20s %-11s %7s %7s %7s %8s  %s\n", "case", "outcome", "peak/a", "margin",
-            "impacts", "factor", "package and support");
-    for (size_t i = 0; i < n; i++) {
-        const case_t *C = &cs[i];
-        fprintf(f, "  %-20s ", C->name);
-        if (!C->available) {
-            fprintf(f, "n/a: %s\n", C->note);
-            continue;
-        }
-        const sw_run_result_t *r = &C->sf.at_one;
-        char fac[32];
-        factor_text(fac, sizeof fac, &C->sf);
-        fprintf(f, "%-11s %7.3f %7.3f %7ld %8s  %s\n", r->overturned ? "OVERTURNED" : "upright",
-                r->max_theta_ratio, r->min_margin, r->impacts, fac, C->desc);
-    }
-    int luck = 0;
-    for (size_t i = 0; i < n; i++)
-        luck |= cs[i].available && !cs[i].sf.overturned && cs[i].sf.below.found;
-    fprintf(f, "  peak/a: largest |theta|/alpha; margin: smallest margin to overturn; factor:\n"
-               "  safety factor of the case%s\n",
-            luck ? "; *: survived, but a weaker shock of the same shape overturns it" : "");
-}
-
-static void json_num(FILE *f, double v)
-{
-    if (isfinite(v))
-        fprintf(f, "%.9g", v);
-    else
-        fputs("null", f);
-}
-
-static void json_safety(FILE *f, const case_t *C)
-{
-    const sw_safety_t *s = &C->sf;
-    fprintf(f, "{\"available\": %s", C->available ? "true" : "false");
-    if (!C->available) {
-        fprintf(f, ", \"note\": ");
-        sw_cli_json_string(f, C->note);
-        fputc('}', f);
-        return;
-    }
-    fprintf(f, ", \"overturned\": %s, \"found\": %s, \"factor\": ", s->overturned ? "true" : "false",
-            s->found ? "true" : "false");
-    json_num(f, s->found ? s->factor : NAN);
-    fprintf(f, ", \"factor_safe\": ");
-    json_num(f, s->found ? s->factor_safe : NAN);
-    fprintf(f, ", \"weaker_overturning_factor\": ");
-    json_num(f, !s->overturned && s->below.found ? s->below.x : NAN);
-    fprintf(f, ", \"lift_scale\": ");
-    json_num(f, s->lift_scale);
-    fprintf(f, ", \"max_scale\": ");
-    json_num(f, s->max_scale);
-    fprintf(f, ", \"trials\": %ld}", s->trials);
-}
-
-static void json_case(FILE *f, const case_t *C)
-{
-    fprintf(f, "{\"case\": ");
-    sw_cli_json_string(f, C->name);
-    fprintf(f, ", \"as_given\": %s, \"available\": %s", C->is_scene ? "true" : "false",
-            C->available ? "true" : "false");
-    if (C->desc[0]) {
-        fprintf(f, ", \"model\": ");
-        sw_cli_json_string(f, sw_model_name(C->model));
-        fprintf(f, ", \"support\": ");
-        sw_cli_json_string(f, C->desc);
-    }
-    if (!C->available) {
-        fprintf(f, ", \"note\": ");
-        sw_cli_json_string(f, C->note);
-        fputc('}', f);
-        return;
-    }
-    const sw_run_result_t *r = &C->sf.at_one;
-    fprintf(f, ", \"overturned\": %s, \"overturn_time\": ", r->overturned ? "true" : "false");
-    json_num(f, r->overturn_time);
-    fprintf(f, ", \"tip_time\": ");
-    json_num(f, r->tip_time);
-    fprintf(f, ", \"max_theta_ratio\": ");
-    json_num(f, r->max_theta_ratio);
-    fprintf(f, ", \"min_margin\": ");
-    json_num(f, r->min_margin);
-    fprintf(f, ", \"impacts\": %ld, \"safety_factor\": ", r->impacts);
-    json_safety(f, C);
-    fputc('}', f);
 }
 
 /* ---- figure ------------------------------------------------------------------------ */
@@ -583,212 +264,172 @@ static int draw(const char *path, const char *log, const sw_scene_t *sc, const r
 
 /* ---- the command --------------------------------------------------------------------- */
 
-int cmd_forensics(int argc, char **argv)
-{
-    int rc = SW_EXIT_USAGE;
+/* Everything a forensics run uses. */
+typedef struct {
     sw_cli_opts_t o;
     sw_cli_csv_opts_t copts;
-    sw_cli_csv_opts_init(&copts);
-    whatif_opts_t w;
-    memset(&w, 0, sizeof w);
-    double settle = DEFAULT_SETTLE;
-    long threads = DEFAULT_THREADS;
-    int fail_on_overturn = 0, what_if = 1;
-    const char *plot_path = NULL, *log_path = NULL;
-    sw_search_opts_t so;
-    memset(&so, 0, sizeof so);
+    forensics_opts_t fo;
+    const char *log_path;
     sw_cli_log_t L;
-    memset(&L, 0, sizeof L);
-    sw_scene_t *scenes = NULL;
-    size_t nsc = 0, ncases = 0;
-    sw_engine_t *e = NULL;
-    sw_cli_states_t states = {0};
-    sw_cli_events_t events = {0};
-    replay_t R;
-    memset(&R, 0, sizeof R);
-    case_t *cases = NULL;
-
-    if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK) return SW_EXIT_IO;
-    w.sizes = calloc((size_t)argc + 1, sizeof *w.sizes);
-    if (!w.sizes) {
-        sw_cli_error("out of memory");
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    const sw_cli_group_t groups[] = {{sw_cli_csv_option, &copts}};
-    int c;
-    while ((c = sw_cli_getopt(&o, argc, argv,
-                              SW_CLI_COMMON_SHORTOPTS, long_opts, NULL, groups, 1, usage)) > 0) {
-        int r = SW_EXIT_OK;
-        switch (c) {
-        case OPT_SETTLE:
-            r = sw_cli_parse_double("--settle", optarg, SW_NUM_NONNEGATIVE,
-                                    "a number of seconds >= 0", &settle);
-            break;
-        case OPT_FAIL_ON_OVERTURN: fail_on_overturn = 1; break;
-        case OPT_FRAME_MASS: w.frame_mass = optarg; break;
-        case OPT_FRAME_OMEGA: w.frame_omega = optarg; break;
-        case OPT_FRAME_ZETA: w.frame_zeta = optarg; break;
-        case OPT_CUSHION_OMEGA: w.cushion_omega = optarg; break;
-        case OPT_CUSHION_ZETA: w.cushion_zeta = optarg; break;
-        case OPT_SIZE: {
-            double h, wd;
-            if (parse_size(optarg, &h, &wd) != 0) {
-                sw_cli_error("--size: expected HEIGHTxWIDTH in m, e.g. 2.4x0.8, got '%s'", optarg);
-                r = SW_EXIT_USAGE;
-            }
-            w.sizes[w.nsizes++] = optarg;
-            break;
-        }
-        case OPT_PLOT:
-            plot_path = optarg;
-            r = sw_cli_plot_check("--plot", optarg);
-            break;
-        case OPT_THREADS:
-            r = sw_cli_parse_long("--threads", optarg, 1, "a whole number of threads >= 1",
-                                  &threads);
-            if (threads > 256) threads = 256;
-            break;
-        case OPT_STEP:
-            r = sw_cli_parse_double("--step", optarg, SW_NUM_POSITIVE, "a positive relative step",
-                                    &so.step);
-            break;
-        case OPT_TOL:
-            r = sw_cli_parse_double("--tol", optarg, SW_NUM_POSITIVE,
-                                    "a positive relative tolerance", &so.tol);
-            break;
-        case OPT_MAX_FACTOR:
-            r = sw_cli_parse_double("--max-factor", optarg, SW_NUM_POSITIVE,
-                                    "a positive scale factor", &so.x_max);
-            break;
-        case OPT_NO_WHAT_IF: what_if = 0; break;
-        default: sw_cli_error("forensics: unhandled option"); r = SW_EXIT_USAGE;
-        }
-        if (r != SW_EXIT_OK) {
-            rc = r;
-            goto out;
-        }
-    }
-    if (c != SW_CLI_OPT_END) {
-        if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
-        goto out;
-    }
-    if (!(log_path = sw_cli_log_operand("forensics", argc, argv))) goto out;
-    if (o.n_scene_files > 1) {
-        sw_cli_error("forensics: one --scene (one package) at a time");
-        goto out;
-    }
-    if (so.x_max > 0.0 && so.x_max <= 1.0) {
-        sw_cli_error("--max-factor: expected a factor above 1, got %g", so.x_max);
-        goto out;
-    }
-
-    rc = sw_cli_log_read(log_path, &copts, o.quiet, &L);
-    if (rc != SW_EXIT_OK) goto out;
-    rc = sw_cli_load_scenes(&o, &scenes, &nsc);
-    if (rc != SW_EXIT_OK) goto out;
-
-    /* 1. the replay, exactly as replay runs it */
+    sw_scene_t *scenes;
+    size_t nsc;
     sw_engine_opts_t eo;
-    sw_cli_engine_opts(&o, &eo);
-    if ((rc = sw_cli_resolve_accuracy(&o, scenes, nsc, &eo)) != SW_EXIT_OK) goto out;
-    R.keep = plot_path != NULL;
-    if (R.keep) {
-        R.ev = calloc(MAX_EVENTS, sizeof *R.ev);
-        if (!R.ev) {
-            sw_cli_error("out of memory");
-            rc = SW_EXIT_IO;
-            goto out;
-        }
-    }
-    eo.on_event = on_event;
-    eo.on_state = o.out_path || R.keep ? on_state : NULL;
-    eo.user = &R;
-    rc = SW_EXIT_USAGE;
-    e = sw_cli_engine_create(scenes, 1, &eo);
-    if (!e) goto out;
-    R.alpha = sw_engine_derived(e, 0)->alpha;
-    if (o.verbose) sw_cli_print_derived(stderr, e, scenes, 1);
-    rc = sw_cli_states_open(&states, o.out_path, o.every, scenes, 1);
-    if (rc != SW_EXIT_OK) goto out;
-    rc = sw_cli_events_open(&events, o.events_path, scenes, 1);
-    if (rc != SW_EXIT_OK) goto out;
-    R.states = &states;
-    R.events = &events;
-    long refused = 0;
-    for (size_t i = 0; i < L.n; i++)
-        if (sw_engine_push(e, L.t[i], L.a_g[i], L.has_z ? L.a_z[i] : 0.0) < 0) refused++;
-    sw_engine_finish(e, settle);
-    rc = sw_cli_states_close(&states);
-    int rc2 = sw_cli_events_close(&events);
-    if (rc == SW_EXIT_OK) rc = rc2;
-    if (rc != SW_EXIT_OK) goto out;
-    if (R.oom) sw_cli_error("out of memory keeping the state series: the figure is partial");
+    sw_engine_t *e;
+    long refused; /* samples the engine refused */
+    sw_cli_states_t states;
+    sw_cli_events_t events;
+    replay_t R;
+    sw_cli_case_t *cases;
+    size_t ncases;
+} forensics_t;
 
-    /* 2. the safety factor and the what-if cases */
-    cases = build_cases(&scenes[0], &w, what_if, &ncases);
-    if (!cases) {
+/* 1. The replay, exactly as replay runs it. */
+static int replay_log(forensics_t *F)
+{
+    int rc;
+    replay_t *R = &F->R;
+    sw_cli_engine_opts(&F->o, &F->eo);
+    if ((rc = sw_cli_resolve_accuracy(&F->o, F->scenes, F->nsc, &F->eo)) != SW_EXIT_OK) return rc;
+    R->keep = F->fo.plot != NULL;
+    if (R->keep && !(R->ev = calloc(MAX_EVENTS, sizeof *R->ev))) {
         sw_cli_error("out of memory");
-        rc = SW_EXIT_IO;
-        goto out;
+        return SW_EXIT_IO;
+    }
+    sw_engine_opts_t eo = F->eo;
+    eo.on_event = on_event;
+    eo.on_state = F->o.out_path || R->keep ? on_state : NULL;
+    eo.user = R;
+    if (!(F->e = sw_cli_engine_create(F->scenes, 1, &eo))) return SW_EXIT_USAGE;
+    R->alpha = sw_engine_derived(F->e, 0)->alpha;
+    if (F->o.verbose) sw_cli_print_derived(stderr, F->e, F->scenes, 1);
+    if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, F->scenes, 1)) !=
+            SW_EXIT_OK ||
+        (rc = sw_cli_events_open(&F->events, F->o.events_path, F->scenes, 1)) != SW_EXIT_OK)
+        return rc;
+    R->states = &F->states;
+    R->events = &F->events;
+    const sw_cli_log_t *L = &F->L;
+    for (size_t i = 0; i < L->n; i++)
+        if (sw_engine_push(F->e, L->t[i], L->a_g[i], L->has_z ? L->a_z[i] : 0.0) < 0)
+            F->refused++;
+    sw_engine_finish(F->e, F->fo.settle);
+    rc = sw_cli_states_close(&F->states);
+    int rc2 = sw_cli_events_close(&F->events);
+    if (rc == SW_EXIT_OK) rc = rc2;
+    if (rc == SW_EXIT_OK && R->oom)
+        sw_cli_error("out of memory keeping the state series: the figure is partial");
+    return rc;
+}
+
+/* 2. The safety factor and the what-if cases. */
+static int run_cases(forensics_t *F)
+{
+    F->cases = sw_cli_whatif_build(&F->scenes[0], &F->fo.w, &F->ncases);
+    if (!F->cases) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
     }
     sw_run_opts_t ro;
     memset(&ro, 0, sizeof ro);
-    ro.engine = eo; /* the replay's integration options, --accuracy included */
-    ro.settle = settle > 0.0 ? settle : -1.0; /* negative: no free motion at all */
-    sw_log_t lg = {L.t, L.a_g, L.has_z ? L.a_z : NULL, L.n};
-    cases_job_t J = {cases, &lg, &ro, &so};
-    sw_parallel_for(ncases, (int)threads, case_job, &J);
-    if (!cases[0].available) {
-        sw_cli_error("forensics: safety factor: %s", cases[0].note);
-        rc = SW_EXIT_USAGE;
-        goto out;
+    ro.engine = F->eo; /* the replay's integration options, --accuracy included */
+    ro.settle = F->fo.settle > 0.0 ? F->fo.settle : -1.0; /* negative: no free motion at all */
+    const sw_cli_log_t *L = &F->L;
+    sw_log_t lg = {L->t, L->a_g, L->has_z ? L->a_z : NULL, L->n};
+    sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads);
+    if (!F->cases[0].available) {
+        sw_cli_error("forensics: safety factor: %s", F->cases[0].note);
+        return SW_EXIT_USAGE;
     }
-    sw_summary_t sum;
-    sw_engine_summary(e, 0, &sum);
-    if (sum.overturned != cases[0].sf.overturned)
-        sw_cli_error("forensics: the replay and the safety-factor run disagree on the outcome "
-                     "(overturned %s / %s): the shock is at the edge of the model's resolution",
-                     sum.overturned ? "yes" : "no", cases[0].sf.overturned ? "yes" : "no");
-    sw_cli_run_t run = {
-        .log = log_path,
-        .samples_read = L.rows,
-        .samples_rejected = L.rejected + refused,
-        .settle = settle,
+    return SW_EXIT_OK;
+}
+
+/* 3. The report: replay's summary, the safety factor and the table. */
+static void report(const forensics_t *F)
+{
+    const sw_cli_run_t run = {
+        .log = F->log_path,
+        .samples_read = F->L.rows,
+        .samples_rejected = F->L.rejected + F->refused,
+        .settle = F->fo.settle,
     };
-    if (o.json) {
+    if (F->o.json) {
         fprintf(stdout, "{\n\"replay\": ");
-        sw_cli_print_json(stdout, e, &run);
+        sw_cli_print_json(stdout, F->e, &run);
         fprintf(stdout, ",\n\"safety_factor\": ");
-        json_safety(stdout, &cases[0]);
+        sw_cli_whatif_json_safety(stdout, &F->cases[0]);
         fprintf(stdout, ",\n\"what_if\": [");
-        for (size_t i = 0; i < ncases; i++) {
+        for (size_t i = 0; i < F->ncases; i++) {
             fprintf(stdout, "%s\n  ", i ? "," : "");
-            json_case(stdout, &cases[i]);
+            sw_cli_whatif_json_case(stdout, &F->cases[i]);
         }
         fprintf(stdout, "\n]\n}\n");
-    } else if (!o.quiet) {
-        sw_cli_print_summary(stdout, e, &run);
-        print_safety(stdout, &cases[0]);
-        if (what_if) print_table(stdout, cases, ncases);
+    } else if (!F->o.quiet) {
+        sw_cli_print_summary(stdout, F->e, &run);
+        sw_cli_whatif_print_safety(stdout, &F->cases[0]);
+        if (!F->fo.w.no_what_if) sw_cli_whatif_print_table(stdout, F->cases, F->ncases);
     }
-    if (plot_path) {
-        const sw_derived_t *d = sw_engine_derived(e, 0);
-        rc = draw(plot_path, log_path, &scenes[0], &R, scenes[0].g * tan(d->alpha));
+}
+
+int cmd_forensics(int argc, char **argv)
+{
+    int rc = SW_EXIT_USAGE;
+    forensics_t F;
+    memset(&F, 0, sizeof F);
+    sw_cli_csv_opts_init(&F.copts);
+    sw_cli_group_t g[] = {
+        SW_CLI_GROUP(sw_cli_csv_options, &F.copts),
+        SW_CLI_GROUP(sw_cli_sample_options, &F.copts),
+        SW_CLI_GROUP(forensics_options, &F.fo),
+        SW_CLI_GROUP(sw_cli_scene_options, &F.o),
+        SW_CLI_GROUP(sw_cli_integration_options, &F.o),
+        SW_CLI_GROUP(sw_cli_accuracy_options, &F.o),
+        SW_CLI_GROUP(sw_cli_output_options, &F.o),
+        SW_CLI_GROUP(forensics_output_options, &F.fo),
+        SW_CLI_GROUP_IN(sw_cli_common_options, &F.o, "Output:"),
+    };
+    const size_t ng = sizeof g / sizeof g[0];
+
+    int first;
+    if ((rc = sw_cli_parse(&forensics_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
+        goto out;
+    rc = SW_EXIT_USAGE;
+    if (!(F.log_path = sw_cli_log_operand("forensics", argc, argv, first))) goto out;
+    if (F.o.scenes.n > 1) {
+        sw_cli_error("forensics: one --scene (one package) at a time");
+        goto out;
+    }
+    if (F.fo.so.x_max > 0.0 && F.fo.so.x_max <= 1.0) {
+        sw_cli_error("--max-factor: expected a factor above 1, got %g", F.fo.so.x_max);
+        goto out;
+    }
+    if ((rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
+            SW_EXIT_OK ||
+        (rc = sw_cli_log_read(F.log_path, &F.copts, F.o.quiet, &F.L)) != SW_EXIT_OK ||
+        (rc = sw_cli_load_scenes(&F.o, &F.scenes, &F.nsc)) != SW_EXIT_OK ||
+        (rc = replay_log(&F)) != SW_EXIT_OK || (rc = run_cases(&F)) != SW_EXIT_OK)
+        goto out;
+    sw_summary_t sum;
+    sw_engine_summary(F.e, 0, &sum);
+    if (sum.overturned != F.cases[0].sf.overturned)
+        sw_cli_error("forensics: the replay and the safety-factor run disagree on the outcome "
+                     "(overturned %s / %s): the shock is at the edge of the model's resolution",
+                     sum.overturned ? "yes" : "no", F.cases[0].sf.overturned ? "yes" : "no");
+    report(&F);
+    if (F.fo.plot) {
+        const sw_derived_t *d = sw_engine_derived(F.e, 0);
+        rc = draw(F.fo.plot, F.log_path, &F.scenes[0], &F.R, F.scenes[0].g * tan(d->alpha));
         if (rc != SW_EXIT_OK) goto out;
     }
-    rc = SW_EXIT_OK;
-    if (fail_on_overturn && sum.overturned) rc = SW_EXIT_OVERTURNED;
+    rc = F.fo.fail_on_overturn && sum.overturned ? SW_EXIT_OVERTURNED : SW_EXIT_OK;
 out:
-    sw_cli_states_close(&states);
-    sw_cli_events_close(&events);
-    sw_engine_destroy(e);
-    free(cases);
-    free(R.s);
-    free(R.ev);
-    free(scenes);
-    sw_cli_log_free(&L);
-    free(w.sizes);
-    sw_cli_opts_fini(&o);
+    sw_cli_states_close(&F.states);
+    sw_cli_events_close(&F.events);
+    sw_engine_destroy(F.e);
+    free(F.cases);
+    free(F.R.s);
+    free(F.R.ev);
+    free(F.scenes);
+    sw_cli_log_free(&F.L);
+    sw_cli_parse_free(g, ng);
     return rc;
 }

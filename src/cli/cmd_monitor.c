@@ -1,7 +1,7 @@
 /* cmd_monitor.c - "swaywatch monitor": the live monitor on the vehicle's
  * LCM bus.  Subscribes to acceleration samples, advances every package's
  * model as they arrive, publishes states and alarms (the work is done by
- * the monitor core, lcmmon.c).
+ * the monitor core, src/lcm/monitor.c).
  *
  * One thread: poll() on LCM's file descriptor and on a self-pipe written by
  * the signal handler, with a timeout that wakes the loop for the sensor-gap
@@ -21,10 +21,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cli.h"
-#include "lcmcli.h"
-#include "lcmmon.h"
-#include "monreload.h"
+#include "input.h"
+#include "lcmopts.h"
+#include "monitor.h"
+#include "opts.h"
+#include "output.h"
 
 /* Per-subscription queue of LCM (default 30, which loses samples in bursts
  * at 1 kHz): two seconds of samples at 1 kHz. */
@@ -32,109 +33,100 @@
 /* Messages handled per wake-up before the timers get a look. */
 #define BATCH 256
 
-enum { OPT_ACCEL_CHANNEL = SW_OPT_FIRST_OWN, OPT_FLIP, OPT_ACCEL_UNIT, OPT_STATUS };
+/* monitor's own options, and the monitor core's. */
+typedef struct {
+    sw_mon_opts_t mo;
+    const char *url;           /* --lcm-url; NULL: LCM's default */
+    const char *accel_channel; /* subscribed to */
+    double status_every;       /* s, --status; 0: no status line */
+} monitor_opts_t;
 
-/* The options monitor shares with replay of lcm-logger files carry the
- * SW_OPT_LCM_* codes of cli.h and are read by sw_cli_mon_option(). */
-static const struct option long_opts[] = {
-    SW_CLI_COMMON_LONGOPTS,
-    {"lcm-url", required_argument, NULL, 'l'},
-    {"accel-channel", required_argument, NULL, OPT_ACCEL_CHANNEL},
-    {"state-channel", required_argument, NULL, SW_OPT_LCM_STATE_CHANNEL},
-    {"alarm-channel", required_argument, NULL, SW_OPT_LCM_ALARM_CHANNEL},
-    {"axis", required_argument, NULL, SW_OPT_LCM_AXIS},
-    {"vertical", required_argument, NULL, SW_OPT_LCM_VERTICAL},
-    {"flip", no_argument, NULL, OPT_FLIP},
-    {"accel-unit", required_argument, NULL, OPT_ACCEL_UNIT},
-    {"state-rate", required_argument, NULL, SW_OPT_LCM_STATE_RATE},
-    {"gap", required_argument, NULL, SW_OPT_LCM_GAP},
-    {"status", required_argument, NULL, OPT_STATUS},
-    {"max-accel", required_argument, NULL, SW_OPT_LCM_MAX_ACCEL},
-    {"max-skew", required_argument, NULL, SW_OPT_LCM_MAX_SKEW},
-    {"max-jump", required_argument, NULL, SW_OPT_LCM_MAX_JUMP},
-    {NULL, 0, NULL, 0},
+static int check_accel_channel(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    (void)dest;
+    /* LCM's limit on channel names */
+    if (!arg[0] || strlen(arg) > 63) {
+        sw_cli_error("--%s: expected a channel regex of 1 to 63 characters, got '%s'",
+                     o->long_name, arg);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+#define MO(f) SW_CLI_AT(monitor_opts_t, f)
+
+static const sw_cli_option_t monitor_lcm_options[] = {
+    {SW_CLI_SECTION, .help = "LCM:"},
+    {SW_CLI_STRING, 'l', "lcm-url", "URL", MO(url),
+     .help = "LCM URL (default: $LCM_DEFAULT_URL, else LCM's default, "
+             "udpm://239.255.76.67:7667?ttl=0)"},
+    {SW_CLI_STRING, 0, "accel-channel", "REGEX", MO(accel_channel), .fn = check_accel_channel,
+     .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
+             SW_MON_ACCEL_CHANNEL ")"},
+    {SW_CLI_END},
 };
 
-static void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: swaywatch monitor --scene S.ini [--scene T.ini ...] [options]\n"
-            "\n"
-            "Live monitor: subscribes to acceleration samples (swaywatch.accel_t) over LCM,\n"
-            "advances the model of every package as they arrive, and publishes each package's\n"
-            "state (swaywatch.state_t) and alarms (swaywatch.alarm_t).  Runs until SIGINT or\n"
-            "SIGTERM, then prints a summary on stderr.  Samples are integrated by their own\n"
-            "utime, never by arrival time.\n"
-            "\n"
-            "SIGHUP (systemctl reload) re-reads the scene files: a package whose scene values\n"
-            "changed is rebuilt and starts from rest; the others keep their state, alarms and\n"
-            "message sequence.  If a file is unreadable or invalid, nothing changes.\n"
-            "\n"
-            "LCM:\n"
-            "  -l, --lcm-url URL          LCM URL (default: $LCM_DEFAULT_URL, else LCM's default,\n"
-            "                             udpm://239.255.76.67:7667?ttl=0)\n"
-            "      --accel-channel CHAN   input channel (default %s)\n"
-            "      --state-channel CHAN   states (default %s)\n"
-            "      --alarm-channel CHAN   alarms (default %s)\n"
-            "      --state-rate HZ        states per package per second of sample time\n"
-            "                             (default 0: one per sample)\n"
-            "\n"
-            "Input:\n"
-            "      --axis x|y|z           message axis along the truck's travel (default x)\n"
-            "      --flip                 negate that axis (sensor mounted backwards)\n"
-            "      --vertical x|y|z|none  message axis used as vertical acceleration (up, gravity\n"
-            "                             removed; default none: gravity only)\n"
-            "      --accel-unit m/s2|g    unit of the message's values (default m/s2)\n"
-            "      --max-accel A          refuse samples with any axis beyond A, in m/s^2 or with\n"
-            "                             a g suffix, e.g. 30g (default 50g)\n"
-            "      --max-skew SECONDS     refuse samples whose utime is further than this from\n"
-            "                             the wall clock (default: not checked; e.g. 10 for a\n"
-            "                             sensor with a synchronised clock; leave it off when\n"
-            "                             lcm-logplayer replays an old log)\n"
-            "      --max-jump SECONDS     hold a sample whose utime is further than this after\n"
-            "                             the last one until the next sample confirms it\n"
-            "                             (default %g; 0: take any jump at once)\n"
-            "      --gap SECONDS          sensor gap threshold (default %g)\n"
-            "      --status SECONDS       one status line on stderr every SECONDS: sample rate,\n"
-            "                             lag behind the sensor clock, CPU share, counts\n"
-            "                             (default 0: none)\n"
-            "\n",
-            SW_MON_ACCEL_CHANNEL, SW_MON_STATE_CHANNEL, SW_MON_ALARM_CHANNEL, SW_MON_MAX_JUMP,
-            SW_MON_GAP);
-    fprintf(f,
-            "Sensor gaps: when no sample has arrived for --gap seconds, a SENSOR_GAP alarm\n"
-            "(warn) is published and the model waits: it is not advanced and publishes no\n"
-            "state.  When samples resume, the input over the gap is bridged by linear\n"
-            "interpolation between the last sample before it and the first after it, and a\n"
-            "SENSOR_GAP alarm (info) says so.  Consecutive samples further apart in utime than\n"
-            "--gap (samples lost upstream) raise SENSOR_GAP (warn) when the later one arrives\n"
-            "and are bridged the same way.\n"
-            "\n"
-            "Jumps: a sample whose utime is more than --max-jump after the last accepted one\n"
-            "(and the very first sample) waits for the next.  If the next follows it within\n"
-            "--max-jump, the sensor's clock did jump (an outage, a restart) and both are taken,\n"
-            "the gap bridged as above; otherwise the waiting sample is refused as a jump.  One\n"
-            "sample stamped far in the future therefore cannot make the later ones late.\n"
-            "\n"
-            "Bad input: messages that are not accel_t (wrong type, truncated, trailing bytes),\n"
-            "samples with a non-finite value or beyond --max-accel or --max-skew, duplicates\n"
-            "(same utime as the last accepted sample) and late samples (utime before it) are\n"
-            "refused and counted by reason: the model never integrates backwards.  The first\n"
-            "refusal of each reason raises INPUT_REJECTED at once, later ones at most once a\n"
-            "second with their count.  Samples lost on the way are counted from the sender's\n"
-            "seq.  A state whose numbers are not all finite is never published: a MODEL_FAULT\n"
-            "alarm is, instead.\n"
-            "\n");
-    sw_cli_print_scene_help(f);
-    fprintf(f,
-            "  -v, --verbose            derived quantities of each scene, on stderr\n"
-            "  -h, --help               this help\n"
-            "\n"
-            "The monitor writes no files: record its output with lcm-logger.\n"
-            "\n"
-            "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
-            "3 LCM could not be set up (URL, network) or a scene file could not be read.\n");
-}
+static const sw_cli_option_t monitor_input_options[] = {
+    {SW_CLI_SECTION, .help = "Input:"},
+    {SW_CLI_FLAG, 0, "flip", MO(mo.flip), .value = 1,
+     .help = "negate the longitudinal axis (sensor mounted backwards)"},
+    {SW_CLI_CALL, 0, "accel-unit", "m/s2|g", MO(mo.accel_scale), .fn = sw_cli_accel_unit,
+     .help = "unit of the message's values (default m/s2)"},
+    {SW_CLI_DOUBLE, 0, "status", "SECONDS", MO(status_every), .rule = SW_NUM_NONNEGATIVE,
+     .what = "a number of seconds >= 0 (0: no status)",
+     .help = "one status line on stderr every SECONDS: sample rate, lag behind the sensor clock, "
+             "CPU share, counts (default 0: none)"},
+    {SW_CLI_TEXT,
+     .help = "\nA sensor with a synchronised clock can use --max-skew (e.g. 10); leave it off\n"
+             "when lcm-logplayer replays an old log.\n"
+             "\n"
+             "Sensor gaps: when no sample has arrived for --gap seconds, a SENSOR_GAP alarm\n"
+             "(warn) is published and the model waits: it is not advanced and publishes no\n"
+             "state.  When samples resume, the input over the gap is bridged by linear\n"
+             "interpolation between the last sample before it and the first after it, and a\n"
+             "SENSOR_GAP alarm (info) says so.  Consecutive samples further apart in utime than\n"
+             "--gap (samples lost upstream) raise SENSOR_GAP (warn) when the later one arrives\n"
+             "and are bridged the same way.\n"
+             "\n"
+             "Jumps: a sample whose utime is more than --max-jump after the last accepted one\n"
+             "(and the very first sample) waits for the next.  If the next follows it within\n"
+             "--max-jump, the sensor's clock did jump (an outage, a restart) and both are taken,\n"
+             "the gap bridged as above; otherwise the waiting sample is refused as a jump.  One\n"
+             "sample stamped far in the future therefore cannot make the later ones late.\n"
+             "\n"
+             "Bad input: messages that are not accel_t (wrong type, truncated, trailing bytes),\n"
+             "samples with a non-finite value or beyond --max-accel or --max-skew, duplicates\n"
+             "(same utime as the last accepted sample) and late samples (utime before it) are\n"
+             "refused and counted by reason: the model never integrates backwards.  The first\n"
+             "refusal of each reason raises INPUT_REJECTED at once, later ones at most once a\n"
+             "second with their count.  Samples lost on the way are counted from the sender's\n"
+             "seq.  A state whose numbers are not all finite is never published: a MODEL_FAULT\n"
+             "alarm is, instead."},
+    {SW_CLI_END},
+};
+
+/* What the monitor publishes: the states and alarms (sw_cli_lcm_publish_options). */
+static const sw_cli_option_t monitor_output_notes[] = {
+    {SW_CLI_SECTION, .help = "Output:"},
+    {SW_CLI_TEXT, .help = "\nThe monitor writes no files: record its output with lcm-logger."},
+    {SW_CLI_END},
+};
+
+static const sw_cli_command_t monitor_cmd = {
+    .name = "monitor",
+    .usage = "monitor --scene S.ini [--scene T.ini ...] [options]",
+    .about = "Live monitor: subscribes to acceleration samples (swaywatch.accel_t) over LCM,\n"
+             "advances the model of every package as they arrive, and publishes each package's\n"
+             "state (swaywatch.state_t) and alarms (swaywatch.alarm_t).  Runs until SIGINT or\n"
+             "SIGTERM, then prints a summary on stderr.  Samples are integrated by their own\n"
+             "utime, never by arrival time.\n"
+             "\n"
+             "SIGHUP (systemctl reload) re-reads the scene files: a package whose scene values\n"
+             "changed is rebuilt and starts from rest; the others keep their state, alarms and\n"
+             "message sequence.  If a file is unreadable or invalid, nothing changes.\n",
+    .exit_text = "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
+                 "3 LCM could not be set up (URL, network) or a scene file could not be read.\n",
+};
 
 /* ---- signals --------------------------------------------------------------- */
 
@@ -196,6 +188,89 @@ static int64_t wall_now_us(void)
     return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
 }
 
+/* ---- reload (SIGHUP) ---------------------------------------------------------
+ * The monitor re-reads its scene files on SIGHUP (systemctl reload),
+ * without losing the state of the packages whose scene did not change.
+ *
+ * Every --scene file is read again, with the --set overrides, exactly as at
+ * start.  A package whose scene values are the same as before (comments,
+ * layout and the order of keys do not count) is left alone: its state, its
+ * alarm state and its place in the message streams go on.  A package whose
+ * scene changed is rebuilt and starts from rest at the current sample time
+ * (sw_mon_replace).  All or nothing: if a file cannot be read or is not a
+ * valid scene, or a changed scene cannot be built, nothing is changed and
+ * the monitor goes on with the scenes it had.  The file list itself is the
+ * one given at start. */
+
+/* Re-read the scene files of o (with its --set overrides) and rebuild the
+ * packages of mon whose scene changed; scenes[0..n) are the monitor's
+ * current scenes, updated in place.  Says what it did on stderr.  Returns
+ * SW_EXIT_OK, or SW_EXIT_USAGE / SW_EXIT_IO with nothing changed. */
+static int reload_scenes(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scenes, size_t n)
+{
+    sw_scene_t *fresh = NULL, *changed = NULL;
+    size_t nf = 0, nchanged = 0;
+    sw_engine_t *trial = NULL;
+    char msg[512] = "";
+
+    int rc = sw_cli_load_scenes(o, &fresh, &nf);
+    if (rc != SW_EXIT_OK)
+        goto keep;
+    if (nf != n) { /* the same files as at start: cannot happen */
+        sw_cli_error("monitor: reload: %zu scenes instead of %zu", nf, n);
+        rc = SW_EXIT_USAGE;
+        goto keep;
+    }
+    changed = calloc(n, sizeof *changed);
+    if (!changed) {
+        sw_cli_error("monitor: reload: out of memory");
+        rc = SW_EXIT_IO;
+        goto keep;
+    }
+    for (size_t k = 0; k < n; k++)
+        if (!sw_scene_equal(&scenes[k], &fresh[k]))
+            changed[nchanged++] = fresh[k];
+    if (nchanged == 0) {
+        fprintf(stderr, "swaywatch: monitor: reload: no scene changed; %zu packages kept\n", n);
+        goto done;
+    }
+    /* Build the changed packages once on the side with the monitor's
+     * options: what passes here cannot fail in sw_mon_replace() but for
+     * memory, so a reload does not stop half-way. */
+    sw_engine_opts_t eo;
+    sw_cli_engine_opts(o, &eo);
+    int err = 0;
+    trial = sw_engine_create(changed, nchanged, &eo, &err, msg, sizeof msg);
+    if (!trial) {
+        sw_cli_error("monitor: reload: %s", msg[0] ? msg : sw_strerror(err));
+        rc = SW_EXIT_USAGE;
+        goto keep;
+    }
+    for (size_t k = 0; k < n; k++) {
+        if (sw_scene_equal(&scenes[k], &fresh[k]))
+            continue;
+        if (sw_mon_replace(mon, k, &fresh[k], msg, sizeof msg) != SW_OK) {
+            sw_cli_error("monitor: reload: %s: %s", fresh[k].name, msg);
+            rc = SW_EXIT_IO;
+            continue; /* only memory: the package keeps its old scene */
+        }
+        fprintf(stderr, "swaywatch: monitor: reload: %s rebuilt from %s (scene changed)\n",
+                fresh[k].name, o->scenes.v[k]);
+        scenes[k] = fresh[k];
+    }
+    fprintf(stderr, "swaywatch: monitor: reload: %zu of %zu packages rebuilt, the others kept\n",
+            nchanged, n);
+    goto done;
+
+keep:
+    sw_cli_error("monitor: reload: scene files not applied; going on with the scenes of before");
+done:
+    sw_engine_destroy(trial);
+    free(changed);
+    free(fresh);
+    return rc;
+}
+
 /* ---- the loop ------------------------------------------------------------------ */
 
 typedef struct {
@@ -213,7 +288,7 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
 {
     (void)channel;
     mon_ctx_t *c = user;
-    double t0 = sw_cli_mono_now();
+    double t0 = sw_mon_clock();
     sw_mon_counts_t k0, k1;
     sw_mon_counts(c->mon, &k0);
     sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, t0, NULL);
@@ -225,22 +300,7 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
         if (c->accepted == 1 || lag > c->lag_max)
             c->lag_max = lag;
     }
-    c->busy += sw_cli_mono_now() - t0;
-}
-
-static void print_rejected(FILE *f, const sw_mon_counts_t *k)
-{
-    const long total = sw_mon_rejected(k);
-    fprintf(f, "rejected %ld", total);
-    if (!total)
-        return;
-    const char *sep = " (";
-    for (int r = 0; r < SW_MON_NREJ; r++)
-        if (k->rejected[r]) {
-            fprintf(f, "%s%s %ld", sep, sw_mon_reject_name((sw_mon_reject)r), k->rejected[r]);
-            sep = ", ";
-        }
-    fputc(')', f);
+    c->busy += sw_mon_clock() - t0;
 }
 
 static void print_status(mon_ctx_t *c, double elapsed, double interval)
@@ -253,7 +313,7 @@ static void print_status(mon_ctx_t *c, double elapsed, double interval)
         fprintf(stderr, ", lag %.2f ms (max %.2f)", 1e3 * c->lag_sum / (double)c->accepted,
                 1e3 * c->lag_max);
     fprintf(stderr, ", busy %.1f%%; accepted %ld, ", 100.0 * c->busy / interval, k.accepted);
-    print_rejected(stderr, &k);
+    sw_cli_print_rejected(stderr, &k);
     fprintf(stderr, ", lost %ld, gaps %ld, states %ld, alarms %ld\n", k.lost, k.gaps, k.states,
             k.alarms);
     c->accepted = 0;
@@ -266,7 +326,7 @@ static void print_final(sw_mon_t *mon, double elapsed)
     sw_mon_counts(mon, &k);
     fprintf(stderr, "swaywatch: monitor stopped (%s) after %.1f s: received %ld = accepted %ld + ",
             stop_signal == SIGTERM ? "SIGTERM" : "SIGINT", elapsed, k.received, k.accepted);
-    print_rejected(stderr, &k);
+    sw_cli_print_rejected(stderr, &k);
     fprintf(stderr,
             "; lost %ld (by seq), seq restarts %ld, gaps %ld; published %ld states (%ld "
             "withheld), %ld alarms; %ld publish errors\n",
@@ -282,11 +342,11 @@ static void print_final(sw_mon_t *mon, double elapsed)
 static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
 {
     int fd = lcm_get_fileno(lcm);
-    double start = sw_cli_mono_now();
+    double start = sw_mon_clock();
     double last_status = start;
     double next_status = status_every > 0.0 ? start + status_every : INFINITY;
     while (!stop_signal) {
-        double now = sw_cli_mono_now();
+        double now = sw_mon_clock();
         double deadline = fmin(sw_mon_deadline(c->mon), next_status);
         int timeout = -1;
         if (isfinite(deadline))
@@ -313,9 +373,9 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
             while (read(wake_pipe[0], junk, sizeof junk) > 0) {
             }
             reload_signal = 0;
-            sw_cli_monitor_reload(c->mon, c->opts, c->scenes, c->n);
+            reload_scenes(c->mon, c->opts, c->scenes, c->n);
         }
-        now = sw_cli_mono_now();
+        now = sw_mon_clock();
         if (now >= sw_mon_deadline(c->mon))
             sw_mon_tick(c->mon, now);
         if (now >= next_status) {
@@ -327,126 +387,111 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
         }
     }
     sw_mon_flush(c->mon);
-    print_final(c->mon, sw_cli_mono_now() - start);
+    print_final(c->mon, sw_mon_clock() - start);
     return SW_EXIT_OK;
 }
 
-/* ---- options ------------------------------------------------------------------ */
+/* ---- the command --------------------------------------------------------------- */
+
+/* LCM at url, or why not. */
+static lcm_t *open_lcm(const char *url)
+{
+    lcm_t *lcm = lcm_create(url);
+    if (lcm)
+        return lcm;
+    /* The usual cause with udpm: no route for multicast (a host or network
+     * namespace with only loopback). */
+    int udpm = !url || !url[0] || !strncmp(url, "udpm://", 7);
+    sw_cli_error("monitor: cannot set up LCM with %s%s", url && url[0] ? url : "the default URL",
+                 udpm ? " (udpm needs a route for 224.0.0.0/4, e.g. 'ip route add "
+                        "224.0.0.0/4 dev lo')"
+                      : "");
+    return NULL;
+}
+
+/* The monitor core on c's scenes, publishing on lcm. */
+static int start(mon_ctx_t *c, const sw_mon_opts_t *mo, lcm_t *lcm)
+{
+    sw_engine_opts_t eo;
+    sw_cli_engine_opts(c->opts, &eo);
+    int rc = sw_cli_resolve_accuracy(c->opts, c->scenes, c->n, &eo);
+    if (rc != SW_EXIT_OK)
+        return rc;
+    char msg[512] = "";
+    c->mon = sw_mon_create(c->scenes, c->n, &eo, mo, lcm, msg, sizeof msg);
+    if (!c->mon) {
+        sw_cli_error("monitor: %s", msg[0] ? msg : "cannot start");
+        return SW_EXIT_USAGE;
+    }
+    if (c->opts->verbose)
+        sw_cli_print_derived(stderr, sw_mon_engine(c->mon), c->scenes, c->n);
+    return SW_EXIT_OK;
+}
 
 int cmd_monitor(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
-    sw_cli_opts_t o;
-    sw_mon_opts_t mo;
-    const char *url = NULL;
-    const char *accel_channel = SW_MON_ACCEL_CHANNEL;
-    double status_every = 0.0;
+    sw_cli_opts_t o = {0};
+    monitor_opts_t m = {.accel_channel = SW_MON_ACCEL_CHANNEL};
     sw_scene_t *scenes = NULL;
     size_t n = 0;
     lcm_t *lcm = NULL;
     lcm_subscription_t *sub = NULL;
     mon_ctx_t ctx;
-
-    memset(&mo, 0, sizeof mo);
     memset(&ctx, 0, sizeof ctx);
-    mo.vertical = -1;
-    mo.hysteresis = -1.0;
-    if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK)
-        return SW_EXIT_IO;
+    sw_cli_mon_opts_init(&m.mo);
+    sw_cli_group_t g[] = {
+        SW_CLI_GROUP(monitor_lcm_options, &m),
+        SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &m.mo, "Input:"),
+        SW_CLI_GROUP(monitor_input_options, &m),
+        SW_CLI_GROUP(sw_cli_scene_options, &o),
+        SW_CLI_GROUP(sw_cli_integration_options, &o),
+        SW_CLI_GROUP(sw_cli_accuracy_options, &o),
+        SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &m.mo, "Output:"),
+        SW_CLI_GROUP(monitor_output_notes, NULL),
+        SW_CLI_GROUP_IN(sw_cli_common_options, &o, "Output:"),
+        /* taken, to be refused below with the reason */
+        {.rows = sw_cli_output_options, .base = &o, .flags = SW_CLI_HIDDEN},
+    };
+    const size_t ng = sizeof g / sizeof g[0];
 
-    const sw_cli_group_t groups[] = {{sw_cli_mon_option, &mo}};
-    int c;
-    while ((c = sw_cli_getopt(&o, argc, argv, SW_CLI_COMMON_SHORTOPTS "l:", long_opts,
-                              NULL, groups, 1, usage)) > 0) {
-        int r = SW_EXIT_OK;
-        switch (c) {
-            case 'l': url = optarg; break;
-            case OPT_ACCEL_CHANNEL:
-                /* LCM's limit on channel names */
-                if (!optarg[0] || strlen(optarg) > 63) {
-                    sw_cli_error(
-                        "--accel-channel: expected a channel regex of 1 to 63 characters, "
-                        "got '%s'",
-                        optarg);
-                    r = SW_EXIT_USAGE;
-                }
-                accel_channel = optarg;
-                break;
-            case OPT_FLIP: mo.flip = 1; break;
-            case OPT_ACCEL_UNIT: r = sw_cli_parse_accel_unit(optarg, &mo.accel_scale); break;
-            case OPT_STATUS:
-                r = sw_cli_parse_double("--status", optarg, SW_NUM_NONNEGATIVE,
-                                        "a number of seconds >= 0 (0: no status)", &status_every);
-                break;
-            default: sw_cli_error("monitor: unhandled option"); r = SW_EXIT_USAGE;
-        }
-        if (r != SW_EXIT_OK)
-            goto out;
-    }
-    if (c != SW_CLI_OPT_END) {
-        if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
+    int first;
+    if ((rc = sw_cli_parse(&monitor_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
         goto out;
-    }
-    if (optind < argc) {
-        sw_cli_error("monitor: unexpected argument '%s'; see 'swaywatch monitor --help'",
-                     argv[optind]);
+    rc = SW_EXIT_USAGE;
+    if (sw_cli_no_operand("monitor", argc, argv, first) != SW_EXIT_OK)
         goto out;
-    }
     if (o.out_path || o.events_path || o.json || o.every != 1) {
-        sw_cli_error(
-            "monitor: --out, --events, --every and --json are for replay and "
-            "simulate; record the monitor's output with lcm-logger");
+        sw_cli_error("monitor: --out, --events, --every and --json are for replay and "
+                     "simulate; record the monitor's output with lcm-logger");
         goto out;
     }
-    rc = sw_cli_load_scenes(&o, &scenes, &n);
-    if (rc != SW_EXIT_OK)
+    if ((rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
         goto out;
-
+    rc = SW_EXIT_IO;
     if (install_signals() != 0) {
         sw_cli_error("monitor: cannot install signal handlers: %s", strerror(errno));
-        rc = SW_EXIT_IO;
         goto out;
     }
-    lcm = lcm_create(url);
-    if (!lcm) {
-        /* The usual cause with udpm: no route for multicast (a host or
-         * network namespace with only loopback). */
-        int udpm = !url || !url[0] || !strncmp(url, "udpm://", 7);
-        sw_cli_error("monitor: cannot set up LCM with %s%s",
-                     url && url[0] ? url : "the default URL",
-                     udpm ? " (udpm needs a route for 224.0.0.0/4, e.g. 'ip route add "
-                            "224.0.0.0/4 dev lo')"
-                          : "");
-        rc = SW_EXIT_IO;
+    if (!(lcm = open_lcm(m.url)))
         goto out;
-    }
 
-    sw_engine_opts_t eo;
-    sw_cli_engine_opts(&o, &eo);
-    if ((rc = sw_cli_resolve_accuracy(&o, scenes, n, &eo)) != SW_EXIT_OK) goto out;
-    char msg[512] = "";
-    ctx.mon = sw_mon_create(scenes, n, &eo, &mo, lcm, msg, sizeof msg);
     ctx.opts = &o;
     ctx.scenes = scenes;
     ctx.n = n;
-    if (!ctx.mon) {
-        sw_cli_error("monitor: %s", msg[0] ? msg : "cannot start");
-        rc = SW_EXIT_USAGE;
+    if ((rc = start(&ctx, &m.mo, lcm)) != SW_EXIT_OK)
         goto out;
-    }
-    if (o.verbose)
-        sw_cli_print_derived(stderr, sw_mon_engine(ctx.mon), scenes, n);
 
     /* Raw subscription: the generated one drops bad messages with a line
      * on stderr and no count. */
-    sub = lcm_subscribe(lcm, accel_channel, on_accel, &ctx);
+    sub = lcm_subscribe(lcm, m.accel_channel, on_accel, &ctx);
     if (!sub) {
-        sw_cli_error("monitor: cannot subscribe to %s", accel_channel);
+        sw_cli_error("monitor: cannot subscribe to %s", m.accel_channel);
         rc = SW_EXIT_IO;
         goto out;
     }
     lcm_subscription_set_queue_capacity(sub, ACCEL_QUEUE);
-    rc = run_loop(lcm, &ctx, status_every);
+    rc = run_loop(lcm, &ctx, m.status_every);
 
 out:
     if (sub)
@@ -456,6 +501,6 @@ out:
         lcm_destroy(lcm);
     remove_signals();
     free(scenes);
-    sw_cli_opts_fini(&o);
+    sw_cli_parse_free(g, ng);
     return rc;
 }

@@ -2,71 +2,143 @@
  * file, standard input, or an lcm-logger file) through the model of every
  * package and report whether, when and how close each came to overturning.
  *
- * The log is streamed in fixed chunks through the CSV reader into the
- * engine, so memory does not grow with the length of the log. */
+ * The options are parsed once; the log's first bytes then choose its
+ * source (input.h).  A CSV log is streamed in fixed chunks through the CSV
+ * reader into the engine, so memory does not grow with the length of the
+ * log.  An lcm-logger file is read in-process (eventlog.h, never through
+ * the network) into the monitor core, which refuses bad, duplicate and
+ * late samples as the live monitor does; with --publish, states and alarms
+ * also go out over LCM, paced in real time (or faster) by the samples'
+ * utime. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include "input.h"
+#include "opts.h"
+#include "output.h"
+#ifdef SW_HAVE_LCM
+#include <lcm/lcm.h>
 
-#define DEFAULT_SETTLE 30.0     /* s of zero input after the end of the log */
+#include "eventlog.h"
+#include "lcmopts.h"
+#include "monitor.h"
+#endif
 
-enum { OPT_SETTLE = SW_OPT_FIRST_OWN, OPT_FAIL_ON_OVERTURN };
+/* replay's own options. */
+typedef struct {
+    double settle; /* s of zero input after the end of the log */
+    int fail_on_overturn;
+    const char *channel;     /* lcm-logger files: the accel channel regex */
+    const char *publish_url; /* --publish; NULL: no publishing */
+    double speed;
+} replay_opts_t;
 
-static const struct option long_opts[] = {
-    SW_CLI_COMMON_LONGOPTS,
-    SW_CLI_CSV_LONGOPTS,
-    {"settle", required_argument, NULL, OPT_SETTLE},
-    {"fail-on-overturn", no_argument, NULL, OPT_FAIL_ON_OVERTURN},
-    SW_CLI_LCMLOG_LONGOPTS,
-    {NULL, 0, NULL, 0},
+#define RO(f) SW_CLI_AT(replay_opts_t, f)
+
+static const sw_cli_option_t replay_options[] = {
+    {SW_CLI_SECTION, .help = "Run:"},
+    {SW_CLI_DOUBLE, 0, "settle", "SECONDS", RO(settle), .rule = SW_NUM_NONNEGATIVE, .def = 30,
+     .what = "a number of seconds >= 0",
+     .help = "after the log ends, go on with zero acceleration for up to this long, or until "
+             "every package is at rest or has overturned (default %g; 0: stop at the end of the "
+             "log)"},
+    {SW_CLI_FLAG, 0, "fail-on-overturn", RO(fail_on_overturn), .value = 1,
+     .help = "exit 1 if any package overturned"},
+    {SW_CLI_END},
 };
 
-static void usage(FILE *f)
-{
-    fprintf(f,
-            "usage: swaywatch replay LOG --scene S.ini [--scene T.ini ...] [options]\n"
-            "\n"
-            "Replays a recorded acceleration log of the truck bed through the rocking model of\n"
-            "each package and reports whether, when and how close it came to overturning.\n"
-            "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
-            "its first bytes; needs a build with LCM).\n"
-            "\n");
-    sw_cli_print_csv_help(f);
-    fprintf(f,
-            "\n"
-            "Run:\n"
-            "      --settle SECONDS     after the log ends, go on with zero acceleration for up to\n"
-            "                           this long, or until every package is at rest or has\n"
-            "                           overturned (default %g; 0: stop at the end of the log)\n"
-            "      --fail-on-overturn   exit 1 if any package overturned\n"
-            "\n",
-            DEFAULT_SETTLE);
 #ifdef SW_HAVE_LCM
-    sw_cli_print_lcmlog_help(f);
-    fputc('\n', f);
+#define LCM_SECTION                                                                                \
+    "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit, --flip\n"             \
+    "and --strict apply):"
+
+/* --accel-channel, as monitor calls it; --channel, its name before, still
+ * works. */
+static const sw_cli_option_t replay_channel_options[] = {
+    {SW_CLI_STRING, 0, "accel-channel", "REGEX", RO(channel),
+     .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
+             SW_MON_ACCEL_CHANNEL ")"},
+    {SW_CLI_STRING, 0, "channel", "REGEX", RO(channel), .flags = SW_CLI_HIDDEN},
+    {SW_CLI_END},
+};
+
+static const sw_cli_option_t replay_publish_options[] = {
+    {SW_CLI_STRING, 0, "publish", "URL", RO(publish_url),
+     .help = "also publish states and alarms over LCM ('' = LCM's default URL; "
+             "file:///path?mode=w writes a log)"},
+    {SW_CLI_DOUBLE, 0, "speed", "X", RO(speed), .rule = SW_NUM_NONNEGATIVE, .def = 1,
+     .what = "a factor >= 0 (0: as fast as possible)",
+     .help = "with --publish: X times real time by the samples' utime (default %g; 0 = as fast "
+             "as possible)"},
+    {SW_CLI_TEXT,
+     .help = "Samples are integrated by their own utime, not the log's timestamps.  Messages\n"
+             "on other channels are counted and skipped; corrupted regions of the log are\n"
+             "skipped and counted (--strict: exit 2); bad, duplicate and late samples are\n"
+             "refused as by the monitor."},
+    {SW_CLI_END},
+};
 #endif
-    sw_cli_print_common_help(f);
-    fprintf(f, "\nWith --quiet, rejected rows are only counted (one line on stderr).\n");
-    sw_cli_print_exit_help(f, 1, 1);
+
+static const sw_cli_command_t replay_cmd = {
+    .name = "replay",
+    .usage = "replay LOG --scene S.ini [--scene T.ini ...] [options]",
+    .about = "Replays a recorded acceleration log of the truck bed through the rocking model of\n"
+             "each package and reports whether, when and how close it came to overturning.\n"
+             "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
+             "its first bytes; needs a build with LCM).\n",
+    .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
+};
+
+/* Everything a replay uses, whatever the source. */
+typedef struct {
+    sw_cli_opts_t o;
+    sw_cli_csv_opts_t copts;
+    replay_opts_t ro;
+    const char *log; /* LOG as given */
+    sw_cli_logfile_t lf;
+    sw_scene_t *scenes;
+    size_t n;
+    sw_engine_opts_t eo;
+    sw_engine_t *e; /* the engine (the monitor core's, for an lcm-logger file) */
+    sw_cli_states_t states;
+    sw_cli_events_t events;
+    sw_cli_run_t run;
+#ifdef SW_HAVE_LCM
+    sw_mon_opts_t mo;
+    sw_mon_t *mon;
+    lcm_t *lcm;
+    sw_lcmlog_t *lcmlog;
+#endif
+} replay_t;
+
+static void on_state(void *user, const sw_output_t *out)
+{
+    replay_t *r = user;
+    sw_cli_states_write(&r->states, out);
 }
+
+static void on_event(void *user, const sw_event_t *ev)
+{
+    replay_t *r = user;
+    sw_cli_events_write(&r->events, ev);
+}
+
+/* ---- CSV logs ------------------------------------------------------------------ */
 
 typedef struct {
     sw_engine_t *e;
-    sw_cli_states_t *states;
-    sw_cli_events_t *events;
     sw_cli_rejects_t rej;
     long refused_line; /* a row the engine refused, awaiting its report */
     int refused_rc;
     long engine_refused; /* rows the CSV layer accepted and the engine did not */
-} replay_ctx_t;
+} csv_ctx_t;
 
 static int on_row(void *user, long line, double t, double a_g, double a_z)
 {
-    replay_ctx_t *c = user;
+    csv_ctx_t *c = user;
     if (c->rej.stop) return 1; /* --strict: nothing after the first bad row counts */
     int rc = sw_engine_push(c->e, t, a_g, a_z);
     if (rc >= 0) return 0;
@@ -80,7 +152,7 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
 
 static void on_reject(void *user, long line, const char *reason)
 {
-    replay_ctx_t *c = user;
+    csv_ctx_t *c = user;
     if (c->refused_line && line == c->refused_line) {
         char buf[160];
         snprintf(buf, sizeof buf, "sample refused by the engine: %s", sw_strerror(c->refused_rc));
@@ -94,167 +166,44 @@ static void on_reject(void *user, long line, const char *reason)
 /* An engine refusal the CSV layer did not pass back through on_reject. */
 static void flush_refusal(void *user)
 {
-    replay_ctx_t *c = user;
+    csv_ctx_t *c = user;
     if (!c->refused_line) return;
     long line = c->refused_line;
     on_reject(c, line, "");
 }
 
-static void on_state(void *user, const sw_output_t *out)
-{
-    replay_ctx_t *c = user;
-    sw_cli_states_write(c->states, out);
-}
-
-static void on_event(void *user, const sw_event_t *ev)
-{
-    replay_ctx_t *c = user;
-    sw_cli_events_write(c->events, ev);
-}
-
-int cmd_replay(int argc, char **argv)
+/* Stream the CSV log through the engine; the engine and the writers are
+ * ready. */
+static int replay_csv(replay_t *r)
 {
     int rc = SW_EXIT_USAGE;
-    sw_cli_opts_t o;
-    sw_cli_csv_opts_t copts;
-    sw_cli_csv_opts_init(&copts);
-    double settle = DEFAULT_SETTLE;
-    int fail_on_overturn = 0;
-    const char *log = NULL;
-    int lcm_only = 0; /* an option only lcm-logger files take */
-    char **orig = NULL;
-    sw_cli_logfile_t lf = {0};
-    sw_scene_t *scenes = NULL;
-    size_t n = 0;
-    sw_engine_t *e = NULL;
-    sw_csv_t *csv = NULL;
-    sw_cli_states_t states = {0};
-    sw_cli_events_t events = {0};
-    replay_ctx_t ctx = {0};
-
-    if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK) return SW_EXIT_IO;
-    /* getopt_long permutes argv; an lcm-logger file is handed the
-     * arguments as typed. */
-    orig = malloc(((size_t)argc + 1) * sizeof *orig);
-    if (!orig) {
-        sw_cli_error("out of memory");
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    memcpy(orig, argv, ((size_t)argc + 1) * sizeof *orig);
-
-    const sw_cli_group_t groups[] = {{sw_cli_csv_option, &copts}};
-    int c;
-    while ((c = sw_cli_getopt(&o, argc, argv, SW_CLI_COMMON_SHORTOPTS, long_opts, NULL, groups, 1,
-                              usage)) > 0) {
-        int r = SW_EXIT_OK;
-        switch (c) {
-        case OPT_SETTLE:
-            r = sw_cli_parse_double("--settle", optarg, SW_NUM_NONNEGATIVE,
-                                    "a number of seconds >= 0", &settle);
-            break;
-        case OPT_FAIL_ON_OVERTURN: fail_on_overturn = 1; break;
-        default:
-            if (c >= SW_OPT_LCM_CHANNEL && c < SW_OPT_LCM_END) { /* read by lcmlog.c */
-                lcm_only = c;
-                break;
-            }
-            sw_cli_error("replay: unhandled option");
-            r = SW_EXIT_USAGE;
-        }
-        if (r != SW_EXIT_OK) goto out;
-    }
-    if (c != SW_CLI_OPT_END) {
-        if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
-        goto out;
-    }
-    if (!(log = sw_cli_log_operand("replay", argc, argv))) goto out;
-
-    /* Open the log first: a missing file is an I/O error (3) whatever else
-     * is wrong, and the first bytes decide CSV or lcm-logger. */
-    if (sw_cli_logfile_open(&lf, log) != SW_EXIT_OK) {
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    ctx.rej = (sw_cli_rejects_t){.name = lf.name, .quiet = o.quiet, .strict = copts.strict};
-    if (sw_cli_is_lcmlog(lf.buf, lf.len)) {
-        if (lf.in == stdin) {
-            sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
-                         "file name",
-                         lf.name);
-            goto out;
-        }
-        sw_cli_logfile_close(&lf);
-#ifdef SW_HAVE_LCM
-        rc = sw_cli_replay_lcmlog(log, argc, orig);
-#else
-        sw_cli_error("%s: lcm-logger files need the LCM build", log);
-        rc = SW_EXIT_USAGE;
-#endif
-        goto out;
-    }
-
-    if (lcm_only) {
-        const char *name = "?";
-        for (const struct option *op = long_opts; op->name; op++)
-            if (op->val == lcm_only) name = op->name;
-        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log", lf.name,
-                     name);
-        rc = SW_EXIT_USAGE;
-        goto out;
-    }
-    rc = sw_cli_check_outputs(&o, lf.in);
-    if (rc != SW_EXIT_OK) goto out;
-    rc = sw_cli_load_scenes(&o, &scenes, &n);
-    if (rc != SW_EXIT_OK) goto out;
-
-    sw_engine_opts_t eo;
-    sw_cli_engine_opts(&o, &eo);
-    if ((rc = sw_cli_resolve_accuracy(&o, scenes, n, &eo)) != SW_EXIT_OK) goto out;
-    eo.on_event = on_event;
-    eo.on_state = o.out_path ? on_state : NULL;
-    eo.user = &ctx;
-    rc = SW_EXIT_USAGE;
-    e = sw_cli_engine_create(scenes, n, &eo);
-    if (!e) goto out;
-    ctx.e = e;
-    if (o.verbose) sw_cli_print_derived(stderr, e, scenes, n);
-
-    rc = sw_cli_states_open(&states, o.out_path, o.every, scenes, n);
-    if (rc != SW_EXIT_OK) goto out;
-    rc = sw_cli_events_open(&events, o.events_path, scenes, n);
-    if (rc != SW_EXIT_OK) goto out;
-    ctx.states = &states;
-    ctx.events = &events;
-
+    csv_ctx_t ctx = {.e = r->e};
+    ctx.rej = (sw_cli_rejects_t){.name = r->lf.name, .quiet = r->o.quiet,
+                                 .strict = r->copts.strict};
     int err = 0;
     char msg[256] = "";
-    csv = sw_csv_create(&copts.csv, on_row, on_reject, &ctx, &err, msg, sizeof msg);
+    sw_csv_t *csv = sw_csv_create(&r->copts.csv, on_row, on_reject, &ctx, &err, msg, sizeof msg);
     if (!csv) {
-        sw_cli_error("%s: %s", lf.name, msg[0] ? msg : sw_strerror(err));
-        rc = SW_EXIT_USAGE;
+        sw_cli_error("%s: %s", r->lf.name, msg[0] ? msg : sw_strerror(err));
         goto out;
     }
-
     int fr;
-    rc = sw_cli_logfile_pump(&lf, csv, &ctx.rej.stop, flush_refusal, &ctx, &fr);
+    rc = sw_cli_logfile_pump(&r->lf, csv, &ctx.rej.stop, flush_refusal, &ctx, &fr);
     if (rc != SW_EXIT_OK) goto out;
     rc = SW_EXIT_USAGE;
     if (fr < 0) {
         /* The reader reports why through on_reject where it can (e.g. the
          * header line lacking a named column); this names the failure. */
-        sw_cli_error("%s: %s", lf.name,
+        sw_cli_error("%s: %s", r->lf.name,
                      fr == SW_ENOTFOUND ? "a column given by name is not in the header"
                                         : sw_strerror(fr));
         rc = fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
         goto out;
     }
     if (ctx.rej.stop) {
-        sw_cli_error("%s: stopped at the first rejected row (--strict)", lf.name);
-        rc = SW_EXIT_USAGE;
+        sw_cli_error("%s: stopped at the first rejected row (--strict)", r->lf.name);
         goto out;
     }
-
     sw_csv_counts_t counts;
     sw_csv_counts(csv, &counts);
     long rejected = counts.rejected;
@@ -263,37 +212,281 @@ int cmd_replay(int argc, char **argv)
     if (rejected < ctx.rej.reported) rejected = ctx.rej.reported;
     sw_cli_rejects_summary(&ctx.rej);
     if (counts.rows - rejected <= 0) {
-        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", lf.name, counts.rows,
+        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", r->lf.name, counts.rows,
                      rejected);
-        rc = SW_EXIT_USAGE;
         goto out;
     }
-
-    sw_engine_finish(e, settle);
-
-    rc = sw_cli_states_close(&states);
-    int rc2 = sw_cli_events_close(&events);
-    if (rc == SW_EXIT_OK) rc = rc2;
-
-    sw_cli_run_t run = {
-        .log = log,
-        .samples_read = counts.rows,
-        .samples_rejected = rejected,
-        .settle = settle,
-    };
-    if (o.json)
-        sw_cli_print_json(stdout, e, &run);
-    else if (!o.quiet)
-        sw_cli_print_summary(stdout, e, &run);
-    if (rc == SW_EXIT_OK && fail_on_overturn && sw_cli_any_overturned(e)) rc = SW_EXIT_OVERTURNED;
+    sw_engine_finish(r->e, r->ro.settle);
+    r->run.samples_read = counts.rows;
+    r->run.samples_rejected = rejected;
+    rc = SW_EXIT_OK;
 out:
     sw_csv_destroy(csv);
-    sw_cli_states_close(&states);
-    sw_cli_events_close(&events);
-    sw_engine_destroy(e);
-    free(scenes);
-    sw_cli_logfile_close(&lf);
-    free(orig);
-    sw_cli_opts_fini(&o);
+    return rc;
+}
+
+/* ---- lcm-logger files ---------------------------------------------------------- */
+
+#ifdef SW_HAVE_LCM
+/* Open the log (the channel regex checked first) and the --publish URL. */
+static int lcmlog_open(replay_t *r)
+{
+    int err = 0;
+    const sw_lcmlog_opts_t lo = {
+        .channel = r->ro.channel,
+        .speed = r->ro.publish_url ? r->ro.speed : 0.0,
+        .strict = r->copts.strict,
+    };
+    r->lcmlog = sw_lcmlog_open(r->log, &lo, &err);
+    if (!r->lcmlog) {
+        if (err == SW_EINVAL)
+            sw_cli_error("--accel-channel: not a valid regular expression: '%s'", r->ro.channel);
+        else if (err == SW_ENOMEM)
+            sw_cli_error("out of memory");
+        else
+            sw_cli_error("%s: cannot open: %s", r->log, strerror(errno));
+        return err == SW_EINVAL ? SW_EXIT_USAGE : SW_EXIT_IO;
+    }
+    return SW_EXIT_OK;
+}
+
+static int lcmlog_publish(replay_t *r)
+{
+    if (!r->ro.publish_url) return SW_EXIT_OK;
+    r->lcm = lcm_create(r->ro.publish_url);
+    if (r->lcm) return SW_EXIT_OK;
+    sw_cli_error("--publish: cannot set up LCM with '%s'", r->ro.publish_url);
+    return SW_EXIT_IO;
+}
+
+static sw_engine_t *lcmlog_engine(replay_t *r)
+{
+    r->mo.accel_scale = r->copts.csv.accel_scale;
+    r->mo.flip = r->copts.csv.flip;
+    r->mo.on_state = r->o.out_path ? on_state : NULL;
+    r->mo.on_event = on_event;
+    r->mo.user = r;
+    char msg[512] = "";
+    r->mon = sw_mon_create(r->scenes, r->n, &r->eo, &r->mo, r->lcm, msg, sizeof msg);
+    if (!r->mon) {
+        sw_cli_error("cannot start the engine: %s", msg[0] ? msg : "unknown reason");
+        return NULL;
+    }
+    return sw_mon_engine(r->mon);
+}
+
+static int replay_lcmlog(replay_t *r)
+{
+    if (sw_lcmlog_read(r->lcmlog, r->mon) != SW_OK) {
+        sw_cli_error("%s: stopped at the first bad event or sample (--strict)", r->log);
+        return SW_EXIT_USAGE;
+    }
+    sw_mon_flush(r->mon);
+    sw_mon_counts_t k;
+    sw_mon_counts(r->mon, &k);
+    if (r->copts.strict && sw_mon_rejected(&k) > 0) { /* the last sample, held, not confirmed */
+        sw_cli_error("%s: stopped at the first bad event or sample (--strict)", r->log);
+        return SW_EXIT_USAGE;
+    }
+    if (k.accepted > 0 && r->ro.settle > 0.0) sw_engine_finish(r->e, r->ro.settle);
+    sw_mon_counts(r->mon, &k);
+    r->run.samples_read = k.received;
+    r->run.samples_rejected = k.received - k.accepted;
+    return SW_EXIT_OK;
+}
+
+/* What was read; SW_EXIT_USAGE (reported) if no sample was taken.
+ * --quiet keeps the counts when they explain a failure. */
+static int lcmlog_report(replay_t *r)
+{
+    sw_mon_counts_t k;
+    sw_mon_counts(r->mon, &k);
+    sw_lcmlog_counts_t lc;
+    sw_lcmlog_counts(r->lcmlog, &lc);
+    if (!r->o.quiet || k.accepted == 0) {
+        fprintf(stderr,
+                "swaywatch: %s: %ld events, %ld on the accel channel, %ld on other channels, "
+                "%ld corrupted regions skipped\n",
+                r->log, lc.events, lc.on_channel, lc.other_channels, lc.corrupt);
+        fprintf(stderr, "swaywatch: %s: accel samples: %ld = accepted %ld + ", r->log, k.received,
+                k.accepted);
+        sw_cli_print_rejected(stderr, &k);
+        fprintf(stderr, "; lost %ld (by seq), gaps %ld; %ld states, %ld alarms\n", k.lost, k.gaps,
+                k.states, k.alarms);
+    }
+    if (k.accepted > 0) return SW_EXIT_OK;
+    sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", r->log,
+                 r->ro.channel);
+    return SW_EXIT_USAGE;
+}
+
+static void lcmlog_close(replay_t *r)
+{
+    sw_mon_destroy(r->mon);
+    if (r->lcm) lcm_destroy(r->lcm);
+    sw_lcmlog_close(r->lcmlog);
+}
+#endif
+
+/* ---- the command ------------------------------------------------------------------ */
+
+/* The options the log's source does not take; SW_EXIT_OK or SW_EXIT_USAGE
+ * (reported, naming the first one given). */
+static int check_source(const sw_cli_source_t *src, const replay_t *r, const sw_cli_group_t *csv,
+                        const sw_cli_group_t *lcm, size_t nlcm)
+{
+    if (src->kind == SW_CLI_SRC_LCMLOG && r->lf.in == stdin) {
+        sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
+                     "file name",
+                     r->lf.name);
+        return SW_EXIT_USAGE;
+    }
+    if (!src->available) {
+        sw_cli_error("%s: lcm-logger files need the LCM build", r->log);
+        return SW_EXIT_USAGE;
+    }
+    if (src->kind == SW_CLI_SRC_LCMLOG && csv->given) {
+        sw_cli_error("%s: --%s is for CSV logs; this is an lcm-logger file", r->log,
+                     csv->given->long_name);
+        return SW_EXIT_USAGE;
+    }
+    const sw_cli_group_t *first = NULL;
+    for (size_t i = 0; i < nlcm; i++)
+        if (lcm[i].given && (!first || lcm[i].given_at < first->given_at)) first = &lcm[i];
+    if (src->kind == SW_CLI_SRC_CSV && first) {
+        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log",
+                     r->lf.name, first->given->long_name);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+/* The engine: replay's own, or the monitor core's. */
+static int start(replay_t *r, const sw_cli_source_t *src)
+{
+    int rc;
+    if ((rc = sw_cli_load_scenes(&r->o, &r->scenes, &r->n)) != SW_EXIT_OK) return rc;
+    sw_cli_engine_opts(&r->o, &r->eo);
+    if ((rc = sw_cli_resolve_accuracy(&r->o, r->scenes, r->n, &r->eo)) != SW_EXIT_OK) return rc;
+#ifdef SW_HAVE_LCM
+    if (src->kind == SW_CLI_SRC_LCMLOG) {
+        if ((rc = lcmlog_publish(r)) != SW_EXIT_OK) return rc;
+        r->e = lcmlog_engine(r);
+        return r->e ? SW_EXIT_OK : SW_EXIT_USAGE;
+    }
+#endif
+    (void)src;
+    r->eo.on_event = on_event;
+    r->eo.on_state = r->o.out_path ? on_state : NULL;
+    r->eo.user = r;
+    r->e = sw_cli_engine_create(r->scenes, r->n, &r->eo);
+    return r->e ? SW_EXIT_OK : SW_EXIT_USAGE;
+}
+
+/* Open LOG: a missing file is an I/O error (3) whatever else is wrong,
+ * and its first bytes choose the source; then what the source does not
+ * take is refused, and outputs that would overwrite the log. */
+static const sw_cli_source_t *open_log(replay_t *r, const sw_cli_group_t *g, size_t nlcm, int *rc)
+{
+    if ((*rc = sw_cli_logfile_open(&r->lf, r->log)) != SW_EXIT_OK) return NULL;
+    const sw_cli_source_t *src = sw_cli_logfile_source(&r->lf);
+    if ((*rc = check_source(src, r, &g[0], &g[3], nlcm)) != SW_EXIT_OK ||
+        (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, r->lf.in, r->o.json,
+                                     r->o.quiet)) != SW_EXIT_OK)
+        return NULL;
+#ifdef SW_HAVE_LCM
+    if (src->kind == SW_CLI_SRC_LCMLOG) {
+        sw_cli_logfile_close(&r->lf); /* the event-log reader opens it again */
+        if ((*rc = lcmlog_open(r)) != SW_EXIT_OK) return NULL;
+    }
+#endif
+    return src;
+}
+
+/* After the run: the files closed, the summary; the exit code. */
+static int finish(replay_t *r, const sw_cli_source_t *src)
+{
+    int rc = sw_cli_states_close(&r->states);
+    int rc2 = sw_cli_events_close(&r->events);
+    if (rc == SW_EXIT_OK) rc = rc2;
+#ifdef SW_HAVE_LCM
+    if (src->kind == SW_CLI_SRC_LCMLOG && (rc2 = lcmlog_report(r)) != SW_EXIT_OK) return rc2;
+#endif
+    (void)src;
+    r->run.log = r->log;
+    r->run.settle = r->ro.settle;
+    if (r->o.json)
+        sw_cli_print_json(stdout, r->e, &r->run);
+    else if (!r->o.quiet)
+        sw_cli_print_summary(stdout, r->e, &r->run);
+    if (rc == SW_EXIT_OK && r->ro.fail_on_overturn && sw_cli_any_overturned(r->e))
+        rc = SW_EXIT_OVERTURNED;
+    return rc;
+}
+
+int cmd_replay(int argc, char **argv)
+{
+    int rc = SW_EXIT_USAGE;
+    replay_t r = {0};
+    sw_cli_csv_opts_init(&r.copts);
+#ifdef SW_HAVE_LCM
+    sw_cli_mon_opts_init(&r.mo);
+#endif
+    sw_cli_group_t g[] = {
+        SW_CLI_GROUP(sw_cli_csv_options, &r.copts),
+        SW_CLI_GROUP(sw_cli_sample_options, &r.copts),
+        SW_CLI_GROUP(replay_options, &r.ro),
+#ifdef SW_HAVE_LCM
+        /* the options of lcm-logger files: g[3] to g[6] */
+        SW_CLI_GROUP_IN(replay_channel_options, &r.ro, LCM_SECTION),
+        SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &r.mo, LCM_SECTION),
+        SW_CLI_GROUP_IN(replay_publish_options, &r.ro, LCM_SECTION),
+        SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &r.mo, LCM_SECTION),
+#endif
+        SW_CLI_GROUP(sw_cli_scene_options, &r.o),
+        SW_CLI_GROUP(sw_cli_integration_options, &r.o),
+        SW_CLI_GROUP(sw_cli_accuracy_options, &r.o),
+        SW_CLI_GROUP(sw_cli_output_options, &r.o),
+        SW_CLI_GROUP_IN(sw_cli_common_options, &r.o, "Output:"),
+    };
+    const size_t ng = sizeof g / sizeof g[0];
+#ifdef SW_HAVE_LCM
+    const size_t nlcm = 4;
+#else
+    const size_t nlcm = 0;
+#endif
+
+    int first;
+    const sw_cli_source_t *src = NULL;
+    if ((rc = sw_cli_parse(&replay_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) goto out;
+    rc = SW_EXIT_USAGE;
+    if (!(r.log = sw_cli_log_operand("replay", argc, argv, first))) goto out;
+#ifdef SW_HAVE_LCM
+    if (!r.ro.channel) r.ro.channel = SW_MON_ACCEL_CHANNEL;
+#endif
+    if (!(src = open_log(&r, g, nlcm, &rc)) || (rc = start(&r, src)) != SW_EXIT_OK) goto out;
+    if (r.o.verbose) sw_cli_print_derived(stderr, r.e, r.scenes, r.n);
+    if ((rc = sw_cli_states_open(&r.states, r.o.out_path, r.o.every, r.scenes, r.n)) !=
+            SW_EXIT_OK ||
+        (rc = sw_cli_events_open(&r.events, r.o.events_path, r.scenes, r.n)) != SW_EXIT_OK)
+        goto out;
+#ifdef SW_HAVE_LCM
+    if (src->kind == SW_CLI_SRC_LCMLOG)
+        rc = replay_lcmlog(&r);
+    else
+#endif
+        rc = replay_csv(&r);
+    if (rc == SW_EXIT_OK) rc = finish(&r, src);
+out:
+    sw_cli_states_close(&r.states);
+    sw_cli_events_close(&r.events);
+#ifdef SW_HAVE_LCM
+    if (r.mon) r.e = NULL; /* the monitor's */
+    lcmlog_close(&r);
+#endif
+    sw_engine_destroy(r.e);
+    free(r.scenes);
+    sw_cli_logfile_close(&r.lf);
+    sw_cli_parse_free(g, ng);
     return rc;
 }

@@ -11,63 +11,88 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include "opts.h"
+#include "output.h"
 
-#define STANDARD_GRAVITY 9.80665   /* m/s^2, for --amplitude-g */
-#define DEFAULT_INTERVAL 1e-3      /* s, --sample-interval */
-#define FREE_PERIODS 20.0          /* rocking periods 2 pi / p after the pulse */
+#define STANDARD_GRAVITY 9.80665 /* m/s^2, for --amplitude-g */
+#define FREE_PERIODS 20          /* rocking periods 2 pi / p after the pulse */
 
-enum {
-    OPT_PULSE = SW_OPT_FIRST_OWN,
-    OPT_AMPLITUDE,
-    OPT_AMPLITUDE_G,
-    OPT_OMEGA,
-    OPT_DURATION,
-    OPT_INTERVAL,
-    OPT_FAIL_ON_OVERTURN
-};
+/* simulate's own options. */
+typedef struct {
+    sw_pulse_t pulse;
+    int have_shape, have_amp;
+    const sw_cli_option_t *amp_opt; /* --amplitude or --amplitude-g, the last given */
+    double duration, interval;
+    int fail_on_overturn;
+} sim_opts_t;
 
-static const struct option long_opts[] = {
-    SW_CLI_COMMON_LONGOPTS,
-    {"pulse", required_argument, NULL, OPT_PULSE},
-    {"amplitude", required_argument, NULL, OPT_AMPLITUDE},
-    {"amplitude-g", required_argument, NULL, OPT_AMPLITUDE_G},
-    {"omega", required_argument, NULL, OPT_OMEGA},
-    {"duration", required_argument, NULL, OPT_DURATION},
-    {"sample-interval", required_argument, NULL, OPT_INTERVAL},
-    {"fail-on-overturn", no_argument, NULL, OPT_FAIL_ON_OVERTURN},
-    {NULL, 0, NULL, 0},
-};
-
-static void usage(FILE *f)
+static int parse_shape(const sw_cli_option_t *o, const char *arg, void *dest)
 {
-    fprintf(f,
-            "usage: swaywatch simulate --scene S.ini --pulse half-sine|full-sine\n"
-            "                          --amplitude A --omega W [--duration T] [options]\n"
-            "\n"
-            "Drives every package with one acceleration pulse of the truck bed:\n"
-            "  half-sine: a(t) = A sin(W t) for 0 <= t <= pi/W, then 0;\n"
-            "  full-sine: a(t) = A sin(W t) for 0 <= t <= 2 pi/W, then 0.\n"
-            "The pulse is evaluated exactly (not sampled).  x points forward: a negative A\n"
-            "brakes and tips the top forward.\n"
-            "\n"
-            "Pulse:\n"
-            "      --pulse SHAPE        half-sine or full-sine (required)\n"
-            "      --amplitude A        m/s^2, sign included (required, or --amplitude-g)\n"
-            "      --amplitude-g A      the same in g (1 g = 9.80665 m/s^2)\n"
-            "      --omega W            rad/s, angular frequency of the sine (required)\n"
-            "      --duration T         s simulated from t = 0 (default: the pulse plus %g free\n"
-            "                           rocking periods 2 pi/p of the slowest package); the run\n"
-            "                           stops early once the pulse is over and every package is\n"
-            "                           at rest or has overturned\n"
-            "      --sample-interval S  s between rows of --out (default %g)\n"
-            "      --fail-on-overturn   exit 1 if any package overturned\n"
-            "\n",
-            FREE_PERIODS, DEFAULT_INTERVAL);
-    sw_cli_print_common_help(f);
-    fprintf(f, "\nsamples_read and samples_rejected are 0 in the JSON summary: there is no log.\n");
-    sw_cli_print_exit_help(f, 1, 0);
+    sim_opts_t *s = dest;
+    s->have_shape = 1;
+    if (sw_pulse_shape_parse(arg, &s->pulse.shape) == SW_OK) return SW_EXIT_OK;
+    sw_cli_error("--%s: expected half-sine or full-sine, got '%s'", o->long_name, arg);
+    return SW_EXIT_USAGE;
 }
+
+/* --amplitude in m/s^2, --amplitude-g in g (the row's def is the unit). */
+static int parse_amplitude(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    sim_opts_t *s = dest;
+    double a;
+    int r = sw_cli_opt_double(o, arg, &a);
+    s->pulse.amplitude = a * o->def;
+    s->have_amp = 1;
+    s->amp_opt = o;
+    return r;
+}
+
+#define SIM(f) SW_CLI_AT(sim_opts_t, f)
+
+static const sw_cli_option_t sim_options[] = {
+    {SW_CLI_SECTION, .help = "Pulse:"},
+    {SW_CLI_CALL, 0, "pulse", "SHAPE", .fn = parse_shape,
+     .help = "half-sine or full-sine (required)"},
+    {SW_CLI_CALL, 0, "amplitude", "A", .fn = parse_amplitude, .def = 1.0,
+     .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration in m/s^2",
+     .help = "m/s^2, sign included (required, or --amplitude-g)"},
+    {SW_CLI_CALL, 0, "amplitude-g", "A", .fn = parse_amplitude, .def = STANDARD_GRAVITY,
+     .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration in g",
+     .help = "the same in g (1 g = %g m/s^2)"},
+    {SW_CLI_DOUBLE, 0, "omega", "W", SIM(pulse.omega), .rule = SW_NUM_POSITIVE,
+     .what = "a positive angular frequency in rad/s",
+     .help = "rad/s, angular frequency of the sine (required)"},
+    {SW_CLI_DOUBLE, 0, "duration", "T", SIM(duration), .rule = SW_NUM_POSITIVE,
+     .what = "a positive number of seconds",
+     .help = "s simulated from t = 0 (default: the pulse plus " SW_CLI_STR(FREE_PERIODS) " free "
+             "rocking periods 2 pi/p of the slowest package); the run stops early once the pulse "
+             "is over and every package is at rest or has overturned"},
+    {SW_CLI_DOUBLE, 0, "sample-interval", "S", SIM(interval), .rule = SW_NUM_POSITIVE,
+     .def = 0.001, .what = "a positive number of seconds",
+     .help = "s between rows of --out (default %g)"},
+    {SW_CLI_FLAG, 0, "fail-on-overturn", SIM(fail_on_overturn), .value = 1,
+     .help = "exit 1 if any package overturned"},
+    {SW_CLI_END},
+};
+
+static const sw_cli_option_t sim_output_notes[] = {
+    {SW_CLI_SECTION, .help = "Output:"},
+    {SW_CLI_TEXT, .help = "\nsamples_read and samples_rejected are 0 in the JSON summary: there is "
+                          "no log."},
+    {SW_CLI_END},
+};
+
+static const sw_cli_command_t simulate_cmd = {
+    .name = "simulate",
+    .usage = "simulate --scene S.ini --pulse half-sine|full-sine\n"
+             "                          --amplitude A --omega W [--duration T] [options]",
+    .about = "Drives every package with one acceleration pulse of the truck bed:\n"
+             "  half-sine: a(t) = A sin(W t) for 0 <= t <= pi/W, then 0;\n"
+             "  full-sine: a(t) = A sin(W t) for 0 <= t <= 2 pi/W, then 0.\n"
+             "The pulse is evaluated exactly (not sampled).  x points forward: a negative A\n"
+             "brakes and tips the top forward.\n",
+    .exits = SW_CLI_EXIT_OVERTURN,
+};
 
 typedef struct {
     sw_cli_events_t *events;
@@ -114,90 +139,94 @@ static int all_settled(const sw_engine_t *e)
     return 1;
 }
 
+/* The pulse is whole, and within what an accelerometer reads. */
+static int check_pulse(const sim_opts_t *so)
+{
+    if (!so->have_shape || !so->have_amp || !(so->pulse.omega > 0.0)) {
+        sw_cli_error("simulate: missing %s; see 'swaywatch simulate --help'",
+                     !so->have_shape ? "--pulse half-sine|full-sine"
+                     : !so->have_amp ? "--amplitude A (m/s^2) or --amplitude-g A"
+                                     : "--omega W (rad/s)");
+        return SW_EXIT_USAGE;
+    }
+    /* The limit sw_engine_push() puts on samples; the pulse reaches the
+     * engine as a function, unchecked, and beyond it the outputs overflow. */
+    if (!(fabs(so->pulse.amplitude) <= SW_MAX_ACCEL)) {
+        sw_cli_error("--%s: the pulse amplitude is beyond any accelerometer: expected at most %g "
+                     "m/s^2 (about %.0f g)",
+                     so->amp_opt->long_name, SW_MAX_ACCEL, SW_MAX_ACCEL / STANDARD_GRAVITY);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+/* Drive the engine with the pulse, a state row every --sample-interval,
+ * until --duration or until nothing can happen any more; *t_end gets the
+ * time reached.  SW_EXIT_OK, or SW_EXIT_USAGE (reported) if the engine
+ * stopped. */
+static int run_pulse(sw_engine_t *e, sim_opts_t *so, sw_cli_states_t *states, double *t_end)
+{
+    const double t_pulse = sw_pulse_duration(&so->pulse);
+    double duration = so->duration;
+    if (duration <= 0.0) {
+        double p_min = INFINITY;
+        for (size_t i = 0; i < sw_engine_count(e); i++) {
+            const sw_derived_t *d = sw_engine_derived(e, i);
+            if (d && d->p > 0.0 && d->p < p_min) p_min = d->p;
+        }
+        duration = t_pulse + (isfinite(p_min) ? FREE_PERIODS * 2.0 * M_PI / p_min : 0.0);
+    }
+    /* Whole steps of the interval from t = 0, computed from the index so
+     * rounding does not accumulate over a long run. */
+    double t = 0.0;
+    write_states(e, states);
+    for (long k = 1; t < duration; k++) {
+        double t1 = fmin((double)k * so->interval, duration);
+        int ar = sw_engine_advance_fn(e, t1, sw_pulse_eval, &so->pulse);
+        if (ar < 0) {
+            sw_cli_error("simulate: engine stopped at t = %g s: %s", t, sw_strerror(ar));
+            return SW_EXIT_USAGE;
+        }
+        t = t1;
+        write_states(e, states);
+        if (t >= t_pulse && all_settled(e)) break;
+    }
+    sw_engine_finish(e, 0.0);
+    *t_end = t;
+    return SW_EXIT_OK;
+}
+
 int cmd_simulate(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
-    sw_cli_opts_t o;
-    sw_pulse_t pulse = {0};
-    int have_shape = 0, have_amp = 0, have_omega = 0, fail_on_overturn = 0;
-    const char *amp_opt = "--amplitude";
-    double duration = 0.0, interval = DEFAULT_INTERVAL, amp_g = 0.0;
+    sw_cli_opts_t o = {0};
+    sim_opts_t so = {0};
     sw_scene_t *scenes = NULL;
     size_t n = 0;
     sw_engine_t *e = NULL;
     sw_cli_states_t states = {0};
     sw_cli_events_t events = {0};
     sim_ctx_t ctx = {&events};
+    sw_cli_group_t groups[] = {
+        SW_CLI_GROUP(sim_options, &so),
+        SW_CLI_GROUP(sw_cli_scene_options, &o),
+        SW_CLI_GROUP(sw_cli_integration_options, &o),
+        SW_CLI_GROUP(sw_cli_accuracy_options, &o),
+        SW_CLI_GROUP(sw_cli_output_options, &o),
+        SW_CLI_GROUP(sim_output_notes, NULL),
+        SW_CLI_GROUP_IN(sw_cli_common_options, &o, "Output:"),
+    };
+    const size_t ng = sizeof groups / sizeof groups[0];
+    sw_pulse_t *pulse = &so.pulse;
 
-    if (sw_cli_opts_init(&o, argc) != SW_EXIT_OK) return SW_EXIT_IO;
-    int c;
-    while ((c = sw_cli_getopt(&o, argc, argv,
-                              SW_CLI_COMMON_SHORTOPTS, long_opts, NULL, NULL, 0, usage)) > 0) {
-        int r = SW_EXIT_OK;
-        switch (c) {
-        case OPT_PULSE:
-            r = sw_pulse_shape_parse(optarg, &pulse.shape) == SW_OK ? SW_EXIT_OK : SW_EXIT_USAGE;
-            if (r != SW_EXIT_OK)
-                sw_cli_error("--pulse: expected half-sine or full-sine, got '%s'", optarg);
-            have_shape = 1;
-            break;
-        case OPT_AMPLITUDE:
-            r = sw_cli_parse_double("--amplitude", optarg, SW_NUM_NONZERO,
-                                    "a non-zero acceleration in m/s^2", &pulse.amplitude);
-            have_amp = 1;
-            amp_opt = "--amplitude";
-            break;
-        case OPT_AMPLITUDE_G:
-            r = sw_cli_parse_double("--amplitude-g", optarg, SW_NUM_NONZERO,
-                                    "a non-zero acceleration in g", &amp_g);
-            pulse.amplitude = amp_g * STANDARD_GRAVITY;
-            have_amp = 1;
-            amp_opt = "--amplitude-g";
-            break;
-        case OPT_OMEGA:
-            r = sw_cli_parse_double("--omega", optarg, SW_NUM_POSITIVE,
-                                    "a positive angular frequency in rad/s", &pulse.omega);
-            have_omega = 1;
-            break;
-        case OPT_DURATION:
-            r = sw_cli_parse_double("--duration", optarg, SW_NUM_POSITIVE,
-                                    "a positive number of seconds", &duration);
-            break;
-        case OPT_INTERVAL:
-            r = sw_cli_parse_double("--sample-interval", optarg, SW_NUM_POSITIVE,
-                                    "a positive number of seconds", &interval);
-            break;
-        case OPT_FAIL_ON_OVERTURN: fail_on_overturn = 1; break;
-        default: sw_cli_error("simulate: unhandled option"); r = SW_EXIT_USAGE;
-        }
-        if (r != SW_EXIT_OK) goto out;
-    }
-    if (c != SW_CLI_OPT_END) {
-        if (c == SW_CLI_OPT_HELP) rc = SW_EXIT_OK;
+    int first;
+    if ((rc = sw_cli_parse(&simulate_cmd, groups, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
         goto out;
-    }
-    if (optind < argc) {
-        sw_cli_error("simulate: unexpected argument '%s'; see 'swaywatch simulate --help'",
-                     argv[optind]);
-        goto out;
-    }
-    if (!have_shape || !have_amp || !have_omega) {
-        sw_cli_error("simulate: missing %s; see 'swaywatch simulate --help'",
-                     !have_shape ? "--pulse half-sine|full-sine"
-                     : !have_amp ? "--amplitude A (m/s^2) or --amplitude-g A"
-                                 : "--omega W (rad/s)");
-        goto out;
-    }
-    /* The limit sw_engine_push() puts on samples; the pulse reaches the
-     * engine as a function, unchecked, and beyond it the outputs overflow. */
-    if (!(fabs(pulse.amplitude) <= SW_MAX_ACCEL)) {
-        sw_cli_error("%s: the pulse amplitude is beyond any accelerometer: expected at most %g "
-                     "m/s^2 (about %.0f g)",
-                     amp_opt, SW_MAX_ACCEL, SW_MAX_ACCEL / STANDARD_GRAVITY);
-        goto out;
-    }
+    rc = SW_EXIT_USAGE;
+    if (sw_cli_no_operand("simulate", argc, argv, first) != SW_EXIT_OK) goto out;
+    if (check_pulse(&so) != SW_EXIT_OK) goto out;
 
-    rc = sw_cli_check_outputs(&o, NULL);
+    rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL, o.json, o.quiet);
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;
@@ -212,54 +241,28 @@ int cmd_simulate(int argc, char **argv)
     if (!e) goto out;
     if (o.verbose) sw_cli_print_derived(stderr, e, scenes, n);
 
-    double t_pulse = sw_pulse_duration(&pulse);
-    if (duration <= 0.0) {
-        double p_min = INFINITY;
-        for (size_t i = 0; i < n; i++) {
-            const sw_derived_t *d = sw_engine_derived(e, i);
-            if (d && d->p > 0.0 && d->p < p_min) p_min = d->p;
-        }
-        duration = t_pulse + (isfinite(p_min) ? FREE_PERIODS * 2.0 * M_PI / p_min : 0.0);
-    }
-
     rc = sw_cli_states_open(&states, o.out_path, o.every, scenes, n);
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_events_open(&events, o.events_path, scenes, n);
     if (rc != SW_EXIT_OK) goto out;
-
-    /* Whole steps of the interval from t = 0, computed from the index so
-     * rounding does not accumulate over a long run. */
     double t = 0.0;
-    write_states(e, &states);
-    for (long k = 1; t < duration; k++) {
-        double t1 = fmin((double)k * interval, duration);
-        int ar = sw_engine_advance_fn(e, t1, sw_pulse_eval, &pulse);
-        if (ar < 0) {
-            sw_cli_error("simulate: engine stopped at t = %g s: %s", t, sw_strerror(ar));
-            rc = SW_EXIT_USAGE;
-            goto out;
-        }
-        t = t1;
-        write_states(e, &states);
-        if (t >= t_pulse && all_settled(e)) break;
-    }
-    sw_engine_finish(e, 0.0);
+    if ((rc = run_pulse(e, &so, &states, &t)) != SW_EXIT_OK) goto out;
 
     rc = sw_cli_states_close(&states);
     int rc2 = sw_cli_events_close(&events);
     if (rc == SW_EXIT_OK) rc = rc2;
 
-    sw_cli_run_t run = {.pulse = &pulse, .duration = t};
+    sw_cli_run_t run = {.pulse = pulse, .duration = t};
     if (o.json)
         sw_cli_print_json(stdout, e, &run);
     else if (!o.quiet)
         sw_cli_print_summary(stdout, e, &run);
-    if (rc == SW_EXIT_OK && fail_on_overturn && sw_cli_any_overturned(e)) rc = SW_EXIT_OVERTURNED;
+    if (rc == SW_EXIT_OK && so.fail_on_overturn && sw_cli_any_overturned(e)) rc = SW_EXIT_OVERTURNED;
 out:
     sw_cli_states_close(&states);
     sw_cli_events_close(&events);
     sw_engine_destroy(e);
     free(scenes);
-    sw_cli_opts_fini(&o);
+    sw_cli_parse_free(groups, ng);
     return rc;
 }

@@ -48,7 +48,8 @@ static void usage(FILE *f)
             "  -h, --help     this help\n"
             "  -V, --version  the version (also after a command: swaywatch replay --version)\n"
             "\n"
-            "Run 'swaywatch <command> --help' for a command's options.\n"
+            "Run 'swaywatch help <command>' or 'swaywatch <command> --help' for a command's\n"
+            "options.\n"
             "Exit codes: 0 ok, 1 a package overturned (with --fail-on-overturn),\n"
             "2 bad usage or input, 3 I/O error.\n");
 }
@@ -64,6 +65,39 @@ static int wants_version(int argc, char **argv)
     return 0;
 }
 
+static int is_help(const char *arg)
+{
+    return !strcmp(arg, "--help") || !strcmp(arg, "-h") || !strcmp(arg, "help");
+}
+
+/* The command named name, or NULL. */
+static sw_cmd_fn command(const char *name)
+{
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (!strcmp(name, commands[i].name)) return commands[i].fn;
+    return NULL;
+}
+
+/* "swaywatch help [CMD]", as git does: the command's help, or ours. */
+static int help(int argc, char **argv)
+{
+    if (argc < 3 || is_help(argv[2])) {
+        usage(stdout);
+        return SW_EXIT_OK;
+    }
+    if (argc > 3) {
+        sw_cli_error("help: one command at a time; unexpected '%s'", argv[3]);
+        return SW_EXIT_USAGE;
+    }
+    sw_cmd_fn fn = command(argv[2]);
+    if (!fn) {
+        sw_cli_error("'%s' is not a command; see 'swaywatch --help'", argv[2]);
+        return SW_EXIT_USAGE;
+    }
+    char *args[] = {argv[2], "--help", NULL};
+    return fn(2, args);
+}
+
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
@@ -71,27 +105,30 @@ int main(int argc, char **argv)
         usage(stderr);
         return SW_EXIT_USAGE;
     }
-    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+    int rc;
+    if (!strcmp(argv[1], "help")) {
+        rc = help(argc, argv);
+    } else if (is_help(argv[1])) {
         usage(stdout);
         return SW_EXIT_OK;
-    }
-    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
+    } else if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
         printf("swaywatch %s\n", sw_version());
         return SW_EXIT_OK;
-    }
-    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (!strcmp(argv[1], commands[i].name)) {
-            if (wants_version(argc, argv)) {
-                printf("swaywatch %s %s\n", commands[i].name, sw_version());
-                return SW_EXIT_OK;
-            }
-            int rc = commands[i].fn(argc - 1, argv + 1);
-            if (fflush(stdout) != 0 || ferror(stdout)) {
-                sw_cli_error("error writing standard output");
-                return SW_EXIT_IO;
-            }
-            return rc;
+    } else {
+        sw_cmd_fn fn = command(argv[1]);
+        if (!fn) {
+            sw_cli_error("'%s' is not a command; see 'swaywatch --help'", argv[1]);
+            return SW_EXIT_USAGE;
         }
-    sw_cli_error("'%s' is not a command; see 'swaywatch --help'", argv[1]);
-    return SW_EXIT_USAGE;
+        if (wants_version(argc, argv)) {
+            printf("swaywatch %s %s\n", argv[1], sw_version());
+            return SW_EXIT_OK;
+        }
+        rc = fn(argc - 1, argv + 1);
+    }
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        sw_cli_error("error writing standard output");
+        return SW_EXIT_IO;
+    }
+    return rc;
 }

@@ -11,7 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "plot.h"
 
 struct sw_plot {
     FILE *gp;
@@ -27,11 +27,12 @@ static const char *ext_of(const char *path)
     return dot && (!slash || dot > slash) ? dot + 1 : "";
 }
 
-int sw_cli_plot_check(const char *opt, const char *path)
+int sw_cli_plot_check(const sw_cli_option_t *o, const char *path, void *dest)
 {
+    (void)dest;
     const char *ext = ext_of(path);
     if (!strcmp(ext, "png") || !strcmp(ext, "svg")) return SW_EXIT_OK;
-    sw_cli_error("%s: '%s': the file name must end in .png or .svg", opt, path);
+    sw_cli_error("--%s: '%s': the file name must end in .png or .svg", o->long_name, path);
     return SW_EXIT_USAGE;
 }
 

@@ -67,6 +67,17 @@ cmp "$TMP/i1.csv" "$TMP/i2.csv" || fail "islands differ between 1 and 2 threads"
 [ "$(head -1 "$TMP/c1.csv")" = "omega_ratio,bed,frame wb/we=1,frame wb/we=1/3" ] ||
     fail "curve names: $(head -1 "$TMP/c1.csv")"
 
+# It says on stderr what it wrote: each file, its curves, points, rows.
+expect_err "swaywatch: boundary: wrote $TMP/c2.csv: 3 curves at 5 points" "what it wrote"
+expect_err "swaywatch: boundary: wrote $TMP/d2.csv: 15 rows, one per curve and point" \
+    "what it wrote"
+n=$(($(wc -l <"$TMP/i2.csv") - 1))
+expect_err "swaywatch: boundary: wrote $TMP/i2.csv: $n safe island" "what it wrote"
+run "$SW" boundary --scene "$BLOCK" --pulse half-sine --omega-ratio 1,2 --no-progress
+expect_err "swaywatch: boundary: wrote standard output: 1 curve at 2 points" "curves on stdout"
+run "$SW" boundary --scene "$BLOCK" --pulse half-sine --omega-ratio 1,2 -q --out "$TMP/q.csv"
+[ ! -s "$TMP/err" ] || { show; fail "-q: boundary wrote to stderr"; }
+
 # A point with no overturn below --max-amplitude is an empty field.
 run "$SW" boundary --scene "$BLOCK" --pulse half-sine --omega-ratio 1,8 --max-amplitude 3
 expect_rc 0 "empty field"

@@ -28,4 +28,47 @@ run "$SW" simulate --help
 for opt in --pulse --amplitude --amplitude-g --omega --duration --sample-interval rad/s; do
     grep -q -- "$opt" "$TMP/out" || fail "simulate --help: $opt not listed"
 done
+# "swaywatch help CMD" is "swaywatch CMD --help" (as git does), on stdout
+# with exit 0; "swaywatch help" is "swaywatch --help".
+"$SW" --help >"$TMP/main" 2>/dev/null
+run "$SW" help
+expect_rc 0 "swaywatch help"
+cmp -s "$TMP/out" "$TMP/main" || fail "swaywatch help differs from swaywatch --help"
+for cmd in $(awk '/^Commands:/ {on = 1; next} on && /^$/ {exit} on {print $1}' "$TMP/main"); do
+    "$SW" "$cmd" --help >"$TMP/want" 2>/dev/null
+    run "$SW" help "$cmd"
+    expect_rc 0 "swaywatch help $cmd"
+    [ ! -s "$TMP/err" ] || fail "swaywatch help $cmd wrote to stderr"
+    cmp -s "$TMP/out" "$TMP/want" || fail "swaywatch help $cmd differs from $cmd --help"
+done
+# Every command's help has one Output section, where --help itself is.
+for cmd in $(awk '/^Commands:/ {on = 1; next} on && /^$/ {exit} on {print $1}' "$TMP/main"); do
+    run "$SW" "$cmd" --help
+    n=$(grep -c '^Output' "$TMP/out" || true)
+    [ "$n" -eq 1 ] || fail "$cmd --help: $n Output sections, expected 1"
+    sed -n '/^Output/,/^$/p' "$TMP/out" | grep -q -- '-h, --help' ||
+        fail "$cmd --help: --help is not in the Output section"
+done
+
+# The accel channel has one name in replay and monitor (LCM builds):
+# --accel-channel; replay's old --channel still works, unlisted.
+if grep -q '^  monitor ' "$TMP/main"; then
+    for cmd in replay monitor; do
+        run "$SW" "$cmd" --help
+        grep -q -- '--accel-channel ' "$TMP/out" || fail "$cmd --help: no --accel-channel"
+        if grep -q -- ' --channel ' "$TMP/out"; then fail "$cmd --help lists --channel"; fi
+    done
+    printf '0,0\n0.001,0\n' >"$TMP/x.csv"
+    for opt in --accel-channel --channel; do
+        run "$SW" replay "$TMP/x.csv" --scene "$SRC/sample_logs/crate.ini" "$opt" ACCEL
+        expect_rc 2 "replay $opt on a CSV log"
+        expect_err "'$opt' is for lcm-logger files" "replay $opt on a CSV log"
+    done
+fi
+
+run "$SW" help no-such-command
+expect_rc 2 "help of an unknown command"
+expect_prefixed_err "help of an unknown command"
+run "$SW" help replay simulate
+expect_rc 2 "help of two commands"
 echo "ok"

@@ -66,7 +66,9 @@ done
 
 # Every scheme named in the table runs and is echoed in the summary.
 run "$SW" simulate --help
-schemes=$(sed -n 's/.*--scheme NAME *time stepper: *\(.*\) (default.*/\1/p' "$TMP/out" | tr -d ,)
+# (the --scheme row's help may go on over several lines)
+schemes=$(awk '/--scheme NAME/ {on = 1} on {s = s " " $0} on && /\(default/ {exit} END {print s}' \
+    "$TMP/out" | sed -n 's/.*time stepper: *\(.*\) (default.*/\1/p' | tr -d ,)
 [ -n "$schemes" ] || fail "no schemes listed in --help"
 for s in $schemes; do
     run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -6 --omega 6.2832 --duration 3 --scheme "$s" --json

@@ -24,7 +24,7 @@
 
 #include "../testutil.h"
 #include "fuzz.h"
-#include "lcmmon.h"
+#include "monitor.h"
 #include "swaywatch_accel_t.h"
 #include "swaywatch_alarm_t.h"
 #include "swaywatch_state_t.h"

@@ -45,7 +45,8 @@ rc=0
 [ "$rc" -eq 2 ] || fail "--strict on a damaged log: exit $rc, expected 2"
 grep -q 'strict' "$T/strict.err" || fail "--strict message"
 
-# Accel on another channel: counted, and --channel finds it (anchored regex).
+# Accel on another channel: counted, and --accel-channel (or its old name
+# --channel) finds it (anchored regex).
 "$TOOL" mklog "$T/other.lcmlog" --rate 100 --duration 1 --channel IMU_ACCEL
 rc=0
 "$SW" replay "$T/other.lcmlog" --scene "$SCENE" -q 2>"$T/other.err" || rc=$?
@@ -55,6 +56,9 @@ grep -q '101 events, 0 on the accel channel, 101 on other channels' "$T/other.er
 "$SW" replay "$T/other.lcmlog" --scene "$SCENE" --channel 'IMU_.*' >/dev/null 2>"$T/re.err" ||
     fail "--channel IMU_.*"
 grep -q '101 on the accel channel' "$T/re.err" || fail "--channel regex"
+"$SW" replay "$T/other.lcmlog" --scene "$SCENE" --accel-channel 'IMU_.*' >/dev/null 2>"$T/re2.err" ||
+    fail "--accel-channel IMU_.*"
+grep -q '101 on the accel channel' "$T/re2.err" || fail "--accel-channel regex"
 rc=0
 "$SW" replay "$T/other.lcmlog" --scene "$SCENE" --channel 'ACCEL' -q 2>/dev/null || rc=$?
 [ "$rc" -eq 2 ] || fail "--channel is anchored: ACCEL must not match IMU_ACCEL"

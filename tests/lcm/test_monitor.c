@@ -19,7 +19,7 @@
 #include <cmocka.h>
 // clang-format on
 
-#include "lcmmon.h"
+#include "monitor.h"
 #include "swaywatch/swaywatch.h"
 #include "swaywatch_accel_t.h"
 #include "swaywatch_alarm_t.h"

@@ -17,7 +17,7 @@
 
 #include <cmocka.h>
 
-#include "lcmmon.h"
+#include "monitor.h"
 #include "swaywatch/swaywatch.h"
 #include "swaywatch_accel_t.h"
 #include "swaywatch_state_t.h"

@@ -1,5 +1,6 @@
-/* lcmmon.h - the core of the LCM monitor, shared by `swaywatch monitor`
- * (live), `swaywatch replay` of lcm-logger files and the tests.
+/* monitor.h - the core of the LCM monitor (libswaywatch_lcm), shared by
+ * `swaywatch monitor` (live), the lcm-logger reader (eventlog.h) behind
+ * `swaywatch replay` of lcm-logger files, and the tests.
  *
  * It takes raw accel_t messages (bytes, as LCM delivers them), checks each
  * one, pushes the good ones into the engine, runs the alarm logic, and
@@ -20,8 +21,8 @@
  * it is refused as a jump.  At most SW_MON_HELD_MAX wait at a time.  So
  * one sample with a wrong utime far in the future cannot make every later
  * sample "late", nor make the engine integrate across a year. */
-#ifndef SWAYWATCH_LCMMON_H
-#define SWAYWATCH_LCMMON_H
+#ifndef SWAYWATCH_LCM_MONITOR_H
+#define SWAYWATCH_LCM_MONITOR_H
 
 #include <lcm/lcm.h>
 #include <stddef.h>
@@ -145,5 +146,9 @@ const char *sw_mon_reject_name(sw_mon_reject r);
 
 /* Axis name "x" | "y" | "z" to 0..2; -1 if none of them. */
 int sw_mon_axis_parse(const char *s);
+
+/* CLOCK_MONOTONIC in s: the clock a live caller reads the mono arguments
+ * of sw_mon_feed() and sw_mon_tick() from (and sw_mon_deadline() is on). */
+double sw_mon_clock(void);
 
 #endif

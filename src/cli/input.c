@@ -1,16 +1,19 @@
-/* logread.c - CSV input options (the ones replay documents) and reading a
+/* input.c - CSV input options, log files read in chunks (the pump that
+ * feeds the CSV reader, the source told by the first bytes), and reading a
  * whole CSV log into memory, for the commands that run one log many times
  * (forensics: one replay per trial of the safety-factor search).  replay
  * itself streams the log and never holds it.
  *
  * Memory: 16 bytes per accepted row (24 with a vertical column); a 1 kHz
  * log of one hour is about 58 MB. */
+#include "input.h"
+
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include "eventlog.h"
 
 #define CHUNK (64 * 1024)      /* bytes read and fed at a time */
 
@@ -20,30 +23,11 @@ void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o)
     o->csv.header = -1;
 }
 
-void sw_cli_print_csv_help(FILE *f)
+/* The value of a text option, one of a few names: dest gets the value of
+ * the name, or the message names the choices. */
+static int parse_delim(const sw_cli_option_t *o, const char *arg, void *dest)
 {
-    fprintf(f,
-            "CSV input (default: column 1 time in s, column 2 longitudinal acceleration in\n"
-            "m/s^2, x forward: braking is negative; optional header row; '#' comments):\n"
-            "      --time-col NAME|N    time column, by header name or 1-based index (default 1)\n"
-            "      --accel-col NAME|N   longitudinal acceleration column (default 2)\n"
-            "      --vert-col NAME|N    vertical acceleration column, up positive, same unit as\n"
-            "                           --accel-unit (default: none, gravity only)\n"
-            "      --delimiter D        ',', ';' or tab (default: detected from the first line)\n"
-            "      --header             the first row is a header (default: detected)\n"
-            "      --no-header          the first row is data\n"
-            "      --accel-unit U       m/s2 or g, 1 g = 9.80665 m/s^2 (default m/s2)\n"
-            "      --time-unit U        s, ms or us (default s)\n"
-            "      --flip               negate the longitudinal axis (logger mounted backwards)\n"
-            "      --strict             stop at the first rejected row, exit 2\n"
-            "Rows that cannot be used (missing field, not a number, not finite, time not\n"
-            "increasing) are counted and reported on stderr with their line number (the first\n"
-            "%d one by one); the run goes on without them unless --strict.\n",
-            SW_CLI_MAX_PRINTED_REJECTS);
-}
-
-static int parse_delim(const char *arg, char *out)
-{
+    char *out = dest;
     if (!strcmp(arg, ",") || !strcmp(arg, "comma"))
         *out = ',';
     else if (!strcmp(arg, ";") || !strcmp(arg, "semicolon"))
@@ -51,27 +35,29 @@ static int parse_delim(const char *arg, char *out)
     else if (!strcmp(arg, "tab") || !strcmp(arg, "\t") || !strcmp(arg, "\\t"))
         *out = '\t';
     else {
-        sw_cli_error("--delimiter: expected ',', ';' or tab, got '%s'", arg);
+        sw_cli_error("--%s: expected ',', ';' or tab, got '%s'", o->long_name, arg);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
 }
 
-int sw_cli_parse_accel_unit(const char *arg, double *scale)
+int sw_cli_accel_unit(const sw_cli_option_t *o, const char *arg, void *dest)
 {
+    double *scale = dest;
     if (!strcmp(arg, "m/s2") || !strcmp(arg, "m/s^2") || !strcmp(arg, "mps2"))
         *scale = 1.0;
     else if (!strcmp(arg, "g"))
         *scale = 9.80665;
     else {
-        sw_cli_error("--accel-unit: expected m/s2 or g, got '%s'", arg);
+        sw_cli_error("--%s: expected m/s2 or g, got '%s'", o->long_name, arg);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
 }
 
-static int parse_time_unit(const char *arg, double *scale)
+static int parse_time_unit(const sw_cli_option_t *o, const char *arg, void *dest)
 {
+    double *scale = dest;
     if (!strcmp(arg, "s"))
         *scale = 1.0;
     else if (!strcmp(arg, "ms"))
@@ -79,41 +65,66 @@ static int parse_time_unit(const char *arg, double *scale)
     else if (!strcmp(arg, "us"))
         *scale = 1e-6;
     else {
-        sw_cli_error("--time-unit: expected s, ms or us, got '%s'", arg);
+        sw_cli_error("--%s: expected s, ms or us, got '%s'", o->long_name, arg);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
 }
 
 /* Column choice: a header name or a 1-based index; "0" is neither. */
-static int check_col(const char *opt, const char *arg)
+static int check_col(const sw_cli_option_t *o, const char *arg, void *dest)
 {
+    (void)dest;
     char *end = NULL;
     long v = strtol(arg, &end, 10);
     if (*arg == '\0' || (end != arg && *end == '\0' && v < 1)) {
-        sw_cli_error("%s: expected a column name or a 1-based index, got '%s'", opt, arg);
+        sw_cli_error("--%s: expected a column name or a 1-based index, got '%s'", o->long_name,
+                     arg);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
 }
 
-int sw_cli_csv_option(void *opts, int c, const char *arg)
-{
-    sw_cli_csv_opts_t *o = opts;
-    switch (c) {
-    case SW_OPT_CSV_TIME_COL: o->csv.time_col = arg; return check_col("--time-col", arg);
-    case SW_OPT_CSV_ACCEL_COL: o->csv.accel_col = arg; return check_col("--accel-col", arg);
-    case SW_OPT_CSV_VERT_COL: o->csv.vert_col = arg; return check_col("--vert-col", arg);
-    case SW_OPT_CSV_DELIM: return parse_delim(arg, &o->csv.delim);
-    case SW_OPT_CSV_HEADER: o->csv.header = 1; return SW_EXIT_OK;
-    case SW_OPT_CSV_NO_HEADER: o->csv.header = 0; return SW_EXIT_OK;
-    case SW_OPT_CSV_ACCEL_UNIT: return sw_cli_parse_accel_unit(arg, &o->csv.accel_scale);
-    case SW_OPT_CSV_TIME_UNIT: return parse_time_unit(arg, &o->csv.time_scale);
-    case SW_OPT_CSV_FLIP: o->csv.flip = 1; return SW_EXIT_OK;
-    case SW_OPT_CSV_STRICT: o->strict = 1; return SW_EXIT_OK;
-    default: return -1;
-    }
-}
+#define CSV(f) SW_CLI_AT(sw_cli_csv_opts_t, f)
+#define CSV_SECTION                                                                                \
+    "CSV input (default: column 1 time in s, column 2 longitudinal acceleration in\n"             \
+    "m/s^2, x forward: braking is negative; optional header row; '#' comments):"
+
+const sw_cli_option_t sw_cli_csv_options[] = {
+    {SW_CLI_SECTION, .help = CSV_SECTION},
+    {SW_CLI_STRING, 0, "time-col", "NAME|N", CSV(csv.time_col), .fn = check_col,
+     .help = "time column, by header name or 1-based index (default 1)"},
+    {SW_CLI_STRING, 0, "accel-col", "NAME|N", CSV(csv.accel_col), .fn = check_col,
+     .help = "longitudinal acceleration column (default 2)"},
+    {SW_CLI_STRING, 0, "vert-col", "NAME|N", CSV(csv.vert_col), .fn = check_col,
+     .help = "vertical acceleration column, up positive, same unit as --accel-unit (default: "
+             "none, gravity only)"},
+    {SW_CLI_CALL, 0, "delimiter", "D", CSV(csv.delim), .fn = parse_delim,
+     .help = "',', ';' or tab (default: detected from the first line)"},
+    {SW_CLI_FLAG, 0, "header", CSV(csv.header), .value = 1,
+     .help = "the first row is a header (default: detected)"},
+    {SW_CLI_FLAG, 0, "no-header", CSV(csv.header), .value = 0, .help = "the first row is data"},
+    {SW_CLI_CALL, 0, "time-unit", "U", CSV(csv.time_scale), .fn = parse_time_unit,
+     .help = "s, ms or us (default s)"},
+    {SW_CLI_END},
+};
+
+const sw_cli_option_t sw_cli_sample_options[] = {
+    {SW_CLI_SECTION, .help = CSV_SECTION},
+    {SW_CLI_CALL, 0, "accel-unit", "U", CSV(csv.accel_scale), .fn = sw_cli_accel_unit,
+     .help = "m/s2 or g, 1 g = 9.80665 m/s^2 (default m/s2)"},
+    {SW_CLI_FLAG, 0, "flip", CSV(csv.flip), .value = 1,
+     .help = "negate the longitudinal axis (logger mounted backwards)"},
+    {SW_CLI_FLAG, 0, "strict", CSV(strict), .value = 1,
+     .help = "stop at the first rejected row, exit 2"},
+    {SW_CLI_TEXT,
+     .help = "Rows that cannot be used (missing field, not a number, not finite, time not\n"
+             "increasing) are counted and reported on stderr with their line number (the first\n"
+             SW_CLI_STR(SW_CLI_MAX_PRINTED_REJECTS) " one by one); the run goes on without them "
+             "unless --strict.\n"
+             "With --quiet, they are only counted (one line on stderr)."},
+    {SW_CLI_END},
+};
 
 /* ---- rejected rows, log files ------------------------------------------------- */
 
@@ -186,6 +197,23 @@ void sw_cli_logfile_close(sw_cli_logfile_t *f)
     memset(f, 0, sizeof *f);
 }
 
+static const sw_cli_source_t sources[] = {
+#ifdef SW_HAVE_LCM
+    {SW_CLI_SRC_LCMLOG, "an lcm-logger file", sw_lcmlog_sniff, 1},
+#else
+    {SW_CLI_SRC_LCMLOG, "an lcm-logger file", sw_lcmlog_sniff, 0},
+#endif
+    {SW_CLI_SRC_CSV, "a CSV log", NULL, 1},
+};
+
+const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f)
+{
+    const size_t n = sizeof sources / sizeof sources[0];
+    size_t i = 0;
+    while (i + 1 < n && !sources[i].sniff(f->buf, f->len)) i++;
+    return &sources[i];
+}
+
 /* ---- reading ------------------------------------------------------------------ */
 
 typedef struct {
@@ -250,7 +278,7 @@ int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_
         goto out;
     }
     read_ctx_t ctx = {L, {f.name, o->strict, quiet, 0, 0, 0}, 0, 0};
-    if (sw_cli_is_lcmlog(f.buf, f.len)) {
+    if (sw_cli_logfile_source(&f)->kind != SW_CLI_SRC_CSV) {
         sw_cli_error("%s: an lcm-logger file; this command reads CSV logs (replay reads both)",
                      f.name);
         goto out;

@@ -1,14 +1,15 @@
-/* lcmmon.c - the monitor core (lcmmon.h): checks accel_t messages, drives
+/* monitor.c - the monitor core (monitor.h): checks accel_t messages, drives
  * the engine and the alarm logic, publishes state_t and alarm_t.
  *
  * Nothing in here allocates after sw_mon_create(): messages are encoded
  * into a buffer made at create time and handed to lcm_publish(). */
-#include "lcmmon.h"
+#include "monitor.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "swaywatch/status.h"
 #include "swaywatch_accel_t.h"
@@ -98,6 +99,13 @@ int sw_mon_axis_parse(const char *s)
     if (s[0] >= 'x' && s[0] <= 'z')
         return s[0] - 'x';
     return -1;
+}
+
+double sw_mon_clock(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static void set_name(int8_t *dst, size_t cap, const char *src)

@@ -1,0 +1,94 @@
+/* input.h - acceleration logs: CSV input options, rejected rows, log files
+ * read in chunks and their source (CSV or lcm-logger) told by their first
+ * bytes, and whole CSV logs held in memory. */
+#ifndef SWAYWATCH_CLI_INPUT_H
+#define SWAYWATCH_CLI_INPUT_H
+
+#include <stdio.h>
+
+#include "cli.h"
+#include "opts.h"
+
+/* ---- CSV input options ------------------------------------------------------- */
+
+typedef struct {
+    sw_csv_opts_t csv;
+    int strict; /* stop at the first rejected row */
+} sw_cli_csv_opts_t;
+
+void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o);
+
+/* Rows into a sw_cli_csv_opts_t, in the CSV input section: the options of
+ * CSV logs alone (columns, delimiter, header, time unit), and those that
+ * also apply to lcm-logger files (--accel-unit, --flip, --strict). */
+extern const sw_cli_option_t sw_cli_csv_options[];
+extern const sw_cli_option_t sw_cli_sample_options[];
+
+/* fn of an --accel-unit row: m/s2 or g into dest, a double of m/s^2 per
+ * unit (1 g = 9.80665 m/s^2).  Shared by CSV and LCM input. */
+int sw_cli_accel_unit(const sw_cli_option_t *o, const char *arg, void *dest);
+
+/* Rejected rows of a CSV log: each one counted, the first
+ * SW_CLI_MAX_PRINTED_REJECTS printed as "NAME:LINE: reason" (none with
+ * quiet); with strict the first one stops the run and later ones are not
+ * counted. */
+#define SW_CLI_MAX_PRINTED_REJECTS 20
+typedef struct {
+    const char *name; /* the log, as quoted in messages */
+    int strict, quiet;
+    int stop;      /* strict saw a rejected row */
+    long reported; /* rejected rows seen (printed or not) */
+    long printed;  /* printed one by one */
+} sw_cli_rejects_t;
+void sw_cli_rejects_add(sw_cli_rejects_t *r, long line, const char *reason);
+/* The line for the rows not printed one by one ("... N more rejected rows",
+ * or "N rejected rows" with quiet); nothing if there are none. */
+void sw_cli_rejects_summary(const sw_cli_rejects_t *r);
+
+/* A log read in chunks: path, or "-" for standard input.  Open reads the
+ * first chunk, whose first bytes tell its source (sw_cli_logfile_source).
+ * Both return SW_EXIT_OK or SW_EXIT_IO (reported). */
+typedef struct {
+    FILE *in;
+    char *buf;
+    size_t len;       /* bytes in buf */
+    const char *name; /* path, or "(stdin)" */
+} sw_cli_logfile_t;
+int sw_cli_logfile_open(sw_cli_logfile_t *f, const char *path);
+/* Feed the chunks to csv, from the one read, until the end of the file,
+ * then finish it; stops early when the reader fails or *stop is set (after
+ * any chunk; after(user), if not NULL, runs after each feed and the
+ * finish).  *fr gets the reader's last status (< 0: it failed). */
+int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop,
+                        void (*after)(void *), void *user, int *fr);
+void sw_cli_logfile_close(sw_cli_logfile_t *f); /* zeroed or open; closes stdin never */
+
+/* What a log file holds, told by its first bytes: a row per kind, the
+ * first whose sniff matches (the last row, CSV, has none: anything else
+ * is read as CSV).  available: this build reads it (lcm-logger files need
+ * LCM). */
+typedef enum { SW_CLI_SRC_LCMLOG, SW_CLI_SRC_CSV } sw_cli_source_kind;
+typedef struct {
+    sw_cli_source_kind kind;
+    const char *name; /* "an lcm-logger file", "a CSV log" */
+    int (*sniff)(const void *buf, size_t len);
+    int available;
+} sw_cli_source_t;
+const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f);
+
+/* A whole log: accepted rows in file order, SI units. */
+typedef struct {
+    double *t, *a_g, *a_z; /* a_z only with --vert-col (has_z), else NULL */
+    size_t n, cap;
+    int has_z;
+    long rows, rejected; /* data rows seen, and refused (reported on stderr) */
+} sw_cli_log_t;
+
+/* Read path ("-" = stdin) into L; rejected rows reported like replay does
+ * (counted only with quiet).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad rows
+ * under --strict, no usable row, an lcm-logger file) or SW_EXIT_IO.  Free
+ * with sw_cli_log_free(). */
+int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_cli_log_t *L);
+void sw_cli_log_free(sw_cli_log_t *L);
+
+#endif

@@ -1,0 +1,26 @@
+/* lcmopts.h - the options of the LCM commands (monitor, and replay of
+ * lcm-logger files) that set up the monitor core: rows into a
+ * sw_mon_opts_t.  LCM builds only. */
+#ifndef SWAYWATCH_CLI_LCMOPTS_H
+#define SWAYWATCH_CLI_LCMOPTS_H
+
+#include <stdio.h>
+
+#include "monitor.h"
+#include "opts.h"
+
+/* --state-channel, --alarm-channel, --state-rate: what is published. */
+extern const sw_cli_option_t sw_cli_lcm_publish_options[];
+/* --axis, --vertical, --max-accel, --max-skew, --max-jump, --gap: which
+ * samples are taken, and how. */
+extern const sw_cli_option_t sw_cli_lcm_input_options[];
+
+/* "rejected N (reason n, ...)": the refusals by reason, as monitor and
+ * replay print them. */
+void sw_cli_print_rejected(FILE *f, const sw_mon_counts_t *k);
+
+/* Set mo to the defaults these rows assume (vertical none, the library's
+ * hysteresis) before sw_cli_parse(). */
+void sw_cli_mon_opts_init(sw_mon_opts_t *mo);
+
+#endif

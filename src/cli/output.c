@@ -1,0 +1,449 @@
+/* output.c - what the commands write: the state and event CSVs, the human
+ * and JSON summaries, and the derived quantities of --verbose.
+ *
+ * Everything here prints its own messages ("swaywatch: ..." on stderr) and
+ * returns an exit code. */
+#include "output.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* ---- derived quantities -------------------------------------------------- */
+
+/* One aligned line of --verbose: name, value with unit, what it is. */
+static void derived_line(FILE *f, const char *name, double v, const char *unit, const char *what)
+{
+    char val[48];
+    snprintf(val, sizeof val, "%.6g %s", v, unit);
+    fprintf(f, "  %-8s %-18s %s\n", name, val, what);
+}
+
+void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scenes, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        const sw_derived_t *d = sw_engine_derived(e, i);
+        const sw_scene_t *sc = &scenes[i];
+        if (!d) continue;
+        fprintf(f, "swaywatch: %s: %s model\n", sc->name, sw_model_name(d->model));
+        derived_line(f, "R", d->R, "m", "half-diagonal sqrt(h^2 + b^2)");
+        derived_line(f, "alpha", d->alpha * 180.0 / M_PI, "deg", "atan(b/h), slenderness");
+        derived_line(f, "g tan a", sc->g * tan(d->alpha), "m/s^2", "uplift threshold (rigid support)");
+        derived_line(f, "p", d->p, "rad/s", "rocking frequency sqrt(3 g / 4 R)");
+        derived_line(f, "eta", d->eta, "", "impact ratio on a rigid support");
+        if (sc->has_frame) {
+            derived_line(f, "gamma", d->gamma, "", "m / (m + m_b)");
+            derived_line(f, "omega_b", d->omega_b, "rad/s", "bearing frequency");
+            derived_line(f, "zeta_b", d->zeta_b, "", "bearing damping ratio");
+            derived_line(f, "r_frame", d->r_frame, "", "impact ratio on the frame");
+        }
+        if (sc->has_cushion) {
+            derived_line(f, "omega_c", d->omega_c, "rad/s", "cushion frequency sqrt(K/m)");
+            derived_line(f, "zeta_c", d->zeta_c, "", "cushion damping ratio");
+            if (d->K > 0.0) {
+                double wz, wr;
+                sw_cushion_frequencies(d, sc->g, &wz, &wr);
+                derived_line(f, "z_static", sw_cushion_static_deflection(d, sc->g), "m",
+                             "static cushion deflection, root of K z + B3 z^3 = m g");
+                derived_line(f, "omega_z", wz, "rad/s", "vertical natural frequency (undamped)");
+                derived_line(f, "omega_r", wr, "rad/s", "rocking natural frequency on the cushion");
+            }
+        }
+        char what[64];
+        snprintf(what, sizeof what, "internal step of scheme %s", sw_engine_scheme(e));
+        derived_line(f, "dt", sw_engine_dt(e, i), "s", what);
+    }
+}
+
+/* ---- output files ---------------------------------------------------------- */
+
+static int is_stdout(const char *path)
+{
+    return path && !strcmp(path, "-");
+}
+
+/* Non-zero if path exists and is the file st describes. */
+static int is_file(const char *path, const struct stat *st)
+{
+    struct stat ps;
+    return path && !is_stdout(path) && stat(path, &ps) == 0 && ps.st_dev == st->st_dev &&
+           ps.st_ino == st->st_ino;
+}
+
+int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in, int json,
+                         int quiet)
+{
+    struct stat st;
+    /* "-" is standard output: for one of them, and only if no summary goes
+     * there too. */
+    if (is_stdout(out_path) && is_stdout(events_path)) {
+        sw_cli_error("--out and --events cannot both be standard output");
+        return SW_EXIT_USAGE;
+    }
+    if ((is_stdout(out_path) || is_stdout(events_path)) && (json || !quiet)) {
+        sw_cli_error("--%s -: standard output carries the %s", is_stdout(out_path) ? "out" : "events",
+                     json ? "JSON summary (--json)" : "summary; add -q to leave it out");
+        return SW_EXIT_USAGE;
+    }
+    /* Opening an output truncates it: it must be neither the log being
+     * read nor the other output. */
+    if (in && in != stdin && fstat(fileno(in), &st) == 0) {
+        if (is_file(out_path, &st)) {
+            sw_cli_error("--out %s: that is the log being read", out_path);
+            return SW_EXIT_USAGE;
+        }
+        if (is_file(events_path, &st)) {
+            sw_cli_error("--events %s: that is the log being read", events_path);
+            return SW_EXIT_USAGE;
+        }
+    }
+    if (out_path && events_path && !is_stdout(out_path) &&
+        (!strcmp(out_path, events_path) ||
+         (stat(out_path, &st) == 0 && is_file(events_path, &st)))) {
+        sw_cli_error("--out and --events name the same file '%s'", out_path);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+/* ---- CSV writers ------------------------------------------------------------ */
+
+void sw_cli_csv_text(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",;\t\"\r\n")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"') fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+/* A number field preceded by a comma; non-finite values stay empty. */
+static void csv_num(FILE *f, double v, long *nonfinite)
+{
+    if (isfinite(v))
+        fprintf(f, ",%.9g", v);
+    else {
+        fputc(',', f);
+        (*nonfinite)++;
+    }
+}
+
+static const char *pkg_name(const sw_scene_t *scenes, size_t n, size_t pkg)
+{
+    return pkg < n ? scenes[pkg].name : "?";
+}
+
+const char *sw_cli_out_name(const char *path)
+{
+    return is_stdout(path) ? "standard output" : path;
+}
+
+FILE *sw_cli_out_open(const char *path)
+{
+    if (is_stdout(path)) return stdout;
+    FILE *f = fopen(path, "w");
+    if (!f) sw_cli_error("%s: cannot create: %s", path, strerror(errno));
+    return f;
+}
+
+int sw_cli_out_close(FILE *f, const char *path)
+{
+    if (!f) return SW_EXIT_OK;
+    int bad = ferror(f);
+    int saved = errno;
+    /* Standard output stays open: main() checks it once more at the end. */
+    if (f == stdout ? fflush(f) != 0 : fclose(f) != 0) {
+        bad = 1;
+        saved = errno;
+    }
+    if (bad) {
+        sw_cli_error("%s: write failed: %s", sw_cli_out_name(path), strerror(saved));
+        return SW_EXIT_IO;
+    }
+    return SW_EXIT_OK;
+}
+
+int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const sw_scene_t *scenes,
+                       size_t n)
+{
+    memset(w, 0, sizeof *w);
+    w->path = path;
+    w->scenes = scenes;
+    w->n = n;
+    w->every = every > 0 ? every : 1;
+    if (!path) return SW_EXIT_OK;
+    w->seen = calloc(n ? n : 1, sizeof *w->seen);
+    if (!w->seen) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    w->f = sw_cli_out_open(path);
+    if (!w->f) {
+        free(w->seen);
+        w->seen = NULL;
+        return SW_EXIT_IO;
+    }
+    fputs("t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,uplift_ratio,a_g\n",
+          w->f);
+    return SW_EXIT_OK;
+}
+
+void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *o)
+{
+    if (!w->f) return;
+    if (o->pkg < w->n && w->seen[o->pkg]++ % w->every != 0) return;
+    const sw_state_t *s = &o->state;
+    long *nf = &w->nonfinite;
+    if (isfinite(o->t))
+        fprintf(w->f, "%.9g,", o->t);
+    else {
+        fputc(',', w->f);
+        (*nf)++;
+    }
+    sw_cli_csv_text(w->f, pkg_name(w->scenes, w->n, o->pkg));
+    fprintf(w->f, ",%s", sw_phase_name(s->phase));
+    csv_num(w->f, s->theta, nf);
+    csv_num(w->f, s->theta_dot, nf);
+    csv_num(w->f, s->u, nf);
+    csv_num(w->f, s->u_dot, nf);
+    csv_num(w->f, s->z, nf);
+    csv_num(w->f, s->z_dot, nf);
+    csv_num(w->f, o->margin, nf);
+    csv_num(w->f, o->margin_bound, nf);
+    csv_num(w->f, o->uplift_ratio, nf);
+    csv_num(w->f, o->a_g, nf);
+    fputc('\n', w->f);
+    w->rows++;
+}
+
+int sw_cli_states_close(sw_cli_states_t *w)
+{
+    int rc = sw_cli_out_close(w->f, w->path);
+    if (w->f && w->nonfinite)
+        sw_cli_error("%s: %ld non-finite values written as empty fields", sw_cli_out_name(w->path),
+                     w->nonfinite);
+    free(w->seen);
+    w->seen = NULL;
+    w->f = NULL;
+    return rc;
+}
+
+int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *scenes, size_t n)
+{
+    memset(w, 0, sizeof *w);
+    w->path = path;
+    w->scenes = scenes;
+    w->n = n;
+    if (!path) return SW_EXIT_OK;
+    w->f = sw_cli_out_open(path);
+    if (!w->f) return SW_EXIT_IO;
+    fputs("t,package,event,theta,theta_dot,margin,info\n", w->f);
+    return SW_EXIT_OK;
+}
+
+void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev)
+{
+    if (!w->f) return;
+    long *nf = &w->nonfinite;
+    if (isfinite(ev->t))
+        fprintf(w->f, "%.9g,", ev->t);
+    else {
+        fputc(',', w->f);
+        (*nf)++;
+    }
+    sw_cli_csv_text(w->f, pkg_name(w->scenes, w->n, ev->pkg));
+    fprintf(w->f, ",%s", sw_event_name(ev->kind));
+    csv_num(w->f, ev->theta, nf);
+    csv_num(w->f, ev->theta_dot, nf);
+    csv_num(w->f, ev->margin, nf);
+    csv_num(w->f, ev->info, nf);
+    fputc('\n', w->f);
+    w->rows++;
+}
+
+int sw_cli_events_close(sw_cli_events_t *w)
+{
+    int rc = sw_cli_out_close(w->f, w->path);
+    if (w->f && w->nonfinite)
+        sw_cli_error("%s: %ld non-finite values written as empty fields", sw_cli_out_name(w->path),
+                     w->nonfinite);
+    w->f = NULL;
+    return rc;
+}
+
+/* ---- summaries --------------------------------------------------------------- */
+
+int sw_cli_any_overturned(const sw_engine_t *e)
+{
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) == SW_OK && s.overturned) return 1;
+    }
+    return 0;
+}
+
+static double alpha_of(const sw_engine_t *e, size_t i)
+{
+    const sw_derived_t *d = sw_engine_derived(e, i);
+    return d ? d->alpha : NAN;
+}
+
+/* "at 7.5123 s" or a fallback phrase when the time is absent. */
+static void print_time(FILE *f, double t, const char *none)
+{
+    if (isfinite(t))
+        fprintf(f, "%.4f s", t);
+    else
+        fputs(none, f);
+}
+
+void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    if (run->log) {
+        fprintf(f, "log %s: %ld samples read, %ld accepted, %ld rejected", strcmp(run->log, "-") ? run->log : "(stdin)",
+                run->samples_read, run->samples_read - run->samples_rejected,
+                run->samples_rejected);
+        if (run->settle > 0.0) fprintf(f, "; settle up to %g s after the end", run->settle);
+        fputc('\n', f);
+    }
+    if (run->pulse) {
+        const sw_pulse_t *p = run->pulse;
+        fprintf(f, "pulse %s: amplitude %g m/s^2 (%.4g g), omega %g rad/s, %.6g s long; %.6g s "
+                   "simulated\n",
+                sw_pulse_shape_name(p->shape), p->amplitude, p->amplitude / 9.80665, p->omega,
+                sw_pulse_duration(p), run->duration);
+    }
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) != SW_OK) continue;
+        double alpha = alpha_of(e, i);
+        double dt = sw_engine_dt(e, i);
+        fprintf(f, "\npackage %s: %s model, scheme %s, dt %.6g ms\n", s.name,
+                sw_model_name(s.model), sw_engine_scheme(e), dt * 1e3);
+        if (run->log)
+            fprintf(f, "  samples         %ld read, %ld accepted, %ld rejected\n", run->samples_read,
+                    run->samples_read - run->samples_rejected, run->samples_rejected);
+        fputs("  first uplift    ", f);
+        print_time(f, s.uplift_time, "none (never left the upright position)");
+        if (s.uplifts > 1) fprintf(f, " (%ld uplifts in all)", s.uplifts);
+        fprintf(f, "\n  impacts         %ld\n", s.impacts);
+        fprintf(f, "  peak |theta|    %.3f deg = %.3f alpha (alpha = %.2f deg)\n",
+                s.max_abs_theta * 180.0 / M_PI, s.max_theta_ratio, alpha * 180.0 / M_PI);
+        fputs("  tipped (alpha)  ", f);
+        print_time(f, s.tip_time, "no (|theta| stayed below alpha)");
+        fprintf(f, "\n  minimum margin  %.4f (1 at rest, 0 at the edge of overturning)\n",
+                s.min_margin);
+        fputs("  outcome         ", f);
+        if (s.overturned) {
+            fputs("OVERTURNED at ", f);
+            print_time(f, s.overturn_time, "an unknown time");
+        } else {
+            fputs("stayed upright", f);
+        }
+        if (s.faults) fprintf(f, " (%ld model faults: see --events)", s.faults);
+        fputc('\n', f);
+    }
+}
+
+void sw_cli_json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        switch (*p) {
+        case '"': fputs("\\\"", f); break;
+        case '\\': fputs("\\\\", f); break;
+        case '\n': fputs("\\n", f); break;
+        case '\r': fputs("\\r", f); break;
+        case '\t': fputs("\\t", f); break;
+        default:
+            /* Other control characters escaped; bytes >= 0x80 pass as UTF-8. */
+            if (*p < 0x20)
+                fprintf(f, "\\u%04x", *p);
+            else
+                fputc(*p, f);
+        }
+    }
+    fputc('"', f);
+}
+
+void sw_cli_json_num(FILE *f, double v)
+{
+    if (isfinite(v))
+        fprintf(f, "%.9g", v);
+    else
+        fputs("null", f);
+}
+
+void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    fprintf(f, "{\n  \"swaywatch\": ");
+    sw_cli_json_string(f, sw_version());
+    fprintf(f, ",\n  \"log\": ");
+    if (run->log)
+        sw_cli_json_string(f, run->log);
+    else
+        fputs("null", f);
+    if (run->pulse) {
+        fprintf(f, ",\n  \"pulse\": {\"shape\": ");
+        sw_cli_json_string(f, sw_pulse_shape_name(run->pulse->shape));
+        fprintf(f, ", \"amplitude\": ");
+        sw_cli_json_num(f, run->pulse->amplitude);
+        fprintf(f, ", \"omega\": ");
+        sw_cli_json_num(f, run->pulse->omega);
+        fprintf(f, ", \"duration\": ");
+        sw_cli_json_num(f, sw_pulse_duration(run->pulse));
+        fprintf(f, "},\n  \"simulated\": ");
+        sw_cli_json_num(f, run->duration);
+    }
+    if (run->log) {
+        fprintf(f, ",\n  \"settle\": ");
+        sw_cli_json_num(f, run->settle);
+    }
+    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld,\n  \"packages\": [",
+            run->samples_read, run->samples_rejected);
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) != SW_OK) continue;
+        fprintf(f, "%s\n    {\"name\": ", i ? "," : "");
+        sw_cli_json_string(f, s.name);
+        fprintf(f, ", \"model\": ");
+        sw_cli_json_string(f, sw_model_name(s.model));
+        fprintf(f, ", \"overturned\": %s", s.overturned ? "true" : "false");
+        fprintf(f, ",\n     \"overturn_time\": ");
+        sw_cli_json_num(f, s.overturn_time);
+        fprintf(f, ", \"tip_time\": ");
+        sw_cli_json_num(f, s.tip_time);
+        fprintf(f, ", \"uplift_time\": ");
+        sw_cli_json_num(f, s.uplift_time);
+        fprintf(f, ",\n     \"max_abs_theta\": ");
+        sw_cli_json_num(f, s.max_abs_theta);
+        fprintf(f, ", \"max_theta_ratio\": ");
+        sw_cli_json_num(f, s.max_theta_ratio);
+        fprintf(f, ", \"alpha\": ");
+        sw_cli_json_num(f, alpha_of(e, i));
+        fprintf(f, ",\n     \"min_margin\": ");
+        sw_cli_json_num(f, s.min_margin);
+        fprintf(f, ", \"min_margin_bound\": ");
+        sw_cli_json_num(f, s.min_margin_bound);
+        fprintf(f, ", \"max_uplift_ratio\": ");
+        sw_cli_json_num(f, s.max_uplift_ratio);
+        fprintf(f, ",\n     \"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld",
+                s.impacts, s.uplifts, s.rests, s.faults);
+        fprintf(f, ",\n     \"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,
+                run->samples_rejected);
+        fprintf(f, ",\n     \"scheme\": ");
+        sw_cli_json_string(f, sw_engine_scheme(e));
+        fprintf(f, ", \"dt\": ");
+        sw_cli_json_num(f, sw_engine_dt(e, i));
+        fprintf(f, ", \"steps\": %ld}", s.steps);
+    }
+    fprintf(f, "\n  ]\n}\n");
+}

@@ -1,0 +1,88 @@
+/* output.h - what the commands write: state and event CSVs, summaries. */
+#ifndef SWAYWATCH_CLI_OUTPUT_H
+#define SWAYWATCH_CLI_OUTPUT_H
+
+#include <stdio.h>
+
+#include "cli.h"
+
+/* Derived quantities of every package (--verbose), on f. */
+void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scenes, size_t n);
+
+/* Refuse (message, SW_EXIT_USAGE) an --out or --events (paths, may be
+ * NULL) that names the input being read (in, may be NULL) or each other:
+ * opening them truncates.  "-" is standard output: for one of them, and
+ * only if no summary goes there (neither json nor, without quiet, the
+ * human summary). */
+int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in, int json,
+                         int quiet);
+
+/* An output file: path, or "-" for standard output.  Open reports its
+ * failure; close flushes, closes (standard output stays open) and reports
+ * a write error: SW_EXIT_OK or SW_EXIT_IO.  The name is what messages call
+ * it. */
+FILE *sw_cli_out_open(const char *path);
+int sw_cli_out_close(FILE *f, const char *path);
+const char *sw_cli_out_name(const char *path);
+
+/* --out: the state time series, one row per package and output instant:
+ * t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,
+ * uplift_ratio,a_g.  Numbers as %.9g; a non-finite value is written as an
+ * empty field and counted. */
+typedef struct {
+    FILE *f;
+    const char *path;
+    const sw_scene_t *scenes; /* for package names */
+    size_t n;
+    long every;
+    long *seen;      /* per package: rows offered, for --every */
+    long rows;       /* rows written */
+    long nonfinite;  /* fields left empty because the value was not finite */
+} sw_cli_states_t;
+
+/* Open (path NULL: a disabled writer whose write does nothing). */
+int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const sw_scene_t *scenes,
+                       size_t n);
+void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *out);
+/* A CSV text field, quoted only when it has to be (RFC 4180). */
+void sw_cli_csv_text(FILE *f, const char *s);
+/* Flush and close; returns SW_EXIT_OK or SW_EXIT_IO (reported). */
+int sw_cli_states_close(sw_cli_states_t *w);
+
+/* --events: t,package,event,theta,theta_dot,margin,info. */
+typedef struct {
+    FILE *f;
+    const char *path;
+    const sw_scene_t *scenes;
+    size_t n;
+    long rows, nonfinite;
+} sw_cli_events_t;
+
+int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *scenes, size_t n);
+void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev);
+int sw_cli_events_close(sw_cli_events_t *w);
+
+
+/* What fed the engine, for the summaries. */
+typedef struct {
+    const char *log;         /* LOG as given ("-" for stdin), or NULL */
+    const sw_pulse_t *pulse; /* simulate: the pulse, or NULL */
+    double duration;         /* s, simulate: time simulated */
+    long samples_read;       /* data rows seen */
+    long samples_rejected;   /* data rows refused (CSV layer or engine) */
+    double settle;           /* s, replay: --settle */
+} sw_cli_run_t;
+
+/* The one-screen human summary / the JSON summary (DESIGN.md contract). */
+void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
+void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
+
+/* s as a JSON string literal (quotes included). */
+void sw_cli_json_string(FILE *f, const char *s);
+/* v as a JSON number, or null: JSON has no NaN or infinity. */
+void sw_cli_json_num(FILE *f, double v);
+
+/* Non-zero if any package overturned. */
+int sw_cli_any_overturned(const sw_engine_t *e);
+
+#endif

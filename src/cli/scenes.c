@@ -1,0 +1,279 @@
+/* scenes.c - the options every command shares (opts.h: scene,
+ * integration, output) and what they build: the scenes (read, --set
+ * applied, validated) and the engine.
+ *
+ * Everything here prints its own messages ("swaywatch: ..." on stderr) and
+ * returns an exit code. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "opts.h"
+
+/* Scene files are small; anything this big is not a scene. */
+#define SCENE_MAX_BYTES (1L << 20)
+
+/* ---- scene, integration and output options ---------------------------------- */
+
+static int check_set(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    (void)dest;
+    if (!strchr(arg, '=') || !strchr(arg, '.') || strchr(arg, '.') > strchr(arg, '=')) {
+        sw_cli_error("--%s: expected SECTION.KEY=VALUE, got '%s'", o->long_name, arg);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+static int check_scheme(const sw_cli_option_t *o, const char *name, void *dest)
+{
+    (void)dest;
+    if (sw_scheme_lookup(name)) return SW_EXIT_OK;
+    fprintf(stderr, "swaywatch: --%s: unknown scheme '%s'; valid:", o->long_name, name);
+    for (size_t i = 0; sw_scheme_at(i); i++)
+        fprintf(stderr, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
+    fputc('\n', stderr);
+    return SW_EXIT_USAGE;
+}
+
+static void scheme_help(char *buf, size_t len)
+{
+    int k = snprintf(buf, len, "time stepper:");
+    for (size_t i = 0; sw_scheme_at(i) && k > 0 && (size_t)k < len; i++)
+        k += snprintf(buf + k, len - (size_t)k, "%s %s", i ? "," : "",
+                      sw_scheme_name(sw_scheme_at(i)));
+    if (k > 0 && (size_t)k < len) snprintf(buf + k, len - (size_t)k, " (default %s)", SW_DEFAULT_SCHEME);
+}
+
+#define OPTS(f) SW_CLI_AT(sw_cli_opts_t, f)
+
+const sw_cli_option_t sw_cli_scene_options[] = {
+    {SW_CLI_SECTION, .help = "Scene (one package per file; several files, several packages):"},
+    {SW_CLI_LIST, 's', "scene", "FILE", OPTS(scenes),
+     .help = "scene file (INI); at least one, repeatable"},
+    {SW_CLI_LIST, 0, "set", "SEC.KEY=VALUE", OPTS(sets), .fn = check_set,
+     .help = "override a key in every scene, e.g. --set frame.zeta=0.2"},
+    {SW_CLI_END},
+};
+
+const sw_cli_option_t sw_cli_integration_options[] = {
+    {SW_CLI_SECTION, .help = "Integration:"},
+    {SW_CLI_STRING, 0, "scheme", "NAME", OPTS(scheme), .fn = check_scheme,
+     .help_fn = scheme_help},
+    {SW_CLI_DOUBLE, 0, "dt", "SECONDS", OPTS(dt), .rule = SW_NUM_POSITIVE,
+     .what = "a positive number of seconds",
+     .help = "internal step; refused if above the scheme's stability bound (default: the "
+             "scheme's own, sub-stepped as needed)"},
+    {SW_CLI_DOUBLE, 0, "rtol", "X", OPTS(rtol), .rule = SW_NUM_POSITIVE,
+     .what = "a positive tolerance", .help = "relative tolerance of the adaptive schemes "
+                                             "(default 1e-10)"},
+    {SW_CLI_DOUBLE, 0, "atol", "X", OPTS(atol), .rule = SW_NUM_POSITIVE,
+     .what = "a positive tolerance", .help = "absolute tolerance of the adaptive schemes "
+                                             "(default 1e-12)"},
+    {SW_CLI_END},
+};
+
+const sw_cli_option_t sw_cli_accuracy_options[] = {
+    {SW_CLI_SECTION, .help = "Integration:"},
+    {SW_CLI_DOUBLE, 0, "accuracy", "RAD", OPTS(accuracy), .rule = SW_NUM_POSITIVE,
+     .what = "a positive angle in radians",
+     .help = "pick the cheapest scheme and step measured to keep the error of theta within RAD "
+             "(docs/accuracy-speed.md)"},
+    {SW_CLI_END},
+};
+
+const sw_cli_option_t sw_cli_output_options[] = {
+    {SW_CLI_SECTION, .help = "Output:"},
+    {SW_CLI_STRING, 'o', "out", "FILE.csv", OPTS(out_path),
+     .help = "state time series ('-': standard output): t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,"
+             "margin_bound,uplift_ratio,a_g (SI units, rad)"},
+    {SW_CLI_LONG, 0, "every", "N", OPTS(every), .min = 1, .def = 1,
+     .what = "a whole number of rows >= 1",
+     .help = "every Nth state row of each package (default %g)"},
+    {SW_CLI_STRING, 'e', "events", "FILE.csv", OPTS(events_path),
+     .help = "events ('-': standard output): t,package,event,theta,theta_dot,margin,info"},
+    {SW_CLI_FLAG, 0, "json", OPTS(json), .value = 1,
+     .help = "JSON summary on stdout instead of the human summary"},
+    {SW_CLI_FLAG, 'q', "quiet", OPTS(quiet), .value = 1, .help = "no human summary"},
+    {SW_CLI_END},
+};
+
+const sw_cli_option_t sw_cli_common_options[] = {
+    {SW_CLI_FLAG, 'v', "verbose", OPTS(verbose), .value = 1,
+     .help = "derived quantities of each scene, on stderr"},
+    {SW_CLI_HELP, 'h', "help", .help = "this help"},
+    {SW_CLI_END},
+};
+
+/* ---- scenes --------------------------------------------------------------- */
+
+void sw_cli_print_diag(void *user, const char *origin, int line, const char *msg)
+{
+    sw_cli_diag_t *d = user;
+    d->errors++;
+    if (line > 0)
+        sw_cli_error("%s:%d: %s", origin ? origin : "scene", line, msg);
+    else
+        sw_cli_error("%s: %s", origin ? origin : "scene", msg);
+}
+
+/* Whole file into a NUL-terminated buffer; prints its own errors. */
+static int read_text(const char *path, char **text)
+{
+    int rc = SW_EXIT_IO;
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        sw_cli_error("%s: cannot open: %s", path, strerror(errno));
+        goto out;
+    }
+    buf = malloc((size_t)SCENE_MAX_BYTES + 1);
+    if (!buf) {
+        sw_cli_error("%s: out of memory", path);
+        goto out;
+    }
+    len = fread(buf, 1, (size_t)SCENE_MAX_BYTES + 1, f);
+    if (ferror(f)) {
+        sw_cli_error("%s: cannot read: %s", path, strerror(errno));
+        goto out;
+    }
+    if (len > (size_t)SCENE_MAX_BYTES) {
+        sw_cli_error("%s: larger than %ld bytes: not a scene file", path, SCENE_MAX_BYTES);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+    buf[len] = '\0';
+    if (strlen(buf) != len) {
+        sw_cli_error("%s: contains a NUL byte: not a scene file", path);
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+    *text = buf;
+    buf = NULL;
+    rc = SW_EXIT_OK;
+out:
+    free(buf);
+    if (f) fclose(f);
+    return rc;
+}
+
+int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n)
+{
+    int rc = SW_EXIT_USAGE;
+    sw_scene_t *sc = NULL;
+    char *text = NULL;
+    sw_cli_diag_t diag = {0};
+
+    if (o->scenes.n == 0) {
+        sw_cli_error("no scene: give at least one --scene FILE");
+        goto out;
+    }
+    sc = calloc(o->scenes.n, sizeof *sc);
+    if (!sc) {
+        sw_cli_error("out of memory");
+        rc = SW_EXIT_IO;
+        goto out;
+    }
+    for (size_t i = 0; i < o->scenes.n; i++) {
+        const char *path = o->scenes.v[i];
+        int r = read_text(path, &text);
+        if (r != SW_EXIT_OK) {
+            rc = r;
+            goto out;
+        }
+        sw_scene_init(&sc[i]);
+        long before = diag.errors;
+        int pr = sw_scene_parse(&sc[i], text, path, sw_cli_print_diag, &diag);
+        free(text);
+        text = NULL;
+        if (pr != SW_OK) {
+            if (diag.errors == before) sw_cli_error("%s: %s", path, sw_strerror(pr));
+            diag.errors++;
+            continue; /* report every file's problems before giving up */
+        }
+        for (size_t k = 0; k < o->sets.n; k++) {
+            before = diag.errors;
+            if (sw_scene_set_arg(&sc[i], o->sets.v[k], sw_cli_print_diag, &diag) != SW_OK) {
+                if (diag.errors == before) sw_cli_error("--set %s: rejected", o->sets.v[k]);
+                /* The same override would fail the same way on every scene. */
+                goto out;
+            }
+        }
+        if (sc[i].name[0] == '\0') {
+            /* no package.name: messages and reports name the file instead */
+            const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+            const char *dot = strrchr(base, '.');
+            const int len = dot && dot > base ? (int)(dot - base) : (int)strlen(base);
+            snprintf(sc[i].name, sizeof sc[i].name, "%.*s", len, base);
+        }
+        before = diag.errors;
+        if (sw_scene_validate(&sc[i], NULL, path, sw_cli_print_diag, &diag) != SW_OK) {
+            if (diag.errors == before) sw_cli_error("%s: invalid scene", path);
+            diag.errors++;
+        }
+    }
+    if (diag.errors) goto out;
+    *scenes = sc;
+    *n = o->scenes.n;
+    sc = NULL;
+    rc = SW_EXIT_OK;
+out:
+    free(text);
+    free(sc);
+    return rc;
+}
+
+/* ---- engine --------------------------------------------------------------- */
+
+void sw_cli_engine_opts(const sw_cli_opts_t *o, sw_engine_opts_t *eo)
+{
+    memset(eo, 0, sizeof *eo);
+    eo->scheme = o->scheme;
+    eo->dt = o->dt;
+    /* A step the user chose is taken as given: better refused than quietly
+     * replaced by a smaller one. */
+    eo->dt_forced = o->dt > 0.0;
+    eo->rtol = o->rtol;
+    eo->atol = o->atol;
+}
+
+int sw_cli_resolve_accuracy(const sw_cli_opts_t *o, const sw_scene_t *scenes, size_t n,
+                            sw_engine_opts_t *eo)
+{
+    if (!(o->accuracy > 0.0)) return SW_EXIT_OK;
+    if (o->scheme || o->dt > 0.0) {
+        sw_cli_error("--accuracy chooses the scheme and the step: give it without --scheme and "
+                     "--dt");
+        return SW_EXIT_USAGE;
+    }
+    /* The engine applies the policy (so do the sweeps' engines, each for
+     * its own scene); asked here first to word a refusal as options. */
+    const char *scheme = NULL;
+    double dt = 0.0;
+    const int r = sw_scheme_for_accuracy_n(scenes, n, o->accuracy, &scheme, &dt, NULL);
+    if (r != SW_OK) {
+        sw_cli_error("--accuracy %g rad: %s", o->accuracy,
+                     r == SW_ENOTFOUND ? "tighter than any measured setting reaches "
+                                         "(about 1e-14 rad); use --scheme rk8pd --rtol"
+                                       : "no measured table for this model; choose --scheme "
+                                         "and --dt or --rtol");
+        return SW_EXIT_USAGE;
+    }
+    eo->scheme = NULL;
+    eo->dt = 0.0;
+    eo->dt_forced = 0;
+    eo->accuracy = o->accuracy;
+    return SW_EXIT_OK;
+}
+
+sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo)
+{
+    int err = 0;
+    char msg[512] = "";
+    sw_engine_t *e = sw_engine_create(scenes, n, eo, &err, msg, sizeof msg);
+    if (!e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+    return e;
+}
