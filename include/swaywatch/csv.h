@@ -144,6 +144,16 @@ SW_API int sw_csv_layout(const sw_csv_t *c, sw_csv_layout_t *out);
 SW_API long sw_csv_header_count(const sw_csv_t *c);
 SW_API const char *sw_csv_header_field(const sw_csv_t *c, long i);
 
+/* A unit as written ("ms", "s", "us", "µs"; "g", "G", "Gs", "m/s2",
+ * "m/s^2", "m/s²", "mps2", ...; spaces and case ignored): SW_CSV_UNIT_*,
+ * or SW_CSV_UNIT_NONE if it is none of the time units (time_role) or the
+ * acceleration units.  The same reading a header's names get. */
+SW_API int sw_csv_unit_parse(const char *text, int time_role);
+
+/* s or m/s^2 per unit: 1e-3 for ms, 9.80665 for g; 1 for the SI units,
+ * date-times and SW_CSV_UNIT_NONE. */
+SW_API double sw_csv_unit_scale(int unit);
+
 /* "s", "ms", "us", "date-time", "m/s^2", "g", or "" for SW_CSV_UNIT_NONE. */
 SW_API const char *sw_csv_unit_name(int unit);
 

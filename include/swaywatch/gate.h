@@ -122,6 +122,8 @@ typedef struct {
 /* What the stream was: for the summaries, and for the plausibility check. */
 typedef struct {
     long received;                 /* samples handed to the gate */
+    long upstream_rejected;        /* the caller's to fill: samples its reader refused before
+                                      the gate (unreadable rows); sw_gate_check counts them */
     long accepted;                 /* pushed into the engine */
     long held;                     /* waiting in chains now */
     long rejected[SW_GATE_NREJ];   /* received = accepted + held + sum(rejected) */
@@ -158,6 +160,11 @@ SW_API int sw_gate_push(sw_gate_t *g, const sw_sample_t *s);
 SW_API int sw_gate_flush(sw_gate_t *g);
 
 SW_API void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f);
+
+/* The source's time (s) of an engine time on the current stretch of the
+ * timeline (since the last gap, step or restart): for publishing times on
+ * the source's clock. */
+SW_API double sw_gate_source_time(const sw_gate_t *g, double t_engine);
 SW_API long sw_gate_rejected(const sw_gate_facts_t *f); /* sum of rejected[] */
 
 /* "nonfinite", "implausible", "time", "skew", "duplicate", "late", "jump",

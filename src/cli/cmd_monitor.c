@@ -36,6 +36,7 @@
 /* monitor's own options, and the monitor core's. */
 typedef struct {
     sw_mon_opts_t mo;
+    sw_cli_gate_t gate;        /* the input gate's options, as every source has them */
     const char *url;           /* --lcm-url; NULL: LCM's default */
     const char *accel_channel; /* subscribed to */
     double status_every;       /* s, --status; 0: no status line */
@@ -80,19 +81,20 @@ static const sw_cli_option_t monitor_input_options[] = {
      .help = "\nA sensor with a synchronised clock can use --max-skew (e.g. 10); leave it off\n"
              "when lcm-logplayer replays an old log.\n"
              "\n"
-             "Sensor gaps: when no sample has arrived for --gap seconds, a SENSOR_GAP alarm\n"
-             "(warn) is published and the model waits: it is not advanced and publishes no\n"
-             "state.  When samples resume, the input over the gap is bridged by linear\n"
-             "interpolation between the last sample before it and the first after it, and a\n"
-             "SENSOR_GAP alarm (info) says so.  Consecutive samples further apart in utime than\n"
-             "--gap (samples lost upstream) raise SENSOR_GAP (warn) when the later one arrives\n"
-             "and are bridged the same way.\n"
+             "Sensor gaps: when no sample has arrived for --gap seconds (0.1 s if --gap is not\n"
+             "given), a SENSOR_GAP alarm (warn) is published and the model waits: it is not\n"
+             "advanced and publishes no state.  When samples resume, the gap follows\n"
+             "--gap-policy (bridged linearly up to --max-bridge, else the packages restart\n"
+             "from rest) and a SENSOR_GAP alarm says so; critical when the gap overlaps\n"
+             "rocking or an acceleration past an uplift threshold (the verdict is incomplete).\n"
              "\n"
-             "Jumps: a sample whose utime is more than --max-jump after the last accepted one\n"
-             "(and the very first sample) waits for the next.  If the next follows it within\n"
-             "--max-jump, the sensor's clock did jump (an outage, a restart) and both are taken,\n"
-             "the gap bridged as above; otherwise the waiting sample is refused as a jump.  One\n"
-             "sample stamped far in the future therefore cannot make the later ones late.\n"
+             "Time: samples are integrated by their own utime, the time that really passed\n"
+             "taken from their arrival.  A sample whose utime leaps ahead of that (beyond\n"
+             "--max-jump) or goes back waits until --confirm samples in a row follow it: then\n"
+             "the sensor's clock stepped (re-timed, the motion goes on), it restarted (utime\n"
+             "went back), or it was silent (a gap), each a SENSOR_GAP alarm and a counter;\n"
+             "else the stream refutes it and it alone is refused.  One forged or corrupt utime\n"
+             "cannot make the later samples late, nor blind the monitor.\n"
              "\n"
              "Bad input: messages that are not accel_t (wrong type, truncated, trailing bytes),\n"
              "samples with a non-finite value or beyond --max-accel or --max-skew, duplicates\n"
@@ -328,10 +330,10 @@ static void print_final(sw_mon_t *mon, double elapsed)
             stop_signal == SIGTERM ? "SIGTERM" : "SIGINT", elapsed, k.received, k.accepted);
     sw_cli_print_rejected(stderr, &k);
     fprintf(stderr,
-            "; lost %ld (by seq), seq restarts %ld, gaps %ld; published %ld states (%ld "
-            "withheld), %ld alarms; %ld publish errors\n",
-            k.lost, k.seq_restarts, k.gaps, k.states, k.states_withheld, k.alarms,
-            k.publish_errors);
+            "; lost %ld (by seq), seq restarts %ld, gaps %ld, sensor restarts %ld, clock "
+            "steps %ld; published %ld states (%ld withheld), %ld alarms; %ld publish errors\n",
+            k.lost, k.seq_restarts, k.gaps, k.restarts, k.clock_steps, k.states,
+            k.states_withheld, k.alarms, k.publish_errors);
     sw_cli_run_t run;
     memset(&run, 0, sizeof run);
     run.samples_read = k.received;
@@ -440,10 +442,12 @@ int cmd_monitor(int argc, char **argv)
     mon_ctx_t ctx;
     memset(&ctx, 0, sizeof ctx);
     sw_cli_mon_opts_init(&m.mo);
+    sw_cli_gate_init(&m.gate);
     sw_cli_group_t g[] = {
         SW_CLI_GROUP(monitor_lcm_options, &m),
         SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &m.mo, "Input:"),
         SW_CLI_GROUP(monitor_input_options, &m),
+        SW_CLI_GROUP(sw_cli_gate_options, &m.gate),
         SW_CLI_GROUP(sw_cli_scene_options, &o),
         SW_CLI_GROUP(sw_cli_integration_options, &o),
         SW_CLI_GROUP(sw_cli_accuracy_options, &o),
@@ -466,6 +470,8 @@ int cmd_monitor(int argc, char **argv)
                      "simulate; record the monitor's output with lcm-logger");
         goto out;
     }
+    if ((rc = sw_cli_mon_gate(&m.mo, &m.gate)) != SW_EXIT_OK)
+        goto out;
     if ((rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
         goto out;
     rc = SW_EXIT_IO;

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "feed.h"
 #include "input.h"
 #include "opts.h"
 #include "output.h"
@@ -96,6 +97,7 @@ static const sw_cli_command_t replay_cmd = {
 typedef struct {
     sw_cli_opts_t o;
     sw_cli_csv_opts_t copts;
+    sw_cli_gate_t gate;
     replay_opts_t ro;
     const char *log; /* LOG as given */
     sw_cli_logfile_t lf;
@@ -128,101 +130,21 @@ static void on_event(void *user, const sw_event_t *ev)
 
 /* ---- CSV logs ------------------------------------------------------------------ */
 
-typedef struct {
-    sw_engine_t *e;
-    sw_cli_rejects_t rej;
-    long refused_line; /* a row the engine refused, awaiting its report */
-    int refused_rc;
-    long engine_refused; /* rows the CSV layer accepted and the engine did not */
-} csv_ctx_t;
-
-static int on_row(void *user, long line, double t, double a_g, double a_z)
-{
-    csv_ctx_t *c = user;
-    if (c->rej.stop) return 1; /* --strict: nothing after the first bad row counts */
-    int rc = sw_engine_push(c->e, t, a_g, a_z);
-    if (rc >= 0) return 0;
-    /* The CSV layer already checks order and finiteness, so this should not
-     * happen; if it does the row is counted as rejected all the same. */
-    c->engine_refused++;
-    c->refused_line = line;
-    c->refused_rc = rc;
-    return 1;
-}
-
-static void on_reject(void *user, long line, const char *reason)
-{
-    csv_ctx_t *c = user;
-    if (c->refused_line && line == c->refused_line) {
-        char buf[160];
-        snprintf(buf, sizeof buf, "sample refused by the engine: %s", sw_strerror(c->refused_rc));
-        c->refused_line = 0;
-        sw_cli_rejects_add(&c->rej, line, buf);
-        return;
-    }
-    sw_cli_rejects_add(&c->rej, line, reason);
-}
-
-/* An engine refusal the CSV layer did not pass back through on_reject. */
-static void flush_refusal(void *user)
-{
-    csv_ctx_t *c = user;
-    if (!c->refused_line) return;
-    long line = c->refused_line;
-    on_reject(c, line, "");
-}
-
-/* Stream the CSV log through the engine; the engine and the writers are
- * ready. */
+/* Stream the CSV log through the reader and the input gate into the
+ * engine; the engine and the writers are ready.  Then the verdict's
+ * check, before the settling that the verdict includes. */
 static int replay_csv(replay_t *r)
 {
-    int rc = SW_EXIT_USAGE;
-    csv_ctx_t ctx = {.e = r->e};
-    ctx.rej = (sw_cli_rejects_t){.name = r->lf.name, .quiet = r->o.quiet,
-                                 .strict = r->copts.strict};
-    int err = 0;
-    char msg[256] = "";
-    sw_csv_t *csv = sw_csv_create(&r->copts.csv, on_row, on_reject, &ctx, &err, msg, sizeof msg);
-    if (!csv) {
-        sw_cli_error("%s: %s", r->lf.name, msg[0] ? msg : sw_strerror(err));
-        goto out;
-    }
-    int fr;
-    rc = sw_cli_logfile_pump(&r->lf, csv, &ctx.rej.stop, flush_refusal, &ctx, &fr);
-    if (rc != SW_EXIT_OK) goto out;
-    rc = SW_EXIT_USAGE;
-    if (fr < 0) {
-        /* The reader reports why through on_reject where it can (e.g. the
-         * header line lacking a named column); this names the failure. */
-        sw_cli_error("%s: %s", r->lf.name,
-                     fr == SW_ENOTFOUND ? "a column given by name is not in the header"
-                                        : sw_strerror(fr));
-        rc = fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
-        goto out;
-    }
-    if (ctx.rej.stop) {
-        sw_cli_error("%s: stopped at the first rejected row (--strict)", r->lf.name);
-        goto out;
-    }
-    sw_csv_counts_t counts;
-    sw_csv_counts(csv, &counts);
-    long rejected = counts.rejected;
-    /* Rows the engine refused are normally counted by the reader too (the
-     * consumer's non-zero return); make sure they are never lost. */
-    if (rejected < ctx.rej.reported) rejected = ctx.rej.reported;
-    sw_cli_rejects_summary(&ctx.rej);
-    if (counts.rows - rejected <= 0) {
-        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", r->lf.name, counts.rows,
-                     rejected);
-        goto out;
-    }
+    sw_cli_fed_t fed;
+    int rc = sw_cli_feed_csv(&r->lf, &r->copts, &r->gate, r->e, r->o.quiet, &fed);
+    if (rc != SW_EXIT_OK) return rc;
+    r->run.samples_read = fed.rows;
+    r->run.samples_rejected = fed.rejected;
+    rc = sw_cli_feed_verdict(r->lf.name, &fed.facts, &r->gate, r->copts.csv.vert_col != NULL,
+                             r->o.quiet, &r->run);
+    if (rc != SW_EXIT_OK) return rc;
     sw_engine_finish(r->e, r->ro.settle);
-    r->run.samples_read = counts.rows;
-    r->run.samples_rejected = rejected;
-    rc = SW_EXIT_OK;
-out:
-    sw_csv_destroy(csv);
-    return rc;
+    return SW_EXIT_OK;
 }
 
 /* ---- lcm-logger files ---------------------------------------------------------- */
@@ -261,6 +183,7 @@ static int lcmlog_publish(replay_t *r)
 
 static sw_engine_t *lcmlog_engine(replay_t *r)
 {
+    if (sw_cli_mon_gate(&r->mo, &r->gate) != SW_EXIT_OK) return NULL;
     r->mo.accel_scale = r->copts.csv.accel_scale;
     r->mo.flip = r->copts.csv.flip;
     r->mo.on_state = r->o.out_path ? on_state : NULL;
@@ -288,10 +211,17 @@ static int replay_lcmlog(replay_t *r)
         sw_cli_error("%s: stopped at the first bad event or sample (--strict)", r->log);
         return SW_EXIT_USAGE;
     }
-    if (k.accepted > 0 && r->ro.settle > 0.0) sw_engine_finish(r->e, r->ro.settle);
-    sw_mon_counts(r->mon, &k);
     r->run.samples_read = k.received;
     r->run.samples_rejected = k.received - k.accepted;
+    if (k.accepted > 0) {
+        sw_gate_facts_t f;
+        sw_mon_facts(r->mon, &f);
+        f.upstream_rejected = k.received - f.received; /* not accel_t, NaN on an axis */
+        const int rc = sw_cli_feed_verdict(r->log, &f, &r->gate, r->mo.vertical >= 0,
+                                           r->o.quiet, &r->run);
+        if (rc != SW_EXIT_OK) return rc;
+    }
+    if (k.accepted > 0 && r->ro.settle > 0.0) sw_engine_finish(r->e, r->ro.settle);
     return SW_EXIT_OK;
 }
 
@@ -311,7 +241,9 @@ static int lcmlog_report(replay_t *r)
         fprintf(stderr, "swaywatch: %s: accel samples: %ld = accepted %ld + ", r->log, k.received,
                 k.accepted);
         sw_cli_print_rejected(stderr, &k);
-        fprintf(stderr, "; lost %ld (by seq), gaps %ld; %ld states, %ld alarms\n", k.lost, k.gaps,
+        fprintf(stderr, "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
+                        "%ld alarms\n",
+                k.lost, k.gaps, k.restarts, k.clock_steps,
                 k.states, k.alarms);
     }
     if (k.accepted > 0) return SW_EXIT_OK;
@@ -429,6 +361,7 @@ int cmd_replay(int argc, char **argv)
     int rc = SW_EXIT_USAGE;
     replay_t r = {0};
     sw_cli_csv_opts_init(&r.copts);
+    sw_cli_gate_init(&r.gate);
 #ifdef SW_HAVE_LCM
     sw_cli_mon_opts_init(&r.mo);
 #endif
@@ -443,6 +376,7 @@ int cmd_replay(int argc, char **argv)
         SW_CLI_GROUP_IN(replay_publish_options, &r.ro, LCM_SECTION),
         SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &r.mo, LCM_SECTION),
 #endif
+        SW_CLI_GROUP(sw_cli_gate_options, &r.gate),
         SW_CLI_GROUP(sw_cli_scene_options, &r.o),
         SW_CLI_GROUP(sw_cli_integration_options, &r.o),
         SW_CLI_GROUP(sw_cli_accuracy_options, &r.o),

@@ -21,7 +21,128 @@ void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o)
 {
     memset(o, 0, sizeof *o);
     o->csv.header = -1;
+    o->csv.infer = 1;          /* columns and units nobody gave: from the header */
+    o->csv.decimal_comma = -1; /* detected in ';' and tab files */
 }
+
+/* ---- the input gate ------------------------------------------------------------- */
+
+#define G0 9.80665 /* m/s^2 per g */
+
+void sw_cli_gate_init(sw_cli_gate_t *g)
+{
+    memset(g, 0, sizeof *g);
+    g->vert_gravity = -1;
+}
+
+void sw_cli_gate_opts(const sw_cli_gate_t *g, sw_gate_opts_t *o)
+{
+    memset(o, 0, sizeof *o);
+    o->gap = g->gap;
+    o->gap_policy = g->gap_policy ? SW_GAP_RESTART : SW_GAP_BRIDGE;
+    o->max_bridge = g->max_bridge;
+    o->max_accel = g->max_accel;
+    o->jump = g->max_jump == 0.0 ? -1.0 : g->max_jump < 0.0 ? 0.0 : g->max_jump;
+    o->confirm = (int)g->confirm;
+    o->vert_gravity = g->vert_gravity == 1;
+}
+
+void sw_cli_gate_limits(const sw_cli_gate_t *g, sw_gate_limits_t *lim)
+{
+    memset(lim, 0, sizeof *lim);
+    /* 0 %: any rejected sample refuses the verdict */
+    lim->max_rejected = g->max_rejected > 0.0 ? g->max_rejected / 100.0 : 1e-300;
+}
+
+/* "--max-accel 30g" or "--max-accel 294.2" (m/s^2); at most the engine's
+ * limit, beyond which it refuses every sample itself. */
+int sw_cli_accel_limit(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    double *out = dest;
+    char buf[64];
+    size_t len = strlen(arg);
+    double scale = 1.0;
+    if (len > 0 && len < sizeof buf && (arg[len - 1] == 'g' || arg[len - 1] == 'G')) {
+        memcpy(buf, arg, len - 1);
+        buf[len - 1] = '\0';
+        arg = buf;
+        scale = G0;
+    }
+    if (sw_cli_opt_double(o, arg, out) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    *out *= scale;
+    if (!(*out <= SW_MAX_ACCEL)) {
+        sw_cli_error("--%s: expected at most %g m/s^2 (%.0fg), the engine's limit, got '%s%s'",
+                     o->long_name, SW_MAX_ACCEL, SW_MAX_ACCEL / G0, arg, scale == G0 ? "g" : "");
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+static int parse_policy(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    int *out = dest;
+    if (!strcmp(arg, "bridge"))
+        *out = 0;
+    else if (!strcmp(arg, "restart"))
+        *out = 1;
+    else {
+        sw_cli_error("--%s: expected bridge or restart, got '%s'", o->long_name, arg);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+/* --max-jump: 0 means never wait; not given (-1) means the gap threshold. */
+static int check_jump(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    const double *v = dest;
+    if (!(*v <= 86400.0)) {
+        sw_cli_error("--%s: expected at most 86400 s, got '%s'", o->long_name, arg);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+#define GATE(f) SW_CLI_AT(sw_cli_gate_t, f)
+
+const sw_cli_option_t sw_cli_gate_options[] = {
+    {SW_CLI_SECTION, .help = "Input checks (every source: CSV, lcm-logger, live):"},
+    {SW_CLI_CALL, 0, "max-accel", "A", GATE(max_accel), .fn = sw_cli_accel_limit,
+     .rule = SW_NUM_POSITIVE, .what = "a positive acceleration in m/s^2, or in g with a g suffix",
+     .help = "refuse samples with any axis beyond A (a spike), in m/s^2 or with a g suffix, "
+             "e.g. 30g (default 50g)"},
+    {SW_CLI_DOUBLE, 0, "gap", "SECONDS", GATE(gap), .rule = SW_NUM_NONNEGATIVE,
+     .what = "a number of seconds >= 0 (0: five sample intervals)",
+     .help = "samples further apart are a gap, an event counted in the summary (default: five "
+             "typical sample intervals)"},
+    {SW_CLI_CALL, 0, "gap-policy", "bridge|restart", GATE(gap_policy), .fn = parse_policy,
+     .help = "across a gap: interpolate linearly (bridge, the default), or treat it as "
+             "missing and restart every package from rest"},
+    {SW_CLI_DOUBLE, 0, "max-bridge", "SECONDS", GATE(max_bridge), .rule = SW_NUM_POSITIVE,
+     .def = 10, .what = "a positive number of seconds",
+     .help = "longest gap bridged; longer ones restart the packages from rest (default %g)"},
+    {SW_CLI_DOUBLE, 0, "max-jump", "SECONDS", GATE(max_jump), .rule = SW_NUM_NONNEGATIVE,
+     .def = -1, .fn = check_jump, .what = "a number of seconds >= 0 (0: take any time at once)",
+     .help = "a sample whose time leaps further than this beyond the time that passed (or goes "
+             "back) waits until the stream confirms it (default: the gap threshold; 0: never "
+             "wait)"},
+    {SW_CLI_LONG, 0, "confirm", "N", GATE(confirm), .min = 2, .max = SW_GATE_CONFIRM_MAX,
+     .def = 3, .what = "a number of samples from 2 to " SW_CLI_STR(SW_GATE_CONFIRM_MAX),
+     .help = "samples in a row that confirm a leap or a restart of the time (default %g)"},
+    {SW_CLI_FLAG, 0, "vert-includes-gravity", GATE(vert_gravity), .value = 1,
+     .help = "the vertical channel reads +1 g at rest (an accelerometer): gravity is "
+             "subtracted once"},
+    {SW_CLI_FLAG, 0, "vert-excludes-gravity", GATE(vert_gravity), .value = 0,
+     .help = "the vertical channel has gravity removed already (0 at rest)"},
+    {SW_CLI_DOUBLE, 0, "max-rejected", "PERCENT", GATE(max_rejected), .rule = SW_NUM_NONNEGATIVE,
+     .def = 1, .what = "a percentage >= 0",
+     .help = "refuse a verdict when more than this share of the samples was rejected (default "
+             "%g %%)"},
+    {SW_CLI_FLAG, 0, "force", GATE(force), .value = 1,
+     .help = "give a verdict even for a log the plausibility check refuses (a rate or span no "
+             "vehicle log has, an impossible peak, too many rejected rows); marked as forced"},
+    {SW_CLI_END},
+};
 
 /* The value of a text option, one of a few names: dest gets the value of
  * the name, or the message names the choices. */
@@ -41,34 +162,29 @@ static int parse_delim(const sw_cli_option_t *o, const char *arg, void *dest)
     return SW_EXIT_OK;
 }
 
-int sw_cli_accel_unit(const sw_cli_option_t *o, const char *arg, void *dest)
+/* A unit option, read as a header's unit is (csv.h): "g", "G", "Gs",
+ * "m/s2", "m/s^2", "m/s²", "mps2"; "s", "ms", "us". */
+static int parse_unit(const sw_cli_option_t *o, const char *arg, double *scale, int time_role)
 {
-    double *scale = dest;
-    if (!strcmp(arg, "m/s2") || !strcmp(arg, "m/s^2") || !strcmp(arg, "mps2"))
-        *scale = 1.0;
-    else if (!strcmp(arg, "g"))
-        *scale = 9.80665;
-    else {
-        sw_cli_error("--%s: expected m/s2 or g, got '%s'", o->long_name, arg);
+    const int u = sw_csv_unit_parse(arg, time_role);
+    if (u == SW_CSV_UNIT_NONE) {
+        sw_cli_error("--%s: expected %s, got '%s'", o->long_name,
+                     time_role ? "s, ms or us" : "m/s2 (or m/s^2, m/s\xc2\xb2, mps2) or g (G, Gs)",
+                     arg);
         return SW_EXIT_USAGE;
     }
+    *scale = sw_csv_unit_scale(u);
     return SW_EXIT_OK;
+}
+
+int sw_cli_accel_unit(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    return parse_unit(o, arg, dest, 0);
 }
 
 static int parse_time_unit(const sw_cli_option_t *o, const char *arg, void *dest)
 {
-    double *scale = dest;
-    if (!strcmp(arg, "s"))
-        *scale = 1.0;
-    else if (!strcmp(arg, "ms"))
-        *scale = 1e-3;
-    else if (!strcmp(arg, "us"))
-        *scale = 1e-6;
-    else {
-        sw_cli_error("--%s: expected s, ms or us, got '%s'", o->long_name, arg);
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
+    return parse_unit(o, arg, dest, 1);
 }
 
 /* Column choice: a header name or a 1-based index; "0" is neither. */

@@ -9,6 +9,30 @@
 #include "cli.h"
 #include "opts.h"
 
+/* ---- the input gate's options (every source) ------------------------------------ */
+
+/* What the gate (gate.h) checks, and how a doubtful log's verdict is
+ * given: the same options and defaults for CSV logs, lcm-logger files and
+ * the live monitor. */
+typedef struct {
+    double gap;          /* s; 0 = 5 typical intervals */
+    int gap_policy;      /* SW_GAP_BRIDGE, SW_GAP_RESTART */
+    double max_bridge;   /* s */
+    double max_accel;    /* m/s^2 */
+    double max_jump;     /* s; 0 = never wait (the gate's jump < 0); default the gap */
+    long confirm;        /* samples */
+    int vert_gravity;    /* -1 not said, 0 removed, 1 included */
+    double max_rejected; /* %, of samples refused before a log is */
+    int force;           /* a verdict even where the plausibility check refuses it */
+} sw_cli_gate_t;
+
+void sw_cli_gate_init(sw_cli_gate_t *g);
+extern const sw_cli_option_t sw_cli_gate_options[];
+/* The gate's options from the CLI's (callbacks left NULL). */
+void sw_cli_gate_opts(const sw_cli_gate_t *g, sw_gate_opts_t *o);
+/* The plausibility limits from the CLI's options. */
+void sw_cli_gate_limits(const sw_cli_gate_t *g, sw_gate_limits_t *lim);
+
 /* ---- CSV input options ------------------------------------------------------- */
 
 typedef struct {
@@ -27,6 +51,8 @@ extern const sw_cli_option_t sw_cli_sample_options[];
 /* fn of an --accel-unit row: m/s2 or g into dest, a double of m/s^2 per
  * unit (1 g = 9.80665 m/s^2).  Shared by CSV and LCM input. */
 int sw_cli_accel_unit(const sw_cli_option_t *o, const char *arg, void *dest);
+/* fn of a --max-accel row: "30g" or m/s^2, at most SW_MAX_ACCEL. */
+int sw_cli_accel_limit(const sw_cli_option_t *o, const char *arg, void *dest);
 
 /* Rejected rows of a CSV log: each one counted, the first
  * SW_CLI_MAX_PRINTED_REJECTS printed as "NAME:LINE: reason" (none with

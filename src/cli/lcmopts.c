@@ -27,25 +27,6 @@ void sw_cli_print_rejected(FILE *f, const sw_mon_counts_t *k)
     fputc(')', f);
 }
 
-/* "--max-accel 30g" or "--max-accel 294.2" (m/s^2). */
-static int parse_accel_limit(const sw_cli_option_t *o, const char *arg, void *dest)
-{
-    double *out = dest;
-    char buf[64];
-    size_t len = strlen(arg);
-    double scale = 1.0;
-    if (len > 0 && len < sizeof buf && arg[len - 1] == 'g') {
-        memcpy(buf, arg, len - 1);
-        buf[len - 1] = '\0';
-        arg = buf;
-        scale = SW_G0;
-    }
-    if (sw_cli_opt_double(o, arg, out) != SW_EXIT_OK)
-        return SW_EXIT_USAGE;
-    *out *= scale;
-    return SW_EXIT_OK;
-}
-
 /* --axis x|y|z; --vertical also none (the row's value is 1). */
 static int parse_axis(const sw_cli_option_t *o, const char *arg, void *dest)
 {
@@ -74,20 +55,6 @@ static int check_channel(const sw_cli_option_t *o, const char *arg, void *dest)
     return SW_EXIT_OK;
 }
 
-/* --max-jump 0 takes any jump at once (monitor.h: max_jump < 0); far
- * beyond a day it would let one sample move the clock by years. */
-static int check_max_jump(const sw_cli_option_t *o, const char *arg, void *dest)
-{
-    double *v = dest;
-    if (*v == 0.0) {
-        *v = -1.0;
-    } else if (!(*v < 1e9)) {
-        sw_cli_error("--%s: expected at most 1e9 s, got '%s'", o->long_name, arg);
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
-}
-
 #define MON(f) SW_CLI_AT(sw_mon_opts_t, f)
 
 const sw_cli_option_t sw_cli_lcm_publish_options[] = {
@@ -105,23 +72,30 @@ const sw_cli_option_t sw_cli_lcm_input_options[] = {
     {SW_CLI_CALL, 0, "axis", "x|y|z", MON(axis), .fn = parse_axis,
      .help = "message axis along the truck's travel (default x)"},
     {SW_CLI_CALL, 0, "vertical", "x|y|z|none", MON(vertical), .fn = parse_axis, .value = 1,
-     .help = "message axis used as vertical acceleration (up, gravity removed; default none: "
-             "gravity only)"},
-    {SW_CLI_CALL, 0, "max-accel", "A", MON(max_accel), .fn = parse_accel_limit,
-     .rule = SW_NUM_POSITIVE, .what = "a positive acceleration in m/s^2, or in g with a g suffix",
-     .help = "refuse samples with any axis beyond A, in m/s^2 or with a g suffix, e.g. 30g "
-             "(default 50g)"},
+     .help = "message axis used as vertical acceleration, up (say whether it includes gravity: "
+             "--vert-includes-gravity or --vert-excludes-gravity; default none: gravity only)"},
     {SW_CLI_DOUBLE, 0, "max-skew", "SECONDS", MON(max_skew), .rule = SW_NUM_NONNEGATIVE,
      .what = "a number of seconds >= 0 (0: not checked)",
      .help = "refuse samples whose utime is further than this from the time they arrived (live: "
              "the wall clock; a log: when lcm-logger received them; default: not checked)"},
-    {SW_CLI_DOUBLE, 0, "max-jump", "SECONDS", MON(max_jump), .rule = SW_NUM_NONNEGATIVE,
-     .def = SW_MON_MAX_JUMP, .fn = check_max_jump,
-     .what = "a number of seconds >= 0 (0: take any jump)",
-     .help = "hold a sample whose utime is further than this after the last one until the next "
-             "sample confirms it (default %g; 0: take any jump at once)"},
-    {SW_CLI_DOUBLE, 0, "gap", "SECONDS", MON(gap), .rule = SW_NUM_POSITIVE, .def = SW_MON_GAP,
-     .what = "a positive number of seconds",
-     .help = "sensor gap threshold: samples further apart raise SENSOR_GAP (default %g)"},
     {SW_CLI_END},
 };
+
+int sw_cli_mon_gate(sw_mon_opts_t *mo, const sw_cli_gate_t *g)
+{
+    if (mo->vertical >= 0 && g->vert_gravity < 0) {
+        sw_cli_error("--vertical: say whether that axis includes gravity (an accelerometer reads "
+                     "+1 g at rest): --vert-includes-gravity or --vert-excludes-gravity");
+        return SW_EXIT_USAGE;
+    }
+    sw_gate_opts_t o;
+    sw_cli_gate_opts(g, &o);
+    mo->gap = o.gap;
+    mo->gap_policy = o.gap_policy;
+    mo->max_bridge = o.max_bridge;
+    mo->max_accel = o.max_accel;
+    mo->max_jump = o.jump;
+    mo->confirm = o.confirm;
+    mo->vert_gravity = o.vert_gravity;
+    return SW_EXIT_OK;
+}

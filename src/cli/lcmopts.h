@@ -6,13 +6,14 @@
 
 #include <stdio.h>
 
+#include "input.h"
 #include "monitor.h"
 #include "opts.h"
 
 /* --state-channel, --alarm-channel, --state-rate: what is published. */
 extern const sw_cli_option_t sw_cli_lcm_publish_options[];
-/* --axis, --vertical, --max-accel, --max-skew, --max-jump, --gap: which
- * samples are taken, and how. */
+/* --axis, --vertical, --max-skew: which of a message's values are taken
+ * (the input gate's options, sw_cli_gate_options, decide the rest). */
 extern const sw_cli_option_t sw_cli_lcm_input_options[];
 
 /* "rejected N (reason n, ...)": the refusals by reason, as monitor and
@@ -22,5 +23,9 @@ void sw_cli_print_rejected(FILE *f, const sw_mon_counts_t *k);
 /* Set mo to the defaults these rows assume (vertical none, the library's
  * hysteresis) before sw_cli_parse(). */
 void sw_cli_mon_opts_init(sw_mon_opts_t *mo);
+
+/* The input gate's options into mo; SW_EXIT_USAGE (reported) when a
+ * vertical axis is given without saying whether it includes gravity. */
+int sw_cli_mon_gate(sw_mon_opts_t *mo, const sw_cli_gate_t *g);
 
 #endif

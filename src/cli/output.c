@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <sys/stat.h>
 
 /* ---- derived quantities -------------------------------------------------- */
@@ -305,6 +306,65 @@ static void print_time(FILE *f, double t, const char *none)
         fputs(none, f);
 }
 
+/* An absolute time (s since 1970) as ISO-8601 UTC with milliseconds. */
+static void iso_time(char *buf, size_t len, double t)
+{
+    const double whole = floor(t);
+    long ms = lround((t - whole) * 1000.0);
+    time_t secs = (time_t)whole;
+    if (ms >= 1000) {
+        ms -= 1000;
+        secs++;
+    }
+    struct tm tm;
+    if (!gmtime_r(&secs, &tm) || !strftime(buf, len, "%Y-%m-%dT%H:%M:%S", &tm)) {
+        snprintf(buf, len, "%.3f s since 1970", t);
+        return;
+    }
+    const size_t n = strlen(buf);
+    snprintf(buf + n, len - n, ".%03ldZ", ms);
+}
+
+/* The facts of the log: what would expose a misread (duration, rate, peak,
+ * gaps), and whether the verdict is incomplete or forced. */
+static void print_facts(FILE *f, const sw_cli_run_t *run)
+{
+    const sw_gate_facts_t *F = &run->facts;
+    const double t0 = F->t_first - F->t_origin, t1 = F->t_last - F->t_origin;
+    const double share = run->samples_read
+                             ? 100.0 * (double)run->samples_rejected / (double)run->samples_read
+                             : 0.0;
+    fprintf(f, "  rejected        %ld of %ld (%.2f %%)\n", run->samples_rejected,
+            run->samples_read, share);
+    if (F->t_origin != 0.0) {
+        char iso[64];
+        iso_time(iso, sizeof iso, F->t_origin);
+        fprintf(f, "  starts          %s (the times below are from there)\n", iso);
+    }
+    fprintf(f, "  times           %.4f s to %.4f s (%.4f s of samples)\n", t0, t1, F->duration);
+    if (isfinite(F->dt_median))
+        fprintf(f, "  sample interval %.6g ms median (%.6g to %.6g ms): %.6g Hz\n",
+                F->dt_median * 1e3, F->dt_min * 1e3, F->dt_max * 1e3, F->rate);
+    fprintf(f, "  peak |a|        %.4g m/s^2 = %.4g g\n", F->peak_a, F->peak_a / 9.80665);
+    if (F->gaps || F->restarts || F->clock_steps)
+        fprintf(f,
+                "  gaps            %ld (%.4g s in all, the longest %.4g s); restarts %ld, "
+                "clock steps %ld\n",
+                F->gaps, F->gap_total, F->gap_max, F->restarts, F->clock_steps);
+    else
+        fputs("  gaps            none\n", f);
+    if (F->incomplete)
+        fprintf(f,
+                "  VERDICT INCOMPLETE: %ld gap%s or restart%s overlap rocking or an "
+                "acceleration past the uplift threshold (first at %.4f s)\n",
+                F->incomplete, F->incomplete == 1 ? "" : "s", F->incomplete == 1 ? "" : "s",
+                F->first_incomplete - F->t_origin);
+    if (run->forced)
+        fprintf(f, "  VERDICT FORCED (--force): %s\n", run->check);
+    else if (run->check[0])
+        fprintf(f, "  warning         %s\n", run->check);
+}
+
 void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
 {
     if (run->log) {
@@ -313,6 +373,7 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
                 run->samples_rejected);
         if (run->settle > 0.0) fprintf(f, "; settle up to %g s after the end", run->settle);
         fputc('\n', f);
+        if (run->have_facts) print_facts(f, run);
     }
     if (run->pulse) {
         const sw_pulse_t *p = run->pulse;
@@ -382,6 +443,54 @@ void sw_cli_json_num(FILE *f, double v)
         fputs("null", f);
 }
 
+/* "input": the facts of the log, as print_facts() gives them. */
+static void json_facts(FILE *f, const sw_cli_run_t *run)
+{
+    const sw_gate_facts_t *F = &run->facts;
+    fprintf(f, ",\n  \"input\": {\"rejected_share\": ");
+    sw_cli_json_num(f, run->samples_read ? (double)run->samples_rejected /
+                                               (double)run->samples_read
+                                         : 0.0);
+    fprintf(f, ", \"start\": ");
+    sw_cli_json_num(f, F->t_first - F->t_origin);
+    fprintf(f, ", \"end\": ");
+    sw_cli_json_num(f, F->t_last - F->t_origin);
+    fprintf(f, ", \"start_absolute\": ");
+    if (F->t_origin != 0.0) {
+        char iso[64];
+        iso_time(iso, sizeof iso, F->t_origin);
+        sw_cli_json_string(f, iso);
+    } else {
+        fputs("null", f);
+    }
+    fprintf(f, ",\n    \"duration\": ");
+    sw_cli_json_num(f, F->duration);
+    fprintf(f, ", \"dt_median\": ");
+    sw_cli_json_num(f, F->dt_median);
+    fprintf(f, ", \"dt_min\": ");
+    sw_cli_json_num(f, F->dt_min);
+    fprintf(f, ", \"dt_max\": ");
+    sw_cli_json_num(f, F->dt_max);
+    fprintf(f, ", \"rate\": ");
+    sw_cli_json_num(f, F->rate);
+    fprintf(f, ",\n    \"peak_accel\": ");
+    sw_cli_json_num(f, F->peak_a);
+    fprintf(f, ", \"peak_accel_g\": ");
+    sw_cli_json_num(f, F->peak_a / 9.80665);
+    fprintf(f, ", \"gaps\": %ld, \"gap_total\": ", F->gaps);
+    sw_cli_json_num(f, F->gap_total);
+    fprintf(f, ", \"gap_max\": ");
+    sw_cli_json_num(f, F->gap_max);
+    fprintf(f, ", \"restarts\": %ld, \"clock_steps\": %ld,\n    \"incomplete\": %s",
+            F->restarts, F->clock_steps, F->incomplete ? "true" : "false");
+    fprintf(f, ", \"forced\": %s, \"check\": ", run->forced ? "true" : "false");
+    if (run->check[0])
+        sw_cli_json_string(f, run->check);
+    else
+        fputs("null", f);
+    fputc('}', f);
+}
+
 void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
 {
     fprintf(f, "{\n  \"swaywatch\": ");
@@ -407,8 +516,10 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
         fprintf(f, ",\n  \"settle\": ");
         sw_cli_json_num(f, run->settle);
     }
-    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld,\n  \"packages\": [",
+    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld",
             run->samples_read, run->samples_rejected);
+    if (run->have_facts) json_facts(f, run);
+    fprintf(f, ",\n  \"packages\": [");
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
         if (sw_engine_summary(e, i, &s) != SW_OK) continue;

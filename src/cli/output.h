@@ -71,6 +71,11 @@ typedef struct {
     long samples_read;       /* data rows seen */
     long samples_rejected;   /* data rows refused (CSV layer or engine) */
     double settle;           /* s, replay: --settle */
+    /* a log's facts (the input gate's), and its verdict's check */
+    int have_facts;
+    sw_gate_facts_t facts;
+    int forced;              /* the plausibility check refused; --force gave the verdict */
+    char check[320];         /* its reason, or a warning (a low rate); "" none */
 } sw_cli_run_t;
 
 /* The one-screen human summary / the JSON summary (DESIGN.md contract). */

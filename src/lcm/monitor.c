@@ -61,18 +61,19 @@ struct sw_mon {
     lcm_t *out;
     unsigned char *buf;
 
-    /* input stream */
-    int have_last;
-    int64_t origin_us; /* utime of engine t = 0 */
-    int64_t last_us;   /* utime of the last accepted sample */
-    int64_t last_seq;
-    double last_rx; /* mono s, arrival of the last accepted sample */
-    int64_t gap_us;
-    int gap_open; /* the timer saw the input stop; it has not resumed */
-    int64_t jump_us; /* 0: no sample is held */
-    swaywatch_accel_t held[SW_MON_HELD_MAX]; /* samples far ahead, oldest first */
-    double held_rx[SW_MON_HELD_MAX];         /* mono s, their arrival */
-    int nheld;
+    /* input stream: the gate decides; these are what the monitor keeps of it */
+    sw_gate_t *gate;
+    int have_last;      /* a sample was accepted */
+    int64_t last_us;    /* utime of the last accepted sample */
+    double last_rx;     /* mono s, arrival of the last feed that took a sample */
+    int gap_open;       /* the timer saw the input stop; it has not resumed */
+    double timer_gap;   /* s, no sample arriving for longer is a gap */
+    double feed_mono;   /* mono s of the message being fed */
+    long timer_gaps;
+    sw_mon_reject feed_why; /* the reason of the last refusal during a feed */
+    int have_base;
+    int64_t base_us;    /* utime of the first sample received: the gate is fed
+                           (utime - base) / 1e6 s, exact for any utime near it */
 
     /* INPUT_REJECTED rate limit, per reason */
     double rej_last_alarm[SW_MON_NREJ]; /* mono s; -INFINITY: never */
@@ -85,7 +86,7 @@ struct sw_mon {
 
 static const char *const reject_names[SW_MON_NREJ] = {
     "decode", "trailing", "nonfinite", "implausible", "skew",
-    "duplicate", "out_of_order", "jump", "engine"};
+    "duplicate", "out_of_order", "jump", "engine", "time"};
 
 const char *sw_mon_reject_name(sw_mon_reject r)
 {
@@ -123,10 +124,35 @@ static void publish(sw_mon_t *m, const char *channel, int len)
         m->c.publish_errors++;
 }
 
-/* utime of a time t (s) on the engine's clock. */
+/* The source time (s) the gate sees for a utime: relative to the first
+ * sample received, exact in double for any utime within 2^53 us of it;
+ * NAN (refused by the gate as not finite... as a time) beyond. */
+static double source_time(sw_mon_t *m, int64_t utime)
+{
+    if (!m->have_base) {
+        m->have_base = 1;
+        m->base_us = utime;
+    }
+    int64_t d;
+    if (__builtin_sub_overflow(utime, m->base_us, &d)) return utime < m->base_us ? -1e300 : 1e300;
+    return (double)d / 1e6;
+}
+
+/* The utime of a source time (s). */
+static int64_t utime_at(const sw_mon_t *m, double t)
+{
+    const double us = t * 1e6;
+    if (!(fabs(us) < 9.2e18)) return m->base_us;
+    int64_t u;
+    return __builtin_add_overflow(m->base_us, (int64_t)llround(us), &u) ? m->base_us : u;
+}
+
+/* utime of a time t (s) on the engine's clock: the source's clock of the
+ * current stretch (samples were fed as utime / 1e6 s: llround recovers the
+ * integer). */
 static int64_t utime_of(const sw_mon_t *m, double t)
 {
-    return m->origin_us + (int64_t)llround(t * 1e6);
+    return utime_at(m, sw_gate_source_time(m->gate, t));
 }
 
 static void send_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
@@ -214,6 +240,9 @@ static void on_state(void *user, const sw_output_t *out)
     publish(m, m->state_channel, swaywatch_state_t_encode(m->buf, 0, SW_MON_BUF, &msg));
 }
 
+static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, const char *text);
+static void on_gate_event(void *user, const sw_gate_event_t *ev);
+
 sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo,
                         const sw_mon_opts_t *mo, lcm_t *out, char *msg, size_t msglen)
 {
@@ -223,14 +252,11 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     m->o = *mo;
     if (m->o.accel_scale == 0.0)
         m->o.accel_scale = 1.0;
-    if (m->o.gap == 0.0)
-        m->o.gap = SW_MON_GAP;
     if (m->o.max_accel == 0.0)
         m->o.max_accel = SW_MON_MAX_ACCEL;
-    if (m->o.max_jump == 0.0)
-        m->o.max_jump = SW_MON_MAX_JUMP;
+    m->timer_gap = m->o.gap > 0.0 ? m->o.gap : SW_MON_GAP;
     if (m->o.axis < 0 || m->o.axis > 2 || m->o.vertical < -1 || m->o.vertical > 2 ||
-        !(m->o.accel_scale > 0.0) || !(m->o.gap > 0.0) || !(m->o.max_accel > 0.0) ||
+        !(m->o.accel_scale > 0.0) || !(m->o.gap >= 0.0) || !(m->o.max_accel > 0.0) ||
         !(m->o.state_rate >= 0.0) || !(m->o.max_skew >= 0.0) || !(m->o.reject_interval >= 0.0) ||
         !isfinite(m->o.gap) || !isfinite(m->o.state_rate) || !(m->o.max_jump < 1e9)) {
         if (msg)
@@ -242,8 +268,6 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     m->alarm_channel = mo->alarm_channel ? mo->alarm_channel : SW_MON_ALARM_CHANNEL;
     m->out = out;
     m->n = n;
-    m->gap_us = (int64_t)llround(m->o.gap * 1e6);
-    m->jump_us = m->o.max_jump < 0.0 ? 0 : (int64_t)llround(m->o.max_jump * 1e6);
     m->state_period_us = m->o.state_rate > 0.0 ? (int64_t)llround(1e6 / m->o.state_rate) : 0;
     if (m->o.state_rate > 0.0 && m->state_period_us < 1)
         m->state_period_us = 1;
@@ -264,6 +288,23 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     int err = 0;
     m->engine = sw_engine_create(scenes, n, &e, &err, msg, msglen);
     if (!m->engine) {
+        sw_mon_destroy(m);
+        return NULL;
+    }
+    const sw_gate_opts_t go = {.gap = m->o.gap,
+                               .gap_policy = m->o.gap_policy,
+                               .max_bridge = m->o.max_bridge,
+                               .max_accel = m->o.max_accel,
+                               .jump = m->o.max_jump,
+                               .max_skew = m->o.max_skew,
+                               .confirm = m->o.confirm,
+                               .relative = 1,
+                               .vert_gravity = m->o.vert_gravity,
+                               .on_event = on_gate_event,
+                               .on_reject = on_gate_reject,
+                               .user = m};
+    m->gate = sw_gate_create(m->engine, &go, msg, msglen);
+    if (!m->gate) {
         sw_mon_destroy(m);
         return NULL;
     }
@@ -290,6 +331,7 @@ void sw_mon_destroy(sw_mon_t *m)
 {
     if (!m)
         return;
+    sw_gate_destroy(m->gate);
     sw_engine_destroy(m->engine);
     free(m->watch);
     free(m->names);
@@ -308,8 +350,14 @@ static void input_alarm(sw_mon_t *m, sw_alarm_kind kind, sw_alarm_level level, i
                         const char *text)
 {
     sw_alarm_t a;
-    sw_alarm_input(&a, kind, level, m->have_last ? (double)(utime - m->origin_us) / 1e6 : 0.0,
-                   text);
+    sw_gate_facts_t f;
+    sw_gate_facts(m->gate, &f);
+    double d = 0.0;
+    if (m->have_last) {
+        int64_t du;
+        d = __builtin_sub_overflow(utime, m->base_us, &du) ? 0.0 : (double)du / 1e6 - f.t_origin;
+    }
+    sw_alarm_input(&a, kind, level, d, text);
     send_alarm(m, &a, utime);
 }
 
@@ -333,9 +381,9 @@ static void reject_alarm(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utim
 
 static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_mon_reject *why)
 {
-    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE, SW_ENONFINITE,
-                                          SW_ETOOBIG, SW_ETOOBIG, SW_EORDER,
-                                          SW_EORDER, SW_EORDER, SW_EINVAL};
+    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE, SW_ENONFINITE, SW_ETOOBIG,
+                                          SW_ETOOBIG, SW_EORDER,  SW_EORDER,     SW_EORDER,
+                                          SW_EINVAL,  SW_ERESOLUTION};
     m->c.rejected[r]++;
     m->rej_pending[r]++;
     reject_alarm(m, r, mono, input_utime(m, utime));
@@ -344,14 +392,64 @@ static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_m
     return code[r];
 }
 
-static int accept(sw_mon_t *m, const swaywatch_accel_t *s, double mono, sw_mon_reject *why);
-static void drop_held(sw_mon_t *m, int keep, double mono);
+/* The gate refused a sample (now, or one it held): counted by reason. */
+static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, const char *text)
+{
+    static const sw_mon_reject map[SW_GATE_NREJ] = {
+        SW_MON_REJ_NONFINITE, SW_MON_REJ_IMPLAUSIBLE, SW_MON_REJ_TIME,   SW_MON_REJ_SKEW,
+        SW_MON_REJ_DUPLICATE, SW_MON_REJ_OUT_OF_ORDER, SW_MON_REJ_JUMP, SW_MON_REJ_ENGINE};
+    sw_mon_t *m = user;
+    (void)text;
+    m->feed_why = map[r];
+    refuse(m, map[r], m->feed_mono, utime_at(m, s->t), NULL);
+}
+
+/* A gap, a clock step or a restart of the stream: an alarm (the gap's
+ * before the states of the sample that ends it). */
+static void on_gate_event(void *user, const sw_gate_event_t *ev)
+{
+    sw_mon_t *m = user;
+    char text[SW_ALARM_TEXT_MAX];
+    char how[72];
+    snprintf(how, sizeof how, "%s%s",
+             ev->restarted ? "; packages restarted from rest"
+             : ev->bridged ? "; bridged by linear interpolation"
+                           : "",
+             ev->incomplete ? "; it overlaps rocking: incomplete" : "");
+    sw_alarm_level level = ev->incomplete ? SW_ALARM_LEVEL_CRITICAL : SW_ALARM_LEVEL_WARN;
+    switch (ev->kind) {
+    case SW_GATE_EV_GAP:
+        if (m->gap_open) {
+            m->timer_gaps--; /* the gap the timer saw: counted once, by the gate now */
+            snprintf(text, sizeof text, "accel back after %.3f s%s", ev->span, how);
+            level = ev->incomplete ? SW_ALARM_LEVEL_CRITICAL : SW_ALARM_LEVEL_INFO;
+        } else {
+            snprintf(text, sizeof text, "%.3f s between accel samples%s", ev->span, how);
+        }
+        break;
+    case SW_GATE_EV_CLOCK_STEP:
+        snprintf(text, sizeof text, "sensor clock stepped by %+.6g s (re-timed)%s", ev->span,
+                 how);
+        break;
+    case SW_GATE_EV_RESTART:
+        snprintf(text, sizeof text, "sensor time went back by %.6g s: a restart%s", -ev->span,
+                 how);
+        break;
+    case SW_GATE_EV_SEQ_RESTART:
+        snprintf(text, sizeof text, "accel seq went back: the sender restarted");
+        level = SW_ALARM_LEVEL_INFO;
+        break;
+    }
+    m->gap_open = 0;
+    input_alarm(m, SW_ALARM_SENSOR_GAP, level, utime_at(m, ev->t), text);
+}
 
 int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, double mono,
                 sw_mon_reject *why)
 {
     swaywatch_accel_t s;
     m->c.received++;
+    m->feed_mono = mono;
     int used = len <= INT32_MAX ? swaywatch_accel_t_decode(data, 0, (int)len, &s) : -1;
     if (used < 0)
         return refuse(m, SW_MON_REJ_DECODE, mono, wall_us, why);
@@ -359,108 +457,38 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
      * never sends them. */
     if ((size_t)used != len)
         return refuse(m, SW_MON_REJ_TRAILING, mono, wall_us, why);
+    /* every axis must be finite, the ones not used too: a NaN anywhere is
+     * a broken sender */
     if (!isfinite(s.ax) || !isfinite(s.ay) || !isfinite(s.az))
-        return refuse(m, SW_MON_REJ_NONFINITE, mono, s.utime, why);
+        return refuse(m, SW_MON_REJ_NONFINITE, mono, m->have_last ? m->last_us : wall_us, why);
     const double v[3] = {s.ax * m->o.accel_scale, s.ay * m->o.accel_scale, s.az * m->o.accel_scale};
-    if (fabs(v[0]) > m->o.max_accel || fabs(v[1]) > m->o.max_accel || fabs(v[2]) > m->o.max_accel)
-        return refuse(m, SW_MON_REJ_IMPLAUSIBLE, mono, s.utime, why);
-    if (m->o.max_skew > 0.0 && fabs((double)(s.utime - wall_us)) > m->o.max_skew * 1e6)
-        return refuse(m, SW_MON_REJ_SKEW, mono, s.utime, why);
-    if (m->have_last && s.utime == m->last_us)
-        return refuse(m, SW_MON_REJ_DUPLICATE, mono, s.utime, why);
-    if (m->have_last && s.utime < m->last_us)
-        return refuse(m, SW_MON_REJ_OUT_OF_ORDER, mono, s.utime, why);
-
-    /* Held samples (far from the last accepted one) and the next one s:
-     * s on the old timeline refutes them all; s within max_jump of a held
-     * one confirms it (the clock did jump), which is taken, then s (or s is
-     * refused as late if it is before it), and the other held one is
-     * refused; s far from all of them is held as well, the oldest of two
-     * refused to make room.  Two places, not one: a glitch that
-     * alternates with good samples, or a bad first sample, does not refute
-     * the good ones. */
-    const int on_old = m->have_last && s.utime - m->last_us <= m->jump_us;
-    if (m->jump_us <= 0 || on_old) {
-        drop_held(m, -1, mono);
-        return accept(m, &s, mono, why);
+    const double t = source_time(m, s.utime); /* first: the first sample sets the base */
+    const sw_sample_t smp = {
+        .t = t,
+        .a_g = m->o.flip ? -v[m->o.axis] : v[m->o.axis],
+        .a_z = m->o.vertical >= 0 ? v[m->o.vertical] : 0.0,
+        .a_max = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))),
+        .seq = s.seq,
+        .rx = mono,
+        .wall = m->o.max_skew > 0.0 ? source_time(m, wall_us) : NAN,
+        .where = m->c.received,
+    };
+    const long before = m->c.accepted;
+    m->feed_why = SW_MON_NREJ;
+    int rc = sw_gate_push(m->gate, &smp);
+    sw_gate_facts_t f;
+    sw_gate_facts(m->gate, &f);
+    m->c.accepted = f.accepted;
+    if (f.accepted > before) {
+        /* this sample, or held ones it confirmed, went in */
+        m->have_last = 1;
+        m->last_us = s.utime; /* the last one pushed: held ones go in before it */
+        m->last_rx = mono;
+        m->gap_open = 0;
     }
-    for (int i = 0; i < m->nheld; i++) {
-        const swaywatch_accel_t h = m->held[i];
-        if (s.utime == h.utime)
-            return refuse(m, SW_MON_REJ_DUPLICATE, mono, s.utime, why);
-        if (llabs(s.utime - h.utime) <= m->jump_us) {
-            const double rx = m->held_rx[i];
-            drop_held(m, i, mono);
-            accept(m, &h, rx, NULL);
-            if (s.utime < h.utime)
-                return refuse(m, SW_MON_REJ_OUT_OF_ORDER, mono, s.utime, why);
-            return accept(m, &s, mono, why);
-        }
-    }
-    if (m->nheld == SW_MON_HELD_MAX) {
-        refuse(m, SW_MON_REJ_JUMP, mono, m->held[0].utime, NULL);
-        m->held[0] = m->held[1];
-        m->held_rx[0] = m->held_rx[1];
-        m->nheld--;
-    }
-    m->held[m->nheld] = s;
-    m->held_rx[m->nheld++] = mono;
-    return SW_MON_HELD;
-}
-
-/* Refuse every held sample as a jump but the one at index keep (-1: all). */
-static void drop_held(sw_mon_t *m, int keep, double mono)
-{
-    for (int i = 0; i < m->nheld; i++)
-        if (i != keep) refuse(m, SW_MON_REJ_JUMP, mono, m->held[i].utime, NULL);
-    m->nheld = 0;
-}
-
-/* Push a checked sample into the engine; its gap and seq bookkeeping. */
-static int accept(sw_mon_t *m, const swaywatch_accel_t *sp, double mono, sw_mon_reject *why)
-{
-    const swaywatch_accel_t s = *sp;
-    const double v[3] = {s.ax * m->o.accel_scale, s.ay * m->o.accel_scale, s.az * m->o.accel_scale};
-    double a_g = m->o.flip ? -v[m->o.axis] : v[m->o.axis];
-    double a_z = m->o.vertical >= 0 ? v[m->o.vertical] : 0.0;
-    if (!m->have_last)
-        m->origin_us = s.utime;
-
-    /* Gaps: announced before the states of the sample that ends them. */
-    char text[SW_ALARM_TEXT_MAX];
-    if (m->have_last) {
-        double dt = (double)(s.utime - m->last_us) / 1e6;
-        if (m->gap_open) {
-            snprintf(text, sizeof text,
-                     "accel back after %.3f s; %.3f s of input bridged by linear interpolation",
-                     mono - m->last_rx, dt);
-            input_alarm(m, SW_ALARM_SENSOR_GAP, SW_ALARM_LEVEL_INFO, s.utime, text);
-        } else if (s.utime - m->last_us > m->gap_us) {
-            m->c.gaps++;
-            snprintf(text, sizeof text,
-                     "%.3f s between accel samples; bridged by linear interpolation", dt);
-            input_alarm(m, SW_ALARM_SENSOR_GAP, SW_ALARM_LEVEL_WARN, s.utime, text);
-        }
-    }
-    m->gap_open = 0;
-
-    if (!m->have_last)
-        for (size_t k = 0; k < m->n; k++) m->next_state_us[k] = s.utime;
-    int rc = sw_engine_push(m->engine, (double)(s.utime - m->origin_us) / 1e6, a_g, a_z);
-    if (rc < 0)
-        return refuse(m, SW_MON_REJ_ENGINE, mono, s.utime, why);
-
-    if (m->have_last) {
-        if (s.seq > m->last_seq + 1)
-            m->c.lost += (long)(s.seq - m->last_seq - 1);
-        else if (s.seq <= m->last_seq)
-            m->c.seq_restarts++;
-    }
-    m->have_last = 1;
-    m->last_us = s.utime;
-    m->last_seq = s.seq;
-    m->last_rx = mono;
-    m->c.accepted++;
+    if (rc == SW_GATE_HELD)
+        return SW_MON_HELD;
+    if (rc < 0 && why) *why = m->feed_why; /* the sample itself is refused last */
     return rc;
 }
 
@@ -468,7 +496,7 @@ double sw_mon_deadline(const sw_mon_t *m)
 {
     double d = INFINITY;
     if (m->have_last && !m->gap_open)
-        d = m->last_rx + m->o.gap;
+        d = m->last_rx + m->timer_gap;
     for (int r = 0; r < SW_MON_NREJ; r++)
         if (m->rej_pending[r] > 0 && m->rej_last_alarm[r] + m->rej_interval < d)
             d = m->rej_last_alarm[r] + m->rej_interval;
@@ -477,11 +505,11 @@ double sw_mon_deadline(const sw_mon_t *m)
 
 void sw_mon_tick(sw_mon_t *m, double mono)
 {
-    if (m->have_last && !m->gap_open && mono - m->last_rx > m->o.gap) {
+    if (m->have_last && !m->gap_open && mono - m->last_rx > m->timer_gap) {
         char text[SW_ALARM_TEXT_MAX];
         double waited = mono - m->last_rx;
         m->gap_open = 1;
-        m->c.gaps++;
+        m->timer_gaps++;
         snprintf(text, sizeof text, "no accel sample for %.3f s", waited);
         input_alarm(m, SW_ALARM_SENSOR_GAP, SW_ALARM_LEVEL_WARN,
                     m->last_us + (int64_t)llround(waited * 1e6), text);
@@ -491,14 +519,31 @@ void sw_mon_tick(sw_mon_t *m, double mono)
 
 void sw_mon_flush(sw_mon_t *m)
 {
-    drop_held(m, -1, INFINITY);
+    m->feed_mono = INFINITY;
+    sw_gate_flush(m->gate);
+    sw_gate_facts_t f;
+    sw_gate_facts(m->gate, &f);
+    m->c.accepted = f.accepted;
     for (int r = 0; r < SW_MON_NREJ; r++) reject_alarm(m, (sw_mon_reject)r, INFINITY, m->last_us);
 }
 
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
 {
+    sw_gate_facts_t f;
+    sw_gate_facts(m->gate, &f);
     *c = m->c;
-    c->held = m->nheld;
+    c->accepted = f.accepted;
+    c->held = f.held;
+    c->lost = f.lost;
+    c->seq_restarts = f.seq_restarts;
+    c->gaps = f.gaps + m->timer_gaps;
+    c->clock_steps = f.clock_steps;
+    c->restarts = f.restarts;
+}
+
+void sw_mon_facts(const sw_mon_t *m, sw_gate_facts_t *f)
+{
+    sw_gate_facts(m->gate, f);
 }
 
 long sw_mon_rejected(const sw_mon_counts_t *c)
@@ -515,7 +560,9 @@ sw_engine_t *sw_mon_engine(sw_mon_t *m)
 
 int64_t sw_mon_origin(const sw_mon_t *m)
 {
-    return m->have_last ? m->origin_us : 0;
+    sw_gate_facts_t f;
+    sw_gate_facts(m->gate, &f);
+    return m->have_last ? utime_at(m, f.t_origin) : 0;
 }
 
 int64_t sw_mon_last_utime(const sw_mon_t *m)

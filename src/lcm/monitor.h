@@ -11,16 +11,14 @@
  *
  * Every message received is accounted for exactly once:
  *   received = accepted + sum of rejected[reason] + held.
- * Time: samples are integrated by their own utime (the sensor's clock),
- * never by arrival time; the first accepted sample is t = 0 of the engine.
- * A sample at or before the last accepted one is refused: the model never
- * integrates backwards.  A sample further than max_jump after the last
- * accepted one (or the very first sample) is held: a later sample within
- * max_jump of it confirms it (the clock did jump: a sensor back after an
- * outage) and both are taken; a sample on the old timeline refutes it, and
- * it is refused as a jump.  At most SW_MON_HELD_MAX wait at a time.  So
- * one sample with a wrong utime far in the future cannot make every later
- * sample "late", nor make the engine integrate across a year. */
+ * Samples pass the input gate (gate.h) as every source's do: integrated
+ * by their own utime (the sensor's clock), the time that really passed
+ * known from the arrival time; a sample that leaps ahead of the stream, or
+ * goes back, waits until the stream confirms it (a gap, a clock step, a
+ * sensor restart: each an alarm and a counter) or refutes it (refused), so
+ * one forged or corrupt utime costs that sample only, and no stretch of
+ * input blinds the monitor for more than a few samples.  Gaps follow the
+ * gap policy at a cost independent of their length. */
 #ifndef SWAYWATCH_LCM_MONITOR_H
 #define SWAYWATCH_LCM_MONITOR_H
 
@@ -30,6 +28,7 @@
 
 #include "swaywatch/alarm.h"
 #include "swaywatch/engine.h"
+#include "swaywatch/gate.h"
 #include "swaywatch/scene.h"
 
 #define SW_MON_STATE_CHANNEL "SWAY_STATE"
@@ -38,8 +37,6 @@
 #define SW_G0 9.80665                 /* m/s^2, standard gravity (unit "g") */
 #define SW_MON_GAP 0.1                /* s, default sensor gap threshold */
 #define SW_MON_MAX_ACCEL (50 * SW_G0) /* m/s^2, default plausibility limit */
-#define SW_MON_MAX_JUMP 10.0          /* s, default largest step of utime taken unconfirmed */
-#define SW_MON_HELD_MAX 2             /* samples held at most, waiting for confirmation */
 
 /* Why a message on the accel channel was refused. */
 typedef enum {
@@ -52,6 +49,7 @@ typedef enum {
     SW_MON_REJ_OUT_OF_ORDER, /* utime before the last accepted sample (late) */
     SW_MON_REJ_JUMP,         /* utime far ahead, and the next sample did not follow it */
     SW_MON_REJ_ENGINE,       /* refused by the engine (should not happen) */
+    SW_MON_REJ_TIME,         /* utime too large for its resolution (beyond 2^33 s) */
     SW_MON_NREJ
 } sw_mon_reject;
 
@@ -63,12 +61,19 @@ typedef struct {
     int flip;                  /* non-zero: negate the longitudinal axis */
     double accel_scale;        /* m/s^2 per message unit: 1, or SW_G0; 0 = 1 */
     double state_rate;         /* Hz, states per package per second of sample time; 0 = all */
-    double gap;                /* s, sensor gap threshold; 0 = SW_MON_GAP */
+    double gap;                /* s, sensor gap threshold: between samples (the gate's gap;
+                                  0 = 5 typical intervals) and with none arriving (the
+                                  timer; 0 = SW_MON_GAP) */
+    sw_gap_policy gap_policy;  /* bridge (up to max_bridge) or restart from rest */
+    double max_bridge;         /* s, longest gap bridged; 0 = 10 s */
+    int confirm;               /* samples that confirm a jump or a restart; 0 = 3 */
+    int vert_gravity;          /* the vertical axis includes gravity (subtracted) */
     double max_accel;          /* m/s^2, plausibility limit (in m/s^2 after scaling);
                                   0 = SW_MON_MAX_ACCEL */
     double max_skew;           /* s, largest |utime - wall clock|; 0 = not checked */
-    double max_jump;           /* s, largest step of utime taken without confirmation;
-                                  0 = SW_MON_MAX_JUMP, < 0 = any (no sample held) */
+    double max_jump;           /* s, how far utime may leap beyond the time that passed
+                                  before the stream must confirm it; 0 = the gap threshold,
+                                  < 0 = any (no sample held) */
     double hysteresis;         /* 1, margin alarms; < 0 = SW_ALARM_HYSTERESIS */
     double reject_interval;    /* s, at most one INPUT_REJECTED alarm per reason per
                                   interval (later ones are summed up); 0 = 1 s */
@@ -82,11 +87,13 @@ typedef struct {
 typedef struct {
     long received;              /* messages handed to sw_mon_feed() */
     long accepted;              /* pushed into the engine */
-    long held;                  /* samples waiting to be confirmed (0..SW_MON_HELD_MAX) */
+    long held;                  /* samples waiting to be confirmed */
     long rejected[SW_MON_NREJ]; /* received = accepted + sum(rejected) */
     long lost;                  /* samples missing by the sender's seq (dropped on the way) */
     long seq_restarts;          /* seq went back while utime went on: sender restarted */
     long gaps;                  /* sensor gaps (between samples or seen by the timer) */
+    long clock_steps;           /* the sensor's clock stepped (utime leapt, time did not) */
+    long restarts;              /* utime went back: the sensor restarted */
     long states;                /* state_t messages published */
     long states_withheld;       /* states not published because a value was not finite */
     long alarms;                /* alarm_t messages raised (published if there is an lcm) */
@@ -136,12 +143,14 @@ int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, si
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c);
 long sw_mon_rejected(const sw_mon_counts_t *c); /* sum of rejected[] */
 sw_engine_t *sw_mon_engine(sw_mon_t *m);
+/* The input gate's facts about the stream: duration, intervals, peaks. */
+void sw_mon_facts(const sw_mon_t *m, sw_gate_facts_t *f);
 int64_t sw_mon_origin(const sw_mon_t *m); /* utime of t = 0 (us), 0 before the first sample */
 int64_t sw_mon_last_utime(
     const sw_mon_t *m); /* utime of the last accepted sample (us), 0 if none */
 
 /* "decode", "trailing", "nonfinite", "implausible", "skew", "duplicate",
- * "out_of_order", "jump", "engine". */
+ * "out_of_order", "jump", "engine", "time". */
 const char *sw_mon_reject_name(sw_mon_reject r);
 
 /* Axis name "x" | "y" | "z" to 0..2; -1 if none of them. */

@@ -116,6 +116,16 @@ static int unit_in(const words_t *w, int time_role, int *last_is_unit)
     return SW_CSV_UNIT_NONE;
 }
 
+int sw_csv_unit_parse(const char *text, int time_role)
+{
+    char u[WORD_MAX * 2];
+    size_t k = 0;
+    for (const char *p = text; p && *p && k + 1 < sizeof u; p++)
+        if (*p != ' ') u[k++] = lower(*p);
+    u[k] = '\0';
+    return unit_of(u, time_role);
+}
+
 int sw_csv_name_unit(const char *name, int time_role)
 {
     words_t w;

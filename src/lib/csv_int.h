@@ -141,7 +141,5 @@ int sw_csv_name_unit(const char *name, int time_role);
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
                  sw_csv_guess_t *g);
 
-/* m/s^2 or s per unit. */
-double sw_csv_unit_scale(int unit);
 
 #endif

@@ -457,6 +457,11 @@ void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f)
     f->rate = f->dt_median > 0.0 ? 1.0 / f->dt_median : NAN;
 }
 
+double sw_gate_source_time(const sw_gate_t *g, double t_engine)
+{
+    return t_engine - g->offset;
+}
+
 /* ---- plausibility --------------------------------------------------------------- */
 
 int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *why,
@@ -469,13 +474,14 @@ int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *w
     const double warn_rate = lim->warn_rate > 0.0 ? lim->warn_rate : 20.0;
     const double max_dur = lim->max_duration > 0.0 ? lim->max_duration : 366.0 * 86400.0;
     const double max_peak = lim->max_peak > 0.0 ? lim->max_peak : 25.0 * G0;
-    const long rej = sw_gate_rejected(f);
+    const long rej = sw_gate_rejected(f) + f->upstream_rejected;
+    const long seen = f->received + f->upstream_rejected;
     if (why && whylen) why[0] = '\0';
-    if (f->received > 0 && (double)rej > max_rej * (double)f->received) {
+    if (seen > 0 && (double)rej > max_rej * (double)seen) {
         snprintf(why, whylen,
                  "%ld of %ld samples (%.1f %%) were refused, more than %.3g %%: a wrong "
                  "column, unit or delimiter is the usual cause",
-                 rej, f->received, 100.0 * (double)rej / (double)f->received, 100.0 * max_rej);
+                 rej, seen, 100.0 * (double)rej / (double)seen, 100.0 * max_rej);
         return SW_GATE_REFUSE;
     }
     if (f->accepted < 2) {

@@ -212,7 +212,7 @@ def run_case(sw, case, subst, tmp):
                 problems.append("package %s: counts differ from the top level" % pk["name"])
         lcmlog = any(a.endswith(".lcmlog") for a in args)
         if cmd == "replay" and not lcmlog and "--strict" not in args:
-            listed = len(re.findall(r"^swaywatch: .*:\d+: ", err, re.M))
+            listed = len(re.findall(r"^swaywatch: .*:\d+: (?!note: )", err, re.M))
             more = re.search(r"\.\.\. (\d+) more rejected rows", err)
             listed += int(more.group(1)) if more else 0
             if listed != rej:

@@ -26,7 +26,10 @@ cp "$TMP/out" "$TMP/bad.json"
 expect_err "swaywatch: $TMP/bad.csv:502: " "bad number reported with its line"
 expect_err "swaywatch: $TMP/bad.csv:1003: " "time going back reported with its line"
 expect_err "swaywatch: $TMP/bad.csv:1504: " "nan reported with its line"
-[ "$(wc -l <"$TMP/err")" -eq 3 ] || { show; fail "expected exactly 3 lines on stderr"; }
+# and how the columns were read: the header's names, units by default
+expect_err "swaywatch: $TMP/bad.csv: time: column 1 \"t\", s (default); accel: column 2 \"a\", m/s^2 (default)" \
+    "the columns chosen"
+[ "$(wc -l <"$TMP/err")" -eq 4 ] || { show; fail "expected exactly 4 lines on stderr"; }
 json_check "$TMP/bad.json" 'j["samples_read"] == 2001 and j["samples_rejected"] == 3'
 json_check "$TMP/bad.json" 'j["packages"][0]["samples_rejected"] == 3'
 # The rest was processed: the pulse made the crate rock.
@@ -36,18 +39,29 @@ json_check "$TMP/bad.json" 'j["packages"][0]["uplift_time"] is not None and j["p
 run "$SW" replay "$TMP/bad.csv" --scene "$SCENE" --strict --json
 expect_rc 2 "--strict"
 expect_err "swaywatch: $TMP/bad.csv:502: " "--strict names the first bad row"
-[ "$(wc -l <"$TMP/err")" -eq 2 ] || { show; fail "--strict: expected the bad row and the stop message"; }
+[ "$(grep -vc 'time: column' "$TMP/err")" -eq 2 ] || { show; fail "--strict: expected the bad row and the stop message"; }
 expect_err "stopped at the first rejected row (--strict)" "--strict says why it stopped"
 [ ! -s "$TMP/out" ] || fail "--strict printed a summary"
 
 # More than 20 bad rows: 20 listed, the rest counted.
 awk 'BEGIN { print "t,a"; for (i = 0; i < 100; i++) { if (i % 4 == 1) print i/100 ",x"; else print i/100 ",0.5" } }' >"$TMP/many.csv"
+# A quarter of the rows refused: no verdict (more than --max-rejected,
+# 1 %), unless the limit is raised, or the verdict forced and marked.
 run "$SW" replay "$TMP/many.csv" --scene "$SCENE" --json
-expect_rc 0 "many bad rows"
+expect_rc 2 "many bad rows: no verdict"
+[ ! -s "$TMP/out" ] || fail "a summary for a refused log"
+expect_err "no verdict: 25 of 100 samples (25.0 %) were refused, more than 1 %" "why no verdict"
+expect_err "--force" "the way out named"
+run "$SW" replay "$TMP/many.csv" --scene "$SCENE" --json --max-rejected 30
+expect_rc 0 "many bad rows, --max-rejected 30"
 [ "$(grep -c ':[0-9]*: ' "$TMP/err")" -eq 20 ] || { show; fail "expected 20 listed rows"; }
 expect_err "swaywatch: $TMP/many.csv: ... 5 more rejected rows" "the rest counted"
 json_check "$TMP/out" 'j["samples_read"] == 100 and j["samples_rejected"] == 25'
-run "$SW" replay "$TMP/many.csv" --scene "$SCENE" --quiet
+json_check "$TMP/out" 'j["input"]["forced"] == False and abs(j["input"]["rejected_share"] - 0.25) < 1e-12'
+run "$SW" replay "$TMP/many.csv" --scene "$SCENE" --json --force
+expect_rc 0 "many bad rows, --force"
+json_check "$TMP/out" 'j["input"]["forced"] == True and "refused" in j["input"]["check"]'
+run "$SW" replay "$TMP/many.csv" --scene "$SCENE" --quiet --max-rejected 30
 expect_rc 0 "--quiet"
 [ ! -s "$TMP/out" ] || fail "--quiet printed a summary"
 [ "$(wc -l <"$TMP/err")" -eq 1 ] || { show; fail "--quiet: expected one count line"; }

@@ -164,7 +164,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (rc == SW_MON_HELD) {
             sw_mon_counts_t c;
             sw_mon_counts(m, &c);
-            FZ_CHECK(c.held >= 1 && c.held <= SW_MON_HELD_MAX);
+            FZ_CHECK(c.held >= 1 && c.held <= 3 * SW_GATE_CONFIRM_MAX);
         } else if (rc >= 0) {
             /* Accepted: it decoded exactly, and its values are sane. */
             swaywatch_accel_t d;

@@ -61,7 +61,7 @@ close() {
 # replay_published LOG: `swaywatch replay` of LOG ($SW, $SCENE), publishing
 # to a log; its dump in $T/replay.txt, its summary in $T/replay.json.
 replay_published() {
-    "$SW" replay "$1" --scene "$SCENE" --settle 0 --speed 0 \
+    "$SW" replay "$1" --scene "$SCENE" --settle 0 --speed 0 --max-rejected 100 \
         --publish "file://$T/replay.lcmlog?mode=w" --json >"$T/replay.json"
     "$TOOL" dump "$T/replay.lcmlog" >"$T/replay.txt"
 }

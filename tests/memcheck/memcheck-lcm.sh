@@ -32,7 +32,7 @@ trap '[ -n "$MON" ] && kill "$MON" 2>/dev/null' EXIT
 "$FEED" log "$WORK/garbage.lcmlog" --count 5000 --garbage 100 --rate 1000 >"$WORK/feed-log.txt"
 set +e
 # shellcheck disable=SC2086
-$VG "$SW" replay "$WORK/garbage.lcmlog" $SCENES --json >"$WORK/replay.out" 2>"$WORK/replay.err"
+$VG "$SW" replay "$WORK/garbage.lcmlog" $SCENES --max-rejected 100 --json >"$WORK/replay.out" 2>"$WORK/replay.err"
 rc=$?
 set -e
 if [ "$rc" -ne 0 ]; then

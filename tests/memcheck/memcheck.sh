@@ -43,9 +43,9 @@ LOGS=$SRC/sample_logs
 SCENES=$SRC/tests/scenes
 vg replay-sample 0 replay "$LOGS/braking-pothole.csv" --scene "$LOGS/crate.ini" \
     --scene "$LOGS/crate-on-frame.ini" --json --out "$WORK/state.csv" --events "$WORK/events.csv"
-vg replay-bad-rows 0 replay "$SRC/tests/badinput/csv/many-rejects.csv" \
+vg replay-bad-rows 0 replay "$SRC/tests/badinput/csv/many-rejects.csv" --force \
     --scene "$SCENES/crate-a-bare.ini" --scene "$SCENES/crate-a-frame.ini"
-vg replay-nan-inf 0 replay "$SRC/tests/badinput/csv/nan-inf-1e400.csv" \
+vg replay-nan-inf 0 replay "$SRC/tests/badinput/csv/nan-inf-1e400.csv" --force \
     --scene "$SCENES/crate-a-bare.ini" --json
 vg replay-bad-scene 2 replay "$LOGS/braking-pothole.csv" \
     --scene "$SRC/tests/badinput/scenes/both-damping-zeta.ini"
