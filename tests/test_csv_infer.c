@@ -129,6 +129,16 @@ static void test_units_in_suffixes(void **state)
     assert_int_equal(r.lay.unit[0], SW_CSV_UNIT_S);
     assert_int_equal(r.lay.unit[1], SW_CSV_UNIT_MPS2);
     assert_int_equal(r.lay.col[1], 1);
+    /* an axis-less acceleration beside a vertical one: the axis-less one;
+     * the vertical column named as such is never a candidate */
+    run("t_s,accel_mps2,z_mps2\n0,1,9.8\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.col[1], 1);
+    sw_csv_opts_t ov = o;
+    ov.vert_col = "a_vert";
+    run("t_s,a_vert,accel\n0,9.8,1\n", &ov, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.col[1], 2);
     /* names without units: the defaults, said to be defaults */
     run("time,accel\n0,1\n", &o, &r);
     assert_int_equal(r.rc, SW_OK);

@@ -22,8 +22,9 @@
  *     twice): the packages restart from rest.
  * Every refused sample is counted by reason and reported with where it
  * came from; every gap, step and restart is an event.  A gap that overlaps
- * rocking, or a bed acceleration past a package's uplift threshold, leaves
- * the verdict incomplete (counted, and the first such time kept).
+ * rocking, or with the bed at a quarter of a package's uplift threshold or
+ * more at either end (what it hid may have lifted the package), leaves the
+ * verdict incomplete (counted, and the first such time kept).
  *
  * Times handed to the engine are the source's (relative to the first
  * sample when relative is set, or when the source's times look like an

@@ -209,26 +209,42 @@ static int check_col(const sw_cli_option_t *o, const char *arg, void *dest)
 const sw_cli_option_t sw_cli_csv_options[] = {
     {SW_CLI_SECTION, .help = CSV_SECTION},
     {SW_CLI_STRING, 0, "time-col", "NAME|N", CSV(csv.time_col), .fn = check_col,
-     .help = "time column, by header name or 1-based index (default 1)"},
+     .help = "time column, by header name or 1-based index (default: the header's time "
+             "column, else 1)"},
     {SW_CLI_STRING, 0, "accel-col", "NAME|N", CSV(csv.accel_col), .fn = check_col,
-     .help = "longitudinal acceleration column (default 2)"},
+     .help = "longitudinal acceleration column (default: the header's, x among several "
+             "axes, else 2)"},
     {SW_CLI_STRING, 0, "vert-col", "NAME|N", CSV(csv.vert_col), .fn = check_col,
-     .help = "vertical acceleration column, up positive, same unit as --accel-unit (default: "
-             "none, gravity only)"},
+     .help = "vertical acceleration column, up positive, same unit as --accel-unit; say "
+             "whether it includes gravity (--vert-includes-gravity: an accelerometer reads +1 g "
+             "at rest) (default: none, gravity only)"},
     {SW_CLI_CALL, 0, "delimiter", "D", CSV(csv.delim), .fn = parse_delim,
      .help = "',', ';' or tab (default: detected from the first line)"},
     {SW_CLI_FLAG, 0, "header", CSV(csv.header), .value = 1,
      .help = "the first row is a header (default: detected)"},
     {SW_CLI_FLAG, 0, "no-header", CSV(csv.header), .value = 0, .help = "the first row is data"},
     {SW_CLI_CALL, 0, "time-unit", "U", CSV(csv.time_scale), .fn = parse_time_unit,
-     .help = "s, ms or us (default s)"},
+     .help = "s, ms or us (default: from the header's name, else s)"},
+    {SW_CLI_FLAG, 0, "decimal-comma", CSV(csv.decimal_comma), .value = 1,
+     .help = "',' is the decimal mark (default: detected in ';' and tab files from the first "
+             "number with a mark)"},
+    {SW_CLI_FLAG, 0, "no-decimal-comma", CSV(csv.decimal_comma), .value = 0,
+     .help = "refuse numbers with a ','"},
+    {SW_CLI_TEXT,
+     .help = "Columns and units not given are read from the header's names when they say it\n"
+             "without doubt (\"Time (ms)\", \"X (g)\", \"time_ms;accel_g\", \"ax [m/s^2]\"); stderr\n"
+             "says what was chosen.  A header that does not say it is refused, listed, with\n"
+             "these options to name the columns.  Times may be ISO-8601 date-times\n"
+             "(2024-05-20T12:00:00.000Z, 2018-04-08 10:31:37.005628); epoch and date-time\n"
+             "logs are timed from their start."},
     {SW_CLI_END},
 };
 
 const sw_cli_option_t sw_cli_sample_options[] = {
     {SW_CLI_SECTION, .help = CSV_SECTION},
     {SW_CLI_CALL, 0, "accel-unit", "U", CSV(csv.accel_scale), .fn = sw_cli_accel_unit,
-     .help = "m/s2 or g, 1 g = 9.80665 m/s^2 (default m/s2)"},
+     .help = "m/s2 (m/s^2, mps2) or g (G, Gs), 1 g = 9.80665 m/s^2 (default: from the "
+             "header's name, else m/s2)"},
     {SW_CLI_FLAG, 0, "flip", CSV(csv.flip), .value = 1,
      .help = "negate the longitudinal axis (logger mounted backwards)"},
     {SW_CLI_FLAG, 0, "strict", CSV(strict), .value = 1,

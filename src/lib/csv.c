@@ -107,7 +107,7 @@ static int infer_columns(sw_csv_t *c)
     const int want[SW_CSV_NROLES] = {!c->col_given[R_TIME], !c->col_given[R_ACCEL], 0};
     sw_csv_guess_t g;
     if ((want[0] || want[1]) && sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])c->hdr, c->nhdr,
-                                             want, &g) != 0) {
+                                             want, c->col[R_VERT], &g) != 0) {
         char t[300];
         snprintf(t, sizeof t, "cannot tell the columns from the header: %s", g.why);
         fail(c, SW_EAMBIGUOUS, t);
@@ -693,12 +693,12 @@ int sw_csv_layout(const sw_csv_t *c, sw_csv_layout_t *out)
 
 long sw_csv_header_count(const sw_csv_t *c)
 {
-    return c && c->lay.has_header ? c->nhdr : 0;
+    return c ? c->nhdr : 0;
 }
 
 const char *sw_csv_header_field(const sw_csv_t *c, long i)
 {
-    return c && c->lay.has_header && i >= 0 && i < c->nhdr ? c->hdr[i] : NULL;
+    return c && i >= 0 && i < c->nhdr ? c->hdr[i] : NULL;
 }
 
 const char *sw_csv_unit_name(int unit)

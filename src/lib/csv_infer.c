@@ -11,7 +11,8 @@
  * acceleration a word such as accel, acc, acceleration, ax, or any name
  * whose unit is an acceleration ("X (g)").  Among several acceleration
  * columns the longitudinal one is the x axis (the vehicle frame: x points
- * forward) or one named longitudinal or forward; among several time
+ * forward) or one named longitudinal or forward, else the only one that
+ * names no axis beside lateral and vertical ones; among several time
  * columns the one with a unit (elapsed seconds) is preferred to one without
  * (a date-time). */
 #include <stdio.h>
@@ -202,16 +203,17 @@ static void list_names(const char names[][SW_CSV_NAME_MAX], const long *set, int
 }
 
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
-                 sw_csv_guess_t *g)
+                 long skip, sw_csv_guess_t *g)
 {
     enum { CAP = 16 };
-    long tc[CAP] = {0}, tu[CAP] = {0}, ac[CAP] = {0}, ax[CAP] = {0};
-    int ntc = 0, ntu = 0, nac = 0, nax = 0;
+    long tc[CAP] = {0}, tu[CAP] = {0}, ac[CAP] = {0}, ax[CAP] = {0}, an[CAP] = {0};
+    int ntc = 0, ntu = 0, nac = 0, nax = 0, nan_ = 0;
     char list[200];
     memset(g, 0, sizeof *g);
     for (int r = 0; r < SW_CSV_NROLES; r++) g->col[r] = -1;
     for (long i = 0; i < n; i++) {
         kind_t k;
+        if (i == skip) continue;
         classify(names[i], &k);
         if (k.time && ntc < CAP) {
             tc[ntc++] = i;
@@ -220,6 +222,7 @@ int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_
         if (k.accel && nac < CAP) {
             ac[nac++] = i;
             if (k.axis == 'x' && nax < CAP) ax[nax++] = i;
+            if (!k.axis && nan_ < CAP) an[nan_++] = i; /* no axis: not lateral, not vertical */
         }
     }
     if (want[SW_CSV_ROLE_TIME]) {
@@ -238,9 +241,11 @@ int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_
         g->unit[SW_CSV_ROLE_TIME] = sw_csv_name_unit(names[set[0]], 1);
     }
     if (want[SW_CSV_ROLE_ACCEL]) {
-        /* one acceleration column, or among several the one along x */
-        const long *set = nac == 1 ? ac : ax;
-        const int ns = nac == 1 ? 1 : nax;
+        /* one acceleration column; or among several the one along x; or,
+         * with no x, the one that names no axis beside lateral and
+         * vertical ones ("accel, z") */
+        const long *set = nac == 1 ? ac : nax ? ax : an;
+        const int ns = nac == 1 ? 1 : nax ? nax : nan_;
         if (ns != 1) {
             list_names(names, nac ? ac : ax, nac ? nac : nax, list, sizeof list);
             if (nac == 0)

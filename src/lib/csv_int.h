@@ -136,10 +136,11 @@ typedef struct {
 int sw_csv_name_unit(const char *name, int time_role);
 
 /* Which of the n header fields are time and longitudinal acceleration.
- * want[r]: look for role r.  Returns 0, or -1 with g->why set when a
- * wanted role has no candidate or several equally good ones. */
+ * want[r]: look for role r; skip: a column taken already (the vertical
+ * one), or -1.  Returns 0, or -1 with g->why set when a wanted role has
+ * no candidate or several equally good ones. */
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
-                 sw_csv_guess_t *g);
+                 long skip, sw_csv_guess_t *g);
 
 
 #endif

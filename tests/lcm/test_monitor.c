@@ -686,6 +686,47 @@ static void test_bogus_first(void **st)
     rig_free(r);
 }
 
+/* A log played twice into the monitor (or a sensor that restarts with its
+ * clock back at the start): utime goes back while samples keep arriving.
+ * The restart is reported and counted, the monitor takes the second pass
+ * after a few samples (the stream confirming it), never blind; every
+ * sample of both passes is accepted. */
+static void test_played_twice(void **st)
+{
+    (void)st;
+    rig_t *r = rig_new(1, NULL);
+    for (int pass = 0; pass < 2; pass++)
+        for (long k = 0; k < NSAMP; k++) {
+            swaywatch_accel_t s = {.utime = UTIME0 + k * 1000, .seq = k, .ax = pulse_a(k)};
+            unsigned char buf[128];
+            const int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+            r->mono = (double)(pass * NSAMP + k) / RATE; /* arrives as played */
+            send_raw(r, buf, len);
+            if (pass == 1 && k == 10) {
+                sw_mon_counts_t c;
+                sw_mon_counts(r->mon, &c);
+                assert_int_equal(c.restarts, 1);
+                assert_int_equal(c.held, 0);
+                assert_int_equal(c.accepted, NSAMP + 11); /* resumed within three samples */
+            }
+        }
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.accepted, 2 * NSAMP);
+    assert_int_equal(sw_mon_rejected(&c), 0);
+    assert_int_equal(c.restarts, 1);
+    assert_int_equal(c.seq_restarts, 1);
+    int said = 0;
+    for (int k = 0; k < r->bus.nal; k++)
+        said += strstr((const char *)r->bus.al[k].text, "sensor time went back by 2") != NULL;
+    assert_int_equal(said, 1);
+    /* states of the second pass were published: two passes' worth */
+    assert_int_equal(r->bus.nst, 2 * NSAMP);
+    check_counts_add_up(r->mon);
+    check_all_finite(&r->bus);
+    rig_free(r);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -699,6 +740,7 @@ int main(void)
         cmocka_unit_test(test_skew),
         cmocka_unit_test(test_jump),
         cmocka_unit_test(test_bogus_first),
+        cmocka_unit_test(test_played_twice),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
