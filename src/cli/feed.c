@@ -161,14 +161,12 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
     rc = sw_cli_logfile_pump(lf, F.csv, &F.rej.stop, after_chunk, &F, &fr);
     if (rc != SW_EXIT_OK) goto out;
     rc = SW_EXIT_USAGE;
-    if (fr == SW_EAMBIGUOUS) {
-        explain_columns(&F);
+    if (fr == SW_EAMBIGUOUS || fr == SW_ENOTFOUND) {
+        explain_columns(&F); /* the reader's reason names the column, then the header */
         goto out;
     }
     if (fr < 0) {
-        sw_cli_error("%s: %s", lf->name,
-                     fr == SW_ENOTFOUND ? "a column given by name is not in the header"
-                                        : sw_strerror(fr));
+        sw_cli_error("%s: %s", lf->name, sw_strerror(fr));
         rc = fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
         goto out;
     }

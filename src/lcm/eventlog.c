@@ -45,6 +45,9 @@ struct sw_lcmlog {
     int strict;
     pacer_t pacer;
     sw_lcmlog_counts_t c;
+    int have_ts0;
+    int64_t ts0; /* us, the first accel event's receive time: arrival times are
+                    fed relative to it, exactly */
 };
 
 /* LCM anchors channel regexes at both ends. */
@@ -188,8 +191,15 @@ int sw_lcmlog_read(sw_lcmlog_t *l, sw_mon_t *mon)
         }
         l->c.on_channel++;
         pace(&l->pacer, ev->data, ev->datalen);
-        sw_mon_feed(mon, ev->data, (size_t)ev->datalen, ev->timestamp,
-                    (double)ev->timestamp / 1e6, NULL);
+        if (!l->have_ts0) {
+            l->have_ts0 = 1;
+            l->ts0 = ev->timestamp;
+        }
+        int64_t rx_us;
+        const double rx = __builtin_sub_overflow(ev->timestamp, l->ts0, &rx_us)
+                              ? NAN
+                              : (double)rx_us / 1e6; /* s, when lcm-logger received it */
+        sw_mon_feed(mon, ev->data, (size_t)ev->datalen, ev->timestamp, rx, NULL);
         lcm_eventlog_free_event(ev);
         if (l->strict) { /* a refusal, of this sample or of one held before it */
             sw_mon_counts_t k;

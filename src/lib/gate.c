@@ -164,6 +164,11 @@ static void note_interval(sw_gate_t *g, double dt)
 
 static int refuse(sw_gate_t *g, const sw_sample_t *s, sw_gate_reject r, const char *text)
 {
+    /* a sample refused for its values did arrive: its seq is no loss */
+    if ((r == SW_GATE_REJ_NONFINITE || r == SW_GATE_REJ_IMPLAUSIBLE) && g->have_seq &&
+        s->seq != SW_GATE_NO_SEQ && s->seq > g->last_seq &&
+        (uint64_t)s->seq - (uint64_t)g->last_seq < 1000000000ULL)
+        g->last_seq = s->seq;
     static const int code[SW_GATE_NREJ] = {SW_ENONFINITE, SW_ETOOBIG, SW_ERESOLUTION,
                                            SW_ETOOBIG,    SW_EORDER,  SW_EORDER,
                                            SW_EORDER,     SW_EINVAL};
@@ -209,7 +214,7 @@ static void note_seq(sw_gate_t *g, const sw_sample_t *s)
         if (s->seq > g->last_seq) {
             const uint64_t d = (uint64_t)s->seq - (uint64_t)g->last_seq; /* >= 1, no overflow */
             if (d > 1 && d <= 1000000000ULL) g->f.lost += (long)(d - 1);
-        } else {
+        } else if (s->seq < g->last_seq) {
             g->f.seq_restarts++;
             sw_gate_event_t ev = {.kind = SW_GATE_EV_SEQ_RESTART, .t = g->last.t,
                                   .where = s->where};
