@@ -177,7 +177,8 @@ SW_API const char *sw_gate_event_name(sw_gate_event_kind k);
 
 typedef struct {
     double max_rejected; /* share of received samples refused; 0 = 0.01 */
-    double min_rate;     /* Hz, below: refused; 0 = 1 */
+    double min_rate;     /* Hz, below: refused (no shock of interest resolved; most often a
+                            time column in ms read as s, which gives 1 Hz); 0 = 2 */
     double warn_rate;    /* Hz, below: a warning (short shocks not resolved); 0 = 20 */
     double max_duration; /* s; 0 = 366 days */
     double max_peak;     /* m/s^2, largest |a_g| a truck bed sees; 0 = 25 g */

@@ -478,7 +478,7 @@ int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *w
     static const sw_gate_limits_t defaults;
     if (!lim) lim = &defaults;
     const double max_rej = lim->max_rejected > 0.0 ? lim->max_rejected : 0.01;
-    const double min_rate = lim->min_rate > 0.0 ? lim->min_rate : 1.0;
+    const double min_rate = lim->min_rate > 0.0 ? lim->min_rate : 2.0;
     const double warn_rate = lim->warn_rate > 0.0 ? lim->warn_rate : 20.0;
     const double max_dur = lim->max_duration > 0.0 ? lim->max_duration : 366.0 * 86400.0;
     const double max_peak = lim->max_peak > 0.0 ? lim->max_peak : 25.0 * G0;

@@ -148,3 +148,18 @@ expect_rc 2 "vertical with gravity"
 expect_err "it includes gravity" "vertical with gravity: refused"
 replay "$TMP/vertical.csv" --vert-col z_mps2 --vert-includes-gravity
 same_verdict "vertical with gravity, said"
+
+# An option always wins over the header, and a contradiction is said.
+replay "$LOGS/braking-pothole-g-ms.csv" --accel-unit m/s2 --force
+expect_err '--accel-unit m/s^2 contradicts the header'"'"'s "accel_g" (g); using m/s^2 as given' \
+    "a unit against the header"
+# The same export with its ms read as seconds: 1 Hz, no verdict.
+replay "$LOGS/braking-pothole-g-ms.csv" --time-unit s
+expect_rc 2 "ms read as seconds"
+expect_err "no vehicle log is that slow; a time column in ms or us read as seconds?" \
+    "ms read as seconds: the reason"
+# Date-times: timed from the log's start, the absolute start said once.
+replay "$TMP/can-bus.csv" --time-col Timestamp
+expect_rc 0 "date-time column"
+json_check "$TMP/out" 'j["input"]["start_absolute"] == "2024-05-20T12:00:00.000Z" and j["input"]["start"] == 0'
+json_check "$TMP/out" 'j["packages"][1]["overturned"] and j["packages"][1]["overturn_time"] < 60'
