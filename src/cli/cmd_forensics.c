@@ -334,7 +334,7 @@ static int run_cases(forensics_t *F)
     ro.engine = F->eo; /* the replay's integration options, --accuracy included */
     ro.settle = F->fo.settle > 0.0 ? F->fo.settle : -1.0; /* negative: no free motion at all */
     const sw_cli_log_t *L = &F->L;
-    sw_log_t lg = {L->t, L->a_g, L->has_z ? L->a_z : NULL, L->n};
+    sw_log_t lg = {.t = L->t, .a_g = L->a_g, .a_z = L->has_z ? L->a_z : NULL, .n = L->n};
     sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads);
     if (!F->cases[0].available) {
         sw_cli_error("forensics: safety factor: %s", F->cases[0].note);
