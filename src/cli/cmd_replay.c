@@ -16,23 +16,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "feed.h"
-#include "input.h"
-#include "opts.h"
-#include "output.h"
-#ifdef SW_HAVE_LCM
-#include <lcm/lcm.h>
-
-#include "eventlog.h"
-#include "lcmopts.h"
-#include "monitor.h"
-#endif
+#include "source.h"
 
 /* replay's own options. */
 typedef struct {
     double settle; /* s of zero input after the end of the log */
     int fail_on_overturn;
-    const char *channel;     /* lcm-logger files: the accel channel regex */
     const char *publish_url; /* --publish; NULL: no publishing */
     double speed;
 } replay_opts_t;
@@ -52,20 +41,6 @@ static const sw_cli_option_t replay_options[] = {
 };
 
 #ifdef SW_HAVE_LCM
-#define LCM_SECTION                                                                                \
-    "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit, --flip\n"             \
-    "and --strict apply):"
-
-/* --accel-channel, as monitor calls it; --channel, its name before, still
- * works. */
-static const sw_cli_option_t replay_channel_options[] = {
-    {SW_CLI_STRING, 0, "accel-channel", "REGEX", RO(channel),
-     .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
-             SW_MON_ACCEL_CHANNEL ")"},
-    {SW_CLI_STRING, 0, "channel", "REGEX", RO(channel), .flags = SW_CLI_HIDDEN},
-    {SW_CLI_END},
-};
-
 static const sw_cli_option_t replay_publish_options[] = {
     {SW_CLI_STRING, 0, "publish", "URL", RO(publish_url),
      .help = "also publish states and alarms over LCM ('' = LCM's default URL; "
@@ -96,23 +71,16 @@ static const sw_cli_command_t replay_cmd = {
 /* Everything a replay uses, whatever the source. */
 typedef struct {
     sw_cli_opts_t o;
-    sw_cli_csv_opts_t copts;
-    sw_cli_gate_t gate;
+    sw_cli_read_opts_t in;
     replay_opts_t ro;
-    const char *log; /* LOG as given */
-    sw_cli_logfile_t lf;
+    sw_cli_reader_t R;
     sw_scene_t *scenes;
     size_t n;
     sw_engine_opts_t eo;
-    sw_engine_t *e; /* the engine (the monitor core's, for an lcm-logger file) */
     sw_cli_states_t states;
     sw_cli_events_t events;
-    sw_cli_run_t run;
 #ifdef SW_HAVE_LCM
-    sw_mon_opts_t mo;
-    sw_mon_t *mon;
-    lcm_t *lcm;
-    sw_lcmlog_t *lcmlog;
+    lcm_t *lcm; /* --publish */
 #endif
 } replay_t;
 
@@ -128,230 +96,70 @@ static void on_event(void *user, const sw_event_t *ev)
     sw_cli_events_write(&r->events, ev);
 }
 
-/* ---- CSV logs ------------------------------------------------------------------ */
-
-/* Stream the CSV log through the reader and the input gate into the
- * engine; the engine and the writers are ready.  Then the verdict's
- * check, before the settling that the verdict includes. */
-static int replay_csv(replay_t *r)
-{
-    sw_cli_fed_t fed;
-    int rc = sw_cli_feed_csv(&r->lf, &r->copts, &r->gate, r->e, r->o.quiet, &fed);
-    if (rc != SW_EXIT_OK) return rc;
-    r->run.samples_read = fed.rows;
-    r->run.samples_rejected = fed.rejected;
-    rc = sw_cli_feed_verdict(r->lf.name, &fed.facts, &r->gate, r->copts.csv.vert_col != NULL,
-                             r->o.quiet, &r->run);
-    if (rc != SW_EXIT_OK) return rc;
-    sw_engine_finish(r->e, r->ro.settle);
-    return SW_EXIT_OK;
-}
-
-/* ---- lcm-logger files ---------------------------------------------------------- */
-
-#ifdef SW_HAVE_LCM
-/* Open the log (the channel regex checked first) and the --publish URL. */
-static int lcmlog_open(replay_t *r)
-{
-    int err = 0;
-    const sw_lcmlog_opts_t lo = {
-        .channel = r->ro.channel,
-        .speed = r->ro.publish_url ? r->ro.speed : 0.0,
-        .strict = r->copts.strict,
-    };
-    r->lcmlog = sw_lcmlog_open(r->log, &lo, &err);
-    if (!r->lcmlog) {
-        if (err == SW_EINVAL)
-            sw_cli_error("--accel-channel: not a valid regular expression: '%s'", r->ro.channel);
-        else if (err == SW_ENOMEM)
-            sw_cli_error("out of memory");
-        else
-            sw_cli_error("%s: cannot open: %s", r->log, strerror(errno));
-        return err == SW_EINVAL ? SW_EXIT_USAGE : SW_EXIT_IO;
-    }
-    return SW_EXIT_OK;
-}
-
-static int lcmlog_publish(replay_t *r)
-{
-    if (!r->ro.publish_url) return SW_EXIT_OK;
-    r->lcm = lcm_create(r->ro.publish_url);
-    if (r->lcm) return SW_EXIT_OK;
-    sw_cli_error("--publish: cannot set up LCM with '%s'", r->ro.publish_url);
-    return SW_EXIT_IO;
-}
-
-static sw_engine_t *lcmlog_engine(replay_t *r)
-{
-    if (sw_cli_mon_gate(&r->mo, &r->gate) != SW_EXIT_OK) return NULL;
-    r->mo.accel_scale = r->copts.csv.accel_scale;
-    r->mo.flip = r->copts.csv.flip;
-    r->mo.on_state = r->o.out_path ? on_state : NULL;
-    r->mo.on_event = on_event;
-    r->mo.user = r;
-    char msg[512] = "";
-    r->mon = sw_mon_create(r->scenes, r->n, &r->eo, &r->mo, r->lcm, msg, sizeof msg);
-    if (!r->mon) {
-        sw_cli_error("cannot start the engine: %s", msg[0] ? msg : "unknown reason");
-        return NULL;
-    }
-    return sw_mon_engine(r->mon);
-}
-
-static int replay_lcmlog(replay_t *r)
-{
-    if (sw_lcmlog_read(r->lcmlog, r->mon) != SW_OK) {
-        sw_cli_error("%s: stopped at the first bad event or sample (--strict)", r->log);
-        return SW_EXIT_USAGE;
-    }
-    sw_mon_flush(r->mon);
-    sw_mon_counts_t k;
-    sw_mon_counts(r->mon, &k);
-    if (r->copts.strict && sw_mon_rejected(&k) > 0) { /* the last sample, held, not confirmed */
-        sw_cli_error("%s: stopped at the first bad event or sample (--strict)", r->log);
-        return SW_EXIT_USAGE;
-    }
-    r->run.samples_read = k.received;
-    r->run.samples_rejected = k.received - k.accepted;
-    if (k.accepted > 0) {
-        sw_gate_facts_t f;
-        sw_mon_facts(r->mon, &f);
-        f.upstream_rejected = k.received - f.received; /* not accel_t, NaN on an axis */
-        const int rc = sw_cli_feed_verdict(r->log, &f, &r->gate, r->mo.vertical >= 0,
-                                           r->o.quiet, &r->run);
-        if (rc != SW_EXIT_OK) return rc;
-    }
-    if (k.accepted > 0 && r->ro.settle > 0.0) sw_engine_finish(r->e, r->ro.settle);
-    return SW_EXIT_OK;
-}
-
-/* What was read; SW_EXIT_USAGE (reported) if no sample was taken.
- * --quiet keeps the counts when they explain a failure. */
-static int lcmlog_report(replay_t *r)
-{
-    sw_mon_counts_t k;
-    sw_mon_counts(r->mon, &k);
-    sw_lcmlog_counts_t lc;
-    sw_lcmlog_counts(r->lcmlog, &lc);
-    if (!r->o.quiet || k.accepted == 0) {
-        fprintf(stderr,
-                "swaywatch: %s: %ld events, %ld on the accel channel, %ld on other channels, "
-                "%ld corrupted regions skipped\n",
-                r->log, lc.events, lc.on_channel, lc.other_channels, lc.corrupt);
-        fprintf(stderr, "swaywatch: %s: accel samples: %ld = accepted %ld + ", r->log, k.received,
-                k.accepted);
-        sw_cli_print_rejected(stderr, &k);
-        fprintf(stderr, "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
-                        "%ld alarms\n",
-                k.lost, k.gaps, k.restarts, k.clock_steps,
-                k.states, k.alarms);
-    }
-    if (k.accepted > 0) return SW_EXIT_OK;
-    sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", r->log,
-                 r->ro.channel);
-    return SW_EXIT_USAGE;
-}
-
-static void lcmlog_close(replay_t *r)
-{
-    sw_mon_destroy(r->mon);
-    if (r->lcm) lcm_destroy(r->lcm);
-    sw_lcmlog_close(r->lcmlog);
-}
-#endif
-
 /* ---- the command ------------------------------------------------------------------ */
 
-/* The options the log's source does not take; SW_EXIT_OK or SW_EXIT_USAGE
- * (reported, naming the first one given). */
-static int check_source(const sw_cli_source_t *src, const replay_t *r, const sw_cli_group_t *csv,
-                        const sw_cli_group_t *lcm, size_t nlcm)
+/* --publish: LCM for the monitor core to publish on. */
+static int publish(replay_t *r)
 {
-    if (src->kind == SW_CLI_SRC_LCMLOG && r->lf.in == stdin) {
-        sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
-                     "file name",
-                     r->lf.name);
-        return SW_EXIT_USAGE;
+#ifdef SW_HAVE_LCM
+    if (!r->ro.publish_url || r->R.src->kind != SW_CLI_SRC_LCMLOG) return SW_EXIT_OK;
+    r->lcm = lcm_create(r->ro.publish_url);
+    if (!r->lcm) {
+        sw_cli_error("--publish: cannot set up LCM with '%s'", r->ro.publish_url);
+        return SW_EXIT_IO;
     }
-    if (!src->available) {
-        sw_cli_error("%s: lcm-logger files need the LCM build", r->log);
-        return SW_EXIT_USAGE;
-    }
-    if (src->kind == SW_CLI_SRC_LCMLOG && csv->given) {
-        sw_cli_error("%s: --%s is for CSV logs; this is an lcm-logger file", r->log,
-                     csv->given->long_name);
-        return SW_EXIT_USAGE;
-    }
-    const sw_cli_group_t *first = NULL;
-    for (size_t i = 0; i < nlcm; i++)
-        if (lcm[i].given && (!first || lcm[i].given_at < first->given_at)) first = &lcm[i];
-    if (src->kind == SW_CLI_SRC_CSV && first) {
-        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log",
-                     r->lf.name, first->given->long_name);
-        return SW_EXIT_USAGE;
-    }
+    r->R.publish = r->lcm;
+#else
+    (void)r;
+#endif
     return SW_EXIT_OK;
 }
 
 /* The engine: replay's own, or the monitor core's. */
-static int start(replay_t *r, const sw_cli_source_t *src)
+static int start(replay_t *r)
 {
     int rc;
     if ((rc = sw_cli_load_scenes(&r->o, &r->scenes, &r->n)) != SW_EXIT_OK) return rc;
     sw_cli_engine_opts(&r->o, &r->eo);
     if ((rc = sw_cli_resolve_accuracy(&r->o, r->scenes, r->n, &r->eo)) != SW_EXIT_OK) return rc;
-#ifdef SW_HAVE_LCM
-    if (src->kind == SW_CLI_SRC_LCMLOG) {
-        if ((rc = lcmlog_publish(r)) != SW_EXIT_OK) return rc;
-        r->e = lcmlog_engine(r);
-        return r->e ? SW_EXIT_OK : SW_EXIT_USAGE;
-    }
-#endif
-    (void)src;
+    if ((rc = publish(r)) != SW_EXIT_OK) return rc;
     r->eo.on_event = on_event;
     r->eo.on_state = r->o.out_path ? on_state : NULL;
     r->eo.user = r;
-    r->e = sw_cli_engine_create(r->scenes, r->n, &r->eo);
-    return r->e ? SW_EXIT_OK : SW_EXIT_USAGE;
+    return sw_cli_reader_engine(&r->R, r->scenes, r->n, &r->eo);
 }
 
-/* Open LOG: a missing file is an I/O error (3) whatever else is wrong,
- * and its first bytes choose the source; then what the source does not
- * take is refused, and outputs that would overwrite the log. */
-static const sw_cli_source_t *open_log(replay_t *r, const sw_cli_group_t *g, size_t nlcm, int *rc)
+/* Open LOG, refuse what its source does not take and outputs that would
+ * overwrite it, then its reader. */
+static int open_log(replay_t *r, const char *log, const sw_cli_group_t *g, size_t nlcm)
 {
-    if ((*rc = sw_cli_logfile_open(&r->lf, r->log)) != SW_EXIT_OK) return NULL;
-    const sw_cli_source_t *src = sw_cli_logfile_source(&r->lf);
-    if ((*rc = check_source(src, r, &g[0], &g[3], nlcm)) != SW_EXIT_OK ||
-        (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, r->lf.in, r->o.json,
-                                     r->o.quiet)) != SW_EXIT_OK)
-        return NULL;
+    int rc;
+    if ((rc = sw_cli_reader_open(&r->R, log, &r->in, r->o.quiet, &g[0], &g[3], nlcm)) !=
+            SW_EXIT_OK ||
+        (rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, r->R.lf.in, r->o.json,
+                                   r->o.quiet)) != SW_EXIT_OK)
+        return rc;
 #ifdef SW_HAVE_LCM
-    if (src->kind == SW_CLI_SRC_LCMLOG) {
-        sw_cli_logfile_close(&r->lf); /* the event-log reader opens it again */
-        if ((*rc = lcmlog_open(r)) != SW_EXIT_OK) return NULL;
-    }
+    r->R.speed = r->ro.publish_url ? r->ro.speed : 0.0;
 #endif
-    return src;
+    return sw_cli_reader_prepare(&r->R);
 }
 
 /* After the run: the files closed, the summary; the exit code. */
-static int finish(replay_t *r, const sw_cli_source_t *src)
+static int finish(replay_t *r)
 {
     int rc = sw_cli_states_close(&r->states);
     int rc2 = sw_cli_events_close(&r->events);
     if (rc == SW_EXIT_OK) rc = rc2;
-#ifdef SW_HAVE_LCM
-    if (src->kind == SW_CLI_SRC_LCMLOG && (rc2 = lcmlog_report(r)) != SW_EXIT_OK) return rc2;
-#endif
-    (void)src;
-    r->run.log = r->log;
-    r->run.settle = r->ro.settle;
+    if ((rc2 = sw_cli_reader_report(&r->R)) != SW_EXIT_OK) return rc2;
+    sw_cli_run_t *run = &r->R.run;
+    run->log = r->R.log;
+    run->settle = r->ro.settle;
     if (r->o.json)
-        sw_cli_print_json(stdout, r->e, &r->run);
+        sw_cli_print_json(stdout, r->R.e, run);
     else if (!r->o.quiet)
-        sw_cli_print_summary(stdout, r->e, &r->run);
-    if (rc == SW_EXIT_OK && r->ro.fail_on_overturn && sw_cli_any_overturned(r->e))
+        sw_cli_print_summary(stdout, r->R.e, run);
+    if (rc == SW_EXIT_OK && r->ro.fail_on_overturn && sw_cli_any_overturned(r->R.e))
         rc = SW_EXIT_OVERTURNED;
     return rc;
 }
@@ -359,24 +167,21 @@ static int finish(replay_t *r, const sw_cli_source_t *src)
 int cmd_replay(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
-    replay_t r = {0};
-    sw_cli_csv_opts_init(&r.copts);
-    sw_cli_gate_init(&r.gate);
-#ifdef SW_HAVE_LCM
-    sw_cli_mon_opts_init(&r.mo);
-#endif
+    replay_t r;
+    memset(&r, 0, sizeof r);
+    sw_cli_read_opts_init(&r.in);
     sw_cli_group_t g[] = {
-        SW_CLI_GROUP(sw_cli_csv_options, &r.copts),
-        SW_CLI_GROUP(sw_cli_sample_options, &r.copts),
+        SW_CLI_GROUP(sw_cli_csv_options, &r.in.copts),
+        SW_CLI_GROUP(sw_cli_sample_options, &r.in.copts),
         SW_CLI_GROUP(replay_options, &r.ro),
 #ifdef SW_HAVE_LCM
         /* the options of lcm-logger files: g[3] to g[6] */
-        SW_CLI_GROUP_IN(replay_channel_options, &r.ro, LCM_SECTION),
-        SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &r.mo, LCM_SECTION),
-        SW_CLI_GROUP_IN(replay_publish_options, &r.ro, LCM_SECTION),
-        SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &r.mo, LCM_SECTION),
+        SW_CLI_GROUP_IN(sw_cli_channel_options, &r.in, SW_CLI_LCM_SECTION),
+        SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &r.in.mo, SW_CLI_LCM_SECTION),
+        SW_CLI_GROUP_IN(replay_publish_options, &r.ro, SW_CLI_LCM_SECTION),
+        SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &r.in.mo, SW_CLI_LCM_SECTION),
 #endif
-        SW_CLI_GROUP(sw_cli_gate_options, &r.gate),
+        SW_CLI_GROUP(sw_cli_gate_options, &r.in.gate),
         SW_CLI_GROUP(sw_cli_scene_options, &r.o),
         SW_CLI_GROUP(sw_cli_integration_options, &r.o),
         SW_CLI_GROUP(sw_cli_accuracy_options, &r.o),
@@ -391,36 +196,27 @@ int cmd_replay(int argc, char **argv)
 #endif
 
     int first;
-    const sw_cli_source_t *src = NULL;
+    const char *log;
     if ((rc = sw_cli_parse(&replay_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) goto out;
     rc = SW_EXIT_USAGE;
-    if (!(r.log = sw_cli_log_operand("replay", argc, argv, first))) goto out;
-#ifdef SW_HAVE_LCM
-    if (!r.ro.channel) r.ro.channel = SW_MON_ACCEL_CHANNEL;
-#endif
-    if (!(src = open_log(&r, g, nlcm, &rc)) || (rc = start(&r, src)) != SW_EXIT_OK) goto out;
-    if (r.o.verbose) sw_cli_print_derived(stderr, r.e, r.scenes, r.n);
+    if (!(log = sw_cli_log_operand("replay", argc, argv, first))) goto out;
+    if ((rc = open_log(&r, log, g, nlcm)) != SW_EXIT_OK || (rc = start(&r)) != SW_EXIT_OK)
+        goto out;
+    if (r.o.verbose) sw_cli_print_derived(stderr, r.R.e, r.scenes, r.n);
     if ((rc = sw_cli_states_open(&r.states, r.o.out_path, r.o.every, r.scenes, r.n)) !=
             SW_EXIT_OK ||
         (rc = sw_cli_events_open(&r.events, r.o.events_path, r.scenes, r.n)) != SW_EXIT_OK)
         goto out;
-#ifdef SW_HAVE_LCM
-    if (src->kind == SW_CLI_SRC_LCMLOG)
-        rc = replay_lcmlog(&r);
-    else
-#endif
-        rc = replay_csv(&r);
-    if (rc == SW_EXIT_OK) rc = finish(&r, src);
+    rc = sw_cli_reader_read(&r.R, r.ro.settle);
+    if (rc == SW_EXIT_OK) rc = finish(&r);
 out:
     sw_cli_states_close(&r.states);
     sw_cli_events_close(&r.events);
+    sw_cli_reader_close(&r.R);
 #ifdef SW_HAVE_LCM
-    if (r.mon) r.e = NULL; /* the monitor's */
-    lcmlog_close(&r);
+    if (r.lcm) lcm_destroy(r.lcm);
 #endif
-    sw_engine_destroy(r.e);
     free(r.scenes);
-    sw_cli_logfile_close(&r.lf);
     sw_cli_parse_free(g, ng);
     return rc;
 }

@@ -16,6 +16,8 @@ typedef struct {
     sw_cli_rejects_t rej;
     int quiet;
     int layout_said;
+    sw_gate_take_fn take;
+    void *take_user;
 } feed_t;
 
 /* ---- what the reader chose ------------------------------------------------------- */
@@ -104,6 +106,12 @@ static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, c
     sw_cli_rejects_add(&F->rej, s->where, buf);
 }
 
+static void on_gate_take(void *user, double t, double a_g, double a_z, int restart)
+{
+    const feed_t *F = user;
+    F->take(F->take_user, t, a_g, a_z, restart);
+}
+
 static void on_gate_event(void *user, const sw_gate_event_t *ev)
 {
     feed_t *F = user;
@@ -134,17 +142,19 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
 }
 
 int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_cli_gate_t *go,
-                    sw_engine_t *e, int quiet, sw_cli_fed_t *out)
+                    sw_engine_t *e, int quiet, sw_gate_take_fn take, void *take_user,
+                    sw_cli_fed_t *out)
 {
     int rc = SW_EXIT_USAGE, err = 0;
     char msg[256] = "";
-    feed_t F = {.name = lf->name, .quiet = quiet};
+    feed_t F = {.name = lf->name, .quiet = quiet, .take = take, .take_user = take_user};
     F.rej = (sw_cli_rejects_t){.name = lf->name, .quiet = quiet, .strict = co->strict};
     memset(out, 0, sizeof *out);
     sw_gate_opts_t gopts;
     sw_cli_gate_opts(go, &gopts);
     gopts.on_event = on_gate_event;
     gopts.on_reject = on_gate_reject;
+    gopts.on_take = take ? on_gate_take : NULL;
     gopts.user = &F;
     gopts.relative = -1;
     F.gate = sw_gate_create(e, &gopts, msg, sizeof msg);

@@ -19,11 +19,13 @@ typedef struct {
 /* Stream the CSV log lf (opened) through the reader and the gate into e,
  * then flush the gate.  Refused rows and stream events go to stderr with
  * their line (rows: the first SW_CLI_MAX_PRINTED_REJECTS; none with
- * quiet).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad options or columns the
+ * quiet).  take (may be NULL) gets each sample the engine got, with
+ * take_user (gate.h).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad options or columns the
  * header does not tell, --strict at a refused row: reported) or
  * SW_EXIT_IO. */
 int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_cli_gate_t *go,
-                    sw_engine_t *e, int quiet, sw_cli_fed_t *out);
+                    sw_engine_t *e, int quiet, sw_gate_take_fn take, void *take_user,
+                    sw_cli_fed_t *out);
 
 /* The plausibility check of a fed log (gate.h) and the vertical channel's
  * gravity: SW_EXIT_OK with run's check and forced set (a warning or a

@@ -1,0 +1,247 @@
+/* source.c - a log read the way replay reads it (source.h): CSV logs
+ * streamed in fixed chunks through the CSV reader and the input gate
+ * (feed.c), lcm-logger files read in-process (eventlog.h, never through
+ * the network) into the monitor core, which refuses bad, duplicate and
+ * late samples as the live monitor does. */
+#include "source.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+void sw_cli_read_opts_init(sw_cli_read_opts_t *o)
+{
+    memset(o, 0, sizeof *o);
+    sw_cli_csv_opts_init(&o->copts);
+    sw_cli_gate_init(&o->gate);
+#ifdef SW_HAVE_LCM
+    sw_cli_mon_opts_init(&o->mo);
+    o->channel = SW_MON_ACCEL_CHANNEL;
+#endif
+}
+
+#ifdef SW_HAVE_LCM
+#define RD(f) SW_CLI_AT(sw_cli_read_opts_t, f)
+
+/* --accel-channel, as monitor calls it; --channel, its name before, still
+ * works. */
+const sw_cli_option_t sw_cli_channel_options[] = {
+    {SW_CLI_STRING, 0, "accel-channel", "REGEX", RD(channel),
+     .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
+             SW_MON_ACCEL_CHANNEL ")"},
+    {SW_CLI_STRING, 0, "channel", "REGEX", RD(channel), .flags = SW_CLI_HIDDEN},
+    {SW_CLI_END},
+};
+#endif
+
+/* ---- opening --------------------------------------------------------------------- */
+
+/* The options the log's source does not take; SW_EXIT_OK or SW_EXIT_USAGE
+ * (reported, naming the first one given). */
+static int check_source(const sw_cli_reader_t *R, const sw_cli_group_t *csv,
+                        const sw_cli_group_t *lcm, size_t nlcm)
+{
+    const sw_cli_source_t *src = R->src;
+    if (src->kind == SW_CLI_SRC_LCMLOG && R->lf.in == stdin) {
+        sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
+                     "file name",
+                     R->lf.name);
+        return SW_EXIT_USAGE;
+    }
+    if (!src->available) {
+        sw_cli_error("%s: lcm-logger files need the LCM build", R->log);
+        return SW_EXIT_USAGE;
+    }
+    if (src->kind == SW_CLI_SRC_LCMLOG && csv->given) {
+        sw_cli_error("%s: --%s is for CSV logs; this is an lcm-logger file", R->log,
+                     csv->given->long_name);
+        return SW_EXIT_USAGE;
+    }
+    const sw_cli_group_t *first = NULL;
+    for (size_t i = 0; i < nlcm; i++)
+        if (lcm[i].given && (!first || lcm[i].given_at < first->given_at)) first = &lcm[i];
+    if (src->kind == SW_CLI_SRC_CSV && first) {
+        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log",
+                     R->lf.name, first->given->long_name);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_opts_t *o,
+                       int quiet, const sw_cli_group_t *csv, const sw_cli_group_t *lcm,
+                       size_t nlcm)
+{
+    int rc;
+    R->log = log;
+    R->o = o;
+    R->quiet = quiet;
+    if ((rc = sw_cli_logfile_open(&R->lf, log)) != SW_EXIT_OK) return rc;
+    R->src = sw_cli_logfile_source(&R->lf);
+    return check_source(R, csv, lcm, nlcm);
+}
+
+int sw_cli_reader_prepare(sw_cli_reader_t *R)
+{
+#ifdef SW_HAVE_LCM
+    if (R->src->kind != SW_CLI_SRC_LCMLOG) return SW_EXIT_OK;
+    sw_cli_logfile_close(&R->lf); /* the event-log reader opens it again */
+    int err = 0;
+    const sw_lcmlog_opts_t lo = {
+        .channel = R->o->channel,
+        .speed = R->speed,
+        .strict = R->o->copts.strict,
+    };
+    R->lcmlog = sw_lcmlog_open(R->log, &lo, &err);
+    if (R->lcmlog) return SW_EXIT_OK;
+    if (err == SW_EINVAL)
+        sw_cli_error("--accel-channel: not a valid regular expression: '%s'", R->o->channel);
+    else if (err == SW_ENOMEM)
+        sw_cli_error("out of memory");
+    else
+        sw_cli_error("%s: cannot open: %s", R->log, strerror(errno));
+    return err == SW_EINVAL ? SW_EXIT_USAGE : SW_EXIT_IO;
+#else
+    (void)R;
+    return SW_EXIT_OK;
+#endif
+}
+
+/* ---- the engine ------------------------------------------------------------------- */
+
+#ifdef SW_HAVE_LCM
+static int lcmlog_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
+                         const sw_engine_opts_t *eo)
+{
+    sw_mon_opts_t mo = R->o->mo;
+    if (sw_cli_mon_gate(&mo, &R->o->gate) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    mo.accel_scale = R->o->copts.csv.accel_scale;
+    mo.flip = R->o->copts.csv.flip;
+    mo.on_state = eo->on_state;
+    mo.on_event = eo->on_event;
+    mo.on_take = R->take;
+    mo.user = eo->user;
+    char msg[512] = "";
+    R->mon = sw_mon_create(scenes, n, eo, &mo, R->publish, msg, sizeof msg);
+    if (!R->mon) {
+        sw_cli_error("cannot start the engine: %s", msg[0] ? msg : "unknown reason");
+        return SW_EXIT_USAGE;
+    }
+    R->e = sw_mon_engine(R->mon);
+    return SW_EXIT_OK;
+}
+#endif
+
+int sw_cli_reader_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
+                         const sw_engine_opts_t *eo)
+{
+    R->user = eo->user;
+#ifdef SW_HAVE_LCM
+    if (R->src->kind == SW_CLI_SRC_LCMLOG) return lcmlog_engine(R, scenes, n, eo);
+#endif
+    R->e = sw_cli_engine_create(scenes, n, eo);
+    return R->e ? SW_EXIT_OK : SW_EXIT_USAGE;
+}
+
+/* ---- reading ----------------------------------------------------------------------- */
+
+/* Stream the CSV log through the reader and the input gate into the
+ * engine; then the verdict's check, before the settling that the verdict
+ * includes. */
+static int read_csv(sw_cli_reader_t *R, double settle)
+{
+    sw_cli_fed_t fed;
+    int rc = sw_cli_feed_csv(&R->lf, &R->o->copts, &R->o->gate, R->e, R->quiet, R->take, R->user,
+                             &fed);
+    if (rc != SW_EXIT_OK) return rc;
+    R->run.samples_read = fed.rows;
+    R->run.samples_rejected = fed.rejected;
+    rc = sw_cli_feed_verdict(R->lf.name, &fed.facts, &R->o->gate,
+                             R->o->copts.csv.vert_col != NULL, R->quiet, &R->run);
+    if (rc != SW_EXIT_OK) return rc;
+    sw_engine_finish(R->e, settle);
+    return SW_EXIT_OK;
+}
+
+#ifdef SW_HAVE_LCM
+static int read_lcmlog(sw_cli_reader_t *R, double settle)
+{
+    if (sw_lcmlog_read(R->lcmlog, R->mon) != SW_OK) {
+        sw_cli_error("%s: stopped at the first bad event or sample (--strict)", R->log);
+        return SW_EXIT_USAGE;
+    }
+    sw_mon_flush(R->mon);
+    sw_mon_counts_t k;
+    sw_mon_counts(R->mon, &k);
+    if (R->o->copts.strict && sw_mon_rejected(&k) > 0) { /* the last sample, held */
+        sw_cli_error("%s: stopped at the first bad event or sample (--strict)", R->log);
+        return SW_EXIT_USAGE;
+    }
+    R->run.samples_read = k.received;
+    R->run.samples_rejected = k.received - k.accepted;
+    if (k.accepted > 0) {
+        sw_gate_facts_t f;
+        sw_mon_facts(R->mon, &f);
+        f.upstream_rejected = k.received - f.received; /* not accel_t, NaN on an axis */
+        const int rc = sw_cli_feed_verdict(R->log, &f, &R->o->gate, R->o->mo.vertical >= 0,
+                                           R->quiet, &R->run);
+        if (rc != SW_EXIT_OK) return rc;
+    }
+    if (k.accepted > 0 && settle > 0.0) sw_engine_finish(R->e, settle);
+    return SW_EXIT_OK;
+}
+#endif
+
+int sw_cli_reader_read(sw_cli_reader_t *R, double settle)
+{
+#ifdef SW_HAVE_LCM
+    if (R->src->kind == SW_CLI_SRC_LCMLOG) return read_lcmlog(R, settle);
+#endif
+    return read_csv(R, settle);
+}
+
+/* ---- after the run ------------------------------------------------------------------- */
+
+int sw_cli_reader_report(sw_cli_reader_t *R)
+{
+#ifdef SW_HAVE_LCM
+    if (R->src->kind != SW_CLI_SRC_LCMLOG) return SW_EXIT_OK;
+    sw_mon_counts_t k;
+    sw_mon_counts(R->mon, &k);
+    sw_lcmlog_counts_t lc;
+    sw_lcmlog_counts(R->lcmlog, &lc);
+    if (!R->quiet || k.accepted == 0) {
+        fprintf(stderr,
+                "swaywatch: %s: %ld events, %ld on the accel channel, %ld on other channels, "
+                "%ld corrupted regions skipped\n",
+                R->log, lc.events, lc.on_channel, lc.other_channels, lc.corrupt);
+        fprintf(stderr, "swaywatch: %s: accel samples: %ld = accepted %ld + ", R->log, k.received,
+                k.accepted);
+        sw_cli_print_rejected(stderr, &k);
+        fprintf(stderr, "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
+                        "%ld alarms\n",
+                k.lost, k.gaps, k.restarts, k.clock_steps, k.states, k.alarms);
+    }
+    if (k.accepted > 0) return SW_EXIT_OK;
+    sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", R->log,
+                 R->o->channel);
+    return SW_EXIT_USAGE;
+#else
+    (void)R;
+    return SW_EXIT_OK;
+#endif
+}
+
+void sw_cli_reader_close(sw_cli_reader_t *R)
+{
+#ifdef SW_HAVE_LCM
+    if (R->mon) R->e = NULL; /* the monitor's */
+    sw_mon_destroy(R->mon);
+    sw_lcmlog_close(R->lcmlog);
+    R->mon = NULL;
+    R->lcmlog = NULL;
+#endif
+    sw_engine_destroy(R->e);
+    R->e = NULL;
+    sw_cli_logfile_close(&R->lf);
+}
