@@ -331,9 +331,10 @@ static void print_final(sw_mon_t *mon, double elapsed)
     sw_cli_print_rejected(stderr, &k);
     fprintf(stderr,
             "; lost %ld (by seq), seq restarts %ld, gaps %ld, sensor restarts %ld, clock "
-            "steps %ld; published %ld states (%ld withheld), %ld alarms; %ld publish errors\n",
+            "steps %ld; published %ld states (%ld withheld), %ld alarms (%ld more folded into "
+            "them by the rate limit); %ld publish errors\n",
             k.lost, k.seq_restarts, k.gaps, k.restarts, k.clock_steps, k.states,
-            k.states_withheld, k.alarms, k.publish_errors);
+            k.states_withheld, k.alarms, k.alarms_folded, k.publish_errors);
     sw_cli_run_t run;
     memset(&run, 0, sizeof run);
     run.samples_read = k.received;
