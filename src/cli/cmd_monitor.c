@@ -8,7 +8,11 @@
  * timer and the status line.  The self-pipe (not a bare flag) because the
  * signal may be delivered to LCM's receive thread while this one sleeps in
  * poll().  Nothing in the loop writes files; publishing over udpm does not
- * block. */
+ * block.
+ *
+ * People are told on stderr: every alarm as one line (journal.h: with its
+ * syslog priority when stderr is the journal, so that 'journalctl -p
+ * warning' shows it), the status lines and the summary. */
 #include <errno.h>
 #include <fcntl.h>
 #include <lcm/lcm.h>
@@ -22,6 +26,7 @@
 #include <unistd.h>
 
 #include "input.h"
+#include "journal.h"
 #include "lcmopts.h"
 #include "monitor.h"
 #include "opts.h"
@@ -108,7 +113,17 @@ static const sw_cli_option_t monitor_input_options[] = {
 /* What the monitor publishes: the states and alarms (sw_cli_lcm_publish_options). */
 static const sw_cli_option_t monitor_output_notes[] = {
     {SW_CLI_SECTION, .help = "Output:"},
-    {SW_CLI_TEXT, .help = "\nThe monitor writes no files: record its output with lcm-logger."},
+    {SW_CLI_TEXT,
+     .help = "\nThe monitor writes no files: record its output with lcm-logger.\n"
+             "\n"
+             "Every alarm it raises also goes to stderr, as one line:\n"
+             "  swaywatch: alarm TIME level=LEVEL package=NAME kind=KIND theta=RAD\n"
+             "  margin=M text=\"...\"\n"
+             "TIME is the wall clock, ISO 8601 UTC with ms; input alarms have package=-\n"
+             "theta=- margin=-.  When stderr is the journal (systemd's JOURNAL_STREAM), the\n"
+             "line starts with the syslog priority of its level, <2> critical, <4> warn,\n"
+             "<6> info, and errors with <3>: 'journalctl -p warning -u swaywatch-monitor'\n"
+             "lists the warn and critical alarms and the errors."},
     {SW_CLI_END},
 };
 
@@ -303,6 +318,23 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
     c->busy += sw_mon_clock() - t0;
 }
 
+/* Every alarm on stderr, one line each (journal.h). */
+static void print_alarm(void *user, const sw_alarm_t *a)
+{
+    const mon_ctx_t *c = user;
+    sw_cli_alarm_line_t line = {
+        .wall_us = wall_now_us(),
+        .level = a->level,
+        .kind = a->kind,
+        .package = a->pkg < c->n ? c->scenes[a->pkg].name : NULL,
+        .theta = a->theta,
+        .margin = a->margin,
+        .reserve_g = NAN, /* the reserve, once sw_alarm_t carries it */
+        .text = a->text,
+    };
+    sw_cli_alarm_print(&line);
+}
+
 static void print_status(mon_ctx_t *c, double elapsed, double interval)
 {
     sw_mon_counts_t k;
@@ -418,7 +450,10 @@ static int start(mon_ctx_t *c, const sw_mon_opts_t *mo, lcm_t *lcm)
     if (rc != SW_EXIT_OK)
         return rc;
     char msg[512] = "";
-    c->mon = sw_mon_create(c->scenes, c->n, &eo, mo, lcm, msg, sizeof msg);
+    sw_mon_opts_t o = *mo;
+    o.on_alarm = print_alarm;
+    o.user = c;
+    c->mon = sw_mon_create(c->scenes, c->n, &eo, &o, lcm, msg, sizeof msg);
     if (!c->mon) {
         sw_cli_error("monitor: %s", msg[0] ? msg : "cannot start");
         return SW_EXIT_USAGE;

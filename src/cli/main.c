@@ -6,6 +6,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "cli.h"
+#include "journal.h"
 #include "swaywatch/swaywatch.h"
 
 static const struct {
@@ -26,6 +27,8 @@ void sw_cli_error(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
+    /* Under systemd an error is logged at priority err (journal.h). */
+    fputs(sw_cli_journal_prefix(SW_PRIO_ERR), stderr);
     fputs("swaywatch: ", stderr);
     vfprintf(stderr, fmt, ap);
     fputc('\n', stderr);
