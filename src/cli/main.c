@@ -19,6 +19,9 @@ static const struct {
 #ifdef SW_HAVE_LCM
     {"monitor", cmd_monitor, "live: subscribe to acceleration over LCM, publish state and alarms"},
 #endif
+#ifdef SW_HAVE_WATCH
+    {"watch", cmd_watch, "live view of the monitor's states and alarms in the terminal"},
+#endif
     {"boundary", cmd_boundary, "overturning boundary curves: lowest overturning pulse vs omega/p"},
     {"forensics", cmd_forensics, "a log's outcome, safety factor, and what support would have saved it"},
 };
