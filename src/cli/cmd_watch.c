@@ -315,7 +315,8 @@ static void on_state(const lcm_recv_buf_t *rb, const char *channel, void *user)
     w->last_rx = now;
     w->gap_open = 0;
     w->win_states++;
-    w->win_lag_sum += (double)(wall_now_us() - s.utime) / 1e6;
+    /* in double: a hostile utime (INT64_MIN) must not overflow */
+    w->win_lag_sum += ((double)wall_now_us() - (double)s.utime) / 1e6;
 }
 
 /* "... rejected: REASON (N so far)": the monitor's count of that reason. */

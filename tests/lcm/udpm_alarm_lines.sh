@@ -15,7 +15,7 @@
 set -eu
 . "$(dirname "$0")/netns.sh"
 SW=$1 TOOL=$2 SCENE=$3 PORT=$4
-URL="udpm://239.255.76.67:$PORT?ttl=0"
+URL="udpm://239.255.76.67:$PORT?ttl=0&recv_buf_size=2097152"
 
 devino() { stat -c '%d:%i' "$1"; }
 : >"$T/J.err"
