@@ -13,6 +13,9 @@
 # three saw the same physics alarms.  An error under JOURNAL_STREAM is <3>.
 # usage: udpm_alarm_lines.sh SWAYWATCH SW_LCM_TOOL SCENE PORT
 set -eu
+# Without a network namespace: skipped (77), saying so.
+NETNS_SKIP=1
+export NETNS_SKIP
 . "$(dirname "$0")/netns.sh"
 SW=$1 TOOL=$2 SCENE=$3 PORT=$4
 URL="udpm://239.255.76.67:$PORT?ttl=0&recv_buf_size=2097152"
