@@ -23,6 +23,7 @@
 #include <lcm/lcm.h>
 
 #include "eventlog.h"
+#include "lcmlog.h"
 #include "lcmopts.h"
 #include "monitor.h"
 #endif
@@ -77,7 +78,7 @@ static const sw_cli_option_t replay_publish_options[] = {
      .help = "Samples are integrated by their own utime, not the log's timestamps.  Messages\n"
              "on other channels are counted and skipped; corrupted regions of the log are\n"
              "skipped and counted (--strict: exit 2); bad, duplicate and late samples are\n"
-             "refused as by the monitor."},
+             "refused as by the monitor.  With --publish, only accepted samples are paced on."},
     {SW_CLI_END},
 };
 #endif
@@ -111,12 +112,18 @@ typedef struct {
     sw_mon_t *mon;
     lcm_t *lcm;
     sw_lcmlog_t *lcmlog;
+    sw_cli_pacer_t pacer; /* --publish: states go out paced by their sample time */
 #endif
 } replay_t;
 
 static void on_state(void *user, const sw_output_t *out)
 {
     replay_t *r = user;
+#ifdef SW_HAVE_LCM
+    /* Before the monitor publishes them: only accepted samples make
+     * states, so a refused sample never stalls the replay. */
+    sw_cli_pace(&r->pacer, out->t);
+#endif
     sw_cli_states_write(&r->states, out);
 }
 
@@ -234,9 +241,9 @@ static int lcmlog_open(replay_t *r)
     int err = 0;
     const sw_lcmlog_opts_t lo = {
         .channel = r->ro.channel,
-        .speed = r->ro.publish_url ? r->ro.speed : 0.0,
         .strict = r->copts.strict,
     };
+    r->pacer.speed = r->ro.publish_url ? r->ro.speed : 0.0;
     r->lcmlog = sw_lcmlog_open(r->log, &lo, &err);
     if (!r->lcmlog) {
         if (err == SW_EINVAL)
@@ -263,7 +270,7 @@ static sw_engine_t *lcmlog_engine(replay_t *r)
 {
     r->mo.accel_scale = r->copts.csv.accel_scale;
     r->mo.flip = r->copts.csv.flip;
-    r->mo.on_state = r->o.out_path ? on_state : NULL;
+    r->mo.on_state = r->o.out_path || r->pacer.speed > 0.0 ? on_state : NULL;
     r->mo.on_event = on_event;
     r->mo.user = r;
     char msg[512] = "";
@@ -281,6 +288,7 @@ static int replay_lcmlog(replay_t *r)
         sw_cli_error("%s: stopped at the first bad event or sample (--strict)", r->log);
         return SW_EXIT_USAGE;
     }
+    r->pacer.speed = 0.0; /* the settling after the log is not paced */
     sw_mon_flush(r->mon);
     sw_mon_counts_t k;
     sw_mon_counts(r->mon, &k);

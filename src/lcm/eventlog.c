@@ -1,6 +1,6 @@
 /* eventlog.c - lcm-logger event logs into the monitor core (eventlog.h):
  * LCM's event-log API reads the events, this file tells a corrupted region
- * from the end of the log, paces a replay that publishes, and counts.
+ * from the end of the log, and counts.
  *
  * lcm_eventlog_read_next_event() returns NULL both at the end of the file
  * and on a bad header; a bad header is told from the end by feof(), and
@@ -13,37 +13,21 @@
 
 #include <errno.h>
 #include <lcm/eventlog.h>
-#include <math.h>
 #include <regex.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
 #include "monitor.h"
 #include "swaywatch/status.h"
-#include "swaywatch_accel_t.h"
-
-/* Longest pause honoured between two paced samples: a corrupted (but
- * decodable) utime must not stall the replay for days. */
-#define MAX_PAUSE_US 3600000000LL
-
-/* Real-time pacing by the samples' own utime. */
-typedef struct {
-    double speed; /* 0: no pacing */
-    int started;
-    double start; /* mono s at base_utime */
-    int64_t base_utime;
-} pacer_t;
 
 struct sw_lcmlog {
     lcm_eventlog_t *log;
     off_t size; /* bytes in the file, to tell its end from a bad length */
     regex_t channel;
     int strict;
-    pacer_t pacer;
     sw_lcmlog_counts_t c;
 };
 
@@ -76,7 +60,6 @@ sw_lcmlog_t *sw_lcmlog_open(const char *path, const sw_lcmlog_opts_t *o, int *er
         return NULL;
     }
     l->strict = o->strict;
-    l->pacer.speed = o->speed > 0.0 ? o->speed : 0.0;
     struct stat st;
     l->log = lcm_eventlog_create(path, "r");
     if (!l->log || fstat(fileno(l->log->f), &st) != 0) {
@@ -103,33 +86,6 @@ void sw_lcmlog_close(sw_lcmlog_t *l)
 void sw_lcmlog_counts(const sw_lcmlog_t *l, sw_lcmlog_counts_t *c)
 {
     *c = l->c;
-}
-
-/* Sleep until the monotonic clock reads t (s). */
-static void sleep_until(double t)
-{
-    double now = sw_mon_clock();
-    if (t <= now)
-        return;
-    double d = t - now;
-    struct timespec ts = {(time_t)d, (long)((d - floor(d)) * 1e9)};
-    while (nanosleep(&ts, &ts) != 0 && errno == EINTR) {
-    }
-}
-
-static void pace(pacer_t *p, const void *data, int len)
-{
-    swaywatch_accel_t s;
-    if (p->speed <= 0.0 || swaywatch_accel_t_decode(data, 0, len, &s) < 0)
-        return;
-    double now = sw_mon_clock();
-    if (!p->started || s.utime - p->base_utime > MAX_PAUSE_US * p->speed) {
-        p->started = 1;
-        p->start = now;
-        p->base_utime = s.utime;
-        return;
-    }
-    sleep_until(p->start + (double)(s.utime - p->base_utime) / 1e6 / p->speed);
 }
 
 /* Big-endian uint32 at the current position (no advance); 0 if none. */
@@ -187,7 +143,6 @@ int sw_lcmlog_read(sw_lcmlog_t *l, sw_mon_t *mon)
             continue;
         }
         l->c.on_channel++;
-        pace(&l->pacer, ev->data, ev->datalen);
         sw_mon_feed(mon, ev->data, (size_t)ev->datalen, ev->timestamp,
                     (double)ev->timestamp / 1e6, NULL);
         lcm_eventlog_free_event(ev);

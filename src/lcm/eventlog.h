@@ -32,8 +32,6 @@ struct sw_mon; /* sw_mon_t of monitor.h */
 typedef struct {
     const char *channel; /* accel channel: an anchored regex, as LCM's subscriptions;
                             NULL = SW_MON_ACCEL_CHANNEL */
-    double speed;        /* > 0: pace the samples at speed times real time by their
-                            utime (a replay that publishes); 0: as fast as read */
     int strict;          /* stop at the first corrupted region or refused sample */
 } sw_lcmlog_opts_t;
 
