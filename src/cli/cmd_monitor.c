@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "input.h"
+#include "lcmlog.h"
 #include "lcmopts.h"
 #include "monitor.h"
 #include "opts.h"
@@ -59,7 +60,8 @@ static const sw_cli_option_t monitor_lcm_options[] = {
     {SW_CLI_SECTION, .help = "LCM:"},
     {SW_CLI_STRING, 'l', "lcm-url", "URL", MO(url),
      .help = "LCM URL (default: $LCM_DEFAULT_URL, else LCM's default, "
-             "udpm://239.255.76.67:7667?ttl=0)"},
+             "udpm://239.255.76.67:7667?ttl=0); a file://LOG is checked first and refused if "
+             "damaged (LCM's reader trusts its length fields)"},
     {SW_CLI_STRING, 0, "accel-channel", "REGEX", MO(accel_channel), .fn = check_accel_channel,
      .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
              SW_MON_ACCEL_CHANNEL ")"},
@@ -467,6 +469,9 @@ int cmd_monitor(int argc, char **argv)
         goto out;
     }
     if ((rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
+        goto out;
+    /* A file:// URL: LCM's reader trusts the log, ours checks it first. */
+    if ((rc = sw_cli_check_lcm_url("monitor", m.url)) != SW_EXIT_OK)
         goto out;
     rc = SW_EXIT_IO;
     if (install_signals() != 0) {

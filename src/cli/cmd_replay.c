@@ -76,9 +76,11 @@ static const sw_cli_option_t replay_publish_options[] = {
              "as possible)"},
     {SW_CLI_TEXT,
      .help = "Samples are integrated by their own utime, not the log's timestamps.  Messages\n"
-             "on other channels are counted and skipped; corrupted regions of the log are\n"
-             "skipped and counted (--strict: exit 2); bad, duplicate and late samples are\n"
-             "refused as by the monitor.  With --publish, only accepted samples are paced on."},
+             "on other channels are counted and skipped; corrupted regions of the log (a bad\n"
+             "header, a length field past the end of the file or beyond LCM's limits, junk)\n"
+             "are skipped, counted and reported with their byte offset (--strict: exit 2);\n"
+             "bad, duplicate and late samples are refused as by the monitor.  With --publish,\n"
+             "only accepted samples are paced on."},
     {SW_CLI_END},
 };
 #endif
@@ -112,6 +114,7 @@ typedef struct {
     sw_mon_t *mon;
     lcm_t *lcm;
     sw_lcmlog_t *lcmlog;
+    sw_cli_regions_t regions;
     sw_cli_pacer_t pacer; /* --publish: states go out paced by their sample time */
 #endif
 } replay_t;
@@ -239,9 +242,12 @@ out:
 static int lcmlog_open(replay_t *r)
 {
     int err = 0;
+    r->regions = (sw_cli_regions_t){.name = r->log, .quiet = r->o.quiet};
     const sw_lcmlog_opts_t lo = {
         .channel = r->ro.channel,
         .strict = r->copts.strict,
+        .on_region = sw_cli_print_region,
+        .user = &r->regions,
     };
     r->pacer.speed = r->ro.publish_url ? r->ro.speed : 0.0;
     r->lcmlog = sw_lcmlog_open(r->log, &lo, &err);
@@ -250,9 +256,13 @@ static int lcmlog_open(replay_t *r)
             sw_cli_error("--accel-channel: not a valid regular expression: '%s'", r->ro.channel);
         else if (err == SW_ENOMEM)
             sw_cli_error("out of memory");
+        else if (err == SW_ETOOBIG)
+            sw_cli_error("%s: a log that cannot seek is copied to a temporary file first, and "
+                         "this one is longer than %lld bytes; give its file name",
+                         r->log, (long long)SW_LCMLOG_SPOOL_MAX);
         else
             sw_cli_error("%s: cannot open: %s", r->log, strerror(errno));
-        return err == SW_EINVAL ? SW_EXIT_USAGE : SW_EXIT_IO;
+        return err == SW_EINVAL || err == SW_ETOOBIG ? SW_EXIT_USAGE : SW_EXIT_IO;
     }
     return SW_EXIT_OK;
 }
@@ -284,7 +294,12 @@ static sw_engine_t *lcmlog_engine(replay_t *r)
 
 static int replay_lcmlog(replay_t *r)
 {
-    if (sw_lcmlog_read(r->lcmlog, r->mon) != SW_OK) {
+    const int lr = sw_lcmlog_read(r->lcmlog, r->mon);
+    if (lr == SW_ENOTFOUND) {
+        sw_cli_error("%s: cannot read: %s", r->log, strerror(errno));
+        return SW_EXIT_IO;
+    }
+    if (lr != SW_OK) {
         sw_cli_error("%s: stopped at the first bad event or sample (--strict)", r->log);
         return SW_EXIT_USAGE;
     }
@@ -311,6 +326,7 @@ static int lcmlog_report(replay_t *r)
     sw_mon_counts(r->mon, &k);
     sw_lcmlog_counts_t lc;
     sw_lcmlog_counts(r->lcmlog, &lc);
+    sw_cli_regions_summary(&r->regions);
     if (!r->o.quiet || k.accepted == 0) {
         fprintf(stderr,
                 "swaywatch: %s: %ld events, %ld on the accel channel, %ld on other channels, "
