@@ -91,7 +91,8 @@ static const sw_cli_command_t replay_cmd = {
     .about = "Replays a recorded acceleration log of the truck bed through the rocking model of\n"
              "each package and reports whether, when and how close it came to overturning.\n"
              "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
-             "its first bytes; needs a build with LCM).\n",
+             "its first bytes; needs a build with LCM).  An lcm-logger log that cannot seek (a\n"
+             "pipe, '-') is copied to a temporary file first (at most 4 GiB), in one pass.\n",
     .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
 };
 
@@ -242,7 +243,7 @@ out:
 static int lcmlog_open(replay_t *r)
 {
     int err = 0;
-    r->regions = (sw_cli_regions_t){.name = r->log, .quiet = r->o.quiet};
+    r->regions = (sw_cli_regions_t){.name = r->lf.name, .quiet = r->o.quiet};
     const sw_lcmlog_opts_t lo = {
         .channel = r->ro.channel,
         .strict = r->copts.strict,
@@ -250,18 +251,19 @@ static int lcmlog_open(replay_t *r)
         .user = &r->regions,
     };
     r->pacer.speed = r->ro.publish_url ? r->ro.speed : 0.0;
-    r->lcmlog = sw_lcmlog_open(r->log, &lo, &err);
+    /* The log as opened, its first chunk included: a pipe is read once. */
+    r->lcmlog = sw_lcmlog_open_stream(r->lf.in, r->lf.buf, r->lf.len, &lo, &err);
     if (!r->lcmlog) {
         if (err == SW_EINVAL)
             sw_cli_error("--accel-channel: not a valid regular expression: '%s'", r->ro.channel);
         else if (err == SW_ENOMEM)
             sw_cli_error("out of memory");
         else if (err == SW_ETOOBIG)
-            sw_cli_error("%s: a log that cannot seek is copied to a temporary file first, and "
+            sw_cli_error("%s: a log read from a pipe is copied to a temporary file first, and "
                          "this one is longer than %lld bytes; give its file name",
-                         r->log, (long long)SW_LCMLOG_SPOOL_MAX);
+                         r->lf.name, (long long)SW_LCMLOG_SPOOL_MAX);
         else
-            sw_cli_error("%s: cannot open: %s", r->log, strerror(errno));
+            sw_cli_error("%s: cannot read: %s", r->lf.name, strerror(errno));
         return err == SW_EINVAL || err == SW_ETOOBIG ? SW_EXIT_USAGE : SW_EXIT_IO;
     }
     return SW_EXIT_OK;
@@ -296,7 +298,7 @@ static int replay_lcmlog(replay_t *r)
 {
     const int lr = sw_lcmlog_read(r->lcmlog, r->mon);
     if (lr == SW_ENOTFOUND) {
-        sw_cli_error("%s: cannot read: %s", r->log, strerror(errno));
+        sw_cli_error("%s: cannot read: %s", r->lf.name, strerror(errno));
         return SW_EXIT_IO;
     }
     if (lr != SW_OK) {
@@ -359,12 +361,6 @@ static void lcmlog_close(replay_t *r)
 static int check_source(const sw_cli_source_t *src, const replay_t *r, const sw_cli_group_t *csv,
                         const sw_cli_group_t *lcm, size_t nlcm)
 {
-    if (src->kind == SW_CLI_SRC_LCMLOG && r->lf.in == stdin) {
-        sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
-                     "file name",
-                     r->lf.name);
-        return SW_EXIT_USAGE;
-    }
     if (!src->available) {
         sw_cli_error("%s: lcm-logger files need the LCM build", r->log);
         return SW_EXIT_USAGE;
@@ -419,10 +415,7 @@ static const sw_cli_source_t *open_log(replay_t *r, const sw_cli_group_t *g, siz
                                      r->o.quiet)) != SW_EXIT_OK)
         return NULL;
 #ifdef SW_HAVE_LCM
-    if (src->kind == SW_CLI_SRC_LCMLOG) {
-        sw_cli_logfile_close(&r->lf); /* the event-log reader opens it again */
-        if ((*rc = lcmlog_open(r)) != SW_EXIT_OK) return NULL;
-    }
+    if (src->kind == SW_CLI_SRC_LCMLOG && (*rc = lcmlog_open(r)) != SW_EXIT_OK) return NULL;
 #endif
     return src;
 }
