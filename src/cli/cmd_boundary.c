@@ -13,6 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "clobber.h"
 #include "opts.h"
 #include "output.h"
 #include "plot.h"
@@ -664,7 +665,10 @@ int cmd_boundary(int argc, char **argv)
     int first;
     if ((rc = sw_cli_parse(&boundary_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
         goto out;
+    const sw_cli_file_t outputs[] = {
+        {"--out", B.b.out}, {"--detail", B.b.detail}, {"--islands", B.b.islands}, {"--plot", B.b.plot}};
     if ((rc = check_options(&B, argc, argv, first)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_run_files(NULL, &B.o.scenes, outputs, 4)) != SW_EXIT_OK ||
         (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) != SW_EXIT_OK ||
         (rc = build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
                            B.bear_text, &B.cv, &B.nc)) != SW_EXIT_OK)

@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clobber.h"
 #include "input.h"
 #include "opts.h"
 #include "output.h"
@@ -402,7 +403,10 @@ int cmd_forensics(int argc, char **argv)
         sw_cli_error("--max-factor: expected a factor above 1, got %g", F.fo.so.x_max);
         goto out;
     }
-    if ((rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
+    const sw_cli_file_t outputs[] = {
+        {"--out", F.o.out_path}, {"--events", F.o.events_path}, {"--plot", F.fo.plot}};
+    if ((rc = sw_cli_check_run_files(F.log_path, &F.o.scenes, outputs, 3)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
             SW_EXIT_OK ||
         (rc = sw_cli_log_read(F.log_path, &F.copts, F.o.quiet, &F.L)) != SW_EXIT_OK ||
         (rc = sw_cli_load_scenes(&F.o, &F.scenes, &F.nsc)) != SW_EXIT_OK ||

@@ -21,6 +21,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "clobber.h"
 #include "input.h"
 #include "lcmlog.h"
 #include "lcmopts.h"
@@ -468,7 +469,11 @@ int cmd_monitor(int argc, char **argv)
                      "simulate; record the monitor's output with lcm-logger");
         goto out;
     }
-    if ((rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
+    char url_path[4096];
+    const sw_cli_file_t url_out = {"--lcm-url",
+                                   sw_cli_lcm_url_output(m.url, url_path, sizeof url_path)};
+    if ((rc = sw_cli_check_run_files(NULL, &o.scenes, &url_out, 1)) != SW_EXIT_OK ||
+        (rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
         goto out;
     /* A file:// URL: LCM's reader trusts the log, ours checks it first. */
     if ((rc = sw_cli_check_lcm_url("monitor", m.url)) != SW_EXIT_OK)

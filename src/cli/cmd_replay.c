@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clobber.h"
 #include "input.h"
 #include "opts.h"
 #include "output.h"
@@ -403,6 +404,19 @@ static int start(replay_t *r, const sw_cli_source_t *src)
     return r->e ? SW_EXIT_OK : SW_EXIT_USAGE;
 }
 
+/* No output may be the log, a scene or another output (--publish
+ * file://PATH?mode=w writes a log too). */
+static int check_files(const replay_t *r)
+{
+    char url_path[4096];
+    const sw_cli_file_t out[] = {
+        {"--out", r->o.out_path},
+        {"--events", r->o.events_path},
+        {"--publish", sw_cli_lcm_url_output(r->ro.publish_url, url_path, sizeof url_path)},
+    };
+    return sw_cli_check_run_files(r->log, &r->o.scenes, out, sizeof out / sizeof out[0]);
+}
+
 /* Open LOG: a missing file is an I/O error (3) whatever else is wrong,
  * and its first bytes choose the source; then what the source does not
  * take is refused, and outputs that would overwrite the log. */
@@ -411,7 +425,8 @@ static const sw_cli_source_t *open_log(replay_t *r, const sw_cli_group_t *g, siz
     if ((*rc = sw_cli_logfile_open(&r->lf, r->log)) != SW_EXIT_OK) return NULL;
     const sw_cli_source_t *src = sw_cli_logfile_source(&r->lf);
     if ((*rc = check_source(src, r, &g[0], &g[3], nlcm)) != SW_EXIT_OK ||
-        (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, r->lf.in, r->o.json,
+        (*rc = check_files(r)) != SW_EXIT_OK ||
+        (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, NULL, r->o.json,
                                      r->o.quiet)) != SW_EXIT_OK)
         return NULL;
 #ifdef SW_HAVE_LCM

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clobber.h"
 #include "opts.h"
 #include "output.h"
 
@@ -226,6 +227,9 @@ int cmd_simulate(int argc, char **argv)
     if (sw_cli_no_operand("simulate", argc, argv, first) != SW_EXIT_OK) goto out;
     if (check_pulse(&so) != SW_EXIT_OK) goto out;
 
+    const sw_cli_file_t outputs[] = {{"--out", o.out_path}, {"--events", o.events_path}};
+    rc = sw_cli_check_run_files(NULL, &o.scenes, outputs, 2);
+    if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL, o.json, o.quiet);
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
