@@ -58,19 +58,22 @@ static int check_size(const sw_cli_option_t *o, const char *arg, void *dest)
 static const sw_cli_option_t forensics_options[] = {
     {SW_CLI_SECTION, .help = "Run:"},
     {SW_CLI_DOUBLE, 0, "settle", "SECONDS", FO(settle), .rule = SW_NUM_NONNEGATIVE, .def = 30,
-     .what = "a number of seconds >= 0",
+     .hi = 1e5, .what = "a number of seconds >= 0",
      .help = "after the log, zero acceleration for up to this long or until the outcome is "
-             "certain (default %g; 0: none)"},
+             "certain (default %g; 0: none); at most a day: an undamped frame never rests"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", FO(fail_on_overturn), .value = 1,
      .help = "exit 1 if the package as given overturned"},
     {SW_CLI_SECTION, .help = "Safety factor (scale of the whole longitudinal acceleration):"},
-    {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE,
-     .what = "a positive relative step", .help = "relative scan step (default 0.02)"},
-    {SW_CLI_DOUBLE, 0, "tol", "X", FO(so.tol), .rule = SW_NUM_POSITIVE,
+    {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE, .lo = 1e-4, .hi = 1,
+     .what = "a positive relative step",
+     .help = "relative scan step (default 0.02); smaller steps take tens of thousands of "
+             "replays of the log"},
+    {SW_CLI_DOUBLE, 0, "tol", "X", FO(so.tol), .rule = SW_NUM_POSITIVE, .lo = 1e-9, .hi = 0.5,
      .what = "a positive relative tolerance",
-     .help = "relative width of the final bracket (default 0.001)"},
-    {SW_CLI_DOUBLE, 0, "max-factor", "X", FO(so.x_max), .rule = SW_NUM_POSITIVE,
-     .what = "a positive scale factor",
+     .help = "relative width of the final bracket (default 0.001); finer than 1e-9 is below "
+             "what the model resolves"},
+    {SW_CLI_DOUBLE, 0, "max-factor", "X", FO(so.x_max), .rule = SW_NUM_POSITIVE, .lo = 1,
+     .hi = 1e4, .what = "a positive scale factor",
      .help = "largest scale tried (default: 20 times the scale at which the log's peak lifts a "
              "package on the bed)"},
     {SW_CLI_LONG, 0, "threads", "N", FO(threads), .min = 1, .max = 256, .def = 2,

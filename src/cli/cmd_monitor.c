@@ -76,6 +76,7 @@ static const sw_cli_option_t monitor_input_options[] = {
     {SW_CLI_CALL, 0, "accel-unit", "m/s2|g", MO(mo.accel_scale), .fn = sw_cli_accel_unit,
      .help = "unit of the message's values (default m/s2)"},
     {SW_CLI_DOUBLE, 0, "status", "SECONDS", MO(status_every), .rule = SW_NUM_NONNEGATIVE,
+     .lo = 0.1, .hi = 86400,
      .what = "a number of seconds >= 0 (0: no status)",
      .help = "one status line on stderr every SECONDS: sample rate, lag behind the sensor clock, "
              "CPU share, counts (default 0: none)"},

@@ -43,10 +43,10 @@ typedef struct {
 static const sw_cli_option_t replay_options[] = {
     {SW_CLI_SECTION, .help = "Run:"},
     {SW_CLI_DOUBLE, 0, "settle", "SECONDS", RO(settle), .rule = SW_NUM_NONNEGATIVE, .def = 30,
-     .what = "a number of seconds >= 0",
+     .hi = 1e5, .what = "a number of seconds >= 0",
      .help = "after the log ends, go on with zero acceleration for up to this long, or until "
              "every package is at rest or has overturned (default %g; 0: stop at the end of the "
-             "log)"},
+             "log); at most 1e5 s (a day), since an undamped frame never comes to rest"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", RO(fail_on_overturn), .value = 1,
      .help = "exit 1 if any package overturned"},
     {SW_CLI_END},
@@ -72,9 +72,9 @@ static const sw_cli_option_t replay_publish_options[] = {
      .help = "also publish states and alarms over LCM ('' = LCM's default URL; "
              "file:///path?mode=w writes a log)"},
     {SW_CLI_DOUBLE, 0, "speed", "X", RO(speed), .rule = SW_NUM_NONNEGATIVE, .def = 1,
-     .what = "a factor >= 0 (0: as fast as possible)",
+     .lo = 1e-3, .hi = 1e6, .what = "a factor >= 0 (0: as fast as possible)",
      .help = "with --publish: X times real time by the samples' utime (default %g; 0 = as fast "
-             "as possible)"},
+             "as possible); below 1e-3 one second of log would take over a quarter of an hour"},
     {SW_CLI_TEXT,
      .help = "Samples are integrated by their own utime, not the log's timestamps.  Messages\n"
              "on other channels are counted and skipped; corrupted regions of the log (a bad\n"
