@@ -427,7 +427,7 @@ int cmd_forensics(int argc, char **argv)
         rc = draw(F.fo.plot, F.log_path, &F.scenes[0], &F.R, F.scenes[0].g * tan(d->alpha));
         if (rc != SW_EXIT_OK) goto out;
     }
-    rc = F.fo.fail_on_overturn && sum.overturned ? SW_EXIT_OVERTURNED : SW_EXIT_OK;
+    rc = sw_cli_verdict_exit(F.e, F.fo.fail_on_overturn);
 out:
     sw_cli_states_close(&F.states);
     sw_cli_events_close(&F.events);

@@ -451,8 +451,7 @@ static int finish(replay_t *r, const sw_cli_source_t *src)
         sw_cli_print_json(stdout, r->e, &r->run);
     else if (!r->o.quiet)
         sw_cli_print_summary(stdout, r->e, &r->run);
-    if (rc == SW_EXIT_OK && r->ro.fail_on_overturn && sw_cli_any_overturned(r->e))
-        rc = SW_EXIT_OVERTURNED;
+    if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(r->e, r->ro.fail_on_overturn);
     return rc;
 }
 

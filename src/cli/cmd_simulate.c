@@ -271,7 +271,7 @@ int cmd_simulate(int argc, char **argv)
         sw_cli_print_json(stdout, e, &run);
     else if (!o.quiet)
         sw_cli_print_summary(stdout, e, &run);
-    if (rc == SW_EXIT_OK && so.fail_on_overturn && sw_cli_any_overturned(e)) rc = SW_EXIT_OVERTURNED;
+    if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(e, so.fail_on_overturn);
 out:
     sw_cli_states_close(&states);
     sw_cli_events_close(&events);

@@ -519,7 +519,10 @@ void sw_cli_print_help(FILE *f, const sw_cli_command_t *cmd, const sw_cli_group_
     fprintf(f, "\nExit codes: 0 ok");
     if (cmd->exits & SW_CLI_EXIT_OVERTURN)
         fprintf(f, ", 1 a package overturned and --fail-on-overturn was given");
-    fprintf(f, ",\n2 bad usage or bad input (options, scene files%s),\n"
+    fprintf(f, ",\n2 bad usage or bad input (options, scene files%s%s),\n"
                "3 a file could not be read or written.\n",
-            cmd->exits & SW_CLI_EXIT_STRICT ? ", rows under --strict" : "");
+            cmd->exits & SW_CLI_EXIT_STRICT ? ", rows under --strict" : "",
+            cmd->exits & SW_CLI_EXIT_OVERTURN
+                ? ";\nwith --fail-on-overturn also a package whose model faulted: no verdict"
+                : "");
 }

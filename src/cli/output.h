@@ -85,4 +85,16 @@ void sw_cli_json_num(FILE *f, double v);
 /* Non-zero if any package overturned. */
 int sw_cli_any_overturned(const sw_engine_t *e);
 
+/* A package's verdict: "overturned", "upright", or "unreliable" when it
+ * did not overturn but its model faulted (reset to rest mid-run: "stayed
+ * upright" would not be a verdict).  JSON "verdict"; the human summary
+ * says it in words. */
+const char *sw_cli_verdict(const sw_summary_t *s);
+
+/* The exit code of a run that went well, from its verdicts: SW_EXIT_OK
+ * without fail_on_overturn; with it SW_EXIT_OVERTURNED if a package
+ * overturned, else SW_EXIT_USAGE (reported, naming the package) if one
+ * has no verdict because its model faulted, else SW_EXIT_OK. */
+int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn);
+
 #endif
