@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "clobber.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 #include "plot.h"
@@ -596,8 +597,12 @@ static int sweep(boundary_t *B)
     for (size_t c = 0; c < B->nc; c++) curves[c] = B->cv[c].c;
     if (B->b.progress) B->b.bo.progress = on_progress;
     char msg[512] = "";
+    /* The sweep cannot stop between points and writes nothing: a signal
+     * ends the process at once. */
+    sw_cli_interrupt_now("boundary: interrupted during the sweep; nothing written");
     int sr = sw_boundary_sweep(curves, B->nc, B->b.ratios, B->b.nr, &B->b.bo, B->pts, msg,
                                sizeof msg);
+    sw_cli_interrupt_now(NULL);
     free(curves);
     if (sr == SW_OK) return SW_EXIT_OK;
     sw_cli_error("boundary: %s", msg[0] ? msg : sw_strerror(sr));
@@ -685,6 +690,7 @@ int cmd_boundary(int argc, char **argv)
     int first;
     if ((rc = sw_cli_parse(&boundary_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
         goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
     const sw_cli_file_t outputs[] = {
         {"--out", B.b.out}, {"--detail", B.b.detail}, {"--islands", B.b.islands}, {"--plot", B.b.plot}};
     if ((rc = check_options(&B, argc, argv, first)) != SW_EXIT_OK ||
@@ -696,6 +702,11 @@ int cmd_boundary(int argc, char **argv)
     if (B.o.verbose) print_curves(&B);
     if ((rc = sweep(&B)) != SW_EXIT_OK) goto out;
     rc = write_outputs(&B);
+    if (sw_cli_signal && rc != SW_EXIT_IO) { /* while writing: the files are whole */
+        sw_cli_error("boundary: interrupted by %s after the files were written",
+                     sw_cli_signal_name(sw_cli_signal));
+        rc = sw_cli_interrupt_code();
+    }
 out:
     free(B.pts);
     free(B.cv);

@@ -26,6 +26,7 @@
 
 #include "clobber.h"
 #include "input.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 #include "plot.h"
@@ -280,12 +281,23 @@ typedef struct {
     sw_engine_opts_t eo;
     sw_engine_t *e;
     long refused; /* samples the engine refused */
+    size_t pushed; /* samples handed to the engine (fewer if interrupted) */
     sw_cli_states_t states;
     sw_cli_events_t events;
     replay_t R;
     sw_cli_case_t *cases;
     size_t ncases;
 } forensics_t;
+
+/* 0. The log into memory; nothing is written yet, so a signal ends the
+ * process at once. */
+static int read_log(forensics_t *F)
+{
+    sw_cli_interrupt_now("forensics: interrupted while reading the log; nothing written");
+    int rc = sw_cli_log_read(F->log_path, &F->copts, F->o.quiet, &F->L);
+    sw_cli_interrupt_now(NULL);
+    return rc;
+}
 
 /* 1. The replay, exactly as replay runs it. */
 static int replay_log(forensics_t *F)
@@ -313,10 +325,10 @@ static int replay_log(forensics_t *F)
     R->states = &F->states;
     R->events = &F->events;
     const sw_cli_log_t *L = &F->L;
-    for (size_t i = 0; i < L->n; i++)
+    for (size_t i = 0; i < L->n && !sw_cli_signal; i++, F->pushed++)
         if (sw_engine_push(F->e, L->t[i], L->a_g[i], L->has_z ? L->a_z[i] : 0.0) < 0)
             F->refused++;
-    sw_engine_finish(F->e, F->fo.settle);
+    if (!sw_cli_signal) sw_engine_finish(F->e, F->fo.settle);
     rc = sw_cli_states_close(&F->states);
     int rc2 = sw_cli_events_close(&F->events);
     if (rc == SW_EXIT_OK) rc = rc2;
@@ -339,12 +351,41 @@ static int run_cases(forensics_t *F)
     ro.settle = F->fo.settle > 0.0 ? F->fo.settle : -1.0; /* negative: no free motion at all */
     const sw_cli_log_t *L = &F->L;
     sw_log_t lg = {L->t, L->a_g, L->has_z ? L->a_z : NULL, L->n};
+    /* The search cannot stop between trials and writes nothing: a signal
+     * ends the process at once. */
+    sw_cli_interrupt_now("forensics: interrupted during the safety-factor search; --out and "
+                         "--events are complete, no report");
     sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads);
+    sw_cli_interrupt_now(NULL);
     if (!F->cases[0].available) {
         sw_cli_error("forensics: safety factor: %s", F->cases[0].note);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
+}
+
+/* 3'. Interrupted during the replay: its summary alone, marked so. */
+static int report_interrupted(const forensics_t *F)
+{
+    const long read = (long)F->pushed < F->L.rows ? (long)F->pushed : F->L.rows;
+    const sw_cli_run_t run = {
+        .log = F->log_path,
+        .samples_read = read,
+        .samples_rejected = F->refused,
+        .settle = F->fo.settle,
+        .interrupted = sw_cli_signal,
+    };
+    if (F->o.json) {
+        fprintf(stdout, "{\n\"replay\": ");
+        sw_cli_print_json(stdout, F->e, &run);
+        fprintf(stdout, ",\n\"safety_factor\": null,\n\"what_if\": []\n}\n");
+    } else if (!F->o.quiet) {
+        sw_cli_print_summary(stdout, F->e, &run);
+    }
+    sw_cli_error("forensics: interrupted by %s after %ld samples of the replay; the output "
+                 "files end with the last whole row; no safety factor or what-if",
+                 sw_cli_signal_name(sw_cli_signal), read);
+    return sw_cli_interrupt_code();
 }
 
 /* 3. The report: replay's summary, the safety factor and the table. */
@@ -398,6 +439,8 @@ int cmd_forensics(int argc, char **argv)
         goto out;
     rc = SW_EXIT_USAGE;
     if (!(F.log_path = sw_cli_log_operand("forensics", argc, argv, first))) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    rc = SW_EXIT_USAGE;
     if (F.o.scenes.n > 1) {
         sw_cli_error("forensics: one --scene (one package) at a time");
         goto out;
@@ -411,10 +454,15 @@ int cmd_forensics(int argc, char **argv)
     if ((rc = sw_cli_check_run_files(F.log_path, &F.o.scenes, outputs, 3)) != SW_EXIT_OK ||
         (rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
             SW_EXIT_OK ||
-        (rc = sw_cli_log_read(F.log_path, &F.copts, F.o.quiet, &F.L)) != SW_EXIT_OK ||
+        (rc = read_log(&F)) != SW_EXIT_OK ||
         (rc = sw_cli_load_scenes(&F.o, &F.scenes, &F.nsc)) != SW_EXIT_OK ||
-        (rc = replay_log(&F)) != SW_EXIT_OK || (rc = run_cases(&F)) != SW_EXIT_OK)
+        (rc = replay_log(&F)) != SW_EXIT_OK)
         goto out;
+    if (sw_cli_signal) {
+        rc = report_interrupted(&F);
+        goto out;
+    }
+    if ((rc = run_cases(&F)) != SW_EXIT_OK) goto out;
     sw_summary_t sum;
     sw_engine_summary(F.e, 0, &sum);
     if (sum.overturned != F.cases[0].sf.overturned)
@@ -428,6 +476,11 @@ int cmd_forensics(int argc, char **argv)
         if (rc != SW_EXIT_OK) goto out;
     }
     rc = sw_cli_verdict_exit(F.e, F.fo.fail_on_overturn);
+    if (sw_cli_signal) { /* while the report or the figure was written: both are whole */
+        sw_cli_error("forensics: interrupted by %s after the report",
+                     sw_cli_signal_name(sw_cli_signal));
+        rc = sw_cli_interrupt_code();
+    }
 out:
     sw_cli_states_close(&F.states);
     sw_cli_events_close(&F.events);

@@ -18,6 +18,7 @@
 
 #include "clobber.h"
 #include "input.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 #ifdef SW_HAVE_LCM
@@ -146,11 +147,20 @@ typedef struct {
     long refused_line; /* a row the engine refused, awaiting its report */
     int refused_rc;
     long engine_refused; /* rows the CSV layer accepted and the engine did not */
+    /* SIGINT or SIGTERM: the rows after it (in the chunk being fed) are
+     * not read; the pump stops after the chunk */
+    int stopped;
+    long unread, unread_rejected;
 } csv_ctx_t;
 
 static int on_row(void *user, long line, double t, double a_g, double a_z)
 {
     csv_ctx_t *c = user;
+    if (c->stopped || sw_cli_signal) {
+        c->stopped = c->rej.stop = 1;
+        c->unread++;
+        return 0;
+    }
     if (c->rej.stop) return 1; /* --strict: nothing after the first bad row counts */
     int rc = sw_engine_push(c->e, t, a_g, a_z);
     if (rc >= 0) return 0;
@@ -165,6 +175,10 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
 static void on_reject(void *user, long line, const char *reason)
 {
     csv_ctx_t *c = user;
+    if (c->stopped) {
+        c->unread_rejected++;
+        return;
+    }
     if (c->refused_line && line == c->refused_line) {
         char buf[160];
         snprintf(buf, sizeof buf, "sample refused by the engine: %s", sw_strerror(c->refused_rc));
@@ -202,6 +216,14 @@ static int replay_csv(replay_t *r)
     int fr;
     rc = sw_cli_logfile_pump(&r->lf, csv, &ctx.rej.stop, flush_refusal, &ctx, &fr);
     if (rc != SW_EXIT_OK) goto out;
+    if (ctx.stopped) { /* what was read, without the settling: finish() says the rest */
+        sw_csv_counts_t k;
+        sw_csv_counts(csv, &k);
+        r->run.samples_read = k.rows - ctx.unread - ctx.unread_rejected;
+        r->run.samples_rejected = k.rejected - ctx.unread_rejected;
+        sw_cli_rejects_summary(&ctx.rej);
+        goto out;
+    }
     rc = SW_EXIT_USAGE;
     if (fr < 0) {
         /* The reader reports why through on_reject where it can (e.g. the
@@ -250,8 +272,10 @@ static int lcmlog_open(replay_t *r)
         .strict = r->copts.strict,
         .on_region = sw_cli_print_region,
         .user = &r->regions,
+        .stop = &sw_cli_signal,
     };
     r->pacer.speed = r->ro.publish_url ? r->ro.speed : 0.0;
+    r->pacer.stop = &sw_cli_signal;
     /* The log as opened, its first chunk included: a pipe is read once. */
     r->lcmlog = sw_lcmlog_open_stream(r->lf.in, r->lf.buf, r->lf.len, &lo, &err);
     if (!r->lcmlog) {
@@ -314,7 +338,8 @@ static int replay_lcmlog(replay_t *r)
         sw_cli_error("%s: stopped at the first bad event or sample (--strict)", r->log);
         return SW_EXIT_USAGE;
     }
-    if (k.accepted > 0 && r->ro.settle > 0.0) sw_engine_finish(r->e, r->ro.settle);
+    if (k.accepted > 0 && r->ro.settle > 0.0 && !sw_cli_signal)
+        sw_engine_finish(r->e, r->ro.settle);
     sw_mon_counts(r->mon, &k);
     r->run.samples_read = k.received;
     r->run.samples_rejected = k.received - k.accepted;
@@ -447,11 +472,18 @@ static int finish(replay_t *r, const sw_cli_source_t *src)
     (void)src;
     r->run.log = r->log;
     r->run.settle = r->ro.settle;
+    r->run.interrupted = sw_cli_signal;
     if (r->o.json)
         sw_cli_print_json(stdout, r->e, &r->run);
     else if (!r->o.quiet)
         sw_cli_print_summary(stdout, r->e, &r->run);
     if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(r->e, r->ro.fail_on_overturn);
+    if (r->run.interrupted) {
+        sw_cli_error("replay: interrupted by %s after %ld samples; the output files end with "
+                     "the last whole row",
+                     sw_cli_signal_name(r->run.interrupted), r->run.samples_read);
+        if (rc != SW_EXIT_IO) rc = sw_cli_interrupt_code();
+    }
     return rc;
 }
 
@@ -490,6 +522,7 @@ int cmd_replay(int argc, char **argv)
     int first;
     const sw_cli_source_t *src = NULL;
     if ((rc = sw_cli_parse(&replay_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
     rc = SW_EXIT_USAGE;
     if (!(r.log = sw_cli_log_operand("replay", argc, argv, first))) goto out;
 #ifdef SW_HAVE_LCM

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "clobber.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 
@@ -191,7 +192,7 @@ static int run_pulse(sw_engine_t *e, sim_opts_t *so, sw_cli_states_t *states, do
      * rounding does not accumulate over a long run. */
     double t = 0.0;
     write_states(e, states);
-    for (long k = 1; t < duration; k++) {
+    for (long k = 1; t < duration && !sw_cli_signal; k++) {
         double t1 = fmin((double)k * so->interval, duration);
         int ar = sw_engine_advance_fn(e, t1, sw_pulse_eval, &so->pulse);
         if (ar < 0) {
@@ -235,6 +236,8 @@ int cmd_simulate(int argc, char **argv)
         goto out;
     rc = SW_EXIT_USAGE;
     if (sw_cli_no_operand("simulate", argc, argv, first) != SW_EXIT_OK) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    rc = SW_EXIT_USAGE;
     if (check_pulse(&so) != SW_EXIT_OK) goto out;
 
     const sw_cli_file_t outputs[] = {{"--out", o.out_path}, {"--events", o.events_path}};
@@ -266,12 +269,18 @@ int cmd_simulate(int argc, char **argv)
     int rc2 = sw_cli_events_close(&events);
     if (rc == SW_EXIT_OK) rc = rc2;
 
-    sw_cli_run_t run = {.pulse = pulse, .duration = t};
+    sw_cli_run_t run = {.pulse = pulse, .duration = t, .interrupted = sw_cli_signal};
     if (o.json)
         sw_cli_print_json(stdout, e, &run);
     else if (!o.quiet)
         sw_cli_print_summary(stdout, e, &run);
     if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(e, so.fail_on_overturn);
+    if (run.interrupted) {
+        sw_cli_error("simulate: interrupted by %s at t = %g s; the output files end with the "
+                     "last whole row",
+                     sw_cli_signal_name(run.interrupted), t);
+        if (rc != SW_EXIT_IO) rc = sw_cli_interrupt_code();
+    }
 out:
     sw_cli_states_close(&states);
     sw_cli_events_close(&events);

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <signal.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -342,8 +343,21 @@ static void print_outcome(FILE *f, const sw_summary_t *s)
     }
 }
 
+/* The words a summary of an interrupted run starts with. */
+static void print_interrupted(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    if (!run->interrupted) return;
+    const double t = sw_engine_time(e);
+    fprintf(f, "INTERRUPTED by %s", run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (isfinite(t))
+        fprintf(f, " at t = %.4f s: everything below covers the input up to there only\n", t);
+    else
+        fputs(" before the first sample\n", f);
+}
+
 void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
 {
+    print_interrupted(f, e, run);
     if (run->log) {
         fprintf(f, "log %s: %ld samples read, %ld accepted, %ld rejected", strcmp(run->log, "-") ? run->log : "(stdin)",
                 run->samples_read, run->samples_read - run->samples_rejected,
@@ -437,6 +451,16 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
     if (run->log) {
         fprintf(f, ",\n  \"settle\": ");
         sw_cli_json_num(f, run->settle);
+    }
+    fprintf(f, ",\n  \"interrupted\": ");
+    if (run->interrupted)
+        fprintf(f, "{\"signal\": \"%s\", \"t\": ",
+                run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (run->interrupted) {
+        sw_cli_json_num(f, sw_engine_time(e));
+        fputc('}', f);
+    } else {
+        fputs("null", f);
     }
     fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld,\n  \"packages\": [",
             run->samples_read, run->samples_rejected);

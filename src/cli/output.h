@@ -71,6 +71,8 @@ typedef struct {
     long samples_read;       /* data rows seen */
     long samples_rejected;   /* data rows refused (CSV layer or engine) */
     double settle;           /* s, replay: --settle */
+    int interrupted;         /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
+                                the summaries say so, and up to which time they cover */
 } sw_cli_run_t;
 
 /* The one-screen human summary / the JSON summary (DESIGN.md contract). */
