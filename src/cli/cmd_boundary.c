@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "clobber.h"
+#include "cost.h"
 #include "interrupt.h"
 #include "opts.h"
 #include "output.h"
@@ -700,6 +701,7 @@ int cmd_boundary(int argc, char **argv)
                            B.bear_text, &B.cv, &B.nc)) != SW_EXIT_OK)
         goto out;
     if (B.o.verbose) print_curves(&B);
+    sw_cli_warn_scene_cost(B.scenes, B.nsc, &B.b.bo.run.engine);
     if ((rc = sweep(&B)) != SW_EXIT_OK) goto out;
     rc = write_outputs(&B);
     if (sw_cli_signal && rc != SW_EXIT_IO) { /* while writing: the files are whole */

@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "clobber.h"
+#include "cost.h"
 #include "input.h"
 #include "lcmlog.h"
 #include "lcmopts.h"
@@ -264,6 +265,7 @@ static int reload_scenes(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scen
     }
     fprintf(stderr, "swaywatch: monitor: reload: %zu of %zu packages rebuilt, the others kept\n",
             nchanged, n);
+    sw_cli_warn_scene_cost(changed, nchanged, &eo);
     goto done;
 
 keep:
@@ -429,6 +431,7 @@ static int start(mon_ctx_t *c, const sw_mon_opts_t *mo, lcm_t *lcm)
     }
     if (c->opts->verbose)
         sw_cli_print_derived(stderr, sw_mon_engine(c->mon), c->scenes, c->n);
+    sw_cli_warn_scene_cost(c->scenes, c->n, &eo);
     return SW_EXIT_OK;
 }
 

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "clobber.h"
+#include "cost.h"
 #include "input.h"
 #include "interrupt.h"
 #include "opts.h"
@@ -316,6 +317,7 @@ static sw_engine_t *lcmlog_engine(replay_t *r)
         sw_cli_error("cannot start the engine: %s", msg[0] ? msg : "unknown reason");
         return NULL;
     }
+    sw_cli_warn_scene_cost(r->scenes, r->n, &r->eo);
     return sw_mon_engine(r->mon);
 }
 

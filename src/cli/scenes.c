@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cost.h"
 #include "opts.h"
 
 /* Scene files are small; anything this big is not a scene. */
@@ -279,5 +280,6 @@ sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_e
     char msg[512] = "";
     sw_engine_t *e = sw_engine_create(scenes, n, eo, &err, msg, sizeof msg);
     if (!e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+    else sw_cli_warn_scene_cost(scenes, n, eo);
     return e;
 }
