@@ -40,6 +40,7 @@ typedef struct {
     double settle; /* s of zero input after the end of the log, as replay */
     int fail_on_overturn;
     long threads;
+    long max_samples; /* the log held in memory, at most */
     sw_search_opts_t so;
     sw_cli_whatif_t w;
     const char *plot;
@@ -64,6 +65,11 @@ static const sw_cli_option_t forensics_options[] = {
              "certain (default %g; 0: none); at most a day: an undamped frame never rests"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", FO(fail_on_overturn), .value = 1,
      .help = "exit 1 if the package as given overturned"},
+    {SW_CLI_LONG, 0, "max-samples", "N", FO(max_samples), .min = 1, .max = 1L << 28,
+     .def = SW_CLI_LOG_MAX_SAMPLES, .what = "a whole number of samples >= 1",
+     .help = "hold at most N samples of the log in memory (16 bytes each, 24 with --vert-col; "
+             "default " SW_CLI_STR(SW_CLI_LOG_MAX_SAMPLES_N) ", 9.3 h at 1 kHz; at most 268435456); a longer log, or an endless pipe, "
+             "is refused with exit 2 instead of filling the memory"},
     {SW_CLI_SECTION, .help = "Safety factor (scale of the whole longitudinal acceleration):"},
     {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE, .lo = 1e-4, .hi = 1,
      .what = "a positive relative step",
@@ -123,8 +129,8 @@ static const sw_cli_command_t forensics_cmd = {
         "    that would have overturned it: overturning is not monotonic in the amplitude);\n"
         "  - a what-if table: the same log with the package on the bed, on a frame, on a\n"
         "    cushion and in other sizes, each with its outcome and safety factor.\n"
-        "The log is held in memory (about 16 bytes a sample): the search replays it tens\n"
-        "of times for every case.\n",
+        "The log is held in memory (about 16 bytes a sample, at most --max-samples): the\n"
+        "search replays it tens of times for every case.\n",
     .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
 };
 
@@ -294,7 +300,7 @@ typedef struct {
 static int read_log(forensics_t *F)
 {
     sw_cli_interrupt_now("forensics: interrupted while reading the log; nothing written");
-    int rc = sw_cli_log_read(F->log_path, &F->copts, F->o.quiet, &F->L);
+    int rc = sw_cli_log_read(F->log_path, &F->copts, F->o.quiet, F->fo.max_samples, &F->L);
     sw_cli_interrupt_now(NULL);
     return rc;
 }

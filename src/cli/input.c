@@ -219,13 +219,16 @@ const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f)
 typedef struct {
     sw_cli_log_t *log;
     sw_cli_rejects_t rej;
-    int halt; /* rej.stop, or out of memory */
+    int halt; /* rej.stop, out of memory, or the cap reached */
     int oom;
+    size_t max; /* samples kept at most */
+    int capped; /* one more was offered */
 } read_ctx_t;
 
-static int grow(sw_cli_log_t *L)
+static int grow(sw_cli_log_t *L, size_t max)
 {
     size_t cap = L->cap ? 2 * L->cap : 4096;
+    if (cap > max) cap = max;
     double *t = realloc(L->t, cap * sizeof *t);
     if (!t) return -1;
     L->t = t;
@@ -247,7 +250,11 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
     sw_cli_log_t *L = c->log;
     (void)line;
     if (c->halt) return 1;
-    if (L->n == L->cap && grow(L) != 0) {
+    if (L->n == c->max) {
+        c->capped = c->halt = 1;
+        return 1;
+    }
+    if (L->n == L->cap && grow(L, c->max) != 0) {
         c->oom = c->halt = 1;
         return 1;
     }
@@ -261,12 +268,13 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
 static void on_reject(void *user, long line, const char *reason)
 {
     read_ctx_t *c = user;
-    if (c->oom) return;
+    if (c->oom || c->capped) return;
     sw_cli_rejects_add(&c->rej, line, reason);
     c->halt = c->rej.stop;
 }
 
-int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_cli_log_t *L)
+int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, long max,
+                    sw_cli_log_t *L)
 {
     int rc = SW_EXIT_USAGE;
     memset(L, 0, sizeof *L);
@@ -277,7 +285,7 @@ int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_
         rc = SW_EXIT_IO;
         goto out;
     }
-    read_ctx_t ctx = {L, {f.name, o->strict, quiet, 0, 0, 0}, 0, 0};
+    read_ctx_t ctx = {L, {f.name, o->strict, quiet, 0, 0, 0}, 0, 0, max > 0 ? (size_t)max : 1, 0};
     if (sw_cli_logfile_source(&f)->kind != SW_CLI_SRC_CSV) {
         sw_cli_error("%s: an lcm-logger file; this command reads CSV logs (replay reads both)",
                      f.name);
@@ -298,6 +306,13 @@ int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_
     if (ctx.oom) {
         sw_cli_error("%s: out of memory after %zu samples", f.name, L->n);
         rc = SW_EXIT_IO;
+        goto out;
+    }
+    if (ctx.capped) {
+        sw_cli_error("%s: more than %ld samples: the whole log is held in memory (%zu bytes a "
+                     "sample) and %ld is the cap (--max-samples); cut the log, or replay it "
+                     "(replay streams)",
+                     f.name, max, L->has_z ? 3 * sizeof(double) : 2 * sizeof(double), max);
         goto out;
     }
     if (fr < 0) {
