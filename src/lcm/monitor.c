@@ -376,7 +376,10 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         !(m->o.accel_scale > 0.0) || !(m->o.gap >= 0.0) || !(m->o.max_accel > 0.0) ||
         !(m->o.state_rate >= 0.0) || !(m->o.max_skew >= 0.0) || !(m->o.reject_interval >= 0.0) ||
         !(m->o.alarm_interval < 1e9) ||
-        !isfinite(m->o.gap) || !isfinite(m->o.state_rate) || !(m->o.max_jump < 1e9)) {
+        !isfinite(m->o.gap) || !isfinite(m->o.state_rate) || !(m->o.max_jump < 1e9) ||
+        /* in microseconds of int64: a gap beyond 1e9 s or a rate below
+         * 1e-9 Hz would overflow */
+        !(m->o.gap <= 1e9) || (m->o.state_rate > 0.0 && !(m->o.state_rate >= 1e-9))) {
         if (msg)
             snprintf(msg, msglen, "invalid monitor options");
         free(m);
