@@ -324,6 +324,11 @@ static void on_state(void *user, const sw_output_t *out)
     int finite = sw_output_finite(out);
     int64_t utime = finite ? utime_of(m, out->t) : m->last_us;
     if (m->state_period_us > 0) {
+        /* The sensor's clock went back (a restart, a log played twice):
+         * the grid follows it, or no state would go out until the new
+         * clock caught up with the old grid. */
+        if (utime < m->next_state_us[k] - m->state_period_us)
+            m->next_state_us[k] = utime;
         if (utime < m->next_state_us[k])
             return;
         m->next_state_us[k] += m->state_period_us;
@@ -588,6 +593,8 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
      * a broken sender */
     if (!isfinite(s.ax) || !isfinite(s.ay) || !isfinite(s.az))
         return refuse(m, SW_MON_REJ_NONFINITE, mono, m->have_last ? m->last_us : wall_us, why);
+    if (s.utime < 0 || s.utime >= SW_MON_UTIME_MAX)
+        return refuse(m, SW_MON_REJ_TIME, mono, m->have_last ? m->last_us : wall_us, why);
     const double v[3] = {s.ax * m->o.accel_scale, s.ay * m->o.accel_scale, s.az * m->o.accel_scale};
     const double t = source_time(m, s.utime); /* first: the first sample sets the base */
     const sw_sample_t smp = {
