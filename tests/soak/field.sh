@@ -21,18 +21,19 @@
 #   - after each fault, states of the samples after it are published within
 #     RESUME samples (default 50: three to confirm, ten to the next state on
 #     the 100 Hz grid, and room for the scheduler);
-#   - no state stops for longer than 1.5 s of wall time outside the outage
-#     and the model-fault second;
+#   - no state stops for longer than 2.5 s of wall time outside the outage
+#     and the model-fault second (a blinded monitor is silent for good);
 #   - every message is accounted for: received = accepted + rejected by
 #     reason (nothing held after the stop), received = published less the
 #     kernel's UDP drops, the refusals by reason those sent (the faults
 #     included: jump, time, duplicate), lost by seq = the outage's samples
-#     (plus drops), never negative;
+#     (plus drops and shed messages), never negative;
 #   - no published number is non-finite;
 #   - alarms are rate-limited: no package and kind has more than 8 in any
 #     second (three, a summary, three), the storm was folded;
-#   - memory stays flat: VmRSS at the end within SOAK_RSS_KB (default 2048)
-#     of VmRSS after the first 10 s (skipped under AddressSanitizer, whose
+#   - memory stays flat: VmRSS at the end within SOAK_RSS_KB (default 4096:
+#     LCM's receive ring may double once when the machine stalls) of VmRSS
+#     after the first 10 s (skipped under AddressSanitizer, whose
 #     quarantine grows by design; it checks leaks itself at exit).
 # Exit 77 (skipped) when a private network namespace cannot be made.
 set -eu
@@ -44,7 +45,7 @@ PYDIR=$5
 SECS=${6:-40}
 RATE=1000
 RESUME=${FIELD_RESUME_SAMPLES:-50}
-RSS_BOUND=${SOAK_RSS_KB:-2048}
+RSS_BOUND=${SOAK_RSS_KB:-4096}
 
 . "$(dirname "$0")/lcmtest.sh"
 enter_netns "$@"
