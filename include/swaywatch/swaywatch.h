@@ -8,6 +8,7 @@
 #include "swaywatch/engine.h"
 #include "swaywatch/model.h"
 #include "swaywatch/pulse.h"
+#include "swaywatch/reserve.h"
 #include "swaywatch/scheme.h"
 #include "swaywatch/scene.h"
 #include "swaywatch/status.h"
