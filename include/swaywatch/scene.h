@@ -23,8 +23,8 @@ extern "C" {
 #define SW_NAME_MAX 64
 #define SW_DESIGN_PULSES_MAX 8        /* design pulse durations a scene may list */
 #define SW_DESIGN_PULSE_DEFAULT 1.0   /* s, docs/reserve.md says why */
-#define SW_WARN_RESERVE_G_DEFAULT 0.15    /* g, docs/alarms.md says why */
-#define SW_CRITICAL_RESERVE_G_DEFAULT 0.08 /* g */
+#define SW_WARN_RESERVE_G_DEFAULT 0.20     /* g, docs/alarms.md says why */
+#define SW_CRITICAL_RESERVE_G_DEFAULT 0.10 /* g */
 
 typedef enum { SW_MODEL_BARE = 0, SW_MODEL_FRAME = 1, SW_MODEL_CUSHION = 2 } sw_model_kind;
 
