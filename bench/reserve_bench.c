@@ -2,13 +2,13 @@
  * and how much warning its alarms give compared with the margin's
  * (docs/accuracy-speed.md, "The reserve"; docs/alarms.md).
  *
- *   reserve_bench cost [--runs N] [--minutes M] [--model NAME]
+ *   reserve_bench cost [--runs N] [--minutes M] [--model NAME] [--step S]
  *       each model along the road (M minutes of bench_road.c, default
  *       60) and the rocking drives (sample_logs, El Centro scaled): the
  *       engine replays the drive at its own rate, the state is taken
  *       every 0.1 s (10 Hz) and the reserve evaluated on it; CPU time of
  *       the evaluations alone, median of N runs (default 5);
- *   reserve_bench leadtime [--minutes M]
+ *   reserve_bench leadtime [--minutes M] [--workload drives|road]
  *       drives that end in overturn (the sample logs, synthetic braking
  *       and pothole sequences, El Centro scaled just past the scale that
  *       overturns), and the road (no overturn) for false alarms: when the
@@ -358,6 +358,7 @@ typedef struct {
     double cpu_s;     /* median CPU time of all evaluations */
     double max_ms;    /* slowest single evaluation (wall, first run) */
     long evals, cached, trials;
+    long live;        /* evaluations of states not overturned (an overturned one is free) */
     double min_reserve; /* g */
 } cost_t;
 
@@ -372,6 +373,7 @@ static int eval_all(sw_reserve_t *r, const rec_t *R, double *res, cost_t *c, int
             if (ms > c->max_ms) c->max_ms = ms;
             c->cached += out.cached;
             c->trials += out.trials;
+            c->live += R->v[i].s.phase != SW_PHASE_OVERTURNED;
             if (out.reserve_g < c->min_reserve) c->min_reserve = out.reserve_g;
         }
         if (res) res[i] = out.reserve_g;
@@ -379,11 +381,16 @@ static int eval_all(sw_reserve_t *r, const rec_t *R, double *res, cost_t *c, int
     return 0;
 }
 
+static double g_step; /* --step: the reserve's scan step (0 = its default) */
+
 static int cost_of(const sw_scene_t *sc, const rec_t *R, int runs, cost_t *c)
 {
     int err;
     char msg[256];
-    sw_reserve_t *r = sw_reserve_create(sc, NULL, &err, msg, sizeof msg);
+    sw_reserve_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.step = g_step;
+    sw_reserve_t *r = sw_reserve_create(sc, &o, &err, msg, sizeof msg);
     if (!r) {
         fprintf(stderr, "reserve_bench: reserve: %s\n", msg);
         return -1;
@@ -422,12 +429,15 @@ static int rocking_drives(drive_t *d)
     return n;
 }
 
+/* Per evaluation over the states not overturned: evaluating an overturned
+ * package costs nothing, and a drive that ends in overturn would
+ * otherwise look cheaper the earlier it ends. */
 static void cost_row(const char *model, const char *drive, const rec_t *R, const cost_t *c)
 {
-    const double per = c->cpu_s / (double)c->evals; /* s per evaluation */
-    printf("| %s | %s | %ld | %.0f%% | %.0f | %.2f | %.1f | %.2f%% | %.3f |\n", model, drive,
-           c->evals, 100.0 * (double)c->cached / (double)c->evals,
-           (double)c->trials / (double)c->evals, 1e6 * per / 1e3, c->max_ms,
+    const double per = c->cpu_s / (double)(c->live ? c->live : 1); /* s per evaluation */
+    printf("| %s | %s | %ld | %.0f%% | %.0f | %.3f | %.1f | %.2f%% | %.3f |\n", model, drive,
+           c->live, 100.0 * (double)c->cached / (double)(c->live ? c->live : 1),
+           (double)c->trials / (double)(c->live ? c->live : 1), 1e3 * per, c->max_ms,
            100.0 * per * 10.0 * 10.0, c->min_reserve);
     (void)R;
     fflush(stdout);
@@ -439,10 +449,16 @@ static int cmd_cost(int runs, double minutes, const char *only)
     const int nm = make_models(m);
     drive_t dr[4];
     const int nd = rocking_drives(dr);
-    printf("<!-- reserve_bench cost --runs %d --minutes %g -->\n\n", runs, minutes);
-    printf("| model | drive | evaluations (10 Hz) | at rest (cached) | runs per evaluation | "
+    printf("<!-- reserve_bench cost --runs %d --minutes %g%s%s -->\n\n", runs, minutes,
+           only ? " --model " : "", only ? only : "");
+    if (g_step > 0.0) printf("Scan step %g (the default is 0.02).\n\n", g_step);
+    printf("Over the evaluations (10 Hz) of states not overturned; CPU time of the "
+           "evaluations alone, median of %d runs (3 for cushion-300, 1 for cushion-stiff); "
+           "\"one core\": ten such packages evaluated at 10 Hz.\n\n"
+           "| model | drive | evaluations | at rest (cached) | runs per evaluation | "
            "CPU ms per evaluation | slowest (ms, wall) | one core, 10 packages at 10 Hz | "
-           "min reserve (g) |\n|---|---|---|---|---|---|---|---|---|\n");
+           "min reserve (g) |\n|---|---|---|---|---|---|---|---|---|\n",
+           runs);
     for (int i = 0; i < nm; i++) {
         if (only && strcmp(only, m[i].name)) continue;
         const int stiff = !strcmp(m[i].name, "cushion-stiff");
@@ -450,7 +466,7 @@ static int cmd_cost(int runs, double minutes, const char *only)
         const int firm = !strcmp(m[i].name, "cushion-300");
         drive_t rd;
         /* the stiffer cushions cost too much for an hour of road per run */
-        road(&rd, stiff ? fmin(minutes, 2.0) : firm ? fmin(minutes, 10.0) : minutes, 1);
+        road(&rd, stiff ? fmin(minutes, 1.0) : firm ? fmin(minutes, 10.0) : minutes, 1);
         for (int k = soft ? 0 : -1; k < nd; k++) {
             const drive_t *d = k < 0 ? &rd : &dr[k];
             rec_t R;
@@ -485,17 +501,23 @@ static void lev_alarm(void *user, const sw_alarm_t *a)
     w->raised++;
 }
 
-/* Reserve WARN at warn_g (critical at half of it, default hysteresis) on
- * the 10 Hz series, before t_end (s). */
-static warn_t reserve_warns(const rec_t *R, const double *res, double warn_g, double t_end)
+/* Reserve WARN at warn_g (critical at half of it, hysteresis hyst_g g, < 0
+ * the default) on the 10 Hz series, before t_end (s). */
+static warn_t reserve_warns_h(const rec_t *R, const double *res, double warn_g, double t_end,
+                              double hyst_g)
 {
     warn_t w = {NAN, NAN, 0};
     sw_alarm_watch_t aw;
     sw_alarm_init(&aw, 0, 0.5, 0.2, -1.0);
-    sw_alarm_set_reserve(&aw, warn_g, 0.5 * warn_g, -1.0);
+    sw_alarm_set_reserve(&aw, warn_g, 0.5 * warn_g, hyst_g);
     for (size_t i = 0; i < R->n && R->v[i].t < t_end; i++)
         sw_alarm_on_reserve(&aw, R->v[i].t, R->v[i].theta, R->v[i].margin, res[i], lev_alarm, &w);
     return w;
+}
+
+static warn_t reserve_warns(const rec_t *R, const double *res, double warn_g, double t_end)
+{
+    return reserve_warns_h(R, res, warn_g, t_end, -1.0);
 }
 
 /* "first / last" lead times (s) before t_over, "-" if no alarm */
@@ -566,8 +588,9 @@ static int lead_drive(const model_t *m, const drive_t *d, double scale, sw_reser
     return 0;
 }
 
-static int cmd_leadtime(double minutes)
+static int cmd_leadtime(double minutes, const char *part)
 {
+    const int drives = !part || strcmp(part, "road"), roads = !part || strcmp(part, "drives");
     model_t m[NMODELS];
     make_models(m);
     drive_t dr[8];
@@ -597,7 +620,7 @@ static int cmd_leadtime(double minutes)
     printf(" reserve 2 s before (g) | 1 s before (g) |\n|---|---|---|---|---|---|");
     for (int k = 0; k < NLEV; k++) printf("---|");
     printf("---|---|\n");
-    for (int i = 0; i < 3; i++) { /* bare, frame, soft cushion: the stiff ones take hours */
+    for (int i = 0; i < 3 && drives; i++) { /* bare, frame, soft cushion: stiff ones take hours */
         int err;
         char msg[256];
         sw_reserve_t *r = sw_reserve_create(&m[i].sc, NULL, &err, msg, sizeof msg);
@@ -624,21 +647,25 @@ static int cmd_leadtime(double minutes)
         sw_reserve_destroy(r);
     }
 
-    printf("\nDrives that come close and survive: do the alarms fire?\n\n"
+    if (drives) printf("\nDrives that come close and survive: do the alarms fire?\n\n"
            "| model | drive | min margin | margin WARN (0.5) |");
-    for (int k = 0; k < NLEV; k++) printf(" reserve WARN %.2f g |", warn_levels[k]);
-    printf(" min reserve (g) |\n|---|---|---|---|");
-    for (int k = 0; k < NLEV; k++) printf("---|");
-    printf("---|\n%s", miss);
+    for (int k = 0; k < NLEV && drives; k++) printf(" reserve WARN %.2f g |", warn_levels[k]);
+    if (drives) {
+        printf(" min reserve (g) |\n|---|---|---|---|");
+        for (int k = 0; k < NLEV; k++) printf("---|");
+        printf("---|\n%s", miss);
+    }
+    if (!roads) goto done;
 
     /* false alarms on the road */
-    printf("\nFalse alarms per hour on the road (%g minutes of bench_road.c; none of these "
-           "overturns):\n\n| model | margin WARN (0.5) |",
-           minutes);
+    printf("\nAlarms per hour on the road (%g minutes of bench_road.c; none of these "
+           "overturns); reserve WARN counts with hysteresis %.2f g, and 0.05 g after the "
+           "slash:\n\n| model | margin WARN (0.5) |",
+           minutes, SW_ALARM_RESERVE_HYSTERESIS_G);
     for (int k = 0; k < NLEV; k++) printf(" reserve WARN %.2f g |", warn_levels[k]);
-    printf(" min reserve (g) | reserve at rest (g) |\n|---|---|");
+    printf(" min margin | min reserve (g) | reserve at rest (g) |\n|---|---|");
     for (int k = 0; k < NLEV; k++) printf("---|");
-    printf("---|---|\n");
+    printf("---|---|---|\n");
     fflush(stdout);
     drive_t rd;
     road(&rd, minutes, 1);
@@ -657,16 +684,21 @@ static int cmd_leadtime(double minutes)
         const double hours = minutes / 60.0;
         printf("| %s | %.1f |", m[i].name, (double)R.mwarns / hours);
         for (int k = 0; k < NLEV; k++)
-            printf(" %.1f |", (double)reserve_warns(&R, res, warn_levels[k], INFINITY).raised / hours);
+            printf(" %.1f / %.1f |",
+                   (double)reserve_warns(&R, res, warn_levels[k], INFINITY).raised / hours,
+                   (double)reserve_warns_h(&R, res, warn_levels[k], INFINITY, 0.05).raised / hours);
         sw_reserve_result_t rest;
         sw_reserve_rest(r, &rest);
-        printf(" %.3f | %.3f |\n", c.min_reserve, rest.reserve_g);
+        double min_margin = INFINITY;
+        for (size_t j = 0; j < R.n; j++) min_margin = fmin(min_margin, R.v[j].margin);
+        printf(" %.3f | %.3f | %.3f |\n", min_margin, c.min_reserve, rest.reserve_g);
         fflush(stdout);
         free(res);
         free(R.v);
         sw_reserve_destroy(r);
     }
     drive_free(&rd);
+done:
     for (int k = 0; k < nd; k++) drive_free(&dr[k]);
     return 0;
 }
@@ -771,8 +803,8 @@ static int cmd_eval(const char *model, const char *workload, double minutes)
     cost_t c = {0};
     c.min_reserve = INFINITY;
     eval_all(r, &R, NULL, &c, 1);
-    printf("%s %s: %zu evaluations, %ld cached, %ld runs\n", mm->name, d.name, R.n, c.cached,
-           c.trials);
+    printf("%s %s: %zu evaluations, %ld of states not overturned, %ld cached, %ld runs\n",
+           mm->name, d.name, R.n, c.live, c.cached, c.trials);
     sw_reserve_destroy(r);
     free(R.v);
     drive_free(&d);
@@ -789,6 +821,7 @@ int main(int argc, char **argv)
                                        {"minutes", required_argument, NULL, 'm'},
                                        {"model", required_argument, NULL, 'M'},
                                        {"workload", required_argument, NULL, 'w'},
+                                       {"step", required_argument, NULL, 's'},
                                        {NULL, 0, NULL, 0}};
     if (argc < 2) {
         fprintf(stderr, "usage: reserve_bench cost|leadtime|accuracy|eval [options]\n");
@@ -803,6 +836,7 @@ int main(int argc, char **argv)
         case 'm': minutes = atof(optarg); break;
         case 'M': model = optarg; break;
         case 'w': workload = optarg; break;
+        case 's': g_step = atof(optarg); break;
         default: return 2;
         }
     }
@@ -811,7 +845,7 @@ int main(int argc, char **argv)
         return 2;
     }
     if (!strcmp(cmd, "cost")) return cmd_cost(runs, minutes, model);
-    if (!strcmp(cmd, "leadtime")) return cmd_leadtime(minutes);
+    if (!strcmp(cmd, "leadtime")) return cmd_leadtime(minutes, workload);
     if (!strcmp(cmd, "eval")) return cmd_eval(model, workload, minutes);
     if (!strcmp(cmd, "accuracy")) return cmd_accuracy();
     fprintf(stderr, "reserve_bench: unknown command %s\n", cmd);
