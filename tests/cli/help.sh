@@ -66,6 +66,36 @@ if grep -q '^  monitor ' "$TMP/main"; then
     done
 fi
 
+# --version, as GNU tools print it: the version on the first line (scripts
+# and help2man read it there), then the copyright and the licence; the same
+# for every command.  The licence is the one in LICENSE.
+grep -q 'GNU GENERAL PUBLIC LICENSE' "$SRC/LICENSE" && grep -q 'Version 3' "$SRC/LICENSE" ||
+    fail "LICENSE is not the GPL version 3"
+for args in "--version" "-V" "replay --version" "simulate --scene x --version"; do
+    # shellcheck disable=SC2086
+    run "$SW" $args
+    expect_rc 0 "swaywatch $args"
+    [ ! -s "$TMP/err" ] || fail "swaywatch $args wrote to stderr"
+    [ "$(wc -l <"$TMP/out")" -eq 5 ] || { show; fail "swaywatch $args: not 5 lines"; }
+    case $args in
+    -*) head -1 "$TMP/out" | grep -Eqx 'swaywatch [0-9]+\.[0-9]+\.[0-9]+' ||
+        fail "swaywatch $args: first line $(head -1 "$TMP/out")" ;;
+    *) head -1 "$TMP/out" | grep -Eqx "swaywatch ${args%% *} [0-9]+\.[0-9]+\.[0-9]+" ||
+        fail "swaywatch $args: first line $(head -1 "$TMP/out")" ;;
+    esac
+    sed -n 2p "$TMP/out" | grep -Eqx 'Copyright \(C\) 20[0-9][0-9] .+' || fail "$args: copyright line"
+    for want in 'License GPLv3+: GNU GPL version 3 or later <https://gnu.org/licenses/gpl.html>' \
+        'This is free software: you are free to change and redistribute it.' \
+        'There is NO WARRANTY, to the extent permitted by law.'; do
+        grep -qxF "$want" "$TMP/out" || fail "swaywatch $args lacks '$want'"
+    done
+done
+if [ -w /dev/full ]; then
+    run sh -c '"$1" --version >/dev/full' sh "$SW"
+    expect_rc 3 "--version into a full disk"
+    expect_prefixed_err "--version into a full disk"
+fi
+
 run "$SW" help no-such-command
 expect_rc 2 "help of an unknown command"
 expect_prefixed_err "help of an unknown command"
