@@ -22,6 +22,7 @@ typedef struct {
     sw_pulse_t pulse;
     int have_shape, have_amp;
     const sw_cli_option_t *amp_opt; /* --amplitude or --amplitude-g, the last given */
+    double pulse_duration;          /* s, --pulse-duration; 0: not given (--omega) */
     double duration, interval;
     int fail_on_overturn;
 } sim_opts_t;
@@ -35,16 +36,29 @@ static int parse_shape(const sw_cli_option_t *o, const char *arg, void *dest)
     return SW_EXIT_USAGE;
 }
 
-/* --amplitude in m/s^2, --amplitude-g in g (the row's def is the unit). */
+/* --amplitude with its unit (10g, 98.1m/s2; a bare number is m/s^2, as
+ * it always was), --amplitude-g a bare number in g (the row's def is the
+ * unit). */
 static int parse_amplitude(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     sim_opts_t *s = dest;
     double a;
-    int r = sw_cli_opt_double(o, arg, &a);
-    s->pulse.amplitude = a * o->def;
+    int r = o->def == 1.0 ? sw_cli_opt_quantity(o, arg, 0, 1, &a, NULL)
+                          : sw_cli_opt_double(o, arg, &a);
+    if (r != SW_EXIT_OK) return r;
+    s->pulse.amplitude = o->def == 1.0 ? a : a * o->def;
     s->have_amp = 1;
     s->amp_opt = o;
     return r;
+}
+
+/* --pulse-duration: a time with its unit, always (11ms, 0.011s): a bare
+ * number could be either, and reading ms as s makes a pulse 1000 times
+ * too long. */
+static int parse_pulse_duration(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    sim_opts_t *s = dest;
+    return sw_cli_opt_quantity(o, arg, 1, 0, &s->pulse_duration, NULL);
 }
 
 #define SIM(f) SW_CLI_AT(sim_opts_t, f)
@@ -54,14 +68,19 @@ static const sw_cli_option_t sim_options[] = {
     {SW_CLI_CALL, 0, "pulse", "SHAPE", .fn = parse_shape,
      .help = "half-sine or full-sine (required)"},
     {SW_CLI_CALL, 0, "amplitude", "A", .fn = parse_amplitude, .def = 1.0,
-     .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration in m/s^2",
-     .help = "m/s^2, sign included (required, or --amplitude-g)"},
+     .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration, e.g. -10g or -98.1m/s2",
+     .help = "peak acceleration, sign included, with its unit: g or m/s2, e.g. -10g, -98.1m/s2 "
+             "(a bare number is m/s^2; required, or --amplitude-g)"},
     {SW_CLI_CALL, 0, "amplitude-g", "A", .fn = parse_amplitude, .def = STANDARD_GRAVITY,
      .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration in g",
-     .help = "the same in g (1 g = %g m/s^2)"},
+     .help = "the same as a bare number in g (1 g = %g m/s^2)"},
+    {SW_CLI_CALL, 0, "pulse-duration", "D", .fn = parse_pulse_duration,
+     .rule = SW_NUM_POSITIVE, .what = "a positive time with its unit, e.g. 11ms or 0.011s",
+     .help = "how long the pulse lasts, with its unit: ms, s or us, e.g. 11ms (a half-sine of 11 "
+             "ms has W = pi/0.011 s; a full-sine W = 2 pi/D); instead of --omega"},
     {SW_CLI_DOUBLE, 0, "omega", "W", SIM(pulse.omega), .rule = SW_NUM_POSITIVE,
      .what = "a positive angular frequency in rad/s",
-     .help = "rad/s, angular frequency of the sine (required)"},
+     .help = "rad/s, angular frequency of the sine (required, or --pulse-duration)"},
     {SW_CLI_DOUBLE, 0, "duration", "T", SIM(duration), .rule = SW_NUM_POSITIVE,
      .what = "a positive number of seconds",
      .help = "s simulated from t = 0 (default: the pulse plus " SW_CLI_STR(FREE_PERIODS) " free "
@@ -85,12 +104,15 @@ static const sw_cli_option_t sim_output_notes[] = {
 static const sw_cli_command_t simulate_cmd = {
     .name = "simulate",
     .usage = "simulate --scene S.ini --pulse half-sine|full-sine\n"
-             "                          --amplitude A --omega W [--duration T] [options]",
+             "                          --amplitude A --omega W|--pulse-duration D\n"
+             "                          [--duration T] [options]",
     .about = "Drives every package with one acceleration pulse of the truck bed:\n"
-             "  half-sine: a(t) = A sin(W t) for 0 <= t <= pi/W, then 0;\n"
-             "  full-sine: a(t) = A sin(W t) for 0 <= t <= 2 pi/W, then 0.\n"
+             "  half-sine: a(t) = A sin(W t) for 0 <= t <= D = pi/W, then 0;\n"
+             "  full-sine: a(t) = A sin(W t) for 0 <= t <= D = 2 pi/W, then 0.\n"
              "The pulse is evaluated exactly (not sampled).  x points forward: a negative A\n"
-             "brakes and tips the top forward.\n",
+             "brakes and tips the top forward.  As a shock standard states it: a half-sine\n"
+             "of 10 g lasting 11 ms is --pulse half-sine --amplitude -10g --pulse-duration\n"
+             "11ms (braking).\n",
     .exits = SW_CLI_EXIT_OVERTURN,
 };
 
@@ -139,14 +161,27 @@ static int all_settled(const sw_engine_t *e)
     return 1;
 }
 
-/* The pulse is whole, and within what an accelerometer reads. */
-static int check_pulse(const sim_opts_t *so)
+/* The pulse is whole, and within what an accelerometer reads; omega from
+ * --pulse-duration (pulse.h: a half-sine lasts pi/omega, a full-sine
+ * 2 pi/omega). */
+static int check_pulse(sim_opts_t *so)
 {
+    if (so->pulse.omega > 0.0 && so->pulse_duration > 0.0) {
+        sw_cli_error("simulate: --omega and --pulse-duration say the same thing: give one");
+        return SW_EXIT_USAGE;
+    }
+    if (so->have_shape && so->pulse_duration > 0.0)
+        so->pulse.omega =
+            (so->pulse.shape == SW_PULSE_FULL_SINE ? 2.0 * M_PI : M_PI) / so->pulse_duration;
     if (!so->have_shape || !so->have_amp || !(so->pulse.omega > 0.0)) {
         sw_cli_error("simulate: missing %s; see 'swaywatch simulate --help'",
                      !so->have_shape ? "--pulse half-sine|full-sine"
-                     : !so->have_amp ? "--amplitude A (m/s^2) or --amplitude-g A"
-                                     : "--omega W (rad/s)");
+                     : !so->have_amp ? "--amplitude A (e.g. -10g or -98.1m/s2)"
+                                     : "--omega W (rad/s) or --pulse-duration D (e.g. 11ms)");
+        return SW_EXIT_USAGE;
+    }
+    if (!isfinite(so->pulse.omega)) {
+        sw_cli_error("--pulse-duration: %g s is too short for a pulse", so->pulse_duration);
         return SW_EXIT_USAGE;
     }
     /* The limit sw_engine_push() puts on samples; the pulse reaches the

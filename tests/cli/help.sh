@@ -25,7 +25,8 @@ for opt in --time-col --accel-col --vert-col --delimiter --no-header --accel-uni
     grep -q -- "$opt" "$TMP/out" || fail "replay --help: $opt not listed"
 done
 run "$SW" simulate --help
-for opt in --pulse --amplitude --amplitude-g --omega --duration --sample-interval rad/s; do
+for opt in --pulse --amplitude --amplitude-g --pulse-duration --omega --duration --sample-interval \
+    rad/s 10g 11ms; do
     grep -q -- "$opt" "$TMP/out" || fail "simulate --help: $opt not listed"
 done
 # "swaywatch help CMD" is "swaywatch CMD --help" (as git does), on stdout
