@@ -5,12 +5,14 @@
  * The pulse is handed to the engine as a function of time, so the input is
  * exact (no sampling).  The engine reports state only per pushed sample, so
  * the state series is produced here by advancing in --sample-interval
- * increments and reading the state after each. */
+ * increments and reading the state after each; --wide and --plot take
+ * the same rows as --out. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "figure.h"
 #include "opts.h"
 #include "output.h"
 
@@ -116,23 +118,31 @@ static const sw_cli_command_t simulate_cmd = {
     .exits = SW_CLI_EXIT_OVERTURN,
 };
 
+/* Where the states and events go. */
 typedef struct {
     sw_cli_events_t *events;
+    sw_cli_states_t *states;
+    sw_cli_wide_t *wide;
+    sw_cli_figure_t *fig;
 } sim_ctx_t;
 
 static void on_event(void *user, const sw_event_t *ev)
 {
     sim_ctx_t *c = user;
     sw_cli_events_write(c->events, ev);
+    sw_cli_figure_event(c->fig, ev);
 }
 
 /* One state row per package at the engine's current time. */
-static void write_states(sw_engine_t *e, sw_cli_states_t *w)
+static void write_states(sw_engine_t *e, sim_ctx_t *c)
 {
-    if (!w->f) return;
+    if (!c->states->f && !c->wide->f && !c->fig) return;
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_output_t out;
-        if (sw_engine_get_output(e, i, &out) == SW_OK) sw_cli_states_write(w, &out);
+        if (sw_engine_get_output(e, i, &out) != SW_OK) continue;
+        sw_cli_states_write(c->states, &out);
+        sw_cli_wide_write(c->wide, &out);
+        sw_cli_figure_state(c->fig, &out);
     }
 }
 
@@ -199,7 +209,7 @@ static int check_pulse(sim_opts_t *so)
  * until --duration or until nothing can happen any more; *t_end gets the
  * time reached.  SW_EXIT_OK, or SW_EXIT_USAGE (reported) if the engine
  * stopped. */
-static int run_pulse(sw_engine_t *e, sim_opts_t *so, sw_cli_states_t *states, double *t_end)
+static int run_pulse(sw_engine_t *e, sim_opts_t *so, sim_ctx_t *states, double *t_end)
 {
     const double t_pulse = sw_pulse_duration(&so->pulse);
     double duration = so->duration;
@@ -241,13 +251,15 @@ int cmd_simulate(int argc, char **argv)
     sw_engine_t *e = NULL;
     sw_cli_states_t states = {0};
     sw_cli_events_t events = {0};
-    sim_ctx_t ctx = {&events};
+    sw_cli_wide_t wide = {0};
+    sim_ctx_t ctx = {&events, &states, &wide, NULL};
     sw_cli_group_t groups[] = {
         SW_CLI_GROUP(sim_options, &so),
         SW_CLI_GROUP(sw_cli_scene_options, &o),
         SW_CLI_GROUP(sw_cli_integration_options, &o),
         SW_CLI_GROUP(sw_cli_accuracy_options, &o),
         SW_CLI_GROUP(sw_cli_output_options, &o),
+        SW_CLI_GROUP(sw_cli_picture_options, &o),
         SW_CLI_GROUP(sim_output_notes, NULL),
         SW_CLI_GROUP_IN(sw_cli_common_options, &o, "Output:"),
     };
@@ -263,6 +275,9 @@ int cmd_simulate(int argc, char **argv)
 
     rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL, o.json, o.quiet);
     if (rc != SW_EXIT_OK) goto out;
+    const char *const names[] = {"--out", "--events", "--wide", "--plot"};
+    const char *const paths[] = {o.out_path, o.events_path, o.wide_path, o.plot_path};
+    if ((rc = sw_cli_check_files(names, paths, 4, NULL, o.json, o.quiet)) != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;
 
@@ -280,11 +295,19 @@ int cmd_simulate(int argc, char **argv)
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_events_open(&events, o.events_path, scenes, n);
     if (rc != SW_EXIT_OK) goto out;
+    rc = sw_cli_wide_open(&wide, o.wide_path, o.every, e, scenes, n);
+    if (rc != SW_EXIT_OK) goto out;
+    if (o.plot_path && !(ctx.fig = sw_cli_figure_create(e, scenes, n))) {
+        rc = SW_EXIT_IO;
+        goto out;
+    }
     double t = 0.0;
-    if ((rc = run_pulse(e, &so, &states, &t)) != SW_EXIT_OK) goto out;
+    if ((rc = run_pulse(e, &so, &ctx, &t)) != SW_EXIT_OK) goto out;
 
     rc = sw_cli_states_close(&states);
     int rc2 = sw_cli_events_close(&events);
+    if (rc == SW_EXIT_OK) rc = rc2;
+    rc2 = sw_cli_wide_close(&wide);
     if (rc == SW_EXIT_OK) rc = rc2;
 
     sw_cli_run_t run = {.pulse = pulse, .duration = t};
@@ -292,10 +315,19 @@ int cmd_simulate(int argc, char **argv)
         sw_cli_print_json(stdout, e, &run);
     else if (!o.quiet)
         sw_cli_print_summary(stdout, e, &run);
+    if (rc == SW_EXIT_OK && ctx.fig) {
+        char title[256];
+        snprintf(title, sizeof title, "swaywatch simulate: %s pulse, %.4g g, %.4g ms",
+                 sw_pulse_shape_name(pulse->shape), pulse->amplitude / STANDARD_GRAVITY,
+                 sw_pulse_duration(pulse) * 1e3);
+        rc = sw_cli_figure_draw(ctx.fig, o.plot_path, title);
+    }
     if (rc == SW_EXIT_OK && so.fail_on_overturn && sw_cli_any_overturned(e)) rc = SW_EXIT_OVERTURNED;
 out:
     sw_cli_states_close(&states);
     sw_cli_events_close(&events);
+    sw_cli_wide_close(&wide);
+    sw_cli_figure_destroy(ctx.fig);
     sw_engine_destroy(e);
     free(scenes);
     sw_cli_parse_free(groups, ng);

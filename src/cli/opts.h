@@ -171,6 +171,8 @@ typedef struct {
     const char *out_path; /* --out: state time series CSV */
     long every;           /* --every: write every Nth state row of each package */
     const char *events_path; /* --events: event list CSV */
+    const char *wide_path;   /* --wide: the state series, a column group per package */
+    const char *plot_path;   /* --plot: the state figure (.png or .svg) */
     int json, quiet, verbose;
 } sw_cli_opts_t;
 
@@ -181,6 +183,8 @@ extern const sw_cli_option_t sw_cli_integration_options[]; /* Integration: --sch
 extern const sw_cli_option_t sw_cli_accuracy_options[];    /* Integration: --accuracy */
 extern const sw_cli_option_t sw_cli_output_options[];      /* Output: --out, --every, --events,
                                                               --json, --quiet */
+extern const sw_cli_option_t sw_cli_picture_options[];     /* Output: --wide, --plot (replay,
+                                                              simulate) */
 /* --verbose and --help, with no section of their own. */
 extern const sw_cli_option_t sw_cli_common_options[];
 
