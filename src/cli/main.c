@@ -6,6 +6,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "cli.h"
+#include "journal.h"
 #include "swaywatch/swaywatch.h"
 
 /* The lines after the version, as GNU tools print them (help2man turns
@@ -26,6 +27,9 @@ static const struct {
 #ifdef SW_HAVE_LCM
     {"monitor", cmd_monitor, "live: subscribe to acceleration over LCM, publish state and alarms"},
 #endif
+#ifdef SW_HAVE_WATCH
+    {"watch", cmd_watch, "live view of the monitor's states and alarms in the terminal"},
+#endif
     {"boundary", cmd_boundary, "overturning boundary curves: lowest overturning pulse vs omega/p"},
     {"forensics", cmd_forensics, "a log's outcome, safety factor, and what support would have saved it"},
 };
@@ -34,6 +38,8 @@ void sw_cli_error(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
+    /* Under systemd an error is logged at priority err (journal.h). */
+    fputs(sw_cli_journal_prefix(SW_PRIO_ERR), stderr);
     fputs("swaywatch: ", stderr);
     vfprintf(stderr, fmt, ap);
     fputc('\n', stderr);
