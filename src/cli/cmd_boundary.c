@@ -769,17 +769,29 @@ static int plot(const char *path, const boundary_t *B)
         lo = fmin(lo, key_at(B, i));
         hi = fmax(hi, key_at(B, i));
     }
-    int same_max = 1, islands = 0;
+    /* What there is to draw; the maximum searched is in the picture when a
+     * point reached it without an overturn, or an island is open to it. */
+    int same_max = 1, islands = 0, back = 0, fwd = 0, none = 0, open = 0;
+    double top_max = 0.0;
     for (size_t c = 0; c < nc; c++) {
-        const double m = B->cv[c].x_max * unit_scale(B, c);
+        const double k = unit_scale(B, c), m = B->cv[c].x_max * k;
         same_max = same_max && fabs(m - B->cv[0].x_max * unit_scale(B, 0)) <= 1e-9 * m;
-        top = fmax(top, m);
+        top_max = fmax(top_max, m);
         for (size_t i = 0; i < nr; i++) {
             const sw_threshold_t *T = &B->pts[c * nr + i].th;
-            if (T->found) top = fmax(top, T->x * unit_scale(B, c));
+            if (T->found) top = fmax(top, T->x * k);
+            back += T->found && T->at_x.overturn_side < 0;
+            fwd += T->found && T->at_x.overturn_side > 0;
+            none += !T->found;
             islands += T->n_islands;
+            for (int j = 0; j < T->n_islands; j++) {
+                top = fmax(top, T->islands[j].hi * k);
+                open += T->islands[j].open;
+            }
         }
     }
+    const int show_max = none || open || top_max <= 1.3 * top;
+    if (show_max || !(top > 0.0)) top = fmax(top, top_max);
     const double pad = hi > lo ? 0.015 * (hi - lo) : 0.05 * fmax(fabs(lo), 1e-6);
     sw_plot_t *p = sw_cli_plot_open(path, 1200, 650);
     if (!p) return SW_EXIT_IO;
@@ -829,22 +841,30 @@ static int plot(const char *path, const boundary_t *B)
                 ", $f%zu using 1:2 with points pt 11 ps 1.3 lc rgb '%s' notitle"
                 ", $n%zu using 1:2 with points pt 8 ps 1.4 lc rgb '%s' notitle",
                 c, col, c, col, c, col);
-        if (!same_max)
+        if (show_max && !same_max)
             fprintf(g, ", %.9g with lines lc rgb '%s' dt 2 notitle",
                     B->cv[c].x_max * unit_scale(B, c), col);
         fputs(", \\\n     ", g);
     }
-    if (same_max)
-        fprintf(g, "%.9g with lines lc rgb '#888888' dt 2 title 'the maximum searched', ",
+    if (show_max && same_max)
+        fprintf(g, "%.9g with lines lc rgb '#888888' dt 2 title 'the maximum searched'",
                 B->cv[0].x_max * unit_scale(B, 0));
+    else if (show_max)
+        fputs("NaN with lines lc rgb '#888888' dt 2 title 'the maximum searched (each curve)'", g);
     else
-        fputs("NaN with lines lc rgb '#888888' dt 2 title 'the maximum searched (each curve)', ",
+        fputs("NaN notitle", g);
+    if (back)
+        fputs(", NaN with points pt 7 ps 0.9 lc rgb 'black' title 'overturns back (top to the "
+              "rear)'",
               g);
-    fputs("NaN with points pt 7 ps 0.9 lc rgb 'black' title 'overturns back (top to the rear)', "
-          "NaN with points pt 11 ps 1.3 lc rgb 'black' title 'overturns forward (top to the "
-          "front)', "
-          "NaN with points pt 8 ps 1.4 lc rgb 'black' title 'no overturn up to the maximum'",
-          g);
+    if (fwd)
+        fputs(", NaN with points pt 11 ps 1.3 lc rgb 'black' title 'overturns forward (top to "
+              "the front)'",
+              g);
+    if (none)
+        fputs(", NaN with points pt 8 ps 1.4 lc rgb 'black' title 'no overturn up to the "
+              "maximum'",
+              g);
     if (islands)
         fputs(", NaN with boxes fs transparent solid 0.25 noborder lc rgb '#555555' "
               "title 'safe islands above the boundary'",

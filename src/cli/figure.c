@@ -250,16 +250,28 @@ static void event_lines(FILE *g, const sw_cli_figure_t *f)
     }
 }
 
-/* Legend entries of the events, drawn once in black (the points carry the
- * package's colour). */
-static void event_legend(FILE *g)
+/* Legend entries of the kinds of events there are, drawn once in black
+ * (the points carry the package's colour). */
+static void event_legend(FILE *g, const sw_cli_figure_t *f)
 {
-    fputs(", NaN with points pt 9 ps 1.2 lc rgb 'black' title 'uplift', "
-          "NaN with points pt 13 ps 1.2 lc rgb 'black' title 'tip (|θ| = α)', "
-          "NaN with points pt 7 ps 1.6 lc rgb '#d62828' title 'overturn', "
-          "NaN with points pt 6 ps 0.5 lc rgb 'black' title 'impact / rest', "
-          "NaN with points pt 4 ps 1.2 lc rgb 'black' title 'model fault'",
-          g);
+    static const struct {
+        sw_event_kind kind;
+        const char *entry;
+    } legend[] = {
+        {SW_EV_UPLIFT, "NaN with points pt 9 ps 1.2 lc rgb 'black' title 'uplift'"},
+        {SW_EV_TIP, "NaN with points pt 13 ps 1.2 lc rgb 'black' title 'tip (|θ| = α)'"},
+        {SW_EV_OVERTURN, "NaN with points pt 7 ps 1.6 lc rgb '#d62828' title 'overturn'"},
+        {SW_EV_IMPACT, "NaN with points pt 6 ps 0.5 lc rgb 'black' title 'impact / rest'"},
+        {SW_EV_FAULT, "NaN with points pt 4 ps 1.2 lc rgb 'black' title 'model fault'"},
+    };
+    for (size_t j = 0; j < sizeof legend / sizeof legend[0]; j++)
+        for (size_t i = 0; i < f->nev; i++) {
+            const sw_event_kind k = f->ev[i].kind == SW_EV_REST ? SW_EV_IMPACT : f->ev[i].kind;
+            if (k == legend[j].kind) {
+                fprintf(g, ", %s", legend[j].entry);
+                break;
+            }
+        }
 }
 
 /* The thresholds line(s) of the acceleration panel: one pair if every
@@ -315,8 +327,8 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
     fputs("set multiplot layout 3,1 title ", g);
     sw_cli_plot_text(g, title);
     fprintf(g, " font ',13'\n"
-               "set grid\nset key at screen 0.655, graph 1 left top Left reverse box opaque\n"
-               "set lmargin at screen 0.08\nset rmargin at screen 0.64\n"
+               "set grid\nset key at screen 0.635, graph 1 left top Left reverse box opaque\n"
+               "set lmargin at screen 0.08\nset rmargin at screen 0.62\n"
                "set xrange [%.9g:%.9g]\nset xlabel ''\nset format x ''\n",
             t0, t1);
 
@@ -344,7 +356,7 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
                 k, SW_EV_IMPACT, c, k, SW_EV_UPLIFT, c, k, SW_EV_TIP, c, k, SW_EV_OVERTURN, k,
                 SW_EV_FAULT, c);
     }
-    event_legend(g);
+    event_legend(g, f);
     fputc('\n', g);
 
     /* 3. the margin to overturn; far below 0 it is cut off: the package

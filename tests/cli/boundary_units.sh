@@ -181,18 +181,31 @@ svg_has() {
 }
 # 6. The figure: the whole range asked for (omega_e/p up to 12, though
 # nothing overturns above 7 below the maximum), the points with no
-# overturn marked, the sides, the islands, and the duration along the top.
+# overturn marked, the islands, and the duration along the top.  A
+# full-sine pulse overturns this block forward (the detail says so), a
+# half-sine one back: the legend names the sides there are.
 run "$SW" boundary --scene "$BLOCK" --pulse full-sine --omega-ratio 1:12:1 --max-amplitude 5 \
-    --islands "$TMP/i.csv" --units g --plot "$TMP/b.svg" -q
+    --islands "$TMP/i.csv" --detail "$TMP/fd.csv" --units g --plot "$TMP/b.svg" -q
 expect_rc 0 "--plot, physical"
-grep -q ',,' "$TMP/out" || grep -q ',$' "$TMP/out" || fail "no point without an overturn: $(cat "$TMP/out")"
+grep -q ',$' "$TMP/out" || fail "no point without an overturn: $(cat "$TMP/out")"
 [ "$(wc -l <"$TMP/i.csv")" -gt 1 ] || fail "no safe islands"
+python3 - "$TMP/fd.csv" <<'PY' || fail "full-sine: not all forward"
+import csv, sys
+sides = {r["overturn_side"] for r in csv.DictReader(open(sys.argv[1])) if r["found"] == "1"}
+assert sides == {"1"}, sides
+PY
 svg_has "$TMP/b.svg" '> 12<' 'peak acceleration a' 'ω' 'pulse duration (ms)' \
-    'no overturn up to the maximum' 'overturns back (top to the rear)' \
-    'overturns forward (top to the front)' 'safe islands above the boundary' \
-    'the maximum searched' 'under braking, forward and back swap'
-run "$SW" boundary --scene "$BLOCK" --pulse half-sine --pulse-duration 100ms:1s:100ms --plot "$TMP/d.png" -q
+    'no overturn up to the maximum' 'overturns forward (top to the front)' \
+    'safe islands above the boundary' 'the maximum searched' 'under braking, forward and back swap'
+if grep -q 'overturns back' "$TMP/b.svg"; then fail "full-sine: the legend names a side no point has"; fi
+run "$SW" boundary --scene "$BLOCK" --pulse half-sine --pulse-duration 100ms:1s:100ms --plot "$TMP/d.svg" -q
 expect_rc 0 "--plot, durations"
+svg_has "$TMP/d.svg" 'pulse duration (ms)' 'ω' 'overturns back (top to the rear)' 'peak acceleration a'
+for absent in 'overturns forward' 'no overturn up to' 'the maximum searched' 'safe islands'; do
+    if grep -q "$absent" "$TMP/d.svg"; then fail "half-sine: the legend has '$absent'"; fi
+done
+run "$SW" boundary --scene "$BLOCK" --pulse half-sine --pulse-duration 100ms:1s:100ms --plot "$TMP/d.png" -q
+expect_rc 0 "--plot png"
 python3 - "$TMP/d.png" <<'PY' || fail "--plot: not a PNG"
 import sys
 b = open(sys.argv[1], "rb").read(24)
