@@ -272,7 +272,7 @@ static const sw_cli_option_t boundary_options[] = {
      .what = "a positive time with its unit, e.g. 11ms or 0.011s",
      .help = "the pulse's duration instead of omega_e/p, each value with its unit (ms, s or us): "
              "FROM:TO:STEP, e.g. 5ms:50ms:5ms, or a list D1,D2,...; a half-sine lasts pi/omega_e, "
-             "a full-sine 2 pi/omega_e.  Implies --units g unless --units says otherwise"},
+             "a full-sine 2 pi/omega_e; implies --units g unless --units says otherwise"},
     {SW_CLI_CALL, 0, "vary", "SEC.KEY=V1,V2", .fn = add_vary,
      .help = "one curve per value of a scene key, e.g. --vary frame.zeta=0.05,0.1,0.2; "
              "repeatable (all combinations); a frame or cushion key leaves scenes without that "
@@ -336,7 +336,7 @@ static const sw_cli_option_t boundary_options[] = {
 static const sw_cli_command_t boundary_cmd = {
     .name = "boundary",
     .usage = "boundary --scene S.ini --pulse half-sine|full-sine\n"
-             "                          --omega-ratio FROM:TO:STEP [options]",
+             "                          --omega-ratio R|--pulse-duration D [options]",
     .about =
         "Overturning boundary curves: for each omega_e/p, the lowest amplitude\n"
         "a_e/(g tan alpha) of a pulse a(t) = a_e sin(omega_e t) (half-sine: one half wave;\n"
@@ -347,7 +347,9 @@ static const sw_cli_command_t boundary_cmd = {
         "are scanned upward in --step relative steps from the lowest one that can lift the\n"
         "package, then bisected to --tol: overturning is not monotonic for full-sine\n"
         "pulses (a bigger pulse can be survived), so the lowest overturning amplitude is\n"
-        "reported, and with --islands the safe islands above it.\n",
+        "reported, and with --islands the safe islands above it.\n"
+        "In a shock engineer's terms, --pulse-duration 5ms:50ms:1ms and --units g give\n"
+        "the boundary as the pulse's peak in g against its duration in ms.\n",
 };
 
 /* ---- curves -------------------------------------------------------------------- */
