@@ -20,6 +20,9 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "clobber.h"
+#include "cost.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 #include "plot.h"
@@ -105,6 +108,17 @@ static int parse_shape(const sw_cli_option_t *o, const char *arg, void *dest)
     return SW_EXIT_USAGE;
 }
 
+/* Each of n values within the row's bounds. */
+static int check_values(const sw_cli_option_t *o, const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        char arg[32];
+        snprintf(arg, sizeof arg, "%g", v[i]);
+        if (sw_cli_opt_range(o, arg, v[i]) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
 static int parse_ratios(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     boundary_opts_t *b = dest;
@@ -114,7 +128,8 @@ static int parse_ratios(const sw_cli_option_t *o, const char *arg, void *dest)
     b->nr = 0;
     char opt[64];
     snprintf(opt, sizeof opt, "--%s", o->long_name);
-    return sw_cli_parse_range(opt, arg, MAX_POINTS, &b->ratios, &b->nr);
+    int rc = sw_cli_parse_range(opt, arg, MAX_POINTS, &b->ratios, &b->nr);
+    return rc == SW_EXIT_OK ? check_values(o, b->ratios, b->nr) : rc;
 }
 
 /* One duration of --pulse-duration, with its unit, in s. */
@@ -215,14 +230,19 @@ static int parse_units(const sw_cli_option_t *o, const char *arg, void *dest)
 }
 
 /* --min-amplitude, --max-amplitude: a bare number in g tan alpha (as
- * before), or an acceleration with its unit (5g, 49m/s2). */
+ * before), or an acceleration with its unit (5g, 49m/s2).  The row's
+ * bounds are in g tan alpha: a value with a unit is checked for each
+ * package, once its g tan alpha is known (curve_units). */
 static int parse_amplitude(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     boundary_opts_t *b = dest;
     const int is_max = !strcmp(o->long_name, "max-amplitude");
     double v;
     int unit;
-    const int rc = sw_cli_opt_quantity(o, arg, 0, 1, &v, &unit);
+    sw_cli_option_t unbounded = *o;
+    unbounded.lo = unbounded.hi = 0.0;
+    int rc = sw_cli_opt_quantity(&unbounded, arg, 0, 1, &v, &unit);
+    if (rc == SW_EXIT_OK && unit == SW_CSV_UNIT_NONE) rc = sw_cli_opt_range(o, arg, v);
     if (rc != SW_EXIT_OK) return rc;
     double *x = is_max ? &b->bo.search.x_max : &b->bo.search.x_min;
     double *si = is_max ? &b->max_si : &b->min_si;
@@ -241,7 +261,8 @@ static int parse_bearing(const sw_cli_option_t *o, const char *arg, void *dest)
     b->bear_arg = arg;
     char opt[64];
     snprintf(opt, sizeof opt, "--%s", o->long_name);
-    return sw_cli_parse_list(opt, arg, 1, &b->bearing, &b->nbear);
+    int rc = sw_cli_parse_list(opt, arg, 1, &b->bearing, &b->nbear);
+    return rc == SW_EXIT_OK ? check_values(o, b->bearing, b->nbear) : rc;
 }
 
 static int add_vary(const sw_cli_option_t *o, const char *arg, void *dest)
@@ -265,39 +286,45 @@ static const sw_cli_option_t boundary_options[] = {
              "every --bearing-ratio value for scenes with a frame."},
     {SW_CLI_CALL, 0, "pulse", "SHAPE", .fn = parse_shape,
      .help = "half-sine or full-sine (required)"},
-    {SW_CLI_CALL, 0, "omega-ratio", "R", .fn = parse_ratios,
+    {SW_CLI_CALL, 0, "omega-ratio", "R", .fn = parse_ratios, .lo = 1e-3, .hi = 1e4,
      .help = "omega_e/p values: FROM:TO:STEP (inclusive) or a list R1,R2,... (required, or "
-             "--pulse-duration)"},
+             "--pulse-duration); below 1e-3 a pulse lasts thousands of rocking periods, above "
+             "1e4 it is far shorter than a step"},
     {SW_CLI_CALL, 0, "pulse-duration", "D", .fn = parse_durations, .rule = SW_NUM_POSITIVE,
      .what = "a positive time with its unit, e.g. 11ms or 0.011s",
      .help = "the pulse's duration instead of omega_e/p, each value with its unit (ms, s or us): "
              "FROM:TO:STEP, e.g. 5ms:50ms:5ms, or a list D1,D2,...; a half-sine lasts pi/omega_e, "
-             "a full-sine 2 pi/omega_e; implies --units g unless --units says otherwise"},
+             "a full-sine 2 pi/omega_e (omega_e/p within --omega-ratio's range); implies --units "
+             "g unless --units says otherwise"},
     {SW_CLI_CALL, 0, "vary", "SEC.KEY=V1,V2", .fn = add_vary,
      .help = "one curve per value of a scene key, e.g. --vary frame.zeta=0.05,0.1,0.2; "
              "repeatable (all combinations); a frame or cushion key leaves scenes without that "
              "section as they are"},
-    {SW_CLI_CALL, 0, "bearing-ratio", "B1,B2", .fn = parse_bearing,
+    {SW_CLI_CALL, 0, "bearing-ratio", "B1,B2", .fn = parse_bearing, .lo = 1e-3, .hi = 1e3,
      .help = "omega_b = B * omega_e at every point (the paper's omega_b/omega_e); values may be "
              "fractions such as 1/3; scenes without a [frame] are drawn once, as they are"},
     {SW_CLI_SECTION, .help = "Search:"},
-    {SW_CLI_DOUBLE, 0, "step", "X", BO(bo.search.step), .rule = SW_NUM_POSITIVE,
-     .what = "a positive relative step", .help = "relative scan step (default 0.02)"},
-    {SW_CLI_DOUBLE, 0, "tol", "X", BO(bo.search.tol), .rule = SW_NUM_POSITIVE,
-     .what = "a positive relative tolerance",
-     .help = "relative width of the final bracket (default 0.001)"},
+    {SW_CLI_DOUBLE, 0, "step", "X", BO(bo.search.step), .rule = SW_NUM_POSITIVE, .lo = 1e-4,
+     .hi = 1, .what = "a positive relative step",
+     .help = "relative scan step (default 0.02); smaller steps take tens of thousands of runs "
+             "per point"},
+    {SW_CLI_DOUBLE, 0, "tol", "X", BO(bo.search.tol), .rule = SW_NUM_POSITIVE, .lo = 1e-9,
+     .hi = 0.5, .what = "a positive relative tolerance",
+     .help = "relative width of the final bracket (default 0.001); finer than 1e-9 is below "
+             "what the model resolves"},
     {SW_CLI_CALL, 0, "min-amplitude", "X", .fn = parse_amplitude, .rule = SW_NUM_POSITIVE,
-     .what = "a positive amplitude in g tan alpha, or with its unit (e.g. 2g)",
+     .lo = 1e-3, .hi = 1e4, .what = "a positive amplitude in g tan alpha, or with its unit (e.g. 2g)",
      .help = "start of the scan, in g tan alpha, or with a unit: g or m/s2, e.g. 0.5g (default: "
              "the lowest amplitude that can lift the package at all)"},
     {SW_CLI_CALL, 0, "max-amplitude", "X", .fn = parse_amplitude, .rule = SW_NUM_POSITIVE,
-     .what = "a positive amplitude in g tan alpha, or with its unit (e.g. 10g)",
+     .lo = 1e-3, .hi = 1e4, .what = "a positive amplitude in g tan alpha, or with its unit (e.g. 10g)",
      .help = "end of the scan, in g tan alpha, or with a unit, e.g. 10g (default 20 g tan "
              "alpha); a curve with no overturn up to it has an empty field at that point, "
-             "marked in the figure"},
+             "marked in the figure; 1e4 g tan alpha is beyond any accelerometer"},
     {SW_CLI_DOUBLE, 0, "free-periods", "N", BO(bo.run.free_periods), .rule = SW_NUM_POSITIVE,
-     .what = "a positive number of rocking periods",
-     .help = "free motion after the pulse, in rocking periods 2 pi/p (default 20)"},
+     .lo = 1e-2, .hi = 1e4, .what = "a positive number of rocking periods",
+     .help = "free motion after the pulse, in rocking periods 2 pi/p (default 20); more than "
+             "1e4 would make every trial hours of motion"},
     {SW_CLI_LONG, 0, "threads", "N", BO(threads), .min = 1, .max = 256, .def = 2,
      .what = "a whole number of threads >= 1",
      .help = "worker threads (default %g); results do not depend on it"},
@@ -941,6 +968,19 @@ static int check_options(boundary_t *B, int argc, char **argv, int first)
     return SW_EXIT_OK;
 }
 
+/* Non-zero (reported) if v, what arg (given in physical units) is for
+ * curve C, is outside the bounds of the option named opt. */
+static int in_range(const char *opt, const char *arg, const curve_t *C, double v)
+{
+    const sw_cli_option_t *o = boundary_options;
+    while (o->kind != SW_CLI_END && !(o->long_name && !strcmp(o->long_name, opt))) o++;
+    if (o->kind == SW_CLI_END || !(o->hi > o->lo) || (v >= o->lo && v <= o->hi)) return 0;
+    sw_cli_error("curve '%s': %s is %g %s, out of range: expected %g to %g", C->label,
+                 arg ? arg : "", v, strcmp(opt, "omega-ratio") ? "g tan alpha" : "omega_e/p",
+                 o->lo, o->hi);
+    return 1;
+}
+
 /* Each curve's p, g tan alpha and scan range (amplitudes given in g or
  * m/s^2 are a different g tan alpha for each package). */
 static int curve_units(boundary_t *B)
@@ -959,6 +999,16 @@ static int curve_units(boundary_t *B)
         C->gtan = s.g * tan(d.alpha);
         C->x_min = B->b.min_si > 0.0 ? B->b.min_si / C->gtan : bo->search.x_min;
         C->x_max = B->b.max_si > 0.0 ? B->b.max_si / C->gtan : bo->search.x_max;
+        /* what the options' bounds say in g tan alpha and omega_e/p, for
+         * the values given in g, m/s^2 or ms */
+        if ((B->b.min_si > 0.0 && in_range("min-amplitude", B->b.min_arg, C, C->x_min)) ||
+            (B->b.max_si > 0.0 && in_range("max-amplitude", B->b.max_arg, C, C->x_max)))
+            return SW_EXIT_USAGE;
+        for (size_t i = 0; B->b.durations && i < B->b.nr; i++) {
+            char dur[64];
+            snprintf(dur, sizeof dur, "%gms", B->b.durations[i] * 1e3);
+            if (in_range("omega-ratio", dur, C, ratio_at(B, c, i))) return SW_EXIT_USAGE;
+        }
         if (C->x_min > 0.0 && C->x_min >= C->x_max) {
             sw_cli_error("curve '%s': --min-amplitude %s (%g g tan alpha) is not below "
                          "--max-amplitude %s (%g g tan alpha)",
@@ -1020,6 +1070,9 @@ static int sweep(boundary_t *B)
         goto out;
     }
     progress_t P = {0, nc * nr};
+    /* The sweep cannot stop between points and writes nothing: a signal
+     * ends the process at once. */
+    sw_cli_interrupt_now("boundary: interrupted during the sweep; nothing written");
     for (size_t c0 = 0; c0 < nc; c0++) {
         if (done[c0]) continue;
         size_t k = 0;
@@ -1054,6 +1107,7 @@ static int sweep(boundary_t *B)
     }
     rc = SW_EXIT_OK;
 out:
+    sw_cli_interrupt_now(NULL);
     free(curves);
     free(member);
     free(done);
@@ -1146,15 +1200,25 @@ int cmd_boundary(int argc, char **argv)
     int first;
     if ((rc = sw_cli_parse(&boundary_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
         goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    const sw_cli_file_t outputs[] = {
+        {"--out", B.b.out}, {"--detail", B.b.detail}, {"--islands", B.b.islands}, {"--plot", B.b.plot}};
     if ((rc = check_options(&B, argc, argv, first)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_run_files(NULL, &B.o.scenes, outputs, 4)) != SW_EXIT_OK ||
         (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) != SW_EXIT_OK ||
         (rc = build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
                            B.bear_text, &B.cv, &B.nc)) != SW_EXIT_OK ||
         (rc = curve_units(&B)) != SW_EXIT_OK)
         goto out;
     if (B.o.verbose) print_curves(&B);
+    sw_cli_warn_scene_cost(B.scenes, B.nsc, &B.b.bo.run.engine);
     if ((rc = sweep(&B)) != SW_EXIT_OK) goto out;
     rc = write_outputs(&B);
+    if (sw_cli_signal && rc != SW_EXIT_IO) { /* while writing: the files are whole */
+        sw_cli_error("boundary: interrupted by %s after the files were written",
+                     sw_cli_signal_name(sw_cli_signal));
+        rc = sw_cli_interrupt_code();
+    }
 out:
     free(B.pts);
     free(B.cv);

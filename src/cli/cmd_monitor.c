@@ -28,8 +28,11 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "clobber.h"
+#include "cost.h"
 #include "input.h"
 #include "journal.h"
+#include "lcmlog.h"
 #include "lcmopts.h"
 #include "monitor.h"
 #include "notify.h"
@@ -71,7 +74,8 @@ static const sw_cli_option_t monitor_lcm_options[] = {
     {SW_CLI_SECTION, .help = "LCM:"},
     {SW_CLI_STRING, 'l', "lcm-url", "URL", MO(url),
      .help = "LCM URL (default: $LCM_DEFAULT_URL, else LCM's default, "
-             "udpm://239.255.76.67:7667?ttl=0)"},
+             "udpm://239.255.76.67:7667?ttl=0); a file://LOG is checked first and refused if "
+             "damaged (LCM's reader trusts its length fields)"},
     {SW_CLI_STRING, 0, "accel-channel", "REGEX", MO(accel_channel), .fn = check_accel_channel,
      .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
              SW_MON_ACCEL_CHANNEL ")"},
@@ -85,6 +89,7 @@ static const sw_cli_option_t monitor_input_options[] = {
     {SW_CLI_CALL, 0, "accel-unit", "m/s2|g", MO(mo.accel_scale), .fn = sw_cli_accel_unit,
      .help = "unit of the message's values (default m/s2)"},
     {SW_CLI_DOUBLE, 0, "status", "SECONDS", MO(status_every), .rule = SW_NUM_NONNEGATIVE,
+     .lo = 0.1, .hi = 86400,
      .what = "a number of seconds >= 0 (0: no status)",
      .help = "one status line on stderr every SECONDS: sample rate, lag behind the sensor clock, "
              "CPU share, counts (default 0: none; under systemd it is also the service's "
@@ -288,6 +293,7 @@ static int reload_scenes(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scen
     }
     fprintf(stderr, "swaywatch: monitor: reload: %zu of %zu packages rebuilt, the others kept\n",
             nchanged, n);
+    sw_cli_warn_scene_cost(changed, nchanged, &eo);
     goto done;
 
 keep:
@@ -520,6 +526,7 @@ static int start(mon_ctx_t *c, const sw_mon_opts_t *mo, lcm_t *lcm)
     }
     if (c->opts->verbose)
         sw_cli_print_derived(stderr, sw_mon_engine(c->mon), c->scenes, c->n);
+    sw_cli_warn_scene_cost(c->scenes, c->n, &eo);
     return SW_EXIT_OK;
 }
 
@@ -565,7 +572,14 @@ int cmd_monitor(int argc, char **argv)
     }
     if ((rc = sw_cli_mon_gate(&m.mo, &m.gate)) != SW_EXIT_OK)
         goto out;
-    if ((rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
+    char url_path[4096];
+    const sw_cli_file_t url_out = {"--lcm-url",
+                                   sw_cli_lcm_url_output(m.url, url_path, sizeof url_path)};
+    if ((rc = sw_cli_check_run_files(NULL, &o.scenes, &url_out, 1)) != SW_EXIT_OK ||
+        (rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
+        goto out;
+    /* A file:// URL: LCM's reader trusts the log, ours checks it first. */
+    if ((rc = sw_cli_check_lcm_url("monitor", m.url)) != SW_EXIT_OK)
         goto out;
     rc = SW_EXIT_IO;
     if (install_signals() != 0) {

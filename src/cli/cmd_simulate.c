@@ -12,12 +12,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clobber.h"
 #include "figure.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 
 #define STANDARD_GRAVITY 9.80665 /* m/s^2, for --amplitude-g */
 #define FREE_PERIODS 20          /* rocking periods 2 pi / p after the pulse */
+#define MAX_ROWS 1e8             /* --duration / --sample-interval */
 
 /* simulate's own options. */
 typedef struct {
@@ -72,25 +75,29 @@ static const sw_cli_option_t sim_options[] = {
     {SW_CLI_CALL, 0, "amplitude", "A", .fn = parse_amplitude, .def = 1.0,
      .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration, e.g. -10g or -98.1m/s2",
      .help = "peak acceleration, sign included, with its unit: g or m/s2, e.g. -10g, -98.1m/s2 "
-             "(a bare number is m/s^2; required, or --amplitude-g)"},
+             "(a bare number is m/s^2; required, or --amplitude-g); |A| at most 1e5 m/s^2 "
+             "(about 10,200 g), the most the engine takes from an accelerometer"},
     {SW_CLI_CALL, 0, "amplitude-g", "A", .fn = parse_amplitude, .def = STANDARD_GRAVITY,
      .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration in g",
      .help = "the same as a bare number in g (1 g = %g m/s^2)"},
     {SW_CLI_CALL, 0, "pulse-duration", "D", .fn = parse_pulse_duration,
      .rule = SW_NUM_POSITIVE, .what = "a positive time with its unit, e.g. 11ms or 0.011s",
      .help = "how long the pulse lasts, with its unit: ms, s or us, e.g. 11ms (a half-sine of 11 "
-             "ms has W = pi/0.011 s; a full-sine W = 2 pi/D); instead of --omega"},
-    {SW_CLI_DOUBLE, 0, "omega", "W", SIM(pulse.omega), .rule = SW_NUM_POSITIVE,
-     .what = "a positive angular frequency in rad/s",
-     .help = "rad/s, angular frequency of the sine (required, or --pulse-duration)"},
-    {SW_CLI_DOUBLE, 0, "duration", "T", SIM(duration), .rule = SW_NUM_POSITIVE,
-     .what = "a positive number of seconds",
+             "ms has W = pi/0.011 s; a full-sine W = 2 pi/D); instead of --omega, with W within "
+             "--omega's range"},
+    {SW_CLI_DOUBLE, 0, "omega", "W", SIM(pulse.omega), .rule = SW_NUM_POSITIVE, .lo = 1e-2,
+     .hi = 1e5, .what = "a positive angular frequency in rad/s",
+     .help = "rad/s, angular frequency of the sine (required, or --pulse-duration); below 0.01 "
+             "the pulse lasts over 5 minutes, above 1e5 it is far shorter than a step"},
+    {SW_CLI_DOUBLE, 0, "duration", "T", SIM(duration), .rule = SW_NUM_POSITIVE, .lo = 1e-6,
+     .hi = 1e5, .what = "a positive number of seconds",
      .help = "s simulated from t = 0 (default: the pulse plus " SW_CLI_STR(FREE_PERIODS) " free "
              "rocking periods 2 pi/p of the slowest package); the run stops early once the pulse "
-             "is over and every package is at rest or has overturned"},
+             "is over and every package is at rest or has overturned; at most a day"},
     {SW_CLI_DOUBLE, 0, "sample-interval", "S", SIM(interval), .rule = SW_NUM_POSITIVE,
-     .def = 0.001, .what = "a positive number of seconds",
-     .help = "s between rows of --out (default %g)"},
+     .def = 0.001, .lo = 1e-6, .hi = 10, .what = "a positive number of seconds",
+     .help = "s between rows of --out (default %g); at most " SW_CLI_STR(MAX_ROWS) " rows in "
+             "all"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", SIM(fail_on_overturn), .value = 1,
      .help = "exit 1 if any package overturned"},
     {SW_CLI_END},
@@ -190,8 +197,16 @@ static int check_pulse(sim_opts_t *so)
                                      : "--omega W (rad/s) or --pulse-duration D (e.g. 11ms)");
         return SW_EXIT_USAGE;
     }
-    if (!isfinite(so->pulse.omega)) {
-        sw_cli_error("--pulse-duration: %g s is too short for a pulse", so->pulse_duration);
+    /* A duration is an omega: the same bounds as --omega's. */
+    const sw_cli_option_t *w = sim_options;
+    while (w->kind != SW_CLI_END && !(w->long_name && !strcmp(w->long_name, "omega"))) w++;
+    if (so->pulse_duration > 0.0 && w->kind != SW_CLI_END &&
+        !(so->pulse.omega >= w->lo && so->pulse.omega <= w->hi)) {
+        const double k = so->pulse.shape == SW_PULSE_FULL_SINE ? 2.0 * M_PI : M_PI;
+        sw_cli_error("--pulse-duration: out of range: a %s of omega %g to %g rad/s lasts %g to "
+                     "%g s, got %g s",
+                     sw_pulse_shape_name(so->pulse.shape), w->lo, w->hi, k / w->hi, k / w->lo,
+                     so->pulse_duration);
         return SW_EXIT_USAGE;
     }
     /* The limit sw_engine_push() puts on samples; the pulse reaches the
@@ -221,11 +236,17 @@ static int run_pulse(sw_engine_t *e, sim_opts_t *so, sim_ctx_t *states, double *
         }
         duration = t_pulse + (isfinite(p_min) ? FREE_PERIODS * 2.0 * M_PI / p_min : 0.0);
     }
+    if (duration / so->interval > MAX_ROWS) {
+        sw_cli_error("simulate: %g s in steps of --sample-interval %g s is more than %g steps; "
+                     "give a larger --sample-interval or a shorter --duration",
+                     duration, so->interval, MAX_ROWS);
+        return SW_EXIT_USAGE;
+    }
     /* Whole steps of the interval from t = 0, computed from the index so
      * rounding does not accumulate over a long run. */
     double t = 0.0;
     write_states(e, states);
-    for (long k = 1; t < duration; k++) {
+    for (long k = 1; t < duration && !sw_cli_signal; k++) {
         double t1 = fmin((double)k * so->interval, duration);
         int ar = sw_engine_advance_fn(e, t1, sw_pulse_eval, &so->pulse);
         if (ar < 0) {
@@ -271,13 +292,21 @@ int cmd_simulate(int argc, char **argv)
         goto out;
     rc = SW_EXIT_USAGE;
     if (sw_cli_no_operand("simulate", argc, argv, first) != SW_EXIT_OK) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    rc = SW_EXIT_USAGE;
     if (check_pulse(&so) != SW_EXIT_OK) goto out;
 
+    const sw_cli_file_t outputs[] = {{"--out", o.out_path},
+                                     {"--events", o.events_path},
+                                     {"--wide", o.wide_path},
+                                     {"--plot", o.plot_path}};
+    rc = sw_cli_check_run_files(NULL, &o.scenes, outputs, 4);
+    if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL, o.json, o.quiet);
     if (rc != SW_EXIT_OK) goto out;
-    const char *const names[] = {"--out", "--events", "--wide", "--plot"};
-    const char *const paths[] = {o.out_path, o.events_path, o.wide_path, o.plot_path};
-    if ((rc = sw_cli_check_files(names, paths, 4, NULL, o.json, o.quiet)) != SW_EXIT_OK) goto out;
+    const char *const names[] = {"--out", "--events", "--wide"};
+    const char *const paths[] = {o.out_path, o.events_path, o.wide_path};
+    if ((rc = sw_cli_check_stdout(names, paths, 3, o.json, o.quiet)) != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;
 
@@ -310,19 +339,25 @@ int cmd_simulate(int argc, char **argv)
     rc2 = sw_cli_wide_close(&wide);
     if (rc == SW_EXIT_OK) rc = rc2;
 
-    sw_cli_run_t run = {.pulse = pulse, .duration = t};
+    sw_cli_run_t run = {.pulse = pulse, .duration = t, .interrupted = sw_cli_signal};
     if (o.json)
         sw_cli_print_json(stdout, e, &run);
     else if (!o.quiet)
         sw_cli_print_summary(stdout, e, &run);
     if (rc == SW_EXIT_OK && ctx.fig) {
         char title[256];
-        snprintf(title, sizeof title, "swaywatch simulate: %s pulse, %.4g g, %.4g ms",
+        snprintf(title, sizeof title, "swaywatch simulate: %s pulse, %.4g g, %.4g ms%s",
                  sw_pulse_shape_name(pulse->shape), pulse->amplitude / STANDARD_GRAVITY,
-                 sw_pulse_duration(pulse) * 1e3);
+                 sw_pulse_duration(pulse) * 1e3, run.interrupted ? " (interrupted)" : "");
         rc = sw_cli_figure_draw(ctx.fig, o.plot_path, title);
     }
-    if (rc == SW_EXIT_OK && so.fail_on_overturn && sw_cli_any_overturned(e)) rc = SW_EXIT_OVERTURNED;
+    if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(e, so.fail_on_overturn);
+    if (run.interrupted) {
+        sw_cli_error("simulate: interrupted by %s at t = %g s; the output files end with the "
+                     "last whole row",
+                     sw_cli_signal_name(run.interrupted), t);
+        if (rc != SW_EXIT_IO) rc = sw_cli_interrupt_code();
+    }
 out:
     sw_cli_states_close(&states);
     sw_cli_events_close(&events);

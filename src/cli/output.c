@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <signal.h>
 #include <string.h>
 #include <time.h>
 #include <sys/stat.h>
@@ -353,39 +354,22 @@ int sw_cli_wide_close(sw_cli_wide_t *w)
     return rc;
 }
 
-int sw_cli_check_files(const char *const names[], const char *const paths[], size_t n, FILE *in,
-                       int json, int quiet)
+int sw_cli_check_stdout(const char *const names[], const char *const paths[], size_t n, int json,
+                        int quiet)
 {
-    struct stat in_st, st;
-    const int have_in = in && in != stdin && fstat(fileno(in), &in_st) == 0;
     const char *on_stdout = NULL;
     for (size_t i = 0; i < n; i++) {
-        if (!paths[i]) continue;
-        if (is_stdout(paths[i])) {
-            if (on_stdout) {
-                sw_cli_error("%s and %s cannot both be standard output", on_stdout, names[i]);
-                return SW_EXIT_USAGE;
-            }
-            if (json || !quiet) {
-                sw_cli_error("%s -: standard output carries the %s", names[i],
-                             json ? "JSON summary (--json)" : "summary; add -q to leave it out");
-                return SW_EXIT_USAGE;
-            }
-            on_stdout = names[i];
-            continue;
-        }
-        if (have_in && is_file(paths[i], &in_st)) {
-            sw_cli_error("%s %s: that is the log being read", names[i], paths[i]);
+        if (!is_stdout(paths[i])) continue;
+        if (on_stdout) {
+            sw_cli_error("%s and %s cannot both be standard output", on_stdout, names[i]);
             return SW_EXIT_USAGE;
         }
-        for (size_t j = 0; j < i; j++) {
-            if (!paths[j] || is_stdout(paths[j])) continue;
-            if (!strcmp(paths[i], paths[j]) ||
-                (stat(paths[j], &st) == 0 && is_file(paths[i], &st))) {
-                sw_cli_error("%s and %s name the same file '%s'", names[j], names[i], paths[i]);
-                return SW_EXIT_USAGE;
-            }
+        if (json || !quiet) {
+            sw_cli_error("%s -: standard output carries the %s", names[i],
+                         json ? "JSON summary (--json)" : "summary; add -q to leave it out");
+            return SW_EXIT_USAGE;
         }
+        on_stdout = names[i];
     }
     return SW_EXIT_OK;
 }
@@ -442,6 +426,28 @@ int sw_cli_any_overturned(const sw_engine_t *e)
         if (sw_engine_summary(e, i, &s) == SW_OK && s.overturned) return 1;
     }
     return 0;
+}
+
+const char *sw_cli_verdict(const sw_summary_t *s)
+{
+    if (s->overturned) return "overturned";
+    return s->faults ? "unreliable" : "upright";
+}
+
+int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn)
+{
+    if (!fail_on_overturn) return SW_EXIT_OK;
+    if (sw_cli_any_overturned(e)) return SW_EXIT_OVERTURNED;
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) == SW_OK && s.faults) {
+            sw_cli_error("%s: the model faulted %ld times: no verdict, and --fail-on-overturn "
+                         "needs one (exit 2)",
+                         s.name, s.faults);
+            return SW_EXIT_USAGE;
+        }
+    }
+    return SW_EXIT_OK;
 }
 
 static double alpha_of(const sw_engine_t *e, size_t i)
@@ -518,8 +524,36 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
         fprintf(f, "  warning         %s\n", run->check);
 }
 
+/* The outcome line's words: a faulted run never reads as a plain verdict. */
+static void print_outcome(FILE *f, const sw_summary_t *s)
+{
+    if (s->overturned) {
+        fputs("OVERTURNED at ", f);
+        print_time(f, s->overturn_time, "an unknown time");
+        if (s->faults) fprintf(f, " (the model faulted %ld times before: see --events)", s->faults);
+    } else if (s->faults) {
+        fprintf(f, "stayed upright (model faulted %ld times: not a verdict; see --events)",
+                s->faults);
+    } else {
+        fputs("stayed upright", f);
+    }
+}
+
+/* The words a summary of an interrupted run starts with. */
+static void print_interrupted(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    if (!run->interrupted) return;
+    const double t = sw_engine_time(e);
+    fprintf(f, "INTERRUPTED by %s", run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (isfinite(t))
+        fprintf(f, " at t = %.4f s: everything below covers the input up to there only\n", t);
+    else
+        fputs(" before the first sample\n", f);
+}
+
 void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
 {
+    print_interrupted(f, e, run);
     if (run->log) {
         fprintf(f, "log %s: %ld samples read, %ld accepted, %ld rejected", strcmp(run->log, "-") ? run->log : "(stdin)",
                 run->samples_read, run->samples_read - run->samples_rejected,
@@ -556,13 +590,7 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
         fprintf(f, "\n  minimum margin  %.4f (1 at rest, 0 at the edge of overturning)\n",
                 s.min_margin);
         fputs("  outcome         ", f);
-        if (s.overturned) {
-            fputs("OVERTURNED at ", f);
-            print_time(f, s.overturn_time, "an unknown time");
-        } else {
-            fputs("stayed upright", f);
-        }
-        if (s.faults) fprintf(f, " (%ld model faults: see --events)", s.faults);
+        print_outcome(f, &s);
         fputc('\n', f);
     }
 }
@@ -669,8 +697,18 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
         fprintf(f, ",\n  \"settle\": ");
         sw_cli_json_num(f, run->settle);
     }
-    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld",
-            run->samples_read, run->samples_rejected);
+    fprintf(f, ",\n  \"interrupted\": ");
+    if (run->interrupted)
+        fprintf(f, "{\"signal\": \"%s\", \"t\": ",
+                run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (run->interrupted) {
+        sw_cli_json_num(f, sw_engine_time(e));
+        fputc('}', f);
+    } else {
+        fputs("null", f);
+    }
+    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld", run->samples_read,
+            run->samples_rejected);
     if (run->have_facts) json_facts(f, run);
     fprintf(f, ",\n  \"packages\": [");
     for (size_t i = 0; i < sw_engine_count(e); i++) {
@@ -680,7 +718,8 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
         sw_cli_json_string(f, s.name);
         fprintf(f, ", \"model\": ");
         sw_cli_json_string(f, sw_model_name(s.model));
-        fprintf(f, ", \"overturned\": %s", s.overturned ? "true" : "false");
+        fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\"", s.overturned ? "true" : "false",
+                sw_cli_verdict(&s));
         fprintf(f, ",\n     \"overturn_time\": ");
         sw_cli_json_num(f, s.overturn_time);
         fprintf(f, ", \"tip_time\": ");

@@ -76,13 +76,12 @@ void sw_cli_wide_write(sw_cli_wide_t *w, const sw_output_t *out);
 /* The last row, flush, close: SW_EXIT_OK or SW_EXIT_IO (reported). */
 int sw_cli_wide_close(sw_cli_wide_t *w);
 
-/* Refuse (SW_EXIT_USAGE, reported) output files of one run that clash:
- * names[i] is the option ("--wide"), paths[i] its file (NULL: not given;
- * "-": standard output).  Two naming the same file, one that is the log
- * being read (in, may be NULL), two on standard output, or one there
- * beside a summary (json, or without quiet the human one). */
-int sw_cli_check_files(const char *const names[], const char *const paths[], size_t n, FILE *in,
-                       int json, int quiet);
+/* Refuse (SW_EXIT_USAGE, reported) outputs of one run on standard output
+ * ("-") that clash: names[i] is the option ("--wide"), paths[i] its file
+ * (NULL: not given).  Two of them there, or one beside a summary (json, or
+ * without quiet the human one).  Clashes between files: clobber.h. */
+int sw_cli_check_stdout(const char *const names[], const char *const paths[], size_t n, int json,
+                        int quiet);
 
 /* --events: t,package,event,theta,theta_dot,margin,info. */
 typedef struct {
@@ -111,6 +110,8 @@ typedef struct {
     sw_gate_facts_t facts;
     int forced;              /* the plausibility check refused; --force gave the verdict */
     char check[320];         /* its reason, or a warning (a low rate); "" none */
+    int interrupted;         /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
+                                the summaries say so, and up to which time they cover */
 } sw_cli_run_t;
 
 /* The one-screen human summary / the JSON summary (DESIGN.md contract). */
@@ -124,5 +125,17 @@ void sw_cli_json_num(FILE *f, double v);
 
 /* Non-zero if any package overturned. */
 int sw_cli_any_overturned(const sw_engine_t *e);
+
+/* A package's verdict: "overturned", "upright", or "unreliable" when it
+ * did not overturn but its model faulted (reset to rest mid-run: "stayed
+ * upright" would not be a verdict).  JSON "verdict"; the human summary
+ * says it in words. */
+const char *sw_cli_verdict(const sw_summary_t *s);
+
+/* The exit code of a run that went well, from its verdicts: SW_EXIT_OK
+ * without fail_on_overturn; with it SW_EXIT_OVERTURNED if a package
+ * overturned, else SW_EXIT_USAGE (reported, naming the package) if one
+ * has no verdict because its model faulted, else SW_EXIT_OK. */
+int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn);
 
 #endif

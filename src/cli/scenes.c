@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "cost.h"
 #include "opts.h"
 #include "plot.h"
 
@@ -66,16 +67,19 @@ const sw_cli_option_t sw_cli_integration_options[] = {
     {SW_CLI_SECTION, .help = "Integration:"},
     {SW_CLI_STRING, 0, "scheme", "NAME", OPTS(scheme), .fn = check_scheme,
      .help_fn = scheme_help},
-    {SW_CLI_DOUBLE, 0, "dt", "SECONDS", OPTS(dt), .rule = SW_NUM_POSITIVE,
+    {SW_CLI_DOUBLE, 0, "dt", "SECONDS", OPTS(dt), .rule = SW_NUM_POSITIVE, .lo = 1e-7, .hi = 1,
      .what = "a positive number of seconds",
      .help = "internal step; refused if above the scheme's stability bound (default: the "
-             "scheme's own, sub-stepped as needed)"},
-    {SW_CLI_DOUBLE, 0, "rtol", "X", OPTS(rtol), .rule = SW_NUM_POSITIVE,
-     .what = "a positive tolerance", .help = "relative tolerance of the adaptive schemes "
-                                             "(default 1e-10)"},
-    {SW_CLI_DOUBLE, 0, "atol", "X", OPTS(atol), .rule = SW_NUM_POSITIVE,
-     .what = "a positive tolerance", .help = "absolute tolerance of the adaptive schemes "
-                                             "(default 1e-12)"},
+             "scheme's own, sub-stepped as needed); at least 1e-7 s, 10,000 steps per 1 ms "
+             "sample, which already runs slower than real time"},
+    {SW_CLI_DOUBLE, 0, "rtol", "X", OPTS(rtol), .rule = SW_NUM_POSITIVE, .lo = 1e-14, .hi = 1e-2,
+     .what = "a positive tolerance",
+     .help = "relative tolerance of the adaptive schemes (default 1e-10); below 1e-14 double "
+             "precision cannot meet it and steps fail"},
+    {SW_CLI_DOUBLE, 0, "atol", "X", OPTS(atol), .rule = SW_NUM_POSITIVE, .lo = 1e-16, .hi = 1e-2,
+     .what = "a positive tolerance",
+     .help = "absolute tolerance of the adaptive schemes (default 1e-12); below 1e-16 rad it is "
+             "under the rounding of angles near 1 rad and steps fail"},
     {SW_CLI_END},
 };
 
@@ -84,7 +88,8 @@ const sw_cli_option_t sw_cli_accuracy_options[] = {
     {SW_CLI_DOUBLE, 0, "accuracy", "RAD", OPTS(accuracy), .rule = SW_NUM_POSITIVE,
      .what = "a positive angle in radians",
      .help = "pick the cheapest scheme and step measured to keep the error of theta within RAD "
-             "(docs/accuracy-speed.md)"},
+             "(docs/accuracy-speed.md); bounded by that table: tighter than about 1e-14 rad is "
+             "refused"},
     {SW_CLI_END},
 };
 
@@ -333,5 +338,6 @@ sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_e
     char msg[512] = "";
     sw_engine_t *e = sw_engine_create(scenes, n, eo, &err, msg, sizeof msg);
     if (!e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+    else sw_cli_warn_scene_cost(scenes, n, eo);
     return e;
 }

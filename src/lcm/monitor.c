@@ -324,6 +324,11 @@ static void on_state(void *user, const sw_output_t *out)
     int finite = sw_output_finite(out);
     int64_t utime = finite ? utime_of(m, out->t) : m->last_us;
     if (m->state_period_us > 0) {
+        /* The sensor's clock went back (a restart, a log played twice):
+         * the grid follows it, or no state would go out until the new
+         * clock caught up with the old grid. */
+        if (utime < m->next_state_us[k] - m->state_period_us)
+            m->next_state_us[k] = utime;
         if (utime < m->next_state_us[k])
             return;
         m->next_state_us[k] += m->state_period_us;
@@ -376,7 +381,10 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         !(m->o.accel_scale > 0.0) || !(m->o.gap >= 0.0) || !(m->o.max_accel > 0.0) ||
         !(m->o.state_rate >= 0.0) || !(m->o.max_skew >= 0.0) || !(m->o.reject_interval >= 0.0) ||
         !(m->o.alarm_interval < 1e9) ||
-        !isfinite(m->o.gap) || !isfinite(m->o.state_rate) || !(m->o.max_jump < 1e9)) {
+        !isfinite(m->o.gap) || !isfinite(m->o.state_rate) || !(m->o.max_jump < 1e9) ||
+        /* in microseconds of int64: a gap beyond 1e9 s or a rate below
+         * 1e-9 Hz would overflow */
+        !(m->o.gap <= 1e9) || (m->o.state_rate > 0.0 && !(m->o.state_rate >= 1e-9))) {
         if (msg)
             snprintf(msg, msglen, "invalid monitor options");
         free(m);
@@ -585,6 +593,8 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
      * a broken sender */
     if (!isfinite(s.ax) || !isfinite(s.ay) || !isfinite(s.az))
         return refuse(m, SW_MON_REJ_NONFINITE, mono, m->have_last ? m->last_us : wall_us, why);
+    if (s.utime < 0 || s.utime >= SW_MON_UTIME_MAX)
+        return refuse(m, SW_MON_REJ_TIME, mono, m->have_last ? m->last_us : wall_us, why);
     const double v[3] = {s.ax * m->o.accel_scale, s.ay * m->o.accel_scale, s.az * m->o.accel_scale};
     const double t = source_time(m, s.utime); /* first: the first sample sets the base */
     const sw_sample_t smp = {

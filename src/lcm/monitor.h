@@ -37,6 +37,13 @@
 #define SW_G0 9.80665                 /* m/s^2, standard gravity (unit "g") */
 #define SW_MON_GAP 0.1                /* s, default sensor gap threshold */
 #define SW_MON_MAX_ACCEL (50 * SW_G0) /* m/s^2, default plausibility limit */
+/* us: a utime is a time since 1970 (or since a sensor's boot) before
+ * 2^52 us, September 2112.  Anything else is refused as "time": so any two
+ * utimes the monitor works with are less than 2^52 us (143 years) apart,
+ * every sum and difference of them is exact in int64 and in double, and
+ * no first sample can set the clock so far off that the genuine ones
+ * after it cannot be told apart from it. */
+#define SW_MON_UTIME_MAX (INT64_C(1) << 52)
 
 /* Why a message on the accel channel was refused. */
 typedef enum {
@@ -49,7 +56,7 @@ typedef enum {
     SW_MON_REJ_OUT_OF_ORDER, /* utime before the last accepted sample (late) */
     SW_MON_REJ_JUMP,         /* utime far ahead, and the next sample did not follow it */
     SW_MON_REJ_ENGINE,       /* refused by the engine (should not happen) */
-    SW_MON_REJ_TIME,         /* utime too large for its resolution (beyond 2^33 s) */
+    SW_MON_REJ_TIME,         /* utime outside 0 .. SW_MON_UTIME_MAX (1970 to 2112) */
     SW_MON_NREJ
 } sw_mon_reject;
 

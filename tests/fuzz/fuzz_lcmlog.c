@@ -75,7 +75,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (write_file(data + 1, size - 1) != 0)
         return 0;
     static const char *const channels[] = {"ACCEL", "ACC.*|SWAY_.*", "NOT_THERE", NULL};
-    sw_lcmlog_opts_t lo = {.channel = channels[(o >> 1) % 4], .speed = 0.0, .strict = o & 1};
+    sw_lcmlog_opts_t lo = {.channel = channels[(o >> 1) % 4], .strict = o & 1};
     int err = 0;
     sw_lcmlog_t *log = sw_lcmlog_open(file_path, &lo, &err);
     FZ_CHECK(log != NULL);
