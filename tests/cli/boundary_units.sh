@@ -151,7 +151,10 @@ for bad in "--units furlongs|expected gtan (g tan alpha), g or m/s2" \
     "--pulse-duration 5ms:50min:5ms|unknown unit 'min'" \
     "--pulse-duration 5ms:50ms:5ms:1ms|expected FROM:TO:STEP" \
     "--pulse-duration 50ms:5ms:5ms|is after TO" "--pulse-duration 1ms:1s:1us|more than 100000" \
-    "--max-amplitude 3ms|unknown unit 'ms'" "--min-amplitude -1g|expected a positive amplitude"; do
+    "--max-amplitude 3ms|unknown unit 'ms'" "--min-amplitude -1g|expected a positive amplitude" \
+    "--max-amplitude 20000|out of range" \
+    "--max-amplitude 5000g|g tan alpha, out of range: expected 0.001 to 10000" \
+    "--pulse-duration 10us,1ms|omega_e/p, out of range: expected 0.001 to 10000"; do
     args=${bad%%|*}
     case $args in --pulse-duration*) ;; *) args="$args --omega-ratio 1" ;; esac
     # shellcheck disable=SC2086

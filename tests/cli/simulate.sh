@@ -76,6 +76,8 @@ for bad in "--amplitude 10furlongs --pulse-duration 11ms:unknown unit 'furlongs'
     "--amplitude 10g --pulse-duration -11ms:expected a positive time" \
     "--amplitude 0g --pulse-duration 11ms:expected a non-zero acceleration" \
     "--amplitude 10g --pulse-duration 11ms --omega 3:give one" \
+    "--amplitude 10g --pulse-duration 10us:out of range: a half-sine of omega 0.01 to 100000 rad/s" \
+    "--amplitude 10g --pulse-duration 400s:lasts 3.14159e-05 to 314.159 s, got 400 s" \
     "--amplitude 10g:--omega W (rad/s) or --pulse-duration D"; do
     args=${bad%%:*}
     # shellcheck disable=SC2086
