@@ -10,11 +10,11 @@
 
 #include "plot.h"
 
-#define NBUCKETS 2000      /* buckets per package after a merge; at most twice as many */
-#define MAX_EVENTS 100000  /* events kept */
-#define MAX_LINES 200      /* vertical event lines drawn (gnuplot arrows) */
+#define NBUCKETS 2000       /* buckets per package after a merge; at most twice as many */
+#define MAX_EVENTS 100000   /* events kept */
+#define MAX_LINES 200       /* vertical event lines drawn (gnuplot arrows) */
 #define MAX_UPLIFT_LINES 50 /* of them uplifts: a long drive can have thousands */
-#define G0 9.80665         /* m/s^2 per g, for the legend */
+#define G0 9.80665          /* m/s^2 per g, for the legend */
 #define MARGIN_FLOOR (-1.0) /* the margin panel shows margins down to this */
 
 /* The quantities kept per package. */
@@ -52,8 +52,10 @@ static const char *const colours[] = {"#1d3557", "#e76f51", "#2a9d8f", "#8338ec"
 sw_cli_figure_t *sw_cli_figure_create(const sw_engine_t *e, const sw_scene_t *scenes, size_t n)
 {
     sw_cli_figure_t *f = calloc(1, sizeof *f);
-    if (f) f->tr = calloc(n ? n : 1, sizeof *f->tr);
-    if (!f || !f->tr) goto oom;
+    if (f)
+        f->tr = calloc(n ? n : 1, sizeof *f->tr);
+    if (!f || !f->tr)
+        goto oom;
     f->n = n;
     for (size_t i = 0; i < n; i++) {
         trace_t *T = &f->tr[i];
@@ -62,7 +64,8 @@ sw_cli_figure_t *sw_cli_figure_create(const sw_engine_t *e, const sw_scene_t *sc
         T->alpha = d ? d->alpha : NAN;
         T->g_tan_alpha = d ? scenes[i].g * tan(d->alpha) : NAN;
         T->width = 1;
-        if (!(T->b = calloc(2 * NBUCKETS, sizeof *T->b))) goto oom;
+        if (!(T->b = calloc(2 * NBUCKETS, sizeof *T->b)))
+            goto oom;
     }
     return f;
 oom:
@@ -73,7 +76,8 @@ oom:
 
 void sw_cli_figure_destroy(sw_cli_figure_t *f)
 {
-    if (!f) return;
+    if (!f)
+        return;
     for (size_t i = 0; f->tr && i < f->n; i++) free(f->tr[i].b);
     free(f->tr);
     free(f->ev);
@@ -108,10 +112,12 @@ static void trace_add(trace_t *T, double t, const double v[NQ])
         T->cur = one;
     else
         merge(&T->cur, &one);
-    if (++T->in_cur < T->width) return;
+    if (++T->in_cur < T->width)
+        return;
     T->b[T->nb++] = T->cur;
     T->in_cur = 0;
-    if (T->nb < 2 * NBUCKETS) return;
+    if (T->nb < 2 * NBUCKETS)
+        return;
     /* full: pairs merge, and each bucket covers twice as many samples */
     for (size_t i = 0; i < NBUCKETS; i++) {
         T->b[i] = T->b[2 * i];
@@ -123,20 +129,24 @@ static void trace_add(trace_t *T, double t, const double v[NQ])
 
 void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out)
 {
-    if (!f || out->pkg >= f->n) return;
+    if (!f || out->pkg >= f->n)
+        return;
     trace_t *T = &f->tr[out->pkg];
     const double v[NQ] = {out->a_g, out->state.theta / T->alpha, out->margin};
     for (int q = 0; q < NQ; q++)
-        if (!isfinite(v[q])) return; /* the engine reports none; a gap in the line if it did */
+        if (!isfinite(v[q]))
+            return; /* the engine reports none; a gap in the line if it did */
     trace_add(T, out->t, v);
 }
 
 void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev)
 {
-    if (!f || ev->pkg >= f->n) return;
+    if (!f || ev->pkg >= f->n)
+        return;
     if (f->nev == f->cap) {
         size_t cap = f->cap ? 2 * f->cap : 256;
-        if (cap > MAX_EVENTS) cap = MAX_EVENTS;
+        if (cap > MAX_EVENTS)
+            cap = MAX_EVENTS;
         sw_event_t *e = cap > f->cap ? realloc(f->ev, cap * sizeof *e) : NULL;
         if (!e) {
             f->dropped++;
@@ -164,7 +174,8 @@ static void emit_bucket(FILE *g, const bucket_t *B, int q)
     const double t1 = min_first ? B->tmin[q] : B->tmax[q], v1 = min_first ? B->vmin[q] : B->vmax[q];
     const double t2 = min_first ? B->tmax[q] : B->tmin[q], v2 = min_first ? B->vmax[q] : B->vmin[q];
     fprintf(g, "%.9g %.9g\n", t1, v1);
-    if (t2 != t1 || v2 != v1) fprintf(g, "%.9g %.9g\n", t2, v2);
+    if (t2 != t1 || v2 != v1)
+        fprintf(g, "%.9g %.9g\n", t2, v2);
 }
 
 /* Package k's quantity q as the datablock $s<k>_<q>. */
@@ -174,8 +185,10 @@ static void series_block(FILE *g, const trace_t *T, size_t k, int q)
     const size_t nb = buckets(T, &b, &last);
     fprintf(g, "$s%zu_%d << EOD\n", k, q);
     for (size_t i = 0; i < nb; i++) emit_bucket(g, &b[i], q);
-    if (last) emit_bucket(g, last, q);
-    if (!nb && !last) fputs("NaN NaN\n", g);
+    if (last)
+        emit_bucket(g, last, q);
+    if (!nb && !last)
+        fputs("NaN NaN\n", g);
     fputs("EOD\n", g);
 }
 
@@ -191,7 +204,8 @@ static int extent(const sw_cli_figure_t *f, double *t0, double *t1, double *min_
         const size_t nb = buckets(&f->tr[k], &b, &last);
         for (size_t i = 0; i <= nb; i++) {
             const bucket_t *B = i < nb ? &b[i] : last;
-            if (!B) continue;
+            if (!B)
+                continue;
             any = 1;
             for (int q = 0; q < NQ; q++) {
                 *t0 = fmin(*t0, fmin(B->tmin[q], B->tmax[q]));
@@ -213,11 +227,13 @@ static void event_block(FILE *g, const sw_cli_figure_t *f, size_t k, sw_event_ki
         const sw_event_t *ev = &f->ev[i];
         const int same = ev->kind == kind || (kind == SW_EV_IMPACT && ev->kind == SW_EV_REST);
         const double r = ev->theta / f->tr[k].alpha;
-        if (ev->pkg != k || !same || !isfinite(ev->t) || !isfinite(r)) continue;
+        if (ev->pkg != k || !same || !isfinite(ev->t) || !isfinite(r))
+            continue;
         fprintf(g, "%.9g %.9g\n", ev->t, r);
         n++;
     }
-    if (!n) fputs("NaN NaN\n", g);
+    if (!n)
+        fputs("NaN NaN\n", g);
     fputs("EOD\n", g);
 }
 
@@ -225,11 +241,11 @@ static void event_block(FILE *g, const sw_cli_figure_t *f, size_t k, sw_event_ki
 static const char *line_colour(sw_event_kind k)
 {
     switch (k) {
-    case SW_EV_UPLIFT: return "#2a9d8f";
-    case SW_EV_TIP: return "#e9c46a";
-    case SW_EV_OVERTURN: return "#d62828";
-    case SW_EV_FAULT: return "#000000";
-    default: return NULL;
+        case SW_EV_UPLIFT: return "#2a9d8f";
+        case SW_EV_TIP: return "#e9c46a";
+        case SW_EV_OVERTURN: return "#d62828";
+        case SW_EV_FAULT: return "#000000";
+        default: return NULL;
     }
 }
 
@@ -241,8 +257,10 @@ static void event_lines(FILE *g, const sw_cli_figure_t *f)
     for (size_t i = 0; i < f->nev && arrows < MAX_LINES; i++) {
         const sw_event_t *ev = &f->ev[i];
         const char *col = line_colour(ev->kind);
-        if (!col || !isfinite(ev->t)) continue;
-        if (ev->kind == SW_EV_UPLIFT && uplifts++ >= MAX_UPLIFT_LINES) continue;
+        if (!col || !isfinite(ev->t))
+            continue;
+        if (ev->kind == SW_EV_UPLIFT && uplifts++ >= MAX_UPLIFT_LINES)
+            continue;
         fprintf(g,
                 "set arrow %d from first %.9g, graph 0 to first %.9g, graph 1 nohead lc rgb '%s' "
                 "lw 1.5 dt 2 back\n",
@@ -310,9 +328,11 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
         sw_cli_error("%s: no state to draw", path);
         return SW_EXIT_USAGE;
     }
-    if (!(t1 > t0)) t1 = t0 + 1.0;
+    if (!(t1 > t0))
+        t1 = t0 + 1.0;
     sw_plot_t *p = sw_cli_plot_open(path, 1200, 960);
-    if (!p) return SW_EXIT_IO;
+    if (!p)
+        return SW_EXIT_IO;
     FILE *g = sw_cli_plot_file(p);
 
     /* the data, as inline datablocks */
@@ -326,23 +346,26 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
 
     fputs("set multiplot layout 3,1 title ", g);
     sw_cli_plot_text(g, title);
-    fprintf(g, " font ',13'\n"
-               "set grid\nset key at screen 0.635, graph 1 left top Left reverse box opaque\n"
-               "set lmargin at screen 0.08\nset rmargin at screen 0.62\n"
-               "set xrange [%.9g:%.9g]\nset xlabel ''\nset format x ''\n",
+    fprintf(g,
+            " font ',13'\n"
+            "set grid\nset key at screen 0.635, graph 1 left top Left reverse box opaque\n"
+            "set lmargin at screen 0.08\nset rmargin at screen 0.62\n"
+            "set xrange [%.9g:%.9g]\nset xlabel ''\nset format x ''\n",
             t0, t1);
 
     /* 1. the bed's acceleration and the uplift thresholds */
-    fputs("set ylabel 'bed acceleration a_g (m/s^2)'\n"
-          "plot $s0_0 using 1:2 with lines lc rgb '#264653' lw 1.2 title 'bed acceleration a_g'",
-          g);
+    fputs(
+        "set ylabel 'bed acceleration a_g (m/s^2)'\n"
+        "plot $s0_0 using 1:2 with lines lc rgb '#264653' lw 1.2 title 'bed acceleration a_g'",
+        g);
     threshold_plots(g, f);
     fputc('\n', g);
 
     /* 2. theta / alpha, the events on it */
-    fputs("set ylabel 'tilt θ / α'\nplot 1 with lines lc rgb '#d62828' dt 3 "
-          "title 'tipping: |θ| = α (±1)', -1 with lines lc rgb '#d62828' dt 3 notitle",
-          g);
+    fputs(
+        "set ylabel 'tilt θ / α'\nplot 1 with lines lc rgb '#d62828' dt 3 "
+        "title 'tipping: |θ| = α (±1)', -1 with lines lc rgb '#d62828' dt 3 notitle",
+        g);
     for (size_t k = 0; k < f->n; k++) {
         const char *c = colours[k % NCOLOURS];
         fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RATIO, c);
@@ -362,10 +385,11 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
     /* 3. the margin to overturn; far below 0 it is cut off: the package
      * is past the edge, how far matters little */
     const double lo = fmax(MARGIN_FLOOR, fmin(0.0, mmin)) - 0.05;
-    fprintf(g, "set format x '%%g'\nset xlabel 'time t (s)'\nset ylabel 'margin to overturn%s'\n"
-               "set yrange [%.6g:1.05]\n"
-               "plot 0 with lines lc rgb '#d62828' dt 3 title 'overturns with no more input "
-               "below 0'",
+    fprintf(g,
+            "set format x '%%g'\nset xlabel 'time t (s)'\nset ylabel 'margin to overturn%s'\n"
+            "set yrange [%.6g:1.05]\n"
+            "plot 0 with lines lc rgb '#d62828' dt 3 title 'overturns with no more input "
+            "below 0'",
             mmin < MARGIN_FLOOR ? " (cut at -1)" : "", lo);
     for (size_t k = 0; k < f->n; k++) {
         fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_MARGIN,
