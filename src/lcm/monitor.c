@@ -111,7 +111,7 @@ struct sw_mon {
 
 static const char *const reject_names[SW_MON_NREJ] = {
     "decode", "trailing", "nonfinite", "implausible", "skew",
-    "duplicate", "out_of_order", "jump", "engine", "time"};
+    "duplicate", "out_of_order", "jump", "engine", "time", "overload"};
 
 const char *sw_mon_reject_name(sw_mon_reject r)
 {
@@ -512,9 +512,9 @@ static void reject_alarm(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utim
 
 static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_mon_reject *why)
 {
-    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE, SW_ENONFINITE, SW_ETOOBIG,
-                                          SW_ETOOBIG, SW_EORDER,  SW_EORDER,     SW_EORDER,
-                                          SW_EINVAL,  SW_ERESOLUTION};
+    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE,      SW_ENONFINITE, SW_ETOOBIG,
+                                          SW_ETOOBIG, SW_EORDER,      SW_EORDER,     SW_EORDER,
+                                          SW_EINVAL,  SW_ERESOLUTION, SW_ETOOBIG};
     m->c.rejected[r]++;
     m->rej_pending[r]++;
     reject_alarm(m, r, mono, input_utime(m, utime));
@@ -624,6 +624,15 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
         return SW_MON_HELD;
     if (rc < 0 && why) *why = m->feed_why; /* the sample itself is refused last */
     return rc;
+}
+
+int sw_mon_refuse(sw_mon_t *m, sw_mon_reject r, double mono)
+{
+    if ((unsigned)r >= SW_MON_NREJ)
+        r = SW_MON_REJ_ENGINE;
+    m->c.received++;
+    m->feed_mono = m->now = mono;
+    return refuse(m, r, mono, m->have_last ? m->last_us : 0, NULL);
 }
 
 double sw_mon_deadline(const sw_mon_t *m)

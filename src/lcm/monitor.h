@@ -57,6 +57,8 @@ typedef enum {
     SW_MON_REJ_JUMP,         /* utime far ahead, and the next sample did not follow it */
     SW_MON_REJ_ENGINE,       /* refused by the engine (should not happen) */
     SW_MON_REJ_TIME,         /* utime outside 0 .. SW_MON_UTIME_MAX (1970 to 2112) */
+    SW_MON_REJ_OVERLOAD,     /* refused unread: it waited too long in the receive queue
+                                (the caller sheds load with sw_mon_refuse) */
     SW_MON_NREJ
 } sw_mon_reject;
 
@@ -132,6 +134,13 @@ void sw_mon_destroy(sw_mon_t *m); /* NULL ok */
 int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, double mono,
                 sw_mon_reject *why);
 
+/* A message the caller refuses without reading it, for reason r (e.g.
+ * SW_MON_REJ_OVERLOAD: it waited in the receive queue for longer than a
+ * monitor that must keep up can afford): counted, and raised as
+ * INPUT_REJECTED, as any refusal.  mono as for sw_mon_feed().  Returns the
+ * negative status of that refusal. */
+int sw_mon_refuse(sw_mon_t *m, sw_mon_reject r, double mono);
+
 /* Timers: detects a sensor gap (no sample for longer than the gap
  * threshold since the last one arrived) and publishes rejection summaries
  * that were held back.  Call it when mono reaches sw_mon_deadline(). */
@@ -163,7 +172,7 @@ int64_t sw_mon_last_utime(
     const sw_mon_t *m); /* utime of the last accepted sample (us), 0 if none */
 
 /* "decode", "trailing", "nonfinite", "implausible", "skew", "duplicate",
- * "out_of_order", "jump", "engine", "time". */
+ * "out_of_order", "jump", "engine", "time", "overload". */
 const char *sw_mon_reject_name(sw_mon_reject r);
 
 /* Axis name "x" | "y" | "z" to 0..2; -1 if none of them. */

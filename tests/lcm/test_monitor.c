@@ -889,6 +889,39 @@ static void test_state_rate_follows_clock(void **st)
     rig_free(r);
 }
 
+/* A message the caller sheds unread (overload) is counted under its
+ * reason, raises INPUT_REJECTED and leaves the model as if it never came;
+ * the accounting holds. */
+static void test_refuse_overload(void **st)
+{
+    (void)st;
+    rig_t *plain = rig_new(1, NULL), *r = rig_new(1, NULL);
+    for (long k = 0; k < NSAMP; k++) {
+        send_k(plain, k);
+        if (k % 100 == 50) {
+            assert_true(sw_mon_refuse(r->mon, SW_MON_REJ_OVERLOAD, r->mono) < 0);
+            drain(r);
+        }
+        send_k(r, k);
+    }
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.rejected[SW_MON_REJ_OVERLOAD], NSAMP / 100);
+    assert_int_equal(c.accepted, NSAMP);
+    assert_string_equal(sw_mon_reject_name(SW_MON_REJ_OVERLOAD), "overload");
+    int said = 0;
+    for (int i = 0; i < r->bus.nal; i++)
+        said += strstr((const char *)r->bus.al[i].text, "overload") != NULL;
+    assert_true(said >= 1);
+    sw_output_t a, b;
+    final_output(plain, &a);
+    final_output(r, &b);
+    assert_true(a.state.theta == b.state.theta && a.margin == b.margin);
+    check_counts_add_up(r->mon);
+    rig_free(plain);
+    rig_free(r);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -906,6 +939,7 @@ int main(void)
         cmocka_unit_test(test_bogus_first),
         cmocka_unit_test(test_played_twice),
         cmocka_unit_test(test_state_rate_follows_clock),
+        cmocka_unit_test(test_refuse_overload),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
