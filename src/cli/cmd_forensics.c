@@ -17,7 +17,7 @@
  * Unlike replay, forensics holds the whole log in memory (input.c): the
  * safety-factor search replays it tens of times per case, and re-reading
  * and re-parsing the file for each trial would cost more than the physics.
- * The figure also keeps the state series in memory.  The what-if cases are
+ * The figure is figure.c's, as replay draws it.  The what-if cases are
  * built, run and reported by whatif.c. */
 #include <math.h>
 #include <stdio.h>
@@ -25,15 +25,13 @@
 #include <string.h>
 
 #include "clobber.h"
+#include "figure.h"
 #include "input.h"
 #include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 #include "plot.h"
 #include "whatif.h"
-
-#define MAX_EVENTS 100000     /* events kept for the figure */
-#define PLOT_BUCKETS 3000     /* the figure keeps each series' extremes per bucket */
 
 /* forensics' own options. */
 typedef struct {
@@ -137,140 +135,32 @@ static const sw_cli_command_t forensics_cmd = {
 /* ---- the replay, with what the figure needs ----------------------------------- */
 
 typedef struct {
-    double t, a_g, ratio, margin;
-} sample_t;
-
-typedef struct {
     sw_cli_states_t *states;
     sw_cli_events_t *events;
-    double alpha; /* rad */
-    int keep;     /* keep the series for the figure */
-    sample_t *s;
-    size_t n, cap;
-    sw_event_t *ev;
-    size_t nev;
-    int oom;
+    sw_cli_figure_t *fig; /* NULL: no figure */
 } replay_t;
 
 static void on_state(void *user, const sw_output_t *out)
 {
     replay_t *R = user;
     sw_cli_states_write(R->states, out);
-    if (!R->keep || R->oom) return;
-    if (R->n == R->cap) {
-        size_t cap = R->cap ? 2 * R->cap : 8192;
-        sample_t *s = realloc(R->s, cap * sizeof *s);
-        if (!s) {
-            R->oom = 1;
-            return;
-        }
-        R->s = s;
-        R->cap = cap;
-    }
-    R->s[R->n++] = (sample_t){out->t, out->a_g, out->state.theta / R->alpha, out->margin};
+    sw_cli_figure_state(R->fig, out);
 }
 
 static void on_event(void *user, const sw_event_t *ev)
 {
     replay_t *R = user;
     sw_cli_events_write(R->events, ev);
-    if (R->keep && R->ev && R->nev < MAX_EVENTS) R->ev[R->nev++] = *ev;
+    sw_cli_figure_event(R->fig, ev);
 }
 
 /* ---- figure ------------------------------------------------------------------------ */
 
-/* One series in at most PLOT_BUCKETS buckets, each kept as its minimum and
- * maximum in time order, so that peaks survive the thinning. */
-static void series_block(FILE *g, const char *name, const replay_t *R, int which)
+static int draw(const char *path, const char *log, const sw_scene_t *sc, const replay_t *R)
 {
-    fprintf(g, "$%s << EOD\n", name);
-    const size_t per = R->n / PLOT_BUCKETS + 1;
-    for (size_t b = 0; b < R->n; b += per) {
-        size_t imin = b, imax = b;
-        const size_t e = b + per < R->n ? b + per : R->n;
-        for (size_t i = b; i < e; i++) {
-            const double v = which == 0 ? R->s[i].a_g : which == 1 ? R->s[i].ratio : R->s[i].margin;
-            const double vmin = which == 0   ? R->s[imin].a_g
-                                : which == 1 ? R->s[imin].ratio
-                                             : R->s[imin].margin;
-            const double vmax = which == 0   ? R->s[imax].a_g
-                                : which == 1 ? R->s[imax].ratio
-                                             : R->s[imax].margin;
-            if (v < vmin) imin = i;
-            if (v > vmax) imax = i;
-        }
-        const size_t first = imin < imax ? imin : imax, second = imin < imax ? imax : imin;
-        for (int k = 0; k < (first == second ? 1 : 2); k++) {
-            const size_t i = k ? second : first;
-            const double v = which == 0 ? R->s[i].a_g : which == 1 ? R->s[i].ratio : R->s[i].margin;
-            if (isfinite(v)) fprintf(g, "%.9g %.9g\n", R->s[i].t, v);
-        }
-    }
-    fputs("EOD\n", g);
-}
-
-static int draw(const char *path, const char *log, const sw_scene_t *sc, const replay_t *R,
-                double g_tan_alpha)
-{
-    sw_plot_t *p = sw_cli_plot_open(path, 1000, 900);
-    if (!p) return SW_EXIT_IO;
-    FILE *g = sw_cli_plot_file(p);
-    series_block(g, "ag", R, 0);
-    series_block(g, "th", R, 1);
-    series_block(g, "mg", R, 2);
-    /* impacts and rests as points; uplift, tip and overturn as lines */
-    fputs("$imp << EOD\n", g);
-    int nimp = 0;
-    for (size_t i = 0; i < R->nev; i++)
-        if (R->ev[i].kind == SW_EV_IMPACT || R->ev[i].kind == SW_EV_REST) {
-            fprintf(g, "%.9g 0\n", R->ev[i].t);
-            nimp++;
-        }
-    if (!nimp) fputs("NaN NaN\n", g);
-    fputs("EOD\n", g);
-    int arrows = 0;
-    for (size_t i = 0; i < R->nev && arrows < 200; i++) {
-        const sw_event_t *ev = &R->ev[i];
-        const char *col = ev->kind == SW_EV_UPLIFT     ? "#2a9d8f"
-                          : ev->kind == SW_EV_TIP      ? "#e9c46a"
-                          : ev->kind == SW_EV_OVERTURN ? "#d62828"
-                          : ev->kind == SW_EV_FAULT    ? "#000000"
-                                                       : NULL;
-        if (!col) continue;
-        /* uplifts can be many: draw the first 50 */
-        if (ev->kind == SW_EV_UPLIFT && arrows >= 50) continue;
-        fprintf(g,
-                "set arrow %d from first %.9g, graph 0 to first %.9g, graph 1 nohead lc rgb '%s' "
-                "lw 1.5 dt 2\n",
-                ++arrows, ev->t, ev->t, col);
-    }
-    fputs("set multiplot layout 3,1 title ", g);
     char title[512];
     snprintf(title, sizeof title, "%s: %s", log, sc->name);
-    sw_cli_plot_text(g, title);
-    fputs("\nset grid\nset key top right opaque box\nset lmargin 12\n"
-          "set xlabel ''\nset format x ''\n",
-          g);
-    fprintf(g, "set ylabel 'a_g (m/s^2)'\n"
-               "plot $ag using 1:2 with lines lc rgb '#264653' title 'bed acceleration', "
-               "%.9g with lines lc rgb '#999999' dt 3 title '± g tan α', %.9g with lines "
-               "lc rgb '#999999' dt 3 notitle\n",
-            g_tan_alpha, -g_tan_alpha);
-    fputs("set ylabel 'θ / α'\n"
-          "plot $th using 1:2 with lines lc rgb '#1d3557' lw 1.5 title 'θ/α', "
-          "1 with lines lc rgb '#d62828' dt 3 title 'tipping ±1', -1 with lines lc rgb '#d62828' "
-          "dt 3 notitle, $imp using 1:2 with points pt 7 ps 0.5 lc rgb '#e76f51' "
-          "title 'impacts / rest', NaN with lines lc rgb '#2a9d8f' lw 1.5 dt 2 title 'uplift', "
-          "NaN with lines lc rgb '#e9c46a' lw 1.5 dt 2 title 'tip (|θ| = α)', "
-          "NaN with lines lc rgb '#d62828' lw 1.5 dt 2 title 'overturn'\n",
-          g);
-    fputs("set format x '%g'\nset xlabel 't (s)'\nset ylabel 'margin'\n"
-          "set yrange [*:1.05]\n"
-          "plot $mg using 1:2 with lines lc rgb '#2a9d8f' lw 1.5 title 'margin to overturn', "
-          "0 with lines lc rgb '#d62828' dt 3 notitle\n"
-          "unset multiplot\n",
-          g);
-    return sw_cli_plot_close(p);
+    return sw_cli_figure_draw(R->fig, path, title);
 }
 
 /* ---- the command --------------------------------------------------------------------- */
@@ -312,17 +202,12 @@ static int replay_log(forensics_t *F)
     replay_t *R = &F->R;
     sw_cli_engine_opts(&F->o, &F->eo);
     if ((rc = sw_cli_resolve_accuracy(&F->o, F->scenes, F->nsc, &F->eo)) != SW_EXIT_OK) return rc;
-    R->keep = F->fo.plot != NULL;
-    if (R->keep && !(R->ev = calloc(MAX_EVENTS, sizeof *R->ev))) {
-        sw_cli_error("out of memory");
-        return SW_EXIT_IO;
-    }
     sw_engine_opts_t eo = F->eo;
     eo.on_event = on_event;
-    eo.on_state = F->o.out_path || R->keep ? on_state : NULL;
+    eo.on_state = F->o.out_path || F->fo.plot ? on_state : NULL;
     eo.user = R;
     if (!(F->e = sw_cli_engine_create(F->scenes, 1, &eo))) return SW_EXIT_USAGE;
-    R->alpha = sw_engine_derived(F->e, 0)->alpha;
+    if (F->fo.plot && !(R->fig = sw_cli_figure_create(F->e, F->scenes, 1))) return SW_EXIT_IO;
     if (F->o.verbose) sw_cli_print_derived(stderr, F->e, F->scenes, 1);
     if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, F->scenes, 1)) !=
             SW_EXIT_OK ||
@@ -338,8 +223,6 @@ static int replay_log(forensics_t *F)
     rc = sw_cli_states_close(&F->states);
     int rc2 = sw_cli_events_close(&F->events);
     if (rc == SW_EXIT_OK) rc = rc2;
-    if (rc == SW_EXIT_OK && R->oom)
-        sw_cli_error("out of memory keeping the state series: the figure is partial");
     return rc;
 }
 
@@ -476,11 +359,8 @@ int cmd_forensics(int argc, char **argv)
                      "(overturned %s / %s): the shock is at the edge of the model's resolution",
                      sum.overturned ? "yes" : "no", F.cases[0].sf.overturned ? "yes" : "no");
     report(&F);
-    if (F.fo.plot) {
-        const sw_derived_t *d = sw_engine_derived(F.e, 0);
-        rc = draw(F.fo.plot, F.log_path, &F.scenes[0], &F.R, F.scenes[0].g * tan(d->alpha));
-        if (rc != SW_EXIT_OK) goto out;
-    }
+    if (F.fo.plot && (rc = draw(F.fo.plot, F.log_path, &F.scenes[0], &F.R)) != SW_EXIT_OK)
+        goto out;
     rc = sw_cli_verdict_exit(F.e, F.fo.fail_on_overturn);
     if (sw_cli_signal) { /* while the report or the figure was written: both are whole */
         sw_cli_error("forensics: interrupted by %s after the report",
@@ -492,8 +372,7 @@ out:
     sw_cli_events_close(&F.events);
     sw_engine_destroy(F.e);
     free(F.cases);
-    free(F.R.s);
-    free(F.R.ev);
+    sw_cli_figure_destroy(F.R.fig);
     free(F.scenes);
     sw_cli_log_free(&F.L);
     sw_cli_parse_free(g, ng);

@@ -9,7 +9,9 @@
  * the network) into the monitor core, which refuses bad, duplicate and
  * late samples as the live monitor does; with --publish, states and alarms
  * also go out over LCM, paced in real time (or faster) by the samples'
- * utime. */
+ * utime.  --wide and --plot take the same states as --out (output.c,
+ * figure.c): the figure from a fixed number of buckets per package, so a
+ * replay of any length draws from fixed memory. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -19,6 +21,7 @@
 #include "clobber.h"
 #include "cost.h"
 #include "feed.h"
+#include "figure.h"
 #include "input.h"
 #include "interrupt.h"
 #include "opts.h"
@@ -114,6 +117,8 @@ typedef struct {
     sw_engine_t *e; /* the engine (the monitor core's, for an lcm-logger file) */
     sw_cli_states_t states;
     sw_cli_events_t events;
+    sw_cli_wide_t wide;
+    sw_cli_figure_t *fig;
     sw_cli_run_t run;
 #ifdef SW_HAVE_LCM
     sw_mon_opts_t mo;
@@ -134,12 +139,21 @@ static void on_state(void *user, const sw_output_t *out)
     sw_cli_pace(&r->pacer, out->t);
 #endif
     sw_cli_states_write(&r->states, out);
+    sw_cli_wide_write(&r->wide, out);
+    sw_cli_figure_state(r->fig, out);
 }
 
 static void on_event(void *user, const sw_event_t *ev)
 {
     replay_t *r = user;
     sw_cli_events_write(&r->events, ev);
+    sw_cli_figure_event(r->fig, ev);
+}
+
+/* Something takes the states: --out, --wide or --plot. */
+static int wants_states(const replay_t *r)
+{
+    return r->o.out_path || r->o.wide_path || r->o.plot_path;
 }
 
 /* ---- CSV logs ------------------------------------------------------------------ */
@@ -211,7 +225,7 @@ static sw_engine_t *lcmlog_engine(replay_t *r)
     if (sw_cli_mon_gate(&r->mo, &r->gate) != SW_EXIT_OK) return NULL;
     r->mo.accel_scale = r->copts.csv.accel_scale;
     r->mo.flip = r->copts.csv.flip;
-    r->mo.on_state = r->o.out_path || r->pacer.speed > 0.0 ? on_state : NULL;
+    r->mo.on_state = wants_states(r) || r->pacer.speed > 0.0 ? on_state : NULL;
     r->mo.on_event = on_event;
     r->mo.user = r;
     char msg[512] = "";
@@ -337,7 +351,7 @@ static int start(replay_t *r, const sw_cli_source_t *src)
 #endif
     (void)src;
     r->eo.on_event = on_event;
-    r->eo.on_state = r->o.out_path ? on_state : NULL;
+    r->eo.on_state = wants_states(r) ? on_state : NULL;
     r->eo.user = r;
     r->e = sw_cli_engine_create(r->scenes, r->n, &r->eo);
     return r->e ? SW_EXIT_OK : SW_EXIT_USAGE;
@@ -351,6 +365,8 @@ static int check_files(const replay_t *r)
     const sw_cli_file_t out[] = {
         {"--out", r->o.out_path},
         {"--events", r->o.events_path},
+        {"--wide", r->o.wide_path},
+        {"--plot", r->o.plot_path},
         {"--publish", sw_cli_lcm_url_output(r->ro.publish_url, url_path, sizeof url_path)},
     };
     return sw_cli_check_run_files(r->log, &r->o.scenes, out, sizeof out / sizeof out[0]);
@@ -363,10 +379,13 @@ static const sw_cli_source_t *open_log(replay_t *r, const sw_cli_group_t *g, siz
 {
     if ((*rc = sw_cli_logfile_open(&r->lf, r->log)) != SW_EXIT_OK) return NULL;
     const sw_cli_source_t *src = sw_cli_logfile_source(&r->lf);
+    const char *const names[] = {"--out", "--events", "--wide"};
+    const char *const paths[] = {r->o.out_path, r->o.events_path, r->o.wide_path};
     if ((*rc = check_source(src, r, &g[0], &g[3], nlcm)) != SW_EXIT_OK ||
         (*rc = check_files(r)) != SW_EXIT_OK ||
         (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, NULL, r->o.json,
-                                     r->o.quiet)) != SW_EXIT_OK)
+                                     r->o.quiet)) != SW_EXIT_OK ||
+        (*rc = sw_cli_check_stdout(names, paths, 3, r->o.json, r->o.quiet)) != SW_EXIT_OK)
         return NULL;
 #ifdef SW_HAVE_LCM
     if (src->kind == SW_CLI_SRC_LCMLOG && (*rc = lcmlog_open(r)) != SW_EXIT_OK) return NULL;
@@ -374,11 +393,14 @@ static const sw_cli_source_t *open_log(replay_t *r, const sw_cli_group_t *g, siz
     return src;
 }
 
-/* After the run: the files closed, the summary; the exit code. */
+/* After the run: the files closed, the summary, the figure; the exit
+ * code. */
 static int finish(replay_t *r, const sw_cli_source_t *src)
 {
     int rc = sw_cli_states_close(&r->states);
     int rc2 = sw_cli_events_close(&r->events);
+    if (rc == SW_EXIT_OK) rc = rc2;
+    rc2 = sw_cli_wide_close(&r->wide);
     if (rc == SW_EXIT_OK) rc = rc2;
 #ifdef SW_HAVE_LCM
     if (src->kind == SW_CLI_SRC_LCMLOG && (rc2 = lcmlog_report(r)) != SW_EXIT_OK) return rc2;
@@ -391,6 +413,13 @@ static int finish(replay_t *r, const sw_cli_source_t *src)
         sw_cli_print_json(stdout, r->e, &r->run);
     else if (!r->o.quiet)
         sw_cli_print_summary(stdout, r->e, &r->run);
+    if (rc == SW_EXIT_OK && r->fig) {
+        char title[512];
+        snprintf(title, sizeof title, "swaywatch replay %s%s",
+                 strcmp(r->log, "-") ? r->log : "(standard input)",
+                 r->run.interrupted ? " (interrupted)" : "");
+        rc = sw_cli_figure_draw(r->fig, r->o.plot_path, title);
+    }
     if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(r->e, r->ro.fail_on_overturn);
     if (r->run.interrupted) {
         sw_cli_error("replay: interrupted by %s after %ld samples; the output files end with "
@@ -426,6 +455,7 @@ int cmd_replay(int argc, char **argv)
         SW_CLI_GROUP(sw_cli_integration_options, &r.o),
         SW_CLI_GROUP(sw_cli_accuracy_options, &r.o),
         SW_CLI_GROUP(sw_cli_output_options, &r.o),
+        SW_CLI_GROUP(sw_cli_picture_options, &r.o),
         SW_CLI_GROUP_IN(sw_cli_common_options, &r.o, "Output:"),
     };
     const size_t ng = sizeof g / sizeof g[0];
@@ -448,8 +478,14 @@ int cmd_replay(int argc, char **argv)
     if (r.o.verbose) sw_cli_print_derived(stderr, r.e, r.scenes, r.n);
     if ((rc = sw_cli_states_open(&r.states, r.o.out_path, r.o.every, r.scenes, r.n)) !=
             SW_EXIT_OK ||
-        (rc = sw_cli_events_open(&r.events, r.o.events_path, r.scenes, r.n)) != SW_EXIT_OK)
+        (rc = sw_cli_events_open(&r.events, r.o.events_path, r.scenes, r.n)) != SW_EXIT_OK ||
+        (rc = sw_cli_wide_open(&r.wide, r.o.wide_path, r.o.every, r.e, r.scenes, r.n)) !=
+            SW_EXIT_OK)
         goto out;
+    if (r.o.plot_path && !(r.fig = sw_cli_figure_create(r.e, r.scenes, r.n))) {
+        rc = SW_EXIT_IO;
+        goto out;
+    }
 #ifdef SW_HAVE_LCM
     if (src->kind == SW_CLI_SRC_LCMLOG)
         rc = replay_lcmlog(&r);
@@ -460,6 +496,8 @@ int cmd_replay(int argc, char **argv)
 out:
     sw_cli_states_close(&r.states);
     sw_cli_events_close(&r.events);
+    sw_cli_wide_close(&r.wide);
+    sw_cli_figure_destroy(r.fig);
 #ifdef SW_HAVE_LCM
     if (r.mon) r.e = NULL; /* the monitor's */
     lcmlog_close(&r);

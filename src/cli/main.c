@@ -9,6 +9,14 @@
 #include "journal.h"
 #include "swaywatch/swaywatch.h"
 
+/* The lines after the version, as GNU tools print them (help2man turns
+ * them into the manual's COPYRIGHT section). */
+static const char licence[] =
+    "Copyright (C) 2026 swaywatch developers\n"
+    "License GPLv3+: GNU GPL version 3 or later <https://gnu.org/licenses/gpl.html>\n"
+    "This is free software: you are free to change and redistribute it.\n"
+    "There is NO WARRANTY, to the extent permitted by law.\n";
+
 static const struct {
     const char *name;
     sw_cmd_fn fn;
@@ -118,8 +126,8 @@ int main(int argc, char **argv)
         usage(stdout);
         return SW_EXIT_OK;
     } else if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
-        printf("swaywatch %s\n", sw_version());
-        return SW_EXIT_OK;
+        printf("swaywatch %s\n%s", sw_version(), licence);
+        rc = SW_EXIT_OK;
     } else {
         sw_cmd_fn fn = command(argv[1]);
         if (!fn) {
@@ -127,10 +135,11 @@ int main(int argc, char **argv)
             return SW_EXIT_USAGE;
         }
         if (wants_version(argc, argv)) {
-            printf("swaywatch %s %s\n", argv[1], sw_version());
-            return SW_EXIT_OK;
+            printf("swaywatch %s %s\n%s", argv[1], sw_version(), licence);
+            rc = SW_EXIT_OK;
+        } else {
+            rc = fn(argc - 1, argv + 1);
         }
-        rc = fn(argc - 1, argv + 1);
     }
     if (fflush(stdout) != 0 || ferror(stdout)) {
         sw_cli_error("error writing standard output");

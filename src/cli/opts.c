@@ -83,6 +83,44 @@ int sw_cli_opt_long(const sw_cli_option_t *o, const char *arg, long *out)
     return SW_EXIT_OK;
 }
 
+const char *sw_cli_units_accepted(int time_role)
+{
+    return time_role ? "ms, s or us, e.g. 11ms or 0.011s"
+                     : "g or m/s2 (m/s^2, m/s\xc2\xb2, mps2), e.g. 10g or 98.1m/s2";
+}
+
+int sw_cli_opt_quantity(const sw_cli_option_t *o, const char *arg, int time_role, int bare_ok,
+                        double *si, int *unit)
+{
+    char *end = NULL;
+    errno = 0;
+    const double v = arg ? strtod(arg, &end) : NAN;
+    if (!arg || end == arg || errno == ERANGE || !isfinite(v)) return bad_value(o, arg);
+    while (*end == ' ') end++;
+    int u = SW_CSV_UNIT_NONE;
+    if (*end) {
+        u = sw_csv_unit_parse(end, time_role);
+        if (u == SW_CSV_UNIT_NONE) {
+            sw_cli_error("--%s: unknown unit '%s' in '%s': expected %s", o->long_name, end, arg,
+                         sw_cli_units_accepted(time_role));
+            return SW_EXIT_USAGE;
+        }
+    } else if (!bare_ok) {
+        sw_cli_error("--%s: '%s' has no unit: expected %s", o->long_name, arg,
+                     sw_cli_units_accepted(time_role));
+        return SW_EXIT_USAGE;
+    }
+    int ok = 1;
+    if (o->rule == SW_NUM_POSITIVE) ok = v > 0.0;
+    if (o->rule == SW_NUM_NONNEGATIVE) ok = v >= 0.0;
+    if (o->rule == SW_NUM_NONZERO) ok = v != 0.0;
+    if (!ok) return bad_value(o, arg);
+    if (sw_cli_opt_range(o, arg, v * sw_csv_unit_scale(u)) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    *si = v * sw_csv_unit_scale(u);
+    if (unit) *unit = u;
+    return SW_EXIT_OK;
+}
+
 /* "1/3" or a decimal number. */
 static int parse_fraction(const char *s, double *out)
 {

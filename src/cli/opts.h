@@ -144,6 +144,19 @@ int sw_cli_opt_double(const sw_cli_option_t *o, const char *arg, double *out);
 int sw_cli_opt_range(const sw_cli_option_t *o, const char *arg, double v);
 int sw_cli_opt_long(const sw_cli_option_t *o, const char *arg, long *out);
 
+/* A number and its unit, as shock standards state pulses: "10g",
+ * "-98.1m/s2", "11ms", "0.011 s" (the units a CSV header may carry,
+ * csv.h: g or m/s2 and its spellings for an acceleration, s, ms or us for
+ * a time, time_role).  *si gets the value in m/s^2 or s, *unit the unit
+ * read (SW_CSV_UNIT_*; SW_CSV_UNIT_NONE for a bare number, taken as SI only
+ * if bare_ok).  The row's rule applies to the number.  On a bad number
+ * "expected WHAT", on a unit not in the list or a missing one a message
+ * naming the units accepted, and SW_EXIT_USAGE. */
+int sw_cli_opt_quantity(const sw_cli_option_t *o, const char *arg, int time_role, int bare_ok,
+                        double *si, int *unit);
+/* The units sw_cli_opt_quantity() accepts, in words, with an example. */
+const char *sw_cli_units_accepted(int time_role);
+
 /* Comma-separated numbers, fractions such as 1/3 allowed, into a new
  * array (free()); positive: each must be > 0.  FROM:TO:STEP (inclusive;
  * the values FROM + i STEP, computed from i) or such a list, at most max
@@ -169,6 +182,8 @@ typedef struct {
     const char *out_path; /* --out: state time series CSV */
     long every;           /* --every: write every Nth state row of each package */
     const char *events_path; /* --events: event list CSV */
+    const char *wide_path;   /* --wide: the state series, a column group per package */
+    const char *plot_path;   /* --plot: the state figure (.png or .svg) */
     int json, quiet, verbose;
 } sw_cli_opts_t;
 
@@ -179,6 +194,8 @@ extern const sw_cli_option_t sw_cli_integration_options[]; /* Integration: --sch
 extern const sw_cli_option_t sw_cli_accuracy_options[];    /* Integration: --accuracy */
 extern const sw_cli_option_t sw_cli_output_options[];      /* Output: --out, --every, --events,
                                                               --json, --quiet */
+extern const sw_cli_option_t sw_cli_picture_options[];     /* Output: --wide, --plot (replay,
+                                                              simulate) */
 /* --verbose and --help, with no section of their own. */
 extern const sw_cli_option_t sw_cli_common_options[];
 

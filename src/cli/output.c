@@ -238,6 +238,142 @@ int sw_cli_states_close(sw_cli_states_t *w)
     return rc;
 }
 
+int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_engine_t *e,
+                     const sw_scene_t *scenes, size_t n)
+{
+    memset(w, 0, sizeof *w);
+    w->path = path;
+    w->n = n;
+    w->every = every > 0 ? every : 1;
+    if (!path) return SW_EXIT_OK;
+    w->alpha = calloc(n ? n : 1, sizeof *w->alpha);
+    w->row = calloc(n ? n : 1, sizeof *w->row);
+    w->have = calloc(n ? n : 1, 1);
+    if (!w->alpha || !w->row || !w->have) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const sw_derived_t *d = sw_engine_derived(e, i);
+        w->alpha[i] = d ? d->alpha : NAN;
+    }
+    if (!(w->f = sw_cli_out_open(path))) return SW_EXIT_IO;
+    static const char *const cols[] = {"phase",  "theta",        "theta_dot",   "ratio",
+                                       "margin", "margin_bound", "uplift_ratio"};
+    fputs("t,a_g", w->f);
+    for (size_t i = 0; i < n; i++) {
+        long same = 0; /* earlier packages of the same name */
+        for (size_t j = 0; j < i; j++) same += !strcmp(scenes[j].name, scenes[i].name);
+        char name[96];
+        if (same)
+            snprintf(name, sizeof name, "%s#%ld", scenes[i].name, same + 1);
+        else
+            snprintf(name, sizeof name, "%s", scenes[i].name);
+        for (size_t c = 0; c < sizeof cols / sizeof cols[0]; c++) {
+            char col[128];
+            snprintf(col, sizeof col, "%s.%s", name, cols[c]);
+            fputc(',', w->f);
+            sw_cli_csv_text(w->f, col);
+        }
+    }
+    fputc('\n', w->f);
+    return SW_EXIT_OK;
+}
+
+/* Write the gathered row (unless --every skips it) and start afresh. */
+static void wide_flush(sw_cli_wide_t *w)
+{
+    if (!w->open) return;
+    w->open = 0;
+    int first = -1, missing = 0;
+    for (size_t i = 0; i < w->n; i++) {
+        if (w->have[i] && first < 0) first = (int)i;
+        missing += !w->have[i];
+    }
+    if (w->seen++ % w->every == 0 && first >= 0) {
+        long *nf = &w->nonfinite;
+        const sw_output_t *o0 = &w->row[first];
+        if (isfinite(o0->t))
+            fprintf(w->f, "%.9g", o0->t);
+        else
+            (*nf)++;
+        csv_num(w->f, o0->a_g, nf);
+        for (size_t i = 0; i < w->n; i++) {
+            const sw_output_t *o = &w->row[i];
+            if (!w->have[i]) {
+                fputs(",,,,,,,", w->f);
+                continue;
+            }
+            fprintf(w->f, ",%s", sw_phase_name(o->state.phase));
+            csv_num(w->f, o->state.theta, nf);
+            csv_num(w->f, o->state.theta_dot, nf);
+            csv_num(w->f, o->state.theta / w->alpha[i], nf);
+            csv_num(w->f, o->margin, nf);
+            csv_num(w->f, o->margin_bound, nf);
+            csv_num(w->f, o->uplift_ratio, nf);
+        }
+        fputc('\n', w->f);
+        w->rows++;
+        w->incomplete += missing > 0;
+    }
+    memset(w->have, 0, w->n);
+}
+
+void sw_cli_wide_write(sw_cli_wide_t *w, const sw_output_t *o)
+{
+    if (!w->f || o->pkg >= w->n) return;
+    /* a new instant, or this package again: the row so far is complete */
+    if (w->open) {
+        size_t k = 0;
+        while (k < w->n && !w->have[k]) k++;
+        if (w->have[o->pkg] || (k < w->n && w->row[k].t != o->t)) wide_flush(w);
+    }
+    w->row[o->pkg] = *o;
+    w->have[o->pkg] = 1;
+    w->open = 1;
+    if (o->pkg == w->n - 1) wide_flush(w);
+}
+
+int sw_cli_wide_close(sw_cli_wide_t *w)
+{
+    if (w->f) wide_flush(w);
+    int rc = sw_cli_out_close(w->f, w->path);
+    if (w->f && w->nonfinite)
+        sw_cli_error("%s: %ld non-finite values written as empty fields", sw_cli_out_name(w->path),
+                     w->nonfinite);
+    if (w->f && w->incomplete)
+        sw_cli_error("%s: %ld rows lack a package's state (empty fields)",
+                     sw_cli_out_name(w->path), w->incomplete);
+    free(w->alpha);
+    free(w->row);
+    free(w->have);
+    w->alpha = NULL;
+    w->row = NULL;
+    w->have = NULL;
+    w->f = NULL;
+    return rc;
+}
+
+int sw_cli_check_stdout(const char *const names[], const char *const paths[], size_t n, int json,
+                        int quiet)
+{
+    const char *on_stdout = NULL;
+    for (size_t i = 0; i < n; i++) {
+        if (!is_stdout(paths[i])) continue;
+        if (on_stdout) {
+            sw_cli_error("%s and %s cannot both be standard output", on_stdout, names[i]);
+            return SW_EXIT_USAGE;
+        }
+        if (json || !quiet) {
+            sw_cli_error("%s -: standard output carries the %s", names[i],
+                         json ? "JSON summary (--json)" : "summary; add -q to leave it out");
+            return SW_EXIT_USAGE;
+        }
+        on_stdout = names[i];
+    }
+    return SW_EXIT_OK;
+}
+
 int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *scenes, size_t n)
 {
     memset(w, 0, sizeof *w);

@@ -49,6 +49,40 @@ void sw_cli_csv_text(FILE *f, const char *s);
 /* Flush and close; returns SW_EXIT_OK or SW_EXIT_IO (reported). */
 int sw_cli_states_close(sw_cli_states_t *w);
 
+/* --wide: the state series one row per output instant, a column group per
+ * package, for a plain plot or a spreadsheet: t,a_g, then for each package
+ * P: P.phase,P.theta,P.theta_dot,P.ratio,P.margin,P.margin_bound,
+ * P.uplift_ratio (ratio = theta/alpha).  The engine reports every package
+ * at each instant, in order: a row is written when the last package's
+ * state arrives, or when the time moves on before it (the missing fields
+ * left empty and counted).  Packages of the same name are told apart as
+ * NAME#2, NAME#3, ... --every keeps every Nth row. */
+typedef struct {
+    FILE *f;
+    const char *path;
+    size_t n;
+    long every, seen;
+    double *alpha;       /* rad, per package */
+    sw_output_t *row;    /* the row being gathered, per package */
+    unsigned char *have; /* which packages it has */
+    int open;            /* a row is being gathered */
+    long rows, nonfinite, incomplete;
+} sw_cli_wide_t;
+
+/* Open (path NULL: a disabled writer) for the n packages of engine e. */
+int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_engine_t *e,
+                     const sw_scene_t *scenes, size_t n);
+void sw_cli_wide_write(sw_cli_wide_t *w, const sw_output_t *out);
+/* The last row, flush, close: SW_EXIT_OK or SW_EXIT_IO (reported). */
+int sw_cli_wide_close(sw_cli_wide_t *w);
+
+/* Refuse (SW_EXIT_USAGE, reported) outputs of one run on standard output
+ * ("-") that clash: names[i] is the option ("--wide"), paths[i] its file
+ * (NULL: not given).  Two of them there, or one beside a summary (json, or
+ * without quiet the human one).  Clashes between files: clobber.h. */
+int sw_cli_check_stdout(const char *const names[], const char *const paths[], size_t n, int json,
+                        int quiet);
+
 /* --events: t,package,event,theta,theta_dot,margin,info. */
 typedef struct {
     FILE *f;

@@ -15,6 +15,7 @@
 
 #include "cost.h"
 #include "opts.h"
+#include "plot.h"
 
 /* Scene files are small; anything this big is not a scene. */
 #define SCENE_MAX_BYTES (1L << 20)
@@ -105,6 +106,19 @@ const sw_cli_option_t sw_cli_output_options[] = {
     {SW_CLI_FLAG, 0, "json", OPTS(json), .value = 1,
      .help = "JSON summary on stdout instead of the human summary"},
     {SW_CLI_FLAG, 'q', "quiet", OPTS(quiet), .value = 1, .help = "no human summary"},
+    {SW_CLI_END},
+};
+
+const sw_cli_option_t sw_cli_picture_options[] = {
+    {SW_CLI_SECTION, .help = "Output:"},
+    {SW_CLI_STRING, 0, "wide", "FILE.csv", OPTS(wide_path),
+     .help = "the state series one row per instant ('-': standard output), for a plain plot or "
+             "a spreadsheet: t,a_g, then for each package P: P.phase,P.theta,P.theta_dot,"
+             "P.ratio (theta/alpha),P.margin,P.margin_bound,P.uplift_ratio; --every keeps every "
+             "Nth row"},
+    {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", OPTS(plot_path), .fn = sw_cli_plot_check,
+     .help = "a figure drawn by gnuplot: the bed acceleration with the uplift thresholds "
+             "+-g tan alpha, theta/alpha and the margin of every package, the events marked"},
     {SW_CLI_END},
 };
 

@@ -48,6 +48,8 @@ has half-sine swaywatch simulate --pulse ""
 has full-sine swaywatch simulate --pulse f
 has rk8pd swaywatch replay --scheme rk
 has g swaywatch replay --accel-unit ""
+has m/s2 swaywatch boundary --units ""
+has gtan swaywatch boundary --units gt
 has frame.zeta= swaywatch replay --set frame.z
 
 if printf '%s\n' "$commands" | grep -qx watch; then
@@ -63,6 +65,13 @@ has scenes/crate.ini swaywatch replay --scene scenes/
 if complete_words swaywatch replay --scene scenes/ | grep -q notes.txt; then
     fail "--scene offers a file that is not .ini"
 fi
+touch fig.png fig.svg fig.jpg
+has fig.png swaywatch replay drive.csv --plot fig
+has fig.svg swaywatch simulate --plot fig
+if complete_words swaywatch replay --plot fig | grep -q fig.jpg; then
+    fail "--plot offers a file that is neither .png nor .svg"
+fi
+has drive.csv swaywatch replay --wide d
 has scenes swaywatch simulate -s sc
 has drive.csv swaywatch replay d
 echo "completion.sh: ok ($(echo $commands | wc -w) commands)"
