@@ -22,13 +22,30 @@ static const struct {
     {"forensics", cmd_forensics, "a log's outcome, safety factor, and what support would have saved it"},
 };
 
+/* Per thread: the jobs of a batch run on several threads at once, each
+ * collecting the messages of its own log. */
+static _Thread_local FILE *msg_stream;
+
+FILE *sw_cli_msg(void)
+{
+    return msg_stream ? msg_stream : stderr;
+}
+
+FILE *sw_cli_msg_to(FILE *f)
+{
+    FILE *before = sw_cli_msg();
+    msg_stream = f;
+    return before;
+}
+
 void sw_cli_error(const char *fmt, ...)
 {
+    FILE *f = sw_cli_msg();
     va_list ap;
     va_start(ap, fmt);
-    fputs("swaywatch: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    fputs("swaywatch: ", f);
+    vfprintf(f, fmt, ap);
+    fputc('\n', f);
     va_end(ap);
 }
 
