@@ -4,8 +4,9 @@
  * a scene key, --bearing-ratio values), as CSV and optionally a figure.
  *
  * The points are independent runs of the library's boundary search
- * (sweep.h) spread over --threads worker threads; the output does not
- * depend on the number of threads. */
+ * (sweep.h) spread over --threads worker threads, and under mpirun or srun
+ * (a build with MPI) over the ranks too (farm.h); the output does not
+ * depend on the number of threads or ranks. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -13,6 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "farm.h"
 #include "opts.h"
 #include "output.h"
 #include "plot.h"
@@ -158,9 +160,10 @@ static const sw_cli_option_t boundary_options[] = {
     {SW_CLI_DOUBLE, 0, "free-periods", "N", BO(bo.run.free_periods), .rule = SW_NUM_POSITIVE,
      .what = "a positive number of rocking periods",
      .help = "free motion after the pulse, in rocking periods 2 pi/p (default 20)"},
-    {SW_CLI_LONG, 0, "threads", "N", BO(threads), .min = 1, .max = 256, .def = 2,
-     .what = "a whole number of threads >= 1",
-     .help = "worker threads (default %g); results do not depend on it"},
+    {SW_CLI_LONG, 0, "threads", "N", BO(threads), .min = 0, .max = 256, .def = 0,
+     .what = "a whole number of threads >= 0",
+     .help = "worker threads (per MPI rank); 0, the default: the CPUs this process may run on; "
+             "results do not depend on it"},
     {SW_CLI_SECTION, .help = "Integration:"},
     {SW_CLI_TEXT,
      .help = "Without --dt, each run's step is the scheme's, at most 1/400 of the pulse period\n"
@@ -473,6 +476,7 @@ static int plot(const char *path, const char *title, sw_pulse_shape shape, const
 
 /* Everything a boundary run uses. */
 typedef struct {
+    sw_cli_world_t world;
     sw_cli_opts_t o;
     boundary_opts_t b;
     char *bear_copy;         /* --bearing-ratio, split at the commas: */
@@ -522,7 +526,7 @@ static int check_options(boundary_t *B, int argc, char **argv, int first)
         return SW_EXIT_USAGE;
     }
     bo->search.islands = B->b.islands != NULL;
-    bo->threads = (int)B->b.threads;
+    bo->threads = sw_cli_threads(&B->world, B->b.threads);
     sw_cli_engine_opts(&B->o, &bo->run.engine);
     if (!B->b.nbear) return SW_EXIT_OK;
     /* labels of the bearing ratios as the user wrote them ("1/3") */
@@ -563,6 +567,80 @@ static void print_curves(const boundary_t *B)
     }
 }
 
+/* ---- the points over the ranks of an MPI job -------------------------------------- */
+
+typedef struct {
+    boundary_t *B;
+    const sw_curve_t *curves;
+    char (*msgs)[256];
+} ranks_t;
+
+/* One point, on any thread of any rank: the point, then its message. */
+static void point_run(void *user, size_t i, FILE *out)
+{
+    const ranks_t *R = user;
+    const size_t nr = R->B->b.nr;
+    sw_boundary_point_t pt;
+    memset(&pt, 0, sizeof pt);
+    char msg[256] = "";
+    sw_boundary_point(&R->curves[i / nr], R->B->b.ratios[i % nr], &R->B->b.bo, &pt, msg,
+                      sizeof msg);
+    fwrite(&pt, sizeof pt, 1, out);
+    fputs(msg, out);
+}
+
+static int point_take(void *user, size_t i, const char *data, size_t len, const char *msgs,
+                      size_t mlen)
+{
+    ranks_t *R = user;
+    if (mlen) fwrite(msgs, 1, mlen, stderr);
+    if (len < sizeof *R->B->pts) {
+        sw_cli_error("boundary: point %zu came back short", i + 1);
+        return -1;
+    }
+    memcpy(&R->B->pts[i], data, sizeof *R->B->pts);
+    size_t m = len - sizeof *R->B->pts;
+    if (m >= sizeof R->msgs[i]) m = sizeof R->msgs[i] - 1;
+    memcpy(R->msgs[i], data + sizeof *R->B->pts, m);
+    R->msgs[i][m] = '\0';
+    return 0;
+}
+
+/* What sw_boundary_sweep() does, with the points spread over the ranks:
+ * the same points, the same first failure in (curve, ratio) order. */
+static int sweep_ranks(boundary_t *B, const sw_curve_t *curves, char *msg, size_t msglen,
+                       int *exit_code)
+{
+    const size_t np = B->nc * B->b.nr;
+    ranks_t R = {B, curves, calloc(np, sizeof *R.msgs)};
+    if (!R.msgs) {
+        snprintf(msg, msglen, "out of memory");
+        *exit_code = SW_EXIT_IO;
+        return SW_ENOMEM;
+    }
+    const sw_cli_farm_t farm = {
+        .world = &B->world,
+        .n = np,
+        .threads = B->b.bo.threads,
+        .run = point_run,
+        .take = point_take,
+        .user = &R,
+        .what = B->b.progress ? "points" : NULL,
+    };
+    *exit_code = sw_cli_farm_run(&farm);
+    int rc = *exit_code == SW_EXIT_OK ? SW_OK : SW_ENOMEM;
+    if (rc != SW_OK) snprintf(msg, msglen, "the points could not be gathered");
+    else *exit_code = SW_EXIT_USAGE; /* if a point failed */
+    for (size_t i = 0; rc == SW_OK && B->world.rank == 0 && i < np; i++)
+        if (B->pts[i].status < 0) {
+            rc = B->pts[i].status;
+            snprintf(msg, msglen, "curve %zu, omega_e/p = %g: %s", i / B->b.nr + 1,
+                     B->pts[i].omega_ratio, R.msgs[i][0] ? R.msgs[i] : sw_strerror(rc));
+        }
+    free(R.msgs);
+    return rc;
+}
+
 static int sweep(boundary_t *B)
 {
     B->pts = calloc(B->nc * B->b.nr, sizeof *B->pts);
@@ -573,14 +651,20 @@ static int sweep(boundary_t *B)
         return SW_EXIT_IO;
     }
     for (size_t c = 0; c < B->nc; c++) curves[c] = B->cv[c].c;
-    if (B->b.progress) B->b.bo.progress = on_progress;
     char msg[512] = "";
-    int sr = sw_boundary_sweep(curves, B->nc, B->b.ratios, B->b.nr, &B->b.bo, B->pts, msg,
+    int sr, code = SW_EXIT_USAGE;
+    if (B->world.size > 1) {
+        sr = sweep_ranks(B, curves, msg, sizeof msg, &code);
+    } else {
+        if (B->b.progress) B->b.bo.progress = on_progress;
+        sr = sw_boundary_sweep(curves, B->nc, B->b.ratios, B->b.nr, &B->b.bo, B->pts, msg,
                                sizeof msg);
+    }
     free(curves);
     if (sr == SW_OK) return SW_EXIT_OK;
+    if (B->world.rank != 0) return code; /* rank 0 says why */
     sw_cli_error("boundary: %s", msg[0] ? msg : sw_strerror(sr));
-    return SW_EXIT_USAGE;
+    return code;
 }
 
 /* The points that need a word: not overturned, an upper bound, more
@@ -652,7 +736,14 @@ int cmd_boundary(int argc, char **argv)
     int rc = SW_EXIT_USAGE;
     boundary_t B;
     memset(&B, 0, sizeof B);
-    B.b.progress = isatty(fileno(stderr)) ? 1 : 0;
+    if ((rc = sw_cli_world_start(&B.world)) != SW_EXIT_OK) return rc;
+    /* Every rank sets up as rank 0 does; the others keep their messages
+     * to themselves unless they alone fail. */
+    char *msgs = NULL;
+    size_t mlen = 0;
+    FILE *mf = B.world.rank != 0 ? open_memstream(&msgs, &mlen) : NULL;
+    if (mf) sw_cli_msg_to(mf);
+    B.b.progress = B.world.rank == 0 && isatty(fileno(stderr)) ? 1 : 0;
     sw_cli_group_t g[] = {
         SW_CLI_GROUP(sw_cli_scene_options, &B.o),
         SW_CLI_GROUP(boundary_options, &B.b),
@@ -661,17 +752,24 @@ int cmd_boundary(int argc, char **argv)
     };
     const size_t ng = sizeof g / sizeof g[0];
 
-    int first;
-    if ((rc = sw_cli_parse(&boundary_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
-        goto out;
-    if ((rc = check_options(&B, argc, argv, first)) != SW_EXIT_OK ||
-        (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) != SW_EXIT_OK ||
-        (rc = build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
-                           B.bear_text, &B.cv, &B.nc)) != SW_EXIT_OK)
-        goto out;
-    if (B.o.verbose) print_curves(&B);
-    if ((rc = sweep(&B)) != SW_EXIT_OK) goto out;
-    rc = write_outputs(&B);
+    int first, help = 0;
+    if ((rc = sw_cli_parse(&boundary_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) {
+        help = rc == SW_EXIT_OK;
+    } else if ((rc = check_options(&B, argc, argv, first)) == SW_EXIT_OK &&
+               (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) == SW_EXIT_OK) {
+        rc = build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
+                          B.bear_text, &B.cv, &B.nc);
+    }
+    if (mf) {
+        sw_cli_msg_to(NULL);
+        fclose(mf);
+    }
+    rc = sw_cli_world_agree(&B.world, rc, msgs, mlen);
+    free(msgs);
+    if (rc != SW_EXIT_OK || help) goto out;
+    if (B.o.verbose && B.world.rank == 0) print_curves(&B);
+    rc = sweep(&B);
+    if (rc == SW_EXIT_OK && B.world.rank == 0) rc = write_outputs(&B);
 out:
     free(B.pts);
     free(B.cv);
@@ -683,5 +781,5 @@ out:
     free(B.bear_copy);
     free(B.bear_text);
     sw_cli_parse_free(g, ng);
-    return rc;
+    return sw_cli_world_end(&B.world, rc);
 }

@@ -539,6 +539,11 @@ int sw_cli_replay_ready(sw_cli_replay_t *r, const sw_cli_group_t *g, size_t ng)
     return rc;
 }
 
+sw_cli_opts_t *sw_cli_replay_opts(sw_cli_replay_t *r)
+{
+    return &r->o;
+}
+
 int sw_cli_replay_fails_on_overturn(const sw_cli_replay_t *r)
 {
     return r->ro.fail_on_overturn;

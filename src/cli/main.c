@@ -20,6 +20,7 @@ static const struct {
 #endif
     {"boundary", cmd_boundary, "overturning boundary curves: lowest overturning pulse vs omega/p"},
     {"forensics", cmd_forensics, "a log's outcome, safety factor, and what support would have saved it"},
+    {"batch", cmd_batch, "many logs on every core (and MPI rank): JSON Lines records, a CSV table"},
 };
 
 /* Per thread: the jobs of a batch run on several threads at once, each
@@ -68,7 +69,7 @@ static void usage(FILE *f)
             "Run 'swaywatch help <command>' or 'swaywatch <command> --help' for a command's\n"
             "options.\n"
             "Exit codes: 0 ok, 1 a package overturned (with --fail-on-overturn),\n"
-            "2 bad usage or input, 3 I/O error.\n");
+            "2 bad usage or input, 3 I/O error, 4 batch: some logs failed.\n");
 }
 
 /* "swaywatch CMD --version", for every command alike (and for help2man,

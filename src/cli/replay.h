@@ -33,6 +33,9 @@ size_t sw_cli_replay_groups(sw_cli_replay_t *r, sw_cli_group_t *g);
  * exit code (reported). */
 int sw_cli_replay_ready(sw_cli_replay_t *r, const sw_cli_group_t *g, size_t ng);
 
+/* The options r shares with the other commands (scenes, integration). */
+sw_cli_opts_t *sw_cli_replay_opts(sw_cli_replay_t *r);
+
 /* --fail-on-overturn was given. */
 int sw_cli_replay_fails_on_overturn(const sw_cli_replay_t *r);
 
