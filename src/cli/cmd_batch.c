@@ -166,6 +166,8 @@ typedef struct {
     long ok, failed, records;
     int overturned; /* a log's job gave 1 (--fail-on-overturn) */
     int write_failed;
+    long *by_rank; /* logs each rank ran */
+    int threads;   /* per rank */
 } batch_t;
 
 /* The job named by --job NAME or --job=NAME, before the options are parsed
@@ -590,11 +592,14 @@ static int run_batch(batch_t *B)
         /* fall through to agree: the other ranks wait for the verdict */
     }
     if ((rc = sw_cli_world_agree(&B->world, rc, NULL, 0)) != SW_EXIT_OK) return rc;
+    B->threads = sw_cli_threads(&B->world, B->b.threads);
+    B->by_rank = calloc((size_t)B->world.size, sizeof *B->by_rank);
     const sw_cli_farm_t farm = {
         .world = &B->world,
         .n = B->n,
         .cost = B->cost,
-        .threads = sw_cli_threads(&B->world, B->b.threads),
+        .threads = B->threads,
+        .by_rank = B->by_rank,
         .run = run_item,
         .take = take_item,
         .user = B,
@@ -607,12 +612,20 @@ static int run_batch(batch_t *B)
     B->out = B->csv = NULL;
     if (rc == SW_EXIT_OK) rc = rc2 != SW_EXIT_OK ? rc2 : rc3;
     if (rc != SW_EXIT_OK) return rc;
-    if (!B->b.quiet)
+    if (!B->b.quiet) {
         sw_cli_error("batch: %zu log%s: %ld done, %ld failed; %ld record%s to %s%s%s", B->n,
                      B->n == 1 ? "" : "s", B->ok, B->failed, B->records,
                      B->records == 1 ? "" : "s", sw_cli_out_name(B->b.out ? B->b.out : "-"),
                      B->b.csv ? ", the table to " : "",
                      B->b.csv ? sw_cli_out_name(B->b.csv) : "");
+        if (B->world.size > 1 && B->by_rank) { /* how the work was shared */
+            FILE *m = sw_cli_msg();
+            fprintf(m, "swaywatch: batch: %d ranks (rank 0 with %d thread%s); logs run by each:",
+                    B->world.size, B->threads, B->threads == 1 ? "" : "s");
+            for (int r = 0; r < B->world.size; r++) fprintf(m, " %ld", B->by_rank[r]);
+            fputc('\n', m);
+        }
+    }
     if (B->failed) return SW_EXIT_PARTIAL;
     return B->overturned ? SW_EXIT_OVERTURNED : SW_EXIT_OK;
 }
@@ -628,6 +641,7 @@ static void free_batch(batch_t *B)
     free(B->sets);
     free(B->items);
     free(B->cost);
+    free(B->by_rank);
     sw_cli_manifest_free(&B->man);
     free(B->mtext);
     sw_cli_parse_free(B->g, B->ng);

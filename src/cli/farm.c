@@ -111,8 +111,9 @@ int sw_farm_next(sw_farm_t *st, size_t *i)
     return 1;
 }
 
-void sw_farm_store(sw_farm_t *st, size_t i, sw_farm_result_t *r)
+void sw_farm_store(sw_farm_t *st, size_t i, sw_farm_result_t *r, int from)
 {
+    if (st->f->by_rank) st->f->by_rank[from]++;
     st->res[i] = *r;
     st->res[i].ready = 1;
     st->arrived++;
@@ -141,7 +142,7 @@ static void job_rank0(void *user, size_t unused)
     if (bad)
         fail_oom(st);
     else
-        sw_farm_store(st, i, &r);
+        sw_farm_store(st, i, &r, 0);
     pthread_mutex_unlock(&st->mu);
 }
 
@@ -326,6 +327,7 @@ int sw_cli_farm_run(const sw_cli_farm_t *f)
         goto out;
     }
     if (root) make_order(&st);
+    if (root && f->by_rank) memset(f->by_rank, 0, (size_t)f->world->size * sizeof *f->by_rank);
 
     pool_arg_t pa = {.st = &st, .job = job_rank0};
 #ifdef SW_HAVE_MPI

@@ -71,6 +71,7 @@ typedef struct {
                 size_t mlen);
     void *user;
     const char *what; /* "logs", "points": the progress line's unit; NULL: no progress */
+    long *by_rank;    /* rank 0, if not NULL: set to the jobs each rank ran (size entries) */
 } sw_cli_farm_t;
 
 /* Run every job once and take every result on rank 0 (collective: every

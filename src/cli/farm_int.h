@@ -44,8 +44,9 @@ typedef struct {
 int sw_farm_run_one(sw_farm_t *st, size_t i, sw_farm_result_t *r);
 /* Rank 0, mu held: the next job to start (1), or none left (0). */
 int sw_farm_next(sw_farm_t *st, size_t *i);
-/* Rank 0, mu held: job i's result is in (r's buffers are taken). */
-void sw_farm_store(sw_farm_t *st, size_t i, sw_farm_result_t *r);
+/* Rank 0, mu held: job i's result is in, from rank from (r's buffers are
+ * taken). */
+void sw_farm_store(sw_farm_t *st, size_t i, sw_farm_result_t *r, int from);
 
 #ifdef SW_HAVE_MPI
 /* Rank 0: answer what the other ranks sent (requests for work, results);

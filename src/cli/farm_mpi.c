@@ -206,7 +206,7 @@ static void take_result(sw_farm_t *st, const MPI_Status *s)
         pthread_mutex_unlock(&st->mu);
         sw_farm_mpi_abort("a job's result came twice", SW_EXIT_IO);
     }
-    sw_farm_store(st, (size_t)h[0], &r);
+    sw_farm_store(st, (size_t)h[0], &r, s->MPI_SOURCE);
     pthread_mutex_unlock(&st->mu);
 }
 
