@@ -5,7 +5,7 @@
 # target briefly.  Used by .ci/run and by README's Quick start.
 #
 #   SW_QUICK=1       only the first pass (a quick local check)
-#   FUZZ_SECONDS=N   seconds per fuzz target (default 30; 0: no fuzzing)
+#   FUZZ_SECONDS=N   seconds per fuzz target (default 60; 0: no fuzzing)
 #   BUILD, ASAN_BUILD, FUZZ_BUILD   build folders (build, build-asan, build-fuzz)
 set -eu
 cd "$(dirname "$0")/.."
@@ -41,7 +41,11 @@ ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_check
     ctest --test-dir "$ASAN_BUILD" --output-on-failure -j "$JOBS" -LE 'soak|valgrind|package'
 elapsed "sanitizer build and tests"
 
-FUZZ_SECONDS=${FUZZ_SECONDS:-30}
+# Five targets (csv, scene, accel, feed, lcmlog) one after the other, 60 s
+# each: 5 min, plus the clang build of build-fuzz (well under a minute on
+# 2 cores).  With the two passes above (about 8 min) the whole run takes
+# about 14 min of CI's 90.
+FUZZ_SECONDS=${FUZZ_SECONDS:-60}
 if [ "$FUZZ_SECONDS" -gt 0 ]; then
     scripts/fuzz.sh "$FUZZ_SECONDS"
     elapsed "fuzzing"

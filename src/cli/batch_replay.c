@@ -80,7 +80,7 @@ static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t 
     fputc(',', f);
     if (h && F->t_origin != 0.0) {
         char iso[64];
-        sw_cli_iso_time(iso, sizeof iso, F->t_origin);
+        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
         fputs(iso, f);
     }
     sw_cli_csv_num(f, h ? F->duration : NAN);
@@ -102,8 +102,6 @@ static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t 
 
 typedef struct {
     sw_cli_records_t *rec;
-    int fail_on_overturn;
-    int overturned;
     int oom;
 } report_t;
 
@@ -114,7 +112,6 @@ static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
         if (sw_engine_summary(e, i, &s) != SW_OK) continue;
-        R->overturned |= s.overturned;
         char *json = NULL, *csv = NULL;
         size_t jlen = 0, clen = 0;
         FILE *j = open_memstream(&json, &jlen);
@@ -143,14 +140,13 @@ static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
 
 static int run(const void *opts, const char *log, sw_cli_records_t *rec)
 {
-    report_t R = {.rec = rec, .fail_on_overturn = sw_cli_replay_fails_on_overturn(opts)};
-    int rc = sw_cli_replay_log(opts, log, report, &R);
-    if (rc != SW_EXIT_OK) return rc;
+    report_t R = {.rec = rec};
+    const int rc = sw_cli_replay_log(opts, log, report, &R);
     if (R.oom) {
         sw_cli_error("%s: out of memory", log);
         return SW_EXIT_IO;
     }
-    return R.fail_on_overturn && R.overturned ? SW_EXIT_OVERTURNED : SW_EXIT_OK;
+    return rc;
 }
 
 const sw_cli_job_t sw_cli_job_replay = {

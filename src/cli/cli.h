@@ -23,6 +23,7 @@ typedef int (*sw_cmd_fn)(int argc, char **argv);
 int cmd_replay(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
 int cmd_monitor(int argc, char **argv); /* LCM builds only (SW_HAVE_LCM) */
+int cmd_watch(int argc, char **argv);   /* LCM and curses builds only (SW_HAVE_WATCH) */
 int cmd_boundary(int argc, char **argv);
 int cmd_forensics(int argc, char **argv);
 int cmd_batch(int argc, char **argv);

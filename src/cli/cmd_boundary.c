@@ -14,7 +14,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "clobber.h"
+#include "cost.h"
 #include "farm.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 #include "plot.h"
@@ -90,6 +93,17 @@ static int parse_shape(const sw_cli_option_t *o, const char *arg, void *dest)
     return SW_EXIT_USAGE;
 }
 
+/* Each of n values within the row's bounds. */
+static int check_values(const sw_cli_option_t *o, const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        char arg[32];
+        snprintf(arg, sizeof arg, "%g", v[i]);
+        if (sw_cli_opt_range(o, arg, v[i]) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
 static int parse_ratios(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     boundary_opts_t *b = dest;
@@ -98,7 +112,8 @@ static int parse_ratios(const sw_cli_option_t *o, const char *arg, void *dest)
     b->nr = 0;
     char opt[64];
     snprintf(opt, sizeof opt, "--%s", o->long_name);
-    return sw_cli_parse_range(opt, arg, MAX_POINTS, &b->ratios, &b->nr);
+    int rc = sw_cli_parse_range(opt, arg, MAX_POINTS, &b->ratios, &b->nr);
+    return rc == SW_EXIT_OK ? check_values(o, b->ratios, b->nr) : rc;
 }
 
 static int parse_bearing(const sw_cli_option_t *o, const char *arg, void *dest)
@@ -110,7 +125,8 @@ static int parse_bearing(const sw_cli_option_t *o, const char *arg, void *dest)
     b->bear_arg = arg;
     char opt[64];
     snprintf(opt, sizeof opt, "--%s", o->long_name);
-    return sw_cli_parse_list(opt, arg, 1, &b->bearing, &b->nbear);
+    int rc = sw_cli_parse_list(opt, arg, 1, &b->bearing, &b->nbear);
+    return rc == SW_EXIT_OK ? check_values(o, b->bearing, b->nbear) : rc;
 }
 
 static int add_vary(const sw_cli_option_t *o, const char *arg, void *dest)
@@ -134,32 +150,39 @@ static const sw_cli_option_t boundary_options[] = {
              "every --bearing-ratio value for scenes with a frame."},
     {SW_CLI_CALL, 0, "pulse", "SHAPE", .fn = parse_shape,
      .help = "half-sine or full-sine (required)"},
-    {SW_CLI_CALL, 0, "omega-ratio", "R", .fn = parse_ratios,
-     .help = "omega_e/p values: FROM:TO:STEP (inclusive) or a list R1,R2,... (required)"},
+    {SW_CLI_CALL, 0, "omega-ratio", "R", .fn = parse_ratios, .lo = 1e-3, .hi = 1e4,
+     .help = "omega_e/p values: FROM:TO:STEP (inclusive) or a list R1,R2,... (required); below "
+             "1e-3 a pulse lasts thousands of rocking periods, above 1e4 it is far shorter "
+             "than a step"},
     {SW_CLI_CALL, 0, "vary", "SEC.KEY=V1,V2", .fn = add_vary,
      .help = "one curve per value of a scene key, e.g. --vary frame.zeta=0.05,0.1,0.2; "
              "repeatable (all combinations); a frame or cushion key leaves scenes without that "
              "section as they are"},
-    {SW_CLI_CALL, 0, "bearing-ratio", "B1,B2", .fn = parse_bearing,
+    {SW_CLI_CALL, 0, "bearing-ratio", "B1,B2", .fn = parse_bearing, .lo = 1e-3, .hi = 1e3,
      .help = "omega_b = B * omega_e at every point (the paper's omega_b/omega_e); values may be "
              "fractions such as 1/3; scenes without a [frame] are drawn once, as they are"},
     {SW_CLI_SECTION, .help = "Search:"},
-    {SW_CLI_DOUBLE, 0, "step", "X", BO(bo.search.step), .rule = SW_NUM_POSITIVE,
-     .what = "a positive relative step", .help = "relative scan step (default 0.02)"},
-    {SW_CLI_DOUBLE, 0, "tol", "X", BO(bo.search.tol), .rule = SW_NUM_POSITIVE,
-     .what = "a positive relative tolerance",
-     .help = "relative width of the final bracket (default 0.001)"},
+    {SW_CLI_DOUBLE, 0, "step", "X", BO(bo.search.step), .rule = SW_NUM_POSITIVE, .lo = 1e-4,
+     .hi = 1, .what = "a positive relative step",
+     .help = "relative scan step (default 0.02); smaller steps take tens of thousands of runs "
+             "per point"},
+    {SW_CLI_DOUBLE, 0, "tol", "X", BO(bo.search.tol), .rule = SW_NUM_POSITIVE, .lo = 1e-9,
+     .hi = 0.5, .what = "a positive relative tolerance",
+     .help = "relative width of the final bracket (default 0.001); finer than 1e-9 is below "
+             "what the model resolves"},
     {SW_CLI_DOUBLE, 0, "min-amplitude", "X", BO(bo.search.x_min), .rule = SW_NUM_POSITIVE,
+     .lo = 1e-3, .hi = 1e4,
      .what = "a positive amplitude in g tan alpha",
      .help = "start of the scan, in g tan alpha (default: the lowest amplitude that can lift "
              "the package at all)"},
     {SW_CLI_DOUBLE, 0, "max-amplitude", "X", BO(bo.search.x_max), .rule = SW_NUM_POSITIVE,
-     .what = "a positive amplitude in g tan alpha",
+     .lo = 1e-3, .hi = 1e4, .what = "a positive amplitude in g tan alpha",
      .help = "end of the scan (default 20); a curve with no overturn up to it has an empty "
-             "field at that point"},
+             "field at that point; 1e4 g tan alpha is beyond any accelerometer"},
     {SW_CLI_DOUBLE, 0, "free-periods", "N", BO(bo.run.free_periods), .rule = SW_NUM_POSITIVE,
-     .what = "a positive number of rocking periods",
-     .help = "free motion after the pulse, in rocking periods 2 pi/p (default 20)"},
+     .lo = 1e-2, .hi = 1e4, .what = "a positive number of rocking periods",
+     .help = "free motion after the pulse, in rocking periods 2 pi/p (default 20); more than "
+             "1e4 would make every trial hours of motion"},
     {SW_CLI_LONG, 0, "threads", "N", BO(threads), .min = 0, .max = 256, .def = 0,
      .what = "a whole number of threads >= 0",
      .help = "worker threads (per MPI rank); 0, the default: the CPUs this process may run on; "
@@ -653,6 +676,9 @@ static int sweep(boundary_t *B)
     for (size_t c = 0; c < B->nc; c++) curves[c] = B->cv[c].c;
     char msg[512] = "";
     int sr, code = SW_EXIT_USAGE;
+    /* The sweep cannot stop between points and writes nothing: a signal
+     * ends the process at once. */
+    sw_cli_interrupt_now("boundary: interrupted during the sweep; nothing written");
     if (B->world.size > 1) {
         sr = sweep_ranks(B, curves, msg, sizeof msg, &code);
     } else {
@@ -660,6 +686,7 @@ static int sweep(boundary_t *B)
         sr = sw_boundary_sweep(curves, B->nc, B->b.ratios, B->b.nr, &B->b.bo, B->pts, msg,
                                sizeof msg);
     }
+    sw_cli_interrupt_now(NULL);
     free(curves);
     if (sr == SW_OK) return SW_EXIT_OK;
     if (B->world.rank != 0) return code; /* rank 0 says why */
@@ -755,10 +782,17 @@ int cmd_boundary(int argc, char **argv)
     int first, help = 0;
     if ((rc = sw_cli_parse(&boundary_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) {
         help = rc == SW_EXIT_OK;
-    } else if ((rc = check_options(&B, argc, argv, first)) == SW_EXIT_OK &&
-               (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) == SW_EXIT_OK) {
-        rc = build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
-                          B.bear_text, &B.cv, &B.nc);
+    } else {
+        const sw_cli_file_t outputs[] = {{"--out", B.b.out},
+                                         {"--detail", B.b.detail},
+                                         {"--islands", B.b.islands},
+                                         {"--plot", B.b.plot}};
+        if ((rc = sw_cli_interrupt_install()) == SW_EXIT_OK &&
+            (rc = check_options(&B, argc, argv, first)) == SW_EXIT_OK &&
+            (rc = sw_cli_check_run_files(NULL, &B.o.scenes, outputs, 4)) == SW_EXIT_OK &&
+            (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) == SW_EXIT_OK)
+            rc = build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
+                              B.bear_text, &B.cv, &B.nc);
     }
     if (mf) {
         sw_cli_msg_to(NULL);
@@ -767,9 +801,17 @@ int cmd_boundary(int argc, char **argv)
     rc = sw_cli_world_agree(&B.world, rc, msgs, mlen);
     free(msgs);
     if (rc != SW_EXIT_OK || help) goto out;
-    if (B.o.verbose && B.world.rank == 0) print_curves(&B);
-    rc = sweep(&B);
-    if (rc == SW_EXIT_OK && B.world.rank == 0) rc = write_outputs(&B);
+    if (B.world.rank == 0) {
+        if (B.o.verbose) print_curves(&B);
+        sw_cli_warn_scene_cost(B.scenes, B.nsc, &B.b.bo.run.engine);
+    }
+    if ((rc = sweep(&B)) != SW_EXIT_OK || B.world.rank != 0) goto out;
+    rc = write_outputs(&B);
+    if (sw_cli_signal && rc != SW_EXIT_IO) { /* while writing: the files are whole */
+        sw_cli_error("boundary: interrupted by %s after the files were written",
+                     sw_cli_signal_name(sw_cli_signal));
+        rc = sw_cli_interrupt_code();
+    }
 out:
     free(B.pts);
     free(B.cv);

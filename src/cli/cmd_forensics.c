@@ -24,7 +24,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clobber.h"
 #include "input.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 #include "plot.h"
@@ -38,6 +40,7 @@ typedef struct {
     double settle; /* s of zero input after the end of the log, as replay */
     int fail_on_overturn;
     long threads;
+    long max_samples; /* the log held in memory, at most */
     sw_search_opts_t so;
     sw_cli_whatif_t w;
     const char *plot;
@@ -57,19 +60,27 @@ static int check_size(const sw_cli_option_t *o, const char *arg, void *dest)
 static const sw_cli_option_t forensics_options[] = {
     {SW_CLI_SECTION, .help = "Run:"},
     {SW_CLI_DOUBLE, 0, "settle", "SECONDS", FO(settle), .rule = SW_NUM_NONNEGATIVE, .def = 30,
-     .what = "a number of seconds >= 0",
+     .hi = 1e5, .what = "a number of seconds >= 0",
      .help = "after the log, zero acceleration for up to this long or until the outcome is "
-             "certain (default %g; 0: none)"},
+             "certain (default %g; 0: none); at most a day: an undamped frame never rests"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", FO(fail_on_overturn), .value = 1,
      .help = "exit 1 if the package as given overturned"},
+    {SW_CLI_LONG, 0, "max-samples", "N", FO(max_samples), .min = 1, .max = 1L << 28,
+     .def = SW_CLI_LOG_MAX_SAMPLES, .what = "a whole number of samples >= 1",
+     .help = "hold at most N samples of the log in memory (16 bytes each, 24 with --vert-col; "
+             "default " SW_CLI_STR(SW_CLI_LOG_MAX_SAMPLES_N) ", 9.3 h at 1 kHz; at most 268435456); a longer log, or an endless pipe, "
+             "is refused with exit 2 instead of filling the memory"},
     {SW_CLI_SECTION, .help = "Safety factor (scale of the whole longitudinal acceleration):"},
-    {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE,
-     .what = "a positive relative step", .help = "relative scan step (default 0.02)"},
-    {SW_CLI_DOUBLE, 0, "tol", "X", FO(so.tol), .rule = SW_NUM_POSITIVE,
+    {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE, .lo = 1e-4, .hi = 1,
+     .what = "a positive relative step",
+     .help = "relative scan step (default 0.02); smaller steps take tens of thousands of "
+             "replays of the log"},
+    {SW_CLI_DOUBLE, 0, "tol", "X", FO(so.tol), .rule = SW_NUM_POSITIVE, .lo = 1e-9, .hi = 0.5,
      .what = "a positive relative tolerance",
-     .help = "relative width of the final bracket (default 0.001)"},
-    {SW_CLI_DOUBLE, 0, "max-factor", "X", FO(so.x_max), .rule = SW_NUM_POSITIVE,
-     .what = "a positive scale factor",
+     .help = "relative width of the final bracket (default 0.001); finer than 1e-9 is below "
+             "what the model resolves"},
+    {SW_CLI_DOUBLE, 0, "max-factor", "X", FO(so.x_max), .rule = SW_NUM_POSITIVE, .lo = 1,
+     .hi = 1e4, .what = "a positive scale factor",
      .help = "largest scale tried (default: 20 times the scale at which the log's peak lifts a "
              "package on the bed)"},
     {SW_CLI_LONG, 0, "threads", "N", FO(threads), .min = 1, .max = 256, .def = 2,
@@ -118,8 +129,8 @@ static const sw_cli_command_t forensics_cmd = {
         "    that would have overturned it: overturning is not monotonic in the amplitude);\n"
         "  - a what-if table: the same log with the package on the bed, on a frame, on a\n"
         "    cushion and in other sizes, each with its outcome and safety factor.\n"
-        "The log is held in memory (about 16 bytes a sample): the search replays it tens\n"
-        "of times for every case.\n",
+        "The log is held in memory (about 16 bytes a sample, at most --max-samples): the\n"
+        "search replays it tens of times for every case.\n",
     .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
 };
 
@@ -276,12 +287,23 @@ typedef struct {
     sw_engine_opts_t eo;
     sw_engine_t *e;
     long refused; /* samples the engine refused */
+    size_t pushed; /* samples handed to the engine (fewer if interrupted) */
     sw_cli_states_t states;
     sw_cli_events_t events;
     replay_t R;
     sw_cli_case_t *cases;
     size_t ncases;
 } forensics_t;
+
+/* 0. The log into memory; nothing is written yet, so a signal ends the
+ * process at once. */
+static int read_log(forensics_t *F)
+{
+    sw_cli_interrupt_now("forensics: interrupted while reading the log; nothing written");
+    int rc = sw_cli_log_read(F->log_path, &F->copts, F->o.quiet, F->fo.max_samples, &F->L);
+    sw_cli_interrupt_now(NULL);
+    return rc;
+}
 
 /* 1. The replay, exactly as replay runs it. */
 static int replay_log(forensics_t *F)
@@ -309,10 +331,10 @@ static int replay_log(forensics_t *F)
     R->states = &F->states;
     R->events = &F->events;
     const sw_cli_log_t *L = &F->L;
-    for (size_t i = 0; i < L->n; i++)
+    for (size_t i = 0; i < L->n && !sw_cli_signal; i++, F->pushed++)
         if (sw_engine_push(F->e, L->t[i], L->a_g[i], L->has_z ? L->a_z[i] : 0.0) < 0)
             F->refused++;
-    sw_engine_finish(F->e, F->fo.settle);
+    if (!sw_cli_signal) sw_engine_finish(F->e, F->fo.settle);
     rc = sw_cli_states_close(&F->states);
     int rc2 = sw_cli_events_close(&F->events);
     if (rc == SW_EXIT_OK) rc = rc2;
@@ -335,12 +357,41 @@ static int run_cases(forensics_t *F)
     ro.settle = F->fo.settle > 0.0 ? F->fo.settle : -1.0; /* negative: no free motion at all */
     const sw_cli_log_t *L = &F->L;
     sw_log_t lg = {L->t, L->a_g, L->has_z ? L->a_z : NULL, L->n};
+    /* The search cannot stop between trials and writes nothing: a signal
+     * ends the process at once. */
+    sw_cli_interrupt_now("forensics: interrupted during the safety-factor search; --out and "
+                         "--events are complete, no report");
     sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads);
+    sw_cli_interrupt_now(NULL);
     if (!F->cases[0].available) {
         sw_cli_error("forensics: safety factor: %s", F->cases[0].note);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
+}
+
+/* 3'. Interrupted during the replay: its summary alone, marked so. */
+static int report_interrupted(const forensics_t *F)
+{
+    const long read = (long)F->pushed < F->L.rows ? (long)F->pushed : F->L.rows;
+    const sw_cli_run_t run = {
+        .log = F->log_path,
+        .samples_read = read,
+        .samples_rejected = F->refused,
+        .settle = F->fo.settle,
+        .interrupted = sw_cli_signal,
+    };
+    if (F->o.json) {
+        fprintf(stdout, "{\n\"replay\": ");
+        sw_cli_print_json(stdout, F->e, &run);
+        fprintf(stdout, ",\n\"safety_factor\": null,\n\"what_if\": []\n}\n");
+    } else if (!F->o.quiet) {
+        sw_cli_print_summary(stdout, F->e, &run);
+    }
+    sw_cli_error("forensics: interrupted by %s after %ld samples of the replay; the output "
+                 "files end with the last whole row; no safety factor or what-if",
+                 sw_cli_signal_name(sw_cli_signal), read);
+    return sw_cli_interrupt_code();
 }
 
 /* 3. The report: replay's summary, the safety factor and the table. */
@@ -394,6 +445,8 @@ int cmd_forensics(int argc, char **argv)
         goto out;
     rc = SW_EXIT_USAGE;
     if (!(F.log_path = sw_cli_log_operand("forensics", argc, argv, first))) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    rc = SW_EXIT_USAGE;
     if (F.o.scenes.n > 1) {
         sw_cli_error("forensics: one --scene (one package) at a time");
         goto out;
@@ -402,12 +455,20 @@ int cmd_forensics(int argc, char **argv)
         sw_cli_error("--max-factor: expected a factor above 1, got %g", F.fo.so.x_max);
         goto out;
     }
-    if ((rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
+    const sw_cli_file_t outputs[] = {
+        {"--out", F.o.out_path}, {"--events", F.o.events_path}, {"--plot", F.fo.plot}};
+    if ((rc = sw_cli_check_run_files(F.log_path, &F.o.scenes, outputs, 3)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
             SW_EXIT_OK ||
-        (rc = sw_cli_log_read(F.log_path, &F.copts, F.o.quiet, &F.L)) != SW_EXIT_OK ||
+        (rc = read_log(&F)) != SW_EXIT_OK ||
         (rc = sw_cli_load_scenes(&F.o, &F.scenes, &F.nsc)) != SW_EXIT_OK ||
-        (rc = replay_log(&F)) != SW_EXIT_OK || (rc = run_cases(&F)) != SW_EXIT_OK)
+        (rc = replay_log(&F)) != SW_EXIT_OK)
         goto out;
+    if (sw_cli_signal) {
+        rc = report_interrupted(&F);
+        goto out;
+    }
+    if ((rc = run_cases(&F)) != SW_EXIT_OK) goto out;
     sw_summary_t sum;
     sw_engine_summary(F.e, 0, &sum);
     if (sum.overturned != F.cases[0].sf.overturned)
@@ -420,7 +481,12 @@ int cmd_forensics(int argc, char **argv)
         rc = draw(F.fo.plot, F.log_path, &F.scenes[0], &F.R, F.scenes[0].g * tan(d->alpha));
         if (rc != SW_EXIT_OK) goto out;
     }
-    rc = F.fo.fail_on_overturn && sum.overturned ? SW_EXIT_OVERTURNED : SW_EXIT_OK;
+    rc = sw_cli_verdict_exit(F.e, F.fo.fail_on_overturn);
+    if (sw_cli_signal) { /* while the report or the figure was written: both are whole */
+        sw_cli_error("forensics: interrupted by %s after the report",
+                     sw_cli_signal_name(sw_cli_signal));
+        rc = sw_cli_interrupt_code();
+    }
 out:
     sw_cli_states_close(&F.states);
     sw_cli_events_close(&F.events);

@@ -20,8 +20,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clobber.h"
+#include "cost.h"
 #include "feed.h"
 #include "input.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 #include "replay.h"
@@ -29,6 +32,7 @@
 #include <lcm/lcm.h>
 
 #include "eventlog.h"
+#include "lcmlog.h"
 #include "lcmopts.h"
 #include "monitor.h"
 #endif
@@ -47,10 +51,10 @@ typedef struct {
 static const sw_cli_option_t replay_options[] = {
     {SW_CLI_SECTION, .help = "Run:"},
     {SW_CLI_DOUBLE, 0, "settle", "SECONDS", RO(settle), .rule = SW_NUM_NONNEGATIVE, .def = 30,
-     .what = "a number of seconds >= 0",
+     .hi = 1e5, .what = "a number of seconds >= 0",
      .help = "after the log ends, go on with zero acceleration for up to this long, or until "
              "every package is at rest or has overturned (default %g; 0: stop at the end of the "
-             "log)"},
+             "log); at most 1e5 s (a day), since an undamped frame never comes to rest"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", RO(fail_on_overturn), .value = 1,
      .help = "exit 1 if any package overturned"},
     {SW_CLI_END},
@@ -76,14 +80,16 @@ static const sw_cli_option_t replay_publish_options[] = {
      .help = "also publish states and alarms over LCM ('' = LCM's default URL; "
              "file:///path?mode=w writes a log)"},
     {SW_CLI_DOUBLE, 0, "speed", "X", RO(speed), .rule = SW_NUM_NONNEGATIVE, .def = 1,
-     .what = "a factor >= 0 (0: as fast as possible)",
+     .lo = 1e-3, .hi = 1e6, .what = "a factor >= 0 (0: as fast as possible)",
      .help = "with --publish: X times real time by the samples' utime (default %g; 0 = as fast "
-             "as possible)"},
+             "as possible); below 1e-3 one second of log would take over a quarter of an hour"},
     {SW_CLI_TEXT,
      .help = "Samples are integrated by their own utime, not the log's timestamps.  Messages\n"
-             "on other channels are counted and skipped; corrupted regions of the log are\n"
-             "skipped and counted (--strict: exit 2); bad, duplicate and late samples are\n"
-             "refused as by the monitor."},
+             "on other channels are counted and skipped; corrupted regions of the log (a bad\n"
+             "header, a length field past the end of the file or beyond LCM's limits, junk)\n"
+             "are skipped, counted and reported with their byte offset (--strict: exit 2);\n"
+             "bad, duplicate and late samples are refused as by the monitor.  With --publish,\n"
+             "only accepted samples are paced on."},
     {SW_CLI_END},
 };
 #endif
@@ -94,7 +100,8 @@ static const sw_cli_command_t replay_cmd = {
     .about = "Replays a recorded acceleration log of the truck bed through the rocking model of\n"
              "each package and reports whether, when and how close it came to overturning.\n"
              "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
-             "its first bytes; needs a build with LCM).\n",
+             "its first bytes; needs a build with LCM).  An lcm-logger log that cannot seek (a\n"
+             "pipe, '-') is copied to a temporary file first (at most 4 GiB), in one pass.\n",
     .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
 };
 
@@ -108,8 +115,11 @@ struct sw_cli_replay {
     /* the first option given that only CSV logs take, and the first that
      * only lcm-logger files take (NULL: none) */
     const char *csv_given, *lcm_given;
-    int scenes_shared; /* scenes belong to the options a batch copied */
-    const char *log;   /* LOG as given */
+    /* scenes belong to the options a batch copied: read, and their cost
+     * measured, once for every log */
+    int scenes_shared;
+    int concluded; /* the run got to its summary */
+    const char *log; /* LOG as given */
     sw_cli_logfile_t lf;
     sw_scene_t *scenes;
     size_t n;
@@ -123,6 +133,8 @@ struct sw_cli_replay {
     sw_mon_t *mon;
     lcm_t *lcm;
     sw_lcmlog_t *lcmlog;
+    sw_cli_regions_t regions;
+    sw_cli_pacer_t pacer; /* --publish: states go out paced by their sample time */
 #endif
 };
 typedef struct sw_cli_replay replay_t;
@@ -130,6 +142,11 @@ typedef struct sw_cli_replay replay_t;
 static void on_state(void *user, const sw_output_t *out)
 {
     replay_t *r = user;
+#ifdef SW_HAVE_LCM
+    /* Before the monitor publishes them: only accepted samples make
+     * states, so a refused sample never stalls the replay. */
+    sw_cli_pace(&r->pacer, out->t);
+#endif
     sw_cli_states_write(&r->states, out);
 }
 
@@ -151,6 +168,7 @@ static int replay_csv(replay_t *r)
     if (rc != SW_EXIT_OK) return rc;
     r->run.samples_read = fed.rows;
     r->run.samples_rejected = fed.rejected;
+    if (fed.interrupted) return SW_EXIT_OK; /* no check, no settling: finish() says why */
     rc = sw_cli_feed_verdict(r->lf.name, &fed.facts, &r->gate, r->copts.csv.vert_col != NULL,
                              r->o.quiet, &r->run);
     if (rc != SW_EXIT_OK) return rc;
@@ -165,20 +183,30 @@ static int replay_csv(replay_t *r)
 static int lcmlog_open(replay_t *r)
 {
     int err = 0;
+    r->regions = (sw_cli_regions_t){.name = r->lf.name, .quiet = r->o.quiet};
     const sw_lcmlog_opts_t lo = {
         .channel = r->ro.channel,
-        .speed = r->ro.publish_url ? r->ro.speed : 0.0,
         .strict = r->copts.strict,
+        .on_region = sw_cli_print_region,
+        .user = &r->regions,
+        .stop = &sw_cli_signal,
     };
-    r->lcmlog = sw_lcmlog_open(r->log, &lo, &err);
+    r->pacer.speed = r->ro.publish_url ? r->ro.speed : 0.0;
+    r->pacer.stop = &sw_cli_signal;
+    /* The log as opened, its first chunk included: a pipe is read once. */
+    r->lcmlog = sw_lcmlog_open_stream(r->lf.in, r->lf.buf, r->lf.len, &lo, &err);
     if (!r->lcmlog) {
         if (err == SW_EINVAL)
             sw_cli_error("--accel-channel: not a valid regular expression: '%s'", r->ro.channel);
         else if (err == SW_ENOMEM)
             sw_cli_error("out of memory");
+        else if (err == SW_ETOOBIG)
+            sw_cli_error("%s: a log read from a pipe is copied to a temporary file first, and "
+                         "this one is longer than %lld bytes; give its file name",
+                         r->lf.name, (long long)SW_LCMLOG_SPOOL_MAX);
         else
-            sw_cli_error("%s: cannot open: %s", r->log, strerror(errno));
-        return err == SW_EINVAL ? SW_EXIT_USAGE : SW_EXIT_IO;
+            sw_cli_error("%s: cannot read: %s", r->lf.name, strerror(errno));
+        return err == SW_EINVAL || err == SW_ETOOBIG ? SW_EXIT_USAGE : SW_EXIT_IO;
     }
     return SW_EXIT_OK;
 }
@@ -197,7 +225,7 @@ static sw_engine_t *lcmlog_engine(replay_t *r)
     if (sw_cli_mon_gate(&r->mo, &r->gate) != SW_EXIT_OK) return NULL;
     r->mo.accel_scale = r->copts.csv.accel_scale;
     r->mo.flip = r->copts.csv.flip;
-    r->mo.on_state = r->o.out_path ? on_state : NULL;
+    r->mo.on_state = r->o.out_path || r->pacer.speed > 0.0 ? on_state : NULL;
     r->mo.on_event = on_event;
     r->mo.user = r;
     char msg[512] = "";
@@ -206,15 +234,22 @@ static sw_engine_t *lcmlog_engine(replay_t *r)
         sw_cli_error("cannot start the engine: %s", msg[0] ? msg : "unknown reason");
         return NULL;
     }
+    if (!r->scenes_shared) sw_cli_warn_scene_cost(r->scenes, r->n, &r->eo);
     return sw_mon_engine(r->mon);
 }
 
 static int replay_lcmlog(replay_t *r)
 {
-    if (sw_lcmlog_read(r->lcmlog, r->mon) != SW_OK) {
+    const int lr = sw_lcmlog_read(r->lcmlog, r->mon);
+    if (lr == SW_ENOTFOUND) {
+        sw_cli_error("%s: cannot read: %s", r->lf.name, strerror(errno));
+        return SW_EXIT_IO;
+    }
+    if (lr != SW_OK) {
         sw_cli_error("%s: stopped at the first bad event or sample (--strict)", r->log);
         return SW_EXIT_USAGE;
     }
+    r->pacer.speed = 0.0; /* the settling after the log is not paced */
     sw_mon_flush(r->mon);
     sw_mon_counts_t k;
     sw_mon_counts(r->mon, &k);
@@ -224,7 +259,7 @@ static int replay_lcmlog(replay_t *r)
     }
     r->run.samples_read = k.received;
     r->run.samples_rejected = k.received - k.accepted;
-    if (k.accepted > 0) {
+    if (k.accepted > 0 && !sw_cli_signal) {
         sw_gate_facts_t f;
         sw_mon_facts(r->mon, &f);
         f.upstream_rejected = k.received - f.received; /* not accel_t, NaN on an axis */
@@ -232,7 +267,8 @@ static int replay_lcmlog(replay_t *r)
                                            r->o.quiet, &r->run);
         if (rc != SW_EXIT_OK) return rc;
     }
-    if (k.accepted > 0 && r->ro.settle > 0.0) sw_engine_finish(r->e, r->ro.settle);
+    if (k.accepted > 0 && r->ro.settle > 0.0 && !sw_cli_signal)
+        sw_engine_finish(r->e, r->ro.settle);
     return SW_EXIT_OK;
 }
 
@@ -244,6 +280,7 @@ static int lcmlog_report(replay_t *r)
     sw_mon_counts(r->mon, &k);
     sw_lcmlog_counts_t lc;
     sw_lcmlog_counts(r->lcmlog, &lc);
+    sw_cli_regions_summary(&r->regions);
     if (!r->o.quiet || k.accepted == 0) {
         FILE *m = sw_cli_msg();
         fprintf(m,
@@ -278,12 +315,6 @@ static void lcmlog_close(replay_t *r)
  * (reported, naming the first one given). */
 static int check_source(const sw_cli_source_t *src, const replay_t *r)
 {
-    if (src->kind == SW_CLI_SRC_LCMLOG && r->lf.in == stdin) {
-        sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
-                     "file name",
-                     r->lf.name);
-        return SW_EXIT_USAGE;
-    }
     if (!src->available) {
         sw_cli_error("%s: lcm-logger files need the LCM build", r->log);
         return SW_EXIT_USAGE;
@@ -328,8 +359,28 @@ static int start(replay_t *r, const sw_cli_source_t *src)
     r->eo.on_event = on_event;
     r->eo.on_state = r->o.out_path ? on_state : NULL;
     r->eo.user = r;
-    r->e = sw_cli_engine_create(r->scenes, r->n, &r->eo);
+    if (!r->scenes_shared) {
+        r->e = sw_cli_engine_create(r->scenes, r->n, &r->eo);
+    } else { /* a batch measured the scenes' cost once */
+        int err = 0;
+        char msg[512] = "";
+        r->e = sw_engine_create(r->scenes, r->n, &r->eo, &err, msg, sizeof msg);
+        if (!r->e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+    }
     return r->e ? SW_EXIT_OK : SW_EXIT_USAGE;
+}
+
+/* No output may be the log, a scene or another output (--publish
+ * file://PATH?mode=w writes a log too). */
+static int check_files(const replay_t *r)
+{
+    char url_path[4096];
+    const sw_cli_file_t out[] = {
+        {"--out", r->o.out_path},
+        {"--events", r->o.events_path},
+        {"--publish", sw_cli_lcm_url_output(r->ro.publish_url, url_path, sizeof url_path)},
+    };
+    return sw_cli_check_run_files(r->log, &r->o.scenes, out, sizeof out / sizeof out[0]);
 }
 
 /* Open LOG: a missing file is an I/O error (3) whatever else is wrong,
@@ -340,14 +391,12 @@ static const sw_cli_source_t *open_log(replay_t *r, int *rc)
     if ((*rc = sw_cli_logfile_open(&r->lf, r->log)) != SW_EXIT_OK) return NULL;
     const sw_cli_source_t *src = sw_cli_logfile_source(&r->lf);
     if ((*rc = check_source(src, r)) != SW_EXIT_OK ||
-        (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, r->lf.in, r->o.json,
+        (*rc = check_files(r)) != SW_EXIT_OK ||
+        (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, NULL, r->o.json,
                                      r->o.quiet)) != SW_EXIT_OK)
         return NULL;
 #ifdef SW_HAVE_LCM
-    if (src->kind == SW_CLI_SRC_LCMLOG) {
-        sw_cli_logfile_close(&r->lf); /* the event-log reader opens it again */
-        if ((*rc = lcmlog_open(r)) != SW_EXIT_OK) return NULL;
-    }
+    if (src->kind == SW_CLI_SRC_LCMLOG && (*rc = lcmlog_open(r)) != SW_EXIT_OK) return NULL;
 #endif
     return src;
 }
@@ -365,6 +414,8 @@ static int conclude(replay_t *r, const sw_cli_source_t *src)
     (void)src;
     r->run.log = r->log;
     r->run.settle = r->ro.settle;
+    r->run.interrupted = sw_cli_signal;
+    r->concluded = 1;
     return rc;
 }
 
@@ -412,15 +463,22 @@ static void cleanup(replay_t *r)
     sw_cli_logfile_close(&r->lf);
 }
 
-/* The summary, and the exit code it gives. */
-static int finish(replay_t *r)
+/* The summary of a concluded run, and the exit code: rc (the outputs'
+ * closing), or the verdict's. */
+static int finish(replay_t *r, int rc)
 {
     if (r->o.json)
         sw_cli_print_json(stdout, r->e, &r->run);
     else if (!r->o.quiet)
         sw_cli_print_summary(stdout, r->e, &r->run);
-    if (r->ro.fail_on_overturn && sw_cli_any_overturned(r->e)) return SW_EXIT_OVERTURNED;
-    return SW_EXIT_OK;
+    if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(r->e, r->ro.fail_on_overturn);
+    if (r->run.interrupted) {
+        sw_cli_error("replay: interrupted by %s after %ld samples; the output files end with "
+                     "the last whole row",
+                     sw_cli_signal_name(r->run.interrupted), r->run.samples_read);
+        if (rc != SW_EXIT_IO) rc = sw_cli_interrupt_code();
+    }
+    return rc;
 }
 
 /* replay's groups bound to r: all of them, or a batch's (the log's
@@ -492,10 +550,12 @@ int cmd_replay(int argc, char **argv)
 
     int first;
     if ((rc = sw_cli_parse(&replay_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
     rc = SW_EXIT_USAGE;
     if (!(r.log = sw_cli_log_operand("replay", argc, argv, first))) goto out;
     parsed(&r, g, ng);
-    if ((rc = replay_one(&r)) == SW_EXIT_OK) rc = finish(&r);
+    rc = replay_one(&r);
+    if (r.concluded) rc = finish(&r, rc);
 out:
     cleanup(&r);
     sw_cli_parse_free(g, ng);
@@ -536,17 +596,13 @@ int sw_cli_replay_ready(sw_cli_replay_t *r, const sw_cli_group_t *g, size_t ng)
     r->scenes_shared = 0;
     int rc = load(r);
     r->scenes_shared = 1; /* the copies made for each log share them */
+    if (rc == SW_EXIT_OK) sw_cli_warn_scene_cost(r->scenes, r->n, &r->eo);
     return rc;
 }
 
 sw_cli_opts_t *sw_cli_replay_opts(sw_cli_replay_t *r)
 {
     return &r->o;
-}
-
-int sw_cli_replay_fails_on_overturn(const sw_cli_replay_t *r)
-{
-    return r->ro.fail_on_overturn;
 }
 
 int sw_cli_replay_log(const sw_cli_replay_t *opts, const char *log, sw_cli_replay_report_fn report,
@@ -562,7 +618,10 @@ int sw_cli_replay_log(const sw_cli_replay_t *opts, const char *log, sw_cli_repla
     r->o.quiet = 1;
     r->o.json = 0;
     int rc = replay_one(r);
-    if (rc == SW_EXIT_OK) report(user, r->e, &r->run);
+    if (rc == SW_EXIT_OK && r->concluded) {
+        report(user, r->e, &r->run);
+        rc = sw_cli_verdict_exit(r->e, r->ro.fail_on_overturn);
+    }
     cleanup(r);
     free(r);
     return rc;

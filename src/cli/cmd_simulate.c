@@ -11,11 +11,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "clobber.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 
 #define STANDARD_GRAVITY 9.80665 /* m/s^2, for --amplitude-g */
 #define FREE_PERIODS 20          /* rocking periods 2 pi / p after the pulse */
+#define MAX_ROWS 1e8             /* --duration / --sample-interval */
 
 /* simulate's own options. */
 typedef struct {
@@ -55,21 +58,24 @@ static const sw_cli_option_t sim_options[] = {
      .help = "half-sine or full-sine (required)"},
     {SW_CLI_CALL, 0, "amplitude", "A", .fn = parse_amplitude, .def = 1.0,
      .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration in m/s^2",
-     .help = "m/s^2, sign included (required, or --amplitude-g)"},
+     .help = "m/s^2, sign included (required, or --amplitude-g); |A| at most 1e5 m/s^2 "
+             "(about 10,200 g), the most the engine takes from an accelerometer"},
     {SW_CLI_CALL, 0, "amplitude-g", "A", .fn = parse_amplitude, .def = STANDARD_GRAVITY,
      .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration in g",
      .help = "the same in g (1 g = %g m/s^2)"},
-    {SW_CLI_DOUBLE, 0, "omega", "W", SIM(pulse.omega), .rule = SW_NUM_POSITIVE,
-     .what = "a positive angular frequency in rad/s",
-     .help = "rad/s, angular frequency of the sine (required)"},
-    {SW_CLI_DOUBLE, 0, "duration", "T", SIM(duration), .rule = SW_NUM_POSITIVE,
-     .what = "a positive number of seconds",
+    {SW_CLI_DOUBLE, 0, "omega", "W", SIM(pulse.omega), .rule = SW_NUM_POSITIVE, .lo = 1e-2,
+     .hi = 1e5, .what = "a positive angular frequency in rad/s",
+     .help = "rad/s, angular frequency of the sine (required); below 0.01 the pulse lasts over "
+             "5 minutes, above 1e5 it is far shorter than a step"},
+    {SW_CLI_DOUBLE, 0, "duration", "T", SIM(duration), .rule = SW_NUM_POSITIVE, .lo = 1e-6,
+     .hi = 1e5, .what = "a positive number of seconds",
      .help = "s simulated from t = 0 (default: the pulse plus " SW_CLI_STR(FREE_PERIODS) " free "
              "rocking periods 2 pi/p of the slowest package); the run stops early once the pulse "
-             "is over and every package is at rest or has overturned"},
+             "is over and every package is at rest or has overturned; at most a day"},
     {SW_CLI_DOUBLE, 0, "sample-interval", "S", SIM(interval), .rule = SW_NUM_POSITIVE,
-     .def = 0.001, .what = "a positive number of seconds",
-     .help = "s between rows of --out (default %g)"},
+     .def = 0.001, .lo = 1e-6, .hi = 10, .what = "a positive number of seconds",
+     .help = "s between rows of --out (default %g); at most " SW_CLI_STR(MAX_ROWS) " rows in "
+             "all"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", SIM(fail_on_overturn), .value = 1,
      .help = "exit 1 if any package overturned"},
     {SW_CLI_END},
@@ -176,11 +182,17 @@ static int run_pulse(sw_engine_t *e, sim_opts_t *so, sw_cli_states_t *states, do
         }
         duration = t_pulse + (isfinite(p_min) ? FREE_PERIODS * 2.0 * M_PI / p_min : 0.0);
     }
+    if (duration / so->interval > MAX_ROWS) {
+        sw_cli_error("simulate: %g s in steps of --sample-interval %g s is more than %g steps; "
+                     "give a larger --sample-interval or a shorter --duration",
+                     duration, so->interval, MAX_ROWS);
+        return SW_EXIT_USAGE;
+    }
     /* Whole steps of the interval from t = 0, computed from the index so
      * rounding does not accumulate over a long run. */
     double t = 0.0;
     write_states(e, states);
-    for (long k = 1; t < duration; k++) {
+    for (long k = 1; t < duration && !sw_cli_signal; k++) {
         double t1 = fmin((double)k * so->interval, duration);
         int ar = sw_engine_advance_fn(e, t1, sw_pulse_eval, &so->pulse);
         if (ar < 0) {
@@ -224,8 +236,13 @@ int cmd_simulate(int argc, char **argv)
         goto out;
     rc = SW_EXIT_USAGE;
     if (sw_cli_no_operand("simulate", argc, argv, first) != SW_EXIT_OK) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    rc = SW_EXIT_USAGE;
     if (check_pulse(&so) != SW_EXIT_OK) goto out;
 
+    const sw_cli_file_t outputs[] = {{"--out", o.out_path}, {"--events", o.events_path}};
+    rc = sw_cli_check_run_files(NULL, &o.scenes, outputs, 2);
+    if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL, o.json, o.quiet);
     if (rc != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
@@ -252,12 +269,18 @@ int cmd_simulate(int argc, char **argv)
     int rc2 = sw_cli_events_close(&events);
     if (rc == SW_EXIT_OK) rc = rc2;
 
-    sw_cli_run_t run = {.pulse = pulse, .duration = t};
+    sw_cli_run_t run = {.pulse = pulse, .duration = t, .interrupted = sw_cli_signal};
     if (o.json)
         sw_cli_print_json(stdout, e, &run);
     else if (!o.quiet)
         sw_cli_print_summary(stdout, e, &run);
-    if (rc == SW_EXIT_OK && so.fail_on_overturn && sw_cli_any_overturned(e)) rc = SW_EXIT_OVERTURNED;
+    if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(e, so.fail_on_overturn);
+    if (run.interrupted) {
+        sw_cli_error("simulate: interrupted by %s at t = %g s; the output files end with the "
+                     "last whole row",
+                     sw_cli_signal_name(run.interrupted), t);
+        if (rc != SW_EXIT_IO) rc = sw_cli_interrupt_code();
+    }
 out:
     sw_cli_states_close(&states);
     sw_cli_events_close(&events);

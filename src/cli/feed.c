@@ -7,6 +7,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "interrupt.h"
+
 #define G0 9.80665 /* m/s^2 per g */
 
 typedef struct {
@@ -16,6 +18,10 @@ typedef struct {
     sw_cli_rejects_t rej;
     int quiet;
     int layout_said;
+    /* SIGINT or SIGTERM: the rows after it (in the chunk being fed) are not
+     * read; the pump stops after the chunk */
+    int stopped;
+    long unread, unread_rejected;
 } feed_t;
 
 /* ---- what the reader chose ------------------------------------------------------- */
@@ -84,6 +90,11 @@ static void explain_columns(const feed_t *F)
 static int on_row(void *user, long line, double t, double a_g, double a_z)
 {
     feed_t *F = user;
+    if (F->stopped || sw_cli_signal) {
+        F->stopped = F->rej.stop = 1;
+        F->unread++;
+        return 0;
+    }
     if (F->rej.stop) return 1; /* --strict: nothing after the first bad row counts */
     say_layout(F);
     const sw_sample_t s = {.t = t, .a_g = a_g, .a_z = a_z, .a_max = NAN, .seq = SW_GATE_NO_SEQ,
@@ -95,6 +106,10 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
 static void on_reject(void *user, long line, const char *reason)
 {
     feed_t *F = user;
+    if (F->stopped) {
+        F->unread_rejected++;
+        return;
+    }
     sw_cli_rejects_add(&F->rej, line, reason);
 }
 
@@ -162,6 +177,16 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
     int fr;
     rc = sw_cli_logfile_pump(lf, F.csv, &F.rej.stop, after_chunk, &F, &fr);
     if (rc != SW_EXIT_OK) goto out;
+    if (F.stopped) { /* what was read, without the rest */
+        sw_csv_counts_t k;
+        sw_csv_counts(F.csv, &k);
+        sw_gate_facts(F.gate, &out->facts);
+        out->interrupted = 1;
+        out->rows = k.rows - F.unread - F.unread_rejected;
+        out->rejected = k.rejected - F.unread_rejected + sw_gate_rejected(&out->facts);
+        sw_cli_rejects_summary(&F.rej);
+        goto out;
+    }
     rc = SW_EXIT_USAGE;
     if (fr == SW_EAMBIGUOUS || fr == SW_ENOTFOUND) {
         explain_columns(&F); /* the reader's reason names the column, then the header */

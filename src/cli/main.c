@@ -6,6 +6,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "cli.h"
+#include "journal.h"
 #include "swaywatch/swaywatch.h"
 
 static const struct {
@@ -17,6 +18,9 @@ static const struct {
     {"simulate", cmd_simulate, "run a half-sine or full-sine pulse through the model"},
 #ifdef SW_HAVE_LCM
     {"monitor", cmd_monitor, "live: subscribe to acceleration over LCM, publish state and alarms"},
+#endif
+#ifdef SW_HAVE_WATCH
+    {"watch", cmd_watch, "live view of the monitor's states and alarms in the terminal"},
 #endif
     {"boundary", cmd_boundary, "overturning boundary curves: lowest overturning pulse vs omega/p"},
     {"forensics", cmd_forensics, "a log's outcome, safety factor, and what support would have saved it"},
@@ -44,6 +48,9 @@ void sw_cli_error(const char *fmt, ...)
     FILE *f = sw_cli_msg();
     va_list ap;
     va_start(ap, fmt);
+    /* Under systemd an error is logged at priority err (journal.h); a
+     * batch job's messages are kept, not logged. */
+    if (f == stderr) fputs(sw_cli_journal_prefix(SW_PRIO_ERR), f);
     fputs("swaywatch: ", f);
     vfprintf(f, fmt, ap);
     fputc('\n', f);

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <signal.h>
 #include <string.h>
 #include <time.h>
 #include <sys/stat.h>
@@ -291,6 +292,28 @@ int sw_cli_any_overturned(const sw_engine_t *e)
     return 0;
 }
 
+const char *sw_cli_verdict(const sw_summary_t *s)
+{
+    if (s->overturned) return "overturned";
+    return s->faults ? "unreliable" : "upright";
+}
+
+int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn)
+{
+    if (!fail_on_overturn) return SW_EXIT_OK;
+    if (sw_cli_any_overturned(e)) return SW_EXIT_OVERTURNED;
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) == SW_OK && s.faults) {
+            sw_cli_error("%s: the model faulted %ld times: no verdict, and --fail-on-overturn "
+                         "needs one (exit 2)",
+                         s.name, s.faults);
+            return SW_EXIT_USAGE;
+        }
+    }
+    return SW_EXIT_OK;
+}
+
 static double alpha_of(const sw_engine_t *e, size_t i)
 {
     const sw_derived_t *d = sw_engine_derived(e, i);
@@ -307,7 +330,7 @@ static void print_time(FILE *f, double t, const char *none)
 }
 
 /* An absolute time (s since 1970) as ISO-8601 UTC with milliseconds. */
-void sw_cli_iso_time(char *buf, size_t len, double t)
+void sw_cli_iso_seconds(char *buf, size_t len, double t)
 {
     const double whole = floor(t);
     long ms = lround((t - whole) * 1000.0);
@@ -338,7 +361,7 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
             run->samples_read, share);
     if (F->t_origin != 0.0) {
         char iso[64];
-        sw_cli_iso_time(iso, sizeof iso, F->t_origin);
+        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
         fprintf(f, "  starts          %s (the times below are from there)\n", iso);
     }
     fprintf(f, "  times           %.4f s to %.4f s (%.4f s of samples)\n", t0, t1, F->duration);
@@ -365,8 +388,36 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
         fprintf(f, "  warning         %s\n", run->check);
 }
 
+/* The outcome line's words: a faulted run never reads as a plain verdict. */
+static void print_outcome(FILE *f, const sw_summary_t *s)
+{
+    if (s->overturned) {
+        fputs("OVERTURNED at ", f);
+        print_time(f, s->overturn_time, "an unknown time");
+        if (s->faults) fprintf(f, " (the model faulted %ld times before: see --events)", s->faults);
+    } else if (s->faults) {
+        fprintf(f, "stayed upright (model faulted %ld times: not a verdict; see --events)",
+                s->faults);
+    } else {
+        fputs("stayed upright", f);
+    }
+}
+
+/* The words a summary of an interrupted run starts with. */
+static void print_interrupted(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    if (!run->interrupted) return;
+    const double t = sw_engine_time(e);
+    fprintf(f, "INTERRUPTED by %s", run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (isfinite(t))
+        fprintf(f, " at t = %.4f s: everything below covers the input up to there only\n", t);
+    else
+        fputs(" before the first sample\n", f);
+}
+
 void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
 {
+    print_interrupted(f, e, run);
     if (run->log) {
         fprintf(f, "log %s: %ld samples read, %ld accepted, %ld rejected", strcmp(run->log, "-") ? run->log : "(stdin)",
                 run->samples_read, run->samples_read - run->samples_rejected,
@@ -403,13 +454,7 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
         fprintf(f, "\n  minimum margin  %.4f (1 at rest, 0 at the edge of overturning)\n",
                 s.min_margin);
         fputs("  outcome         ", f);
-        if (s.overturned) {
-            fputs("OVERTURNED at ", f);
-            print_time(f, s.overturn_time, "an unknown time");
-        } else {
-            fputs("stayed upright", f);
-        }
-        if (s.faults) fprintf(f, " (%ld model faults: see --events)", s.faults);
+        print_outcome(f, &s);
         fputc('\n', f);
     }
 }
@@ -464,7 +509,7 @@ void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
     fprintf(f, ", \"start_absolute\": ");
     if (F->t_origin != 0.0) {
         char iso[64];
-        sw_cli_iso_time(iso, sizeof iso, F->t_origin);
+        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
         sw_cli_json_string(f, iso);
     } else {
         fputs("null", f);
@@ -509,7 +554,8 @@ int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_ru
     sw_cli_json_string(f, s.name);
     fprintf(f, ", \"model\": ");
     sw_cli_json_string(f, sw_model_name(s.model));
-    fprintf(f, ", \"overturned\": %s", s.overturned ? "true" : "false");
+    fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\"", s.overturned ? "true" : "false",
+            sw_cli_verdict(&s));
     json_sep(f, br);
     fprintf(f, "\"overturn_time\": ");
     sw_cli_json_num(f, s.overturn_time);
@@ -571,8 +617,18 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
         fprintf(f, ",\n  \"settle\": ");
         sw_cli_json_num(f, run->settle);
     }
-    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld",
-            run->samples_read, run->samples_rejected);
+    fprintf(f, ",\n  \"interrupted\": ");
+    if (run->interrupted)
+        fprintf(f, "{\"signal\": \"%s\", \"t\": ",
+                run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (run->interrupted) {
+        sw_cli_json_num(f, sw_engine_time(e));
+        fputc('}', f);
+    } else {
+        fputs("null", f);
+    }
+    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld", run->samples_read,
+            run->samples_rejected);
     if (run->have_facts) {
         fprintf(f, ",\n  \"input\": ");
         sw_cli_json_facts(f, run, "\n    ");

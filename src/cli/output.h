@@ -76,6 +76,8 @@ typedef struct {
     sw_gate_facts_t facts;
     int forced;              /* the plausibility check refused; --force gave the verdict */
     char check[320];         /* its reason, or a warning (a low rate); "" none */
+    int interrupted;         /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
+                                the summaries say so, and up to which time they cover */
 } sw_cli_run_t;
 
 /* The one-screen human summary / the JSON summary (DESIGN.md contract). */
@@ -97,9 +99,21 @@ void sw_cli_json_string(FILE *f, const char *s);
 void sw_cli_json_num(FILE *f, double v);
 
 /* An absolute time (s since 1970) as ISO-8601 UTC with milliseconds. */
-void sw_cli_iso_time(char *buf, size_t len, double t);
+void sw_cli_iso_seconds(char *buf, size_t len, double t);
 
 /* Non-zero if any package overturned. */
 int sw_cli_any_overturned(const sw_engine_t *e);
+
+/* A package's verdict: "overturned", "upright", or "unreliable" when it
+ * did not overturn but its model faulted (reset to rest mid-run: "stayed
+ * upright" would not be a verdict).  JSON "verdict"; the human summary
+ * says it in words. */
+const char *sw_cli_verdict(const sw_summary_t *s);
+
+/* The exit code of a run that went well, from its verdicts: SW_EXIT_OK
+ * without fail_on_overturn; with it SW_EXIT_OVERTURNED if a package
+ * overturned, else SW_EXIT_USAGE (reported, naming the package) if one
+ * has no verdict because its model faulted, else SW_EXIT_OK. */
+int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn);
 
 #endif

@@ -36,9 +36,6 @@ int sw_cli_replay_ready(sw_cli_replay_t *r, const sw_cli_group_t *g, size_t ng);
 /* The options r shares with the other commands (scenes, integration). */
 sw_cli_opts_t *sw_cli_replay_opts(sw_cli_replay_t *r);
 
-/* --fail-on-overturn was given. */
-int sw_cli_replay_fails_on_overturn(const sw_cli_replay_t *r);
-
 /* What one log gave: the engine (its packages' summaries) and the run. */
 typedef void (*sw_cli_replay_report_fn)(void *user, const sw_engine_t *e, const sw_cli_run_t *run);
 

@@ -77,6 +77,9 @@ typedef struct {
     double hysteresis;         /* 1, margin alarms; < 0 = SW_ALARM_HYSTERESIS */
     double reject_interval;    /* s, at most one INPUT_REJECTED alarm per reason per
                                   interval (later ones are summed up); 0 = 1 s */
+    double alarm_interval;     /* s, at most one alarm per package and kind per interval:
+                                  the rest go out as one summary with their count when it
+                                  has passed; 0 = 1 s, < 0 = no limit */
     sw_state_fn on_state;      /* optional: every engine output (t relative to the first
                                   sample), published or not */
     sw_event_fn on_event;      /* optional: every engine event */
@@ -97,6 +100,9 @@ typedef struct {
     long states;                /* state_t messages published */
     long states_withheld;       /* states not published because a value was not finite */
     long alarms;                /* alarm_t messages raised (published if there is an lcm) */
+    long alarms_folded;         /* alarms the rate limit held back: each is counted in a
+                                   summary that went out ("N more in 1 s, the last: ...");
+                                   alarms raised = alarms + alarms_folded */
     long publish_errors;        /* lcm_publish failures */
 } sw_mon_counts_t;
 

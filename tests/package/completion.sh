@@ -50,6 +50,13 @@ has rk8pd swaywatch replay --scheme rk
 has g swaywatch replay --accel-unit ""
 has frame.zeta= swaywatch replay --set frame.z
 
+if printf '%s\n' "$commands" | grep -qx watch; then
+    has SWAY_STATE swaywatch watch --state-channel ""
+    has SWAY_ALARM swaywatch watch --alarm-channel S
+    has --once swaywatch watch --o
+    [ -z "$(complete_words swaywatch watch --wait "")" ] || fail "watch --wait offers something"
+fi
+
 cd "$T/work"
 touch scenes/crate.ini scenes/notes.txt drive.csv
 has scenes/crate.ini swaywatch replay --scene scenes/
