@@ -49,6 +49,8 @@ has full-sine swaywatch simulate --pulse f
 has rk8pd swaywatch replay --scheme rk
 has g swaywatch replay --accel-unit ""
 has frame.zeta= swaywatch replay --set frame.z
+has replay swaywatch batch --job ""
+[ -z "$(complete_words swaywatch batch --threads "")" ] || fail "batch --threads offers something"
 
 if printf '%s\n' "$commands" | grep -qx watch; then
     has SWAY_STATE swaywatch watch --state-channel ""
@@ -58,11 +60,13 @@ if printf '%s\n' "$commands" | grep -qx watch; then
 fi
 
 cd "$T/work"
-touch scenes/crate.ini scenes/notes.txt drive.csv
+touch scenes/crate.ini scenes/notes.txt drive.csv fleet.jsonl
 has scenes/crate.ini swaywatch replay --scene scenes/
 if complete_words swaywatch replay --scene scenes/ | grep -q notes.txt; then
     fail "--scene offers a file that is not .ini"
 fi
 has scenes swaywatch simulate -s sc
 has drive.csv swaywatch replay d
+has fleet.jsonl swaywatch batch --out f
+has drive.csv swaywatch batch --csv d
 echo "completion.sh: ok ($(echo $commands | wc -w) commands)"
