@@ -16,6 +16,7 @@
  * (notify.h) READY=1 once the monitor is subscribed, WATCHDOG=1 from the
  * loop at half the watchdog timeout (a loop that stalls is killed and
  * restarted), STATUS= the status line, STOPPING=1 at the end. */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <lcm/lcm.h>
@@ -39,9 +40,12 @@
 #include "opts.h"
 #include "output.h"
 
-/* Per-subscription queue of LCM (default 30, which loses samples in bursts
- * at 1 kHz): two seconds of samples at 1 kHz. */
-#define ACCEL_QUEUE 2000
+/* LCM's per-subscription queue drops what does not fit (default 30) and
+ * counts nothing.  Unlimited (0), nothing is lost there; the backlog is
+ * bounded by time instead: a message that waited longer than --max-backlog
+ * is refused unread and counted (overload).  What the kernel drops before
+ * LCM sees it is read from /proc/net/udp (socket_drops). */
+#define ACCEL_QUEUE 0
 /* Messages handled per wake-up before the timers get a look. */
 #define BATCH 256
 /* s between STATUS= updates for the service manager without --status. */
@@ -54,6 +58,7 @@ typedef struct {
     const char *url;           /* --lcm-url; NULL: LCM's default */
     const char *accel_channel; /* subscribed to */
     double status_every;       /* s, --status; 0: no status line */
+    double max_backlog;        /* s, --max-backlog */
 } monitor_opts_t;
 
 static int check_accel_channel(const sw_cli_option_t *o, const char *arg, void *dest)
@@ -88,6 +93,12 @@ static const sw_cli_option_t monitor_input_options[] = {
      .help = "negate the longitudinal axis (sensor mounted backwards)"},
     {SW_CLI_CALL, 0, "accel-unit", "m/s2|g", MO(mo.accel_scale), .fn = sw_cli_accel_unit,
      .help = "unit of the message's values (default m/s2)"},
+    {SW_CLI_DOUBLE, 0, "max-backlog", "SECONDS", MO(max_backlog), .rule = SW_NUM_POSITIVE,
+     .def = 1, .lo = 1e-3, .hi = 3600, .what = "a positive number of seconds",
+     .help = "a message that waited longer than this in the receive queue (the monitor fell "
+             "behind: a flood, a stalled machine) is refused unread as overload and counted, so "
+             "the monitor catches up instead of working on stale samples (default %g; "
+             "udpm and tcpq only)"},
     {SW_CLI_DOUBLE, 0, "status", "SECONDS", MO(status_every), .rule = SW_NUM_NONNEGATIVE,
      .lo = 0.1, .hi = 86400,
      .what = "a number of seconds >= 0 (0: no status)",
@@ -316,16 +327,75 @@ typedef struct {
     long accepted;
     double lag_sum, lag_max; /* s, wall clock at handling minus sample utime */
     double busy;             /* s spent handling samples */
+    double max_backlog;      /* s; 0: no shedding (a log, memq: the receive time is not now) */
 } mon_ctx_t;
+
+/* Datagrams the kernel dropped on this process's UDP sockets (the column
+ * "drops" of /proc/net/udp and udp6 for the inodes of our sockets): what
+ * arrived at the host but never reached LCM.  -1 if it cannot be read. */
+static long socket_drops(void)
+{
+    unsigned long inode[64];
+    int n = 0;
+    DIR *d = opendir("/proc/self/fd");
+    if (!d)
+        return -1;
+    for (struct dirent *e; (e = readdir(d)) && n < 64;) {
+        char path[300], link[64];
+        snprintf(path, sizeof path, "/proc/self/fd/%s", e->d_name);
+        const ssize_t len = readlink(path, link, sizeof link - 1);
+        if (len <= 0)
+            continue;
+        link[len] = '\0';
+        if (sscanf(link, "socket:[%lu]", &inode[n]) == 1)
+            n++;
+    }
+    closedir(d);
+    long drops = 0;
+    int seen = 0;
+    static const char *const tables[] = {"/proc/net/udp", "/proc/net/udp6"};
+    for (int t = 0; t < 2; t++) {
+        FILE *f = fopen(tables[t], "r");
+        if (!f)
+            continue;
+        seen = 1;
+        char line[512];
+        while (fgets(line, sizeof line, f)) {
+            unsigned long ino;
+            long dr;
+            /* sl local rem st tx:rx tr:when retrnsmt uid timeout inode ref pointer drops */
+            if (sscanf(line, "%*s %*s %*s %*s %*s %*s %*s %*s %*s %lu %*s %*s %ld", &ino, &dr) !=
+                2)
+                continue;
+            for (int i = 0; i < n; i++)
+                if (inode[i] == ino)
+                    drops += dr;
+        }
+        fclose(f);
+    }
+    return seen ? drops : -1;
+}
 
 static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
 {
     (void)channel;
     mon_ctx_t *c = user;
     double t0 = sw_mon_clock();
+    double arrived = t0;
+    if (c->max_backlog > 0.0) {
+        /* how long it waited: LCM stamps it on arrival, on the wall clock */
+        const double waited = ((double)wall_now_us() - (double)rb->recv_utime) / 1e6;
+        if (waited > c->max_backlog) {
+            sw_mon_refuse(c->mon, SW_MON_REJ_OVERLOAD, t0);
+            c->busy += sw_mon_clock() - t0;
+            return;
+        }
+        if (waited > 0.0)
+            arrived = t0 - waited; /* the gate wants the arrival time, not ours */
+    }
     sw_mon_counts_t k0, k1;
     sw_mon_counts(c->mon, &k0);
-    sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, t0, NULL);
+    sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, arrived, NULL);
     sw_mon_counts(c->mon, &k1);
     if (k1.accepted > k0.accepted) { /* none while a sample is held; two when it is confirmed */
         /* in double: utime may be anything an int64 holds (a forged one
@@ -373,8 +443,11 @@ static void status_text(mon_ctx_t *c, double elapsed, double interval, char *buf
                     1e3 * c->lag_max);
         fprintf(f, ", busy %.1f%%; accepted %ld, ", 100.0 * c->busy / interval, k.accepted);
         sw_cli_print_rejected(f, &k);
-        fprintf(f, ", lost %ld, gaps %ld, states %ld, alarms %ld", k.lost, k.gaps, k.states,
-                k.alarms);
+        fprintf(f, ", held %ld of %ld received, lost %ld, gaps %ld, states %ld, alarms %ld",
+                k.held, k.received, k.lost, k.gaps, k.states, k.alarms);
+        const long drops = socket_drops();
+        if (drops >= 0)
+            fprintf(f, ", kernel drops %ld", drops);
         fclose(f); /* NUL-terminates, truncated to fit */
     }
     c->accepted = 0;
@@ -391,9 +464,13 @@ static void print_final(sw_mon_t *mon, double elapsed)
     fprintf(stderr,
             "; lost %ld (by seq), seq restarts %ld, gaps %ld, sensor restarts %ld, clock "
             "steps %ld; published %ld states (%ld withheld), %ld alarms (%ld more folded into "
-            "them by the rate limit); %ld publish errors\n",
+            "them by the rate limit); %ld publish errors",
             k.lost, k.seq_restarts, k.gaps, k.restarts, k.clock_steps, k.states,
             k.states_withheld, k.alarms, k.alarms_folded, k.publish_errors);
+    const long drops = socket_drops();
+    if (drops >= 0)
+        fprintf(stderr, "; %ld datagrams dropped by the kernel before LCM read them", drops);
+    fputc('\n', stderr);
     sw_cli_run_t run;
     memset(&run, 0, sizeof run);
     run.samples_read = k.received;
@@ -490,6 +567,15 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
 }
 
 /* ---- the command --------------------------------------------------------------- */
+
+/* Non-zero if LCM at url receives from the network (udpm, tcpq): its
+ * receive times are when a message arrived, and a backlog can build up.
+ * A file:// log's are the recording's; memq's are the publishing's. */
+static int network_url(const char *url)
+{
+    const char *u = url ? url : getenv("LCM_DEFAULT_URL");
+    return !u || !u[0] || !strncmp(u, "udpm://", 7) || !strncmp(u, "tcpq://", 7);
+}
 
 /* LCM at url, or why not. */
 static lcm_t *open_lcm(const char *url)
@@ -592,6 +678,7 @@ int cmd_monitor(int argc, char **argv)
     ctx.opts = &o;
     ctx.scenes = scenes;
     ctx.n = n;
+    ctx.max_backlog = network_url(m.url) ? m.max_backlog : 0.0;
     if ((rc = start(&ctx, &m.mo, lcm)) != SW_EXIT_OK)
         goto out;
 

@@ -111,7 +111,7 @@ struct sw_mon {
 
 static const char *const reject_names[SW_MON_NREJ] = {
     "decode", "trailing", "nonfinite", "implausible", "skew",
-    "duplicate", "out_of_order", "jump", "engine", "time"};
+    "duplicate", "out_of_order", "jump", "engine", "time", "overload"};
 
 const char *sw_mon_reject_name(sw_mon_reject r)
 {
@@ -324,6 +324,11 @@ static void on_state(void *user, const sw_output_t *out)
     int finite = sw_output_finite(out);
     int64_t utime = finite ? utime_of(m, out->t) : m->last_us;
     if (m->state_period_us > 0) {
+        /* The sensor's clock went back (a restart, a log played twice):
+         * the grid follows it, or no state would go out until the new
+         * clock caught up with the old grid. */
+        if (utime < m->next_state_us[k] - m->state_period_us)
+            m->next_state_us[k] = utime;
         if (utime < m->next_state_us[k])
             return;
         m->next_state_us[k] += m->state_period_us;
@@ -507,9 +512,9 @@ static void reject_alarm(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utim
 
 static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_mon_reject *why)
 {
-    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE, SW_ENONFINITE, SW_ETOOBIG,
-                                          SW_ETOOBIG, SW_EORDER,  SW_EORDER,     SW_EORDER,
-                                          SW_EINVAL,  SW_ERESOLUTION};
+    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE,      SW_ENONFINITE, SW_ETOOBIG,
+                                          SW_ETOOBIG, SW_EORDER,      SW_EORDER,     SW_EORDER,
+                                          SW_EINVAL,  SW_ERESOLUTION, SW_ETOOBIG};
     m->c.rejected[r]++;
     m->rej_pending[r]++;
     reject_alarm(m, r, mono, input_utime(m, utime));
@@ -588,6 +593,8 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
      * a broken sender */
     if (!isfinite(s.ax) || !isfinite(s.ay) || !isfinite(s.az))
         return refuse(m, SW_MON_REJ_NONFINITE, mono, m->have_last ? m->last_us : wall_us, why);
+    if (s.utime < 0 || s.utime >= SW_MON_UTIME_MAX)
+        return refuse(m, SW_MON_REJ_TIME, mono, m->have_last ? m->last_us : wall_us, why);
     const double v[3] = {s.ax * m->o.accel_scale, s.ay * m->o.accel_scale, s.az * m->o.accel_scale};
     const double t = source_time(m, s.utime); /* first: the first sample sets the base */
     const sw_sample_t smp = {
@@ -617,6 +624,15 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
         return SW_MON_HELD;
     if (rc < 0 && why) *why = m->feed_why; /* the sample itself is refused last */
     return rc;
+}
+
+int sw_mon_refuse(sw_mon_t *m, sw_mon_reject r, double mono)
+{
+    if ((unsigned)r >= SW_MON_NREJ)
+        r = SW_MON_REJ_ENGINE;
+    m->c.received++;
+    m->feed_mono = m->now = mono;
+    return refuse(m, r, mono, m->have_last ? m->last_us : 0, NULL);
 }
 
 double sw_mon_deadline(const sw_mon_t *m)

@@ -849,6 +849,79 @@ static void test_played_twice(void **st)
     rig_free(r);
 }
 
+/* With a state rate, the states' grid follows the sensor's clock: after a
+ * sensor restart (time back by the whole pass) states resume at once at
+ * the rate, not when the new clock catches up with the old grid; after a
+ * clock step forward the grid restarts without a burst. */
+static void test_state_rate_follows_clock(void **st)
+{
+    (void)st;
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.hysteresis = -1;
+    mo.state_rate = 100.0; /* every 10 samples */
+    rig_t *r = rig_new(1, &mo);
+    const int64_t offset[3] = {0, 0, 3600LL * 1000000}; /* pass 2: back; pass 3: an hour on */
+    int at_pass_start[3] = {0};
+    for (int pass = 0; pass < 3; pass++) {
+        at_pass_start[pass] = r->bus.nst;
+        for (long k = 0; k < NSAMP; k++) {
+            swaywatch_accel_t s = {.utime = UTIME0 + offset[pass] + k * 1000,
+                                   .seq = pass * NSAMP + k,
+                                   .ax = pulse_a(k)};
+            unsigned char buf[128];
+            const int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+            r->mono = (double)(pass * NSAMP + k) / RATE;
+            send_raw(r, buf, len);
+            if (k == 30) /* confirmed after 3 samples, then at most 10 to the next state */
+                assert_true(r->bus.nst - at_pass_start[pass] >= 2);
+        }
+    }
+    /* about NSAMP / 10 states per pass, neither lost nor a burst */
+    for (int pass = 0; pass < 3; pass++) {
+        const int n = (pass < 2 ? at_pass_start[pass + 1] : r->bus.nst) - at_pass_start[pass];
+        assert_true(n >= NSAMP / 10 - 2 && n <= NSAMP / 10 + 2);
+    }
+    for (int i = 1; i < r->bus.nst; i++) /* never two states of the same sample */
+        assert_true(r->bus.st[i].utime != r->bus.st[i - 1].utime);
+    check_counts_add_up(r->mon);
+    rig_free(r);
+}
+
+/* A message the caller sheds unread (overload) is counted under its
+ * reason, raises INPUT_REJECTED and leaves the model as if it never came;
+ * the accounting holds. */
+static void test_refuse_overload(void **st)
+{
+    (void)st;
+    rig_t *plain = rig_new(1, NULL), *r = rig_new(1, NULL);
+    for (long k = 0; k < NSAMP; k++) {
+        send_k(plain, k);
+        if (k % 100 == 50) {
+            assert_true(sw_mon_refuse(r->mon, SW_MON_REJ_OVERLOAD, r->mono) < 0);
+            drain(r);
+        }
+        send_k(r, k);
+    }
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.rejected[SW_MON_REJ_OVERLOAD], NSAMP / 100);
+    assert_int_equal(c.accepted, NSAMP);
+    assert_string_equal(sw_mon_reject_name(SW_MON_REJ_OVERLOAD), "overload");
+    int said = 0;
+    for (int i = 0; i < r->bus.nal; i++)
+        said += strstr((const char *)r->bus.al[i].text, "overload") != NULL;
+    assert_true(said >= 1);
+    sw_output_t a, b;
+    final_output(plain, &a);
+    final_output(r, &b);
+    assert_true(a.state.theta == b.state.theta && a.margin == b.margin);
+    check_counts_add_up(r->mon);
+    rig_free(plain);
+    rig_free(r);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -865,6 +938,8 @@ int main(void)
         cmocka_unit_test(test_jump),
         cmocka_unit_test(test_bogus_first),
         cmocka_unit_test(test_played_twice),
+        cmocka_unit_test(test_state_rate_follows_clock),
+        cmocka_unit_test(test_refuse_overload),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
