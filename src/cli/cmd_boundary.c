@@ -11,8 +11,9 @@
  * in groups that share the points and the search range.
  *
  * The points are independent runs of the library's boundary search
- * (sweep.h) spread over --threads worker threads; the output does not
- * depend on the number of threads. */
+ * (sweep.h) spread over --threads worker threads, and under mpirun or srun
+ * (a build with MPI) over the ranks too (farm.h); the output does not
+ * depend on the number of threads or ranks. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -22,6 +23,7 @@
 
 #include "clobber.h"
 #include "cost.h"
+#include "farm.h"
 #include "interrupt.h"
 #include "opts.h"
 #include "output.h"
@@ -325,9 +327,10 @@ static const sw_cli_option_t boundary_options[] = {
      .lo = 1e-2, .hi = 1e4, .what = "a positive number of rocking periods",
      .help = "free motion after the pulse, in rocking periods 2 pi/p (default 20); more than "
              "1e4 would make every trial hours of motion"},
-    {SW_CLI_LONG, 0, "threads", "N", BO(threads), .min = 1, .max = 256, .def = 2,
-     .what = "a whole number of threads >= 1",
-     .help = "worker threads (default %g); results do not depend on it"},
+    {SW_CLI_LONG, 0, "threads", "N", BO(threads), .min = 0, .max = 256, .def = 0,
+     .what = "a whole number of threads >= 0",
+     .help = "worker threads (per MPI rank); 0, the default: the CPUs this process may run on; "
+             "results do not depend on it"},
     {SW_CLI_SECTION, .help = "Integration:"},
     {SW_CLI_TEXT,
      .help = "Without --dt, each run's step is the scheme's, at most 1/400 of the pulse period\n"
@@ -483,6 +486,7 @@ static int build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary
 
 /* Everything a boundary run uses. */
 typedef struct {
+    sw_cli_world_t world;
     sw_cli_opts_t o;
     boundary_opts_t b;
     char *bear_copy;         /* --bearing-ratio, split at the commas: */
@@ -950,7 +954,7 @@ static int check_options(boundary_t *B, int argc, char **argv, int first)
         return SW_EXIT_USAGE;
     }
     bo->search.islands = B->b.islands != NULL;
-    bo->threads = (int)B->b.threads;
+    bo->threads = sw_cli_threads(&B->world, B->b.threads);
     sw_cli_engine_opts(&B->o, &bo->run.engine);
     if (!B->b.nbear) return SW_EXIT_OK;
     /* labels of the bearing ratios as the user wrote them ("1/3") */
@@ -1053,6 +1057,87 @@ static int same_sweep(const boundary_t *B, size_t a, size_t b)
     return A->x_min == C->x_min && A->x_max == C->x_max && (!B->b.durations || A->p == C->p);
 }
 
+/* ---- the points over the ranks of an MPI job -------------------------------------- */
+
+/* One group's sweep: its curves at its ratios, into gp (curve-major). */
+typedef struct {
+    const sw_cli_world_t *world;
+    const sw_curve_t *curves;
+    size_t k;
+    const double *ratios;
+    size_t nr;
+    const sw_boundary_opts_t *bo;
+    sw_boundary_point_t *gp;
+    char (*msgs)[256];
+    int progress;
+} group_t;
+
+/* One point, on any thread of any rank: the point, then its message. */
+static void point_run(void *user, size_t i, FILE *out)
+{
+    const group_t *G = user;
+    sw_boundary_point_t pt;
+    memset(&pt, 0, sizeof pt);
+    char msg[256] = "";
+    sw_boundary_point(&G->curves[i / G->nr], G->ratios[i % G->nr], G->bo, &pt, msg,
+                      sizeof msg);
+    fwrite(&pt, sizeof pt, 1, out);
+    fputs(msg, out);
+}
+
+static int point_take(void *user, size_t i, const char *data, size_t len, const char *msgs,
+                      size_t mlen)
+{
+    group_t *G = user;
+    if (mlen) fwrite(msgs, 1, mlen, stderr);
+    if (len < sizeof *G->gp) {
+        sw_cli_error("boundary: point %zu came back short", i + 1);
+        return -1;
+    }
+    memcpy(&G->gp[i], data, sizeof *G->gp);
+    size_t m = len - sizeof *G->gp;
+    if (m >= sizeof G->msgs[i]) m = sizeof G->msgs[i] - 1;
+    memcpy(G->msgs[i], data + sizeof *G->gp, m);
+    G->msgs[i][m] = '\0';
+    return 0;
+}
+
+/* What sw_boundary_sweep() does, with the points spread over the ranks:
+ * the same points, the same first failure in (curve, ratio) order.
+ * *exit_code: the exit code if it failed. */
+static int sweep_ranks(group_t *G, char *msg, size_t msglen, int *exit_code)
+{
+    const size_t np = G->k * G->nr;
+    G->msgs = calloc(np, sizeof *G->msgs);
+    if (!G->msgs) {
+        snprintf(msg, msglen, "out of memory");
+        *exit_code = SW_EXIT_IO;
+        return SW_ENOMEM;
+    }
+    const sw_cli_farm_t farm = {
+        .world = G->world,
+        .n = np,
+        .threads = G->bo->threads,
+        .run = point_run,
+        .take = point_take,
+        .user = G,
+        .what = G->progress ? "points" : NULL,
+    };
+    *exit_code = sw_cli_farm_run(&farm);
+    int rc = *exit_code == SW_EXIT_OK ? SW_OK : SW_ENOMEM;
+    if (rc != SW_OK) snprintf(msg, msglen, "the points could not be gathered");
+    else *exit_code = SW_EXIT_USAGE; /* if a point failed */
+    for (size_t i = 0; rc == SW_OK && G->world->rank == 0 && i < np; i++)
+        if (G->gp[i].status < 0) {
+            rc = G->gp[i].status;
+            snprintf(msg, msglen, "curve %zu, omega_e/p = %g: %s", i / G->nr + 1,
+                     G->gp[i].omega_ratio, G->msgs[i][0] ? G->msgs[i] : sw_strerror(rc));
+        }
+    free(G->msgs);
+    G->msgs = NULL;
+    return rc;
+}
+
 /* Every curve at every point, in groups of curves that share the points
  * and the scan (one group, all the curves, in dimensionless units). */
 static int sweep(boundary_t *B)
@@ -1086,13 +1171,23 @@ static int sweep(boundary_t *B)
         sw_boundary_opts_t bo = B->b.bo;
         bo.search.x_min = B->cv[c0].x_min;
         bo.search.x_max = B->cv[c0].x_max;
-        bo.progress = B->b.progress ? on_progress : NULL;
+        bo.progress = B->b.progress && B->world.size == 1 ? on_progress : NULL;
         bo.user = &P;
         char msg[512] = "";
-        const int sr = sw_boundary_sweep(curves, k, ratios, nr, &bo, gp, msg, sizeof msg);
+        int sr, code = SW_EXIT_USAGE;
+        if (B->world.size > 1) {
+            group_t G = {&B->world, curves, k, ratios, nr, &bo, gp, NULL, B->b.progress};
+            sr = sweep_ranks(&G, msg, sizeof msg, &code);
+        } else {
+            sr = sw_boundary_sweep(curves, k, ratios, nr, &bo, gp, msg, sizeof msg);
+        }
         for (size_t j = 0; j < k; j++)
             memcpy(&B->pts[member[j] * nr], &gp[j * nr], nr * sizeof *gp);
         P.offset += k * nr;
+        if (sr != SW_OK && B->world.rank != 0) { /* rank 0 says why */
+            rc = code;
+            goto out;
+        }
         if (sr != SW_OK) {
             /* the library numbers the curves of the group: name the curve instead */
             size_t bad = 0;
@@ -1101,7 +1196,7 @@ static int sweep(boundary_t *B)
             if (!strncmp(why, "curve ", 6) && strstr(why, ", ")) why = strstr(why, ", ") + 2;
             sw_cli_error("boundary: curve '%s', %s", B->cv[member[bad / nr]].label,
                          why[0] ? why : sw_strerror(sr));
-            rc = SW_EXIT_USAGE;
+            rc = code;
             goto out;
         }
     }
@@ -1187,7 +1282,14 @@ int cmd_boundary(int argc, char **argv)
     int rc = SW_EXIT_USAGE;
     boundary_t B;
     memset(&B, 0, sizeof B);
-    B.b.progress = isatty(fileno(stderr)) ? 1 : 0;
+    if ((rc = sw_cli_world_start(&B.world)) != SW_EXIT_OK) return rc;
+    /* Every rank sets up as rank 0 does; the others keep their messages
+     * to themselves unless they alone fail. */
+    char *msgs = NULL;
+    size_t mlen = 0;
+    FILE *mf = B.world.rank != 0 ? open_memstream(&msgs, &mlen) : NULL;
+    if (mf) sw_cli_msg_to(mf);
+    B.b.progress = B.world.rank == 0 && isatty(fileno(stderr)) ? 1 : 0;
     B.b.units = -1;
     sw_cli_group_t g[] = {
         SW_CLI_GROUP(sw_cli_scene_options, &B.o),
@@ -1197,22 +1299,34 @@ int cmd_boundary(int argc, char **argv)
     };
     const size_t ng = sizeof g / sizeof g[0];
 
-    int first;
-    if ((rc = sw_cli_parse(&boundary_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
-        goto out;
-    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
-    const sw_cli_file_t outputs[] = {
-        {"--out", B.b.out}, {"--detail", B.b.detail}, {"--islands", B.b.islands}, {"--plot", B.b.plot}};
-    if ((rc = check_options(&B, argc, argv, first)) != SW_EXIT_OK ||
-        (rc = sw_cli_check_run_files(NULL, &B.o.scenes, outputs, 4)) != SW_EXIT_OK ||
-        (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) != SW_EXIT_OK ||
-        (rc = build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
-                           B.bear_text, &B.cv, &B.nc)) != SW_EXIT_OK ||
-        (rc = curve_units(&B)) != SW_EXIT_OK)
-        goto out;
-    if (B.o.verbose) print_curves(&B);
-    sw_cli_warn_scene_cost(B.scenes, B.nsc, &B.b.bo.run.engine);
-    if ((rc = sweep(&B)) != SW_EXIT_OK) goto out;
+    int first, help = 0;
+    if ((rc = sw_cli_parse(&boundary_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) {
+        help = rc == SW_EXIT_OK;
+    } else {
+        const sw_cli_file_t outputs[] = {{"--out", B.b.out},
+                                         {"--detail", B.b.detail},
+                                         {"--islands", B.b.islands},
+                                         {"--plot", B.b.plot}};
+        if ((rc = sw_cli_interrupt_install()) == SW_EXIT_OK &&
+            (rc = check_options(&B, argc, argv, first)) == SW_EXIT_OK &&
+            (rc = sw_cli_check_run_files(NULL, &B.o.scenes, outputs, 4)) == SW_EXIT_OK &&
+            (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) == SW_EXIT_OK &&
+            (rc = build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
+                               B.bear_text, &B.cv, &B.nc)) == SW_EXIT_OK)
+            rc = curve_units(&B);
+    }
+    if (mf) {
+        sw_cli_msg_to(NULL);
+        fclose(mf);
+    }
+    rc = sw_cli_world_agree(&B.world, rc, msgs, mlen);
+    free(msgs);
+    if (rc != SW_EXIT_OK || help) goto out;
+    if (B.world.rank == 0) {
+        if (B.o.verbose) print_curves(&B);
+        sw_cli_warn_scene_cost(B.scenes, B.nsc, &B.b.bo.run.engine);
+    }
+    if ((rc = sweep(&B)) != SW_EXIT_OK || B.world.rank != 0) goto out;
     rc = write_outputs(&B);
     if (sw_cli_signal && rc != SW_EXIT_IO) { /* while writing: the files are whole */
         sw_cli_error("boundary: interrupted by %s after the files were written",
@@ -1231,5 +1345,5 @@ out:
     free(B.bear_copy);
     free(B.bear_text);
     sw_cli_parse_free(g, ng);
-    return rc;
+    return sw_cli_world_end(&B.world, rc);
 }

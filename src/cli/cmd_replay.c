@@ -11,7 +11,11 @@
  * also go out over LCM, paced in real time (or faster) by the samples'
  * utime.  --wide and --plot take the same states as --out (output.c,
  * figure.c): the figure from a fixed number of buckets per package, so a
- * replay of any length draws from fixed memory. */
+ * replay of any length draws from fixed memory.
+ *
+ * The replay of one log is also a job of "swaywatch batch" (replay.h):
+ * the options parsed once, then each log run with a copy of them on any
+ * thread, its summary handed to the caller instead of printed. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -26,6 +30,7 @@
 #include "interrupt.h"
 #include "opts.h"
 #include "output.h"
+#include "replay.h"
 #ifdef SW_HAVE_LCM
 #include <lcm/lcm.h>
 
@@ -103,12 +108,20 @@ static const sw_cli_command_t replay_cmd = {
     .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
 };
 
-/* Everything a replay uses, whatever the source. */
-typedef struct {
+/* Everything a replay uses, whatever the source: the options (parsed
+ * once; a batch copies them for each log), then the run's state. */
+struct sw_cli_replay {
     sw_cli_opts_t o;
     sw_cli_csv_opts_t copts;
     sw_cli_gate_t gate;
     replay_opts_t ro;
+    /* the first option given that only CSV logs take, and the first that
+     * only lcm-logger files take (NULL: none) */
+    const char *csv_given, *lcm_given;
+    /* scenes belong to the options a batch copied: read, and their cost
+     * measured, once for every log */
+    int scenes_shared;
+    int concluded; /* the run got to its summary */
     const char *log; /* LOG as given */
     sw_cli_logfile_t lf;
     sw_scene_t *scenes;
@@ -128,7 +141,8 @@ typedef struct {
     sw_cli_regions_t regions;
     sw_cli_pacer_t pacer; /* --publish: states go out paced by their sample time */
 #endif
-} replay_t;
+};
+typedef struct sw_cli_replay replay_t;
 
 static void on_state(void *user, const sw_output_t *out)
 {
@@ -234,7 +248,7 @@ static sw_engine_t *lcmlog_engine(replay_t *r)
         sw_cli_error("cannot start the engine: %s", msg[0] ? msg : "unknown reason");
         return NULL;
     }
-    sw_cli_warn_scene_cost(r->scenes, r->n, &r->eo);
+    if (!r->scenes_shared) sw_cli_warn_scene_cost(r->scenes, r->n, &r->eo);
     return sw_mon_engine(r->mon);
 }
 
@@ -282,14 +296,15 @@ static int lcmlog_report(replay_t *r)
     sw_lcmlog_counts(r->lcmlog, &lc);
     sw_cli_regions_summary(&r->regions);
     if (!r->o.quiet || k.accepted == 0) {
-        fprintf(stderr,
+        FILE *m = sw_cli_msg();
+        fprintf(m,
                 "swaywatch: %s: %ld events, %ld on the accel channel, %ld on other channels, "
                 "%ld corrupted regions skipped\n",
                 r->log, lc.events, lc.on_channel, lc.other_channels, lc.corrupt);
-        fprintf(stderr, "swaywatch: %s: accel samples: %ld = accepted %ld + ", r->log, k.received,
+        fprintf(m, "swaywatch: %s: accel samples: %ld = accepted %ld + ", r->log, k.received,
                 k.accepted);
-        sw_cli_print_rejected(stderr, &k);
-        fprintf(stderr, "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
+        sw_cli_print_rejected(m, &k);
+        fprintf(m, "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
                         "%ld alarms\n",
                 k.lost, k.gaps, k.restarts, k.clock_steps,
                 k.states, k.alarms);
@@ -312,36 +327,41 @@ static void lcmlog_close(replay_t *r)
 
 /* The options the log's source does not take; SW_EXIT_OK or SW_EXIT_USAGE
  * (reported, naming the first one given). */
-static int check_source(const sw_cli_source_t *src, const replay_t *r, const sw_cli_group_t *csv,
-                        const sw_cli_group_t *lcm, size_t nlcm)
+static int check_source(const sw_cli_source_t *src, const replay_t *r)
 {
     if (!src->available) {
         sw_cli_error("%s: lcm-logger files need the LCM build", r->log);
         return SW_EXIT_USAGE;
     }
-    if (src->kind == SW_CLI_SRC_LCMLOG && csv->given) {
+    if (src->kind == SW_CLI_SRC_LCMLOG && r->csv_given) {
         sw_cli_error("%s: --%s is for CSV logs; this is an lcm-logger file", r->log,
-                     csv->given->long_name);
+                     r->csv_given);
         return SW_EXIT_USAGE;
     }
-    const sw_cli_group_t *first = NULL;
-    for (size_t i = 0; i < nlcm; i++)
-        if (lcm[i].given && (!first || lcm[i].given_at < first->given_at)) first = &lcm[i];
-    if (src->kind == SW_CLI_SRC_CSV && first) {
+    if (src->kind == SW_CLI_SRC_CSV && r->lcm_given) {
         sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log",
-                     r->lf.name, first->given->long_name);
+                     r->lf.name, r->lcm_given);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
+}
+
+/* The scenes (unless a batch's options hold them already) and the engine
+ * options they and --accuracy give. */
+static int load(replay_t *r)
+{
+    int rc;
+    if (r->scenes) return SW_EXIT_OK;
+    if ((rc = sw_cli_load_scenes(&r->o, &r->scenes, &r->n)) != SW_EXIT_OK) return rc;
+    sw_cli_engine_opts(&r->o, &r->eo);
+    return sw_cli_resolve_accuracy(&r->o, r->scenes, r->n, &r->eo);
 }
 
 /* The engine: replay's own, or the monitor core's. */
 static int start(replay_t *r, const sw_cli_source_t *src)
 {
     int rc;
-    if ((rc = sw_cli_load_scenes(&r->o, &r->scenes, &r->n)) != SW_EXIT_OK) return rc;
-    sw_cli_engine_opts(&r->o, &r->eo);
-    if ((rc = sw_cli_resolve_accuracy(&r->o, r->scenes, r->n, &r->eo)) != SW_EXIT_OK) return rc;
+    if ((rc = load(r)) != SW_EXIT_OK) return rc;
 #ifdef SW_HAVE_LCM
     if (src->kind == SW_CLI_SRC_LCMLOG) {
         if ((rc = lcmlog_publish(r)) != SW_EXIT_OK) return rc;
@@ -353,7 +373,14 @@ static int start(replay_t *r, const sw_cli_source_t *src)
     r->eo.on_event = on_event;
     r->eo.on_state = wants_states(r) ? on_state : NULL;
     r->eo.user = r;
-    r->e = sw_cli_engine_create(r->scenes, r->n, &r->eo);
+    if (!r->scenes_shared) {
+        r->e = sw_cli_engine_create(r->scenes, r->n, &r->eo);
+    } else { /* a batch measured the scenes' cost once */
+        int err = 0;
+        char msg[512] = "";
+        r->e = sw_engine_create(r->scenes, r->n, &r->eo, &err, msg, sizeof msg);
+        if (!r->e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+    }
     return r->e ? SW_EXIT_OK : SW_EXIT_USAGE;
 }
 
@@ -375,13 +402,13 @@ static int check_files(const replay_t *r)
 /* Open LOG: a missing file is an I/O error (3) whatever else is wrong,
  * and its first bytes choose the source; then what the source does not
  * take is refused, and outputs that would overwrite the log. */
-static const sw_cli_source_t *open_log(replay_t *r, const sw_cli_group_t *g, size_t nlcm, int *rc)
+static const sw_cli_source_t *open_log(replay_t *r, int *rc)
 {
     if ((*rc = sw_cli_logfile_open(&r->lf, r->log)) != SW_EXIT_OK) return NULL;
     const sw_cli_source_t *src = sw_cli_logfile_source(&r->lf);
     const char *const names[] = {"--out", "--events", "--wide"};
     const char *const paths[] = {r->o.out_path, r->o.events_path, r->o.wide_path};
-    if ((*rc = check_source(src, r, &g[0], &g[3], nlcm)) != SW_EXIT_OK ||
+    if ((*rc = check_source(src, r)) != SW_EXIT_OK ||
         (*rc = check_files(r)) != SW_EXIT_OK ||
         (*rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, NULL, r->o.json,
                                      r->o.quiet)) != SW_EXIT_OK ||
@@ -393,9 +420,9 @@ static const sw_cli_source_t *open_log(replay_t *r, const sw_cli_group_t *g, siz
     return src;
 }
 
-/* After the run: the files closed, the summary, the figure; the exit
- * code. */
-static int finish(replay_t *r, const sw_cli_source_t *src)
+/* After the run: the files closed, the counts of an lcm-logger file, what
+ * the summaries say of the run. */
+static int conclude(replay_t *r, const sw_cli_source_t *src)
 {
     int rc = sw_cli_states_close(&r->states);
     int rc2 = sw_cli_events_close(&r->events);
@@ -409,6 +436,65 @@ static int finish(replay_t *r, const sw_cli_source_t *src)
     r->run.log = r->log;
     r->run.settle = r->ro.settle;
     r->run.interrupted = sw_cli_signal;
+    r->concluded = 1;
+    return rc;
+}
+
+/* The log named in r->log through the engine, with r's options: opened,
+ * its source checked, the engine started, the outputs opened, the log
+ * run, the outputs closed. */
+static int replay_one(replay_t *r)
+{
+    int rc;
+    const sw_cli_source_t *src = open_log(r, &rc);
+    if (!src || (rc = start(r, src)) != SW_EXIT_OK) return rc;
+    if (r->o.verbose) sw_cli_print_derived(stderr, r->e, r->scenes, r->n);
+    if ((rc = sw_cli_states_open(&r->states, r->o.out_path, r->o.every, r->scenes, r->n)) !=
+            SW_EXIT_OK ||
+        (rc = sw_cli_events_open(&r->events, r->o.events_path, r->scenes, r->n)) != SW_EXIT_OK ||
+        (rc = sw_cli_wide_open(&r->wide, r->o.wide_path, r->o.every, r->e, r->scenes, r->n)) !=
+            SW_EXIT_OK)
+        return rc;
+    if (r->o.plot_path && !(r->fig = sw_cli_figure_create(r->e, r->scenes, r->n)))
+        return SW_EXIT_IO;
+#ifdef SW_HAVE_LCM
+    if (src->kind == SW_CLI_SRC_LCMLOG)
+        rc = replay_lcmlog(r);
+    else
+#endif
+        rc = replay_csv(r);
+    if (rc == SW_EXIT_OK) rc = conclude(r, src);
+    return rc;
+}
+
+/* Everything a run opened and made; the options stay. */
+static void cleanup(replay_t *r)
+{
+    sw_cli_states_close(&r->states);
+    sw_cli_events_close(&r->events);
+    sw_cli_wide_close(&r->wide);
+    sw_cli_figure_destroy(r->fig);
+    r->fig = NULL;
+#ifdef SW_HAVE_LCM
+    if (r->mon) r->e = NULL; /* the monitor's */
+    lcmlog_close(r);
+    r->mon = NULL;
+    r->lcm = NULL;
+    r->lcmlog = NULL;
+#endif
+    sw_engine_destroy(r->e);
+    r->e = NULL;
+    if (!r->scenes_shared) {
+        free(r->scenes);
+        r->scenes = NULL;
+    }
+    sw_cli_logfile_close(&r->lf);
+}
+
+/* The summary of a concluded run, the figure, and the exit code: rc (the
+ * outputs' closing), or the verdict's. */
+static int finish(replay_t *r, int rc)
+{
     if (r->o.json)
         sw_cli_print_json(stdout, r->e, &r->run);
     else if (!r->o.quiet)
@@ -430,81 +516,149 @@ static int finish(replay_t *r, const sw_cli_source_t *src)
     return rc;
 }
 
+/* replay's groups bound to r: all of them, or a batch's (the log's
+ * reading, scenes and integration: no outputs, no --publish, no --help). */
+static size_t groups(replay_t *r, sw_cli_group_t *g, int batch)
+{
+    size_t n = 0;
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_csv_options, &r->copts);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_sample_options, &r->copts);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(replay_options, &r->ro);
+#ifdef SW_HAVE_LCM
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(replay_channel_options, &r->ro, LCM_SECTION);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &r->mo, LCM_SECTION);
+    if (!batch) {
+        g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(replay_publish_options, &r->ro, LCM_SECTION);
+        g[n++] =
+            (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &r->mo, LCM_SECTION);
+    }
+#endif
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_gate_options, &r->gate);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_scene_options, &r->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &r->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_accuracy_options, &r->o);
+    if (!batch) {
+        g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_output_options, &r->o);
+        g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_picture_options, &r->o);
+        g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_common_options, &r->o, "Output:");
+    }
+    return n;
+}
+
+/* After parsing: the defaults that depend on the source, and which
+ * options only one source takes were given (the first of each). */
+static void parsed(replay_t *r, const sw_cli_group_t *g, size_t ng)
+{
+#ifdef SW_HAVE_LCM
+    if (!r->ro.channel) r->ro.channel = SW_MON_ACCEL_CHANNEL;
+#endif
+    const sw_cli_group_t *lcm = NULL;
+    for (size_t i = 0; i < ng; i++) {
+        if (!g[i].given) continue;
+        if (g[i].rows == sw_cli_csv_options) r->csv_given = g[i].given->long_name;
+#ifdef SW_HAVE_LCM
+        if ((g[i].rows == replay_channel_options || g[i].rows == sw_cli_lcm_input_options ||
+             g[i].rows == replay_publish_options || g[i].rows == sw_cli_lcm_publish_options) &&
+            (!lcm || g[i].given_at < lcm->given_at))
+            lcm = &g[i];
+#endif
+    }
+    r->lcm_given = lcm ? lcm->given->long_name : NULL;
+}
+
+static void init(replay_t *r)
+{
+    memset(r, 0, sizeof *r);
+    sw_cli_csv_opts_init(&r->copts);
+    sw_cli_gate_init(&r->gate);
+#ifdef SW_HAVE_LCM
+    sw_cli_mon_opts_init(&r->mo);
+#endif
+}
+
 int cmd_replay(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
-    replay_t r = {0};
-    sw_cli_csv_opts_init(&r.copts);
-    sw_cli_gate_init(&r.gate);
-#ifdef SW_HAVE_LCM
-    sw_cli_mon_opts_init(&r.mo);
-#endif
-    sw_cli_group_t g[] = {
-        SW_CLI_GROUP(sw_cli_csv_options, &r.copts),
-        SW_CLI_GROUP(sw_cli_sample_options, &r.copts),
-        SW_CLI_GROUP(replay_options, &r.ro),
-#ifdef SW_HAVE_LCM
-        /* the options of lcm-logger files: g[3] to g[6] */
-        SW_CLI_GROUP_IN(replay_channel_options, &r.ro, LCM_SECTION),
-        SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &r.mo, LCM_SECTION),
-        SW_CLI_GROUP_IN(replay_publish_options, &r.ro, LCM_SECTION),
-        SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &r.mo, LCM_SECTION),
-#endif
-        SW_CLI_GROUP(sw_cli_gate_options, &r.gate),
-        SW_CLI_GROUP(sw_cli_scene_options, &r.o),
-        SW_CLI_GROUP(sw_cli_integration_options, &r.o),
-        SW_CLI_GROUP(sw_cli_accuracy_options, &r.o),
-        SW_CLI_GROUP(sw_cli_output_options, &r.o),
-        SW_CLI_GROUP(sw_cli_picture_options, &r.o),
-        SW_CLI_GROUP_IN(sw_cli_common_options, &r.o, "Output:"),
-    };
-    const size_t ng = sizeof g / sizeof g[0];
-#ifdef SW_HAVE_LCM
-    const size_t nlcm = 4;
-#else
-    const size_t nlcm = 0;
-#endif
+    replay_t r;
+    init(&r);
+    sw_cli_group_t g[SW_CLI_REPLAY_GROUPS];
+    const size_t ng = groups(&r, g, 0);
 
     int first;
-    const sw_cli_source_t *src = NULL;
     if ((rc = sw_cli_parse(&replay_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) goto out;
     if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
     rc = SW_EXIT_USAGE;
     if (!(r.log = sw_cli_log_operand("replay", argc, argv, first))) goto out;
-#ifdef SW_HAVE_LCM
-    if (!r.ro.channel) r.ro.channel = SW_MON_ACCEL_CHANNEL;
-#endif
-    if (!(src = open_log(&r, g, nlcm, &rc)) || (rc = start(&r, src)) != SW_EXIT_OK) goto out;
-    if (r.o.verbose) sw_cli_print_derived(stderr, r.e, r.scenes, r.n);
-    if ((rc = sw_cli_states_open(&r.states, r.o.out_path, r.o.every, r.scenes, r.n)) !=
-            SW_EXIT_OK ||
-        (rc = sw_cli_events_open(&r.events, r.o.events_path, r.scenes, r.n)) != SW_EXIT_OK ||
-        (rc = sw_cli_wide_open(&r.wide, r.o.wide_path, r.o.every, r.e, r.scenes, r.n)) !=
-            SW_EXIT_OK)
-        goto out;
-    if (r.o.plot_path && !(r.fig = sw_cli_figure_create(r.e, r.scenes, r.n))) {
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-#ifdef SW_HAVE_LCM
-    if (src->kind == SW_CLI_SRC_LCMLOG)
-        rc = replay_lcmlog(&r);
-    else
-#endif
-        rc = replay_csv(&r);
-    if (rc == SW_EXIT_OK) rc = finish(&r, src);
+    parsed(&r, g, ng);
+    rc = replay_one(&r);
+    if (r.concluded) rc = finish(&r, rc);
 out:
-    sw_cli_states_close(&r.states);
-    sw_cli_events_close(&r.events);
-    sw_cli_wide_close(&r.wide);
-    sw_cli_figure_destroy(r.fig);
-#ifdef SW_HAVE_LCM
-    if (r.mon) r.e = NULL; /* the monitor's */
-    lcmlog_close(&r);
-#endif
-    sw_engine_destroy(r.e);
-    free(r.scenes);
-    sw_cli_logfile_close(&r.lf);
+    cleanup(&r);
     sw_cli_parse_free(g, ng);
+    return rc;
+}
+
+/* ---- the replay of one log, for batch (replay.h) ---------------------------------- */
+
+sw_cli_replay_t *sw_cli_replay_new(void)
+{
+    replay_t *r = malloc(sizeof *r);
+    if (!r) {
+        sw_cli_error("out of memory");
+        return NULL;
+    }
+    init(r);
+    return r;
+}
+
+void sw_cli_replay_free(sw_cli_replay_t *r)
+{
+    if (!r) return;
+    sw_cli_group_t g[SW_CLI_REPLAY_GROUPS];
+    sw_cli_parse_free(g, groups(r, g, 0));
+    cleanup(r);
+    if (r->scenes_shared) free(r->scenes);
+    free(r);
+}
+
+size_t sw_cli_replay_groups(sw_cli_replay_t *r, sw_cli_group_t *g)
+{
+    return groups(r, g, 1);
+}
+
+int sw_cli_replay_ready(sw_cli_replay_t *r, const sw_cli_group_t *g, size_t ng)
+{
+    parsed(r, g, ng);
+    r->scenes_shared = 0;
+    int rc = load(r);
+    r->scenes_shared = 1; /* the copies made for each log share them */
+    if (rc == SW_EXIT_OK) sw_cli_warn_scene_cost(r->scenes, r->n, &r->eo);
+    return rc;
+}
+
+sw_cli_opts_t *sw_cli_replay_opts(sw_cli_replay_t *r)
+{
+    return &r->o;
+}
+
+int sw_cli_replay_log(const sw_cli_replay_t *opts, const char *log, sw_cli_replay_report_fn report,
+                      void *user)
+{
+    replay_t *r = malloc(sizeof *r);
+    if (!r) {
+        sw_cli_error("%s: out of memory", log);
+        return SW_EXIT_IO;
+    }
+    *r = *opts; /* the options; a ready one has run nothing, so no state is copied */
+    r->log = log;
+    r->o.quiet = 1;
+    r->o.json = 0;
+    int rc = replay_one(r);
+    if (rc == SW_EXIT_OK && r->concluded) {
+        report(user, r->e, &r->run);
+        rc = sw_cli_verdict_exit(r->e, r->ro.fail_on_overturn);
+    }
+    cleanup(r);
+    free(r);
     return rc;
 }

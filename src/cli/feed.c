@@ -42,16 +42,17 @@ static void say_layout(feed_t *F)
     F->layout_said = 1;
     if (F->quiet) return;
     static const char *const role[2] = {"time", "accel"};
-    fprintf(stderr, "swaywatch: %s: ", F->name);
+    FILE *m = sw_cli_msg();
+    fprintf(m, "swaywatch: %s: ", F->name);
     for (int r = 0; r < 2; r++) {
-        fprintf(stderr, "%s%s: column %ld", r ? "; " : "", role[r], L.col[r] + 1);
-        if (L.name[r][0]) fprintf(stderr, " \"%s\"", L.name[r]);
+        fprintf(m, "%s%s: column %ld", r ? "; " : "", role[r], L.col[r] + 1);
+        if (L.name[r][0]) fprintf(m, " \"%s\"", L.name[r]);
         const char *u = sw_csv_unit_name(L.unit[r]);
-        if (u[0]) fprintf(stderr, ", %s", u);
-        else fprintf(stderr, ", x %g", L.scale[r]);
-        fprintf(stderr, " (%s)", from_name(L.unit_from[r]));
+        if (u[0]) fprintf(m, ", %s", u);
+        else fprintf(m, ", x %g", L.scale[r]);
+        fprintf(m, " (%s)", from_name(L.unit_from[r]));
     }
-    fputc('\n', stderr);
+    fputc('\n', m);
     for (int r = 0; r < 2; r++)
         if (L.unit_from[r] == SW_CSV_FROM_OPTION && L.header_unit[r] != SW_CSV_UNIT_NONE &&
             L.header_unit[r] != L.unit[r])
@@ -72,10 +73,11 @@ static void explain_columns(const feed_t *F)
     sw_cli_error("%s: %s", F->name, sw_csv_error_message(F->csv));
     const long n = sw_csv_header_count(F->csv);
     if (n > 0) {
-        fprintf(stderr, "swaywatch: %s: the header:", F->name);
+        FILE *m = sw_cli_msg();
+        fprintf(m, "swaywatch: %s: the header:", F->name);
         for (long i = 0; i < n; i++)
-            fprintf(stderr, "%s %ld \"%s\"", i ? "," : "", i + 1, sw_csv_header_field(F->csv, i));
-        fputc('\n', stderr);
+            fprintf(m, "%s %ld \"%s\"", i ? "," : "", i + 1, sw_csv_header_field(F->csv, i));
+        fputc('\n', m);
     }
     sw_cli_error("%s: say which with --time-col and --accel-col (a name or a 1-based index), "
                  "and the units with --time-unit and --accel-unit where the names do not say "

@@ -32,17 +32,36 @@ static const struct {
 #endif
     {"boundary", cmd_boundary, "overturning boundary curves: lowest overturning pulse vs omega/p"},
     {"forensics", cmd_forensics, "a log's outcome, safety factor, and what support would have saved it"},
+    {"batch", cmd_batch, "many logs on every core (and MPI rank): JSON Lines records, a CSV table"},
 };
+
+/* Per thread: the jobs of a batch run on several threads at once, each
+ * collecting the messages of its own log. */
+static _Thread_local FILE *msg_stream;
+
+FILE *sw_cli_msg(void)
+{
+    return msg_stream ? msg_stream : stderr;
+}
+
+FILE *sw_cli_msg_to(FILE *f)
+{
+    FILE *before = sw_cli_msg();
+    msg_stream = f;
+    return before;
+}
 
 void sw_cli_error(const char *fmt, ...)
 {
+    FILE *f = sw_cli_msg();
     va_list ap;
     va_start(ap, fmt);
-    /* Under systemd an error is logged at priority err (journal.h). */
-    fputs(sw_cli_journal_prefix(SW_PRIO_ERR), stderr);
-    fputs("swaywatch: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    /* Under systemd an error is logged at priority err (journal.h); a
+     * batch job's messages are kept, not logged. */
+    if (f == stderr) fputs(sw_cli_journal_prefix(SW_PRIO_ERR), f);
+    fputs("swaywatch: ", f);
+    vfprintf(f, fmt, ap);
+    fputc('\n', f);
     va_end(ap);
 }
 
@@ -65,7 +84,7 @@ static void usage(FILE *f)
             "Run 'swaywatch help <command>' or 'swaywatch <command> --help' for a command's\n"
             "options.\n"
             "Exit codes: 0 ok, 1 a package overturned (with --fail-on-overturn),\n"
-            "2 bad usage or input, 3 I/O error.\n");
+            "2 bad usage or input, 3 I/O error, 4 batch: some logs failed.\n");
 }
 
 /* "swaywatch CMD --version", for every command alike (and for help2man,

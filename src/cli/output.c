@@ -466,7 +466,7 @@ static void print_time(FILE *f, double t, const char *none)
 }
 
 /* An absolute time (s since 1970) as ISO-8601 UTC with milliseconds. */
-static void iso_time(char *buf, size_t len, double t)
+void sw_cli_iso_seconds(char *buf, size_t len, double t)
 {
     const double whole = floor(t);
     long ms = lround((t - whole) * 1000.0);
@@ -497,7 +497,7 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
             run->samples_read, share);
     if (F->t_origin != 0.0) {
         char iso[64];
-        iso_time(iso, sizeof iso, F->t_origin);
+        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
         fprintf(f, "  starts          %s (the times below are from there)\n", iso);
     }
     fprintf(f, "  times           %.4f s to %.4f s (%.4f s of samples)\n", t0, t1, F->duration);
@@ -624,11 +624,17 @@ void sw_cli_json_num(FILE *f, double v)
         fputs("null", f);
 }
 
-/* "input": the facts of the log, as print_facts() gives them. */
-static void json_facts(FILE *f, const sw_cli_run_t *run)
+/* ", " and a line break (br) between the members of an object. */
+static void json_sep(FILE *f, const char *br)
+{
+    fputc(',', f);
+    fputs(br, f);
+}
+
+void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
 {
     const sw_gate_facts_t *F = &run->facts;
-    fprintf(f, ",\n  \"input\": {\"rejected_share\": ");
+    fprintf(f, "{\"rejected_share\": ");
     sw_cli_json_num(f, run->samples_read ? (double)run->samples_rejected /
                                                (double)run->samples_read
                                          : 0.0);
@@ -639,12 +645,13 @@ static void json_facts(FILE *f, const sw_cli_run_t *run)
     fprintf(f, ", \"start_absolute\": ");
     if (F->t_origin != 0.0) {
         char iso[64];
-        iso_time(iso, sizeof iso, F->t_origin);
+        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
         sw_cli_json_string(f, iso);
     } else {
         fputs("null", f);
     }
-    fprintf(f, ",\n    \"duration\": ");
+    json_sep(f, br);
+    fprintf(f, "\"duration\": ");
     sw_cli_json_num(f, F->duration);
     fprintf(f, ", \"dt_median\": ");
     sw_cli_json_num(f, F->dt_median);
@@ -654,7 +661,8 @@ static void json_facts(FILE *f, const sw_cli_run_t *run)
     sw_cli_json_num(f, F->dt_max);
     fprintf(f, ", \"rate\": ");
     sw_cli_json_num(f, F->rate);
-    fprintf(f, ",\n    \"peak_accel\": ");
+    json_sep(f, br);
+    fprintf(f, "\"peak_accel\": ");
     sw_cli_json_num(f, F->peak_a);
     fprintf(f, ", \"peak_accel_g\": ");
     sw_cli_json_num(f, F->peak_a / 9.80665);
@@ -662,14 +670,62 @@ static void json_facts(FILE *f, const sw_cli_run_t *run)
     sw_cli_json_num(f, F->gap_total);
     fprintf(f, ", \"gap_max\": ");
     sw_cli_json_num(f, F->gap_max);
-    fprintf(f, ", \"restarts\": %ld, \"clock_steps\": %ld,\n    \"incomplete\": %s",
-            F->restarts, F->clock_steps, F->incomplete ? "true" : "false");
+    fprintf(f, ", \"restarts\": %ld, \"clock_steps\": %ld,", F->restarts, F->clock_steps);
+    fputs(br, f);
+    fprintf(f, "\"incomplete\": %s", F->incomplete ? "true" : "false");
     fprintf(f, ", \"forced\": %s, \"check\": ", run->forced ? "true" : "false");
     if (run->check[0])
         sw_cli_json_string(f, run->check);
     else
         fputs("null", f);
     fputc('}', f);
+}
+
+int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
+                        const char *br)
+{
+    sw_summary_t s;
+    if (sw_engine_summary(e, i, &s) != SW_OK) return -1;
+    fprintf(f, "\"name\": ");
+    sw_cli_json_string(f, s.name);
+    fprintf(f, ", \"model\": ");
+    sw_cli_json_string(f, sw_model_name(s.model));
+    fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\"", s.overturned ? "true" : "false",
+            sw_cli_verdict(&s));
+    json_sep(f, br);
+    fprintf(f, "\"overturn_time\": ");
+    sw_cli_json_num(f, s.overturn_time);
+    fprintf(f, ", \"tip_time\": ");
+    sw_cli_json_num(f, s.tip_time);
+    fprintf(f, ", \"uplift_time\": ");
+    sw_cli_json_num(f, s.uplift_time);
+    json_sep(f, br);
+    fprintf(f, "\"max_abs_theta\": ");
+    sw_cli_json_num(f, s.max_abs_theta);
+    fprintf(f, ", \"max_theta_ratio\": ");
+    sw_cli_json_num(f, s.max_theta_ratio);
+    fprintf(f, ", \"alpha\": ");
+    sw_cli_json_num(f, alpha_of(e, i));
+    json_sep(f, br);
+    fprintf(f, "\"min_margin\": ");
+    sw_cli_json_num(f, s.min_margin);
+    fprintf(f, ", \"min_margin_bound\": ");
+    sw_cli_json_num(f, s.min_margin_bound);
+    fprintf(f, ", \"max_uplift_ratio\": ");
+    sw_cli_json_num(f, s.max_uplift_ratio);
+    json_sep(f, br);
+    fprintf(f, "\"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld", s.impacts,
+            s.uplifts, s.rests, s.faults);
+    json_sep(f, br);
+    fprintf(f, "\"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,
+            run->samples_rejected);
+    json_sep(f, br);
+    fprintf(f, "\"scheme\": ");
+    sw_cli_json_string(f, sw_engine_scheme(e));
+    fprintf(f, ", \"dt\": ");
+    sw_cli_json_num(f, sw_engine_dt(e, i));
+    fprintf(f, ", \"steps\": %ld", s.steps);
+    return 0;
 }
 
 void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
@@ -709,44 +765,19 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
     }
     fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld", run->samples_read,
             run->samples_rejected);
-    if (run->have_facts) json_facts(f, run);
+    if (run->have_facts) {
+        fprintf(f, ",\n  \"input\": ");
+        sw_cli_json_facts(f, run, "\n    ");
+    }
     fprintf(f, ",\n  \"packages\": [");
+    const char *sep = "\n    {";
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
         if (sw_engine_summary(e, i, &s) != SW_OK) continue;
-        fprintf(f, "%s\n    {\"name\": ", i ? "," : "");
-        sw_cli_json_string(f, s.name);
-        fprintf(f, ", \"model\": ");
-        sw_cli_json_string(f, sw_model_name(s.model));
-        fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\"", s.overturned ? "true" : "false",
-                sw_cli_verdict(&s));
-        fprintf(f, ",\n     \"overturn_time\": ");
-        sw_cli_json_num(f, s.overturn_time);
-        fprintf(f, ", \"tip_time\": ");
-        sw_cli_json_num(f, s.tip_time);
-        fprintf(f, ", \"uplift_time\": ");
-        sw_cli_json_num(f, s.uplift_time);
-        fprintf(f, ",\n     \"max_abs_theta\": ");
-        sw_cli_json_num(f, s.max_abs_theta);
-        fprintf(f, ", \"max_theta_ratio\": ");
-        sw_cli_json_num(f, s.max_theta_ratio);
-        fprintf(f, ", \"alpha\": ");
-        sw_cli_json_num(f, alpha_of(e, i));
-        fprintf(f, ",\n     \"min_margin\": ");
-        sw_cli_json_num(f, s.min_margin);
-        fprintf(f, ", \"min_margin_bound\": ");
-        sw_cli_json_num(f, s.min_margin_bound);
-        fprintf(f, ", \"max_uplift_ratio\": ");
-        sw_cli_json_num(f, s.max_uplift_ratio);
-        fprintf(f, ",\n     \"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld",
-                s.impacts, s.uplifts, s.rests, s.faults);
-        fprintf(f, ",\n     \"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,
-                run->samples_rejected);
-        fprintf(f, ",\n     \"scheme\": ");
-        sw_cli_json_string(f, sw_engine_scheme(e));
-        fprintf(f, ", \"dt\": ");
-        sw_cli_json_num(f, sw_engine_dt(e, i));
-        fprintf(f, ", \"steps\": %ld}", s.steps);
+        fputs(sep, f);
+        sw_cli_json_package(f, e, i, run, "\n     ");
+        fputc('}', f);
+        sep = ",\n    {";
     }
     fprintf(f, "\n  ]\n}\n");
 }

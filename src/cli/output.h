@@ -118,10 +118,22 @@ typedef struct {
 void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
 void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
 
+/* The parts of the JSON summary, for the JSON Lines records of a batch.
+ * br is what follows the commas where the summary breaks its lines ("\n"
+ * and the indent, or " " for a record on one line).  The log's facts (the
+ * summary's "input"), an object; and the members of package i's object,
+ * without the braces (-1 and nothing written if i has no summary). */
+void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br);
+int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
+                        const char *br);
+
 /* s as a JSON string literal (quotes included). */
 void sw_cli_json_string(FILE *f, const char *s);
 /* v as a JSON number, or null: JSON has no NaN or infinity. */
 void sw_cli_json_num(FILE *f, double v);
+
+/* An absolute time (s since 1970) as ISO-8601 UTC with milliseconds. */
+void sw_cli_iso_seconds(char *buf, size_t len, double t);
 
 /* Non-zero if any package overturned. */
 int sw_cli_any_overturned(const sw_engine_t *e);

@@ -36,10 +36,11 @@ static int check_scheme(const sw_cli_option_t *o, const char *name, void *dest)
 {
     (void)dest;
     if (sw_scheme_lookup(name)) return SW_EXIT_OK;
-    fprintf(stderr, "swaywatch: --%s: unknown scheme '%s'; valid:", o->long_name, name);
+    FILE *m = sw_cli_msg();
+    fprintf(m, "swaywatch: --%s: unknown scheme '%s'; valid:", o->long_name, name);
     for (size_t i = 0; sw_scheme_at(i); i++)
-        fprintf(stderr, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
-    fputc('\n', stderr);
+        fprintf(m, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
+    fputc('\n', m);
     return SW_EXIT_USAGE;
 }
 

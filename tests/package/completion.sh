@@ -51,6 +51,8 @@ has g swaywatch replay --accel-unit ""
 has m/s2 swaywatch boundary --units ""
 has gtan swaywatch boundary --units gt
 has frame.zeta= swaywatch replay --set frame.z
+has replay swaywatch batch --job ""
+[ -z "$(complete_words swaywatch batch --threads "")" ] || fail "batch --threads offers something"
 
 if printf '%s\n' "$commands" | grep -qx watch; then
     has SWAY_STATE swaywatch watch --state-channel ""
@@ -60,7 +62,7 @@ if printf '%s\n' "$commands" | grep -qx watch; then
 fi
 
 cd "$T/work"
-touch scenes/crate.ini scenes/notes.txt drive.csv
+touch scenes/crate.ini scenes/notes.txt drive.csv fleet.jsonl
 has scenes/crate.ini swaywatch replay --scene scenes/
 if complete_words swaywatch replay --scene scenes/ | grep -q notes.txt; then
     fail "--scene offers a file that is not .ini"
@@ -74,4 +76,6 @@ fi
 has drive.csv swaywatch replay --wide d
 has scenes swaywatch simulate -s sc
 has drive.csv swaywatch replay d
+has fleet.jsonl swaywatch batch --out f
+has drive.csv swaywatch batch --csv d
 echo "completion.sh: ok ($(echo $commands | wc -w) commands)"
