@@ -26,8 +26,8 @@ if ! command -v clang >/dev/null 2>&1; then
 fi
 cmake -S . -B "$B" -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DSW_FUZZ=ON -DSW_SANITIZE=ON -DSW_WERROR=ON >/dev/null
-TARGETS=${*:-csv scene accel}
-# Targets that need optional dependencies (accel: LCM) exist only when those
+TARGETS=${*:-csv scene accel feed lcmlog}
+# Targets that need optional dependencies (accel, feed, lcmlog: LCM) exist only when those
 # were found.
 BUILT=""
 for t in $TARGETS; do

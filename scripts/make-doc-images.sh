@@ -1,7 +1,7 @@
 #!/bin/sh
 # Make the pictures of README.md (docs/img/) by running the commands its
-# walkthrough shows: a replay plotted with gnuplot, a terminal capture of
-# the live monitor on loopback, the boundary plot.  Needs a build (BUILD,
+# walkthrough shows: the figure of a replay (replay --plot), a terminal
+# capture of the live monitor on loopback, the boundary plot.  Needs a build (BUILD,
 # default build) with LCM; the monitor part runs in a private network
 # namespace (root or user namespaces), as the README's loopback set-up.
 # usage: scripts/make-doc-images.sh [replay|monitor|boundary]...
@@ -19,32 +19,7 @@ mkdir -p "$OUT"
 
 replay() {
     "$SW" replay sample_logs/braking-pothole.csv --scene sample_logs/crate.ini \
-        --scene sample_logs/crate-on-frame.ini --out "$T/states.csv" --json >"$T/summary.json"
-    over=$(python3 -c 'import json, sys
-p = [p for p in json.load(open(sys.argv[1]))["packages"] if p["overturned"]]
-print("%.2f" % p[0]["overturn_time"] if p else "never")' "$T/summary.json")
-    # One file per package: gnuplot breaks a line at every skipped row.
-    awk -F, -v d="$T" 'NR > 1 {print > (d "/" $2 ".csv")}' "$T/states.csv"
-    gnuplot <<GP
-set terminal pngcairo size 900,620 font "sans,10" noenhanced
-set output "$OUT/replay.png"
-set datafile separator ","
-set multiplot layout 2,1 title "swaywatch replay sample_logs/braking-pothole.csv, a crate standing on the bed and the same crate on a frame"
-set xrange [5.5:9.5]
-set grid
-set ylabel "bed acceleration (m/s²)"
-set key off
-plot "$T/crate-A.csv" using 1:13 with lines lw 1.5 lc rgb "#444444"
-set ylabel "tilt θ (deg)"
-set xlabel "time (s)"
-set yrange [-25:95]
-set key top left
-set arrow from 5.5,20 to 9.5,20 nohead dt 2 lc rgb "#aa0000"
-set label "α = 20°: centre of mass over the corner" at 5.6,26 tc rgb "#aa0000"
-plot "$T/crate-A.csv" using 1:(\$4*180/pi) with lines lw 1.5 title "crate-A on the bed: rocks, stays upright", \
-     "$T/crate-A-on-frame.csv" using 1:(\$4*180/pi) with lines lw 1.5 title "crate-A-on-frame: overturns at $over s"
-unset multiplot
-GP
+        --scene sample_logs/crate-on-frame.ini --plot "$OUT/replay.png" --quiet
     echo "make-doc-images.sh: $OUT/replay.png"
 }
 
@@ -92,11 +67,11 @@ monitor() {
     echo "make-doc-images.sh: $OUT/monitor.txt"
 }
 
-# The lowest half-sine braking pulse that overturns each crate, against its
-# frequency (the boundary command draws it with gnuplot).
+# The lowest half-sine braking pulse that overturns each crate, in g,
+# against its duration (the boundary command draws it with gnuplot).
 boundary() {
     "$SW" boundary --scene sample_logs/crate.ini --scene sample_logs/crate-on-frame.ini \
-        --pulse half-sine --omega-ratio 1:8:0.5 --out "$T/boundary.csv" --quiet \
+        --pulse half-sine --pulse-duration 100ms:1500ms:50ms --out "$T/boundary.csv" --quiet \
         --title "swaywatch boundary: half-sine pulse, the crate on the bed and on a frame" \
         --plot "$OUT/boundary.png"
     echo "make-doc-images.sh: $OUT/boundary.png"

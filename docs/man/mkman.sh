@@ -9,8 +9,9 @@
 # help2man wants one program that answers --help and --version, and names the
 # page after what --version prints; so each command is run through a small
 # wrapper named swaywatch-CMD that prints "swaywatch-CMD (swaywatch) VERSION"
-# and capitalises "usage:" (help2man turns "Usage:" into the SYNOPSIS),
-# joining the usage line's indented continuation lines to it.
+# and the copyright and licence lines of 'swaywatch --version', and
+# capitalises "usage:" (help2man turns "Usage:" into the SYNOPSIS), joining
+# the usage line's indented continuation lines to it.
 #
 # A command's page also gets the sections of swaywatch-CMD.h2m beside this
 # script (its EXAMPLES), when there is one; every page's SEE ALSO names
@@ -26,6 +27,9 @@ rm -f "$OUT"/swaywatch*.1
 
 version=$("$SW" --version | sed -n '1s/^swaywatch //p')
 [ -n "$version" ] || { echo "mkman.sh: '$SW --version' printed no version" >&2; exit 1; }
+# The copyright and licence lines after it: help2man makes them the COPYRIGHT section.
+LICENCE=$("$SW" --version | sed 1d)
+export LICENCE
 # "  replay     replay a recorded log ..." lines of the Commands: paragraph.
 "$SW" --help | awk '/^Commands:/ {on = 1; next} on && /^$/ {exit}
                     on && /^  [a-z]/ {name = $1; sub(/^  [a-z-]+ +/, ""); print name "\t" $0}' \
@@ -54,7 +58,7 @@ while IFS='	' read -r cmd summary; do
     cat >"$w" <<WRAP
 #!/bin/sh
 case "\$1" in
---version) echo "swaywatch-$cmd (swaywatch) $version" ;;
+--version) echo "swaywatch-$cmd (swaywatch) $version"; printf '%s\n' "\$LICENCE" ;;
 *) "$SW" $cmd --help | sed "\$USAGE" ;;
 esac
 WRAP
@@ -68,7 +72,7 @@ for c in $all_cmds; do see="$see${see:+,
 cat >"$TMP/swaywatch" <<WRAP
 #!/bin/sh
 case "\$1" in
---version) echo "swaywatch $version" ;;
+--version) echo "swaywatch $version"; printf '%s\n' "\$LICENCE" ;;
 *) "$SW" --help | sed "\$USAGE" ;;
 esac
 WRAP

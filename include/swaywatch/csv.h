@@ -15,7 +15,7 @@
  * Rows are rejected when a field is missing, empty, not a plain decimal
  * number ("nan", "inf", "1.0x", hex, and decimal commas such as "0,001"
  * unless the decimal comma is on), out of range ("1e400"), when time does
- * not increase (duplicates included), when the quoting is malformed, or
+ * not increase (duplicates included; unless any_order), when the quoting is malformed, or
  * when the line is longer than SW_CSV_MAX_LINE bytes.  A gap in time is not
  * an error.  Numbers are read with '.' as the decimal point whatever the
  * locale (',' with decimal_comma).  The time column may hold ISO-8601
@@ -80,6 +80,11 @@ typedef struct {
     int decimal_comma;     /* 1: ',' is the decimal mark; -1: detect it in a ';' or tab
                               delimited file from the first number holding ',' or '.'; 0: a
                               ',' in a number is refused */
+    int any_order;         /* non-zero: rows go to on_row in any time order, duplicates
+                              included, for a consumer that judges time itself (the input
+                              gate, gate.h: a lone row whose time is off is that row's fault,
+                              not the fault of the rows after it); 0: a time not after the
+                              previous row's is refused here */
 } sw_csv_opts_t;
 
 /* The layout in use, once the header (or the first data row) has fixed it.

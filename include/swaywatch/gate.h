@@ -46,6 +46,8 @@ extern "C" {
 
 #define SW_GATE_NO_SEQ INT64_MIN /* sw_sample_t.seq: the source has none */
 #define SW_GATE_CONFIRM_MAX 8    /* largest confirm */
+#define SW_GATE_CHAINS 3         /* chains waiting at once (the oldest makes room) */
+#define SW_GATE_HELD_MAX (SW_GATE_CHAINS * SW_GATE_CONFIRM_MAX) /* most samples held */
 
 typedef struct {
     double t;        /* s, the source's time */

@@ -21,6 +21,10 @@ extern "C" {
 #endif
 
 #define SW_NAME_MAX 64
+#define SW_DESIGN_PULSES_MAX 8        /* design pulse durations a scene may list */
+#define SW_DESIGN_PULSE_DEFAULT 1.0   /* s, docs/reserve.md says why */
+#define SW_WARN_RESERVE_G_DEFAULT 0.20     /* g, docs/alarms.md says why */
+#define SW_CRITICAL_RESERVE_G_DEFAULT 0.10 /* g */
 
 typedef enum { SW_MODEL_BARE = 0, SW_MODEL_FRAME = 1, SW_MODEL_CUSHION = 2 } sw_model_kind;
 
@@ -59,6 +63,12 @@ typedef struct {
     /* [alarm] */
     double warn_margin;     /* 1, default 0.5 */
     double critical_margin; /* 1, default 0.2 */
+    /* design_pulse = T[, T2 ...]: half-sine pulses of these durations (s)
+     * define the reserve (reserve.h); default one of SW_DESIGN_PULSE_DEFAULT */
+    double design_pulse[SW_DESIGN_PULSES_MAX];
+    int n_design_pulse;
+    double warn_reserve_g;     /* g (9.80665 m/s^2), default SW_WARN_RESERVE_G_DEFAULT */
+    double critical_reserve_g; /* g, default SW_CRITICAL_RESERVE_G_DEFAULT */
 
     /* where each section started, for messages (0 = not from a file) */
     int line_package, line_frame, line_cushion, line_alarm;
@@ -89,10 +99,14 @@ typedef struct {
 typedef void (*sw_diag_fn)(void *user, const char *origin, int line, const char *msg);
 
 /* Fill sc with defaults: no sizes (they are required; NAN), g = 9.81, alarm
- * thresholds 0.5 and 0.2, no frame, no cushion (cubic term 0). */
+ * thresholds 0.5 and 0.2, one design pulse of SW_DESIGN_PULSE_DEFAULT s,
+ * reserve alarms at SW_WARN_RESERVE_G_DEFAULT and
+ * SW_CRITICAL_RESERVE_G_DEFAULT g, no frame, no cushion (cubic term 0). */
 SW_API void sw_scene_init(sw_scene_t *sc);
 
-/* Set one key, e.g. section "frame", key "zeta", value "0.1".  When override
+/* Set one key, e.g. section "frame", key "zeta", value "0.1".  The one
+ * list, alarm.design_pulse, takes 1 to SW_DESIGN_PULSES_MAX numbers
+ * separated by commas, and replaces the whole list.  When override
  * is non-zero (the --set path) giving one form of a pair replaces the other
  * form; otherwise giving both forms of a pair is an error.  Setting any frame
  * (cushion) key sets has_frame (has_cushion).  Numbers are decimal, finite,

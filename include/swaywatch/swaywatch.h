@@ -9,6 +9,8 @@
 #include "swaywatch/gate.h"
 #include "swaywatch/model.h"
 #include "swaywatch/pulse.h"
+#include "swaywatch/reserve.h"
+#include "swaywatch/risk.h"
 #include "swaywatch/scheme.h"
 #include "swaywatch/scene.h"
 #include "swaywatch/status.h"

@@ -85,6 +85,14 @@ typedef struct {
 SW_API int sw_pulse_run(const sw_scene_t *sc, const sw_pulse_t *pulse, const sw_run_opts_t *o,
                  sw_run_result_t *r, char *msg, size_t msglen);
 
+/* The same from state s (sw_state_t of this scene, any phase; the pulse
+ * starts at t = 0 from it) instead of rest: "what would this pulse do
+ * now".  An overturned state ends at once (SW_END_OVERTURN).  Returns as
+ * sw_pulse_run(), SW_EINVAL also for a state the engine refuses. */
+SW_API int sw_pulse_run_from(const sw_scene_t *sc, const sw_state_t *s, const sw_pulse_t *pulse,
+                             const sw_run_opts_t *o, sw_run_result_t *r, char *msg,
+                             size_t msglen);
+
 /* A recorded log held in memory: n samples, time increasing (s), bed
  * acceleration (m/s^2, x forward) and optionally vertical acceleration
  * (m/s^2, up; a_z NULL = none).  restart (may be NULL when nrestart is 0):

@@ -17,27 +17,28 @@
  * Unlike replay, forensics holds the whole log in memory (input.c): the
  * safety-factor search replays it tens of times per case, and re-reading
  * and re-parsing the file for each trial would cost more than the physics.
- * The figure also keeps the state series in memory.  The what-if cases are
+ * The figure is figure.c's, as replay draws it.  The what-if cases are
  * built, run and reported by whatif.c. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "clobber.h"
+#include "figure.h"
 #include "input.h"
+#include "interrupt.h"
 #include "opts.h"
 #include "output.h"
 #include "plot.h"
 #include "whatif.h"
-
-#define MAX_EVENTS 100000     /* events kept for the figure */
-#define PLOT_BUCKETS 3000     /* the figure keeps each series' extremes per bucket */
 
 /* forensics' own options. */
 typedef struct {
     double settle; /* s of zero input after the end of the log, as replay */
     int fail_on_overturn;
     long threads;
+    long max_samples; /* the log held in memory, at most */
     sw_search_opts_t so;
     sw_cli_whatif_t w;
     const char *plot;
@@ -57,19 +58,27 @@ static int check_size(const sw_cli_option_t *o, const char *arg, void *dest)
 static const sw_cli_option_t forensics_options[] = {
     {SW_CLI_SECTION, .help = "Run:"},
     {SW_CLI_DOUBLE, 0, "settle", "SECONDS", FO(settle), .rule = SW_NUM_NONNEGATIVE, .def = 30,
-     .what = "a number of seconds >= 0",
+     .hi = 1e5, .what = "a number of seconds >= 0",
      .help = "after the log, zero acceleration for up to this long or until the outcome is "
-             "certain (default %g; 0: none)"},
+             "certain (default %g; 0: none); at most a day: an undamped frame never rests"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", FO(fail_on_overturn), .value = 1,
      .help = "exit 1 if the package as given overturned"},
+    {SW_CLI_LONG, 0, "max-samples", "N", FO(max_samples), .min = 1, .max = 1L << 28,
+     .def = SW_CLI_LOG_MAX_SAMPLES, .what = "a whole number of samples >= 1",
+     .help = "hold at most N samples of the log in memory (16 bytes each, 24 with --vert-col; "
+             "default " SW_CLI_STR(SW_CLI_LOG_MAX_SAMPLES_N) ", 9.3 h at 1 kHz; at most 268435456); a longer log, or an endless pipe, "
+             "is refused with exit 2 instead of filling the memory"},
     {SW_CLI_SECTION, .help = "Safety factor (scale of the whole longitudinal acceleration):"},
-    {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE,
-     .what = "a positive relative step", .help = "relative scan step (default 0.02)"},
-    {SW_CLI_DOUBLE, 0, "tol", "X", FO(so.tol), .rule = SW_NUM_POSITIVE,
+    {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE, .lo = 1e-4, .hi = 1,
+     .what = "a positive relative step",
+     .help = "relative scan step (default 0.02); smaller steps take tens of thousands of "
+             "replays of the log"},
+    {SW_CLI_DOUBLE, 0, "tol", "X", FO(so.tol), .rule = SW_NUM_POSITIVE, .lo = 1e-9, .hi = 0.5,
      .what = "a positive relative tolerance",
-     .help = "relative width of the final bracket (default 0.001)"},
-    {SW_CLI_DOUBLE, 0, "max-factor", "X", FO(so.x_max), .rule = SW_NUM_POSITIVE,
-     .what = "a positive scale factor",
+     .help = "relative width of the final bracket (default 0.001); finer than 1e-9 is below "
+             "what the model resolves"},
+    {SW_CLI_DOUBLE, 0, "max-factor", "X", FO(so.x_max), .rule = SW_NUM_POSITIVE, .lo = 1,
+     .hi = 1e4, .what = "a positive scale factor",
      .help = "largest scale tried (default: 20 times the scale at which the log's peak lifts a "
              "package on the bed)"},
     {SW_CLI_LONG, 0, "threads", "N", FO(threads), .min = 1, .max = 256, .def = 2,
@@ -118,148 +127,40 @@ static const sw_cli_command_t forensics_cmd = {
         "    that would have overturned it: overturning is not monotonic in the amplitude);\n"
         "  - a what-if table: the same log with the package on the bed, on a frame, on a\n"
         "    cushion and in other sizes, each with its outcome and safety factor.\n"
-        "The log is held in memory (about 16 bytes a sample): the search replays it tens\n"
-        "of times for every case.\n",
+        "The log is held in memory (about 16 bytes a sample, at most --max-samples): the\n"
+        "search replays it tens of times for every case.\n",
     .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
 };
 
 /* ---- the replay, with what the figure needs ----------------------------------- */
 
 typedef struct {
-    double t, a_g, ratio, margin;
-} sample_t;
-
-typedef struct {
     sw_cli_states_t *states;
     sw_cli_events_t *events;
-    double alpha; /* rad */
-    int keep;     /* keep the series for the figure */
-    sample_t *s;
-    size_t n, cap;
-    sw_event_t *ev;
-    size_t nev;
-    int oom;
+    sw_cli_figure_t *fig; /* NULL: no figure */
 } replay_t;
 
 static void on_state(void *user, const sw_output_t *out)
 {
     replay_t *R = user;
     sw_cli_states_write(R->states, out);
-    if (!R->keep || R->oom) return;
-    if (R->n == R->cap) {
-        size_t cap = R->cap ? 2 * R->cap : 8192;
-        sample_t *s = realloc(R->s, cap * sizeof *s);
-        if (!s) {
-            R->oom = 1;
-            return;
-        }
-        R->s = s;
-        R->cap = cap;
-    }
-    R->s[R->n++] = (sample_t){out->t, out->a_g, out->state.theta / R->alpha, out->margin};
+    sw_cli_figure_state(R->fig, out);
 }
 
 static void on_event(void *user, const sw_event_t *ev)
 {
     replay_t *R = user;
     sw_cli_events_write(R->events, ev);
-    if (R->keep && R->ev && R->nev < MAX_EVENTS) R->ev[R->nev++] = *ev;
+    sw_cli_figure_event(R->fig, ev);
 }
 
 /* ---- figure ------------------------------------------------------------------------ */
 
-/* One series in at most PLOT_BUCKETS buckets, each kept as its minimum and
- * maximum in time order, so that peaks survive the thinning. */
-static void series_block(FILE *g, const char *name, const replay_t *R, int which)
+static int draw(const char *path, const char *log, const sw_scene_t *sc, const replay_t *R)
 {
-    fprintf(g, "$%s << EOD\n", name);
-    const size_t per = R->n / PLOT_BUCKETS + 1;
-    for (size_t b = 0; b < R->n; b += per) {
-        size_t imin = b, imax = b;
-        const size_t e = b + per < R->n ? b + per : R->n;
-        for (size_t i = b; i < e; i++) {
-            const double v = which == 0 ? R->s[i].a_g : which == 1 ? R->s[i].ratio : R->s[i].margin;
-            const double vmin = which == 0   ? R->s[imin].a_g
-                                : which == 1 ? R->s[imin].ratio
-                                             : R->s[imin].margin;
-            const double vmax = which == 0   ? R->s[imax].a_g
-                                : which == 1 ? R->s[imax].ratio
-                                             : R->s[imax].margin;
-            if (v < vmin) imin = i;
-            if (v > vmax) imax = i;
-        }
-        const size_t first = imin < imax ? imin : imax, second = imin < imax ? imax : imin;
-        for (int k = 0; k < (first == second ? 1 : 2); k++) {
-            const size_t i = k ? second : first;
-            const double v = which == 0 ? R->s[i].a_g : which == 1 ? R->s[i].ratio : R->s[i].margin;
-            if (isfinite(v)) fprintf(g, "%.9g %.9g\n", R->s[i].t, v);
-        }
-    }
-    fputs("EOD\n", g);
-}
-
-static int draw(const char *path, const char *log, const sw_scene_t *sc, const replay_t *R,
-                double g_tan_alpha)
-{
-    sw_plot_t *p = sw_cli_plot_open(path, 1000, 900);
-    if (!p) return SW_EXIT_IO;
-    FILE *g = sw_cli_plot_file(p);
-    series_block(g, "ag", R, 0);
-    series_block(g, "th", R, 1);
-    series_block(g, "mg", R, 2);
-    /* impacts and rests as points; uplift, tip and overturn as lines */
-    fputs("$imp << EOD\n", g);
-    int nimp = 0;
-    for (size_t i = 0; i < R->nev; i++)
-        if (R->ev[i].kind == SW_EV_IMPACT || R->ev[i].kind == SW_EV_REST) {
-            fprintf(g, "%.9g 0\n", R->ev[i].t);
-            nimp++;
-        }
-    if (!nimp) fputs("NaN NaN\n", g);
-    fputs("EOD\n", g);
-    int arrows = 0;
-    for (size_t i = 0; i < R->nev && arrows < 200; i++) {
-        const sw_event_t *ev = &R->ev[i];
-        const char *col = ev->kind == SW_EV_UPLIFT     ? "#2a9d8f"
-                          : ev->kind == SW_EV_TIP      ? "#e9c46a"
-                          : ev->kind == SW_EV_OVERTURN ? "#d62828"
-                          : ev->kind == SW_EV_FAULT    ? "#000000"
-                                                       : NULL;
-        if (!col) continue;
-        /* uplifts can be many: draw the first 50 */
-        if (ev->kind == SW_EV_UPLIFT && arrows >= 50) continue;
-        fprintf(g,
-                "set arrow %d from first %.9g, graph 0 to first %.9g, graph 1 nohead lc rgb '%s' "
-                "lw 1.5 dt 2\n",
-                ++arrows, ev->t, ev->t, col);
-    }
-    fputs("set multiplot layout 3,1 title ", g);
     char title[512];
     snprintf(title, sizeof title, "%s: %s", log, sc->name);
-    sw_cli_plot_text(g, title);
-    fputs("\nset grid\nset key top right opaque box\nset lmargin 12\n"
-          "set xlabel ''\nset format x ''\n",
-          g);
-    fprintf(g, "set ylabel 'a_g (m/s^2)'\n"
-               "plot $ag using 1:2 with lines lc rgb '#264653' title 'bed acceleration', "
-               "%.9g with lines lc rgb '#999999' dt 3 title '± g tan α', %.9g with lines "
-               "lc rgb '#999999' dt 3 notitle\n",
-            g_tan_alpha, -g_tan_alpha);
-    fputs("set ylabel 'θ / α'\n"
-          "plot $th using 1:2 with lines lc rgb '#1d3557' lw 1.5 title 'θ/α', "
-          "1 with lines lc rgb '#d62828' dt 3 title 'tipping ±1', -1 with lines lc rgb '#d62828' "
-          "dt 3 notitle, $imp using 1:2 with points pt 7 ps 0.5 lc rgb '#e76f51' "
-          "title 'impacts / rest', NaN with lines lc rgb '#2a9d8f' lw 1.5 dt 2 title 'uplift', "
-          "NaN with lines lc rgb '#e9c46a' lw 1.5 dt 2 title 'tip (|θ| = α)', "
-          "NaN with lines lc rgb '#d62828' lw 1.5 dt 2 title 'overturn'\n",
-          g);
-    fputs("set format x '%g'\nset xlabel 't (s)'\nset ylabel 'margin'\n"
-          "set yrange [*:1.05]\n"
-          "plot $mg using 1:2 with lines lc rgb '#2a9d8f' lw 1.5 title 'margin to overturn', "
-          "0 with lines lc rgb '#d62828' dt 3 notitle\n"
-          "unset multiplot\n",
-          g);
-    return sw_cli_plot_close(p);
+    return sw_cli_figure_draw(R->fig, path, title);
 }
 
 /* ---- the command --------------------------------------------------------------------- */
@@ -276,12 +177,23 @@ typedef struct {
     sw_engine_opts_t eo;
     sw_engine_t *e;
     long refused; /* samples the engine refused */
+    size_t pushed; /* samples handed to the engine (fewer if interrupted) */
     sw_cli_states_t states;
     sw_cli_events_t events;
     replay_t R;
     sw_cli_case_t *cases;
     size_t ncases;
 } forensics_t;
+
+/* 0. The log into memory; nothing is written yet, so a signal ends the
+ * process at once. */
+static int read_log(forensics_t *F)
+{
+    sw_cli_interrupt_now("forensics: interrupted while reading the log; nothing written");
+    int rc = sw_cli_log_read(F->log_path, &F->copts, F->o.quiet, F->fo.max_samples, &F->L);
+    sw_cli_interrupt_now(NULL);
+    return rc;
+}
 
 /* 1. The replay, exactly as replay runs it. */
 static int replay_log(forensics_t *F)
@@ -290,17 +202,12 @@ static int replay_log(forensics_t *F)
     replay_t *R = &F->R;
     sw_cli_engine_opts(&F->o, &F->eo);
     if ((rc = sw_cli_resolve_accuracy(&F->o, F->scenes, F->nsc, &F->eo)) != SW_EXIT_OK) return rc;
-    R->keep = F->fo.plot != NULL;
-    if (R->keep && !(R->ev = calloc(MAX_EVENTS, sizeof *R->ev))) {
-        sw_cli_error("out of memory");
-        return SW_EXIT_IO;
-    }
     sw_engine_opts_t eo = F->eo;
     eo.on_event = on_event;
-    eo.on_state = F->o.out_path || R->keep ? on_state : NULL;
+    eo.on_state = F->o.out_path || F->fo.plot ? on_state : NULL;
     eo.user = R;
     if (!(F->e = sw_cli_engine_create(F->scenes, 1, &eo))) return SW_EXIT_USAGE;
-    R->alpha = sw_engine_derived(F->e, 0)->alpha;
+    if (F->fo.plot && !(R->fig = sw_cli_figure_create(F->e, F->scenes, 1))) return SW_EXIT_IO;
     if (F->o.verbose) sw_cli_print_derived(stderr, F->e, F->scenes, 1);
     if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, F->scenes, 1)) !=
             SW_EXIT_OK ||
@@ -309,15 +216,13 @@ static int replay_log(forensics_t *F)
     R->states = &F->states;
     R->events = &F->events;
     const sw_cli_log_t *L = &F->L;
-    for (size_t i = 0; i < L->n; i++)
+    for (size_t i = 0; i < L->n && !sw_cli_signal; i++, F->pushed++)
         if (sw_engine_push(F->e, L->t[i], L->a_g[i], L->has_z ? L->a_z[i] : 0.0) < 0)
             F->refused++;
-    sw_engine_finish(F->e, F->fo.settle);
+    if (!sw_cli_signal) sw_engine_finish(F->e, F->fo.settle);
     rc = sw_cli_states_close(&F->states);
     int rc2 = sw_cli_events_close(&F->events);
     if (rc == SW_EXIT_OK) rc = rc2;
-    if (rc == SW_EXIT_OK && R->oom)
-        sw_cli_error("out of memory keeping the state series: the figure is partial");
     return rc;
 }
 
@@ -335,12 +240,41 @@ static int run_cases(forensics_t *F)
     ro.settle = F->fo.settle > 0.0 ? F->fo.settle : -1.0; /* negative: no free motion at all */
     const sw_cli_log_t *L = &F->L;
     sw_log_t lg = {.t = L->t, .a_g = L->a_g, .a_z = L->has_z ? L->a_z : NULL, .n = L->n};
+    /* The search cannot stop between trials and writes nothing: a signal
+     * ends the process at once. */
+    sw_cli_interrupt_now("forensics: interrupted during the safety-factor search; --out and "
+                         "--events are complete, no report");
     sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads);
+    sw_cli_interrupt_now(NULL);
     if (!F->cases[0].available) {
         sw_cli_error("forensics: safety factor: %s", F->cases[0].note);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
+}
+
+/* 3'. Interrupted during the replay: its summary alone, marked so. */
+static int report_interrupted(const forensics_t *F)
+{
+    const long read = (long)F->pushed < F->L.rows ? (long)F->pushed : F->L.rows;
+    const sw_cli_run_t run = {
+        .log = F->log_path,
+        .samples_read = read,
+        .samples_rejected = F->refused,
+        .settle = F->fo.settle,
+        .interrupted = sw_cli_signal,
+    };
+    if (F->o.json) {
+        fprintf(stdout, "{\n\"replay\": ");
+        sw_cli_print_json(stdout, F->e, &run);
+        fprintf(stdout, ",\n\"safety_factor\": null,\n\"what_if\": []\n}\n");
+    } else if (!F->o.quiet) {
+        sw_cli_print_summary(stdout, F->e, &run);
+    }
+    sw_cli_error("forensics: interrupted by %s after %ld samples of the replay; the output "
+                 "files end with the last whole row; no safety factor or what-if",
+                 sw_cli_signal_name(sw_cli_signal), read);
+    return sw_cli_interrupt_code();
 }
 
 /* 3. The report: replay's summary, the safety factor and the table. */
@@ -394,6 +328,8 @@ int cmd_forensics(int argc, char **argv)
         goto out;
     rc = SW_EXIT_USAGE;
     if (!(F.log_path = sw_cli_log_operand("forensics", argc, argv, first))) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    rc = SW_EXIT_USAGE;
     if (F.o.scenes.n > 1) {
         sw_cli_error("forensics: one --scene (one package) at a time");
         goto out;
@@ -402,12 +338,20 @@ int cmd_forensics(int argc, char **argv)
         sw_cli_error("--max-factor: expected a factor above 1, got %g", F.fo.so.x_max);
         goto out;
     }
-    if ((rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
+    const sw_cli_file_t outputs[] = {
+        {"--out", F.o.out_path}, {"--events", F.o.events_path}, {"--plot", F.fo.plot}};
+    if ((rc = sw_cli_check_run_files(F.log_path, &F.o.scenes, outputs, 3)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
             SW_EXIT_OK ||
-        (rc = sw_cli_log_read(F.log_path, &F.copts, F.o.quiet, &F.L)) != SW_EXIT_OK ||
+        (rc = read_log(&F)) != SW_EXIT_OK ||
         (rc = sw_cli_load_scenes(&F.o, &F.scenes, &F.nsc)) != SW_EXIT_OK ||
-        (rc = replay_log(&F)) != SW_EXIT_OK || (rc = run_cases(&F)) != SW_EXIT_OK)
+        (rc = replay_log(&F)) != SW_EXIT_OK)
         goto out;
+    if (sw_cli_signal) {
+        rc = report_interrupted(&F);
+        goto out;
+    }
+    if ((rc = run_cases(&F)) != SW_EXIT_OK) goto out;
     sw_summary_t sum;
     sw_engine_summary(F.e, 0, &sum);
     if (sum.overturned != F.cases[0].sf.overturned)
@@ -415,19 +359,20 @@ int cmd_forensics(int argc, char **argv)
                      "(overturned %s / %s): the shock is at the edge of the model's resolution",
                      sum.overturned ? "yes" : "no", F.cases[0].sf.overturned ? "yes" : "no");
     report(&F);
-    if (F.fo.plot) {
-        const sw_derived_t *d = sw_engine_derived(F.e, 0);
-        rc = draw(F.fo.plot, F.log_path, &F.scenes[0], &F.R, F.scenes[0].g * tan(d->alpha));
-        if (rc != SW_EXIT_OK) goto out;
+    if (F.fo.plot && (rc = draw(F.fo.plot, F.log_path, &F.scenes[0], &F.R)) != SW_EXIT_OK)
+        goto out;
+    rc = sw_cli_verdict_exit(F.e, F.fo.fail_on_overturn);
+    if (sw_cli_signal) { /* while the report or the figure was written: both are whole */
+        sw_cli_error("forensics: interrupted by %s after the report",
+                     sw_cli_signal_name(sw_cli_signal));
+        rc = sw_cli_interrupt_code();
     }
-    rc = F.fo.fail_on_overturn && sum.overturned ? SW_EXIT_OVERTURNED : SW_EXIT_OK;
 out:
     sw_cli_states_close(&F.states);
     sw_cli_events_close(&F.events);
     sw_engine_destroy(F.e);
     free(F.cases);
-    free(F.R.s);
-    free(F.R.ev);
+    sw_cli_figure_destroy(F.R.fig);
     free(F.scenes);
     sw_cli_log_free(&F.L);
     sw_cli_parse_free(g, ng);

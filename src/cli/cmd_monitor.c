@@ -5,10 +5,18 @@
  *
  * One thread: poll() on LCM's file descriptor and on a self-pipe written by
  * the signal handler, with a timeout that wakes the loop for the sensor-gap
- * timer and the status line.  The self-pipe (not a bare flag) because the
- * signal may be delivered to LCM's receive thread while this one sleeps in
- * poll().  Nothing in the loop writes files; publishing over udpm does not
- * block. */
+ * timer, the status line and the service manager's watchdog.  The
+ * self-pipe (not a bare flag) because the signal may be delivered to LCM's
+ * receive thread while this one sleeps in poll().  Nothing in the loop
+ * writes files; publishing over udpm does not block.
+ *
+ * People are told on stderr: every alarm as one line (journal.h: with its
+ * syslog priority when stderr is the journal, so that 'journalctl -p
+ * warning' shows it), the status lines and the summary.  systemd is told
+ * (notify.h) READY=1 once the monitor is subscribed, WATCHDOG=1 from the
+ * loop at half the watchdog timeout (a loop that stalls is killed and
+ * restarted), STATUS= the status line, STOPPING=1 at the end. */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <lcm/lcm.h>
@@ -21,17 +29,27 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "clobber.h"
+#include "cost.h"
 #include "input.h"
+#include "journal.h"
+#include "lcmlog.h"
 #include "lcmopts.h"
 #include "monitor.h"
+#include "notify.h"
 #include "opts.h"
 #include "output.h"
 
-/* Per-subscription queue of LCM (default 30, which loses samples in bursts
- * at 1 kHz): two seconds of samples at 1 kHz. */
-#define ACCEL_QUEUE 2000
+/* LCM's per-subscription queue drops what does not fit (default 30) and
+ * counts nothing.  Unlimited (0), nothing is lost there; the backlog is
+ * bounded by time instead: a message that waited longer than --max-backlog
+ * is refused unread and counted (overload).  What the kernel drops before
+ * LCM sees it is read from /proc/net/udp (socket_drops). */
+#define ACCEL_QUEUE 0
 /* Messages handled per wake-up before the timers get a look. */
 #define BATCH 256
+/* s between STATUS= updates for the service manager without --status. */
+#define NOTIFY_STATUS_EVERY_S 10
 
 /* monitor's own options, and the monitor core's. */
 typedef struct {
@@ -40,6 +58,7 @@ typedef struct {
     const char *url;           /* --lcm-url; NULL: LCM's default */
     const char *accel_channel; /* subscribed to */
     double status_every;       /* s, --status; 0: no status line */
+    double max_backlog;        /* s, --max-backlog */
 } monitor_opts_t;
 
 static int check_accel_channel(const sw_cli_option_t *o, const char *arg, void *dest)
@@ -60,7 +79,8 @@ static const sw_cli_option_t monitor_lcm_options[] = {
     {SW_CLI_SECTION, .help = "LCM:"},
     {SW_CLI_STRING, 'l', "lcm-url", "URL", MO(url),
      .help = "LCM URL (default: $LCM_DEFAULT_URL, else LCM's default, "
-             "udpm://239.255.76.67:7667?ttl=0)"},
+             "udpm://239.255.76.67:7667?ttl=0); a file://LOG is checked first and refused if "
+             "damaged (LCM's reader trusts its length fields)"},
     {SW_CLI_STRING, 0, "accel-channel", "REGEX", MO(accel_channel), .fn = check_accel_channel,
      .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
              SW_MON_ACCEL_CHANNEL ")"},
@@ -73,10 +93,18 @@ static const sw_cli_option_t monitor_input_options[] = {
      .help = "negate the longitudinal axis (sensor mounted backwards)"},
     {SW_CLI_CALL, 0, "accel-unit", "m/s2|g", MO(mo.accel_scale), .fn = sw_cli_accel_unit,
      .help = "unit of the message's values (default m/s2)"},
+    {SW_CLI_DOUBLE, 0, "max-backlog", "SECONDS", MO(max_backlog), .rule = SW_NUM_POSITIVE,
+     .def = 1, .lo = 1e-3, .hi = 3600, .what = "a positive number of seconds",
+     .help = "a message that waited longer than this in the receive queue (the monitor fell "
+             "behind: a flood, a stalled machine) is refused unread as overload and counted, so "
+             "the monitor catches up instead of working on stale samples (default %g; "
+             "udpm and tcpq only)"},
     {SW_CLI_DOUBLE, 0, "status", "SECONDS", MO(status_every), .rule = SW_NUM_NONNEGATIVE,
+     .lo = 0.1, .hi = 86400,
      .what = "a number of seconds >= 0 (0: no status)",
      .help = "one status line on stderr every SECONDS: sample rate, lag behind the sensor clock, "
-             "CPU share, counts (default 0: none)"},
+             "CPU share, counts (default 0: none; under systemd it is also the service's "
+             "status, updated every " SW_CLI_STR(NOTIFY_STATUS_EVERY_S) " s without --status)"},
     {SW_CLI_TEXT,
      .help = "\nA sensor with a synchronised clock can use --max-skew (e.g. 10); leave it off\n"
              "when lcm-logplayer replays an old log.\n"
@@ -110,7 +138,21 @@ static const sw_cli_option_t monitor_input_options[] = {
 /* What the monitor publishes: the states and alarms (sw_cli_lcm_publish_options). */
 static const sw_cli_option_t monitor_output_notes[] = {
     {SW_CLI_SECTION, .help = "Output:"},
-    {SW_CLI_TEXT, .help = "\nThe monitor writes no files: record its output with lcm-logger."},
+    {SW_CLI_TEXT,
+     .help = "\nThe monitor writes no files: record its output with lcm-logger.\n"
+             "\n"
+             "Every alarm it raises also goes to stderr, as one line:\n"
+             "  swaywatch: alarm TIME level=LEVEL package=NAME kind=KIND theta=RAD\n"
+             "  margin=M text=\"...\"\n"
+             "TIME is the wall clock, ISO 8601 UTC with ms; input alarms have package=-\n"
+             "theta=- margin=-.  When stderr is the journal (systemd's JOURNAL_STREAM), the\n"
+             "line starts with the syslog priority of its level, <2> critical, <4> warn,\n"
+             "<6> info, and errors with <3>: 'journalctl -p warning -u swaywatch-monitor'\n"
+             "lists the warn and critical alarms and the errors.\n"
+             "\n"
+             "Under systemd (Type=notify) the monitor sends READY=1 once it is subscribed,\n"
+             "WATCHDOG=1 from its main loop at half of WatchdogSec= (a stalled loop is\n"
+             "killed and restarted), its status line as STATUS= and STOPPING=1 at the end."},
     {SW_CLI_END},
 };
 
@@ -262,6 +304,7 @@ static int reload_scenes(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scen
     }
     fprintf(stderr, "swaywatch: monitor: reload: %zu of %zu packages rebuilt, the others kept\n",
             nchanged, n);
+    sw_cli_warn_scene_cost(changed, nchanged, &eo);
     goto done;
 
 keep:
@@ -284,19 +327,80 @@ typedef struct {
     long accepted;
     double lag_sum, lag_max; /* s, wall clock at handling minus sample utime */
     double busy;             /* s spent handling samples */
+    double max_backlog;      /* s; 0: no shedding (a log, memq: the receive time is not now) */
 } mon_ctx_t;
+
+/* Datagrams the kernel dropped on this process's UDP sockets (the column
+ * "drops" of /proc/net/udp and udp6 for the inodes of our sockets): what
+ * arrived at the host but never reached LCM.  -1 if it cannot be read. */
+static long socket_drops(void)
+{
+    unsigned long inode[64];
+    int n = 0;
+    DIR *d = opendir("/proc/self/fd");
+    if (!d)
+        return -1;
+    for (struct dirent *e; (e = readdir(d)) && n < 64;) {
+        char path[300], link[64];
+        snprintf(path, sizeof path, "/proc/self/fd/%s", e->d_name);
+        const ssize_t len = readlink(path, link, sizeof link - 1);
+        if (len <= 0)
+            continue;
+        link[len] = '\0';
+        if (sscanf(link, "socket:[%lu]", &inode[n]) == 1)
+            n++;
+    }
+    closedir(d);
+    long drops = 0;
+    int seen = 0;
+    static const char *const tables[] = {"/proc/net/udp", "/proc/net/udp6"};
+    for (int t = 0; t < 2; t++) {
+        FILE *f = fopen(tables[t], "r");
+        if (!f)
+            continue;
+        seen = 1;
+        char line[512];
+        while (fgets(line, sizeof line, f)) {
+            unsigned long ino;
+            long dr;
+            /* sl local rem st tx:rx tr:when retrnsmt uid timeout inode ref pointer drops */
+            if (sscanf(line, "%*s %*s %*s %*s %*s %*s %*s %*s %*s %lu %*s %*s %ld", &ino, &dr) !=
+                2)
+                continue;
+            for (int i = 0; i < n; i++)
+                if (inode[i] == ino)
+                    drops += dr;
+        }
+        fclose(f);
+    }
+    return seen ? drops : -1;
+}
 
 static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
 {
     (void)channel;
     mon_ctx_t *c = user;
     double t0 = sw_mon_clock();
+    double arrived = t0;
+    if (c->max_backlog > 0.0) {
+        /* how long it waited: LCM stamps it on arrival, on the wall clock */
+        const double waited = ((double)wall_now_us() - (double)rb->recv_utime) / 1e6;
+        if (waited > c->max_backlog) {
+            sw_mon_refuse(c->mon, SW_MON_REJ_OVERLOAD, t0);
+            c->busy += sw_mon_clock() - t0;
+            return;
+        }
+        if (waited > 0.0)
+            arrived = t0 - waited; /* the gate wants the arrival time, not ours */
+    }
     sw_mon_counts_t k0, k1;
     sw_mon_counts(c->mon, &k0);
-    sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, t0, NULL);
+    sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, arrived, NULL);
     sw_mon_counts(c->mon, &k1);
     if (k1.accepted > k0.accepted) { /* none while a sample is held; two when it is confirmed */
-        double lag = (double)(wall_now_us() - sw_mon_last_utime(c->mon)) / 1e6;
+        /* in double: utime may be anything an int64 holds (a forged one
+         * minus the wall clock overflows int64) */
+        double lag = ((double)wall_now_us() - (double)sw_mon_last_utime(c->mon)) / 1e6;
         c->accepted += k1.accepted - k0.accepted;
         c->lag_sum += lag;
         if (c->accepted == 1 || lag > c->lag_max)
@@ -305,19 +409,47 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
     c->busy += sw_mon_clock() - t0;
 }
 
-static void print_status(mon_ctx_t *c, double elapsed, double interval)
+/* Every alarm on stderr, one line each (journal.h). */
+static void print_alarm(void *user, const sw_alarm_t *a)
+{
+    const mon_ctx_t *c = user;
+    sw_cli_alarm_line_t line = {
+        .wall_us = wall_now_us(),
+        .level = a->level,
+        .kind = a->kind,
+        .package = a->pkg < c->n ? c->scenes[a->pkg].name : NULL,
+        .theta = a->theta,
+        .margin = a->margin,
+        .reserve_g = NAN, /* the reserve, once sw_alarm_t carries it */
+        .text = a->text,
+    };
+    sw_cli_alarm_print(&line);
+}
+
+/* The status line since the last one (interval s; elapsed s since the
+ * start), without "swaywatch: " and newline, into buf; starts a new
+ * interval. */
+static void status_text(mon_ctx_t *c, double elapsed, double interval, char *buf, size_t len)
 {
     sw_mon_counts_t k;
     sw_mon_counts(c->mon, &k);
-    fprintf(stderr, "swaywatch: monitor %.0f s: %.1f samples/s", elapsed,
-            (double)c->accepted / interval);
-    if (c->accepted)
-        fprintf(stderr, ", lag %.2f ms (max %.2f)", 1e3 * c->lag_sum / (double)c->accepted,
-                1e3 * c->lag_max);
-    fprintf(stderr, ", busy %.1f%%; accepted %ld, ", 100.0 * c->busy / interval, k.accepted);
-    sw_cli_print_rejected(stderr, &k);
-    fprintf(stderr, ", lost %ld, gaps %ld, states %ld, alarms %ld\n", k.lost, k.gaps, k.states,
-            k.alarms);
+    FILE *f = fmemopen(buf, len, "w");
+    if (!f) {
+        snprintf(buf, len, "monitor %.0f s", elapsed);
+    } else {
+        fprintf(f, "monitor %.0f s: %.1f samples/s", elapsed, (double)c->accepted / interval);
+        if (c->accepted)
+            fprintf(f, ", lag %.2f ms (max %.2f)", 1e3 * c->lag_sum / (double)c->accepted,
+                    1e3 * c->lag_max);
+        fprintf(f, ", busy %.1f%%; accepted %ld, ", 100.0 * c->busy / interval, k.accepted);
+        sw_cli_print_rejected(f, &k);
+        fprintf(f, ", held %ld of %ld received, lost %ld, gaps %ld, states %ld, alarms %ld",
+                k.held, k.received, k.lost, k.gaps, k.states, k.alarms);
+        const long drops = socket_drops();
+        if (drops >= 0)
+            fprintf(f, ", kernel drops %ld", drops);
+        fclose(f); /* NUL-terminates, truncated to fit */
+    }
     c->accepted = 0;
     c->lag_sum = c->lag_max = c->busy = 0.0;
 }
@@ -331,9 +463,14 @@ static void print_final(sw_mon_t *mon, double elapsed)
     sw_cli_print_rejected(stderr, &k);
     fprintf(stderr,
             "; lost %ld (by seq), seq restarts %ld, gaps %ld, sensor restarts %ld, clock "
-            "steps %ld; published %ld states (%ld withheld), %ld alarms; %ld publish errors\n",
+            "steps %ld; published %ld states (%ld withheld), %ld alarms (%ld more folded into "
+            "them by the rate limit); %ld publish errors",
             k.lost, k.seq_restarts, k.gaps, k.restarts, k.clock_steps, k.states,
-            k.states_withheld, k.alarms, k.publish_errors);
+            k.states_withheld, k.alarms, k.alarms_folded, k.publish_errors);
+    const long drops = socket_drops();
+    if (drops >= 0)
+        fprintf(stderr, "; %ld datagrams dropped by the kernel before LCM read them", drops);
+    fputc('\n', stderr);
     sw_cli_run_t run;
     memset(&run, 0, sizeof run);
     run.samples_read = k.received;
@@ -341,15 +478,54 @@ static void print_final(sw_mon_t *mon, double elapsed)
     sw_cli_print_summary(stderr, sw_mon_engine(mon), &run);
 }
 
+/* The timers of the loop besides the monitor core's. */
+typedef struct {
+    double start;
+    double status_every, last_status, next_status; /* the status line (and STATUS=) */
+    int status_line;                               /* on stderr too (--status) */
+    double ping_every, next_ping;                  /* WATCHDOG=1 */
+} loop_timers_t;
+
+static void timers_init(loop_timers_t *t, double status_every)
+{
+    t->start = t->last_status = sw_mon_clock();
+    t->status_line = status_every > 0.0;
+    /* Without --status, systemd still gets the status now and then. */
+    t->status_every = t->status_line ? status_every : (double)NOTIFY_STATUS_EVERY_S;
+    t->next_status = t->start + t->status_every;
+    t->ping_every = sw_cli_watchdog_interval();
+    t->next_ping = t->ping_every > 0.0 ? t->start : INFINITY;
+}
+
+/* Status line, STATUS= and WATCHDOG=1 when due at now. */
+static void timers_run(loop_timers_t *t, mon_ctx_t *c, double now)
+{
+    if (now >= t->next_status) {
+        char text[400];
+        status_text(c, now - t->start, now - t->last_status, text, sizeof text);
+        if (t->status_line)
+            fprintf(stderr, "swaywatch: %s\n", text);
+        sw_cli_notify_status(text);
+        t->last_status = now;
+        t->next_status += t->status_every;
+        if (t->next_status <= now)
+            t->next_status = now + t->status_every;
+    }
+    if (now >= t->next_ping) {
+        /* The loop turns: it got here. */
+        sw_cli_notify("WATCHDOG=1");
+        t->next_ping = now + t->ping_every;
+    }
+}
+
 static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
 {
     int fd = lcm_get_fileno(lcm);
-    double start = sw_mon_clock();
-    double last_status = start;
-    double next_status = status_every > 0.0 ? start + status_every : INFINITY;
+    loop_timers_t tm;
+    timers_init(&tm, status_every);
     while (!stop_signal) {
         double now = sw_mon_clock();
-        double deadline = fmin(sw_mon_deadline(c->mon), next_status);
+        double deadline = fmin(sw_mon_deadline(c->mon), fmin(tm.next_status, tm.next_ping));
         int timeout = -1;
         if (isfinite(deadline))
             timeout = deadline <= now ? 0 : (int)ceil((deadline - now) * 1e3);
@@ -375,25 +551,31 @@ static int run_loop(lcm_t *lcm, mon_ctx_t *c, double status_every)
             while (read(wake_pipe[0], junk, sizeof junk) > 0) {
             }
             reload_signal = 0;
+            sw_cli_notify("RELOADING=1");
             reload_scenes(c->mon, c->opts, c->scenes, c->n);
+            sw_cli_notify("READY=1");
         }
         now = sw_mon_clock();
         if (now >= sw_mon_deadline(c->mon))
             sw_mon_tick(c->mon, now);
-        if (now >= next_status) {
-            print_status(c, now - start, now - last_status);
-            last_status = now;
-            next_status += status_every;
-            if (next_status <= now)
-                next_status = now + status_every;
-        }
+        timers_run(&tm, c, now);
     }
+    sw_cli_notify("STOPPING=1");
     sw_mon_flush(c->mon);
-    print_final(c->mon, sw_mon_clock() - start);
+    print_final(c->mon, sw_mon_clock() - tm.start);
     return SW_EXIT_OK;
 }
 
 /* ---- the command --------------------------------------------------------------- */
+
+/* Non-zero if LCM at url receives from the network (udpm, tcpq): its
+ * receive times are when a message arrived, and a backlog can build up.
+ * A file:// log's are the recording's; memq's are the publishing's. */
+static int network_url(const char *url)
+{
+    const char *u = url ? url : getenv("LCM_DEFAULT_URL");
+    return !u || !u[0] || !strncmp(u, "udpm://", 7) || !strncmp(u, "tcpq://", 7);
+}
 
 /* LCM at url, or why not. */
 static lcm_t *open_lcm(const char *url)
@@ -420,13 +602,17 @@ static int start(mon_ctx_t *c, const sw_mon_opts_t *mo, lcm_t *lcm)
     if (rc != SW_EXIT_OK)
         return rc;
     char msg[512] = "";
-    c->mon = sw_mon_create(c->scenes, c->n, &eo, mo, lcm, msg, sizeof msg);
+    sw_mon_opts_t o = *mo;
+    o.on_alarm = print_alarm;
+    o.user = c;
+    c->mon = sw_mon_create(c->scenes, c->n, &eo, &o, lcm, msg, sizeof msg);
     if (!c->mon) {
         sw_cli_error("monitor: %s", msg[0] ? msg : "cannot start");
         return SW_EXIT_USAGE;
     }
     if (c->opts->verbose)
         sw_cli_print_derived(stderr, sw_mon_engine(c->mon), c->scenes, c->n);
+    sw_cli_warn_scene_cost(c->scenes, c->n, &eo);
     return SW_EXIT_OK;
 }
 
@@ -472,7 +658,14 @@ int cmd_monitor(int argc, char **argv)
     }
     if ((rc = sw_cli_mon_gate(&m.mo, &m.gate)) != SW_EXIT_OK)
         goto out;
-    if ((rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
+    char url_path[4096];
+    const sw_cli_file_t url_out = {"--lcm-url",
+                                   sw_cli_lcm_url_output(m.url, url_path, sizeof url_path)};
+    if ((rc = sw_cli_check_run_files(NULL, &o.scenes, &url_out, 1)) != SW_EXIT_OK ||
+        (rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
+        goto out;
+    /* A file:// URL: LCM's reader trusts the log, ours checks it first. */
+    if ((rc = sw_cli_check_lcm_url("monitor", m.url)) != SW_EXIT_OK)
         goto out;
     rc = SW_EXIT_IO;
     if (install_signals() != 0) {
@@ -485,6 +678,7 @@ int cmd_monitor(int argc, char **argv)
     ctx.opts = &o;
     ctx.scenes = scenes;
     ctx.n = n;
+    ctx.max_backlog = network_url(m.url) ? m.max_backlog : 0.0;
     if ((rc = start(&ctx, &m.mo, lcm)) != SW_EXIT_OK)
         goto out;
 
@@ -497,6 +691,9 @@ int cmd_monitor(int argc, char **argv)
         goto out;
     }
     lcm_subscription_set_queue_capacity(sub, ACCEL_QUEUE);
+    char ready[128];
+    snprintf(ready, sizeof ready, "READY=1\nSTATUS=waiting for samples on %s", m.accel_channel);
+    sw_cli_notify(ready);
     rc = run_loop(lcm, &ctx, m.status_every);
 
 out:

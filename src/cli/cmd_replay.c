@@ -2,20 +2,30 @@
  * file, standard input, or an lcm-logger file) through the model of every
  * package and report whether, when and how close each came to overturning.
  *
- * The options are parsed once; the log's first bytes then choose its
- * source (input.h).  A CSV log is streamed in fixed chunks through the CSV
- * reader into the engine, so memory does not grow with the length of the
- * log.  An lcm-logger file is read in-process (eventlog.h, never through
- * the network) into the monitor core, which refuses bad, duplicate and
- * late samples as the live monitor does; with --publish, states and alarms
- * also go out over LCM, paced in real time (or faster) by the samples'
- * utime. */
+ * The options are parsed once; the log is then read as source.h reads
+ * it for every command: its first bytes choose its source, a CSV log is
+ * streamed in fixed chunks through the CSV reader and the input gate into
+ * the engine, so memory does not grow with the length of the log, an
+ * lcm-logger file is read in-process into the monitor core.  With
+ * --publish, states and alarms also go out over LCM, paced in real time
+ * (or faster) by the samples' utime.  --wide and --plot take the same states as --out (output.c,
+ * figure.c): the figure from a fixed number of buckets per package, so a
+ * replay of any length draws from fixed memory.
+ *
+ * The replay of one log is also a job of "swaywatch batch" (replay.h):
+ * the options parsed once, then each log run with a copy of them on any
+ * thread, its summary handed to the caller instead of printed. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "clobber.h"
+#include "cost.h"
+#include "figure.h"
+#include "interrupt.h"
+#include "replay.h"
 #include "source.h"
 
 /* replay's own options. */
@@ -31,10 +41,10 @@ typedef struct {
 static const sw_cli_option_t replay_options[] = {
     {SW_CLI_SECTION, .help = "Run:"},
     {SW_CLI_DOUBLE, 0, "settle", "SECONDS", RO(settle), .rule = SW_NUM_NONNEGATIVE, .def = 30,
-     .what = "a number of seconds >= 0",
+     .hi = 1e5, .what = "a number of seconds >= 0",
      .help = "after the log ends, go on with zero acceleration for up to this long, or until "
              "every package is at rest or has overturned (default %g; 0: stop at the end of the "
-             "log)"},
+             "log); at most 1e5 s (a day), since an undamped frame never comes to rest"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", RO(fail_on_overturn), .value = 1,
      .help = "exit 1 if any package overturned"},
     {SW_CLI_END},
@@ -46,14 +56,16 @@ static const sw_cli_option_t replay_publish_options[] = {
      .help = "also publish states and alarms over LCM ('' = LCM's default URL; "
              "file:///path?mode=w writes a log)"},
     {SW_CLI_DOUBLE, 0, "speed", "X", RO(speed), .rule = SW_NUM_NONNEGATIVE, .def = 1,
-     .what = "a factor >= 0 (0: as fast as possible)",
+     .lo = 1e-3, .hi = 1e6, .what = "a factor >= 0 (0: as fast as possible)",
      .help = "with --publish: X times real time by the samples' utime (default %g; 0 = as fast "
-             "as possible)"},
+             "as possible); below 1e-3 one second of log would take over a quarter of an hour"},
     {SW_CLI_TEXT,
      .help = "Samples are integrated by their own utime, not the log's timestamps.  Messages\n"
-             "on other channels are counted and skipped; corrupted regions of the log are\n"
-             "skipped and counted (--strict: exit 2); bad, duplicate and late samples are\n"
-             "refused as by the monitor."},
+             "on other channels are counted and skipped; corrupted regions of the log (a bad\n"
+             "header, a length field past the end of the file or beyond LCM's limits, junk)\n"
+             "are skipped, counted and reported with their byte offset (--strict: exit 2);\n"
+             "bad, duplicate and late samples are refused as by the monitor.  With --publish,\n"
+             "only accepted samples are paced on."},
     {SW_CLI_END},
 };
 #endif
@@ -64,45 +76,88 @@ static const sw_cli_command_t replay_cmd = {
     .about = "Replays a recorded acceleration log of the truck bed through the rocking model of\n"
              "each package and reports whether, when and how close it came to overturning.\n"
              "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
-             "its first bytes; needs a build with LCM).\n",
+             "its first bytes; needs a build with LCM).  An lcm-logger log that cannot seek (a\n"
+             "pipe, '-') is copied to a temporary file first (at most 4 GiB), in one pass.\n",
     .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
 };
 
-/* Everything a replay uses, whatever the source. */
-typedef struct {
+/* Everything a replay uses, whatever the source: the options (parsed
+ * once; a batch copies them for each log), then the run's state. */
+struct sw_cli_replay {
     sw_cli_opts_t o;
     sw_cli_read_opts_t in;
     replay_opts_t ro;
-    sw_cli_reader_t R;
+    /* the first option given that only CSV logs take, and the first that
+     * only lcm-logger files take */
+    sw_cli_given_t given;
+    /* scenes belong to the options a batch copied: read, and their cost
+     * measured, once for every log */
+    int scenes_shared;
+    int concluded; /* the run got to its summary */
+    const char *log; /* LOG as given */
+    sw_cli_reader_t R; /* the log's reading, and the engine it feeds */
     sw_scene_t *scenes;
     size_t n;
     sw_engine_opts_t eo;
     sw_cli_states_t states;
     sw_cli_events_t events;
+    sw_cli_wide_t wide;
+    sw_cli_figure_t *fig;
 #ifdef SW_HAVE_LCM
-    lcm_t *lcm; /* --publish */
+    lcm_t *lcm;           /* --publish */
+    sw_cli_pacer_t pacer; /* --publish: states go out paced by their sample time */
 #endif
-} replay_t;
+};
+typedef struct sw_cli_replay replay_t;
 
 static void on_state(void *user, const sw_output_t *out)
 {
     replay_t *r = user;
+#ifdef SW_HAVE_LCM
+    /* Before the monitor publishes them: only accepted samples make
+     * states, so a refused sample never stalls the replay. */
+    sw_cli_pace(&r->pacer, out->t);
+#endif
     sw_cli_states_write(&r->states, out);
+    sw_cli_wide_write(&r->wide, out);
+    sw_cli_figure_state(r->fig, out);
 }
 
 static void on_event(void *user, const sw_event_t *ev)
 {
     replay_t *r = user;
     sw_cli_events_write(&r->events, ev);
+    sw_cli_figure_event(r->fig, ev);
+}
+
+/* Something takes the states: --out, --wide or --plot. */
+static int wants_states(const replay_t *r)
+{
+    return r->o.out_path || r->o.wide_path || r->o.plot_path;
 }
 
 /* ---- the command ------------------------------------------------------------------ */
 
-/* --publish: LCM for the monitor core to publish on. */
+/* The scenes (unless a batch's options hold them already) and the engine
+ * options they and --accuracy give. */
+static int load(replay_t *r)
+{
+    int rc;
+    if (r->scenes) return SW_EXIT_OK;
+    if ((rc = sw_cli_load_scenes(&r->o, &r->scenes, &r->n)) != SW_EXIT_OK) return rc;
+    sw_cli_engine_opts(&r->o, &r->eo);
+    return sw_cli_resolve_accuracy(&r->o, r->scenes, r->n, &r->eo);
+}
+
+/* --publish (an lcm-logger file): LCM for the monitor core to publish on,
+ * and the pacing. */
 static int publish(replay_t *r)
 {
 #ifdef SW_HAVE_LCM
-    if (!r->ro.publish_url || r->R.src->kind != SW_CLI_SRC_LCMLOG) return SW_EXIT_OK;
+    if (r->R.src->kind != SW_CLI_SRC_LCMLOG) return SW_EXIT_OK;
+    r->pacer.speed = r->ro.publish_url ? r->ro.speed : 0.0;
+    r->pacer.stop = &sw_cli_signal;
+    if (!r->ro.publish_url) return SW_EXIT_OK;
     r->lcm = lcm_create(r->ro.publish_url);
     if (!r->lcm) {
         sw_cli_error("--publish: cannot set up LCM with '%s'", r->ro.publish_url);
@@ -119,104 +174,270 @@ static int publish(replay_t *r)
 static int start(replay_t *r)
 {
     int rc;
-    if ((rc = sw_cli_load_scenes(&r->o, &r->scenes, &r->n)) != SW_EXIT_OK) return rc;
-    sw_cli_engine_opts(&r->o, &r->eo);
-    if ((rc = sw_cli_resolve_accuracy(&r->o, r->scenes, r->n, &r->eo)) != SW_EXIT_OK) return rc;
-    if ((rc = publish(r)) != SW_EXIT_OK) return rc;
+    if ((rc = load(r)) != SW_EXIT_OK || (rc = publish(r)) != SW_EXIT_OK) return rc;
+    int pace = 0;
+#ifdef SW_HAVE_LCM
+    pace = r->pacer.speed > 0.0;
+#endif
     r->eo.on_event = on_event;
-    r->eo.on_state = r->o.out_path ? on_state : NULL;
+    r->eo.on_state = wants_states(r) || pace ? on_state : NULL;
     r->eo.user = r;
-    return sw_cli_reader_engine(&r->R, r->scenes, r->n, &r->eo);
+    return sw_cli_reader_engine(&r->R, r->scenes, r->n, &r->eo, r->scenes_shared);
 }
 
-/* Open LOG, refuse what its source does not take and outputs that would
- * overwrite it, then its reader. */
-static int open_log(replay_t *r, const char *log, const sw_cli_group_t *g, size_t nlcm)
+/* No output may be the log, a scene or another output (--publish
+ * file://PATH?mode=w writes a log too). */
+static int check_files(const replay_t *r)
+{
+    char url_path[4096];
+    const sw_cli_file_t out[] = {
+        {"--out", r->o.out_path},
+        {"--events", r->o.events_path},
+        {"--wide", r->o.wide_path},
+        {"--plot", r->o.plot_path},
+        {"--publish", sw_cli_lcm_url_output(r->ro.publish_url, url_path, sizeof url_path)},
+    };
+    return sw_cli_check_run_files(r->log, &r->o.scenes, out, sizeof out / sizeof out[0]);
+}
+
+/* Open LOG: a missing file is an I/O error (3) whatever else is wrong,
+ * and its first bytes choose the source; then what the source does not
+ * take is refused, and outputs that would overwrite the log. */
+static int open_log(replay_t *r)
 {
     int rc;
-    if ((rc = sw_cli_reader_open(&r->R, log, &r->in, r->o.quiet, &g[0], &g[3], nlcm)) !=
-            SW_EXIT_OK ||
-        (rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, r->R.lf.in, r->o.json,
-                                   r->o.quiet)) != SW_EXIT_OK)
+    const char *const names[] = {"--out", "--events", "--wide"};
+    const char *const paths[] = {r->o.out_path, r->o.events_path, r->o.wide_path};
+    if ((rc = sw_cli_reader_open(&r->R, r->log, &r->in, r->o.quiet, r->given)) != SW_EXIT_OK ||
+        (rc = check_files(r)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, NULL, r->o.json,
+                                   r->o.quiet)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_stdout(names, paths, 3, r->o.json, r->o.quiet)) != SW_EXIT_OK)
         return rc;
-#ifdef SW_HAVE_LCM
-    r->R.speed = r->ro.publish_url ? r->ro.speed : 0.0;
-#endif
     return sw_cli_reader_prepare(&r->R);
 }
 
-/* After the run: the files closed, the summary; the exit code. */
-static int finish(replay_t *r)
+/* After the run: the files closed, the counts of an lcm-logger file, what
+ * the summaries say of the run. */
+static int conclude(replay_t *r)
 {
     int rc = sw_cli_states_close(&r->states);
     int rc2 = sw_cli_events_close(&r->events);
     if (rc == SW_EXIT_OK) rc = rc2;
+    rc2 = sw_cli_wide_close(&r->wide);
+    if (rc == SW_EXIT_OK) rc = rc2;
     if ((rc2 = sw_cli_reader_report(&r->R)) != SW_EXIT_OK) return rc2;
     sw_cli_run_t *run = &r->R.run;
-    run->log = r->R.log;
+    run->log = r->log;
     run->settle = r->ro.settle;
+    run->interrupted = sw_cli_signal;
+    r->concluded = 1;
+    return rc;
+}
+
+/* The log named in r->log through the engine, with r's options: opened,
+ * its source checked, the engine started, the outputs opened, the log
+ * run, the outputs closed. */
+static int replay_one(replay_t *r)
+{
+    int rc;
+    if ((rc = open_log(r)) != SW_EXIT_OK || (rc = start(r)) != SW_EXIT_OK) return rc;
+    sw_engine_t *e = r->R.e;
+    if (r->o.verbose) sw_cli_print_derived(stderr, e, r->scenes, r->n);
+    if ((rc = sw_cli_states_open(&r->states, r->o.out_path, r->o.every, r->scenes, r->n)) !=
+            SW_EXIT_OK ||
+        (rc = sw_cli_events_open(&r->events, r->o.events_path, r->scenes, r->n)) != SW_EXIT_OK ||
+        (rc = sw_cli_wide_open(&r->wide, r->o.wide_path, r->o.every, e, r->scenes, r->n)) !=
+            SW_EXIT_OK)
+        return rc;
+    if (r->o.plot_path && !(r->fig = sw_cli_figure_create(e, r->scenes, r->n)))
+        return SW_EXIT_IO;
+    if ((rc = sw_cli_reader_feed(&r->R)) != SW_EXIT_OK) return rc;
+#ifdef SW_HAVE_LCM
+    r->pacer.speed = 0.0; /* the settling after the log is not paced */
+#endif
+    sw_cli_reader_settle(&r->R, r->ro.settle);
+    return conclude(r);
+}
+
+/* Everything a run opened and made; the options stay. */
+static void cleanup(replay_t *r)
+{
+    sw_cli_states_close(&r->states);
+    sw_cli_events_close(&r->events);
+    sw_cli_wide_close(&r->wide);
+    sw_cli_figure_destroy(r->fig);
+    r->fig = NULL;
+    sw_cli_reader_close(&r->R);
+#ifdef SW_HAVE_LCM
+    if (r->lcm) lcm_destroy(r->lcm);
+    r->lcm = NULL;
+#endif
+    if (!r->scenes_shared) {
+        free(r->scenes);
+        r->scenes = NULL;
+    }
+}
+
+/* The summary of a concluded run, the figure, and the exit code: rc (the
+ * outputs' closing), or the verdict's. */
+static int finish(replay_t *r, int rc)
+{
+    const sw_cli_run_t *run = &r->R.run;
     if (r->o.json)
         sw_cli_print_json(stdout, r->R.e, run);
     else if (!r->o.quiet)
         sw_cli_print_summary(stdout, r->R.e, run);
-    if (rc == SW_EXIT_OK && r->ro.fail_on_overturn && sw_cli_any_overturned(r->R.e))
-        rc = SW_EXIT_OVERTURNED;
+    if (rc == SW_EXIT_OK && r->fig) {
+        char title[512];
+        snprintf(title, sizeof title, "swaywatch replay %s%s",
+                 strcmp(r->log, "-") ? r->log : "(standard input)",
+                 run->interrupted ? " (interrupted)" : "");
+        rc = sw_cli_figure_draw(r->fig, r->o.plot_path, title);
+    }
+    if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(r->R.e, r->ro.fail_on_overturn);
+    if (run->interrupted) {
+        sw_cli_error("replay: interrupted by %s after %ld samples; the output files end with "
+                     "the last whole row",
+                     sw_cli_signal_name(run->interrupted), run->samples_read);
+        if (rc != SW_EXIT_IO) rc = sw_cli_interrupt_code();
+    }
     return rc;
+}
+
+/* replay's groups bound to r: all of them, or a batch's (the log's
+ * reading, scenes and integration: no outputs, no --publish, no --help). */
+static size_t groups(replay_t *r, sw_cli_group_t *g, int batch)
+{
+    size_t n = 0;
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_csv_options, &r->in.copts);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_sample_options, &r->in.copts);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(replay_options, &r->ro);
+#ifdef SW_HAVE_LCM
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_channel_options, &r->in, SW_CLI_LCM_SECTION);
+    g[n++] =
+        (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &r->in.mo, SW_CLI_LCM_SECTION);
+    if (!batch) {
+        g[n++] =
+            (sw_cli_group_t)SW_CLI_GROUP_IN(replay_publish_options, &r->ro, SW_CLI_LCM_SECTION);
+        g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &r->in.mo,
+                                                 SW_CLI_LCM_SECTION);
+    }
+#endif
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_gate_options, &r->in.gate);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_scene_options, &r->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &r->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_accuracy_options, &r->o);
+    if (!batch) {
+        g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_output_options, &r->o);
+        g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_picture_options, &r->o);
+        g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_common_options, &r->o, "Output:");
+    }
+    return n;
+}
+
+/* After parsing: which options only one source takes were given (the
+ * first of each). */
+static void parsed(replay_t *r, const sw_cli_group_t *g, size_t ng)
+{
+#ifdef SW_HAVE_LCM
+    static const sw_cli_option_t *const extra[] = {replay_publish_options,
+                                                   sw_cli_lcm_publish_options, NULL};
+#else
+    static const sw_cli_option_t *const *const extra = NULL;
+#endif
+    r->given = sw_cli_source_given(g, ng, extra);
+}
+
+static void init(replay_t *r)
+{
+    memset(r, 0, sizeof *r);
+    sw_cli_read_opts_init(&r->in);
 }
 
 int cmd_replay(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
     replay_t r;
-    memset(&r, 0, sizeof r);
-    sw_cli_read_opts_init(&r.in);
-    sw_cli_group_t g[] = {
-        SW_CLI_GROUP(sw_cli_csv_options, &r.in.copts),
-        SW_CLI_GROUP(sw_cli_sample_options, &r.in.copts),
-        SW_CLI_GROUP(replay_options, &r.ro),
-#ifdef SW_HAVE_LCM
-        /* the options of lcm-logger files: g[3] to g[6] */
-        SW_CLI_GROUP_IN(sw_cli_channel_options, &r.in, SW_CLI_LCM_SECTION),
-        SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &r.in.mo, SW_CLI_LCM_SECTION),
-        SW_CLI_GROUP_IN(replay_publish_options, &r.ro, SW_CLI_LCM_SECTION),
-        SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &r.in.mo, SW_CLI_LCM_SECTION),
-#endif
-        SW_CLI_GROUP(sw_cli_gate_options, &r.in.gate),
-        SW_CLI_GROUP(sw_cli_scene_options, &r.o),
-        SW_CLI_GROUP(sw_cli_integration_options, &r.o),
-        SW_CLI_GROUP(sw_cli_accuracy_options, &r.o),
-        SW_CLI_GROUP(sw_cli_output_options, &r.o),
-        SW_CLI_GROUP_IN(sw_cli_common_options, &r.o, "Output:"),
-    };
-    const size_t ng = sizeof g / sizeof g[0];
-#ifdef SW_HAVE_LCM
-    const size_t nlcm = 4;
-#else
-    const size_t nlcm = 0;
-#endif
+    init(&r);
+    sw_cli_group_t g[SW_CLI_REPLAY_GROUPS];
+    const size_t ng = groups(&r, g, 0);
 
     int first;
-    const char *log;
     if ((rc = sw_cli_parse(&replay_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
     rc = SW_EXIT_USAGE;
-    if (!(log = sw_cli_log_operand("replay", argc, argv, first))) goto out;
-    if ((rc = open_log(&r, log, g, nlcm)) != SW_EXIT_OK || (rc = start(&r)) != SW_EXIT_OK)
-        goto out;
-    if (r.o.verbose) sw_cli_print_derived(stderr, r.R.e, r.scenes, r.n);
-    if ((rc = sw_cli_states_open(&r.states, r.o.out_path, r.o.every, r.scenes, r.n)) !=
-            SW_EXIT_OK ||
-        (rc = sw_cli_events_open(&r.events, r.o.events_path, r.scenes, r.n)) != SW_EXIT_OK)
-        goto out;
-    rc = sw_cli_reader_read(&r.R, r.ro.settle);
-    if (rc == SW_EXIT_OK) rc = finish(&r);
+    if (!(r.log = sw_cli_log_operand("replay", argc, argv, first))) goto out;
+    parsed(&r, g, ng);
+    rc = replay_one(&r);
+    if (r.concluded) rc = finish(&r, rc);
 out:
-    sw_cli_states_close(&r.states);
-    sw_cli_events_close(&r.events);
-    sw_cli_reader_close(&r.R);
-#ifdef SW_HAVE_LCM
-    if (r.lcm) lcm_destroy(r.lcm);
-#endif
-    free(r.scenes);
+    cleanup(&r);
     sw_cli_parse_free(g, ng);
+    return rc;
+}
+
+/* ---- the replay of one log, for batch (replay.h) ---------------------------------- */
+
+sw_cli_replay_t *sw_cli_replay_new(void)
+{
+    replay_t *r = malloc(sizeof *r);
+    if (!r) {
+        sw_cli_error("out of memory");
+        return NULL;
+    }
+    init(r);
+    return r;
+}
+
+void sw_cli_replay_free(sw_cli_replay_t *r)
+{
+    if (!r) return;
+    sw_cli_group_t g[SW_CLI_REPLAY_GROUPS];
+    sw_cli_parse_free(g, groups(r, g, 0));
+    cleanup(r);
+    if (r->scenes_shared) free(r->scenes);
+    free(r);
+}
+
+size_t sw_cli_replay_groups(sw_cli_replay_t *r, sw_cli_group_t *g)
+{
+    return groups(r, g, 1);
+}
+
+int sw_cli_replay_ready(sw_cli_replay_t *r, const sw_cli_group_t *g, size_t ng)
+{
+    parsed(r, g, ng);
+    r->scenes_shared = 0;
+    int rc = load(r);
+    r->scenes_shared = 1; /* the copies made for each log share them */
+    if (rc == SW_EXIT_OK) sw_cli_warn_scene_cost(r->scenes, r->n, &r->eo);
+    return rc;
+}
+
+sw_cli_opts_t *sw_cli_replay_opts(sw_cli_replay_t *r)
+{
+    return &r->o;
+}
+
+int sw_cli_replay_log(const sw_cli_replay_t *opts, const char *log, sw_cli_replay_report_fn report,
+                      void *user)
+{
+    replay_t *r = malloc(sizeof *r);
+    if (!r) {
+        sw_cli_error("%s: out of memory", log);
+        return SW_EXIT_IO;
+    }
+    *r = *opts; /* the options; a ready one has run nothing, so no state is copied */
+    r->log = log;
+    r->o.quiet = 1;
+    r->o.json = 0;
+    int rc = replay_one(r);
+    if (rc == SW_EXIT_OK && r->concluded) {
+        report(user, r->R.e, &r->R.run);
+        rc = sw_cli_verdict_exit(r->R.e, r->ro.fail_on_overturn);
+    }
+    cleanup(r);
+    free(r);
     return rc;
 }

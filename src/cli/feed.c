@@ -7,6 +7,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "interrupt.h"
+
 #define G0 9.80665 /* m/s^2 per g */
 
 typedef struct {
@@ -18,6 +20,10 @@ typedef struct {
     int layout_said;
     sw_gate_take_fn take;
     void *take_user;
+    /* SIGINT or SIGTERM: the rows after it (in the chunk being fed) are not
+     * read; the pump stops after the chunk */
+    int stopped;
+    long unread, unread_rejected;
 } feed_t;
 
 /* ---- what the reader chose ------------------------------------------------------- */
@@ -38,16 +44,17 @@ static void say_layout(feed_t *F)
     F->layout_said = 1;
     if (F->quiet) return;
     static const char *const role[2] = {"time", "accel"};
-    fprintf(stderr, "swaywatch: %s: ", F->name);
+    FILE *m = sw_cli_msg();
+    fprintf(m, "swaywatch: %s: ", F->name);
     for (int r = 0; r < 2; r++) {
-        fprintf(stderr, "%s%s: column %ld", r ? "; " : "", role[r], L.col[r] + 1);
-        if (L.name[r][0]) fprintf(stderr, " \"%s\"", L.name[r]);
+        fprintf(m, "%s%s: column %ld", r ? "; " : "", role[r], L.col[r] + 1);
+        if (L.name[r][0]) fprintf(m, " \"%s\"", L.name[r]);
         const char *u = sw_csv_unit_name(L.unit[r]);
-        if (u[0]) fprintf(stderr, ", %s", u);
-        else fprintf(stderr, ", x %g", L.scale[r]);
-        fprintf(stderr, " (%s)", from_name(L.unit_from[r]));
+        if (u[0]) fprintf(m, ", %s", u);
+        else fprintf(m, ", x %g", L.scale[r]);
+        fprintf(m, " (%s)", from_name(L.unit_from[r]));
     }
-    fputc('\n', stderr);
+    fputc('\n', m);
     for (int r = 0; r < 2; r++)
         if (L.unit_from[r] == SW_CSV_FROM_OPTION && L.header_unit[r] != SW_CSV_UNIT_NONE &&
             L.header_unit[r] != L.unit[r])
@@ -68,10 +75,11 @@ static void explain_columns(const feed_t *F)
     sw_cli_error("%s: %s", F->name, sw_csv_error_message(F->csv));
     const long n = sw_csv_header_count(F->csv);
     if (n > 0) {
-        fprintf(stderr, "swaywatch: %s: the header:", F->name);
+        FILE *m = sw_cli_msg();
+        fprintf(m, "swaywatch: %s: the header:", F->name);
         for (long i = 0; i < n; i++)
-            fprintf(stderr, "%s %ld \"%s\"", i ? "," : "", i + 1, sw_csv_header_field(F->csv, i));
-        fputc('\n', stderr);
+            fprintf(m, "%s %ld \"%s\"", i ? "," : "", i + 1, sw_csv_header_field(F->csv, i));
+        fputc('\n', m);
     }
     sw_cli_error("%s: say which with --time-col and --accel-col (a name or a 1-based index), "
                  "and the units with --time-unit and --accel-unit where the names do not say "
@@ -84,6 +92,11 @@ static void explain_columns(const feed_t *F)
 static int on_row(void *user, long line, double t, double a_g, double a_z)
 {
     feed_t *F = user;
+    if (F->stopped || sw_cli_signal) {
+        F->stopped = F->rej.stop = 1;
+        F->unread++;
+        return 0;
+    }
     if (F->rej.stop) return 1; /* --strict: nothing after the first bad row counts */
     say_layout(F);
     const sw_sample_t s = {.t = t, .a_g = a_g, .a_z = a_z, .a_max = NAN, .seq = SW_GATE_NO_SEQ,
@@ -95,6 +108,10 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
 static void on_reject(void *user, long line, const char *reason)
 {
     feed_t *F = user;
+    if (F->stopped) {
+        F->unread_rejected++;
+        return;
+    }
     sw_cli_rejects_add(&F->rej, line, reason);
 }
 
@@ -162,7 +179,9 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
         sw_cli_error("%s: %s", lf->name, msg);
         return SW_EXIT_USAGE;
     }
-    F.csv = sw_csv_create(&co->csv, on_row, on_reject, &F, &err, msg, sizeof msg);
+    sw_csv_opts_t copts = co->csv;
+    copts.any_order = 1; /* the gate judges time: a lone row off in time is that row's fault */
+    F.csv = sw_csv_create(&copts, on_row, on_reject, &F, &err, msg, sizeof msg);
     if (!F.csv) {
         sw_cli_error("%s: %s", lf->name, msg[0] ? msg : sw_strerror(err));
         goto out;
@@ -170,6 +189,16 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
     int fr;
     rc = sw_cli_logfile_pump(lf, F.csv, &F.rej.stop, after_chunk, &F, &fr);
     if (rc != SW_EXIT_OK) goto out;
+    if (F.stopped) { /* what was read, without the rest */
+        sw_csv_counts_t k;
+        sw_csv_counts(F.csv, &k);
+        sw_gate_facts(F.gate, &out->facts);
+        out->interrupted = 1;
+        out->rows = k.rows - F.unread - F.unread_rejected;
+        out->rejected = k.rejected - F.unread_rejected + sw_gate_rejected(&out->facts);
+        sw_cli_rejects_summary(&F.rej);
+        goto out;
+    }
     rc = SW_EXIT_USAGE;
     if (fr == SW_EAMBIGUOUS || fr == SW_ENOTFOUND) {
         explain_columns(&F); /* the reader's reason names the column, then the header */

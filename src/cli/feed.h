@@ -14,10 +14,14 @@ typedef struct {
     long rows;             /* data rows the CSV reader saw */
     long rejected;         /* rows refused, by the reader or the gate */
     sw_gate_facts_t facts; /* the gate's */
+    int interrupted;       /* SIGINT or SIGTERM stopped the reading: the counts cover the
+                              rows fed before it (interrupt.h) */
 } sw_cli_fed_t;
 
 /* Stream the CSV log lf (opened) through the reader and the gate into e,
- * then flush the gate.  Refused rows and stream events go to stderr with
+ * then flush the gate.  A SIGINT or SIGTERM stops it between rows
+ * (out->interrupted; the gate is not flushed, the rest of the chunk read
+ * is not counted).  Refused rows and stream events go to stderr with
  * their line (rows: the first SW_CLI_MAX_PRINTED_REJECTS; none with
  * quiet).  take (may be NULL) gets each sample the engine got, with
  * take_user (gate.h).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad options or columns the

@@ -59,6 +59,7 @@ void sw_cli_gate_limits(const sw_cli_gate_t *g, sw_gate_limits_t *lim)
 int sw_cli_accel_limit(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     double *out = dest;
+    const char *given = arg;
     char buf[64];
     size_t len = strlen(arg);
     double scale = 1.0;
@@ -68,14 +69,12 @@ int sw_cli_accel_limit(const sw_cli_option_t *o, const char *arg, void *dest)
         arg = buf;
         scale = G0;
     }
-    if (sw_cli_opt_double(o, arg, out) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    /* the bounds (m/s^2) apply once the value is in m/s^2 */
+    sw_cli_option_t unbounded = *o;
+    unbounded.lo = unbounded.hi = 0.0;
+    if (sw_cli_opt_double(&unbounded, arg, out) != SW_EXIT_OK) return SW_EXIT_USAGE;
     *out *= scale;
-    if (!(*out <= SW_MAX_ACCEL)) {
-        sw_cli_error("--%s: expected at most %g m/s^2 (%.0fg), the engine's limit, got '%s%s'",
-                     o->long_name, SW_MAX_ACCEL, SW_MAX_ACCEL / G0, arg, scale == G0 ? "g" : "");
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
+    return sw_cli_opt_range(o, given, *out);
 }
 
 static int parse_policy(const sw_cli_option_t *o, const char *arg, void *dest)
@@ -92,37 +91,26 @@ static int parse_policy(const sw_cli_option_t *o, const char *arg, void *dest)
     return SW_EXIT_OK;
 }
 
-/* --max-jump: 0 means never wait; not given (-1) means the gap threshold. */
-static int check_jump(const sw_cli_option_t *o, const char *arg, void *dest)
-{
-    const double *v = dest;
-    if (!(*v <= 86400.0)) {
-        sw_cli_error("--%s: expected at most 86400 s, got '%s'", o->long_name, arg);
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
-}
-
 #define GATE(f) SW_CLI_AT(sw_cli_gate_t, f)
 
 const sw_cli_option_t sw_cli_gate_options[] = {
     {SW_CLI_SECTION, .help = "Input checks (every source: CSV, lcm-logger, live):"},
     {SW_CLI_CALL, 0, "max-accel", "A", GATE(max_accel), .fn = sw_cli_accel_limit,
-     .rule = SW_NUM_POSITIVE, .what = "a positive acceleration in m/s^2, or in g with a g suffix",
+     .rule = SW_NUM_POSITIVE, .lo = 0.1, .hi = SW_MAX_ACCEL, .what = "a positive acceleration in m/s^2, or in g with a g suffix",
      .help = "refuse samples with any axis beyond A (a spike), in m/s^2 or with a g suffix, "
-             "e.g. 30g (default 50g)"},
-    {SW_CLI_DOUBLE, 0, "gap", "SECONDS", GATE(gap), .rule = SW_NUM_NONNEGATIVE,
-     .what = "a number of seconds >= 0 (0: five sample intervals)",
+             "e.g. 30g (default 50g); at most the engine's own limit on samples, in m/s^2"},
+    {SW_CLI_DOUBLE, 0, "gap", "SECONDS", GATE(gap), .rule = SW_NUM_NONNEGATIVE, .lo = 1e-4,
+     .hi = 86400, .what = "a number of seconds >= 0 (0: five sample intervals)",
      .help = "samples further apart are a gap, an event counted in the summary (default: five "
-             "typical sample intervals)"},
+             "typical sample intervals); at most a day"},
     {SW_CLI_CALL, 0, "gap-policy", "bridge|restart", GATE(gap_policy), .fn = parse_policy,
      .help = "across a gap: interpolate linearly (bridge, the default), or treat it as "
              "missing and restart every package from rest"},
     {SW_CLI_DOUBLE, 0, "max-bridge", "SECONDS", GATE(max_bridge), .rule = SW_NUM_POSITIVE,
-     .def = 10, .what = "a positive number of seconds",
+     .def = 10, .lo = 1e-3, .hi = 86400, .what = "a positive number of seconds",
      .help = "longest gap bridged; longer ones restart the packages from rest (default %g)"},
     {SW_CLI_DOUBLE, 0, "max-jump", "SECONDS", GATE(max_jump), .rule = SW_NUM_NONNEGATIVE,
-     .def = -1, .fn = check_jump, .what = "a number of seconds >= 0 (0: take any time at once)",
+     .def = -1, .lo = 1e-6, .hi = 86400, .what = "a number of seconds >= 0 (0: take any time at once)",
      .help = "a sample whose time leaps further than this beyond the time that passed (or goes "
              "back) waits until the stream confirms it (default: the gap threshold; 0: never "
              "wait)"},
@@ -135,9 +123,9 @@ const sw_cli_option_t sw_cli_gate_options[] = {
     {SW_CLI_FLAG, 0, "vert-excludes-gravity", GATE(vert_gravity), .value = 0,
      .help = "the vertical channel has gravity removed already (0 at rest)"},
     {SW_CLI_DOUBLE, 0, "max-rejected", "PERCENT", GATE(max_rejected), .rule = SW_NUM_NONNEGATIVE,
-     .def = 1, .what = "a percentage >= 0",
+     .def = 1, .lo = 0, .hi = 100, .what = "a percentage >= 0",
      .help = "refuse a verdict when more than this share of the samples was rejected (default "
-             "%g %%)"},
+             "%g percent)"},
     {SW_CLI_FLAG, 0, "force", GATE(force), .value = 1,
      .help = "give a verdict even for a log the plausibility check refuses (a rate or span no "
              "vehicle log has, an impossible peak, too many rejected rows); marked as forced"},
@@ -351,13 +339,16 @@ const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f)
 typedef struct {
     sw_cli_log_t *log;
     sw_cli_rejects_t rej;
-    int halt; /* rej.stop, or out of memory */
+    int halt; /* rej.stop, out of memory, or the cap reached */
     int oom;
+    size_t max; /* samples kept at most */
+    int capped; /* one more was offered */
 } read_ctx_t;
 
-static int grow(sw_cli_log_t *L)
+static int grow(sw_cli_log_t *L, size_t max)
 {
     size_t cap = L->cap ? 2 * L->cap : 4096;
+    if (cap > max) cap = max;
     double *t = realloc(L->t, cap * sizeof *t);
     if (!t) return -1;
     L->t = t;
@@ -379,7 +370,11 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
     sw_cli_log_t *L = c->log;
     (void)line;
     if (c->halt) return 1;
-    if (L->n == L->cap && grow(L) != 0) {
+    if (L->n == c->max) {
+        c->capped = c->halt = 1;
+        return 1;
+    }
+    if (L->n == L->cap && grow(L, c->max) != 0) {
         c->oom = c->halt = 1;
         return 1;
     }
@@ -393,12 +388,13 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
 static void on_reject(void *user, long line, const char *reason)
 {
     read_ctx_t *c = user;
-    if (c->oom) return;
+    if (c->oom || c->capped) return;
     sw_cli_rejects_add(&c->rej, line, reason);
     c->halt = c->rej.stop;
 }
 
-int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_cli_log_t *L)
+int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, long max,
+                    sw_cli_log_t *L)
 {
     int rc = SW_EXIT_USAGE;
     memset(L, 0, sizeof *L);
@@ -409,7 +405,7 @@ int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_
         rc = SW_EXIT_IO;
         goto out;
     }
-    read_ctx_t ctx = {L, {f.name, o->strict, quiet, 0, 0, 0}, 0, 0};
+    read_ctx_t ctx = {L, {f.name, o->strict, quiet, 0, 0, 0}, 0, 0, max > 0 ? (size_t)max : 1, 0};
     if (sw_cli_logfile_source(&f)->kind != SW_CLI_SRC_CSV) {
         sw_cli_error("%s: an lcm-logger file; this command reads CSV logs (replay reads both)",
                      f.name);
@@ -430,6 +426,13 @@ int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_
     if (ctx.oom) {
         sw_cli_error("%s: out of memory after %zu samples", f.name, L->n);
         rc = SW_EXIT_IO;
+        goto out;
+    }
+    if (ctx.capped) {
+        sw_cli_error("%s: more than %ld samples: the whole log is held in memory (%zu bytes a "
+                     "sample) and %ld is the cap (--max-samples); cut the log, or replay it "
+                     "(replay streams)",
+                     f.name, max, L->has_z ? 3 * sizeof(double) : 2 * sizeof(double), max);
         goto out;
     }
     if (fr < 0) {

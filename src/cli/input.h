@@ -110,11 +110,16 @@ typedef struct {
     long rows, rejected; /* data rows seen, and refused (reported on stderr) */
 } sw_cli_log_t;
 
-/* Read path ("-" = stdin) into L; rejected rows reported like replay does
- * (counted only with quiet).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad rows
- * under --strict, no usable row, an lcm-logger file) or SW_EXIT_IO.  Free
- * with sw_cli_log_free(). */
-int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, sw_cli_log_t *L);
+/* Read path ("-" = stdin) into L, at most max samples (memory is bounded
+ * whatever the input, a pipe included); rejected rows reported like replay
+ * does (counted only with quiet).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad
+ * rows under --strict, no usable row, an lcm-logger file, more than max
+ * samples: the message names the cap) or SW_EXIT_IO.  Free with
+ * sw_cli_log_free(). */
+#define SW_CLI_LOG_MAX_SAMPLES_N 33554432 /* 2^25: 9.3 h at 1 kHz, 512 MB */
+#define SW_CLI_LOG_MAX_SAMPLES ((long)SW_CLI_LOG_MAX_SAMPLES_N)
+int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, long max,
+                    sw_cli_log_t *L);
 void sw_cli_log_free(sw_cli_log_t *L);
 
 #endif

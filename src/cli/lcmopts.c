@@ -63,8 +63,9 @@ const sw_cli_option_t sw_cli_lcm_publish_options[] = {
     {SW_CLI_STRING, 0, "alarm-channel", "CHAN", MON(alarm_channel), .fn = check_channel,
      .help = "alarms (default " SW_MON_ALARM_CHANNEL ")"},
     {SW_CLI_DOUBLE, 0, "state-rate", "HZ", MON(state_rate), .rule = SW_NUM_NONNEGATIVE,
-     .what = "a rate in Hz >= 0 (0: every sample)",
-     .help = "states per package per second of sample time (default 0: one per sample)"},
+     .lo = 1e-3, .hi = 1e6, .what = "a rate in Hz >= 0 (0: every sample)",
+     .help = "states per package per second of sample time (default 0: one per sample); from "
+             "one per 1000 s to one per microsecond of utime"},
     {SW_CLI_END},
 };
 
@@ -75,7 +76,7 @@ const sw_cli_option_t sw_cli_lcm_input_options[] = {
      .help = "message axis used as vertical acceleration, up (say whether it includes gravity: "
              "--vert-includes-gravity or --vert-excludes-gravity; default none: gravity only)"},
     {SW_CLI_DOUBLE, 0, "max-skew", "SECONDS", MON(max_skew), .rule = SW_NUM_NONNEGATIVE,
-     .what = "a number of seconds >= 0 (0: not checked)",
+     .lo = 1e-3, .hi = 1e9, .what = "a number of seconds >= 0 (0: not checked)",
      .help = "refuse samples whose utime is further than this from the time they arrived (live: "
              "the wall clock; a log: when lcm-logger received them; default: not checked)"},
     {SW_CLI_END},

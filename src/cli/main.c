@@ -6,7 +6,16 @@
 #include <gsl/gsl_errno.h>
 
 #include "cli.h"
+#include "journal.h"
 #include "swaywatch/swaywatch.h"
+
+/* The lines after the version, as GNU tools print them (help2man turns
+ * them into the manual's COPYRIGHT section). */
+static const char licence[] =
+    "Copyright (C) 2026 swaywatch developers\n"
+    "License GPLv3+: GNU GPL version 3 or later <https://gnu.org/licenses/gpl.html>\n"
+    "This is free software: you are free to change and redistribute it.\n"
+    "There is NO WARRANTY, to the extent permitted by law.\n";
 
 static const struct {
     const char *name;
@@ -18,17 +27,41 @@ static const struct {
 #ifdef SW_HAVE_LCM
     {"monitor", cmd_monitor, "live: subscribe to acceleration over LCM, publish state and alarms"},
 #endif
+#ifdef SW_HAVE_WATCH
+    {"watch", cmd_watch, "live view of the monitor's states and alarms in the terminal"},
+#endif
     {"boundary", cmd_boundary, "overturning boundary curves: lowest overturning pulse vs omega/p"},
     {"forensics", cmd_forensics, "a log's outcome, safety factor, and what support would have saved it"},
+    {"batch", cmd_batch, "many logs on every core (and MPI rank): JSON Lines records, a CSV table"},
 };
+
+/* Per thread: the jobs of a batch run on several threads at once, each
+ * collecting the messages of its own log. */
+static _Thread_local FILE *msg_stream;
+
+FILE *sw_cli_msg(void)
+{
+    return msg_stream ? msg_stream : stderr;
+}
+
+FILE *sw_cli_msg_to(FILE *f)
+{
+    FILE *before = sw_cli_msg();
+    msg_stream = f;
+    return before;
+}
 
 void sw_cli_error(const char *fmt, ...)
 {
+    FILE *f = sw_cli_msg();
     va_list ap;
     va_start(ap, fmt);
-    fputs("swaywatch: ", stderr);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    /* Under systemd an error is logged at priority err (journal.h); a
+     * batch job's messages are kept, not logged. */
+    if (f == stderr) fputs(sw_cli_journal_prefix(SW_PRIO_ERR), f);
+    fputs("swaywatch: ", f);
+    vfprintf(f, fmt, ap);
+    fputc('\n', f);
     va_end(ap);
 }
 
@@ -51,7 +84,7 @@ static void usage(FILE *f)
             "Run 'swaywatch help <command>' or 'swaywatch <command> --help' for a command's\n"
             "options.\n"
             "Exit codes: 0 ok, 1 a package overturned (with --fail-on-overturn),\n"
-            "2 bad usage or input, 3 I/O error.\n");
+            "2 bad usage or input, 3 I/O error, 4 batch: some logs failed.\n");
 }
 
 /* "swaywatch CMD --version", for every command alike (and for help2man,
@@ -112,8 +145,8 @@ int main(int argc, char **argv)
         usage(stdout);
         return SW_EXIT_OK;
     } else if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "-V")) {
-        printf("swaywatch %s\n", sw_version());
-        return SW_EXIT_OK;
+        printf("swaywatch %s\n%s", sw_version(), licence);
+        rc = SW_EXIT_OK;
     } else {
         sw_cmd_fn fn = command(argv[1]);
         if (!fn) {
@@ -121,10 +154,11 @@ int main(int argc, char **argv)
             return SW_EXIT_USAGE;
         }
         if (wants_version(argc, argv)) {
-            printf("swaywatch %s %s\n", argv[1], sw_version());
-            return SW_EXIT_OK;
+            printf("swaywatch %s %s\n%s", argv[1], sw_version(), licence);
+            rc = SW_EXIT_OK;
+        } else {
+            rc = fn(argc - 1, argv + 1);
         }
-        rc = fn(argc - 1, argv + 1);
     }
     if (fflush(stdout) != 0 || ferror(stdout)) {
         sw_cli_error("error writing standard output");

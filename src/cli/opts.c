@@ -41,8 +41,34 @@ int sw_cli_opt_double(const sw_cli_option_t *o, const char *arg, double *out)
     if (ok && o->rule == SW_NUM_NONNEGATIVE) ok = v >= 0.0;
     if (ok && o->rule == SW_NUM_NONZERO) ok = v != 0.0;
     if (!ok) return bad_value(o, arg);
+    if (sw_cli_opt_range(o, arg, v) != SW_EXIT_OK) return SW_EXIT_USAGE;
     *out = v;
     return SW_EXIT_OK;
+}
+
+static int has_range(const sw_cli_option_t *o)
+{
+    return o->hi > o->lo;
+}
+
+/* "1e-07 to 1", "0, or 0.001 to 1e+06": the bounds as --help and the
+ * refusals say them. */
+static void range_text(char *buf, size_t len, const sw_cli_option_t *o)
+{
+    const int off = o->rule == SW_NUM_NONNEGATIVE && o->lo > 0.0;
+    snprintf(buf, len, "%s%g to %g%s", off ? "0, or " : "", o->lo, o->hi,
+             o->rule == SW_NUM_NONZERO ? " in magnitude" : "");
+}
+
+int sw_cli_opt_range(const sw_cli_option_t *o, const char *arg, double v)
+{
+    if (!has_range(o) || (v == 0.0 && o->rule == SW_NUM_NONNEGATIVE)) return SW_EXIT_OK;
+    const double m = o->rule == SW_NUM_NONZERO ? fabs(v) : v;
+    if (m >= o->lo && m <= o->hi) return SW_EXIT_OK;
+    char r[96];
+    range_text(r, sizeof r, o);
+    sw_cli_error("--%s: out of range: expected %s, got '%s'", o->long_name, r, arg ? arg : "");
+    return SW_EXIT_USAGE;
 }
 
 int sw_cli_opt_long(const sw_cli_option_t *o, const char *arg, long *out)
@@ -54,6 +80,44 @@ int sw_cli_opt_long(const sw_cli_option_t *o, const char *arg, long *out)
         return bad_value(o, arg);
     /* An upper bound is a cap (threads), not a reason to refuse. */
     *out = o->max > 0 && v > o->max ? o->max : v;
+    return SW_EXIT_OK;
+}
+
+const char *sw_cli_units_accepted(int time_role)
+{
+    return time_role ? "ms, s or us, e.g. 11ms or 0.011s"
+                     : "g or m/s2 (m/s^2, m/s\xc2\xb2, mps2), e.g. 10g or 98.1m/s2";
+}
+
+int sw_cli_opt_quantity(const sw_cli_option_t *o, const char *arg, int time_role, int bare_ok,
+                        double *si, int *unit)
+{
+    char *end = NULL;
+    errno = 0;
+    const double v = arg ? strtod(arg, &end) : NAN;
+    if (!arg || end == arg || errno == ERANGE || !isfinite(v)) return bad_value(o, arg);
+    while (*end == ' ') end++;
+    int u = SW_CSV_UNIT_NONE;
+    if (*end) {
+        u = sw_csv_unit_parse(end, time_role);
+        if (u == SW_CSV_UNIT_NONE) {
+            sw_cli_error("--%s: unknown unit '%s' in '%s': expected %s", o->long_name, end, arg,
+                         sw_cli_units_accepted(time_role));
+            return SW_EXIT_USAGE;
+        }
+    } else if (!bare_ok) {
+        sw_cli_error("--%s: '%s' has no unit: expected %s", o->long_name, arg,
+                     sw_cli_units_accepted(time_role));
+        return SW_EXIT_USAGE;
+    }
+    int ok = 1;
+    if (o->rule == SW_NUM_POSITIVE) ok = v > 0.0;
+    if (o->rule == SW_NUM_NONNEGATIVE) ok = v >= 0.0;
+    if (o->rule == SW_NUM_NONZERO) ok = v != 0.0;
+    if (!ok) return bad_value(o, arg);
+    if (sw_cli_opt_range(o, arg, v * sw_csv_unit_scale(u)) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    *si = v * sw_csv_unit_scale(u);
+    if (unit) *unit = u;
     return SW_EXIT_OK;
 }
 
@@ -383,11 +447,17 @@ static void help_text(char *buf, size_t len, const sw_cli_option_t *o)
     }
     const char *h = o->help ? o->help : "";
     const char *at = strstr(h, "%g");
-    if (!at) {
+    if (!at)
         snprintf(buf, len, "%s", h);
-        return;
+    else
+        snprintf(buf, len, "%.*s%g%s", (int)(at - h), h, o->def, at + 2);
+    size_t used = strlen(buf);
+    if (has_range(o) && used < len) {
+        char r[96];
+        range_text(r, sizeof r, o);
+        snprintf(buf + used, len - used, " (%s%s)", o->rule == SW_NUM_NONNEGATIVE && o->lo > 0.0
+                                                        ? "" : "range ", r);
     }
-    snprintf(buf, len, "%.*s%g%s", (int)(at - h), h, o->def, at + 2);
 }
 
 /* text from column col, wrapped at HELP_WIDTH at spaces, continuation
@@ -487,7 +557,12 @@ void sw_cli_print_help(FILE *f, const sw_cli_command_t *cmd, const sw_cli_group_
     fprintf(f, "\nExit codes: 0 ok");
     if (cmd->exits & SW_CLI_EXIT_OVERTURN)
         fprintf(f, ", 1 a package overturned and --fail-on-overturn was given");
-    fprintf(f, ",\n2 bad usage or bad input (options, scene files%s),\n"
-               "3 a file could not be read or written.\n",
-            cmd->exits & SW_CLI_EXIT_STRICT ? ", rows under --strict" : "");
+    fprintf(f, ",\n2 bad usage or bad input (options, scene files%s%s),\n"
+               "3 a file could not be read or written,\n"
+               "130 or 143 stopped by SIGINT or SIGTERM (the output files end with a whole row;\n"
+               "the summary, marked INTERRUPTED, covers the input up to there).\n",
+            cmd->exits & SW_CLI_EXIT_STRICT ? ", rows under --strict" : "",
+            cmd->exits & SW_CLI_EXIT_OVERTURN
+                ? ";\nwith --fail-on-overturn also a package whose model faulted: no verdict"
+                : "");
 }

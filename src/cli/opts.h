@@ -64,6 +64,12 @@ struct sw_cli_option {
                               is stored; DOUBLE, LONG: checks (or adjusts) it after the rule */
     void (*help_fn)(char *buf, size_t len); /* help made at run time, instead of help */
     unsigned flags;                         /* SW_CLI_HIDDEN */
+    /* SW_CLI_DOUBLE (and CALL rows that read with sw_cli_opt_double()):
+     * the bounds, inclusive, when hi > lo: a value (its magnitude under
+     * SW_NUM_NONZERO) outside [lo, hi] is refused, but for 0 under
+     * SW_NUM_NONNEGATIVE (0: off).  --help appends them to the row's help:
+     * "(range LO to HI)", or "(0, or LO to HI)". */
+    double lo, hi;
 };
 
 /* A macro's value as a string, for help texts ("20"). */
@@ -131,7 +137,25 @@ void sw_cli_print_help(FILE *f, const sw_cli_command_t *cmd, const sw_cli_group_
  * got 'ARG'" and SW_EXIT_USAGE.  For fn of SW_CLI_CALL rows that parse a
  * number with their row's rule. */
 int sw_cli_opt_double(const sw_cli_option_t *o, const char *arg, double *out);
+/* The bounds of o alone, on a value v read from arg (a row that scales
+ * what it read, such as a value in g, checks after scaling): SW_EXIT_OK,
+ * or SW_EXIT_USAGE after "swaywatch: --NAME: out of range: expected LO to
+ * HI, got 'ARG'". */
+int sw_cli_opt_range(const sw_cli_option_t *o, const char *arg, double v);
 int sw_cli_opt_long(const sw_cli_option_t *o, const char *arg, long *out);
+
+/* A number and its unit, as shock standards state pulses: "10g",
+ * "-98.1m/s2", "11ms", "0.011 s" (the units a CSV header may carry,
+ * csv.h: g or m/s2 and its spellings for an acceleration, s, ms or us for
+ * a time, time_role).  *si gets the value in m/s^2 or s, *unit the unit
+ * read (SW_CSV_UNIT_*; SW_CSV_UNIT_NONE for a bare number, taken as SI only
+ * if bare_ok).  The row's rule applies to the number.  On a bad number
+ * "expected WHAT", on a unit not in the list or a missing one a message
+ * naming the units accepted, and SW_EXIT_USAGE. */
+int sw_cli_opt_quantity(const sw_cli_option_t *o, const char *arg, int time_role, int bare_ok,
+                        double *si, int *unit);
+/* The units sw_cli_opt_quantity() accepts, in words, with an example. */
+const char *sw_cli_units_accepted(int time_role);
 
 /* Comma-separated numbers, fractions such as 1/3 allowed, into a new
  * array (free()); positive: each must be > 0.  FROM:TO:STEP (inclusive;
@@ -158,6 +182,8 @@ typedef struct {
     const char *out_path; /* --out: state time series CSV */
     long every;           /* --every: write every Nth state row of each package */
     const char *events_path; /* --events: event list CSV */
+    const char *wide_path;   /* --wide: the state series, a column group per package */
+    const char *plot_path;   /* --plot: the state figure (.png or .svg) */
     int json, quiet, verbose;
 } sw_cli_opts_t;
 
@@ -168,6 +194,8 @@ extern const sw_cli_option_t sw_cli_integration_options[]; /* Integration: --sch
 extern const sw_cli_option_t sw_cli_accuracy_options[];    /* Integration: --accuracy */
 extern const sw_cli_option_t sw_cli_output_options[];      /* Output: --out, --every, --events,
                                                               --json, --quiet */
+extern const sw_cli_option_t sw_cli_picture_options[];     /* Output: --wide, --plot (replay,
+                                                              simulate) */
 /* --verbose and --help, with no section of their own. */
 extern const sw_cli_option_t sw_cli_common_options[];
 
@@ -196,7 +224,9 @@ int sw_cli_resolve_accuracy(const sw_cli_opts_t *o, const sw_scene_t *scenes, si
 /* Engine options from the shared options (callbacks left NULL). */
 void sw_cli_engine_opts(const sw_cli_opts_t *o, sw_engine_opts_t *eo);
 
-/* Create the engine; on failure print the reason, return NULL. */
+/* Create the engine; on failure print the reason, return NULL.  Warns
+ * about scenes that run slower than SW_CLI_MIN_RT_FACTOR times real time
+ * (cost.h). */
 sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo);
 
 #endif

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <signal.h>
 #include <string.h>
 #include <time.h>
 #include <sys/stat.h>
@@ -237,6 +238,142 @@ int sw_cli_states_close(sw_cli_states_t *w)
     return rc;
 }
 
+int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_engine_t *e,
+                     const sw_scene_t *scenes, size_t n)
+{
+    memset(w, 0, sizeof *w);
+    w->path = path;
+    w->n = n;
+    w->every = every > 0 ? every : 1;
+    if (!path) return SW_EXIT_OK;
+    w->alpha = calloc(n ? n : 1, sizeof *w->alpha);
+    w->row = calloc(n ? n : 1, sizeof *w->row);
+    w->have = calloc(n ? n : 1, 1);
+    if (!w->alpha || !w->row || !w->have) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const sw_derived_t *d = sw_engine_derived(e, i);
+        w->alpha[i] = d ? d->alpha : NAN;
+    }
+    if (!(w->f = sw_cli_out_open(path))) return SW_EXIT_IO;
+    static const char *const cols[] = {"phase",  "theta",        "theta_dot",   "ratio",
+                                       "margin", "margin_bound", "uplift_ratio"};
+    fputs("t,a_g", w->f);
+    for (size_t i = 0; i < n; i++) {
+        long same = 0; /* earlier packages of the same name */
+        for (size_t j = 0; j < i; j++) same += !strcmp(scenes[j].name, scenes[i].name);
+        char name[96];
+        if (same)
+            snprintf(name, sizeof name, "%s#%ld", scenes[i].name, same + 1);
+        else
+            snprintf(name, sizeof name, "%s", scenes[i].name);
+        for (size_t c = 0; c < sizeof cols / sizeof cols[0]; c++) {
+            char col[128];
+            snprintf(col, sizeof col, "%s.%s", name, cols[c]);
+            fputc(',', w->f);
+            sw_cli_csv_text(w->f, col);
+        }
+    }
+    fputc('\n', w->f);
+    return SW_EXIT_OK;
+}
+
+/* Write the gathered row (unless --every skips it) and start afresh. */
+static void wide_flush(sw_cli_wide_t *w)
+{
+    if (!w->open) return;
+    w->open = 0;
+    int first = -1, missing = 0;
+    for (size_t i = 0; i < w->n; i++) {
+        if (w->have[i] && first < 0) first = (int)i;
+        missing += !w->have[i];
+    }
+    if (w->seen++ % w->every == 0 && first >= 0) {
+        long *nf = &w->nonfinite;
+        const sw_output_t *o0 = &w->row[first];
+        if (isfinite(o0->t))
+            fprintf(w->f, "%.9g", o0->t);
+        else
+            (*nf)++;
+        csv_num(w->f, o0->a_g, nf);
+        for (size_t i = 0; i < w->n; i++) {
+            const sw_output_t *o = &w->row[i];
+            if (!w->have[i]) {
+                fputs(",,,,,,,", w->f);
+                continue;
+            }
+            fprintf(w->f, ",%s", sw_phase_name(o->state.phase));
+            csv_num(w->f, o->state.theta, nf);
+            csv_num(w->f, o->state.theta_dot, nf);
+            csv_num(w->f, o->state.theta / w->alpha[i], nf);
+            csv_num(w->f, o->margin, nf);
+            csv_num(w->f, o->margin_bound, nf);
+            csv_num(w->f, o->uplift_ratio, nf);
+        }
+        fputc('\n', w->f);
+        w->rows++;
+        w->incomplete += missing > 0;
+    }
+    memset(w->have, 0, w->n);
+}
+
+void sw_cli_wide_write(sw_cli_wide_t *w, const sw_output_t *o)
+{
+    if (!w->f || o->pkg >= w->n) return;
+    /* a new instant, or this package again: the row so far is complete */
+    if (w->open) {
+        size_t k = 0;
+        while (k < w->n && !w->have[k]) k++;
+        if (w->have[o->pkg] || (k < w->n && w->row[k].t != o->t)) wide_flush(w);
+    }
+    w->row[o->pkg] = *o;
+    w->have[o->pkg] = 1;
+    w->open = 1;
+    if (o->pkg == w->n - 1) wide_flush(w);
+}
+
+int sw_cli_wide_close(sw_cli_wide_t *w)
+{
+    if (w->f) wide_flush(w);
+    int rc = sw_cli_out_close(w->f, w->path);
+    if (w->f && w->nonfinite)
+        sw_cli_error("%s: %ld non-finite values written as empty fields", sw_cli_out_name(w->path),
+                     w->nonfinite);
+    if (w->f && w->incomplete)
+        sw_cli_error("%s: %ld rows lack a package's state (empty fields)",
+                     sw_cli_out_name(w->path), w->incomplete);
+    free(w->alpha);
+    free(w->row);
+    free(w->have);
+    w->alpha = NULL;
+    w->row = NULL;
+    w->have = NULL;
+    w->f = NULL;
+    return rc;
+}
+
+int sw_cli_check_stdout(const char *const names[], const char *const paths[], size_t n, int json,
+                        int quiet)
+{
+    const char *on_stdout = NULL;
+    for (size_t i = 0; i < n; i++) {
+        if (!is_stdout(paths[i])) continue;
+        if (on_stdout) {
+            sw_cli_error("%s and %s cannot both be standard output", on_stdout, names[i]);
+            return SW_EXIT_USAGE;
+        }
+        if (json || !quiet) {
+            sw_cli_error("%s -: standard output carries the %s", names[i],
+                         json ? "JSON summary (--json)" : "summary; add -q to leave it out");
+            return SW_EXIT_USAGE;
+        }
+        on_stdout = names[i];
+    }
+    return SW_EXIT_OK;
+}
+
 int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *scenes, size_t n)
 {
     memset(w, 0, sizeof *w);
@@ -291,6 +428,28 @@ int sw_cli_any_overturned(const sw_engine_t *e)
     return 0;
 }
 
+const char *sw_cli_verdict(const sw_summary_t *s)
+{
+    if (s->overturned) return "overturned";
+    return s->faults ? "unreliable" : "upright";
+}
+
+int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn)
+{
+    if (!fail_on_overturn) return SW_EXIT_OK;
+    if (sw_cli_any_overturned(e)) return SW_EXIT_OVERTURNED;
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) == SW_OK && s.faults) {
+            sw_cli_error("%s: the model faulted %ld times: no verdict, and --fail-on-overturn "
+                         "needs one (exit 2)",
+                         s.name, s.faults);
+            return SW_EXIT_USAGE;
+        }
+    }
+    return SW_EXIT_OK;
+}
+
 static double alpha_of(const sw_engine_t *e, size_t i)
 {
     const sw_derived_t *d = sw_engine_derived(e, i);
@@ -307,7 +466,7 @@ static void print_time(FILE *f, double t, const char *none)
 }
 
 /* An absolute time (s since 1970) as ISO-8601 UTC with milliseconds. */
-static void iso_time(char *buf, size_t len, double t)
+void sw_cli_iso_seconds(char *buf, size_t len, double t)
 {
     const double whole = floor(t);
     long ms = lround((t - whole) * 1000.0);
@@ -338,7 +497,7 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
             run->samples_read, share);
     if (F->t_origin != 0.0) {
         char iso[64];
-        iso_time(iso, sizeof iso, F->t_origin);
+        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
         fprintf(f, "  starts          %s (the times below are from there)\n", iso);
     }
     fprintf(f, "  times           %.4f s to %.4f s (%.4f s of samples)\n", t0, t1, F->duration);
@@ -365,8 +524,36 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
         fprintf(f, "  warning         %s\n", run->check);
 }
 
+/* The outcome line's words: a faulted run never reads as a plain verdict. */
+static void print_outcome(FILE *f, const sw_summary_t *s)
+{
+    if (s->overturned) {
+        fputs("OVERTURNED at ", f);
+        print_time(f, s->overturn_time, "an unknown time");
+        if (s->faults) fprintf(f, " (the model faulted %ld times before: see --events)", s->faults);
+    } else if (s->faults) {
+        fprintf(f, "stayed upright (model faulted %ld times: not a verdict; see --events)",
+                s->faults);
+    } else {
+        fputs("stayed upright", f);
+    }
+}
+
+/* The words a summary of an interrupted run starts with. */
+static void print_interrupted(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    if (!run->interrupted) return;
+    const double t = sw_engine_time(e);
+    fprintf(f, "INTERRUPTED by %s", run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (isfinite(t))
+        fprintf(f, " at t = %.4f s: everything below covers the input up to there only\n", t);
+    else
+        fputs(" before the first sample\n", f);
+}
+
 void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
 {
+    print_interrupted(f, e, run);
     if (run->log) {
         fprintf(f, "log %s: %ld samples read, %ld accepted, %ld rejected", strcmp(run->log, "-") ? run->log : "(stdin)",
                 run->samples_read, run->samples_read - run->samples_rejected,
@@ -403,13 +590,7 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
         fprintf(f, "\n  minimum margin  %.4f (1 at rest, 0 at the edge of overturning)\n",
                 s.min_margin);
         fputs("  outcome         ", f);
-        if (s.overturned) {
-            fputs("OVERTURNED at ", f);
-            print_time(f, s.overturn_time, "an unknown time");
-        } else {
-            fputs("stayed upright", f);
-        }
-        if (s.faults) fprintf(f, " (%ld model faults: see --events)", s.faults);
+        print_outcome(f, &s);
         fputc('\n', f);
     }
 }
@@ -443,11 +624,17 @@ void sw_cli_json_num(FILE *f, double v)
         fputs("null", f);
 }
 
-/* "input": the facts of the log, as print_facts() gives them. */
-static void json_facts(FILE *f, const sw_cli_run_t *run)
+/* ", " and a line break (br) between the members of an object. */
+static void json_sep(FILE *f, const char *br)
+{
+    fputc(',', f);
+    fputs(br, f);
+}
+
+void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
 {
     const sw_gate_facts_t *F = &run->facts;
-    fprintf(f, ",\n  \"input\": {\"rejected_share\": ");
+    fprintf(f, "{\"rejected_share\": ");
     sw_cli_json_num(f, run->samples_read ? (double)run->samples_rejected /
                                                (double)run->samples_read
                                          : 0.0);
@@ -458,12 +645,13 @@ static void json_facts(FILE *f, const sw_cli_run_t *run)
     fprintf(f, ", \"start_absolute\": ");
     if (F->t_origin != 0.0) {
         char iso[64];
-        iso_time(iso, sizeof iso, F->t_origin);
+        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
         sw_cli_json_string(f, iso);
     } else {
         fputs("null", f);
     }
-    fprintf(f, ",\n    \"duration\": ");
+    json_sep(f, br);
+    fprintf(f, "\"duration\": ");
     sw_cli_json_num(f, F->duration);
     fprintf(f, ", \"dt_median\": ");
     sw_cli_json_num(f, F->dt_median);
@@ -473,7 +661,8 @@ static void json_facts(FILE *f, const sw_cli_run_t *run)
     sw_cli_json_num(f, F->dt_max);
     fprintf(f, ", \"rate\": ");
     sw_cli_json_num(f, F->rate);
-    fprintf(f, ",\n    \"peak_accel\": ");
+    json_sep(f, br);
+    fprintf(f, "\"peak_accel\": ");
     sw_cli_json_num(f, F->peak_a);
     fprintf(f, ", \"peak_accel_g\": ");
     sw_cli_json_num(f, F->peak_a / 9.80665);
@@ -481,14 +670,62 @@ static void json_facts(FILE *f, const sw_cli_run_t *run)
     sw_cli_json_num(f, F->gap_total);
     fprintf(f, ", \"gap_max\": ");
     sw_cli_json_num(f, F->gap_max);
-    fprintf(f, ", \"restarts\": %ld, \"clock_steps\": %ld,\n    \"incomplete\": %s",
-            F->restarts, F->clock_steps, F->incomplete ? "true" : "false");
+    fprintf(f, ", \"restarts\": %ld, \"clock_steps\": %ld,", F->restarts, F->clock_steps);
+    fputs(br, f);
+    fprintf(f, "\"incomplete\": %s", F->incomplete ? "true" : "false");
     fprintf(f, ", \"forced\": %s, \"check\": ", run->forced ? "true" : "false");
     if (run->check[0])
         sw_cli_json_string(f, run->check);
     else
         fputs("null", f);
     fputc('}', f);
+}
+
+int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
+                        const char *br)
+{
+    sw_summary_t s;
+    if (sw_engine_summary(e, i, &s) != SW_OK) return -1;
+    fprintf(f, "\"name\": ");
+    sw_cli_json_string(f, s.name);
+    fprintf(f, ", \"model\": ");
+    sw_cli_json_string(f, sw_model_name(s.model));
+    fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\"", s.overturned ? "true" : "false",
+            sw_cli_verdict(&s));
+    json_sep(f, br);
+    fprintf(f, "\"overturn_time\": ");
+    sw_cli_json_num(f, s.overturn_time);
+    fprintf(f, ", \"tip_time\": ");
+    sw_cli_json_num(f, s.tip_time);
+    fprintf(f, ", \"uplift_time\": ");
+    sw_cli_json_num(f, s.uplift_time);
+    json_sep(f, br);
+    fprintf(f, "\"max_abs_theta\": ");
+    sw_cli_json_num(f, s.max_abs_theta);
+    fprintf(f, ", \"max_theta_ratio\": ");
+    sw_cli_json_num(f, s.max_theta_ratio);
+    fprintf(f, ", \"alpha\": ");
+    sw_cli_json_num(f, alpha_of(e, i));
+    json_sep(f, br);
+    fprintf(f, "\"min_margin\": ");
+    sw_cli_json_num(f, s.min_margin);
+    fprintf(f, ", \"min_margin_bound\": ");
+    sw_cli_json_num(f, s.min_margin_bound);
+    fprintf(f, ", \"max_uplift_ratio\": ");
+    sw_cli_json_num(f, s.max_uplift_ratio);
+    json_sep(f, br);
+    fprintf(f, "\"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld", s.impacts,
+            s.uplifts, s.rests, s.faults);
+    json_sep(f, br);
+    fprintf(f, "\"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,
+            run->samples_rejected);
+    json_sep(f, br);
+    fprintf(f, "\"scheme\": ");
+    sw_cli_json_string(f, sw_engine_scheme(e));
+    fprintf(f, ", \"dt\": ");
+    sw_cli_json_num(f, sw_engine_dt(e, i));
+    fprintf(f, ", \"steps\": %ld", s.steps);
+    return 0;
 }
 
 void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
@@ -516,45 +753,31 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
         fprintf(f, ",\n  \"settle\": ");
         sw_cli_json_num(f, run->settle);
     }
-    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld",
-            run->samples_read, run->samples_rejected);
-    if (run->have_facts) json_facts(f, run);
+    fprintf(f, ",\n  \"interrupted\": ");
+    if (run->interrupted)
+        fprintf(f, "{\"signal\": \"%s\", \"t\": ",
+                run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (run->interrupted) {
+        sw_cli_json_num(f, sw_engine_time(e));
+        fputc('}', f);
+    } else {
+        fputs("null", f);
+    }
+    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld", run->samples_read,
+            run->samples_rejected);
+    if (run->have_facts) {
+        fprintf(f, ",\n  \"input\": ");
+        sw_cli_json_facts(f, run, "\n    ");
+    }
     fprintf(f, ",\n  \"packages\": [");
+    const char *sep = "\n    {";
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
         if (sw_engine_summary(e, i, &s) != SW_OK) continue;
-        fprintf(f, "%s\n    {\"name\": ", i ? "," : "");
-        sw_cli_json_string(f, s.name);
-        fprintf(f, ", \"model\": ");
-        sw_cli_json_string(f, sw_model_name(s.model));
-        fprintf(f, ", \"overturned\": %s", s.overturned ? "true" : "false");
-        fprintf(f, ",\n     \"overturn_time\": ");
-        sw_cli_json_num(f, s.overturn_time);
-        fprintf(f, ", \"tip_time\": ");
-        sw_cli_json_num(f, s.tip_time);
-        fprintf(f, ", \"uplift_time\": ");
-        sw_cli_json_num(f, s.uplift_time);
-        fprintf(f, ",\n     \"max_abs_theta\": ");
-        sw_cli_json_num(f, s.max_abs_theta);
-        fprintf(f, ", \"max_theta_ratio\": ");
-        sw_cli_json_num(f, s.max_theta_ratio);
-        fprintf(f, ", \"alpha\": ");
-        sw_cli_json_num(f, alpha_of(e, i));
-        fprintf(f, ",\n     \"min_margin\": ");
-        sw_cli_json_num(f, s.min_margin);
-        fprintf(f, ", \"min_margin_bound\": ");
-        sw_cli_json_num(f, s.min_margin_bound);
-        fprintf(f, ", \"max_uplift_ratio\": ");
-        sw_cli_json_num(f, s.max_uplift_ratio);
-        fprintf(f, ",\n     \"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld",
-                s.impacts, s.uplifts, s.rests, s.faults);
-        fprintf(f, ",\n     \"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,
-                run->samples_rejected);
-        fprintf(f, ",\n     \"scheme\": ");
-        sw_cli_json_string(f, sw_engine_scheme(e));
-        fprintf(f, ", \"dt\": ");
-        sw_cli_json_num(f, sw_engine_dt(e, i));
-        fprintf(f, ", \"steps\": %ld}", s.steps);
+        fputs(sep, f);
+        sw_cli_json_package(f, e, i, run, "\n     ");
+        fputc('}', f);
+        sep = ",\n    {";
     }
     fprintf(f, "\n  ]\n}\n");
 }

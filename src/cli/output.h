@@ -49,6 +49,40 @@ void sw_cli_csv_text(FILE *f, const char *s);
 /* Flush and close; returns SW_EXIT_OK or SW_EXIT_IO (reported). */
 int sw_cli_states_close(sw_cli_states_t *w);
 
+/* --wide: the state series one row per output instant, a column group per
+ * package, for a plain plot or a spreadsheet: t,a_g, then for each package
+ * P: P.phase,P.theta,P.theta_dot,P.ratio,P.margin,P.margin_bound,
+ * P.uplift_ratio (ratio = theta/alpha).  The engine reports every package
+ * at each instant, in order: a row is written when the last package's
+ * state arrives, or when the time moves on before it (the missing fields
+ * left empty and counted).  Packages of the same name are told apart as
+ * NAME#2, NAME#3, ... --every keeps every Nth row. */
+typedef struct {
+    FILE *f;
+    const char *path;
+    size_t n;
+    long every, seen;
+    double *alpha;       /* rad, per package */
+    sw_output_t *row;    /* the row being gathered, per package */
+    unsigned char *have; /* which packages it has */
+    int open;            /* a row is being gathered */
+    long rows, nonfinite, incomplete;
+} sw_cli_wide_t;
+
+/* Open (path NULL: a disabled writer) for the n packages of engine e. */
+int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_engine_t *e,
+                     const sw_scene_t *scenes, size_t n);
+void sw_cli_wide_write(sw_cli_wide_t *w, const sw_output_t *out);
+/* The last row, flush, close: SW_EXIT_OK or SW_EXIT_IO (reported). */
+int sw_cli_wide_close(sw_cli_wide_t *w);
+
+/* Refuse (SW_EXIT_USAGE, reported) outputs of one run on standard output
+ * ("-") that clash: names[i] is the option ("--wide"), paths[i] its file
+ * (NULL: not given).  Two of them there, or one beside a summary (json, or
+ * without quiet the human one).  Clashes between files: clobber.h. */
+int sw_cli_check_stdout(const char *const names[], const char *const paths[], size_t n, int json,
+                        int quiet);
+
 /* --events: t,package,event,theta,theta_dot,margin,info. */
 typedef struct {
     FILE *f;
@@ -76,18 +110,44 @@ typedef struct {
     sw_gate_facts_t facts;
     int forced;              /* the plausibility check refused; --force gave the verdict */
     char check[320];         /* its reason, or a warning (a low rate); "" none */
+    int interrupted;         /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
+                                the summaries say so, and up to which time they cover */
 } sw_cli_run_t;
 
 /* The one-screen human summary / the JSON summary (DESIGN.md contract). */
 void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
 void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
 
+/* The parts of the JSON summary, for the JSON Lines records of a batch.
+ * br is what follows the commas where the summary breaks its lines ("\n"
+ * and the indent, or " " for a record on one line).  The log's facts (the
+ * summary's "input"), an object; and the members of package i's object,
+ * without the braces (-1 and nothing written if i has no summary). */
+void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br);
+int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
+                        const char *br);
+
 /* s as a JSON string literal (quotes included). */
 void sw_cli_json_string(FILE *f, const char *s);
 /* v as a JSON number, or null: JSON has no NaN or infinity. */
 void sw_cli_json_num(FILE *f, double v);
 
+/* An absolute time (s since 1970) as ISO-8601 UTC with milliseconds. */
+void sw_cli_iso_seconds(char *buf, size_t len, double t);
+
 /* Non-zero if any package overturned. */
 int sw_cli_any_overturned(const sw_engine_t *e);
+
+/* A package's verdict: "overturned", "upright", or "unreliable" when it
+ * did not overturn but its model faulted (reset to rest mid-run: "stayed
+ * upright" would not be a verdict).  JSON "verdict"; the human summary
+ * says it in words. */
+const char *sw_cli_verdict(const sw_summary_t *s);
+
+/* The exit code of a run that went well, from its verdicts: SW_EXIT_OK
+ * without fail_on_overturn; with it SW_EXIT_OVERTURNED if a package
+ * overturned, else SW_EXIT_USAGE (reported, naming the package) if one
+ * has no verdict because its model faulted, else SW_EXIT_OK. */
+int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn);
 
 #endif

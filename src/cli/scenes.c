@@ -5,12 +5,17 @@
  * Everything here prints its own messages ("swaywatch: ..." on stderr) and
  * returns an exit code. */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include "cost.h"
 #include "opts.h"
+#include "plot.h"
 
 /* Scene files are small; anything this big is not a scene. */
 #define SCENE_MAX_BYTES (1L << 20)
@@ -31,10 +36,11 @@ static int check_scheme(const sw_cli_option_t *o, const char *name, void *dest)
 {
     (void)dest;
     if (sw_scheme_lookup(name)) return SW_EXIT_OK;
-    fprintf(stderr, "swaywatch: --%s: unknown scheme '%s'; valid:", o->long_name, name);
+    FILE *m = sw_cli_msg();
+    fprintf(m, "swaywatch: --%s: unknown scheme '%s'; valid:", o->long_name, name);
     for (size_t i = 0; sw_scheme_at(i); i++)
-        fprintf(stderr, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
-    fputc('\n', stderr);
+        fprintf(m, "%s %s", i ? "," : "", sw_scheme_name(sw_scheme_at(i)));
+    fputc('\n', m);
     return SW_EXIT_USAGE;
 }
 
@@ -62,16 +68,19 @@ const sw_cli_option_t sw_cli_integration_options[] = {
     {SW_CLI_SECTION, .help = "Integration:"},
     {SW_CLI_STRING, 0, "scheme", "NAME", OPTS(scheme), .fn = check_scheme,
      .help_fn = scheme_help},
-    {SW_CLI_DOUBLE, 0, "dt", "SECONDS", OPTS(dt), .rule = SW_NUM_POSITIVE,
+    {SW_CLI_DOUBLE, 0, "dt", "SECONDS", OPTS(dt), .rule = SW_NUM_POSITIVE, .lo = 1e-7, .hi = 1,
      .what = "a positive number of seconds",
      .help = "internal step; refused if above the scheme's stability bound (default: the "
-             "scheme's own, sub-stepped as needed)"},
-    {SW_CLI_DOUBLE, 0, "rtol", "X", OPTS(rtol), .rule = SW_NUM_POSITIVE,
-     .what = "a positive tolerance", .help = "relative tolerance of the adaptive schemes "
-                                             "(default 1e-10)"},
-    {SW_CLI_DOUBLE, 0, "atol", "X", OPTS(atol), .rule = SW_NUM_POSITIVE,
-     .what = "a positive tolerance", .help = "absolute tolerance of the adaptive schemes "
-                                             "(default 1e-12)"},
+             "scheme's own, sub-stepped as needed); at least 1e-7 s, 10,000 steps per 1 ms "
+             "sample, which already runs slower than real time"},
+    {SW_CLI_DOUBLE, 0, "rtol", "X", OPTS(rtol), .rule = SW_NUM_POSITIVE, .lo = 1e-14, .hi = 1e-2,
+     .what = "a positive tolerance",
+     .help = "relative tolerance of the adaptive schemes (default 1e-10); below 1e-14 double "
+             "precision cannot meet it and steps fail"},
+    {SW_CLI_DOUBLE, 0, "atol", "X", OPTS(atol), .rule = SW_NUM_POSITIVE, .lo = 1e-16, .hi = 1e-2,
+     .what = "a positive tolerance",
+     .help = "absolute tolerance of the adaptive schemes (default 1e-12); below 1e-16 rad it is "
+             "under the rounding of angles near 1 rad and steps fail"},
     {SW_CLI_END},
 };
 
@@ -80,7 +89,8 @@ const sw_cli_option_t sw_cli_accuracy_options[] = {
     {SW_CLI_DOUBLE, 0, "accuracy", "RAD", OPTS(accuracy), .rule = SW_NUM_POSITIVE,
      .what = "a positive angle in radians",
      .help = "pick the cheapest scheme and step measured to keep the error of theta within RAD "
-             "(docs/accuracy-speed.md)"},
+             "(docs/accuracy-speed.md); bounded by that table: tighter than about 1e-14 rad is "
+             "refused"},
     {SW_CLI_END},
 };
 
@@ -97,6 +107,19 @@ const sw_cli_option_t sw_cli_output_options[] = {
     {SW_CLI_FLAG, 0, "json", OPTS(json), .value = 1,
      .help = "JSON summary on stdout instead of the human summary"},
     {SW_CLI_FLAG, 'q', "quiet", OPTS(quiet), .value = 1, .help = "no human summary"},
+    {SW_CLI_END},
+};
+
+const sw_cli_option_t sw_cli_picture_options[] = {
+    {SW_CLI_SECTION, .help = "Output:"},
+    {SW_CLI_STRING, 0, "wide", "FILE.csv", OPTS(wide_path),
+     .help = "the state series one row per instant ('-': standard output), for a plain plot or "
+             "a spreadsheet: t,a_g, then for each package P: P.phase,P.theta,P.theta_dot,"
+             "P.ratio (theta/alpha),P.margin,P.margin_bound,P.uplift_ratio; --every keeps every "
+             "Nth row"},
+    {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", OPTS(plot_path), .fn = sw_cli_plot_check,
+     .help = "a figure drawn by gnuplot: the bed acceleration with the uplift thresholds "
+             "+-g tan alpha, theta/alpha and the margin of every package, the events marked"},
     {SW_CLI_END},
 };
 
@@ -119,17 +142,58 @@ void sw_cli_print_diag(void *user, const char *origin, int line, const char *msg
         sw_cli_error("%s: %s", origin ? origin : "scene", msg);
 }
 
+/* What a path that is not a regular file is, in words. */
+static const char *file_kind(mode_t mode)
+{
+    return S_ISDIR(mode)    ? "a directory"
+           : S_ISFIFO(mode) ? "a FIFO"
+           : S_ISCHR(mode)  ? "a character device"
+           : S_ISBLK(mode)  ? "a block device"
+           : S_ISSOCK(mode) ? "a socket"
+                            : "not a regular file";
+}
+
+/* Open a scene file for reading: a regular file, or refused.  Opened with
+ * O_NONBLOCK so that a FIFO (or a device) in its place cannot block the
+ * caller, a monitor reloading on SIGHUP, until someone writes to it; the
+ * type is checked on the opened file, not on the name (no race). */
+static FILE *open_regular(const char *path, int *rc)
+{
+    *rc = SW_EXIT_IO;
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+    if (fd < 0) {
+        sw_cli_error("%s: cannot open: %s", path, strerror(errno));
+        return NULL;
+    }
+    struct stat st;
+    if (fstat(fd, &st) != 0) {
+        sw_cli_error("%s: cannot read: %s", path, strerror(errno));
+        close(fd);
+        return NULL;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        sw_cli_error("%s: %s: a scene must be a regular file", path, file_kind(st.st_mode));
+        *rc = SW_EXIT_USAGE;
+        close(fd);
+        return NULL;
+    }
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        sw_cli_error("%s: cannot read: %s", path, strerror(errno));
+        close(fd);
+    }
+    return f;
+}
+
 /* Whole file into a NUL-terminated buffer; prints its own errors. */
 static int read_text(const char *path, char **text)
 {
     int rc = SW_EXIT_IO;
     char *buf = NULL;
     size_t len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        sw_cli_error("%s: cannot open: %s", path, strerror(errno));
-        goto out;
-    }
+    FILE *f = open_regular(path, &rc);
+    if (!f) goto out;
+    rc = SW_EXIT_IO;
     buf = malloc((size_t)SCENE_MAX_BYTES + 1);
     if (!buf) {
         sw_cli_error("%s: out of memory", path);
@@ -275,5 +339,6 @@ sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_e
     char msg[512] = "";
     sw_engine_t *e = sw_engine_create(scenes, n, eo, &err, msg, sizeof msg);
     if (!e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+    else sw_cli_warn_scene_cost(scenes, n, eo);
     return e;
 }

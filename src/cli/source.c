@@ -9,6 +9,9 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cost.h"
+#include "interrupt.h"
+
 void sw_cli_read_opts_init(sw_cli_read_opts_t *o)
 {
     memset(o, 0, sizeof *o);
@@ -34,43 +37,30 @@ const sw_cli_option_t sw_cli_channel_options[] = {
 };
 #endif
 
-/* ---- opening --------------------------------------------------------------------- */
-
-/* The options the log's source does not take; SW_EXIT_OK or SW_EXIT_USAGE
- * (reported, naming the first one given). */
-static int check_source(const sw_cli_reader_t *R, const sw_cli_group_t *csv,
-                        const sw_cli_group_t *lcm, size_t nlcm)
+sw_cli_given_t sw_cli_source_given(const sw_cli_group_t *g, size_t ng,
+                                   const sw_cli_option_t *const *extra)
 {
-    const sw_cli_source_t *src = R->src;
-    if (src->kind == SW_CLI_SRC_LCMLOG && R->lf.in == stdin) {
-        sw_cli_error("%s: an lcm-logger file cannot be read from standard input; give its "
-                     "file name",
-                     R->lf.name);
-        return SW_EXIT_USAGE;
+    sw_cli_given_t out = {NULL, NULL};
+    const sw_cli_group_t *lcm = NULL;
+    for (size_t i = 0; i < ng; i++) {
+        if (!g[i].given) continue;
+        if (g[i].rows == sw_cli_csv_options) out.csv = g[i].given->long_name;
+#ifdef SW_HAVE_LCM
+        int only = g[i].rows == sw_cli_channel_options || g[i].rows == sw_cli_lcm_input_options;
+        for (size_t k = 0; extra && extra[k]; k++) only |= g[i].rows == extra[k];
+        if (only && (!lcm || g[i].given_at < lcm->given_at)) lcm = &g[i];
+#else
+        (void)extra;
+#endif
     }
-    if (!src->available) {
-        sw_cli_error("%s: lcm-logger files need the LCM build", R->log);
-        return SW_EXIT_USAGE;
-    }
-    if (src->kind == SW_CLI_SRC_LCMLOG && csv->given) {
-        sw_cli_error("%s: --%s is for CSV logs; this is an lcm-logger file", R->log,
-                     csv->given->long_name);
-        return SW_EXIT_USAGE;
-    }
-    const sw_cli_group_t *first = NULL;
-    for (size_t i = 0; i < nlcm; i++)
-        if (lcm[i].given && (!first || lcm[i].given_at < first->given_at)) first = &lcm[i];
-    if (src->kind == SW_CLI_SRC_CSV && first) {
-        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log",
-                     R->lf.name, first->given->long_name);
-        return SW_EXIT_USAGE;
-    }
-    return SW_EXIT_OK;
+    out.lcm = lcm ? lcm->given->long_name : NULL;
+    return out;
 }
 
+/* ---- opening --------------------------------------------------------------------- */
+
 int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_opts_t *o,
-                       int quiet, const sw_cli_group_t *csv, const sw_cli_group_t *lcm,
-                       size_t nlcm)
+                       int quiet, sw_cli_given_t given)
 {
     int rc;
     R->log = log;
@@ -78,29 +68,49 @@ int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_op
     R->quiet = quiet;
     if ((rc = sw_cli_logfile_open(&R->lf, log)) != SW_EXIT_OK) return rc;
     R->src = sw_cli_logfile_source(&R->lf);
-    return check_source(R, csv, lcm, nlcm);
+    if (!R->src->available) {
+        sw_cli_error("%s: lcm-logger files need the LCM build", log);
+        return SW_EXIT_USAGE;
+    }
+    if (R->src->kind == SW_CLI_SRC_LCMLOG && given.csv) {
+        sw_cli_error("%s: --%s is for CSV logs; this is an lcm-logger file", log, given.csv);
+        return SW_EXIT_USAGE;
+    }
+    if (R->src->kind == SW_CLI_SRC_CSV && given.lcm) {
+        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log",
+                     R->lf.name, given.lcm);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
 }
 
 int sw_cli_reader_prepare(sw_cli_reader_t *R)
 {
 #ifdef SW_HAVE_LCM
     if (R->src->kind != SW_CLI_SRC_LCMLOG) return SW_EXIT_OK;
-    sw_cli_logfile_close(&R->lf); /* the event-log reader opens it again */
     int err = 0;
+    R->regions = (sw_cli_regions_t){.name = R->lf.name, .quiet = R->quiet};
     const sw_lcmlog_opts_t lo = {
         .channel = R->o->channel,
-        .speed = R->speed,
         .strict = R->o->copts.strict,
+        .on_region = sw_cli_print_region,
+        .user = &R->regions,
+        .stop = &sw_cli_signal,
     };
-    R->lcmlog = sw_lcmlog_open(R->log, &lo, &err);
+    /* The log as opened, its first chunk included: a pipe is read once. */
+    R->lcmlog = sw_lcmlog_open_stream(R->lf.in, R->lf.buf, R->lf.len, &lo, &err);
     if (R->lcmlog) return SW_EXIT_OK;
     if (err == SW_EINVAL)
         sw_cli_error("--accel-channel: not a valid regular expression: '%s'", R->o->channel);
     else if (err == SW_ENOMEM)
         sw_cli_error("out of memory");
+    else if (err == SW_ETOOBIG)
+        sw_cli_error("%s: a log read from a pipe is copied to a temporary file first, and "
+                     "this one is longer than %lld bytes; give its file name",
+                     R->lf.name, (long long)SW_LCMLOG_SPOOL_MAX);
     else
-        sw_cli_error("%s: cannot open: %s", R->log, strerror(errno));
-    return err == SW_EINVAL ? SW_EXIT_USAGE : SW_EXIT_IO;
+        sw_cli_error("%s: cannot read: %s", R->lf.name, strerror(errno));
+    return err == SW_EINVAL || err == SW_ETOOBIG ? SW_EXIT_USAGE : SW_EXIT_IO;
 #else
     (void)R;
     return SW_EXIT_OK;
@@ -111,7 +121,7 @@ int sw_cli_reader_prepare(sw_cli_reader_t *R)
 
 #ifdef SW_HAVE_LCM
 static int lcmlog_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
-                         const sw_engine_opts_t *eo)
+                         const sw_engine_opts_t *eo, int shared)
 {
     sw_mon_opts_t mo = R->o->mo;
     if (sw_cli_mon_gate(&mo, &R->o->gate) != SW_EXIT_OK) return SW_EXIT_USAGE;
@@ -127,28 +137,35 @@ static int lcmlog_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
         sw_cli_error("cannot start the engine: %s", msg[0] ? msg : "unknown reason");
         return SW_EXIT_USAGE;
     }
+    if (!shared) sw_cli_warn_scene_cost(scenes, n, eo);
     R->e = sw_mon_engine(R->mon);
     return SW_EXIT_OK;
 }
 #endif
 
 int sw_cli_reader_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
-                         const sw_engine_opts_t *eo)
+                         const sw_engine_opts_t *eo, int shared)
 {
     R->user = eo->user;
 #ifdef SW_HAVE_LCM
-    if (R->src->kind == SW_CLI_SRC_LCMLOG) return lcmlog_engine(R, scenes, n, eo);
+    if (R->src->kind == SW_CLI_SRC_LCMLOG) return lcmlog_engine(R, scenes, n, eo, shared);
 #endif
-    R->e = sw_cli_engine_create(scenes, n, eo);
+    if (!shared) {
+        R->e = sw_cli_engine_create(scenes, n, eo);
+    } else { /* a batch measured the scenes' cost once */
+        int err = 0;
+        char msg[512] = "";
+        R->e = sw_engine_create(scenes, n, eo, &err, msg, sizeof msg);
+        if (!R->e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+    }
     return R->e ? SW_EXIT_OK : SW_EXIT_USAGE;
 }
 
 /* ---- reading ----------------------------------------------------------------------- */
 
 /* Stream the CSV log through the reader and the input gate into the
- * engine; then the verdict's check, before the settling that the verdict
- * includes. */
-static int read_csv(sw_cli_reader_t *R, double settle)
+ * engine; then the verdict's check. */
+static int feed_csv(sw_cli_reader_t *R)
 {
     sw_cli_fed_t fed;
     int rc = sw_cli_feed_csv(&R->lf, &R->o->copts, &R->o->gate, R->e, R->quiet, R->take, R->user,
@@ -156,17 +173,22 @@ static int read_csv(sw_cli_reader_t *R, double settle)
     if (rc != SW_EXIT_OK) return rc;
     R->run.samples_read = fed.rows;
     R->run.samples_rejected = fed.rejected;
-    rc = sw_cli_feed_verdict(R->lf.name, &fed.facts, &R->o->gate,
-                             R->o->copts.csv.vert_col != NULL, R->quiet, &R->run);
-    if (rc != SW_EXIT_OK) return rc;
-    sw_engine_finish(R->e, settle);
-    return SW_EXIT_OK;
+    R->accepted = fed.facts.accepted;
+    R->interrupted = fed.interrupted;
+    if (fed.interrupted) return SW_EXIT_OK; /* no check, no settling: the command says why */
+    return sw_cli_feed_verdict(R->lf.name, &fed.facts, &R->o->gate,
+                               R->o->copts.csv.vert_col != NULL, R->quiet, &R->run);
 }
 
 #ifdef SW_HAVE_LCM
-static int read_lcmlog(sw_cli_reader_t *R, double settle)
+static int feed_lcmlog(sw_cli_reader_t *R)
 {
-    if (sw_lcmlog_read(R->lcmlog, R->mon) != SW_OK) {
+    const int lr = sw_lcmlog_read(R->lcmlog, R->mon);
+    if (lr == SW_ENOTFOUND) {
+        sw_cli_error("%s: cannot read: %s", R->lf.name, strerror(errno));
+        return SW_EXIT_IO;
+    }
+    if (lr != SW_OK) {
         sw_cli_error("%s: stopped at the first bad event or sample (--strict)", R->log);
         return SW_EXIT_USAGE;
     }
@@ -179,25 +201,32 @@ static int read_lcmlog(sw_cli_reader_t *R, double settle)
     }
     R->run.samples_read = k.received;
     R->run.samples_rejected = k.received - k.accepted;
-    if (k.accepted > 0) {
-        sw_gate_facts_t f;
-        sw_mon_facts(R->mon, &f);
-        f.upstream_rejected = k.received - f.received; /* not accel_t, NaN on an axis */
-        const int rc = sw_cli_feed_verdict(R->log, &f, &R->o->gate, R->o->mo.vertical >= 0,
-                                           R->quiet, &R->run);
-        if (rc != SW_EXIT_OK) return rc;
-    }
-    if (k.accepted > 0 && settle > 0.0) sw_engine_finish(R->e, settle);
-    return SW_EXIT_OK;
+    R->accepted = k.accepted;
+    R->interrupted = sw_cli_signal != 0;
+    if (k.accepted == 0 || R->interrupted) return SW_EXIT_OK;
+    sw_gate_facts_t f;
+    sw_mon_facts(R->mon, &f);
+    f.upstream_rejected = k.received - f.received; /* not accel_t, NaN on an axis */
+    return sw_cli_feed_verdict(R->log, &f, &R->o->gate, R->o->mo.vertical >= 0, R->quiet,
+                               &R->run);
 }
 #endif
 
-int sw_cli_reader_read(sw_cli_reader_t *R, double settle)
+int sw_cli_reader_feed(sw_cli_reader_t *R)
 {
 #ifdef SW_HAVE_LCM
-    if (R->src->kind == SW_CLI_SRC_LCMLOG) return read_lcmlog(R, settle);
+    if (R->src->kind == SW_CLI_SRC_LCMLOG) return feed_lcmlog(R);
 #endif
-    return read_csv(R, settle);
+    return feed_csv(R);
+}
+
+void sw_cli_reader_settle(sw_cli_reader_t *R, double settle)
+{
+    if (R->interrupted || sw_cli_signal || R->accepted <= 0) return;
+#ifdef SW_HAVE_LCM
+    if (R->src->kind == SW_CLI_SRC_LCMLOG && !(settle > 0.0)) return;
+#endif
+    sw_engine_finish(R->e, settle);
 }
 
 /* ---- after the run ------------------------------------------------------------------- */
@@ -210,16 +239,18 @@ int sw_cli_reader_report(sw_cli_reader_t *R)
     sw_mon_counts(R->mon, &k);
     sw_lcmlog_counts_t lc;
     sw_lcmlog_counts(R->lcmlog, &lc);
+    sw_cli_regions_summary(&R->regions);
     if (!R->quiet || k.accepted == 0) {
-        fprintf(stderr,
+        FILE *m = sw_cli_msg();
+        fprintf(m,
                 "swaywatch: %s: %ld events, %ld on the accel channel, %ld on other channels, "
                 "%ld corrupted regions skipped\n",
                 R->log, lc.events, lc.on_channel, lc.other_channels, lc.corrupt);
-        fprintf(stderr, "swaywatch: %s: accel samples: %ld = accepted %ld + ", R->log, k.received,
+        fprintf(m, "swaywatch: %s: accel samples: %ld = accepted %ld + ", R->log, k.received,
                 k.accepted);
-        sw_cli_print_rejected(stderr, &k);
-        fprintf(stderr, "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
-                        "%ld alarms\n",
+        sw_cli_print_rejected(m, &k);
+        fprintf(m, "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
+                   "%ld alarms\n",
                 k.lost, k.gaps, k.restarts, k.clock_steps, k.states, k.alarms);
     }
     if (k.accepted > 0) return SW_EXIT_OK;

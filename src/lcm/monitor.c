@@ -45,6 +45,24 @@ _Static_assert(sizeof(((swaywatch_state_t *)0)->name) == SW_NAME_MAX,
 _Static_assert(sizeof(((swaywatch_alarm_t *)0)->text) == SW_ALARM_TEXT_MAX,
                "alarm_t.text holds an alarm text");
 
+/* The alarm rate limit of one package and kind (journald's
+ * RateLimitIntervalSec/RateLimitBurst, per kind): within a window of
+ * alarm_interval from its first alarm, FOLD_BURST alarms go out and the
+ * rest are held back, counted, and go out as one summary when the window
+ * ends; an alarm of a higher level than any sent in the window always goes
+ * out at once. */
+typedef struct {
+    double win;           /* mono s, start of the window; -INFINITY: none yet */
+    int sent;             /* alarms sent in the window */
+    sw_alarm_level top;   /* highest level sent in the window */
+    long folded;          /* held back since */
+    sw_alarm_level level; /* the highest level among them */
+    sw_alarm_t latest;    /* the latest of them, sent in the summary */
+    int64_t latest_us;
+} fold_t;
+#define FOLD_BURST 3 /* alarms of a package and kind let through per window */
+#define FOLD_KINDS 32 /* alarm kinds the limit tells apart (sw_alarm_kind < 32) */
+
 /* Messages are fixed-size; this holds the largest encoded one. */
 #define SW_MON_BUF 512
 
@@ -75,6 +93,13 @@ struct sw_mon {
     int64_t base_us;    /* utime of the first sample received: the gate is fed
                            (utime - base) / 1e6 s, exact for any utime near it */
 
+    /* Every other alarm kind: at most one per package and kind per
+     * interval; the ones in between are folded into one summary. */
+    fold_t *fold;       /* (n + 1) * FOLD_KINDS: package k at k, input alarms at n */
+    double fold_next;   /* mono s of the earliest pending summary; INFINITY: none */
+    double alarm_interval; /* s; 0: no limit */
+    double now;         /* mono s of the feed or tick in progress */
+
     /* INPUT_REJECTED rate limit, per reason */
     double rej_last_alarm[SW_MON_NREJ]; /* mono s; -INFINITY: never */
     long rej_pending[SW_MON_NREJ];      /* refused since the last alarm for that reason */
@@ -86,7 +111,7 @@ struct sw_mon {
 
 static const char *const reject_names[SW_MON_NREJ] = {
     "decode", "trailing", "nonfinite", "implausible", "skew",
-    "duplicate", "out_of_order", "jump", "engine", "time"};
+    "duplicate", "out_of_order", "jump", "engine", "time", "overload"};
 
 const char *sw_mon_reject_name(sw_mon_reject r)
 {
@@ -155,7 +180,8 @@ static int64_t utime_of(const sw_mon_t *m, double t)
     return utime_at(m, sw_gate_source_time(m->gate, t));
 }
 
-static void send_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
+/* Publish one alarm (no rate limit: send_alarm() decides). */
+static void emit_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
 {
     m->c.alarms++;
     if (m->o.on_alarm)
@@ -176,6 +202,97 @@ static void send_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
     msg.theta = isfinite(a->theta) ? a->theta : 0.0;
     msg.margin = isfinite(a->margin) ? a->margin : 0.0;
     publish(m, m->alarm_channel, swaywatch_alarm_t_encode(m->buf, 0, SW_MON_BUF, &msg));
+}
+
+/* The fold slot of an alarm; NULL for INPUT_REJECTED, which is folded
+ * per reason (reject_alarm) before it gets here. */
+static fold_t *fold_slot(sw_mon_t *m, const sw_alarm_t *a)
+{
+    if (a->kind == SW_ALARM_INPUT_REJECTED || m->alarm_interval <= 0.0)
+        return NULL;
+    const size_t row = a->pkg < m->n ? a->pkg : m->n;
+    const unsigned k = (unsigned)a->kind < FOLD_KINDS ? (unsigned)a->kind : FOLD_KINDS - 1;
+    return &m->fold[row * FOLD_KINDS + k];
+}
+
+/* Send what f held back: the one alarm as it was, or a summary with the
+ * count, the highest level and the latest one's text. */
+static void fold_send(sw_mon_t *m, fold_t *f, double span)
+{
+    sw_alarm_t a = f->latest;
+    a.level = f->level;
+    if (f->folded > 1) {
+        char head[64];
+        snprintf(head, sizeof head, "%ld more in %.3g s, the last: ", f->folded, span);
+        const size_t hl = strlen(head); /* < 64 < SW_ALARM_TEXT_MAX */
+        size_t tl = strlen(f->latest.text);
+        if (tl > sizeof a.text - 1 - hl)
+            tl = sizeof a.text - 1 - hl; /* the latest text, cut to fit */
+        memcpy(a.text, head, hl);
+        memcpy(a.text + hl, f->latest.text, tl);
+        a.text[hl + tl] = '\0';
+    }
+    m->c.alarms_folded += f->folded - 1;
+    f->folded = 0;
+    emit_alarm(m, &a, f->latest_us);
+}
+
+/* Send a now, as alarm number f->sent + 1 of the window. */
+static void fold_pass(sw_mon_t *m, fold_t *f, const sw_alarm_t *a, int64_t utime)
+{
+    f->sent++;
+    if (a->level > f->top)
+        f->top = a->level;
+    emit_alarm(m, a, utime);
+}
+
+/* Every alarm goes through here (see fold_t).  A storm of 2,000
+ * MODEL_FAULTs a second is FOLD_BURST alarms and one summary a second. */
+static void send_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
+{
+    fold_t *f = fold_slot(m, a);
+    if (!f) {
+        emit_alarm(m, a, utime);
+        return;
+    }
+    const double mono = m->now;
+    if (!(mono - f->win < m->alarm_interval)) { /* a new window (NaN: a flush) */
+        if (f->folded > 0)
+            fold_send(m, f, m->alarm_interval);
+        f->win = isfinite(mono) ? mono : -INFINITY; /* after a flush, a fresh start */
+        f->sent = 0;
+        f->top = a->level;
+        fold_pass(m, f, a, utime);
+        return;
+    }
+    if (f->sent < FOLD_BURST || a->level > f->top) {
+        fold_pass(m, f, a, utime);
+        return;
+    }
+    if (f->folded == 0 || a->level > f->level)
+        f->level = a->level;
+    f->folded++;
+    f->latest = *a;
+    f->latest_us = utime;
+    if (f->win + m->alarm_interval < m->fold_next)
+        m->fold_next = f->win + m->alarm_interval;
+}
+
+/* Send the summaries of the windows that ended by mono (all: INFINITY). */
+static void fold_tick(sw_mon_t *m, double mono)
+{
+    if (!(mono >= m->fold_next))
+        return;
+    m->fold_next = INFINITY;
+    for (size_t i = 0; i < (m->n + 1) * FOLD_KINDS; i++) {
+        fold_t *f = &m->fold[i];
+        if (f->folded == 0)
+            continue;
+        if (!(mono - f->win < m->alarm_interval))
+            fold_send(m, f, m->alarm_interval);
+        else if (f->win + m->alarm_interval < m->fold_next)
+            m->fold_next = f->win + m->alarm_interval;
+    }
 }
 
 static void on_alarm(void *user, const sw_alarm_t *a)
@@ -207,6 +324,11 @@ static void on_state(void *user, const sw_output_t *out)
     int finite = sw_output_finite(out);
     int64_t utime = finite ? utime_of(m, out->t) : m->last_us;
     if (m->state_period_us > 0) {
+        /* The sensor's clock went back (a restart, a log played twice):
+         * the grid follows it, or no state would go out until the new
+         * clock caught up with the old grid. */
+        if (utime < m->next_state_us[k] - m->state_period_us)
+            m->next_state_us[k] = utime;
         if (utime < m->next_state_us[k])
             return;
         m->next_state_us[k] += m->state_period_us;
@@ -265,7 +387,11 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     if (m->o.axis < 0 || m->o.axis > 2 || m->o.vertical < -1 || m->o.vertical > 2 ||
         !(m->o.accel_scale > 0.0) || !(m->o.gap >= 0.0) || !(m->o.max_accel > 0.0) ||
         !(m->o.state_rate >= 0.0) || !(m->o.max_skew >= 0.0) || !(m->o.reject_interval >= 0.0) ||
-        !isfinite(m->o.gap) || !isfinite(m->o.state_rate) || !(m->o.max_jump < 1e9)) {
+        !(m->o.alarm_interval < 1e9) ||
+        !isfinite(m->o.gap) || !isfinite(m->o.state_rate) || !(m->o.max_jump < 1e9) ||
+        /* in microseconds of int64: a gap beyond 1e9 s or a rate below
+         * 1e-9 Hz would overflow */
+        !(m->o.gap <= 1e9) || (m->o.state_rate > 0.0 && !(m->o.state_rate >= 1e-9))) {
         if (msg)
             snprintf(msg, msglen, "invalid monitor options");
         free(m);
@@ -280,13 +406,17 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         m->state_period_us = 1;
     m->rej_interval = m->o.reject_interval > 0.0 ? m->o.reject_interval : 1.0;
     for (int r = 0; r < SW_MON_NREJ; r++) m->rej_last_alarm[r] = -INFINITY;
+    m->alarm_interval = m->o.alarm_interval == 0.0 ? 1.0 : fmax(m->o.alarm_interval, 0.0);
+    m->fold_next = INFINITY;
 
     m->watch = calloc(n ? n : 1, sizeof *m->watch);
     m->names = calloc(n ? n : 1, sizeof *m->names);
     m->next_state_us = calloc(n ? n : 1, sizeof *m->next_state_us);
     m->buf = malloc(SW_MON_BUF);
-    if (!m->watch || !m->names || !m->next_state_us || !m->buf)
+    m->fold = calloc((n + 1) * FOLD_KINDS, sizeof *m->fold);
+    if (!m->watch || !m->names || !m->next_state_us || !m->buf || !m->fold)
         goto nomem;
+    for (size_t i = 0; i < (n + 1) * FOLD_KINDS; i++) m->fold[i].win = -INFINITY;
 
     sw_engine_opts_t e = *eo;
     e.on_event = on_event;
@@ -345,6 +475,7 @@ void sw_mon_destroy(sw_mon_t *m)
     free(m->names);
     free(m->next_state_us);
     free(m->buf);
+    free(m->fold);
     free(m);
 }
 
@@ -389,9 +520,9 @@ static void reject_alarm(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utim
 
 static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_mon_reject *why)
 {
-    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE, SW_ENONFINITE, SW_ETOOBIG,
-                                          SW_ETOOBIG, SW_EORDER,  SW_EORDER,     SW_EORDER,
-                                          SW_EINVAL,  SW_ERESOLUTION};
+    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE,      SW_ENONFINITE, SW_ETOOBIG,
+                                          SW_ETOOBIG, SW_EORDER,      SW_EORDER,     SW_EORDER,
+                                          SW_EINVAL,  SW_ERESOLUTION, SW_ETOOBIG};
     m->c.rejected[r]++;
     m->rej_pending[r]++;
     reject_alarm(m, r, mono, input_utime(m, utime));
@@ -458,6 +589,7 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
     swaywatch_accel_t s;
     m->c.received++;
     m->feed_mono = mono;
+    m->now = mono;
     int used = len <= INT32_MAX ? swaywatch_accel_t_decode(data, 0, (int)len, &s) : -1;
     if (used < 0)
         return refuse(m, SW_MON_REJ_DECODE, mono, wall_us, why);
@@ -469,6 +601,8 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
      * a broken sender */
     if (!isfinite(s.ax) || !isfinite(s.ay) || !isfinite(s.az))
         return refuse(m, SW_MON_REJ_NONFINITE, mono, m->have_last ? m->last_us : wall_us, why);
+    if (s.utime < 0 || s.utime >= SW_MON_UTIME_MAX)
+        return refuse(m, SW_MON_REJ_TIME, mono, m->have_last ? m->last_us : wall_us, why);
     const double v[3] = {s.ax * m->o.accel_scale, s.ay * m->o.accel_scale, s.az * m->o.accel_scale};
     const double t = source_time(m, s.utime); /* first: the first sample sets the base */
     const sw_sample_t smp = {
@@ -500,6 +634,15 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
     return rc;
 }
 
+int sw_mon_refuse(sw_mon_t *m, sw_mon_reject r, double mono)
+{
+    if ((unsigned)r >= SW_MON_NREJ)
+        r = SW_MON_REJ_ENGINE;
+    m->c.received++;
+    m->feed_mono = m->now = mono;
+    return refuse(m, r, mono, m->have_last ? m->last_us : 0, NULL);
+}
+
 double sw_mon_deadline(const sw_mon_t *m)
 {
     double d = INFINITY;
@@ -508,11 +651,12 @@ double sw_mon_deadline(const sw_mon_t *m)
     for (int r = 0; r < SW_MON_NREJ; r++)
         if (m->rej_pending[r] > 0 && m->rej_last_alarm[r] + m->rej_interval < d)
             d = m->rej_last_alarm[r] + m->rej_interval;
-    return d;
+    return m->fold_next < d ? m->fold_next : d;
 }
 
 void sw_mon_tick(sw_mon_t *m, double mono)
 {
+    m->now = mono;
     if (m->have_last && !m->gap_open && mono - m->last_rx > m->timer_gap) {
         char text[SW_ALARM_TEXT_MAX];
         double waited = mono - m->last_rx;
@@ -523,16 +667,19 @@ void sw_mon_tick(sw_mon_t *m, double mono)
                     m->last_us + (int64_t)llround(waited * 1e6), text);
     }
     for (int r = 0; r < SW_MON_NREJ; r++) reject_alarm(m, (sw_mon_reject)r, mono, m->last_us);
+    fold_tick(m, mono);
 }
 
 void sw_mon_flush(sw_mon_t *m)
 {
     m->feed_mono = INFINITY;
+    m->now = INFINITY;
     sw_gate_flush(m->gate);
     sw_gate_facts_t f;
     sw_gate_facts(m->gate, &f);
     m->c.accepted = f.accepted;
     for (int r = 0; r < SW_MON_NREJ; r++) reject_alarm(m, (sw_mon_reject)r, INFINITY, m->last_us);
+    fold_tick(m, INFINITY);
 }
 
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)

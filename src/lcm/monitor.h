@@ -37,6 +37,13 @@
 #define SW_G0 9.80665                 /* m/s^2, standard gravity (unit "g") */
 #define SW_MON_GAP 0.1                /* s, default sensor gap threshold */
 #define SW_MON_MAX_ACCEL (50 * SW_G0) /* m/s^2, default plausibility limit */
+/* us: a utime is a time since 1970 (or since a sensor's boot) before
+ * 2^52 us, September 2112.  Anything else is refused as "time": so any two
+ * utimes the monitor works with are less than 2^52 us (143 years) apart,
+ * every sum and difference of them is exact in int64 and in double, and
+ * no first sample can set the clock so far off that the genuine ones
+ * after it cannot be told apart from it. */
+#define SW_MON_UTIME_MAX (INT64_C(1) << 52)
 
 /* Why a message on the accel channel was refused. */
 typedef enum {
@@ -49,7 +56,9 @@ typedef enum {
     SW_MON_REJ_OUT_OF_ORDER, /* utime before the last accepted sample (late) */
     SW_MON_REJ_JUMP,         /* utime far ahead, and the next sample did not follow it */
     SW_MON_REJ_ENGINE,       /* refused by the engine (should not happen) */
-    SW_MON_REJ_TIME,         /* utime too large for its resolution (beyond 2^33 s) */
+    SW_MON_REJ_TIME,         /* utime outside 0 .. SW_MON_UTIME_MAX (1970 to 2112) */
+    SW_MON_REJ_OVERLOAD,     /* refused unread: it waited too long in the receive queue
+                                (the caller sheds load with sw_mon_refuse) */
     SW_MON_NREJ
 } sw_mon_reject;
 
@@ -77,6 +86,9 @@ typedef struct {
     double hysteresis;         /* 1, margin alarms; < 0 = SW_ALARM_HYSTERESIS */
     double reject_interval;    /* s, at most one INPUT_REJECTED alarm per reason per
                                   interval (later ones are summed up); 0 = 1 s */
+    double alarm_interval;     /* s, at most one alarm per package and kind per interval:
+                                  the rest go out as one summary with their count when it
+                                  has passed; 0 = 1 s, < 0 = no limit */
     sw_state_fn on_state;      /* optional: every engine output (t relative to the first
                                   sample), published or not */
     sw_event_fn on_event;      /* optional: every engine event */
@@ -99,6 +111,9 @@ typedef struct {
     long states;                /* state_t messages published */
     long states_withheld;       /* states not published because a value was not finite */
     long alarms;                /* alarm_t messages raised (published if there is an lcm) */
+    long alarms_folded;         /* alarms the rate limit held back: each is counted in a
+                                   summary that went out ("N more in 1 s, the last: ...");
+                                   alarms raised = alarms + alarms_folded */
     long publish_errors;        /* lcm_publish failures */
 } sw_mon_counts_t;
 
@@ -120,6 +135,13 @@ void sw_mon_destroy(sw_mon_t *m); /* NULL ok */
 #define SW_MON_HELD 100
 int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, double mono,
                 sw_mon_reject *why);
+
+/* A message the caller refuses without reading it, for reason r (e.g.
+ * SW_MON_REJ_OVERLOAD: it waited in the receive queue for longer than a
+ * monitor that must keep up can afford): counted, and raised as
+ * INPUT_REJECTED, as any refusal.  mono as for sw_mon_feed().  Returns the
+ * negative status of that refusal. */
+int sw_mon_refuse(sw_mon_t *m, sw_mon_reject r, double mono);
 
 /* Timers: detects a sensor gap (no sample for longer than the gap
  * threshold since the last one arrived) and publishes rejection summaries
@@ -152,7 +174,7 @@ int64_t sw_mon_last_utime(
     const sw_mon_t *m); /* utime of the last accepted sample (us), 0 if none */
 
 /* "decode", "trailing", "nonfinite", "implausible", "skew", "duplicate",
- * "out_of_order", "jump", "engine", "time". */
+ * "out_of_order", "jump", "engine", "time", "overload". */
 const char *sw_mon_reject_name(sw_mon_reject r);
 
 /* Axis name "x" | "y" | "z" to 0..2; -1 if none of them. */

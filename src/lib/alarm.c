@@ -1,4 +1,5 @@
-/* alarm.c - alarms from engine events and margins, with hysteresis
+/* alarm.c - alarms from engine events, margins and the reserve, with
+ * hysteresis, and the helpers that make margins and impacts read right
  * (alarm.h).  Pure: no I/O, no allocation, no globals. */
 #include "swaywatch/alarm.h"
 
@@ -19,7 +20,42 @@ int sw_alarm_init(sw_alarm_watch_t *w, size_t pkg, double warn_margin, double cr
     w->critical_margin = critical_margin;
     w->hysteresis = hysteresis < 0.0 ? SW_ALARM_HYSTERESIS : hysteresis;
     w->warn_armed = w->critical_armed = w->fault_armed = 1;
+    w->reserve_warn_armed = w->reserve_critical_armed = 1;
     return SW_OK;
+}
+
+int sw_alarm_set_reserve(sw_alarm_watch_t *w, double warn_g, double critical_g,
+                         double hysteresis_g)
+{
+    if (!w || !isfinite(warn_g) || !isfinite(critical_g) || !isfinite(hysteresis_g))
+        return SW_EINVAL;
+    if (warn_g != 0.0 && !(warn_g > 0.0 && critical_g > 0.0 && critical_g < warn_g))
+        return SW_EINVAL;
+    w->warn_reserve_g = warn_g;
+    w->critical_reserve_g = warn_g != 0.0 ? critical_g : 0.0;
+    w->reserve_hysteresis_g = hysteresis_g < 0.0 ? SW_ALARM_RESERVE_HYSTERESIS_G : hysteresis_g;
+    w->reserve_warn_armed = w->reserve_critical_armed = 1;
+    return SW_OK;
+}
+
+int sw_alarm_set_impact_min(sw_alarm_watch_t *w, double min_speed)
+{
+    if (!w || !isfinite(min_speed) || min_speed < 0.0) return SW_EINVAL;
+    w->impact_min = min_speed;
+    return SW_OK;
+}
+
+int sw_alarm_init_scene(sw_alarm_watch_t *w, size_t pkg, const sw_scene_t *sc,
+                        double hysteresis)
+{
+    sw_derived_t d;
+    if (!w || !sc || sw_scene_validate(sc, &d, NULL, NULL, NULL) != SW_OK) return SW_EINVAL;
+    int rc = sw_alarm_init(w, pkg, sc->warn_margin, sc->critical_margin, hysteresis);
+    if (rc == SW_OK)
+        rc = sw_alarm_set_reserve(w, sc->warn_reserve_g, sc->critical_reserve_g, -1.0);
+    if (rc == SW_OK)
+        rc = sw_alarm_set_impact_min(w, SW_IMPACT_SIGNIFICANCE * sw_impact_tip_speed(&d, sc->g));
+    return rc;
 }
 
 /* Alarms are published as they are: a NaN must never leave the process. */
@@ -58,6 +94,8 @@ int sw_alarm_on_event(sw_alarm_watch_t *w, const sw_event_t *ev, sw_alarm_fn emi
                      ev->info >= 0.0 ? "forward" : "backward");
             break;
         case SW_EV_IMPACT:
+            if (w->impact_min > 0.0 && !(fabs(ev->info) >= w->impact_min))
+                return 0; /* a micro-impact: below the significance */
             kind = SW_ALARM_IMPACT;
             snprintf(text, sizeof text, "impact at %.4g rad/s", finite_or_zero(ev->info));
             break;
@@ -131,6 +169,27 @@ int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *o, sw_alarm_fn em
     return n;
 }
 
+int sw_alarm_on_reserve(sw_alarm_watch_t *w, double t, double theta, double margin,
+                        double reserve_g, sw_alarm_fn emit, void *user)
+{
+    char text[SW_ALARM_TEXT_MAX];
+    int n = 0;
+    if (!w || !(w->warn_reserve_g > 0.0)) return 0;
+    if (crossed(&w->reserve_warn_armed, reserve_g, w->warn_reserve_g, w->reserve_hysteresis_g)) {
+        snprintf(text, sizeof text, "reserve %.3f g < warn %.3f g", reserve_g, w->warn_reserve_g);
+        n += emit_alarm(w, SW_ALARM_RESERVE_WARN, SW_ALARM_LEVEL_WARN, t, theta, margin, text,
+                        emit, user);
+    }
+    if (crossed(&w->reserve_critical_armed, reserve_g, w->critical_reserve_g,
+                w->reserve_hysteresis_g)) {
+        snprintf(text, sizeof text, "reserve %.3f g < critical %.3f g", reserve_g,
+                 w->critical_reserve_g);
+        n += emit_alarm(w, SW_ALARM_RESERVE_CRITICAL, SW_ALARM_LEVEL_CRITICAL, t, theta, margin,
+                        text, emit, user);
+    }
+    return n;
+}
+
 void sw_alarm_input(sw_alarm_t *a, sw_alarm_kind kind, sw_alarm_level level, double t,
                     const char *text)
 {
@@ -156,6 +215,8 @@ const char *sw_alarm_kind_name(sw_alarm_kind k)
         case SW_ALARM_MODEL_FAULT: return "model_fault";
         case SW_ALARM_SENSOR_GAP: return "sensor_gap";
         case SW_ALARM_INPUT_REJECTED: return "input_rejected";
+        case SW_ALARM_RESERVE_WARN: return "reserve_warn";
+        case SW_ALARM_RESERVE_CRITICAL: return "reserve_critical";
     }
     return "unknown";
 }
@@ -168,4 +229,68 @@ const char *sw_alarm_level_name(sw_alarm_level l)
         case SW_ALARM_LEVEL_CRITICAL: return "critical";
     }
     return "unknown";
+}
+
+/* ---- margins and impacts that read right ---------------------------------- */
+
+double sw_impact_tip_speed(const sw_derived_t *d, double g)
+{
+    if (!d || d->model == SW_MODEL_CUSHION || !(g > 0.0)) return 0.0;
+    /* 1/2 I_O w^2 = m g R (1 - cos a) with p^2 = m g R / I_O:
+     * w = p sqrt(2 (1 - cos a)) = 2 p sin(a/2); p at this g */
+    const double p = sqrt(3.0 * g / (4.0 * d->R)); /* rad/s */
+    return 2.0 * p * sin(0.5 * d->alpha);
+}
+
+int sw_impact_significant(const sw_derived_t *d, double g, double theta_dot_before,
+                          double fraction)
+{
+    return fabs(theta_dot_before) >= fraction * sw_impact_tip_speed(d, g);
+}
+
+double sw_margin_presented(double margin, sw_phase phase)
+{
+    if (phase == SW_PHASE_OVERTURNED) return -1.0;
+    if (isnan(margin)) return margin;
+    if (margin >= 0.0) return margin > 1.0 ? 1.0 : margin;
+    /* expm1: exact near 0 (the sign change stays where it is), -1 only in
+     * the limit, so the overturn itself is the first -1 */
+    return expm1(margin);
+}
+
+void sw_settle_init(sw_settle_t *s, double min_speed)
+{
+    memset(s, 0, sizeof *s);
+    s->min_speed = min_speed;
+}
+
+static int settle_close(sw_settle_t *s, sw_settle_span_t *closed)
+{
+    if (!s->open) return 0;
+    if (closed) *closed = s->span;
+    s->open = 0;
+    return SW_SETTLE_CLOSED;
+}
+
+int sw_settle_feed(sw_settle_t *s, const sw_event_t *ev, sw_settle_span_t *closed)
+{
+    if (ev->kind == SW_EV_IMPACT && fabs(ev->info) < s->min_speed) {
+        const double v = fabs(ev->info); /* rad/s */
+        if (!s->open) {
+            s->open = 1;
+            s->span.t_start = ev->t;
+            s->span.impacts = 0;
+            s->span.max_speed = 0.0;
+        }
+        s->span.t_end = ev->t;
+        s->span.impacts++;
+        if (v > s->span.max_speed) s->span.max_speed = v;
+        return 0;
+    }
+    return settle_close(s, closed) | SW_SETTLE_REPORT;
+}
+
+int sw_settle_finish(sw_settle_t *s, sw_settle_span_t *closed)
+{
+    return settle_close(s, closed) ? 1 : 0;
 }

@@ -232,6 +232,23 @@ static int split_line(sw_csv_t *c, char *s, size_t n, int header_here)
     return ok;
 }
 
+/* A first line whose time field is not a number may still be a data row
+ * with a corrupt time ("0.00O,-9"): its time field holds digits and
+ * another field is a number.  A header's names have no field that is a
+ * number, or no digit in the time field's ("t,1,2").  Taking such a row
+ * for the header would make it vanish from the counts. */
+static int corrupt_row(sw_csv_t *c, const char *t, size_t tn)
+{
+    int digits = 0;
+    for (size_t i = 0; i < tn; i++) digits |= t[i] >= '0' && t[i] <= '9';
+    if (!digits) return 0;
+    for (long k = 0; k < c->nhdr; k++) {
+        double v;
+        if (parse_number(c, c->hdr[k], strlen(c->hdr[k]), &v) == NUM_OK) return 1;
+    }
+    return 0;
+}
+
 /* The first data-like line: a header (taken; returns 1), or the first data
  * row (0; also when the parse ended, with c->status set). */
 static int first_line(sw_csv_t *c, int ok)
@@ -243,7 +260,8 @@ static int first_line(sw_csv_t *c, int ok)
         double v;
         const int res = parse_number(c, c->fs[R_PROBE], c->fl[R_PROBE], &v);
         is_header = (res == NUM_EMPTY || res == NUM_BAD) &&
-                    !sw_csv_datetime(c->fs[R_PROBE], c->fl[R_PROBE], &v);
+                    !sw_csv_datetime(c->fs[R_PROBE], c->fl[R_PROBE], &v) &&
+                    !corrupt_row(c, c->fs[R_PROBE], c->fl[R_PROBE]);
     }
     if (is_header) {
         take_header(c);
@@ -377,7 +395,7 @@ static void data_row(sw_csv_t *c, int ok)
         return;
     }
     if (c->flip) a = -a;
-    if (c->have_last && t <= c->last_t) {
+    if (!c->any_order && c->have_last && t <= c->last_t) {
         if (t == c->last_t)
             snprintf(c->reason, sizeof c->reason,
                      "duplicate time %.15g s (same as the previous row)", t);
@@ -537,7 +555,7 @@ static int set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen
 sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_reject_fn on_reject,
                         void *user, int *err, char *msg, size_t msglen)
 {
-    static const sw_csv_opts_t defaults = {0, NULL, NULL, NULL, 0.0, 0.0, 0, -1, 0, 0};
+    static const sw_csv_opts_t defaults = {.header = -1};
     const sw_csv_opts_t *o = opts ? opts : &defaults;
     char t[200];
 
@@ -590,6 +608,7 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
     c->tscale = ts;
     c->ascale = as;
     c->flip = o->flip != 0;
+    c->any_order = o->any_order != 0;
     /* With a named time column its position is unknown until the header is
      * read, so detection looks at the first column. */
     c->probe = c->col[R_TIME] >= 0 ? c->col[R_TIME] : 0;

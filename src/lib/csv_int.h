@@ -79,6 +79,7 @@ struct sw_csv {
     int header_open; /* the next data-like line may still be the header */
     int have_last;
     double last_t;
+    int any_order; /* the options' any_order: no time-order check here */
     sw_csv_counts_t n;
     int status; /* sticky error ending the parse, or SW_OK */
     char msg[400]; /* "line N: " + a reason */

@@ -11,7 +11,7 @@
 #include "swaywatch/gate.h"
 #include "swaywatch/status.h"
 
-#define CHAINS 3
+#define CHAINS SW_GATE_CHAINS
 #define DT_WINDOW 5          /* intervals in the typical-interval median */
 #define HIST_PER_DECADE 96   /* interval histogram: 2.4 % wide bins */
 #define HIST_DECADES 12      /* 1e-7 s .. 1e5 s */

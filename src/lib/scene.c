@@ -41,7 +41,7 @@ static const char *const section_keys[SEC_COUNT] = {
     "name, height, width, mass, g",
     "mass, stiffness or omega, damping or zeta",
     "stiffness or omega, damping or zeta, cubic",
-    "warn_margin, critical_margin",
+    "warn_margin, critical_margin, design_pulse, warn_reserve_g, critical_reserve_g",
 };
 
 enum key_id {
@@ -62,6 +62,9 @@ enum key_id {
     K_CUSHION_CUBIC,
     K_WARN,
     K_CRITICAL,
+    K_DESIGN_PULSE,
+    K_WARN_RESERVE,
+    K_CRITICAL_RESERVE,
     K_COUNT
 };
 
@@ -90,6 +93,9 @@ static const key_info keys[K_COUNT] = {
     [K_CUSHION_CUBIC] = {SEC_CUSHION, "cubic", -1, "N/m^3"},
     [K_WARN] = {SEC_ALARM, "warn_margin", -1, ""},
     [K_CRITICAL] = {SEC_ALARM, "critical_margin", -1, ""},
+    [K_DESIGN_PULSE] = {SEC_ALARM, "design_pulse", -1, "s"},
+    [K_WARN_RESERVE] = {SEC_ALARM, "warn_reserve_g", -1, "g"},
+    [K_CRITICAL_RESERVE] = {SEC_ALARM, "critical_reserve_g", -1, "g"},
 };
 
 /* Limits beyond which a value is a typo rather than a package. */
@@ -100,6 +106,9 @@ static const key_info keys[K_COUNT] = {
 #define G_MIN 1.0          /* m/s^2 */
 #define G_MAX 100.0        /* m/s^2 */
 #define OMEGA_MAX 1e6      /* rad/s */
+#define PULSE_MIN 1e-3     /* s: a shorter design pulse is a typo for ms */
+#define PULSE_MAX 60.0     /* s: longer is a steady acceleration, not a pulse */
+#define RESERVE_G_MAX 10.0 /* g: no truck brakes or speeds up harder */
 
 /* Fastest rate (1/s) of a spring-damper mode of frequency w (rad/s) and
  * damping ratio z: w while underdamped; an overdamped mode also has a fast
@@ -146,6 +155,8 @@ static double *key_value(sw_scene_t *sc, int k)
         case K_CUSHION_CUBIC: return &sc->cushion_cubic;
         case K_WARN: return &sc->warn_margin;
         case K_CRITICAL: return &sc->critical_margin;
+        case K_WARN_RESERVE: return &sc->warn_reserve_g;
+        case K_CRITICAL_RESERVE: return &sc->critical_reserve_g;
         default: return NULL;
     }
 }
@@ -252,6 +263,51 @@ static int set_name(sw_scene_t *sc, const char *value, const char *origin, int l
     return SW_OK;
 }
 
+/* alarm.design_pulse: 1 to SW_DESIGN_PULSES_MAX finite numbers separated
+ * by commas; the list replaces the one before (ranges are checked by
+ * validation, as for every number). */
+static int set_pulses(sw_scene_t *sc, const char *value, const char *origin, int line,
+                      sw_diag_fn diag, void *user)
+{
+    double v[SW_DESIGN_PULSES_MAX];
+    int n = 0;
+    const char *p = value;
+    for (;;) {
+        const size_t len = strcspn(p, ",");
+        char item[64];
+        if (n == SW_DESIGN_PULSES_MAX) {
+            report(diag, user, origin, line,
+                   "alarm.design_pulse = \"%.40s\": more than %d durations, expected at most %d",
+                   value, SW_DESIGN_PULSES_MAX, SW_DESIGN_PULSES_MAX);
+            return SW_EINVAL;
+        }
+        if (len >= sizeof item) {
+            report(diag, user, origin, line,
+                   "alarm.design_pulse = \"%.40s\": item %d is too long, expected a duration "
+                   "in s",
+                   value, n + 1);
+            return SW_EINVAL;
+        }
+        memcpy(item, p, len);
+        item[len] = '\0';
+        const char *why = parse_number(item, &v[n]);
+        if (why) {
+            report(diag, user, origin, line,
+                   "alarm.design_pulse = \"%.40s\": item %d: %s, expected durations in s "
+                   "separated by commas",
+                   value, n + 1, why);
+            return SW_EINVAL;
+        }
+        n++;
+        if (p[len] != ',') break;
+        p += len + 1;
+    }
+    memcpy(sc->design_pulse, v, sizeof(double) * (size_t)n);
+    for (int i = n; i < SW_DESIGN_PULSES_MAX; i++) sc->design_pulse[i] = 0.0;
+    sc->n_design_pulse = n;
+    return SW_OK;
+}
+
 void sw_scene_init(sw_scene_t *sc)
 {
     memset(sc, 0, sizeof *sc);
@@ -266,6 +322,10 @@ void sw_scene_init(sw_scene_t *sc)
     sc->cushion_k_given = sc->cushion_c_given = SW_GIVEN_NONE;
     sc->warn_margin = 0.5;
     sc->critical_margin = 0.2;
+    sc->design_pulse[0] = SW_DESIGN_PULSE_DEFAULT;
+    sc->n_design_pulse = 1;
+    sc->warn_reserve_g = SW_WARN_RESERVE_G_DEFAULT;
+    sc->critical_reserve_g = SW_CRITICAL_RESERVE_G_DEFAULT;
 }
 
 int sw_scene_set(sw_scene_t *sc, const char *section, const char *key, const char *value,
@@ -295,6 +355,8 @@ int sw_scene_set(sw_scene_t *sc, const char *section, const char *key, const cha
     int rc;
     if (k == K_NAME) {
         rc = set_name(sc, value, origin, line, diag, user);
+    } else if (k == K_DESIGN_PULSE) {
+        rc = set_pulses(sc, value, origin, line, diag, user);
     } else {
         double v;
         const char *why = parse_number(value, &v);
@@ -830,6 +892,39 @@ int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
                 sc->critical_margin, sc->warn_margin);
     }
 
+    /* [alarm], the reserve (reserve.h): pulse durations and levels in g;
+     * the critical level must be the lower reserve. */
+    if (sc->n_design_pulse < 1 || sc->n_design_pulse > SW_DESIGN_PULSES_MAX) {
+        VREPORT(&v, la, "alarm.design_pulse has %d durations: expected 1 to %d",
+                sc->n_design_pulse, SW_DESIGN_PULSES_MAX);
+    } else {
+        for (int i = 0; i < sc->n_design_pulse; i++) {
+            const double T = sc->design_pulse[i]; /* s */
+            if (!isfinite(T) || T < PULSE_MIN || T > PULSE_MAX)
+                VREPORT(&v, la,
+                        "alarm.design_pulse item %d = %g s: expected a half-sine duration "
+                        "between %g and %g s",
+                        i + 1, T, PULSE_MIN, PULSE_MAX);
+        }
+    }
+    int wr_ok = isfinite(sc->warn_reserve_g) && sc->warn_reserve_g > 0 &&
+                sc->warn_reserve_g <= RESERVE_G_MAX;
+    if (!wr_ok)
+        VREPORT(&v, la, "alarm.warn_reserve_g = %g: expected a value in (0, %g] g",
+                sc->warn_reserve_g, RESERVE_G_MAX);
+    if (!isfinite(sc->critical_reserve_g) || sc->critical_reserve_g <= 0 ||
+        sc->critical_reserve_g > RESERVE_G_MAX) {
+        VREPORT(&v, la,
+                "alarm.critical_reserve_g = %g: expected a value in (0, %g] g below "
+                "alarm.warn_reserve_g",
+                sc->critical_reserve_g, RESERVE_G_MAX);
+    } else if (wr_ok && sc->critical_reserve_g >= sc->warn_reserve_g) {
+        VREPORT(&v, la,
+                "alarm.critical_reserve_g = %g is not below alarm.warn_reserve_g = %g: "
+                "expected 0 < critical_reserve_g < warn_reserve_g",
+                sc->critical_reserve_g, sc->warn_reserve_g);
+    }
+
     if (v.errors)
         return SW_EINVAL;
     if (!d)
@@ -881,6 +976,16 @@ static int same_number(double a, double b)
     return a == b || (isnan(a) && isnan(b));
 }
 
+/* The design pulse lists: the same durations in the same order (entries
+ * past the count do not count). */
+static int same_pulses(const sw_scene_t *a, const sw_scene_t *b)
+{
+    if (a->n_design_pulse != b->n_design_pulse) return 0;
+    for (int i = 0; i < a->n_design_pulse && i < SW_DESIGN_PULSES_MAX; i++)
+        if (!same_number(a->design_pulse[i], b->design_pulse[i])) return 0;
+    return 1;
+}
+
 /* Every field but the line numbers; a new field of sw_scene_t must be
  * added here. */
 int sw_scene_equal(const sw_scene_t *a, const sw_scene_t *b)
@@ -901,7 +1006,9 @@ int sw_scene_equal(const sw_scene_t *a, const sw_scene_t *b)
            same_number(a->cushion_cubic, b->cushion_cubic) &&
            a->cushion_k_given == b->cushion_k_given && a->cushion_c_given == b->cushion_c_given &&
            same_number(a->warn_margin, b->warn_margin) &&
-           same_number(a->critical_margin, b->critical_margin);
+           same_number(a->critical_margin, b->critical_margin) && same_pulses(a, b) &&
+           same_number(a->warn_reserve_g, b->warn_reserve_g) &&
+           same_number(a->critical_reserve_g, b->critical_reserve_g);
 }
 
 const char *sw_model_name(sw_model_kind k)

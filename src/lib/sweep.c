@@ -184,18 +184,29 @@ int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_resu
     return r->faults ? SW_EFAULT : SW_OK;
 }
 
-static int run_pulse_on(sw_runner_t *R, const sw_pulse_t *pulse, const sw_run_opts_t *o,
-                        sw_run_result_t *r)
+/* The pulse from state s (NULL: at rest), then free motion. */
+static int run_pulse_from(sw_runner_t *R, const sw_state_t *s, const sw_pulse_t *pulse,
+                          const sw_run_opts_t *o, sw_run_result_t *r)
 {
     sw_pulse_t pl = *pulse;
     const double p = sw_engine_derived(R->e, 0)->p;
     const double T = sw_pulse_duration(&pl);
     sw_runner_reset(R);
+    if (s) {
+        const int rc = sw_engine_set_state(R->e, 0, s);
+        if (rc < 0) return rc;
+    }
     /* Up to the end of the pulse first, so that a step ends on its kink. */
     const int rc = sw_engine_advance_fn(R->e, T, sw_pulse_eval, &pl);
     if (rc < 0) return rc;
     return sw_run_free_motion(R, T + sw_run_free_time(o, p),
                               2.0 * M_PI / p / SW_RUN_CHECKS_PER_PERIOD, r);
+}
+
+static int run_pulse_on(sw_runner_t *R, const sw_pulse_t *pulse, const sw_run_opts_t *o,
+                        sw_run_result_t *r)
+{
+    return run_pulse_from(R, NULL, pulse, o, r);
 }
 
 static int check_pulse(const sw_pulse_t *pulse, char *msg, size_t msglen)
@@ -224,8 +235,33 @@ int sw_pulse_run(const sw_scene_t *sc, const sw_pulse_t *pulse, const sw_run_opt
     return err;
 }
 
+int sw_pulse_run_from(const sw_scene_t *sc, const sw_state_t *s, const sw_pulse_t *pulse,
+                      const sw_run_opts_t *o, sw_run_result_t *r, char *msg, size_t msglen)
+{
+    int err = SW_OK;
+    sw_set_msg(msg, msglen, "%s", "");
+    if (!sc || !s || !r) return SW_EINVAL;
+    memset(r, 0, sizeof *r);
+    if ((err = check_pulse(pulse, msg, msglen)) != SW_OK) return err;
+    if (s->phase == SW_PHASE_OVERTURNED) { /* frozen: the engine would not say so */
+        r->overturned = 1;
+        r->end = SW_END_OVERTURN;
+        r->overturn_time = r->tip_time = r->t_end = 0.0;
+        r->uplift_time = NAN;
+        r->overturn_side = s->theta > 0.0 ? 1 : -1;
+        return SW_OK;
+    }
+    sw_runner_t R;
+    if (sw_runner_make(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK) return err;
+    err = run_pulse_from(&R, s, pulse, o, r);
+    if (err == SW_EINVAL) sw_set_msg(msg, msglen, "the state was refused");
+    if (err == SW_EFAULT) sw_set_msg(msg, msglen, "the model faulted during the run");
+    sw_engine_destroy(R.e);
+    return err;
+}
+
 int sw_run_log_on(sw_runner_t *R, const sw_log_t *log, double scale, const sw_run_opts_t *o,
-                      sw_run_result_t *r)
+                  sw_run_result_t *r)
 {
     sw_engine_t *e = R->e;
     const double p = sw_engine_derived(e, 0)->p;

@@ -162,6 +162,26 @@ run "$SW" replay "$LOGS/braking-pothole.csv" --scene "$SCENE" --accel-col no_suc
 expect_rc 2 "unknown column name"
 expect_prefixed_err "unknown column name"
 
+# One row whose time is off (0.100 written 900.100) is that row's fault:
+# the rows after it are kept, the verdict is the whole log's (the crate
+# overturns, as on the log as recorded), the row is named.
+run "$SW" replay "$LOGS/hard-stop-overturn.csv" --scene "$SCENE" --json
+expect_rc 0 "hard stop as recorded"
+json_check "$TMP/out" 'j["packages"][0]["overturned"]'
+awk -F, '$1 == "0.100" { print "900.100," $2; next } { print }' \
+    "$LOGS/hard-stop-overturn.csv" >"$TMP/one-bad-time.csv"
+grep -q '^900.100,' "$TMP/one-bad-time.csv" || fail "no row at 0.100 s to spoil"
+run "$SW" replay "$TMP/one-bad-time.csv" --scene "$SCENE" --fail-on-overturn
+expect_rc 1 "one row off in time: the overturn is still seen"
+expect_err "one-bad-time.csv:102: time 900.1 s leaps" "the row off in time is named"
+grep -q "1 rejected" "$TMP/out" || { show; fail "one row off in time: not exactly one row rejected"; }
+
+# A corrupt time in the first line is a rejected row, not a header.
+printf '0.00O,-9\n0.001,-9\n0.002,-9\n' >"$TMP/corrupt-first.csv"
+run "$SW" replay "$TMP/corrupt-first.csv" --scene "$SCENE" --force --json
+expect_err "corrupt-first.csv:1: time (column 1) is not a number" "corrupt first row"
+json_check "$TMP/out" 'j["samples_read"] == 3 and j["samples_rejected"] == 1'
+
 # An empty log has no samples.
 : >"$TMP/empty.csv"
 run "$SW" replay "$TMP/empty.csv" --scene "$SCENE"

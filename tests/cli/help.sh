@@ -25,7 +25,8 @@ for opt in --time-col --accel-col --vert-col --delimiter --no-header --accel-uni
     grep -q -- "$opt" "$TMP/out" || fail "replay --help: $opt not listed"
 done
 run "$SW" simulate --help
-for opt in --pulse --amplitude --amplitude-g --omega --duration --sample-interval rad/s; do
+for opt in --pulse --amplitude --amplitude-g --pulse-duration --omega --duration --sample-interval \
+    rad/s 10g 11ms; do
     grep -q -- "$opt" "$TMP/out" || fail "simulate --help: $opt not listed"
 done
 # "swaywatch help CMD" is "swaywatch CMD --help" (as git does), on stdout
@@ -64,6 +65,36 @@ if grep -q '^  monitor ' "$TMP/main"; then
         expect_rc 2 "replay $opt on a CSV log"
         expect_err "'$opt' is for lcm-logger files" "replay $opt on a CSV log"
     done
+fi
+
+# --version, as GNU tools print it: the version on the first line (scripts
+# and help2man read it there), then the copyright and the licence; the same
+# for every command.  The licence is the one in LICENSE.
+grep -q 'GNU GENERAL PUBLIC LICENSE' "$SRC/LICENSE" && grep -q 'Version 3' "$SRC/LICENSE" ||
+    fail "LICENSE is not the GPL version 3"
+for args in "--version" "-V" "replay --version" "simulate --scene x --version"; do
+    # shellcheck disable=SC2086
+    run "$SW" $args
+    expect_rc 0 "swaywatch $args"
+    [ ! -s "$TMP/err" ] || fail "swaywatch $args wrote to stderr"
+    [ "$(wc -l <"$TMP/out")" -eq 5 ] || { show; fail "swaywatch $args: not 5 lines"; }
+    case $args in
+    -*) head -1 "$TMP/out" | grep -Eqx 'swaywatch [0-9]+\.[0-9]+\.[0-9]+' ||
+        fail "swaywatch $args: first line $(head -1 "$TMP/out")" ;;
+    *) head -1 "$TMP/out" | grep -Eqx "swaywatch ${args%% *} [0-9]+\.[0-9]+\.[0-9]+" ||
+        fail "swaywatch $args: first line $(head -1 "$TMP/out")" ;;
+    esac
+    sed -n 2p "$TMP/out" | grep -Eqx 'Copyright \(C\) 20[0-9][0-9] .+' || fail "$args: copyright line"
+    for want in 'License GPLv3+: GNU GPL version 3 or later <https://gnu.org/licenses/gpl.html>' \
+        'This is free software: you are free to change and redistribute it.' \
+        'There is NO WARRANTY, to the extent permitted by law.'; do
+        grep -qxF "$want" "$TMP/out" || fail "swaywatch $args lacks '$want'"
+    done
+done
+if [ -w /dev/full ]; then
+    run sh -c '"$1" --version >/dev/full' sh "$SW"
+    expect_rc 3 "--version into a full disk"
+    expect_prefixed_err "--version into a full disk"
 fi
 
 run "$SW" help no-such-command

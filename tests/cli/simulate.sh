@@ -24,6 +24,75 @@ a, b = (json.load(open(p))["packages"][0] for p in sys.argv[1:3])
 assert math.isclose(a["overturn_time"], b["overturn_time"], rel_tol=1e-4), (a, b)
 PY
 
+# A pulse as shock standards state it: amplitude in g or m/s^2, duration in
+# ms, s or us.  pulse.h: a half-sine of omega lasts pi/omega, a full-sine
+# 2 pi/omega.  The same pulse given as omega (computed here) gives the same
+# run, and the uplift comes where the closed form puts it: A sin(omega t)
+# first reaches g tan(alpha) at t = asin(g tan(alpha) / |A|) / omega
+# (crate-A: g = 9.81, tan(alpha) = 0.364 / 1.0).  The JSON has 9 digits.
+W=$(python3 -c 'import math; print(repr(math.pi / 0.3))')
+for pulse in "-1g 300ms" "-9.80665m/s2 0.3s" "-9.80665 300000us" "-1G 0.3 s"; do
+    set -- $pulse
+    run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude "$1" --pulse-duration "$2${3:+ $3}" --json
+    expect_rc 0 "--amplitude $1 --pulse-duration $2"
+    cp "$TMP/out" "$TMP/u.json"
+    json_check "$TMP/u.json" 'abs(j["pulse"]["amplitude"] + 9.80665) < 1e-12 and abs(j["pulse"]["duration"] - 0.3) < 1e-12'
+    json_check "$TMP/u.json" '__import__("math").isclose(j["pulse"]["omega"], __import__("math").pi / 0.3, rel_tol=1e-8)'
+    json_check "$TMP/u.json" 'abs(j["packages"][0]["uplift_time"] - __import__("math").asin(9.81 * 0.364 / 9.80665) / (__import__("math").pi / 0.3)) < 1e-6'
+done
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -9.80665 --omega "$W" --json
+expect_rc 0 "the same pulse as omega"
+python3 - "$TMP/u.json" "$TMP/out" <<'PY' || fail "--pulse-duration differs from --omega"
+import json, math, sys
+a, b = (json.load(open(p))["packages"][0] for p in sys.argv[1:3])
+for k in ("uplift_time", "max_abs_theta", "min_margin", "impacts"):
+    assert math.isclose(a[k], b[k], rel_tol=1e-9, abs_tol=1e-12), (k, a[k], b[k])
+PY
+# A braking half-sine of 10 g, 11 ms (a classic shock-test pulse) and its
+# omega pi/0.011 s: the same outcome.
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -10g --pulse-duration 11ms --json
+expect_rc 0 "10 g, 11 ms"
+cp "$TMP/out" "$TMP/g11.json"
+json_check "$TMP/g11.json" '__import__("math").isclose(j["pulse"]["omega"], __import__("math").pi / 0.011, rel_tol=1e-8) and abs(j["pulse"]["amplitude"] + 98.0665) < 1e-9'
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -98.0665 \
+    --omega "$(python3 -c 'import math; print(repr(math.pi / 0.011))')" --json
+python3 - "$TMP/g11.json" "$TMP/out" <<'PY' || fail "10 g, 11 ms differs from its omega"
+import json, math, sys
+a, b = (json.load(open(p))["packages"][0] for p in sys.argv[1:3])
+assert a["overturned"] == b["overturned"], (a, b)
+for k in ("uplift_time", "max_abs_theta", "min_margin"):
+    assert math.isclose(a[k], b[k], rel_tol=1e-9, abs_tol=1e-12), (k, a[k], b[k])
+PY
+# A full sine lasts a whole period: 0.5 s is omega = 2 pi / 0.5.
+run "$SW" simulate --scene "$SCENE" --pulse full-sine --amplitude 0.5g --pulse-duration 500ms --json
+expect_rc 0 "full-sine duration"
+json_check "$TMP/out" '__import__("math").isclose(j["pulse"]["omega"], 4 * __import__("math").pi, rel_tol=1e-8) and abs(j["pulse"]["duration"] - 0.5) < 1e-12'
+# Units must be plain: unknown or missing ones are refused with the list.
+for bad in "--amplitude 10furlongs --pulse-duration 11ms:unknown unit 'furlongs'" \
+    "--amplitude 10ms --pulse-duration 11ms:unknown unit 'ms'" \
+    "--amplitude 10g --pulse-duration 11min:unknown unit 'min'" \
+    "--amplitude 10g --pulse-duration 11g:unknown unit 'g'" \
+    "--amplitude 10g --pulse-duration 11:'11' has no unit" \
+    "--amplitude 10g --pulse-duration -11ms:expected a positive time" \
+    "--amplitude 0g --pulse-duration 11ms:expected a non-zero acceleration" \
+    "--amplitude 10g --pulse-duration 11ms --omega 3:give one" \
+    "--amplitude 10g --pulse-duration 10us:out of range: a half-sine of omega 0.01 to 100000 rad/s" \
+    "--amplitude 10g --pulse-duration 400s:lasts 3.14159e-05 to 314.159 s, got 400 s" \
+    "--amplitude 10g:--omega W (rad/s) or --pulse-duration D"; do
+    args=${bad%%:*}
+    # shellcheck disable=SC2086
+    run "$SW" simulate --scene "$SCENE" --pulse half-sine $args
+    expect_rc 2 "$args"
+    expect_prefixed_err "$args"
+    expect_err "${bad#*:}" "$args"
+done
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude 10gs --pulse-duration 11ms -q
+expect_rc 0 "Gs is g, as in CSV headers"
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude 10furlongs --pulse-duration 11ms
+expect_err "expected g or m/s2" "the units accepted"
+run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude 10g --pulse-duration 11h
+expect_err "expected ms, s or us" "the units accepted"
+
 # A medium pulse: it rocks, comes back, and the outputs are complete.
 run "$SW" simulate --scene "$SCENE" --scene "$FRAME" --pulse half-sine --amplitude -6 --omega 6.2832 \
     --out "$TMP/state.csv" --events "$TMP/events.csv" --sample-interval 0.01 --duration 5 --json

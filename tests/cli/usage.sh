@@ -92,6 +92,16 @@ cmp -s "$LOG" "$TMP/log.csv" || fail "--out naming the log changed the log"
 run "$SW" replay "$TMP/log.csv" --scene "$SCENE" --out "$TMP/x.csv" --events "$TMP/x.csv"
 expect_rc 2 "--out and --events the same file"
 
+# A scene must be a regular file: a FIFO is refused at once, without
+# waiting for a writer (the run would hang otherwise: timeout 10).
+mkfifo "$TMP/fifo.ini"
+run timeout 10 "$SW" replay "$LOG" --scene "$TMP/fifo.ini"
+expect_rc 2 "a FIFO as scene"
+expect_err "$TMP/fifo.ini: a FIFO: a scene must be a regular file" "a FIFO as scene"
+run "$SW" replay "$LOG" --scene "$TMP"
+expect_rc 2 "a directory as scene"
+expect_err "$TMP: a directory: a scene must be a regular file" "a directory as scene"
+
 # Bad scenes: FILE:LINE: message.
 cat >"$TMP/bad.ini" <<'INI'
 [package]

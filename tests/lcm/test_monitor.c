@@ -540,6 +540,128 @@ static void test_model_fault_never_nan(void **st)
     rig_free(r);
 }
 
+/* How many raised alarms one published alarm stands for: "N more in ..."
+ * is N, any other is 1. */
+static long alarm_weight(const swaywatch_alarm_t *a)
+{
+    long more = 0;
+    int end = 0;
+    return sscanf((const char *)a->text, "%ld more in %n", &more, &end) == 1 && end > 0 ? more : 1;
+}
+
+/* Vertical input below -1 g for 1.75 s on two packages: each sample is a
+ * MODEL_FAULT (an unlimited monitor publishes one per package and sample).
+ * Rate-limited, each package gives at most its burst and one summary per
+ * second, every one of the raised alarms is counted in what went out, the
+ * first goes out at the first faulty sample, and the summary of the last
+ * window goes out on time from the timer. */
+static void test_alarm_storm_folded(void **st)
+{
+    (void)st;
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = 2;
+    mo.hysteresis = -1;
+    mo.alarm_interval = -1; /* no limit: the raw stream */
+    rig_t *raw = rig_new(2, &mo);
+    mo.alarm_interval = 0; /* the default, 1 s */
+    rig_t *r = rig_new(2, &mo);
+    const long k0 = 250, k1 = 2000;
+    for (long k = 0; k < k1; k++) {
+        const double az = k >= k0 ? -15.0 : 0.0;
+        send(raw, k, UTIME0 + k * 1000, pulse_a(k), 0.0, az);
+        send(r, k, UTIME0 + k * 1000, pulse_a(k), 0.0, az);
+    }
+    const int fault = SWAYWATCH_ALARM_T_KIND_MODEL_FAULT;
+    const int nraw = count_alarms(&raw->bus, fault, -1);
+    assert_true(nraw >= 2 * (k1 - k0) / 2); /* a storm: most samples fault */
+    /* a window is still open: its summary goes out from the timer when
+     * the window ends, at most 1 s after the last sample */
+    double due;
+    int ticks = 0;
+    while ((due = sw_mon_deadline(r->mon)) < 2.0 + 1.0 + 1e-9) {
+        assert_true(due > 0.25 && ticks++ < 10);
+        sw_mon_tick(r->mon, due);
+        drain(r);
+    }
+    assert_true(isinf(due));
+    for (int pkg = 0; pkg < 2; pkg++) {
+        int sent = 0;
+        long stood_for = 0, first = -1;
+        for (int i = 0; i < r->bus.nal; i++) {
+            const swaywatch_alarm_t *a = &r->bus.al[i];
+            if (a->kind != fault || strcmp((const char *)a->name, r->scenes[pkg].name) != 0)
+                continue;
+            sent++;
+            stood_for += alarm_weight(a);
+            if (first < 0)
+                first = (long)((a->utime - UTIME0) / 1000);
+            assert_int_equal(a->level, SWAYWATCH_ALARM_T_LEVEL_CRITICAL);
+        }
+        int raw_pkg = 0;
+        long raw_first = -1;
+        for (int i = 0; i < raw->bus.nal; i++)
+            if (raw->bus.al[i].kind == fault &&
+                strcmp((const char *)raw->bus.al[i].name, r->scenes[pkg].name) == 0) {
+                raw_pkg++;
+                if (raw_first < 0)
+                    raw_first = (long)((raw->bus.al[i].utime - UTIME0) / 1000);
+            }
+        /* 1.75 s of storm: two windows, each its burst of 3 and a summary */
+        assert_true(sent <= 2 * (3 + 1));
+        assert_int_equal(stood_for, raw_pkg);
+        assert_int_equal(first, raw_first);
+    }
+    sw_mon_counts_t c, craw;
+    sw_mon_counts(r->mon, &c);
+    sw_mon_counts(raw->mon, &craw);
+    /* raised = published + folded; r also has the timer's gap alarm after
+     * the stream, which raw (never ticked) has not */
+    assert_int_equal(c.alarms + c.alarms_folded,
+                     craw.alarms + count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, -1));
+    assert_int_equal(craw.alarms_folded, 0);
+    check_all_finite(&r->bus);
+    rig_free(raw);
+    rig_free(r);
+}
+
+/* A higher level is never held back: a warn storm does not delay the
+ * critical alarm of the same kind. */
+static void test_alarm_escalation_passes(void **st)
+{
+    (void)st;
+    rig_t *r = rig_new(1, NULL);
+    /* a gap storm on the input slot: 0.3 s gaps, each a warn (timer) and
+     * its end; a verdict-incomplete end is critical */
+    long k = 0;
+    for (int g = 0; g < 6; g++) {
+        for (int i = 0; i < 5; i++, k++) send(r, k, UTIME0 + k * 1000, 0.0, 0.0, 0.0);
+        k += 300; /* 0.3 s without samples */
+        sw_mon_tick(r->mon, r->mono + 0.2);
+        drain(r);
+    }
+    const int gap = SWAYWATCH_ALARM_T_KIND_SENSOR_GAP;
+    /* 12 alarms (6 gaps, each its start and end) in 1.8 s: two windows,
+     * each at most its burst and a summary */
+    assert_true(count_alarms(&r->bus, gap, -1) <= 2 * (3 + 1));
+    /* now a gap during rocking: its end is CRITICAL (incomplete), sent at once */
+    for (long j = 0; j < 400; j++, k++)
+        send(r, k, UTIME0 + k * 1000, pulse_a(j + 150), 0.0, 0.0);
+    k += 300;
+    send(r, k, UTIME0 + k * 1000, 0.0, 0.0, 0.0);
+    assert_true(count_alarms(&r->bus, gap, SWAYWATCH_ALARM_T_LEVEL_CRITICAL) >= 1);
+    sw_mon_flush(r->mon);
+    drain(r);
+    long stood_for = 0;
+    for (int i = 0; i < r->bus.nal; i++)
+        if (r->bus.al[i].kind == gap)
+            stood_for += alarm_weight(&r->bus.al[i]);
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.alarms_folded, stood_for - count_alarms(&r->bus, gap, -1));
+    rig_free(r);
+}
+
 /* Options: axis, flip and unit are applied before the model sees a sample. */
 static void test_axis_flip_unit(void **st)
 {
@@ -727,6 +849,79 @@ static void test_played_twice(void **st)
     rig_free(r);
 }
 
+/* With a state rate, the states' grid follows the sensor's clock: after a
+ * sensor restart (time back by the whole pass) states resume at once at
+ * the rate, not when the new clock catches up with the old grid; after a
+ * clock step forward the grid restarts without a burst. */
+static void test_state_rate_follows_clock(void **st)
+{
+    (void)st;
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.hysteresis = -1;
+    mo.state_rate = 100.0; /* every 10 samples */
+    rig_t *r = rig_new(1, &mo);
+    const int64_t offset[3] = {0, 0, 3600LL * 1000000}; /* pass 2: back; pass 3: an hour on */
+    int at_pass_start[3] = {0};
+    for (int pass = 0; pass < 3; pass++) {
+        at_pass_start[pass] = r->bus.nst;
+        for (long k = 0; k < NSAMP; k++) {
+            swaywatch_accel_t s = {.utime = UTIME0 + offset[pass] + k * 1000,
+                                   .seq = pass * NSAMP + k,
+                                   .ax = pulse_a(k)};
+            unsigned char buf[128];
+            const int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+            r->mono = (double)(pass * NSAMP + k) / RATE;
+            send_raw(r, buf, len);
+            if (k == 30) /* confirmed after 3 samples, then at most 10 to the next state */
+                assert_true(r->bus.nst - at_pass_start[pass] >= 2);
+        }
+    }
+    /* about NSAMP / 10 states per pass, neither lost nor a burst */
+    for (int pass = 0; pass < 3; pass++) {
+        const int n = (pass < 2 ? at_pass_start[pass + 1] : r->bus.nst) - at_pass_start[pass];
+        assert_true(n >= NSAMP / 10 - 2 && n <= NSAMP / 10 + 2);
+    }
+    for (int i = 1; i < r->bus.nst; i++) /* never two states of the same sample */
+        assert_true(r->bus.st[i].utime != r->bus.st[i - 1].utime);
+    check_counts_add_up(r->mon);
+    rig_free(r);
+}
+
+/* A message the caller sheds unread (overload) is counted under its
+ * reason, raises INPUT_REJECTED and leaves the model as if it never came;
+ * the accounting holds. */
+static void test_refuse_overload(void **st)
+{
+    (void)st;
+    rig_t *plain = rig_new(1, NULL), *r = rig_new(1, NULL);
+    for (long k = 0; k < NSAMP; k++) {
+        send_k(plain, k);
+        if (k % 100 == 50) {
+            assert_true(sw_mon_refuse(r->mon, SW_MON_REJ_OVERLOAD, r->mono) < 0);
+            drain(r);
+        }
+        send_k(r, k);
+    }
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.rejected[SW_MON_REJ_OVERLOAD], NSAMP / 100);
+    assert_int_equal(c.accepted, NSAMP);
+    assert_string_equal(sw_mon_reject_name(SW_MON_REJ_OVERLOAD), "overload");
+    int said = 0;
+    for (int i = 0; i < r->bus.nal; i++)
+        said += strstr((const char *)r->bus.al[i].text, "overload") != NULL;
+    assert_true(said >= 1);
+    sw_output_t a, b;
+    final_output(plain, &a);
+    final_output(r, &b);
+    assert_true(a.state.theta == b.state.theta && a.margin == b.margin);
+    check_counts_add_up(r->mon);
+    rig_free(plain);
+    rig_free(r);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -736,11 +931,15 @@ int main(void)
         cmocka_unit_test(test_gap),
         cmocka_unit_test(test_seq_reveals_drops),
         cmocka_unit_test(test_model_fault_never_nan),
+        cmocka_unit_test(test_alarm_storm_folded),
+        cmocka_unit_test(test_alarm_escalation_passes),
         cmocka_unit_test(test_axis_flip_unit),
         cmocka_unit_test(test_skew),
         cmocka_unit_test(test_jump),
         cmocka_unit_test(test_bogus_first),
         cmocka_unit_test(test_played_twice),
+        cmocka_unit_test(test_state_rate_follows_clock),
+        cmocka_unit_test(test_refuse_overload),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

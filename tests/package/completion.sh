@@ -48,14 +48,34 @@ has half-sine swaywatch simulate --pulse ""
 has full-sine swaywatch simulate --pulse f
 has rk8pd swaywatch replay --scheme rk
 has g swaywatch replay --accel-unit ""
+has m/s2 swaywatch boundary --units ""
+has gtan swaywatch boundary --units gt
 has frame.zeta= swaywatch replay --set frame.z
+has replay swaywatch batch --job ""
+[ -z "$(complete_words swaywatch batch --threads "")" ] || fail "batch --threads offers something"
+
+if printf '%s\n' "$commands" | grep -qx watch; then
+    has SWAY_STATE swaywatch watch --state-channel ""
+    has SWAY_ALARM swaywatch watch --alarm-channel S
+    has --once swaywatch watch --o
+    [ -z "$(complete_words swaywatch watch --wait "")" ] || fail "watch --wait offers something"
+fi
 
 cd "$T/work"
-touch scenes/crate.ini scenes/notes.txt drive.csv
+touch scenes/crate.ini scenes/notes.txt drive.csv fleet.jsonl
 has scenes/crate.ini swaywatch replay --scene scenes/
 if complete_words swaywatch replay --scene scenes/ | grep -q notes.txt; then
     fail "--scene offers a file that is not .ini"
 fi
+touch fig.png fig.svg fig.jpg
+has fig.png swaywatch replay drive.csv --plot fig
+has fig.svg swaywatch simulate --plot fig
+if complete_words swaywatch replay --plot fig | grep -q fig.jpg; then
+    fail "--plot offers a file that is neither .png nor .svg"
+fi
+has drive.csv swaywatch replay --wide d
 has scenes swaywatch simulate -s sc
 has drive.csv swaywatch replay d
+has fleet.jsonl swaywatch batch --out f
+has drive.csv swaywatch batch --csv d
 echo "completion.sh: ok ($(echo $commands | wc -w) commands)"

@@ -102,7 +102,10 @@ $APT install --no-install-recommends "$main" "$dev" >"$T/apt.log" 2>&1 ||
 dpkg -s swaywatch | grep -q '^Status: install ok installed' || fail "swaywatch not installed"
 
 # The installed command (by full path: a build folder may come first in PATH).
-[ "$(/usr/bin/swaywatch --version)" = "swaywatch $SW_VERSION" ] || fail "swaywatch --version"
+[ "$(/usr/bin/swaywatch --version | head -1)" = "swaywatch $SW_VERSION" ] ||
+    fail "swaywatch --version"
+/usr/bin/swaywatch --version | grep -qx 'License GPLv3+: GNU GPL version 3 or later <https://gnu.org/licenses/gpl.html>' ||
+    fail "swaywatch --version: no licence"
 /usr/bin/swaywatch replay --version | grep -qx "swaywatch replay $SW_VERSION" ||
     fail "swaywatch replay --version"
 /usr/bin/swaywatch --help >/dev/null

@@ -4,10 +4,10 @@
 # example block (.EX ... .EE) of docs/man/*.h2m and docs/man/swaywatch-scene.5
 # is run, as printed, in a scratch folder with E set to a copy of the
 # installed example files.  A command must exit 0 (0 or 1 with
-# --fail-on-overturn) and write the files it names with --out, --events or
-# --plot.  The monitor runs until SIGINT: it is given 2 s in a private
-# network namespace (only loopback, with LCM's multicast route), and is
-# skipped, saying so, where no namespace can be made.
+# --fail-on-overturn) and write the files it names with --out, --events,
+# --wide or --plot.  The monitor and watch run until SIGINT: each is given 2 s in a
+# private network namespace (only loopback, with LCM's multicast route), and
+# is skipped, saying so, where no namespace can be made.
 # usage: man_examples.sh SWAYWATCH SOURCE_DIR
 set -eu
 SW=$1 SRC=$2
@@ -28,6 +28,8 @@ netns=0
 if unshare -n true 2>/dev/null; then netns=1; fi
 monitor=1
 if ! "$SW" monitor --help >/dev/null 2>&1; then monitor=0; fi
+watch=1
+if ! "$SW" watch --help >/dev/null 2>&1; then watch=0; fi
 
 # One command per line: roff escapes undone, continuation lines joined,
 # "E=..." lines left out (E is set above).
@@ -49,10 +51,12 @@ done >"$T/commands"
 n=0 skipped=0
 while IFS='	' read -r page cmd; do
     case "$cmd" in
-    "swaywatch monitor "*)
-        if [ "$monitor" = 0 ] || [ "$netns" = 0 ]; then
+    "swaywatch monitor "* | "swaywatch watch "*)
+        have=$monitor
+        case "$cmd" in "swaywatch watch "*) have=$watch ;; esac
+        if [ "$have" = 0 ] || [ "$netns" = 0 ]; then
             why="no network namespace"
-            [ "$monitor" = 1 ] || why="a build without LCM: no monitor command"
+            [ "$have" = 1 ] || why="a build without LCM or curses: no such command"
             echo "man_examples.sh: $page: skipped ($why): $cmd"
             skipped=$((skipped + 1))
             continue
@@ -62,8 +66,10 @@ while IFS='	' read -r page cmd; do
             exec timeout --preserve-status -s INT 2 sh -c "exec $1"' sh "$cmd") \
             >"$T/out" 2>&1 </dev/null || rc=$?
         [ "$rc" -eq 0 ] || { cat "$T/out" >&2; fail "$page: exit $rc: $cmd"; }
-        grep -q 'monitor stopped (SIGINT)' "$T/out" ||
-            { cat "$T/out" >&2; fail "$page: the monitor did not run until SIGINT: $cmd"; }
+        case "$cmd" in "swaywatch monitor "*)
+            grep -q 'monitor stopped (SIGINT)' "$T/out" ||
+                { cat "$T/out" >&2; fail "$page: the monitor did not run until SIGINT: $cmd"; } ;;
+        esac
         ;;
     *)
         rc=0
@@ -73,7 +79,7 @@ while IFS='	' read -r page cmd; do
         *) cat "$T/out" >&2; fail "$page: exit $rc: $cmd" ;;
         esac
         for f in $(printf '%s\n' "$cmd" | awk '{for (i = 1; i < NF; i++)
-                if ($i ~ /^--(out|events|plot)$/) print $(i + 1)}'); do
+                if ($i ~ /^--(out|events|plot|wide)$/) print $(i + 1)}'); do
             [ -s "$T/run/$f" ] || fail "$page: $f not written: $cmd"
         done
         ;;

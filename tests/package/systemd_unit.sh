@@ -1,6 +1,7 @@
 #!/bin/sh
 # The systemd unit of the monitor: systemd accepts it (when systemd-analyze
-# is there), it runs no root process, and its ExecStart, run by the shell as
+# is there), it runs no root process, it is a notify service with a
+# watchdog that is restarted on failure, and its ExecStart, run by the shell as
 # systemd would run it, starts 'swaywatch monitor' with one --scene per
 # scene file and the options of /etc/default/swaywatch.  The source is a
 # template: the install fills in the folder of the command (@SW_BINDIR@), so
@@ -27,7 +28,8 @@ else
     echo "systemd_unit.sh: no systemd-analyze: only the static checks"
 fi
 for line in DynamicUser=yes Restart=on-failure 'ExecReload=/bin/kill -HUP $MAINPID' \
-    RestartPreventExitStatus=2 EnvironmentFile=-/etc/default/swaywatch; do
+    RestartPreventExitStatus=2 EnvironmentFile=-/etc/default/swaywatch \
+    Type=notify NotifyAccess=main WatchdogSec=10s StartLimitIntervalSec=0; do
     grep -qxF "$line" "$UNIT" || fail "no '$line'"
 done
 if grep -Eq '^(User=root|AmbientCapabilities=.)' "$UNIT"; then fail "runs with privileges"; fi

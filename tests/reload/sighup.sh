@@ -11,7 +11,8 @@
 #     and rocks again in the next pulse (rebuilt from the new scene);
 #   - M's state and alarm seq numbers go on across the reload (no restart),
 #     up to the counts M reports;
-#   - a reload with a broken scene file changes nothing and M keeps running.
+#   - a reload with a broken scene file, or a FIFO in place of one, changes
+#     nothing and M keeps running (the FIFO is refused without blocking).
 # Needs a network namespace (root, or user namespaces): exits 77 otherwise.
 # usage: sighup.sh SWAYWATCH SOURCE_DIR PYTHON_TYPES_DIR
 set -eu
@@ -99,6 +100,19 @@ until grep -q 'scene files not applied' "$T/m.err"; do
 done
 kill -0 "$M" 2>/dev/null || fail "the monitor died on a broken scene file"
 
+# A FIFO in place of a scene file: refused at once (opening it must not
+# block the monitor until somebody writes to it), the monitor goes on.
+rm -f "$T/m/b.ini"
+mkfifo "$T/m/b.ini"
+kill -HUP "$M"
+i=0
+until grep -q 'b.ini: a FIFO: a scene must be a regular file' "$T/m.err"; do
+    i=$((i + 1))
+    [ $i -lt 100 ] || fail "a FIFO scene blocked the reload"
+    sleep 0.05
+done
+kill -0 "$M" 2>/dev/null || fail "the monitor died on a FIFO scene file"
+
 kill -TERM "$M" "$R"
 wait "$M" || fail "monitor M exit status $?"
 wait "$R" || fail "monitor R exit status $?"
@@ -116,7 +130,7 @@ for f in m r; do
         exit 77
     }
 done
-published() { sed -n "s/.*published \([0-9]*\) states.*, \([0-9]*\) alarms;.*/\\$1/p" "$T/m.err"; }
+published() { sed -n "s/.*published \([0-9]*\) states.*, \([0-9]*\) alarms (.*/\\$1/p" "$T/m.err"; }
 python3 - "$T/bus.lcmlog" "$(published 1)" "$(published 2)" <<'PY' || fail "no clean reload"
 import struct, sys
 from swaywatch import state_t, alarm_t

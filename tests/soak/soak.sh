@@ -16,7 +16,10 @@
 #     = bad messages sent of that kind, no sample lost (by seq), one seq
 #     restart per publisher restart;
 #   - its memory must stay flat: VmRSS at the end within SOAK_RSS_KB
-#     (default 1024 kB) of VmRSS after the first run (the warm-up);
+#     (default 4096 kB: LCM's receive ring may double once when the machine
+#     stalls, a leak grows with the run) of VmRSS after the first run;
+#   - a stall of the machine over --max-backlog makes the monitor shed
+#     messages: counted as overload, the only good samples it may miss;
 #   - no published state or alarm may carry a non-finite number.
 # Exit 77 (skipped) when a private network namespace cannot be made.
 set -eu
@@ -28,7 +31,7 @@ RUNS=${5:-5}
 GOOD=${6:-200000}
 RATE=${7:-8000}
 GARBAGE=${8:-30}
-RSS_BOUND=${SOAK_RSS_KB:-1024}
+RSS_BOUND=${SOAK_RSS_KB:-4096}
 
 . "$(dirname "$0")/lcmtest.sh"
 enter_netns "$@"
@@ -130,16 +133,20 @@ else:
                         % (received, sent["published"], drops))
     if received != accepted + rejected or rejected != sum(by.values()):
         problems.append("received != accepted + sum of rejected by reason")
-    if accepted != sent["good"]:
-        problems.append("accepted %d, good samples sent %d" % (accepted, sent["good"]))
+    # a machine that stalls for over a second makes the monitor shed
+    # (overload, counted): those are the only good samples it may miss
+    shed = by.get("overload", 0)
+    if not (0 <= sent["good"] - accepted <= shed):
+        problems.append("accepted %d, good samples sent %d, shed %d" % (accepted, sent["good"],
+                                                                        shed))
     for reason in ("decode", "trailing", "nonfinite", "implausible", "duplicate", "out_of_order"):
         if by.get(reason, 0) != sent.get(reason, 0):
             problems.append("rejected as %s: %d, sent %d" % (reason, by.get(reason, 0),
                                                              sent.get(reason, 0)))
-    if set(by) - set(sent):
+    if set(by) - set(sent) - {"overload"}:
         problems.append("rejections for reasons never sent: %s" % sorted(set(by) - set(sent)))
-    if lost != 0:
-        problems.append("%d samples lost by seq" % lost)
+    if not (0 <= lost <= shed):
+        problems.append("%d samples lost by seq (shed %d)" % (lost, shed))
     if restarts != runs - 1:
         problems.append("%d seq restarts, expected %d" % (restarts, runs - 1))
 print("monitor VmRSS: %d kB after the first run, %d kB at the end" % (warm, end))

@@ -32,12 +32,32 @@
  *   --pulse A          every 5 s of sample time a 0.3 s braking half-sine of
  *                      A m/s^2 on top of a gentle sway (default 7: it rocks
  *                      the sample crates hard, short of overturning them)
+ *   --event K:KIND[:ARG]  a field fault before good sample K (repeatable):
+ *                      restart:S  the sensor restarts: seq from 0, utime S s
+ *                                 back (default 30)
+ *                      step:S     its clock steps S s forward (default 3600)
+ *                      future:S   one forged sample S s ahead (default a
+ *                                 year): refused as jump
+ *                      utime:max|min  one sample stamped INT64_MAX or
+ *                                 INT64_MIN: refused as time
+ *                      seq:max|min  sample K carries seq INT64_MAX or
+ *                                 INT64_MIN (a good sample all the same)
+ *                      flood:N    N copies of the last sample at once:
+ *                                 refused as duplicate
+ *                      fall:S     S s of vertical acceleration -15 m/s^2
+ *                                 (below -1 g: every sample a model fault)
+ *                      pause:S    the sensor stops for S s (its samples
+ *                                 are not sent: lost by seq)
+ *                      Each prints "event K KIND ARG WALL_US UTIME_AFTER":
+ *                      when it was applied (CLOCK_REALTIME, us) and the
+ *                      utime of the first good sample after it.
  *
  * Output on stdout, one "key value" per line: published (all messages),
  * good, then the bad messages by the monitor's reason names: decode
  * (fingerprint, other_type, truncated, empty), trailing (trailing,
  * oversized), nonfinite, implausible, duplicate, out_of_order, skew (past,
- * future); and last_utime (us).  In a log, each event is stamped with its
+ * future), jump (future events), time (utime events); skipped (good samples
+ * a pause did not send); and last_utime (us).  In a log, each event is stamped with its
  * sample's utime plus 0.2 ms, as lcm-logger would receive it from a sensor
  * whose clock is synchronised.  The seq of good samples increases by one per good
  * sample: bad messages take none, so a seq gap in what the monitor
@@ -83,6 +103,18 @@ static const char *const reasons[] = {"decode",    "trailing",     "nonfinite", 
 #define NREASON (sizeof reasons / sizeof reasons[0])
 
 #define OVERSIZE (64 * 1024)
+#define MAX_EVENTS 64
+
+enum { E_RESTART, E_STEP, E_FUTURE, E_UTIME, E_SEQ, E_FLOOD, E_FALL, E_PAUSE, NEVKIND };
+static const char *const event_name[NEVKIND] = {"restart", "step",  "future", "utime",
+                                                "seq",     "flood", "fall",   "pause"};
+
+typedef struct {
+    long k;       /* before good sample k */
+    int kind;
+    double arg;   /* s, or a count */
+    int extreme;  /* utime, seq: +1 max, -1 min */
+} event_t;
 
 typedef struct {
     const char *channel;
@@ -93,6 +125,8 @@ typedef struct {
     int use[NKIND];
     int64_t utime0, seq0;
     uint64_t seed;
+    event_t ev[MAX_EVENTS];
+    int nev;
 } opts_t;
 
 typedef struct {
@@ -100,6 +134,7 @@ typedef struct {
     lcm_eventlog_t *log; /* log */
     const char *channel;
     long published, good, by_kind[NKIND];
+    long jump, time, skipped; /* forged samples sent (future, utime), pause's unsent */
     int64_t stamp;      /* us, the log's receive time for the next event */
     unsigned char *buf; /* OVERSIZE + room for a message */
     int failed;
@@ -127,6 +162,36 @@ static int parse_kinds(const char *list, int use[NKIND])
     return 0;
 }
 
+/* "K:KIND[:ARG]" into o->ev. */
+static int parse_event(const char *v, opts_t *o)
+{
+    char kind[16] = "", arg[32] = "";
+    long k;
+    if (o->nev == MAX_EVENTS || sscanf(v, "%ld:%15[a-z]:%31s", &k, kind, arg) < 2 || k < 0)
+        return -1;
+    event_t *e = &o->ev[o->nev];
+    e->k = k;
+    e->kind = 0;
+    while (e->kind < NEVKIND && strcmp(kind, event_name[e->kind])) e->kind++;
+    if (e->kind == NEVKIND)
+        return -1;
+    static const double def[NEVKIND] = {30, 3600, 365 * 86400.0, 0, 0, 1000, 1, 1};
+    e->arg = def[e->kind];
+    e->extreme = 0;
+    if (e->kind == E_UTIME || e->kind == E_SEQ) {
+        if (strcmp(arg, "max") && strcmp(arg, "min"))
+            return -1;
+        e->extreme = strcmp(arg, "max") ? -1 : 1;
+    } else if (arg[0]) {
+        char *end;
+        e->arg = strtod(arg, &end);
+        if (*end || !(e->arg > 0) || !isfinite(e->arg))
+            return -1;
+    }
+    o->nev++;
+    return 0;
+}
+
 static void parse(int argc, char **argv, opts_t *o)
 {
     o->channel = "ACCEL";
@@ -139,6 +204,7 @@ static void parse(int argc, char **argv, opts_t *o)
     o->utime0 = 1700000000000000LL;
     o->seq0 = 0;
     o->seed = 1;
+    o->nev = 0;
     for (int k = 0; k < NKIND; k++) o->use[k] = k != K_PAST && k != K_FUTURE;
     for (int i = 3; i < argc; i += 2) {
         if (i + 1 >= argc)
@@ -148,6 +214,11 @@ static void parse(int argc, char **argv, opts_t *o)
         errno = 0;
         if (!strcmp(k, "--channel")) {
             o->channel = v;
+            continue;
+        }
+        if (!strcmp(k, "--event")) {
+            if (parse_event(v, o) != 0)
+                die_usage("bad --event");
             continue;
         }
         if (!strcmp(k, "--kinds")) {
@@ -295,6 +366,62 @@ static swaywatch_accel_t sample(const opts_t *o, long k)
     return m;
 }
 
+/* The faults in force: what the events changed. */
+typedef struct {
+    int64_t ushift;   /* us added to every utime from now on */
+    int64_t seqshift; /* added to every seq from now on */
+    long fall_end;    /* samples before it fall (az -15 m/s^2) */
+    int have_seq_once;
+    int64_t seq_once; /* the seq of the next sample, once */
+} fault_t;
+
+/* Apply event e before good sample k (last: the last good sample sent).
+ * Returns the number of samples a pause skips, else 0. */
+static long apply_event(const opts_t *o, sink_t *s, const event_t *e, long k, fault_t *f,
+                        const swaywatch_accel_t *last)
+{
+    swaywatch_accel_t m = *last;
+    switch (e->kind) {
+        case E_RESTART:
+            f->ushift -= (int64_t)llround(e->arg * 1e6);
+            f->seqshift = -(o->seq0 + k);
+            return 0;
+        case E_STEP: f->ushift += (int64_t)llround(e->arg * 1e6); return 0;
+        case E_FUTURE:
+            m.utime += (int64_t)llround(e->arg * 1e6);
+            emit(s, s->buf, encode(s, &m));
+            s->jump++;
+            return 0;
+        case E_UTIME:
+            m.utime = e->extreme > 0 ? INT64_MAX : INT64_MIN;
+            emit(s, s->buf, encode(s, &m));
+            s->time++;
+            return 0;
+        case E_SEQ:
+            f->have_seq_once = 1;
+            f->seq_once = e->extreme > 0 ? INT64_MAX : INT64_MIN;
+            return 0;
+        case E_FLOOD:
+            for (long i = 0; i < (long)e->arg; i++) emit(s, s->buf, encode(s, &m));
+            s->by_kind[K_DUPLICATE] += (long)e->arg;
+            return 0;
+        case E_FALL: f->fall_end = k + (long)llround(e->arg * o->rate); return 0;
+        case E_PAUSE: {
+            const long n = (long)llround(e->arg * o->rate);
+            s->skipped += n;
+            return n;
+        }
+    }
+    return 0;
+}
+
+static int64_t wall_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
 static void sleep_until(const struct timespec *t0, double at)
 {
     struct timespec ts = *t0;
@@ -394,10 +521,39 @@ int main(int argc, char **argv)
         emit(&s, s.buf, 0);
         s.by_kind[K_EMPTY]++;
     }
+    fault_t f = {.fall_end = -1};
     for (long k = 0; k < o.count && !s.failed; k++) {
         if (live && o.pace > 0)
             sleep_until(&t0, (double)k / o.pace);
+        int applied[MAX_EVENTS], na = 0;
+        int64_t when[MAX_EVENTS];
+        long skip = 0;
+        for (int i = 0; i < o.nev; i++)
+            if (o.ev[i].k == k && k > 0) {
+                when[na] = wall_us();
+                applied[na++] = i;
+                skip += apply_event(&o, &s, &o.ev[i], k, &f, &last);
+            }
+        if (skip > 0) { /* the sensor is silent, its samples unsent */
+            k += skip;
+            if (k >= o.count)
+                break;
+            if (live && o.pace > 0)
+                sleep_until(&t0, (double)k / o.pace);
+        }
         last = sample(&o, k);
+        last.utime += f.ushift;
+        last.seq += f.seqshift;
+        if (f.have_seq_once) {
+            last.seq = f.seq_once;
+            f.have_seq_once = 0;
+        }
+        if (k < f.fall_end)
+            last.az = -15.0;
+        for (int i = 0; i < na; i++)
+            printf("event %ld %s %g %lld %lld\n", o.ev[applied[i]].k,
+                   event_name[o.ev[applied[i]].kind], o.ev[applied[i]].arg, (long long)when[i],
+                   (long long)last.utime);
         s.stamp = last.utime + 200;
         emit(&s, s.buf, encode(&s, &last));
         s.good++;
@@ -421,6 +577,7 @@ int main(int argc, char **argv)
                 n += s.by_kind[k];
         printf("%s %ld\n", reasons[r], n);
     }
+    printf("jump %ld\ntime %ld\nskipped %ld\n", s.jump, s.time, s.skipped);
     printf("last_utime %lld\n", (long long)last.utime);
     return 0;
 }

@@ -1,0 +1,404 @@
+/* figure.c - the state figure of replay, simulate and forensics (figure.h):
+ * the series kept in merging min/max buckets, the events, and the gnuplot
+ * script that draws them in three panels sharing the time axis. */
+#include "figure.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "plot.h"
+
+#define NBUCKETS 2000       /* buckets per package after a merge; at most twice as many */
+#define MAX_EVENTS 100000   /* events kept */
+#define MAX_LINES 200       /* vertical event lines drawn (gnuplot arrows) */
+#define MAX_UPLIFT_LINES 50 /* of them uplifts: a long drive can have thousands */
+#define G0 9.80665          /* m/s^2 per g, for the legend */
+#define MARGIN_FLOOR (-1.0) /* the margin panel shows margins down to this */
+
+/* The quantities kept per package. */
+enum { Q_AG, Q_RATIO, Q_MARGIN, NQ };
+
+/* The samples of one bucket: per quantity, its minimum and maximum and
+ * when they were reached (the first of equal values). */
+typedef struct {
+    double tmin[NQ], vmin[NQ], tmax[NQ], vmax[NQ];
+} bucket_t;
+
+typedef struct {
+    char name[64];
+    double alpha;       /* rad */
+    double g_tan_alpha; /* m/s^2, the uplift threshold on a rigid support */
+    bucket_t *b;        /* 2 NBUCKETS */
+    size_t nb;          /* full buckets */
+    bucket_t cur;       /* the bucket being filled */
+    long in_cur, width; /* samples in cur, samples per bucket */
+} trace_t;
+
+struct sw_cli_figure {
+    trace_t *tr;
+    size_t n;
+    sw_event_t *ev;
+    size_t nev, cap;
+    long dropped; /* events beyond MAX_EVENTS, or lost to a failed allocation */
+};
+
+/* Line colours of the packages, in order (then again). */
+static const char *const colours[] = {"#1d3557", "#e76f51", "#2a9d8f", "#8338ec",
+                                      "#f4a261", "#6a994e", "#b5179e", "#457b9d"};
+#define NCOLOURS (sizeof colours / sizeof colours[0])
+
+sw_cli_figure_t *sw_cli_figure_create(const sw_engine_t *e, const sw_scene_t *scenes, size_t n)
+{
+    sw_cli_figure_t *f = calloc(1, sizeof *f);
+    if (f)
+        f->tr = calloc(n ? n : 1, sizeof *f->tr);
+    if (!f || !f->tr)
+        goto oom;
+    f->n = n;
+    for (size_t i = 0; i < n; i++) {
+        trace_t *T = &f->tr[i];
+        const sw_derived_t *d = sw_engine_derived(e, i);
+        snprintf(T->name, sizeof T->name, "%s", scenes[i].name);
+        T->alpha = d ? d->alpha : NAN;
+        T->g_tan_alpha = d ? scenes[i].g * tan(d->alpha) : NAN;
+        T->width = 1;
+        if (!(T->b = calloc(2 * NBUCKETS, sizeof *T->b)))
+            goto oom;
+    }
+    return f;
+oom:
+    sw_cli_figure_destroy(f);
+    sw_cli_error("out of memory for the figure");
+    return NULL;
+}
+
+void sw_cli_figure_destroy(sw_cli_figure_t *f)
+{
+    if (!f)
+        return;
+    for (size_t i = 0; f->tr && i < f->n; i++) free(f->tr[i].b);
+    free(f->tr);
+    free(f->ev);
+    free(f);
+}
+
+/* ---- keeping ----------------------------------------------------------------- */
+
+/* a takes in b's extremes (b is later: a tie keeps a's time). */
+static void merge(bucket_t *a, const bucket_t *b)
+{
+    for (int q = 0; q < NQ; q++) {
+        if (b->vmin[q] < a->vmin[q]) {
+            a->vmin[q] = b->vmin[q];
+            a->tmin[q] = b->tmin[q];
+        }
+        if (b->vmax[q] > a->vmax[q]) {
+            a->vmax[q] = b->vmax[q];
+            a->tmax[q] = b->tmax[q];
+        }
+    }
+}
+
+static void trace_add(trace_t *T, double t, const double v[NQ])
+{
+    bucket_t one;
+    for (int q = 0; q < NQ; q++) {
+        one.tmin[q] = one.tmax[q] = t;
+        one.vmin[q] = one.vmax[q] = v[q];
+    }
+    if (T->in_cur == 0)
+        T->cur = one;
+    else
+        merge(&T->cur, &one);
+    if (++T->in_cur < T->width)
+        return;
+    T->b[T->nb++] = T->cur;
+    T->in_cur = 0;
+    if (T->nb < 2 * NBUCKETS)
+        return;
+    /* full: pairs merge, and each bucket covers twice as many samples */
+    for (size_t i = 0; i < NBUCKETS; i++) {
+        T->b[i] = T->b[2 * i];
+        merge(&T->b[i], &T->b[2 * i + 1]);
+    }
+    T->nb = NBUCKETS;
+    T->width *= 2;
+}
+
+void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out)
+{
+    if (!f || out->pkg >= f->n)
+        return;
+    trace_t *T = &f->tr[out->pkg];
+    const double v[NQ] = {out->a_g, out->state.theta / T->alpha, out->margin};
+    for (int q = 0; q < NQ; q++)
+        if (!isfinite(v[q]))
+            return; /* the engine reports none; a gap in the line if it did */
+    trace_add(T, out->t, v);
+}
+
+void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev)
+{
+    if (!f || ev->pkg >= f->n)
+        return;
+    if (f->nev == f->cap) {
+        size_t cap = f->cap ? 2 * f->cap : 256;
+        if (cap > MAX_EVENTS)
+            cap = MAX_EVENTS;
+        sw_event_t *e = cap > f->cap ? realloc(f->ev, cap * sizeof *e) : NULL;
+        if (!e) {
+            f->dropped++;
+            return;
+        }
+        f->ev = e;
+        f->cap = cap;
+    }
+    f->ev[f->nev++] = *ev;
+}
+
+/* ---- drawing ----------------------------------------------------------------- */
+
+/* The buckets of T in time order, the one being filled last; *n of them. */
+static size_t buckets(const trace_t *T, const bucket_t **b, const bucket_t **last)
+{
+    *b = T->b;
+    *last = T->in_cur > 0 ? &T->cur : NULL;
+    return T->nb;
+}
+
+static void emit_bucket(FILE *g, const bucket_t *B, int q)
+{
+    const int min_first = B->tmin[q] <= B->tmax[q];
+    const double t1 = min_first ? B->tmin[q] : B->tmax[q], v1 = min_first ? B->vmin[q] : B->vmax[q];
+    const double t2 = min_first ? B->tmax[q] : B->tmin[q], v2 = min_first ? B->vmax[q] : B->vmin[q];
+    fprintf(g, "%.9g %.9g\n", t1, v1);
+    if (t2 != t1 || v2 != v1)
+        fprintf(g, "%.9g %.9g\n", t2, v2);
+}
+
+/* Package k's quantity q as the datablock $s<k>_<q>. */
+static void series_block(FILE *g, const trace_t *T, size_t k, int q)
+{
+    const bucket_t *b, *last;
+    const size_t nb = buckets(T, &b, &last);
+    fprintf(g, "$s%zu_%d << EOD\n", k, q);
+    for (size_t i = 0; i < nb; i++) emit_bucket(g, &b[i], q);
+    if (last)
+        emit_bucket(g, last, q);
+    if (!nb && !last)
+        fputs("NaN NaN\n", g);
+    fputs("EOD\n", g);
+}
+
+/* The time span and the lowest margin of every package's series. */
+static int extent(const sw_cli_figure_t *f, double *t0, double *t1, double *min_margin)
+{
+    int any = 0;
+    *t0 = INFINITY;
+    *t1 = -INFINITY;
+    *min_margin = INFINITY;
+    for (size_t k = 0; k < f->n; k++) {
+        const bucket_t *b, *last;
+        const size_t nb = buckets(&f->tr[k], &b, &last);
+        for (size_t i = 0; i <= nb; i++) {
+            const bucket_t *B = i < nb ? &b[i] : last;
+            if (!B)
+                continue;
+            any = 1;
+            for (int q = 0; q < NQ; q++) {
+                *t0 = fmin(*t0, fmin(B->tmin[q], B->tmax[q]));
+                *t1 = fmax(*t1, fmax(B->tmin[q], B->tmax[q]));
+            }
+            *min_margin = fmin(*min_margin, B->vmin[Q_MARGIN]);
+        }
+    }
+    return any;
+}
+
+/* The events of package k of one kind (impacts with rests) at
+ * (t, theta/alpha), as the datablock $e<k>_<kind>. */
+static void event_block(FILE *g, const sw_cli_figure_t *f, size_t k, sw_event_kind kind)
+{
+    int n = 0;
+    fprintf(g, "$e%zu_%d << EOD\n", k, (int)kind);
+    for (size_t i = 0; i < f->nev; i++) {
+        const sw_event_t *ev = &f->ev[i];
+        const int same = ev->kind == kind || (kind == SW_EV_IMPACT && ev->kind == SW_EV_REST);
+        const double r = ev->theta / f->tr[k].alpha;
+        if (ev->pkg != k || !same || !isfinite(ev->t) || !isfinite(r))
+            continue;
+        fprintf(g, "%.9g %.9g\n", ev->t, r);
+        n++;
+    }
+    if (!n)
+        fputs("NaN NaN\n", g);
+    fputs("EOD\n", g);
+}
+
+/* Colour and style of an event kind's vertical line, or NULL: none. */
+static const char *line_colour(sw_event_kind k)
+{
+    switch (k) {
+        case SW_EV_UPLIFT: return "#2a9d8f";
+        case SW_EV_TIP: return "#e9c46a";
+        case SW_EV_OVERTURN: return "#d62828";
+        case SW_EV_FAULT: return "#000000";
+        default: return NULL;
+    }
+}
+
+/* Vertical lines through every panel at the uplifts (the first ones),
+ * tips, overturns and faults; a label at each overturn. */
+static void event_lines(FILE *g, const sw_cli_figure_t *f)
+{
+    int arrows = 0, uplifts = 0;
+    for (size_t i = 0; i < f->nev && arrows < MAX_LINES; i++) {
+        const sw_event_t *ev = &f->ev[i];
+        const char *col = line_colour(ev->kind);
+        if (!col || !isfinite(ev->t))
+            continue;
+        if (ev->kind == SW_EV_UPLIFT && uplifts++ >= MAX_UPLIFT_LINES)
+            continue;
+        fprintf(g,
+                "set arrow %d from first %.9g, graph 0 to first %.9g, graph 1 nohead lc rgb '%s' "
+                "lw 1.5 dt 2 back\n",
+                ++arrows, ev->t, ev->t, col);
+    }
+}
+
+/* Legend entries of the kinds of events there are, drawn once in black
+ * (the points carry the package's colour). */
+static void event_legend(FILE *g, const sw_cli_figure_t *f)
+{
+    static const struct {
+        sw_event_kind kind;
+        const char *entry;
+    } legend[] = {
+        {SW_EV_UPLIFT, "NaN with points pt 9 ps 1.2 lc rgb 'black' title 'uplift'"},
+        {SW_EV_TIP, "NaN with points pt 13 ps 1.2 lc rgb 'black' title 'tip (|θ| = α)'"},
+        {SW_EV_OVERTURN, "NaN with points pt 7 ps 1.6 lc rgb '#d62828' title 'overturn'"},
+        {SW_EV_IMPACT, "NaN with points pt 6 ps 0.5 lc rgb 'black' title 'impact / rest'"},
+        {SW_EV_FAULT, "NaN with points pt 4 ps 1.2 lc rgb 'black' title 'model fault'"},
+    };
+    for (size_t j = 0; j < sizeof legend / sizeof legend[0]; j++)
+        for (size_t i = 0; i < f->nev; i++) {
+            const sw_event_kind k = f->ev[i].kind == SW_EV_REST ? SW_EV_IMPACT : f->ev[i].kind;
+            if (k == legend[j].kind) {
+                fprintf(g, ", %s", legend[j].entry);
+                break;
+            }
+        }
+}
+
+/* The thresholds line(s) of the acceleration panel: one pair if every
+ * package has the same g tan(alpha). */
+static void threshold_plots(FILE *g, const sw_cli_figure_t *f)
+{
+    int same = 1;
+    for (size_t k = 1; k < f->n; k++)
+        same = same && fabs(f->tr[k].g_tan_alpha - f->tr[0].g_tan_alpha) <=
+                           1e-9 * fabs(f->tr[0].g_tan_alpha);
+    for (size_t k = 0; k < (same ? 1 : f->n); k++) {
+        const trace_t *T = &f->tr[k];
+        char title[160];
+        snprintf(title, sizeof title, "± g tan α = %.3g m/s² (%.3g g): uplift%s%s", T->g_tan_alpha,
+                 T->g_tan_alpha / G0, same ? "" : ", ", same ? "" : T->name);
+        fprintf(g, ", %.9g with lines lc rgb '%s' dt 3 lw 1.2 title ", T->g_tan_alpha,
+                same ? "#777777" : colours[k % NCOLOURS]);
+        sw_cli_plot_text(g, title);
+        fprintf(g, ", %.9g with lines lc rgb '%s' dt 3 lw 1.2 notitle", -T->g_tan_alpha,
+                same ? "#777777" : colours[k % NCOLOURS]);
+    }
+}
+
+/* "<what>, <package>" as an enhanced-text title. */
+static void series_title(FILE *g, const char *what, const char *name)
+{
+    char t[160];
+    snprintf(t, sizeof t, "%s, %s", what, name);
+    sw_cli_plot_text(g, t);
+}
+
+int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *title)
+{
+    double t0, t1, mmin;
+    if (!extent(f, &t0, &t1, &mmin)) {
+        sw_cli_error("%s: no state to draw", path);
+        return SW_EXIT_USAGE;
+    }
+    if (!(t1 > t0))
+        t1 = t0 + 1.0;
+    sw_plot_t *p = sw_cli_plot_open(path, 1200, 960);
+    if (!p)
+        return SW_EXIT_IO;
+    FILE *g = sw_cli_plot_file(p);
+
+    /* the data, as inline datablocks */
+    static const sw_event_kind kinds[] = {SW_EV_UPLIFT, SW_EV_IMPACT, SW_EV_TIP, SW_EV_OVERTURN,
+                                          SW_EV_FAULT};
+    for (size_t k = 0; k < f->n; k++) {
+        for (int q = 0; q < NQ; q++) series_block(g, &f->tr[k], k, q);
+        for (size_t j = 0; j < sizeof kinds / sizeof kinds[0]; j++) event_block(g, f, k, kinds[j]);
+    }
+    event_lines(g, f);
+
+    fputs("set multiplot layout 3,1 title ", g);
+    sw_cli_plot_text(g, title);
+    fprintf(g,
+            " font ',13'\n"
+            "set grid\nset key at screen 0.635, graph 1 left top Left reverse box opaque\n"
+            "set lmargin at screen 0.08\nset rmargin at screen 0.62\n"
+            "set xrange [%.9g:%.9g]\nset xlabel ''\nset format x ''\n",
+            t0, t1);
+
+    /* 1. the bed's acceleration and the uplift thresholds */
+    fputs(
+        "set ylabel 'bed acceleration a_g (m/s^2)'\n"
+        "plot $s0_0 using 1:2 with lines lc rgb '#264653' lw 1.2 title 'bed acceleration a_g'",
+        g);
+    threshold_plots(g, f);
+    fputc('\n', g);
+
+    /* 2. theta / alpha, the events on it */
+    fputs(
+        "set ylabel 'tilt θ / α'\nplot 1 with lines lc rgb '#d62828' dt 3 "
+        "title 'tipping: |θ| = α (±1)', -1 with lines lc rgb '#d62828' dt 3 notitle",
+        g);
+    for (size_t k = 0; k < f->n; k++) {
+        const char *c = colours[k % NCOLOURS];
+        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RATIO, c);
+        series_title(g, "θ/α", f->tr[k].name);
+        fprintf(g,
+                ", $e%zu_%d using 1:2 with points pt 6 ps 0.5 lc rgb '%s' notitle"
+                ", $e%zu_%d using 1:2 with points pt 9 ps 1.2 lc rgb '%s' notitle"
+                ", $e%zu_%d using 1:2 with points pt 13 ps 1.2 lc rgb '%s' notitle"
+                ", $e%zu_%d using 1:2 with points pt 7 ps 1.6 lc rgb '#d62828' notitle"
+                ", $e%zu_%d using 1:2 with points pt 4 ps 1.2 lc rgb '%s' notitle",
+                k, SW_EV_IMPACT, c, k, SW_EV_UPLIFT, c, k, SW_EV_TIP, c, k, SW_EV_OVERTURN, k,
+                SW_EV_FAULT, c);
+    }
+    event_legend(g, f);
+    fputc('\n', g);
+
+    /* 3. the margin to overturn; far below 0 it is cut off: the package
+     * is past the edge, how far matters little */
+    const double lo = fmax(MARGIN_FLOOR, fmin(0.0, mmin)) - 0.05;
+    fprintf(g,
+            "set format x '%%g'\nset xlabel 'time t (s)'\nset ylabel 'margin to overturn%s'\n"
+            "set yrange [%.6g:1.05]\n"
+            "plot 0 with lines lc rgb '#d62828' dt 3 title 'overturns with no more input "
+            "below 0'",
+            mmin < MARGIN_FLOOR ? " (cut at -1)" : "", lo);
+    for (size_t k = 0; k < f->n; k++) {
+        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_MARGIN,
+                colours[k % NCOLOURS]);
+        series_title(g, "margin", f->tr[k].name);
+    }
+    fputs("\nunset multiplot\n", g);
+    if (f->dropped)
+        sw_cli_error("%s: %ld events beyond the %d kept are not marked", path, f->dropped,
+                     MAX_EVENTS);
+    return sw_cli_plot_close(p);
+}

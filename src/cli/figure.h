@@ -1,0 +1,32 @@
+/* figure.h - the state figure of replay, simulate and forensics: the bed
+ * acceleration with the uplift thresholds +-g tan(alpha), theta/alpha of
+ * every package, its margin to overturn, and the events, drawn by gnuplot
+ * (plot.h).
+ *
+ * The series are kept as the engine reports them, in a fixed number of
+ * buckets per package: each bucket keeps the minimum and the maximum of
+ * every quantity with their times, and when the buckets are full,
+ * neighbours merge and each bucket covers twice as many samples.  A log of
+ * any length is drawn from fixed memory, every sample of a short one is
+ * drawn, and no peak is lost to the thinning. */
+#ifndef SWAYWATCH_CLI_FIGURE_H
+#define SWAYWATCH_CLI_FIGURE_H
+
+#include "cli.h"
+
+typedef struct sw_cli_figure sw_cli_figure_t;
+
+/* A figure of the n packages of engine e (their alpha, g tan alpha and
+ * names are read now).  NULL after "out of memory" (reported). */
+sw_cli_figure_t *sw_cli_figure_create(const sw_engine_t *e, const sw_scene_t *scenes, size_t n);
+void sw_cli_figure_destroy(sw_cli_figure_t *f); /* NULL accepted */
+
+/* Keep a state and an event (f may be NULL: nothing kept). */
+void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out);
+void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev);
+
+/* Draw the figure into path (.png or .svg) under title: SW_EXIT_OK, or
+ * SW_EXIT_IO (reported; gnuplot's own messages passed on). */
+int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *title);
+
+#endif

@@ -1,0 +1,729 @@
+/* reserve.c - the reserve in g (reserve.h): the smallest design pulse that
+ * would overturn a package from its current state, found by runs of
+ * private engines through the public engine API only.
+ *
+ * One evaluation is a scan-then-bisect search, as sw_threshold_search
+ * does it, over every design pulse and direction at once.  What keeps it
+ * cheap without hiding a lower overturning amplitude (docs/reserve.md
+ * gives the arguments in full):
+ *   - every scan starts at a proven lower bound, not at a guess:
+ *     the lift bound (a package that never leaves its support cannot
+ *     overturn: on the bed a pulse below g tan(alpha) lifts nothing; a
+ *     stuck frame is linear until uplift, so the lowest lifting amplitude
+ *     is read off its linear response, sampled finely, with a rigorous
+ *     energy bound on the ringing after the samples end), and the energy
+ *     bound (the work of a pulse is at most its velocity change times the
+ *     largest velocity the package's energy allows, and overturning needs
+ *     the barrier's energy);
+ *   - a run stops as soon as its outcome is certain: the bare block's
+ *     free-rocking margin is exact, so a bare run ends with the pulse; a
+ *     frame or cushion run ends when the total-energy certificate
+ *     (margin_bound > 0) holds after the pulse, or at overturn;
+ *   - the scans of all pulses and directions are merged: the lowest next
+ *     scan point of them all is tried first, so the first overturn found
+ *     is the lowest on every grid and no scan runs past it (values that
+ *     could not be the minimum are never computed);
+ *   - a state that is its own mirror image (upright and still) needs one
+ *     direction: the models are symmetric under theta -> -theta,
+ *     u -> -u, a_g -> -a_g;
+ *   - the value at rest is computed once, by create, with the same
+ *     search, and returned for states at exact rest;
+ *   - steps are a fixed fraction of the shortest period of the run
+ *     (SW_RESERVE_STEPS per period), not the 1 ms of a 1 kHz log: the
+ *     pulse is a smooth function, and the 1 % answer does not need
+ *     1e-11 rad (docs/accuracy-speed.md measures what this costs in
+ *     accuracy).
+ * Not done: starting the scan from the previous evaluation's value.
+ * Nothing bounds how much the reserve can drop in 0.1 s of rocking (an
+ * impact or a turning point changes it abruptly), so such a start could
+ * step over a lower overturning amplitude.
+ *
+ * Everything is allocated in create; eval allocates nothing. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "swaywatch/engine.h"
+#include "swaywatch/model.h"
+#include "swaywatch/pulse.h"
+#include "swaywatch/reserve.h"
+#include "swaywatch/status.h"
+#include "swaywatch/sweep.h"
+
+#define DEFAULT_STEP 0.02
+#define DEFAULT_TOL 0.01
+#define DEFAULT_X_MAX 20.0      /* in units of g tan(alpha), as the boundary search */
+#define DEFAULT_RTOL 1e-5       /* adaptive schemes: the answer is wanted to 1 % */
+#define DEFAULT_ATOL 1e-7
+#define DEFAULT_REST_EPS 1e-6   /* rest below 1e-6 of the barrier: ends impact cascades */
+#define CHECKS_PER_PERIOD 32.0  /* certificate checks per rocking period of free motion */
+#define LIFT_SAMPLES 400.0      /* samples per shortest period of the frame's lift table */
+#define LIFT_RINGING 2.0        /* bearing periods sampled after the pulse */
+#define LIFT_MAX_SAMPLES 50000  /* larger tables (very stiff bearings): no lift bound */
+#define LIFT_SLACK 0.995        /* sampled peaks are within 3e-5 of the true ones */
+#define ENERGY_SLACK 0.98       /* the energy bound is exact; the runs are not */
+#define CERT_SLACK 0.99         /* the same for the certificate during a pulse */
+#define CHECKS_PER_PULSE 16.0   /* certificate checks during a pulse */
+
+/* One design pulse: its engine and, for a frame, the stuck frame's linear
+ * response sampled every h seconds: support acceleration per unit pulse
+ * amplitude (A_u, 1), and per unit initial displacement and velocity
+ * (A_1 in 1/s^2, A_2 in 1/s), with the states at the table's end. */
+typedef struct {
+    double T;     /* s */
+    double check; /* s, between certificate checks during the pulse: whole steps */
+    sw_engine_t *e;
+    size_t n;  /* samples; 0 = no table */
+    double h;  /* s */
+    double *Au, *A1, *A2;
+    double end_u[2], end_1[2], end_2[2]; /* (u, u') at the end: m, m/s per unit */
+} pulse_ctx_t;
+
+struct sw_reserve {
+    sw_scene_t sc;
+    sw_derived_t d;
+    sw_reserve_opts_t o;
+    double step, tol;     /* relative */
+    double max_g, floor_g;
+    double lift_g;        /* g: g tan(alpha) / SW_G0 */
+    double z_rest;        /* m, cushion static deflection */
+    double t_free;        /* s, free motion after a pulse */
+    double chunk;         /* s, between certificate checks after the pulse */
+    double sqrt_eb;       /* sqrt(J/kg): square root of the barrier energy */
+    double c_energy;      /* 1: energy_c() */
+    size_t np;
+    pulse_ctx_t p[SW_DESIGN_PULSES_MAX];
+    sw_reserve_result_t rest;
+};
+
+static void set_msg(char *msg, size_t len, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static void set_msg(char *msg, size_t len, const char *fmt, ...)
+{
+    if (!msg || !len) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, len, fmt, ap);
+    va_end(ap);
+}
+
+static double zero_input(void *user, double t)
+{
+    (void)user;
+    (void)t;
+    return 0.0;
+}
+
+/* ---- bounds ------------------------------------------------------------- */
+
+/* The energy argument (docs/reserve.md).  In the bed's frame the input
+ * acts as the force -M a on the centre of mass of everything that moves
+ * (mass M, horizontal velocity X' relative to the bed), the rest of the
+ * forces are conservative (gravity, springs) or dissipate (dampers,
+ * impacts, the cushion's clamp): dE/dt <= M |a| |X'|.  With
+ * |X'| <= sqrt(2 KE / M') for a mass M' <= M read off the kinetic energy
+ * and KE <= E (the potential energy, from rest, is >= 0 while
+ * |theta| < alpha), d sqrt(E/m)/dt <= c |a| with c below, E per unit
+ * package mass m.  Reaching |theta| = alpha needs E >= E_b. */
+static double energy_c(const sw_derived_t *d)
+{
+    switch (d->model) {
+    case SW_MODEL_BARE:
+        /* KE = (2/3) m R^2 th'^2 about the corner, |X'| <= R |th'|:
+         * X'^2 <= (3/2) KE/m */
+        return sqrt(3.0 / 8.0);
+    case SW_MODEL_FRAME: return 1.0 / sqrt(2.0 * d->gamma); /* KE >= M X'^2/2, M = m/gamma */
+    case SW_MODEL_CUSHION:
+        if (d->gamma > 0.0) return 1.0 / sqrt(2.0 * d->gamma);
+        /* on the bed B holds still: X' = h cos(th) th', and
+         * KE >= m X'^2/2 + I_C th'^2/2 >= (m + I_C/h^2) X'^2/2 */
+        return sqrt(d->h * d->h / (2.0 * (d->h * d->h + d->R * d->R / 3.0))); /* I_C/m = R^2/3 */
+    default: return INFINITY;
+    }
+}
+
+/* Energy of s and the barrier, J/kg of package mass; 0 if unknown. */
+static double energy_of(const sw_derived_t *d, double g, const sw_state_t *s)
+{
+    switch (d->model) {
+    case SW_MODEL_BARE: return sw_energy_bare(d, g, s);
+    case SW_MODEL_FRAME: return sw_energy_frame(d, g, s);
+    case SW_MODEL_CUSHION: return sw_energy_cushion(d, g, s);
+    default: return 0.0;
+    }
+}
+
+static double barrier_of(const sw_derived_t *d, double g)
+{
+    if (d->model == SW_MODEL_CUSHION) return sw_cushion_barrier(d, g);
+    return g * d->R * (1.0 - d->h / d->R); /* g R (1 - cos alpha) */
+}
+
+double sw_reserve_energy_bound(const sw_derived_t *d, double g, const sw_state_t *s, double T)
+{
+    if (!d || !s || !(T > 0.0) || !(g > 0.0)) return 0.0;
+    if (fabs(s->theta) >= d->alpha || s->phase == SW_PHASE_OVERTURNED) return 0.0;
+    const double c = energy_c(d);
+    if (!isfinite(c)) return 0.0;
+    /* int |a| dt over the half-sine = 2 a_e T / pi; quiet input after the
+     * pulse only loses energy */
+    const double gap = sqrt(barrier_of(d, g)) - sqrt(fmax(energy_of(d, g, s), 0.0));
+    if (!(gap > 0.0)) return 0.0;
+    return M_PI * gap / (2.0 * T * c) / SW_G0;
+}
+
+/* The stuck frame's support acceleration A = -(2 zeta w u' + w^2 u), and
+ * its linear response tables (see pulse_ctx_t), by RK4 at LIFT_SAMPLES
+ * steps per shortest period (error ~1e-10 relative). */
+static void frame_deriv(const sw_derived_t *d, double a, const double y[2], double f[2])
+{
+    const double w = d->omega_b, z = d->zeta_b;
+    f[0] = y[1];
+    f[1] = -2.0 * z * w * y[1] - w * w * y[0] - a;
+}
+
+static double frame_accel(const sw_derived_t *d, const double y[2])
+{
+    const double w = d->omega_b, z = d->zeta_b;
+    return -(2.0 * z * w * y[1] + w * w * y[0]);
+}
+
+static void frame_rk4(const sw_derived_t *d, double T, double t, double h, double y[2],
+                      int forced)
+{
+    double k1[2], k2[2], k3[2], k4[2], yt[2];
+    const double w = M_PI / T;
+#define IN(tt) (forced && (tt) <= T ? sin(w * (tt)) : 0.0)
+    frame_deriv(d, IN(t), y, k1);
+    for (int i = 0; i < 2; i++) yt[i] = y[i] + 0.5 * h * k1[i];
+    frame_deriv(d, IN(t + 0.5 * h), yt, k2);
+    for (int i = 0; i < 2; i++) yt[i] = y[i] + 0.5 * h * k2[i];
+    frame_deriv(d, IN(t + 0.5 * h), yt, k3);
+    for (int i = 0; i < 2; i++) yt[i] = y[i] + h * k3[i];
+    frame_deriv(d, IN(t + h), yt, k4);
+#undef IN
+    for (int i = 0; i < 2; i++) y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+}
+
+static int lift_table(const sw_derived_t *d, pulse_ctx_t *P)
+{
+    const double Tb = 2.0 * M_PI / d->omega_b; /* s, bearing period */
+    const double span = P->T + LIFT_RINGING * Tb;
+    const double h = fmin(Tb, 2.0 * P->T) / LIFT_SAMPLES;
+    const double nd = ceil(span / h) + 1.0;
+    if (nd > LIFT_MAX_SAMPLES) return SW_OK; /* no table: the energy bound alone */
+    P->n = (size_t)nd;
+    P->h = span / (double)(P->n - 1);
+    P->Au = malloc(3 * P->n * sizeof *P->Au);
+    if (!P->Au) return SW_ENOMEM;
+    P->A1 = P->Au + P->n;
+    P->A2 = P->A1 + P->n;
+    double yu[2] = {0.0, 0.0}, y1[2] = {1.0, 0.0}, y2[2] = {0.0, 1.0};
+    for (size_t k = 0; k < P->n; k++) {
+        const double t = (double)k * P->h;
+        P->Au[k] = frame_accel(d, yu);
+        P->A1[k] = frame_accel(d, y1);
+        P->A2[k] = frame_accel(d, y2);
+        if (k + 1 == P->n) break;
+        frame_rk4(d, P->T, t, P->h, yu, 1);
+        frame_rk4(d, P->T, t, P->h, y1, 0);
+        frame_rk4(d, P->T, t, P->h, y2, 0);
+    }
+    memcpy(P->end_u, yu, sizeof yu);
+    memcpy(P->end_1, y1, sizeof y1);
+    memcpy(P->end_2, y2, sizeof y2);
+    return SW_OK;
+}
+
+/* The lowest amplitude (g) of a pulse in direction dir that can lift the
+ * package off the stuck frame in state s, or 0 if none is known.  On the
+ * samples: |x U(t) + F(t)| >= L, with U the pulse's and F the initial
+ * state's share of the support acceleration.  After them, with no input,
+ * the bearing's energy e = (u'^2 + w^2 u^2)/2 can only fall and
+ * |A| <= w sqrt(1 + 4 zeta^2) sqrt(2 e), which bounds every later peak. */
+static double frame_lift_g(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
+                           int dir)
+{
+    if (!P->n) return 0.0;
+    const sw_derived_t *d = &R->d;
+    const double L = R->sc.g * tan(d->alpha); /* m/s^2 */
+    const double k = dir * SW_G0;             /* m/s^2 per g */
+    double x = INFINITY;
+    for (size_t i = 0; i < P->n; i++) {
+        const double U = k * P->Au[i];
+        const double F = s->u * P->A1[i] + s->u_dot * P->A2[i];
+        if (fabs(F) >= L) return 0.0;
+        if (U != 0.0) {
+            const double need = (L - (U > 0.0 ? F : -F)) / fabs(U);
+            if (need < x) x = need;
+        }
+    }
+    /* the ringing after the table */
+    const double w = d->omega_b;
+    const double Lp = L / (w * sqrt(1.0 + 4.0 * d->zeta_b * d->zeta_b));
+    const double a0 = k * P->end_u[0] * w, a1 = k * P->end_u[1];
+    const double b0 = (s->u * P->end_1[0] + s->u_dot * P->end_2[0]) * w;
+    const double b1 = s->u * P->end_1[1] + s->u_dot * P->end_2[1];
+    const double aa = a0 * a0 + a1 * a1, ab = a0 * b0 + a1 * b1, bb = b0 * b0 + b1 * b1;
+    if (bb >= Lp * Lp) return 0.0;
+    if (aa > 0.0) {
+        const double xt = (-ab + sqrt(ab * ab - aa * (bb - Lp * Lp))) / aa;
+        if (xt < x) x = xt;
+    }
+    return isfinite(x) ? LIFT_SLACK * x : 0.0;
+}
+
+/* The proven lower bound of the amplitude (g) that can overturn the
+ * package from s with pulse P in direction dir, or 0 if none is known. */
+static double lower_bound_g(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
+                            int dir)
+{
+    double x = ENERGY_SLACK * sw_reserve_energy_bound(&R->d, R->sc.g, s, P->T);
+    if (s->phase == SW_PHASE_STUCK) {
+        if (R->d.model == SW_MODEL_BARE)
+            x = fmax(x, R->lift_g); /* the half-sine's peak must reach g tan(alpha) */
+        else if (R->d.model == SW_MODEL_FRAME)
+            x = fmax(x, frame_lift_g(R, P, s, dir));
+    }
+    return x;
+}
+
+double sw_reserve_lower_bound(const sw_reserve_t *r, const sw_state_t *s, int dir, size_t pulse)
+{
+    if (!r || !s || pulse >= r->np || (dir != SW_RESERVE_BRAKING && dir != SW_RESERVE_ACCELERATING))
+        return 0.0;
+    return lower_bound_g(r, &r->p[pulse], s, dir);
+}
+
+/* ---- one run ------------------------------------------------------------- */
+
+/* Run state s under a pulse of amplitude a (m/s^2, signed; 0 = quiet) and
+ * decide: fills r->overturned, r->end, r->t_end, r->faults. */
+static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s, double a,
+               sw_run_result_t *r)
+{
+    sw_engine_t *e = P->e;
+    const int bare = R->d.model == SW_MODEL_BARE;
+    sw_engine_reset(e);
+    int rc = sw_engine_set_state(e, 0, s);
+    if (rc < 0) return rc;
+    double t = 0.0;
+    sw_summary_t sum;
+    sw_output_t o;
+    if (a != 0.0) {
+        /* The pulse, in whole steps between checks of the energy
+         * certificate: if even all the work the rest of the pulse could do
+         * (c |a| int_t^T sin, energy_c()) cannot lift sqrt(E) to the
+         * barrier's, the run is safe now. */
+        sw_pulse_t pl = {SW_PULSE_HALF_SINE, a, M_PI / P->T};
+        const double w = M_PI / P->T, ca = R->c_energy * fabs(a) / w; /* sqrt(J/kg) */
+        while (t < P->T) {
+            t = fmin(P->T, t + P->check);
+            rc = sw_engine_advance_fn(e, t, sw_pulse_eval, &pl);
+            if (rc < 0) return rc;
+            if (!(t < P->T)) break;
+            sw_engine_summary(e, 0, &sum);
+            if (sum.overturned || sum.faults) break;
+            sw_engine_get_output(e, 0, &o);
+            if (fabs(o.state.theta) >= R->d.alpha) continue;
+            const double E = fmax(energy_of(&R->d, R->sc.g, &o.state), 0.0); /* J/kg */
+            if (sqrt(E) + ca * (1.0 + cos(w * t)) < CERT_SLACK * R->sqrt_eb) {
+                r->end = bare ? SW_END_REST : SW_END_BOUND;
+                r->overturned = 0;
+                r->t_end = t;
+                return SW_OK;
+            }
+        }
+    }
+    const double t_limit = t + R->t_free;
+    for (;;) {
+        sw_engine_summary(e, 0, &sum);
+        if (sum.faults) {
+            r->faults = sum.faults;
+            r->end = SW_END_TIMEOUT;
+            break;
+        }
+        if (sum.overturned) {
+            r->end = SW_END_OVERTURN;
+            break;
+        }
+        sw_engine_get_output(e, 0, &o);
+        if (bare) {
+            /* exact for free rocking (physics.md): decided now */
+            if (o.state.phase == SW_PHASE_STUCK) r->end = SW_END_REST;
+            else r->end = o.margin > 0.0 ? SW_END_REST : SW_END_FALLING;
+            break;
+        }
+        if (o.margin_bound > 0.0) {
+            r->end = SW_END_BOUND;
+            break;
+        }
+        if (!(t < t_limit)) {
+            r->end = SW_END_TIMEOUT;
+            break;
+        }
+        t = fmin(t_limit, t + R->chunk);
+        rc = sw_engine_advance_fn(e, t, zero_input, NULL);
+        if (rc < 0) return rc;
+    }
+    r->overturned = r->end == SW_END_OVERTURN || r->end == SW_END_FALLING;
+    r->t_end = t;
+    return r->faults ? SW_EFAULT : SW_OK;
+}
+
+/* One trial: does amplitude x (g) of pulse P in direction dir overturn
+ * the package from s?  1 yes, 0 no, < 0 an error.  A faulted run counts as
+ * safe (and is reported by the caller). */
+static int trial(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s, int dir,
+                 double x, int *faulted, long *trials)
+{
+    sw_run_result_t r;
+    memset(&r, 0, sizeof r);
+    (*trials)++;
+    const int rc = run(R, P, s, dir * x * SW_G0, &r);
+    if (rc == SW_EFAULT) {
+        *faulted = 1;
+        return 0;
+    }
+    return rc < 0 ? rc : r.overturned;
+}
+
+/* ---- evaluation ---------------------------------------------------------- */
+
+static int is_rest(const sw_reserve_t *R, const sw_state_t *s)
+{
+    switch (R->d.model) {
+    case SW_MODEL_BARE: return s->phase == SW_PHASE_STUCK;
+    case SW_MODEL_FRAME: return s->phase == SW_PHASE_STUCK && s->u == 0.0 && s->u_dot == 0.0;
+    case SW_MODEL_CUSHION:
+        return s->phase != SW_PHASE_OVERTURNED && s->theta == 0.0 && s->theta_dot == 0.0 &&
+               s->z == R->z_rest && s->z_dot == 0.0 && s->u == 0.0 && s->u_dot == 0.0;
+    default: return 0;
+    }
+}
+
+int sw_reserve_is_rest(const sw_reserve_t *r, const sw_state_t *s)
+{
+    return r && s && is_rest(r, s);
+}
+
+static int state_ok(const sw_state_t *s)
+{
+    return isfinite(s->u) && isfinite(s->u_dot) && isfinite(s->theta) &&
+           isfinite(s->theta_dot) && isfinite(s->z) && isfinite(s->z_dot) &&
+           (s->phase == SW_PHASE_STUCK || s->phase == SW_PHASE_ROCKING ||
+            s->phase == SW_PHASE_OVERTURNED);
+}
+
+/* Upright, still and centred: its own mirror image. */
+static int symmetric(const sw_state_t *s)
+{
+    return s->theta == 0.0 && s->theta_dot == 0.0 && s->u == 0.0 && s->u_dot == 0.0;
+}
+
+static void result_zero(sw_reserve_result_t *out)
+{
+    out->reserve_g = out->safe_g = 0.0;
+    out->found = 1;
+    out->direction = 0;
+    out->pulse = 0.0;
+    out->dir_g[0] = out->dir_g[1] = 0.0;
+    out->dir_exact[0] = out->dir_exact[1] = 1;
+}
+
+/* One scan: a design pulse in one direction, from its lower bound up. */
+typedef struct {
+    const pulse_ctx_t *P;
+    int dir;
+    double lo;   /* g, the first amplitude tried */
+    int bounded; /* lo is a proven bound (else the floor) */
+    int k;       /* next scan point: lo (1 + step)^k, clipped to max_g */
+    double safe; /* g, the last amplitude found safe (0 if none) */
+    int done;    /* scanned up to max_g */
+} scan_t;
+
+static double scan_next(const sw_reserve_t *R, const scan_t *c)
+{
+    return fmin(c->lo * pow(1.0 + R->step, c->k), R->max_g);
+}
+
+/* The merged scan over the n scans (pulses x directions): always try the
+ * lowest next scan point of them all, so that the first overturn found is
+ * the lowest on every scan's grid, and no scan goes past it.  Then bisect
+ * that scan's last safe point and the overturning one to tol (geometric
+ * midpoints, as sw_threshold_search).  Fills out; returns SW_OK or the
+ * first error. */
+static int merged_scan(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, int n,
+                       sw_reserve_result_t *out, int *faulted)
+{
+    for (;;) {
+        int best = -1;
+        double x = INFINITY;
+        for (int i = 0; i < n; i++) {
+            if (c[i].done) continue;
+            const double xi = scan_next(R, &c[i]);
+            if (xi < x) {
+                x = xi;
+                best = i;
+            }
+        }
+        if (best < 0) return SW_OK; /* nothing overturns up to max_g */
+        scan_t *b = &c[best];
+        const int over = trial(R, b->P, s, b->dir, x, faulted, &out->trials);
+        if (over < 0) return over;
+        if (!over) {
+            b->safe = x;
+            b->k++;
+            if (x >= R->max_g) b->done = 1;
+            continue;
+        }
+        /* the first overturn: bisect down to the last safe point */
+        double lo = b->safe, hi = x;
+        const int at_min = b->k == 0;
+        while (!at_min && hi / lo - 1.0 > R->tol) {
+            const double m = sqrt(lo * hi);
+            if (!(m > lo && m < hi)) break;
+            const int o = trial(R, b->P, s, b->dir, m, faulted, &out->trials);
+            if (o < 0) return o;
+            if (o) hi = m;
+            else lo = m;
+        }
+        out->found = 1;
+        out->reserve_g = hi;
+        /* at the scan's start: nothing below a proven bound overturns; at
+         * the floor the value is only known to be at most the floor */
+        out->safe_g = at_min ? (b->bounded ? b->lo : 0.0) : lo;
+        out->at_floor = at_min && !b->bounded;
+        out->direction = b->dir;
+        out->pulse = b->P->T;
+        return SW_OK;
+    }
+}
+
+static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *out)
+{
+    memset(out, 0, sizeof *out);
+    int faulted = 0;
+    if (s->phase == SW_PHASE_OVERTURNED) {
+        result_zero(out);
+        return SW_OK;
+    }
+    /* quiet input: the same for every pulse */
+    sw_run_result_t rq;
+    memset(&rq, 0, sizeof rq);
+    out->trials++;
+    int rc = run(R, &R->p[0], s, 0.0, &rq);
+    if (rc == SW_EFAULT) faulted = 1;
+    else if (rc < 0) return rc;
+    if (rq.overturned) {
+        result_zero(out);
+        return SW_OK;
+    }
+
+    /* A state that is its own mirror image needs the braking pulses only;
+     * with each_direction the two directions are scanned apart, so that
+     * each gets its own value. */
+    const int mirror = symmetric(s);
+    const int ndir = mirror ? 1 : 2;
+    const int passes = R->o.each_direction && !mirror ? 2 : 1;
+    scan_t c[2 * SW_DESIGN_PULSES_MAX];
+    sw_reserve_result_t part[2];
+    double known[2] = {R->max_g, R->max_g}; /* g: each direction is at least this */
+    int complete[2] = {1, 1};                /* every scan of it went to max_g */
+    for (int pass = 0; pass < passes; pass++) {
+        int n = 0;
+        for (int k = 0; k < ndir; k++) {
+            const int dir = k == 0 ? SW_RESERVE_BRAKING : SW_RESERVE_ACCELERATING;
+            if (passes == 2 && k != pass) continue;
+            for (size_t j = 0; j < R->np; j++) {
+                scan_t *ci = &c[n++];
+                memset(ci, 0, sizeof *ci);
+                ci->P = &R->p[j];
+                ci->dir = dir;
+                ci->lo = lower_bound_g(R, ci->P, s, dir);
+                ci->bounded = ci->lo >= R->floor_g;
+                if (!ci->bounded) ci->lo = R->floor_g;
+                if (!(ci->lo < R->max_g)) ci->done = 1;
+            }
+        }
+        memset(&part[pass], 0, sizeof part[pass]);
+        rc = merged_scan(R, s, c, n, &part[pass], &faulted);
+        out->trials += part[pass].trials;
+        if (rc < 0) return rc;
+        for (int i = 0; i < n; i++) {
+            const int di = c[i].dir == SW_RESERVE_BRAKING ? 0 : 1;
+            if (!c[i].done) complete[di] = 0;
+            known[di] = fmin(known[di], c[i].done ? R->max_g : scan_next(R, &c[i]));
+        }
+    }
+    /* the smaller of the passes */
+    int wi = 0;
+    if (passes == 2 && part[1].found && (!part[0].found || part[1].reserve_g < part[0].reserve_g))
+        wi = 1;
+    const long trials = out->trials;
+    *out = part[wi];
+    out->trials = trials;
+    for (int di = 0; di < 2; di++) {
+        out->dir_g[di] = known[di];
+        out->dir_exact[di] = complete[di];
+    }
+    for (int p = 0; p < passes; p++) {
+        if (!part[p].found) continue;
+        const int di = part[p].direction == SW_RESERVE_BRAKING ? 0 : 1;
+        out->dir_g[di] = part[p].reserve_g;
+        out->dir_exact[di] = 1;
+    }
+    if (mirror) {
+        out->dir_g[1] = out->dir_g[0];
+        out->dir_exact[1] = out->dir_exact[0];
+    }
+    if (!out->found) {
+        out->reserve_g = out->safe_g = R->max_g;
+        out->direction = SW_RESERVE_BRAKING;
+        out->pulse = R->p[0].T;
+    }
+    return faulted ? SW_EFAULT : SW_OK;
+}
+
+int sw_reserve_eval(sw_reserve_t *r, const sw_state_t *s, sw_reserve_result_t *out)
+{
+    if (!r || !s || !out) return SW_EINVAL;
+    if (!state_ok(s)) return SW_EINVAL;
+    if (!r->o.no_cache && is_rest(r, s)) {
+        *out = r->rest;
+        return SW_OK;
+    }
+    return compute(r, s, out);
+}
+
+void sw_reserve_rest(const sw_reserve_t *r, sw_reserve_result_t *out)
+{
+    if (r && out) *out = r->rest;
+}
+
+size_t sw_reserve_pulses(const sw_reserve_t *r, const double **T)
+{
+    static const double none[1] = {0.0};
+    if (!r) {
+        if (T) *T = none;
+        return 0;
+    }
+    if (T) *T = r->sc.design_pulse;
+    return r->np;
+}
+
+/* ---- create / destroy ---------------------------------------------------- */
+
+void sw_reserve_destroy(sw_reserve_t *r)
+{
+    if (!r) return;
+    for (size_t j = 0; j < r->np; j++) {
+        sw_engine_destroy(r->p[j].e);
+        free(r->p[j].Au);
+    }
+    free(r);
+}
+
+/* dt for pulse T: the shortest of the pulse's period 2T, the rocking
+ * period and the scene's fastest period, over SW_RESERVE_STEPS. */
+static double auto_dt(const sw_derived_t *d, double T)
+{
+    double period = fmin(2.0 * T, 2.0 * M_PI / d->p); /* s */
+    if (d->omega_max > 0.0) period = fmin(period, 2.0 * M_PI / d->omega_max);
+    return period / SW_RESERVE_STEPS;
+}
+
+sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *opts, int *err,
+                                char *msg, size_t msglen)
+{
+    int e_ = SW_OK;
+    if (!err) err = &e_;
+    *err = SW_OK;
+    set_msg(msg, msglen, "%s", "");
+    if (!sc) {
+        *err = SW_EINVAL;
+        set_msg(msg, msglen, "no scene");
+        return NULL;
+    }
+    sw_reserve_t *R = calloc(1, sizeof *R);
+    if (!R) {
+        *err = SW_ENOMEM;
+        set_msg(msg, msglen, "out of memory");
+        return NULL;
+    }
+    R->sc = *sc;
+    if (opts) R->o = *opts;
+    if (sw_scene_validate(&R->sc, &R->d, NULL, NULL, NULL) != SW_OK) {
+        *err = SW_EINVAL;
+        set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
+        goto fail;
+    }
+    const sw_derived_t *d = &R->d;
+    R->step = R->o.step > 0.0 ? R->o.step : DEFAULT_STEP;
+    R->tol = R->o.tol > 0.0 ? R->o.tol : DEFAULT_TOL;
+    R->lift_g = R->sc.g * tan(d->alpha) / SW_G0;
+    R->max_g = R->o.max_g > 0.0 ? R->o.max_g : DEFAULT_X_MAX * R->lift_g;
+    R->floor_g = R->o.floor_g > 0.0 ? R->o.floor_g : SW_RESERVE_FLOOR_G;
+    if (!isfinite(R->step) || !isfinite(R->tol) || !isfinite(R->max_g) ||
+        !isfinite(R->floor_g) || !(R->floor_g < R->max_g)) {
+        *err = SW_EINVAL;
+        set_msg(msg, msglen, "bad reserve options (step %g, tol %g, floor %g g, max %g g)",
+                R->step, R->tol, R->floor_g, R->max_g);
+        goto fail;
+    }
+    const double fp = R->o.run.free_periods > 0.0 ? R->o.run.free_periods : SW_RESERVE_FREE_PERIODS;
+    R->t_free = fp * 2.0 * M_PI / d->p;
+    R->chunk = 2.0 * M_PI / d->p / CHECKS_PER_PERIOD;
+    R->z_rest = d->model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(d, R->sc.g) : 0.0;
+    R->sqrt_eb = sqrt(barrier_of(d, R->sc.g));
+    R->c_energy = energy_c(d);
+
+    R->np = (size_t)R->sc.n_design_pulse;
+    for (size_t j = 0; j < R->np; j++) {
+        pulse_ctx_t *P = &R->p[j];
+        P->T = R->sc.design_pulse[j];
+        sw_engine_opts_t eo = R->o.run.engine;
+        eo.on_event = NULL;
+        eo.on_state = NULL;
+        eo.user = NULL;
+        eo.dt_forced = 0;
+        if (!(eo.dt > 0.0) && !(eo.accuracy > 0.0)) eo.dt = auto_dt(d, P->T);
+        /* checks at whole steps, so that they do not cut the step grid */
+        const double dt = eo.dt > 0.0 ? eo.dt : auto_dt(d, P->T);
+        P->check = dt * ceil(P->T / CHECKS_PER_PULSE / dt);
+        if (!(eo.rtol > 0.0)) eo.rtol = DEFAULT_RTOL;
+        if (!(eo.atol > 0.0)) eo.atol = DEFAULT_ATOL;
+        if (!(eo.rest_eps > 0.0)) eo.rest_eps = DEFAULT_REST_EPS;
+        char why[256] = "";
+        P->e = sw_engine_create(&R->sc, 1, &eo, err, why, sizeof why);
+        if (!P->e) {
+            set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
+            goto fail;
+        }
+        if (d->model == SW_MODEL_FRAME && (*err = lift_table(d, P)) != SW_OK) {
+            set_msg(msg, msglen, "out of memory");
+            goto fail;
+        }
+    }
+
+    /* the value at rest, by the same search as any state */
+    sw_state_t rest;
+    memset(&rest, 0, sizeof rest);
+    rest.phase = d->model == SW_MODEL_CUSHION ? SW_PHASE_ROCKING : SW_PHASE_STUCK;
+    rest.side = d->model == SW_MODEL_CUSHION ? 1 : 0;
+    rest.z = R->z_rest;
+    const int rc = compute(R, &rest, &R->rest);
+    if (rc < 0) {
+        *err = rc;
+        set_msg(msg, msglen, "the reserve at rest: %s", sw_strerror(rc));
+        goto fail;
+    }
+    R->rest.cached = 1;
+    R->rest.trials = 0;
+    return R;
+fail:
+    sw_reserve_destroy(R);
+    return NULL;
+}

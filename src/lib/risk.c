@@ -1,0 +1,178 @@
+/* risk.c - the reserve at a rate, its minimum, significant impacts and
+ * settling spans of every package beside an engine (risk.h). */
+#include "swaywatch/risk.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "swaywatch/status.h"
+
+typedef struct {
+    sw_reserve_t *reserve; /* NULL: no reserve (rate < 0) */
+    sw_settle_t settle;
+    int settles;           /* impacts can be told apart (not a cushion) */
+    double next;           /* s of engine time: the next evaluation at or after it; NAN: the
+                              first output */
+    double origin;         /* s, time of the first evaluation of the schedule */
+    double m;              /* evaluations scheduled since origin: next = origin + m period
+                              (a product, not a sum: no drift over hours) */
+    sw_risk_pkg_t f;
+} pkg_t;
+
+struct sw_risk {
+    size_t n;
+    double period; /* s between evaluations; 0: no reserve */
+    sw_risk_opts_t o;
+    pkg_t *p;
+};
+
+static void figures_init(pkg_t *p)
+{
+    const double impact_min = p->f.impact_min;
+    memset(&p->f, 0, sizeof p->f);
+    p->f.reserve_g = p->f.reserve_t = p->f.min_reserve_g = p->f.min_reserve_time = NAN;
+    p->f.impact_min = impact_min;
+    p->next = NAN;
+    if (p->settles) sw_settle_init(&p->settle, impact_min);
+}
+
+/* Package p for scene sc: its reserve and its significance. */
+static int pkg_build(const sw_risk_t *r, const sw_scene_t *sc, pkg_t *p, char *msg,
+                     size_t msglen)
+{
+    sw_derived_t d;
+    memset(p, 0, sizeof *p);
+    if (sw_scene_validate(sc, &d, sc->name, NULL, NULL) != SW_OK) {
+        if (msg) snprintf(msg, msglen, "%s: the scene does not validate", sc->name);
+        return SW_EINVAL;
+    }
+    p->f.impact_min = SW_IMPACT_SIGNIFICANCE * sw_impact_tip_speed(&d, sc->g);
+    p->settles = p->f.impact_min > 0.0;
+    if (r->period > 0.0) {
+        int err = SW_OK;
+        p->reserve = sw_reserve_create(sc, &r->o.reserve, &err, msg, msglen);
+        if (!p->reserve) return err != SW_OK ? err : SW_ENOMEM;
+    }
+    figures_init(p);
+    return SW_OK;
+}
+
+sw_risk_t *sw_risk_create(const sw_scene_t *scenes, size_t n, const sw_risk_opts_t *o,
+                          int *err, char *msg, size_t msglen)
+{
+    int e = SW_ENOMEM;
+    sw_risk_t *r = calloc(1, sizeof *r);
+    if (r) {
+        if (o) r->o = *o;
+        const double rate = r->o.reserve_rate == 0.0 ? SW_RISK_RATE : r->o.reserve_rate;
+        r->n = n;
+        r->p = calloc(n ? n : 1, sizeof *r->p);
+        e = !r->p ? SW_ENOMEM : !(rate < 1e9) || (!scenes && n) ? SW_EINVAL : SW_OK;
+        if (e == SW_EINVAL && msg) snprintf(msg, msglen, "reserve rate not a rate");
+        r->period = rate > 0.0 ? 1.0 / rate : 0.0;
+        for (size_t k = 0; e == SW_OK && k < n; k++) e = pkg_build(r, &scenes[k], &r->p[k], msg, msglen);
+    }
+    if (err) *err = e;
+    if (e == SW_OK) return r;
+    if (e == SW_ENOMEM && msg) snprintf(msg, msglen, "%s", sw_strerror(SW_ENOMEM));
+    sw_risk_destroy(r);
+    return NULL;
+}
+
+void sw_risk_destroy(sw_risk_t *r)
+{
+    if (!r) return;
+    for (size_t k = 0; r->p && k < r->n; k++) sw_reserve_destroy(r->p[k].reserve);
+    free(r->p);
+    free(r);
+}
+
+/* Evaluate package p's reserve on out's state. */
+static void evaluate(pkg_t *p, const sw_output_t *out)
+{
+    sw_reserve_result_t res;
+    const int rc = sw_reserve_eval(p->reserve, &out->state, &res);
+    if (rc == SW_EINVAL) return; /* a state not finite: no value, none kept */
+    if (rc != SW_OK) p->f.reserve_faults++;
+    p->f.evaluations++;
+    p->f.reserve_g = res.reserve_g;
+    p->f.direction = res.direction;
+    p->f.pulse = res.pulse;
+    p->f.reserve_t = out->t;
+    if (!(res.reserve_g >= p->f.min_reserve_g)) { /* NAN min: the first */
+        p->f.min_reserve_g = res.reserve_g;
+        p->f.min_reserve_time = out->t;
+    }
+}
+
+int sw_risk_output(sw_risk_t *r, const sw_output_t *out)
+{
+    if (!r || !out || out->pkg >= r->n) return SW_EINVAL;
+    pkg_t *p = &r->p[out->pkg];
+    if (!p->reserve || !isfinite(out->t)) return 0;
+    /* the engine's clock went back (restarted): schedule from here */
+    if (!isnan(p->next) && out->t < p->next - r->period) p->next = NAN;
+    if (!isnan(p->next) && out->t < p->next) return 0;
+    evaluate(p, out);
+    if (isnan(p->next)) {
+        p->origin = out->t;
+        p->m = 0.0;
+    }
+    /* the next multiple of the period after this output (after a gap, the
+     * first one past it) */
+    p->m = fmax(p->m + 1.0, floor((out->t - p->origin) / r->period) + 1.0);
+    p->next = p->origin + p->m * r->period;
+    return 1;
+}
+
+int sw_risk_event(sw_risk_t *r, const sw_event_t *ev, sw_settle_span_t *closed)
+{
+    if (!r || !ev || ev->pkg >= r->n) return SW_EINVAL;
+    pkg_t *p = &r->p[ev->pkg];
+    const int f = p->settles ? sw_settle_feed(&p->settle, ev, closed) : SW_SETTLE_REPORT;
+    if (f & SW_SETTLE_CLOSED) p->f.settling_spans++;
+    if (ev->kind == SW_EV_IMPACT) {
+        if (f & SW_SETTLE_REPORT)
+            p->f.impacts++;
+        else
+            p->f.micro_impacts++;
+    }
+    return f;
+}
+
+int sw_risk_finish(sw_risk_t *r, size_t k, sw_settle_span_t *closed)
+{
+    if (!r || k >= r->n || !r->p[k].settles) return 0;
+    const int closed_one = sw_settle_finish(&r->p[k].settle, closed);
+    r->p[k].f.settling_spans += closed_one;
+    return closed_one;
+}
+
+const sw_risk_pkg_t *sw_risk_pkg(const sw_risk_t *r, size_t k)
+{
+    return r && k < r->n ? &r->p[k].f : NULL;
+}
+
+int sw_risk_replace(sw_risk_t *r, size_t k, const sw_scene_t *scene, char *msg, size_t msglen)
+{
+    if (!r || !scene || k >= r->n) {
+        if (msg) snprintf(msg, msglen, "no such package");
+        return SW_EINVAL;
+    }
+    pkg_t fresh;
+    const int rc = pkg_build(r, scene, &fresh, msg, msglen);
+    if (rc != SW_OK) {
+        sw_reserve_destroy(fresh.reserve);
+        return rc;
+    }
+    sw_reserve_destroy(r->p[k].reserve);
+    r->p[k] = fresh;
+    return SW_OK;
+}
+
+void sw_risk_reset(sw_risk_t *r)
+{
+    for (size_t k = 0; r && k < r->n; k++) figures_init(&r->p[k]);
+}

@@ -1,0 +1,80 @@
+#!/bin/sh
+# Every numeric option has bounds, documented in --help and enforced at
+# once: values that made the engine hang (--dt 1e-12, --omega 1e-300,
+# --settle 1e300, --step 1e-300, --sample-interval 1e-300), fault
+# (--rtol/--atol 1e-300), overflow the monitor core (--gap 1e300,
+# --state-rate 1e-300) or be accepted and then refuse every sample
+# (--max-accel 20000g) are refused with exit 2 and the range, well within
+# the timeout.
+. "$(dirname "$0")/lib.sh"
+
+SCENE=$SRC/sample_logs/crate.ini
+LOG=$SRC/sample_logs/hard-stop-overturn.csv
+HAVE_LCM=0
+"$SW" --help | grep -q monitor && HAVE_LCM=1
+
+# out CMD OPTION VALUE RANGE: refused, with the range, in seconds
+out() {
+    cmd=$1 opt=$2 val=$3 range=$4
+    case $cmd in
+    replay) set -- replay "$LOG" --scene "$SCENE" ;;
+    simulate) set -- simulate --scene "$SCENE" --pulse half-sine --amplitude -9 --omega 10 ;;
+    forensics) set -- forensics "$LOG" --scene "$SCENE" --no-what-if ;;
+    boundary) set -- boundary --scene "$SCENE" --pulse half-sine --omega-ratio 2 ;;
+    monitor) set -- monitor --scene "$SCENE" ;;
+    esac
+    run timeout 10 "$SW" "$@" "$opt" "$val" -q
+    expect_rc 2 "$cmd $opt $val"
+    expect_err "swaywatch: $opt: out of range: expected $range, got '$val'" "$cmd $opt $val"
+    # the same range in --help
+    "$SW" "$cmd" --help | tr -s ' \n' '  ' | grep -qF -- "$range)" ||
+        fail "$cmd --help: $opt has no range '$range'"
+}
+
+out replay --dt 1e-12 "1e-07 to 1"
+out replay --dt 1e-300 "1e-07 to 1"
+out replay --rtol 1e-300 "1e-14 to 0.01"
+out replay --atol 1e-300 "1e-16 to 0.01"
+out replay --settle 1e300 "0 to 100000"
+out simulate --omega 1e-300 "0.01 to 100000"
+out simulate --duration 1e300 "1e-06 to 100000"
+out simulate --sample-interval 1e-300 "1e-06 to 10"
+out forensics --settle 1e300 "0 to 100000"
+out forensics --step 1e-300 "0.0001 to 1"
+out forensics --tol 1e-300 "1e-09 to 0.5"
+out forensics --max-factor 1e300 "1 to 10000"
+out boundary --step 1e-300 "0.0001 to 1"
+out boundary --max-amplitude 1e300 "0.001 to 10000"
+out boundary --free-periods 1e300 "0.01 to 10000"
+run timeout 10 "$SW" boundary --scene "$SCENE" --pulse half-sine --omega-ratio 1e-300 -q
+expect_rc 2 "--omega-ratio 1e-300"
+expect_err "--omega-ratio: out of range: expected 0.001 to 10000, got '1e-300'" "--omega-ratio"
+run timeout 10 "$SW" boundary --scene "$SRC/sample_logs/crate-on-frame.ini" --pulse half-sine \
+    --omega-ratio 2 --bearing-ratio 1,1e300 -q
+expect_rc 2 "--bearing-ratio 1e300"
+expect_err "--bearing-ratio: out of range: expected 0.001 to 1000, got '1e+300'" "--bearing-ratio"
+# A long simulate in tiny output steps: refused before it starts.
+run timeout 10 "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -9 --omega 10 \
+    --duration 1e5 --sample-interval 1e-6 -q
+expect_rc 2 "simulate: too many rows"
+expect_err "more than 1e+08 steps" "simulate: too many rows"
+
+if [ "$HAVE_LCM" = 1 ]; then
+    out monitor --gap 1e300 "0, or 0.0001 to 86400"
+    out monitor --state-rate 1e-300 "0, or 0.001 to 1e+06"
+    out monitor --max-accel 20000g "0.1 to 100000"
+    out monitor --max-skew 1e300 "0, or 0.001 to 1e+09"
+    out monitor --status 1e300 "0, or 0.1 to 86400"
+    out replay --max-jump 1e300 "0, or 1e-06 to 86400"
+    out replay --speed 1e-300 "0, or 0.001 to 1e+06"
+fi
+
+# The bounds themselves and the off values are taken.
+run "$SW" replay "$LOG" --scene "$SCENE" --dt 1e-4 --rtol 1e-14 --atol 1e-16 --settle 0 -q
+expect_rc 0 "values inside the bounds"
+if [ "$HAVE_LCM" = 1 ]; then
+    run "$SW" replay "$LOG" --scene "$SCENE" --max-accel 100000 --gap 86400 --state-rate 0 -q
+    expect_rc 2 "lcm options on a CSV log" # refused as lcm-logger options, not as out of range
+    expect_err "is for lcm-logger files" "lcm options on a CSV log"
+fi
+echo "ok"

@@ -1,0 +1,109 @@
+/* fuzz_lcmlog.c - libFuzzer target for the lcm-logger reader behind
+ * `swaywatch replay LOG.lcmlog` (eventlog.h): any bytes as a log file,
+ * read through its public API into a monitor core watching a bare and a
+ * framed crate (no publishing).
+ *
+ * Input: 1 byte of options (strict; the accel channel: ACCEL, a regex
+ * matching it and others, or a channel no event has; the monitor's skew
+ * check), then the file's bytes.  The seeds are lcm-logger logs (written
+ * with LCM's event-log API) and damaged copies of them.
+ *
+ * Checks: the log opens (it is a readable file); reading ends with SW_OK,
+ * or with strict SW_EPARSE / SW_EINVAL; events = on_channel +
+ * other_channels; every event on the channel reached the monitor
+ * (received = on_channel); received = accepted + rejected + held, and
+ * after sw_mon_flush() nothing is held; corrupted regions are counted
+ * when reading did not end cleanly. */
+#include <stdint.h>
+#include <unistd.h>
+
+#include "../testutil.h"
+#include "eventlog.h"
+#include "fuzz.h"
+#include "monitor.h"
+
+/* The file the reader opens: one per process, rewritten for each input,
+ * unlinked at once (opened again through /proc/self/fd). */
+static int file_fd = -1;
+static char file_path[64];
+
+static int write_file(const uint8_t *data, size_t size)
+{
+    if (file_fd < 0) {
+        char tmpl[] = "/tmp/fuzz_lcmlog.XXXXXX";
+        file_fd = mkstemp(tmpl);
+        if (file_fd < 0)
+            return -1;
+        unlink(tmpl);
+        snprintf(file_path, sizeof file_path, "/proc/self/fd/%d", file_fd);
+    }
+    if (ftruncate(file_fd, 0) != 0)
+        return -1;
+    size_t done = 0;
+    while (done < size) {
+        ssize_t w = pwrite(file_fd, data + done, size - done, (off_t)done);
+        if (w <= 0)
+            return -1;
+        done += (size_t)w;
+    }
+    return 0;
+}
+
+static sw_mon_t *make(uint8_t o)
+{
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.max_skew = (o >> 3) & 1 ? 10.0 : 0.0;
+    mo.hysteresis = -1.0;
+    sw_scene_t sc[2] = {tu_bare(2.0, 0.728), tu_frame(2.0, 0.728, 250.0, 5.59, 0.1)};
+    snprintf(sc[0].name, sizeof sc[0].name, "crate");
+    snprintf(sc[1].name, sizeof sc[1].name, "crate-frame");
+    sw_engine_opts_t eo;
+    memset(&eo, 0, sizeof eo);
+    char msg[256];
+    sw_mon_t *m = sw_mon_create(sc, 2, &eo, &mo, NULL, msg, sizeof msg);
+    FZ_CHECK(m != NULL);
+    return m;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    if (size < 1)
+        return 0;
+    const uint8_t o = data[0];
+    if (write_file(data + 1, size - 1) != 0)
+        return 0;
+    static const char *const channels[] = {"ACCEL", "ACC.*|SWAY_.*", "NOT_THERE", NULL};
+    sw_lcmlog_opts_t lo = {.channel = channels[(o >> 1) % 4], .strict = o & 1};
+    int err = 0;
+    sw_lcmlog_t *log = sw_lcmlog_open(file_path, &lo, &err);
+    FZ_CHECK(log != NULL);
+    sw_mon_t *m = make(o);
+
+    const int rc = sw_lcmlog_read(log, m);
+    FZ_CHECK(rc == SW_OK || (lo.strict && (rc == SW_EPARSE || rc == SW_EINVAL)));
+    sw_lcmlog_counts_t lc;
+    sw_lcmlog_counts(log, &lc);
+    FZ_CHECK(lc.events >= 0 && lc.on_channel >= 0 && lc.other_channels >= 0 && lc.corrupt >= 0);
+    FZ_CHECK(lc.events == lc.on_channel + lc.other_channels);
+    if (rc == SW_EPARSE)
+        FZ_CHECK(lc.corrupt > 0);
+
+    sw_mon_counts_t c;
+    sw_mon_counts(m, &c);
+    FZ_CHECK(c.received == lc.on_channel);
+    FZ_CHECK(c.held >= 0 && c.held <= SW_GATE_HELD_MAX);
+    FZ_CHECK(c.received == c.accepted + sw_mon_rejected(&c) + c.held);
+    sw_mon_flush(m);
+    sw_mon_counts(m, &c);
+    FZ_CHECK(c.held == 0 && c.received == c.accepted + sw_mon_rejected(&c));
+    for (size_t k = 0; k < 2; k++) {
+        sw_summary_t s;
+        FZ_CHECK(sw_engine_summary(sw_mon_engine(m), k, &s) == SW_OK);
+        fz_check_summary(&s);
+    }
+    sw_mon_destroy(m);
+    sw_lcmlog_close(log);
+    return 0;
+}
