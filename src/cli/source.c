@@ -169,8 +169,9 @@ static int feed_csv(sw_cli_reader_t *R)
 {
     sw_cli_fed_t fed;
     int rc = sw_cli_feed_csv(&R->lf, &R->o->copts, &R->o->gate, R->e, R->quiet, R->take, R->user,
-                             &fed);
+                             R->halt, &fed);
     if (rc != SW_EXIT_OK) return rc;
+    if ((R->halted = fed.halted)) return SW_EXIT_OK; /* the command says why */
     R->run.samples_read = fed.rows;
     R->run.samples_rejected = fed.rejected;
     R->accepted = fed.facts.accepted;
@@ -222,7 +223,7 @@ int sw_cli_reader_feed(sw_cli_reader_t *R)
 
 void sw_cli_reader_settle(sw_cli_reader_t *R, double settle)
 {
-    if (R->interrupted || sw_cli_signal || R->accepted <= 0) return;
+    if (R->interrupted || R->halted || sw_cli_signal || R->accepted <= 0) return;
 #ifdef SW_HAVE_LCM
     if (R->src->kind == SW_CLI_SRC_LCMLOG && !(settle > 0.0)) return;
 #endif

@@ -73,6 +73,9 @@ typedef struct {
     long accepted;                 /* samples the engine got */
     sw_gate_take_fn take;          /* may be NULL: each sample the engine got, with user */
     void *user;                    /* eo.user of the engine */
+    const volatile sig_atomic_t *halt; /* may be NULL: once non-zero (take has all it can
+                                          hold) a CSV log is read no further */
+    int halted;                    /* halt stopped the reading */
 #ifdef SW_HAVE_LCM
     lcm_t *publish;                /* may be NULL: where the monitor core publishes */
     sw_mon_t *mon;
