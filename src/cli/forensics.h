@@ -34,9 +34,9 @@ typedef struct {
     sw_cli_forensics_opts_t fo;
     sw_cli_given_t given;
     int argc;
-    char **argv;         /* the command as given (argv[0] is "forensics") */
-    const char *log;     /* LOG as given */
-    sw_cli_reader_t R;   /* the log's reading and the engine of every package */
+    char **argv;       /* the command as given (argv[0] is "forensics") */
+    const char *log;   /* LOG as given */
+    sw_cli_reader_t R; /* the log's reading and the engine of every package */
     sw_scene_t *scenes;
     size_t n;
     sw_engine_opts_t eo; /* the integration options of the replay and of every search */

@@ -14,17 +14,20 @@
 
 int sw_cli_forensics_begin(sw_cli_forensics_t *F)
 {
-    if (!F->fo.report) return SW_EXIT_OK;
+    if (!F->fo.report)
+        return SW_EXIT_OK;
     F->ev = calloc(SW_CLI_FORENSICS_EVENTS, sizeof *F->ev);
     F->impacts_seen = calloc(F->n ? F->n : 1, sizeof *F->impacts_seen);
-    if (F->ev && F->impacts_seen) return SW_EXIT_OK;
+    if (F->ev && F->impacts_seen)
+        return SW_EXIT_OK;
     sw_cli_error("out of memory");
     return SW_EXIT_IO;
 }
 
 void sw_cli_forensics_event(sw_cli_forensics_t *F, const sw_event_t *ev)
 {
-    if (!F->ev || ev->pkg >= F->n) return;
+    if (!F->ev || ev->pkg >= F->n)
+        return;
     if (ev->kind == SW_EV_IMPACT && ++F->impacts_seen[ev->pkg] > IMPACTS_KEPT) {
         F->ev_dropped++;
         return;
@@ -57,7 +60,8 @@ int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t
 const sw_cli_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k)
 {
     for (size_t i = 0; i < F->ncases; i++)
-        if (F->cases[i].pkg == k && F->cases[i].is_scene) return &F->cases[i];
+        if (F->cases[i].pkg == k && F->cases[i].is_scene)
+            return &F->cases[i];
     return NULL;
 }
 
@@ -72,7 +76,8 @@ static void wrapped(FILE *f, const char *text)
         if (n > 90) {
             n = 90;
             while (n > 0 && p[n] != ' ') n--;
-            if (n == 0) n = strcspn(p, " ");
+            if (n == 0)
+                n = strcspn(p, " ");
         }
         fprintf(f, "  %.*s\n", (int)n, p);
         p += n;
@@ -84,26 +89,27 @@ static void answer(FILE *f, const sw_cli_forensics_t *F, size_t k)
 {
     sw_summary_t s;
     const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
-    if (!C || !sw_cli_forensics_summary(F, k, &s)) return;
+    if (!C || !sw_cli_forensics_summary(F, k, &s))
+        return;
     fprintf(f, "%s (%s): ", F->scenes[k].name, C->desc);
     if (s.overturned)
         fprintf(f, "OVERTURNED at %.3f s\n", s.overturn_time);
     else
         fprintf(f, "%s; peak %.3f alpha, minimum margin %.3f\n",
                 strcmp(sw_cli_verdict(&s), "upright") ? "NO VERDICT (the model faulted)"
-                                                       : "stayed upright",
+                                                      : "stayed upright",
                 s.max_theta_ratio, s.min_margin);
     char b[64], sentence[640];
     sw_cli_safety_bracket(b, sizeof b, &C->sf);
     sw_cli_safety_sentence(sentence, sizeof sentence, &C->sf);
     fprintf(f, "  safety factor %s\n", b);
     wrapped(f, sentence);
-    if (F->fo.w.no_what_if) return;
+    if (F->fo.w.no_what_if)
+        return;
     if (s.overturned) {
         char save[512];
         sw_cli_whatif_savers(save, sizeof save, F->cases, F->ncases, k);
-        fprintf(f, "  would have stayed upright: %s\n",
-                save[0] ? save : "none of the cases below");
+        fprintf(f, "  would have stayed upright: %s\n", save[0] ? save : "none of the cases below");
     }
     fprintf(f, "  what if (the same log):\n");
     sw_cli_whatif_print_table(f, F->cases, F->ncases, k);
@@ -114,16 +120,17 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
     fprintf(f, "\nHow this was found\n\n");
     sw_cli_print_summary(f, F->R.e, &F->R.run);
     long runs = 0;
-    for (size_t i = 0; i < F->ncases; i++) runs += F->cases[i].available ? F->cases[i].sf.trials : 0;
+    for (size_t i = 0; i < F->ncases; i++)
+        runs += F->cases[i].available ? F->cases[i].sf.trials : 0;
     const sw_search_opts_t *so = &F->fo.so;
-    fprintf(f,
-            "\nsafety factors: the recorded longitudinal acceleration, as the input gate handed it\n"
-            "to the engine (%zu samples), scaled by a factor and run again from the state the\n"
-            "package has where that factor can first lift it; scanned upward in steps of %g\n"
-            "(wider while the package stays far from tipping), then the change from upright to\n"
-            "overturned cut down to a relative width of %g; %ld runs for %zu cases.\n",
-            F->L.n, so->step > 0 ? so->step : 0.02, so->tol > 0 ? so->tol : 1e-3, runs,
-            F->ncases);
+    fprintf(
+        f,
+        "\nsafety factors: the recorded longitudinal acceleration, as the input gate handed it\n"
+        "to the engine (%zu samples), scaled by a factor and run again from the state the\n"
+        "package has where that factor can first lift it; scanned upward in steps of %g\n"
+        "(wider while the package stays far from tipping), then the change from upright to\n"
+        "overturned cut down to a relative width of %g; %ld runs for %zu cases.\n",
+        F->L.n, so->step > 0 ? so->step : 0.02, so->tol > 0 ? so->tol : 1e-3, runs, F->ncases);
     for (size_t k = 0; k < F->n; k++) {
         const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
         if (C && !isinf(C->sf.lift_scale))
@@ -131,8 +138,9 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
                     F->scenes[k].name, C->sf.lift_scale);
     }
     if (!F->fo.w.no_what_if) {
-        fprintf(f, "catalogue supports (docs/forensics.md; frequencies with the package on "
-                   "them):\n");
+        fprintf(f,
+                "catalogue supports (docs/forensics.md; frequencies with the package on "
+                "them):\n");
         for (size_t i = 0; i < sw_cli_nsupports; i++)
             fprintf(f, "  %-22s %5.3g Hz, zeta %.2g: %s\n", sw_cli_supports[i].name,
                     sw_cli_supports[i].hz, sw_cli_supports[i].zeta, sw_cli_supports[i].stands_for);
@@ -142,10 +150,12 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
 void sw_cli_forensics_text(FILE *f, const sw_cli_forensics_t *F)
 {
     for (size_t k = 0; k < F->n; k++) {
-        if (k) fputc('\n', f);
+        if (k)
+            fputc('\n', f);
         answer(f, F, k);
     }
-    if (!F->o.quiet) method(f, F);
+    if (!F->o.quiet)
+        method(f, F);
 }
 
 /* ---- JSON -------------------------------------------------------------------------- */
@@ -163,8 +173,9 @@ void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
     sw_cli_json_string(f, F->log);
     fprintf(f, ", \"source\": ");
     sw_cli_json_string(f, F->R.src ? F->R.src->name : "");
-    fprintf(f, ", \"samples_read\": %ld, \"samples_rejected\": %ld, \"samples_used\": %zu, "
-               "\"facts\": ",
+    fprintf(f,
+            ", \"samples_read\": %ld, \"samples_rejected\": %ld, \"samples_used\": %zu, "
+            "\"facts\": ",
             F->R.run.samples_read, F->R.run.samples_rejected, F->L.n);
     if (F->R.run.have_facts)
         sw_cli_json_facts(f, &F->R.run, " ");
@@ -176,7 +187,8 @@ void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
     for (size_t k = 0; k < F->n; k++) {
         sw_summary_t s;
         const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
-        if (!C || !sw_cli_forensics_summary(F, k, &s)) continue;
+        if (!C || !sw_cli_forensics_summary(F, k, &s))
+            continue;
         fprintf(f, "%s\n {\"name\": ", k ? "," : "");
         sw_cli_json_string(f, F->scenes[k].name);
         fprintf(f, ", \"model\": ");
@@ -195,7 +207,8 @@ void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
         int first = 1;
         for (size_t i = 0; i < F->ncases && s.overturned; i++) {
             const sw_cli_case_t *W = &F->cases[i];
-            if (W->pkg != k || W->is_scene || !W->available || W->sf.overturned) continue;
+            if (W->pkg != k || W->is_scene || !W->available || W->sf.overturned)
+                continue;
             fprintf(f, "%s", first ? "" : ", ");
             sw_cli_json_string(f, W->name);
             first = 0;
@@ -203,7 +216,8 @@ void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
         fprintf(f, "],\n  \"what_if\": [");
         first = 1;
         for (size_t i = 0; i < F->ncases; i++) {
-            if (F->cases[i].pkg != k) continue;
+            if (F->cases[i].pkg != k)
+                continue;
             fprintf(f, "%s\n   ", first ? "" : ",");
             sw_cli_whatif_json_case(f, &F->cases[i]);
             first = 0;

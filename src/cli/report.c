@@ -22,11 +22,11 @@ static void html(FILE *f, const char *s)
 {
     for (; s && *s; s++) {
         switch (*s) {
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '&': fputs("&amp;", f); break;
-        case '"': fputs("&quot;", f); break;
-        default: fputc(*s, f);
+            case '<': fputs("&lt;", f); break;
+            case '>': fputs("&gt;", f); break;
+            case '&': fputs("&amp;", f); break;
+            case '"': fputs("&quot;", f); break;
+            default: fputc(*s, f);
         }
     }
 }
@@ -61,7 +61,8 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
     for (size_t k = 0; k < F->n; k++) {
         sw_summary_t s;
         const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
-        if (!C || !sw_cli_forensics_summary(F, k, &s)) continue;
+        if (!C || !sw_cli_forensics_summary(F, k, &s))
+            continue;
         fprintf(f, "<div class=\"answer\" id=\"answer-%zu\"><p><b>", k);
         html(f, F->scenes[k].name);
         fprintf(f, "</b> (");
@@ -70,8 +71,9 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
         if (s.overturned)
             fprintf(f, "<span class=\"over\">OVERTURNED</span> at %.3f s.", s.overturn_time);
         else if (!strcmp(sw_cli_verdict(&s), "upright"))
-            fprintf(f, "<span class=\"up\">stayed upright</span>; its tilt reached %.3f of the "
-                       "tipping angle, its smallest margin to overturn was %.3f.",
+            fprintf(f,
+                    "<span class=\"up\">stayed upright</span>; its tilt reached %.3f of the "
+                    "tipping angle, its smallest margin to overturn was %.3f.",
                     s.max_theta_ratio, s.min_margin);
         else
             fprintf(f, "<span class=\"over\">no verdict</span>: the model faulted.");
@@ -130,10 +132,12 @@ static void log_facts(FILE *f, const sw_cli_forensics_t *F)
     if (run->have_facts && x->incomplete > 0)
         fprintf(f, "; <b>%ld of them leave the verdict incomplete</b>", x->incomplete);
     fprintf(f, "</td></tr>\n");
-    if (run->check[0]) row_text(f, run->forced ? "verdict forced although" : "warning", run->check);
-    fprintf(f, "</table>\n<p class=\"note\">Times are seconds from the first sample. Rejected "
-               "samples (unreadable rows, spikes, times out of order) are listed with their line "
-               "on the standard error of the command that made this report.</p>\n");
+    if (run->check[0])
+        row_text(f, run->forced ? "verdict forced although" : "warning", run->check);
+    fprintf(f,
+            "</table>\n<p class=\"note\">Times are seconds from the first sample. Rejected "
+            "samples (unreadable rows, spikes, times out of order) are listed with their line "
+            "on the standard error of the command that made this report.</p>\n");
 }
 
 /* ---- the figure -------------------------------------------------------------------- */
@@ -161,7 +165,8 @@ static int figure(FILE *f, const sw_cli_forensics_t *F)
                 while (fgets(line, sizeof line, in)) { /* the prolog up to <svg dropped */
                     if (!started) {
                         char *s = strstr(line, "<svg");
-                        if (!s) continue;
+                        if (!s)
+                            continue;
                         started = 1;
                         fputs(s, f);
                         continue;
@@ -176,10 +181,12 @@ static int figure(FILE *f, const sw_cli_forensics_t *F)
         unlink(path);
     }
     if (!ok) {
-        sw_cli_error("--report: the figure could not be drawn (gnuplot is needed); the report "
-                     "says so in its place");
-        fprintf(f, "<p class=\"over\">The figure could not be drawn: gnuplot was not found or "
-                   "failed.</p>\n");
+        sw_cli_error(
+            "--report: the figure could not be drawn (gnuplot is needed); the report "
+            "says so in its place");
+        fprintf(f,
+                "<p class=\"over\">The figure could not be drawn: gnuplot was not found or "
+                "failed.</p>\n");
         return -1;
     }
     fprintf(f,
@@ -197,8 +204,9 @@ static int figure(FILE *f, const sw_cli_forensics_t *F)
 
 static void events(FILE *f, const sw_cli_forensics_t *F)
 {
-    fprintf(f, "<h2>Events</h2>\n<table id=\"events\"><tr><th>t (s)</th><th>package</th>"
-               "<th>event</th><th>&theta;/&alpha;</th><th>margin</th></tr>\n");
+    fprintf(f,
+            "<h2>Events</h2>\n<table id=\"events\"><tr><th>t (s)</th><th>package</th>"
+            "<th>event</th><th>&theta;/&alpha;</th><th>margin</th></tr>\n");
     for (size_t i = 0; i < F->nev; i++) {
         const sw_event_t *e = &F->ev[i];
         const double alpha = atan2(F->scenes[e->pkg].width, F->scenes[e->pkg].height);
@@ -211,29 +219,34 @@ static void events(FILE *f, const sw_cli_forensics_t *F)
         fprintf(f, "</td></tr>\n");
     }
     fprintf(f, "</table>\n");
-    if (F->nev == 0) fprintf(f, "<p>No events: no package left its rest.</p>\n");
+    if (F->nev == 0)
+        fprintf(f, "<p>No events: no package left its rest.</p>\n");
     if (F->ev_dropped > 0)
-        fprintf(f, "<p class=\"note\">%ld more events (impacts after the first 20 of a package, "
-                   "or beyond %d in all) are not listed; <code>--events FILE</code> writes every "
-                   "one.</p>\n",
+        fprintf(f,
+                "<p class=\"note\">%ld more events (impacts after the first 20 of a package, "
+                "or beyond %d in all) are not listed; <code>--events FILE</code> writes every "
+                "one.</p>\n",
                 F->ev_dropped, SW_CLI_FORENSICS_EVENTS);
 }
 
 static void whatif(FILE *f, const sw_cli_forensics_t *F)
 {
-    fprintf(f, "<h2>What would have saved it</h2>\n<p>The same recording, with each package "
-               "as given, alone on the bed, on typical supports and in other sizes. Safety "
-               "factor: the recording scaled by the first number leaves it upright, by the "
-               "second it overturns.</p>\n");
+    fprintf(f,
+            "<h2>What would have saved it</h2>\n<p>The same recording, with each package "
+            "as given, alone on the bed, on typical supports and in other sizes. Safety "
+            "factor: the recording scaled by the first number leaves it upright, by the "
+            "second it overturns.</p>\n");
     for (size_t k = 0; k < F->n; k++) {
         fprintf(f, "<h3>");
         html(f, F->scenes[k].name);
-        fprintf(f, "</h3>\n<table class=\"whatif\"><tr><th>case</th><th>outcome</th>"
-                   "<th>peak &theta;/&alpha;</th><th>smallest margin</th><th>safety "
-                   "factor</th><th>package and support</th></tr>\n");
+        fprintf(f,
+                "</h3>\n<table class=\"whatif\"><tr><th>case</th><th>outcome</th>"
+                "<th>peak &theta;/&alpha;</th><th>smallest margin</th><th>safety "
+                "factor</th><th>package and support</th></tr>\n");
         for (size_t i = 0; i < F->ncases; i++) {
             const sw_cli_case_t *C = &F->cases[i];
-            if (C->pkg != k) continue;
+            if (C->pkg != k)
+                continue;
             fprintf(f, "<tr><td>");
             html(f, C->name);
             if (!C->available) {
@@ -245,8 +258,8 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
             const sw_run_result_t *r = &C->sf.at_one;
             char b[64];
             sw_cli_safety_bracket(b, sizeof b, &C->sf);
-            fprintf(f, "</td><td class=\"%s\">%s</td><td class=\"n\">", r->overturned ? "over" : "up",
-                    r->overturned ? "overturned" : "upright");
+            fprintf(f, "</td><td class=\"%s\">%s</td><td class=\"n\">",
+                    r->overturned ? "over" : "up", r->overturned ? "overturned" : "upright");
             num(f, "%.3f", r->max_theta_ratio);
             fprintf(f, "</td><td class=\"n\">");
             num(f, "%.3f", r->min_margin);
@@ -270,7 +283,8 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
 static void limits(FILE *f, const sw_cli_forensics_t *F)
 {
     long runs = 0;
-    for (size_t i = 0; i < F->ncases; i++) runs += F->cases[i].available ? F->cases[i].sf.trials : 0;
+    for (size_t i = 0; i < F->ncases; i++)
+        runs += F->cases[i].available ? F->cases[i].sf.trials : 0;
     fprintf(f,
             "<h2>How this was found</h2>\n"
             "<p>The recording was read as <code>swaywatch replay</code> reads it (the same "
@@ -311,22 +325,27 @@ static void provenance(FILE *f, const sw_cli_forensics_t *F)
         fputc(' ', f);
         const char *a = F->argv[i];
         const int quote = strpbrk(a, " \t'\"\\$`!*?;&|<>()") != NULL || !*a;
-        if (quote) fputc('\'', f);
+        if (quote)
+            fputc('\'', f);
         for (const char *p = a; *p; p++) {
-            if (*p == '\'') fputs("'\\''", f);
+            if (*p == '\'')
+                fputs("'\\''", f);
             else {
                 char c[2] = {*p, 0};
                 html(f, c);
             }
         }
-        if (quote) fputc('\'', f);
+        if (quote)
+            fputc('\'', f);
     }
     char when[64] = "";
     const time_t now = time(NULL);
     struct tm tm;
-    if (gmtime_r(&now, &tm)) strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", &tm);
-    fprintf(f, "</code></p>\n<p class=\"note\">Written %s. The same content as JSON: add "
-               "<code>--json</code>.</p>\n",
+    if (gmtime_r(&now, &tm))
+        strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", &tm);
+    fprintf(f,
+            "</code></p>\n<p class=\"note\">Written %s. The same content as JSON: add "
+            "<code>--json</code>.</p>\n",
             when);
 }
 
@@ -337,18 +356,21 @@ int sw_cli_forensics_report(const sw_cli_forensics_t *F, const char *path)
         sw_cli_error("--report %s: cannot write: %s", path, strerror(errno));
         return SW_EXIT_IO;
     }
-    fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-               "<title>Incident report: ");
+    fprintf(f,
+            "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+            "<title>Incident report: ");
     html(f, strcmp(F->log, "-") ? F->log : "(standard input)");
-    fprintf(f, "</title>\n<style>\n%s</style>\n</head>\n<body>\n<h1>Incident report</h1>\n"
-               "<p class=\"note\">Whether the recorded motion of the truck bed overturned the "
-               "cargo, how close it came, and what would have saved it.</p>\n",
+    fprintf(f,
+            "</title>\n<style>\n%s</style>\n</head>\n<body>\n<h1>Incident report</h1>\n"
+            "<p class=\"note\">Whether the recorded motion of the truck bed overturned the "
+            "cargo, how close it came, and what would have saved it.</p>\n",
             style);
     answers(f, F);
     log_facts(f, F);
     figure(f, F);
     events(f, F);
-    if (!F->fo.w.no_what_if) whatif(f, F);
+    if (!F->fo.w.no_what_if)
+        whatif(f, F);
     limits(f, F);
     provenance(f, F);
     fprintf(f, "</body>\n</html>\n");
