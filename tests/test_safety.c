@@ -128,6 +128,45 @@ static void test_linear_starts(void **state)
     }
 }
 
+/* On a cushion a trial whose package has been back in full contact for a
+ * lead-in after a lift jumps to the linear state a lead-in before the next
+ * sample that can lift it: an early braking that lifts an edge, a long
+ * quiet stretch, then the braking at the end.  The runs equal runs from the
+ * start far below what a sensor resolves. */
+static void test_cushion_jumps(void **state)
+{
+    (void)state;
+    sw_scene_t cu = tu_bare(2.0, 0.728);
+    cu.has_cushion = 1;
+    cu.cushion_omega = 60.0;
+    cu.cushion_zeta = 0.3;
+    cu.cushion_k_given = cu.cushion_c_given = SW_GIVEN_RATIO;
+    const sw_run_opts_t ro = {.settle = 10.0};
+    sw_log_t L = drive(0.0);
+    for (size_t i = 0; i < N; i++) {
+        for (int k = 0; k < 2; k++) {
+            const double u = t_[i] - (k ? 80.0 : 5.0);
+            if (u >= 0.0 && u < 0.6) a_[i] += -3.0 * sin(M_PI * u / 0.6);
+        }
+    }
+    const double xs[] = {0.6, 1.0, 1.4};
+    int lifted_twice = 0;
+    for (size_t k = 0; k < 3; k++) {
+        const sw_run_result_t a = at_one(&cu, &L, xs[k], &ro);
+        sw_run_result_t b;
+        char msg[256];
+        assert_int_equal(sw_log_run(&cu, &L, xs[k], &ro, &b, msg, sizeof msg), SW_OK);
+        assert_int_equal(a.overturned, b.overturned);
+        assert_int_equal(a.uplifts, b.uplifts);
+        tu_near(a.max_theta_ratio, b.max_theta_ratio, 1e-6);
+        tu_near(a.min_margin, b.min_margin, 1e-6);
+        tu_near(a.uplift_time, b.uplift_time, 1e-9);
+        if (b.overturned) tu_near(a.overturn_time, b.overturn_time, 1e-6);
+        lifted_twice += b.uplifts >= 2 && b.uplift_time < 10.0;
+    }
+    assert_true(lifted_twice >= 1); /* the early braking lifts an edge, and so does the last */
+}
+
 /* A restart in the log: the run equals one fed by hand to an engine that
  * restarts there (sw_engine_restart), and differs from the run without. */
 static void test_restarts(void **state)
@@ -250,6 +289,7 @@ int main(void)
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bed_exact),     cmocka_unit_test(test_linear_starts),
+        cmocka_unit_test(test_cushion_jumps),
         cmocka_unit_test(test_restarts),      cmocka_unit_test(test_many_threads),
         cmocka_unit_test(test_origin),
     };

@@ -24,7 +24,12 @@
  *     rocking about rest is, to first order, a damped oscillator in closed
  *     form; the trial starts from its scaled state a lead-in before the
  *     first possible edge lift, long enough for what the linear state got
- *     wrong (second order in the tilt) to decay below FORGET of itself.
+ *     wrong (second order in the tilt) to decay below FORGET of itself;
+ *     and since the same holds after each stretch in which an edge lifted,
+ *     a trial in which no edge has lifted for a lead-in jumps, as on the
+ *     bed, to the linear state a lead-in before the next sample that can
+ *     lift an edge at its scale (a soft cushion rocks under a calm road
+ *     now and then all through a long log).
  * Elsewhere (a cushion on a frame, vertical input, adaptive schemes on a
  * frame, sample intervals long against the support's period) trials run
  * from the start.
@@ -78,7 +83,8 @@ typedef struct {
     const sw_run_opts_t *ro;
     ck_kind kind;
     double tan_alpha;
-    double *blk, *sup; /* bed: minima of the lifting scale per block and superblock */
+    double *blk, *sup; /* bed, cushion: minima of the lifting scale per block and
+                          superblock */
     rec_t *rec;        /* frame, cushion: prefix minima of the lifting scale */
     size_t nrec, caprec;
     double *st;           /* unit-scale states every CHECK samples: (u, u') of the frame, or of
@@ -101,7 +107,9 @@ static double bare_scale(const prep_t *P, size_t i)
     return a > 0.0 ? geff * P->tan_alpha / a : INFINITY;
 }
 
-static int prep_bare(prep_t *P)
+/* The minima of the lifting scale per block and superblock, all
+ * INFINITY. */
+static int blocks_alloc(prep_t *P)
 {
     const size_t n = P->log->n, nb = (n + BLOCK - 1) / BLOCK, ns = (nb + SUPER - 1) / SUPER;
     P->blk = malloc(nb * sizeof *P->blk);
@@ -110,15 +118,43 @@ static int prep_bare(prep_t *P)
         return SW_ENOMEM;
     for (size_t b = 0; b < nb; b++) P->blk[b] = INFINITY;
     for (size_t b = 0; b < ns; b++) P->sup[b] = INFINITY;
-    for (size_t i = 0; i < n; i++) {
-        const double s = bare_scale(P, i);
-        if (s < P->blk[i / BLOCK])
-            P->blk[i / BLOCK] = s;
-        if (s < P->sup[i / BLOCK / SUPER])
-            P->sup[i / BLOCK / SUPER] = s;
-    }
+    return SW_OK;
+}
+
+/* Sample i lifts at scale s. */
+static void block_min(prep_t *P, size_t i, double s)
+{
+    if (s < P->blk[i / BLOCK])
+        P->blk[i / BLOCK] = s;
+    if (s < P->sup[i / BLOCK / SUPER])
+        P->sup[i / BLOCK / SUPER] = s;
+}
+
+static int prep_bare(prep_t *P)
+{
+    if (blocks_alloc(P) != SW_OK)
+        return SW_ENOMEM;
+    for (size_t i = 0; i < P->log->n; i++) block_min(P, i, bare_scale(P, i));
     P->kind = CK_BARE;
     return SW_OK;
+}
+
+/* The first sample of the first block after sample i's with a sample
+ * that can lift at a scale up to X (blocks); n if none. */
+static size_t next_block(const prep_t *P, size_t i, double X)
+{
+    const size_t n = P->log->n, nb = (n + BLOCK - 1) / BLOCK;
+    size_t b = i / BLOCK + 1;
+    while (b < nb) {
+        if (b % SUPER == 0 && P->sup[b / SUPER] > X) {
+            b = (b / SUPER + 1) * SUPER;
+            continue;
+        }
+        if (P->blk[b] <= X)
+            return b * BLOCK;
+        b++;
+    }
+    return n;
 }
 
 /* The first sample at or after i that can lift a package on the bed at a
@@ -259,6 +295,8 @@ static int prep_cushion(prep_t *P)
     P->lead = log(1.0 / FORGET) / lam;
     const double z_s = sw_cushion_static_deflection(d, g); /* m */
     const double per = d->b * P->gain / z_s;               /* lift drive per unit u, 1/m */
+    if (blocks_alloc(P) != SW_OK)
+        return SW_ENOMEM;
     double u[2] = {0.0, 0.0}, peak = 0.0;
     size_t next_restart = 0;
     for (size_t i = 0; i < L->n; i++) {
@@ -284,6 +322,7 @@ static int prep_cushion(prep_t *P)
         const double s = long_interval(P, i, P->w) ? 0.0 : v > 0.0 ? 1.0 / v : INFINITY;
         if (add_record(P, i, s) != SW_OK)
             return SW_ENOMEM;
+        block_min(P, i, s);
         store_state(P, i, u[0], u[1]);
     }
     P->lift_scale = peak > 0.0 ? 1.0 / peak : INFINITY;
@@ -387,6 +426,24 @@ static int prep_make(prep_t *P, char *msg, size_t msglen)
 
 /* ---- one trial ---------------------------------------------------------------- */
 
+/* The last sample from lo up to i at least a lead-in before sample i
+ * (lo if none). */
+static size_t lead_in(const prep_t *P, size_t lo, size_t i)
+{
+    const sw_log_t *L = P->log;
+    const double t0 = L->t[i] - P->lead;
+    const size_t first = lo;
+    size_t hi = i;
+    while (lo < hi) {
+        const size_t m = lo + (hi - lo + 1) / 2;
+        if (L->t[m] <= t0)
+            lo = m;
+        else
+            hi = m - 1;
+    }
+    return L->t[lo] <= t0 ? lo : first;
+}
+
 /* Where a trial at scale x starts: the sample, and whether a lift is
  * possible at all. */
 static size_t trial_start(const prep_t *P, double x, int *none)
@@ -403,21 +460,44 @@ static size_t trial_start(const prep_t *P, double x, int *none)
         k = P->kind == CK_BARE ? L->n - 1 : P->i_peak;
     }
     size_t i = k > 0 ? k - 1 : 0;
-    if (P->kind == CK_CUSHION) { /* the lead-in: the last sample at least lead before */
-        const double t0 = L->t[i] - P->lead;
-        size_t lo = 0, hi = i;
-        while (lo < hi) {
-            const size_t m = lo + (hi - lo + 1) / 2;
-            if (L->t[m] <= t0)
-                lo = m;
-            else
-                hi = m - 1;
-        }
-        i = L->t[lo] <= t0 ? lo : 0;
-    }
+    if (P->kind == CK_CUSHION) /* the lead-in */
+        i = lead_in(P, 0, i);
     if (P->kind == CK_FRAME || P->kind == CK_CUSHION)
         i -= i % CHECK;
     return i;
+}
+
+/* The package at sample i (just pushed, at rest) in the scaled stored
+ * state. */
+static int linear_state(const prep_t *P, sw_engine_t *e, double x, size_t i)
+{
+    sw_output_t o;
+    sw_engine_get_output(e, 0, &o); /* at rest */
+    sw_state_t s = o.state;
+    const double *q = &P->st[2 * (i / CHECK)];
+    if (P->kind == CK_FRAME) {
+        s.u = x * q[0];
+        s.u_dot = x * q[1];
+    } else {
+        s.theta = x * P->gain * q[0];
+        s.theta_dot = x * P->gain * q[1];
+    }
+    return sw_engine_set_state(e, 0, &s);
+}
+
+/* After sample i on a cushion, no edge lifted since last_lift (s;
+ * INFINITY: one may be lifted now): the sample to jump to (a checkpoint a
+ * lead-in before the next that can lift an edge at X), or 0 for none
+ * worth it. */
+static size_t cushion_jump(const prep_t *P, size_t i, double last_lift, double X)
+{
+    const sw_log_t *L = P->log;
+    if (i % CHECK || L->t[i] - last_lift < P->lead)
+        return 0;
+    const size_t k = next_block(P, i, X);
+    size_t to = lead_in(P, i, k >= L->n ? L->n - 1 : k);
+    to -= to % CHECK;
+    return to >= i + 2 * CHECK && to + 2 < L->n ? to : 0;
 }
 
 /* The engine at sample i with the scaled stored state. */
@@ -435,18 +515,7 @@ static int trial_begin(const prep_t *P, sw_runner_t *R, double x, size_t i)
     const int rc = sw_engine_push(e, L->t[i], x * L->a_g[i], L->a_z ? L->a_z[i] : 0.0);
     if (rc < 0 || P->kind == CK_BARE || i == 0)
         return rc < 0 ? rc : SW_OK;
-    sw_output_t o;
-    sw_engine_get_output(e, 0, &o); /* at rest */
-    sw_state_t s = o.state;
-    const double *q = &P->st[2 * (i / CHECK)];
-    if (P->kind == CK_FRAME) {
-        s.u = x * q[0];
-        s.u_dot = x * q[1];
-    } else {
-        s.theta = x * P->gain * q[0];
-        s.theta_dot = x * P->gain * q[1];
-    }
-    return sw_engine_set_state(e, 0, &s);
+    return linear_state(P, e, x, i);
 }
 
 /* After sample i, on the bed: may the run jump ahead?  JUMP_GO with *to,
@@ -481,8 +550,23 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_ru
     size_t next_restart = 0;
     while (next_restart < L->nrestart && L->restart[next_restart] <= i0) next_restart++;
     int look = P->kind == CK_BARE; /* look for a jump: from the start, and after events */
+    double last_lift = L->t[i0];   /* cushion: the start's error decays as a lift's does */
     for (size_t i = i0 + 1; i < L->n; i++) {
         size_t to;
+        if (P->kind == CK_CUSHION &&
+            (to = cushion_jump(P, i - 1, last_lift, x / LIFT_MARGIN_LOG))) {
+            while (next_restart < L->nrestart && L->restart[next_restart] <= to) next_restart++;
+            sw_engine_restart(e);
+            const int rc = sw_engine_push(e, L->t[to], x * L->a_g[to], 0.0);
+            if (rc < 0)
+                return rc;
+            const int sr = linear_state(P, e, x, to);
+            if (sr != SW_OK)
+                return sr;
+            last_lift = L->t[to];
+            i = to;
+            continue; /* the loop goes on at sample to + 1 */
+        }
         const int j = look ? bare_jump(P, R, i - 1, X, &to) : JUMP_STOP;
         if (j == JUMP_STOP)
             look = 0;
@@ -500,6 +584,8 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_ru
             sw_engine_summary(e, 0, &s);
             if (s.overturned)
                 break;
+            /* an edge lifts only between an uplift and the rest after it */
+            last_lift = s.uplifts > s.rests ? INFINITY : L->t[i];
             look = P->kind == CK_BARE;
         }
     }
