@@ -137,12 +137,14 @@ static const sw_cli_command_t forensics_cmd = {
 typedef struct {
     sw_cli_states_t *states;
     sw_cli_events_t *events;
+    sw_risk_t *risk;      /* the reserve, impacts that matter, settling spans */
     sw_cli_figure_t *fig; /* NULL: no figure */
 } replay_t;
 
 static void on_state(void *user, const sw_output_t *out)
 {
     replay_t *R = user;
+    sw_risk_output(R->risk, out);
     sw_cli_states_write(R->states, out);
     sw_cli_figure_state(R->fig, out);
 }
@@ -150,8 +152,8 @@ static void on_state(void *user, const sw_output_t *out)
 static void on_event(void *user, const sw_event_t *ev)
 {
     replay_t *R = user;
-    sw_cli_events_write(R->events, ev);
-    sw_cli_figure_event(R->fig, ev);
+    if (sw_cli_events_feed(R->events, R->risk, ev) & SW_SETTLE_REPORT)
+        sw_cli_figure_event(R->fig, ev);
 }
 
 /* ---- figure ------------------------------------------------------------------------ */
@@ -204,22 +206,27 @@ static int replay_log(forensics_t *F)
     if ((rc = sw_cli_resolve_accuracy(&F->o, F->scenes, F->nsc, &F->eo)) != SW_EXIT_OK) return rc;
     sw_engine_opts_t eo = F->eo;
     eo.on_event = on_event;
-    eo.on_state = F->o.out_path || F->fo.plot ? on_state : NULL;
+    eo.on_state = F->o.out_path || F->fo.plot || F->o.reserve_rate > 0.0 ? on_state : NULL;
     eo.user = R;
     if (!(F->e = sw_cli_engine_create(F->scenes, 1, &eo))) return SW_EXIT_USAGE;
+    if (!(R->risk = sw_cli_risk_create(&F->o, F->scenes, 1))) return SW_EXIT_USAGE;
     if (F->fo.plot && !(R->fig = sw_cli_figure_create(F->e, F->scenes, 1))) return SW_EXIT_IO;
     if (F->o.verbose) sw_cli_print_derived(stderr, F->e, F->scenes, 1);
     if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, F->scenes, 1)) !=
             SW_EXIT_OK ||
         (rc = sw_cli_events_open(&F->events, F->o.events_path, F->scenes, 1)) != SW_EXIT_OK)
         return rc;
+    F->states.risk = R->risk; /* after open, which clears the writer */
     R->states = &F->states;
     R->events = &F->events;
     const sw_cli_log_t *L = &F->L;
     for (size_t i = 0; i < L->n && !sw_cli_signal; i++, F->pushed++)
         if (sw_engine_push(F->e, L->t[i], L->a_g[i], L->has_z ? L->a_z[i] : 0.0) < 0)
             F->refused++;
-    if (!sw_cli_signal) sw_engine_finish(F->e, F->fo.settle);
+    if (!sw_cli_signal) {
+        sw_engine_finish(F->e, F->fo.settle);
+        sw_cli_events_finish(&F->events, R->risk, 1);
+    }
     rc = sw_cli_states_close(&F->states);
     int rc2 = sw_cli_events_close(&F->events);
     if (rc == SW_EXIT_OK) rc = rc2;
@@ -262,6 +269,7 @@ static int report_interrupted(const forensics_t *F)
         .samples_read = read,
         .samples_rejected = F->refused,
         .settle = F->fo.settle,
+        .risk = F->R.risk,
         .interrupted = sw_cli_signal,
     };
     if (F->o.json) {
@@ -285,6 +293,7 @@ static void report(const forensics_t *F)
         .samples_read = F->L.rows,
         .samples_rejected = F->L.rejected + F->refused,
         .settle = F->fo.settle,
+        .risk = F->R.risk,
     };
     if (F->o.json) {
         fprintf(stdout, "{\n\"replay\": ");
@@ -318,6 +327,7 @@ int cmd_forensics(int argc, char **argv)
         SW_CLI_GROUP(sw_cli_integration_options, &F.o),
         SW_CLI_GROUP(sw_cli_accuracy_options, &F.o),
         SW_CLI_GROUP(sw_cli_output_options, &F.o),
+        SW_CLI_GROUP(sw_cli_reserve_options, &F.o),
         SW_CLI_GROUP(forensics_output_options, &F.fo),
         SW_CLI_GROUP_IN(sw_cli_common_options, &F.o, "Output:"),
     };
@@ -371,6 +381,7 @@ out:
     sw_cli_states_close(&F.states);
     sw_cli_events_close(&F.events);
     sw_engine_destroy(F.e);
+    sw_risk_destroy(F.R.risk);
     free(F.cases);
     sw_cli_figure_destroy(F.R.fig);
     free(F.scenes);

@@ -132,6 +132,8 @@ struct sw_cli_replay {
     sw_cli_events_t events;
     sw_cli_wide_t wide;
     sw_cli_figure_t *fig;
+    sw_risk_t *risk; /* the reserve, impacts that matter, settling spans */
+    int risk_owned;  /* made here (a CSV log), not the monitor core's */
     sw_cli_run_t run;
 #ifdef SW_HAVE_LCM
     sw_mon_opts_t mo;
@@ -152,6 +154,8 @@ static void on_state(void *user, const sw_output_t *out)
      * states, so a refused sample never stalls the replay. */
     sw_cli_pace(&r->pacer, out->t);
 #endif
+    /* first: the rows carry its reserve (the monitor core feeds its own) */
+    if (r->risk_owned) sw_risk_output(r->risk, out);
     sw_cli_states_write(&r->states, out);
     sw_cli_wide_write(&r->wide, out);
     sw_cli_figure_state(r->fig, out);
@@ -160,14 +164,14 @@ static void on_state(void *user, const sw_output_t *out)
 static void on_event(void *user, const sw_event_t *ev)
 {
     replay_t *r = user;
-    sw_cli_events_write(&r->events, ev);
-    sw_cli_figure_event(r->fig, ev);
+    if (sw_cli_events_feed(&r->events, r->risk, ev) & SW_SETTLE_REPORT)
+        sw_cli_figure_event(r->fig, ev);
 }
 
 /* Something takes the states: --out, --wide or --plot. */
 static int wants_states(const replay_t *r)
 {
-    return r->o.out_path || r->o.wide_path || r->o.plot_path;
+    return r->o.out_path || r->o.wide_path || r->o.plot_path || r->o.reserve_rate > 0.0;
 }
 
 /* ---- CSV logs ------------------------------------------------------------------ */
@@ -237,6 +241,7 @@ static int lcmlog_publish(replay_t *r)
 static sw_engine_t *lcmlog_engine(replay_t *r)
 {
     if (sw_cli_mon_gate(&r->mo, &r->gate) != SW_EXIT_OK) return NULL;
+    r->mo.reserve_rate = r->o.reserve_rate > 0.0 ? r->o.reserve_rate : -1.0;
     r->mo.accel_scale = r->copts.csv.accel_scale;
     r->mo.flip = r->copts.csv.flip;
     r->mo.on_state = wants_states(r) || r->pacer.speed > 0.0 ? on_state : NULL;
@@ -424,6 +429,7 @@ static const sw_cli_source_t *open_log(replay_t *r, int *rc)
  * the summaries say of the run. */
 static int conclude(replay_t *r, const sw_cli_source_t *src)
 {
+    sw_cli_events_finish(&r->events, r->risk, r->n);
     int rc = sw_cli_states_close(&r->states);
     int rc2 = sw_cli_events_close(&r->events);
     if (rc == SW_EXIT_OK) rc = rc2;
@@ -438,6 +444,26 @@ static int conclude(replay_t *r, const sw_cli_source_t *src)
     r->run.interrupted = sw_cli_signal;
     r->concluded = 1;
     return rc;
+}
+
+/* The reserve and the impacts that matter: the monitor core's for an
+ * lcm-logger file (it publishes them), else made here. */
+static int risk_start(replay_t *r, const sw_cli_source_t *src)
+{
+#ifdef SW_HAVE_LCM
+    if (src->kind == SW_CLI_SRC_LCMLOG) {
+        r->risk = sw_mon_risk(r->mon);
+        r->risk_owned = 0;
+    }
+#endif
+    if (!r->risk) {
+        if (!(r->risk = sw_cli_risk_create(&r->o, r->scenes, r->n))) return SW_EXIT_USAGE;
+        r->risk_owned = 1;
+    }
+    (void)src;
+    r->states.risk = r->wide.risk = r->run.risk = r->risk;
+    r->events.all_impacts = r->o.all_impacts;
+    return SW_EXIT_OK;
 }
 
 /* The log named in r->log through the engine, with r's options: opened,
@@ -457,6 +483,7 @@ static int replay_one(replay_t *r)
         return rc;
     if (r->o.plot_path && !(r->fig = sw_cli_figure_create(r->e, r->scenes, r->n)))
         return SW_EXIT_IO;
+    if ((rc = risk_start(r, src)) != SW_EXIT_OK) return rc;
 #ifdef SW_HAVE_LCM
     if (src->kind == SW_CLI_SRC_LCMLOG)
         rc = replay_lcmlog(r);
@@ -475,6 +502,9 @@ static void cleanup(replay_t *r)
     sw_cli_wide_close(&r->wide);
     sw_cli_figure_destroy(r->fig);
     r->fig = NULL;
+    if (r->risk_owned) sw_risk_destroy(r->risk);
+    r->risk = NULL;
+    r->run.risk = NULL;
 #ifdef SW_HAVE_LCM
     if (r->mon) r->e = NULL; /* the monitor's */
     lcmlog_close(r);
@@ -537,6 +567,7 @@ static size_t groups(replay_t *r, sw_cli_group_t *g, int batch)
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_scene_options, &r->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &r->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_accuracy_options, &r->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_reserve_options, &r->o);
     if (!batch) {
         g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_output_options, &r->o);
         g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_picture_options, &r->o);
