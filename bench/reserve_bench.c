@@ -390,6 +390,7 @@ static int cost_of(const sw_scene_t *sc, const rec_t *R, int runs, cost_t *c)
     sw_reserve_opts_t o;
     memset(&o, 0, sizeof o);
     o.step = g_step;
+    o.max_run_steps = 1e9; /* measure the stiff cushion too, which the default refuses */
     sw_reserve_t *r = sw_reserve_create(sc, &o, &err, msg, sizeof msg);
     if (!r) {
         fprintf(stderr, "reserve_bench: reserve: %s\n", msg);

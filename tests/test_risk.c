@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <cmocka.h>
 #include <gsl/gsl_errno.h>
@@ -191,6 +192,61 @@ static void test_replace_reset(void **state)
     rig_free(R);
 }
 
+/* A scene whose pulse runs would need more steps than allowed: the
+ * reserve refuses it (SW_ETOOBIG) exactly above the count (pulse T plus 10
+ * rocking periods of free motion) / (the shorter of 2T and the rocking
+ * period, over 24); risk goes on without it and says why. */
+static void test_too_stiff(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    sw_derived_t d;
+    assert_int_equal(sw_scene_validate(&sc, &d, "t", NULL, NULL), SW_OK);
+    const double T = sc.design_pulse[0];                          /* s */
+    const double period = 2.0 * M_PI / d.p;                       /* s */
+    const double steps = (T + 10.0 * period) / (fmin(2.0 * T, period) / 24.0);
+    sw_reserve_opts_t o;
+    memset(&o, 0, sizeof o);
+    int err = 0;
+    char msg[256] = "";
+    o.max_run_steps = steps * (1.0 - 1e-9);
+    assert_null(sw_reserve_create(&sc, &o, &err, msg, sizeof msg));
+    assert_int_equal(err, SW_ETOOBIG);
+    assert_non_null(strstr(msg, "too stiff"));
+    o.max_run_steps = steps * (1.0 + 1e-9);
+    sw_reserve_t *ok = sw_reserve_create(&sc, &o, &err, msg, sizeof msg);
+    assert_non_null(ok);
+    sw_reserve_destroy(ok);
+
+    sw_risk_opts_t ro;
+    memset(&ro, 0, sizeof ro);
+    ro.reserve.max_run_steps = steps / 2.0;
+    sw_risk_t *r = sw_risk_create(&sc, 1, &ro, &err, msg, sizeof msg);
+    assert_non_null(r);
+    const sw_risk_pkg_t *p = sw_risk_pkg(r, 0);
+    assert_non_null(p->no_reserve);
+    assert_non_null(strstr(p->no_reserve, "too stiff"));
+    sw_output_t out;
+    memset(&out, 0, sizeof out);
+    out.state.phase = SW_PHASE_STUCK;
+    assert_int_equal(sw_risk_output(r, &out), 0); /* nothing to evaluate */
+    assert_int_equal(p->evaluations, 0);
+    assert_true(isnan(p->reserve_g) && isnan(p->rest_reserve_g));
+    assert_true(p->impact_min > 0.0); /* the impacts still count */
+    /* a reload keeps saying why (the reason is the object's, not a copy's) */
+    assert_int_equal(sw_risk_replace(r, 0, &sc, msg, sizeof msg), SW_OK);
+    p = sw_risk_pkg(r, 0);
+    assert_non_null(p->no_reserve);
+    assert_non_null(strstr(p->no_reserve, "too stiff"));
+    sw_risk_destroy(r);
+
+    /* with the default limit the crate has its reserve */
+    r = sw_risk_create(&sc, 1, NULL, &err, msg, sizeof msg);
+    assert_non_null(r);
+    assert_null(sw_risk_pkg(r, 0)->no_reserve);
+    sw_risk_destroy(r);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -198,6 +254,7 @@ int main(void)
         cmocka_unit_test(test_rate_and_values),
         cmocka_unit_test(test_impacts_split),
         cmocka_unit_test(test_replace_reset),
+        cmocka_unit_test(test_too_stiff),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -70,11 +70,16 @@ typedef struct {
     int each_direction; /* non-zero: search each direction to its own value (dir_g
                            exact, up to about twice the runs); 0: only the smaller */
     int no_cache;      /* non-zero: compute the rest value like any other state */
+    double max_run_steps; /* steps one pulse run (pulse and free motion) may take at a fixed
+                             dt; 0 = SW_RESERVE_MAX_RUN_STEPS.  A scene that needs more (a
+                             stiff cushion or frame forces a tiny dt) is refused with
+                             SW_ETOOBIG: its reserve would take minutes per value */
 } sw_reserve_opts_t;
 
 #define SW_RESERVE_STEPS 24.0        /* automatic dt: steps per shortest period */
 #define SW_RESERVE_FREE_PERIODS 10.0 /* free motion allowed after a pulse, rocking periods */
 #define SW_RESERVE_FLOOR_G 0.01      /* g: below road vibration (about 0.06 g rms) */
+#define SW_RESERVE_MAX_RUN_STEPS 2e5 /* steps a pulse run may need at most (docs/reserve.md) */
 
 typedef struct {
     double reserve_g; /* g: the reserve, an amplitude that was run and overturned (the
@@ -104,8 +109,8 @@ typedef struct sw_reserve sw_reserve_t;
  * and the value at rest (several tens of pulse runs per design pulse).
  * opts may be NULL (defaults).  On failure returns NULL and, if err is not
  * NULL, stores the code (SW_EINVAL for a scene that does not validate or
- * bad options, SW_ENOMEM, or an engine's error); msg (may be NULL) gets the
- * reason. */
+ * bad options, SW_ETOOBIG for a run longer than max_run_steps, SW_ENOMEM,
+ * or an engine's error); msg (may be NULL) gets the reason. */
 SW_API sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *opts,
                                        int *err, char *msg, size_t msglen);
 

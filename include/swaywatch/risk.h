@@ -46,6 +46,9 @@ typedef struct {
     double reserve_t;        /* s, time of the state it was evaluated on; NAN: none */
     double min_reserve_g;    /* g, the smallest evaluated; NAN: none */
     double min_reserve_time; /* s, the time of that state; NAN: none */
+    int min_direction;       /* sw_reserve_dir of the smallest (0: none) */
+    double min_pulse;        /* s, its design pulse (0: none) */
+    double rest_reserve_g;   /* g, the reserve at rest (NAN without a reserve) */
     long evaluations;        /* reserve evaluations (cached ones included) */
     long reserve_faults;     /* evaluations in which a run faulted */
     long impacts;            /* significant impacts (alarm.h) */
@@ -53,6 +56,9 @@ typedef struct {
     long settling_spans;
     double impact_min;       /* rad/s, the significance used; 0: every impact counts (a
                                 cushion has none) */
+    const char *no_reserve;  /* why the package has no reserve although one was asked
+                                for (a scene too stiff, reserve.h's SW_ETOOBIG); NULL when
+                                it has one or the rate is off */
 } sw_risk_pkg_t;
 
 typedef struct sw_risk sw_risk_t;
@@ -60,7 +66,8 @@ typedef struct sw_risk sw_risk_t;
 /* For n validated scenes (the engine's, in its order).  o may be NULL.
  * NULL on failure with the code in *err (may be NULL) and the reason in
  * msg: SW_EINVAL (a scene that does not validate, bad options), SW_ENOMEM,
- * or a reserve's error. */
+ * or a reserve's error.  A scene too stiff for its reserve is no failure:
+ * that package has none, and sw_risk_pkg()->no_reserve says why. */
 SW_API sw_risk_t *sw_risk_create(const sw_scene_t *scenes, size_t n, const sw_risk_opts_t *o,
                                  int *err, char *msg, size_t msglen);
 SW_API void sw_risk_destroy(sw_risk_t *r); /* NULL accepted */

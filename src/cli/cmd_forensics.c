@@ -150,6 +150,7 @@ static const sw_cli_command_t forensics_cmd = {
 static void on_state(void *user, const sw_output_t *out)
 {
     sw_cli_forensics_t *F = user;
+    if (F->R.risk_owned) sw_risk_output(F->R.risk, out); /* first: the rows carry it */
     sw_cli_states_write(&F->states, out);
     sw_cli_figure_state(F->fig, out);
 }
@@ -157,9 +158,10 @@ static void on_state(void *user, const sw_output_t *out)
 static void on_event(void *user, const sw_event_t *ev)
 {
     sw_cli_forensics_t *F = user;
-    sw_cli_events_write(&F->events, ev);
-    sw_cli_figure_event(F->fig, ev);
-    sw_cli_forensics_event(F, ev);
+    if (sw_cli_events_feed(&F->events, F->R.risk, ev) & SW_SETTLE_REPORT) {
+        sw_cli_figure_event(F->fig, ev);
+        sw_cli_forensics_event(F, ev);
+    }
 }
 
 static void on_take(void *user, double t, double a_g, double a_z, int restart)
@@ -202,6 +204,7 @@ static int replay_log(sw_cli_forensics_t *F)
     F->L.max = (size_t)F->fo.max_samples;
     F->R.take = on_take;
     F->R.halt = &F->L.halt;
+    F->R.reserve_rate = F->o.reserve_rate;
     if ((rc = sw_cli_reader_engine(&F->R, F->scenes, F->n, &eo, 0)) != SW_EXIT_OK) return rc;
     sw_engine_t *e = F->R.e;
     if (F->o.verbose) sw_cli_print_derived(stderr, e, F->scenes, F->n);
@@ -211,6 +214,9 @@ static int replay_log(sw_cli_forensics_t *F)
         return rc;
     if ((F->fo.plot || F->fo.report) && !(F->fig = sw_cli_figure_create(e, F->scenes, F->n)))
         return SW_EXIT_IO;
+    if ((rc = sw_cli_reader_risk(&F->R, &F->o, F->scenes, F->n)) != SW_EXIT_OK) return rc;
+    F->states.risk = F->R.risk; /* after open, which clears the writer */
+    F->events.all_impacts = F->o.all_impacts;
     if ((rc = sw_cli_forensics_begin(F)) != SW_EXIT_OK) return rc;
     if ((rc = sw_cli_reader_feed(&F->R)) != SW_EXIT_OK) return rc;
     if (F->L.oom) {
@@ -224,6 +230,7 @@ static int replay_log(sw_cli_forensics_t *F)
         return SW_EXIT_USAGE;
     }
     sw_cli_reader_settle(&F->R, F->fo.settle);
+    sw_cli_events_finish(&F->events, F->R.risk, F->n);
     sw_cli_forensics_end(F);
     rc = sw_cli_states_close(&F->states);
     int rc2 = sw_cli_events_close(&F->events);
@@ -331,6 +338,7 @@ static size_t groups(sw_cli_forensics_t *F, sw_cli_group_t *g)
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_accuracy_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_output_options, &F->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_reserve_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(forensics_output_options, &F->fo);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_common_options, &F->o, "Output:");
     return n;

@@ -75,6 +75,16 @@ static int check_accel_channel(const sw_cli_option_t *o, const char *arg, void *
 
 #define MO(f) SW_CLI_AT(monitor_opts_t, f)
 
+/* --reserve-rate 0 turns the reserve off (monitor.h: reserve_rate < 0). */
+static int check_reserve_rate(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    (void)o;
+    (void)arg;
+    double *v = dest;
+    if (*v == 0.0) *v = -1.0;
+    return SW_EXIT_OK;
+}
+
 static const sw_cli_option_t monitor_lcm_options[] = {
     {SW_CLI_SECTION, .help = "LCM:"},
     {SW_CLI_STRING, 'l', "lcm-url", "URL", MO(url),
@@ -93,6 +103,13 @@ static const sw_cli_option_t monitor_input_options[] = {
      .help = "negate the longitudinal axis (sensor mounted backwards)"},
     {SW_CLI_CALL, 0, "accel-unit", "m/s2|g", MO(mo.accel_scale), .fn = sw_cli_accel_unit,
      .help = "unit of the message's values (default m/s2)"},
+    {SW_CLI_DOUBLE, 0, "reserve-rate", "HZ", MO(mo.reserve_rate), .rule = SW_NUM_NONNEGATIVE,
+     .def = SW_RISK_RATE, .lo = 0.01, .hi = 1000, .fn = check_reserve_rate,
+     .what = "a rate in Hz >= 0 (0: none)",
+     .help = "reserve evaluations per second of sample time for each package: the smallest "
+             "design braking pulse in g that would overturn it now, in state_t.reserve_g and "
+             "behind the RESERVE_WARN and RESERVE_CRITICAL alarms (default %g; 0: none; "
+             "docs/reserve.md gives the cost per model)"},
     {SW_CLI_DOUBLE, 0, "max-backlog", "SECONDS", MO(max_backlog), .rule = SW_NUM_POSITIVE,
      .def = 1, .lo = 1e-3, .hi = 3600, .what = "a positive number of seconds",
      .help = "a message that waited longer than this in the receive queue (the monitor fell "
@@ -301,6 +318,7 @@ static int reload_scenes(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scen
         fprintf(stderr, "swaywatch: monitor: reload: %s rebuilt from %s (scene changed)\n",
                 fresh[k].name, o->scenes.v[k]);
         scenes[k] = fresh[k];
+        sw_cli_warn_no_reserve(sw_mon_risk(mon), k, k + 1, scenes);
     }
     fprintf(stderr, "swaywatch: monitor: reload: %zu of %zu packages rebuilt, the others kept\n",
             nchanged, n);
@@ -413,6 +431,7 @@ static void on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
 static void print_alarm(void *user, const sw_alarm_t *a)
 {
     const mon_ctx_t *c = user;
+    const sw_risk_pkg_t *rp = sw_risk_pkg(sw_mon_risk(c->mon), a->pkg);
     sw_cli_alarm_line_t line = {
         .wall_us = wall_now_us(),
         .level = a->level,
@@ -420,7 +439,7 @@ static void print_alarm(void *user, const sw_alarm_t *a)
         .package = a->pkg < c->n ? c->scenes[a->pkg].name : NULL,
         .theta = a->theta,
         .margin = a->margin,
-        .reserve_g = NAN, /* the reserve, once sw_alarm_t carries it */
+        .reserve_g = rp ? rp->reserve_g : NAN, /* the latest reserve, as alarm_t carries */
         .text = a->text,
     };
     sw_cli_alarm_print(&line);
@@ -613,6 +632,7 @@ static int start(mon_ctx_t *c, const sw_mon_opts_t *mo, lcm_t *lcm)
     if (c->opts->verbose)
         sw_cli_print_derived(stderr, sw_mon_engine(c->mon), c->scenes, c->n);
     sw_cli_warn_scene_cost(c->scenes, c->n, &eo);
+    sw_cli_warn_no_reserve(sw_mon_risk(c->mon), 0, c->n, c->scenes);
     return SW_EXIT_OK;
 }
 

@@ -118,6 +118,8 @@ static void on_state(void *user, const sw_output_t *out)
      * states, so a refused sample never stalls the replay. */
     sw_cli_pace(&r->pacer, out->t);
 #endif
+    /* first: the rows carry its reserve (the monitor core feeds its own) */
+    if (r->R.risk_owned) sw_risk_output(r->R.risk, out);
     sw_cli_states_write(&r->states, out);
     sw_cli_wide_write(&r->wide, out);
     sw_cli_figure_state(r->fig, out);
@@ -126,14 +128,14 @@ static void on_state(void *user, const sw_output_t *out)
 static void on_event(void *user, const sw_event_t *ev)
 {
     replay_t *r = user;
-    sw_cli_events_write(&r->events, ev);
-    sw_cli_figure_event(r->fig, ev);
+    if (sw_cli_events_feed(&r->events, r->R.risk, ev) & SW_SETTLE_REPORT)
+        sw_cli_figure_event(r->fig, ev);
 }
 
 /* Something takes the states: --out, --wide or --plot. */
 static int wants_states(const replay_t *r)
 {
-    return r->o.out_path || r->o.wide_path || r->o.plot_path;
+    return r->o.out_path || r->o.wide_path || r->o.plot_path || r->o.reserve_rate > 0.0;
 }
 
 /* ---- the command ------------------------------------------------------------------ */
@@ -182,6 +184,7 @@ static int start(replay_t *r)
     r->eo.on_event = on_event;
     r->eo.on_state = wants_states(r) || pace ? on_state : NULL;
     r->eo.user = r;
+    r->R.reserve_rate = r->o.reserve_rate;
     return sw_cli_reader_engine(&r->R, r->scenes, r->n, &r->eo, r->scenes_shared);
 }
 
@@ -221,6 +224,7 @@ static int open_log(replay_t *r)
  * the summaries say of the run. */
 static int conclude(replay_t *r)
 {
+    sw_cli_events_finish(&r->events, r->R.risk, r->n);
     int rc = sw_cli_states_close(&r->states);
     int rc2 = sw_cli_events_close(&r->events);
     if (rc == SW_EXIT_OK) rc = rc2;
@@ -252,6 +256,9 @@ static int replay_one(replay_t *r)
         return rc;
     if (r->o.plot_path && !(r->fig = sw_cli_figure_create(e, r->scenes, r->n)))
         return SW_EXIT_IO;
+    if ((rc = sw_cli_reader_risk(&r->R, &r->o, r->scenes, r->n)) != SW_EXIT_OK) return rc;
+    r->states.risk = r->wide.risk = r->R.risk; /* after open, which clears the writers */
+    r->events.all_impacts = r->o.all_impacts;
     if ((rc = sw_cli_reader_feed(&r->R)) != SW_EXIT_OK) return rc;
 #ifdef SW_HAVE_LCM
     r->pacer.speed = 0.0; /* the settling after the log is not paced */
@@ -328,6 +335,7 @@ static size_t groups(replay_t *r, sw_cli_group_t *g, int batch)
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_scene_options, &r->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &r->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_accuracy_options, &r->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_reserve_options, &r->o);
     if (!batch) {
         g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_output_options, &r->o);
         g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_picture_options, &r->o);

@@ -131,22 +131,23 @@ typedef struct {
     sw_cli_states_t *states;
     sw_cli_wide_t *wide;
     sw_cli_figure_t *fig;
+    sw_risk_t *risk;
 } sim_ctx_t;
 
 static void on_event(void *user, const sw_event_t *ev)
 {
     sim_ctx_t *c = user;
-    sw_cli_events_write(c->events, ev);
-    sw_cli_figure_event(c->fig, ev);
+    if (sw_cli_events_feed(c->events, c->risk, ev) & SW_SETTLE_REPORT)
+        sw_cli_figure_event(c->fig, ev);
 }
 
 /* One state row per package at the engine's current time. */
 static void write_states(sw_engine_t *e, sim_ctx_t *c)
 {
-    if (!c->states->f && !c->wide->f && !c->fig) return;
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_output_t out;
         if (sw_engine_get_output(e, i, &out) != SW_OK) continue;
+        sw_risk_output(c->risk, &out); /* first: the rows carry its reserve */
         sw_cli_states_write(c->states, &out);
         sw_cli_wide_write(c->wide, &out);
         sw_cli_figure_state(c->fig, &out);
@@ -273,12 +274,13 @@ int cmd_simulate(int argc, char **argv)
     sw_cli_states_t states = {0};
     sw_cli_events_t events = {0};
     sw_cli_wide_t wide = {0};
-    sim_ctx_t ctx = {&events, &states, &wide, NULL};
+    sim_ctx_t ctx = {&events, &states, &wide, NULL, NULL};
     sw_cli_group_t groups[] = {
         SW_CLI_GROUP(sim_options, &so),
         SW_CLI_GROUP(sw_cli_scene_options, &o),
         SW_CLI_GROUP(sw_cli_integration_options, &o),
         SW_CLI_GROUP(sw_cli_accuracy_options, &o),
+        SW_CLI_GROUP(sw_cli_reserve_options, &o),
         SW_CLI_GROUP(sw_cli_output_options, &o),
         SW_CLI_GROUP(sw_cli_picture_options, &o),
         SW_CLI_GROUP(sim_output_notes, NULL),
@@ -330,16 +332,24 @@ int cmd_simulate(int argc, char **argv)
         rc = SW_EXIT_IO;
         goto out;
     }
+    if (!(ctx.risk = sw_cli_risk_create(&o, scenes, n))) {
+        rc = SW_EXIT_USAGE;
+        goto out;
+    }
+    states.risk = wide.risk = ctx.risk;
+    events.all_impacts = o.all_impacts;
     double t = 0.0;
     if ((rc = run_pulse(e, &so, &ctx, &t)) != SW_EXIT_OK) goto out;
 
+    sw_cli_events_finish(&events, ctx.risk, n);
     rc = sw_cli_states_close(&states);
     int rc2 = sw_cli_events_close(&events);
     if (rc == SW_EXIT_OK) rc = rc2;
     rc2 = sw_cli_wide_close(&wide);
     if (rc == SW_EXIT_OK) rc = rc2;
 
-    sw_cli_run_t run = {.pulse = pulse, .duration = t, .interrupted = sw_cli_signal};
+    sw_cli_run_t run = {
+        .pulse = pulse, .duration = t, .interrupted = sw_cli_signal, .risk = ctx.risk};
     if (o.json)
         sw_cli_print_json(stdout, e, &run);
     else if (!o.quiet)
@@ -363,6 +373,7 @@ out:
     sw_cli_events_close(&events);
     sw_cli_wide_close(&wide);
     sw_cli_figure_destroy(ctx.fig);
+    sw_risk_destroy(ctx.risk);
     sw_engine_destroy(e);
     free(scenes);
     sw_cli_parse_free(groups, ng);

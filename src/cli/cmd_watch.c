@@ -563,7 +563,10 @@ static void view_package(view_t *v, const layout_t *l, const pkg_view_t *p, doub
     }
     snprintf(theta, sizeof theta, "%+6.1fdeg", s->theta * 180.0 / M_PI);
     snprintf(margin, sizeof margin, "%7.3f", s->margin);
-    snprintf(reserve, sizeof reserve, "%7.3f", RESERVE_OF(s));
+    if (RESERVE_OF(s) >= 0.0) /* -1: none yet, or the monitor's reserve is off */
+        snprintf(reserve, sizeof reserve, "%7.3f", RESERVE_OF(s));
+    else
+        snprintf(reserve, sizeof reserve, "%7s", "-");
     if (now - p->rx > STALE)
         snprintf(rate, sizeof rate, "stale %3.0fs", fmin(now - p->rx, 999.0));
     else
@@ -596,7 +599,10 @@ static void view_alarms(view_t *v, const watch_t *w)
         msg_text(name, e->a.name, sizeof e->a.name);
         msg_text(text, e->a.text, sizeof e->a.text);
         /* the text first: on a narrow terminal the numbers are cut, not it */
-        if (name[0])
+        if (name[0] && RESERVE_OF(&e->a) >= 0.0)
+            snprintf(nums, sizeof nums, "  (theta %+.4f, margin %.3f, reserve %.3f g)",
+                     e->a.theta, e->a.margin, RESERVE_OF(&e->a));
+        else if (name[0])
             snprintf(nums, sizeof nums, "  (theta %+.4f, margin %.3f)", e->a.theta, e->a.margin);
         const int lv = e->a.level;
         add(v, lv >= SWAYWATCH_ALARM_T_LEVEL_CRITICAL ? ATTR_CRIT

@@ -63,3 +63,17 @@ int sw_cli_warn_scene_cost(const sw_scene_t *scenes, size_t n, const sw_engine_o
     }
     return warned;
 }
+
+int sw_cli_warn_no_reserve(const sw_risk_t *risk, size_t k0, size_t k1, const sw_scene_t *scenes)
+{
+    int warned = 0;
+    for (size_t k = k0; k < k1; k++) {
+        const sw_risk_pkg_t *p = sw_risk_pkg(risk, k);
+        if (!p || !p->no_reserve) continue;
+        warned++;
+        sw_cli_error("warning: no reserve for %s: %s (--reserve-rate 0 silences this; the "
+                     "margins and the verdict are not affected)",
+                     scenes[k].name, p->no_reserve);
+    }
+    return warned;
+}

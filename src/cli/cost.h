@@ -32,4 +32,9 @@ double sw_cli_scene_rt_factor(const sw_scene_t *sc, const sw_engine_opts_t *eo);
  * times real time ...".  Returns how many were warned about. */
 int sw_cli_warn_scene_cost(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo);
 
+/* Warn about packages k0 <= k < k1 of risk that have no reserve although
+ * one was asked for (a scene too stiff for it, risk.h's no_reserve):
+ * "swaywatch: warning: no reserve for NAME: WHY".  Returns how many. */
+int sw_cli_warn_no_reserve(const sw_risk_t *risk, size_t k0, size_t k1, const sw_scene_t *scenes);
+
 #endif

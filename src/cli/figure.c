@@ -132,7 +132,10 @@ void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out)
     if (!f || out->pkg >= f->n)
         return;
     trace_t *T = &f->tr[out->pkg];
-    const double v[NQ] = {out->a_g, out->state.theta / T->alpha, out->margin};
+    /* the margin as presented (alarm.h): in [-1, 1], -1 at overturn, so a
+     * falling package does not read as a recovery */
+    const double v[NQ] = {out->a_g, out->state.theta / T->alpha,
+                          sw_margin_presented(out->margin, out->state.phase)};
     for (int q = 0; q < NQ; q++)
         if (!isfinite(v[q]))
             return; /* the engine reports none; a gap in the line if it did */
@@ -382,15 +385,15 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
     event_legend(g, f);
     fputc('\n', g);
 
-    /* 3. the margin to overturn; far below 0 it is cut off: the package
-     * is past the edge, how far matters little */
+    /* 3. the margin to overturn, as presented: below 0 the package is past
+     * the edge, and -1 is overturned */
     const double lo = fmax(MARGIN_FLOOR, fmin(0.0, mmin)) - 0.05;
     fprintf(g,
             "set format x '%%g'\nset xlabel 'time t (s)'\nset ylabel 'margin to overturn%s'\n"
             "set yrange [%.6g:1.05]\n"
             "plot 0 with lines lc rgb '#d62828' dt 3 title 'overturns with no more input "
             "below 0'",
-            mmin < MARGIN_FLOOR ? " (cut at -1)" : "", lo);
+            mmin < 0.0 ? " (-1: overturned)" : "", lo);
     for (size_t k = 0; k < f->n; k++) {
         fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_MARGIN,
                 colours[k % NCOLOURS]);

@@ -78,8 +78,9 @@ size_t sw_cli_alarm_format(char *buf, size_t len, const sw_cli_alarm_line_t *a)
         snprintf(nums, sizeof nums, "theta=- margin=-");
     else
         snprintf(nums, sizeof nums, "theta=%.4f margin=%.4f", a->theta, a->margin);
-    /* The reserve goes after the margin, once the alarms carry it. */
-    if (isfinite(a->reserve_g)) {
+    /* The reserve goes after the margin when there is one (alarm_t's -1:
+     * none yet, or off) */
+    if (isfinite(a->reserve_g) && a->reserve_g >= 0.0) {
         size_t used = strlen(nums);
         snprintf(nums + used, sizeof nums - used, " reserve_g=%.3f", a->reserve_g);
     }

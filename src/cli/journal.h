@@ -42,8 +42,8 @@ typedef struct {
     const char *package; /* NULL: an input alarm, which concerns every package */
     double theta;        /* rad */
     double margin;       /* 1 */
-    double reserve_g;    /* g, the reserve at the alarm; NaN: not known, left out
-                            (the alarms carry no reserve yet) */
+    double reserve_g;    /* g, the package's latest reserve at the alarm; NaN (or < 0,
+                            alarm_t's "none"): not known, left out */
     const char *text;    /* the alarm's sentence */
 } sw_cli_alarm_line_t;
 

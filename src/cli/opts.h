@@ -184,6 +184,8 @@ typedef struct {
     const char *events_path; /* --events: event list CSV */
     const char *wide_path;   /* --wide: the state series, a column group per package */
     const char *plot_path;   /* --plot: the state figure (.png or .svg) */
+    double reserve_rate;     /* Hz of the log's time, --reserve-rate; 0: no reserve */
+    int all_impacts;         /* --all-impacts: every impact in --events, micro ones too */
     int json, quiet, verbose;
 } sw_cli_opts_t;
 
@@ -196,6 +198,8 @@ extern const sw_cli_option_t sw_cli_output_options[];      /* Output: --out, --e
                                                               --json, --quiet */
 extern const sw_cli_option_t sw_cli_picture_options[];     /* Output: --wide, --plot (replay,
                                                               simulate) */
+extern const sw_cli_option_t sw_cli_reserve_options[];     /* Reserve and impacts:
+                                                              --reserve-rate, --all-impacts */
 /* --verbose and --help, with no section of their own. */
 extern const sw_cli_option_t sw_cli_common_options[];
 
@@ -213,6 +217,10 @@ typedef struct {
     long errors;
 } sw_cli_diag_t;
 void sw_cli_print_diag(void *user, const char *origin, int line, const char *msg);
+
+/* What the run means (risk.h) for the n scenes, with --reserve-rate: NULL
+ * on failure, reported. */
+sw_risk_t *sw_cli_risk_create(const sw_cli_opts_t *o, const sw_scene_t *scenes, size_t n);
 
 /* With --accuracy, set eo's scheme and dt to the cheapest measured setting
  * (sw_scheme_for_accuracy) that reaches it for every scene's model.

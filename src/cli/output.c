@@ -138,6 +138,17 @@ static void csv_num(FILE *f, double v, long *nonfinite)
     }
 }
 
+/* Package pkg's latest reserve (g), an empty field when there is none yet
+ * (no reserve, or not evaluated yet): not a non-finite value. */
+static void csv_reserve(FILE *f, const sw_risk_t *risk, size_t pkg)
+{
+    const sw_risk_pkg_t *p = sw_risk_pkg(risk, pkg);
+    if (p && isfinite(p->reserve_g))
+        fprintf(f, ",%.9g", p->reserve_g);
+    else
+        fputc(',', f);
+}
+
 static const char *pkg_name(const sw_scene_t *scenes, size_t n, size_t pkg)
 {
     return pkg < n ? scenes[pkg].name : "?";
@@ -193,7 +204,8 @@ int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const s
         w->seen = NULL;
         return SW_EXIT_IO;
     }
-    fputs("t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,uplift_ratio,a_g\n",
+    fputs("t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,uplift_ratio,a_g,"
+          "reserve_g\n",
           w->f);
     return SW_EXIT_OK;
 }
@@ -222,6 +234,7 @@ void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *o)
     csv_num(w->f, o->margin_bound, nf);
     csv_num(w->f, o->uplift_ratio, nf);
     csv_num(w->f, o->a_g, nf);
+    csv_reserve(w->f, w->risk, o->pkg);
     fputc('\n', w->f);
     w->rows++;
 }
@@ -258,8 +271,9 @@ int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_en
         w->alpha[i] = d ? d->alpha : NAN;
     }
     if (!(w->f = sw_cli_out_open(path))) return SW_EXIT_IO;
-    static const char *const cols[] = {"phase",  "theta",        "theta_dot",   "ratio",
-                                       "margin", "margin_bound", "uplift_ratio"};
+    static const char *const cols[] = {"phase",        "theta",        "theta_dot",
+                                       "ratio",        "margin",       "margin_bound",
+                                       "uplift_ratio", "reserve_g"};
     fputs("t,a_g", w->f);
     for (size_t i = 0; i < n; i++) {
         long same = 0; /* earlier packages of the same name */
@@ -301,7 +315,7 @@ static void wide_flush(sw_cli_wide_t *w)
         for (size_t i = 0; i < w->n; i++) {
             const sw_output_t *o = &w->row[i];
             if (!w->have[i]) {
-                fputs(",,,,,,,", w->f);
+                fputs(",,,,,,,,", w->f);
                 continue;
             }
             fprintf(w->f, ",%s", sw_phase_name(o->state.phase));
@@ -311,6 +325,7 @@ static void wide_flush(sw_cli_wide_t *w)
             csv_num(w->f, o->margin, nf);
             csv_num(w->f, o->margin_bound, nf);
             csv_num(w->f, o->uplift_ratio, nf);
+            csv_reserve(w->f, w->risk, i);
         }
         fputc('\n', w->f);
         w->rows++;
@@ -385,6 +400,32 @@ int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *s
     if (!w->f) return SW_EXIT_IO;
     fputs("t,package,event,theta,theta_dot,margin,info\n", w->f);
     return SW_EXIT_OK;
+}
+
+void sw_cli_events_span(sw_cli_events_t *w, size_t pkg, const sw_settle_span_t *span)
+{
+    if (!w->f || w->all_impacts) return; /* its impacts are rows of their own */
+    fprintf(w->f, "%.9g,", span->t_start);
+    sw_cli_csv_text(w->f, pkg_name(w->scenes, w->n, pkg));
+    fprintf(w->f, ",settling,,%.9g,,%ld\n", span->max_speed, span->impacts);
+    w->rows++;
+}
+
+int sw_cli_events_feed(sw_cli_events_t *w, sw_risk_t *risk, const sw_event_t *ev)
+{
+    sw_settle_span_t span;
+    const int f = risk ? sw_risk_event(risk, ev, &span) : SW_SETTLE_REPORT;
+    if (f < 0) return SW_SETTLE_REPORT; /* a package risk does not know: as it is */
+    if (f & SW_SETTLE_CLOSED) sw_cli_events_span(w, ev->pkg, &span);
+    if ((f & SW_SETTLE_REPORT) || w->all_impacts) sw_cli_events_write(w, ev);
+    return w->all_impacts ? f | SW_SETTLE_REPORT : f;
+}
+
+void sw_cli_events_finish(sw_cli_events_t *w, sw_risk_t *risk, size_t n)
+{
+    sw_settle_span_t span;
+    for (size_t k = 0; risk && k < n; k++)
+        if (sw_risk_finish(risk, k, &span)) sw_cli_events_span(w, k, &span);
 }
 
 void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev)
@@ -539,6 +580,56 @@ static void print_outcome(FILE *f, const sw_summary_t *s)
     }
 }
 
+/* Impacts: the ones that matter, the settling apart. */
+static void print_impacts(FILE *f, const sw_summary_t *s, const sw_risk_pkg_t *p)
+{
+    if (!p || !(p->impact_min > 0.0)) {
+        fprintf(f, "\n  impacts         %ld\n", s->impacts);
+        return;
+    }
+    fprintf(f, "\n  impacts         %ld that matter (before each, at least %.3g rad/s: a swing of 1 %% "
+               "of the energy that tips it)",
+            p->impacts, p->impact_min);
+    if (p->micro_impacts)
+        fprintf(f, "; %ld micro-impacts in %ld settling span%s", p->micro_impacts,
+                p->settling_spans, p->settling_spans == 1 ? "" : "s");
+    fputc('\n', f);
+}
+
+/* The margin, and what its number means. */
+static void print_margin(FILE *f, const sw_summary_t *s)
+{
+    fprintf(f, "\n  minimum margin  %.4f (energy to spare: 1 at rest, 0 at the edge of overturning",
+            s->min_margin);
+    if (s->min_margin < 0.0)
+        fprintf(f, "; below 0 it was falling, shown as %.3f in [-1, 0] in figures",
+                sw_margin_presented(s->min_margin, SW_PHASE_ROCKING));
+    fputs(")\n", f);
+}
+
+/* The reserve: the smallest evaluated, in g, and what it means. */
+static void print_reserve(FILE *f, const sw_risk_pkg_t *p)
+{
+    if (p && p->no_reserve) {
+        fprintf(f, "  reserve         none: the scene is too stiff for it to be computed\n");
+        return;
+    }
+    if (!p || !p->evaluations) return;
+    if (!(p->min_reserve_g > 0.0))
+        fprintf(f, "  minimum reserve 0 g at %.4f s: from then on it overturns with no further "
+                   "input (at rest %.3g g)\n",
+                p->min_reserve_time, p->rest_reserve_g);
+    else
+        fprintf(f, "  minimum reserve %.3g g at %.4f s: a %s half-sine of %.3g s that strong "
+                   "would have overturned it then (at rest %.3g g)\n",
+                p->min_reserve_g, p->min_reserve_time,
+                p->min_direction == SW_RESERVE_ACCELERATING ? "speeding-up" : "braking",
+                p->min_pulse, p->rest_reserve_g);
+    if (p->reserve_faults)
+        fprintf(f, "                  (%ld evaluations had a run fault: the value may be high)\n",
+                p->reserve_faults);
+}
+
 /* The words a summary of an interrupted run starts with. */
 static void print_interrupted(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
 {
@@ -582,13 +673,13 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
         fputs("  first uplift    ", f);
         print_time(f, s.uplift_time, "none (never left the upright position)");
         if (s.uplifts > 1) fprintf(f, " (%ld uplifts in all)", s.uplifts);
-        fprintf(f, "\n  impacts         %ld\n", s.impacts);
+        print_impacts(f, &s, sw_risk_pkg(run->risk, i));
         fprintf(f, "  peak |theta|    %.3f deg = %.3f alpha (alpha = %.2f deg)\n",
                 s.max_abs_theta * 180.0 / M_PI, s.max_theta_ratio, alpha * 180.0 / M_PI);
         fputs("  tipped (alpha)  ", f);
         print_time(f, s.tip_time, "no (|theta| stayed below alpha)");
-        fprintf(f, "\n  minimum margin  %.4f (1 at rest, 0 at the edge of overturning)\n",
-                s.min_margin);
+        print_margin(f, &s);
+        print_reserve(f, sw_risk_pkg(run->risk, i));
         fputs("  outcome         ", f);
         print_outcome(f, &s);
         fputc('\n', f);
@@ -681,6 +772,37 @@ void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
     fputc('}', f);
 }
 
+/* The reserve and the impacts that matter (null without them). */
+static void json_risk(FILE *f, const sw_risk_pkg_t *p, const char *br)
+{
+    const int rv = p && p->evaluations > 0;
+    json_sep(f, br);
+    fprintf(f, "\"min_reserve_g\": ");
+    sw_cli_json_num(f, rv ? p->min_reserve_g : NAN);
+    fprintf(f, ", \"min_reserve_time\": ");
+    sw_cli_json_num(f, rv ? p->min_reserve_time : NAN);
+    fprintf(f, ", \"min_reserve_direction\": %s, \"min_reserve_pulse\": ",
+            !rv || !p->min_direction            ? "null"
+            : p->min_direction == SW_RESERVE_BRAKING ? "\"braking\""
+                                                     : "\"accelerating\"");
+    sw_cli_json_num(f, rv && p->min_pulse > 0.0 ? p->min_pulse : NAN);
+    fprintf(f, ", \"rest_reserve_g\": ");
+    sw_cli_json_num(f, p ? p->rest_reserve_g : NAN);
+    fprintf(f, ", \"reserve_evaluations\": %ld", p ? p->evaluations : 0L);
+    fprintf(f, ", \"no_reserve\": ");
+    if (p && p->no_reserve)
+        sw_cli_json_string(f, p->no_reserve);
+    else
+        fputs("null", f);
+    json_sep(f, br);
+    if (p && p->impact_min > 0.0)
+        fprintf(f, "\"significant_impacts\": %ld, \"micro_impacts\": %ld, \"settling_spans\": %ld",
+                p->impacts, p->micro_impacts, p->settling_spans);
+    else
+        fputs("\"significant_impacts\": null, \"micro_impacts\": null, \"settling_spans\": null",
+              f);
+}
+
 int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
                         const char *br)
 {
@@ -716,6 +838,7 @@ int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_ru
     json_sep(f, br);
     fprintf(f, "\"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld", s.impacts,
             s.uplifts, s.rests, s.faults);
+    json_risk(f, sw_risk_pkg(run->risk, i), br);
     json_sep(f, br);
     fprintf(f, "\"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,
             run->samples_rejected);

@@ -27,8 +27,10 @@ const char *sw_cli_out_name(const char *path);
 
 /* --out: the state time series, one row per package and output instant:
  * t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,
- * uplift_ratio,a_g.  Numbers as %.9g; a non-finite value is written as an
- * empty field and counted. */
+ * uplift_ratio,a_g,reserve_g.  Numbers as %.9g; a non-finite value is
+ * written as an empty field and counted.  reserve_g: the package's latest
+ * reserve (risk, when set: the caller feeds it before each write; empty
+ * before its first evaluation or without one). */
 typedef struct {
     FILE *f;
     const char *path;
@@ -38,6 +40,7 @@ typedef struct {
     long *seen;      /* per package: rows offered, for --every */
     long rows;       /* rows written */
     long nonfinite;  /* fields left empty because the value was not finite */
+    const sw_risk_t *risk; /* the reserve column's source; NULL: empty */
 } sw_cli_states_t;
 
 /* Open (path NULL: a disabled writer whose write does nothing). */
@@ -52,7 +55,7 @@ int sw_cli_states_close(sw_cli_states_t *w);
 /* --wide: the state series one row per output instant, a column group per
  * package, for a plain plot or a spreadsheet: t,a_g, then for each package
  * P: P.phase,P.theta,P.theta_dot,P.ratio,P.margin,P.margin_bound,
- * P.uplift_ratio (ratio = theta/alpha).  The engine reports every package
+ * P.uplift_ratio,P.reserve_g (ratio = theta/alpha; reserve_g as --out's).  The engine reports every package
  * at each instant, in order: a row is written when the last package's
  * state arrives, or when the time moves on before it (the missing fields
  * left empty and counted).  Packages of the same name are told apart as
@@ -67,6 +70,7 @@ typedef struct {
     unsigned char *have; /* which packages it has */
     int open;            /* a row is being gathered */
     long rows, nonfinite, incomplete;
+    const sw_risk_t *risk; /* the reserve columns' source; NULL: empty */
 } sw_cli_wide_t;
 
 /* Open (path NULL: a disabled writer) for the n packages of engine e. */
@@ -83,17 +87,30 @@ int sw_cli_wide_close(sw_cli_wide_t *w);
 int sw_cli_check_stdout(const char *const names[], const char *const paths[], size_t n, int json,
                         int quiet);
 
-/* --events: t,package,event,theta,theta_dot,margin,info. */
+/* --events: t,package,event,theta,theta_dot,margin,info, one row per
+ * event, except the micro-impacts of settling (risk.h): one "settling" row
+ * per span instead, at its first micro-impact, with theta_dot the fastest
+ * of them (rad/s) and info how many (all_impacts: every impact instead). */
 typedef struct {
     FILE *f;
     const char *path;
     const sw_scene_t *scenes;
     size_t n;
     long rows, nonfinite;
+    int all_impacts; /* --all-impacts */
 } sw_cli_events_t;
 
 int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *scenes, size_t n);
 void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev);
+/* A settling span of package pkg, as one row. */
+void sw_cli_events_span(sw_cli_events_t *w, size_t pkg, const sw_settle_span_t *span);
+/* An engine event through risk (may be NULL: every event as it is) into
+ * the file: a micro-impact folded into its span, a closed span written
+ * before the event.  Returns sw_risk_event()'s flags: SW_SETTLE_REPORT
+ * when the event is to be reported (figures, summaries). */
+int sw_cli_events_feed(sw_cli_events_t *w, sw_risk_t *risk, const sw_event_t *ev);
+/* End of the stream: the spans still open, for the n packages. */
+void sw_cli_events_finish(sw_cli_events_t *w, sw_risk_t *risk, size_t n);
 int sw_cli_events_close(sw_cli_events_t *w);
 
 
@@ -112,6 +129,7 @@ typedef struct {
     char check[320];         /* its reason, or a warning (a low rate); "" none */
     int interrupted;         /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
                                 the summaries say so, and up to which time they cover */
+    const sw_risk_t *risk;   /* reserves and impacts that matter (NULL: none) */
 } sw_cli_run_t;
 
 /* The one-screen human summary / the JSON summary (DESIGN.md contract). */

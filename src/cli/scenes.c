@@ -98,15 +98,34 @@ const sw_cli_option_t sw_cli_output_options[] = {
     {SW_CLI_SECTION, .help = "Output:"},
     {SW_CLI_STRING, 'o', "out", "FILE.csv", OPTS(out_path),
      .help = "state time series ('-': standard output): t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,"
-             "margin_bound,uplift_ratio,a_g (SI units, rad)"},
+             "margin_bound,uplift_ratio,a_g,reserve_g (SI units, rad; the reserve in g, the "
+             "latest evaluation)"},
     {SW_CLI_LONG, 0, "every", "N", OPTS(every), .min = 1, .def = 1,
      .what = "a whole number of rows >= 1",
      .help = "every Nth state row of each package (default %g)"},
     {SW_CLI_STRING, 'e', "events", "FILE.csv", OPTS(events_path),
-     .help = "events ('-': standard output): t,package,event,theta,theta_dot,margin,info"},
+     .help = "events ('-': standard output): t,package,event,theta,theta_dot,margin,info; info: "
+             "uplift the direction (+1 top forward), impact theta_dot before it (rad/s), "
+             "settling the micro-impacts in the cascade (theta_dot: the fastest), rest 0, tip "
+             "+-alpha (rad, its sign the side), overturn theta_dot then (rad/s), fault the "
+             "status code"},
     {SW_CLI_FLAG, 0, "json", OPTS(json), .value = 1,
      .help = "JSON summary on stdout instead of the human summary"},
     {SW_CLI_FLAG, 'q', "quiet", OPTS(quiet), .value = 1, .help = "no human summary"},
+    {SW_CLI_END},
+};
+
+const sw_cli_option_t sw_cli_reserve_options[] = {
+    {SW_CLI_SECTION, .help = "Reserve and impacts:"},
+    {SW_CLI_DOUBLE, 0, "reserve-rate", "HZ", OPTS(reserve_rate), .rule = SW_NUM_NONNEGATIVE,
+     .def = SW_RISK_RATE, .lo = 0.01, .hi = 1000, .what = "a rate in Hz >= 0 (0: none)",
+     .help = "evaluations per second of the log's time of each package's reserve: the smallest "
+             "design braking pulse in g that would overturn it from its state then (the scene's "
+             "[alarm] design_pulse; docs/reserve.md); shown in --out (reserve_g) and as the "
+             "minimum in the summary (default %g; 0: none)"},
+    {SW_CLI_FLAG, 0, "all-impacts", OPTS(all_impacts), .value = 1,
+     .help = "write every impact in --events; without it the micro-impacts of settling (slower "
+             "than a tenth of the tipping speed) are one 'settling' row per cascade"},
     {SW_CLI_END},
 };
 
@@ -115,8 +134,8 @@ const sw_cli_option_t sw_cli_picture_options[] = {
     {SW_CLI_STRING, 0, "wide", "FILE.csv", OPTS(wide_path),
      .help = "the state series one row per instant ('-': standard output), for a plain plot or "
              "a spreadsheet: t,a_g, then for each package P: P.phase,P.theta,P.theta_dot,"
-             "P.ratio (theta/alpha),P.margin,P.margin_bound,P.uplift_ratio; --every keeps every "
-             "Nth row"},
+             "P.ratio (theta/alpha),P.margin,P.margin_bound,P.uplift_ratio,P.reserve_g; --every "
+             "keeps every Nth row"},
     {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", OPTS(plot_path), .fn = sw_cli_plot_check,
      .help = "a figure drawn by gnuplot: the bed acceleration with the uplift thresholds "
              "+-g tan alpha, theta/alpha and the margin of every package, the events marked"},
@@ -331,6 +350,17 @@ int sw_cli_resolve_accuracy(const sw_cli_opts_t *o, const sw_scene_t *scenes, si
     eo->dt_forced = 0;
     eo->accuracy = o->accuracy;
     return SW_EXIT_OK;
+}
+
+sw_risk_t *sw_cli_risk_create(const sw_cli_opts_t *o, const sw_scene_t *scenes, size_t n)
+{
+    const sw_risk_opts_t ro = {.reserve_rate = o->reserve_rate > 0.0 ? o->reserve_rate : -1.0};
+    int err = SW_OK;
+    char msg[512] = "";
+    sw_risk_t *r = sw_risk_create(scenes, n, &ro, &err, msg, sizeof msg);
+    if (!r) sw_cli_error("cannot start the reserve: %s", msg[0] ? msg : sw_strerror(err));
+    else sw_cli_warn_no_reserve(r, 0, n, scenes);
+    return r;
 }
 
 sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo)

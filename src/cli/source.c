@@ -125,6 +125,7 @@ static int lcmlog_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
 {
     sw_mon_opts_t mo = R->o->mo;
     if (sw_cli_mon_gate(&mo, &R->o->gate) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    mo.reserve_rate = R->reserve_rate > 0.0 ? R->reserve_rate : -1.0;
     mo.accel_scale = R->o->copts.csv.accel_scale;
     mo.flip = R->o->copts.csv.flip;
     mo.on_state = eo->on_state;
@@ -159,6 +160,23 @@ int sw_cli_reader_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
         if (!R->e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
     }
     return R->e ? SW_EXIT_OK : SW_EXIT_USAGE;
+}
+
+int sw_cli_reader_risk(sw_cli_reader_t *R, const sw_cli_opts_t *o, const sw_scene_t *scenes,
+                       size_t n)
+{
+#ifdef SW_HAVE_LCM
+    if (R->src->kind == SW_CLI_SRC_LCMLOG) {
+        R->risk = sw_mon_risk(R->mon);
+        R->risk_owned = 0;
+    }
+#endif
+    if (!R->risk) {
+        if (!(R->risk = sw_cli_risk_create(o, scenes, n))) return SW_EXIT_USAGE;
+        R->risk_owned = 1;
+    }
+    R->run.risk = R->risk;
+    return SW_EXIT_OK;
 }
 
 /* ---- reading ----------------------------------------------------------------------- */
@@ -266,6 +284,10 @@ int sw_cli_reader_report(sw_cli_reader_t *R)
 
 void sw_cli_reader_close(sw_cli_reader_t *R)
 {
+    if (R->risk_owned) sw_risk_destroy(R->risk);
+    R->risk = NULL;
+    R->risk_owned = 0;
+    R->run.risk = NULL;
 #ifdef SW_HAVE_LCM
     if (R->mon) R->e = NULL; /* the monitor's */
     sw_mon_destroy(R->mon);

@@ -73,6 +73,9 @@ typedef struct {
     long accepted;                 /* samples the engine got */
     sw_gate_take_fn take;          /* may be NULL: each sample the engine got, with user */
     void *user;                    /* eo.user of the engine */
+    double reserve_rate;           /* Hz of the log's time, --reserve-rate (0: no reserve) */
+    sw_risk_t *risk;               /* the reserve, impacts that matter (sw_cli_reader_risk) */
+    int risk_owned;                /* made for a CSV log; else the monitor core's */
     const volatile sig_atomic_t *halt; /* may be NULL: once non-zero (take has all it can
                                           hold) a CSV log is read no further */
     int halted;                    /* halt stopped the reading */
@@ -102,6 +105,13 @@ int sw_cli_reader_prepare(sw_cli_reader_t *R);
  * batch), else it is now.  SW_EXIT_OK or SW_EXIT_USAGE (reported). */
 int sw_cli_reader_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
                          const sw_engine_opts_t *eo, int shared);
+
+/* After the engine: what the run means (risk.h) at R->reserve_rate, the
+ * monitor core's for an lcm-logger file (it publishes it), else made for
+ * the n scenes.  The command feeds a risk it owns (risk_owned) from its
+ * state callback.  SW_EXIT_OK or SW_EXIT_USAGE (reported). */
+int sw_cli_reader_risk(sw_cli_reader_t *R, const sw_cli_opts_t *o, const sw_scene_t *scenes,
+                       size_t n);
 
 /* Every sample into the engine, then the verdict's check (not after a
  * signal).  SW_EXIT_OK, SW_EXIT_USAGE (refused: reported) or

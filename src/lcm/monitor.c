@@ -26,7 +26,9 @@ _Static_assert(SWAYWATCH_ALARM_T_KIND_UPLIFT == SW_ALARM_UPLIFT &&
                    SWAYWATCH_ALARM_T_KIND_REST == SW_ALARM_REST &&
                    SWAYWATCH_ALARM_T_KIND_MODEL_FAULT == SW_ALARM_MODEL_FAULT &&
                    SWAYWATCH_ALARM_T_KIND_SENSOR_GAP == SW_ALARM_SENSOR_GAP &&
-                   SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED == SW_ALARM_INPUT_REJECTED,
+                   SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED == SW_ALARM_INPUT_REJECTED &&
+                   SWAYWATCH_ALARM_T_KIND_RESERVE_WARN == SW_ALARM_RESERVE_WARN &&
+                   SWAYWATCH_ALARM_T_KIND_RESERVE_CRITICAL == SW_ALARM_RESERVE_CRITICAL,
                "alarm_t.KIND_* == sw_alarm_kind");
 _Static_assert(SWAYWATCH_ALARM_T_LEVEL_INFO == SW_ALARM_LEVEL_INFO &&
                    SWAYWATCH_ALARM_T_LEVEL_WARN == SW_ALARM_LEVEL_WARN &&
@@ -70,6 +72,7 @@ struct sw_mon {
     sw_engine_t *engine;
     size_t n;
     sw_alarm_watch_t *watch; /* one per package */
+    sw_risk_t *risk;         /* the reserve of every package */
     char (*names)[SW_NAME_MAX];
     int64_t *next_state_us;  /* per package: sample utime of the next state due */
     int64_t state_period_us; /* 0: every sample */
@@ -180,6 +183,13 @@ static int64_t utime_of(const sw_mon_t *m, double t)
     return utime_at(m, sw_gate_source_time(m->gate, t));
 }
 
+/* Package pkg's latest reserve for a message: -1 when there is none. */
+static double reserve_of(const sw_mon_t *m, size_t pkg)
+{
+    const sw_risk_pkg_t *p = sw_risk_pkg(m->risk, pkg);
+    return p && isfinite(p->reserve_g) ? p->reserve_g : -1.0;
+}
+
 /* Publish one alarm (no rate limit: send_alarm() decides). */
 static void emit_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
 {
@@ -201,6 +211,7 @@ static void emit_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
      * must never be published. */
     msg.theta = isfinite(a->theta) ? a->theta : 0.0;
     msg.margin = isfinite(a->margin) ? a->margin : 0.0;
+    msg.reserve_g = reserve_of(m, a->pkg);
     publish(m, m->alarm_channel, swaywatch_alarm_t_encode(m->buf, 0, SW_MON_BUF, &msg));
 }
 
@@ -316,6 +327,12 @@ static void on_state(void *user, const sw_output_t *out)
     size_t k = out->pkg;
     if (k >= m->n)
         return;
+    /* the reserve first: the caller's callback and the state carry it */
+    if (sw_output_finite(out) && sw_risk_output(m->risk, out) == 1) {
+        const sw_risk_pkg_t *p = sw_risk_pkg(m->risk, k);
+        sw_alarm_on_reserve(&m->watch[k], out->t, out->state.theta, out->margin, p->reserve_g,
+                            on_alarm, m);
+    }
     if (m->o.on_state)
         m->o.on_state(m->o.user, out);
     sw_alarm_on_output(&m->watch[k], out, on_alarm, m);
@@ -359,6 +376,7 @@ static void on_state(void *user, const sw_output_t *out)
     msg.margin_bound = out->margin_bound;
     msg.uplift_ratio = out->uplift_ratio;
     msg.a_g = out->a_g;
+    msg.reserve_g = reserve_of(m, k);
     publish(m, m->state_channel, swaywatch_state_t_encode(m->buf, 0, SW_MON_BUF, &msg));
 }
 
@@ -446,9 +464,13 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         sw_mon_destroy(m);
         return NULL;
     }
+    const sw_risk_opts_t ro = {.reserve_rate = m->o.reserve_rate};
+    if (!(m->risk = sw_risk_create(scenes, n, &ro, &err, msg, msglen))) {
+        sw_mon_destroy(m);
+        return NULL;
+    }
     for (size_t k = 0; k < n; k++) {
-        if (sw_alarm_init(&m->watch[k], k, scenes[k].warn_margin, scenes[k].critical_margin,
-                          m->o.hysteresis) != SW_OK) {
+        if (sw_alarm_init_scene(&m->watch[k], k, &scenes[k], m->o.hysteresis) != SW_OK) {
             if (msg)
                 snprintf(msg, msglen, "%s: alarm thresholds not finite", scenes[k].name);
             sw_mon_destroy(m);
@@ -470,6 +492,7 @@ void sw_mon_destroy(sw_mon_t *m)
     if (!m)
         return;
     sw_gate_destroy(m->gate);
+    sw_risk_destroy(m->risk);
     sw_engine_destroy(m->engine);
     free(m->watch);
     free(m->names);
@@ -733,8 +756,7 @@ int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, si
             snprintf(msg, msglen, "no such package");
         return SW_EINVAL;
     }
-    if (sw_alarm_init(&w, k, scene->warn_margin, scene->critical_margin, m->o.hysteresis) !=
-        SW_OK) {
+    if (sw_alarm_init_scene(&w, k, scene, m->o.hysteresis) != SW_OK) {
         if (msg)
             snprintf(msg, msglen, "%s: alarm thresholds not finite", scene->name);
         return SW_EINVAL;
@@ -744,5 +766,12 @@ int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, si
         return rc;
     m->watch[k] = w;
     snprintf(m->names[k], sizeof m->names[k], "%s", scene->name);
-    return SW_OK;
+    /* the reserve of the new scene; if it cannot be built the package goes
+     * on with the old one, and the caller hears why */
+    return sw_risk_replace(m->risk, k, scene, msg, msglen);
+}
+
+sw_risk_t *sw_mon_risk(sw_mon_t *m)
+{
+    return m ? m->risk : NULL;
 }

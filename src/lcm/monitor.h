@@ -29,6 +29,7 @@
 #include "swaywatch/alarm.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/gate.h"
+#include "swaywatch/risk.h"
 #include "swaywatch/scene.h"
 
 #define SW_MON_STATE_CHANNEL "SWAY_STATE"
@@ -84,6 +85,9 @@ typedef struct {
                                   before the stream must confirm it; 0 = the gap threshold,
                                   < 0 = any (no sample held) */
     double hysteresis;         /* 1, margin alarms; < 0 = SW_ALARM_HYSTERESIS */
+    double reserve_rate;       /* Hz of sample time: reserve evaluations per package (risk.h;
+                                  state_t.reserve_g, RESERVE_WARN/CRITICAL alarms); 0 = 10,
+                                  < 0 = none */
     double reject_interval;    /* s, at most one INPUT_REJECTED alarm per reason per
                                   interval (later ones are summed up); 0 = 1 s */
     double alarm_interval;     /* s, at most one alarm per package and kind per interval:
@@ -167,6 +171,10 @@ int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, si
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c);
 long sw_mon_rejected(const sw_mon_counts_t *c); /* sum of rejected[] */
 sw_engine_t *sw_mon_engine(sw_mon_t *m);
+/* The packages' reserves (risk.h), fed every finite output by the monitor;
+ * their events are the caller's to feed (settling spans are a report's
+ * matter; the alarms count only significant impacts by themselves). */
+sw_risk_t *sw_mon_risk(sw_mon_t *m);
 /* The input gate's facts about the stream: duration, intervals, peaks. */
 void sw_mon_facts(const sw_mon_t *m, sw_gate_facts_t *f);
 int64_t sw_mon_origin(const sw_mon_t *m); /* utime of t = 0 (us), 0 before the first sample */

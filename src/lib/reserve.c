@@ -692,6 +692,20 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
         if (!(eo.dt > 0.0) && !(eo.accuracy > 0.0)) eo.dt = auto_dt(d, P->T);
         /* checks at whole steps, so that they do not cut the step grid */
         const double dt = eo.dt > 0.0 ? eo.dt : auto_dt(d, P->T);
+        /* a fixed step that a stiff support forces down to microseconds
+         * makes every run millions of steps: refuse, and say why */
+        const double max_steps =
+            R->o.max_run_steps > 0.0 ? R->o.max_run_steps : SW_RESERVE_MAX_RUN_STEPS;
+        const double steps = (P->T + R->t_free) / dt;
+        if (!(eo.accuracy > 0.0) && !(steps <= max_steps)) {
+            *err = SW_ETOOBIG;
+            set_msg(msg, msglen,
+                    "a design-pulse run would take %.3g steps of %.3g s (%.3g s of "
+                    "pulse and free motion), more than %.3g; the scene is too stiff for the "
+                    "reserve to keep up",
+                    steps, dt, P->T + R->t_free, max_steps);
+            goto fail;
+        }
         P->check = dt * ceil(P->T / CHECKS_PER_PULSE / dt);
         if (!(eo.rtol > 0.0)) eo.rtol = DEFAULT_RTOL;
         if (!(eo.atol > 0.0)) eo.atol = DEFAULT_ATOL;

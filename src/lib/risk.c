@@ -19,6 +19,7 @@ typedef struct {
     double m;              /* evaluations scheduled since origin: next = origin + m period
                               (a product, not a sum: no drift over hours) */
     sw_risk_pkg_t f;
+    char no_reserve[256]; /* why this package has no reserve; "" when it has one */
 } pkg_t;
 
 struct sw_risk {
@@ -34,6 +35,13 @@ static void figures_init(pkg_t *p)
     memset(&p->f, 0, sizeof p->f);
     p->f.reserve_g = p->f.reserve_t = p->f.min_reserve_g = p->f.min_reserve_time = NAN;
     p->f.impact_min = impact_min;
+    p->f.rest_reserve_g = NAN;
+    p->f.no_reserve = p->no_reserve[0] ? p->no_reserve : NULL;
+    if (p->reserve) {
+        sw_reserve_result_t rest;
+        sw_reserve_rest(p->reserve, &rest);
+        p->f.rest_reserve_g = rest.reserve_g;
+    }
     p->next = NAN;
     if (p->settles) sw_settle_init(&p->settle, impact_min);
 }
@@ -52,8 +60,15 @@ static int pkg_build(const sw_risk_t *r, const sw_scene_t *sc, pkg_t *p, char *m
     p->settles = p->f.impact_min > 0.0;
     if (r->period > 0.0) {
         int err = SW_OK;
-        p->reserve = sw_reserve_create(sc, &r->o.reserve, &err, msg, msglen);
-        if (!p->reserve) return err != SW_OK ? err : SW_ENOMEM;
+        p->reserve = sw_reserve_create(sc, &r->o.reserve, &err, p->no_reserve,
+                                       sizeof p->no_reserve);
+        /* too stiff to evaluate: the package goes on without a reserve,
+         * and says so (f.no_reserve) */
+        if (!p->reserve && err != SW_ETOOBIG) {
+            if (msg) snprintf(msg, msglen, "%s", p->no_reserve);
+            return err != SW_OK ? err : SW_ENOMEM;
+        }
+        if (p->reserve) p->no_reserve[0] = '\0';
     }
     figures_init(p);
     return SW_OK;
@@ -104,6 +119,8 @@ static void evaluate(pkg_t *p, const sw_output_t *out)
     if (!(res.reserve_g >= p->f.min_reserve_g)) { /* NAN min: the first */
         p->f.min_reserve_g = res.reserve_g;
         p->f.min_reserve_time = out->t;
+        p->f.min_direction = res.direction;
+        p->f.min_pulse = res.pulse;
     }
 }
 
@@ -169,6 +186,7 @@ int sw_risk_replace(sw_risk_t *r, size_t k, const sw_scene_t *scene, char *msg, 
     }
     sw_reserve_destroy(r->p[k].reserve);
     r->p[k] = fresh;
+    r->p[k].f.no_reserve = r->p[k].no_reserve[0] ? r->p[k].no_reserve : NULL; /* not fresh's */
     return SW_OK;
 }
 

@@ -37,7 +37,8 @@ assert n >= 1 and len(long_rows) % n == 0, (n, len(long_rows))
 alpha = math.atan(0.728 / 2.0)
 assert len(wide) == len(long_rows) // n, (len(wide), len(long_rows), n)
 cols = ["t", "a_g"] + ["%s.%s" % (p, c) for p in names for c in
-        ("phase", "theta", "theta_dot", "ratio", "margin", "margin_bound", "uplift_ratio")]
+        ("phase", "theta", "theta_dot", "ratio", "margin", "margin_bound", "uplift_ratio",
+         "reserve_g")]
 assert list(wide[0].keys()) == cols, list(wide[0].keys())
 for i, w in enumerate(wide):
     group = long_rows[i * n:(i + 1) * n]
@@ -45,7 +46,8 @@ for i, w in enumerate(wide):
     for g in group:
         p = g["package"]
         assert g["t"] == w["t"] and g["a_g"] == w["a_g"], (i, g, w)
-        for c in ("phase", "theta", "theta_dot", "margin", "margin_bound", "uplift_ratio"):
+        for c in ("phase", "theta", "theta_dot", "margin", "margin_bound", "uplift_ratio",
+                  "reserve_g"):
             assert g[c] == w["%s.%s" % (p, c)], (i, p, c, g[c], w["%s.%s" % (p, c)])
         r = float(w[p + ".ratio"])
         assert math.isclose(r, float(g["theta"]) / alpha, rel_tol=1e-8, abs_tol=1e-15), (i, p, r)

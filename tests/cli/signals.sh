@@ -67,7 +67,7 @@ started replay "$SW" replay "$TMP/long.csv" --scene "$SCENE" --dt 1e-6 --out "$T
     --events "$TMP/e.csv"
 stopped INT 130 "replay CSV, SIGINT"
 expect_err "interrupted by SIGINT" "replay CSV, SIGINT"
-whole "$TMP/o.csv" 13 "replay CSV, SIGINT"
+whole "$TMP/o.csv" 14 "replay CSV, SIGINT"
 whole "$TMP/e.csv" 7 "replay CSV, SIGINT"
 grep -q '^INTERRUPTED by SIGINT at t = ' "$TMP/out" || fail "replay: summary not marked"
 grep -q 'outcome ' "$TMP/out" || fail "replay: no summary"
@@ -75,20 +75,20 @@ grep -q 'outcome ' "$TMP/out" || fail "replay: no summary"
 started replay "$SW" replay "$TMP/long.csv" --scene "$SCENE" --dt 1e-6 --out "$TMP/o.csv" --json
 stopped TERM 143 "replay CSV --json, SIGTERM"
 expect_err "interrupted by SIGTERM" "replay CSV --json, SIGTERM"
-whole "$TMP/o.csv" 13 "replay CSV --json, SIGTERM"
+whole "$TMP/o.csv" 14 "replay CSV --json, SIGTERM"
 json_check "$TMP/out" 'j["interrupted"]["signal"] == "SIGTERM" and j["interrupted"]["t"] > 0 and 0 < j["samples_read"] < 100000'
 
 started simulate "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -4 --omega 0.25 \
     --dt 1e-7 --out "$TMP/o.csv"
 stopped INT 130 "simulate, SIGINT"
 expect_err "interrupted by SIGINT" "simulate, SIGINT"
-whole "$TMP/o.csv" 13 "simulate, SIGINT"
+whole "$TMP/o.csv" 14 "simulate, SIGINT"
 grep -q '^INTERRUPTED by SIGINT' "$TMP/out" || fail "simulate: summary not marked"
 
 started forensics "$SW" forensics "$TMP/long.csv" --scene "$SCENE" --dt 1e-6 --out "$TMP/o.csv"
 stopped TERM 143 "forensics, SIGTERM"
 expect_err "interrupted by SIGTERM" "forensics, SIGTERM"
-whole "$TMP/o.csv" 13 "forensics, SIGTERM"
+whole "$TMP/o.csv" 14 "forensics, SIGTERM"
 grep -q '^INTERRUPTED by SIGTERM' "$TMP/out" || fail "forensics: summary not marked"
 
 # lcm-logger path (LCM builds)
@@ -98,7 +98,7 @@ if "$SW" --help | grep -q monitor && [ -n "${SW_LCM_TOOL:-}" ]; then
         --out "$TMP/o.csv" --events "$TMP/e.csv"
     stopped INT 130 "replay lcm-logger, SIGINT"
     expect_err "interrupted by SIGINT" "replay lcm-logger, SIGINT"
-    whole "$TMP/o.csv" 13 "replay lcm-logger, SIGINT"
+    whole "$TMP/o.csv" 14 "replay lcm-logger, SIGINT"
     whole "$TMP/e.csv" 7 "replay lcm-logger, SIGINT"
     grep -q '^INTERRUPTED by SIGINT' "$TMP/out" || fail "replay lcm: summary not marked"
 fi

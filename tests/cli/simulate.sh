@@ -100,7 +100,7 @@ expect_rc 0 "medium pulse"
 cp "$TMP/out" "$TMP/medium.json"
 json_check "$TMP/medium.json" 'j["packages"][0]["uplift_time"] is not None and not j["packages"][0]["overturned"]'
 json_check "$TMP/medium.json" 'all(set(["name", "model", "overturned", "overturn_time", "tip_time", "max_abs_theta", "max_theta_ratio", "min_margin", "uplift_time", "impacts", "samples_read", "samples_rejected", "scheme", "dt"]) <= set(p) for p in j["packages"])'
-[ "$(head -1 "$TMP/state.csv")" = "t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,uplift_ratio,a_g" ] ||
+[ "$(head -1 "$TMP/state.csv")" = "t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,uplift_ratio,a_g,reserve_g" ] ||
     fail "--out header"
 tail -n +2 "$TMP/state.csv" | grep -Eqi 'nan|inf' && fail "--out holds nan or inf"
 # One row per package at t = 0, 0.01, ..., 5 (or until both are at rest).

@@ -57,9 +57,11 @@ static void test_state_round_trip(void **st)
     s.margin_bound = 0.3;
     s.uplift_ratio = 1.2;
     s.a_g = -4.0;
+    s.reserve_g = 0.35;
     unsigned char buf[512];
     int len = swaywatch_state_t_encode(buf, 0, sizeof buf, &s);
-    assert_int_equal(len, 8 + 16 + 64 + 3 + 8 * 8);
+    /* fingerprint, utime + seq, name, model + phase + side, nine doubles */
+    assert_int_equal(len, 8 + 16 + 64 + 3 + 9 * 8);
     swaywatch_state_t t;
     assert_int_equal(swaywatch_state_t_decode(buf, 0, len, &t), len);
     assert_memory_equal(&s.name, &t.name, sizeof s.name);
@@ -67,6 +69,7 @@ static void test_state_round_trip(void **st)
     assert_true(t.theta == s.theta && t.theta_dot == s.theta_dot && t.u == s.u);
     assert_true(t.z_b == s.z_b && t.margin == s.margin && t.margin_bound == s.margin_bound);
     assert_true(t.uplift_ratio == s.uplift_ratio && t.a_g == s.a_g);
+    assert_true(t.reserve_g == s.reserve_g);
 }
 
 static void test_alarm_round_trip(void **st)
@@ -82,9 +85,11 @@ static void test_alarm_round_trip(void **st)
     strcpy((char *)a.text, "margin 0.150 < critical 0.200");
     a.theta = 0.3;
     a.margin = 0.15;
+    a.reserve_g = 0.2;
     unsigned char buf[512];
     int len = swaywatch_alarm_t_encode(buf, 0, sizeof buf, &a);
-    assert_int_equal(len, 8 + 16 + 64 + 2 + 128 + 16);
+    /* fingerprint, utime + seq, name, kind + level, text, three doubles */
+    assert_int_equal(len, 8 + 16 + 64 + 2 + 128 + 24);
     swaywatch_alarm_t b;
     memset(&b, 0, sizeof b); /* padding compares too */
     assert_int_equal(swaywatch_alarm_t_decode(buf, 0, len, &b), len);

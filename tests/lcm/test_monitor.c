@@ -202,7 +202,7 @@ static void check_all_finite(const bus_t *b)
     for (int i = 0; i < b->nst; i++) {
         const swaywatch_state_t *s = &b->st[i];
         const double v[] = {s->theta,        s->theta_dot,    s->u,  s->z_b, s->margin,
-                            s->margin_bound, s->uplift_ratio, s->a_g};
+                            s->margin_bound, s->uplift_ratio, s->a_g, s->reserve_g};
         for (size_t j = 0; j < sizeof v / sizeof v[0]; j++) assert_true(isfinite(v[j]));
     }
     for (int i = 0; i < b->nal; i++)
@@ -214,6 +214,10 @@ static void check_all_finite(const bus_t *b)
 typedef struct {
     sw_engine_t *e;
     sw_alarm_watch_t w;
+    sw_reserve_t *res; /* evaluated directly, at 10 Hz of sample time */
+    double next_eval;  /* s: the next multiple of 0.1 s to evaluate at */
+    double last_g;     /* g, the latest reserve (-1: none yet) */
+    double *reserve_g; /* per output: the latest reserve when it was made */
     sw_output_t *out;
     int nout;
     sw_alarm_t al[MAXMSG];
@@ -229,6 +233,16 @@ static void ref_alarm(void *user, const sw_alarm_t *a)
 static void ref_state(void *user, const sw_output_t *o)
 {
     ref_t *r = user;
+    /* the monitor's default: the reserve at the first state at or after
+     * each multiple of 0.1 s (risk.h), its alarms before the margin's */
+    if (o->t >= r->next_eval) {
+        sw_reserve_result_t rr;
+        assert_int_equal(sw_reserve_eval(r->res, &o->state, &rr), SW_OK);
+        r->last_g = rr.reserve_g;
+        sw_alarm_on_reserve(&r->w, o->t, o->state.theta, o->margin, rr.reserve_g, ref_alarm, r);
+        r->next_eval = 0.1 * floor(o->t / 0.1 + 1.0);
+    }
+    r->reserve_g[r->nout] = r->last_g;
     r->out[r->nout++] = *o;
     sw_alarm_on_output(&r->w, o, ref_alarm, r);
 }
@@ -251,8 +265,12 @@ static ref_t *reference_from_csv(const sw_scene_t *sc)
     ref_t *r = calloc(1, sizeof *r);
     assert_non_null(r);
     r->out = calloc(MAXMSG, sizeof *r->out);
-    assert_non_null(r->out);
-    assert_int_equal(sw_alarm_init(&r->w, 0, sc->warn_margin, sc->critical_margin, -1), SW_OK);
+    r->reserve_g = calloc(MAXMSG, sizeof *r->reserve_g);
+    assert_true(r->out && r->reserve_g);
+    assert_int_equal(sw_alarm_init_scene(&r->w, 0, sc, -1), SW_OK);
+    r->res = sw_reserve_create(sc, NULL, NULL, NULL, 0);
+    assert_non_null(r->res);
+    r->last_g = -1.0;
     sw_engine_opts_t eo;
     memset(&eo, 0, sizeof eo);
     eo.on_state = ref_state;
@@ -286,7 +304,9 @@ static ref_t *reference_from_csv(const sw_scene_t *sc)
 static void ref_free(ref_t *r)
 {
     sw_engine_destroy(r->e);
+    sw_reserve_destroy(r->res);
     free(r->out);
+    free(r->reserve_g);
     free(r);
 }
 
@@ -312,6 +332,7 @@ static void test_lcm_equals_csv(void **st)
         assert_true(s->theta_dot == o->state.theta_dot);
         assert_true(s->margin == o->margin);
         assert_true(s->a_g == o->a_g);
+        assert_true(s->reserve_g == ref->reserve_g[i]);
         if (fabs(s->theta) > max_theta)
             max_theta = fabs(s->theta);
     }
@@ -319,6 +340,10 @@ static void test_lcm_equals_csv(void **st)
     assert_true(max_theta > 0.05);
     assert_int_equal(r->bus.nal, ref->nal);
     assert_true(ref->nal >= 3); /* uplift, impacts, warn at least */
+    int reserve_alarms = 0;
+    for (int i = 0; i < ref->nal; i++)
+        reserve_alarms += ref->al[i].kind == SW_ALARM_RESERVE_WARN;
+    assert_true(reserve_alarms >= 1); /* the pulse brings the reserve below its level */
     for (int i = 0; i < ref->nal; i++) {
         assert_int_equal(r->bus.al[i].kind, (int)ref->al[i].kind);
         assert_int_equal(r->bus.al[i].level, (int)ref->al[i].level);

@@ -7,7 +7,7 @@
 #   W: JOURNAL_STREAM names J's file, not its own stderr.
 # Every alarm the monitor raised (as many as its summary counts) must be one
 # line "swaywatch: alarm TIME level=... package=... kind=... theta=...
-# margin=... text=..."; TIME is the wall clock (now, not the log's 2023),
+# margin=... [reserve_g=...] text=..."; TIME is the wall clock (now, not the log's 2023),
 # ISO 8601 UTC with ms.  J's lines start with the syslog priority of their
 # level (<2> critical, <4> warn, <6> info), P's and W's with nothing; the
 # three saw the same physics alarms.  An error under JOURNAL_STREAM is <3>.
@@ -49,7 +49,8 @@ now = time.time()
 line_re = re.compile(
     r'^(<[0-9]>)?swaywatch: alarm (\d{4})-(\d\d)-(\d\d)T(\d\d):(\d\d):(\d\d)\.(\d{3})Z '
     r'level=(info|warn|critical) package=(\S+) kind=([a-z_]+) '
-    r'theta=(-|-?\d+\.\d{4}) margin=(-|-?\d+\.\d{4}) text="([^"]*)"$')
+    r'theta=(-|-?\d+\.\d{4}) margin=(-|-?\d+\.\d{4})( reserve_g=\d+\.\d{3})? '
+    r'text="([^"]*)"$')
 prio = {"critical": "<2>", "warn": "<4>", "info": "<6>"}
 def check(cond, what):
     if not cond:
@@ -75,13 +76,15 @@ for m in "JPW":
         else:
             check(g[0] is None, "%s: %r: a priority prefix outside the journal" % (m, l))
         if pkg == "-":
-            check(g[11] == "-" and g[12] == "-", "input alarm with numbers: " + l)
+            check(g[11] == "-" and g[12] == "-" and g[13] is None, "input alarm with numbers: " + l)
         else:
             check(pkg == "crate-A" and g[11] != "-", "package alarm: " + l)
             phys.append(l.split(" ", 3)[3])  # from level= on
     physics[m] = phys
     kinds = {(lv, k) for lv, k in re.findall(r"level=(\w+) package=\S+ kind=(\w+)", "\n".join(alarms))}
-    for want in [("critical", "critical"), ("warn", "warn"), ("info", "uplift"), ("warn", "sensor_gap")]:
+    check(any(" reserve_g=" in l for l in alarms), m + ": no alarm line carries the reserve")
+    for want in [("critical", "critical"), ("warn", "warn"), ("info", "uplift"), ("warn", "sensor_gap"),
+                 ("warn", "reserve_warn")]:
         check(want in kinds, "%s: no %s alarm of kind %s" % (m, want[0], want[1]))
 check(physics["J"] == physics["P"] == physics["W"], "the monitors saw different alarms")
 print("udpm_alarm_lines.sh: %d package alarms, the same in all three" % len(physics["J"]))
