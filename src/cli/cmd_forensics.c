@@ -215,6 +215,7 @@ static int replay_log(sw_cli_forensics_t *F)
     if ((F->fo.plot || F->fo.report) && !(F->fig = sw_cli_figure_create(e, F->scenes, F->n)))
         return SW_EXIT_IO;
     if ((rc = sw_cli_reader_risk(&F->R, &F->o, F->scenes, F->n)) != SW_EXIT_OK) return rc;
+    if (F->o.reserve_rate > 0.0) sw_cli_figure_risk(F->fig, F->R.risk);
     F->states.risk = F->R.risk; /* after open, which clears the writer */
     F->events.all_impacts = F->o.all_impacts;
     if ((rc = sw_cli_forensics_begin(F)) != SW_EXIT_OK) return rc;

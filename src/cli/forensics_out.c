@@ -99,6 +99,7 @@ static void answer(FILE *f, const sw_cli_forensics_t *F, size_t k)
                 strcmp(sw_cli_verdict(&s), "upright") ? "NO VERDICT (the model faulted)"
                                                       : "stayed upright",
                 s.max_theta_ratio, s.min_margin);
+    if (F->R.risk) sw_cli_print_reserve(f, sw_risk_pkg(F->R.risk, k));
     char b[64], sentence[640];
     sw_cli_safety_bracket(b, sizeof b, &C->sf);
     sw_cli_safety_sentence(sentence, sizeof sentence, &C->sf);
@@ -201,6 +202,14 @@ void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
         sw_cli_json_num(f, s.max_theta_ratio);
         fprintf(f, ", \"min_margin\": ");
         sw_cli_json_num(f, s.min_margin);
+        const sw_risk_pkg_t *rp = F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
+        const int rv = rp && rp->evaluations > 0;
+        fprintf(f, ", \"min_reserve_g\": ");
+        sw_cli_json_num(f, rv ? rp->min_reserve_g : NAN);
+        fprintf(f, ", \"min_reserve_time\": ");
+        sw_cli_json_num(f, rv ? rp->min_reserve_time : NAN);
+        fprintf(f, ", \"rest_reserve_g\": ");
+        sw_cli_json_num(f, rv ? rp->rest_reserve_g : NAN);
         fprintf(f, ",\n  \"safety_factor\": ");
         sw_cli_whatif_json_safety(f, C);
         fprintf(f, ",\n  \"saved_by\": [");

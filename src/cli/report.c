@@ -54,6 +54,22 @@ static const char style[] =
     "word-break:break-all}\n"
     ".note{color:#555;font-size:0.9em}\n";
 
+/* The smallest reserve of a package, in words. */
+static void reserve(FILE *f, const sw_risk_pkg_t *p)
+{
+    if (!p || !p->evaluations || !isfinite(p->min_reserve_g))
+        return;
+    fprintf(f, "<p><b>Smallest reserve %.3g g</b> at %.3f s (standing at rest: %.3g g): ",
+            p->min_reserve_g, p->min_reserve_time, p->rest_reserve_g);
+    if (p->min_reserve_g > 0.0)
+        fprintf(f, "from its state then, a %s half-sine pulse of %.3g s and %.3g g would have "
+                   "overturned it.</p>",
+                p->min_direction == SW_RESERVE_ACCELERATING ? "speeding-up" : "braking",
+                p->min_pulse, p->min_reserve_g);
+    else
+        fprintf(f, "from then on it overturns with no further input.</p>");
+}
+
 /* ---- the answer -------------------------------------------------------------------- */
 
 static void answers(FILE *f, const sw_cli_forensics_t *F)
@@ -77,10 +93,12 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
                     s.max_theta_ratio, s.min_margin);
         else
             fprintf(f, "<span class=\"over\">no verdict</span>: the model faulted.");
+        fprintf(f, "</p>");
+        reserve(f, F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL);
         char b[64], sentence[640];
         sw_cli_safety_bracket(b, sizeof b, &C->sf);
         sw_cli_safety_sentence(sentence, sizeof sentence, &C->sf);
-        fprintf(f, "</p><p><b>Safety factor %s.</b> ", b);
+        fprintf(f, "<p><b>Safety factor %s.</b> ", b);
         html(f, sentence);
         fprintf(f, "</p>");
         if (s.overturned && !F->fo.w.no_what_if) {

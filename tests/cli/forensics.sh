@@ -87,6 +87,18 @@ json_check "$TMP/two.json" 'sum(1 for c in j["packages"][0]["what_if"] if "stand
 json_check "$TMP/two.json" 'any("1 Hz" in c.get("support", "") for c in j["packages"][0]["what_if"])'
 json_check "$TMP/two.json" '[c["case"] for c in j["packages"][0]["what_if"]][-1] == "size 2.4x0.8 m"'
 grep -Eqi 'nan|infinity' "$TMP/two.json" && fail "NaN or Infinity in the JSON"
+# each package's smallest reserve is the one replay finds for it
+run "$SW" replay "$LOGS/braking-pothole.csv" --scene "$CRATE" --scene "$LOGS/crate-on-frame.ini" --json
+expect_rc 0 "replay of the two scenes"
+cp "$TMP/out" "$TMP/two-replay.json"
+python3 - "$TMP/two.json" "$TMP/two-replay.json" <<'PY' || fail "forensics' reserve differs from replay's"
+import json, sys
+f, r = (json.load(open(p)) for p in sys.argv[1:])
+for pf, pr in zip(f["packages"], r["packages"]):
+    assert pr["min_reserve_g"] is not None, pr  # 0 for the frame: it overturned
+    assert pf["min_reserve_g"] == pr["min_reserve_g"], (pf["min_reserve_g"], pr["min_reserve_g"])
+    assert pf["min_reserve_time"] == pr["min_reserve_time"]
+PY
 
 # Hz and rad/s name the same frame: 1Hz = 6.283185307179586 rad/s.
 run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$CRATE" --frame-omega 1Hz --json \

@@ -67,11 +67,12 @@ want = ["Incident report", "crate-A", "crate-A-on-frame", "OVERTURNED", "Safety 
         "It overturned", "The recording", "sample rate", "1000 Hz", "peak |bed acceleration|",
         "gaps", "Events", "uplift", "overturn", "What would have saved it", "as given",
         "frame, soft bearings", "cushion, firm", "Assumptions and limits", "swaywatch forensics",
-        "hard-stop-overturn.csv", "--report"]
+        "hard-stop-overturn.csv", "--report", "Smallest reserve"]
 missing = [w for w in want if w not in text]
 assert not missing, missing
 assert {"answer-0", "answer-1", "log", "figure", "events"} <= p.ids, p.ids
 assert p.svg >= 1, "no figure"
+assert "reserve (g)" in dom, "no reserve panel in the figure"
 # the same numbers as --json: each package's bracket and verdict
 for k, pk in enumerate(facts["packages"]):
     assert pk["safety_factor"]["text"] in text, pk["safety_factor"]["text"]
