@@ -32,6 +32,7 @@
 #include <unistd.h>
 
 #include "clobber.h"
+#include "cost.h"
 #include "figure.h"
 #include "forensics.h"
 #include "interrupt.h"
@@ -72,9 +73,6 @@ static const sw_cli_option_t forensics_options[] = {
          SW_CLI_LOG_MAX_SAMPLES_N) ", 9.3 h at 1 kHz; at most 268435456); a longer log, or an "
                                    "endless pipe, is refused with exit 2 instead of filling the "
                                    "memory"},
-    {SW_CLI_LONG, 0, "threads", "N", FO(threads), .min = 1, .max = 256, .def = 2,
-     .what = "a whole number of threads >= 1",
-     .help = "searches run on N threads (default %g); the results are the same for any N"},
     {SW_CLI_SECTION, .help = "Safety factor (scale of the whole longitudinal acceleration):"},
     {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE, .lo = 1e-4, .hi = 1,
      .what = "a positive relative step",
@@ -107,6 +105,16 @@ static const sw_cli_option_t forensics_options[] = {
      .help = "the package with height H and width W (m), on the scene's support; repeatable"},
     {SW_CLI_FLAG, 0, "no-what-if", FO(w.no_what_if), .value = 1,
      .help = "only the replay and the safety factor"},
+    {SW_CLI_END},
+};
+
+/* The searches' threads: not in a batch, which runs its logs on its own
+ * threads (each log's searches then run on the thread of its job). */
+static const sw_cli_option_t forensics_thread_options[] = {
+    {SW_CLI_SECTION, .help = "Run:"},
+    {SW_CLI_LONG, 0, "threads", "N", FO(threads), .min = 1, .max = 256, .def = 2,
+     .what = "a whole number of threads >= 1",
+     .help = "searches run on N threads (default %g); the results are the same for any N"},
     {SW_CLI_END},
 };
 
@@ -190,13 +198,22 @@ static int open_log(sw_cli_forensics_t *F)
     return sw_cli_reader_prepare(&F->R);
 }
 
+/* The scenes (unless a batch's options hold them already) and the engine
+ * options they and --accuracy give. */
+static int load(sw_cli_forensics_t *F)
+{
+    int rc;
+    if (F->scenes) return SW_EXIT_OK;
+    if ((rc = sw_cli_load_scenes(&F->o, &F->scenes, &F->n)) != SW_EXIT_OK) return rc;
+    sw_cli_engine_opts(&F->o, &F->eo);
+    return sw_cli_resolve_accuracy(&F->o, F->scenes, F->n, &F->eo);
+}
+
 /* 1. The replay, exactly as replay runs it, keeping what the engine got. */
 static int replay_log(sw_cli_forensics_t *F)
 {
     int rc;
-    if ((rc = sw_cli_load_scenes(&F->o, &F->scenes, &F->n)) != SW_EXIT_OK) return rc;
-    sw_cli_engine_opts(&F->o, &F->eo);
-    if ((rc = sw_cli_resolve_accuracy(&F->o, F->scenes, F->n, &F->eo)) != SW_EXIT_OK) return rc;
+    if ((rc = load(F)) != SW_EXIT_OK) return rc;
     sw_engine_opts_t eo = F->eo;
     eo.on_event = on_event;
     eo.on_state = on_state;
@@ -205,7 +222,8 @@ static int replay_log(sw_cli_forensics_t *F)
     F->R.take = on_take;
     F->R.halt = &F->L.halt;
     F->R.reserve_rate = F->o.reserve_rate;
-    if ((rc = sw_cli_reader_engine(&F->R, F->scenes, F->n, &eo, 0)) != SW_EXIT_OK) return rc;
+    if ((rc = sw_cli_reader_engine(&F->R, F->scenes, F->n, &eo, F->scenes_shared)) != SW_EXIT_OK)
+        return rc;
     sw_engine_t *e = F->R.e;
     if (F->o.verbose) sw_cli_print_derived(stderr, e, F->scenes, F->n);
     if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, F->scenes, F->n)) !=
@@ -287,11 +305,12 @@ static int run_cases(sw_cli_forensics_t *F)
     F->started = now_s();
     /* The search cannot stop between trials and writes nothing: a signal
      * ends the process at once. */
-    sw_cli_interrupt_now("forensics: interrupted during the safety-factor search; --out and "
-                         "--events are complete, no report");
+    if (!F->scenes_shared) /* a batch's jobs run on many threads: the batch handles signals */
+        sw_cli_interrupt_now("forensics: interrupted during the safety-factor search; --out and "
+                             "--events are complete, no report");
     const int rc = sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so,
                                      (int)F->fo.threads, show ? progress : NULL, F);
-    sw_cli_interrupt_now(NULL);
+    if (!F->scenes_shared) sw_cli_interrupt_now(NULL);
     F->search_s = now_s() - F->started;
     if (F->progress_shown) fprintf(stderr, "\r\033[K");
     if (rc == SW_ENOMEM) {
@@ -323,7 +342,52 @@ static int report_interrupted(const sw_cli_forensics_t *F)
     return sw_cli_interrupt_code();
 }
 
-static size_t groups(sw_cli_forensics_t *F, sw_cli_group_t *g)
+/* The replay and the run at scale 1 of the search agree on every outcome;
+ * if not, say so (the shock is at the edge of what the model resolves). */
+static void check_agree(const sw_cli_forensics_t *F)
+{
+    for (size_t i = 0; i < F->ncases; i++) {
+        const sw_cli_case_t *C = &F->cases[i];
+        sw_summary_t sum;
+        if (!C->is_scene || sw_engine_summary(F->R.e, C->pkg, &sum) != SW_OK) continue;
+        if (sum.overturned != C->sf.overturned)
+            sw_cli_error("forensics: %s: the replay and the safety-factor run disagree on the "
+                         "outcome (overturned %s / %s): the shock is at the edge of the model's "
+                         "resolution",
+                         F->scenes[C->pkg].name, sum.overturned ? "yes" : "no",
+                         C->sf.overturned ? "yes" : "no");
+    }
+}
+
+/* Everything a run opened and made; the options stay (the scenes, unless
+ * a batch's options hold them). */
+static void cleanup(sw_cli_forensics_t *F)
+{
+    sw_cli_states_close(&F->states);
+    sw_cli_events_close(&F->events);
+    sw_cli_forensics_free(F);
+    sw_cli_reader_close(&F->R);
+    free(F->cases);
+    F->cases = NULL;
+    sw_cli_figure_destroy(F->fig);
+    F->fig = NULL;
+    if (!F->scenes_shared) {
+        free(F->scenes);
+        F->scenes = NULL;
+    }
+    sw_cli_log_free(&F->L);
+}
+
+static int check_options(const sw_cli_forensics_t *F)
+{
+    if (F->fo.so.x_max > 0.0 && F->fo.so.x_max <= 1.0) {
+        sw_cli_error("--max-factor: expected a factor above 1, got %g", F->fo.so.x_max);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+static size_t groups(sw_cli_forensics_t *F, sw_cli_group_t *g, int batch)
 {
     size_t n = 0;
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_csv_options, &F->in.copts);
@@ -338,8 +402,10 @@ static size_t groups(sw_cli_forensics_t *F, sw_cli_group_t *g)
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_scene_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_accuracy_options, &F->o);
-    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_output_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_reserve_options, &F->o);
+    if (batch) return n;
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(forensics_thread_options, &F->fo);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_output_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(forensics_output_options, &F->fo);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_common_options, &F->o, "Output:");
     return n;
@@ -364,7 +430,7 @@ int cmd_forensics(int argc, char **argv)
     }
     memcpy(F->argv, argv, ((size_t)argc + 1) * sizeof *argv);
     sw_cli_group_t g[16];
-    const size_t ng = groups(F, g);
+    const size_t ng = groups(F, g, 0);
 
     int first;
     if ((rc = sw_cli_parse(&forensics_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
@@ -372,10 +438,7 @@ int cmd_forensics(int argc, char **argv)
     if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
     rc = SW_EXIT_USAGE;
     if (!(F->log = sw_cli_log_operand("forensics", argc, argv, first))) goto out;
-    if (F->fo.so.x_max > 0.0 && F->fo.so.x_max <= 1.0) {
-        sw_cli_error("--max-factor: expected a factor above 1, got %g", F->fo.so.x_max);
-        goto out;
-    }
+    if (check_options(F) != SW_EXIT_OK) goto out;
     F->given = sw_cli_source_given(g, ng, NULL);
     if ((rc = open_log(F)) != SW_EXIT_OK || (rc = replay_log(F)) != SW_EXIT_OK) goto out;
     if (sw_cli_signal) {
@@ -383,17 +446,7 @@ int cmd_forensics(int argc, char **argv)
         goto out;
     }
     if ((rc = run_cases(F)) != SW_EXIT_OK) goto out;
-    for (size_t i = 0; i < F->ncases; i++) {
-        const sw_cli_case_t *C = &F->cases[i];
-        sw_summary_t sum;
-        if (!C->is_scene || sw_engine_summary(F->R.e, C->pkg, &sum) != SW_OK) continue;
-        if (sum.overturned != C->sf.overturned)
-            sw_cli_error("forensics: %s: the replay and the safety-factor run disagree on the "
-                         "outcome (overturned %s / %s): the shock is at the edge of the model's "
-                         "resolution",
-                         F->scenes[C->pkg].name, sum.overturned ? "yes" : "no",
-                         C->sf.overturned ? "yes" : "no");
-    }
+    check_agree(F);
     /* --out - / --events -: standard output carries that file. */
     FILE *ans = F->o.out_path && !strcmp(F->o.out_path, "-") ? stderr
                 : F->o.events_path && !strcmp(F->o.events_path, "-") ? stderr
@@ -424,16 +477,71 @@ int cmd_forensics(int argc, char **argv)
         rc = sw_cli_interrupt_code();
     }
 out:
-    sw_cli_states_close(&F->states);
-    sw_cli_events_close(&F->events);
-    sw_cli_forensics_free(F);
-    sw_cli_reader_close(&F->R);
-    free(F->cases);
-    sw_cli_figure_destroy(F->fig);
-    free(F->scenes);
-    sw_cli_log_free(&F->L);
+    cleanup(F);
     sw_cli_parse_free(g, ng);
     free(F->argv);
+    free(F);
+    return rc;
+}
+
+/* ---- the forensics of one log, for batch (forensics.h) ----------------------------- */
+
+sw_cli_forensics_t *sw_cli_forensics_new(void)
+{
+    sw_cli_forensics_t *F = calloc(1, sizeof *F);
+    if (!F) {
+        sw_cli_error("out of memory");
+        return NULL;
+    }
+    sw_cli_read_opts_init(&F->in);
+    return F;
+}
+
+void sw_cli_forensics_destroy(sw_cli_forensics_t *F)
+{
+    if (!F) return;
+    sw_cli_group_t g[16];
+    sw_cli_parse_free(g, groups(F, g, 1));
+    cleanup(F);
+    free(F->scenes);
+    free(F);
+}
+
+size_t sw_cli_forensics_groups(sw_cli_forensics_t *F, sw_cli_group_t *g)
+{
+    return groups(F, g, 1);
+}
+
+int sw_cli_forensics_ready(sw_cli_forensics_t *F, const sw_cli_group_t *g, size_t ng)
+{
+    int rc;
+    F->given = sw_cli_source_given(g, ng, NULL);
+    if ((rc = check_options(F)) != SW_EXIT_OK || (rc = load(F)) != SW_EXIT_OK) return rc;
+    sw_cli_warn_scene_cost(F->scenes, F->n, &F->eo);
+    F->scenes_shared = 1; /* the copies made for each log share them */
+    return SW_EXIT_OK;
+}
+
+int sw_cli_forensics_log(const sw_cli_forensics_t *opts, const char *log,
+                         sw_cli_forensics_report_fn report, void *user)
+{
+    sw_cli_forensics_t *F = malloc(sizeof *F);
+    if (!F) {
+        sw_cli_error("%s: out of memory", log);
+        return SW_EXIT_IO;
+    }
+    *F = *opts; /* the options; a ready one has run nothing, so no state is copied */
+    F->log = log;
+    F->o.quiet = 1;
+    F->o.json = 0;
+    int rc;
+    if ((rc = open_log(F)) == SW_EXIT_OK && (rc = replay_log(F)) == SW_EXIT_OK &&
+        (rc = run_cases(F)) == SW_EXIT_OK) {
+        check_agree(F);
+        report(user, F);
+        rc = sw_cli_verdict_exit(F->R.e, F->fo.fail_on_overturn);
+    }
+    cleanup(F);
     free(F);
     return rc;
 }

@@ -36,6 +36,7 @@ typedef struct {
     int argc;
     char **argv;       /* the command as given (argv[0] is "forensics") */
     const char *log;   /* LOG as given */
+    int scenes_shared; /* a batch's: scenes read, and their cost warned about, once */
     sw_cli_reader_t R; /* the log's reading and the engine of every package */
     sw_scene_t *scenes;
     size_t n;
@@ -77,5 +78,27 @@ int sw_cli_forensics_report(const sw_cli_forensics_t *F, const char *path);
  * (0 if there is none), and its case as given. */
 int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t *s);
 const sw_cli_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k);
+
+/* forensics of many logs, for "swaywatch batch" (batch.h): the options
+ * at their defaults (NULL: out of memory, reported), freed with
+ * sw_cli_forensics_destroy() (NULL ok); the groups a batch takes (the
+ * log's reading, scenes, integration, the searches and the what-if, not
+ * the outputs), at most 16; after parsing them, the scenes read once. */
+sw_cli_forensics_t *sw_cli_forensics_new(void);
+void sw_cli_forensics_destroy(sw_cli_forensics_t *F);
+size_t sw_cli_forensics_groups(sw_cli_forensics_t *F, sw_cli_group_t *g);
+int sw_cli_forensics_ready(sw_cli_forensics_t *F, const sw_cli_group_t *g, size_t ng);
+
+/* The forensics of log with the options of opts (ready; only read, so any
+ * number of threads may share it), as "swaywatch forensics -q" would do
+ * it: on success report(user, F) is called with the run's state and the
+ * exit code returned (0, or 1 with --fail-on-overturn); otherwise the exit
+ * code forensics would give (reported), and report is not called. */
+typedef void (*sw_cli_forensics_report_fn)(void *user, const sw_cli_forensics_t *F);
+int sw_cli_forensics_log(const sw_cli_forensics_t *opts, const char *log,
+                         sw_cli_forensics_report_fn report, void *user);
+
+/* Package k's members of the JSON's "packages" (no braces). */
+void sw_cli_forensics_json_package(FILE *f, const sw_cli_forensics_t *F, size_t k);
 
 #endif

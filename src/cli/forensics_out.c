@@ -99,7 +99,8 @@ static void answer(FILE *f, const sw_cli_forensics_t *F, size_t k)
                 strcmp(sw_cli_verdict(&s), "upright") ? "NO VERDICT (the model faulted)"
                                                       : "stayed upright",
                 s.max_theta_ratio, s.min_margin);
-    if (F->R.risk) sw_cli_print_reserve(f, sw_risk_pkg(F->R.risk, k));
+    if (F->R.risk)
+        sw_cli_print_reserve(f, sw_risk_pkg(F->R.risk, k));
     char b[64], sentence[640];
     sw_cli_safety_bracket(b, sizeof b, &C->sf);
     sw_cli_safety_sentence(sentence, sizeof sentence, &C->sf);
@@ -161,6 +162,58 @@ void sw_cli_forensics_text(FILE *f, const sw_cli_forensics_t *F)
 
 /* ---- JSON -------------------------------------------------------------------------- */
 
+void sw_cli_forensics_json_package(FILE *f, const sw_cli_forensics_t *F, size_t k)
+{
+    sw_summary_t s;
+    const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
+    fprintf(f, "\"name\": ");
+    sw_cli_json_string(f, F->scenes[k].name);
+    if (!C || !sw_cli_forensics_summary(F, k, &s)) {
+        fprintf(f, ", \"verdict\": null");
+        return;
+    }
+    fprintf(f, ", \"model\": ");
+    sw_cli_json_string(f, sw_model_name(s.model));
+    fprintf(f, ", \"verdict\": ");
+    sw_cli_json_string(f, sw_cli_verdict(&s));
+    fprintf(f, ", \"overturned\": %s, \"overturn_time\": ", s.overturned ? "true" : "false");
+    sw_cli_json_num(f, s.overturn_time);
+    fprintf(f, ", \"max_theta_ratio\": ");
+    sw_cli_json_num(f, s.max_theta_ratio);
+    fprintf(f, ", \"min_margin\": ");
+    sw_cli_json_num(f, s.min_margin);
+    const sw_risk_pkg_t *rp = F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
+    const int rv = rp && rp->evaluations > 0;
+    fprintf(f, ", \"min_reserve_g\": ");
+    sw_cli_json_num(f, rv ? rp->min_reserve_g : NAN);
+    fprintf(f, ", \"min_reserve_time\": ");
+    sw_cli_json_num(f, rv ? rp->min_reserve_time : NAN);
+    fprintf(f, ", \"rest_reserve_g\": ");
+    sw_cli_json_num(f, rv ? rp->rest_reserve_g : NAN);
+    fprintf(f, ",\n  \"safety_factor\": ");
+    sw_cli_whatif_json_safety(f, C);
+    fprintf(f, ",\n  \"saved_by\": [");
+    int first = 1;
+    for (size_t i = 0; i < F->ncases && s.overturned; i++) {
+        const sw_cli_case_t *W = &F->cases[i];
+        if (W->pkg != k || W->is_scene || !W->available || W->sf.overturned)
+            continue;
+        fprintf(f, "%s", first ? "" : ", ");
+        sw_cli_json_string(f, W->name);
+        first = 0;
+    }
+    fprintf(f, "],\n  \"what_if\": [");
+    first = 1;
+    for (size_t i = 0; i < F->ncases; i++) {
+        if (F->cases[i].pkg != k)
+            continue;
+        fprintf(f, "%s\n   ", first ? "" : ",");
+        sw_cli_whatif_json_case(f, &F->cases[i]);
+        first = 0;
+    }
+    fprintf(f, "]");
+}
+
 void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
 {
     fprintf(f, "{\n\"swaywatch\": ");
@@ -186,52 +239,9 @@ void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
     sw_cli_print_json(f, F->R.e, &F->R.run);
     fprintf(f, ",\n\"packages\": [");
     for (size_t k = 0; k < F->n; k++) {
-        sw_summary_t s;
-        const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
-        if (!C || !sw_cli_forensics_summary(F, k, &s))
-            continue;
-        fprintf(f, "%s\n {\"name\": ", k ? "," : "");
-        sw_cli_json_string(f, F->scenes[k].name);
-        fprintf(f, ", \"model\": ");
-        sw_cli_json_string(f, sw_model_name(s.model));
-        fprintf(f, ", \"verdict\": ");
-        sw_cli_json_string(f, sw_cli_verdict(&s));
-        fprintf(f, ", \"overturned\": %s, \"overturn_time\": ", s.overturned ? "true" : "false");
-        sw_cli_json_num(f, s.overturn_time);
-        fprintf(f, ", \"max_theta_ratio\": ");
-        sw_cli_json_num(f, s.max_theta_ratio);
-        fprintf(f, ", \"min_margin\": ");
-        sw_cli_json_num(f, s.min_margin);
-        const sw_risk_pkg_t *rp = F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
-        const int rv = rp && rp->evaluations > 0;
-        fprintf(f, ", \"min_reserve_g\": ");
-        sw_cli_json_num(f, rv ? rp->min_reserve_g : NAN);
-        fprintf(f, ", \"min_reserve_time\": ");
-        sw_cli_json_num(f, rv ? rp->min_reserve_time : NAN);
-        fprintf(f, ", \"rest_reserve_g\": ");
-        sw_cli_json_num(f, rv ? rp->rest_reserve_g : NAN);
-        fprintf(f, ",\n  \"safety_factor\": ");
-        sw_cli_whatif_json_safety(f, C);
-        fprintf(f, ",\n  \"saved_by\": [");
-        int first = 1;
-        for (size_t i = 0; i < F->ncases && s.overturned; i++) {
-            const sw_cli_case_t *W = &F->cases[i];
-            if (W->pkg != k || W->is_scene || !W->available || W->sf.overturned)
-                continue;
-            fprintf(f, "%s", first ? "" : ", ");
-            sw_cli_json_string(f, W->name);
-            first = 0;
-        }
-        fprintf(f, "],\n  \"what_if\": [");
-        first = 1;
-        for (size_t i = 0; i < F->ncases; i++) {
-            if (F->cases[i].pkg != k)
-                continue;
-            fprintf(f, "%s\n   ", first ? "" : ",");
-            sw_cli_whatif_json_case(f, &F->cases[i]);
-            first = 0;
-        }
-        fprintf(f, "]}");
+        fprintf(f, "%s\n {", k ? "," : "");
+        sw_cli_forensics_json_package(f, F, k);
+        fputc('}', f);
     }
     fprintf(f, "\n]\n}\n");
 }
