@@ -5,7 +5,7 @@
 # is run, as printed, in a scratch folder with E set to a copy of the
 # installed example files.  A command must exit 0 (0 or 1 with
 # --fail-on-overturn) and write the files it names with --out, --events,
-# --wide or --plot.  The monitor and watch run until SIGINT: each is given 2 s in a
+# --report, --wide or --plot.  The monitor and watch run until SIGINT: each is given 2 s in a
 # private network namespace (only loopback, with LCM's multicast route), and
 # is skipped, saying so, where no namespace can be made.
 # usage: man_examples.sh SWAYWATCH SOURCE_DIR
@@ -79,7 +79,7 @@ while IFS='	' read -r page cmd; do
         *) cat "$T/out" >&2; fail "$page: exit $rc: $cmd" ;;
         esac
         for f in $(printf '%s\n' "$cmd" | awk '{for (i = 1; i < NF; i++)
-                if ($i ~ /^--(out|events|plot|wide)$/) print $(i + 1)}'); do
+                if ($i ~ /^--(out|events|plot|wide|report)$/) print $(i + 1)}'); do
             [ -s "$T/run/$f" ] || fail "$page: $f not written: $cmd"
         done
         ;;
