@@ -326,6 +326,13 @@ static void json_sep(FILE *f, const char *br)
     fputs(br, f);
 }
 
+/* PRE"KEY": NUMBER (null when not finite): PRE is "" or ", " */
+static void json_kv(FILE *f, const char *pre, const char *key, double v)
+{
+    fprintf(f, "%s\"%s\": ", pre, key);
+    sw_cli_json_num(f, v);
+}
+
 void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
 {
     const sw_gate_facts_t *F = &run->facts;
@@ -333,10 +340,8 @@ void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
     sw_cli_json_num(f, run->samples_read ? (double)run->samples_rejected /
                                                (double)run->samples_read
                                          : 0.0);
-    fprintf(f, ", \"start\": ");
-    sw_cli_json_num(f, F->t_first - F->t_origin);
-    fprintf(f, ", \"end\": ");
-    sw_cli_json_num(f, F->t_last - F->t_origin);
+    json_kv(f, ", ", "start", F->t_first - F->t_origin);
+    json_kv(f, ", ", "end", F->t_last - F->t_origin);
     fprintf(f, ", \"start_absolute\": ");
     if (F->t_origin != 0.0) {
         char iso[64];
@@ -346,25 +351,17 @@ void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
         fputs("null", f);
     }
     json_sep(f, br);
-    fprintf(f, "\"duration\": ");
-    sw_cli_json_num(f, F->duration);
-    fprintf(f, ", \"dt_median\": ");
-    sw_cli_json_num(f, F->dt_median);
-    fprintf(f, ", \"dt_min\": ");
-    sw_cli_json_num(f, F->dt_min);
-    fprintf(f, ", \"dt_max\": ");
-    sw_cli_json_num(f, F->dt_max);
-    fprintf(f, ", \"rate\": ");
-    sw_cli_json_num(f, F->rate);
+    json_kv(f, "", "duration", F->duration);
+    json_kv(f, ", ", "dt_median", F->dt_median);
+    json_kv(f, ", ", "dt_min", F->dt_min);
+    json_kv(f, ", ", "dt_max", F->dt_max);
+    json_kv(f, ", ", "rate", F->rate);
     json_sep(f, br);
-    fprintf(f, "\"peak_accel\": ");
-    sw_cli_json_num(f, F->peak_a);
-    fprintf(f, ", \"peak_accel_g\": ");
-    sw_cli_json_num(f, F->peak_a / 9.80665);
+    json_kv(f, "", "peak_accel", F->peak_a);
+    json_kv(f, ", ", "peak_accel_g", F->peak_a / 9.80665);
     fprintf(f, ", \"gaps\": %ld, \"gap_total\": ", F->gaps);
     sw_cli_json_num(f, F->gap_total);
-    fprintf(f, ", \"gap_max\": ");
-    sw_cli_json_num(f, F->gap_max);
+    json_kv(f, ", ", "gap_max", F->gap_max);
     fprintf(f, ", \"restarts\": %ld, \"clock_steps\": %ld,", F->restarts, F->clock_steps);
     fputs(br, f);
     fprintf(f, "\"incomplete\": %s", F->incomplete ? "true" : "false");
@@ -381,17 +378,14 @@ static void json_risk(FILE *f, const sw_risk_pkg_t *p, const char *br)
 {
     const int rv = p && p->evaluations > 0;
     json_sep(f, br);
-    fprintf(f, "\"min_reserve_g\": ");
-    sw_cli_json_num(f, rv ? p->min_reserve_g : NAN);
-    fprintf(f, ", \"min_reserve_time\": ");
-    sw_cli_json_num(f, rv ? p->min_reserve_time : NAN);
+    json_kv(f, "", "min_reserve_g", rv ? p->min_reserve_g : NAN);
+    json_kv(f, ", ", "min_reserve_time", rv ? p->min_reserve_time : NAN);
     fprintf(f, ", \"min_reserve_direction\": %s, \"min_reserve_pulse\": ",
             !rv || !p->min_direction            ? "null"
             : p->min_direction == SW_RESERVE_BRAKING ? "\"braking\""
                                                      : "\"accelerating\"");
     sw_cli_json_num(f, rv && p->min_pulse > 0.0 ? p->min_pulse : NAN);
-    fprintf(f, ", \"rest_reserve_g\": ");
-    sw_cli_json_num(f, p ? p->rest_reserve_g : NAN);
+    json_kv(f, ", ", "rest_reserve_g", p ? p->rest_reserve_g : NAN);
     fprintf(f, ", \"reserve_evaluations\": %ld", p ? p->evaluations : 0L);
     fprintf(f, ", \"no_reserve\": ");
     if (p && p->no_reserve)
@@ -419,26 +413,17 @@ int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_ru
     fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\"", s.overturned ? "true" : "false",
             sw_cli_verdict(&s));
     json_sep(f, br);
-    fprintf(f, "\"overturn_time\": ");
-    sw_cli_json_num(f, s.overturn_time);
-    fprintf(f, ", \"tip_time\": ");
-    sw_cli_json_num(f, s.tip_time);
-    fprintf(f, ", \"uplift_time\": ");
-    sw_cli_json_num(f, s.uplift_time);
+    json_kv(f, "", "overturn_time", s.overturn_time);
+    json_kv(f, ", ", "tip_time", s.tip_time);
+    json_kv(f, ", ", "uplift_time", s.uplift_time);
     json_sep(f, br);
-    fprintf(f, "\"max_abs_theta\": ");
-    sw_cli_json_num(f, s.max_abs_theta);
-    fprintf(f, ", \"max_theta_ratio\": ");
-    sw_cli_json_num(f, s.max_theta_ratio);
-    fprintf(f, ", \"alpha\": ");
-    sw_cli_json_num(f, alpha_of(e, i));
+    json_kv(f, "", "max_abs_theta", s.max_abs_theta);
+    json_kv(f, ", ", "max_theta_ratio", s.max_theta_ratio);
+    json_kv(f, ", ", "alpha", alpha_of(e, i));
     json_sep(f, br);
-    fprintf(f, "\"min_margin\": ");
-    sw_cli_json_num(f, s.min_margin);
-    fprintf(f, ", \"min_margin_bound\": ");
-    sw_cli_json_num(f, s.min_margin_bound);
-    fprintf(f, ", \"max_uplift_ratio\": ");
-    sw_cli_json_num(f, s.max_uplift_ratio);
+    json_kv(f, "", "min_margin", s.min_margin);
+    json_kv(f, ", ", "min_margin_bound", s.min_margin_bound);
+    json_kv(f, ", ", "max_uplift_ratio", s.max_uplift_ratio);
     json_sep(f, br);
     fprintf(f, "\"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld", s.impacts,
             s.uplifts, s.rests, s.faults);
@@ -449,8 +434,7 @@ int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_ru
     json_sep(f, br);
     fprintf(f, "\"scheme\": ");
     sw_cli_json_string(f, sw_engine_scheme(e));
-    fprintf(f, ", \"dt\": ");
-    sw_cli_json_num(f, sw_engine_dt(e, i));
+    json_kv(f, ", ", "dt", sw_engine_dt(e, i));
     fprintf(f, ", \"steps\": %ld", s.steps);
     return 0;
 }
@@ -467,12 +451,9 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
     if (run->pulse) {
         fprintf(f, ",\n  \"pulse\": {\"shape\": ");
         sw_cli_json_string(f, sw_pulse_shape_name(run->pulse->shape));
-        fprintf(f, ", \"amplitude\": ");
-        sw_cli_json_num(f, run->pulse->amplitude);
-        fprintf(f, ", \"omega\": ");
-        sw_cli_json_num(f, run->pulse->omega);
-        fprintf(f, ", \"duration\": ");
-        sw_cli_json_num(f, sw_pulse_duration(run->pulse));
+        json_kv(f, ", ", "amplitude", run->pulse->amplitude);
+        json_kv(f, ", ", "omega", run->pulse->omega);
+        json_kv(f, ", ", "duration", sw_pulse_duration(run->pulse));
         fprintf(f, "},\n  \"simulated\": ");
         sw_cli_json_num(f, run->duration);
     }
