@@ -26,6 +26,10 @@ typedef struct bench_road bench_road_t;
 bench_road_t *bench_road_create(double rate, unsigned long long seed);
 double bench_road_next(bench_road_t *r); /* next sample, m/s^2 */
 void bench_road_destroy(bench_road_t *r);
+/* The hard stop of sample_logs/hard-stop-overturn.csv, vibration left out,
+ * u s after its start (8 s long; m/s^2). */
+double bench_hard_stop(double u);
+#define BENCH_HARD_STOP_S 8.0
 
 /* Straightforward implementation: gsl_odeiv2_driver_apply (rkf45, reset
  * every sample) from one sample to the next, events found by a sign change

@@ -149,3 +149,26 @@ void bench_log_free(bench_log_t *log)
     log->t = log->a = NULL;
     log->n = 0;
 }
+
+/* The hard stop of sample_logs/hard-stop-overturn.csv without its
+ * vibration (scripts/make_sample_logs.py): an emergency stop just below
+ * the uplift threshold of the sample crate, then a collision-like shock
+ * with structural ringing.  u: s from 2 s before the stop; m/s^2. */
+double bench_hard_stop(double u)
+{
+    double a = 0.0;
+    if (u >= 2.0 && u < 4.0) { /* plateau(t, 2.0, 0.4, 0.8, -3.0) */
+        const double v = u - 2.0;
+        a += v < 0.4   ? -3.0 * 0.5 * (1 - cos(M_PI * v / 0.4))
+             : v < 1.2 ? -3.0
+             : v < 1.6 ? -3.0 * 0.5 * (1 + cos(M_PI * (v - 1.2) / 0.4))
+                       : 0.0;
+    }
+    if (u >= 3.0 && u <= 3.35) a += -18.0 * pow(sin(M_PI * (u - 3.0) / 0.35), 2.0);
+    if (u >= 3.0 && u <= 3.3) { /* shock(t, 3.0, 0.3, 6.0, 12.0) */
+        const double v = u - 3.0, decay = 3.0 / 0.3, first = exp(-decay * 0.25 / 12.0);
+        const double taper = sin(M_PI * fmin(v / (0.25 / 12.0), 1.0) / 2.0);
+        a += 6.0 / first * taper * exp(-decay * v) * sin(2.0 * M_PI * 12.0 * v);
+    }
+    return a;
+}

@@ -532,7 +532,7 @@ static void lead_cell(double t_over, double first, double last)
 /* The smallest scale of d that overturns the package (sw_safety_factor). */
 static double overturn_scale(const sw_scene_t *sc, const drive_t *d)
 {
-    sw_log_t log = {d->t, d->a, NULL, d->n};
+    sw_log_t log = {.t = d->t, .a_g = d->a, .n = d->n};
     sw_run_opts_t ro = {0};
     ro.settle = SETTLE;
     sw_search_opts_t so = {0};

@@ -3,7 +3,8 @@
  * through scripts/run-bench.sh, which also records the machine).
  *
  *   sw_bench run [--quick] [--runs N] [--data DIR]   all measurements
- *   sw_bench gen-csv [--hours H] [--seed S]          the road log as CSV
+ *   sw_bench gen-csv [--hours H] [--seed S] [--incident]  the road log as CSV;
+ *                                                    --incident: calm, ending in a hard stop
  *   sw_bench replay-csv FILE|- [--model bare|frame]  CSV parse + engine
  *   sw_bench rock|road|baseline|gen [--model M] [--scheme S] [--dt DT]
  *            [--rtol R] [--stepped] [--seconds N]   one workload (profiling)
@@ -589,11 +590,16 @@ static int cmd_run(int quick, int runs, const char *data)
 
 /* ---- CSV -------------------------------------------------------------- */
 
-static int cmd_gen_csv(double hours, unsigned long long seed)
+/* The road log; incident: the road at 0.3 of its level (a calm motorway:
+ * 0.02 g rms, braking up to 0.05 g, bumps up to 0.2 g), ending in the hard
+ * stop of the sample log (the incident an investigator gets the hour
+ * before). */
+static int cmd_gen_csv(double hours, unsigned long long seed, int incident)
 {
     bench_road_t *r = bench_road_create(RATE, seed);
     if (!r) return 1;
     const long n = (long)(hours * 3600.0 * RATE) + 1;
+    const double level = incident ? 0.3 : 1.0, t_stop = (n - 1) / RATE - BENCH_HARD_STOP_S;
     static char buf[1 << 16];
     size_t k = 0;
     k += (size_t)snprintf(buf, sizeof buf, "time_s,accel_ms2\n");
@@ -602,7 +608,9 @@ static int cmd_gen_csv(double hours, unsigned long long seed)
             if (fwrite(buf, 1, k, stdout) != k) break;
             k = 0;
         }
-        k += (size_t)snprintf(buf + k, sizeof buf - k, "%.3f,%.5f\n", i / RATE, bench_road_next(r));
+        double a = level * bench_road_next(r);
+        if (incident && i / RATE >= t_stop) a += bench_hard_stop(i / RATE - t_stop);
+        k += (size_t)snprintf(buf + k, sizeof buf - k, "%.3f,%.5f\n", i / RATE, a);
     }
     fwrite(buf, 1, k, stdout);
     bench_road_destroy(r);
@@ -704,7 +712,7 @@ static int cmd_one(const char *what, const char *model, const bcfg_t *C, int ste
 static void usage(FILE *f)
 {
     fprintf(f, "usage: sw_bench run [--quick] [--runs N] [--data DIR]\n"
-               "       sw_bench gen-csv [--hours H] [--seed S]\n"
+               "       sw_bench gen-csv [--hours H] [--seed S] [--incident]\n"
                "       sw_bench replay-csv FILE|- [--model bare|frame]\n"
                "       sw_bench rock|road|baseline|gen [--model M] [--scheme S] [--dt DT] "
                "[--rtol R] [--stepped] [--seconds N]\n");
@@ -723,7 +731,7 @@ int main(int argc, char **argv)
     unsigned long long seed = 20240611ULL;
     const char *data = NULL, *model = "bare";
     bcfg_t one = {SW_DEFAULT_SCHEME, 0, 0, 0};
-    int stepped = 0;
+    int stepped = 0, incident = 0;
     double seconds = 200.0;
     static const struct option lo[] = {
         {"quick", no_argument, NULL, 'q'},       {"runs", required_argument, NULL, 'r'},
@@ -731,7 +739,7 @@ int main(int argc, char **argv)
         {"seed", required_argument, NULL, 's'},  {"model", required_argument, NULL, 'm'},
         {"scheme", required_argument, NULL, 'S'}, {"dt", required_argument, NULL, 't'},
         {"rtol", required_argument, NULL, 'T'},   {"stepped", no_argument, NULL, 'x'},
-        {"seconds", required_argument, NULL, 'n'},
+        {"seconds", required_argument, NULL, 'n'}, {"incident", no_argument, NULL, 'i'},
         {"help", no_argument, NULL, 'h'},        {NULL, 0, NULL, 0},
     };
     optind = 2;
@@ -749,13 +757,14 @@ int main(int argc, char **argv)
         case 'T': one.rtol = atof(optarg); break;
         case 'x': stepped = 1; break;
         case 'n': seconds = atof(optarg); break;
+        case 'i': incident = 1; break;
         case 'h': usage(stdout); return 0;
         default: usage(stderr); return 2;
         }
     }
     if (runs < 1 || runs > 64) runs = 5;
     if (!strcmp(cmd, "run")) return cmd_run(quick, runs, data);
-    if (!strcmp(cmd, "gen-csv")) return cmd_gen_csv(hours, seed);
+    if (!strcmp(cmd, "gen-csv")) return cmd_gen_csv(hours, seed, incident);
     if (!strcmp(cmd, "rock") || !strcmp(cmd, "road") || !strcmp(cmd, "baseline") ||
         !strcmp(cmd, "gen"))
         return cmd_one(cmd, model, &one, stepped, seconds);

@@ -1,7 +1,8 @@
 #!/bin/sh
 # Measure the throughput of many logs (docs/hpc.md): log-hours per
 # core-second of 'swaywatch batch' (replay) on 1 core, on 2 MPI ranks and
-# on 2 threads, and of forensics, one log per process, 1 and 2 at a time;
+# on 2 threads, and of forensics ('batch --job forensics') on 1 core and on 1
+# and 2 MPI ranks;
 # the parallel efficiency against the 1-core run of the same work.  The
 # results replace the measured part of docs/hpc.md.
 #   scripts/run-batch-bench.sh          full run (about ten minutes on 2 vCPU)
@@ -83,16 +84,20 @@ done
 for k in rm1 rm2 rt2; do
     cmp "$TMP/r1.out" "$TMP/$k.out" || { echo "run-batch-bench: $k wrote other records" >&2; exit 1; }
 done
-# forensics of each log alone (the command's own threads: 1); fewer runs:
-# a run is a minute
+# forensics of each log (batch --job forensics, one thread per rank);
+# fewer runs: a run is a minute
 FRUNS=$((RUNS < 3 ? RUNS : 3))
-FOR="forensics LOG --scene tests/scenes/crate-a.ini --threads 1 -q"
+FOR="batch --job forensics --scene tests/scenes/crate-a.ini --manifest $TMP/forensics.txt -q"
 # shellcheck disable=SC2086
 for _ in $(seq "$FRUNS"); do
-    once f1 xargs -a "$TMP/forensics.txt" -P 1 -I LOG "$SW" $FOR
-    once f2 xargs -a "$TMP/forensics.txt" -P 2 -I LOG "$SW" $FOR
+    once f1 "$SW" $FOR --threads 1
+    once fm1 $MPI -np 1 "$SW" $FOR --threads 1
+    once fm2 $MPI -np 2 "$SW" $FOR --threads 1
 done
-for k in r1 rm1 rm2 rt2 f1 f2; do
+for k in fm1 fm2; do
+    cmp "$TMP/f1.out" "$TMP/$k.out" || { echo "run-batch-bench: $k wrote other records" >&2; exit 1; }
+done
+for k in r1 rm1 rm2 rt2 f1 fm1 fm2; do
     median <"$TMP/$k.t" >"$TMP/$k.wall"
     median <"$TMP/$k.c" >"$TMP/$k.cpu"
 done
@@ -112,8 +117,8 @@ row() { # LABEL NAME CORES HOURS BASE [MPI]
     echo "Replay: $(wc -l <"$TMP/replay.txt") logs of 3 to 90 minutes at 1 kHz, $hours log-hours, two"
     echo "packages (crate-a-bare.ini, crate-a-frame.ini), \`swaywatch batch\`; the records"
     echo "of every run are the same bytes.  Forensics: $(wc -l <"$TMP/forensics.txt") logs of 0.5 to 2 minutes,"
-    echo "$fhours log-hours, one package (crate-a.ini) with the what-if cases, \`swaywatch"
-    echo "forensics\` one process per log (\`xargs -P\`)."
+    echo "$fhours log-hours, one package (crate-a.ini) with its default what-if cases (the"
+    echo "catalogue), \`swaywatch batch --job forensics\`; the records of every run are the same bytes."
     echo
     echo "| run | cores | log-hours | wall (s) | CPU (s) | log-hours per core-second | parallel efficiency |"
     echo "|---|---|---|---|---|---|---|"
@@ -121,8 +126,9 @@ row() { # LABEL NAME CORES HOURS BASE [MPI]
     row "replay, \`mpirun -np 1\`" rm1 1 "$hours" r1 mpi
     row "replay, \`mpirun -np 2\` (1 thread per rank)" rm2 2 "$hours" r1 mpi
     row "replay, 1 process, 2 threads" rt2 2 "$hours" r1
-    row "forensics, 1 at a time" f1 1 "$fhours" f1
-    row "forensics, 2 at a time" f2 2 "$fhours" f1
+    row "forensics, 1 process, 1 thread" f1 1 "$fhours" f1
+    row "forensics, \`mpirun -np 1\`" fm1 1 "$fhours" f1 mpi
+    row "forensics, \`mpirun -np 2\` (1 thread per rank)" fm2 2 "$fhours" f1 mpi
     echo
     awk -v h="$hours" -v c="$(cat "$TMP/r1.cpu")" -v fh="$fhours" -v fc="$(cat "$TMP/f1.cpu")" \
         'BEGIN{printf "Per CPU-second (the CPU time of the 1-core runs, which the load of other\n"

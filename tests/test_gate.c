@@ -358,6 +358,88 @@ static void test_plausibility(void **state)
     assert_int_equal(sw_gate_check(&f, NULL, why, sizeof why), SW_GATE_REFUSE);
 }
 
+/* ---- what the engine got, recorded (on_take) ---------------------------- */
+
+#define TAKE_MAX 8000
+typedef struct {
+    double t[TAKE_MAX], ag[TAKE_MAX], az[TAKE_MAX];
+    int restart[TAKE_MAX];
+    int n;
+} takes_t;
+
+static void on_take(void *user, double t, double a_g, double a_z, int restart)
+{
+    takes_t *k = user;
+    assert_true(k->n < TAKE_MAX);
+    k->t[k->n] = t;
+    k->ag[k->n] = a_g;
+    k->az[k->n] = a_z;
+    k->restart[k->n++] = restart;
+}
+
+/* A stream with a corrupt time, a spike, a bridged hole, a long hole
+ * (restart) and the log played twice (restart), rocking a frame and
+ * lifting a crate: the samples the gate reports, pushed into a fresh
+ * engine with a restart where it says so, give the same summary to the
+ * last bit as the engine the gate fed. */
+static void test_takes_replay(void **state)
+{
+    (void)state;
+    static takes_t k;
+    k.n = 0;
+    const sw_scene_t sc[2] = {tu_bare(2.0, 0.728), tu_frame(2.0, 0.728, 250.0, 5.59, 0.1)};
+    sw_engine_t *e = sw_engine_create(sc, 2, &(sw_engine_opts_t){0}, NULL, NULL, 0);
+    assert_non_null(e);
+    sw_gate_opts_t o = {.on_take = on_take, .user = &k, .vert_gravity = 1};
+    char msg[128];
+    sw_gate_t *g = sw_gate_create(e, &o, msg, sizeof msg);
+    assert_non_null(g);
+    for (int i = 0; i < 6000; i++) {
+        const int j = i % 3000; /* played twice */
+        double t = j * 1e-3 + (j >= 1000 ? 0.5 : 0.0) + (j >= 2000 ? 30.0 : 0.0);
+        if (j == 1500) t += 700.0; /* a corrupt time */
+        const double a = -5.0 * sin(6.0 * j * 1e-3) + (j == 800 ? 900.0 : 0.0);
+        const sw_sample_t s = {.t = t, .a_g = a, .a_z = 9.80665 + 0.5 * cos(j * 1e-2),
+                               .a_max = NAN, .seq = SW_GATE_NO_SEQ, .rx = NAN, .wall = NAN,
+                               .where = i};
+        sw_gate_push(g, &s);
+    }
+    sw_gate_flush(g);
+    sw_gate_facts_t f;
+    sw_gate_facts(g, &f);
+    assert_int_equal(k.n, f.accepted);
+    assert_int_equal(f.accepted + sw_gate_rejected(&f), 6000);
+    assert_true(f.restarts + f.gaps >= 3);
+    int restarts = 0;
+    for (int i = 0; i < k.n; i++) restarts += k.restart[i];
+    assert_true(restarts >= 2); /* the long hole and the second playing */
+    assert_int_equal(k.restart[0], 0);
+
+    sw_engine_t *e2 = sw_engine_create(sc, 2, &(sw_engine_opts_t){0}, NULL, NULL, 0);
+    for (int i = 0; i < k.n; i++) {
+        if (k.restart[i]) sw_engine_restart(e2);
+        assert_true(sw_engine_push(e2, k.t[i], k.ag[i], k.az[i]) >= 0);
+    }
+    for (size_t p = 0; p < 2; p++) {
+        sw_summary_t a, b;
+        sw_engine_summary(e, p, &a);
+        sw_engine_summary(e2, p, &b);
+        assert_true(a.uplifts > 0);
+        assert_int_equal(a.uplifts, b.uplifts);
+        assert_int_equal(a.impacts, b.impacts);
+        assert_int_equal(a.steps, b.steps);
+        assert_memory_equal(&a.max_abs_theta, &b.max_abs_theta, sizeof(double));
+        assert_memory_equal(&a.min_margin, &b.min_margin, sizeof(double));
+        sw_output_t oa, ob;
+        sw_engine_get_output(e, p, &oa);
+        sw_engine_get_output(e2, p, &ob);
+        assert_memory_equal(&oa.state, &ob.state, sizeof oa.state);
+    }
+    sw_engine_destroy(e2);
+    sw_gate_destroy(g);
+    sw_engine_destroy(e);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -367,6 +449,7 @@ int main(void)
         cmocka_unit_test(test_log_twice),       cmocka_unit_test(test_forged_times),
         cmocka_unit_test(test_clock_steps),     cmocka_unit_test(test_hostile_values),
         cmocka_unit_test(test_vertical_gravity), cmocka_unit_test(test_plausibility),
+        cmocka_unit_test(test_takes_replay),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

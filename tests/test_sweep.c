@@ -303,7 +303,7 @@ static void test_safety_factor(void **state)
     const double xs[] = {2.2, 1.5}; /* boundary at omega/p = 2 is 1.801 */
     for (int k = 0; k < 2; k++) {
         const size_t n = sampled_half_sine(xs[k] * unit, w, t, ag, 4000);
-        sw_log_t log = {t, ag, NULL, n};
+        sw_log_t log = {.t = t, .a_g = ag, .n = n};
         sw_run_opts_t ro = {.settle = 10.0};
         sw_safety_t sf;
         char msg[256];
@@ -341,7 +341,7 @@ static void test_safety_factor_frame(void **state)
     sw_scene_validate(&sc, &d, NULL, NULL, NULL);
     static double t[4000], ag[4000];
     const size_t n = sampled_half_sine(-2.0 * sc.g * tan(d.alpha), 3.0, t, ag, 4000);
-    sw_log_t log = {t, ag, NULL, n};
+    sw_log_t log = {.t = t, .a_g = ag, .n = n};
     sw_run_opts_t ro = {.settle = 20.0};
     sw_safety_t sf;
     char msg[256];
@@ -370,7 +370,7 @@ static void test_safety_factor_cushion(void **state)
     sw_scene_validate(&sc, &d, NULL, NULL, NULL);
     static double t[4000], ag[4000];
     const size_t n = sampled_half_sine(-1.5 * sc.g * tan(d.alpha), 2.0 * d.p, t, ag, 4000);
-    sw_log_t log = {t, ag, NULL, n};
+    sw_log_t log = {.t = t, .a_g = ag, .n = n};
     sw_run_opts_t ro = {.settle = 10.0};
     sw_safety_t sf;
     char msg[256];
@@ -397,7 +397,7 @@ static void test_run_accuracy(void **state)
     sw_scene_validate(&sc, &d, NULL, NULL, NULL);
     static double t[4000], ag[4000];
     const size_t n = sampled_half_sine(2.2 * sc.g * tan(d.alpha), 2.0 * d.p, t, ag, 4000);
-    sw_log_t log = {t, ag, NULL, n};
+    sw_log_t log = {.t = t, .a_g = ag, .n = n};
     char msg[256];
     sw_run_result_t acc, fixed, dflt;
     sw_run_opts_t ro = {.settle = 10.0};

@@ -145,6 +145,14 @@ SW_API int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene
  * Outputs and events never carry a non-finite number. */
 SW_API int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z);
 
+/* Before the first sample: integrate on time relative to t0 (s) instead
+ * of the first sample's time, which may then be any time >= t0.  A run
+ * that starts part-way through a log with the log's first time as t0
+ * does the very arithmetic of a run from the log's start: for a package
+ * standing still up to there, the same result to the last bit.  Returns
+ * SW_OK, SW_EINVAL (started already, t0 not finite) or SW_ERESOLUTION. */
+SW_API int sw_engine_set_origin(sw_engine_t *e, double t0);
+
 /* The stream goes on after an interruption that is not to be bridged (a
  * sensor restart, an outage too long to interpolate over): every package
  * not overturned is put back at rest, and the next pushed sample starts the

@@ -95,6 +95,13 @@ typedef void (*sw_gate_event_fn)(void *user, const sw_gate_event_t *ev);
 /* One refused sample: its reason, and a sentence saying why. */
 typedef void (*sw_gate_reject_fn)(void *user, const sw_sample_t *s, sw_gate_reject r,
                                   const char *text);
+/* One sample as the engine got it: engine time t (s), a_g and a_z (m/s^2, a_z
+ * with gravity removed when vert_gravity says so); restart is non-zero when
+ * the packages were restarted from rest just before it (sw_engine_restart).
+ * Pushing the same calls into a fresh engine of the same scenes, with
+ * sw_engine_restart() where restart is set, repeats the run: a log read
+ * once can be replayed many times exactly as the gate fed it. */
+typedef void (*sw_gate_take_fn)(void *user, double t, double a_g, double a_z, int restart);
 
 typedef enum {
     SW_GAP_BRIDGE = 0, /* interpolate linearly across (up to max_bridge) */
@@ -119,6 +126,7 @@ typedef struct {
                             1 yes, subtracted (SW_G0); 0 no; the facts say what a_z read */
     sw_gate_event_fn on_event;
     sw_gate_reject_fn on_reject;
+    sw_gate_take_fn on_take; /* may be NULL */
     void *user;
 } sw_gate_opts_t;
 

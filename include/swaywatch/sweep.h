@@ -95,12 +95,18 @@ SW_API int sw_pulse_run_from(const sw_scene_t *sc, const sw_state_t *s, const sw
 
 /* A recorded log held in memory: n samples, time increasing (s), bed
  * acceleration (m/s^2, x forward) and optionally vertical acceleration
- * (m/s^2, up; a_z NULL = none). */
+ * (m/s^2, up; a_z NULL = none).  restart (may be NULL when nrestart is 0):
+ * increasing indices of the samples before which every package restarts
+ * from rest (sw_engine_restart), where the input gate restarted them (a
+ * sensor restart, a gap too long to bridge): the log as the gate fed the
+ * engine (gate.h, on_take). */
 typedef struct {
     const double *t;
     const double *a_g;
     const double *a_z;
     size_t n;
+    const size_t *restart;
+    size_t nrestart;
 } sw_log_t;
 
 /* Run the log with its longitudinal acceleration multiplied by scale
@@ -230,14 +236,58 @@ typedef struct {
 
 /* The safety factor of a log: the factor by which its longitudinal
  * acceleration would have to be scaled to overturn the package.  so may be
- * NULL; its x_min 0 = automatic (the lifting scale, times 0.9 on a frame or
- * with vertical acceleration: below it nothing can lift), x_max 0 = 20
- * times the scale that lifts a package standing on the bed; step, tol and
- * islands as in sw_threshold_search().  The log is replayed once per trial
- * (several tens of times).  Returns SW_OK (found or not), or the first error
- * of a trial with a reason in msg. */
+ * NULL; its x_min 0 = automatic (the lifting scale, times 0.9 on a frame,
+ * a cushion or with vertical acceleration: below it nothing can lift),
+ * x_max 0 = 20 times the scale that lifts a package standing on the bed;
+ * step and tol as in sw_threshold_search() (islands are not mapped).
+ *
+ * The scan takes its grid points four at a time and a bracket is cut in
+ * five, keeping the lowest change from safe to overturning, so that the
+ * four runs of a round can run in parallel (sw_safety_factors()); the
+ * final bracket is tol wide as with bisection, its ends other scales.
+ * Every run starts as late as its outcome allows: at the sample before the
+ * first that can lift the package at that scale, with the state the
+ * package has there (exact on the bed, and across the stretches it stands
+ * at rest; to rounding on a frame; to FORGET = 1e-9 of the second-order
+ * error of the linear motion on a cushion on the bed): an hour-long log
+ * costs what the stretches that can move the package cost.  at_one, the
+ * run of the log as recorded, is made the same way (on a cushion that
+ * never lifts, over its largest response).  Returns SW_OK (found or not),
+ * or the first error of a trial with a reason in msg. */
 SW_API int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
                      const sw_search_opts_t *so, sw_safety_t *out, char *msg, size_t msglen);
+
+/* One scene of sw_safety_factors(): the caller sets scene; the rest is
+ * filled. */
+typedef struct {
+    sw_scene_t scene;
+    int status;    /* SW_OK, or the first error of its trials */
+    char msg[256]; /* why, on error */
+    sw_safety_t sf;
+} sw_safety_case_t;
+
+typedef struct {
+    size_t cases, cases_done;
+    long trials; /* runs of the log made so far, all scenes together */
+} sw_safety_progress_t;
+
+typedef struct {
+    sw_run_opts_t run;       /* as for sw_safety_factor() */
+    sw_search_opts_t search; /* as for sw_safety_factor() */
+    int threads;             /* worker threads; 0 or 1 = the calling thread alone */
+    void (*progress)(void *user, const sw_safety_progress_t *p); /* may be NULL; after
+                                each trial, from any thread, one call at a time */
+    void *user;
+} sw_safety_opts_t;
+
+/* The safety factors of n scenes for one log, all searches at once on
+ * o->threads threads: each scene's result is what sw_safety_factor() gives
+ * it, whatever the number of threads.  Allocates (a few bytes per sample
+ * and scene while it runs).  Returns SW_OK if every scene succeeded, else
+ * the first failing scene's status (cases[i].msg says why), or SW_EINVAL /
+ * SW_ENOMEM. */
+SW_API int sw_safety_factors(sw_safety_case_t *cases, size_t n, const sw_log_t *log,
+                             const sw_safety_opts_t *o);
 
 /* ---- parallel jobs ------------------------------------------------------- */
 

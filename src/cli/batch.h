@@ -49,6 +49,7 @@ typedef struct {
 #define SW_CLI_JOB_GROUPS 20
 
 extern const sw_cli_job_t sw_cli_job_replay;
+extern const sw_cli_job_t sw_cli_job_forensics;
 
 /* A CSV number field after a comma: %.9g, empty when not finite. */
 void sw_cli_csv_num(FILE *f, double v);

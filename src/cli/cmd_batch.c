@@ -28,7 +28,7 @@
 
 /* ---- the jobs ------------------------------------------------------------------- */
 
-static const sw_cli_job_t *const jobs[] = {&sw_cli_job_replay};
+static const sw_cli_job_t *const jobs[] = {&sw_cli_job_replay, &sw_cli_job_forensics};
 
 static const sw_cli_job_t *job_named(const char *name)
 {

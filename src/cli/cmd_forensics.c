@@ -1,48 +1,43 @@
 /* cmd_forensics.c - "swaywatch forensics": after an incident, what a
- * recorded log did to a package, how much margin was left, and what would
+ * recorded log did to each package, how close it came, and what would
  * have saved it.
  *
- * The report is what replay prints, plus
- *   - the safety factor: the smallest factor by which the recorded
- *     longitudinal acceleration would have to be scaled to overturn the
- *     package (sweep.h: scan the scale upward, then bisect; overturning is
- *     not monotonic, so a survived log is also searched below 1 for a
- *     weaker shock of the same shape that would have overturned it);
- *   - a what-if table: the same log with the package on the bed, on a
- *     frame, on a cushion, and in other sizes, each with its outcome and
- *     safety factor;
- *   - optionally a figure of a_g(t), theta(t)/alpha and margin(t) with the
- *     events, and the whole report as JSON.
+ * The log is read exactly as replay reads it (source.h: CSV or an
+ * lcm-logger file told by its first bytes, the input gate, the
+ * plausibility check, the settling), through one engine for every
+ * --scene; what the gate handed the engine is kept in memory as it goes
+ * (a take callback), because the searches replay it many times and
+ * reading and parsing the file for each trial would cost more than the
+ * physics.  Then, for every package:
+ *   - the safety factor: the scales of the recorded longitudinal
+ *     acceleration that still leave it upright and that overturn it, a
+ *     bracket (sweep.h; overturning is not monotonic, so a survived log is
+ *     also searched below 1 for a weaker shock of the same shape that
+ *     would have overturned it);
+ *   - a what-if table: the same log with the package alone on the bed, on
+ *     the typical supports of a catalogue (or the user's), in other sizes,
+ *     each with its outcome and safety factor (whatif.c).
+ * Every search of every package runs at once on --threads threads, in
+ * rounds whose results do not depend on the number of threads.
  *
- * Unlike replay, forensics holds the whole log in memory (input.c): the
- * safety-factor search replays it tens of times per case, and re-reading
- * and re-parsing the file for each trial would cost more than the physics.
- * The figure is figure.c's, as replay draws it.  The what-if cases are
- * built, run and reported by whatif.c. */
+ * The answer comes first, the method after (the replay summary and how
+ * the factor was searched); -q keeps the answer alone.  --json says the
+ * same for machines, --report writes it as one self-contained HTML page
+ * (report.c), --plot the figure replay draws (figure.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "clobber.h"
+#include "cost.h"
 #include "figure.h"
-#include "input.h"
+#include "forensics.h"
 #include "interrupt.h"
-#include "opts.h"
-#include "output.h"
 #include "plot.h"
-#include "whatif.h"
-
-/* forensics' own options. */
-typedef struct {
-    double settle; /* s of zero input after the end of the log, as replay */
-    int fail_on_overturn;
-    long threads;
-    long max_samples; /* the log held in memory, at most */
-    sw_search_opts_t so;
-    sw_cli_whatif_t w;
-    const char *plot;
-} forensics_opts_t;
+#include "source.h"
 
 static int check_size(const sw_cli_option_t *o, const char *arg, void *dest)
 {
@@ -53,7 +48,16 @@ static int check_size(const sw_cli_option_t *o, const char *arg, void *dest)
     return SW_EXIT_USAGE;
 }
 
-#define FO(f) SW_CLI_AT(forensics_opts_t, f)
+static int check_report(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    (void)dest;
+    const char *dot = strrchr(arg, '.');
+    if (dot && (!strcmp(dot, ".html") || !strcmp(dot, ".htm"))) return SW_EXIT_OK;
+    sw_cli_error("--%s: '%s': the file name must end in .html", o->long_name, arg);
+    return SW_EXIT_USAGE;
+}
+
+#define FO(f) SW_CLI_AT(sw_cli_forensics_opts_t, f)
 
 static const sw_cli_option_t forensics_options[] = {
     {SW_CLI_SECTION, .help = "Run:"},
@@ -62,12 +66,13 @@ static const sw_cli_option_t forensics_options[] = {
      .help = "after the log, zero acceleration for up to this long or until the outcome is "
              "certain (default %g; 0: none); at most a day: an undamped frame never rests"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", FO(fail_on_overturn), .value = 1,
-     .help = "exit 1 if the package as given overturned"},
+     .help = "exit 1 if a package as given overturned"},
     {SW_CLI_LONG, 0, "max-samples", "N", FO(max_samples), .min = 1, .max = 1L << 28,
      .def = SW_CLI_LOG_MAX_SAMPLES, .what = "a whole number of samples >= 1",
-     .help = "hold at most N samples of the log in memory (16 bytes each, 24 with --vert-col; "
-             "default " SW_CLI_STR(SW_CLI_LOG_MAX_SAMPLES_N) ", 9.3 h at 1 kHz; at most 268435456); a longer log, or an endless pipe, "
-             "is refused with exit 2 instead of filling the memory"},
+     .help = "hold at most N samples of the log in memory (24 bytes each; default " SW_CLI_STR(
+         SW_CLI_LOG_MAX_SAMPLES_N) ", 9.3 h at 1 kHz; at most 268435456); a longer log, or an "
+                                   "endless pipe, is refused with exit 2 instead of filling the "
+                                   "memory"},
     {SW_CLI_SECTION, .help = "Safety factor (scale of the whole longitudinal acceleration):"},
     {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE, .lo = 1e-4, .hi = 1,
      .what = "a positive relative step",
@@ -81,20 +86,19 @@ static const sw_cli_option_t forensics_options[] = {
      .hi = 1e4, .what = "a positive scale factor",
      .help = "largest scale tried (default: 20 times the scale at which the log's peak lifts a "
              "package on the bed)"},
-    {SW_CLI_LONG, 0, "threads", "N", FO(threads), .min = 1, .max = 256, .def = 2,
-     .what = "a whole number of threads >= 1",
-     .help = "what-if cases computed in parallel (default %g)"},
     {SW_CLI_SECTION,
-     .help = "What if (each case replaces part of the scene; scene values are the defaults):"},
+     .help = "What if (without these, typical supports from a catalogue; frequencies as 2Hz, "
+             "or rad/s):"},
     {SW_CLI_STRING, 0, "frame-mass", "KG", FO(w.frame_mass),
      .help = "frame mass m_b (default: the scene's, else m/4)"},
-    {SW_CLI_STRING, 0, "frame-omega", "W", FO(w.frame_omega),
-     .help = "bearing frequency omega_b, rad/s (needed if the scene has no [frame])"},
+    {SW_CLI_CALL, 0, "frame-omega", "F", FO(w.frame_omega), .fn = sw_cli_opt_frequency,
+     .help = "a frame on bearings of this natural frequency (2Hz, or 12.6 rad/s) instead of "
+             "the catalogue's frames"},
     {SW_CLI_STRING, 0, "frame-zeta", "Z", FO(w.frame_zeta),
      .help = "bearing damping ratio (default: the scene's, else " SW_CLI_FRAME_ZETA ")"},
-    {SW_CLI_STRING, 0, "cushion-omega", "W", FO(w.cushion_omega),
-     .help = "cushion frequency omega_c, rad/s (needed if the scene has no [cushion]); on the "
-             "frame if the scene has one"},
+    {SW_CLI_CALL, 0, "cushion-omega", "F", FO(w.cushion_omega), .fn = sw_cli_opt_frequency,
+     .help = "a cushion of this natural frequency (8Hz, or 50 rad/s), on the frame if the "
+             "scene has one, instead of the catalogue's cushions"},
     {SW_CLI_STRING, 0, "cushion-zeta", "Z", FO(w.cushion_zeta),
      .help = "cushion damping ratio (default: the scene's, else " SW_CLI_CUSHION_ZETA ")"},
     {SW_CLI_LIST, 0, "size", "HxW", FO(w.sizes), .fn = check_size,
@@ -104,139 +108,184 @@ static const sw_cli_option_t forensics_options[] = {
     {SW_CLI_END},
 };
 
-/* forensics' figure, in the Output section with the shared rows. */
+/* The searches' threads: not in a batch, which runs its logs on its own
+ * threads (each log's searches then run on the thread of its job). */
+static const sw_cli_option_t forensics_thread_options[] = {
+    {SW_CLI_SECTION, .help = "Run:"},
+    {SW_CLI_LONG, 0, "threads", "N", FO(threads), .min = 1, .max = 256, .def = 2,
+     .what = "a whole number of threads >= 1",
+     .help = "searches run on N threads (default %g); the results are the same for any N"},
+    {SW_CLI_END},
+};
+
+/* forensics' files, in the Output section with the shared rows. */
 static const sw_cli_option_t forensics_output_options[] = {
     {SW_CLI_SECTION, .help = "Output:"},
+    {SW_CLI_STRING, 0, "report", "FILE.html", FO(report), .fn = check_report,
+     .help = "the whole report as one self-contained HTML page to hand over: the log's facts, "
+             "figures, events, safety factors, what-if tables, the model's limits"},
     {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", FO(plot), .fn = sw_cli_plot_check,
      .help = "a_g(t), theta(t)/alpha and margin(t) with the events"},
     {SW_CLI_TEXT,
-     .help = "\nWith --json the whole report is one JSON object on stdout: 'replay' (replay's\n"
-             "JSON summary), 'safety_factor' and 'what_if'."},
+     .help = "\nWith --json the whole report is one JSON object on stdout (docs/forensics.md):\n"
+             "'log' (the log's facts), 'replay' (replay's JSON summary) and 'packages', each\n"
+             "with its 'safety_factor' and 'what_if'.  With --out - or --events - (which need\n"
+             "-q) the answer goes to standard error.  A progress line goes to standard error\n"
+             "when it is a terminal (not with -q)."},
     {SW_CLI_END},
 };
 
 static const sw_cli_command_t forensics_cmd = {
     .name = "forensics",
-    .usage = "forensics LOG --scene S.ini [options]",
+    .usage = "forensics LOG --scene S.ini [--scene T.ini ...] [options]",
     .about =
-        "After an incident: replays the CSV log LOG ('-' for standard input) through the\n"
-        "package of S.ini and prints what replay prints, then\n"
-        "  - the safety factor: the smallest factor by which the recorded longitudinal\n"
-        "    acceleration would have to be scaled to overturn the package (at most 1 if it\n"
-        "    overturned; for a log it survived, also any weaker scale of the same shock\n"
-        "    that would have overturned it: overturning is not monotonic in the amplitude);\n"
-        "  - a what-if table: the same log with the package on the bed, on a frame, on a\n"
-        "    cushion and in other sizes, each with its outcome and safety factor.\n"
-        "The log is held in memory (about 16 bytes a sample, at most --max-samples): the\n"
-        "search replays it tens of times for every case.\n",
+        "After an incident: replays the log LOG (a CSV file, '-' for standard input, or an\n"
+        "lcm-logger file, read exactly as replay reads it) through every package and says,\n"
+        "for each:\n"
+        "  - whether it overturned and how close it came;\n"
+        "  - its safety factor: the scales of the recorded longitudinal acceleration that\n"
+        "    still leave it upright and that overturn it, as a bracket [upright, overturns];\n"
+        "  - what would have saved it: the same log with the package on the bed, on typical\n"
+        "    frames and cushions (a catalogue; or --frame-omega, --cushion-omega) and in other\n"
+        "    sizes (--size), each with its outcome, peak and safety factor.\n"
+        "The log is held in memory (24 bytes a sample, at most --max-samples): the searches\n"
+        "replay it many times for every case.\n",
     .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
 };
 
-/* ---- the replay, with what the figure needs ----------------------------------- */
-
-typedef struct {
-    sw_cli_states_t *states;
-    sw_cli_events_t *events;
-    sw_risk_t *risk;      /* the reserve, impacts that matter, settling spans */
-    sw_cli_figure_t *fig; /* NULL: no figure */
-} replay_t;
+/* ---- the replay -------------------------------------------------------------------- */
 
 static void on_state(void *user, const sw_output_t *out)
 {
-    replay_t *R = user;
-    sw_risk_output(R->risk, out);
-    sw_cli_states_write(R->states, out);
-    sw_cli_figure_state(R->fig, out);
+    sw_cli_forensics_t *F = user;
+    if (F->R.risk_owned) sw_risk_output(F->R.risk, out); /* first: the rows carry it */
+    sw_cli_states_write(&F->states, out);
+    sw_cli_figure_state(F->fig, out);
 }
 
 static void on_event(void *user, const sw_event_t *ev)
 {
-    replay_t *R = user;
-    if (sw_cli_events_feed(R->events, R->risk, ev) & SW_SETTLE_REPORT)
-        sw_cli_figure_event(R->fig, ev);
+    sw_cli_forensics_t *F = user;
+    if (sw_cli_events_feed(&F->events, F->R.risk, ev) & SW_SETTLE_REPORT) {
+        sw_cli_figure_event(F->fig, ev);
+        sw_cli_forensics_event(F, ev);
+    }
 }
 
-/* ---- figure ------------------------------------------------------------------------ */
-
-static int draw(const char *path, const char *log, const sw_scene_t *sc, const replay_t *R)
+static void on_take(void *user, double t, double a_g, double a_z, int restart)
 {
-    char title[512];
-    snprintf(title, sizeof title, "%s: %s", log, sc->name);
-    return sw_cli_figure_draw(R->fig, path, title);
+    sw_cli_forensics_t *F = user;
+    sw_cli_log_take(&F->L, t, a_g, a_z, restart);
 }
 
-/* ---- the command --------------------------------------------------------------------- */
-
-/* Everything a forensics run uses. */
-typedef struct {
-    sw_cli_opts_t o;
-    sw_cli_csv_opts_t copts;
-    forensics_opts_t fo;
-    const char *log_path;
-    sw_cli_log_t L;
-    sw_scene_t *scenes;
-    size_t nsc;
-    sw_engine_opts_t eo;
-    sw_engine_t *e;
-    long refused; /* samples the engine refused */
-    size_t pushed; /* samples handed to the engine (fewer if interrupted) */
-    sw_cli_states_t states;
-    sw_cli_events_t events;
-    replay_t R;
-    sw_cli_case_t *cases;
-    size_t ncases;
-} forensics_t;
-
-/* 0. The log into memory; nothing is written yet, so a signal ends the
- * process at once. */
-static int read_log(forensics_t *F)
-{
-    sw_cli_interrupt_now("forensics: interrupted while reading the log; nothing written");
-    int rc = sw_cli_log_read(F->log_path, &F->copts, F->o.quiet, F->fo.max_samples, &F->L);
-    sw_cli_interrupt_now(NULL);
-    return rc;
-}
-
-/* 1. The replay, exactly as replay runs it. */
-static int replay_log(forensics_t *F)
+/* Open LOG as replay does; refuse what its source does not take and
+ * outputs that would overwrite an input. */
+static int open_log(sw_cli_forensics_t *F)
 {
     int rc;
-    replay_t *R = &F->R;
+    const sw_cli_file_t outputs[] = {{"--out", F->o.out_path},
+                                     {"--events", F->o.events_path},
+                                     {"--plot", F->fo.plot},
+                                     {"--report", F->fo.report}};
+    const char *const names[] = {"--out", "--events"};
+    const char *const paths[] = {F->o.out_path, F->o.events_path};
+    if ((rc = sw_cli_reader_open(&F->R, F->log, &F->in, F->o.quiet, F->given)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_run_files(F->log, &F->o.scenes, outputs, 4)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_outputs(F->o.out_path, F->o.events_path, NULL, F->o.json,
+                                   F->o.quiet)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_stdout(names, paths, 2, F->o.json, F->o.quiet)) != SW_EXIT_OK)
+        return rc;
+    return sw_cli_reader_prepare(&F->R);
+}
+
+/* The scenes (unless a batch's options hold them already) and the engine
+ * options they and --accuracy give. */
+static int load(sw_cli_forensics_t *F)
+{
+    int rc;
+    if (F->scenes) return SW_EXIT_OK;
+    if ((rc = sw_cli_load_scenes(&F->o, &F->scenes, &F->n)) != SW_EXIT_OK) return rc;
     sw_cli_engine_opts(&F->o, &F->eo);
-    if ((rc = sw_cli_resolve_accuracy(&F->o, F->scenes, F->nsc, &F->eo)) != SW_EXIT_OK) return rc;
+    return sw_cli_resolve_accuracy(&F->o, F->scenes, F->n, &F->eo);
+}
+
+/* 1. The replay, exactly as replay runs it, keeping what the engine got. */
+static int replay_log(sw_cli_forensics_t *F)
+{
+    int rc;
+    if ((rc = load(F)) != SW_EXIT_OK) return rc;
     sw_engine_opts_t eo = F->eo;
     eo.on_event = on_event;
-    eo.on_state = F->o.out_path || F->fo.plot || F->o.reserve_rate > 0.0 ? on_state : NULL;
-    eo.user = R;
-    if (!(F->e = sw_cli_engine_create(F->scenes, 1, &eo))) return SW_EXIT_USAGE;
-    if (!(R->risk = sw_cli_risk_create(&F->o, F->scenes, 1))) return SW_EXIT_USAGE;
-    if (F->fo.plot && !(R->fig = sw_cli_figure_create(F->e, F->scenes, 1))) return SW_EXIT_IO;
-    if (F->o.verbose) sw_cli_print_derived(stderr, F->e, F->scenes, 1);
-    if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, F->scenes, 1)) !=
-            SW_EXIT_OK ||
-        (rc = sw_cli_events_open(&F->events, F->o.events_path, F->scenes, 1)) != SW_EXIT_OK)
+    eo.on_state = on_state;
+    eo.user = F;
+    F->L.max = (size_t)F->fo.max_samples;
+    F->R.take = on_take;
+    F->R.halt = &F->L.halt;
+    F->R.reserve_rate = F->o.reserve_rate;
+    if ((rc = sw_cli_reader_engine(&F->R, F->scenes, F->n, &eo, F->scenes_shared)) != SW_EXIT_OK)
         return rc;
-    F->states.risk = R->risk; /* after open, which clears the writer */
-    R->states = &F->states;
-    R->events = &F->events;
-    const sw_cli_log_t *L = &F->L;
-    for (size_t i = 0; i < L->n && !sw_cli_signal; i++, F->pushed++)
-        if (sw_engine_push(F->e, L->t[i], L->a_g[i], L->has_z ? L->a_z[i] : 0.0) < 0)
-            F->refused++;
-    if (!sw_cli_signal) {
-        sw_engine_finish(F->e, F->fo.settle);
-        sw_cli_events_finish(&F->events, R->risk, 1);
+    sw_engine_t *e = F->R.e;
+    if (F->o.verbose) sw_cli_print_derived(stderr, e, F->scenes, F->n);
+    if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, F->scenes, F->n)) !=
+            SW_EXIT_OK ||
+        (rc = sw_cli_events_open(&F->events, F->o.events_path, F->scenes, F->n)) != SW_EXIT_OK)
+        return rc;
+    if ((F->fo.plot || F->fo.report) && !(F->fig = sw_cli_figure_create(e, F->scenes, F->n)))
+        return SW_EXIT_IO;
+    if ((rc = sw_cli_reader_risk(&F->R, &F->o, F->scenes, F->n)) != SW_EXIT_OK) return rc;
+    if (F->o.reserve_rate > 0.0) sw_cli_figure_risk(F->fig, F->R.risk);
+    F->states.risk = F->R.risk; /* after open, which clears the writer */
+    F->events.all_impacts = F->o.all_impacts;
+    if ((rc = sw_cli_forensics_begin(F)) != SW_EXIT_OK) return rc;
+    if ((rc = sw_cli_reader_feed(&F->R)) != SW_EXIT_OK) return rc;
+    if (F->L.oom) {
+        sw_cli_error("%s: out of memory holding the log (%zu samples)", F->R.lf.name, F->L.n);
+        return SW_EXIT_IO;
     }
+    if (F->L.capped) {
+        sw_cli_error("%s: more than %ld samples: %ld is the cap (--max-samples) of the log held "
+                     "in memory; give a larger --max-samples, or cut the log to the incident",
+                     F->R.lf.name, F->fo.max_samples, F->fo.max_samples);
+        return SW_EXIT_USAGE;
+    }
+    sw_cli_reader_settle(&F->R, F->fo.settle);
+    sw_cli_events_finish(&F->events, F->R.risk, F->n);
+    sw_cli_forensics_end(F);
     rc = sw_cli_states_close(&F->states);
     int rc2 = sw_cli_events_close(&F->events);
     if (rc == SW_EXIT_OK) rc = rc2;
+    if ((rc2 = sw_cli_reader_report(&F->R)) != SW_EXIT_OK) return rc2;
+    sw_cli_run_t *run = &F->R.run;
+    run->log = F->log;
+    run->settle = F->fo.settle;
+    run->interrupted = sw_cli_signal;
     return rc;
 }
 
-/* 2. The safety factor and the what-if cases. */
-static int run_cases(forensics_t *F)
+/* ---- 2. the searches --------------------------------------------------------------- */
+
+static double now_s(void)
 {
-    F->cases = sw_cli_whatif_build(&F->scenes[0], &F->fo.w, &F->ncases);
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The progress line: on a terminal only, at most five times a second. */
+static void progress(void *user, const sw_safety_progress_t *p)
+{
+    sw_cli_forensics_t *F = user;
+    const double t = now_s();
+    if (t - F->progress_at < 0.2 && p->cases_done < p->cases) return;
+    F->progress_at = t;
+    fprintf(stderr, "\rswaywatch: forensics: searching: %zu of %zu cases done, %ld runs, %.0f s ",
+            p->cases_done, p->cases, p->trials, t - F->started);
+    F->progress_shown = 1;
+}
+
+static int run_cases(sw_cli_forensics_t *F)
+{
+    F->cases = sw_cli_whatif_build(F->scenes, F->n, &F->fo.w, &F->ncases);
     if (!F->cases) {
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
@@ -246,146 +295,253 @@ static int run_cases(forensics_t *F)
     ro.engine = F->eo; /* the replay's integration options, --accuracy included */
     ro.settle = F->fo.settle > 0.0 ? F->fo.settle : -1.0; /* negative: no free motion at all */
     const sw_cli_log_t *L = &F->L;
-    sw_log_t lg = {L->t, L->a_g, L->has_z ? L->a_z : NULL, L->n};
+    const sw_log_t lg = {.t = L->t,
+                         .a_g = L->a_g,
+                         .a_z = L->has_z ? L->a_z : NULL,
+                         .n = L->n,
+                         .restart = L->restart,
+                         .nrestart = L->nrestart};
+    const int show = !F->o.quiet && isatty(STDERR_FILENO);
+    F->started = now_s();
     /* The search cannot stop between trials and writes nothing: a signal
      * ends the process at once. */
-    sw_cli_interrupt_now("forensics: interrupted during the safety-factor search; --out and "
-                         "--events are complete, no report");
-    sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads);
-    sw_cli_interrupt_now(NULL);
-    if (!F->cases[0].available) {
-        sw_cli_error("forensics: safety factor: %s", F->cases[0].note);
+    if (!F->scenes_shared) /* a batch's jobs run on many threads: the batch handles signals */
+        sw_cli_interrupt_now("forensics: interrupted during the safety-factor search; --out and "
+                             "--events are complete, no report");
+    const int rc = sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so,
+                                     (int)F->fo.threads, show ? progress : NULL, F);
+    if (!F->scenes_shared) sw_cli_interrupt_now(NULL);
+    F->search_s = now_s() - F->started;
+    if (F->progress_shown) fprintf(stderr, "\r\033[K");
+    if (rc == SW_ENOMEM) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    for (size_t i = 0; i < F->ncases; i++)
+        if (F->cases[i].is_scene && !F->cases[i].available) {
+            sw_cli_error("forensics: %s: safety factor: %s", F->scenes[F->cases[i].pkg].name,
+                         F->cases[i].note);
+            return SW_EXIT_USAGE;
+        }
+    return SW_EXIT_OK;
+}
+
+/* ---- the command ------------------------------------------------------------------- */
+
+/* Interrupted during the replay: its summary alone, marked so. */
+static int report_interrupted(const sw_cli_forensics_t *F)
+{
+    const sw_cli_run_t *run = &F->R.run;
+    if (F->o.json)
+        sw_cli_print_json(stdout, F->R.e, run);
+    else if (!F->o.quiet)
+        sw_cli_print_summary(stdout, F->R.e, run);
+    sw_cli_error("forensics: interrupted by %s after %ld samples of the replay; the output "
+                 "files end with the last whole row; no safety factor or what-if",
+                 sw_cli_signal_name(sw_cli_signal), run->samples_read);
+    return sw_cli_interrupt_code();
+}
+
+/* The replay and the run at scale 1 of the search agree on every outcome;
+ * if not, say so (the shock is at the edge of what the model resolves). */
+static void check_agree(const sw_cli_forensics_t *F)
+{
+    for (size_t i = 0; i < F->ncases; i++) {
+        const sw_cli_case_t *C = &F->cases[i];
+        sw_summary_t sum;
+        if (!C->is_scene || sw_engine_summary(F->R.e, C->pkg, &sum) != SW_OK) continue;
+        if (sum.overturned != C->sf.overturned)
+            sw_cli_error("forensics: %s: the replay and the safety-factor run disagree on the "
+                         "outcome (overturned %s / %s): the shock is at the edge of the model's "
+                         "resolution",
+                         F->scenes[C->pkg].name, sum.overturned ? "yes" : "no",
+                         C->sf.overturned ? "yes" : "no");
+    }
+}
+
+/* Everything a run opened and made; the options stay (the scenes, unless
+ * a batch's options hold them). */
+static void cleanup(sw_cli_forensics_t *F)
+{
+    sw_cli_states_close(&F->states);
+    sw_cli_events_close(&F->events);
+    sw_cli_forensics_free(F);
+    sw_cli_reader_close(&F->R);
+    free(F->cases);
+    F->cases = NULL;
+    sw_cli_figure_destroy(F->fig);
+    F->fig = NULL;
+    if (!F->scenes_shared) {
+        free(F->scenes);
+        F->scenes = NULL;
+    }
+    sw_cli_log_free(&F->L);
+}
+
+static int check_options(const sw_cli_forensics_t *F)
+{
+    if (F->fo.so.x_max > 0.0 && F->fo.so.x_max <= 1.0) {
+        sw_cli_error("--max-factor: expected a factor above 1, got %g", F->fo.so.x_max);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
 }
 
-/* 3'. Interrupted during the replay: its summary alone, marked so. */
-static int report_interrupted(const forensics_t *F)
+static size_t groups(sw_cli_forensics_t *F, sw_cli_group_t *g, int batch)
 {
-    const long read = (long)F->pushed < F->L.rows ? (long)F->pushed : F->L.rows;
-    const sw_cli_run_t run = {
-        .log = F->log_path,
-        .samples_read = read,
-        .samples_rejected = F->refused,
-        .settle = F->fo.settle,
-        .risk = F->R.risk,
-        .interrupted = sw_cli_signal,
-    };
-    if (F->o.json) {
-        fprintf(stdout, "{\n\"replay\": ");
-        sw_cli_print_json(stdout, F->e, &run);
-        fprintf(stdout, ",\n\"safety_factor\": null,\n\"what_if\": []\n}\n");
-    } else if (!F->o.quiet) {
-        sw_cli_print_summary(stdout, F->e, &run);
-    }
-    sw_cli_error("forensics: interrupted by %s after %ld samples of the replay; the output "
-                 "files end with the last whole row; no safety factor or what-if",
-                 sw_cli_signal_name(sw_cli_signal), read);
-    return sw_cli_interrupt_code();
-}
-
-/* 3. The report: replay's summary, the safety factor and the table. */
-static void report(const forensics_t *F)
-{
-    const sw_cli_run_t run = {
-        .log = F->log_path,
-        .samples_read = F->L.rows,
-        .samples_rejected = F->L.rejected + F->refused,
-        .settle = F->fo.settle,
-        .risk = F->R.risk,
-    };
-    if (F->o.json) {
-        fprintf(stdout, "{\n\"replay\": ");
-        sw_cli_print_json(stdout, F->e, &run);
-        fprintf(stdout, ",\n\"safety_factor\": ");
-        sw_cli_whatif_json_safety(stdout, &F->cases[0]);
-        fprintf(stdout, ",\n\"what_if\": [");
-        for (size_t i = 0; i < F->ncases; i++) {
-            fprintf(stdout, "%s\n  ", i ? "," : "");
-            sw_cli_whatif_json_case(stdout, &F->cases[i]);
-        }
-        fprintf(stdout, "\n]\n}\n");
-    } else if (!F->o.quiet) {
-        sw_cli_print_summary(stdout, F->e, &run);
-        sw_cli_whatif_print_safety(stdout, &F->cases[0]);
-        if (!F->fo.w.no_what_if) sw_cli_whatif_print_table(stdout, F->cases, F->ncases);
-    }
+    size_t n = 0;
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_csv_options, &F->in.copts);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_sample_options, &F->in.copts);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(forensics_options, &F->fo);
+#ifdef SW_HAVE_LCM
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_channel_options, &F->in, SW_CLI_LCM_SECTION);
+    g[n++] =
+        (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &F->in.mo, SW_CLI_LCM_SECTION);
+#endif
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_gate_options, &F->in.gate);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_scene_options, &F->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &F->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_accuracy_options, &F->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_reserve_options, &F->o);
+    if (batch) return n;
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(forensics_thread_options, &F->fo);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_output_options, &F->o);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP(forensics_output_options, &F->fo);
+    g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_common_options, &F->o, "Output:");
+    return n;
 }
 
 int cmd_forensics(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
-    forensics_t F;
-    memset(&F, 0, sizeof F);
-    sw_cli_csv_opts_init(&F.copts);
-    sw_cli_group_t g[] = {
-        SW_CLI_GROUP(sw_cli_csv_options, &F.copts),
-        SW_CLI_GROUP(sw_cli_sample_options, &F.copts),
-        SW_CLI_GROUP(forensics_options, &F.fo),
-        SW_CLI_GROUP(sw_cli_scene_options, &F.o),
-        SW_CLI_GROUP(sw_cli_integration_options, &F.o),
-        SW_CLI_GROUP(sw_cli_accuracy_options, &F.o),
-        SW_CLI_GROUP(sw_cli_output_options, &F.o),
-        SW_CLI_GROUP(sw_cli_reserve_options, &F.o),
-        SW_CLI_GROUP(forensics_output_options, &F.fo),
-        SW_CLI_GROUP_IN(sw_cli_common_options, &F.o, "Output:"),
-    };
-    const size_t ng = sizeof g / sizeof g[0];
+    sw_cli_forensics_t *F = calloc(1, sizeof *F);
+    if (!F) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    sw_cli_read_opts_init(&F->in);
+    /* the command as given, for the report: the parser reorders argv */
+    F->argc = argc;
+    F->argv = malloc(((size_t)argc + 1) * sizeof *F->argv);
+    if (!F->argv) {
+        free(F);
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    memcpy(F->argv, argv, ((size_t)argc + 1) * sizeof *argv);
+    sw_cli_group_t g[16];
+    const size_t ng = groups(F, g, 0);
 
     int first;
     if ((rc = sw_cli_parse(&forensics_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
         goto out;
-    rc = SW_EXIT_USAGE;
-    if (!(F.log_path = sw_cli_log_operand("forensics", argc, argv, first))) goto out;
     if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
     rc = SW_EXIT_USAGE;
-    if (F.o.scenes.n > 1) {
-        sw_cli_error("forensics: one --scene (one package) at a time");
-        goto out;
-    }
-    if (F.fo.so.x_max > 0.0 && F.fo.so.x_max <= 1.0) {
-        sw_cli_error("--max-factor: expected a factor above 1, got %g", F.fo.so.x_max);
-        goto out;
-    }
-    const sw_cli_file_t outputs[] = {
-        {"--out", F.o.out_path}, {"--events", F.o.events_path}, {"--plot", F.fo.plot}};
-    if ((rc = sw_cli_check_run_files(F.log_path, &F.o.scenes, outputs, 3)) != SW_EXIT_OK ||
-        (rc = sw_cli_check_outputs(F.o.out_path, F.o.events_path, NULL, F.o.json, F.o.quiet)) !=
-            SW_EXIT_OK ||
-        (rc = read_log(&F)) != SW_EXIT_OK ||
-        (rc = sw_cli_load_scenes(&F.o, &F.scenes, &F.nsc)) != SW_EXIT_OK ||
-        (rc = replay_log(&F)) != SW_EXIT_OK)
-        goto out;
+    if (!(F->log = sw_cli_log_operand("forensics", argc, argv, first))) goto out;
+    if (check_options(F) != SW_EXIT_OK) goto out;
+    F->given = sw_cli_source_given(g, ng, NULL);
+    if ((rc = open_log(F)) != SW_EXIT_OK || (rc = replay_log(F)) != SW_EXIT_OK) goto out;
     if (sw_cli_signal) {
-        rc = report_interrupted(&F);
+        rc = report_interrupted(F);
         goto out;
     }
-    if ((rc = run_cases(&F)) != SW_EXIT_OK) goto out;
-    sw_summary_t sum;
-    sw_engine_summary(F.e, 0, &sum);
-    if (sum.overturned != F.cases[0].sf.overturned)
-        sw_cli_error("forensics: the replay and the safety-factor run disagree on the outcome "
-                     "(overturned %s / %s): the shock is at the edge of the model's resolution",
-                     sum.overturned ? "yes" : "no", F.cases[0].sf.overturned ? "yes" : "no");
-    report(&F);
-    if (F.fo.plot && (rc = draw(F.fo.plot, F.log_path, &F.scenes[0], &F.R)) != SW_EXIT_OK)
+    if ((rc = run_cases(F)) != SW_EXIT_OK) goto out;
+    check_agree(F);
+    /* --out - / --events -: standard output carries that file. */
+    FILE *ans = F->o.out_path && !strcmp(F->o.out_path, "-") ? stderr
+                : F->o.events_path && !strcmp(F->o.events_path, "-") ? stderr
+                                                                       : stdout;
+    if (F->o.json)
+        sw_cli_forensics_json(ans, F);
+    else
+        sw_cli_forensics_text(ans, F);
+    if (fflush(ans) != 0 || ferror(ans)) {
+        sw_cli_error("standard output: write error");
+        rc = SW_EXIT_IO;
         goto out;
-    rc = sw_cli_verdict_exit(F.e, F.fo.fail_on_overturn);
+    }
+    if (F->fo.plot) {
+        char title[512]; /* LOG: the packages */
+        int k = snprintf(title, sizeof title, "%s:",
+                         strcmp(F->log, "-") ? F->log : "(standard input)");
+        for (size_t i = 0; i < F->n && k > 0 && (size_t)k < sizeof title; i++)
+            k += snprintf(title + k, sizeof title - (size_t)k, "%s %s", i ? "," : "",
+                          F->scenes[i].name);
+        if ((rc = sw_cli_figure_draw(F->fig, F->fo.plot, title)) != SW_EXIT_OK) goto out;
+    }
+    if (F->fo.report && (rc = sw_cli_forensics_report(F, F->fo.report)) != SW_EXIT_OK) goto out;
+    rc = sw_cli_verdict_exit(F->R.e, F->fo.fail_on_overturn);
     if (sw_cli_signal) { /* while the report or the figure was written: both are whole */
         sw_cli_error("forensics: interrupted by %s after the report",
                      sw_cli_signal_name(sw_cli_signal));
         rc = sw_cli_interrupt_code();
     }
 out:
-    sw_cli_states_close(&F.states);
-    sw_cli_events_close(&F.events);
-    sw_engine_destroy(F.e);
-    sw_risk_destroy(F.R.risk);
-    free(F.cases);
-    sw_cli_figure_destroy(F.R.fig);
-    free(F.scenes);
-    sw_cli_log_free(&F.L);
+    cleanup(F);
     sw_cli_parse_free(g, ng);
+    free(F->argv);
+    free(F);
+    return rc;
+}
+
+/* ---- the forensics of one log, for batch (forensics.h) ----------------------------- */
+
+sw_cli_forensics_t *sw_cli_forensics_new(void)
+{
+    sw_cli_forensics_t *F = calloc(1, sizeof *F);
+    if (!F) {
+        sw_cli_error("out of memory");
+        return NULL;
+    }
+    sw_cli_read_opts_init(&F->in);
+    return F;
+}
+
+void sw_cli_forensics_destroy(sw_cli_forensics_t *F)
+{
+    if (!F) return;
+    sw_cli_group_t g[16];
+    sw_cli_parse_free(g, groups(F, g, 1));
+    cleanup(F);
+    free(F->scenes);
+    free(F);
+}
+
+size_t sw_cli_forensics_groups(sw_cli_forensics_t *F, sw_cli_group_t *g)
+{
+    return groups(F, g, 1);
+}
+
+int sw_cli_forensics_ready(sw_cli_forensics_t *F, const sw_cli_group_t *g, size_t ng)
+{
+    int rc;
+    F->given = sw_cli_source_given(g, ng, NULL);
+    if ((rc = check_options(F)) != SW_EXIT_OK || (rc = load(F)) != SW_EXIT_OK) return rc;
+    sw_cli_warn_scene_cost(F->scenes, F->n, &F->eo);
+    F->scenes_shared = 1; /* the copies made for each log share them */
+    return SW_EXIT_OK;
+}
+
+int sw_cli_forensics_log(const sw_cli_forensics_t *opts, const char *log,
+                         sw_cli_forensics_report_fn report, void *user)
+{
+    sw_cli_forensics_t *F = malloc(sizeof *F);
+    if (!F) {
+        sw_cli_error("%s: out of memory", log);
+        return SW_EXIT_IO;
+    }
+    *F = *opts; /* the options; a ready one has run nothing, so no state is copied */
+    F->log = log;
+    F->o.quiet = 1;
+    F->o.json = 0;
+    int rc;
+    if ((rc = open_log(F)) == SW_EXIT_OK && (rc = replay_log(F)) == SW_EXIT_OK &&
+        (rc = run_cases(F)) == SW_EXIT_OK) {
+        check_agree(F);
+        report(user, F);
+        rc = sw_cli_verdict_exit(F->R.e, F->fo.fail_on_overturn);
+    }
+    cleanup(F);
+    free(F);
     return rc;
 }

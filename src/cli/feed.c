@@ -18,6 +18,10 @@ typedef struct {
     sw_cli_rejects_t rej;
     int quiet;
     int layout_said;
+    sw_gate_take_fn take;
+    void *take_user;
+    const volatile sig_atomic_t *halt; /* may be NULL: the caller's stop (a cap reached) */
+    int halted;
     /* SIGINT or SIGTERM: the rows after it (in the chunk being fed) are not
      * read; the pump stops after the chunk */
     int stopped;
@@ -90,6 +94,10 @@ static void explain_columns(const feed_t *F)
 static int on_row(void *user, long line, double t, double a_g, double a_z)
 {
     feed_t *F = user;
+    if (F->halted || (F->halt && *F->halt)) { /* the caller has all it can take */
+        F->halted = F->rej.stop = 1;
+        return 0;
+    }
     if (F->stopped || sw_cli_signal) {
         F->stopped = F->rej.stop = 1;
         F->unread++;
@@ -119,6 +127,12 @@ static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, c
     char buf[240];
     snprintf(buf, sizeof buf, "%s (%s)", text, sw_gate_reject_name(r));
     sw_cli_rejects_add(&F->rej, s->where, buf);
+}
+
+static void on_gate_take(void *user, double t, double a_g, double a_z, int restart)
+{
+    const feed_t *F = user;
+    F->take(F->take_user, t, a_g, a_z, restart);
 }
 
 static void on_gate_event(void *user, const sw_gate_event_t *ev)
@@ -151,17 +165,20 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
 }
 
 int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_cli_gate_t *go,
-                    sw_engine_t *e, int quiet, sw_cli_fed_t *out)
+                    sw_engine_t *e, int quiet, sw_gate_take_fn take, void *take_user,
+                    const volatile sig_atomic_t *halt, sw_cli_fed_t *out)
 {
     int rc = SW_EXIT_USAGE, err = 0;
     char msg[256] = "";
-    feed_t F = {.name = lf->name, .quiet = quiet};
+    feed_t F = {.name = lf->name, .quiet = quiet, .take = take, .take_user = take_user,
+                .halt = halt};
     F.rej = (sw_cli_rejects_t){.name = lf->name, .quiet = quiet, .strict = co->strict};
     memset(out, 0, sizeof *out);
     sw_gate_opts_t gopts;
     sw_cli_gate_opts(go, &gopts);
     gopts.on_event = on_gate_event;
     gopts.on_reject = on_gate_reject;
+    gopts.on_take = take ? on_gate_take : NULL;
     gopts.user = &F;
     gopts.relative = -1;
     F.gate = sw_gate_create(e, &gopts, msg, sizeof msg);
@@ -187,6 +204,11 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
         out->rows = k.rows - F.unread - F.unread_rejected;
         out->rejected = k.rejected - F.unread_rejected + sw_gate_rejected(&out->facts);
         sw_cli_rejects_summary(&F.rej);
+        goto out;
+    }
+    if (F.halted) { /* the caller says why */
+        out->halted = 1;
+        rc = SW_EXIT_OK;
         goto out;
     }
     rc = SW_EXIT_USAGE;

@@ -6,6 +6,8 @@
 #ifndef SWAYWATCH_CLI_FEED_H
 #define SWAYWATCH_CLI_FEED_H
 
+#include <signal.h>
+
 #include "input.h"
 #include "output.h"
 
@@ -16,6 +18,7 @@ typedef struct {
     sw_gate_facts_t facts; /* the gate's */
     int interrupted;       /* SIGINT or SIGTERM stopped the reading: the counts cover the
                               rows fed before it (interrupt.h) */
+    int halted;            /* the caller's halt stopped it (nothing else is filled) */
 } sw_cli_fed_t;
 
 /* Stream the CSV log lf (opened) through the reader and the gate into e,
@@ -23,11 +26,14 @@ typedef struct {
  * (out->interrupted; the gate is not flushed, the rest of the chunk read
  * is not counted).  Refused rows and stream events go to stderr with
  * their line (rows: the first SW_CLI_MAX_PRINTED_REJECTS; none with
- * quiet).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad options or columns the
+ * quiet).  take (may be NULL) gets each sample the engine got, with
+ * take_user (gate.h); once *halt (may be NULL) is non-zero the reading
+ * stops before the next row (out->halted).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad options or columns the
  * header does not tell, --strict at a refused row: reported) or
  * SW_EXIT_IO. */
 int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_cli_gate_t *go,
-                    sw_engine_t *e, int quiet, sw_cli_fed_t *out);
+                    sw_engine_t *e, int quiet, sw_gate_take_fn take, void *take_user,
+                    const volatile sig_atomic_t *halt, sw_cli_fed_t *out);
 
 /* The plausibility check of a fed log (gate.h) and the vertical channel's
  * gravity: SW_EXIT_OK with run's check and forced set (a warning or a

@@ -17,8 +17,8 @@
 #define G0 9.80665          /* m/s^2 per g, for the legend */
 #define MARGIN_FLOOR (-1.0) /* the margin panel shows margins down to this */
 
-/* The quantities kept per package. */
-enum { Q_AG, Q_RATIO, Q_MARGIN, NQ };
+/* The quantities kept per package (the reserve only with a risk). */
+enum { Q_AG, Q_RATIO, Q_MARGIN, Q_RESERVE, NQ };
 
 /* The samples of one bucket: per quantity, its minimum and maximum and
  * when they were reached (the first of equal values). */
@@ -42,6 +42,7 @@ struct sw_cli_figure {
     sw_event_t *ev;
     size_t nev, cap;
     long dropped; /* events beyond MAX_EVENTS, or lost to a failed allocation */
+    const sw_risk_t *risk; /* NULL: no reserve panel */
 };
 
 /* Line colours of the packages, in order (then again). */
@@ -86,15 +87,17 @@ void sw_cli_figure_destroy(sw_cli_figure_t *f)
 
 /* ---- keeping ----------------------------------------------------------------- */
 
-/* a takes in b's extremes (b is later: a tie keeps a's time). */
+/* a takes in b's extremes (b is later: a tie keeps a's time); a value
+ * that is none yet (NaN: the reserve before its first evaluation) takes
+ * b's. */
 static void merge(bucket_t *a, const bucket_t *b)
 {
     for (int q = 0; q < NQ; q++) {
-        if (b->vmin[q] < a->vmin[q]) {
+        if (b->vmin[q] < a->vmin[q] || (isnan(a->vmin[q]) && !isnan(b->vmin[q]))) {
             a->vmin[q] = b->vmin[q];
             a->tmin[q] = b->tmin[q];
         }
-        if (b->vmax[q] > a->vmax[q]) {
+        if (b->vmax[q] > a->vmax[q] || (isnan(a->vmax[q]) && !isnan(b->vmax[q]))) {
             a->vmax[q] = b->vmax[q];
             a->tmax[q] = b->tmax[q];
         }
@@ -134,12 +137,20 @@ void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out)
     trace_t *T = &f->tr[out->pkg];
     /* the margin as presented (alarm.h): in [-1, 1], -1 at overturn, so a
      * falling package does not read as a recovery */
+    const sw_risk_pkg_t *rp = f->risk ? sw_risk_pkg(f->risk, out->pkg) : NULL;
     const double v[NQ] = {out->a_g, out->state.theta / T->alpha,
-                          sw_margin_presented(out->margin, out->state.phase)};
-    for (int q = 0; q < NQ; q++)
+                          sw_margin_presented(out->margin, out->state.phase),
+                          rp ? rp->reserve_g : NAN};
+    for (int q = 0; q < Q_RESERVE; q++)
         if (!isfinite(v[q]))
             return; /* the engine reports none; a gap in the line if it did */
     trace_add(T, out->t, v);
+}
+
+void sw_cli_figure_risk(sw_cli_figure_t *f, const sw_risk_t *risk)
+{
+    if (f)
+        f->risk = risk;
 }
 
 void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev)
@@ -176,6 +187,8 @@ static void emit_bucket(FILE *g, const bucket_t *B, int q)
     const int min_first = B->tmin[q] <= B->tmax[q];
     const double t1 = min_first ? B->tmin[q] : B->tmax[q], v1 = min_first ? B->vmin[q] : B->vmax[q];
     const double t2 = min_first ? B->tmax[q] : B->tmin[q], v2 = min_first ? B->vmax[q] : B->vmin[q];
+    if (isnan(v1)) /* the reserve before its first evaluation */
+        return;
     fprintf(g, "%.9g %.9g\n", t1, v1);
     if (t2 != t1 || v2 != v1)
         fprintf(g, "%.9g %.9g\n", t2, v2);
@@ -210,7 +223,7 @@ static int extent(const sw_cli_figure_t *f, double *t0, double *t1, double *min_
             if (!B)
                 continue;
             any = 1;
-            for (int q = 0; q < NQ; q++) {
+            for (int q = 0; q < Q_RESERVE; q++) {
                 *t0 = fmin(*t0, fmin(B->tmin[q], B->tmax[q]));
                 *t1 = fmax(*t1, fmax(B->tmin[q], B->tmax[q]));
             }
@@ -333,7 +346,8 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
     }
     if (!(t1 > t0))
         t1 = t0 + 1.0;
-    sw_plot_t *p = sw_cli_plot_open(path, 1200, 960);
+    const int panels = f->risk ? 4 : 3;
+    sw_plot_t *p = sw_cli_plot_open(path, 1200, 320 * panels);
     if (!p)
         return SW_EXIT_IO;
     FILE *g = sw_cli_plot_file(p);
@@ -342,12 +356,12 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
     static const sw_event_kind kinds[] = {SW_EV_UPLIFT, SW_EV_IMPACT, SW_EV_TIP, SW_EV_OVERTURN,
                                           SW_EV_FAULT};
     for (size_t k = 0; k < f->n; k++) {
-        for (int q = 0; q < NQ; q++) series_block(g, &f->tr[k], k, q);
+        for (int q = 0; q < (f->risk ? NQ : Q_RESERVE); q++) series_block(g, &f->tr[k], k, q);
         for (size_t j = 0; j < sizeof kinds / sizeof kinds[0]; j++) event_block(g, f, k, kinds[j]);
     }
     event_lines(g, f);
 
-    fputs("set multiplot layout 3,1 title ", g);
+    fprintf(g, "set multiplot layout %d,1 title ", panels);
     sw_cli_plot_text(g, title);
     fprintf(g,
             " font ',13'\n"
@@ -388,8 +402,10 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
     /* 3. the margin to overturn, as presented: below 0 the package is past
      * the edge, and -1 is overturned */
     const double lo = fmax(MARGIN_FLOOR, fmin(0.0, mmin)) - 0.05;
+    if (!f->risk)
+        fputs("set format x '%g'\nset xlabel 'time t (s)'\n", g);
     fprintf(g,
-            "set format x '%%g'\nset xlabel 'time t (s)'\nset ylabel 'margin to overturn%s'\n"
+            "set ylabel 'margin to overturn%s'\n"
             "set yrange [%.6g:1.05]\n"
             "plot 0 with lines lc rgb '#d62828' dt 3 title 'overturns with no more input "
             "below 0'",
@@ -399,7 +415,22 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
                 colours[k % NCOLOURS]);
         series_title(g, "margin", f->tr[k].name);
     }
-    fputs("\nunset multiplot\n", g);
+    fputc('\n', g);
+
+    /* 4. the reserve: the smallest design pulse that would overturn it */
+    if (f->risk) {
+        fputs("set format x '%g'\nset xlabel 'time t (s)'\nset ylabel 'reserve (g)'\n"
+              "set yrange [0:*]\nplot 0 with lines lc rgb '#d62828' dt 3 "
+              "title 'no reserve: overturns with no more input'",
+              g);
+        for (size_t k = 0; k < f->n; k++) {
+            fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RESERVE,
+                    colours[k % NCOLOURS]);
+            series_title(g, "reserve", f->tr[k].name);
+        }
+        fputc('\n', g);
+    }
+    fputs("unset multiplot\n", g);
     if (f->dropped)
         sw_cli_error("%s: %ld events beyond the %d kept are not marked", path, f->dropped,
                      MAX_EVENTS);

@@ -21,6 +21,10 @@ typedef struct sw_cli_figure sw_cli_figure_t;
 sw_cli_figure_t *sw_cli_figure_create(const sw_engine_t *e, const sw_scene_t *scenes, size_t n);
 void sw_cli_figure_destroy(sw_cli_figure_t *f); /* NULL accepted */
 
+/* Draw the reserve of risk (reserve_g of each package as the state
+ * comes, so risk is fed first) in a fourth panel; NULL: none. */
+void sw_cli_figure_risk(sw_cli_figure_t *f, const sw_risk_t *risk);
+
 /* Keep a state and an event (f may be NULL: nothing kept). */
 void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out);
 void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev);

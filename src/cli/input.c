@@ -334,133 +334,58 @@ const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f)
     return &sources[i];
 }
 
-/* ---- reading ------------------------------------------------------------------ */
+/* ---- a log held in memory ------------------------------------------------------- */
 
-typedef struct {
-    sw_cli_log_t *log;
-    sw_cli_rejects_t rej;
-    int halt; /* rej.stop, out of memory, or the cap reached */
-    int oom;
-    size_t max; /* samples kept at most */
-    int capped; /* one more was offered */
-} read_ctx_t;
-
-static int grow(sw_cli_log_t *L, size_t max)
+static int grow(sw_cli_log_t *L)
 {
     size_t cap = L->cap ? 2 * L->cap : 4096;
-    if (cap > max) cap = max;
+    if (cap > L->max) cap = L->max;
     double *t = realloc(L->t, cap * sizeof *t);
     if (!t) return -1;
     L->t = t;
     double *a = realloc(L->a_g, cap * sizeof *a);
     if (!a) return -1;
     L->a_g = a;
-    if (L->has_z) {
-        double *z = realloc(L->a_z, cap * sizeof *z);
-        if (!z) return -1;
-        L->a_z = z;
-    }
+    double *z = realloc(L->a_z, cap * sizeof *z);
+    if (!z) return -1;
+    L->a_z = z;
     L->cap = cap;
     return 0;
 }
 
-static int on_row(void *user, long line, double t, double a_g, double a_z)
+void sw_cli_log_take(void *user, double t, double a_g, double a_z, int restart)
 {
-    read_ctx_t *c = user;
-    sw_cli_log_t *L = c->log;
-    (void)line;
-    if (c->halt) return 1;
-    if (L->n == c->max) {
-        c->capped = c->halt = 1;
-        return 1;
+    sw_cli_log_t *L = user;
+    if (L->halt) return;
+    if (L->n == L->max) {
+        L->capped = 1;
+        L->halt = 1;
+        return;
     }
-    if (L->n == L->cap && grow(L, c->max) != 0) {
-        c->oom = c->halt = 1;
-        return 1;
+    if (L->n == L->cap && grow(L) != 0) {
+        L->oom = 1;
+        L->halt = 1;
+        return;
+    }
+    if (restart && L->n > 0) {
+        if (L->nrestart == L->restart_cap) {
+            size_t cap = L->restart_cap ? 2 * L->restart_cap : 16;
+            size_t *r = realloc(L->restart, cap * sizeof *r);
+            if (!r) {
+                L->oom = 1;
+                L->halt = 1;
+                return;
+            }
+            L->restart = r;
+            L->restart_cap = cap;
+        }
+        L->restart[L->nrestart++] = L->n;
     }
     L->t[L->n] = t;
     L->a_g[L->n] = a_g;
-    if (L->has_z) L->a_z[L->n] = a_z;
+    L->a_z[L->n] = a_z;
+    L->has_z |= a_z != 0.0;
     L->n++;
-    return 0;
-}
-
-static void on_reject(void *user, long line, const char *reason)
-{
-    read_ctx_t *c = user;
-    if (c->oom || c->capped) return;
-    sw_cli_rejects_add(&c->rej, line, reason);
-    c->halt = c->rej.stop;
-}
-
-int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, long max,
-                    sw_cli_log_t *L)
-{
-    int rc = SW_EXIT_USAGE;
-    memset(L, 0, sizeof *L);
-    L->has_z = o->csv.vert_col != NULL;
-    sw_csv_t *csv = NULL;
-    sw_cli_logfile_t f;
-    if (sw_cli_logfile_open(&f, path) != SW_EXIT_OK) {
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    read_ctx_t ctx = {L, {f.name, o->strict, quiet, 0, 0, 0}, 0, 0, max > 0 ? (size_t)max : 1, 0};
-    if (sw_cli_logfile_source(&f)->kind != SW_CLI_SRC_CSV) {
-        sw_cli_error("%s: an lcm-logger file; this command reads CSV logs (replay reads both)",
-                     f.name);
-        goto out;
-    }
-    int err = 0;
-    char msg[256] = "";
-    csv = sw_csv_create(&o->csv, on_row, on_reject, &ctx, &err, msg, sizeof msg);
-    if (!csv) {
-        sw_cli_error("%s: %s", f.name, msg[0] ? msg : sw_strerror(err));
-        goto out;
-    }
-    int fr;
-    if (sw_cli_logfile_pump(&f, csv, &ctx.halt, NULL, NULL, &fr) != SW_EXIT_OK) {
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    if (ctx.oom) {
-        sw_cli_error("%s: out of memory after %zu samples", f.name, L->n);
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    if (ctx.capped) {
-        sw_cli_error("%s: more than %ld samples: the whole log is held in memory (%zu bytes a "
-                     "sample) and %ld is the cap (--max-samples); cut the log, or replay it "
-                     "(replay streams)",
-                     f.name, max, L->has_z ? 3 * sizeof(double) : 2 * sizeof(double), max);
-        goto out;
-    }
-    if (fr < 0) {
-        const char *why = sw_csv_error_message(csv);
-        sw_cli_error("%s: %s", f.name, why && why[0] ? why : sw_strerror(fr));
-        rc = fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
-        goto out;
-    }
-    if (ctx.rej.stop) {
-        sw_cli_error("%s: stopped at the first rejected row (--strict)", f.name);
-        goto out;
-    }
-    sw_csv_counts_t counts;
-    sw_csv_counts(csv, &counts);
-    L->rows = counts.rows;
-    L->rejected = counts.rejected;
-    sw_cli_rejects_summary(&ctx.rej);
-    if (L->n == 0) {
-        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", f.name, counts.rows,
-                     counts.rejected);
-        goto out;
-    }
-    rc = SW_EXIT_OK;
-out:
-    sw_csv_destroy(csv);
-    sw_cli_logfile_close(&f);
-    if (rc != SW_EXIT_OK) sw_cli_log_free(L);
-    return rc;
 }
 
 void sw_cli_log_free(sw_cli_log_t *L)
@@ -468,5 +393,6 @@ void sw_cli_log_free(sw_cli_log_t *L)
     free(L->t);
     free(L->a_g);
     free(L->a_z);
+    free(L->restart);
     memset(L, 0, sizeof *L);
 }

@@ -4,6 +4,7 @@
 #ifndef SWAYWATCH_CLI_INPUT_H
 #define SWAYWATCH_CLI_INPUT_H
 
+#include <signal.h>
 #include <stdio.h>
 
 #include "cli.h"
@@ -102,24 +103,29 @@ typedef struct {
 } sw_cli_source_t;
 const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f);
 
-/* A whole log: accepted rows in file order, SI units. */
+/* A whole log held in memory as the input gate handed it to the engine
+ * (SI units, bridged gaps and restarts included): for a command that runs
+ * one recording many times (forensics), read once as replay reads it. */
 typedef struct {
-    double *t, *a_g, *a_z; /* a_z only with --vert-col (has_z), else NULL */
+    double *t, *a_g, *a_z; /* a_z: 0 where there is no vertical channel */
     size_t n, cap;
-    int has_z;
-    long rows, rejected; /* data rows seen, and refused (reported on stderr) */
+    int has_z;            /* some a_z is not 0 */
+    size_t *restart;      /* indices of the samples before which the gate restarted the
+                             packages from rest (sw_log_t) */
+    size_t nrestart, restart_cap;
+    size_t max;           /* samples kept at most (set before reading) */
+    int capped;           /* one more was offered: the log is longer than max */
+    int oom;              /* out of memory */
+    volatile sig_atomic_t halt; /* capped or oom: the reading may stop */
 } sw_cli_log_t;
 
-/* Read path ("-" = stdin) into L, at most max samples (memory is bounded
- * whatever the input, a pipe included); rejected rows reported like replay
- * does (counted only with quiet).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad
- * rows under --strict, no usable row, an lcm-logger file, more than max
- * samples: the message names the cap) or SW_EXIT_IO.  Free with
- * sw_cli_log_free(). */
-#define SW_CLI_LOG_MAX_SAMPLES_N 33554432 /* 2^25: 9.3 h at 1 kHz, 512 MB */
+/* The cap of forensics' --max-samples: 2^25 samples, 9.3 h at 1 kHz. */
+#define SW_CLI_LOG_MAX_SAMPLES_N 33554432
 #define SW_CLI_LOG_MAX_SAMPLES ((long)SW_CLI_LOG_MAX_SAMPLES_N)
-int sw_cli_log_read(const char *path, const sw_cli_csv_opts_t *o, int quiet, long max,
-                    sw_cli_log_t *L);
+
+/* A take callback (gate.h) with user a sw_cli_log_t: the sample kept, up
+ * to max (then capped, halt). */
+void sw_cli_log_take(void *user, double t, double a_g, double a_z, int restart);
 void sw_cli_log_free(sw_cli_log_t *L);
 
 #endif

@@ -132,6 +132,10 @@ typedef struct {
     const sw_risk_t *risk;   /* reserves and impacts that matter (NULL: none) */
 } sw_cli_run_t;
 
+/* A package's smallest reserve, in g, and what it means: one line (two
+ * with faults) as the human summary has it; nothing without a reserve. */
+void sw_cli_print_reserve(FILE *f, const sw_risk_pkg_t *p);
+
 /* The one-screen human summary / the JSON summary (DESIGN.md contract). */
 void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
 void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);

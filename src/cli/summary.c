@@ -212,7 +212,7 @@ static void print_margin(FILE *f, const sw_summary_t *s)
 }
 
 /* The reserve: the smallest evaluated, in g, and what it means. */
-static void print_reserve(FILE *f, const sw_risk_pkg_t *p)
+void sw_cli_print_reserve(FILE *f, const sw_risk_pkg_t *p)
 {
     if (p && p->no_reserve) {
         fprintf(f, "  reserve         none: the scene is too stiff for it to be computed\n");
@@ -283,7 +283,7 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
         fputs("  tipped (alpha)  ", f);
         print_time(f, s.tip_time, "no (|theta| stayed below alpha)");
         print_margin(f, &s);
-        print_reserve(f, sw_risk_pkg(run->risk, i));
+        sw_cli_print_reserve(f, sw_risk_pkg(run->risk, i));
         fputs("  outcome         ", f);
         print_outcome(f, &s);
         fputc('\n', f);

@@ -383,6 +383,13 @@ static void on_state(void *user, const sw_output_t *out)
 static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, const char *text);
 static void on_gate_event(void *user, const sw_gate_event_t *ev);
 
+/* The gate's user is the monitor; the caller's recorder gets its own. */
+static void on_gate_take(void *user, double t, double a_g, double a_z, int restart)
+{
+    const sw_mon_t *m = user;
+    m->o.on_take(m->o.user, t, a_g, a_z, restart);
+}
+
 sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo,
                         const sw_mon_opts_t *mo, lcm_t *out, char *msg, size_t msglen)
 {
@@ -450,6 +457,7 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
                                .vert_gravity = m->o.vert_gravity,
                                .on_event = on_gate_event,
                                .on_reject = on_gate_reject,
+                               .on_take = m->o.on_take ? on_gate_take : NULL,
                                .user = m};
     m->gate = sw_gate_create(m->engine, &go, msg, msglen);
     if (!m->gate) {

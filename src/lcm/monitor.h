@@ -97,6 +97,8 @@ typedef struct {
                                   sample), published or not */
     sw_event_fn on_event;      /* optional: every engine event */
     sw_alarm_fn on_alarm;      /* optional: every alarm raised (t relative, as on_state) */
+    sw_gate_take_fn on_take;   /* optional: every sample pushed into the engine, as the
+                                  gate reports it (gate.h): a log read once, replayed */
     void *user;
 } sw_mon_opts_t;
 

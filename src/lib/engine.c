@@ -24,6 +24,7 @@ struct sw_engine {
     sw_ctx_t C;     /* what the layers share: scheme, options, event sink */
     int started;
     int restart;    /* the next sample starts afresh: packages at rest, no bridge */
+    int origin_set; /* sw_engine_set_origin(): C.origin is not the first sample's time */
     double t;       /* s, time of the last sample, relative to C.origin */
     double t_abs;   /* s, the same as the caller gave it */
     double ag, az;  /* m/s^2, last sample */
@@ -174,6 +175,10 @@ static void pkg_reset(sw_pkg_t *P)
     P->sum.model = P->d.model;
     P->sum.overturn_time = P->sum.tip_time = P->sum.uplift_time = NAN;
     P->sum.min_margin = P->sum.min_margin_bound = 1.0;
+    /* A reset engine runs as a new one: nothing of an earlier run (the
+     * stuck frame's coefficients of its last interval) changes a bit of
+     * the next. */
+    memset(P->nj_cache, 0, sizeof P->nj_cache);
     sw_step_reset(P);
 }
 
@@ -202,6 +207,7 @@ void sw_engine_reset(sw_engine_t *e)
     if (!e) return;
     e->started = 0;
     e->restart = 0;
+    e->origin_set = 0;
     e->t = e->t_abs = NAN;
     e->C.origin = 0.0;
     e->ag = e->az = 0.0;
@@ -367,6 +373,14 @@ int sw_engine_push(sw_engine_t *e, double t_abs, double a_g, double a_z)
     e->C.events = 0;
     if (!e->started) {
         if (coarse_time(t_abs)) return SW_ERESOLUTION;
+        if (e->origin_set) {
+            const double t = t_abs - e->C.origin;
+            if (!(t >= 0.0)) return SW_EORDER;
+            e->t_abs = t_abs;
+            start_at(e, t, a_g, a_z);
+            report_states(e, t);
+            return e->C.events ? SW_EVENT : SW_OK;
+        }
         e->C.origin = t_abs;
         e->t_abs = t_abs;
         start_at(e, 0.0, a_g, a_z);
@@ -427,6 +441,15 @@ int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
     if (!e || !f || !isfinite(t1)) return SW_EINVAL;
     if (coarse_time(t1)) return SW_ERESOLUTION;
     return advance_to(e, t1 - e->C.origin, f, user);
+}
+
+int sw_engine_set_origin(sw_engine_t *e, double t0)
+{
+    if (!e || e->started || !isfinite(t0)) return SW_EINVAL;
+    if (coarse_time(t0)) return SW_ERESOLUTION;
+    e->C.origin = t0;
+    e->origin_set = 1;
+    return SW_OK;
 }
 
 int sw_engine_restart(sw_engine_t *e)

@@ -35,6 +35,7 @@ struct sw_gate {
     sw_sample_t last;     /* the last accepted sample (source time) */
     double last_engine;   /* s, the engine time it was pushed at */
     double offset;        /* s, engine time = source time + offset */
+    int restarted;        /* the engine was restarted: the next sample taken says so */
     int64_t last_seq;
     int have_seq;
     double dts[DT_WINDOW];
@@ -231,6 +232,8 @@ static int take(sw_gate_t *g, const sw_sample_t *s, double te)
     const double az = g->o.vert_gravity ? s->a_z - G0 : s->a_z;
     const int rc = sw_engine_push(g->e, te, s->a_g, az);
     if (rc < 0) return refuse(g, s, SW_GATE_REJ_ENGINE, sw_strerror(rc));
+    if (g->o.on_take) g->o.on_take(g->o.user, te, s->a_g, az, g->restarted);
+    g->restarted = 0;
     if (g->have_last) {
         const double dt = s->t - g->last.t;
         if (dt > 0.0) {
@@ -299,7 +302,10 @@ static double resume(sw_gate_t *g, const sw_sample_t *s)
                                        elapsed > g->o.max_bridge));
     ev.bridged = gap && !ev.restarted;
     ev.incomplete = (gap || unknown) && motion_near(g, s->a_g);
-    if (ev.restarted) sw_engine_restart(g->e);
+    if (ev.restarted) {
+        sw_engine_restart(g->e);
+        g->restarted = 1;
+    }
     const double te = g->last_engine + elapsed;
     g->offset = te - s->t;
     ev.t_engine = te;

@@ -280,6 +280,11 @@ void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o);
  * oscillator under sampled input; SW_STUCK_STEP otherwise). */
 int sw_stuck_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
 int sw_stuck_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
+/* The exact step of the damped oscillator u'' + 2 zeta w u' + w^2 u = -a(t),
+ * a = a0 + s t, over H (s) from (u, u') = u0 into u1 (Nigam & Jennings, as
+ * a stuck frame takes it): for the linear response of other models. */
+void sw_nj_step(double w, double zeta, double H, double a0, double s, const double u0[2],
+                double u1[2]);
 
 /* ---- scheme.c ------------------------------------------------------------------ */
 

@@ -84,9 +84,9 @@ typedef struct {
     double i1, i2;  /* s^2, s^3 */
 } nj_t;
 
-static void nj_coef(const sw_pkg_t *P, double H, nj_t *c)
+static void nj_coef_wz(double w, double z, double H, nj_t *c)
 {
-    const double w = P->d.omega_b, z = P->d.zeta_b, zw = z * w, w2 = w * w;
+    const double zw = z * w, w2 = w * w;
     if (fmax(w, 2.0 * zw) * H <= 2.0) {
         /* g = sum g_k H^k / k!, g_{k+2} = -2 zeta w g_{k+1} - w^2 g_k */
         double gk = 0.0, gk1 = 1.0, tk = 1.0; /* g_k, g_{k+1}, H^k / k! */
@@ -133,6 +133,11 @@ static void nj_coef(const sw_pkg_t *P, double H, nj_t *c)
     c->i2 = (H - c->g - 2.0 * zw * c->i1) / w2;
 }
 
+static void nj_coef(const sw_pkg_t *P, double H, nj_t *c)
+{
+    nj_coef_wz(P->d.omega_b, P->d.zeta_b, H, c);
+}
+
 /* nj_coef for the sample interval: sample times such as i / 1000 give
  * intervals that differ in the last bits, so the coefficients of the last
  * interval H0 are reused for H within 1e-6 H0, corrected to first order
@@ -158,15 +163,30 @@ static void nj_coef_cached(sw_pkg_t *P, double H, nj_t *c)
     c->i2 = k[4] + dH * k[3];
 }
 
-/* State of the stuck frame after H under a_g = a0 + s t. */
-static void nj_state(const sw_pkg_t *P, const nj_t *c, double a0, double s, const double u0[2],
-                     double u1[2])
+/* State of the oscillator (w, z) after H under a_g = a0 + s t. */
+static void nj_state_wz(double w, double z, const nj_t *c, double a0, double s, const double u0[2],
+                        double u1[2])
 {
-    const double w = P->d.omega_b, zw = P->d.zeta_b * w;
+    const double zw = z * w;
     const double u = (c->gd + 2.0 * zw * c->g) * u0[0] + c->g * u0[1] - a0 * c->i1 - s * c->i2;
     const double v = -w * w * c->g * u0[0] + c->gd * u0[1] - a0 * c->g - s * c->i1;
     u1[0] = u;
     u1[1] = v;
+}
+
+/* State of the stuck frame after H under a_g = a0 + s t. */
+static void nj_state(const sw_pkg_t *P, const nj_t *c, double a0, double s, const double u0[2],
+                     double u1[2])
+{
+    nj_state_wz(P->d.omega_b, P->d.zeta_b, c, a0, s, u0, u1);
+}
+
+void sw_nj_step(double w, double zeta, double H, double a0, double s, const double u0[2],
+                double u1[2])
+{
+    nj_t c;
+    nj_coef_wz(w, zeta, H, &c);
+    nj_state_wz(w, zeta, &c, a0, s, u0, u1);
 }
 
 /* The support's absolute acceleration is W = a_g + D, where D = u'' obeys

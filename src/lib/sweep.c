@@ -12,7 +12,8 @@
  *     grow and is below the barrier, so it cannot overturn;
  *   - otherwise the free-motion time limit (20 rocking periods by default).
  * The checks are made on a fixed grid of the free motion (16 per rocking
- * period), so a run is the same computation whichever thread makes it. */
+ * period), so a run is the same computation whichever thread makes it.
+ * The safety factors of a log, which use these runs, are in safety.c. */
 #include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
@@ -23,23 +24,20 @@
 #include "swaywatch/model.h"
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
+#include "run.h"
 
 #define DEFAULT_FREE_PERIODS 20.0
 #define DEFAULT_STEP 0.02
 #define DEFAULT_TOL 1e-3
 #define DEFAULT_X_MAX 20.0
 #define STEPS_PER_PERIOD 400.0  /* automatic dt: steps per shortest period */
-#define CHECKS_PER_PERIOD 16.0  /* stop checks per rocking period of free motion */
 #define PROBE_SAMPLES 400.0     /* samples per period when probing the stuck frame */
 #define LIFT_MARGIN_PULSE 0.99  /* probe of a pulse: sampled to 3e-5 of the peak */
 #define LIFT_MARGIN_CUSHION 0.9 /* probe of a pulse on a cushion: sampling capped, see below */
-#define LIFT_MARGIN_LOG 0.9     /* probe of a log: sampled only at the log's samples */
 #define PROBE_MAX_SAMPLES 20000 /* cap on the samples of one probe run */
 #define MAX_THREADS 256
 
-static void set_msg(char *msg, size_t len, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void set_msg(char *msg, size_t len, const char *fmt, ...)
+void sw_set_msg(char *msg, size_t len, const char *fmt, ...)
 {
     if (!msg || !len) return;
     va_list ap;
@@ -57,25 +55,18 @@ static double zero_input(void *user, double t)
 
 /* ---- one run --------------------------------------------------------------- */
 
-/* An engine and what its event callback records of the current run: the
- * direction of the first uplift and of the overturn (+1 the top forward),
- * which tell a direct overturn from one after a reverse sway.  The engine
- * holds a pointer to the record: a runner must not move once made. */
-typedef struct {
-    sw_engine_t *e;
-    int uplift_side, overturn_side;
-} runner_t;
-
+/* The runner's event callback (run.h): the direction of the first uplift
+ * and of the overturn. */
 static void on_run_event(void *user, const sw_event_t *ev)
 {
-    runner_t *R = user;
+    sw_runner_t *R = user;
     /* a level base leaving a cushion (info 0) has no direction yet */
     if (ev->kind == SW_EV_UPLIFT && !R->uplift_side && ev->info != 0.0)
         R->uplift_side = ev->info > 0.0 ? 1 : -1;
     if (ev->kind == SW_EV_OVERTURN) R->overturn_side = ev->theta > 0.0 ? 1 : -1;
 }
 
-static void runner_reset(runner_t *R)
+void sw_runner_reset(sw_runner_t *R)
 {
     sw_engine_reset(R->e);
     R->uplift_side = R->overturn_side = 0;
@@ -85,15 +76,15 @@ static void runner_reset(runner_t *R)
  * at 1/STEPS_PER_PERIOD of the shorter of the pulse period (omega_e > 0)
  * and the rocking period.  No scheme given stays NULL, so that the engine
  * can choose its scheme for a stiff cushion. */
-static int make_engine(runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o, double omega_e,
-                       int *err, char *msg, size_t msglen)
+int sw_runner_make(sw_runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o, double omega_e,
+                   int *err, char *msg, size_t msglen)
 {
     memset(R, 0, sizeof *R);
     sw_derived_t d;
     char why[256];
     if (sw_scene_validate(sc, &d, NULL, NULL, NULL) != SW_OK) {
         *err = SW_EINVAL;
-        set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
+        sw_set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
         return *err;
     }
     sw_engine_opts_t eo;
@@ -105,7 +96,7 @@ static int make_engine(runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o
     const sw_scheme_t *s = sw_scheme_lookup(eo.scheme ? eo.scheme : SW_DEFAULT_SCHEME);
     if (!s) {
         *err = SW_ENOTFOUND;
-        set_msg(msg, msglen, "unknown scheme '%s'", eo.scheme);
+        sw_set_msg(msg, msglen, "unknown scheme '%s'", eo.scheme);
         return *err;
     }
     if (eo.dt > 0.0 || eo.accuracy > 0.0) {
@@ -119,11 +110,11 @@ static int make_engine(runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o
     eo.user = R;
     why[0] = '\0';
     R->e = sw_engine_create(sc, 1, &eo, err, why, sizeof why);
-    if (!R->e) set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
+    if (!R->e) sw_set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
     return R->e ? SW_OK : *err;
 }
 
-static double free_time_of(const sw_run_opts_t *o, double p)
+double sw_run_free_time(const sw_run_opts_t *o, double p)
 {
     if (o && o->settle > 0.0) return o->settle;
     if (o && o->settle < 0.0) return 0.0;
@@ -131,7 +122,7 @@ static double free_time_of(const sw_run_opts_t *o, double p)
     return n * 2.0 * M_PI / p;
 }
 
-static void fill_result(const runner_t *R, sw_run_end end, const sw_output_t *o,
+static void fill_result(const sw_runner_t *R, sw_run_end end, const sw_output_t *o,
                         sw_run_result_t *r)
 {
     const sw_engine_t *e = R->e;
@@ -154,7 +145,7 @@ static void fill_result(const runner_t *R, sw_run_end end, const sw_output_t *o,
 
 /* Free motion from the end of the input until the outcome is certain or
  * t_limit (s) passes; checks every chunk seconds. */
-static int free_motion(runner_t *R, double t_limit, double chunk, sw_run_result_t *r)
+int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_result_t *r)
 {
     sw_engine_t *e = R->e;
     const sw_derived_t *d = sw_engine_derived(e, 0);
@@ -194,13 +185,13 @@ static int free_motion(runner_t *R, double t_limit, double chunk, sw_run_result_
 }
 
 /* The pulse from state s (NULL: at rest), then free motion. */
-static int run_pulse_from(runner_t *R, const sw_state_t *s, const sw_pulse_t *pulse,
+static int run_pulse_from(sw_runner_t *R, const sw_state_t *s, const sw_pulse_t *pulse,
                           const sw_run_opts_t *o, sw_run_result_t *r)
 {
     sw_pulse_t pl = *pulse;
     const double p = sw_engine_derived(R->e, 0)->p;
     const double T = sw_pulse_duration(&pl);
-    runner_reset(R);
+    sw_runner_reset(R);
     if (s) {
         const int rc = sw_engine_set_state(R->e, 0, s);
         if (rc < 0) return rc;
@@ -208,10 +199,11 @@ static int run_pulse_from(runner_t *R, const sw_state_t *s, const sw_pulse_t *pu
     /* Up to the end of the pulse first, so that a step ends on its kink. */
     const int rc = sw_engine_advance_fn(R->e, T, sw_pulse_eval, &pl);
     if (rc < 0) return rc;
-    return free_motion(R, T + free_time_of(o, p), 2.0 * M_PI / p / CHECKS_PER_PERIOD, r);
+    return sw_run_free_motion(R, T + sw_run_free_time(o, p),
+                              2.0 * M_PI / p / SW_RUN_CHECKS_PER_PERIOD, r);
 }
 
-static int run_pulse_on(runner_t *R, const sw_pulse_t *pulse, const sw_run_opts_t *o,
+static int run_pulse_on(sw_runner_t *R, const sw_pulse_t *pulse, const sw_run_opts_t *o,
                         sw_run_result_t *r)
 {
     return run_pulse_from(R, NULL, pulse, o, r);
@@ -221,7 +213,7 @@ static int check_pulse(const sw_pulse_t *pulse, char *msg, size_t msglen)
 {
     if (!pulse || !(pulse->omega > 0.0) || !isfinite(pulse->omega) ||
         !isfinite(pulse->amplitude)) {
-        set_msg(msg, msglen, "the pulse needs a finite amplitude and omega > 0");
+        sw_set_msg(msg, msglen, "the pulse needs a finite amplitude and omega > 0");
         return SW_EINVAL;
     }
     return SW_OK;
@@ -231,14 +223,14 @@ int sw_pulse_run(const sw_scene_t *sc, const sw_pulse_t *pulse, const sw_run_opt
                  sw_run_result_t *r, char *msg, size_t msglen)
 {
     int err = SW_OK;
-    set_msg(msg, msglen, "%s", "");
+    sw_set_msg(msg, msglen, "%s", "");
     if (!sc || !r) return SW_EINVAL;
     memset(r, 0, sizeof *r);
     if ((err = check_pulse(pulse, msg, msglen)) != SW_OK) return err;
-    runner_t R;
-    if (make_engine(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK) return err;
+    sw_runner_t R;
+    if (sw_runner_make(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK) return err;
     err = run_pulse_on(&R, pulse, o, r);
-    if (err == SW_EFAULT) set_msg(msg, msglen, "the model faulted during the run");
+    if (err == SW_EFAULT) sw_set_msg(msg, msglen, "the model faulted during the run");
     sw_engine_destroy(R.e);
     return err;
 }
@@ -247,7 +239,7 @@ int sw_pulse_run_from(const sw_scene_t *sc, const sw_state_t *s, const sw_pulse_
                       const sw_run_opts_t *o, sw_run_result_t *r, char *msg, size_t msglen)
 {
     int err = SW_OK;
-    set_msg(msg, msglen, "%s", "");
+    sw_set_msg(msg, msglen, "%s", "");
     if (!sc || !s || !r) return SW_EINVAL;
     memset(r, 0, sizeof *r);
     if ((err = check_pulse(pulse, msg, msglen)) != SW_OK) return err;
@@ -259,22 +251,25 @@ int sw_pulse_run_from(const sw_scene_t *sc, const sw_state_t *s, const sw_pulse_
         r->overturn_side = s->theta > 0.0 ? 1 : -1;
         return SW_OK;
     }
-    runner_t R;
-    if (make_engine(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK) return err;
+    sw_runner_t R;
+    if (sw_runner_make(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK) return err;
     err = run_pulse_from(&R, s, pulse, o, r);
-    if (err == SW_EINVAL) set_msg(msg, msglen, "the state was refused");
-    if (err == SW_EFAULT) set_msg(msg, msglen, "the model faulted during the run");
+    if (err == SW_EINVAL) sw_set_msg(msg, msglen, "the state was refused");
+    if (err == SW_EFAULT) sw_set_msg(msg, msglen, "the model faulted during the run");
     sw_engine_destroy(R.e);
     return err;
 }
 
-static int run_log_on(runner_t *R, const sw_log_t *log, double scale, const sw_run_opts_t *o,
-                      sw_run_result_t *r)
+int sw_run_log_on(sw_runner_t *R, const sw_log_t *log, double scale, const sw_run_opts_t *o,
+                  sw_run_result_t *r)
 {
     sw_engine_t *e = R->e;
     const double p = sw_engine_derived(e, 0)->p;
-    runner_reset(R);
+    sw_runner_reset(R);
+    size_t next_restart = 0;
     for (size_t i = 0; i < log->n; i++) {
+        while (next_restart < log->nrestart && log->restart[next_restart] <= i)
+            if (log->restart[next_restart++] == i) sw_engine_restart(e);
         const int rc =
             sw_engine_push(e, log->t[i], scale * log->a_g[i], log->a_z ? log->a_z[i] : 0.0);
         if (rc == SW_EVENT) {
@@ -285,21 +280,22 @@ static int run_log_on(runner_t *R, const sw_log_t *log, double scale, const sw_r
     }
     const double t = sw_engine_time(e);
     if (isnan(t)) return SW_EINVAL; /* no usable sample */
-    return free_motion(R, t + free_time_of(o, p), 2.0 * M_PI / p / CHECKS_PER_PERIOD, r);
+    return sw_run_free_motion(R, t + sw_run_free_time(o, p),
+                              2.0 * M_PI / p / SW_RUN_CHECKS_PER_PERIOD, r);
 }
 
 int sw_log_run(const sw_scene_t *sc, const sw_log_t *log, double scale, const sw_run_opts_t *o,
                sw_run_result_t *r, char *msg, size_t msglen)
 {
     int err = SW_OK;
-    set_msg(msg, msglen, "%s", "");
+    sw_set_msg(msg, msglen, "%s", "");
     if (!sc || !r || !log || !log->t || !log->a_g || !isfinite(scale)) return SW_EINVAL;
     memset(r, 0, sizeof *r);
-    runner_t R;
-    if (make_engine(&R, sc, o, 0.0, &err, msg, msglen) != SW_OK) return err;
-    err = run_log_on(&R, log, scale, o, r);
-    if (err == SW_EINVAL) set_msg(msg, msglen, "the log has no usable sample");
-    if (err == SW_EFAULT) set_msg(msg, msglen, "the model faulted during the run");
+    sw_runner_t R;
+    if (sw_runner_make(&R, sc, o, 0.0, &err, msg, msglen) != SW_OK) return err;
+    err = sw_run_log_on(&R, log, scale, o, r);
+    if (err == SW_EINVAL) sw_set_msg(msg, msglen, "the log has no usable sample");
+    if (err == SW_EFAULT) sw_set_msg(msg, msglen, "the model faulted during the run");
     sw_engine_destroy(R.e);
     return err;
 }
@@ -472,7 +468,7 @@ void sw_parallel_for(size_t n, int threads, void (*job)(void *user, size_t i), v
 /* ---- boundary curves -------------------------------------------------------- */
 
 typedef struct {
-    runner_t *R;
+    sw_runner_t *R;
     const sw_run_opts_t *ro;
     sw_pulse_t pulse;
     double unit; /* m/s^2, g tan(alpha): x = 1 */
@@ -489,7 +485,7 @@ static int pulse_trial(void *user, double x, sw_run_result_t *r)
  * below.  Frame: the support's acceleration over g tan(alpha) (uplift at
  * 1).  Cushion: the lift drive b |sin theta| - (z - z_s) in m (an edge
  * leaves the cushion when it exceeds the static deflection z_s). */
-static double probe_value(const sw_derived_t *d, const sw_output_t *o, double z_s)
+double sw_run_probe_value(const sw_derived_t *d, const sw_output_t *o, double z_s)
 {
     if (d->model == SW_MODEL_CUSHION)
         return d->b * fabs(sin(o->state.theta)) - (o->state.z - z_s);
@@ -498,7 +494,7 @@ static double probe_value(const sw_derived_t *d, const sw_output_t *o, double z_
 
 /* The probe's peak turned into the x (or scale) at which the package
  * first lifts: frame at a ratio of 1, cushion at a drive of z_s. */
-static double probe_lift(const sw_derived_t *d, double probe, double peak, double z_s)
+double sw_run_probe_lift(const sw_derived_t *d, double probe, double peak, double z_s)
 {
     if (!(peak > 0.0)) return INFINITY;
     return probe * (d->model == SW_MODEL_CUSHION ? z_s : 1.0) / peak;
@@ -535,10 +531,10 @@ static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pul
         sw_engine_advance_fn(e, t, sw_pulse_eval, &pulse);
         sw_output_t o;
         sw_engine_get_output(e, 0, &o);
-        const double v = probe_value(d, &o, z_s);
+        const double v = sw_run_probe_value(d, &o, z_s);
         if (v > peak) peak = v;
     }
-    return probe_lift(d, probe, peak, z_s);
+    return sw_run_probe_lift(d, probe, peak, z_s);
 }
 
 int sw_curve_scene(const sw_curve_t *c, double omega_e, sw_scene_t *out)
@@ -556,39 +552,39 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
                       sw_boundary_point_t *out, char *msg, size_t msglen)
 {
     int err = SW_OK;
-    set_msg(msg, msglen, "%s", "");
+    sw_set_msg(msg, msglen, "%s", "");
     if (!c || !o || !out) return SW_EINVAL;
     memset(out, 0, sizeof *out);
     out->omega_ratio = omega_ratio;
     sw_scene_t sc = c->scene;
     sw_derived_t d;
-    runner_t R;
+    sw_runner_t R;
     R.e = NULL;
     if (!(omega_ratio > 0.0) || !isfinite(omega_ratio)) {
-        set_msg(msg, msglen, "omega_e/p must be > 0");
+        sw_set_msg(msg, msglen, "omega_e/p must be > 0");
         err = SW_EINVAL;
         goto out;
     }
     if (sw_scene_validate(&sc, &d, NULL, NULL, NULL) != SW_OK) {
-        set_msg(msg, msglen, "scene '%s' is not valid", sc.name);
+        sw_set_msg(msg, msglen, "scene '%s' is not valid", sc.name);
         err = SW_EINVAL;
         goto out;
     }
     const double omega_e = omega_ratio * d.p; /* rad/s */
     if (c->bearing_ratio > 0.0) {
         if (sw_curve_scene(c, omega_e, &sc) != SW_OK) {
-            set_msg(msg, msglen, "scene '%s' has no frame to set omega_b/omega_e on", sc.name);
+            sw_set_msg(msg, msglen, "scene '%s' has no frame to set omega_b/omega_e on", sc.name);
             err = SW_EINVAL;
             goto out;
         }
         if (sw_scene_validate(&sc, &d, NULL, NULL, NULL) != SW_OK) {
-            set_msg(msg, msglen, "scene '%s' with omega_b = %g rad/s is not valid", sc.name,
+            sw_set_msg(msg, msglen, "scene '%s' with omega_b = %g rad/s is not valid", sc.name,
                     sc.frame_omega);
             err = SW_EINVAL;
             goto out;
         }
     }
-    if (make_engine(&R, &sc, &o->run, omega_e, &err, msg, msglen) != SW_OK) goto out;
+    if (sw_runner_make(&R, &sc, &o->run, omega_e, &err, msg, msglen) != SW_OK) goto out;
 
     pulse_trial_t T = {&R, &o->run, {o->shape, 0.0, omega_e}, sc.g * tan(d.alpha)};
     sw_search_opts_t so = o->search;
@@ -609,12 +605,12 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
     }
     err = sw_threshold_search(pulse_trial, &T, &so, &out->th);
     if (err == SW_EINVAL)
-        set_msg(msg, msglen, "bad search range or steps (x_min %g, x_max %g)", so.x_min,
+        sw_set_msg(msg, msglen, "bad search range or steps (x_min %g, x_max %g)", so.x_min,
                 so.x_max);
     else if (err == SW_EFAULT)
-        set_msg(msg, msglen, "the model faulted at omega_e/p = %g", omega_ratio);
+        sw_set_msg(msg, msglen, "the model faulted at omega_e/p = %g", omega_ratio);
     else if (err < 0)
-        set_msg(msg, msglen, "%s", sw_strerror(err));
+        sw_set_msg(msg, msglen, "%s", sw_strerror(err));
 out:
     sw_engine_destroy(R.e);
     out->status = err;
@@ -650,13 +646,13 @@ int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ra
                       size_t nratios, const sw_boundary_opts_t *o, sw_boundary_point_t *out,
                       char *msg, size_t msglen)
 {
-    set_msg(msg, msglen, "%s", "");
+    sw_set_msg(msg, msglen, "%s", "");
     if (!curves || !ratios || !o || !out || ncurves == 0 || nratios == 0) return SW_EINVAL;
     sweep_t S = {curves, ratios, nratios, ncurves * nratios, o, out, NULL,
                  PTHREAD_MUTEX_INITIALIZER, 0};
     S.msgs = calloc(S.total, sizeof *S.msgs);
     if (!S.msgs) {
-        set_msg(msg, msglen, "out of memory");
+        sw_set_msg(msg, msglen, "out of memory");
         return SW_ENOMEM;
     }
     sw_parallel_for(S.total, o->threads, sweep_job, &S);
@@ -664,126 +660,11 @@ int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ra
     for (size_t i = 0; i < S.total; i++)
         if (out[i].status < 0) {
             rc = out[i].status;
-            set_msg(msg, msglen, "curve %zu, omega_e/p = %g: %s", i / nratios + 1,
+            sw_set_msg(msg, msglen, "curve %zu, omega_e/p = %g: %s", i / nratios + 1,
                     out[i].omega_ratio, S.msgs[i][0] ? S.msgs[i] : sw_strerror(rc));
             break;
         }
     free(S.msgs);
     pthread_mutex_destroy(&S.mu);
     return rc;
-}
-
-/* ---- safety factor -------------------------------------------------------------- */
-
-typedef struct {
-    runner_t *R;
-    const sw_log_t *log;
-    const sw_run_opts_t *ro;
-} log_trial_t;
-
-static int log_trial(void *user, double x, sw_run_result_t *r)
-{
-    log_trial_t *T = user;
-    return run_log_on(T->R, T->log, x, T->ro, r);
-}
-
-int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
-                     const sw_search_opts_t *so_in, sw_safety_t *out, char *msg, size_t msglen)
-{
-    int err = SW_OK;
-    set_msg(msg, msglen, "%s", "");
-    if (!sc || !log || !log->t || !log->a_g || !out) return SW_EINVAL;
-    memset(out, 0, sizeof *out);
-    out->factor = out->factor_safe = INFINITY;
-    sw_derived_t d;
-    if (sw_scene_validate(sc, &d, NULL, NULL, NULL) != SW_OK) {
-        set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
-        return SW_EINVAL;
-    }
-    double a_peak = 0.0; /* m/s^2 */
-    for (size_t i = 0; i < log->n; i++)
-        if (isfinite(log->a_g[i]) && fabs(log->a_g[i]) > a_peak) a_peak = fabs(log->a_g[i]);
-
-    runner_t R;
-    if (make_engine(&R, sc, ro, 0.0, &err, msg, msglen) != SW_OK) return err;
-    sw_engine_t *e = R.e;
-    log_trial_t T = {&R, log, ro};
-    if ((err = run_log_on(&R, log, 1.0, ro, &out->at_one)) < 0) goto out;
-    out->overturned = out->at_one.overturned;
-    if (a_peak == 0.0) { /* no longitudinal acceleration: no scale changes anything */
-        out->lift_scale = INFINITY;
-        goto out;
-    }
-
-    sw_search_opts_t so = {0};
-    if (so_in) so = *so_in;
-    const double bare_lift = sc->g * tan(d.alpha) / a_peak; /* scale lifting a package on the bed */
-    if (!(so.x_max > 0.0)) so.x_max = DEFAULT_X_MAX * bare_lift;
-    out->max_scale = so.x_max;
-    if (d.model == SW_MODEL_BARE && !log->a_z) {
-        out->lift_scale = bare_lift;
-    } else {
-        /* linear until the package leaves its rest contact (pulse_lift()):
-         * replay far below that and scale; the log's own samples are the
-         * probe's, so the margin below is wider than for a pulse */
-        const double probe = 1e-4 * bare_lift;
-        const double z_s = d.model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(&d, sc->g) : 0.0;
-        double peak = 0.0;
-        sw_engine_reset(e);
-        for (size_t i = 0; i < log->n; i++) {
-            if (sw_engine_push(e, log->t[i], probe * log->a_g[i], log->a_z ? log->a_z[i] : 0.0) < 0)
-                continue;
-            sw_output_t o;
-            sw_engine_get_output(e, 0, &o);
-            const double v = probe_value(&d, &o, z_s);
-            if (v > peak) peak = v;
-        }
-        out->lift_scale = probe_lift(&d, probe, peak, z_s);
-    }
-    if (!(so.x_min > 0.0)) {
-        so.x_min = out->lift_scale;
-        if (d.model != SW_MODEL_BARE || log->a_z) so.x_min *= LIFT_MARGIN_LOG;
-        if (log->a_z) so.x_min = fmin(so.x_min, LIFT_MARGIN_LOG * bare_lift);
-    }
-
-    /* below: from lifting up to the recorded shock itself; if the log
-     * overturned the package, 1 overturns and the search ends by 1 */
-    sw_search_opts_t sb = so;
-    sb.x_max = 1.0;
-    if (sb.x_min < 1.0) {
-        if ((err = sw_threshold_search(log_trial, &T, &sb, &out->below)) < 0) goto out;
-    } else if (out->overturned) {
-        /* the estimate of lifting was above 1, yet 1 overturned: bracket from
-         * the recorded shock down is not possible; report 1 itself */
-        out->below.found = out->below.at_min = 1;
-        out->below.x = 1.0;
-        out->below.at_x = out->at_one;
-    }
-    if (out->overturned) {
-        out->found = out->below.found;
-        out->factor = out->below.x;
-        out->factor_safe = out->below.x_safe;
-        goto out;
-    }
-    /* above: it survived; scan up from 1 (or from lifting, if higher) */
-    sw_search_opts_t sa = so;
-    sa.x_min = fmax(1.0, so.x_min);
-    if (sa.x_min < sa.x_max) {
-        if ((err = sw_threshold_search(log_trial, &T, &sa, &out->above)) < 0) goto out;
-        if (out->above.found) {
-            out->found = 1;
-            out->factor = out->above.x;
-            out->factor_safe = out->above.at_min ? 1.0 : out->above.x_safe;
-        }
-    }
-out:
-    out->trials = 1 + out->below.trials + out->above.trials;
-    if (err == SW_EINVAL)
-        set_msg(msg, msglen, "the log has no usable sample, or the search range is empty");
-    else if (err == SW_EFAULT)
-        set_msg(msg, msglen, "the model faulted during a trial");
-    else if (err < 0)
-        set_msg(msg, msglen, "%s", sw_strerror(err));
-    sw_engine_destroy(e);
-    return err;
 }

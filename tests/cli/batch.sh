@@ -178,6 +178,45 @@ expect_rc 1 "--fail-on-overturn"
 run "$SW" batch --scene "$CRATE" "$B/a04.csv" "$B/a01.csv" --fail-on-overturn
 expect_rc 0 "--fail-on-overturn, nothing overturned"
 
+# --job forensics: a record per log and package with forensics' JSON for
+# it, the same as "swaywatch forensics --json" of each log on its own, and
+# a CSV row of the answer; the threads give the same records.
+LOGS=$SRC/sample_logs
+for t in 1 2; do
+    run "$SW" batch --job forensics --scene "$CRATE" --scene "$LOGS/crate-on-frame.ini" \
+        --frame-omega 1Hz --cushion-omega 8Hz --threads $t --csv "$TMP/f$t.csv" \
+        "$LOGS/hard-stop-overturn.csv" "$LOGS/braking-pothole.csv"
+    expect_rc 0 "batch --job forensics --threads $t"
+    cp "$TMP/out" "$TMP/f$t.jsonl"
+done
+cmp "$TMP/f1.jsonl" "$TMP/f2.jsonl" || fail "batch forensics differs between 1 and 2 threads"
+for log in hard-stop-overturn braking-pothole; do
+    run "$SW" forensics "$LOGS/$log.csv" --scene "$CRATE" --scene "$LOGS/crate-on-frame.ini" \
+        --frame-omega 1Hz --cushion-omega 8Hz --json
+    expect_rc 0 "forensics $log"
+    cp "$TMP/out" "$TMP/$log.json"
+done
+python3 - "$TMP/f1.jsonl" "$TMP/f1.csv" "$TMP/hard-stop-overturn.json" "$TMP/braking-pothole.json" <<'PY' || fail "batch forensics against forensics"
+import csv, json, sys
+recs = [json.loads(l) for l in open(sys.argv[1])]
+rows = list(csv.DictReader(open(sys.argv[2])))
+alone = {"hard-stop-overturn": json.load(open(sys.argv[3])), "braking-pothole": json.load(open(sys.argv[4]))}
+assert len(recs) == len(rows) == 4, (len(recs), len(rows))
+for rec, row in zip(recs, rows):
+    assert rec["job"] == "forensics" and rec["status"] == "ok", rec
+    name = rec["log"].rsplit("/", 1)[1][:-4]
+    pk = [p for p in alone[name]["packages"] if p["name"] == rec["name"]][0]
+    for k in ("verdict", "overturned", "min_margin", "min_reserve_g", "safety_factor", "saved_by", "what_if"):
+        assert rec[k] == pk[k], (name, rec["name"], k)
+    assert row["package"] == rec["name"] and row["verdict"] == rec["verdict"]
+    assert float(row["factor"]) == rec["safety_factor"]["factor"]
+    assert float(row["factor_safe"]) == rec["safety_factor"]["factor_safe"]
+# the frame overturns on the braking the bare crate survives
+v = {(r["log"].rsplit("/", 1)[1], r["name"]): r["verdict"] for r in recs}
+assert v[("braking-pothole.csv", "crate-A")] == "upright"
+assert v[("braking-pothole.csv", "crate-A-on-frame")] == "overturned"
+PY
+
 # --progress: the logs done, on stderr
 run "$SW" batch --scene "$CRATE" "$B/a04.csv" "$B/a01.csv" --progress -o "$TMP/p.jsonl"
 expect_rc 0 "--progress"

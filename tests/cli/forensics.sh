@@ -1,7 +1,9 @@
-# forensics.sh - "swaywatch forensics": the replay summary, the safety
-# factor (<= 1 for a log that overturned, > 1 for one that did not, and
-# scaling the log by it -1 % / +1 % flips the outcome of replay), the
-# what-if table, JSON and the figure.
+# forensics.sh - "swaywatch forensics": the answer, the safety factor as a
+# bracket (<= 1 for a log that overturned, > 1 for one that did not; a
+# direct replay of the log scaled by its lower end stays upright and by its
+# upper end overturns), two scenes at once, the catalogue's what-if table,
+# frequencies in Hz and rad/s, JSON, thread counts, CSV against
+# lcm-logger files, and the figure.
 . "$(dirname "$0")/lib.sh"
 LOGS=$SRC/sample_logs
 CRATE=$LOGS/crate.ini
@@ -10,7 +12,8 @@ run "$SW" forensics --help
 expect_rc 0 "forensics --help"
 [ ! -s "$TMP/err" ] || fail "forensics --help wrote to stderr"
 for opt in --scene --settle --frame-mass --frame-omega --frame-zeta --cushion-omega \
-    --cushion-zeta --size --plot --json --threads --time-col --accel-unit 'Exit codes: 0 ok'; do
+    --cushion-zeta --size --plot --report --json --threads --time-col --accel-unit \
+    --accel-channel 'Exit codes: 0 ok'; do
     grep -q -- "$opt" "$TMP/out" || fail "forensics --help: $opt not listed"
 done
 run "$SW" forensics --scene "$CRATE"
@@ -21,8 +24,9 @@ expect_rc 3 "missing LOG"
 run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --size 2by1
 expect_rc 2 "bad --size"
 expect_err "--size" "bad --size"
-run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --scene "$CRATE"
-expect_rc 2 "two scenes"
+run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --frame-omega 2kHz
+expect_rc 2 "bad --frame-omega unit"
+expect_err "expected Hz or rad/s" "bad --frame-omega unit"
 
 # scale LOG FACTOR OUT: the log with its acceleration column times FACTOR
 scale() {
@@ -37,30 +41,80 @@ with open(src) as i, open(out, "w") as o:
 PY
 }
 
-# check LOG OVERTURNED: the safety factor is on the right side of 1 and
-# replay of the log scaled by 0.99 / 1.01 of it stays up / overturns
+# check LOG OVERTURNED: the safety factor is on the right side of 1, and a
+# direct replay of the log scaled by the lower end of its bracket stays
+# upright, by the upper end overturns (both ends were run by the search).
 check() {
     run "$SW" forensics "$1" --scene "$CRATE" --json --no-what-if
     expect_rc 0 "forensics $1"
     cp "$TMP/out" "$TMP/f.json"
-    json_check "$TMP/f.json" "j['replay']['packages'][0]['overturned'] == $2 and j['safety_factor']['overturned'] == $2"
+    json_check "$TMP/f.json" "j['replay']['packages'][0]['overturned'] == $2 and j['packages'][0]['safety_factor']['overturned'] == $2"
     if [ "$2" = True ]; then
-        json_check "$TMP/f.json" 'j["safety_factor"]["factor"] <= 1'
+        json_check "$TMP/f.json" 'j["packages"][0]["safety_factor"]["factor"] <= 1'
     else
-        json_check "$TMP/f.json" 'j["safety_factor"]["factor"] > 1'
+        json_check "$TMP/f.json" 'j["packages"][0]["safety_factor"]["factor"] > 1'
     fi
-    f=$(python3 -c 'import json,sys; print(repr(json.load(open(sys.argv[1]))["safety_factor"]["factor"]))' "$TMP/f.json")
-    for k in 0.99 1.01; do
-        scale "$1" "$(python3 -c "print(repr($k * $f))")" "$TMP/s.csv"
+    json_check "$TMP/f.json" 'j["packages"][0]["safety_factor"]["bracket"] == [j["packages"][0]["safety_factor"]["factor_safe"], j["packages"][0]["safety_factor"]["factor"]]'
+    for end in 0 1; do
+        f=$(python3 -c 'import json,sys; print(repr(json.load(open(sys.argv[1]))["packages"][0]["safety_factor"]["bracket"][int(sys.argv[2])]))' "$TMP/f.json" $end)
+        scale "$1" "$f" "$TMP/s.csv"
         run "$SW" replay "$TMP/s.csv" --scene "$CRATE" --json
-        expect_rc 0 "replay x$k"
-        cp "$TMP/out" "$TMP/r$k.json"
+        expect_rc 0 "replay x$f"
+        cp "$TMP/out" "$TMP/r$end.json"
     done
-    json_check "$TMP/r0.99.json" 'not j["packages"][0]["overturned"]'
-    json_check "$TMP/r1.01.json" 'j["packages"][0]["overturned"]'
+    json_check "$TMP/r0.json" 'not j["packages"][0]["overturned"]'
+    json_check "$TMP/r1.json" 'j["packages"][0]["overturned"]'
 }
 check "$LOGS/hard-stop-overturn.csv" True
 check "$LOGS/braking-pothole.csv" False
+
+# Two scenes: each its own answer, safety factor and what-if rows; the
+# bare crate's factor is the one it has alone.
+run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$CRATE" --scene "$LOGS/crate-on-frame.ini" \
+    --json --size 2.4x0.8
+expect_rc 0 "two scenes"
+cp "$TMP/out" "$TMP/two.json"
+json_check "$TMP/two.json" '[p["name"] for p in j["packages"]] == ["crate-A", "crate-A-on-frame"]'
+json_check "$TMP/two.json" 'not j["packages"][0]["overturned"] and j["packages"][1]["overturned"]'
+json_check "$TMP/two.json" 'j["packages"][0]["safety_factor"]["factor"] > 1 > j["packages"][1]["safety_factor"]["factor"]'
+json_check "$TMP/two.json" 'all(c["case"] == "as given" for c in (p["what_if"][0] for p in j["packages"]))'
+json_check "$TMP/two.json" 'j["packages"][1]["what_if"][1]["case"] == "bed" and j["packages"][1]["what_if"][1]["model"] == "bare"'
+# the frame's "bed" row is the bare crate: the same factor as crate-A's own
+json_check "$TMP/two.json" 'j["packages"][1]["what_if"][1]["safety_factor"]["bracket"] == j["packages"][0]["safety_factor"]["bracket"]'
+json_check "$TMP/two.json" 'j["packages"][1]["saved_by"] and "bed" in j["packages"][1]["saved_by"]'
+# the catalogue: two frames and two cushions, in Hz, with what they stand for
+json_check "$TMP/two.json" 'sum(1 for c in j["packages"][0]["what_if"] if "stands_for" in c) == 4'
+json_check "$TMP/two.json" 'any("1 Hz" in c.get("support", "") for c in j["packages"][0]["what_if"])'
+json_check "$TMP/two.json" '[c["case"] for c in j["packages"][0]["what_if"]][-1] == "size 2.4x0.8 m"'
+grep -Eqi 'nan|infinity' "$TMP/two.json" && fail "NaN or Infinity in the JSON"
+# each package's smallest reserve is the one replay finds for it
+run "$SW" replay "$LOGS/braking-pothole.csv" --scene "$CRATE" --scene "$LOGS/crate-on-frame.ini" --json
+expect_rc 0 "replay of the two scenes"
+cp "$TMP/out" "$TMP/two-replay.json"
+python3 - "$TMP/two.json" "$TMP/two-replay.json" <<'PY' || fail "forensics' reserve differs from replay's"
+import json, sys
+f, r = (json.load(open(p)) for p in sys.argv[1:])
+for pf, pr in zip(f["packages"], r["packages"]):
+    assert pr["min_reserve_g"] is not None, pr  # 0 for the frame: it overturned
+    assert pf["min_reserve_g"] == pr["min_reserve_g"], (pf["min_reserve_g"], pr["min_reserve_g"])
+    assert pf["min_reserve_time"] == pr["min_reserve_time"]
+PY
+
+# Hz and rad/s name the same frame: 1Hz = 6.283185307179586 rad/s.
+run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$CRATE" --frame-omega 1Hz --json \
+    --cushion-omega 60
+cp "$TMP/out" "$TMP/hz.json"
+run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$CRATE" \
+    --frame-omega 6.283185307179586rad/s --json --cushion-omega 60
+cp "$TMP/out" "$TMP/rad.json"
+python3 - "$TMP/hz.json" "$TMP/rad.json" <<'PY' || fail "--frame-omega 1Hz differs from 2 pi rad/s"
+import json, sys
+a, b = (json.load(open(p))["packages"][0]["what_if"] for p in sys.argv[1:])
+fa = [c for c in a if c["case"] == "frame"][0]
+fb = [c for c in b if c["case"] == "frame"][0]
+assert fa["safety_factor"]["bracket"] == fb["safety_factor"]["bracket"], (fa, fb)
+assert not any("stands_for" in c for c in a), "the user's supports replace the catalogue's"
+PY
 
 # The human report: replay's summary, the factor, the what-if table; the
 # cushion row is computed, or says why not (a build without the cushion
@@ -68,8 +122,9 @@ check "$LOGS/braking-pothole.csv" False
 run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$CRATE" --frame-omega 3 \
     --cushion-omega 60 --size 2.4x0.8
 expect_rc 0 "what-if"
-for want in 'package crate-A: bare model' 'minimum margin' 'safety factor' 'what if' 'as given' \
-    'frame ' 'cushion ' 'size 2.4x0.8 m'; do
+for want in 'crate-A (2x0.728 m, 1000 kg, on the bed): stayed upright' 'safety factor [' \
+    'It stayed upright' 'package crate-A: bare model' 'minimum margin' 'what if' 'as given' \
+    'frame ' 'cushion ' 'size 2.4x0.8 m' 'How this was found'; do
     grep -qF "$want" "$TMP/out" || { show; fail "report lacks '$want'"; }
 done
 cushion=$(grep '^  cushion ' "$TMP/out")
@@ -78,21 +133,73 @@ case "$cushion" in
 *upright* | *OVERTURNED*) ;;
 *) show; fail "cushion row: $cushion" ;;
 esac
-run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$CRATE"
-grep -qF 'no frame given' "$TMP/out" || { show; fail "frame row without parameters"; }
+# The answer comes first, the method after; -q keeps the answer alone.
+answer_line=$(grep -n 'safety factor \[' "$TMP/out" | head -1 | cut -d: -f1)
+method_line=$(grep -n 'How this was found' "$TMP/out" | cut -d: -f1)
+[ "$answer_line" -lt "$method_line" ] || fail "the method comes before the answer"
+run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$CRATE" -q --frame-omega 3 \
+    --cushion-omega 60 --size 2.4x0.8
+expect_rc 0 "-q"
+grep -qF 'safety factor [' "$TMP/out" || fail "-q hid the answer"
+grep -qF 'what if' "$TMP/out" || fail "-q hid the what-if table"
+grep -qF 'How this was found' "$TMP/out" && fail "-q kept the method"
+grep -qF 'package crate-A: bare model' "$TMP/out" && fail "-q kept the replay summary"
+[ ! -s "$TMP/err" ] || { show; fail "-q: messages on stderr (a progress line when piped?)"; }
 
 # JSON: one object, the replay summary inside, a row per case
 run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$LOGS/crate-on-frame.ini" --json \
     --size 1.5x0.728 --threads 1
 expect_rc 0 "json"
 cp "$TMP/out" "$TMP/one.json"
-json_check "$TMP/one.json" '[c["case"] for c in j["what_if"]] == ["as given", "bed", "cushion", "size 1.5x0.728 m"]'
-json_check "$TMP/one.json" 'j["what_if"][0]["model"] == "frame" and j["what_if"][1]["model"] == "bare" and not j["what_if"][2]["available"]'
+json_check "$TMP/one.json" '[c["case"] for c in j["packages"][0]["what_if"]][:2] == ["as given", "bed"]'
+json_check "$TMP/one.json" 'j["packages"][0]["what_if"][0]["model"] == "frame" and j["packages"][0]["what_if"][1]["model"] == "bare"'
 grep -Eqi 'nan|infinity' "$TMP/one.json" && fail "NaN or Infinity in the JSON"
-# the same on two threads
+# the same on two threads, and in words: all but the command line
 run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$LOGS/crate-on-frame.ini" --json \
     --size 1.5x0.728 --threads 2
-cmp "$TMP/one.json" "$TMP/out" || fail "what-if differs between 1 and 2 threads"
+python3 - "$TMP/one.json" "$TMP/out" <<'PY' || fail "the JSON differs between 1 and 2 threads"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:])
+ca, cb = a.pop("command"), b.pop("command")
+assert cb[-2:] == ["--threads", "2"], cb
+assert a == b
+PY
+for n in 1 2; do
+    run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --scene "$LOGS/crate-on-frame.ini" \
+        --threads $n
+    cp "$TMP/out" "$TMP/t$n.txt"
+done
+cmp "$TMP/t1.txt" "$TMP/t2.txt" || fail "the report differs between 1 and 2 threads"
+
+# The overturn sample as CSV and as an lcm-logger file: the same answer.
+if [ -n "${SW_LCM_PYTHON_DIR:-}" ] && "$SW" --help | grep -q monitor; then
+    PYTHONPATH=$SW_LCM_PYTHON_DIR python3 "$SRC/docs/examples/csv2lcmlog.py" \
+        "$LOGS/hard-stop-overturn.csv" "$TMP/drive.lcmlog" --start-utime 1700000000000000 >/dev/null
+    run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --json --cushion-omega 8Hz \
+        --frame-omega 1Hz
+    expect_rc 0 "forensics of the CSV"
+    cp "$TMP/out" "$TMP/csv.json"
+    run "$SW" forensics "$TMP/drive.lcmlog" --scene "$CRATE" --json --cushion-omega 8Hz \
+        --frame-omega 1Hz
+    expect_rc 0 "forensics of the lcm-logger file"
+    cp "$TMP/out" "$TMP/lcm.json"
+    python3 - "$TMP/csv.json" "$TMP/lcm.json" <<'PY' || fail "CSV and lcm-logger answers differ"
+import json, sys
+c, l = (json.load(open(p)) for p in sys.argv[1:])
+assert c["log"]["source"] == "a CSV log" and l["log"]["source"] == "an lcm-logger file"
+assert c["log"]["samples_used"] == l["log"]["samples_used"] == 8001
+for pc, pl in zip(c["packages"], l["packages"]):
+    assert pc["overturned"] and pl["overturned"]
+    assert abs(pc["overturn_time"] - pl["overturn_time"]) < 1e-6
+    for wc, wl in zip(pc["what_if"], pl["what_if"]):
+        assert wc["case"] == wl["case"] and wc["overturned"] == wl["overturned"], (wc, wl)
+        bc, bl = wc["safety_factor"]["bracket"], wl["safety_factor"]["bracket"]
+        # the times come from utime in microseconds: the same to rounding
+        assert all(abs(x - y) <= 2e-3 * y for x, y in zip(bc, bl)), (wc["case"], bc, bl)
+PY
+    run "$SW" forensics "$TMP/drive.lcmlog" --scene "$CRATE" --time-col 1
+    expect_rc 2 "a CSV option on an lcm-logger file"
+fi
 
 # --fail-on-overturn, --plot
 run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --fail-on-overturn --no-what-if

@@ -1,0 +1,104 @@
+/* forensics.h - what "swaywatch forensics" holds while it runs, shared by
+ * the command (cmd_forensics.c), its answer in words and in JSON
+ * (forensics_out.c) and its HTML report (report.c). */
+#ifndef SWAYWATCH_CLI_FORENSICS_H
+#define SWAYWATCH_CLI_FORENSICS_H
+
+#include <stdio.h>
+
+#include "figure.h"
+#include "input.h"
+#include "opts.h"
+#include "output.h"
+#include "source.h"
+#include "whatif.h"
+
+/* forensics' own options. */
+typedef struct {
+    double settle; /* s of zero input after the end of the log, as replay */
+    int fail_on_overturn;
+    long threads;
+    long max_samples; /* the log held in memory, at most */
+    sw_search_opts_t so;
+    sw_cli_whatif_t w;
+    const char *plot;   /* --plot FILE.png|.svg */
+    const char *report; /* --report FILE.html */
+} sw_cli_forensics_opts_t;
+
+/* The events kept for the report's table, at most. */
+#define SW_CLI_FORENSICS_EVENTS 400
+
+typedef struct {
+    sw_cli_opts_t o;
+    sw_cli_read_opts_t in;
+    sw_cli_forensics_opts_t fo;
+    sw_cli_given_t given;
+    int argc;
+    char **argv;       /* the command as given (argv[0] is "forensics") */
+    const char *log;   /* LOG as given */
+    int scenes_shared; /* a batch's: scenes read, and their cost warned about, once */
+    sw_cli_reader_t R; /* the log's reading and the engine of every package */
+    sw_scene_t *scenes;
+    size_t n;
+    sw_engine_opts_t eo; /* the integration options of the replay and of every search */
+    sw_cli_states_t states;
+    sw_cli_events_t events;
+    sw_cli_figure_t *fig; /* --plot or --report */
+    sw_cli_log_t L;       /* what the gate handed the engine */
+    sw_cli_case_t *cases; /* every package's cases, package by package */
+    size_t ncases;
+    /* events kept for the report (impacts beyond the first few of a package
+     * are counted only) */
+    sw_event_t *ev;
+    size_t nev;
+    long *impacts_seen; /* per package */
+    long ev_dropped;
+    /* the search's progress line and its time */
+    double started, progress_at, search_s;
+    int progress_shown;
+} sw_cli_forensics_t;
+
+/* The events kept for the report: begin before the replay (SW_EXIT_OK or
+ * SW_EXIT_IO, reported), one call per engine event, end after it. */
+int sw_cli_forensics_begin(sw_cli_forensics_t *F);
+void sw_cli_forensics_event(sw_cli_forensics_t *F, const sw_event_t *ev);
+void sw_cli_forensics_end(sw_cli_forensics_t *F);
+void sw_cli_forensics_free(sw_cli_forensics_t *F); /* what begin allocated */
+
+/* The answer first, then (without -q) the method: the replay summary and
+ * how the safety factors were found. */
+void sw_cli_forensics_text(FILE *f, const sw_cli_forensics_t *F);
+/* The same as one JSON object (docs/forensics.md). */
+void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F);
+/* The same as one self-contained HTML page: SW_EXIT_OK or SW_EXIT_IO
+ * (reported). */
+int sw_cli_forensics_report(const sw_cli_forensics_t *F, const char *path);
+
+/* Shared by the text, JSON and HTML: package k's summary of the replay
+ * (0 if there is none), and its case as given. */
+int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t *s);
+const sw_cli_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k);
+
+/* forensics of many logs, for "swaywatch batch" (batch.h): the options
+ * at their defaults (NULL: out of memory, reported), freed with
+ * sw_cli_forensics_destroy() (NULL ok); the groups a batch takes (the
+ * log's reading, scenes, integration, the searches and the what-if, not
+ * the outputs), at most 16; after parsing them, the scenes read once. */
+sw_cli_forensics_t *sw_cli_forensics_new(void);
+void sw_cli_forensics_destroy(sw_cli_forensics_t *F);
+size_t sw_cli_forensics_groups(sw_cli_forensics_t *F, sw_cli_group_t *g);
+int sw_cli_forensics_ready(sw_cli_forensics_t *F, const sw_cli_group_t *g, size_t ng);
+
+/* The forensics of log with the options of opts (ready; only read, so any
+ * number of threads may share it), as "swaywatch forensics -q" would do
+ * it: on success report(user, F) is called with the run's state and the
+ * exit code returned (0, or 1 with --fail-on-overturn); otherwise the exit
+ * code forensics would give (reported), and report is not called. */
+typedef void (*sw_cli_forensics_report_fn)(void *user, const sw_cli_forensics_t *F);
+int sw_cli_forensics_log(const sw_cli_forensics_t *opts, const char *log,
+                         sw_cli_forensics_report_fn report, void *user);
+
+/* Package k's members of the JSON's "packages" (no braces). */
+void sw_cli_forensics_json_package(FILE *f, const sw_cli_forensics_t *F, size_t k);
+
+#endif

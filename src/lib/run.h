@@ -1,0 +1,54 @@
+/* run.h - what the library's run-many-times modules share (sweep.c: one
+ * run, boundaries; safety.c: the safety factors of a log): an engine made
+ * for runs, the free motion after the input until the outcome is certain,
+ * and the probe of how far a package is from leaving its rest contact.
+ * Internal: not part of the public API. */
+#ifndef SWAYWATCH_RUN_H
+#define SWAYWATCH_RUN_H
+
+#include <stddef.h>
+
+#include "swaywatch/sweep.h"
+
+#define SW_RUN_CHECKS_PER_PERIOD 16.0 /* stop checks per rocking period of free motion */
+
+/* An engine and what its event callback records of the current run: the
+ * direction of the first uplift and of the overturn (+1 the top forward),
+ * which tell a direct overturn from one after a reverse sway.  The engine
+ * holds a pointer to the record: a runner must not move once made. */
+typedef struct {
+    sw_engine_t *e;
+    int uplift_side, overturn_side;
+} sw_runner_t;
+
+/* An engine for one scene.  dt: the option, or the scheme's default capped
+ * at 1/400 of the shorter of the pulse period (omega_e > 0) and the
+ * rocking period.  Returns SW_OK, or the error with msg set. */
+int sw_runner_make(sw_runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o, double omega_e,
+                   int *err, char *msg, size_t msglen);
+void sw_runner_reset(sw_runner_t *R);
+
+/* Free motion allowed after the input (s), for a package of rocking
+ * frequency p (rad/s). */
+double sw_run_free_time(const sw_run_opts_t *o, double p);
+
+/* Free motion from the end of the input until the outcome is certain or
+ * t_limit (s) passes; checks every chunk seconds.  Fills r. */
+int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_result_t *r);
+
+/* The log scaled, from the start, then free motion (sw_log_run()). */
+int sw_run_log_on(sw_runner_t *R, const sw_log_t *log, double scale, const sw_run_opts_t *o,
+                  sw_run_result_t *r);
+
+/* How far the package is from leaving its rest contact: frame or bed, the
+ * support's acceleration over g tan(alpha) (uplift at 1); cushion, the
+ * lift drive b |sin theta| - (z - z_s) in m (an edge leaves the cushion
+ * when it reaches z_s). */
+double sw_run_probe_value(const sw_derived_t *d, const sw_output_t *o, double z_s);
+/* A probe's peak, at scale probe, turned into the scale at which the
+ * package first lifts: INFINITY if the peak is 0. */
+double sw_run_probe_lift(const sw_derived_t *d, double probe, double peak, double z_s);
+
+void sw_set_msg(char *msg, size_t len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+#endif
