@@ -636,6 +636,28 @@ static int start(mon_ctx_t *c, const sw_mon_opts_t *mo, lcm_t *lcm)
     return SW_EXIT_OK;
 }
 
+/* What the options name: no replay outputs, the gate's settings, the
+ * scenes loaded, an LCM log URL checked; the files apart from each other. */
+static int check_args(const sw_cli_opts_t *o, monitor_opts_t *m, sw_scene_t **scenes, size_t *n)
+{
+    int rc;
+    if (o->out_path || o->events_path || o->json || o->every != 1) {
+        sw_cli_error("monitor: --out, --events, --every and --json are for replay and "
+                     "simulate; record the monitor's output with lcm-logger");
+        return SW_EXIT_USAGE;
+    }
+    if ((rc = sw_cli_mon_gate(&m->mo, &m->gate)) != SW_EXIT_OK)
+        return rc;
+    char url_path[4096];
+    const sw_cli_file_t url_out = {"--lcm-url",
+                                   sw_cli_lcm_url_output(m->url, url_path, sizeof url_path)};
+    if ((rc = sw_cli_check_run_files(NULL, &o->scenes, &url_out, 1)) != SW_EXIT_OK ||
+        (rc = sw_cli_load_scenes(o, scenes, n)) != SW_EXIT_OK)
+        return rc;
+    /* A file:// URL: LCM's reader trusts the log, ours checks it first. */
+    return sw_cli_check_lcm_url("monitor", m->url);
+}
+
 int cmd_monitor(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
@@ -671,21 +693,7 @@ int cmd_monitor(int argc, char **argv)
     rc = SW_EXIT_USAGE;
     if (sw_cli_no_operand("monitor", argc, argv, first) != SW_EXIT_OK)
         goto out;
-    if (o.out_path || o.events_path || o.json || o.every != 1) {
-        sw_cli_error("monitor: --out, --events, --every and --json are for replay and "
-                     "simulate; record the monitor's output with lcm-logger");
-        goto out;
-    }
-    if ((rc = sw_cli_mon_gate(&m.mo, &m.gate)) != SW_EXIT_OK)
-        goto out;
-    char url_path[4096];
-    const sw_cli_file_t url_out = {"--lcm-url",
-                                   sw_cli_lcm_url_output(m.url, url_path, sizeof url_path)};
-    if ((rc = sw_cli_check_run_files(NULL, &o.scenes, &url_out, 1)) != SW_EXIT_OK ||
-        (rc = sw_cli_load_scenes(&o, &scenes, &n)) != SW_EXIT_OK)
-        goto out;
-    /* A file:// URL: LCM's reader trusts the log, ours checks it first. */
-    if ((rc = sw_cli_check_lcm_url("monitor", m.url)) != SW_EXIT_OK)
+    if ((rc = check_args(&o, &m, &scenes, &n)) != SW_EXIT_OK)
         goto out;
     rc = SW_EXIT_IO;
     if (install_signals() != 0) {

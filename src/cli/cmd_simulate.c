@@ -263,6 +263,64 @@ static int run_pulse(sw_engine_t *e, sim_opts_t *so, sim_ctx_t *states, double *
     return SW_EXIT_OK;
 }
 
+/* The output files: none an input or another output, at most one on
+ * standard output. */
+static int check_files(const sw_cli_opts_t *o)
+{
+    const sw_cli_file_t outputs[] = {{"--out", o->out_path},
+                                     {"--events", o->events_path},
+                                     {"--wide", o->wide_path},
+                                     {"--plot", o->plot_path}};
+    int rc = sw_cli_check_run_files(NULL, &o->scenes, outputs, 4);
+    if (rc != SW_EXIT_OK) return rc;
+    rc = sw_cli_check_outputs(o->out_path, o->events_path, NULL, o->json, o->quiet);
+    if (rc != SW_EXIT_OK) return rc;
+    const char *const names[] = {"--out", "--events", "--wide"};
+    const char *const paths[] = {o->out_path, o->events_path, o->wide_path};
+    return sw_cli_check_stdout(names, paths, 3, o->json, o->quiet);
+}
+
+/* The writers, the figure and the reserve, for the n packages of e. */
+static int open_outputs(const sw_cli_opts_t *o, const sw_engine_t *e, const sw_scene_t *scenes,
+                        size_t n, sim_ctx_t *ctx)
+{
+    int rc = sw_cli_states_open(ctx->states, o->out_path, o->every, scenes, n);
+    if (rc != SW_EXIT_OK) return rc;
+    if ((rc = sw_cli_events_open(ctx->events, o->events_path, scenes, n)) != SW_EXIT_OK) return rc;
+    rc = sw_cli_wide_open(ctx->wide, o->wide_path, o->every, e, scenes, n);
+    if (rc != SW_EXIT_OK) return rc;
+    if (o->plot_path && !(ctx->fig = sw_cli_figure_create(e, scenes, n))) return SW_EXIT_IO;
+    if (!(ctx->risk = sw_cli_risk_create(o, scenes, n))) return SW_EXIT_USAGE;
+    ctx->states->risk = ctx->wide->risk = ctx->risk; /* after open, which clears them */
+    ctx->events->all_impacts = o->all_impacts;
+    return SW_EXIT_OK;
+}
+
+/* The end of the run: the files closed, the summary, the figure. */
+static int conclude(const sw_cli_opts_t *o, const sw_engine_t *e, size_t n, sim_ctx_t *ctx,
+                    const sw_cli_run_t *run)
+{
+    sw_cli_events_finish(ctx->events, ctx->risk, n);
+    int rc = sw_cli_states_close(ctx->states);
+    int rc2 = sw_cli_events_close(ctx->events);
+    if (rc == SW_EXIT_OK) rc = rc2;
+    rc2 = sw_cli_wide_close(ctx->wide);
+    if (rc == SW_EXIT_OK) rc = rc2;
+    if (o->json)
+        sw_cli_print_json(stdout, e, run);
+    else if (!o->quiet)
+        sw_cli_print_summary(stdout, e, run);
+    if (rc == SW_EXIT_OK && ctx->fig) {
+        const sw_pulse_t *pulse = run->pulse;
+        char title[256];
+        snprintf(title, sizeof title, "swaywatch simulate: %s pulse, %.4g g, %.4g ms%s",
+                 sw_pulse_shape_name(pulse->shape), pulse->amplitude / STANDARD_GRAVITY,
+                 sw_pulse_duration(pulse) * 1e3, run->interrupted ? " (interrupted)" : "");
+        rc = sw_cli_figure_draw(ctx->fig, o->plot_path, title);
+    }
+    return rc;
+}
+
 int cmd_simulate(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
@@ -298,17 +356,7 @@ int cmd_simulate(int argc, char **argv)
     rc = SW_EXIT_USAGE;
     if (check_pulse(&so) != SW_EXIT_OK) goto out;
 
-    const sw_cli_file_t outputs[] = {{"--out", o.out_path},
-                                     {"--events", o.events_path},
-                                     {"--wide", o.wide_path},
-                                     {"--plot", o.plot_path}};
-    rc = sw_cli_check_run_files(NULL, &o.scenes, outputs, 4);
-    if (rc != SW_EXIT_OK) goto out;
-    rc = sw_cli_check_outputs(o.out_path, o.events_path, NULL, o.json, o.quiet);
-    if (rc != SW_EXIT_OK) goto out;
-    const char *const names[] = {"--out", "--events", "--wide"};
-    const char *const paths[] = {o.out_path, o.events_path, o.wide_path};
-    if ((rc = sw_cli_check_stdout(names, paths, 3, o.json, o.quiet)) != SW_EXIT_OK) goto out;
+    if ((rc = check_files(&o)) != SW_EXIT_OK) goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
     if (rc != SW_EXIT_OK) goto out;
 
@@ -322,45 +370,13 @@ int cmd_simulate(int argc, char **argv)
     if (!e) goto out;
     if (o.verbose) sw_cli_print_derived(stderr, e, scenes, n);
 
-    rc = sw_cli_states_open(&states, o.out_path, o.every, scenes, n);
-    if (rc != SW_EXIT_OK) goto out;
-    rc = sw_cli_events_open(&events, o.events_path, scenes, n);
-    if (rc != SW_EXIT_OK) goto out;
-    rc = sw_cli_wide_open(&wide, o.wide_path, o.every, e, scenes, n);
-    if (rc != SW_EXIT_OK) goto out;
-    if (o.plot_path && !(ctx.fig = sw_cli_figure_create(e, scenes, n))) {
-        rc = SW_EXIT_IO;
-        goto out;
-    }
-    if (!(ctx.risk = sw_cli_risk_create(&o, scenes, n))) {
-        rc = SW_EXIT_USAGE;
-        goto out;
-    }
-    states.risk = wide.risk = ctx.risk;
-    events.all_impacts = o.all_impacts;
+    if ((rc = open_outputs(&o, e, scenes, n, &ctx)) != SW_EXIT_OK) goto out;
     double t = 0.0;
     if ((rc = run_pulse(e, &so, &ctx, &t)) != SW_EXIT_OK) goto out;
 
-    sw_cli_events_finish(&events, ctx.risk, n);
-    rc = sw_cli_states_close(&states);
-    int rc2 = sw_cli_events_close(&events);
-    if (rc == SW_EXIT_OK) rc = rc2;
-    rc2 = sw_cli_wide_close(&wide);
-    if (rc == SW_EXIT_OK) rc = rc2;
-
-    sw_cli_run_t run = {
+    const sw_cli_run_t run = {
         .pulse = pulse, .duration = t, .interrupted = sw_cli_signal, .risk = ctx.risk};
-    if (o.json)
-        sw_cli_print_json(stdout, e, &run);
-    else if (!o.quiet)
-        sw_cli_print_summary(stdout, e, &run);
-    if (rc == SW_EXIT_OK && ctx.fig) {
-        char title[256];
-        snprintf(title, sizeof title, "swaywatch simulate: %s pulse, %.4g g, %.4g ms%s",
-                 sw_pulse_shape_name(pulse->shape), pulse->amplitude / STANDARD_GRAVITY,
-                 sw_pulse_duration(pulse) * 1e3, run.interrupted ? " (interrupted)" : "");
-        rc = sw_cli_figure_draw(ctx.fig, o.plot_path, title);
-    }
+    rc = conclude(&o, e, n, &ctx, &run);
     if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(e, so.fail_on_overturn);
     if (run.interrupted) {
         sw_cli_error("simulate: interrupted by %s at t = %g s; the output files end with the "

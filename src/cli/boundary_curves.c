@@ -1,0 +1,194 @@
+/* boundary_curves.c - the curves of "swaywatch boundary": every scene
+ * times the --vary values that apply to it times the bearing ratios, each
+ * checked as a scene; then each curve's units (its p and g tan alpha,
+ * amplitudes given in g or m/s^2 as its own scan range) and, with
+ * --verbose, what it is. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "boundary.h"
+
+#define MAX_CURVES 1000
+
+static void append(char *buf, size_t len, const char *fmt, const char *a, const char *b)
+{
+    size_t used = strlen(buf);
+    if (used < len) snprintf(buf + used, len - used, fmt, a, b);
+}
+
+/* Does --vary v apply to scene s?  A [frame] or [cushion] key leaves a
+ * scene without that section as it is (a bare reference curve stays one
+ * curve). */
+static int vary_applies(const vary_t *v, const sw_scene_t *s)
+{
+    if (!strncmp(v->key, "frame.", 6)) return s->has_frame;
+    if (!strncmp(v->key, "cushion.", 8)) return s->has_cushion;
+    return 1;
+}
+
+/* Every scene x every combination of the --vary values that apply to it x
+ * every bearing ratio (scenes without a frame: as they are). */
+int sw_bnd_build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary, size_t nvary,
+                        const double *bearing, size_t nbear, const char *bear_text[],
+                        curve_t **out, size_t *nout)
+{
+    size_t total = 0, framed = 0;
+    for (size_t s = 0; s < nsc; s++) {
+        size_t combos = 1;
+        for (size_t k = 0; k < nvary; k++)
+            if (vary_applies(&vary[k], &scenes[s])) combos *= vary[k].n;
+        total += combos * (scenes[s].has_frame && nbear ? nbear : 1);
+        framed += scenes[s].has_frame != 0;
+        if (total > MAX_CURVES) break;
+    }
+    if (nbear && !framed) {
+        sw_cli_error("--bearing-ratio: no scene has a [frame]");
+        return SW_EXIT_USAGE;
+    }
+    if (total > MAX_CURVES) {
+        sw_cli_error("boundary: more than %d curves", MAX_CURVES);
+        return SW_EXIT_USAGE;
+    }
+    curve_t *cv = calloc(total, sizeof *cv);
+    if (!cv) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    size_t m = 0;
+    sw_cli_diag_t diag = {0};
+    for (size_t s = 0; s < nsc; s++) {
+        size_t combos = 1;
+        for (size_t k = 0; k < nvary; k++)
+            if (vary_applies(&vary[k], &scenes[s])) combos *= vary[k].n;
+        const size_t nb = scenes[s].has_frame && nbear ? nbear : 1;
+        for (size_t c = 0; c < combos; c++)
+            for (size_t b = 0; b < nb; b++) {
+                curve_t *C = &cv[m++];
+                C->c.scene = scenes[s]; /* a copy: --vary edits only this curve */
+                snprintf(C->label, sizeof C->label, "%s", scenes[s].name);
+                size_t idx = c;
+                for (size_t k = 0; k < nvary; k++) {
+                    if (!vary_applies(&vary[k], &scenes[s])) continue;
+                    const char *val = vary[k].values[idx % vary[k].n];
+                    idx /= vary[k].n;
+                    char assign[512];
+                    snprintf(assign, sizeof assign, "%s=%s", vary[k].key, val);
+                    const long before = diag.errors;
+                    if (sw_scene_set_arg(&C->c.scene, assign, sw_cli_print_diag, &diag) != SW_OK) {
+                        if (diag.errors == before) sw_cli_error("--vary %s: rejected", assign);
+                        free(cv);
+                        return SW_EXIT_USAGE;
+                    }
+                    append(C->label, sizeof C->label, " %s=%s", vary[k].key, val);
+                }
+                if (scenes[s].has_frame && nbear) {
+                    C->c.bearing_ratio = bearing[b];
+                    append(C->label, sizeof C->label, " wb/we=%s%s", bear_text[b], "");
+                }
+                sw_scene_t check; /* omega_b is set at each point */
+                sw_curve_scene(&C->c, 0.0, &check);
+                const long before = diag.errors;
+                if (sw_scene_validate(&check, NULL, C->label, sw_cli_print_diag, &diag) != SW_OK) {
+                    if (diag.errors == before) sw_cli_error("%s: invalid scene", C->label);
+                    free(cv);
+                    return SW_EXIT_USAGE;
+                }
+            }
+    }
+    *out = cv;
+    *nout = total;
+    return SW_EXIT_OK;
+}
+
+/* pulse.h: a half-sine of omega_e lasts pi/omega_e, a full-sine 2 pi/omega_e. */
+double sw_bnd_shape_angle(const boundary_t *B)
+{
+    return B->b.bo.shape == SW_PULSE_FULL_SINE ? 2.0 * M_PI : M_PI;
+}
+
+/* omega_e/p of curve c at point i. */
+double sw_bnd_ratio_at(const boundary_t *B, size_t c, size_t i)
+{
+    if (B->b.durations) return sw_bnd_shape_angle(B) / (B->b.durations[i] * B->cv[c].p);
+    return B->b.ratios[i];
+}
+
+/* Non-zero (reported) if v, what arg (given in physical units) is for
+ * curve C, is outside the bounds of the option named opt. */
+static int in_range(const char *opt, const char *arg, const curve_t *C, double v)
+{
+    const sw_cli_option_t *o = sw_bnd_option(opt);
+    if (!o || !(o->hi > o->lo) || (v >= o->lo && v <= o->hi)) return 0;
+    sw_cli_error("curve '%s': %s is %g %s, out of range: expected %g to %g", C->label,
+                 arg ? arg : "", v, strcmp(opt, "omega-ratio") ? "g tan alpha" : "omega_e/p",
+                 o->lo, o->hi);
+    return 1;
+}
+
+/* Each curve's p, g tan alpha and scan range (amplitudes given in g or
+ * m/s^2 are a different g tan alpha for each package). */
+int sw_bnd_curve_units(boundary_t *B)
+{
+    const sw_boundary_opts_t *bo = &B->b.bo;
+    for (size_t c = 0; c < B->nc; c++) {
+        curve_t *C = &B->cv[c];
+        sw_scene_t s;
+        sw_derived_t d;
+        sw_curve_scene(&C->c, 0.0, &s);
+        if (sw_scene_validate(&s, &d, NULL, NULL, NULL) != SW_OK) {
+            sw_cli_error("%s: invalid scene", C->label);
+            return SW_EXIT_USAGE;
+        }
+        C->p = d.p;
+        C->gtan = s.g * tan(d.alpha);
+        C->x_min = B->b.min_si > 0.0 ? B->b.min_si / C->gtan : bo->search.x_min;
+        C->x_max = B->b.max_si > 0.0 ? B->b.max_si / C->gtan : bo->search.x_max;
+        /* what the options' bounds say in g tan alpha and omega_e/p, for
+         * the values given in g, m/s^2 or ms */
+        if ((B->b.min_si > 0.0 && in_range("min-amplitude", B->b.min_arg, C, C->x_min)) ||
+            (B->b.max_si > 0.0 && in_range("max-amplitude", B->b.max_arg, C, C->x_max)))
+            return SW_EXIT_USAGE;
+        for (size_t i = 0; B->b.durations && i < B->b.nr; i++) {
+            char dur[64];
+            snprintf(dur, sizeof dur, "%gms", B->b.durations[i] * 1e3);
+            if (in_range("omega-ratio", dur, C, sw_bnd_ratio_at(B, c, i))) return SW_EXIT_USAGE;
+        }
+        if (C->x_min > 0.0 && C->x_min >= C->x_max) {
+            sw_cli_error("curve '%s': --min-amplitude %s (%g g tan alpha) is not below "
+                         "--max-amplitude %s (%g g tan alpha)",
+                         C->label, B->b.min_arg ? B->b.min_arg : "", C->x_min,
+                         B->b.max_arg ? B->b.max_arg : "20", C->x_max);
+            return SW_EXIT_USAGE;
+        }
+    }
+    B->shared_p = 1;
+    for (size_t c = 1; c < B->nc; c++)
+        B->shared_p = B->shared_p && fabs(B->cv[c].p - B->cv[0].p) <= 1e-12 * B->cv[0].p;
+    return SW_EXIT_OK;
+}
+
+/* --verbose: what each curve's scene is. */
+void sw_bnd_print_curves(const boundary_t *B)
+{
+    for (size_t c = 0; c < B->nc; c++) {
+        const curve_t *C = &B->cv[c];
+        sw_derived_t d;
+        sw_scene_t s; /* omega_b is set per point */
+        sw_curve_scene(&C->c, 0.0, &s);
+        if (sw_scene_validate(&s, &d, NULL, NULL, NULL) != SW_OK) continue;
+        fprintf(stderr,
+                "swaywatch: curve %zu '%s': %s model, alpha %.4g deg, p %.6g rad/s, "
+                "g tan alpha %.6g m/s^2",
+                c + 1, C->label, sw_model_name(d.model), d.alpha * 180.0 / M_PI, d.p,
+                s.g * tan(d.alpha));
+        if (d.model == SW_MODEL_FRAME)
+            fprintf(stderr, ", gamma %.4g, zeta_b %.4g, omega_b %s", d.gamma, d.zeta_b,
+                    C->c.bearing_ratio > 0.0 ? "per point" : "");
+        if (d.model == SW_MODEL_FRAME && !(C->c.bearing_ratio > 0.0))
+            fprintf(stderr, "%.6g rad/s", d.omega_b);
+        fputc('\n', stderr);
+    }
+}
+

@@ -1,0 +1,491 @@
+/* summary.c - what a run says at its end: the human summary, the JSON
+ * summary, the verdict's exit code, and the derived quantities of
+ * --verbose (the writers of the output files are in output.c).
+ *
+ * Everything here prints its own messages ("swaywatch: ..." on stderr) and
+ * returns an exit code. */
+#include "output.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <signal.h>
+#include <string.h>
+#include <time.h>
+#include <sys/stat.h>
+
+/* ---- derived quantities -------------------------------------------------- */
+
+/* One aligned line of --verbose: name, value with unit, what it is. */
+static void derived_line(FILE *f, const char *name, double v, const char *unit, const char *what)
+{
+    char val[48];
+    snprintf(val, sizeof val, "%.6g %s", v, unit);
+    fprintf(f, "  %-8s %-18s %s\n", name, val, what);
+}
+
+void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scenes, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        const sw_derived_t *d = sw_engine_derived(e, i);
+        const sw_scene_t *sc = &scenes[i];
+        if (!d) continue;
+        fprintf(f, "swaywatch: %s: %s model\n", sc->name, sw_model_name(d->model));
+        derived_line(f, "R", d->R, "m", "half-diagonal sqrt(h^2 + b^2)");
+        derived_line(f, "alpha", d->alpha * 180.0 / M_PI, "deg", "atan(b/h), slenderness");
+        derived_line(f, "g tan a", sc->g * tan(d->alpha), "m/s^2", "uplift threshold (rigid support)");
+        derived_line(f, "p", d->p, "rad/s", "rocking frequency sqrt(3 g / 4 R)");
+        derived_line(f, "eta", d->eta, "", "impact ratio on a rigid support");
+        if (sc->has_frame) {
+            derived_line(f, "gamma", d->gamma, "", "m / (m + m_b)");
+            derived_line(f, "omega_b", d->omega_b, "rad/s", "bearing frequency");
+            derived_line(f, "zeta_b", d->zeta_b, "", "bearing damping ratio");
+            derived_line(f, "r_frame", d->r_frame, "", "impact ratio on the frame");
+        }
+        if (sc->has_cushion) {
+            derived_line(f, "omega_c", d->omega_c, "rad/s", "cushion frequency sqrt(K/m)");
+            derived_line(f, "zeta_c", d->zeta_c, "", "cushion damping ratio");
+            if (d->K > 0.0) {
+                double wz, wr;
+                sw_cushion_frequencies(d, sc->g, &wz, &wr);
+                derived_line(f, "z_static", sw_cushion_static_deflection(d, sc->g), "m",
+                             "static cushion deflection, root of K z + B3 z^3 = m g");
+                derived_line(f, "omega_z", wz, "rad/s", "vertical natural frequency (undamped)");
+                derived_line(f, "omega_r", wr, "rad/s", "rocking natural frequency on the cushion");
+            }
+        }
+        char what[64];
+        snprintf(what, sizeof what, "internal step of scheme %s", sw_engine_scheme(e));
+        derived_line(f, "dt", sw_engine_dt(e, i), "s", what);
+    }
+}
+
+
+/* ---- summaries --------------------------------------------------------------- */
+
+int sw_cli_any_overturned(const sw_engine_t *e)
+{
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) == SW_OK && s.overturned) return 1;
+    }
+    return 0;
+}
+
+const char *sw_cli_verdict(const sw_summary_t *s)
+{
+    if (s->overturned) return "overturned";
+    return s->faults ? "unreliable" : "upright";
+}
+
+int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn)
+{
+    if (!fail_on_overturn) return SW_EXIT_OK;
+    if (sw_cli_any_overturned(e)) return SW_EXIT_OVERTURNED;
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) == SW_OK && s.faults) {
+            sw_cli_error("%s: the model faulted %ld times: no verdict, and --fail-on-overturn "
+                         "needs one (exit 2)",
+                         s.name, s.faults);
+            return SW_EXIT_USAGE;
+        }
+    }
+    return SW_EXIT_OK;
+}
+
+static double alpha_of(const sw_engine_t *e, size_t i)
+{
+    const sw_derived_t *d = sw_engine_derived(e, i);
+    return d ? d->alpha : NAN;
+}
+
+/* "at 7.5123 s" or a fallback phrase when the time is absent. */
+static void print_time(FILE *f, double t, const char *none)
+{
+    if (isfinite(t))
+        fprintf(f, "%.4f s", t);
+    else
+        fputs(none, f);
+}
+
+/* An absolute time (s since 1970) as ISO-8601 UTC with milliseconds. */
+void sw_cli_iso_seconds(char *buf, size_t len, double t)
+{
+    const double whole = floor(t);
+    long ms = lround((t - whole) * 1000.0);
+    time_t secs = (time_t)whole;
+    if (ms >= 1000) {
+        ms -= 1000;
+        secs++;
+    }
+    struct tm tm;
+    if (!gmtime_r(&secs, &tm) || !strftime(buf, len, "%Y-%m-%dT%H:%M:%S", &tm)) {
+        snprintf(buf, len, "%.3f s since 1970", t);
+        return;
+    }
+    const size_t n = strlen(buf);
+    snprintf(buf + n, len - n, ".%03ldZ", ms);
+}
+
+/* The facts of the log: what would expose a misread (duration, rate, peak,
+ * gaps), and whether the verdict is incomplete or forced. */
+static void print_facts(FILE *f, const sw_cli_run_t *run)
+{
+    const sw_gate_facts_t *F = &run->facts;
+    const double t0 = F->t_first - F->t_origin, t1 = F->t_last - F->t_origin;
+    const double share = run->samples_read
+                             ? 100.0 * (double)run->samples_rejected / (double)run->samples_read
+                             : 0.0;
+    fprintf(f, "  rejected        %ld of %ld (%.2f %%)\n", run->samples_rejected,
+            run->samples_read, share);
+    if (F->t_origin != 0.0) {
+        char iso[64];
+        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
+        fprintf(f, "  starts          %s (the times below are from there)\n", iso);
+    }
+    fprintf(f, "  times           %.4f s to %.4f s (%.4f s of samples)\n", t0, t1, F->duration);
+    if (isfinite(F->dt_median))
+        fprintf(f, "  sample interval %.6g ms median (%.6g to %.6g ms): %.6g Hz\n",
+                F->dt_median * 1e3, F->dt_min * 1e3, F->dt_max * 1e3, F->rate);
+    fprintf(f, "  peak |a|        %.4g m/s^2 = %.4g g\n", F->peak_a, F->peak_a / 9.80665);
+    if (F->gaps || F->restarts || F->clock_steps)
+        fprintf(f,
+                "  gaps            %ld (%.4g s in all, the longest %.4g s); restarts %ld, "
+                "clock steps %ld\n",
+                F->gaps, F->gap_total, F->gap_max, F->restarts, F->clock_steps);
+    else
+        fputs("  gaps            none\n", f);
+    if (F->incomplete)
+        fprintf(f,
+                "  VERDICT INCOMPLETE: %ld gap%s or restart%s overlap rocking or an "
+                "acceleration past the uplift threshold (first at %.4f s)\n",
+                F->incomplete, F->incomplete == 1 ? "" : "s", F->incomplete == 1 ? "" : "s",
+                F->first_incomplete - F->t_origin);
+    if (run->forced)
+        fprintf(f, "  VERDICT FORCED (--force): %s\n", run->check);
+    else if (run->check[0])
+        fprintf(f, "  warning         %s\n", run->check);
+}
+
+/* The outcome line's words: a faulted run never reads as a plain verdict. */
+static void print_outcome(FILE *f, const sw_summary_t *s)
+{
+    if (s->overturned) {
+        fputs("OVERTURNED at ", f);
+        print_time(f, s->overturn_time, "an unknown time");
+        if (s->faults) fprintf(f, " (the model faulted %ld times before: see --events)", s->faults);
+    } else if (s->faults) {
+        fprintf(f, "stayed upright (model faulted %ld times: not a verdict; see --events)",
+                s->faults);
+    } else {
+        fputs("stayed upright", f);
+    }
+}
+
+/* Impacts: the ones that matter, the settling apart. */
+static void print_impacts(FILE *f, const sw_summary_t *s, const sw_risk_pkg_t *p)
+{
+    if (!p || !(p->impact_min > 0.0)) {
+        fprintf(f, "\n  impacts         %ld\n", s->impacts);
+        return;
+    }
+    fprintf(f, "\n  impacts         %ld that matter (before each, at least %.3g rad/s: a swing of 1 %% "
+               "of the energy that tips it)",
+            p->impacts, p->impact_min);
+    if (p->micro_impacts)
+        fprintf(f, "; %ld micro-impacts in %ld settling span%s", p->micro_impacts,
+                p->settling_spans, p->settling_spans == 1 ? "" : "s");
+    fputc('\n', f);
+}
+
+/* The margin, and what its number means. */
+static void print_margin(FILE *f, const sw_summary_t *s)
+{
+    fprintf(f, "\n  minimum margin  %.4f (energy to spare: 1 at rest, 0 at the edge of overturning",
+            s->min_margin);
+    if (s->min_margin < 0.0)
+        fprintf(f, "; below 0 it was falling, shown as %.3f in [-1, 0] in figures",
+                sw_margin_presented(s->min_margin, SW_PHASE_ROCKING));
+    fputs(")\n", f);
+}
+
+/* The reserve: the smallest evaluated, in g, and what it means. */
+void sw_cli_print_reserve(FILE *f, const sw_risk_pkg_t *p)
+{
+    if (p && p->no_reserve) {
+        fprintf(f, "  reserve         none: the scene is too stiff for it to be computed\n");
+        return;
+    }
+    if (!p || !p->evaluations) return;
+    if (!(p->min_reserve_g > 0.0))
+        fprintf(f, "  minimum reserve 0 g at %.4f s: from then on it overturns with no further "
+                   "input (at rest %.3g g)\n",
+                p->min_reserve_time, p->rest_reserve_g);
+    else
+        fprintf(f, "  minimum reserve %.3g g at %.4f s: a %s half-sine of %.3g s that strong "
+                   "would have overturned it then (at rest %.3g g)\n",
+                p->min_reserve_g, p->min_reserve_time,
+                p->min_direction == SW_RESERVE_ACCELERATING ? "speeding-up" : "braking",
+                p->min_pulse, p->rest_reserve_g);
+    if (p->reserve_faults)
+        fprintf(f, "                  (%ld evaluations had a run fault: the value may be high)\n",
+                p->reserve_faults);
+}
+
+/* The words a summary of an interrupted run starts with. */
+static void print_interrupted(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    if (!run->interrupted) return;
+    const double t = sw_engine_time(e);
+    fprintf(f, "INTERRUPTED by %s", run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (isfinite(t))
+        fprintf(f, " at t = %.4f s: everything below covers the input up to there only\n", t);
+    else
+        fputs(" before the first sample\n", f);
+}
+
+void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    print_interrupted(f, e, run);
+    if (run->log) {
+        fprintf(f, "log %s: %ld samples read, %ld accepted, %ld rejected", strcmp(run->log, "-") ? run->log : "(stdin)",
+                run->samples_read, run->samples_read - run->samples_rejected,
+                run->samples_rejected);
+        if (run->settle > 0.0) fprintf(f, "; settle up to %g s after the end", run->settle);
+        fputc('\n', f);
+        if (run->have_facts) print_facts(f, run);
+    }
+    if (run->pulse) {
+        const sw_pulse_t *p = run->pulse;
+        fprintf(f, "pulse %s: amplitude %g m/s^2 (%.4g g), omega %g rad/s, %.6g s long; %.6g s "
+                   "simulated\n",
+                sw_pulse_shape_name(p->shape), p->amplitude, p->amplitude / 9.80665, p->omega,
+                sw_pulse_duration(p), run->duration);
+    }
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) != SW_OK) continue;
+        double alpha = alpha_of(e, i);
+        double dt = sw_engine_dt(e, i);
+        fprintf(f, "\npackage %s: %s model, scheme %s, dt %.6g ms\n", s.name,
+                sw_model_name(s.model), sw_engine_scheme(e), dt * 1e3);
+        if (run->log)
+            fprintf(f, "  samples         %ld read, %ld accepted, %ld rejected\n", run->samples_read,
+                    run->samples_read - run->samples_rejected, run->samples_rejected);
+        fputs("  first uplift    ", f);
+        print_time(f, s.uplift_time, "none (never left the upright position)");
+        if (s.uplifts > 1) fprintf(f, " (%ld uplifts in all)", s.uplifts);
+        print_impacts(f, &s, sw_risk_pkg(run->risk, i));
+        fprintf(f, "  peak |theta|    %.3f deg = %.3f alpha (alpha = %.2f deg)\n",
+                s.max_abs_theta * 180.0 / M_PI, s.max_theta_ratio, alpha * 180.0 / M_PI);
+        fputs("  tipped (alpha)  ", f);
+        print_time(f, s.tip_time, "no (|theta| stayed below alpha)");
+        print_margin(f, &s);
+        sw_cli_print_reserve(f, sw_risk_pkg(run->risk, i));
+        fputs("  outcome         ", f);
+        print_outcome(f, &s);
+        fputc('\n', f);
+    }
+}
+
+void sw_cli_json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        switch (*p) {
+        case '"': fputs("\\\"", f); break;
+        case '\\': fputs("\\\\", f); break;
+        case '\n': fputs("\\n", f); break;
+        case '\r': fputs("\\r", f); break;
+        case '\t': fputs("\\t", f); break;
+        default:
+            /* Other control characters escaped; bytes >= 0x80 pass as UTF-8. */
+            if (*p < 0x20)
+                fprintf(f, "\\u%04x", *p);
+            else
+                fputc(*p, f);
+        }
+    }
+    fputc('"', f);
+}
+
+void sw_cli_json_num(FILE *f, double v)
+{
+    if (isfinite(v))
+        fprintf(f, "%.9g", v);
+    else
+        fputs("null", f);
+}
+
+/* ", " and a line break (br) between the members of an object. */
+static void json_sep(FILE *f, const char *br)
+{
+    fputc(',', f);
+    fputs(br, f);
+}
+
+/* PRE"KEY": NUMBER (null when not finite): PRE is "" or ", " */
+static void json_kv(FILE *f, const char *pre, const char *key, double v)
+{
+    fprintf(f, "%s\"%s\": ", pre, key);
+    sw_cli_json_num(f, v);
+}
+
+void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
+{
+    const sw_gate_facts_t *F = &run->facts;
+    fprintf(f, "{\"rejected_share\": ");
+    sw_cli_json_num(f, run->samples_read ? (double)run->samples_rejected /
+                                               (double)run->samples_read
+                                         : 0.0);
+    json_kv(f, ", ", "start", F->t_first - F->t_origin);
+    json_kv(f, ", ", "end", F->t_last - F->t_origin);
+    fprintf(f, ", \"start_absolute\": ");
+    if (F->t_origin != 0.0) {
+        char iso[64];
+        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
+        sw_cli_json_string(f, iso);
+    } else {
+        fputs("null", f);
+    }
+    json_sep(f, br);
+    json_kv(f, "", "duration", F->duration);
+    json_kv(f, ", ", "dt_median", F->dt_median);
+    json_kv(f, ", ", "dt_min", F->dt_min);
+    json_kv(f, ", ", "dt_max", F->dt_max);
+    json_kv(f, ", ", "rate", F->rate);
+    json_sep(f, br);
+    json_kv(f, "", "peak_accel", F->peak_a);
+    json_kv(f, ", ", "peak_accel_g", F->peak_a / 9.80665);
+    fprintf(f, ", \"gaps\": %ld, \"gap_total\": ", F->gaps);
+    sw_cli_json_num(f, F->gap_total);
+    json_kv(f, ", ", "gap_max", F->gap_max);
+    fprintf(f, ", \"restarts\": %ld, \"clock_steps\": %ld,", F->restarts, F->clock_steps);
+    fputs(br, f);
+    fprintf(f, "\"incomplete\": %s", F->incomplete ? "true" : "false");
+    fprintf(f, ", \"forced\": %s, \"check\": ", run->forced ? "true" : "false");
+    if (run->check[0])
+        sw_cli_json_string(f, run->check);
+    else
+        fputs("null", f);
+    fputc('}', f);
+}
+
+/* The reserve and the impacts that matter (null without them). */
+static void json_risk(FILE *f, const sw_risk_pkg_t *p, const char *br)
+{
+    const int rv = p && p->evaluations > 0;
+    json_sep(f, br);
+    json_kv(f, "", "min_reserve_g", rv ? p->min_reserve_g : NAN);
+    json_kv(f, ", ", "min_reserve_time", rv ? p->min_reserve_time : NAN);
+    fprintf(f, ", \"min_reserve_direction\": %s, \"min_reserve_pulse\": ",
+            !rv || !p->min_direction            ? "null"
+            : p->min_direction == SW_RESERVE_BRAKING ? "\"braking\""
+                                                     : "\"accelerating\"");
+    sw_cli_json_num(f, rv && p->min_pulse > 0.0 ? p->min_pulse : NAN);
+    json_kv(f, ", ", "rest_reserve_g", p ? p->rest_reserve_g : NAN);
+    fprintf(f, ", \"reserve_evaluations\": %ld", p ? p->evaluations : 0L);
+    fprintf(f, ", \"no_reserve\": ");
+    if (p && p->no_reserve)
+        sw_cli_json_string(f, p->no_reserve);
+    else
+        fputs("null", f);
+    json_sep(f, br);
+    if (p && p->impact_min > 0.0)
+        fprintf(f, "\"significant_impacts\": %ld, \"micro_impacts\": %ld, \"settling_spans\": %ld",
+                p->impacts, p->micro_impacts, p->settling_spans);
+    else
+        fputs("\"significant_impacts\": null, \"micro_impacts\": null, \"settling_spans\": null",
+              f);
+}
+
+int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
+                        const char *br)
+{
+    sw_summary_t s;
+    if (sw_engine_summary(e, i, &s) != SW_OK) return -1;
+    fprintf(f, "\"name\": ");
+    sw_cli_json_string(f, s.name);
+    fprintf(f, ", \"model\": ");
+    sw_cli_json_string(f, sw_model_name(s.model));
+    fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\"", s.overturned ? "true" : "false",
+            sw_cli_verdict(&s));
+    json_sep(f, br);
+    json_kv(f, "", "overturn_time", s.overturn_time);
+    json_kv(f, ", ", "tip_time", s.tip_time);
+    json_kv(f, ", ", "uplift_time", s.uplift_time);
+    json_sep(f, br);
+    json_kv(f, "", "max_abs_theta", s.max_abs_theta);
+    json_kv(f, ", ", "max_theta_ratio", s.max_theta_ratio);
+    json_kv(f, ", ", "alpha", alpha_of(e, i));
+    json_sep(f, br);
+    json_kv(f, "", "min_margin", s.min_margin);
+    json_kv(f, ", ", "min_margin_bound", s.min_margin_bound);
+    json_kv(f, ", ", "max_uplift_ratio", s.max_uplift_ratio);
+    json_sep(f, br);
+    fprintf(f, "\"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld", s.impacts,
+            s.uplifts, s.rests, s.faults);
+    json_risk(f, sw_risk_pkg(run->risk, i), br);
+    json_sep(f, br);
+    fprintf(f, "\"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,
+            run->samples_rejected);
+    json_sep(f, br);
+    fprintf(f, "\"scheme\": ");
+    sw_cli_json_string(f, sw_engine_scheme(e));
+    json_kv(f, ", ", "dt", sw_engine_dt(e, i));
+    fprintf(f, ", \"steps\": %ld", s.steps);
+    return 0;
+}
+
+void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    fprintf(f, "{\n  \"swaywatch\": ");
+    sw_cli_json_string(f, sw_version());
+    fprintf(f, ",\n  \"log\": ");
+    if (run->log)
+        sw_cli_json_string(f, run->log);
+    else
+        fputs("null", f);
+    if (run->pulse) {
+        fprintf(f, ",\n  \"pulse\": {\"shape\": ");
+        sw_cli_json_string(f, sw_pulse_shape_name(run->pulse->shape));
+        json_kv(f, ", ", "amplitude", run->pulse->amplitude);
+        json_kv(f, ", ", "omega", run->pulse->omega);
+        json_kv(f, ", ", "duration", sw_pulse_duration(run->pulse));
+        fprintf(f, "},\n  \"simulated\": ");
+        sw_cli_json_num(f, run->duration);
+    }
+    if (run->log) {
+        fprintf(f, ",\n  \"settle\": ");
+        sw_cli_json_num(f, run->settle);
+    }
+    fprintf(f, ",\n  \"interrupted\": ");
+    if (run->interrupted)
+        fprintf(f, "{\"signal\": \"%s\", \"t\": ",
+                run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (run->interrupted) {
+        sw_cli_json_num(f, sw_engine_time(e));
+        fputc('}', f);
+    } else {
+        fputs("null", f);
+    }
+    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld", run->samples_read,
+            run->samples_rejected);
+    if (run->have_facts) {
+        fprintf(f, ",\n  \"input\": ");
+        sw_cli_json_facts(f, run, "\n    ");
+    }
+    fprintf(f, ",\n  \"packages\": [");
+    const char *sep = "\n    {";
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) != SW_OK) continue;
+        fputs(sep, f);
+        sw_cli_json_package(f, e, i, run, "\n     ");
+        fputc('}', f);
+        sep = ",\n    {";
+    }
+    fprintf(f, "\n  ]\n}\n");
+}
