@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* bench.h - what the parts of sw_bench share: the synthetic road log and
  * the straightforward GSL baseline it is compared with. */
 #ifndef SW_BENCH_H

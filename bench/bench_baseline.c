@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* bench_baseline.c - the straightforward way to integrate the rocking
  * models, kept to measure what the engine's design buys: GSL's adaptive
  * driver (gsl_odeiv2_driver_apply, rkf45, reset at every sample because the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* bench_road.c - a synthetic hour of truck-bed acceleration at 1 kHz for
  * the benchmarks: what a shock logger on a lorry records on an ordinary
  * road, with events now and then that make a tall crate rock.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # forensics_bench.sh - the time "swaywatch forensics" takes on the
 # investigator's case of issue 17: an hour-long 1 kHz log (sw_bench gen-csv
 # --incident: calm driving ending in a hard stop), one crate, a frame

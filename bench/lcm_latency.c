@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lcm_latency.c - end-to-end latency of a running `swaywatch monitor`,
  * against an LCM echo in the same run: publishes accel_t samples at a fixed
  * rate and times each state_t the monitor publishes back (SWAY_STATE) and

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Runs lcm_latency against `swaywatch monitor` and an LCM echo (receive,
 # republish, no model) in the same runs, over UDP multicast on loopback in a
 # private network namespace (as the integration tests do): RUNS runs of

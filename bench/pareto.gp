@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Error against cost of every scheme setting (sw_bench run --data DIR), one
 # panel per model (up to four), with the Pareto front.  Called by scripts/run-bench.sh:
 #   gnuplot -e "dir='bench/results'; out='docs/img/pareto.png'; models='bare frame'" bench/pareto.gp

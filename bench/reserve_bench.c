@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* reserve_bench.c - what the reserve (reserve.h) costs along real drives,
  * and how much warning its alarms give compared with the margin's
  * (docs/accuracy-speed.md, "The reserve"; docs/alarms.md).

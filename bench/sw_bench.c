@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* sw_bench.c - speed against accuracy of every model and scheme, written
  * as markdown tables and gnuplot data for docs/accuracy-speed.md (run it
  * through scripts/run-bench.sh, which also records the machine).

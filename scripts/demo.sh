@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Install what is missing, build, and replay the sample drive for the crate
 # standing free and for the same crate on a support frame.
 #   scripts/demo.sh            (BUILD=dir to build elsewhere; default build/)

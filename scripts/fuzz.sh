@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Build the libFuzzer targets of tests/fuzz with clang, AddressSanitizer and
 # UndefinedBehaviorSanitizer, and run each one in turn for SECONDS (default
 # 60), starting from the seed corpus in tests/fuzz/corpus/<target>/.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Make the pictures of README.md (docs/img/) by running the commands its
 # walkthrough shows: the figure of a replay (replay --plot), a terminal
 # capture of the live monitor on loopback, the boundary plot.  Needs a build (BUILD,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Generate the synthetic sample logs in sample_logs/ (Python 3 stdlib only).
 
 The logs are made up, not recorded: longitudinal acceleration of a truck bed

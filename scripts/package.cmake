@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installing the command and its deployment files, and the Debian packages
 # made by CPack ('cpack -G DEB' in the build folder; docs/deployment.md).
 # The library, its headers and swaywatch.pc are installed by src/lib, the

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerate the figures (docs/img) and the data (docs/data) of
 # docs/paper-reproduction.md; each command is the one quoted there.
 # SW names the swaywatch binary (default build/swaywatch).  Takes about half

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Evidence that a refactor keeps behaviour: writes the state and event CSVs
 # and the JSON summaries of every sample log and scene (every scheme on the
 # rigid models, the cushion on its own schemes), simulate pulses, a boundary

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Measure the throughput of many logs (docs/hpc.md): log-hours per
 # core-second of 'swaywatch batch' (replay) on 1 core, on 2 MPI ranks and
 # on 2 threads, and of forensics ('batch --job forensics') on 1 core and on 1

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerate docs/accuracy-speed.md's measured part, docs/img/pareto.png and
 # its data in bench/results/: build with the benchmarks, run sw_bench, time
 # CSV replay of an hour-long 1 kHz log (and ten hours, for peak memory),

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Set up (Debian packages), build with warnings as errors and run the whole
 # test suite; then build and run it a second time under AddressSanitizer and
 # UndefinedBehaviorSanitizer (separate build folder), and run each fuzz

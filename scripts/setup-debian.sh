@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Install the Debian 12 packages swaywatch needs to build, test and plot,
 # skipping those already present.  chromium renders forensics' HTML report
 # in its test (tests/cli/report.sh).  Needs root (or sudo) only when something

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* near.h - a double-precision closeness assertion for the cmocka tests.
  * cmocka's assert_float_equal() converts its arguments to float, so a
  * tolerance finer than about 1e-7 relative asserts nothing; tu_near()

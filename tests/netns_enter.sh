@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Sourced (sh) by the tests that talk UDP multicast: re-runs the calling
 # script in a new network namespace that has only loopback, and gives it
 # the multicast route LCM's udpm provider needs (a fresh namespace has

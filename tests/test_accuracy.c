@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_accuracy.c - the accuracy option: for several tolerances on theta
  * the scheme and step that sw_scheme_for_accuracy() picks do achieve the
  * tolerance against rk8pd at rtol 1e-12 on a test pulse, for both models;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_alarm.c - the alarm module: event mapping, margin thresholds with
  * hysteresis, non-finite outputs.  Pure logic, no engine needed: outputs
  * and events are made up here. */

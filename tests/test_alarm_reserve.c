@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_alarm_reserve.c - alarms on the reserve (hysteresis, levels from
  * the scene), significant impacts and settling spans, and the presented
  * margin (alarm.h).  The tipping speed is checked against the physics it

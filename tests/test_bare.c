@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_bare.c - the bare rocking block (scene 1) against closed forms:
  * uplift threshold, free rocking (quadrature of the energy integral),
  * Housner's impact ratio, rest, grid independence of located events. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_convergence.c - halving dt divides the error by about 2^order for
  * every fixed-step scheme, in runs with several impacts (what event
  * location buys: without it the impact times are quantised to the grid and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_csv.c - CSV ingestion (csv.h): formats, units, column choice, row
  * rejection with exact line numbers, limits, garbage input.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_csv_infer.c - reading a logger export as it was meant (csv.h): the
  * columns and units a header's names give (infer), date-time time columns,
  * decimal commas, and the refusals where the header does not say which

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_cushion.c - the package on a Winkler cushion (scene 3), on the bed
  * and on the support frame, each check against a reference that does not
  * come from the engine: the static deflection by bisection, the vertical

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_engine_replace.c - sw_engine_replace(), what a monitor uses when a
  * scene file changes under it: the other packages go on exactly as if
  * nothing happened (same numbers, bit for bit), the replaced one starts from

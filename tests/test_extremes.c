@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_extremes.c - the engine at the edges of its range, each case either
  * within a stated error of the rk8pd reference (rtol 1e-12) or of a closed
  * form, or refused clearly: slenderness alpha 1..45 deg, size R 0.05..10 m,

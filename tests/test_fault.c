@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_fault.c - numerical faults: a package whose state leaves the model
  * gets an SW_EV_FAULT event, is reset to rest, and the engine goes on; no
  * state, event or summary ever carries NaN or infinity.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_frame.c - the package on a support frame (scene 2): the stuck frame
  * against the closed-form step response of a damped oscillator, uplift
  * located on it, the corrected impact ratio, energy conservation between

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_frame_rest_momentum.c - momentum at a frame's rest transition.
  *
  * physics.md, scene 2: the rest transition is an impact whose theta_dot+

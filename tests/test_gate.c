@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_gate.c - the input gate (gate.h), on streams whose truth is known
  * by construction: a clean drive, one corrupt time, a hole, a restart, a
  * log played twice, forged and stepped times with receive times, spikes,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_physics_claims.c - claims the documents make about the models,
  * each checked here by runs or closed forms instead of being taken on
  * trust (docs/physics.md, docs/cushion.md):

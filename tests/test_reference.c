@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_reference.c - a pulse that overturns and one just below it, each
  * checked against the GSL rk8pd reference run; the bare block's minimum
  * overturning half-sine amplitude against an independent computation

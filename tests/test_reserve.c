@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_reserve.c - the reserve in g (reserve.h) against values it does
  * not compute itself: the published boundary table of the bare block
  * (rocking-anchors.md section 2.2), sw_boundary_point with its fine steps,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_risk.c - risk.h against what it does not compute itself: the
  * evaluation times from the rate alone, the reserve values from separate
  * sw_reserve_eval() calls on the same states, the impact split from the

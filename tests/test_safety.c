@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_safety.c - the safety factors of a log (sweep.h, safety.c): runs
  * that start part-way through the log against runs from its start (a
  * different path: sw_log_run, or an engine fed by hand), the log's

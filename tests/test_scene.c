@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_scene.c - scene files, --set overrides, validation messages and the
  * derived quantities of physics.md.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_scene_reserve.c - the [alarm] keys of the reserve: design_pulse (a
  * list of durations), warn_reserve_g and critical_reserve_g; their
  * defaults, parsing, --set overrides, validation messages, and

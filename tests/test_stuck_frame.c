@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_stuck_frame.c - the exact advance of a stuck frame (a linear
  * oscillator under piecewise-linear input, Nigam-Jennings): against the
  * closed-form step and ramp responses for under-, critically and

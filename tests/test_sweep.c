@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_sweep.c - overturning boundaries and safety factors (sweep.h):
  * the search logic on a known predicate, boundary points re-checked with
  * the GSL reference scheme, the bare block against the computed tables of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_time.c - the engine's clock: it runs on time relative to its first
  * sample, so a drive stamped with epoch times gives the answer of the same
  * drive stamped from zero; a time too large for its own resolution is

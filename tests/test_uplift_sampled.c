@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_uplift_sampled.c - a bare package lifted by sampled input (linear
  * between samples) starts to rock exactly once per uplift.  Regression: on
  * the threshold crossing theta'' is 0 up to round-off, and the engine used

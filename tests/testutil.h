@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* testutil.h - small helpers shared by the physics tests: scenes built in
  * code, event recording, pulse runs, tu_near() (near.h).  Include after
  * cmocka.h. */

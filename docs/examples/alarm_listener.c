@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* alarm_listener.c - a downstream consumer of `swaywatch monitor`: it
  * subscribes to the alarm channel and prints every alarm, one line each,
  * stamped with the time of the sample it refers to (ISO 8601, UTC, to the

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """csv2lcmlog.py - turn a CSV acceleration log (time, longitudinal
 acceleration) into an lcm-logger file of swaywatch.accel_t samples, which
 lcm-logplayer can then publish on an LCM bus as if a sensor sent them: a

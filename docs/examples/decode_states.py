@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """decode_states.py - read an lcm-logger file and decode every state message
 of swaywatch (swaywatch.state_t) with the generated Python types.
 

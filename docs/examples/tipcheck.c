@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* tipcheck.c - the smallest program on the swaywatch library: a scene made
  * in code (a crate standing free on the bed), a braking pulse pushed sample
  * by sample as a logger would deliver it, and the summary checked.

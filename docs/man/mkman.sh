@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Make the manual pages of swaywatch from its own --help and --version, with
 # help2man: swaywatch.1 and one page per command (swaywatch-replay.1, ...).
 # The commands are read from 'swaywatch --help', so a new command gets its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* alarm.h - turns one package's engine outputs and events into alarms.
  *
  * Pure logic, no I/O: the caller feeds every event (sw_event_fn) and every

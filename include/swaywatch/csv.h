@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* csv.h - streaming CSV ingestion of acceleration logs (built on libcsv).
  *
  * Push-style like libcsv itself: feed any number of byte chunks, then

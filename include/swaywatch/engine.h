@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* engine.h - the streaming integrator.
  *
  * Push-style: the caller owns the loop and pushes samples (t, a_g[, a_z]) in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* export.h - SW_API marks what libswaywatch.so exports.  The library is
  * compiled with hidden visibility: the functions its modules share (the
  * model's right-hand sides, the step and event layers) stay internal, and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* gate.h - one input gate for every source.  CSV replay, lcm-logger replay
  * and the live monitor hand their samples to a gate; it decides, the same
  * way for all of them, which samples the engine gets and what happened to

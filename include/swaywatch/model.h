@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* model.h - the state of a package and pure functions of the rocking
  * models (physics.md): margins to overturn, energies, impact ratios, and
  * the cushion's static deflection and natural frequencies.  No allocation,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* pulse.h - the excitation pulses of physics.md, for simulate, boundary
  * curves and tests.  half-sine: a_e sin(w t) for 0 <= t <= pi/w; full-sine:
  * a_e sin(w t) for 0 <= t <= 2 pi/w; zero outside. */

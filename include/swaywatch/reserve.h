@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* reserve.h - the reserve in g: how hard a design braking (or speeding-up)
  * pulse, applied from now on, would have to be to overturn a package.
  *

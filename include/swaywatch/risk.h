@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* risk.h - what a run means to the people watching it, beside the engine:
  * each package's reserve in g (reserve.h) evaluated at a rate on the
  * engine's clock, its minimum and when; the impacts that matter

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* scene.h - what stands on the truck: a package, optionally on a support
  * frame with viscoelastic bearings, optionally on a Winkler cushion.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* scheme.h - the time-stepping schemes, a const table looked up by name as
  * GSL's step types are, and the accuracy policy that picks one.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* status.h - signed status codes shared by every swaywatch call.
  *
  * 0 is success, > 0 reports that something happened (an event), < 0 is an

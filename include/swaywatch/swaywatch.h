@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* swaywatch.h - everything public, in one include. */
 #ifndef SWAYWATCH_H
 #define SWAYWATCH_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* sweep.h - overturning questions answered by many runs of the engine:
  * "does this pulse (or this log, scaled) overturn the package", the lowest
  * overturning pulse amplitude as a function of the pulse frequency (the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* batch.h - the jobs of "swaywatch batch": what is done to each log.
  *
  * A job is a table: its options (the same rows as the command of its name,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* batch_forensics.c - the forensics job of "swaywatch batch" (batch.h):
  * each log through "swaywatch forensics" (forensics.h), and for each
  * package the members of forensics' JSON for it (its verdict, smallest

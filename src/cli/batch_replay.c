@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* batch_replay.c - the replay job of "swaywatch batch" (batch.h): each log
  * replayed as "swaywatch replay" does it (replay.h), and for each package
  * the members of replay's JSON summary (the package's, then the log's:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* boundary.h - what the files of "swaywatch boundary" share: its options,
  * its curves and the state of a run.  cmd_boundary.c parses the options
  * and runs the command, boundary_curves.c makes the curves (scenes x

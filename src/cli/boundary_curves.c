@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* boundary_curves.c - the curves of "swaywatch boundary": every scene
  * times the --vary values that apply to it times the bearing ratios, each
  * checked as a scene; then each curve's units (its p and g tan alpha,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* boundary_out.c - what "swaywatch boundary" writes: the curves, the
  * detail and the safe islands as CSV, in g tan alpha or in physical units
  * (g, m/s^2, the pulse's duration in ms), the figure drawn by gnuplot,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* boundary_sweep.c - the sweep of "swaywatch boundary": the curves in
  * groups that share the points and the scan, each group one run of the
  * library's boundary sweep (sweep.h) on the worker threads, or under

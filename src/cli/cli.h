@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cli.h - the swaywatch command: exit codes, the error printer and the
  * subcommands.  What they share lives in opts.h (options, scenes),
  * input.h (logs), output.h (files and summaries) and plot.h (figures). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* clobber.c - no output overwrites an input or another output
  * (clobber.h). */
 #include "clobber.h"

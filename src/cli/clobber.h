@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* clobber.h - no output overwrites an input or another output.
  *
  * Opening an output truncates it.  Before a command opens anything for

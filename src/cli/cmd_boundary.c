@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cmd_boundary.c - "swaywatch boundary": overturning boundary curves, the
  * lowest pulse amplitude a_e/(g tan alpha) that overturns the package as a
  * function of omega_e/p, for one or more curves (scenes, --vary values of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cmd_forensics.c - "swaywatch forensics": after an incident, what a
  * recorded log did to each package, how close it came, and what would
  * have saved it.

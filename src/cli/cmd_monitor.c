@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cmd_monitor.c - "swaywatch monitor": the live monitor on the vehicle's
  * LCM bus.  Subscribes to acceleration samples, advances every package's
  * model as they arrive, publishes states and alarms (the work is done by

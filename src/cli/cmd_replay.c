@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cmd_replay.c - "swaywatch replay": run a recorded acceleration log (CSV
  * file, standard input, or an lcm-logger file) through the model of every
  * package and report whether, when and how close each came to overturning.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cmd_simulate.c - "swaywatch simulate": drive every package with a
  * half-sine or full-sine pulse of the bed (physics.md) and report the same
  * summary, state series and events as replay.

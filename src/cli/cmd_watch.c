@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cmd_watch.c - "swaywatch watch": a live view of the monitor's messages
  * in a terminal (ncurses), for a person at the vehicle: every package's
  * tilt as a share of its tipping angle (a bar), its margin, phase and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cost.c - the real-time factor of a scene, measured when it is loaded
  * (cost.h). */
 #include "cost.h"

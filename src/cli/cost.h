@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* cost.h - what a scene costs to run, measured when it is loaded.
  *
  * A scene inside every documented limit can still be stiff enough that

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* farm.c - many independent jobs over the threads of one process (farm.h);
  * with MPI (farm_mpi.c) the same, on every rank, with rank 0 handing out
  * the jobs and gathering the results.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* farm.h - many independent jobs (the logs of a batch, the points of a
  * boundary sweep) spread over threads, and over the ranks of an MPI job
  * when swaywatch was started by mpirun or srun (a build with MPI).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* farm_int.h - the state of a farm (farm.h), shared by the threads of one
  * process (farm.c) and the messages between ranks (farm_mpi.c). */
 #ifndef SWAYWATCH_CLI_FARM_INT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* farm_mpi.c - the ranks of an MPI job (farm.h): starting MPI when an MPI
  * launcher started this process, agreeing on exit codes, and the messages
  * of a farm: rank 0 hands out jobs costliest first to the ranks that ask

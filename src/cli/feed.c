@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* feed.c - a CSV log into an engine through the reader and the input gate
  * (feed.h), and the verdict's plausibility check: what replay does with a
  * CSV log, in one place, so that every command reads a log the same way. */

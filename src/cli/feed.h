@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* feed.h - a log into an engine through the input gate, as every command
  * that reads a log does it: the CSV reader choosing columns and units
  * (and saying which), the gate deciding what the engine gets, every

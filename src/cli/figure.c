@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* figure.c - the state figure of replay, simulate and forensics (figure.h):
  * the series kept in merging min/max buckets, the events, and the gnuplot
  * script that draws them in three panels sharing the time axis. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* figure.h - the state figure of replay, simulate and forensics: the bed
  * acceleration with the uplift thresholds +-g tan(alpha), theta/alpha of
  * every package, its margin to overturn, and the events, drawn by gnuplot

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* forensics.h - what "swaywatch forensics" holds while it runs, shared by
  * the command (cmd_forensics.c), its answer in words and in JSON
  * (forensics_out.c) and its HTML report (report.c). */

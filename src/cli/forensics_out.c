@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* forensics_out.c - the answer of "swaywatch forensics" in words and as
  * JSON (forensics.h): for every package first what happened, its safety
  * factor as a bracket with a sentence that says what it means, and what

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* input.c - CSV input options, log files read in chunks (the pump that
  * feeds the CSV reader, the source told by the first bytes), and reading a
  * whole CSV log into memory, for the commands that run one log many times

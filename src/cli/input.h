@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* input.h - acceleration logs: CSV input options, rejected rows, log files
  * read in chunks and their source (CSV or lcm-logger) told by their first
  * bytes, and whole CSV logs held in memory. */

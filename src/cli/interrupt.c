@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* interrupt.c - SIGINT and SIGTERM in the commands that run to an end
  * (interrupt.h). */
 #include "interrupt.h"

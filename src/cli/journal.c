@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* journal.c - alarm lines and priority prefixes for the journal (journal.h). */
 #include "journal.h"
 

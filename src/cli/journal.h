@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* journal.h - messages for people who read them in the journal or on a
  * terminal: one line per alarm, and the sd-daemon priority prefixes
  * ("<2>", "<4>", ...) that make journald file a line under its level when

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lcmlog.c - corrupted regions of lcm-logger logs reported, file:// URLs
  * checked before LCM reads them, and the pacing of a replay that
  * publishes (lcmlog.h). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lcmlog.h - what the commands do around lcm-logger logs (eventlog.h):
  * corrupted regions reported one by one, a log checked before LCM's own
  * reader gets it (monitor --lcm-url file://...), and real-time pacing of a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lcmopts.c - the options of the LCM commands (lcmopts.h): the channels
  * and rate of what is published, and the checks on the samples taken; and
  * the refusal counts both commands print. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* lcmopts.h - the options of the LCM commands (monitor, and replay of
  * lcm-logger files) that set up the monitor core: rows into a
  * sw_mon_opts_t.  LCM builds only. */

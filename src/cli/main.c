@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* main.c - the swaywatch command: dispatch to subcommands (git style). */
 #include <stdarg.h>
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* manifest.c - reading a batch's manifest and splitting its lines into
  * words (manifest.h), the way a shell splits a command line, without any
  * expansion. */

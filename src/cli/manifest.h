@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* manifest.h - the manifest of a batch: one log a line, with its own
  * options after it, written as on a command line:
  *

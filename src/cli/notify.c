@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* notify.c - sd_notify() when built with libsystemd (notify.h). */
 #include "notify.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* notify.h - what a long-running command tells its service manager
  * (sd_notify(3)): READY=1 once it serves, WATCHDOG=1 while its main loop
  * turns, STATUS= a line for 'systemctl status', STOPPING=1.

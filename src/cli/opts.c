@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* opts.c - options from one table (opts.h): the parser over getopt_long,
  * the --help generated from the rows, the number and list parsers.
  *

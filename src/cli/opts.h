@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* opts.h - options from one table, in the manner of git's parse-options.
  *
  * One row describes one option: its long and short name, its kind, where

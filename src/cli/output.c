@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* output.c - the files the commands write: the state CSV (--out), the
  * wide state CSV (--wide) and the events CSV (--events), and the checks
  * that keep an output off an input or another output.  The summaries are

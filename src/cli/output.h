@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* output.h - what the commands write: state and event CSVs, summaries. */
 #ifndef SWAYWATCH_CLI_OUTPUT_H
 #define SWAYWATCH_CLI_OUTPUT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* plot.c - figures drawn by gnuplot, run as a subprocess: the script and
  * its data (inline datablocks) go down a pipe and gnuplot writes the file.
  * gnuplot's own messages are caught in a temporary file and passed on with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* plot.h - figures drawn by gnuplot, run as a subprocess (plot.c). */
 #ifndef SWAYWATCH_CLI_PLOT_H
 #define SWAYWATCH_CLI_PLOT_H

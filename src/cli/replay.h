@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* replay.h - the replay of one log as "swaywatch replay" does it (the
  * source told by the log's first bytes, the input gate, the plausibility
  * check, the settling), for commands that replay many logs: replay's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* report.c - "swaywatch forensics --report FILE.html": the incident report
  * as one self-contained HTML page an investigator can attach to a claim.
  * It needs no network and no script to be read: the style is inline, the

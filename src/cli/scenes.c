@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* scenes.c - the options every command shares (opts.h: scene,
  * integration, output) and what they build: the scenes (read, --set
  * applied, validated) and the engine.

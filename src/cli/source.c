@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* source.c - a log read the way replay reads it (source.h): CSV logs
  * streamed in fixed chunks through the CSV reader and the input gate
  * (feed.c), lcm-logger files read in-process (eventlog.h, never through

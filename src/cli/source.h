@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* source.h - a log read the way replay reads it, for every command that
  * reads one (replay and its batch jobs, forensics): the file opened, its
  * first bytes telling a CSV log from an lcm-logger file, the options the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* summary.c - what a run says at its end: the human summary, the JSON
  * summary, the verdict's exit code, and the derived quantities of
  * --verbose (the writers of the output files are in output.c).

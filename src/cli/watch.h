@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* watch.h - what the files of "swaywatch watch" share: what has been seen
  * on the bus (watch_data.c: the subscriptions, the states and alarms
  * decoded and counted), and its view (watch_view.c: lines of text, on the

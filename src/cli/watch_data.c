@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* watch_data.c - what "swaywatch watch" has seen on the bus: the state
  * and alarm subscriptions (raw, decoded here), per package the last state
  * and its rate, alpha from its scene or its states, and the input's

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* watch_view.c - the view of "swaywatch watch" as lines of text: the
  * input's health, a table of the packages (its columns dropped on a
  * narrow terminal), the last alarms; drawn on the curses screen or

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* whatif.c - the what-if cases of forensics (whatif.h): each scene as
  * given, on the bed, on the catalogue's typical supports (or the user's
  * frame and cushion) and in other sizes, every case's safety factor for

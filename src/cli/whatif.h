@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* whatif.h - the what-if cases of forensics: for every package, the same
  * log with the package as given, alone on the bed, on the typical
  * supports of a catalogue (or the user's), and in other sizes; each

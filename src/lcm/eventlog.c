@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* eventlog.c - lcm-logger event logs into the monitor core (eventlog.h):
  * a reader of its own, which checks every header before it reads what the
  * header points at, resynchronises on the next sync word in one forward

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* eventlog.h - lcm-logger event logs read in-process (libswaywatch_lcm):
  * the accel_t messages of one channel go to the monitor core (monitor.h)
  * by their own utime, never through the network.  No options are parsed

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* monitor.c - the monitor core (monitor.h): checks accel_t messages, drives
  * the engine and the alarm logic, publishes state_t and alarm_t.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* monitor.h - the core of the LCM monitor (libswaywatch_lcm), shared by
  * `swaywatch monitor` (live), the lcm-logger reader (eventlog.h) behind
  * `swaywatch replay` of lcm-logger files, and the tests.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* alarm.c - alarms from engine events, margins and the reserve, with
  * hysteresis, and the helpers that make margins and impacts read right
  * (alarm.h).  Pure: no I/O, no allocation, no globals. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* csv.c - streaming CSV ingestion of acceleration logs (csv.h).
  *
  * Bytes arrive in chunks of any size.  They are gathered into one physical

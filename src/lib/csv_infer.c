@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* csv_infer.c - a logger export's header read as a person reads it: which
  * column is time and which is the longitudinal acceleration, and in what
  * units ("Time (ms)", "X (g)", "time_ms;accel_g", "Acceleration Gs",

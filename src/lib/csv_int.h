@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* csv_int.h - what the CSV reader's files share (csv.h is the API): the
  * number and date-time readers (csv_num.c) and the reading of a header's
  * names into columns and units (csv_infer.c). */

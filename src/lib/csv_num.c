@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* csv_num.c - the numbers of a CSV log: plain decimals (with '.' or, in a
  * ';' export, ',' as the decimal mark) and ISO-8601 date-times.  Strict:
  * strtod alone would also take "nan", "inf", hex floats and leading junk

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* csv_split.c - one line of a CSV log split into the fields its reader
  * wants: directly on the delimiter when the line holds no quote (the fast
  * path, most rows of a numeric log), through libcsv in strict mode when it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* engine.c - the streaming integrator's API and its sample loop: advances
  * every package to each pushed sample, one step at a time with the
  * engine's scheme (step.c), looks for events inside each step (event.c),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* event.c - the event layer (GSL has none; CVODE's root check and root
  * find): events inside a step, for every model alike.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* gate.c - the input gate (gate.h): every source's samples pass here on
  * their way to the engine.  The timeline is the last accepted sample's
  * time; a sample that does not continue it waits in a chain until the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* hermite.h - the cubic Hermite interpolant over one step: the dense output
  * that GSL's steppers lack.  The event layer finds roots of an event
  * function on it; the step layer re-steps a multistep scheme with it.  A

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* internal.h - what the library's modules share and the public API hides.
  *
  * The engine is built in layers, as GSL's ode-initval2 (step -> evolve ->

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* model.c - what every model shares: the table of models, the common
  * set-up of a package (constants, typical sizes), the right-hand side in
  * GSL's signature, the state as the API gives it, and the common part of

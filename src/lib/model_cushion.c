@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* model_cushion.c - scene 3 of physics.md: the package on a Winkler cushion,
  * on the support frame (u, theta, z_B) or directly on the bed (theta, z_B).
  * Pure functions of a package's parameters, state and input: no allocation,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* model_rigid.c - the bare block and the package on a frame (physics.md,
  * scenes 1 and 2) as the engine sees them: their ops tables (layout,
  * events, impact map, uplift test, exact stuck advance, report), and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* model_rigid.h - the right-hand sides of the bare and frame models
  * (physics.md, scenes 1 and 2), inline.  sw_model_rhs() calls them for GSL
  * and the event code; the fixed-step schemes call them per stage directly,

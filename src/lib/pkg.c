@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* pkg.c - one package's phase machine: standing (stuck), rocking, at rest
  * again, overturned, faulted; the maps of the events that change the
  * dynamics (uplift, impact, overturn), the summary, and the events it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* pulse.c - half-sine and full-sine excitation pulses (physics.md). */
 #include <math.h>
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* reserve.c - the reserve in g (reserve.h): the smallest design pulse that
  * would overturn a package from its current state, found by runs of
  * private engines through the public engine API only.

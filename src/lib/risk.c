@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* risk.c - the reserve at a rate, its minimum, significant impacts and
  * settling spans of every package beside an engine (risk.h). */
 #include "swaywatch/risk.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* run.h - what the library's run-many-times modules share (sweep.c: one
  * run, boundaries; safety.c: the safety factors of a log): an engine made
  * for runs, the free motion after the input until the outcome is certain,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* safety.c - the safety factors of a recorded log (sweep.h): for each
  * scene, the smallest scale of the log's longitudinal acceleration that
  * overturns the package, found by running the log many times ("trials").

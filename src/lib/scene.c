@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* scene.c - what stands on the truck: the keys a scene knows, filling a
  * scene key by key, "--set section.key=value" overrides, and whether two
  * scenes are the same.  Parsing a scene file is in scene_parse.c,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* scene_int.h - what the scene's files share (scene.h is the API): the
  * keys a scene file knows, their sections and units (scene.c), looked up
  * by the file parser (scene_parse.c) and named in the messages of

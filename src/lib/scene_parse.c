@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* scene_parse.c - reading a scene file: INI through inih, with our own
  * line reader for line numbers, comments and the lines inih would take
  * silently, and each key set as sw_scene_set() does, reported with its

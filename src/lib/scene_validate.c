@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* scene_validate.c - checking a scene: every value finite, in its range
  * and consistent with the others, with messages that name the key, the
  * line and what was expected; then the derived quantities of physics.md

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* scheme.c - the table of time-stepping schemes, looked up by name like
  * GSL's step types.  Fixed-step explicit Runge-Kutta schemes are written out
  * here (GSL's rk4 does step doubling, 11 evaluations a step); the adaptive

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* status.c - text for the status codes of status.h. */
 #include "swaywatch/status.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* step.c - the step layer (GSL's step/evolve): one step of a package with
  * the engine's scheme, and the re-steps the event layer takes inside it.
  * The scheme's row (scheme.c) points at one advance and one re-step below;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* stuck.c - exact solutions of a package standing on its support, so that a
  * package at rest costs almost nothing: a stuck bare block has no dynamics
  * (the uplift time is solved for on the linear input), and with the

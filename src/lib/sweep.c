@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* sweep.c - overturning boundaries and safety factors: many independent
  * runs of the engine, a scan-then-bisect threshold search, and a small
  * pthread work queue.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """run.py - the bad-input catalogue: runs every case of MANIFEST through the
 swaywatch command and checks what it promises.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # batch.sh - "swaywatch batch": usage, the manifest's errors stopping the
 # batch before any log runs, and a batch of twenty logs of different
 # lengths (six that fail) checked against 'swaywatch replay' run on each

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # batch_mpi.sh - batch and boundary under mpirun: on 2 and 3 ranks, the
 # same bytes as one process writes (records, CSV table, curves, detail,
 # islands), every log run once and the work shared; a bad log is a record,

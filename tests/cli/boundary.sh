@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # boundary.sh - "swaywatch boundary": usage, the CSV, threads = one thread,
 # the bare block against the reference tables, a boundary point re-run with
 # simulate and the rk8pd reference scheme just below and above it.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # boundary_units.sh - "swaywatch boundary" in physical units: amplitudes in
 # g or m/s^2 (--units, --min/--max-amplitude 0.5g), pulses by their
 # duration (--pulse-duration 50ms:...).  Every conversion is checked

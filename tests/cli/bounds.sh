@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Every numeric option has bounds, documented in --help and enforced at
 # once: values that made the engine hang (--dt 1e-12, --omega 1e-300,
 # --settle 1e300, --step 1e-300, --sample-interval 1e-300), fault

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # No output overwrites an input or another output, on any command or path:
 # the same name, a symbolic link, a hard link, './x' for 'x', a dangling
 # link to where another output goes, standard input redirected from the

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Scenes inside every documented limit that the engine runs slower than
 # real time (a frame of 1e7 kg on bearings of 1e6 rad/s with no damping,
 # alone or under a cushion of 1e6 rad/s with a cubic term of 1e30) are

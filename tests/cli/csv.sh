@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # csv.sh - replay of CSV logs end to end: bad rows, --strict, stdin, the
 # JSON contract, the state and event files, and the CSV options.
 . "$(dirname "$0")/lib.sh"

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # elcentro.sh - a third-party record: the 1940 El Centro NS accelerogram
 # (PEER AT2 format: 4 header lines, then 8 values per line in g, dt 0.02 s),
 # converted to CSV here and replayed in g; every sample must be accounted for.

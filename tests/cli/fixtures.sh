@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # fixtures.sh - one fixture per real-world shape of a logger export, made
 # from the sample drive: each replayed with no options gives the clean
 # log's verdict or is refused with the reason (never another verdict with

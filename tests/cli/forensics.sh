@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # forensics.sh - "swaywatch forensics": the answer, the safety factor as a
 # bracket (<= 1 for a log that overturned, > 1 for one that did not; a
 # direct replay of the log scaled by its lower end stays upright and by its

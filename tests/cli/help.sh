@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # help.sh - every command answers --help on stdout with exit 0, and lists
 # its options, units and exit codes.
 . "$(dirname "$0")/lib.sh"

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # lib.sh - helpers sourced by the command-line tests (POSIX sh).
 # Every test is run by ctest as: sh TEST.sh SWAYWATCH SOURCE_DIR
 set -eu

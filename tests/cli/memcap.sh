@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # forensics holds the whole log in memory; from an endless pipe it used to
 # grow until the memory ran out.  It now stops at --max-samples with exit
 # 2 and a message naming the cap, under a memory limit too (not with the

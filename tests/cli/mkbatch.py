@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Write the logs and the manifest of a test batch into DIR.
 
 usage: mkbatch.py DIR SCENE_DIR

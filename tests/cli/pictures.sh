@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # pictures.sh - the state series as a wide CSV (--wide) and the state
 # figure (--plot) of replay and simulate: the wide CSV holds the same
 # numbers as the long state CSV of the same run (--out, written by another

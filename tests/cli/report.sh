@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # report.sh - "swaywatch forensics --report FILE.html": one self-contained
 # page, checked as a browser renders it.  Headless Chromium loads it with
 # the network cut off and scripts disabled, logs no console error, and

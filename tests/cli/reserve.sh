@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The reserve where a user sees it (replay --out, the summaries, --events),
 # checked against what does not compute it: a direct simulate of the design
 # pulse at the reported amplitude overturns the crate, and one 2 % weaker

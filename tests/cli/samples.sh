@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # samples.sh - the sample logs give the outcomes sample_logs/README.md
 # promises, and --fail-on-overturn turns an overturn into exit 1.
 . "$(dirname "$0")/lib.sh"

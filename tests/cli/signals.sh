@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # SIGINT or SIGTERM in the middle of a long run: the command stops within
 # a row, the output files end with a whole row, the summary is printed and
 # marked INTERRUPTED, and the exit status is 130 (SIGINT) or 143 (SIGTERM).

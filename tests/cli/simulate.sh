@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # simulate.sh - pulses through the model: outcomes, outputs, units, options.
 . "$(dirname "$0")/lib.sh"
 SCENE=$SRC/sample_logs/crate.ini

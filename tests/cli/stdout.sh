@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # stdout.sh - '-' as an output file is standard output: --out - and
 # --events - write there (and create no file named '-'), the same bytes as
 # into a file; refused when both are '-' or when a summary goes there too.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # usage.sh - misuse is reported on stderr with the 'swaywatch: ' prefix and
 # exit 2; unreadable files exit 3; bad scenes name FILE:LINE.
 . "$(dirname "$0")/lib.sh"

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # A run in which a package's model faulted never reports a plain verdict:
 # the summary says "not a verdict", the JSON has "verdict": "unreliable"
 # with the faults, and --fail-on-overturn exits 2 instead of 0.  The

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz.h - what the fuzz targets share: a check that aborts (libFuzzer and
  * the sanitizers report an abort as a crash, and the regression replay
  * fails on it), and a cursor over the fuzzer's bytes.

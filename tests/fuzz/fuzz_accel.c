@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_accel.c - libFuzzer target for what the live monitor does with a
  * message on its acceleration channel: the generated swaywatch_accel_t
  * decoder, the monitor core's checks (sw_mon_feed) and the engine behind

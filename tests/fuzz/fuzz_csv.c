@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_csv.c - libFuzzer target for the CSV reader (csv.h).
  *
  * Input: 3 bytes of options (delimiter, header mode, column choice, units,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_feed.c - libFuzzer target for the monitor core's input timeline:
  * sw_mon_feed() with well-formed accel_t messages whose utime and seq are
  * anything an int64 can hold (far future, far past, backwards, repeated,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_lcmlog.c - libFuzzer target for the lcm-logger reader behind
  * `swaywatch replay LOG.lcmlog` (eventlog.h): any bytes as a log file,
  * read through its public API into a monitor core watching a bare and a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_scene.c - libFuzzer target for scene files and the engine behind
  * them: sw_scene_parse(), sw_scene_set_arg() overrides, sw_scene_validate(),
  * then sw_engine_create() and a few pushed samples.

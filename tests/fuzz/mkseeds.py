@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Writes the seed corpora of the fuzz targets feed and lcmlog
 (tests/fuzz/corpus/feed/, tests/fuzz/corpus/lcmlog/); their input formats
 are described at the top of fuzz_feed.c and fuzz_lcmlog.c.

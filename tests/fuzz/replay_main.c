@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* replay_main.c - runs a fuzz target's LLVMFuzzerTestOneInput() over files
  * and folders of inputs, without libFuzzer: the seed corpus and the crash
  * inputs kept under tests/fuzz/regressions/ become ordinary ctest tests in

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 // DecodeLog.java - reads an lcm-logger file with LCM's Java API and the
 // generated swaywatch types (the jar lcm-spy is given), prints the number of
 // accel_t messages.  Run as a single-file program:

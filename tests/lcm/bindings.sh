@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The generated Python and Java types decode a log the C types wrote, and
 # LCM's Java tools (lcm-spy) find the Java types.
 # usage: bindings.sh SW_LCM_TOOL PYTHON_DIR [SWAYWATCH_JAR LCM_JAR]

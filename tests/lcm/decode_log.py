@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Decode the accel_t messages of an lcm-logger file with the generated
 Python types alone (no 'lcm' Python module: Debian has none).  Usage:
 decode_log.py LOG EXPECTED_COUNT; exits non-zero on any surprise."""

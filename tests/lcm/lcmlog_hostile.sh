@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Hostile lcm-logger files: length fields far beyond the file (0x7fffffff,
 # negative, just under LCM's 256 MB limit) never crash replay or monitor
 # --lcm-url file://, under a memory limit too; each bad header is one

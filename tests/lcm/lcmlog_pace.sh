@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # replay --publish paces on the samples it accepts: a refused sample (NaN)
 # stamped 20 s ahead of its neighbours must not stall the replay 20 s.
 # usage: lcmlog_pace.sh SWAYWATCH SW_LCM_TOOL SCENE

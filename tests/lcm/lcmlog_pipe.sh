@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # lcm-logger logs that cannot seek (a pipe, a FIFO, standard input) are
 # read whole, in one pass, with the bytes read to tell the log's kind: the
 # same counts and summary as the file itself.

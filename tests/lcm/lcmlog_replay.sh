@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # `swaywatch replay` of lcm-logger files (read in-process, no network):
 # corrupted regions are skipped and counted, each losing only its own
 # event; --strict stops at the first; other channels are counted; a log

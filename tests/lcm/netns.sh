@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Sourced by the UDP multicast tests of this folder (sh): a network
 # namespace of their own (../netns_enter.sh; no skip: CI runs these as
 # root, where both forms of unshare work), a work folder, and helpers.

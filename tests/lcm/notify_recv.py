@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Stands in for systemd's notification socket (sd_notify(3)) in the tests:
 binds a datagram socket at PATH and writes every message received to OUT,
 one line each: the seconds since it started, then the message with its

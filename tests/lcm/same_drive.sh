@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # One input gate for every source: the same drive - with a 10 ms glitch of
 # -900 m/s^2 and a 0.5 s hole - as a CSV file, as an lcm-logger file and
 # played live into the monitor gives the same verdict and the same counts.

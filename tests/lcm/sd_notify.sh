@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The monitor under systemd's notification protocol (sd_notify(3)), with a
 # stand-in for systemd's socket (notify_recv.py; systemd itself does not run
 # here).  The monitor listens on memq:// (in-process, no network): its loop

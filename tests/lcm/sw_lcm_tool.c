@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* sw_lcm_tool.c - test helper for the LCM integration tests.
  *
  *   sw_lcm_tool mklog OUT.lcmlog PULSE...       accel_t log written with the event-log API

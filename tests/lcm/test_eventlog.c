@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_eventlog.c - the lcm-logger reader (eventlog.h) on crafted logs:
  * the work of resynchronising is linear in the size of the log however
  * many length fields are wrong, counted as the bytes the process reads

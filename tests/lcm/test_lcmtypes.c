@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_lcmtypes.c - the generated C code of the swaywatch LCM types:
  * encode/decode round trips, fixed sizes, and what the decoders do with
  * bad bytes (the monitor relies on each of these). */

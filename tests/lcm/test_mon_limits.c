@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_mon_limits.c - the monitor core refuses options whose values in
  * microseconds do not fit its int64 clock (a gap of 1e300 s, a state rate
  * of 1e-300 Hz) instead of overflowing. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_monitor.c - the monitor core over memq:// (in-process LCM, no
  * network): samples published on ACCEL give the same states and alarms as
  * the same samples replayed from CSV; bad input (duplicate, late, NaN,

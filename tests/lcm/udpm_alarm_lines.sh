@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Alarms on stderr, where people see them: lcm-logplayer plays a braking
 # pulse (a log stamped in 2023) into three monitors at once:
 #   J: stderr is a file and JOURNAL_STREAM names that file's device:inode,

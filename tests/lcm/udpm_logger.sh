@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Integration, real LCM tools over UDP multicast: lcm-logger records a
 # monitor session in which a sender publishes a braking pulse (with a
 # wrong-type and a truncated message on the accel channel every 100

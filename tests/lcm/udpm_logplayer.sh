@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Integration, real LCM tools over UDP multicast: lcm-logplayer replays a
 # logged accel channel in real time into a running monitor, lcm-logger
 # records what the monitor publishes; it must be what `swaywatch replay` of

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # swaywatch watch, in a terminal (tmux) and as a plain snapshot, against a
 # monitor fed by lcm-logplayer (a braking pulse that rocks the crate):
 #  - the screen shows the package, a bar of |theta|/alpha that fills while

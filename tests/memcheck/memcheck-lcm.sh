@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # memcheck-lcm.sh - the LCM side of the command under valgrind memcheck:
 # replay of an lcm-logger file with every kind of bad message in it, and a
 # short live monitor run over UDP multicast on loopback in a private

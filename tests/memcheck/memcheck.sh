@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # memcheck.sh - the swaywatch command under valgrind memcheck: no invalid
 # read or write, no use of uninitialised memory, no leak.
 #

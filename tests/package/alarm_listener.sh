@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # docs/examples/alarm_listener.c receives and prints the alarms swaywatch
 # publishes over UDP multicast: in a private network namespace (only
 # loopback, with the multicast route LCM needs), the listener runs while

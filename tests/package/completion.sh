@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The bash completion completes what the command offers: its commands, each
 # command's options (read from its --help), values of the options that have
 # a fixed set, and scene files for --scene.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # docs/examples/csv2lcmlog.py: a CSV drive converted to an lcm-logger file
 # replays to the same result as the CSV itself.
 # usage: csv2lcmlog.sh SWAYWATCH SOURCE_DIR PYTHON_TYPES_DIR

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The Debian packages: cpack builds them from the build folder; their
 # control fields and contents are checked and lintian finds no error in them
 # (its warnings are the ones docs/deployment.md explains); apt-get

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # docs/examples/decode_states.py decodes every state message of a log that
 # swaywatch wrote: an accel log is replayed with --publish to a file:// URL
 # (an lcm-logger file), and the example must decode as many state messages

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # 'cmake --install' into a scratch prefix puts every piece in place, and a
 # program builds and runs against the installed library through
 # pkg-config, shared and static; the uninstall script removes it all again.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
 """mkaccel.py - write an lcm-logger file of swaywatch.accel_t samples: a
 braking half-sine on x, sampled at --rate Hz, with the generated Python
 types and the event log written by hand (no LCM Python module needed).

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # The systemd unit of the monitor: systemd accepts it (when systemd-analyze
 # is there), it runs no root process, it is a notify service with a
 # watchdog that is restarted on failure, and its ExecStart, run by the shell as

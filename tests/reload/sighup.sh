@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # 'swaywatch monitor' re-reads its scene files on SIGHUP without losing the
 # state of the packages whose scene did not change.  In a private network
 # namespace (udpm on loopback), two monitors watch the same two crates on

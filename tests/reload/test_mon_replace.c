@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_mon_replace.c - sw_mon_replace(), the monitor side of a reload, over
  * memq://: two monitors get the same samples, M has its second package
  * replaced half-way, the reference R does not.  The kept package's states

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # field.sh - the live monitor as a truck's computer runs it for months:
 # one drive at 1 kHz over real LCM UDP multicast (loopback, in a private
 # network namespace) with every field fault in it, and scene reloads all

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 """field_check.py - the checks of field.sh on what the drive sent (feed.txt),
 what the monitor said (monitor.err) and what it published (output.lcmlog,
 recorded by lcm-logger).  Prints what it found; exit 1 on any failure.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # lcmtest.sh - helpers of the tests that run the live monitor over LCM UDP
 # multicast (soak.sh, memcheck-lcm.sh).  Sourced; FEED (sw_accel_feed) and
 # URL must be set before the functions are called.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # soak.sh - the live monitor under a long stream with garbage in it, over
 # real LCM UDP multicast on loopback, in a private network namespace.
 #

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
 /* sw_accel_feed.c - test tool: a stream of swaywatch.accel_t samples with a
  * known share of bad messages, published live over LCM or written to an
  * lcm-logger file, and an exact tally of what was sent.
