@@ -33,9 +33,9 @@ static int bl_rhs(double t, const double y[], double f[], void *par)
     const double a = bl_ag(B, t), s = B->side;
     if (!B->frame) {
         f[0] = y[1];
-        f[1] = B->rocking ? -B->kR * (B->g * sin(s * B->d.alpha - y[0]) +
-                                      a * cos(B->d.alpha - s * y[0]))
-                          : 0.0;
+        f[1] = B->rocking
+                   ? -B->kR * (B->g * sin(s * B->d.alpha - y[0]) + a * cos(B->d.alpha - s * y[0]))
+                   : 0.0;
         return GSL_SUCCESS;
     }
     const double w = B->d.omega_b, F = 2.0 * B->d.zeta_b * w * y[2] + w * w * y[0];
@@ -56,7 +56,8 @@ static int bl_rhs(double t, const double y[], double f[], void *par)
 /* Support acceleration while stuck. */
 static double bl_support(const bl_t *B, double t, const double y[])
 {
-    if (!B->frame) return bl_ag(B, t);
+    if (!B->frame)
+        return bl_ag(B, t);
     const double w = B->d.omega_b;
     return -(2.0 * B->d.zeta_b * w * y[2] + w * w * y[0]);
 }
@@ -66,8 +67,10 @@ static int bl_event(const bl_t *B, double t, const double y[])
 {
     const int ith = B->frame ? 1 : 0;
     if (B->rocking) {
-        if (B->side * y[ith] <= 0.0) return 1;
-        if (B->side * y[ith] >= M_PI_2) return 2;
+        if (B->side * y[ith] <= 0.0)
+            return 1;
+        if (B->side * y[ith] >= M_PI_2)
+            return 2;
         return 0;
     }
     const double A = bl_support(B, t, y), thr = B->ta * B->g;
@@ -79,8 +82,10 @@ int bench_baseline_run(const sw_scene_t *sc, const bench_log_t *log, double eps,
     bl_t B;
     memset(&B, 0, sizeof B);
     memset(s, 0, sizeof *s);
-    if (sw_scene_validate(sc, &B.d, NULL, NULL, NULL) != SW_OK) return SW_EINVAL;
-    if (B.d.model == SW_MODEL_CUSHION) return SW_EINVAL;
+    if (sw_scene_validate(sc, &B.d, NULL, NULL, NULL) != SW_OK)
+        return SW_EINVAL;
+    if (B.d.model == SW_MODEL_CUSHION)
+        return SW_EINVAL;
     B.frame = B.d.model == SW_MODEL_FRAME;
     B.g = sc->g;
     B.kR = 0.75 / B.d.R;
@@ -91,7 +96,8 @@ int bench_baseline_run(const sw_scene_t *sc, const bench_log_t *log, double eps,
     gsl_odeiv2_system sys = {bl_rhs, NULL, n, &B};
     gsl_odeiv2_driver *drv =
         gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rkf45, 1e-4, eps * 1e-2, eps);
-    if (!drv) return SW_ENOMEM;
+    if (!drv)
+        return SW_ENOMEM;
     double y[4] = {0}, ys[4];
     int over = 0, rc = SW_OK;
     s->overturn_time = s->uplift_time = s->tip_time = NAN;
@@ -106,7 +112,8 @@ int bench_baseline_run(const sw_scene_t *sc, const bench_log_t *log, double eps,
             memcpy(ys, y, sizeof ys);
             if (!B.frame && !B.rocking) {
                 /* no dynamics: look at the input only */
-                if (!bl_event(&B, t1, y)) break;
+                if (!bl_event(&B, t1, y))
+                    break;
             } else {
                 gsl_odeiv2_driver_reset(drv);
                 if (gsl_odeiv2_driver_apply(drv, &t, t1, y) != GSL_SUCCESS) {
@@ -131,8 +138,10 @@ int bench_baseline_run(const sw_scene_t *sc, const bench_log_t *log, double eps,
                     gsl_odeiv2_driver_reset(drv);
                     gsl_odeiv2_driver_apply(drv, &tm, m, ym);
                 }
-                if (bl_event(&B, m, ym)) hi = m;
-                else lo = m;
+                if (bl_event(&B, m, ym))
+                    hi = m;
+                else
+                    lo = m;
             }
             memcpy(y, ys, sizeof y);
             t = tstart;
@@ -153,7 +162,8 @@ int bench_baseline_run(const sw_scene_t *sc, const bench_log_t *log, double eps,
                 const double r = B.frame ? B.d.r_frame : B.d.eta, before = y[idth];
                 y[ith] = 0.0;
                 y[idth] = r * before;
-                if (B.frame) y[2] += B.d.gamma * B.d.h * (before - y[idth]);
+                if (B.frame)
+                    y[2] += B.d.gamma * B.d.h * (before - y[idth]);
                 B.side = -B.side;
                 s->impacts++;
                 if (0.5 * y[idth] * y[idth] / (B.d.p * B.d.p) < 1e-9 * (1.0 - cos(B.d.alpha))) {
@@ -172,10 +182,12 @@ int bench_baseline_run(const sw_scene_t *sc, const bench_log_t *log, double eps,
                 B.side = ev == 3 ? 1 : -1;
                 y[ith] = y[idth] = 0.0;
                 s->uplifts++;
-                if (isnan(s->uplift_time)) s->uplift_time = t;
+                if (isnan(s->uplift_time))
+                    s->uplift_time = t;
             }
         }
-        if (fabs(y[ith]) > s->max_abs_theta) s->max_abs_theta = fabs(y[ith]);
+        if (fabs(y[ith]) > s->max_abs_theta)
+            s->max_abs_theta = fabs(y[ith]);
     }
     s->max_theta_ratio = s->max_abs_theta / B.d.alpha;
     gsl_odeiv2_driver_free(drv);

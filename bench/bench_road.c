@@ -19,11 +19,11 @@
 #define G0 9.81
 
 struct bench_road {
-    double rate;  /* Hz */
+    double rate; /* Hz */
     unsigned long long s;
-    double y1[2], y2[2];   /* AR(2) states of the two resonances */
-    double c1[3], c2[3];   /* AR(2) coefficients: a1, a2, input gain */
-    long i;                /* sample index */
+    double y1[2], y2[2]; /* AR(2) states of the two resonances */
+    double c1[3], c2[3]; /* AR(2) coefficients: a1, a2, input gain */
+    long i;              /* sample index */
     /* current manoeuvre: plateau level (m/s^2), times in samples */
     double man_level;
     long man_start, man_len, man_ramp;
@@ -70,7 +70,8 @@ static void resonance(double c[3], double f, double z, double sd, double rate)
 bench_road_t *bench_road_create(double rate, unsigned long long seed)
 {
     bench_road_t *r = calloc(1, sizeof *r);
-    if (!r) return NULL;
+    if (!r)
+        return NULL;
     r->rate = rate;
     r->s = seed;
     resonance(r->c1, 1.6, 0.15, 0.045 * G0, rate);
@@ -103,8 +104,9 @@ double bench_road_next(bench_road_t *r)
     }
     if (r->man_len > 0 && i < r->man_start + r->man_len) {
         const long k = i - r->man_start, e = r->man_start + r->man_len - i;
-        const double f = k < r->man_ramp ? (double)k / r->man_ramp
-                                         : e < r->man_ramp ? (double)e / r->man_ramp : 1.0;
+        const double f = k < r->man_ramp   ? (double)k / r->man_ramp
+                         : e < r->man_ramp ? (double)e / r->man_ramp
+                                           : 1.0;
         a += r->man_level * (0.5 - 0.5 * cos(M_PI * f));
     }
     if (i == r->next_sh) {
@@ -165,7 +167,8 @@ double bench_hard_stop(double u)
              : v < 1.6 ? -3.0 * 0.5 * (1 + cos(M_PI * (v - 1.2) / 0.4))
                        : 0.0;
     }
-    if (u >= 3.0 && u <= 3.35) a += -18.0 * pow(sin(M_PI * (u - 3.0) / 0.35), 2.0);
+    if (u >= 3.0 && u <= 3.35)
+        a += -18.0 * pow(sin(M_PI * (u - 3.0) / 0.35), 2.0);
     if (u >= 3.0 && u <= 3.3) { /* shock(t, 3.0, 0.3, 6.0, 12.0) */
         const double v = u - 3.0, decay = 3.0 / 0.3, first = exp(-decay * 0.25 / 12.0);
         const double taper = sin(M_PI * fmin(v / (0.25 / 12.0), 1.0) / 2.0);

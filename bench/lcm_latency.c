@@ -239,10 +239,11 @@ static void print_series(const char *who, const bench_t *b, long npkg, const ser
                          const stats_t *st, double cpu)
 {
     const long expect = b->n * npkg;
-    printf("%s: rate %.0f Hz (achieved %.0f), packages %ld: sent %ld, states %ld of %ld "
-           "(lost %ld), latency median %.0f us, p99 %.0f us, max %.0f us",
-           who, b->rate, (double)b->n / b->send_secs, npkg, b->n, s->nlat, expect,
-           expect - s->nlat, st->med * 1e6, st->p99 * 1e6, st->max * 1e6);
+    printf(
+        "%s: rate %.0f Hz (achieved %.0f), packages %ld: sent %ld, states %ld of %ld "
+        "(lost %ld), latency median %.0f us, p99 %.0f us, max %.0f us",
+        who, b->rate, (double)b->n / b->send_secs, npkg, b->n, s->nlat, expect, expect - s->nlat,
+        st->med * 1e6, st->p99 * 1e6, st->max * 1e6);
     if (isfinite(cpu))
         printf(", CPU %.1f%%", cpu);
     printf("\n");
@@ -261,8 +262,9 @@ int main(int argc, char **argv)
     if (argc == 4 && !strcmp(argv[1], "echo"))
         return run_echo(argv[2], atol(argv[3]));
     if (argc < 5) {
-        fprintf(stderr, "usage: lcm_latency URL RATE_HZ SECONDS PACKAGES [MONITOR_PID [ECHO_PID]]\n"
-                        "       lcm_latency echo URL PACKAGES\n");
+        fprintf(stderr,
+                "usage: lcm_latency URL RATE_HZ SECONDS PACKAGES [MONITOR_PID [ECHO_PID]]\n"
+                "       lcm_latency echo URL PACKAGES\n");
         return 2;
     }
     const char *url = argv[1];

@@ -38,8 +38,8 @@
 
 #include "bench.h"
 
-#define SNAP_DT 0.1     /* s, reserve evaluations: 10 Hz */
-#define SETTLE 10.0     /* s of quiet input after a drive */
+#define SNAP_DT 0.1 /* s, reserve evaluations: 10 Hz */
+#define SETTLE 10.0 /* s of quiet input after a drive */
 #define MAX_RUNS 25
 
 /* ---- models -------------------------------------------------------------- */
@@ -106,10 +106,12 @@ static int push(drive_t *d, double t, double a)
     if (d->n == d->cap) {
         const size_t cap = d->cap ? 2 * d->cap : 4096;
         double *nt = realloc(d->t, cap * sizeof *nt);
-        if (!nt) return -1;
+        if (!nt)
+            return -1;
         d->t = nt;
         double *na = realloc(d->a, cap * sizeof *na);
-        if (!na) return -1;
+        if (!na)
+            return -1;
         d->a = na;
         d->cap = cap;
     }
@@ -132,14 +134,17 @@ static int load_csv(drive_t *d, const char *path, const char *name)
     memset(d, 0, sizeof *d);
     snprintf(d->name, sizeof d->name, "%s", name);
     FILE *f = fopen(path, "r");
-    if (!f) return -1;
+    if (!f)
+        return -1;
     char line[256];
     while (fgets(line, sizeof line, f)) {
         char *end;
         const double t = strtod(line, &end);
-        if (end == line || (*end != ',' && *end != ';')) continue;
+        if (end == line || (*end != ',' && *end != ';'))
+            continue;
         const double a = strtod(end + 1, NULL);
-        if (push(d, t, a)) break;
+        if (push(d, t, a))
+            break;
     }
     fclose(f);
     return d->n ? 0 : -1;
@@ -151,20 +156,24 @@ static int load_at2(drive_t *d, const char *path, double scale)
     memset(d, 0, sizeof *d);
     snprintf(d->name, sizeof d->name, "elcentro x%.3g", scale);
     FILE *f = fopen(path, "r");
-    if (!f) return -1;
+    if (!f)
+        return -1;
     char line[256];
     int ln = 0;
     size_t k = 0;
     while (fgets(line, sizeof line, f)) {
-        if (++ln <= 4) continue;
+        if (++ln <= 4)
+            continue;
         for (int i = 0; i < 8; i++) {
             char field[11];
-            if (strlen(line) < (size_t)(10 * i + 10)) break;
+            if (strlen(line) < (size_t)(10 * i + 10))
+                break;
             memcpy(field, line + 10 * i, 10);
             field[10] = '\0';
             char *end;
             const double v = strtod(field, &end);
-            if (end == field) continue;
+            if (end == field)
+                continue;
             push(d, 0.02 * (double)k++, scale * v * SW_G0);
         }
     }
@@ -207,7 +216,7 @@ static void synthetic(drive_t *d, syn_t kind)
             const double u = tc - 6.0 * k;
             if (tc >= 0.0 && u < 2.0) {
                 const double lev = (0.5 + 0.1 * k) * L;
-                const double f = u < 0.5 ? sin(M_PI * u) * sin(M_PI * u)
+                const double f = u < 0.5   ? sin(M_PI * u) * sin(M_PI * u)
                                  : u < 1.5 ? 1.0
                                            : sin(M_PI * (2.0 - u)) * sin(M_PI * (2.0 - u));
                 a -= lev * f;
@@ -255,10 +264,10 @@ typedef struct {
 typedef struct {
     snap_t *v;
     size_t n, cap;
-    double next;          /* s, next snapshot */
+    double next; /* s, next snapshot */
     int over;
-    double t_over, t_tip; /* s */
-    sw_alarm_watch_t w;   /* margin alarms at every sample */
+    double t_over, t_tip;                       /* s */
+    sw_alarm_watch_t w;                         /* margin alarms at every sample */
     double mwarn_first, mwarn_last, mcrit_last; /* s, NAN if none (before the overturn) */
     long mwarns;
 } rec_t;
@@ -266,13 +275,16 @@ typedef struct {
 static void rec_alarm(void *user, const sw_alarm_t *a)
 {
     rec_t *R = user;
-    if (R->over) return;
+    if (R->over)
+        return;
     if (a->kind == SW_ALARM_WARN) {
-        if (isnan(R->mwarn_first)) R->mwarn_first = a->t;
+        if (isnan(R->mwarn_first))
+            R->mwarn_first = a->t;
         R->mwarn_last = a->t;
         R->mwarns++;
     }
-    if (a->kind == SW_ALARM_CRITICAL) R->mcrit_last = a->t;
+    if (a->kind == SW_ALARM_CRITICAL)
+        R->mcrit_last = a->t;
 }
 
 static void rec_event(void *user, const sw_event_t *ev)
@@ -283,19 +295,22 @@ static void rec_event(void *user, const sw_event_t *ev)
         R->over = 1;
         R->t_over = ev->t;
     }
-    if (ev->kind == SW_EV_TIP && isnan(R->t_tip)) R->t_tip = ev->t;
+    if (ev->kind == SW_EV_TIP && isnan(R->t_tip))
+        R->t_tip = ev->t;
 }
 
 static void rec_state(void *user, const sw_output_t *o)
 {
     rec_t *R = user;
     sw_alarm_on_output(&R->w, o, rec_alarm, R);
-    if (o->t + 1e-9 < R->next) return;
+    if (o->t + 1e-9 < R->next)
+        return;
     R->next += SNAP_DT;
     if (R->n == R->cap) {
         const size_t cap = R->cap ? 2 * R->cap : 1024;
         snap_t *nv = realloc(R->v, cap * sizeof *nv);
-        if (!nv) return;
+        if (!nv)
+            return;
         R->v = nv;
         R->cap = cap;
     }
@@ -356,10 +371,10 @@ static double median(double *v, int n)
 /* ---- cost -------------------------------------------------------------------- */
 
 typedef struct {
-    double cpu_s;     /* median CPU time of all evaluations */
-    double max_ms;    /* slowest single evaluation (wall, first run) */
+    double cpu_s;  /* median CPU time of all evaluations */
+    double max_ms; /* slowest single evaluation (wall, first run) */
     long evals, cached, trials;
-    long live;        /* evaluations of states not overturned (an overturned one is free) */
+    long live;          /* evaluations of states not overturned (an overturned one is free) */
     double min_reserve; /* g */
 } cost_t;
 
@@ -368,16 +383,20 @@ static int eval_all(sw_reserve_t *r, const rec_t *R, double *res, cost_t *c, int
     sw_reserve_result_t out;
     for (size_t i = 0; i < R->n; i++) {
         const double w0 = timed_each ? mono_now() : 0.0;
-        if (sw_reserve_eval(r, &R->v[i].s, &out) < 0) return -1;
+        if (sw_reserve_eval(r, &R->v[i].s, &out) < 0)
+            return -1;
         if (timed_each) {
             const double ms = 1e3 * (mono_now() - w0);
-            if (ms > c->max_ms) c->max_ms = ms;
+            if (ms > c->max_ms)
+                c->max_ms = ms;
             c->cached += out.cached;
             c->trials += out.trials;
             c->live += R->v[i].s.phase != SW_PHASE_OVERTURNED;
-            if (out.reserve_g < c->min_reserve) c->min_reserve = out.reserve_g;
+            if (out.reserve_g < c->min_reserve)
+                c->min_reserve = out.reserve_g;
         }
-        if (res) res[i] = out.reserve_g;
+        if (res)
+            res[i] = out.reserve_g;
     }
     return 0;
 }
@@ -423,11 +442,14 @@ static int rocking_drives(drive_t *d)
     char p[1024];
     int n = 0;
     data_path(p, sizeof p, SW_SOURCE_DIR, "sample_logs/braking-pothole.csv");
-    if (!load_csv(&d[n], p, "braking-pothole.csv")) n++;
+    if (!load_csv(&d[n], p, "braking-pothole.csv"))
+        n++;
     data_path(p, sizeof p, SW_SOURCE_DIR, "sample_logs/hard-stop-overturn.csv");
-    if (!load_csv(&d[n], p, "hard-stop-overturn.csv")) n++;
+    if (!load_csv(&d[n], p, "hard-stop-overturn.csv"))
+        n++;
     data_path(p, sizeof p, SW_SHARED_DIR, "data/elcentro-1940-ns.AT2");
-    if (!load_at2(&d[n], p, 1.5)) n++;
+    if (!load_at2(&d[n], p, 1.5))
+        n++;
     return n;
 }
 
@@ -453,16 +475,19 @@ static int cmd_cost(int runs, double minutes, const char *only)
     const int nd = rocking_drives(dr);
     printf("<!-- reserve_bench cost --runs %d --minutes %g%s%s -->\n\n", runs, minutes,
            only ? " --model " : "", only ? only : "");
-    if (g_step > 0.0) printf("Scan step %g (the default is 0.02).\n\n", g_step);
-    printf("Over the evaluations (10 Hz) of states not overturned; CPU time of the "
-           "evaluations alone, median of %d runs (3 for cushion-300, 1 for cushion-stiff); "
-           "\"one core\": ten such packages evaluated at 10 Hz.\n\n"
-           "| model | drive | evaluations | at rest (cached) | runs per evaluation | "
-           "CPU ms per evaluation | slowest (ms, wall) | one core, 10 packages at 10 Hz | "
-           "min reserve (g) |\n|---|---|---|---|---|---|---|---|---|\n",
-           runs);
+    if (g_step > 0.0)
+        printf("Scan step %g (the default is 0.02).\n\n", g_step);
+    printf(
+        "Over the evaluations (10 Hz) of states not overturned; CPU time of the "
+        "evaluations alone, median of %d runs (3 for cushion-300, 1 for cushion-stiff); "
+        "\"one core\": ten such packages evaluated at 10 Hz.\n\n"
+        "| model | drive | evaluations | at rest (cached) | runs per evaluation | "
+        "CPU ms per evaluation | slowest (ms, wall) | one core, 10 packages at 10 Hz | "
+        "min reserve (g) |\n|---|---|---|---|---|---|---|---|---|\n",
+        runs);
     for (int i = 0; i < nm; i++) {
-        if (only && strcmp(only, m[i].name)) continue;
+        if (only && strcmp(only, m[i].name))
+            continue;
         const int stiff = !strcmp(m[i].name, "cushion-stiff");
         const int soft = !strcmp(m[i].name, "cushion-soft");
         const int firm = !strcmp(m[i].name, "cushion-300");
@@ -472,10 +497,12 @@ static int cmd_cost(int runs, double minutes, const char *only)
         for (int k = soft ? 0 : -1; k < nd; k++) {
             const drive_t *d = k < 0 ? &rd : &dr[k];
             rec_t R;
-            if (record(&m[i].sc, d, 1.0, &R)) return 1;
+            if (record(&m[i].sc, d, 1.0, &R))
+                return 1;
             cost_t c;
             const int nr = stiff ? 1 : firm ? (runs < 3 ? runs : 3) : runs;
-            if (cost_of(&m[i].sc, &R, nr, &c) == 0) cost_row(m[i].name, d->name, &R, &c);
+            if (cost_of(&m[i].sc, &R, nr, &c) == 0)
+                cost_row(m[i].name, d->name, &R, &c);
             free(R.v);
         }
         drive_free(&rd);
@@ -497,8 +524,10 @@ typedef struct {
 static void lev_alarm(void *user, const sw_alarm_t *a)
 {
     warn_t *w = user;
-    if (a->kind != SW_ALARM_RESERVE_WARN) return;
-    if (isnan(w->first)) w->first = a->t;
+    if (a->kind != SW_ALARM_RESERVE_WARN)
+        return;
+    if (isnan(w->first))
+        w->first = a->t;
     w->last = a->t;
     w->raised++;
 }
@@ -525,9 +554,12 @@ static warn_t reserve_warns(const rec_t *R, const double *res, double warn_g, do
 /* "first / last" lead times (s) before t_over, "-" if no alarm */
 static void lead_cell(double t_over, double first, double last)
 {
-    if (isnan(first)) printf(" - |");
-    else if (first == last) printf(" %.2f |", t_over - first);
-    else printf(" %.2f / %.2f |", t_over - first, t_over - last);
+    if (isnan(first))
+        printf(" - |");
+    else if (first == last)
+        printf(" %.2f |", t_over - first);
+    else
+        printf(" %.2f / %.2f |", t_over - first, t_over - last);
 }
 
 /* The smallest scale of d that overturns the package (sw_safety_factor). */
@@ -541,17 +573,19 @@ static double overturn_scale(const sw_scene_t *sc, const drive_t *d)
     so.tol = 1e-3;
     sw_safety_t s;
     char msg[256];
-    if (sw_safety_factor(sc, &log, &ro, &so, &s, msg, sizeof msg) < 0 || !s.found) return NAN;
+    if (sw_safety_factor(sc, &log, &ro, &so, &s, msg, sizeof msg) < 0 || !s.found)
+        return NAN;
     return s.factor;
 }
 
 /* One drive for the lead-time tables: the overturn row, or a near-miss
  * row (into *miss, printed later) when it survives. */
-static int lead_drive(const model_t *m, const drive_t *d, double scale, sw_reserve_t *r,
-                      char *miss, size_t misslen)
+static int lead_drive(const model_t *m, const drive_t *d, double scale, sw_reserve_t *r, char *miss,
+                      size_t misslen)
 {
     rec_t R;
-    if (record(&m->sc, d, scale, &R)) return -1;
+    if (record(&m->sc, d, scale, &R))
+        return -1;
     double *res = malloc(R.n * sizeof *res);
     cost_t c = {0};
     c.min_reserve = INFINITY;
@@ -563,10 +597,11 @@ static int lead_drive(const model_t *m, const drive_t *d, double scale, sw_reser
         n += (size_t)snprintf(miss + n, misslen - n, "| %s | %s x%.3g | %.3f | %s |", m->name,
                               d->name, scale, min_margin, isnan(R.mwarn_first) ? "no" : "yes");
         for (int k = 0; k < NLEV && n < misslen; k++)
-            n += (size_t)snprintf(miss + n, misslen - n, " %s |",
-                                  reserve_warns(&R, res, warn_levels[k], INFINITY).raised ? "yes"
-                                                                                         : "no");
-        if (n < misslen) snprintf(miss + n, misslen - n, " %.3f |\n", c.min_reserve);
+            n += (size_t)snprintf(
+                miss + n, misslen - n, " %s |",
+                reserve_warns(&R, res, warn_levels[k], INFINITY).raised ? "yes" : "no");
+        if (n < misslen)
+            snprintf(miss + n, misslen - n, " %.3f |\n", c.min_reserve);
     } else {
         printf("| %s | %s x%.3g | %.2f |", m->name, d->name, scale, R.t_over);
         lead_cell(R.t_over, R.t_tip, R.t_tip);
@@ -579,8 +614,10 @@ static int lead_drive(const model_t *m, const drive_t *d, double scale, sw_reser
         /* the reserve 2 s and 1 s before the overturn */
         double r2 = NAN, r1 = NAN;
         for (size_t i = 0; i < R.n; i++) {
-            if (R.v[i].t <= R.t_over - 2.0) r2 = res[i];
-            if (R.v[i].t <= R.t_over - 1.0) r1 = res[i];
+            if (R.v[i].t <= R.t_over - 2.0)
+                r2 = res[i];
+            if (R.v[i].t <= R.t_over - 1.0)
+                r1 = res[i];
         }
         printf(" %.3f | %.3f |\n", r2, r1);
         fflush(stdout);
@@ -611,13 +648,14 @@ static int cmd_leadtime(double minutes, const char *part)
     static char miss[16384];
     miss[0] = '\0';
     printf("<!-- reserve_bench leadtime --minutes %g -->\n\n", minutes);
-    printf("Drives that end in overturn: seconds from the first / the last WARN before "
-           "the overturn to the overturn (one number when they coincide; \"-\": none).  "
-           "Reserve levels: WARN at the level, CRITICAL at half of it, hysteresis "
-           "%.2f g; the reserve is evaluated at 10 Hz, the margin at every sample.\n\n"
-           "| model | drive | overturn (s) | tip (theta = alpha) | margin WARN (0.5) | "
-           "margin CRITICAL (0.2) |",
-           SW_ALARM_RESERVE_HYSTERESIS_G);
+    printf(
+        "Drives that end in overturn: seconds from the first / the last WARN before "
+        "the overturn to the overturn (one number when they coincide; \"-\": none).  "
+        "Reserve levels: WARN at the level, CRITICAL at half of it, hysteresis "
+        "%.2f g; the reserve is evaluated at 10 Hz, the margin at every sample.\n\n"
+        "| model | drive | overturn (s) | tip (theta = alpha) | margin WARN (0.5) | "
+        "margin CRITICAL (0.2) |",
+        SW_ALARM_RESERVE_HYSTERESIS_G);
     for (int k = 0; k < NLEV; k++) printf(" reserve WARN %.2f g |", warn_levels[k]);
     printf(" reserve 2 s before (g) | 1 s before (g) |\n|---|---|---|---|---|---|");
     for (int k = 0; k < NLEV; k++) printf("---|");
@@ -626,7 +664,8 @@ static int cmd_leadtime(double minutes, const char *part)
         int err;
         char msg[256];
         sw_reserve_t *r = sw_reserve_create(&m[i].sc, NULL, &err, msg, sizeof msg);
-        if (!r) return 1;
+        if (!r)
+            return 1;
         for (int k = 0; k < nd; k++) {
             const int scaled = (elc && k == 2) || k >= (elc ? 3 : 2);
             if (!scaled) {
@@ -649,21 +688,25 @@ static int cmd_leadtime(double minutes, const char *part)
         sw_reserve_destroy(r);
     }
 
-    if (drives) printf("\nDrives that come close and survive: do the alarms fire?\n\n"
-           "| model | drive | min margin | margin WARN (0.5) |");
+    if (drives)
+        printf(
+            "\nDrives that come close and survive: do the alarms fire?\n\n"
+            "| model | drive | min margin | margin WARN (0.5) |");
     for (int k = 0; k < NLEV && drives; k++) printf(" reserve WARN %.2f g |", warn_levels[k]);
     if (drives) {
         printf(" min reserve (g) |\n|---|---|---|---|");
         for (int k = 0; k < NLEV; k++) printf("---|");
         printf("---|\n%s", miss);
     }
-    if (!roads) goto done;
+    if (!roads)
+        goto done;
 
     /* false alarms on the road */
-    printf("\nAlarms per hour on the road (%g minutes of bench_road.c; none of these "
-           "overturns); reserve WARN counts with hysteresis %.2f g, and 0.05 g after the "
-           "slash:\n\n| model | margin WARN (0.5) |",
-           minutes, SW_ALARM_RESERVE_HYSTERESIS_G);
+    printf(
+        "\nAlarms per hour on the road (%g minutes of bench_road.c; none of these "
+        "overturns); reserve WARN counts with hysteresis %.2f g, and 0.05 g after the "
+        "slash:\n\n| model | margin WARN (0.5) |",
+        minutes, SW_ALARM_RESERVE_HYSTERESIS_G);
     for (int k = 0; k < NLEV; k++) printf(" reserve WARN %.2f g |", warn_levels[k]);
     printf(" min margin | min reserve (g) | reserve at rest (g) |\n|---|---|");
     for (int k = 0; k < NLEV; k++) printf("---|");
@@ -675,7 +718,8 @@ static int cmd_leadtime(double minutes, const char *part)
     for (int ii = 0; ii < 3; ii++) {
         const int i = road_models[ii];
         rec_t R;
-        if (record(&m[i].sc, &rd, 1.0, &R)) return 1;
+        if (record(&m[i].sc, &rd, 1.0, &R))
+            return 1;
         int err;
         char msg[256];
         sw_reserve_t *r = sw_reserve_create(&m[i].sc, NULL, &err, msg, sizeof msg);
@@ -716,9 +760,10 @@ static int cmd_accuracy(void)
     make_models(m);
     drive_t dr[4];
     const int nd = rocking_drives(dr);
-    printf("<!-- reserve_bench accuracy -->\n\n| model | states (away from rest) | identical | "
-           "within 1 %% | worst difference | CPU ms per evaluation, default / reference |\n"
-           "|---|---|---|---|---|---|\n");
+    printf(
+        "<!-- reserve_bench accuracy -->\n\n| model | states (away from rest) | identical | "
+        "within 1 %% | worst difference | CPU ms per evaluation, default / reference |\n"
+        "|---|---|---|---|---|---|\n");
     for (int i = 0; i < 3; i++) {
         int err;
         char msg[256];
@@ -729,19 +774,22 @@ static int cmd_accuracy(void)
         sw_derived_t d;
         sw_scene_validate(&m[i].sc, &d, NULL, NULL, NULL);
         double per = fmin(2.0 * m[i].sc.design_pulse[0], 2.0 * M_PI / d.p); /* s */
-        if (d.omega_max > 0.0) per = fmin(per, 2.0 * M_PI / d.omega_max);
+        if (d.omega_max > 0.0)
+            per = fmin(per, 2.0 * M_PI / d.omega_max);
         ro.run.engine.scheme = "rk8pd";
         ro.run.engine.rtol = 1e-10;
         ro.run.engine.atol = 1e-12;
         ro.run.engine.dt = per / 400.0;
         ro.run.engine.rest_eps = 1e-9;
         sw_reserve_t *ref = sw_reserve_create(&m[i].sc, &ro, &err, msg, sizeof msg);
-        if (!def || !ref) return 1;
+        if (!def || !ref)
+            return 1;
         long n = 0, same = 0, close = 0;
         double worst = 0.0, t_def = 0.0, t_ref = 0.0;
         for (int k = 0; k < nd; k++) {
             rec_t R;
-            if (record(&m[i].sc, &dr[k], 1.0, &R)) return 1;
+            if (record(&m[i].sc, &dr[k], 1.0, &R))
+                return 1;
             for (size_t j = 0; j < R.n; j++) {
                 if (sw_reserve_is_rest(def, &R.v[j].s) || R.v[j].s.phase == SW_PHASE_OVERTURNED)
                     continue;
@@ -753,8 +801,8 @@ static int cmd_accuracy(void)
                 t_ref += cpu_now() - t1;
                 t_def += t1 - t0;
                 n++;
-                const double diff = b.reserve_g > 0.0 ? fabs(a.reserve_g / b.reserve_g - 1.0)
-                                                      : fabs(a.reserve_g);
+                const double diff =
+                    b.reserve_g > 0.0 ? fabs(a.reserve_g / b.reserve_g - 1.0) : fabs(a.reserve_g);
                 same += a.reserve_g == b.reserve_g;
                 close += diff <= 0.01;
                 worst = fmax(worst, diff);
@@ -779,9 +827,11 @@ static int cmd_eval(const char *model, const char *workload, double minutes)
     const int nm = make_models(m);
     const model_t *mm = NULL;
     for (int i = 0; i < nm; i++)
-        if (model && !strcmp(model, m[i].name)) mm = &m[i];
+        if (model && !strcmp(model, m[i].name))
+            mm = &m[i];
     if (!mm) {
-        fprintf(stderr, "reserve_bench: --model bare|frame|cushion-soft|cushion-300|cushion-stiff\n");
+        fprintf(stderr,
+                "reserve_bench: --model bare|frame|cushion-soft|cushion-300|cushion-stiff\n");
         return 2;
     }
     drive_t d;
@@ -797,16 +847,18 @@ static int cmd_eval(const char *model, const char *workload, double minutes)
         }
     }
     rec_t R;
-    if (record(&mm->sc, &d, 1.0, &R)) return 1;
+    if (record(&mm->sc, &d, 1.0, &R))
+        return 1;
     int err;
     char msg[256];
     sw_reserve_t *r = sw_reserve_create(&mm->sc, NULL, &err, msg, sizeof msg);
-    if (!r) return 1;
+    if (!r)
+        return 1;
     cost_t c = {0};
     c.min_reserve = INFINITY;
     eval_all(r, &R, NULL, &c, 1);
-    printf("%s %s: %zu evaluations, %ld of states not overturned, %ld cached, %ld runs\n",
-           mm->name, d.name, R.n, c.live, c.cached, c.trials);
+    printf("%s %s: %zu evaluations, %ld of states not overturned, %ld cached, %ld runs\n", mm->name,
+           d.name, R.n, c.live, c.cached, c.trials);
     sw_reserve_destroy(r);
     free(R.v);
     drive_free(&d);
@@ -819,12 +871,10 @@ int main(int argc, char **argv)
     int runs = 5;
     double minutes = 60.0;
     const char *model = NULL, *workload = NULL;
-    static const struct option lo[] = {{"runs", required_argument, NULL, 'r'},
-                                       {"minutes", required_argument, NULL, 'm'},
-                                       {"model", required_argument, NULL, 'M'},
-                                       {"workload", required_argument, NULL, 'w'},
-                                       {"step", required_argument, NULL, 's'},
-                                       {NULL, 0, NULL, 0}};
+    static const struct option lo[] = {
+        {"runs", required_argument, NULL, 'r'},  {"minutes", required_argument, NULL, 'm'},
+        {"model", required_argument, NULL, 'M'}, {"workload", required_argument, NULL, 'w'},
+        {"step", required_argument, NULL, 's'},  {NULL, 0, NULL, 0}};
     if (argc < 2) {
         fprintf(stderr, "usage: reserve_bench cost|leadtime|accuracy|eval [options]\n");
         return 2;
@@ -834,22 +884,26 @@ int main(int argc, char **argv)
     int ch;
     while ((ch = getopt_long(argc, argv, "", lo, NULL)) != -1) {
         switch (ch) {
-        case 'r': runs = atoi(optarg); break;
-        case 'm': minutes = atof(optarg); break;
-        case 'M': model = optarg; break;
-        case 'w': workload = optarg; break;
-        case 's': g_step = atof(optarg); break;
-        default: return 2;
+            case 'r': runs = atoi(optarg); break;
+            case 'm': minutes = atof(optarg); break;
+            case 'M': model = optarg; break;
+            case 'w': workload = optarg; break;
+            case 's': g_step = atof(optarg); break;
+            default: return 2;
         }
     }
     if (runs < 1 || runs > MAX_RUNS || !(minutes > 0.0)) {
         fprintf(stderr, "reserve_bench: --runs 1..%d, --minutes > 0\n", MAX_RUNS);
         return 2;
     }
-    if (!strcmp(cmd, "cost")) return cmd_cost(runs, minutes, model);
-    if (!strcmp(cmd, "leadtime")) return cmd_leadtime(minutes, workload);
-    if (!strcmp(cmd, "eval")) return cmd_eval(model, workload, minutes);
-    if (!strcmp(cmd, "accuracy")) return cmd_accuracy();
+    if (!strcmp(cmd, "cost"))
+        return cmd_cost(runs, minutes, model);
+    if (!strcmp(cmd, "leadtime"))
+        return cmd_leadtime(minutes, workload);
+    if (!strcmp(cmd, "eval"))
+        return cmd_eval(model, workload, minutes);
+    if (!strcmp(cmd, "accuracy"))
+        return cmd_accuracy();
     fprintf(stderr, "reserve_bench: unknown command %s\n", cmd);
     return 2;
 }

@@ -120,16 +120,13 @@ typedef struct {
 } bcfg_t;
 
 static const bcfg_t cfgs[] = {
-    {"euler", 1e-3, 0, 0},   {"euler", 1e-4, 0, 1},   {"euler", 3e-5, 0, 0},
-    {"heun", 1e-3, 0, 1},    {"heun", 5e-4, 0, 0},    {"heun", 2.5e-4, 0, 0},
-    {"heun", 1e-4, 0, 0},    {"heun", 5e-5, 0, 0},    {"rk4", 1e-3, 0, 1},
-    {"rk4", 5e-4, 0, 0},     {"rk4", 2.5e-4, 0, 1},   {"rk4", 1e-4, 0, 0},
-    {"rk4", 5e-5, 0, 0},     {"rkf45", 0, 1e-4, 0},   {"rkf45", 0, 1e-6, 0},
-    {"rkf45", 0, 1e-8, 1},   {"rkf45", 0, 1e-10, 0},  {"rkck", 0, 1e-4, 0},
-    {"rkck", 0, 1e-6, 0},    {"rkck", 0, 1e-8, 1},    {"rkck", 0, 1e-10, 0},
-    {"rk8pd", 0, 1e-4, 0},   {"rk8pd", 0, 1e-6, 0},   {"rk8pd", 0, 1e-8, 0},
-    {"rk8pd", 0, 1e-10, 1},  {"rk4imp", 0, 1e-8, 0},  {"bsimp", 0, 1e-8, 0},
-    {"msbdf", 0, 1e-8, 0},
+    {"euler", 1e-3, 0, 0},  {"euler", 1e-4, 0, 1},  {"euler", 3e-5, 0, 0}, {"heun", 1e-3, 0, 1},
+    {"heun", 5e-4, 0, 0},   {"heun", 2.5e-4, 0, 0}, {"heun", 1e-4, 0, 0},  {"heun", 5e-5, 0, 0},
+    {"rk4", 1e-3, 0, 1},    {"rk4", 5e-4, 0, 0},    {"rk4", 2.5e-4, 0, 1}, {"rk4", 1e-4, 0, 0},
+    {"rk4", 5e-5, 0, 0},    {"rkf45", 0, 1e-4, 0},  {"rkf45", 0, 1e-6, 0}, {"rkf45", 0, 1e-8, 1},
+    {"rkf45", 0, 1e-10, 0}, {"rkck", 0, 1e-4, 0},   {"rkck", 0, 1e-6, 0},  {"rkck", 0, 1e-8, 1},
+    {"rkck", 0, 1e-10, 0},  {"rk8pd", 0, 1e-4, 0},  {"rk8pd", 0, 1e-6, 0}, {"rk8pd", 0, 1e-8, 0},
+    {"rk8pd", 0, 1e-10, 1}, {"rk4imp", 0, 1e-8, 0}, {"bsimp", 0, 1e-8, 0}, {"msbdf", 0, 1e-8, 0},
 };
 #define NCFGS (sizeof cfgs / sizeof cfgs[0])
 static const bcfg_t ref_cfg = {"rk8pd", 0, 1e-12, 0};
@@ -139,15 +136,19 @@ static const bcfg_t ref_cfg = {"rk8pd", 0, 1e-12, 0};
  * default 1e-10); Euler and Heun add nothing there but hours. */
 static int cushion_cfg(const bcfg_t *c)
 {
-    if (!strcmp(c->scheme, "rk4")) return c->dt == 1e-3;
-    if (!strcmp(c->scheme, "euler") || !strcmp(c->scheme, "heun")) return 0;
+    if (!strcmp(c->scheme, "rk4"))
+        return c->dt == 1e-3;
+    if (!strcmp(c->scheme, "euler") || !strcmp(c->scheme, "heun"))
+        return 0;
     return c->rtol == 1e-8 || (c->rtol == 1e-10 && strcmp(c->scheme, "rkf45"));
 }
 
 static const char *cfg_label(const bcfg_t *c, char *buf, size_t n)
 {
-    if (c->rtol > 0) snprintf(buf, n, "%s rtol %.0e", c->scheme, c->rtol);
-    else snprintf(buf, n, "%s dt %.2g", c->scheme, c->dt);
+    if (c->rtol > 0)
+        snprintf(buf, n, "%s rtol %.0e", c->scheme, c->rtol);
+    else
+        snprintf(buf, n, "%s dt %.2g", c->scheme, c->dt);
     return buf;
 }
 
@@ -162,11 +163,20 @@ static void on_event(void *user, const sw_event_t *ev)
 {
     watch_t *w = user;
     switch (ev->kind) {
-    case SW_EV_UPLIFT: w->moving = 1; w->uplifts++; break;
-    case SW_EV_REST: w->moving = 0; break;
-    case SW_EV_OVERTURN: w->over = 1; w->moving = 0; break;
-    case SW_EV_FAULT: w->faults++; w->moving = 0; break;
-    default: break;
+        case SW_EV_UPLIFT:
+            w->moving = 1;
+            w->uplifts++;
+            break;
+        case SW_EV_REST: w->moving = 0; break;
+        case SW_EV_OVERTURN:
+            w->over = 1;
+            w->moving = 0;
+            break;
+        case SW_EV_FAULT:
+            w->faults++;
+            w->moving = 0;
+            break;
+        default: break;
     }
 }
 
@@ -183,7 +193,8 @@ static sw_engine_t *engine(const sw_scene_t *sc, const bcfg_t *c, int stepped, w
     int err = 0;
     char msg[256];
     sw_engine_t *e = sw_engine_create(sc, 1, &o, &err, msg, sizeof msg);
-    if (!e) fprintf(stderr, "sw_bench: engine: %s\n", msg);
+    if (!e)
+        fprintf(stderr, "sw_bench: engine: %s\n", msg);
     return e;
 }
 
@@ -244,7 +255,8 @@ static prun_t run_pulse(const sw_scene_t *sc, const bcfg_t *c, double ratio, dou
         const double t = i / RATE;
         sw_engine_push(e, t, sw_pulse_eval(&pu, t), 0.0);
         r.samples++;
-        if (w.over || t > t_end || (t > T && !w.moving && w.uplifts > 0)) break;
+        if (w.over || t > t_end || (t > T && !w.moving && w.uplifts > 0))
+            break;
     }
     sw_summary_t s;
     sw_engine_summary(e, 0, &s);
@@ -261,14 +273,15 @@ static prun_t run_pulse(const sw_scene_t *sc, const bcfg_t *c, double ratio, dou
  * from 0.9 alpha, alternately forward and back, restarted at rest.  A
  * package on a cushion has no rigid rocking to start from: it gets a
  * braking or speeding-up half-sine of 0.8 g tan(alpha) at omega_e = 3 p
- * every 4 s instead (below every boundary measured).  Returns the CPU time; steps and samples through the
- * pointers. */
+ * every 4 s instead (below every boundary measured).  Returns the CPU time; steps and samples
+ * through the pointers. */
 static double run_rocking(const sw_scene_t *sc, const bcfg_t *c, double seconds, long *steps,
                           long *samples)
 {
     watch_t w = {0};
     sw_engine_t *e = engine(sc, c, 0, &w);
-    if (!e) return NAN;
+    if (!e)
+        return NAN;
     const sw_derived_t *d = sw_engine_derived(e, 0);
     const long n = (long)(seconds * RATE);
     const int cushion = d->model == SW_MODEL_CUSHION;
@@ -309,11 +322,13 @@ static double run_road(const sw_scene_t *sc, const bcfg_t *c, int stepped, const
                        sw_summary_t *s, double *wall)
 {
     sw_engine_t *e = engine(sc, c, stepped, NULL);
-    if (!e) return NAN;
+    if (!e)
+        return NAN;
     const double w0 = now(), t0 = cpu_now();
     for (size_t i = 0; i < log->n; i++) sw_engine_push(e, log->t[i], log->a[i], 0.0);
     const double el = cpu_now() - t0;
-    if (wall) *wall = now() - w0;
+    if (wall)
+        *wall = now() - w0;
     sw_engine_summary(e, 0, s);
     sw_engine_destroy(e);
     return el;
@@ -323,7 +338,7 @@ static double run_road(const sw_scene_t *sc, const bcfg_t *c, int stepped, const
 
 #define NW 4
 static const double wps[NW] = {1.5, 3.0, 6.0, 12.0}; /* omega_e / p */
-#define NDEC 50                                        /* pulses per frequency */
+#define NDEC 50                                      /* pulses per frequency */
 
 /* Smallest overturning amplitude ratio by the reference: scan up by 10 %
  * from the rigid uplift threshold (down, for a soft cushion that overturns
@@ -338,15 +353,18 @@ static double boundary(const sw_scene_t *sc, double wp)
         }
     } else {
         while (hi < 100.0) {
-            if (run_pulse(sc, &ref_cfg, hi, wp).over) break;
+            if (run_pulse(sc, &ref_cfg, hi, wp).over)
+                break;
             lo = hi;
             hi *= 1.1;
         }
     }
     while (hi - lo > 1e-6 * hi) {
         const double m = 0.5 * (lo + hi);
-        if (run_pulse(sc, &ref_cfg, m, wp).over) hi = m;
-        else lo = m;
+        if (run_pulse(sc, &ref_cfg, m, wp).over)
+            hi = m;
+        else
+            lo = m;
     }
     return hi;
 }
@@ -357,9 +375,9 @@ static double dec_ratio(double b, int k)
 }
 
 typedef struct {
-    double err_theta, err_tover;  /* rad, s: worst over the accuracy pulses */
-    int acc_flips;                /* accuracy pulses whose decision differs */
-    int agree, total, faults;     /* decisions */
+    double err_theta, err_tover;                 /* rad, s: worst over the accuracy pulses */
+    int acc_flips;                               /* accuracy pulses whose decision differs */
+    int agree, total, faults;                    /* decisions */
     double ns_sample, ns_step, steps_per_sample; /* while rocking */
 } cres_t;
 
@@ -367,9 +385,12 @@ typedef struct {
 
 static void fmt_err(char *buf, size_t n, double v, int flips)
 {
-    if (flips) snprintf(buf, n, "decision differs (%d)", flips);
-    else if (v == 0.0) snprintf(buf, n, "0");
-    else snprintf(buf, n, "%.1e", v);
+    if (flips)
+        snprintf(buf, n, "decision differs (%d)", flips);
+    else if (v == 0.0)
+        snprintf(buf, n, "0");
+    else
+        snprintf(buf, n, "%.1e", v);
 }
 
 static long max_rss_kib(void)
@@ -400,15 +421,18 @@ static int cmd_run(int quick, int runs, const char *data)
             ref_acc[k][0] = run_pulse(&sc, &ref_cfg, 0.9 * bnd[k], wps[k]);
             ref_acc[k][1] = run_pulse(&sc, &ref_cfg, 1.1 * bnd[k], wps[k]);
             for (int j = 0; j < ndec; j++)
-                ref_dec[k][j] = run_pulse(&sc, &ref_cfg, dec_ratio(bnd[k], j * (NDEC - 1) / (ndec > 1 ? ndec - 1 : 1)), wps[k]);
+                ref_dec[k][j] = run_pulse(
+                    &sc, &ref_cfg, dec_ratio(bnd[k], j * (NDEC - 1) / (ndec > 1 ? ndec - 1 : 1)),
+                    wps[k]);
         }
         printf("### Model `%s`\n\n", models[m].name);
         printf("alpha = %.4f rad, p = %.4f rad/s", d.alpha, d.p);
         if (d.model == SW_MODEL_FRAME)
             printf(", gamma = %.3f, omega_b = %.3f rad/s, zeta_b = %.3f", d.gamma, d.omega_b,
                    d.zeta_b);
-        printf(".  Overturning boundary of a half-sine braking pulse by the reference, "
-               "a_e / (g tan alpha):\n\n| omega_e/p |");
+        printf(
+            ".  Overturning boundary of a half-sine braking pulse by the reference, "
+            "a_e / (g tan alpha):\n\n| omega_e/p |");
         for (int k = 0; k < NW; k++) printf(" %g |", wps[k]);
         printf("\n|---|");
         for (int k = 0; k < NW; k++) printf("---|");
@@ -419,22 +443,25 @@ static int cmd_run(int quick, int runs, const char *data)
         printf("; at 1.1 x boundary: overturn time (s) =");
         for (int k = 0; k < NW; k++) printf(" %.4f", ref_acc[k][1].t_over);
         printf(".\n\n");
-        printf("| scheme | dt (s) / rtol | ns per sample (rocking) | ns per step | M steps/s | "
-               "steps per sample | max-theta error (rad) | overturn-time error (s) | decisions "
-               "agreeing | faults |\n|---|---|---|---|---|---|---|---|---|---|\n");
+        printf(
+            "| scheme | dt (s) / rtol | ns per sample (rocking) | ns per step | M steps/s | "
+            "steps per sample | max-theta error (rad) | overturn-time error (s) | decisions "
+            "agreeing | faults |\n|---|---|---|---|---|---|---|---|---|---|\n");
         FILE *dat = NULL;
         if (data) {
             char path[512];
             snprintf(path, sizeof path, "%s/pareto-%s.dat", data, models[m].name);
             dat = fopen(path, "w");
-            if (dat) fprintf(dat, "# scheme dt rtol ns_per_sample err_theta err_tover agree total\n");
+            if (dat)
+                fprintf(dat, "# scheme dt rtol ns_per_sample err_theta err_tover agree total\n");
         }
         cres_t all[NCFGS];
         for (size_t c = 0; c < NCFGS; c++) {
             const bcfg_t *C = &cfgs[c];
             char lab[64];
             all[c] = (cres_t){.faults = 1};
-            if (models[m].cushion && !cushion_cfg(C)) continue;
+            if (models[m].cushion && !cushion_cfg(C))
+                continue;
             fprintf(stderr, "sw_bench: %s: %s\n", models[m].name, cfg_label(C, lab, sizeof lab));
             cres_t R = {0};
             for (int k = 0; k < NW; k++) {
@@ -442,9 +469,12 @@ static int cmd_run(int quick, int runs, const char *data)
                     const prun_t p = run_pulse(&sc, C, (j ? 1.1 : 0.9) * bnd[k], wps[k]);
                     const prun_t *q = &ref_acc[k][j];
                     R.faults += p.faults;
-                    if (p.over != q->over) R.acc_flips++;
-                    else if (q->over) R.err_tover = fmax(R.err_tover, fabs(p.t_over - q->t_over));
-                    else R.err_theta = fmax(R.err_theta, fabs(p.theta_max - q->theta_max));
+                    if (p.over != q->over)
+                        R.acc_flips++;
+                    else if (q->over)
+                        R.err_tover = fmax(R.err_tover, fabs(p.t_over - q->t_over));
+                    else
+                        R.err_theta = fmax(R.err_theta, fabs(p.theta_max - q->theta_max));
                 }
                 for (int j = 0; j < ndec; j++) {
                     const prun_t p = run_pulse(
@@ -471,8 +501,10 @@ static int cmd_run(int quick, int runs, const char *data)
             fmt_err(e1, sizeof e1, R.err_theta, R.acc_flips);
             fmt_err(e2, sizeof e2, R.err_tover, R.acc_flips);
             char dts[32];
-            if (C->rtol > 0) snprintf(dts, sizeof dts, "rtol %.0e", C->rtol);
-            else snprintf(dts, sizeof dts, "%.2g", C->dt);
+            if (C->rtol > 0)
+                snprintf(dts, sizeof dts, "rtol %.0e", C->rtol);
+            else
+                snprintf(dts, sizeof dts, "%.2g", C->dt);
             all[c] = R;
             printf("| %s | %s | %.0f | %.0f | %.2f | %.2f | %s | %s | %d / %d | %d |\n", C->scheme,
                    dts, R.ns_sample, ns_step, 1e3 / ns_step, steps_ps, e1, e2, R.agree, R.total,
@@ -483,7 +515,8 @@ static int cmd_run(int quick, int runs, const char *data)
                         R.ns_sample, R.acc_flips ? 1.0 : fmax(R.err_theta, 1e-16),
                         R.acc_flips ? 1.0 : fmax(R.err_tover, 1e-16), R.agree, R.total);
         }
-        if (dat) fclose(dat);
+        if (dat)
+            fclose(dat);
         /* the accuracy option's table: per decade of tolerance the cheapest
          * setting whose max-theta error was at most half of it (adaptive
          * schemes only at the engine's default rtol 1e-10).  Euler and Heun
@@ -491,9 +524,10 @@ static int cmd_run(int quick, int runs, const char *data)
          * axis, and a frame or a cushion is an oscillator whose damping a
          * scene may set near zero (their errors on this crate's damped
          * bearings do not show it). */
-        printf("\nAccuracy option rows for `%s` (src/lib/accuracy.c; a row serves the "
-               "tolerances from the one before it down to its own):\n\n```\n",
-               models[m].name);
+        printf(
+            "\nAccuracy option rows for `%s` (src/lib/accuracy.c; a row serves the "
+            "tolerances from the one before it down to its own):\n\n```\n",
+            models[m].name);
         int prev = -1;
         double prev_tol = 0.0;
         for (int e10 = -2; e10 >= -15; e10--) {
@@ -501,13 +535,17 @@ static int cmd_run(int quick, int runs, const char *data)
             int best = -1;
             for (size_t c = 0; c < NCFGS && tol > 0.0; c++) {
                 const cres_t *R = &all[c];
-                if (R->acc_flips || R->faults || R->agree < R->total) continue;
-                if (cfgs[c].rtol > 0 && cfgs[c].rtol != 1e-10) continue;
+                if (R->acc_flips || R->faults || R->agree < R->total)
+                    continue;
+                if (cfgs[c].rtol > 0 && cfgs[c].rtol != 1e-10)
+                    continue;
                 if (d.model != SW_MODEL_BARE &&
                     (!strcmp(cfgs[c].scheme, "euler") || !strcmp(cfgs[c].scheme, "heun")))
                     continue;
-                if (!(R->err_theta <= 0.5 * tol)) continue;
-                if (best < 0 || R->ns_sample < all[best].ns_sample) best = (int)c;
+                if (!(R->err_theta <= 0.5 * tol))
+                    continue;
+                if (best < 0 || R->ns_sample < all[best].ns_sample)
+                    best = (int)c;
             }
             /* timings on a shared machine are noisy: keep the default when it
              * meets the tolerance and is within 25 % of the cheapest */
@@ -518,9 +556,12 @@ static int cmd_run(int quick, int runs, const char *data)
                     best = (int)c;
             if (prev >= 0 && best != prev)
                 printf("    {SW_MODEL_%s, %.0e, \"%s\", %g},\n",
-                       d.model == SW_MODEL_FRAME ? "FRAME" : d.model == SW_MODEL_CUSHION ? "CUSHION" : "BARE", prev_tol, cfgs[prev].scheme,
-                       cfgs[prev].rtol > 0 ? 0.0 : cfgs[prev].dt);
-            if (best < 0) break;
+                       d.model == SW_MODEL_FRAME     ? "FRAME"
+                       : d.model == SW_MODEL_CUSHION ? "CUSHION"
+                                                     : "BARE",
+                       prev_tol, cfgs[prev].scheme, cfgs[prev].rtol > 0 ? 0.0 : cfgs[prev].dt);
+            if (best < 0)
+                break;
             prev = best;
             prev_tol = tol;
         }
@@ -530,14 +571,17 @@ static int cmd_run(int quick, int runs, const char *data)
     /* ---- an hour of road ---- */
     fprintf(stderr, "sw_bench: road log\n");
     bench_log_t log;
-    if (bench_log_make(&log, road_s, RATE, 20240611ULL) != 0) return 1;
+    if (bench_log_make(&log, road_s, RATE, 20240611ULL) != 0)
+        return 1;
     printf("### %.0f s of road at 1 kHz (%zu samples, in memory)\n\n", road_s, log.n);
-    printf("Median of %d runs.  CPU time of the process; ns per sample and the "
-           "real-time factor (log duration / time) from it.\n\n",
-           runs);
-    printf("| model | setting | CPU (s) | wall (s) | ns per sample | real-time factor | steps | "
-           "uplifts | impacts | max theta / alpha | overturned |\n"
-           "|---|---|---|---|---|---|---|---|---|---|---|\n");
+    printf(
+        "Median of %d runs.  CPU time of the process; ns per sample and the "
+        "real-time factor (log duration / time) from it.\n\n",
+        runs);
+    printf(
+        "| model | setting | CPU (s) | wall (s) | ns per sample | real-time factor | steps | "
+        "uplifts | impacts | max theta / alpha | overturned |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (size_t m = 0; m < NMODELS; m++) {
         const sw_scene_t sc = models[m].scene();
         sw_derived_t d;
@@ -550,12 +594,16 @@ static int cmd_run(int quick, int runs, const char *data)
             const int base = c == NCFGS + 1;
             bcfg_t C = {"rk4", 1e-3, 0, 1};
             if (c < NCFGS) {
-                if (!cfgs[c].road) continue;
+                if (!cfgs[c].road)
+                    continue;
                 C = cfgs[c];
-                if (models[m].cushion) continue; /* replay targets: bare and frame */
+                if (models[m].cushion)
+                    continue; /* replay targets: bare and frame */
             }
-            if (stepped && d.model != SW_MODEL_FRAME) continue;
-            if (base && !models[m].baseline) continue;
+            if (stepped && d.model != SW_MODEL_FRAME)
+                continue;
+            if (base && !models[m].baseline)
+                continue;
             double tw[64], tc[64];
             sw_summary_t s;
             for (int r = 0; r < runs; r++) {
@@ -570,11 +618,16 @@ static int cmd_run(int quick, int runs, const char *data)
             }
             const double wall = median(tw, runs), cpu = median(tc, runs);
             char lab[96];
-            if (base) snprintf(lab, sizeof lab, "GSL driver baseline (rkf45, eps 1e-8)");
-            else if (stepped) snprintf(lab, sizeof lab, "rk4 dt 0.001, stuck frame stepped");
-            else cfg_label(&C, lab, sizeof lab);
-            if (base) base_wall = cpu;
-            if (!base && !stepped && !strcmp(C.scheme, "rk4") && C.dt == 1e-3) def_wall = cpu;
+            if (base)
+                snprintf(lab, sizeof lab, "GSL driver baseline (rkf45, eps 1e-8)");
+            else if (stepped)
+                snprintf(lab, sizeof lab, "rk4 dt 0.001, stuck frame stepped");
+            else
+                cfg_label(&C, lab, sizeof lab);
+            if (base)
+                base_wall = cpu;
+            if (!base && !stepped && !strcmp(C.scheme, "rk4") && C.dt == 1e-3)
+                def_wall = cpu;
             printf("| %s | %s | %.3f | %.3f | %.1f | %.0f | %ld | %ld | %ld | %.4f | %s |\n",
                    models[m].name, lab, cpu, wall, 1e9 * cpu / log.n, road_s / cpu, s.steps,
                    s.uplifts, s.impacts, s.max_theta_ratio, s.overturned ? "yes" : "no");
@@ -598,7 +651,8 @@ static int cmd_run(int quick, int runs, const char *data)
 static int cmd_gen_csv(double hours, unsigned long long seed, int incident)
 {
     bench_road_t *r = bench_road_create(RATE, seed);
-    if (!r) return 1;
+    if (!r)
+        return 1;
     const long n = (long)(hours * 3600.0 * RATE) + 1;
     const double level = incident ? 0.3 : 1.0, t_stop = (n - 1) / RATE - BENCH_HARD_STOP_S;
     static char buf[1 << 16];
@@ -606,11 +660,13 @@ static int cmd_gen_csv(double hours, unsigned long long seed, int incident)
     k += (size_t)snprintf(buf, sizeof buf, "time_s,accel_ms2\n");
     for (long i = 0; i < n; i++) {
         if (k > sizeof buf - 64) {
-            if (fwrite(buf, 1, k, stdout) != k) break;
+            if (fwrite(buf, 1, k, stdout) != k)
+                break;
             k = 0;
         }
         double a = level * bench_road_next(r);
-        if (incident && i / RATE >= t_stop) a += bench_hard_stop(i / RATE - t_stop);
+        if (incident && i / RATE >= t_stop)
+            a += bench_hard_stop(i / RATE - t_stop);
         k += (size_t)snprintf(buf + k, sizeof buf - k, "%.3f,%.5f\n", i / RATE, a);
     }
     fwrite(buf, 1, k, stdout);
@@ -634,7 +690,8 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
 static int cmd_replay_csv(const char *path, const char *model)
 {
     const bmodel_t *bm = find_model(model);
-    if (!bm) return 2;
+    if (!bm)
+        return 2;
     const int fd = strcmp(path, "-") ? open(path, O_RDONLY) : 0;
     if (fd < 0) {
         fprintf(stderr, "sw_bench: %s: %s\n", path, strerror(errno));
@@ -648,7 +705,8 @@ static int cmd_replay_csv(const char *path, const char *model)
     int err = 0;
     char msg[256];
     sw_csv_t *csv = sw_csv_create(&co, on_row, NULL, &f, &err, msg, sizeof msg);
-    if (!f.e || !csv) return 2;
+    if (!f.e || !csv)
+        return 2;
     const double w0 = now(), t0 = cpu_now();
     static char buf[1 << 18];
     ssize_t got;
@@ -659,20 +717,23 @@ static int cmd_replay_csv(const char *path, const char *model)
     sw_csv_counts(csv, &cnt);
     sw_summary_t s;
     sw_engine_summary(f.e, 0, &s);
-    printf("model %s rows %ld rejected %ld cpu %.3f s wall %.3f s (%.0f ns/row) uplifts %ld "
-           "impacts %ld max_rss_kib %ld\n",
-           bm->name, cnt.accepted, cnt.rejected, el, wall, 1e9 * el / (double)cnt.rows, s.uplifts,
-           s.impacts, max_rss_kib());
+    printf(
+        "model %s rows %ld rejected %ld cpu %.3f s wall %.3f s (%.0f ns/row) uplifts %ld "
+        "impacts %ld max_rss_kib %ld\n",
+        bm->name, cnt.accepted, cnt.rejected, el, wall, 1e9 * el / (double)cnt.rows, s.uplifts,
+        s.impacts, max_rss_kib());
     sw_csv_destroy(csv);
     sw_engine_destroy(f.e);
-    if (fd) close(fd);
+    if (fd)
+        close(fd);
     return 0;
 }
 
 static const bmodel_t *find_model(const char *name)
 {
     for (size_t m = 0; m < NMODELS; m++)
-        if (!strcmp(models[m].name, name)) return &models[m];
+        if (!strcmp(models[m].name, name))
+            return &models[m];
     fprintf(stderr, "sw_bench: no model '%s'\n", name);
     return NULL;
 }
@@ -682,19 +743,22 @@ static int cmd_one(const char *what, const char *model, const bcfg_t *C, int ste
                    double seconds)
 {
     const bmodel_t *bm = find_model(model);
-    if (!bm) return 2;
+    if (!bm)
+        return 2;
     const sw_scene_t sc = bm->scene();
     if (!strcmp(what, "rock")) {
         long st = 0, sa = 1;
         const double el = run_rocking(&sc, C, seconds, &st, &sa);
-        printf("rock %s %s dt %g rtol %g: %.1f ns/sample %.1f ns/step (%.2f Msteps/s) steps/sample "
-               "%.2f\n",
-               model, C->scheme, C->dt, C->rtol, 1e9 * el / sa, 1e9 * el / st, 1e-6 * st / el,
-               (double)st / sa);
+        printf(
+            "rock %s %s dt %g rtol %g: %.1f ns/sample %.1f ns/step (%.2f Msteps/s) steps/sample "
+            "%.2f\n",
+            model, C->scheme, C->dt, C->rtol, 1e9 * el / sa, 1e9 * el / st, 1e-6 * st / el,
+            (double)st / sa);
         return 0;
     }
     bench_log_t log;
-    if (bench_log_make(&log, seconds, RATE, 20240611ULL) != 0) return 1;
+    if (bench_log_make(&log, seconds, RATE, 20240611ULL) != 0)
+        return 1;
     if (!strcmp(what, "gen")) { /* the log alone, to subtract its cost */
         bench_log_free(&log);
         return 0;
@@ -702,21 +766,23 @@ static int cmd_one(const char *what, const char *model, const bcfg_t *C, int ste
     sw_summary_t s;
     const double el = !strcmp(what, "baseline") ? (bench_baseline_run(&sc, &log, 1e-8, &s), 0.0)
                                                 : run_road(&sc, C, stepped, &log, &s, NULL);
-    printf("road %s %s: %.3f s, %.1f ns/sample, steps %ld uplifts %ld impacts %ld max "
-           "theta/alpha %.4f%s\n",
-           model, C->scheme, el, 1e9 * el / log.n, s.steps, s.uplifts, s.impacts,
-           s.max_theta_ratio, s.overturned ? " OVERTURNED" : "");
+    printf(
+        "road %s %s: %.3f s, %.1f ns/sample, steps %ld uplifts %ld impacts %ld max "
+        "theta/alpha %.4f%s\n",
+        model, C->scheme, el, 1e9 * el / log.n, s.steps, s.uplifts, s.impacts, s.max_theta_ratio,
+        s.overturned ? " OVERTURNED" : "");
     bench_log_free(&log);
     return 0;
 }
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: sw_bench run [--quick] [--runs N] [--data DIR]\n"
-               "       sw_bench gen-csv [--hours H] [--seed S] [--incident]\n"
-               "       sw_bench replay-csv FILE|- [--model bare|frame]\n"
-               "       sw_bench rock|road|baseline|gen [--model M] [--scheme S] [--dt DT] "
-               "[--rtol R] [--stepped] [--seconds N]\n");
+    fprintf(f,
+            "usage: sw_bench run [--quick] [--runs N] [--data DIR]\n"
+            "       sw_bench gen-csv [--hours H] [--seed S] [--incident]\n"
+            "       sw_bench replay-csv FILE|- [--model bare|frame]\n"
+            "       sw_bench rock|road|baseline|gen [--model M] [--scheme S] [--dt DT] "
+            "[--rtol R] [--stepped] [--seconds N]\n");
 }
 
 int main(int argc, char **argv)
@@ -735,41 +801,45 @@ int main(int argc, char **argv)
     int stepped = 0, incident = 0;
     double seconds = 200.0;
     static const struct option lo[] = {
-        {"quick", no_argument, NULL, 'q'},       {"runs", required_argument, NULL, 'r'},
-        {"data", required_argument, NULL, 'd'},  {"hours", required_argument, NULL, 'H'},
-        {"seed", required_argument, NULL, 's'},  {"model", required_argument, NULL, 'm'},
-        {"scheme", required_argument, NULL, 'S'}, {"dt", required_argument, NULL, 't'},
-        {"rtol", required_argument, NULL, 'T'},   {"stepped", no_argument, NULL, 'x'},
+        {"quick", no_argument, NULL, 'q'},         {"runs", required_argument, NULL, 'r'},
+        {"data", required_argument, NULL, 'd'},    {"hours", required_argument, NULL, 'H'},
+        {"seed", required_argument, NULL, 's'},    {"model", required_argument, NULL, 'm'},
+        {"scheme", required_argument, NULL, 'S'},  {"dt", required_argument, NULL, 't'},
+        {"rtol", required_argument, NULL, 'T'},    {"stepped", no_argument, NULL, 'x'},
         {"seconds", required_argument, NULL, 'n'}, {"incident", no_argument, NULL, 'i'},
-        {"help", no_argument, NULL, 'h'},        {NULL, 0, NULL, 0},
+        {"help", no_argument, NULL, 'h'},          {NULL, 0, NULL, 0},
     };
     optind = 2;
     int ch;
     while ((ch = getopt_long(argc, argv, "", lo, NULL)) != -1) {
         switch (ch) {
-        case 'q': quick = 1; break;
-        case 'r': runs = atoi(optarg); break;
-        case 'd': data = optarg; break;
-        case 'H': hours = atof(optarg); break;
-        case 's': seed = strtoull(optarg, NULL, 10); break;
-        case 'm': model = optarg; break;
-        case 'S': one.scheme = optarg; break;
-        case 't': one.dt = atof(optarg); break;
-        case 'T': one.rtol = atof(optarg); break;
-        case 'x': stepped = 1; break;
-        case 'n': seconds = atof(optarg); break;
-        case 'i': incident = 1; break;
-        case 'h': usage(stdout); return 0;
-        default: usage(stderr); return 2;
+            case 'q': quick = 1; break;
+            case 'r': runs = atoi(optarg); break;
+            case 'd': data = optarg; break;
+            case 'H': hours = atof(optarg); break;
+            case 's': seed = strtoull(optarg, NULL, 10); break;
+            case 'm': model = optarg; break;
+            case 'S': one.scheme = optarg; break;
+            case 't': one.dt = atof(optarg); break;
+            case 'T': one.rtol = atof(optarg); break;
+            case 'x': stepped = 1; break;
+            case 'n': seconds = atof(optarg); break;
+            case 'i': incident = 1; break;
+            case 'h': usage(stdout); return 0;
+            default: usage(stderr); return 2;
         }
     }
-    if (runs < 1 || runs > 64) runs = 5;
-    if (!strcmp(cmd, "run")) return cmd_run(quick, runs, data);
-    if (!strcmp(cmd, "gen-csv")) return cmd_gen_csv(hours, seed, incident);
+    if (runs < 1 || runs > 64)
+        runs = 5;
+    if (!strcmp(cmd, "run"))
+        return cmd_run(quick, runs, data);
+    if (!strcmp(cmd, "gen-csv"))
+        return cmd_gen_csv(hours, seed, incident);
     if (!strcmp(cmd, "rock") || !strcmp(cmd, "road") || !strcmp(cmd, "baseline") ||
         !strcmp(cmd, "gen"))
         return cmd_one(cmd, model, &one, stepped, seconds);
-    if (!strcmp(cmd, "replay-csv") && optind < argc) return cmd_replay_csv(argv[optind], model);
+    if (!strcmp(cmd, "replay-csv") && optind < argc)
+        return cmd_replay_csv(argv[optind], model);
     usage(stderr);
     return 2;
 }

@@ -13,7 +13,8 @@
 static inline void tu_near_(double a, double b, double tol, const char *sa, const char *sb,
                             const char *file, int line)
 {
-    if (fabs(a - b) <= tol) return;
+    if (fabs(a - b) <= tol)
+        return;
     print_error("%s = %.17g, %s = %.17g: |difference| %.3g > %.3g\n", sa, a, sb, b, fabs(a - b),
                 tol);
     _fail(file, line);

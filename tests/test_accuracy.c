@@ -50,9 +50,9 @@ static void test_achieves_tolerance(void **state)
         for (size_t k = 0; k < sizeof tols / sizeof tols[0]; k++) {
             const char *scheme = NULL;
             double dt = -1.0;
-            assert_int_equal(sw_scheme_for_accuracy(m ? SW_MODEL_FRAME : SW_MODEL_BARE, tols[k],
-                                                    &scheme, &dt),
-                             SW_OK);
+            assert_int_equal(
+                sw_scheme_for_accuracy(m ? SW_MODEL_FRAME : SW_MODEL_BARE, tols[k], &scheme, &dt),
+                SW_OK);
             assert_non_null(scheme);
             assert_non_null(sw_scheme_lookup(scheme));
             const double th = pulse_theta_max(&scenes[m], scheme, dt, 0.0, ratio[m], 3.0);

@@ -230,9 +230,11 @@ static void on_state(void *user, const sw_output_t *o)
 {
     track_t *t = user;
     const double v = sw_margin_presented(o->margin, o->state.phase);
-    if (t->n && o->margin < 0.0 && v > t->last_shown) t->rises++;
+    if (t->n && o->margin < 0.0 && v > t->last_shown)
+        t->rises++;
     t->last_shown = v;
-    if (o->state.phase != SW_PHASE_OVERTURNED) t->last_raw = o->margin;
+    if (o->state.phase != SW_PHASE_OVERTURNED)
+        t->last_raw = o->margin;
     t->min_raw = fmin(t->min_raw, o->margin);
     t->n++;
 }
@@ -255,10 +257,10 @@ static void test_presented_margin_overturn(void **state)
     sw_summary_t s;
     sw_engine_summary(e, 0, &s);
     assert_true(s.overturned);
-    assert_true(t.min_raw < -5.0);            /* the raw margin runs far below -1 ... */
-    assert_true(t.last_raw < -1.0);           /* ... right up to the overturn */
-    assert_true(t.last_shown == -1.0);        /* shown: -1 at the end */
-    assert_int_equal(t.rises, 0);             /* and never back up while negative */
+    assert_true(t.min_raw < -5.0);     /* the raw margin runs far below -1 ... */
+    assert_true(t.last_raw < -1.0);    /* ... right up to the overturn */
+    assert_true(t.last_shown == -1.0); /* shown: -1 at the end */
+    assert_int_equal(t.rises, 0);      /* and never back up while negative */
     sw_engine_destroy(e);
 }
 

@@ -148,10 +148,13 @@ static void test_free_rocking(void **state)
             if (ev->kind == SW_EV_IMPACT) {
                 /* every impact: theta'+ = eta theta'-, kinetic energy ratio eta^2 */
                 const double ratio = (ev->theta_dot * ev->theta_dot) / (ev->info * ev->info);
-                if (ev->theta_dot != 0.0) tu_near(ratio, eta * eta, 1e-12);
-                if (++seen == 2) tu_near(ev->t, t2, 1e-8 * t2);
+                if (ev->theta_dot != 0.0)
+                    tu_near(ratio, eta * eta, 1e-12);
+                if (++seen == 2)
+                    tu_near(ev->t, t2, 1e-8 * t2);
             }
-            if (ev->kind == SW_EV_REST) last_rest = i;
+            if (ev->kind == SW_EV_REST)
+                last_rest = i;
         }
         assert_true(seen > 10);
         assert_true(last_rest > 0); /* the cascade ends */
@@ -166,7 +169,8 @@ static void test_free_rocking(void **state)
 /* Piecewise linear braking: 0 at 0 s, -1.5 g tan(alpha) at 0.2 s, 0 at 0.4 s. */
 static double braking(double t, double thr)
 {
-    if (t <= 0.0 || t >= 0.4) return 0.0;
+    if (t <= 0.0 || t >= 0.4)
+        return 0.0;
     return t < 0.2 ? -1.5 * thr * t / 0.2 : -1.5 * thr * (0.4 - t) / 0.2;
 }
 
@@ -197,7 +201,8 @@ static void test_grid_independence(void **state)
         tu_events_t rec = {0};
         sw_engine_t *e = tu_engine(&sc, "rk4", 1e-3, &rec);
         for (int i = 0; i < n; i++)
-            if (i == 0 || ts[i] - ts[i - 1] > 1e-9) sw_engine_push(e, ts[i], braking(ts[i], thr), 0.0);
+            if (i == 0 || ts[i] - ts[i - 1] > 1e-9)
+                sw_engine_push(e, ts[i], braking(ts[i], thr), 0.0);
         t_up[k] = tu_first(&rec, SW_EV_UPLIFT)->t;
         t_imp[k] = tu_first(&rec, SW_EV_IMPACT)->t;
         sw_summary_t s;
@@ -270,8 +275,10 @@ static void test_vertical_acceleration(void **state)
         for (int i = 0; i <= 100; i++) sw_engine_push(e, i * 1e-3, -0.6 * thr, az);
         sw_summary_t s;
         sw_engine_summary(e, 0, &s);
-        if (k == 0) assert_int_equal(s.uplifts, 0); /* 0.6 of the threshold */
-        if (k == 1) assert_int_equal(s.uplifts, 1); /* 1.2 of the halved threshold */
+        if (k == 0)
+            assert_int_equal(s.uplifts, 0); /* 0.6 of the threshold */
+        if (k == 1)
+            assert_int_equal(s.uplifts, 1); /* 1.2 of the halved threshold */
         if (k == 2) {
             assert_true(s.faults > 0);
             assert_int_equal(s.uplifts, 0);
@@ -287,9 +294,9 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_uplift_threshold), cmocka_unit_test(test_uplift_between_samples),
-        cmocka_unit_test(test_free_rocking),     cmocka_unit_test(test_grid_independence),
-        cmocka_unit_test(test_overturn_and_tip), cmocka_unit_test(test_bad_samples),
+        cmocka_unit_test(test_uplift_threshold),      cmocka_unit_test(test_uplift_between_samples),
+        cmocka_unit_test(test_free_rocking),          cmocka_unit_test(test_grid_independence),
+        cmocka_unit_test(test_overturn_and_tip),      cmocka_unit_test(test_bad_samples),
         cmocka_unit_test(test_vertical_acceleration),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

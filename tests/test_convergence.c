@@ -49,7 +49,8 @@ static run_t run(const sw_scene_t *sc, const char *scheme, double dt, const sw_p
     r.impacts = s.impacts;
     int k = 0;
     for (int i = 0; i < rec->n; i++)
-        if (rec->ev[i].kind == SW_EV_IMPACT && ++k == 3) r.t_imp3 = rec->ev[i].t;
+        if (rec->ev[i].kind == SW_EV_IMPACT && ++k == 3)
+            r.t_imp3 = rec->ev[i].t;
     sw_engine_destroy(e);
     free(rec);
     return r;
@@ -75,10 +76,11 @@ static void check_order(const sw_scene_t *sc, const sw_pulse_t *pulse, double T)
         }
         const double q_max = log2(emax[1] / emax[2]), q_T = log2(eT[1] / eT[2]),
                      q_imp = log2(eimp[1] / eimp[2]);
-        print_message("%-5s errors theta_max %.2e %.2e %.2e (order %.2f), theta(T) %.2e %.2e "
-                      "%.2e (order %.2f), 3rd impact %.2e (order %.2f)\n",
-                      cases[k].scheme, emax[0], emax[1], emax[2], q_max, eT[0], eT[1], eT[2],
-                      q_T, eimp[2], q_imp);
+        print_message(
+            "%-5s errors theta_max %.2e %.2e %.2e (order %.2f), theta(T) %.2e %.2e "
+            "%.2e (order %.2f), 3rd impact %.2e (order %.2f)\n",
+            cases[k].scheme, emax[0], emax[1], emax[2], q_max, eT[0], eT[1], eT[2], q_T, eimp[2],
+            q_imp);
         const double q = cases[k].order;
         assert_true(q_max > q - 0.4 && q_max < q + 0.6);
         assert_true(q_T > q - 0.4 && q_T < q + 0.6);

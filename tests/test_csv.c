@@ -48,7 +48,8 @@ typedef struct {
 static int on_row(void *user, long line, double t, double a, double z)
 {
     result_t *r = user;
-    if (line == r->refuse_line) return 1;
+    if (line == r->refuse_line)
+        return 1;
     if (r->nrows == r->caprows) {
         r->caprows = r->caprows ? 2 * r->caprows : 64;
         r->rows = realloc(r->rows, r->caprows * sizeof *r->rows);
@@ -94,9 +95,11 @@ static void run(const char *in, size_t len, const sw_csv_opts_t *o, size_t chunk
     memset(r, 0, sizeof *r);
     r->refuse_line = refuse;
     sw_csv_t *c = sw_csv_create(o, on_row, on_reject, r, &err, msg, sizeof msg);
-    if (!c) fail_msg("create failed (%d): %s", err, msg);
+    if (!c)
+        fail_msg("create failed (%d): %s", err, msg);
     assert_int_equal(err, SW_OK);
-    if (!chunk) chunk = len ? len : 1;
+    if (!chunk)
+        chunk = len ? len : 1;
     r->feed_rc = SW_OK;
     for (size_t off = 0; off < len && r->feed_rc == SW_OK; off += chunk)
         r->feed_rc = sw_csv_feed(c, in + off, len - off < chunk ? len - off : chunk);
@@ -121,7 +124,8 @@ static void run(const char *in, size_t len, const sw_csv_opts_t *o, size_t chunk
     }
     for (size_t i = 1; i < r->nrows; i++) {
         assert_true(r->rows[i].line > r->rows[i - 1].line);
-        if (!o->any_order) assert_true(r->rows[i].t > r->rows[i - 1].t);
+        if (!o->any_order)
+            assert_true(r->rows[i].t > r->rows[i - 1].t);
     }
 }
 
@@ -180,10 +184,11 @@ static void check_counts(int at, const result_t *r, long lines, long rows, long 
     if (n->lines != lines || n->rows != rows || n->accepted != accepted ||
         n->rejected != rows - accepted || n->comments != comments || n->blanks != blanks ||
         n->headers != headers)
-        fail_msg("test line %d: counts lines %ld rows %ld accepted %ld rejected %ld comments %ld "
-                 "blanks %ld headers %ld, expected %ld %ld %ld %ld %ld %ld %ld",
-                 at, n->lines, n->rows, n->accepted, n->rejected, n->comments, n->blanks,
-                 n->headers, lines, rows, accepted, rows - accepted, comments, blanks, headers);
+        fail_msg(
+            "test line %d: counts lines %ld rows %ld accepted %ld rejected %ld comments %ld "
+            "blanks %ld headers %ld, expected %ld %ld %ld %ld %ld %ld %ld",
+            at, n->lines, n->rows, n->accepted, n->rejected, n->comments, n->blanks, n->headers,
+            lines, rows, accepted, rows - accepted, comments, blanks, headers);
 }
 
 static void assert_close(int at, double got, double want, const char *what, long line)
@@ -195,7 +200,8 @@ static void assert_close(int at, double got, double want, const char *what, long
 
 static void check_row(int at, const result_t *r, size_t i, long line, double t, double a, double z)
 {
-    if (i >= r->nrows) fail_msg("test line %d: row %zu missing (%zu rows)", at, i, r->nrows);
+    if (i >= r->nrows)
+        fail_msg("test line %d: row %zu missing (%zu rows)", at, i, r->nrows);
     if (r->rows[i].line != line)
         fail_msg("test line %d: row %zu is on line %ld, expected %ld", at, i, r->rows[i].line,
                  line);
@@ -222,7 +228,8 @@ static char *read_fixture(const char *name, size_t *len)
     char path[512];
     snprintf(path, sizeof path, "%s/tests/csv/%s", SW_SOURCE_DIR, name);
     FILE *f = fopen(path, "rb");
-    if (!f) fail_msg("cannot open %s", path);
+    if (!f)
+        fail_msg("cannot open %s", path);
     char *buf = malloc(1 << 16);
     assert_non_null(buf);
     *len = fread(buf, 1, 1 << 16, f);
@@ -385,29 +392,35 @@ static void test_crlf_bom_comments(void **state)
     assert_counts(&r, 2, 1, 1, 0, 0, 1);
     result_free(&r);
     o = defaults();
-    RUN_STR("\xEF\xBB\xBF" "0,1\n", &o, &r);
+    RUN_STR(
+        "\xEF\xBB\xBF"
+        "0,1\n",
+        &o, &r);
     assert_counts(&r, 1, 1, 1, 0, 0, 0);
     result_free(&r);
     RUN_STR("\xEF\xBB\xBF# exported\n0,1\n", &o, &r);
     assert_counts(&r, 2, 1, 1, 1, 0, 0);
     result_free(&r);
     /* a BOM anywhere else is data */
-    RUN_STR("0,1\n\xEF\xBB\xBF" "1,2\n", &o, &r);
+    RUN_STR(
+        "0,1\n\xEF\xBB\xBF"
+        "1,2\n",
+        &o, &r);
     assert_counts(&r, 2, 2, 1, 0, 0, 0);
     result_free(&r);
 
     const char *in =
-        "# logger v2\n"    /* 1 */
-        "  # indented\n"   /* 2 */
-        "\n"               /* 3 */
-        "   \n"            /* 4 */
-        "\t\r\n"           /* 5 */
-        "time,accel\n"     /* 6 */
-        "# mid-file\n"     /* 7 */
-        "0,1\n"            /* 8 */
-        "\n"               /* 9 */
-        "1,2\n"            /* 10 */
-        "#";               /* 11 */
+        "# logger v2\n"  /* 1 */
+        "  # indented\n" /* 2 */
+        "\n"             /* 3 */
+        "   \n"          /* 4 */
+        "\t\r\n"         /* 5 */
+        "time,accel\n"   /* 6 */
+        "# mid-file\n"   /* 7 */
+        "0,1\n"          /* 8 */
+        "\n"             /* 9 */
+        "1,2\n"          /* 10 */
+        "#";             /* 11 */
     RUN_STR(in, &o, &r);
     assert_counts(&r, 11, 2, 2, 4, 4, 1);
     assert_row(&r, 0, 8, 0.0, 1.0, 0.0);
@@ -465,7 +478,7 @@ static void test_columns(void **state)
     sw_csv_opts_t o = defaults();
     result_t r;
     const char *in = "Accel X , t_s ,az\n1,0,9.8\n2,0.5,9.7\n";
-    o.time_col = "T_S";     /* case-insensitive */
+    o.time_col = "T_S";      /* case-insensitive */
     o.accel_col = "accel x"; /* header field is trimmed */
     RUN_STR(in, &o, &r);
     assert_counts(&r, 3, 2, 2, 0, 0, 1);
@@ -570,16 +583,17 @@ static void test_bad_options(void **state)
         {{0, "0", NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},
         {{0, "  ", NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},
         {{0, "99999999999999999999", NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},
-        {{0, "2", NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},          /* same as accel */
-        {{0, "t", "T", NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},           /* same name */
-        {{0, NULL, NULL, "1", 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},          /* vertical = time */
-        {{0, "time", NULL, NULL, 0, 0, 0, 0, 0, 0, 0}, SW_ENOTFOUND},     /* named, no header */
+        {{0, "2", NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},      /* same as accel */
+        {{0, "t", "T", NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},       /* same name */
+        {{0, NULL, NULL, "1", 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},      /* vertical = time */
+        {{0, "time", NULL, NULL, 0, 0, 0, 0, 0, 0, 0}, SW_ENOTFOUND}, /* named, no header */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         int err = 0;
         char msg[200] = "";
         sw_csv_t *c = sw_csv_create(&cases[i].o, NULL, NULL, NULL, &err, msg, sizeof msg);
-        if (c) fail_msg("case %zu accepted", i);
+        if (c)
+            fail_msg("case %zu accepted", i);
         assert_int_equal(err, cases[i].err);
         assert_true(msg[0] != '\0');
         /* and without err/msg */
@@ -694,18 +708,18 @@ static void test_quoting(void **state)
     sw_csv_opts_t o = defaults();
     result_t r;
     const char *in =
-        "\"time\",\"accel\"\n"      /* 1 */
-        "\"0\",\"1.5\"\n"           /* 2 */
-        "\" 0.5 \", 2\n"            /* 3: blanks inside quotes are allowed */
-        "1,\"2\"\"\"\n"             /* 4: 2" */
-        "2,3,\"a,b\"\"c\"\n"        /* 5: quoted unused field */
-        "3,1\"2\n"                  /* 6: quote inside unquoted field */
-        "4,\"1\"x\n"                /* 7: text after closing quote */
-        "5,\"1\n"                   /* 8: unterminated */
-        "6,\"7\"\n"                 /* 9: the parser recovered */
-        "\"7\",8\r\n"               /* 10 */
-        "8,\"9\r\n"                 /* 11: unterminated, CRLF */
-        "9,\"10\"";                 /* 12 */
+        "\"time\",\"accel\"\n" /* 1 */
+        "\"0\",\"1.5\"\n"      /* 2 */
+        "\" 0.5 \", 2\n"       /* 3: blanks inside quotes are allowed */
+        "1,\"2\"\"\"\n"        /* 4: 2" */
+        "2,3,\"a,b\"\"c\"\n"   /* 5: quoted unused field */
+        "3,1\"2\n"             /* 6: quote inside unquoted field */
+        "4,\"1\"x\n"           /* 7: text after closing quote */
+        "5,\"1\n"              /* 8: unterminated */
+        "6,\"7\"\n"            /* 9: the parser recovered */
+        "\"7\",8\r\n"          /* 10 */
+        "8,\"9\r\n"            /* 11: unterminated, CRLF */
+        "9,\"10\"";            /* 12 */
     RUN_STR(in, &o, &r);
     assert_counts(&r, 12, 11, 6, 0, 0, 1);
     assert_row(&r, 0, 2, 0.0, 1.5, 0.0);
@@ -810,28 +824,28 @@ static void test_long_lines(void **state)
     char *in = malloc(cap);
     assert_non_null(in);
     size_t n = 0;
-    n += (size_t)sprintf(in + n, "time,accel\n0,1\n");                /* 1, 2 */
-    n += (size_t)sprintf(in + n, "1,");                               /* 3: 2 MB */
+    n += (size_t)sprintf(in + n, "time,accel\n0,1\n"); /* 1, 2 */
+    n += (size_t)sprintf(in + n, "1,");                /* 3: 2 MB */
     memset(in + n, '7', 2 * max);
     n += 2 * max;
     in[n++] = '\n';
-    n += (size_t)sprintf(in + n, "2,2\n# ");                          /* 4, 5: 2 MB comment */
+    n += (size_t)sprintf(in + n, "2,2\n# "); /* 4, 5: 2 MB comment */
     memset(in + n, 'c', 2 * max);
     n += 2 * max;
     in[n++] = '\n';
-    size_t start = n;                                                 /* 6: exactly max */
+    size_t start = n; /* 6: exactly max */
     n += (size_t)sprintf(in + n, "3,3");
     memset(in + n, ' ', max - (n - start));
     n = start + max;
-    in[n++] = '\r';                                                   /* CRLF does not count */
+    in[n++] = '\r'; /* CRLF does not count */
     in[n++] = '\n';
-    start = n;                                                        /* 7: max + 1 */
+    start = n; /* 7: max + 1 */
     n += (size_t)sprintf(in + n, "4,4");
     memset(in + n, ' ', max + 1 - (n - start));
     n = start + max + 1;
     in[n++] = '\n';
-    n += (size_t)sprintf(in + n, "5,5\n");                            /* 8 */
-    start = n;                                                        /* 9: long, no newline */
+    n += (size_t)sprintf(in + n, "5,5\n"); /* 8 */
+    start = n;                             /* 9: long, no newline */
     memset(in + n, '1', max + 10);
     n += max + 10;
     assert_true(n <= cap);
@@ -996,9 +1010,9 @@ static void test_fast_path_matches_libcsv(void **state)
 {
     (void)state;
     static const char *const vocab[] = {
-        "1.5",  " 2 ", "\t3\t", "",      "  ",   "abc",    "1.0x", "nan", "-0",   "1e5",
-        "1,5",  "7",   "8.25",  " -9 ",  "1e400", "+4",    "0.001", "x y", "\x01", "3\r4",
-        "5.",   ".5",  "12",    "100",   "-2.5e-3", "  42  ", "1 2",  "e",   "\xff", "99"};
+        "1.5", " 2 ", "\t3\t", "",     "  ",      "abc",    "1.0x",  "nan", "-0",   "1e5",
+        "1,5", "7",   "8.25",  " -9 ", "1e400",   "+4",     "0.001", "x y", "\x01", "3\r4",
+        "5.",  ".5",  "12",    "100",  "-2.5e-3", "  42  ", "1 2",   "e",   "\xff", "99"};
     static const char delims[] = {',', ';', '\t'};
     const size_t nv = sizeof vocab / sizeof vocab[0];
     uint64_t seed = 12345;
@@ -1018,8 +1032,10 @@ static void test_fast_path_matches_libcsv(void **state)
             /* CRLF, a trailing empty field, or LF */
             char end[3] = {'\n', 0, 0};
             uint64_t kind = rnd(&seed) % 4;
-            if (kind == 0) end[0] = '\r', end[1] = '\n';
-            if (kind == 1) end[0] = d, end[1] = '\n';
+            if (kind == 0)
+                end[0] = '\r', end[1] = '\n';
+            if (kind == 1)
+                end[0] = d, end[1] = '\n';
             a += (size_t)sprintf(plain + a, "%s%c%s%cu%s", f1, d, f2, d, end);
             b += (size_t)sprintf(quoted + b, "%s%c%s%c\"u\"%s", f1, d, f2, d, end);
         }
@@ -1062,18 +1078,22 @@ static void test_numbers_match_strtod(void **state)
         int k = 0;
         uint64_t x = rnd(&seed);
         static const char signs[] = {0, '+', '-', 0};
-        if (signs[x % 4]) t[k++] = signs[x % 4];
+        if (signs[x % 4])
+            t[k++] = signs[x % 4];
         int idig = (int)(rnd(&seed) % 21), fdig = (int)(rnd(&seed) % 21);
-        if (rnd(&seed) % 4 == 0) idig = fdig = (int)(rnd(&seed) % 4); /* short ones too */
+        if (rnd(&seed) % 4 == 0)
+            idig = fdig = (int)(rnd(&seed) % 4); /* short ones too */
         for (int j = 0; j < idig; j++) t[k++] = (char)('0' + rnd(&seed) % 10);
         if (fdig || rnd(&seed) % 2) {
             t[k++] = '.';
             for (int j = 0; j < fdig; j++) t[k++] = (char)('0' + rnd(&seed) % 10);
         }
-        if (!idig && !fdig) t[k++] = '7';
+        if (!idig && !fdig)
+            t[k++] = '7';
         if (rnd(&seed) % 3 == 0) {
             t[k++] = rnd(&seed) % 2 ? 'e' : 'E';
-            if (rnd(&seed) % 2) t[k++] = rnd(&seed) % 2 ? '-' : '+';
+            if (rnd(&seed) % 2)
+                t[k++] = rnd(&seed) % 2 ? '-' : '+';
             k += sprintf(t + k, "%d", (int)(rnd(&seed) % (rnd(&seed) % 4 ? 30 : 400)));
         }
         t[k] = '\0';
@@ -1087,7 +1107,8 @@ static void test_numbers_match_strtod(void **state)
     size_t next = 0;
     for (int i = 0; i < nlines; i++) {
         double want = strtod(text[i], NULL);
-        if (!isfinite(want)) continue; /* rejected: out of range */
+        if (!isfinite(want))
+            continue; /* rejected: out of range */
         if (next >= r.nrows || r.rows[next].line != i + 1)
             fail_msg("\"%s\" (line %d) was not accepted", text[i], i + 1);
         if (memcmp(&r.rows[next].a, &want, sizeof want))
@@ -1109,7 +1130,8 @@ static void test_locale(void **state)
     const char *got = NULL;
     for (size_t i = 0; i < sizeof names / sizeof names[0] && !got; i++)
         got = setlocale(LC_NUMERIC, names[i]);
-    if (!got) skip();
+    if (!got)
+        skip();
     sw_csv_opts_t o = defaults();
     result_t r;
     RUN_STR("0.5,1.25\n", &o, &r);

@@ -50,7 +50,8 @@ static void on_reject(void *user, long line, const char *reason)
 {
     (void)line;
     res_t *r = user;
-    if (!r->rejected++) snprintf(r->reason, sizeof r->reason, "%s", reason);
+    if (!r->rejected++)
+        snprintf(r->reason, sizeof r->reason, "%s", reason);
 }
 
 /* Feed text in 5-byte chunks (the layout must not depend on the chunks). */
@@ -65,11 +66,13 @@ static void run(const char *text, const sw_csv_opts_t *o, res_t *r)
     r->rc = SW_OK;
     for (size_t i = 0; i < n && r->rc == SW_OK; i += 5)
         r->rc = sw_csv_feed(c, text + i, n - i < 5 ? n - i : 5);
-    if (r->rc == SW_OK) r->rc = sw_csv_finish(c);
+    if (r->rc == SW_OK)
+        r->rc = sw_csv_finish(c);
     snprintf(r->msg, sizeof r->msg, "%s", sw_csv_error_message(c));
     assert_int_equal(sw_csv_layout(c, &r->lay), SW_OK);
     r->nh = sw_csv_header_count(c);
-    if (r->nh) snprintf(r->h0, sizeof r->h0, "%s", sw_csv_header_field(c, 0));
+    if (r->nh)
+        snprintf(r->h0, sizeof r->h0, "%s", sw_csv_header_field(c, 0));
     sw_csv_destroy(c);
 }
 
@@ -291,9 +294,12 @@ static void test_option_against_header(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_three_axis_export), cmocka_unit_test(test_units_in_suffixes),
-        cmocka_unit_test(test_can_export),        cmocka_unit_test(test_datetimes),
-        cmocka_unit_test(test_decimal_comma),     cmocka_unit_test(test_ambiguous),
+        cmocka_unit_test(test_three_axis_export),
+        cmocka_unit_test(test_units_in_suffixes),
+        cmocka_unit_test(test_can_export),
+        cmocka_unit_test(test_datetimes),
+        cmocka_unit_test(test_decimal_comma),
+        cmocka_unit_test(test_ambiguous),
         cmocka_unit_test(test_option_against_header),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -29,8 +29,8 @@
 static sw_scene_t cushion(double height, double width, double wc, double zc, double B3,
                           double omega_b, double zeta_b)
 {
-    sw_scene_t sc = omega_b > 0.0 ? tu_frame(height, width, 250.0, omega_b, zeta_b)
-                                  : tu_bare(height, width);
+    sw_scene_t sc =
+        omega_b > 0.0 ? tu_frame(height, width, 250.0, omega_b, zeta_b) : tu_bare(height, width);
     sc.has_cushion = 1;
     sc.cushion_omega = wc;
     sc.cushion_k_given = SW_GIVEN_RATIO;
@@ -54,8 +54,10 @@ static double static_root(double K, double B3, double W)
     double lo = 0.0, hi = W / K;
     for (int i = 0; i < 300; i++) {
         const double m = 0.5 * (lo + hi);
-        if (K * m + B3 * m * m * m < W) lo = m;
-        else hi = m;
+        if (K * m + B3 * m * m * m < W)
+            lo = m;
+        else
+            hi = m;
     }
     return 0.5 * (lo + hi);
 }
@@ -77,13 +79,16 @@ static void test_static_deflection(void **state)
     (void)state;
     const struct {
         double wc, B3, wb;
-    } cases[] = {{200.0, 0.0, 0.0}, {200.0, progressive(200.0), 0.0}, {1e5, 0.0, 5.59},
+    } cases[] = {{200.0, 0.0, 0.0},
+                 {200.0, progressive(200.0), 0.0},
+                 {1e5, 0.0, 5.59},
                  {1e5, 5.0 * progressive(1e5), 0.0}};
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         const sw_scene_t sc = cushion(2.0, 0.728, cases[k].wc, 0.1, cases[k].B3, cases[k].wb, 0.1);
         const double K = MASS * cases[k].wc * cases[k].wc;
         const double zs = static_root(K, cases[k].B3, MASS * G);
-        if (cases[k].B3 == 0.0) tu_near(zs, MASS * G / K, 1e-15 * zs);
+        if (cases[k].B3 == 0.0)
+            tu_near(zs, MASS * G / K, 1e-15 * zs);
         sw_engine_t *e = engine(&sc, NULL, 0.0, NULL);
         const double zs_lib = sw_cushion_static_deflection(sw_engine_derived(e, 0), G);
         tu_near(zs_lib, zs, 1e-13 * zs);
@@ -112,9 +117,11 @@ static double crossing_frequency(const double *x, int n, double dt)
     double first = NAN, last = NAN;
     int count = 0;
     for (int i = 1; i < n; i++) {
-        if ((x[i - 1] < 0.0) == (x[i] < 0.0)) continue;
+        if ((x[i - 1] < 0.0) == (x[i] < 0.0))
+            continue;
         const double t = dt * (i - 1 + x[i - 1] / (x[i - 1] - x[i]));
-        if (count == 0) first = t;
+        if (count == 0)
+            first = t;
         last = t;
         count++;
     }
@@ -131,7 +138,8 @@ static void free_run(const sw_scene_t *sc, const sw_state_t *st, double z0, int 
     sw_engine_push(e, 0.0, 0.0, 0.0);
     sw_engine_set_state(e, 0, st);
     for (int i = 0; i < n; i++) {
-        if (i > 0) sw_engine_push(e, i * dt, 0.0, 0.0);
+        if (i > 0)
+            sw_engine_push(e, i * dt, 0.0, 0.0);
         sw_output_t o;
         sw_engine_get_output(e, 0, &o);
         x[i] = comp == 0 ? o.state.z - z0 : o.state.theta;
@@ -151,8 +159,11 @@ static void test_vertical_frequency(void **state)
     (void)state;
     const struct {
         double wc, zc, B3;
-    } cases[] = {{200.0, 0.0, 0.0},  {200.0, 0.05, 0.0}, {200.0, 0.3, 0.0},
-                 {5000.0, 0.05, 0.0}, {200.0, 0.05, progressive(200.0)}};
+    } cases[] = {{200.0, 0.0, 0.0},
+                 {200.0, 0.05, 0.0},
+                 {200.0, 0.3, 0.0},
+                 {5000.0, 0.05, 0.0},
+                 {200.0, 0.05, progressive(200.0)}};
     enum { N = 6000 };
     static double x[N];
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
@@ -301,8 +312,10 @@ static void test_partial_contact_equilibrium(void **state)
     while (partial_moment(hi, a, K, h, b) > 0.0) hi *= 1.2;
     for (int i = 0; i < 200; i++) {
         const double m = 0.5 * (lo + hi);
-        if (partial_moment(m, a, K, h, b) > 0.0) lo = m;
-        else hi = m;
+        if (partial_moment(m, a, K, h, b) > 0.0)
+            lo = m;
+        else
+            hi = m;
     }
     const double th_eq = 0.5 * (lo + hi);
     const double w = sqrt(2.0 * MASS * G * sin(th_eq) / (K / (2.0 * b)));
@@ -356,8 +369,10 @@ static double total_energy(const sw_scene_t *sc, const sw_state_t *st, gsl_integ
     double lo = -b, hi = b; /* the compressed part, where the integrand is smooth */
     if (s != 0.0) {
         const double s0 = -st->z / s;
-        if (s > 0.0) lo = fmax(lo, s0);
-        else hi = fmin(hi, s0);
+        if (s > 0.0)
+            lo = fmax(lo, s0);
+        else
+            hi = fmin(hi, s0);
     }
     double U = 0.0, err;
     if (hi > lo && (st->z + lo * s > 0.0 || st->z + hi * s > 0.0)) {
@@ -418,9 +433,10 @@ static void test_energy_conservation(void **state)
     int seen[3] = {0, 0, 0}, seen2[3] = {0, 0, 0};
     double e1 = energy_drift("rk4", 1e-3, 0.0, seen);
     double e2 = energy_drift("rk4", 5e-4, 0.0, seen2);
-    print_message("linear, rk4: drift %.3g -> %.3g, ratio %.2f; samples flying %d, partial %d, "
-                  "full %d\n",
-                  e1, e2, e1 / e2, seen[0], seen[1], seen[2]);
+    print_message(
+        "linear, rk4: drift %.3g -> %.3g, ratio %.2f; samples flying %d, partial %d, "
+        "full %d\n",
+        e1, e2, e1 / e2, seen[0], seen[1], seen[2]);
     assert_true(seen[0] > 20 && seen[1] > 20 && seen[2] > 20);
     assert_true(e1 < 1e-5);
     assert_true(e1 / e2 > 10.0 && e1 / e2 < 22.0);
@@ -428,9 +444,10 @@ static void test_energy_conservation(void **state)
     memset(seen, 0, sizeof seen);
     e1 = energy_drift("rk4", 5e-4, 0.2, seen);
     e2 = energy_drift("rk4", 2.5e-4, 0.2, seen2);
-    print_message("cubic, rk4: drift %.3g -> %.3g, ratio %.2f; samples flying %d, partial %d, "
-                  "full %d\n",
-                  e1, e2, e1 / e2, seen[0], seen[1], seen[2]);
+    print_message(
+        "cubic, rk4: drift %.3g -> %.3g, ratio %.2f; samples flying %d, partial %d, "
+        "full %d\n",
+        e1, e2, e1 / e2, seen[0], seen[1], seen[2]);
     assert_true(seen[0] > 20 && seen[1] > 20 && seen[2] > 20);
     assert_true(e1 < 1e-5);
     assert_true(e1 / e2 > 10.0);
@@ -460,8 +477,10 @@ static double first_swing(const sw_scene_t *sc, const sw_pulse_t *pulse)
             peak = M_PI_2;
             break;
         }
-        if (sgn == 0 && fabs(th) > 0.05 * alpha) sgn = th > 0.0 ? 1 : -1;
-        if (sgn != 0 && th * sgn < 0.0) break;
+        if (sgn == 0 && fabs(th) > 0.05 * alpha)
+            sgn = th > 0.0 ? 1 : -1;
+        if (sgn != 0 && th * sgn < 0.0)
+            break;
         peak = fmax(peak, fabs(th));
     }
     sw_engine_destroy(e);
@@ -646,9 +665,9 @@ static void sweep_run(const sw_scene_t *sc, const char *scheme, double rtol, dou
         sw_output_t out;
         sw_engine_get_output(e, 0, &out);
         r->theta[i] = out.state.theta;
-        const double v[] = {out.state.theta, out.state.theta_dot, out.state.z, out.state.z_dot,
-                            out.state.u, out.state.u_dot, out.margin, out.margin_bound,
-                            out.uplift_ratio};
+        const double v[] = {out.state.theta, out.state.theta_dot, out.state.z,
+                            out.state.z_dot, out.state.u,         out.state.u_dot,
+                            out.margin,      out.margin_bound,    out.uplift_ratio};
         for (size_t j = 0; j < sizeof v / sizeof v[0]; j++) r->finite &= isfinite(v[j]);
     }
     sw_summary_t s;
@@ -695,15 +714,18 @@ static void test_extremes(void **state)
                         peak = fmax(peak, fabs(ref.theta[i]));
                     }
                     if (getenv("SWEEP") || !run.finite || run.faults || (!pass && err > 1e-6))
-                        print_message("w_c %g zeta %g cubic %d frame %d %s: err %.3g peak %.3g "
-                                      "finite %d faults %ld\n",
-                                      wc, zcs[iz], ic, frame, pass ? "rk4" : "default", err, peak,
-                                      run.finite, run.faults);
+                        print_message(
+                            "w_c %g zeta %g cubic %d frame %d %s: err %.3g peak %.3g "
+                            "finite %d faults %ld\n",
+                            wc, zcs[iz], ic, frame, pass ? "rk4" : "default", err, peak, run.finite,
+                            run.faults);
                     assert_true(run.finite);
                     assert_int_equal(run.faults, 0);
                     assert_true(pass ? err < 0.05 * peak + 1e-12 : err < 1e-6);
-                    if (pass) worst_rk4 = fmax(worst_rk4, err);
-                    else worst = fmax(worst, err);
+                    if (pass)
+                        worst_rk4 = fmax(worst_rk4, err);
+                    else
+                        worst = fmax(worst, err);
                 }
             }
     print_message("worst |theta - reference|: default %.3g rad, rk4 sub-stepped %.3g rad\n", worst,

@@ -215,9 +215,11 @@ static void test_replace_beside_stiff_cushion(void **state)
     for (int i = 0; i < N_SAMPLES; i++) {
         const double t = i * 1e-3;
         rep.i = fresh.i = i;
-        if (i == T_REPLACE) assert_int_equal(sw_engine_replace(E, 1, &changed[1], msg, sizeof msg), SW_OK);
+        if (i == T_REPLACE)
+            assert_int_equal(sw_engine_replace(E, 1, &changed[1], msg, sizeof msg), SW_OK);
         assert_true(sw_engine_push(E, t, input(i), 0.0) >= 0);
-        if (i >= T_REPLACE) assert_true(sw_engine_push(F, t, input(i), 0.0) >= 0);
+        if (i >= T_REPLACE)
+            assert_true(sw_engine_push(F, t, input(i), 0.0) >= 0);
     }
     int rocked = 0;
     for (int i = T_REPLACE + 1; i < N_SAMPLES; i++) {

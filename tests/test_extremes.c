@@ -55,7 +55,8 @@ static sw_summary_t run(const sw_scene_t *sc, const char *scheme, double dt, dou
     for (long i = 0; i <= n; i++) {
         sw_engine_push(e, i / rate, sw_pulse_eval(&pu, i / rate), 0.0);
         sw_engine_summary(e, 0, &s);
-        if (s.overturned) break;
+        if (s.overturned)
+            break;
     }
     sw_engine_destroy(e);
     return s;
@@ -75,8 +76,10 @@ static void check_vs_ref(const sw_scene_t *sc, double ratio, double wp, double t
     assert_int_equal(a.faults, 0);
     assert_int_equal(r.faults, 0);
     assert_int_equal(a.overturned, r.overturned);
-    if (r.overturned) tu_near(a.overturn_time, r.overturn_time, tol_t);
-    else tu_near(a.max_abs_theta, r.max_abs_theta, tol_theta);
+    if (r.overturned)
+        tu_near(a.overturn_time, r.overturn_time, tol_t);
+    else
+        tu_near(a.max_abs_theta, r.max_abs_theta, tol_theta);
 }
 
 static void test_alpha_range(void **state)
@@ -164,8 +167,8 @@ static void test_bearing_stiffness(void **state)
             u[k] = o.state.u;
             sw_engine_destroy(e);
         }
-        print_message("omega_b 0.01, zeta %g: u %.12g m, reference %.12g m\n", z ? 0.1 : 0.0,
-                      u[0], u[1]);
+        print_message("omega_b 0.01, zeta %g: u %.12g m, reference %.12g m\n", z ? 0.1 : 0.0, u[0],
+                      u[1]);
         tu_near(u[0], u[1], 1e-9 * fabs(u[1]));
     }
     const sw_scene_t stiff = tu_frame(2.0, 0.728, 250.0, 1e5, 0.05);
@@ -235,10 +238,12 @@ static void test_rocking_cascade(void **state)
     int k = 0;
     for (int i = 0; i < cascade_rec.n; i++) {
         const sw_event_t *ev = &cascade_rec.ev[i];
-        if (ev->kind != SW_EV_IMPACT) continue;
+        if (ev->kind != SW_EV_IMPACT)
+            continue;
         if (k > 0 && ev->theta_dot != 0.0) {
             const double dev = fabs(fabs(ev->info) - eta * fabs(prev));
-            if (fabs(prev) > 1e-3) worst = fmax(worst, dev / fabs(prev));
+            if (fabs(prev) > 1e-3)
+                worst = fmax(worst, dev / fabs(prev));
             worst_abs = fmax(worst_abs, dev - 1e-9 * fabs(prev));
         }
         prev = ev->info;
@@ -246,9 +251,10 @@ static void test_rocking_cascade(void **state)
     }
     sw_summary_t s;
     sw_engine_summary(e, 0, &s);
-    print_message("eta %.10f: %d impacts, worst |ratio - eta| %.2e (speeds > 1e-3 rad/s), "
-                  "worst excess %.2e rad/s, rest at %.6f s, %ld steps\n",
-                  eta, n, worst, worst_abs, cascade_rec.ev[cascade_rec.n - 1].t, s.steps);
+    print_message(
+        "eta %.10f: %d impacts, worst |ratio - eta| %.2e (speeds > 1e-3 rad/s), "
+        "worst excess %.2e rad/s, rest at %.6f s, %ld steps\n",
+        eta, n, worst, worst_abs, cascade_rec.ev[cascade_rec.n - 1].t, s.steps);
     assert_true(n > 1000);
     assert_true(worst < 1e-9);
     assert_true(worst_abs < 1e-12);
@@ -305,10 +311,10 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_alpha_range),      cmocka_unit_test(test_size_range),
-        cmocka_unit_test(test_violent_pulses),   cmocka_unit_test(test_dt_range),
+        cmocka_unit_test(test_alpha_range),       cmocka_unit_test(test_size_range),
+        cmocka_unit_test(test_violent_pulses),    cmocka_unit_test(test_dt_range),
         cmocka_unit_test(test_bearing_stiffness), cmocka_unit_test(test_gamma_limits),
-        cmocka_unit_test(test_rocking_cascade),  cmocka_unit_test(test_hour_gap),
+        cmocka_unit_test(test_rocking_cascade),   cmocka_unit_test(test_hour_gap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

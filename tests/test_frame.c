@@ -41,8 +41,10 @@ static void test_stuck_frame_uplift(void **state)
     assert_true(step_A(a, w, z, hi) < -thr);
     for (int i = 0; i < 200; i++) {
         const double m = 0.5 * (lo + hi);
-        if (step_A(a, w, z, m) <= -thr) hi = m;
-        else lo = m;
+        if (step_A(a, w, z, m) <= -thr)
+            hi = m;
+        else
+            lo = m;
     }
     const char *schemes[] = {"rk4", "rk8pd"};
     const double tol[] = {1e-8, 1e-10};
@@ -110,7 +112,8 @@ static double energy_drift(const char *scheme, double dt)
     /* sample at 8 ms (a multiple of every dt used) until the first impact */
     for (int i = 1; i <= 2000; i++) {
         sw_engine_push(e, i * 8e-3, 0.0, 0.0);
-        if (tu_count(&rec, SW_EV_IMPACT) > 0) break;
+        if (tu_count(&rec, SW_EV_IMPACT) > 0)
+            break;
         sw_output_t o;
         sw_engine_get_output(e, 0, &o);
         worst = fmax(worst, fabs(sw_energy_frame(d, G, &o.state) - E0) / Eb);
@@ -244,12 +247,9 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_stuck_frame_uplift),
-        cmocka_unit_test(test_impact_ratio),
-        cmocka_unit_test(test_energy_conservation),
-        cmocka_unit_test(test_stiff_limit_is_bare),
-        cmocka_unit_test(test_forced_dt_refused),
-        cmocka_unit_test(test_rest_takes_momentum),
+        cmocka_unit_test(test_stuck_frame_uplift),  cmocka_unit_test(test_impact_ratio),
+        cmocka_unit_test(test_energy_conservation), cmocka_unit_test(test_stiff_limit_is_bare),
+        cmocka_unit_test(test_forced_dt_refused),   cmocka_unit_test(test_rest_takes_momentum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

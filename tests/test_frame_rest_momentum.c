@@ -80,7 +80,8 @@ static void test_impact_momentum(void **state)
     assert_int_equal(c.impacts, 1);
     assert_int_equal(c.rests, 0);
     const double want = 0.8 * 1.0 * (thd - r_frame() * thd); /* m/s, h = 1 m */
-    if (!(fabs(got - want) < 1e-5)) fail_msg("u'+ = %.8f m/s, expected %.8f", got, want);
+    if (!(fabs(got - want) < 1e-5))
+        fail_msg("u'+ = %.8f m/s, expected %.8f", got, want);
 }
 
 /* A landing that ends the sway (a high rest threshold makes this one the

@@ -28,7 +28,8 @@ typedef struct {
 static void on_event(void *user, const sw_gate_event_t *ev)
 {
     log_t *L = user;
-    if (L->nev < MAXEV) L->ev[L->nev] = *ev;
+    if (L->nev < MAXEV)
+        L->ev[L->nev] = *ev;
     L->nev++;
 }
 
@@ -76,8 +77,13 @@ static sw_gate_facts_t rig_close(rig_t *r)
 
 static sw_sample_t sample(double t, double a, long where)
 {
-    sw_sample_t s = {.t = t, .a_g = a, .a_max = NAN, .seq = SW_GATE_NO_SEQ, .rx = NAN,
-                     .wall = NAN, .where = where};
+    sw_sample_t s = {.t = t,
+                     .a_g = a,
+                     .a_max = NAN,
+                     .seq = SW_GATE_NO_SEQ,
+                     .rx = NAN,
+                     .wall = NAN,
+                     .where = where};
     return s;
 }
 
@@ -90,9 +96,13 @@ static void test_clean(void **state)
     const sw_scene_t sc = tu_bare(2.0, 0.728);
     rig_open(&r, &sc, defaults);
     for (int i = 0; i <= 3000; i++)
-        assert_true(sw_gate_push(r.g, &(sw_sample_t){.t = i * 1e-3, .a_g = 0.1 * sin(i * 1e-2),
-                                                      .a_max = NAN, .seq = SW_GATE_NO_SEQ,
-                                                      .rx = NAN, .wall = NAN, .where = i}) >= 0 ||
+        assert_true(sw_gate_push(r.g, &(sw_sample_t){.t = i * 1e-3,
+                                                     .a_g = 0.1 * sin(i * 1e-2),
+                                                     .a_max = NAN,
+                                                     .seq = SW_GATE_NO_SEQ,
+                                                     .rx = NAN,
+                                                     .wall = NAN,
+                                                     .where = i}) >= 0 ||
                     i < 2);
     const sw_gate_facts_t f = rig_close(&r);
     assert_int_equal(f.accepted, 3001);
@@ -115,8 +125,12 @@ static void test_lone_outlier(void **state)
     rig_open(&r, &sc, defaults);
     for (int i = 0; i < 3000; i++) {
         const double t = i == 100 ? 900.100 : i * 1e-3;
-        sw_gate_push(r.g, &(sw_sample_t){.t = t, .a_max = NAN, .seq = SW_GATE_NO_SEQ,
-                                         .rx = NAN, .wall = NAN, .where = i + 2});
+        sw_gate_push(r.g, &(sw_sample_t){.t = t,
+                                         .a_max = NAN,
+                                         .seq = SW_GATE_NO_SEQ,
+                                         .rx = NAN,
+                                         .wall = NAN,
+                                         .where = i + 2});
     }
     const sw_gate_facts_t f = rig_close(&r);
     assert_int_equal(f.accepted, 2999);
@@ -137,12 +151,17 @@ static void test_gaps(void **state)
     for (int k = 0; k < 3; k++) {
         rig_t r;
         sw_gate_opts_t o = defaults;
-        if (k == 2) o.gap_policy = SW_GAP_RESTART;
+        if (k == 2)
+            o.gap_policy = SW_GAP_RESTART;
         rig_open(&r, &sc, o);
         for (int i = 0; i < 2000; i++) {
             const double t = i * 1e-3 + (i >= 1000 ? holes[k] : 0.0);
-            sw_gate_push(r.g, &(sw_sample_t){.t = t, .a_max = NAN, .seq = SW_GATE_NO_SEQ,
-                                             .rx = NAN, .wall = NAN, .where = i});
+            sw_gate_push(r.g, &(sw_sample_t){.t = t,
+                                             .a_max = NAN,
+                                             .seq = SW_GATE_NO_SEQ,
+                                             .rx = NAN,
+                                             .wall = NAN,
+                                             .where = i});
         }
         const sw_gate_facts_t f = rig_close(&r);
         assert_int_equal(f.accepted, 2000);
@@ -168,8 +187,13 @@ static void test_gap_while_rocking(void **state)
     for (int i = 0; i < 3000; i++) {
         const double t = i * 1e-3 + (i >= 300 ? 2.0 : 0.0);
         const double a = t < M_PI / 8.0 ? -6.0 * sin(8.0 * t) : 0.0;
-        sw_gate_push(r.g, &(sw_sample_t){.t = t, .a_g = a, .a_max = NAN, .seq = SW_GATE_NO_SEQ,
-                                         .rx = NAN, .wall = NAN, .where = i});
+        sw_gate_push(r.g, &(sw_sample_t){.t = t,
+                                         .a_g = a,
+                                         .a_max = NAN,
+                                         .seq = SW_GATE_NO_SEQ,
+                                         .rx = NAN,
+                                         .wall = NAN,
+                                         .where = i});
     }
     const sw_gate_facts_t f = rig_close(&r);
     assert_int_equal(f.incomplete, 1);
@@ -185,8 +209,11 @@ static void test_log_twice(void **state)
     const sw_scene_t sc = tu_frame(2.0, 0.728, 250.0, 5.59, 0.1);
     rig_open(&r, &sc, defaults);
     for (int i = 0; i < 2000; i++)
-        sw_gate_push(r.g, &(sw_sample_t){.t = (i % 1000) * 1e-3, .a_max = NAN,
-                                         .seq = SW_GATE_NO_SEQ, .rx = NAN, .wall = NAN,
+        sw_gate_push(r.g, &(sw_sample_t){.t = (i % 1000) * 1e-3,
+                                         .a_max = NAN,
+                                         .seq = SW_GATE_NO_SEQ,
+                                         .rx = NAN,
+                                         .wall = NAN,
                                          .where = i});
     const double t_end = sw_engine_time(r.e);
     const sw_gate_facts_t f = rig_close(&r);
@@ -242,10 +269,16 @@ static void test_clock_steps(void **state)
     rig_open(&r, &sc, o);
     for (int i = 0; i < 6000; i++) {
         double t = 1000.0 + i * 1e-3;
-        if (i >= 2000) t += 3600.0;
-        if (i >= 4000) t = (i - 4000) * 1e-3;
-        sw_gate_push(r.g, &(sw_sample_t){.t = t, .a_max = NAN, .seq = i >= 4000 ? i - 4000 : i,
-                                         .rx = 50.0 + i * 1e-3, .wall = NAN, .where = i});
+        if (i >= 2000)
+            t += 3600.0;
+        if (i >= 4000)
+            t = (i - 4000) * 1e-3;
+        sw_gate_push(r.g, &(sw_sample_t){.t = t,
+                                         .a_max = NAN,
+                                         .seq = i >= 4000 ? i - 4000 : i,
+                                         .rx = 50.0 + i * 1e-3,
+                                         .wall = NAN,
+                                         .where = i});
     }
     const double t_end = sw_engine_time(r.e);
     const sw_gate_facts_t f = rig_close(&r);
@@ -281,16 +314,25 @@ static void test_hostile_values(void **state)
     rig_open(&r, &sc, defaults);
     for (int i = 0; i < 1000; i++) {
         sw_sample_t s = sample(i * 1e-3, 0.0, i);
-        if (i >= 500 && i < 510) s.a_g = -900.0; /* a 10 ms glitch */
-        if (i == 600) s.a_z = NAN;
+        if (i >= 500 && i < 510)
+            s.a_g = -900.0; /* a 10 ms glitch */
+        if (i == 600)
+            s.a_z = NAN;
         s.seq = i == 700 ? INT64_MAX : i == 701 ? INT64_MIN : i;
         sw_gate_push(r.g, &s);
     }
-    sw_gate_push(r.g, &(sw_sample_t){.t = (double)INT64_MIN / 1e6, .a_max = NAN,
-                                     .seq = SW_GATE_NO_SEQ, .rx = NAN, .wall = NAN,
+    sw_gate_push(r.g, &(sw_sample_t){.t = (double)INT64_MIN / 1e6,
+                                     .a_max = NAN,
+                                     .seq = SW_GATE_NO_SEQ,
+                                     .rx = NAN,
+                                     .wall = NAN,
                                      .where = 2000});
-    sw_gate_push(r.g, &(sw_sample_t){.t = 1e300, .a_max = NAN, .seq = SW_GATE_NO_SEQ, .rx = NAN,
-                                     .wall = NAN, .where = 2001});
+    sw_gate_push(r.g, &(sw_sample_t){.t = 1e300,
+                                     .a_max = NAN,
+                                     .seq = SW_GATE_NO_SEQ,
+                                     .rx = NAN,
+                                     .wall = NAN,
+                                     .where = 2001});
     const sw_gate_facts_t f = rig_close(&r);
     assert_int_equal(f.rejected[SW_GATE_REJ_IMPLAUSIBLE], 10);
     assert_int_equal(f.rejected[SW_GATE_REJ_NONFINITE], 1);
@@ -398,10 +440,16 @@ static void test_takes_replay(void **state)
     for (int i = 0; i < 6000; i++) {
         const int j = i % 3000; /* played twice */
         double t = j * 1e-3 + (j >= 1000 ? 0.5 : 0.0) + (j >= 2000 ? 30.0 : 0.0);
-        if (j == 1500) t += 700.0; /* a corrupt time */
+        if (j == 1500)
+            t += 700.0; /* a corrupt time */
         const double a = -5.0 * sin(6.0 * j * 1e-3) + (j == 800 ? 900.0 : 0.0);
-        const sw_sample_t s = {.t = t, .a_g = a, .a_z = 9.80665 + 0.5 * cos(j * 1e-2),
-                               .a_max = NAN, .seq = SW_GATE_NO_SEQ, .rx = NAN, .wall = NAN,
+        const sw_sample_t s = {.t = t,
+                               .a_g = a,
+                               .a_z = 9.80665 + 0.5 * cos(j * 1e-2),
+                               .a_max = NAN,
+                               .seq = SW_GATE_NO_SEQ,
+                               .rx = NAN,
+                               .wall = NAN,
                                .where = i};
         sw_gate_push(g, &s);
     }
@@ -418,7 +466,8 @@ static void test_takes_replay(void **state)
 
     sw_engine_t *e2 = sw_engine_create(sc, 2, &(sw_engine_opts_t){0}, NULL, NULL, 0);
     for (int i = 0; i < k.n; i++) {
-        if (k.restart[i]) sw_engine_restart(e2);
+        if (k.restart[i])
+            sw_engine_restart(e2);
         assert_true(sw_engine_push(e2, k.t[i], k.ag[i], k.az[i]) >= 0);
     }
     for (size_t p = 0; p < 2; p++) {
@@ -445,11 +494,16 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_clean),           cmocka_unit_test(test_lone_outlier),
-        cmocka_unit_test(test_gaps),            cmocka_unit_test(test_gap_while_rocking),
-        cmocka_unit_test(test_log_twice),       cmocka_unit_test(test_forged_times),
-        cmocka_unit_test(test_clock_steps),     cmocka_unit_test(test_hostile_values),
-        cmocka_unit_test(test_vertical_gravity), cmocka_unit_test(test_plausibility),
+        cmocka_unit_test(test_clean),
+        cmocka_unit_test(test_lone_outlier),
+        cmocka_unit_test(test_gaps),
+        cmocka_unit_test(test_gap_while_rocking),
+        cmocka_unit_test(test_log_twice),
+        cmocka_unit_test(test_forged_times),
+        cmocka_unit_test(test_clock_steps),
+        cmocka_unit_test(test_hostile_values),
+        cmocka_unit_test(test_vertical_gravity),
+        cmocka_unit_test(test_plausibility),
         cmocka_unit_test(test_takes_replay),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

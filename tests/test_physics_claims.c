@@ -54,7 +54,8 @@ static int free_overturns(const sw_scene_t *sc, const sw_state_t *s, double t_en
         sw_engine_summary(e, 0, &sum);
         sw_output_t out;
         sw_engine_get_output(e, 0, &out);
-        if (sum.overturned || out.state.phase == SW_PHASE_STUCK) break;
+        if (sum.overturned || out.state.phase == SW_PHASE_STUCK)
+            break;
     }
     sw_engine_summary(e, 0, &sum);
     sw_engine_destroy(e);
@@ -80,11 +81,13 @@ static void test_margin_sign_150_states(void **state)
          * allows it */
         const double PE = (cos(d.alpha - fabs(th)) - cos(d.alpha)) / (1.0 - cos(d.alpha));
         const double E = 0.1 + 1.9 * uniform(&seed);
-        if (E <= PE) continue;
+        if (E <= PE)
+            continue;
         const double w = sqrt((E - PE) * 2.0 * d.p * d.p * (1.0 - cos(d.alpha))); /* rad/s */
         const double thd = uniform(&seed) < 0.5 ? w : -w;
         const double m = sw_margin_rocking(&d, d.eta, th, thd);
-        if (fabs(m) < 1e-3) continue;
+        if (fabs(m) < 1e-3)
+            continue;
         sw_state_t s;
         memset(&s, 0, sizeof s);
         s.phase = SW_PHASE_ROCKING;
@@ -198,8 +201,10 @@ static double least_potential(const sw_derived_t *d, double g, double theta)
         const double f1 = sw_energy_cushion(d, g, &s);
         s.z = m2;
         const double f2 = sw_energy_cushion(d, g, &s);
-        if (f1 < f2) hi = m2;
-        else lo = m1;
+        if (f1 < f2)
+            hi = m2;
+        else
+            lo = m1;
     }
     s.z = 0.5 * (lo + hi);
     return sw_energy_cushion(d, g, &s);
@@ -250,8 +255,10 @@ static void test_cushion_tips_before_alpha(void **state)
             const double f1 = sw_energy_cushion(&d, sc.g, &s);
             s.z = m2;
             const double f2 = sw_energy_cushion(&d, sc.g, &s);
-            if (f1 < f2) hi = m2;
-            else lo = m1;
+            if (f1 < f2)
+                hi = m2;
+            else
+                lo = m1;
         }
         s.z = 0.5 * (lo + hi);
         sw_engine_opts_t o;
@@ -285,16 +292,17 @@ static void test_cushion_tips_before_alpha(void **state)
 static void test_cubic_two_intervals(void **state)
 {
     (void)state;
-    const double k = 1e6, c = 1e4, beta = 1e12; /* N/m^2, N s/m^2, N/m^4 */
-    const double b = 0.4, th = 0.005, thd = -1000.0 * tan(th);  /* m, rad, rad/s */
-    const double zB = 0.0015, zBd = 0.1 - 1000.0 * zB;           /* m, m/s */
+    const double k = 1e6, c = 1e4, beta = 1e12;                /* N/m^2, N s/m^2, N/m^4 */
+    const double b = 0.4, th = 0.005, thd = -1000.0 * tan(th); /* m, rad, rad/s */
+    const double zB = 0.0015, zBd = 0.1 - 1000.0 * zB;         /* m, m/s */
     int pieces = 0, in = 0;
     for (int i = 0; i <= 100000; i++) {
         const double sg = -b + 2.0 * b * i / 100000.0;
         const double z = zB + sg * sin(th), zd = zBd + sg * thd * cos(th);
         const double f = z > 0.0 ? k * z + beta * z * z * z + c * zd : 0.0;
         const int push = f > 0.0;
-        if (push && !in) pieces++;
+        if (push && !in)
+            pieces++;
         in = push;
     }
     assert_int_equal(pieces, 2);

@@ -22,7 +22,8 @@ static int overturns(const sw_scene_t *sc, const char *scheme, double amp, doubl
 {
     const sw_pulse_t pulse = {SW_PULSE_HALF_SINE, -amp, w};
     const sw_summary_t s = tu_pulse(sc, scheme, 1e-3, pulse, T, NULL);
-    if (out) *out = s;
+    if (out)
+        *out = s;
     return s.overturned;
 }
 
@@ -34,13 +35,16 @@ static double boundary(const sw_scene_t *sc, const char *scheme, double w, doubl
     double lo = thr, hi = thr;
     for (int i = 0; i < 1000; i++) {
         hi = lo * 1.01;
-        if (overturns(sc, scheme, hi, w, T, NULL)) break;
+        if (overturns(sc, scheme, hi, w, T, NULL))
+            break;
         lo = hi;
     }
     for (int i = 0; i < 40; i++) {
         const double m = 0.5 * (lo + hi);
-        if (overturns(sc, scheme, m, w, T, NULL)) hi = m;
-        else lo = m;
+        if (overturns(sc, scheme, m, w, T, NULL))
+            hi = m;
+        else
+            lo = m;
     }
     return hi;
 }

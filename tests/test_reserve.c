@@ -52,7 +52,8 @@ static sw_reserve_t *make(const sw_scene_t *sc, const sw_reserve_opts_t *o)
     int err = 0;
     char msg[256];
     sw_reserve_t *r = sw_reserve_create(sc, o, &err, msg, sizeof msg);
-    if (!r) fail_msg("sw_reserve_create: %s (%s)", msg, sw_strerror(err));
+    if (!r)
+        fail_msg("sw_reserve_create: %s (%s)", msg, sw_strerror(err));
     return r;
 }
 
@@ -89,7 +90,8 @@ static int overturns(const sw_scene_t *sc, const sw_state_t *s, int dir, double 
     sw_run_result_t r;
     char msg[256];
     const int rc = sw_pulse_run_from(sc, s, &pl, &ro, &r, msg, sizeof msg);
-    if (rc != SW_OK) fail_msg("sw_pulse_run_from: %s", msg);
+    if (rc != SW_OK)
+        fail_msg("sw_pulse_run_from: %s", msg);
     return r.overturned;
 }
 
@@ -99,7 +101,8 @@ static double brute_force(const sw_scene_t *sc, const sw_state_t *s, int dir, do
                           double x1, const char *scheme)
 {
     for (double x = x0; x <= x1; x *= 1.005)
-        if (overturns(sc, s, dir, x, T, scheme)) return x;
+        if (overturns(sc, s, dir, x, T, scheme))
+            return x;
     return 0.0;
 }
 
@@ -193,14 +196,15 @@ static void check_brute(const sw_scene_t *sc, const sw_state_t *s, double T, con
     sw_reserve_rest(r, &rest);
     assert_false(res.cached);
     assert_true(res.found);
-    if (smaller) assert_true(res.reserve_g < rest.reserve_g);
+    if (smaller)
+        assert_true(res.reserve_g < rest.reserve_g);
     const sw_derived_t d = derived(sc);
     const double bound = 0.99 * sw_reserve_energy_bound(&d, sc->g, s, T);
     for (int i = 0; i < 2; i++) {
         const int dir = i == 0 ? SW_RESERVE_BRAKING : SW_RESERVE_ACCELERATING;
         assert_true(res.dir_exact[i]);
-        const double ref = brute_force(sc, s, dir, T, fmax(bound, 0.01), 1.02 * res.dir_g[i],
-                                       scheme);
+        const double ref =
+            brute_force(sc, s, dir, T, fmax(bound, 0.01), 1.02 * res.dir_g[i], scheme);
         if (!(ref > 0.0 && ref >= res.dir_g[i] / 1.0201 / 1.005 && ref <= res.dir_g[i] * 1.005))
             fail_msg("direction %d: reserve %.4f g (safe %.4f), brute force %.4f g", dir,
                      res.dir_g[i], res.safe_g, ref);
@@ -217,9 +221,10 @@ static void test_rocking_bare(void **state)
     (void)state;
     const sw_scene_t sc = crate();
     /* tipping forward, moving out; and moving in after a large swing */
-    check_brute(&sc, &(sw_state_t){.theta = 0.4 * A20, .theta_dot = 0.1,
-                                   .phase = SW_PHASE_ROCKING, .side = 1},
-                1.0, NULL, 1);
+    check_brute(
+        &sc,
+        &(sw_state_t){.theta = 0.4 * A20, .theta_dot = 0.1, .phase = SW_PHASE_ROCKING, .side = 1},
+        1.0, NULL, 1);
     sw_state_t s = rocking(-0.5 * A20, 0.2);
     check_brute(&sc, &s, 1.0, NULL, 1);
 }
@@ -245,7 +250,7 @@ static void test_frame_lift_bound(void **state)
     sw_state_t st;
     memset(&st, 0, sizeof st);
     st.phase = SW_PHASE_STUCK;
-    st.u = 0.015;   /* m */
+    st.u = 0.015;    /* m */
     st.u_dot = 0.04; /* m/s */
     check_brute(&sc, &st, 1.0, NULL, 0);
     st.u = -0.01;
@@ -348,7 +353,8 @@ static void test_energy_bound_closed_form(void **state)
     memset(&s, 0, sizeof s);
     s.phase = SW_PHASE_STUCK;
     const double T = 0.7;
-    const double want = M_PI * sqrt(sc.g * d.R * (1.0 - cos(d.alpha))) / (2.0 * T * sqrt(3.0 / 8.0));
+    const double want =
+        M_PI * sqrt(sc.g * d.R * (1.0 - cos(d.alpha))) / (2.0 * T * sqrt(3.0 / 8.0));
     assert_float_equal(sw_reserve_energy_bound(&d, sc.g, &s, T) * SW_G0, want, 1e-9 * want);
     s = rocking(1.01 * d.alpha, 0.0);
     assert_true(sw_reserve_energy_bound(&d, sc.g, &s, T) == 0.0);
@@ -381,9 +387,10 @@ static void test_energy_bound_holds(void **state)
     rest.phase = SW_PHASE_STUCK;
     const sw_scene_t bare = crate(), fr = crate_frame();
     check_bound(&bare, &rest, NULL);
-    check_bound(&bare, &(sw_state_t){.theta = 0.3 * A20, .theta_dot = 0.15,
-                                     .phase = SW_PHASE_ROCKING, .side = 1},
-                NULL);
+    check_bound(
+        &bare,
+        &(sw_state_t){.theta = 0.3 * A20, .theta_dot = 0.15, .phase = SW_PHASE_ROCKING, .side = 1},
+        NULL);
     check_bound(&fr, &rest, NULL);
     sw_state_t s = rocking(-0.2 * A20, 0.1);
     s.u = 0.01;
@@ -433,8 +440,8 @@ static void test_lift_bound_tight(void **state)
                 }
             }
             if (!(lift >= lb && lift <= lb * 1.01))
-                fail_msg("u = %g m, u' = %g m/s, direction %d: bound %.5f g, lifts at %.5f g",
-                         st.u, st.u_dot, dir, lb, lift);
+                fail_msg("u = %g m, u' = %g m/s, direction %d: bound %.5f g, lifts at %.5f g", st.u,
+                         st.u_dot, dir, lb, lift);
         }
     }
     sw_reserve_destroy(r);

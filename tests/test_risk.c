@@ -39,14 +39,16 @@ static void on_state(void *user, const sw_output_t *out)
     rig_t *R = user;
     const int rc = sw_risk_output(R->risk, out);
     assert_true(rc == 0 || rc == 1);
-    if (rc != 1) return;
+    if (rc != 1)
+        return;
     assert_true(R->evals < 200);
     R->eval_t[R->evals++] = out->t;
     sw_reserve_result_t res;
     assert_int_equal(sw_reserve_eval(R->ref, &out->state, &res), SW_OK);
     const sw_risk_pkg_t *p = sw_risk_pkg(R->risk, 0);
     const double d = fabs(p->reserve_g - res.reserve_g);
-    if (d > R->worst_diff) R->worst_diff = d;
+    if (d > R->worst_diff)
+        R->worst_diff = d;
     if (!(res.reserve_g >= R->ref_min)) {
         R->ref_min = res.reserve_g;
         R->ref_min_t = out->t;
@@ -64,7 +66,8 @@ static void on_event(void *user, const sw_event_t *ev)
         R->closed_spans++;
         R->closed_micro += span.impacts;
     }
-    if ((f & SW_SETTLE_REPORT) && ev->kind == SW_EV_IMPACT) R->reported_impacts++;
+    if ((f & SW_SETTLE_REPORT) && ev->kind == SW_EV_IMPACT)
+        R->reported_impacts++;
 }
 
 /* A braking half-sine of amp m/s^2 lasting 0.3 s from 0.5 s. */
@@ -82,7 +85,8 @@ static rig_t *run(const sw_scene_t *sc, double amp, double rate)
     int err = 0;
     char msg[256];
     R->risk = sw_risk_create(sc, 1, &ro, &err, msg, sizeof msg);
-    if (!R->risk) fail_msg("sw_risk_create: %s", msg);
+    if (!R->risk)
+        fail_msg("sw_risk_create: %s", msg);
     R->ref = sw_reserve_create(sc, NULL, &err, msg, sizeof msg);
     assert_non_null(R->ref);
     sw_engine_opts_t eo;
@@ -122,7 +126,8 @@ static void test_rate_and_values(void **state)
     rig_t *R = run(&sc, 6.0, 0.0 /* the default: 10 Hz */);
     assert_int_equal(R->evals, 40);
     for (int k = 0; k < R->evals; k++)
-        assert_true(R->eval_t[k] >= 0.1 * k - 1e-9 && R->eval_t[k] <= 0.1 * k + 1.0 / RATE_HZ + 1e-9);
+        assert_true(R->eval_t[k] >= 0.1 * k - 1e-9 &&
+                    R->eval_t[k] <= 0.1 * k + 1.0 / RATE_HZ + 1e-9);
     assert_true(R->worst_diff == 0.0); /* deterministic: the same state, the same value */
     const sw_risk_pkg_t *p = sw_risk_pkg(R->risk, 0);
     assert_int_equal(p->evaluations, 40);
@@ -203,8 +208,8 @@ static void test_too_stiff(void **state)
     const sw_scene_t sc = tu_bare(2.0, 0.728);
     sw_derived_t d;
     assert_int_equal(sw_scene_validate(&sc, &d, "t", NULL, NULL), SW_OK);
-    const double T = sc.design_pulse[0];                          /* s */
-    const double period = 2.0 * M_PI / d.p;                       /* s */
+    const double T = sc.design_pulse[0];    /* s */
+    const double period = 2.0 * M_PI / d.p; /* s */
     const double steps = (T + 10.0 * period) / (fmin(2.0 * T, period) / 24.0);
     sw_reserve_opts_t o;
     memset(&o, 0, sizeof o);

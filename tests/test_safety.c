@@ -28,8 +28,10 @@ static sw_log_t drive(double peak)
         const double t = i * 1e-3, u = fmod(t, 20.0) - 15.0;
         t_[i] = t;
         a_[i] = 0.15 * sin(2.0 * M_PI * 1.6 * t) + 0.1 * sin(2.0 * M_PI * 11.0 * t + 1.0);
-        if (u >= 0.0 && u < 0.6) a_[i] += -peak * sin(M_PI * u / 0.6) * (1.0 + 0.1 * (t / 20.0));
-        if (u >= 0.6 && u < 0.9) a_[i] += 0.3 * peak * sin(M_PI * (u - 0.6) / 0.3);
+        if (u >= 0.0 && u < 0.6)
+            a_[i] += -peak * sin(M_PI * u / 0.6) * (1.0 + 0.1 * (t / 20.0));
+        if (u >= 0.6 && u < 0.9)
+            a_[i] += 0.3 * peak * sin(M_PI * (u - 0.6) / 0.3);
     }
     return (sw_log_t){.t = t_, .a_g = a_, .n = N};
 }
@@ -112,7 +114,8 @@ static void test_linear_starts(void **state)
         sw_log_t L = drive(0.0);
         for (size_t i = 0; i < N; i++) {
             const double u = t_[i] - 80.0;
-            if (u >= 0.0 && u < 0.6) a_[i] += -3.0 * sin(M_PI * u / 0.6);
+            if (u >= 0.0 && u < 0.6)
+                a_[i] += -3.0 * sin(M_PI * u / 0.6);
         }
         const double xs[] = {0.6, 1.0, 1.4};
         for (size_t k = 0; k < 3; k++) {
@@ -124,7 +127,8 @@ static void test_linear_starts(void **state)
             assert_int_equal(a.impacts, b.impacts);
             tu_near(a.max_theta_ratio, b.max_theta_ratio, m == 0 ? 1e-9 : 1e-6);
             tu_near(a.min_margin, b.min_margin, m == 0 ? 1e-9 : 1e-6);
-            if (!isnan(b.uplift_time)) tu_near(a.uplift_time, b.uplift_time, 1e-9);
+            if (!isnan(b.uplift_time))
+                tu_near(a.uplift_time, b.uplift_time, 1e-9);
         }
     }
 }
@@ -147,7 +151,8 @@ static void test_cushion_jumps(void **state)
     for (size_t i = 0; i < N; i++) {
         for (int k = 0; k < 2; k++) {
             const double u = t_[i] - (k ? 80.0 : 5.0);
-            if (u >= 0.0 && u < 0.6) a_[i] += -3.0 * sin(M_PI * u / 0.6);
+            if (u >= 0.0 && u < 0.6)
+                a_[i] += -3.0 * sin(M_PI * u / 0.6);
         }
     }
     const double xs[] = {0.6, 1.0, 1.4};
@@ -162,7 +167,8 @@ static void test_cushion_jumps(void **state)
         tu_near(a.max_theta_ratio, b.max_theta_ratio, 1e-6);
         tu_near(a.min_margin, b.min_margin, 1e-6);
         tu_near(a.uplift_time, b.uplift_time, 1e-9);
-        if (b.overturned) tu_near(a.overturn_time, b.overturn_time, 1e-6);
+        if (b.overturned)
+            tu_near(a.overturn_time, b.overturn_time, 1e-6);
         lifted_twice += b.uplifts >= 2 && b.uplift_time < 10.0;
     }
     assert_true(lifted_twice >= 1); /* the early braking lifts an edge, and so does the last */
@@ -271,7 +277,8 @@ static void test_origin(void **state)
     assert_int_equal(sw_engine_push(b, t0 - 1.0, 0.0, 0.0), SW_EORDER);
     for (size_t i = 0; i < 20000; i++) {
         sw_engine_push(a, t0 + L.t[i], L.a_g[i], 0.0);
-        if (i >= 14000) sw_engine_push(b, t0 + L.t[i], L.a_g[i], 0.0);
+        if (i >= 14000)
+            sw_engine_push(b, t0 + L.t[i], L.a_g[i], 0.0);
     }
     sw_summary_t sa, sb;
     sw_engine_summary(a, 0, &sa);
@@ -290,9 +297,8 @@ int main(void)
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bed_exact),     cmocka_unit_test(test_linear_starts),
-        cmocka_unit_test(test_cushion_jumps),
-        cmocka_unit_test(test_restarts),      cmocka_unit_test(test_many_threads),
-        cmocka_unit_test(test_origin),
+        cmocka_unit_test(test_cushion_jumps), cmocka_unit_test(test_restarts),
+        cmocka_unit_test(test_many_threads),  cmocka_unit_test(test_origin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -29,7 +29,8 @@ static void collect(void *user, const char *origin, int line, const char *msg)
 {
     (void)origin;
     diags_t *d = user;
-    if (d->n >= 16) return;
+    if (d->n >= 16)
+        return;
     d->line[d->n] = line;
     snprintf(d->msg[d->n], sizeof d->msg[0], "%s", msg);
     d->n++;
@@ -39,7 +40,8 @@ static void collect(void *user, const char *origin, int line, const char *msg)
 static int has_diag(const diags_t *d, int line, const char *a, const char *b)
 {
     for (int i = 0; i < d->n; i++)
-        if ((line < 0 || d->line[i] == line) && strstr(d->msg[i], a) && (!b || strstr(d->msg[i], b)))
+        if ((line < 0 || d->line[i] == line) && strstr(d->msg[i], a) &&
+            (!b || strstr(d->msg[i], b)))
             return 1;
     return 0;
 }
@@ -51,7 +53,8 @@ static int load(const char *text, sw_scene_t *sc, diags_t *dg)
     sw_scene_init(sc);
     memset(dg, 0, sizeof *dg);
     int rc = sw_scene_parse(sc, text, "crate.ini", collect, dg);
-    if (rc == SW_OK) rc = sw_scene_validate(sc, NULL, "crate.ini", collect, dg);
+    if (rc == SW_OK)
+        rc = sw_scene_validate(sc, NULL, "crate.ini", collect, dg);
     return rc;
 }
 
@@ -103,8 +106,7 @@ static void test_parse_errors(void **state)
         {PKG "[alarm]\ndesign_pulse = 1,\n", "alarm.design_pulse", "item 2", 6},
         {PKG "[alarm]\ndesign_pulse = 1,2,3,4,5,6,7,8,9\n", "alarm.design_pulse", "at most 8", 6},
         {PKG "[alarm]\ndesign_pulse = nan\n", "alarm.design_pulse", "not a finite number", 6},
-        {PKG "[alarm]\ndesign_pulse = 1\ndesign_pulse = 2\n", "design_pulse given twice", NULL,
-         7},
+        {PKG "[alarm]\ndesign_pulse = 1\ndesign_pulse = 2\n", "design_pulse given twice", NULL, 7},
         {PKG "[alarm]\nwarn_reserve_g = x\n", "alarm.warn_reserve_g", "in g", 6},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -180,7 +182,7 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_defaults),   cmocka_unit_test(test_parse_list),
+        cmocka_unit_test(test_defaults),     cmocka_unit_test(test_parse_list),
         cmocka_unit_test(test_parse_errors), cmocka_unit_test(test_validation),
         cmocka_unit_test(test_equal),
     };

@@ -288,7 +288,8 @@ static size_t sampled_half_sine(double a, double w, double *t, double *ag, size_
         t[n] = n * 1e-3;
         const double s = t[n] - t0;
         ag[n] = s >= 0.0 && s <= T ? a * sin(w * s) : 0.0;
-        if (s > T + 0.1) break;
+        if (s > T + 0.1)
+            break;
     }
     return n;
 }
@@ -442,12 +443,12 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_search_islands),   cmocka_unit_test(test_boundary_rk8pd),
-        cmocka_unit_test(test_boundary_cushion),
-        cmocka_unit_test(test_bare_reference_tables), cmocka_unit_test(test_threads_identical),
-        cmocka_unit_test(test_parallel_for),     cmocka_unit_test(test_safety_factor),
-        cmocka_unit_test(test_safety_factor_frame), cmocka_unit_test(test_safety_factor_cushion),
-        cmocka_unit_test(test_run_accuracy),     cmocka_unit_test(test_bad_arguments),
+        cmocka_unit_test(test_search_islands),        cmocka_unit_test(test_boundary_rk8pd),
+        cmocka_unit_test(test_boundary_cushion),      cmocka_unit_test(test_bare_reference_tables),
+        cmocka_unit_test(test_threads_identical),     cmocka_unit_test(test_parallel_for),
+        cmocka_unit_test(test_safety_factor),         cmocka_unit_test(test_safety_factor_frame),
+        cmocka_unit_test(test_safety_factor_cushion), cmocka_unit_test(test_run_accuracy),
+        cmocka_unit_test(test_bad_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

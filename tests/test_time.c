@@ -28,7 +28,8 @@ static sw_summary_t drive(const sw_scene_t *sc, double t0, int n, int *rc_bad)
     assert_non_null(e);
     *rc_bad = 0;
     for (int i = 0; i < n; i++)
-        if (sw_engine_push(e, t0 + i * 1e-3, pulse(i), 0.0) < 0) (*rc_bad)++;
+        if (sw_engine_push(e, t0 + i * 1e-3, pulse(i), 0.0) < 0)
+            (*rc_bad)++;
     sw_engine_finish(e, 10.0);
     sw_summary_t s;
     assert_int_equal(sw_engine_summary(e, 0, &s), SW_OK);

@@ -47,7 +47,8 @@ typedef struct {
 static inline void tu_on_event(void *user, const sw_event_t *ev)
 {
     tu_events_t *r = user;
-    if (r->n < TU_MAX_EV) r->ev[r->n++] = *ev;
+    if (r->n < TU_MAX_EV)
+        r->ev[r->n++] = *ev;
 }
 
 static inline int tu_count(const tu_events_t *r, sw_event_kind k)
@@ -60,7 +61,8 @@ static inline int tu_count(const tu_events_t *r, sw_event_kind k)
 static inline const sw_event_t *tu_first(const tu_events_t *r, sw_event_kind k)
 {
     for (int i = 0; i < r->n; i++)
-        if (r->ev[i].kind == k) return &r->ev[i];
+        if (r->ev[i].kind == k)
+            return &r->ev[i];
     return NULL;
 }
 
@@ -75,7 +77,8 @@ static inline sw_engine_t *tu_engine(const sw_scene_t *sc, const char *scheme, d
     int err;
     char msg[256];
     sw_engine_t *e = sw_engine_create(sc, 1, &o, &err, msg, sizeof msg);
-    if (!e) fprintf(stderr, "engine: %s (%s)\n", msg, sw_strerror(err));
+    if (!e)
+        fprintf(stderr, "engine: %s (%s)\n", msg, sw_strerror(err));
     return e;
 }
 
@@ -87,7 +90,8 @@ static inline sw_summary_t tu_pulse(const sw_scene_t *sc, const char *scheme, do
     sw_summary_t s;
     memset(&s, 0, sizeof s);
     sw_engine_t *e = tu_engine(sc, scheme, dt, rec);
-    if (!e) return s;
+    if (!e)
+        return s;
     sw_engine_advance_fn(e, sw_pulse_duration(&pulse), sw_pulse_eval, &pulse);
     sw_engine_advance_fn(e, t_end, sw_pulse_eval, &pulse);
     sw_engine_summary(e, 0, &s);

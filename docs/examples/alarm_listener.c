@@ -99,8 +99,8 @@ static void on_alarm(const lcm_recv_buf_t *rbuf, const char *channel, const sway
     L->received++;
     char when[48];
     printf("%s seq %" PRId64 " %-8s %-14s %-12s theta %+.4f margin %+.3f  %s\n",
-           iso_time(a->utime, when, sizeof when), a->seq, level_name(a->level),
-           kind_name(a->kind), name[0] ? name : "(input)", a->theta, a->margin, text);
+           iso_time(a->utime, when, sizeof when), a->seq, level_name(a->level), kind_name(a->kind),
+           name[0] ? name : "(input)", a->theta, a->margin, text);
     fflush(stdout);
 }
 

@@ -38,16 +38,16 @@ extern "C" {
 #endif
 
 typedef enum {
-    SW_ALARM_UPLIFT = 1,         /* a base corner lifted: rocking started (info) */
-    SW_ALARM_IMPACT = 2,         /* the other corner landed (info) */
-    SW_ALARM_WARN = 3,           /* margin < warn_margin (warn) */
-    SW_ALARM_CRITICAL = 4,       /* margin < critical_margin (critical) */
-    SW_ALARM_TIP = 5,            /* |theta| reached alpha (critical) */
-    SW_ALARM_OVERTURNED = 6,     /* |theta| reached pi/2 (critical) */
-    SW_ALARM_REST = 7,           /* back to rest after rocking (info) */
-    SW_ALARM_MODEL_FAULT = 8,    /* model fault or non-finite output (critical) */
-    SW_ALARM_SENSOR_GAP = 9,     /* input: no samples for too long (warn; info when it ends) */
-    SW_ALARM_INPUT_REJECTED = 10, /* input: samples refused (warn) */
+    SW_ALARM_UPLIFT = 1,           /* a base corner lifted: rocking started (info) */
+    SW_ALARM_IMPACT = 2,           /* the other corner landed (info) */
+    SW_ALARM_WARN = 3,             /* margin < warn_margin (warn) */
+    SW_ALARM_CRITICAL = 4,         /* margin < critical_margin (critical) */
+    SW_ALARM_TIP = 5,              /* |theta| reached alpha (critical) */
+    SW_ALARM_OVERTURNED = 6,       /* |theta| reached pi/2 (critical) */
+    SW_ALARM_REST = 7,             /* back to rest after rocking (info) */
+    SW_ALARM_MODEL_FAULT = 8,      /* model fault or non-finite output (critical) */
+    SW_ALARM_SENSOR_GAP = 9,       /* input: no samples for too long (warn; info when it ends) */
+    SW_ALARM_INPUT_REJECTED = 10,  /* input: samples refused (warn) */
     SW_ALARM_RESERVE_WARN = 11,    /* reserve < warn_reserve_g (warn) */
     SW_ALARM_RESERVE_CRITICAL = 12 /* reserve < critical_reserve_g (critical) */
 } sw_alarm_kind;
@@ -58,11 +58,11 @@ typedef enum {
     SW_ALARM_LEVEL_CRITICAL = 2
 } sw_alarm_level;
 
-#define SW_ALARM_TEXT_MAX 128     /* bytes including the NUL, as alarm_t.text */
-#define SW_ALARM_HYSTERESIS 0.05  /* 1, default re-arm distance above a threshold */
+#define SW_ALARM_TEXT_MAX 128              /* bytes including the NUL, as alarm_t.text */
+#define SW_ALARM_HYSTERESIS 0.05           /* 1, default re-arm distance above a threshold */
 #define SW_ALARM_RESERVE_HYSTERESIS_G 0.02 /* g, the same for reserve levels (docs/alarms.md) */
-#define SW_IMPACT_SIGNIFICANCE 0.1 /* 1, default fraction of the tipping speed (below) */
-#define SW_ALARM_ALL ((size_t)-1) /* sw_alarm_t.pkg of input alarms: every package */
+#define SW_IMPACT_SIGNIFICANCE 0.1         /* 1, default fraction of the tipping speed (below) */
+#define SW_ALARM_ALL ((size_t)-1)          /* sw_alarm_t.pkg of input alarms: every package */
 
 typedef struct {
     size_t pkg; /* package index, or SW_ALARM_ALL */
@@ -95,8 +95,8 @@ typedef struct {
 /* Set up w for package pkg with the scene's thresholds (1) and a hysteresis
  * (1; < 0 means SW_ALARM_HYSTERESIS).  Returns SW_OK, or SW_EINVAL when a
  * value is not finite. */
-SW_API int sw_alarm_init(sw_alarm_watch_t *w, size_t pkg, double warn_margin, double critical_margin,
-                  double hysteresis);
+SW_API int sw_alarm_init(sw_alarm_watch_t *w, size_t pkg, double warn_margin,
+                         double critical_margin, double hysteresis);
 
 /* Set up w from a validated scene: its margin and reserve levels, and
  * impact significance SW_IMPACT_SIGNIFICANCE of the package's tipping
@@ -120,13 +120,15 @@ SW_API int sw_alarm_set_impact_min(sw_alarm_watch_t *w, double min_speed);
 /* Feed one engine event of w's package.  Calls emit (may be NULL) with the
  * alarm it maps to; returns the number of alarms raised (0 or 1: 0 for an
  * impact below the significance). */
-SW_API int sw_alarm_on_event(sw_alarm_watch_t *w, const sw_event_t *ev, sw_alarm_fn emit, void *user);
+SW_API int sw_alarm_on_event(sw_alarm_watch_t *w, const sw_event_t *ev, sw_alarm_fn emit,
+                             void *user);
 
 /* Feed one engine output (state) of w's package.  Raises WARN / CRITICAL
  * (both, WARN first, when the margin falls below both at once) and
  * MODEL_FAULT when an output value is not finite (once, until the output is
  * finite again).  Returns the number of alarms raised (0..2). */
-SW_API int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *out, sw_alarm_fn emit, void *user);
+SW_API int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *out, sw_alarm_fn emit,
+                              void *user);
 
 /* Feed one evaluation of the reserve (g) at time t (s), with the theta
  * (rad) and margin (1) of the state it was evaluated on, for the alarm's
@@ -143,7 +145,7 @@ SW_API int sw_alarm_output_finite(const sw_output_t *out);
 /* Fill a with an input-level alarm (pkg = SW_ALARM_ALL, theta = margin =
  * 0) at time t (s); text is copied and truncated to fit. */
 SW_API void sw_alarm_input(sw_alarm_t *a, sw_alarm_kind kind, sw_alarm_level level, double t,
-                    const char *text);
+                           const char *text);
 
 /* "uplift", "impact", "warn", "critical", "tip", "overturned", "rest",
  * "model_fault", "sensor_gap", "input_rejected", "reserve_warn",

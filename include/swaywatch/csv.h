@@ -91,8 +91,8 @@ typedef struct {
 /* The layout in use, once the header (or the first data row) has fixed it.
  * Roles: 0 time, 1 longitudinal acceleration, 2 vertical acceleration. */
 typedef struct {
-    int ready;                     /* 0 until the layout is fixed */
-    char delim;                    /* 0 while not detected */
+    int ready;  /* 0 until the layout is fixed */
+    char delim; /* 0 while not detected */
     int has_header;
     int decimal_comma;             /* -1 not decided yet, 0, 1 */
     long col[3];                   /* 0-based; -1: the role is not read */
@@ -122,16 +122,17 @@ typedef struct sw_csv sw_csv_t;
  * named column with header = 0 is SW_ENOTFOUND).  on_row and on_reject may
  * be NULL.  A non-zero return from on_row rejects that row: it is counted
  * and reported to on_reject with reason "refused by consumer". */
-SW_API sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_reject_fn on_reject,
-                        void *user, int *err, char *msg, size_t msglen);
+SW_API sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row,
+                               sw_csv_reject_fn on_reject, void *user, int *err, char *msg,
+                               size_t msglen);
 SW_API void sw_csv_destroy(sw_csv_t *c);
 
 /* Feed bytes; returns SW_OK or a negative code that ends the parse and is
  * returned again by every later call: SW_ENOTFOUND when a named column is
  * not in the header or the input has no header (that first data row is also
  * reported as rejected), SW_EINVAL when two roles resolve to the same header
- * field, SW_EAMBIGUOUS when infer cannot tell the columns from the header.  sw_csv_error_message() says which column and line.  Bad rows are
- * not errors: they are counted and reported. */
+ * field, SW_EAMBIGUOUS when infer cannot tell the columns from the header.  sw_csv_error_message()
+ * says which column and line.  Bad rows are not errors: they are counted and reported. */
 SW_API int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len);
 
 /* Flush the last line (with or without a final newline).  Feeding after

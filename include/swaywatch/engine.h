@@ -45,10 +45,10 @@ typedef enum {
 SW_API const char *sw_event_name(sw_event_kind k);
 
 typedef struct {
-    size_t pkg;   /* index of the package (scene) */
+    size_t pkg; /* index of the package (scene) */
     sw_event_kind kind;
-    double t;     /* s */
-    double theta; /* rad, at the event */
+    double t;         /* s */
+    double theta;     /* rad, at the event */
     double theta_dot; /* rad/s, after the event's map */
     double margin;    /* 1, after the event */
     double info;      /* see sw_event_kind */
@@ -56,13 +56,13 @@ typedef struct {
 
 typedef struct {
     size_t pkg;
-    double t;             /* s */
+    double t; /* s */
     sw_state_t state;
-    double margin;        /* 1 at rest, 0 at the edge of overturning, < 0 beyond */
-    double margin_bound;  /* guaranteed margin (frame, cushion); = margin for bare */
-    double uplift_ratio;  /* |A| / (g tan alpha), A = acceleration of the support */
-    double a_g;           /* m/s^2, bed acceleration used at t */
-    double a_support;     /* m/s^2, absolute acceleration of the package's support */
+    double margin;       /* 1 at rest, 0 at the edge of overturning, < 0 beyond */
+    double margin_bound; /* guaranteed margin (frame, cushion); = margin for bare */
+    double uplift_ratio; /* |A| / (g tan alpha), A = acceleration of the support */
+    double a_g;          /* m/s^2, bed acceleration used at t */
+    double a_support;    /* m/s^2, absolute acceleration of the package's support */
 } sw_output_t;
 
 /* Non-zero if every number of o is finite (the engine never reports one
@@ -94,16 +94,16 @@ typedef struct {
     char name[SW_NAME_MAX];
     sw_model_kind model;
     int overturned;
-    double overturn_time;  /* s, NAN if none */
-    double tip_time;       /* s, NAN if none */
-    double uplift_time;    /* s, NAN if none */
-    double max_abs_theta;  /* rad */
-    double max_theta_ratio;/* max|theta| / alpha */
-    double min_margin;     /* 1 */
+    double overturn_time;   /* s, NAN if none */
+    double tip_time;        /* s, NAN if none */
+    double uplift_time;     /* s, NAN if none */
+    double max_abs_theta;   /* rad */
+    double max_theta_ratio; /* max|theta| / alpha */
+    double min_margin;      /* 1 */
     double min_margin_bound;
     double max_uplift_ratio;
     long impacts, uplifts, rests, faults;
-    long steps;            /* internal steps taken */
+    long steps; /* internal steps taken */
 } sw_summary_t;
 
 typedef struct sw_engine sw_engine_t;
@@ -111,8 +111,9 @@ typedef struct sw_engine sw_engine_t;
 /* Create an engine for n validated scenes.  On failure returns NULL and, if
  * err is not NULL, stores the code; msg (may be NULL) gets the reason, e.g.
  * the stability numbers for a forced dt. */
-SW_API sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *opts,
-                              int *err, char *msg, size_t msglen);
+SW_API sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n,
+                                     const sw_engine_opts_t *opts, int *err, char *msg,
+                                     size_t msglen);
 
 /* Free everything; NULL is accepted. */
 SW_API void sw_engine_destroy(sw_engine_t *e);
@@ -128,7 +129,7 @@ SW_API void sw_engine_reset(sw_engine_t *e);
  * (SW_EINVAL, SW_EUNSTABLE, SW_ENOMEM, ...; msg says why) with the engine
  * unchanged. */
 SW_API int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char *msg,
-                      size_t msglen);
+                             size_t msglen);
 
 /* Push one sample: bed acceleration a_g (m/s^2, x forward) and vertical
  * acceleration a_z (m/s^2, up; 0 if not measured) at time t (s).  The first

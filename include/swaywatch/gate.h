@@ -51,15 +51,15 @@ extern "C" {
 #define SW_GATE_HELD_MAX (SW_GATE_CHAINS * SW_GATE_CONFIRM_MAX) /* most samples held */
 
 typedef struct {
-    double t;        /* s, the source's time */
-    double a_g;      /* m/s^2, longitudinal (x forward), in SI after units and flip */
-    double a_z;      /* m/s^2, vertical up, as read (see vert_gravity); 0 if none */
-    double a_max;    /* m/s^2, largest |value| of all the sample's axes for the spike
-                        check; NAN: max(|a_g|, |a_z|) */
-    int64_t seq;     /* the sender's sequence number, or SW_GATE_NO_SEQ */
-    double rx;       /* s, receive time on a monotonic clock; NAN if none (a CSV log) */
-    double wall;     /* s since 1970 at receipt, for the skew check; NAN if none */
-    long where;      /* the source's place of it (line, event number), for messages */
+    double t;     /* s, the source's time */
+    double a_g;   /* m/s^2, longitudinal (x forward), in SI after units and flip */
+    double a_z;   /* m/s^2, vertical up, as read (see vert_gravity); 0 if none */
+    double a_max; /* m/s^2, largest |value| of all the sample's axes for the spike
+                     check; NAN: max(|a_g|, |a_z|) */
+    int64_t seq;  /* the sender's sequence number, or SW_GATE_NO_SEQ */
+    double rx;    /* s, receive time on a monotonic clock; NAN if none (a CSV log) */
+    double wall;  /* s since 1970 at receipt, for the skew check; NAN if none */
+    long where;   /* the source's place of it (line, event number), for messages */
 } sw_sample_t;
 
 typedef enum {
@@ -110,21 +110,21 @@ typedef enum {
 } sw_gap_policy;
 
 typedef struct {
-    double gap;          /* s: samples further apart are a gap; 0 = 5 typical intervals
-                            (the median of the last five), at least 1 ms */
+    double gap; /* s: samples further apart are a gap; 0 = 5 typical intervals
+                   (the median of the last five), at least 1 ms */
     sw_gap_policy gap_policy;
-    double max_bridge;   /* s: longest gap bridged under SW_GAP_BRIDGE; 0 = 10 s */
-    double max_accel;    /* m/s^2: any axis beyond is a spike; 0 = 50 g */
-    double jump;         /* s: a sample further ahead (beyond the time that really passed,
-                            where the receive time is known) waits for confirmation; 0 =
-                            the gap threshold; < 0 = never (every sample taken at once) */
-    double max_skew;     /* s: |t - wall| beyond is refused; 0 = not checked */
-    int confirm;         /* consistent samples that confirm a chain; 0 = 3, at most
-                            SW_GATE_CONFIRM_MAX */
-    int relative;        /* 1: engine times from the first sample; 0: the source's times;
-                            -1 (default 0 means -1): relative when the first |t| >= 1e6 s */
-    int vert_gravity;    /* a_z includes gravity (an accelerometer reads +1 g at rest):
-                            1 yes, subtracted (SW_G0); 0 no; the facts say what a_z read */
+    double max_bridge; /* s: longest gap bridged under SW_GAP_BRIDGE; 0 = 10 s */
+    double max_accel;  /* m/s^2: any axis beyond is a spike; 0 = 50 g */
+    double jump;       /* s: a sample further ahead (beyond the time that really passed,
+                          where the receive time is known) waits for confirmation; 0 =
+                          the gap threshold; < 0 = never (every sample taken at once) */
+    double max_skew;   /* s: |t - wall| beyond is refused; 0 = not checked */
+    int confirm;       /* consistent samples that confirm a chain; 0 = 3, at most
+                          SW_GATE_CONFIRM_MAX */
+    int relative;      /* 1: engine times from the first sample; 0: the source's times;
+                          -1 (default 0 means -1): relative when the first |t| >= 1e6 s */
+    int vert_gravity;  /* a_z includes gravity (an accelerometer reads +1 g at rest):
+                          1 yes, subtracted (SW_G0); 0 no; the facts say what a_z read */
     sw_gate_event_fn on_event;
     sw_gate_reject_fn on_reject;
     sw_gate_take_fn on_take; /* may be NULL */
@@ -133,32 +133,31 @@ typedef struct {
 
 /* What the stream was: for the summaries, and for the plausibility check. */
 typedef struct {
-    long received;                 /* samples handed to the gate */
-    long upstream_rejected;        /* the caller's to fill: samples its reader refused before
-                                      the gate (unreadable rows); sw_gate_check counts them */
-    long accepted;                 /* pushed into the engine */
-    long held;                     /* waiting in chains now */
-    long rejected[SW_GATE_NREJ];   /* received = accepted + held + sum(rejected) */
-    long lost;                     /* missing by the sender's seq */
+    long received;               /* samples handed to the gate */
+    long upstream_rejected;      /* the caller's to fill: samples its reader refused before
+                                    the gate (unreadable rows); sw_gate_check counts them */
+    long accepted;               /* pushed into the engine */
+    long held;                   /* waiting in chains now */
+    long rejected[SW_GATE_NREJ]; /* received = accepted + held + sum(rejected) */
+    long lost;                   /* missing by the sender's seq */
     long gaps, clock_steps, restarts, seq_restarts;
-    long incomplete;               /* gaps and restarts that leave the verdict incomplete */
-    double first_incomplete;       /* s, source time of the first (NAN: none) */
-    double gap_total, gap_max;     /* s, spans of the gaps */
-    double t_first, t_last;        /* s, source times of the first and last accepted (NAN) */
-    double t_origin;               /* s, the source time of engine t = 0 */
-    double duration;               /* s, covered by accepted samples (steps excluded) */
+    long incomplete;                  /* gaps and restarts that leave the verdict incomplete */
+    double first_incomplete;          /* s, source time of the first (NAN: none) */
+    double gap_total, gap_max;        /* s, spans of the gaps */
+    double t_first, t_last;           /* s, source times of the first and last accepted (NAN) */
+    double t_origin;                  /* s, the source time of engine t = 0 */
+    double duration;                  /* s, covered by accepted samples (steps excluded) */
     double dt_min, dt_median, dt_max; /* s, intervals between accepted samples (NAN) */
-    double rate;                   /* Hz, 1 / dt_median (NAN) */
-    double peak_a, peak_z;         /* m/s^2, largest |a_g| and |a_z| accepted */
-    double mean_z;                 /* m/s^2, mean a_z as read (before gravity removal) */
+    double rate;                      /* Hz, 1 / dt_median (NAN) */
+    double peak_a, peak_z;            /* m/s^2, largest |a_g| and |a_z| accepted */
+    double mean_z;                    /* m/s^2, mean a_z as read (before gravity removal) */
 } sw_gate_facts_t;
 
 typedef struct sw_gate sw_gate_t;
 
 /* A gate in front of engine e (borrowed; it must outlive the gate).  NULL
  * on failure (bad options; msg says why). */
-SW_API sw_gate_t *sw_gate_create(sw_engine_t *e, const sw_gate_opts_t *o, char *msg,
-                                 size_t msglen);
+SW_API sw_gate_t *sw_gate_create(sw_engine_t *e, const sw_gate_opts_t *o, char *msg, size_t msglen);
 SW_API void sw_gate_destroy(sw_gate_t *g); /* NULL ok */
 
 /* One sample.  Returns SW_OK or SW_EVENT (taken: the engine's status), 1000

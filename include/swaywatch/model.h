@@ -63,7 +63,7 @@ SW_API double sw_cushion_static_deflection(const sw_derived_t *d, double g);
  * sqrt((K_t b^2/3 - m g h) / (I_C + m h^2)) (rocking about B with the frame,
  * if any, held fixed).  Either pointer may be NULL. */
 SW_API void sw_cushion_frequencies(const sw_derived_t *d, double g, double *omega_z,
-                            double *omega_theta);
+                                   double *omega_theta);
 
 /* The fastest rate of the model linearised about rest (rad/s): the
  * largest |lambda| of the vertical mode and of the rocking mode (coupled
@@ -87,8 +87,8 @@ SW_API double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_st
  * the total energy (frame and bearing included), a guarantee once the
  * excitation stops.  No impact factor: nothing on a cushion impacts.
  * docs/cushion.md gives their limits. */
-SW_API void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s, double *margin,
-                       double *margin_bound);
+SW_API void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s,
+                              double *margin, double *margin_bound);
 
 #ifdef __cplusplus
 }

@@ -55,22 +55,23 @@ extern "C" {
 typedef enum { SW_RESERVE_BRAKING = -1, SW_RESERVE_ACCELERATING = 1 } sw_reserve_dir;
 
 typedef struct {
-    sw_run_opts_t run; /* engine.scheme, rtol, atol, rest_eps as for sw_engine_create()
-                          (callbacks ignored), except the defaults: rtol 1e-5, atol 1e-7,
-                          rest_eps 1e-6 (docs/reserve.md); engine.dt 0 = automatic: 1/SW_RESERVE_STEPS
-                          of the shortest of the pulse's period 2T, the rocking period
-                          2 pi/p and the scene's fastest period 2 pi/omega_max, at most
-                          the scheme's default; free_periods 0 = SW_RESERVE_FREE_PERIODS
-                          rocking periods of free motion after the pulse before a run
-                          that is still undecided is counted safe; settle ignored */
-    double step;       /* relative scan step; 0 = 0.02 */
-    double tol;        /* relative width of the final bracket; 0 = 0.01 */
-    double max_g;      /* largest amplitude searched, g; 0 = 20 g tan(alpha) / SW_G0 */
-    double floor_g;    /* smallest amplitude searched, g, where no lower bound is known;
-                          0 = SW_RESERVE_FLOOR_G */
-    int each_direction; /* non-zero: search each direction to its own value (dir_g
-                           exact, up to about twice the runs); 0: only the smaller */
-    int no_cache;      /* non-zero: compute the rest value like any other state */
+    sw_run_opts_t
+        run;              /* engine.scheme, rtol, atol, rest_eps as for sw_engine_create()
+                             (callbacks ignored), except the defaults: rtol 1e-5, atol 1e-7,
+                             rest_eps 1e-6 (docs/reserve.md); engine.dt 0 = automatic: 1/SW_RESERVE_STEPS
+                             of the shortest of the pulse's period 2T, the rocking period
+                             2 pi/p and the scene's fastest period 2 pi/omega_max, at most
+                             the scheme's default; free_periods 0 = SW_RESERVE_FREE_PERIODS
+                             rocking periods of free motion after the pulse before a run
+                             that is still undecided is counted safe; settle ignored */
+    double step;          /* relative scan step; 0 = 0.02 */
+    double tol;           /* relative width of the final bracket; 0 = 0.01 */
+    double max_g;         /* largest amplitude searched, g; 0 = 20 g tan(alpha) / SW_G0 */
+    double floor_g;       /* smallest amplitude searched, g, where no lower bound is known;
+                             0 = SW_RESERVE_FLOOR_G */
+    int each_direction;   /* non-zero: search each direction to its own value (dir_g
+                             exact, up to about twice the runs); 0: only the smaller */
+    int no_cache;         /* non-zero: compute the rest value like any other state */
     double max_run_steps; /* steps one pulse run (pulse and free motion) may take at a fixed
                              dt; 0 = SW_RESERVE_MAX_RUN_STEPS.  A scene that needs more (a
                              stiff cushion or frame forces a tiny dt) is refused with
@@ -100,8 +101,8 @@ typedef struct {
                          searched only as far as the smaller one needed, and its reserve
                          is at least dir_g[i] */
     int dir_exact[2];
-    int cached;       /* the state was at rest: the value computed in create */
-    long trials;      /* pulse runs made by this call (0 when cached) */
+    int cached;  /* the state was at rest: the value computed in create */
+    long trials; /* pulse runs made by this call (0 when cached) */
 } sw_reserve_result_t;
 
 typedef struct sw_reserve sw_reserve_t;

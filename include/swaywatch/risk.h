@@ -55,11 +55,11 @@ typedef struct {
     long impacts;            /* significant impacts (alarm.h) */
     long micro_impacts;      /* impacts below the significance, in settling spans */
     long settling_spans;
-    double impact_min;       /* rad/s, the significance used; 0: every impact counts (a
-                                cushion has none) */
-    const char *no_reserve;  /* why the package has no reserve although one was asked
-                                for (a scene too stiff, reserve.h's SW_ETOOBIG); NULL when
-                                it has one or the rate is off */
+    double impact_min;      /* rad/s, the significance used; 0: every impact counts (a
+                               cushion has none) */
+    const char *no_reserve; /* why the package has no reserve although one was asked
+                               for (a scene too stiff, reserve.h's SW_ETOOBIG); NULL when
+                               it has one or the rate is off */
 } sw_risk_pkg_t;
 
 typedef struct sw_risk sw_risk_t;

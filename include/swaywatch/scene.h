@@ -22,8 +22,8 @@ extern "C" {
 #endif
 
 #define SW_NAME_MAX 64
-#define SW_DESIGN_PULSES_MAX 8        /* design pulse durations a scene may list */
-#define SW_DESIGN_PULSE_DEFAULT 1.0   /* s, docs/reserve.md says why */
+#define SW_DESIGN_PULSES_MAX 8             /* design pulse durations a scene may list */
+#define SW_DESIGN_PULSE_DEFAULT 1.0        /* s, docs/reserve.md says why */
 #define SW_WARN_RESERVE_G_DEFAULT 0.20     /* g, docs/alarms.md says why */
 #define SW_CRITICAL_RESERVE_G_DEFAULT 0.10 /* g */
 
@@ -45,11 +45,11 @@ typedef struct {
 
     /* [frame] (optional) */
     int has_frame;
-    double frame_mass;       /* kg, m_b */
-    double frame_stiffness;  /* N/m, k_b   (if given as such) */
-    double frame_omega;      /* rad/s, w_b (if given as such) */
-    double frame_damping;    /* N s/m, c_b (if given as such) */
-    double frame_zeta;       /* 1, zeta_b  (if given as such) */
+    double frame_mass;      /* kg, m_b */
+    double frame_stiffness; /* N/m, k_b   (if given as such) */
+    double frame_omega;     /* rad/s, w_b (if given as such) */
+    double frame_damping;   /* N s/m, c_b (if given as such) */
+    double frame_zeta;      /* 1, zeta_b  (if given as such) */
     sw_given frame_k_given, frame_c_given;
 
     /* [cushion] (optional) */
@@ -78,21 +78,21 @@ typedef struct {
 /* Quantities derived by sw_scene_validate(); all SI. */
 typedef struct {
     sw_model_kind model;
-    double h, b;       /* m, half height and half width */
-    double R;          /* m, sqrt(h^2 + b^2) */
-    double alpha;      /* rad, atan(b/h) */
-    double p;          /* rad/s, sqrt(3 g / (4 R)) */
-    double I_C, I_O;   /* kg m^2, about the centre of mass and a base corner */
-    double eta;        /* 1, bare impact ratio 1 - 1.5 sin^2(alpha) */
-    double gamma;      /* 1, m/(m+m_b) (0 without a frame) */
-    double k_b, c_b;   /* N/m, N s/m */
-    double omega_b;    /* rad/s, sqrt(k_b/(m+m_b)) */
-    double zeta_b;     /* 1 */
-    double r_frame;    /* 1, frame impact ratio 1 - 6 sin^2(a)/(4 - 3 g cos^2(a)) */
-    double K, C, B3;   /* N/m, N s/m, N/m^3 cushion totals */
-    double omega_c;    /* rad/s, sqrt(K/m) */
-    double zeta_c;     /* 1, C/(2 m omega_c) */
-    double omega_max;  /* rad/s, the scene's fastest natural frequency */
+    double h, b;      /* m, half height and half width */
+    double R;         /* m, sqrt(h^2 + b^2) */
+    double alpha;     /* rad, atan(b/h) */
+    double p;         /* rad/s, sqrt(3 g / (4 R)) */
+    double I_C, I_O;  /* kg m^2, about the centre of mass and a base corner */
+    double eta;       /* 1, bare impact ratio 1 - 1.5 sin^2(alpha) */
+    double gamma;     /* 1, m/(m+m_b) (0 without a frame) */
+    double k_b, c_b;  /* N/m, N s/m */
+    double omega_b;   /* rad/s, sqrt(k_b/(m+m_b)) */
+    double zeta_b;    /* 1 */
+    double r_frame;   /* 1, frame impact ratio 1 - 6 sin^2(a)/(4 - 3 g cos^2(a)) */
+    double K, C, B3;  /* N/m, N s/m, N/m^3 cushion totals */
+    double omega_c;   /* rad/s, sqrt(K/m) */
+    double zeta_c;    /* 1, C/(2 m omega_c) */
+    double omega_max; /* rad/s, the scene's fastest natural frequency */
 } sw_derived_t;
 
 /* Receives one diagnostic: origin (file name or "--set"), 1-based line (0 if
@@ -117,7 +117,7 @@ SW_API void sw_scene_init(sw_scene_t *sc);
  * SW_ENOTFOUND (unknown section or key) or SW_EINVAL (value not a finite
  * number, bad name, or both forms of a pair). */
 SW_API int sw_scene_set(sw_scene_t *sc, const char *section, const char *key, const char *value,
-                 int override, const char *origin, int line, sw_diag_fn diag, void *user);
+                        int override, const char *origin, int line, sw_diag_fn diag, void *user);
 
 /* Apply "section.key=value" as an override (origin "--set", line 0).
  * Returns SW_EINVAL for an assignment of another shape, else as
@@ -134,13 +134,13 @@ SW_API int sw_scene_set_arg(sw_scene_t *sc, const char *assignment, sw_diag_fn d
  * returns SW_OK or the first error code.  Does not validate: call
  * sw_scene_validate() afterwards (after any overrides). */
 SW_API int sw_scene_parse(sw_scene_t *sc, const char *text, const char *origin, sw_diag_fn diag,
-                   void *user);
+                          void *user);
 
 /* Check required keys and ranges, derive d (may be NULL).  Every problem is
  * reported, with the line of the section it belongs to (0 if none); returns
  * SW_OK or SW_EINVAL.  d is filled only on SW_OK (zeroed otherwise). */
-SW_API int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin, sw_diag_fn diag,
-                      void *user);
+SW_API int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
+                             sw_diag_fn diag, void *user);
 
 /* "bare", "frame" or "cushion" ("unknown" for any other value). */
 SW_API const char *sw_model_name(sw_model_kind k);

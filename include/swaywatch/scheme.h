@@ -34,7 +34,8 @@ SW_API double sw_scheme_default_dt(const sw_scheme_t *s); /* s */
  * *scheme is a static string for sw_engine_opts_t.scheme.  Returns SW_OK,
  * SW_ENOTFOUND when theta_tol is tighter than any setting measured, or
  * SW_EINVAL (theta_tol not > 0, NULL pointers, a model without a table). */
-SW_API int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const char **scheme, double *dt);
+SW_API int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const char **scheme,
+                                  double *dt);
 
 /* The same for n scenes run by one engine: the setting of the scene that
  * needs the most accurate one (adaptive before fixed, then the higher
@@ -42,7 +43,7 @@ SW_API int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const c
  * first scene whose model has no table or no setting fine enough gives
  * that scene's code, with its index in *bad (may be NULL). */
 SW_API int sw_scheme_for_accuracy_n(const sw_scene_t *scenes, size_t n, double theta_tol,
-                             const char **scheme, double *dt, size_t *bad);
+                                    const char **scheme, double *dt, size_t *bad);
 
 #define SW_DEFAULT_SCHEME "rk4"
 #define SW_DEFAULT_DT 1e-3

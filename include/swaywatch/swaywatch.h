@@ -4,16 +4,16 @@
 #define SWAYWATCH_H
 
 #include "swaywatch/alarm.h"
-#include "swaywatch/export.h"
 #include "swaywatch/csv.h"
 #include "swaywatch/engine.h"
+#include "swaywatch/export.h"
 #include "swaywatch/gate.h"
 #include "swaywatch/model.h"
 #include "swaywatch/pulse.h"
 #include "swaywatch/reserve.h"
 #include "swaywatch/risk.h"
-#include "swaywatch/scheme.h"
 #include "swaywatch/scene.h"
+#include "swaywatch/scheme.h"
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
 

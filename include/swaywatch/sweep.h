@@ -42,10 +42,10 @@ typedef struct {
                                 period 2 pi/omega_e and the rocking period 2 pi/p, and never
                                 forced (dt_forced is ignored); the callbacks are the run's
                                 own (on_event, on_state and user are ignored) */
-    double free_periods; /* free motion allowed after the input ends, in rocking periods
-                            2 pi/p; 0 = 20 */
-    double settle;       /* s; if > 0, replaces free_periods (logs, as replay --settle);
-                            if < 0, no free motion: the run ends with the input */
+    double free_periods;     /* free motion allowed after the input ends, in rocking periods
+                                2 pi/p; 0 = 20 */
+    double settle;           /* s; if > 0, replaces free_periods (logs, as replay --settle);
+                                if < 0, no free motion: the run ends with the input */
 } sw_run_opts_t;
 
 /* Why a run stopped. */
@@ -60,9 +60,9 @@ typedef enum {
 } sw_run_end;
 
 typedef struct {
-    int overturned;         /* SW_END_OVERTURN or SW_END_FALLING */
+    int overturned; /* SW_END_OVERTURN or SW_END_FALLING */
     sw_run_end end;
-    long impacts;           /* impacts before the overturn (or in the whole run) */
+    long impacts; /* impacts before the overturn (or in the whole run) */
     long uplifts;
     long faults;            /* model faults (the run is then not trustworthy) */
     double uplift_time;     /* s, NAN if none */
@@ -84,15 +84,14 @@ typedef struct {
  * Returns SW_OK, SW_EINVAL (bad scene or pulse; msg says why), SW_ENOMEM,
  * or SW_EFAULT if the model faulted (r is still filled). */
 SW_API int sw_pulse_run(const sw_scene_t *sc, const sw_pulse_t *pulse, const sw_run_opts_t *o,
-                 sw_run_result_t *r, char *msg, size_t msglen);
+                        sw_run_result_t *r, char *msg, size_t msglen);
 
 /* The same from state s (sw_state_t of this scene, any phase; the pulse
  * starts at t = 0 from it) instead of rest: "what would this pulse do
  * now".  An overturned state ends at once (SW_END_OVERTURN).  Returns as
  * sw_pulse_run(), SW_EINVAL also for a state the engine refuses. */
 SW_API int sw_pulse_run_from(const sw_scene_t *sc, const sw_state_t *s, const sw_pulse_t *pulse,
-                             const sw_run_opts_t *o, sw_run_result_t *r, char *msg,
-                             size_t msglen);
+                             const sw_run_opts_t *o, sw_run_result_t *r, char *msg, size_t msglen);
 
 /* A recorded log held in memory: n samples, time increasing (s), bed
  * acceleration (m/s^2, x forward) and optionally vertical acceleration
@@ -114,8 +113,8 @@ typedef struct {
  * (vertical acceleration unchanged), then free motion as for pulses (time
  * limit: o->settle if > 0, else free_periods).  Samples the engine refuses
  * (non-finite, not increasing) are skipped.  Returns as sw_pulse_run(). */
-SW_API int sw_log_run(const sw_scene_t *sc, const sw_log_t *log, double scale, const sw_run_opts_t *o,
-               sw_run_result_t *r, char *msg, size_t msglen);
+SW_API int sw_log_run(const sw_scene_t *sc, const sw_log_t *log, double scale,
+                      const sw_run_opts_t *o, sw_run_result_t *r, char *msg, size_t msglen);
 
 /* ---- threshold search --------------------------------------------------- */
 
@@ -150,14 +149,15 @@ typedef struct {
     int n_islands;
     int islands_truncated; /* more than SW_MAX_ISLANDS islands */
     sw_island_t islands[SW_MAX_ISLANDS];
-    long trials;          /* runs made */
+    long trials; /* runs made */
 } sw_threshold_t;
 
 /* Scan x_min, x_min (1 + step), ... up to x_max (the last point clipped to
  * x_max) until a trial overturns, then bisect the last safe / first
  * overturning pair to tol.  Returns SW_OK (found or not), SW_EINVAL for bad
  * options, or the first error of a trial. */
-SW_API int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw_threshold_t *out);
+SW_API int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o,
+                               sw_threshold_t *out);
 
 /* ---- overturning boundary curves ---------------------------------------- */
 
@@ -203,15 +203,15 @@ typedef struct {
 /* The boundary of one curve at one omega_e/p.  Returns the point's status
  * (also stored in out->status); msg (may be NULL) says why on error. */
 SW_API int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary_opts_t *o,
-                      sw_boundary_point_t *out, char *msg, size_t msglen);
+                             sw_boundary_point_t *out, char *msg, size_t msglen);
 
 /* Every curve at every ratio; out has ncurves * nratios slots, curve-major
  * (out[c * nratios + i]).  Points run in parallel on o->threads threads.
  * Returns SW_OK if every point succeeded, else the first failing point's
  * status in (curve, ratio) order, with its message in msg. */
 SW_API int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ratios,
-                      size_t nratios, const sw_boundary_opts_t *o, sw_boundary_point_t *out,
-                      char *msg, size_t msglen);
+                             size_t nratios, const sw_boundary_opts_t *o, sw_boundary_point_t *out,
+                             char *msg, size_t msglen);
 
 /* ---- safety factor of a log --------------------------------------------- */
 
@@ -256,7 +256,7 @@ typedef struct {
  * never lifts, over its largest response).  Returns SW_OK (found or not),
  * or the first error of a trial with a reason in msg. */
 SW_API int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
-                     const sw_search_opts_t *so, sw_safety_t *out, char *msg, size_t msglen);
+                            const sw_search_opts_t *so, sw_safety_t *out, char *msg, size_t msglen);
 
 /* One scene of sw_safety_factors(): the caller sets scene; the rest is
  * filled. */

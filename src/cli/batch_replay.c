@@ -14,7 +14,8 @@
 void sw_cli_csv_num(FILE *f, double v)
 {
     fputc(',', f);
-    if (isfinite(v)) fprintf(f, "%.9g", v);
+    if (isfinite(v))
+        fprintf(f, "%.9g", v);
 }
 
 static void *create(void)
@@ -42,11 +43,11 @@ static int ready(void *opts, const sw_cli_group_t *g, size_t ng)
     return sw_cli_replay_ready(opts, g, ng);
 }
 
-#define CSV_HEADER                                                                                 \
-    "package,model,overturned,overturn_time,tip_time,uplift_time,max_abs_theta,"                  \
-    "max_theta_ratio,alpha,min_margin,min_margin_bound,max_uplift_ratio,impacts,uplifts,rests,"   \
-    "faults,samples_read,samples_rejected,scheme,dt,steps,settle,rejected_share,start,end,"       \
-    "start_absolute,duration,dt_median,rate,peak_accel_g,gaps,gap_max,restarts,clock_steps,"      \
+#define CSV_HEADER                                                                              \
+    "package,model,overturned,overturn_time,tip_time,uplift_time,max_abs_theta,"                \
+    "max_theta_ratio,alpha,min_margin,min_margin_bound,max_uplift_ratio,impacts,uplifts,rests," \
+    "faults,samples_read,samples_rejected,scheme,dt,steps,settle,rejected_share,start,end,"     \
+    "start_absolute,duration,dt_median,rate,peak_accel_g,gaps,gap_max,restarts,clock_steps,"    \
     "incomplete,forced,check"
 
 /* The CSV row of package i: the fields of CSV_HEADER. */
@@ -73,9 +74,8 @@ static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t 
     sw_cli_csv_num(f, run->settle);
     const sw_gate_facts_t *F = &run->facts;
     const int h = run->have_facts;
-    sw_cli_csv_num(f, run->samples_read
-                          ? (double)run->samples_rejected / (double)run->samples_read
-                          : 0.0);
+    sw_cli_csv_num(
+        f, run->samples_read ? (double)run->samples_rejected / (double)run->samples_read : 0.0);
     sw_cli_csv_num(f, h ? F->t_first - F->t_origin : NAN);
     sw_cli_csv_num(f, h ? F->t_last - F->t_origin : NAN);
     fputc(',', f);
@@ -112,7 +112,8 @@ static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
     report_t *R = user;
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
-        if (sw_engine_summary(e, i, &s) != SW_OK) continue;
+        if (sw_engine_summary(e, i, &s) != SW_OK)
+            continue;
         char *json = NULL, *csv = NULL;
         size_t jlen = 0, clen = 0;
         FILE *j = open_memstream(&json, &jlen);
@@ -128,8 +129,10 @@ static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
             csv_row(c, e, i, run, &s);
         }
         int bad = !j || !c;
-        if (j && fclose(j) != 0) bad = 1;
-        if (c && fclose(c) != 0) bad = 1;
+        if (j && fclose(j) != 0)
+            bad = 1;
+        if (c && fclose(c) != 0)
+            bad = 1;
         if (bad)
             R->oom = 1;
         else

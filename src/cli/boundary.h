@@ -33,12 +33,12 @@ typedef struct {
     long threads;
     double *ratios; /* --omega-ratio */
     size_t nr;
-    double *durations; /* s, --pulse-duration (instead of --omega-ratio; nr of them) */
-    int units;         /* UNITS_*, -1: not given */
+    double *durations;     /* s, --pulse-duration (instead of --omega-ratio; nr of them) */
+    int units;             /* UNITS_*, -1: not given */
     double min_si, max_si; /* m/s^2: --min-amplitude, --max-amplitude given with a unit; 0: as
                               bo.search.x_min, x_max (g tan alpha) */
     const char *min_arg, *max_arg; /* as given, for messages */
-    double *bearing; /* --bearing-ratio, and as written ("1/3") */
+    double *bearing;               /* --bearing-ratio, and as written ("1/3") */
     size_t nbear;
     const char *bear_arg;
     vary_t *vary;
@@ -62,8 +62,8 @@ typedef struct {
     sw_cli_world_t world;
     sw_cli_opts_t o;
     boundary_opts_t b;
-    char *bear_copy;         /* --bearing-ratio, split at the commas: */
-    const char **bear_text;  /* the ratios as written, for the labels ("1/3") */
+    char *bear_copy;        /* --bearing-ratio, split at the commas: */
+    const char **bear_text; /* the ratios as written, for the labels ("1/3") */
     sw_scene_t *scenes;
     size_t nsc;
     curve_t *cv;
@@ -82,8 +82,8 @@ const sw_cli_option_t *sw_bnd_option(const char *long_name);
  * every bearing ratio (scenes without a frame: as they are), into *out
  * (*nout of them, to free); SW_EXIT_* (reported). */
 int sw_bnd_build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary, size_t nvary,
-                        const double *bearing, size_t nbear, const char *bear_text[],
-                        curve_t **out, size_t *nout);
+                        const double *bearing, size_t nbear, const char *bear_text[], curve_t **out,
+                        size_t *nout);
 /* Each curve's p, g tan alpha and scan range, checked against the
  * options' bounds; SW_EXIT_* (reported). */
 int sw_bnd_curve_units(boundary_t *B);

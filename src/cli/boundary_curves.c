@@ -16,7 +16,8 @@
 static void append(char *buf, size_t len, const char *fmt, const char *a, const char *b)
 {
     size_t used = strlen(buf);
-    if (used < len) snprintf(buf + used, len - used, fmt, a, b);
+    if (used < len)
+        snprintf(buf + used, len - used, fmt, a, b);
 }
 
 /* Does --vary v apply to scene s?  A [frame] or [cushion] key leaves a
@@ -24,25 +25,29 @@ static void append(char *buf, size_t len, const char *fmt, const char *a, const 
  * curve). */
 static int vary_applies(const vary_t *v, const sw_scene_t *s)
 {
-    if (!strncmp(v->key, "frame.", 6)) return s->has_frame;
-    if (!strncmp(v->key, "cushion.", 8)) return s->has_cushion;
+    if (!strncmp(v->key, "frame.", 6))
+        return s->has_frame;
+    if (!strncmp(v->key, "cushion.", 8))
+        return s->has_cushion;
     return 1;
 }
 
 /* Every scene x every combination of the --vary values that apply to it x
  * every bearing ratio (scenes without a frame: as they are). */
 int sw_bnd_build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary, size_t nvary,
-                        const double *bearing, size_t nbear, const char *bear_text[],
-                        curve_t **out, size_t *nout)
+                        const double *bearing, size_t nbear, const char *bear_text[], curve_t **out,
+                        size_t *nout)
 {
     size_t total = 0, framed = 0;
     for (size_t s = 0; s < nsc; s++) {
         size_t combos = 1;
         for (size_t k = 0; k < nvary; k++)
-            if (vary_applies(&vary[k], &scenes[s])) combos *= vary[k].n;
+            if (vary_applies(&vary[k], &scenes[s]))
+                combos *= vary[k].n;
         total += combos * (scenes[s].has_frame && nbear ? nbear : 1);
         framed += scenes[s].has_frame != 0;
-        if (total > MAX_CURVES) break;
+        if (total > MAX_CURVES)
+            break;
     }
     if (nbear && !framed) {
         sw_cli_error("--bearing-ratio: no scene has a [frame]");
@@ -62,7 +67,8 @@ int sw_bnd_build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary
     for (size_t s = 0; s < nsc; s++) {
         size_t combos = 1;
         for (size_t k = 0; k < nvary; k++)
-            if (vary_applies(&vary[k], &scenes[s])) combos *= vary[k].n;
+            if (vary_applies(&vary[k], &scenes[s]))
+                combos *= vary[k].n;
         const size_t nb = scenes[s].has_frame && nbear ? nbear : 1;
         for (size_t c = 0; c < combos; c++)
             for (size_t b = 0; b < nb; b++) {
@@ -71,14 +77,16 @@ int sw_bnd_build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary
                 snprintf(C->label, sizeof C->label, "%s", scenes[s].name);
                 size_t idx = c;
                 for (size_t k = 0; k < nvary; k++) {
-                    if (!vary_applies(&vary[k], &scenes[s])) continue;
+                    if (!vary_applies(&vary[k], &scenes[s]))
+                        continue;
                     const char *val = vary[k].values[idx % vary[k].n];
                     idx /= vary[k].n;
                     char assign[512];
                     snprintf(assign, sizeof assign, "%s=%s", vary[k].key, val);
                     const long before = diag.errors;
                     if (sw_scene_set_arg(&C->c.scene, assign, sw_cli_print_diag, &diag) != SW_OK) {
-                        if (diag.errors == before) sw_cli_error("--vary %s: rejected", assign);
+                        if (diag.errors == before)
+                            sw_cli_error("--vary %s: rejected", assign);
                         free(cv);
                         return SW_EXIT_USAGE;
                     }
@@ -92,7 +100,8 @@ int sw_bnd_build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary
                 sw_curve_scene(&C->c, 0.0, &check);
                 const long before = diag.errors;
                 if (sw_scene_validate(&check, NULL, C->label, sw_cli_print_diag, &diag) != SW_OK) {
-                    if (diag.errors == before) sw_cli_error("%s: invalid scene", C->label);
+                    if (diag.errors == before)
+                        sw_cli_error("%s: invalid scene", C->label);
                     free(cv);
                     return SW_EXIT_USAGE;
                 }
@@ -112,7 +121,8 @@ double sw_bnd_shape_angle(const boundary_t *B)
 /* omega_e/p of curve c at point i. */
 double sw_bnd_ratio_at(const boundary_t *B, size_t c, size_t i)
 {
-    if (B->b.durations) return sw_bnd_shape_angle(B) / (B->b.durations[i] * B->cv[c].p);
+    if (B->b.durations)
+        return sw_bnd_shape_angle(B) / (B->b.durations[i] * B->cv[c].p);
     return B->b.ratios[i];
 }
 
@@ -121,10 +131,11 @@ double sw_bnd_ratio_at(const boundary_t *B, size_t c, size_t i)
 static int in_range(const char *opt, const char *arg, const curve_t *C, double v)
 {
     const sw_cli_option_t *o = sw_bnd_option(opt);
-    if (!o || !(o->hi > o->lo) || (v >= o->lo && v <= o->hi)) return 0;
+    if (!o || !(o->hi > o->lo) || (v >= o->lo && v <= o->hi))
+        return 0;
     sw_cli_error("curve '%s': %s is %g %s, out of range: expected %g to %g", C->label,
-                 arg ? arg : "", v, strcmp(opt, "omega-ratio") ? "g tan alpha" : "omega_e/p",
-                 o->lo, o->hi);
+                 arg ? arg : "", v, strcmp(opt, "omega-ratio") ? "g tan alpha" : "omega_e/p", o->lo,
+                 o->hi);
     return 1;
 }
 
@@ -154,13 +165,15 @@ int sw_bnd_curve_units(boundary_t *B)
         for (size_t i = 0; B->b.durations && i < B->b.nr; i++) {
             char dur[64];
             snprintf(dur, sizeof dur, "%gms", B->b.durations[i] * 1e3);
-            if (in_range("omega-ratio", dur, C, sw_bnd_ratio_at(B, c, i))) return SW_EXIT_USAGE;
+            if (in_range("omega-ratio", dur, C, sw_bnd_ratio_at(B, c, i)))
+                return SW_EXIT_USAGE;
         }
         if (C->x_min > 0.0 && C->x_min >= C->x_max) {
-            sw_cli_error("curve '%s': --min-amplitude %s (%g g tan alpha) is not below "
-                         "--max-amplitude %s (%g g tan alpha)",
-                         C->label, B->b.min_arg ? B->b.min_arg : "", C->x_min,
-                         B->b.max_arg ? B->b.max_arg : "20", C->x_max);
+            sw_cli_error(
+                "curve '%s': --min-amplitude %s (%g g tan alpha) is not below "
+                "--max-amplitude %s (%g g tan alpha)",
+                C->label, B->b.min_arg ? B->b.min_arg : "", C->x_min,
+                B->b.max_arg ? B->b.max_arg : "20", C->x_max);
             return SW_EXIT_USAGE;
         }
     }
@@ -178,7 +191,8 @@ void sw_bnd_print_curves(const boundary_t *B)
         sw_derived_t d;
         sw_scene_t s; /* omega_b is set per point */
         sw_curve_scene(&C->c, 0.0, &s);
-        if (sw_scene_validate(&s, &d, NULL, NULL, NULL) != SW_OK) continue;
+        if (sw_scene_validate(&s, &d, NULL, NULL, NULL) != SW_OK)
+            continue;
         fprintf(stderr,
                 "swaywatch: curve %zu '%s': %s model, alpha %.4g deg, p %.6g rad/s, "
                 "g tan alpha %.6g m/s^2",
@@ -192,4 +206,3 @@ void sw_bnd_print_curves(const boundary_t *B)
         fputc('\n', stderr);
     }
 }
-

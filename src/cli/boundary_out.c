@@ -18,7 +18,8 @@
 /* ms, the pulse duration of curve c at point i. */
 static double duration_ms(const boundary_t *B, size_t c, size_t i)
 {
-    if (B->b.durations) return B->b.durations[i] * 1e3;
+    if (B->b.durations)
+        return B->b.durations[i] * 1e3;
     return sw_bnd_shape_angle(B) / (B->b.ratios[i] * B->cv[c].p) * 1e3;
 }
 
@@ -49,9 +50,9 @@ static const char *other_name(const boundary_t *B)
 static double unit_scale(const boundary_t *B, size_t c)
 {
     switch (B->units) {
-    case UNITS_G: return B->cv[c].gtan / G0;
-    case UNITS_MPS2: return B->cv[c].gtan;
-    default: return 1.0;
+        case UNITS_G: return B->cv[c].gtan / G0;
+        case UNITS_MPS2: return B->cv[c].gtan;
+        default: return 1.0;
     }
 }
 
@@ -65,7 +66,8 @@ static const char *unit_suffix(const boundary_t *B)
 
 static void csv_num(FILE *f, double v)
 {
-    if (isfinite(v)) fprintf(f, "%.6g", v);
+    if (isfinite(v))
+        fprintf(f, "%.6g", v);
 }
 
 /* A header field "<label><text>". */
@@ -83,7 +85,8 @@ static long write_curves(FILE *f, const boundary_t *B)
     char other[32];
     snprintf(other, sizeof other, " %s", other_name(B));
     fputs(key_name(B), f);
-    if (B->physical && B->shared_p) fprintf(f, ",%s", other_name(B));
+    if (B->physical && B->shared_p)
+        fprintf(f, ",%s", other_name(B));
     for (size_t c = 0; c < nc; c++) {
         if (per_curve) {
             fputc(',', f);
@@ -95,12 +98,15 @@ static long write_curves(FILE *f, const boundary_t *B)
     fputc('\n', f);
     for (size_t i = 0; i < nr; i++) {
         fprintf(f, "%.6g", key_at(B, i));
-        if (B->physical && B->shared_p) fprintf(f, ",%.6g", other_at(B, 0, i));
+        if (B->physical && B->shared_p)
+            fprintf(f, ",%.6g", other_at(B, 0, i));
         for (size_t c = 0; c < nc; c++) {
             const sw_boundary_point_t *P = &B->pts[c * nr + i];
-            if (per_curve) fprintf(f, ",%.6g", other_at(B, c, i));
+            if (per_curve)
+                fprintf(f, ",%.6g", other_at(B, c, i));
             fputc(',', f);
-            if (P->th.found) csv_num(f, P->th.x * unit_scale(B, c));
+            if (P->th.found)
+                csv_num(f, P->th.x * unit_scale(B, c));
         }
         fputc('\n', f);
     }
@@ -110,11 +116,11 @@ static long write_curves(FILE *f, const boundary_t *B)
 static const char *end_name(sw_run_end e)
 {
     switch (e) {
-    case SW_END_OVERTURN: return "overturn";
-    case SW_END_FALLING: return "falling";
-    case SW_END_REST: return "rest";
-    case SW_END_BOUND: return "bound";
-    case SW_END_TIMEOUT: return "timeout";
+        case SW_END_OVERTURN: return "overturn";
+        case SW_END_FALLING: return "falling";
+        case SW_END_REST: return "rest";
+        case SW_END_BOUND: return "bound";
+        case SW_END_TIMEOUT: return "timeout";
     }
     return "unknown";
 }
@@ -122,9 +128,10 @@ static const char *end_name(sw_run_end e)
 static long write_detail(FILE *f, const boundary_t *B)
 {
     const size_t nc = B->nc, nr = B->b.nr;
-    fputs("curve,omega_ratio,found,boundary,safe_below,lift,impacts,uplift_side,overturn_side,"
-          "uplift_time,tip_time,overturn_time,end,trials,duration_ms,boundary_g\n",
-          f);
+    fputs(
+        "curve,omega_ratio,found,boundary,safe_below,lift,impacts,uplift_side,overturn_side,"
+        "uplift_time,tip_time,overturn_time,end,trials,duration_ms,boundary_g\n",
+        f);
     for (size_t c = 0; c < nc; c++)
         for (size_t i = 0; i < nr; i++) {
             const sw_boundary_point_t *P = &B->pts[c * nr + i];
@@ -134,7 +141,8 @@ static long write_detail(FILE *f, const boundary_t *B)
             if (P->th.found) {
                 csv_num(f, P->th.x);
                 fputc(',', f);
-                if (!P->th.at_min) csv_num(f, P->th.x_safe);
+                if (!P->th.at_min)
+                    csv_num(f, P->th.x_safe);
                 fputc(',', f);
                 csv_num(f, P->x_lift);
                 fprintf(f, ",%ld,%d,%d,", r->impacts, r->uplift_side, r->overturn_side);
@@ -150,7 +158,8 @@ static long write_detail(FILE *f, const boundary_t *B)
                 fputs(",,,,,,,", f);
             }
             fprintf(f, ",%ld,%.6g,", P->th.trials, duration_ms(B, c, i));
-            if (P->th.found) csv_num(f, P->th.x * B->cv[c].gtan / G0);
+            if (P->th.found)
+                csv_num(f, P->th.x * B->cv[c].gtan / G0);
             fputc('\n', f);
         }
     return (long)(nc * nr);
@@ -172,7 +181,8 @@ static long write_islands(FILE *f, const boundary_t *B)
             for (int j = 0; j < T->n_islands; j++, rows++) {
                 sw_cli_csv_text(f, B->cv[c].label);
                 fprintf(f, ",%.6g", sw_bnd_ratio_at(B, c, i));
-                if (B->physical) fprintf(f, ",%.6g", duration_ms(B, c, i));
+                if (B->physical)
+                    fprintf(f, ",%.6g", duration_ms(B, c, i));
                 fprintf(f, ",%.6g,%.6g,%d\n", T->islands[j].lo * k, T->islands[j].hi * k,
                         T->islands[j].open);
             }
@@ -181,11 +191,12 @@ static long write_islands(FILE *f, const boundary_t *B)
 }
 
 /* Write path with fn; *rows gets the data rows written. */
-static int write_file(const char *path, const boundary_t *B,
-                      long (*fn)(FILE *, const boundary_t *), long *rows)
+static int write_file(const char *path, const boundary_t *B, long (*fn)(FILE *, const boundary_t *),
+                      long *rows)
 {
     FILE *f = sw_cli_out_open(path);
-    if (!f) return SW_EXIT_IO;
+    if (!f)
+        return SW_EXIT_IO;
     *rows = fn(f, B);
     return sw_cli_out_close(f, path);
 }
@@ -213,30 +224,31 @@ static void curve_blocks(FILE *g, const boundary_t *B, size_t c)
             const double x = key_at(B, i);
             const int side = T->at_x.overturn_side;
             switch (*n) {
-            case 'c':
-                fprintf(g, "%.9g %.9g\n", x, T->found ? T->x * k : NAN);
-                any = 1;
-                break;
-            case 'b':
-            case 'f':
-                if (T->found && (*n == 'b' ? side < 0 : side > 0)) {
-                    fprintf(g, "%.9g %.9g\n", x, T->x * k);
+                case 'c':
+                    fprintf(g, "%.9g %.9g\n", x, T->found ? T->x * k : NAN);
                     any = 1;
-                }
-                break;
-            case 'n':
-                if (!T->found) {
-                    fprintf(g, "%.9g %.9g\n", x, B->cv[c].x_max * k);
-                    any = 1;
-                }
-                break;
-            default:
-                for (int j = 0; j < T->n_islands; j++, any = 1)
-                    fprintf(g, "%.9g %.9g %.9g\n", x, T->islands[j].lo * k,
-                            T->islands[j].hi * k);
+                    break;
+                case 'b':
+                case 'f':
+                    if (T->found && (*n == 'b' ? side < 0 : side > 0)) {
+                        fprintf(g, "%.9g %.9g\n", x, T->x * k);
+                        any = 1;
+                    }
+                    break;
+                case 'n':
+                    if (!T->found) {
+                        fprintf(g, "%.9g %.9g\n", x, B->cv[c].x_max * k);
+                        any = 1;
+                    }
+                    break;
+                default:
+                    for (int j = 0; j < T->n_islands; j++, any = 1)
+                        fprintf(g, "%.9g %.9g %.9g\n", x, T->islands[j].lo * k,
+                                T->islands[j].hi * k);
             }
         }
-        if (!any) fputs(*n == 'i' ? "NaN NaN NaN\n" : "NaN NaN\n", g);
+        if (!any)
+            fputs(*n == 'i' ? "NaN NaN NaN\n" : "NaN NaN\n", g);
         fputs("EOD\n", g);
     }
 }
@@ -249,7 +261,8 @@ static double island_half_width(const boundary_t *B, double lo, double hi)
     for (size_t i = 0; i < B->b.nr; i++)
         for (size_t j = i + 1; j < B->b.nr; j++) {
             const double d = fabs(key_at(B, i) - key_at(B, j));
-            if (d > 0.0 && d < gap) gap = d;
+            if (d > 0.0 && d < gap)
+                gap = d;
         }
     return isfinite(gap) ? gap / 3.0 : fmax(hi - lo, fabs(lo)) * 0.02 + 1e-9;
 }
@@ -268,9 +281,11 @@ static void x2_tics(FILE *g, double K, double x0, double x1)
     for (double dec = pow(10.0, floor(log10(v0))); dec <= v1 && n < 40; dec *= 10.0)
         for (size_t m = 0; m < sizeof mant / sizeof mant[0]; m++) {
             const double v = mant[m] * dec;
-            if (v < v0 || v > v1) continue;
+            if (v < v0 || v > v1)
+                continue;
             const double x = K / v;
-            if (isfinite(last_x) && fabs(last_x - x) < min_gap) continue;
+            if (isfinite(last_x) && fabs(last_x - x) < min_gap)
+                continue;
             fprintf(g, "%s%.6g", n++ ? ", " : "", v);
             last_x = x;
         }
@@ -279,10 +294,10 @@ static void x2_tics(FILE *g, double K, double x0, double x1)
 
 /* What a figure has to draw, and its ranges. */
 typedef struct {
-    double lo, hi, pad; /* the x axis: the points' first column, and a margin */
-    double top;         /* the top of the y axis, in the units drawn */
-    int same_max;       /* every curve searched up to the same amplitude */
-    int show_max;       /* the maximum searched is drawn */
+    double lo, hi, pad;           /* the x axis: the points' first column, and a margin */
+    double top;                   /* the top of the y axis, in the units drawn */
+    int same_max;                 /* every curve searched up to the same amplitude */
+    int show_max;                 /* the maximum searched is drawn */
     int islands, back, fwd, none; /* islands; points overturning back, forward; none */
 } extent_t;
 
@@ -305,7 +320,8 @@ static extent_t plot_extent(const boundary_t *B)
         top_max = fmax(top_max, m);
         for (size_t i = 0; i < nr; i++) {
             const sw_threshold_t *T = &B->pts[c * nr + i].th;
-            if (T->found) top = fmax(top, T->x * k);
+            if (T->found)
+                top = fmax(top, T->x * k);
             E.back += T->found && T->at_x.overturn_side < 0;
             E.fwd += T->found && T->at_x.overturn_side > 0;
             E.none += !T->found;
@@ -317,7 +333,8 @@ static extent_t plot_extent(const boundary_t *B)
         }
     }
     E.show_max = E.none || open || top_max <= 1.3 * top;
-    if (E.show_max || !(top > 0.0)) top = fmax(top, top_max);
+    if (E.show_max || !(top > 0.0))
+        top = fmax(top, top_max);
     E.top = top;
     E.pad = E.hi > E.lo ? 0.015 * (E.hi - E.lo) : 0.05 * fmax(fabs(E.lo), 1e-6);
     return E;
@@ -346,16 +363,18 @@ static void plot_axes(FILE *g, const boundary_t *B, const extent_t *E)
     if (B->physical && B->shared_p) {
         /* the other quantity along the top: duration = angle / (ratio p), both ways */
         const double K = sw_bnd_shape_angle(B) * 1e3 / B->cv[0].p;
-        fprintf(g, "set link x2 via %.12g/x inverse %.12g/x\nset xtics nomirror\n"
-                   "set x2label '%s'\n",
+        fprintf(g,
+                "set link x2 via %.12g/x inverse %.12g/x\nset xtics nomirror\n"
+                "set x2label '%s'\n",
                 K, K, B->b.durations ? "ω_e / p" : "pulse duration (ms)");
         x2_tics(g, K, lo - pad, hi + pad);
     }
-    fputs("set label 1 'a_e > 0 speeds the truck up: the package sways back first;' "
-          "at screen 0.675, screen 0.16 left font ',9'\n"
-          "set label 2 'under braking, forward and back swap.' "
-          "at screen 0.675, screen 0.125 left font ',9'\n",
-          g);
+    fputs(
+        "set label 1 'a_e > 0 speeds the truck up: the package sways back first;' "
+        "at screen 0.675, screen 0.16 left font ',9'\n"
+        "set label 2 'under braking, forward and back swap.' "
+        "at screen 0.675, screen 0.125 left font ',9'\n",
+        g);
 }
 
 /* The plot command: each curve's islands, line and points, then the
@@ -393,21 +412,25 @@ static void plot_series(FILE *g, const boundary_t *B, const extent_t *E)
     else
         fputs("NaN notitle", g);
     if (E->back)
-        fputs(", NaN with points pt 7 ps 0.9 lc rgb 'black' title 'overturns back (top to the "
-              "rear)'",
-              g);
+        fputs(
+            ", NaN with points pt 7 ps 0.9 lc rgb 'black' title 'overturns back (top to the "
+            "rear)'",
+            g);
     if (E->fwd)
-        fputs(", NaN with points pt 11 ps 1.3 lc rgb 'black' title 'overturns forward (top to "
-              "the front)'",
-              g);
+        fputs(
+            ", NaN with points pt 11 ps 1.3 lc rgb 'black' title 'overturns forward (top to "
+            "the front)'",
+            g);
     if (E->none)
-        fputs(", NaN with points pt 8 ps 1.4 lc rgb 'black' title 'no overturn up to the "
-              "maximum'",
-              g);
+        fputs(
+            ", NaN with points pt 8 ps 1.4 lc rgb 'black' title 'no overturn up to the "
+            "maximum'",
+            g);
     if (E->islands)
-        fputs(", NaN with boxes fs transparent solid 0.25 noborder lc rgb '#555555' "
-              "title 'safe islands above the boundary'",
-              g);
+        fputs(
+            ", NaN with boxes fs transparent solid 0.25 noborder lc rgb '#555555' "
+            "title 'safe islands above the boundary'",
+            g);
     fputc('\n', g);
 }
 
@@ -415,7 +438,8 @@ static int plot(const char *path, const boundary_t *B)
 {
     const extent_t E = plot_extent(B);
     sw_plot_t *p = sw_cli_plot_open(path, 1200, 650);
-    if (!p) return SW_EXIT_IO;
+    if (!p)
+        return SW_EXIT_IO;
     FILE *g = sw_cli_plot_file(p);
     plot_axes(g, B, &E);
     for (size_t c = 0; c < B->nc; c++) curve_blocks(g, B, c);
@@ -440,18 +464,21 @@ static void notes(const boundary_t *B)
             snprintf(max, sizeof max, "%s", B->b.max_arg);
         else
             snprintf(max, sizeof max, "%g", DEFAULT_X_MAX);
-        sw_cli_error("boundary: %ld of %zu points did not overturn up to --max-amplitude %s "
-                     "(empty fields)",
-                     missing, np, max);
+        sw_cli_error(
+            "boundary: %ld of %zu points did not overturn up to --max-amplitude %s "
+            "(empty fields)",
+            missing, np, max);
     }
     if (at_min)
-        sw_cli_error("boundary: %ld points overturned at --min-amplitude already: their "
-                     "value is an upper bound",
-                     at_min);
+        sw_cli_error(
+            "boundary: %ld points overturned at --min-amplitude already: their "
+            "value is an upper bound",
+            at_min);
     if (truncated)
-        sw_cli_error("boundary: %ld points have more than %d safe islands; the rest are "
-                     "not listed",
-                     truncated, SW_MAX_ISLANDS);
+        sw_cli_error(
+            "boundary: %ld points have more than %d safe islands; the rest are "
+            "not listed",
+            truncated, SW_MAX_ISLANDS);
 }
 
 /* The files, each said on stderr with what it holds, then the points that
@@ -484,8 +511,8 @@ int sw_bnd_write_outputs(const boundary_t *B)
             sw_cli_error("boundary: wrote %s: a figure of %zu curve%s", B->b.plot, nc,
                          nc == 1 ? "" : "s");
     }
-    if (!say) return rc;
+    if (!say)
+        return rc;
     notes(B);
     return rc;
 }
-

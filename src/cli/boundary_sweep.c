@@ -23,9 +23,10 @@ static void on_progress(void *user, size_t done, size_t total)
     const progress_t *P = user;
     (void)total;
     done += P->offset;
-    fprintf(stderr, "\rswaywatch: boundary %3.0f%% (%zu/%zu points)", 100.0 * done / P->total,
-            done, P->total);
-    if (done == P->total) fputc('\n', stderr);
+    fprintf(stderr, "\rswaywatch: boundary %3.0f%% (%zu/%zu points)", 100.0 * done / P->total, done,
+            P->total);
+    if (done == P->total)
+        fputc('\n', stderr);
     fflush(stderr);
 }
 
@@ -58,8 +59,7 @@ static void point_run(void *user, size_t i, FILE *out)
     sw_boundary_point_t pt;
     memset(&pt, 0, sizeof pt);
     char msg[256] = "";
-    sw_boundary_point(&G->curves[i / G->nr], G->ratios[i % G->nr], G->bo, &pt, msg,
-                      sizeof msg);
+    sw_boundary_point(&G->curves[i / G->nr], G->ratios[i % G->nr], G->bo, &pt, msg, sizeof msg);
     fwrite(&pt, sizeof pt, 1, out);
     fputs(msg, out);
 }
@@ -68,14 +68,16 @@ static int point_take(void *user, size_t i, const char *data, size_t len, const 
                       size_t mlen)
 {
     group_t *G = user;
-    if (mlen) fwrite(msgs, 1, mlen, stderr);
+    if (mlen)
+        fwrite(msgs, 1, mlen, stderr);
     if (len < sizeof *G->gp) {
         sw_cli_error("boundary: point %zu came back short", i + 1);
         return -1;
     }
     memcpy(&G->gp[i], data, sizeof *G->gp);
     size_t m = len - sizeof *G->gp;
-    if (m >= sizeof G->msgs[i]) m = sizeof G->msgs[i] - 1;
+    if (m >= sizeof G->msgs[i])
+        m = sizeof G->msgs[i] - 1;
     memcpy(G->msgs[i], data + sizeof *G->gp, m);
     G->msgs[i][m] = '\0';
     return 0;
@@ -104,8 +106,10 @@ static int sweep_ranks(group_t *G, char *msg, size_t msglen, int *exit_code)
     };
     *exit_code = sw_cli_farm_run(&farm);
     int rc = *exit_code == SW_EXIT_OK ? SW_OK : SW_ENOMEM;
-    if (rc != SW_OK) snprintf(msg, msglen, "the points could not be gathered");
-    else *exit_code = SW_EXIT_USAGE; /* if a point failed */
+    if (rc != SW_OK)
+        snprintf(msg, msglen, "the points could not be gathered");
+    else
+        *exit_code = SW_EXIT_USAGE; /* if a point failed */
     for (size_t i = 0; rc == SW_OK && G->world->rank == 0 && i < np; i++)
         if (G->gp[i].status < 0) {
             rc = G->gp[i].status;
@@ -138,7 +142,8 @@ int sw_bnd_sweep(boundary_t *B)
      * ends the process at once. */
     sw_cli_interrupt_now("boundary: interrupted during the sweep; nothing written");
     for (size_t c0 = 0; c0 < nc; c0++) {
-        if (done[c0]) continue;
+        if (done[c0])
+            continue;
         size_t k = 0;
         for (size_t c = c0; c < nc; c++)
             if (!done[c] && same_sweep(B, c0, c)) {
@@ -172,7 +177,8 @@ int sw_bnd_sweep(boundary_t *B)
             size_t bad = 0;
             while (bad + 1 < k * nr && gp[bad].status >= 0) bad++;
             const char *why = msg;
-            if (!strncmp(why, "curve ", 6) && strstr(why, ", ")) why = strstr(why, ", ") + 2;
+            if (!strncmp(why, "curve ", 6) && strstr(why, ", "))
+                why = strstr(why, ", ") + 2;
             sw_cli_error("boundary: curve '%s', %s", B->cv[member[bad / nr]].label,
                          why[0] ? why : sw_strerror(sr));
             rc = code;
@@ -189,4 +195,3 @@ out:
     free(gp);
     return rc;
 }
-

@@ -117,8 +117,8 @@ int sw_cli_check_files(const sw_cli_file_t *in, size_t nin, const sw_cli_file_t 
                 continue;
             identify(&in[k], 1, &b);
             if (same(&a, &b)) {
-                sw_cli_error("%s %s: that is %s (%s %s): writing it would destroy it",
-                             out[i].what, out[i].path, kind(&in[k]), in[k].what,
+                sw_cli_error("%s %s: that is %s (%s %s): writing it would destroy it", out[i].what,
+                             out[i].path, kind(&in[k]), in[k].what,
                              strcmp(in[k].path, "-") ? in[k].path : "- (standard input)");
                 return SW_EXIT_USAGE;
             }

@@ -34,7 +34,8 @@ static const sw_cli_job_t *const jobs[] = {&sw_cli_job_replay, &sw_cli_job_foren
 static const sw_cli_job_t *job_named(const char *name)
 {
     for (size_t i = 0; i < sizeof jobs / sizeof jobs[0]; i++)
-        if (!strcmp(jobs[i]->name, name)) return jobs[i];
+        if (!strcmp(jobs[i]->name, name))
+            return jobs[i];
     return NULL;
 }
 
@@ -70,7 +71,8 @@ typedef struct {
 static int parse_job(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     const sw_cli_job_t **j = dest;
-    if ((*j = job_named(arg))) return SW_EXIT_OK;
+    if ((*j = job_named(arg)))
+        return SW_EXIT_OK;
     sw_cli_error("--%s: expected replay, got '%s'", o->long_name, arg);
     return SW_EXIT_USAGE;
 }
@@ -115,17 +117,19 @@ static const sw_cli_option_t batch_options[] = {
 static const sw_cli_command_t batch_cmd = {
     .name = "batch",
     .usage = "batch [LOG ...] [--manifest FILE] --scene S.ini [options]",
-    .about = "Runs a job over many logs: replays each, as 'swaywatch replay LOG' would with the\n"
-             "same options, on every core (and under mpirun or srun on every rank), longest\n"
-             "log first, and writes one JSON Lines record per log and package, in the order\n"
-             "of the logs.  The options of the job (scenes, CSV input, input checks,\n"
-             "integration) apply to every log; a manifest line adds its own after its log\n"
-             "(its --scene replacing the command line's).  Options and scenes are checked\n"
-             "before any log runs.\n",
-    .exit_text = "Exit codes: 0 every log gave its records, 1 a package overturned and\n"
-                 "--fail-on-overturn was given, 2 bad usage or input (options, manifest, scene\n"
-                 "files), 3 an output or the manifest could not be written or read, 4 some logs\n"
-                 "failed: their records say why, the others are done.\n",
+    .about =
+        "Runs a job over many logs: replays each, as 'swaywatch replay LOG' would with the\n"
+        "same options, on every core (and under mpirun or srun on every rank), longest\n"
+        "log first, and writes one JSON Lines record per log and package, in the order\n"
+        "of the logs.  The options of the job (scenes, CSV input, input checks,\n"
+        "integration) apply to every log; a manifest line adds its own after its log\n"
+        "(its --scene replacing the command line's).  Options and scenes are checked\n"
+        "before any log runs.\n",
+    .exit_text =
+        "Exit codes: 0 every log gave its records, 1 a package overturned and\n"
+        "--fail-on-overturn was given, 2 bad usage or input (options, manifest, scene\n"
+        "files), 3 an output or the manifest could not be written or read, 4 some logs\n"
+        "failed: their records say why, the others are done.\n",
 };
 
 /* ---- the batch -------------------------------------------------------------------- */
@@ -183,7 +187,8 @@ static const sw_cli_job_t *find_job(int argc, char **argv)
             name = argv[i + 1];
         else if (!strncmp(argv[i], "--job=", 6))
             name = argv[i] + 6;
-        if (name && job_named(name)) j = job_named(name);
+        if (name && job_named(name))
+            j = job_named(name);
     }
     return j;
 }
@@ -196,7 +201,8 @@ static void reprint(const char *where, const char *msgs, size_t len)
     while (p < end) {
         const char *nl = memchr(p, '\n', (size_t)(end - p));
         const char *le = nl ? nl : end;
-        if (le - p >= 11 && !strncmp(p, "swaywatch: ", 11)) p += 11;
+        if (le - p >= 11 && !strncmp(p, "swaywatch: ", 11))
+            p += 11;
         sw_cli_error("%s: %.*s", where, (int)(le - p), p);
         p = nl ? nl + 1 : end;
     }
@@ -210,7 +216,8 @@ static int new_set(batch_t *B, char **args, size_t nargs, long line, optset_t *s
     const sw_cli_job_t *J = B->job;
     int rc = SW_EXIT_IO;
     set->opts = J->create();
-    if (!set->opts) return SW_EXIT_IO;
+    if (!set->opts)
+        return SW_EXIT_IO;
     sw_cli_group_t g[SW_CLI_JOB_GROUPS + 1];
     size_t ng = 0;
     char **argv = NULL;
@@ -222,7 +229,8 @@ static int new_set(batch_t *B, char **args, size_t nargs, long line, optset_t *s
     snprintf(where, sizeof where, "%s:%ld", B->b.manifest ? B->b.manifest : "", line);
     if (args) { /* the line's messages, to say where they come from */
         mf = open_memstream(&msgs, &mlen);
-        if (!mf) goto oom;
+        if (!mf)
+            goto oom;
         before = sw_cli_msg_to(mf);
     }
     size_t nline_scenes = 0;
@@ -230,11 +238,13 @@ static int new_set(batch_t *B, char **args, size_t nargs, long line, optset_t *s
     if (args) {
         /* the line alone: only the job's options, and how many scenes */
         alone = J->create();
-        if (!alone) goto oom;
+        if (!alone)
+            goto oom;
         sw_cli_group_t ga[SW_CLI_JOB_GROUPS];
         const size_t na = J->groups(alone, ga);
         char **av = calloc(nargs + 2, sizeof *av);
-        if (!av) goto oom;
+        if (!av)
+            goto oom;
         av[0] = "batch";
         memcpy(av + 1, args, nargs * sizeof *av);
         rc = sw_cli_parse(&batch_cmd, ga, na, (int)nargs + 1, av, &first);
@@ -243,7 +253,8 @@ static int new_set(batch_t *B, char **args, size_t nargs, long line, optset_t *s
             rc = SW_EXIT_USAGE;
         }
         free(av);
-        if (rc != SW_CLI_CONTINUE) goto out;
+        if (rc != SW_CLI_CONTINUE)
+            goto out;
         nline_scenes = J->common(alone)->scenes.n;
     }
     /* the command line's options (the batch's own too, into a copy), then
@@ -252,14 +263,17 @@ static int new_set(batch_t *B, char **args, size_t nargs, long line, optset_t *s
     g[ng++] = (sw_cli_group_t)SW_CLI_GROUP(batch_options, &scratch);
     ng += J->groups(set->opts, g + ng);
     argv = calloc((size_t)B->first + nargs + 1, sizeof *argv);
-    if (!argv) goto oom;
+    if (!argv)
+        goto oom;
     int argc = 0;
     argv[argc++] = "batch";
     for (int i = 1; i < B->first; i++)
-        if (strcmp(B->argv[i], "--")) argv[argc++] = B->argv[i];
+        if (strcmp(B->argv[i], "--"))
+            argv[argc++] = B->argv[i];
     for (size_t i = 0; i < nargs; i++) argv[argc++] = args[i];
     rc = sw_cli_parse(&batch_cmd, g, ng, argc, argv, &first);
-    if (rc != SW_CLI_CONTINUE) goto out;
+    if (rc != SW_CLI_CONTINUE)
+        goto out;
     sw_cli_list_t *sc = &J->common(set->opts)->scenes;
     if (nline_scenes > 0 && sc->n > nline_scenes) { /* the line's scenes replace the others */
         memmove(sc->v, sc->v + (sc->n - nline_scenes), nline_scenes * sizeof *sc->v);
@@ -334,7 +348,8 @@ static int add_item(batch_t *B, const char *log, long line, size_t set, size_t c
             sw_cli_error("batch: standard input cannot be a log of a batch");
         return SW_EXIT_USAGE;
     }
-    if (B->n == cap) return SW_EXIT_IO;
+    if (B->n == cap)
+        return SW_EXIT_IO;
     B->items[B->n++] = (item_t){log, line, set};
     return SW_EXIT_OK;
 }
@@ -345,13 +360,14 @@ static int collect(batch_t *B)
 {
     int rc;
     if (B->b.manifest) {
-        if (B->world.rank == 0) rc = sw_cli_manifest_read(B->b.manifest, &B->mtext, &B->mlen);
-        else rc = SW_EXIT_OK;
+        if (B->world.rank == 0)
+            rc = sw_cli_manifest_read(B->b.manifest, &B->mtext, &B->mlen);
+        else
+            rc = SW_EXIT_OK;
         /* standard input reaches rank 0 alone */
         if ((rc = sw_cli_world_share(&B->world, rc, &B->mtext, &B->mlen)) != SW_EXIT_OK)
             return rc;
-        if ((rc = sw_cli_manifest_parse(B->b.manifest, B->mtext, B->mlen, &B->man)) !=
-            SW_EXIT_OK)
+        if ((rc = sw_cli_manifest_parse(B->b.manifest, B->mtext, B->mlen, &B->man)) != SW_EXIT_OK)
             return rc;
     }
     const size_t cap = (size_t)(B->argc - B->first) + B->man.n;
@@ -387,10 +403,12 @@ static int costs(batch_t *B)
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
     }
-    if (B->world.rank != 0) return SW_EXIT_OK; /* rank 0 hands out the work */
+    if (B->world.rank != 0)
+        return SW_EXIT_OK; /* rank 0 hands out the work */
     for (size_t i = 0; i < B->n; i++) {
         struct stat st;
-        if (stat(B->items[i].log, &st) == 0) B->cost[i] = (double)st.st_size;
+        if (stat(B->items[i].log, &st) == 0)
+            B->cost[i] = (double)st.st_size;
     }
     return SW_EXIT_OK;
 }
@@ -410,9 +428,8 @@ static int check_outputs(const batch_t *B)
     }
     struct stat a, b;
     if (B->b.csv && !is_stdout(B->b.out) && !is_stdout(B->b.csv) &&
-        (!strcmp(B->b.out, B->b.csv) ||
-         (stat(B->b.out, &a) == 0 && stat(B->b.csv, &b) == 0 && a.st_dev == b.st_dev &&
-          a.st_ino == b.st_ino))) {
+        (!strcmp(B->b.out, B->b.csv) || (stat(B->b.out, &a) == 0 && stat(B->b.csv, &b) == 0 &&
+                                         a.st_dev == b.st_dev && a.st_ino == b.st_ino))) {
         sw_cli_error("--out and --csv name the same file '%s'", B->b.out);
         return SW_EXIT_USAGE;
     }
@@ -420,7 +437,8 @@ static int check_outputs(const batch_t *B)
     const char *outs[2] = {is_stdout(B->b.out) ? NULL : B->b.out,
                            B->b.csv && !is_stdout(B->b.csv) ? B->b.csv : NULL};
     for (int k = 0; k < 2; k++) {
-        if (!outs[k] || stat(outs[k], &a) != 0) continue;
+        if (!outs[k] || stat(outs[k], &a) != 0)
+            continue;
         if (B->b.manifest && strcmp(B->b.manifest, "-") && stat(B->b.manifest, &b) == 0 &&
             a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
             sw_cli_error("--%s %s: that is the manifest", k ? "csv" : "out", outs[k]);
@@ -438,10 +456,13 @@ static int check_outputs(const batch_t *B)
 static int open_outputs(batch_t *B)
 {
     B->out = sw_cli_out_open(B->b.out ? B->b.out : "-");
-    if (!B->out) return SW_EXIT_IO;
-    if (!B->b.csv) return SW_EXIT_OK;
+    if (!B->out)
+        return SW_EXIT_IO;
+    if (!B->b.csv)
+        return SW_EXIT_OK;
     B->csv = sw_cli_out_open(B->b.csv);
-    if (!B->csv) return SW_EXIT_IO;
+    if (!B->csv)
+        return SW_EXIT_IO;
     fprintf(B->csv, "index,line,log,job,status,%s,messages\n", B->job->csv_header);
     return SW_EXIT_OK;
 }
@@ -466,7 +487,8 @@ static void run_item(void *user, size_t i, FILE *out)
     }
     const int good = rc == SW_EXIT_OK || rc == SW_EXIT_OVERTURNED;
     fprintf(out, "%d %ld\n", rc, good ? rec.n : 0L);
-    if (good) fwrite(buf, 1, len, out);
+    if (good)
+        fwrite(buf, 1, len, out);
     free(buf);
 }
 
@@ -484,12 +506,15 @@ static void messages(FILE *jf, FILE *cf, const char *msgs, size_t mlen)
     for (int k = 0; p < end; k++) {
         const char *nl = memchr(p, '\n', (size_t)(end - p));
         const char *le = nl ? nl : end;
-        if (le - p >= 11 && !strncmp(p, "swaywatch: ", 11)) p += 11;
+        if (le - p >= 11 && !strncmp(p, "swaywatch: ", 11))
+            p += 11;
         char *line = strndup(p, (size_t)(le - p));
         if (line) {
-            if (k) fputs(", ", jf);
+            if (k)
+                fputs(", ", jf);
             sw_cli_json_string(jf, line);
-            if (j) fprintf(j, "%s%s", k ? " | " : "", line);
+            if (j)
+                fprintf(j, "%s%s", k ? " | " : "", line);
             free(line);
         }
         p = nl ? nl + 1 : end;
@@ -518,9 +543,11 @@ static void head(const batch_t *B, size_t i, const char *status)
     fputs(", \"job\": ", B->out);
     sw_cli_json_string(B->out, B->job->name);
     fprintf(B->out, ", \"status\": \"%s\"", status);
-    if (!B->csv) return;
+    if (!B->csv)
+        return;
     fprintf(B->csv, "%zu,", i + 1);
-    if (it->line) fprintf(B->csv, "%ld", it->line);
+    if (it->line)
+        fprintf(B->csv, "%ld", it->line);
     fputc(',', B->csv);
     sw_cli_csv_text(B->csv, it->log);
     fprintf(B->csv, ",%s,%s", B->job->name, status);
@@ -533,19 +560,23 @@ static int take_item(void *user, size_t i, const char *data, size_t len, const c
     int rc = SW_EXIT_IO;
     long npkg = 0;
     const char *p = data, *end = data + len;
-    if (sscanf(p, "%d %ld", &rc, &npkg) != 2) rc = SW_EXIT_IO, npkg = 0;
+    if (sscanf(p, "%d %ld", &rc, &npkg) != 2)
+        rc = SW_EXIT_IO, npkg = 0;
     p = memchr(p, '\n', len);
     p = p ? p + 1 : end;
     const int good = rc == SW_EXIT_OK || rc == SW_EXIT_OVERTURNED;
-    if (!B->b.quiet && mlen) fwrite(msgs, 1, mlen, stderr);
+    if (!B->b.quiet && mlen)
+        fwrite(msgs, 1, mlen, stderr);
     if (good) {
         B->ok++;
         B->overturned |= rc == SW_EXIT_OVERTURNED;
         for (long k = 0; k < npkg && p < end; k++) {
             size_t jl = 0, cl = 0;
-            if (sscanf(p, "%zu %zu", &jl, &cl) != 2) break;
+            if (sscanf(p, "%zu %zu", &jl, &cl) != 2)
+                break;
             const char *nl = memchr(p, '\n', (size_t)(end - p));
-            if (!nl || (size_t)(end - nl - 1) < jl + cl) break;
+            if (!nl || (size_t)(end - nl - 1) < jl + cl)
+                break;
             p = nl + 1;
             head(B, i, "ok");
             fputs(", ", B->out);
@@ -557,7 +588,8 @@ static int take_item(void *user, size_t i, const char *data, size_t len, const c
             }
             messages(B->out, B->csv, msgs, mlen);
             fputs("}\n", B->out);
-            if (B->csv) fputc('\n', B->csv);
+            if (B->csv)
+                fputc('\n', B->csv);
             p += jl + cl;
             B->records++;
         }
@@ -569,14 +601,15 @@ static int take_item(void *user, size_t i, const char *data, size_t len, const c
             for (size_t k = 0; k < B->csv_fields; k++) fputc(',', B->csv);
         messages(B->out, B->csv, msgs, mlen);
         fputs("}\n", B->out);
-        if (B->csv) fputc('\n', B->csv);
+        if (B->csv)
+            fputc('\n', B->csv);
         B->records++;
     }
     if (ferror(B->out) || (B->csv && ferror(B->csv))) {
-        sw_cli_error("%s: write failed: %s",
-                     ferror(B->out) ? sw_cli_out_name(B->b.out ? B->b.out : "-")
-                                    : sw_cli_out_name(B->b.csv),
-                     strerror(errno));
+        sw_cli_error(
+            "%s: write failed: %s",
+            ferror(B->out) ? sw_cli_out_name(B->b.out ? B->b.out : "-") : sw_cli_out_name(B->b.csv),
+            strerror(errno));
         B->write_failed = 1;
         return -1;
     }
@@ -588,11 +621,12 @@ static int take_item(void *user, size_t i, const char *data, size_t len, const c
 static int run_batch(batch_t *B)
 {
     int rc = SW_EXIT_OK;
-    if (B->world.rank == 0 && ((rc = check_outputs(B)) != SW_EXIT_OK ||
-                               (rc = open_outputs(B)) != SW_EXIT_OK)) {
+    if (B->world.rank == 0 &&
+        ((rc = check_outputs(B)) != SW_EXIT_OK || (rc = open_outputs(B)) != SW_EXIT_OK)) {
         /* fall through to agree: the other ranks wait for the verdict */
     }
-    if ((rc = sw_cli_world_agree(&B->world, rc, NULL, 0)) != SW_EXIT_OK) return rc;
+    if ((rc = sw_cli_world_agree(&B->world, rc, NULL, 0)) != SW_EXIT_OK)
+        return rc;
     B->threads = sw_cli_threads(&B->world, B->b.threads);
     B->by_rank = calloc((size_t)B->world.size, sizeof *B->by_rank);
     const sw_cli_farm_t farm = {
@@ -607,17 +641,19 @@ static int run_batch(batch_t *B)
         .what = B->b.progress ? "logs" : NULL,
     };
     rc = sw_cli_farm_run(&farm);
-    if (B->world.rank != 0) return rc;
+    if (B->world.rank != 0)
+        return rc;
     int rc2 = B->out ? sw_cli_out_close(B->out, B->b.out ? B->b.out : "-") : SW_EXIT_OK;
     int rc3 = B->csv ? sw_cli_out_close(B->csv, B->b.csv) : SW_EXIT_OK;
     B->out = B->csv = NULL;
-    if (rc == SW_EXIT_OK) rc = rc2 != SW_EXIT_OK ? rc2 : rc3;
-    if (rc != SW_EXIT_OK) return rc;
+    if (rc == SW_EXIT_OK)
+        rc = rc2 != SW_EXIT_OK ? rc2 : rc3;
+    if (rc != SW_EXIT_OK)
+        return rc;
     if (!B->b.quiet) {
         sw_cli_error("batch: %zu log%s: %ld done, %ld failed; %ld record%s to %s%s%s", B->n,
-                     B->n == 1 ? "" : "s", B->ok, B->failed, B->records,
-                     B->records == 1 ? "" : "s", sw_cli_out_name(B->b.out ? B->b.out : "-"),
-                     B->b.csv ? ", the table to " : "",
+                     B->n == 1 ? "" : "s", B->ok, B->failed, B->records, B->records == 1 ? "" : "s",
+                     sw_cli_out_name(B->b.out ? B->b.out : "-"), B->b.csv ? ", the table to " : "",
                      B->b.csv ? sw_cli_out_name(B->b.csv) : "");
         if (B->world.size > 1 && B->by_rank) { /* how the work was shared */
             FILE *m = sw_cli_msg();
@@ -627,14 +663,17 @@ static int run_batch(batch_t *B)
             fputc('\n', m);
         }
     }
-    if (B->failed) return SW_EXIT_PARTIAL;
+    if (B->failed)
+        return SW_EXIT_PARTIAL;
     return B->overturned ? SW_EXIT_OVERTURNED : SW_EXIT_OK;
 }
 
 static void free_batch(batch_t *B)
 {
-    if (B->out) sw_cli_out_close(B->out, B->b.out ? B->b.out : "-");
-    if (B->csv) sw_cli_out_close(B->csv, B->b.csv);
+    if (B->out)
+        sw_cli_out_close(B->out, B->b.out ? B->b.out : "-");
+    if (B->csv)
+        sw_cli_out_close(B->csv, B->b.csv);
     for (size_t i = 0; i < B->nsets; i++) {
         B->job->destroy(B->sets[i].opts);
         free(B->sets[i].key);
@@ -653,13 +692,15 @@ int cmd_batch(int argc, char **argv)
     batch_t B;
     memset(&B, 0, sizeof B);
     int rc = sw_cli_world_start(&B.world);
-    if (rc != SW_EXIT_OK) return rc;
+    if (rc != SW_EXIT_OK)
+        return rc;
     /* The other ranks set up as rank 0 does, and keep their messages to
      * themselves unless they alone fail. */
     char *msgs = NULL;
     size_t mlen = 0;
     FILE *mf = B.world.rank != 0 ? open_memstream(&msgs, &mlen) : NULL;
-    if (mf) sw_cli_msg_to(mf);
+    if (mf)
+        sw_cli_msg_to(mf);
 
     B.argc = argc;
     B.argv = argv;
@@ -678,23 +719,27 @@ int cmd_batch(int argc, char **argv)
     opts = NULL;
     sw_cli_parse_free(B.g, 1);
     B.ng = 0;
-    if (rc != SW_CLI_CONTINUE) goto setup_done;
+    if (rc != SW_CLI_CONTINUE)
+        goto setup_done;
     B.job = B.b.job;
     B.csv_fields = 1;
     for (const char *c = B.job->csv_header; *c; c++) B.csv_fields += *c == ',';
-    if ((rc = collect(&B)) == SW_EXIT_OK) rc = costs(&B);
+    if ((rc = collect(&B)) == SW_EXIT_OK)
+        rc = costs(&B);
 
 setup_done:
     if (mf) {
         sw_cli_msg_to(NULL);
         fclose(mf);
     }
-    if (rc == SW_CLI_CONTINUE) rc = SW_EXIT_OK;
+    if (rc == SW_CLI_CONTINUE)
+        rc = SW_EXIT_OK;
     /* --help: every rank stops after it (rank 0 printed it) */
     const int help = rc == SW_EXIT_OK && B.n == 0;
     rc = sw_cli_world_agree(&B.world, rc, msgs, mlen);
     free(msgs);
-    if (rc == SW_EXIT_OK && !help) rc = run_batch(&B);
+    if (rc == SW_EXIT_OK && !help)
+        rc = run_batch(&B);
     free_batch(&B);
     return sw_cli_world_end(&B.world, rc);
 }

@@ -75,7 +75,8 @@ static int parse_shape(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     boundary_opts_t *b = dest;
     b->have_shape = 1;
-    if (sw_pulse_shape_parse(arg, &b->bo.shape) == SW_OK) return SW_EXIT_OK;
+    if (sw_pulse_shape_parse(arg, &b->bo.shape) == SW_OK)
+        return SW_EXIT_OK;
     sw_cli_error("--%s: expected half-sine or full-sine, got '%s'", o->long_name, arg);
     return SW_EXIT_USAGE;
 }
@@ -86,7 +87,8 @@ static int check_values(const sw_cli_option_t *o, const double *v, size_t n)
     for (size_t i = 0; i < n; i++) {
         char arg[32];
         snprintf(arg, sizeof arg, "%g", v[i]);
-        if (sw_cli_opt_range(o, arg, v[i]) != SW_EXIT_OK) return SW_EXIT_USAGE;
+        if (sw_cli_opt_range(o, arg, v[i]) != SW_EXIT_OK)
+            return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
 }
@@ -123,15 +125,17 @@ static int parse_durations(const sw_cli_option_t *o, const char *arg, void *dest
     double *v = NULL;
     size_t n = 0;
     int rc = SW_EXIT_IO;
-    if (!copy) goto oom;
+    if (!copy)
+        goto oom;
     if (strchr(copy, ':')) {
         char *from = copy, *to = strchr(from, ':'), *step;
         *to++ = '\0';
         step = strchr(to, ':');
         if (!step || strchr(step + 1, ':')) {
-            sw_cli_error("--%s: expected FROM:TO:STEP, each with its unit (e.g. 5ms:50ms:5ms), "
-                         "got '%s'",
-                         o->long_name, arg);
+            sw_cli_error(
+                "--%s: expected FROM:TO:STEP, each with its unit (e.g. 5ms:50ms:5ms), "
+                "got '%s'",
+                o->long_name, arg);
             rc = SW_EXIT_USAGE;
             goto out;
         }
@@ -153,16 +157,20 @@ static int parse_durations(const sw_cli_option_t *o, const char *arg, void *dest
             goto out;
         }
         n = (size_t)count;
-        if (!(v = calloc(n, sizeof *v))) goto oom;
+        if (!(v = calloc(n, sizeof *v)))
+            goto oom;
         for (size_t i = 0; i < n; i++) v[i] = a + (double)i * d;
     } else {
         size_t cap = 1;
         for (const char *p = copy; *p; p++) cap += *p == ',';
-        if (!(v = calloc(cap, sizeof *v))) goto oom;
+        if (!(v = calloc(cap, sizeof *v)))
+            goto oom;
         for (char *tok = copy, *next; tok; tok = next) {
             next = strchr(tok, ',');
-            if (next) *next++ = '\0';
-            if ((rc = duration_item(o, tok, &v[n])) != SW_EXIT_OK) goto out;
+            if (next)
+                *next++ = '\0';
+            if ((rc = duration_item(o, tok, &v[n])) != SW_EXIT_OK)
+                goto out;
             n++;
         }
     }
@@ -193,9 +201,10 @@ static int parse_units(const sw_cli_option_t *o, const char *arg, void *dest)
     else if (!strcmp(arg, "gtan") || !strcmp(arg, "g-tan-alpha"))
         b->units = UNITS_GTAN;
     else {
-        sw_cli_error("--%s: unknown unit '%s': expected gtan (g tan alpha), g or m/s2 (m/s^2, "
-                     "mps2)",
-                     o->long_name, arg);
+        sw_cli_error(
+            "--%s: unknown unit '%s': expected gtan (g tan alpha), g or m/s2 (m/s^2, "
+            "mps2)",
+            o->long_name, arg);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
@@ -214,8 +223,10 @@ static int parse_amplitude(const sw_cli_option_t *o, const char *arg, void *dest
     sw_cli_option_t unbounded = *o;
     unbounded.lo = unbounded.hi = 0.0;
     int rc = sw_cli_opt_quantity(&unbounded, arg, 0, 1, &v, &unit);
-    if (rc == SW_EXIT_OK && unit == SW_CSV_UNIT_NONE) rc = sw_cli_opt_range(o, arg, v);
-    if (rc != SW_EXIT_OK) return rc;
+    if (rc == SW_EXIT_OK && unit == SW_CSV_UNIT_NONE)
+        rc = sw_cli_opt_range(o, arg, v);
+    if (rc != SW_EXIT_OK)
+        return rc;
     double *x = is_max ? &b->bo.search.x_max : &b->bo.search.x_min;
     double *si = is_max ? &b->max_si : &b->min_si;
     *x = unit == SW_CSV_UNIT_NONE ? v : 0.0;
@@ -285,11 +296,13 @@ static const sw_cli_option_t boundary_options[] = {
      .help = "relative width of the final bracket (default 0.001); finer than 1e-9 is below "
              "what the model resolves"},
     {SW_CLI_CALL, 0, "min-amplitude", "X", .fn = parse_amplitude, .rule = SW_NUM_POSITIVE,
-     .lo = 1e-3, .hi = 1e4, .what = "a positive amplitude in g tan alpha, or with its unit (e.g. 2g)",
+     .lo = 1e-3, .hi = 1e4,
+     .what = "a positive amplitude in g tan alpha, or with its unit (e.g. 2g)",
      .help = "start of the scan, in g tan alpha, or with a unit: g or m/s2, e.g. 0.5g (default: "
              "the lowest amplitude that can lift the package at all)"},
     {SW_CLI_CALL, 0, "max-amplitude", "X", .fn = parse_amplitude, .rule = SW_NUM_POSITIVE,
-     .lo = 1e-3, .hi = 1e4, .what = "a positive amplitude in g tan alpha, or with its unit (e.g. 10g)",
+     .lo = 1e-3, .hi = 1e4,
+     .what = "a positive amplitude in g tan alpha, or with its unit (e.g. 10g)",
      .help = "end of the scan, in g tan alpha, or with a unit, e.g. 10g (default 20 g tan "
              "alpha); a curve with no overturn up to it has an empty field at that point, "
              "marked in the figure; 1e4 g tan alpha is beyond any accelerometer"},
@@ -311,12 +324,14 @@ static const sw_cli_option_t boundary_options[] = {
      .help = "amplitudes of --out, --islands and the figure in gtan (g tan alpha, the default), "
              "g or m/s2; in g or m/s2 the pulse duration (ms) goes with omega_e/p"},
     {SW_CLI_STRING, 'o', "out", "FILE.csv", BO(out),
-     .help = "the curves (default, or '-': standard output): omega_ratio,<curve 1>,<curve 2>,... in "
-             "units of g tan alpha; in physical units duration_ms too (first with "
-             "--pulse-duration; one per curve, '<curve> duration_ms', when the packages' sizes "
-             "differ) and the curves' columns '<curve> (g)'"},
+     .help =
+         "the curves (default, or '-': standard output): omega_ratio,<curve 1>,<curve 2>,... in "
+         "units of g tan alpha; in physical units duration_ms too (first with "
+         "--pulse-duration; one per curve, '<curve> duration_ms', when the packages' sizes "
+         "differ) and the curves' columns '<curve> (g)'"},
     {SW_CLI_STRING, 0, "detail", "FILE.csv", BO(detail),
-     .help = "one row per curve and point ('-': standard output, if --out names a file): the bracket, impacts before the overturn at the "
+     .help = "one row per curve and point ('-': standard output, if --out names a file): the "
+             "bracket, impacts before the overturn at the "
              "boundary (0: overturned directly; >= 1: after an impact), the directions of the "
              "first uplift and of the overturn (+1 the top forward, -1 back; opposite: it "
              "overturned after a reverse sway), times, trials"},
@@ -335,8 +350,9 @@ static const sw_cli_option_t boundary_options[] = {
 
 static const sw_cli_command_t boundary_cmd = {
     .name = "boundary",
-    .usage = "boundary --scene S.ini --pulse half-sine|full-sine\n"
-             "                          --omega-ratio R|--pulse-duration D [options]",
+    .usage =
+        "boundary --scene S.ini --pulse half-sine|full-sine\n"
+        "                          --omega-ratio R|--pulse-duration D [options]",
     .about =
         "Overturning boundary curves: for each omega_e/p, the lowest amplitude\n"
         "a_e/(g tan alpha) of a pulse a(t) = a_e sin(omega_e t) (half-sine: one half wave;\n"
@@ -365,7 +381,8 @@ const sw_cli_option_t *sw_bnd_option(const char *long_name)
 static int check_options(boundary_t *B, int argc, char **argv, int first)
 {
     sw_boundary_opts_t *bo = &B->b.bo;
-    if (sw_cli_no_operand("boundary", argc, argv, first) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    if (sw_cli_no_operand("boundary", argc, argv, first) != SW_EXIT_OK)
+        return SW_EXIT_USAGE;
     if (!B->b.have_shape || !B->b.nr) {
         sw_cli_error("boundary: missing %s; see 'swaywatch boundary --help'",
                      !B->b.have_shape ? "--pulse half-sine|full-sine"
@@ -383,7 +400,8 @@ static int check_options(boundary_t *B, int argc, char **argv, int first)
                      B->b.max_arg);
         return SW_EXIT_USAGE;
     }
-    if (!(bo->search.x_max > 0.0) && !(B->b.max_si > 0.0)) bo->search.x_max = DEFAULT_X_MAX;
+    if (!(bo->search.x_max > 0.0) && !(B->b.max_si > 0.0))
+        bo->search.x_max = DEFAULT_X_MAX;
     if (bo->search.x_max > 0.0 && bo->search.x_min >= bo->search.x_max) {
         sw_cli_error("--min-amplitude %g is not below the default --max-amplitude %g",
                      bo->search.x_min, bo->search.x_max);
@@ -393,8 +411,8 @@ static int check_options(boundary_t *B, int argc, char **argv, int first)
     B->physical = B->units != UNITS_GTAN || B->b.durations != NULL;
     /* The curves go to standard output unless --out names a file; "-"
      * gives it to one of the CSV files. */
-    const char *taken = !B->b.out || !strcmp(B->b.out, "-") ? "the curves (give --out a file)"
-                                                             : NULL;
+    const char *taken =
+        !B->b.out || !strcmp(B->b.out, "-") ? "the curves (give --out a file)" : NULL;
     if (B->b.detail && !strcmp(B->b.detail, "-")) {
         if (taken) {
             sw_cli_error("--detail -: standard output already carries %s", taken);
@@ -409,7 +427,8 @@ static int check_options(boundary_t *B, int argc, char **argv, int first)
     bo->search.islands = B->b.islands != NULL;
     bo->threads = sw_cli_threads(&B->world, B->b.threads);
     sw_cli_engine_opts(&B->o, &bo->run.engine);
-    if (!B->b.nbear) return SW_EXIT_OK;
+    if (!B->b.nbear)
+        return SW_EXIT_OK;
     /* labels of the bearing ratios as the user wrote them ("1/3") */
     B->bear_copy = strdup(B->b.bear_arg);
     B->bear_text = calloc(B->b.nbear, sizeof *B->bear_text);
@@ -430,13 +449,15 @@ int cmd_boundary(int argc, char **argv)
     int rc = SW_EXIT_USAGE;
     boundary_t B;
     memset(&B, 0, sizeof B);
-    if ((rc = sw_cli_world_start(&B.world)) != SW_EXIT_OK) return rc;
+    if ((rc = sw_cli_world_start(&B.world)) != SW_EXIT_OK)
+        return rc;
     /* Every rank sets up as rank 0 does; the others keep their messages
      * to themselves unless they alone fail. */
     char *msgs = NULL;
     size_t mlen = 0;
     FILE *mf = B.world.rank != 0 ? open_memstream(&msgs, &mlen) : NULL;
-    if (mf) sw_cli_msg_to(mf);
+    if (mf)
+        sw_cli_msg_to(mf);
     B.b.progress = B.world.rank == 0 && isatty(fileno(stderr)) ? 1 : 0;
     B.b.units = -1;
     sw_cli_group_t g[] = {
@@ -460,7 +481,7 @@ int cmd_boundary(int argc, char **argv)
             (rc = sw_cli_check_run_files(NULL, &B.o.scenes, outputs, 4)) == SW_EXIT_OK &&
             (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) == SW_EXIT_OK &&
             (rc = sw_bnd_build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
-                               B.bear_text, &B.cv, &B.nc)) == SW_EXIT_OK)
+                                      B.bear_text, &B.cv, &B.nc)) == SW_EXIT_OK)
             rc = sw_bnd_curve_units(&B);
     }
     if (mf) {
@@ -469,12 +490,15 @@ int cmd_boundary(int argc, char **argv)
     }
     rc = sw_cli_world_agree(&B.world, rc, msgs, mlen);
     free(msgs);
-    if (rc != SW_EXIT_OK || help) goto out;
+    if (rc != SW_EXIT_OK || help)
+        goto out;
     if (B.world.rank == 0) {
-        if (B.o.verbose) sw_bnd_print_curves(&B);
+        if (B.o.verbose)
+            sw_bnd_print_curves(&B);
         sw_cli_warn_scene_cost(B.scenes, B.nsc, &B.b.bo.run.engine);
     }
-    if ((rc = sw_bnd_sweep(&B)) != SW_EXIT_OK || B.world.rank != 0) goto out;
+    if ((rc = sw_bnd_sweep(&B)) != SW_EXIT_OK || B.world.rank != 0)
+        goto out;
     rc = sw_bnd_write_outputs(&B);
     if (sw_cli_signal && rc != SW_EXIT_IO) { /* while writing: the files are whole */
         sw_cli_error("boundary: interrupted by %s after the files were written",

@@ -44,7 +44,8 @@ static int check_size(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     (void)dest;
     double h, w;
-    if (sw_cli_parse_size(arg, &h, &w) == 0) return SW_EXIT_OK;
+    if (sw_cli_parse_size(arg, &h, &w) == 0)
+        return SW_EXIT_OK;
     sw_cli_error("--%s: expected HEIGHTxWIDTH in m, e.g. 2.4x0.8, got '%s'", o->long_name, arg);
     return SW_EXIT_USAGE;
 }
@@ -53,7 +54,8 @@ static int check_report(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     (void)dest;
     const char *dot = strrchr(arg, '.');
-    if (dot && (!strcmp(dot, ".html") || !strcmp(dot, ".htm"))) return SW_EXIT_OK;
+    if (dot && (!strcmp(dot, ".html") || !strcmp(dot, ".htm")))
+        return SW_EXIT_OK;
     sw_cli_error("--%s: '%s': the file name must end in .html", o->long_name, arg);
     return SW_EXIT_USAGE;
 }
@@ -83,8 +85,8 @@ static const sw_cli_option_t forensics_options[] = {
      .what = "a positive relative tolerance",
      .help = "relative width of the final bracket (default 0.001); finer than 1e-9 is below "
              "what the model resolves"},
-    {SW_CLI_DOUBLE, 0, "max-factor", "X", FO(so.x_max), .rule = SW_NUM_POSITIVE, .lo = 1,
-     .hi = 1e4, .what = "a positive scale factor",
+    {SW_CLI_DOUBLE, 0, "max-factor", "X", FO(so.x_max), .rule = SW_NUM_POSITIVE, .lo = 1, .hi = 1e4,
+     .what = "a positive scale factor",
      .help = "largest scale tried (default: 20 times the scale at which the log's peak lifts a "
              "package on the bed)"},
     {SW_CLI_SECTION,
@@ -159,7 +161,8 @@ static const sw_cli_command_t forensics_cmd = {
 static void on_state(void *user, const sw_output_t *out)
 {
     sw_cli_forensics_t *F = user;
-    if (F->R.risk_owned) sw_risk_output(F->R.risk, out); /* first: the rows carry it */
+    if (F->R.risk_owned)
+        sw_risk_output(F->R.risk, out); /* first: the rows carry it */
     sw_cli_states_write(&F->states, out);
     sw_cli_figure_state(F->fig, out);
 }
@@ -192,8 +195,8 @@ static int open_log(sw_cli_forensics_t *F)
     const char *const paths[] = {F->o.out_path, F->o.events_path};
     if ((rc = sw_cli_reader_open(&F->R, F->log, &F->in, F->o.quiet, F->given)) != SW_EXIT_OK ||
         (rc = sw_cli_check_run_files(F->log, &F->o.scenes, outputs, 4)) != SW_EXIT_OK ||
-        (rc = sw_cli_check_outputs(F->o.out_path, F->o.events_path, NULL, F->o.json,
-                                   F->o.quiet)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_outputs(F->o.out_path, F->o.events_path, NULL, F->o.json, F->o.quiet)) !=
+            SW_EXIT_OK ||
         (rc = sw_cli_check_stdout(names, paths, 2, F->o.json, F->o.quiet)) != SW_EXIT_OK)
         return rc;
     return sw_cli_reader_prepare(&F->R);
@@ -204,8 +207,10 @@ static int open_log(sw_cli_forensics_t *F)
 static int load(sw_cli_forensics_t *F)
 {
     int rc;
-    if (F->scenes) return SW_EXIT_OK;
-    if ((rc = sw_cli_load_scenes(&F->o, &F->scenes, &F->n)) != SW_EXIT_OK) return rc;
+    if (F->scenes)
+        return SW_EXIT_OK;
+    if ((rc = sw_cli_load_scenes(&F->o, &F->scenes, &F->n)) != SW_EXIT_OK)
+        return rc;
     sw_cli_engine_opts(&F->o, &F->eo);
     return sw_cli_resolve_accuracy(&F->o, F->scenes, F->n, &F->eo);
 }
@@ -214,7 +219,8 @@ static int load(sw_cli_forensics_t *F)
 static int replay_log(sw_cli_forensics_t *F)
 {
     int rc;
-    if ((rc = load(F)) != SW_EXIT_OK) return rc;
+    if ((rc = load(F)) != SW_EXIT_OK)
+        return rc;
     sw_engine_opts_t eo = F->eo;
     eo.on_event = on_event;
     eo.on_state = on_state;
@@ -226,27 +232,33 @@ static int replay_log(sw_cli_forensics_t *F)
     if ((rc = sw_cli_reader_engine(&F->R, F->scenes, F->n, &eo, F->scenes_shared)) != SW_EXIT_OK)
         return rc;
     sw_engine_t *e = F->R.e;
-    if (F->o.verbose) sw_cli_print_derived(stderr, e, F->scenes, F->n);
+    if (F->o.verbose)
+        sw_cli_print_derived(stderr, e, F->scenes, F->n);
     if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, F->scenes, F->n)) !=
             SW_EXIT_OK ||
         (rc = sw_cli_events_open(&F->events, F->o.events_path, F->scenes, F->n)) != SW_EXIT_OK)
         return rc;
     if ((F->fo.plot || F->fo.report) && !(F->fig = sw_cli_figure_create(e, F->scenes, F->n)))
         return SW_EXIT_IO;
-    if ((rc = sw_cli_reader_risk(&F->R, &F->o, F->scenes, F->n)) != SW_EXIT_OK) return rc;
-    if (F->o.reserve_rate > 0.0) sw_cli_figure_risk(F->fig, F->R.risk);
+    if ((rc = sw_cli_reader_risk(&F->R, &F->o, F->scenes, F->n)) != SW_EXIT_OK)
+        return rc;
+    if (F->o.reserve_rate > 0.0)
+        sw_cli_figure_risk(F->fig, F->R.risk);
     F->states.risk = F->R.risk; /* after open, which clears the writer */
     F->events.all_impacts = F->o.all_impacts;
-    if ((rc = sw_cli_forensics_begin(F)) != SW_EXIT_OK) return rc;
-    if ((rc = sw_cli_reader_feed(&F->R)) != SW_EXIT_OK) return rc;
+    if ((rc = sw_cli_forensics_begin(F)) != SW_EXIT_OK)
+        return rc;
+    if ((rc = sw_cli_reader_feed(&F->R)) != SW_EXIT_OK)
+        return rc;
     if (F->L.oom) {
         sw_cli_error("%s: out of memory holding the log (%zu samples)", F->R.lf.name, F->L.n);
         return SW_EXIT_IO;
     }
     if (F->L.capped) {
-        sw_cli_error("%s: more than %ld samples: %ld is the cap (--max-samples) of the log held "
-                     "in memory; give a larger --max-samples, or cut the log to the incident",
-                     F->R.lf.name, F->fo.max_samples, F->fo.max_samples);
+        sw_cli_error(
+            "%s: more than %ld samples: %ld is the cap (--max-samples) of the log held "
+            "in memory; give a larger --max-samples, or cut the log to the incident",
+            F->R.lf.name, F->fo.max_samples, F->fo.max_samples);
         return SW_EXIT_USAGE;
     }
     sw_cli_reader_settle(&F->R, F->fo.settle);
@@ -254,8 +266,10 @@ static int replay_log(sw_cli_forensics_t *F)
     sw_cli_forensics_end(F);
     rc = sw_cli_states_close(&F->states);
     int rc2 = sw_cli_events_close(&F->events);
-    if (rc == SW_EXIT_OK) rc = rc2;
-    if ((rc2 = sw_cli_reader_report(&F->R)) != SW_EXIT_OK) return rc2;
+    if (rc == SW_EXIT_OK)
+        rc = rc2;
+    if ((rc2 = sw_cli_reader_report(&F->R)) != SW_EXIT_OK)
+        return rc2;
     sw_cli_run_t *run = &F->R.run;
     run->log = F->log;
     run->settle = F->fo.settle;
@@ -277,7 +291,8 @@ static void progress(void *user, const sw_safety_progress_t *p)
 {
     sw_cli_forensics_t *F = user;
     const double t = now_s();
-    if (t - F->progress_at < 0.2 && p->cases_done < p->cases) return;
+    if (t - F->progress_at < 0.2 && p->cases_done < p->cases)
+        return;
     F->progress_at = t;
     fprintf(stderr, "\rswaywatch: forensics: searching: %zu of %zu cases done, %ld runs, %.0f s ",
             p->cases_done, p->cases, p->trials, t - F->started);
@@ -307,13 +322,16 @@ static int run_cases(sw_cli_forensics_t *F)
     /* The search cannot stop between trials and writes nothing: a signal
      * ends the process at once. */
     if (!F->scenes_shared) /* a batch's jobs run on many threads: the batch handles signals */
-        sw_cli_interrupt_now("forensics: interrupted during the safety-factor search; --out and "
-                             "--events are complete, no report");
-    const int rc = sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so,
-                                     (int)F->fo.threads, show ? progress : NULL, F);
-    if (!F->scenes_shared) sw_cli_interrupt_now(NULL);
+        sw_cli_interrupt_now(
+            "forensics: interrupted during the safety-factor search; --out and "
+            "--events are complete, no report");
+    const int rc = sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads,
+                                     show ? progress : NULL, F);
+    if (!F->scenes_shared)
+        sw_cli_interrupt_now(NULL);
     F->search_s = now_s() - F->started;
-    if (F->progress_shown) fprintf(stderr, "\r\033[K");
+    if (F->progress_shown)
+        fprintf(stderr, "\r\033[K");
     if (rc == SW_ENOMEM) {
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
@@ -337,9 +355,10 @@ static int report_interrupted(const sw_cli_forensics_t *F)
         sw_cli_print_json(stdout, F->R.e, run);
     else if (!F->o.quiet)
         sw_cli_print_summary(stdout, F->R.e, run);
-    sw_cli_error("forensics: interrupted by %s after %ld samples of the replay; the output "
-                 "files end with the last whole row; no safety factor or what-if",
-                 sw_cli_signal_name(sw_cli_signal), run->samples_read);
+    sw_cli_error(
+        "forensics: interrupted by %s after %ld samples of the replay; the output "
+        "files end with the last whole row; no safety factor or what-if",
+        sw_cli_signal_name(sw_cli_signal), run->samples_read);
     return sw_cli_interrupt_code();
 }
 
@@ -350,13 +369,15 @@ static void check_agree(const sw_cli_forensics_t *F)
     for (size_t i = 0; i < F->ncases; i++) {
         const sw_cli_case_t *C = &F->cases[i];
         sw_summary_t sum;
-        if (!C->is_scene || sw_engine_summary(F->R.e, C->pkg, &sum) != SW_OK) continue;
+        if (!C->is_scene || sw_engine_summary(F->R.e, C->pkg, &sum) != SW_OK)
+            continue;
         if (sum.overturned != C->sf.overturned)
-            sw_cli_error("forensics: %s: the replay and the safety-factor run disagree on the "
-                         "outcome (overturned %s / %s): the shock is at the edge of the model's "
-                         "resolution",
-                         F->scenes[C->pkg].name, sum.overturned ? "yes" : "no",
-                         C->sf.overturned ? "yes" : "no");
+            sw_cli_error(
+                "forensics: %s: the replay and the safety-factor run disagree on the "
+                "outcome (overturned %s / %s): the shock is at the edge of the model's "
+                "resolution",
+                F->scenes[C->pkg].name, sum.overturned ? "yes" : "no",
+                C->sf.overturned ? "yes" : "no");
     }
 }
 
@@ -404,7 +425,8 @@ static size_t groups(sw_cli_forensics_t *F, sw_cli_group_t *g, int batch)
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_accuracy_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_reserve_options, &F->o);
-    if (batch) return n;
+    if (batch)
+        return n;
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(forensics_thread_options, &F->fo);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_output_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(forensics_output_options, &F->fo);
@@ -436,22 +458,27 @@ int cmd_forensics(int argc, char **argv)
     int first;
     if ((rc = sw_cli_parse(&forensics_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
         goto out;
-    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK)
+        goto out;
     rc = SW_EXIT_USAGE;
-    if (!(F->log = sw_cli_log_operand("forensics", argc, argv, first))) goto out;
-    if (check_options(F) != SW_EXIT_OK) goto out;
+    if (!(F->log = sw_cli_log_operand("forensics", argc, argv, first)))
+        goto out;
+    if (check_options(F) != SW_EXIT_OK)
+        goto out;
     F->given = sw_cli_source_given(g, ng, NULL);
-    if ((rc = open_log(F)) != SW_EXIT_OK || (rc = replay_log(F)) != SW_EXIT_OK) goto out;
+    if ((rc = open_log(F)) != SW_EXIT_OK || (rc = replay_log(F)) != SW_EXIT_OK)
+        goto out;
     if (sw_cli_signal) {
         rc = report_interrupted(F);
         goto out;
     }
-    if ((rc = run_cases(F)) != SW_EXIT_OK) goto out;
+    if ((rc = run_cases(F)) != SW_EXIT_OK)
+        goto out;
     check_agree(F);
     /* --out - / --events -: standard output carries that file. */
-    FILE *ans = F->o.out_path && !strcmp(F->o.out_path, "-") ? stderr
+    FILE *ans = F->o.out_path && !strcmp(F->o.out_path, "-")         ? stderr
                 : F->o.events_path && !strcmp(F->o.events_path, "-") ? stderr
-                                                                       : stdout;
+                                                                     : stdout;
     if (F->o.json)
         sw_cli_forensics_json(ans, F);
     else
@@ -463,14 +490,16 @@ int cmd_forensics(int argc, char **argv)
     }
     if (F->fo.plot) {
         char title[512]; /* LOG: the packages */
-        int k = snprintf(title, sizeof title, "%s:",
-                         strcmp(F->log, "-") ? F->log : "(standard input)");
+        int k =
+            snprintf(title, sizeof title, "%s:", strcmp(F->log, "-") ? F->log : "(standard input)");
         for (size_t i = 0; i < F->n && k > 0 && (size_t)k < sizeof title; i++)
             k += snprintf(title + k, sizeof title - (size_t)k, "%s %s", i ? "," : "",
                           F->scenes[i].name);
-        if ((rc = sw_cli_figure_draw(F->fig, F->fo.plot, title)) != SW_EXIT_OK) goto out;
+        if ((rc = sw_cli_figure_draw(F->fig, F->fo.plot, title)) != SW_EXIT_OK)
+            goto out;
     }
-    if (F->fo.report && (rc = sw_cli_forensics_report(F, F->fo.report)) != SW_EXIT_OK) goto out;
+    if (F->fo.report && (rc = sw_cli_forensics_report(F, F->fo.report)) != SW_EXIT_OK)
+        goto out;
     rc = sw_cli_verdict_exit(F->R.e, F->fo.fail_on_overturn);
     if (sw_cli_signal) { /* while the report or the figure was written: both are whole */
         sw_cli_error("forensics: interrupted by %s after the report",
@@ -500,7 +529,8 @@ sw_cli_forensics_t *sw_cli_forensics_new(void)
 
 void sw_cli_forensics_destroy(sw_cli_forensics_t *F)
 {
-    if (!F) return;
+    if (!F)
+        return;
     sw_cli_group_t g[16];
     sw_cli_parse_free(g, groups(F, g, 1));
     cleanup(F);
@@ -517,7 +547,8 @@ int sw_cli_forensics_ready(sw_cli_forensics_t *F, const sw_cli_group_t *g, size_
 {
     int rc;
     F->given = sw_cli_source_given(g, ng, NULL);
-    if ((rc = check_options(F)) != SW_EXIT_OK || (rc = load(F)) != SW_EXIT_OK) return rc;
+    if ((rc = check_options(F)) != SW_EXIT_OK || (rc = load(F)) != SW_EXIT_OK)
+        return rc;
     sw_cli_warn_scene_cost(F->scenes, F->n, &F->eo);
     F->scenes_shared = 1; /* the copies made for each log share them */
     return SW_EXIT_OK;

@@ -67,8 +67,8 @@ static int check_accel_channel(const sw_cli_option_t *o, const char *arg, void *
     (void)dest;
     /* LCM's limit on channel names */
     if (!arg[0] || strlen(arg) > 63) {
-        sw_cli_error("--%s: expected a channel regex of 1 to 63 characters, got '%s'",
-                     o->long_name, arg);
+        sw_cli_error("--%s: expected a channel regex of 1 to 63 characters, got '%s'", o->long_name,
+                     arg);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
@@ -82,7 +82,8 @@ static int check_reserve_rate(const sw_cli_option_t *o, const char *arg, void *d
     (void)o;
     (void)arg;
     double *v = dest;
-    if (*v == 0.0) *v = -1.0;
+    if (*v == 0.0)
+        *v = -1.0;
     return SW_EXIT_OK;
 }
 
@@ -93,8 +94,8 @@ static const sw_cli_option_t monitor_lcm_options[] = {
              "udpm://239.255.76.67:7667?ttl=0); a file://LOG is checked first and refused if "
              "damaged (LCM's reader trusts its length fields)"},
     {SW_CLI_STRING, 0, "accel-channel", "REGEX", MO(accel_channel), .fn = check_accel_channel,
-     .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
-             SW_MON_ACCEL_CHANNEL ")"},
+     .help = "accel channel: a name or an anchored regex, as LCM subscribes "
+             "(default " SW_MON_ACCEL_CHANNEL ")"},
     {SW_CLI_END},
 };
 
@@ -111,15 +112,14 @@ static const sw_cli_option_t monitor_input_options[] = {
              "design braking pulse in g that would overturn it now, in state_t.reserve_g and "
              "behind the RESERVE_WARN and RESERVE_CRITICAL alarms (default %g; 0: none; "
              "docs/reserve.md gives the cost per model)"},
-    {SW_CLI_DOUBLE, 0, "max-backlog", "SECONDS", MO(max_backlog), .rule = SW_NUM_POSITIVE,
-     .def = 1, .lo = 1e-3, .hi = 3600, .what = "a positive number of seconds",
+    {SW_CLI_DOUBLE, 0, "max-backlog", "SECONDS", MO(max_backlog), .rule = SW_NUM_POSITIVE, .def = 1,
+     .lo = 1e-3, .hi = 3600, .what = "a positive number of seconds",
      .help = "a message that waited longer than this in the receive queue (the monitor fell "
              "behind: a flood, a stalled machine) is refused unread as overload and counted, so "
              "the monitor catches up instead of working on stale samples (default %g; "
              "udpm and tcpq only)"},
-    {SW_CLI_DOUBLE, 0, "status", "SECONDS", MO(status_every), .rule = SW_NUM_NONNEGATIVE,
-     .lo = 0.1, .hi = 86400,
-     .what = "a number of seconds >= 0 (0: no status)",
+    {SW_CLI_DOUBLE, 0, "status", "SECONDS", MO(status_every), .rule = SW_NUM_NONNEGATIVE, .lo = 0.1,
+     .hi = 86400, .what = "a number of seconds >= 0 (0: no status)",
      .help = "one status line on stderr every SECONDS: sample rate, lag behind the sensor clock, "
              "CPU share, counts (default 0: none; under systemd it is also the service's "
              "status, updated every " SW_CLI_STR(NOTIFY_STATUS_EVERY_S) " s without --status)"},
@@ -177,17 +177,19 @@ static const sw_cli_option_t monitor_output_notes[] = {
 static const sw_cli_command_t monitor_cmd = {
     .name = "monitor",
     .usage = "monitor --scene S.ini [--scene T.ini ...] [options]",
-    .about = "Live monitor: subscribes to acceleration samples (swaywatch.accel_t) over LCM,\n"
-             "advances the model of every package as they arrive, and publishes each package's\n"
-             "state (swaywatch.state_t) and alarms (swaywatch.alarm_t).  Runs until SIGINT or\n"
-             "SIGTERM, then prints a summary on stderr.  Samples are integrated by their own\n"
-             "utime, never by arrival time.\n"
-             "\n"
-             "SIGHUP (systemctl reload) re-reads the scene files: a package whose scene values\n"
-             "changed is rebuilt and starts from rest; the others keep their state, alarms and\n"
-             "message sequence.  If a file is unreadable or invalid, nothing changes.\n",
-    .exit_text = "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
-                 "3 LCM could not be set up (URL, network) or a scene file could not be read.\n",
+    .about =
+        "Live monitor: subscribes to acceleration samples (swaywatch.accel_t) over LCM,\n"
+        "advances the model of every package as they arrive, and publishes each package's\n"
+        "state (swaywatch.state_t) and alarms (swaywatch.alarm_t).  Runs until SIGINT or\n"
+        "SIGTERM, then prints a summary on stderr.  Samples are integrated by their own\n"
+        "utime, never by arrival time.\n"
+        "\n"
+        "SIGHUP (systemctl reload) re-reads the scene files: a package whose scene values\n"
+        "changed is rebuilt and starts from rest; the others keep their state, alarms and\n"
+        "message sequence.  If a file is unreadable or invalid, nothing changes.\n",
+    .exit_text =
+        "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
+        "3 LCM could not be set up (URL, network) or a scene file could not be read.\n",
 };
 
 /* ---- signals --------------------------------------------------------------- */
@@ -383,8 +385,7 @@ static long socket_drops(void)
             unsigned long ino;
             long dr;
             /* sl local rem st tx:rx tr:when retrnsmt uid timeout inode ref pointer drops */
-            if (sscanf(line, "%*s %*s %*s %*s %*s %*s %*s %*s %*s %lu %*s %*s %ld", &ino, &dr) !=
-                2)
+            if (sscanf(line, "%*s %*s %*s %*s %*s %*s %*s %*s %*s %lu %*s %*s %ld", &ino, &dr) != 2)
                 continue;
             for (int i = 0; i < n; i++)
                 if (inode[i] == ino)
@@ -463,8 +464,8 @@ static void status_text(mon_ctx_t *c, double elapsed, double interval, char *buf
                     1e3 * c->lag_max);
         fprintf(f, ", busy %.1f%%; accepted %ld, ", 100.0 * c->busy / interval, k.accepted);
         sw_cli_print_rejected(f, &k);
-        fprintf(f, ", held %ld of %ld received, lost %ld, gaps %ld, states %ld, alarms %ld",
-                k.held, k.received, k.lost, k.gaps, k.states, k.alarms);
+        fprintf(f, ", held %ld of %ld received, lost %ld, gaps %ld, states %ld, alarms %ld", k.held,
+                k.received, k.lost, k.gaps, k.states, k.alarms);
         const long drops = socket_drops();
         if (drops >= 0)
             fprintf(f, ", kernel drops %ld", drops);
@@ -485,8 +486,8 @@ static void print_final(sw_mon_t *mon, double elapsed)
             "; lost %ld (by seq), seq restarts %ld, gaps %ld, sensor restarts %ld, clock "
             "steps %ld; published %ld states (%ld withheld), %ld alarms (%ld more folded into "
             "them by the rate limit); %ld publish errors",
-            k.lost, k.seq_restarts, k.gaps, k.restarts, k.clock_steps, k.states,
-            k.states_withheld, k.alarms, k.alarms_folded, k.publish_errors);
+            k.lost, k.seq_restarts, k.gaps, k.restarts, k.clock_steps, k.states, k.states_withheld,
+            k.alarms, k.alarms_folded, k.publish_errors);
     const long drops = socket_drops();
     if (drops >= 0)
         fprintf(stderr, "; %ld datagrams dropped by the kernel before LCM read them", drops);
@@ -643,8 +644,9 @@ static int check_args(const sw_cli_opts_t *o, monitor_opts_t *m, sw_scene_t **sc
 {
     int rc;
     if (o->out_path || o->events_path || o->json || o->every != 1) {
-        sw_cli_error("monitor: --out, --events, --every and --json are for replay and "
-                     "simulate; record the monitor's output with lcm-logger");
+        sw_cli_error(
+            "monitor: --out, --events, --every and --json are for replay and "
+            "simulate; record the monitor's output with lcm-logger");
         return SW_EXIT_USAGE;
     }
     if ((rc = sw_cli_mon_gate(&m->mo, &m->gate)) != SW_EXIT_OK)

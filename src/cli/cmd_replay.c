@@ -56,8 +56,8 @@ static const sw_cli_option_t replay_publish_options[] = {
     {SW_CLI_STRING, 0, "publish", "URL", RO(publish_url),
      .help = "also publish states and alarms over LCM ('' = LCM's default URL; "
              "file:///path?mode=w writes a log)"},
-    {SW_CLI_DOUBLE, 0, "speed", "X", RO(speed), .rule = SW_NUM_NONNEGATIVE, .def = 1,
-     .lo = 1e-3, .hi = 1e6, .what = "a factor >= 0 (0: as fast as possible)",
+    {SW_CLI_DOUBLE, 0, "speed", "X", RO(speed), .rule = SW_NUM_NONNEGATIVE, .def = 1, .lo = 1e-3,
+     .hi = 1e6, .what = "a factor >= 0 (0: as fast as possible)",
      .help = "with --publish: X times real time by the samples' utime (default %g; 0 = as fast "
              "as possible); below 1e-3 one second of log would take over a quarter of an hour"},
     {SW_CLI_TEXT,
@@ -74,11 +74,12 @@ static const sw_cli_option_t replay_publish_options[] = {
 static const sw_cli_command_t replay_cmd = {
     .name = "replay",
     .usage = "replay LOG --scene S.ini [--scene T.ini ...] [options]",
-    .about = "Replays a recorded acceleration log of the truck bed through the rocking model of\n"
-             "each package and reports whether, when and how close it came to overturning.\n"
-             "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
-             "its first bytes; needs a build with LCM).  An lcm-logger log that cannot seek (a\n"
-             "pipe, '-') is copied to a temporary file first (at most 4 GiB), in one pass.\n",
+    .about =
+        "Replays a recorded acceleration log of the truck bed through the rocking model of\n"
+        "each package and reports whether, when and how close it came to overturning.\n"
+        "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
+        "its first bytes; needs a build with LCM).  An lcm-logger log that cannot seek (a\n"
+        "pipe, '-') is copied to a temporary file first (at most 4 GiB), in one pass.\n",
     .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
 };
 
@@ -94,8 +95,8 @@ struct sw_cli_replay {
     /* scenes belong to the options a batch copied: read, and their cost
      * measured, once for every log */
     int scenes_shared;
-    int concluded; /* the run got to its summary */
-    const char *log; /* LOG as given */
+    int concluded;     /* the run got to its summary */
+    const char *log;   /* LOG as given */
     sw_cli_reader_t R; /* the log's reading, and the engine it feeds */
     sw_scene_t *scenes;
     size_t n;
@@ -120,7 +121,8 @@ static void on_state(void *user, const sw_output_t *out)
     sw_cli_pace(&r->pacer, out->t);
 #endif
     /* first: the rows carry its reserve (the monitor core feeds its own) */
-    if (r->R.risk_owned) sw_risk_output(r->R.risk, out);
+    if (r->R.risk_owned)
+        sw_risk_output(r->R.risk, out);
     sw_cli_states_write(&r->states, out);
     sw_cli_wide_write(&r->wide, out);
     sw_cli_figure_state(r->fig, out);
@@ -146,8 +148,10 @@ static int wants_states(const replay_t *r)
 static int load(replay_t *r)
 {
     int rc;
-    if (r->scenes) return SW_EXIT_OK;
-    if ((rc = sw_cli_load_scenes(&r->o, &r->scenes, &r->n)) != SW_EXIT_OK) return rc;
+    if (r->scenes)
+        return SW_EXIT_OK;
+    if ((rc = sw_cli_load_scenes(&r->o, &r->scenes, &r->n)) != SW_EXIT_OK)
+        return rc;
     sw_cli_engine_opts(&r->o, &r->eo);
     return sw_cli_resolve_accuracy(&r->o, r->scenes, r->n, &r->eo);
 }
@@ -157,10 +161,12 @@ static int load(replay_t *r)
 static int publish(replay_t *r)
 {
 #ifdef SW_HAVE_LCM
-    if (r->R.src->kind != SW_CLI_SRC_LCMLOG) return SW_EXIT_OK;
+    if (r->R.src->kind != SW_CLI_SRC_LCMLOG)
+        return SW_EXIT_OK;
     r->pacer.speed = r->ro.publish_url ? r->ro.speed : 0.0;
     r->pacer.stop = &sw_cli_signal;
-    if (!r->ro.publish_url) return SW_EXIT_OK;
+    if (!r->ro.publish_url)
+        return SW_EXIT_OK;
     r->lcm = lcm_create(r->ro.publish_url);
     if (!r->lcm) {
         sw_cli_error("--publish: cannot set up LCM with '%s'", r->ro.publish_url);
@@ -177,7 +183,8 @@ static int publish(replay_t *r)
 static int start(replay_t *r)
 {
     int rc;
-    if ((rc = load(r)) != SW_EXIT_OK || (rc = publish(r)) != SW_EXIT_OK) return rc;
+    if ((rc = load(r)) != SW_EXIT_OK || (rc = publish(r)) != SW_EXIT_OK)
+        return rc;
     int pace = 0;
 #ifdef SW_HAVE_LCM
     pace = r->pacer.speed > 0.0;
@@ -214,8 +221,8 @@ static int open_log(replay_t *r)
     const char *const paths[] = {r->o.out_path, r->o.events_path, r->o.wide_path};
     if ((rc = sw_cli_reader_open(&r->R, r->log, &r->in, r->o.quiet, r->given)) != SW_EXIT_OK ||
         (rc = check_files(r)) != SW_EXIT_OK ||
-        (rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, NULL, r->o.json,
-                                   r->o.quiet)) != SW_EXIT_OK ||
+        (rc = sw_cli_check_outputs(r->o.out_path, r->o.events_path, NULL, r->o.json, r->o.quiet)) !=
+            SW_EXIT_OK ||
         (rc = sw_cli_check_stdout(names, paths, 3, r->o.json, r->o.quiet)) != SW_EXIT_OK)
         return rc;
     return sw_cli_reader_prepare(&r->R);
@@ -228,10 +235,13 @@ static int conclude(replay_t *r)
     sw_cli_events_finish(&r->events, r->R.risk, r->n);
     int rc = sw_cli_states_close(&r->states);
     int rc2 = sw_cli_events_close(&r->events);
-    if (rc == SW_EXIT_OK) rc = rc2;
+    if (rc == SW_EXIT_OK)
+        rc = rc2;
     rc2 = sw_cli_wide_close(&r->wide);
-    if (rc == SW_EXIT_OK) rc = rc2;
-    if ((rc2 = sw_cli_reader_report(&r->R)) != SW_EXIT_OK) return rc2;
+    if (rc == SW_EXIT_OK)
+        rc = rc2;
+    if ((rc2 = sw_cli_reader_report(&r->R)) != SW_EXIT_OK)
+        return rc2;
     sw_cli_run_t *run = &r->R.run;
     run->log = r->log;
     run->settle = r->ro.settle;
@@ -246,9 +256,11 @@ static int conclude(replay_t *r)
 static int replay_one(replay_t *r)
 {
     int rc;
-    if ((rc = open_log(r)) != SW_EXIT_OK || (rc = start(r)) != SW_EXIT_OK) return rc;
+    if ((rc = open_log(r)) != SW_EXIT_OK || (rc = start(r)) != SW_EXIT_OK)
+        return rc;
     sw_engine_t *e = r->R.e;
-    if (r->o.verbose) sw_cli_print_derived(stderr, e, r->scenes, r->n);
+    if (r->o.verbose)
+        sw_cli_print_derived(stderr, e, r->scenes, r->n);
     if ((rc = sw_cli_states_open(&r->states, r->o.out_path, r->o.every, r->scenes, r->n)) !=
             SW_EXIT_OK ||
         (rc = sw_cli_events_open(&r->events, r->o.events_path, r->scenes, r->n)) != SW_EXIT_OK ||
@@ -257,10 +269,12 @@ static int replay_one(replay_t *r)
         return rc;
     if (r->o.plot_path && !(r->fig = sw_cli_figure_create(e, r->scenes, r->n)))
         return SW_EXIT_IO;
-    if ((rc = sw_cli_reader_risk(&r->R, &r->o, r->scenes, r->n)) != SW_EXIT_OK) return rc;
+    if ((rc = sw_cli_reader_risk(&r->R, &r->o, r->scenes, r->n)) != SW_EXIT_OK)
+        return rc;
     r->states.risk = r->wide.risk = r->R.risk; /* after open, which clears the writers */
     r->events.all_impacts = r->o.all_impacts;
-    if ((rc = sw_cli_reader_feed(&r->R)) != SW_EXIT_OK) return rc;
+    if ((rc = sw_cli_reader_feed(&r->R)) != SW_EXIT_OK)
+        return rc;
 #ifdef SW_HAVE_LCM
     r->pacer.speed = 0.0; /* the settling after the log is not paced */
 #endif
@@ -278,7 +292,8 @@ static void cleanup(replay_t *r)
     r->fig = NULL;
     sw_cli_reader_close(&r->R);
 #ifdef SW_HAVE_LCM
-    if (r->lcm) lcm_destroy(r->lcm);
+    if (r->lcm)
+        lcm_destroy(r->lcm);
     r->lcm = NULL;
 #endif
     if (!r->scenes_shared) {
@@ -303,12 +318,15 @@ static int finish(replay_t *r, int rc)
                  run->interrupted ? " (interrupted)" : "");
         rc = sw_cli_figure_draw(r->fig, r->o.plot_path, title);
     }
-    if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(r->R.e, r->ro.fail_on_overturn);
+    if (rc == SW_EXIT_OK)
+        rc = sw_cli_verdict_exit(r->R.e, r->ro.fail_on_overturn);
     if (run->interrupted) {
-        sw_cli_error("replay: interrupted by %s after %ld samples; the output files end with "
-                     "the last whole row",
-                     sw_cli_signal_name(run->interrupted), run->samples_read);
-        if (rc != SW_EXIT_IO) rc = sw_cli_interrupt_code();
+        sw_cli_error(
+            "replay: interrupted by %s after %ld samples; the output files end with "
+            "the last whole row",
+            sw_cli_signal_name(run->interrupted), run->samples_read);
+        if (rc != SW_EXIT_IO)
+            rc = sw_cli_interrupt_code();
     }
     return rc;
 }
@@ -373,13 +391,17 @@ int cmd_replay(int argc, char **argv)
     const size_t ng = groups(&r, g, 0);
 
     int first;
-    if ((rc = sw_cli_parse(&replay_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE) goto out;
-    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    if ((rc = sw_cli_parse(&replay_cmd, g, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
+        goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK)
+        goto out;
     rc = SW_EXIT_USAGE;
-    if (!(r.log = sw_cli_log_operand("replay", argc, argv, first))) goto out;
+    if (!(r.log = sw_cli_log_operand("replay", argc, argv, first)))
+        goto out;
     parsed(&r, g, ng);
     rc = replay_one(&r);
-    if (r.concluded) rc = finish(&r, rc);
+    if (r.concluded)
+        rc = finish(&r, rc);
 out:
     cleanup(&r);
     sw_cli_parse_free(g, ng);
@@ -401,11 +423,13 @@ sw_cli_replay_t *sw_cli_replay_new(void)
 
 void sw_cli_replay_free(sw_cli_replay_t *r)
 {
-    if (!r) return;
+    if (!r)
+        return;
     sw_cli_group_t g[SW_CLI_REPLAY_GROUPS];
     sw_cli_parse_free(g, groups(r, g, 0));
     cleanup(r);
-    if (r->scenes_shared) free(r->scenes);
+    if (r->scenes_shared)
+        free(r->scenes);
     free(r);
 }
 
@@ -420,7 +444,8 @@ int sw_cli_replay_ready(sw_cli_replay_t *r, const sw_cli_group_t *g, size_t ng)
     r->scenes_shared = 0;
     int rc = load(r);
     r->scenes_shared = 1; /* the copies made for each log share them */
-    if (rc == SW_EXIT_OK) sw_cli_warn_scene_cost(r->scenes, r->n, &r->eo);
+    if (rc == SW_EXIT_OK)
+        sw_cli_warn_scene_cost(r->scenes, r->n, &r->eo);
     return rc;
 }
 

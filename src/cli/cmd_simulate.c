@@ -37,7 +37,8 @@ static int parse_shape(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     sim_opts_t *s = dest;
     s->have_shape = 1;
-    if (sw_pulse_shape_parse(arg, &s->pulse.shape) == SW_OK) return SW_EXIT_OK;
+    if (sw_pulse_shape_parse(arg, &s->pulse.shape) == SW_OK)
+        return SW_EXIT_OK;
     sw_cli_error("--%s: expected half-sine or full-sine, got '%s'", o->long_name, arg);
     return SW_EXIT_USAGE;
 }
@@ -49,9 +50,10 @@ static int parse_amplitude(const sw_cli_option_t *o, const char *arg, void *dest
 {
     sim_opts_t *s = dest;
     double a;
-    int r = o->def == 1.0 ? sw_cli_opt_quantity(o, arg, 0, 1, &a, NULL)
-                          : sw_cli_opt_double(o, arg, &a);
-    if (r != SW_EXIT_OK) return r;
+    int r =
+        o->def == 1.0 ? sw_cli_opt_quantity(o, arg, 0, 1, &a, NULL) : sw_cli_opt_double(o, arg, &a);
+    if (r != SW_EXIT_OK)
+        return r;
     s->pulse.amplitude = o->def == 1.0 ? a : a * o->def;
     s->have_amp = 1;
     s->amp_opt = o;
@@ -73,16 +75,16 @@ static const sw_cli_option_t sim_options[] = {
     {SW_CLI_SECTION, .help = "Pulse:"},
     {SW_CLI_CALL, 0, "pulse", "SHAPE", .fn = parse_shape,
      .help = "half-sine or full-sine (required)"},
-    {SW_CLI_CALL, 0, "amplitude", "A", .fn = parse_amplitude, .def = 1.0,
-     .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration, e.g. -10g or -98.1m/s2",
+    {SW_CLI_CALL, 0, "amplitude", "A", .fn = parse_amplitude, .def = 1.0, .rule = SW_NUM_NONZERO,
+     .what = "a non-zero acceleration, e.g. -10g or -98.1m/s2",
      .help = "peak acceleration, sign included, with its unit: g or m/s2, e.g. -10g, -98.1m/s2 "
              "(a bare number is m/s^2; required, or --amplitude-g); |A| at most 1e5 m/s^2 "
              "(about 10,200 g), the most the engine takes from an accelerometer"},
     {SW_CLI_CALL, 0, "amplitude-g", "A", .fn = parse_amplitude, .def = STANDARD_GRAVITY,
      .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration in g",
      .help = "the same as a bare number in g (1 g = %g m/s^2)"},
-    {SW_CLI_CALL, 0, "pulse-duration", "D", .fn = parse_pulse_duration,
-     .rule = SW_NUM_POSITIVE, .what = "a positive time with its unit, e.g. 11ms or 0.011s",
+    {SW_CLI_CALL, 0, "pulse-duration", "D", .fn = parse_pulse_duration, .rule = SW_NUM_POSITIVE,
+     .what = "a positive time with its unit, e.g. 11ms or 0.011s",
      .help = "how long the pulse lasts, with its unit: ms, s or us, e.g. 11ms (a half-sine of 11 "
              "ms has W = pi/0.011 s; a full-sine W = 2 pi/D); instead of --omega, with W within "
              "--omega's range"},
@@ -92,13 +94,15 @@ static const sw_cli_option_t sim_options[] = {
              "the pulse lasts over 5 minutes, above 1e5 it is far shorter than a step"},
     {SW_CLI_DOUBLE, 0, "duration", "T", SIM(duration), .rule = SW_NUM_POSITIVE, .lo = 1e-6,
      .hi = 1e5, .what = "a positive number of seconds",
-     .help = "s simulated from t = 0 (default: the pulse plus " SW_CLI_STR(FREE_PERIODS) " free "
-             "rocking periods 2 pi/p of the slowest package); the run stops early once the pulse "
-             "is over and every package is at rest or has overturned; at most a day"},
-    {SW_CLI_DOUBLE, 0, "sample-interval", "S", SIM(interval), .rule = SW_NUM_POSITIVE,
-     .def = 0.001, .lo = 1e-6, .hi = 10, .what = "a positive number of seconds",
+     .help = "s simulated from t = 0 (default: the pulse plus " SW_CLI_STR(
+         FREE_PERIODS) " free "
+                       "rocking periods 2 pi/p of the slowest package); the run stops early once "
+                       "the pulse "
+                       "is over and every package is at rest or has overturned; at most a day"},
+    {SW_CLI_DOUBLE, 0, "sample-interval", "S", SIM(interval), .rule = SW_NUM_POSITIVE, .def = 0.001,
+     .lo = 1e-6, .hi = 10, .what = "a positive number of seconds",
      .help = "s between rows of --out (default %g); at most " SW_CLI_STR(MAX_ROWS) " rows in "
-             "all"},
+                                                                                   "all"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", SIM(fail_on_overturn), .value = 1,
      .help = "exit 1 if any package overturned"},
     {SW_CLI_END},
@@ -113,16 +117,18 @@ static const sw_cli_option_t sim_output_notes[] = {
 
 static const sw_cli_command_t simulate_cmd = {
     .name = "simulate",
-    .usage = "simulate --scene S.ini --pulse half-sine|full-sine\n"
-             "                          --amplitude A --omega W|--pulse-duration D\n"
-             "                          [--duration T] [options]",
-    .about = "Drives every package with one acceleration pulse of the truck bed:\n"
-             "  half-sine: a(t) = A sin(W t) for 0 <= t <= D = pi/W, then 0;\n"
-             "  full-sine: a(t) = A sin(W t) for 0 <= t <= D = 2 pi/W, then 0.\n"
-             "The pulse is evaluated exactly (not sampled).  x points forward: a negative A\n"
-             "brakes and tips the top forward.  As a shock standard states it: a half-sine\n"
-             "of 10 g lasting 11 ms is --pulse half-sine --amplitude -10g --pulse-duration\n"
-             "11ms (braking).\n",
+    .usage =
+        "simulate --scene S.ini --pulse half-sine|full-sine\n"
+        "                          --amplitude A --omega W|--pulse-duration D\n"
+        "                          [--duration T] [options]",
+    .about =
+        "Drives every package with one acceleration pulse of the truck bed:\n"
+        "  half-sine: a(t) = A sin(W t) for 0 <= t <= D = pi/W, then 0;\n"
+        "  full-sine: a(t) = A sin(W t) for 0 <= t <= D = 2 pi/W, then 0.\n"
+        "The pulse is evaluated exactly (not sampled).  x points forward: a negative A\n"
+        "brakes and tips the top forward.  As a shock standard states it: a half-sine\n"
+        "of 10 g lasting 11 ms is --pulse half-sine --amplitude -10g --pulse-duration\n"
+        "11ms (braking).\n",
     .exits = SW_CLI_EXIT_OVERTURN,
 };
 
@@ -147,7 +153,8 @@ static void write_states(sw_engine_t *e, sim_ctx_t *c)
 {
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_output_t out;
-        if (sw_engine_get_output(e, i, &out) != SW_OK) continue;
+        if (sw_engine_get_output(e, i, &out) != SW_OK)
+            continue;
         sw_risk_output(c->risk, &out); /* first: the rows carry its reserve */
         sw_cli_states_write(c->states, &out);
         sw_cli_wide_write(c->wide, &out);
@@ -166,15 +173,19 @@ static int all_settled(const sw_engine_t *e)
 {
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_output_t out;
-        if (sw_engine_get_output(e, i, &out) != SW_OK) return 0;
-        if (out.state.phase == SW_PHASE_OVERTURNED) continue;
-        if (out.state.phase == SW_PHASE_ROCKING) return 0;
+        if (sw_engine_get_output(e, i, &out) != SW_OK)
+            return 0;
+        if (out.state.phase == SW_PHASE_OVERTURNED)
+            continue;
+        if (out.state.phase == SW_PHASE_ROCKING)
+            return 0;
         const sw_derived_t *d = sw_engine_derived(e, i);
         if (d->model == SW_MODEL_FRAME) {
             const double w = d->omega_b, u = out.state.u, v = out.state.u_dot;
             const double E = 0.5 * v * v + 0.5 * w * w * u * u; /* J/kg */
             const double g = d->p * d->p * 4.0 * d->R / 3.0;    /* m/s^2 */
-            if ((2.0 * d->zeta_b * w + w) * sqrt(2.0 * E) >= g * tan(d->alpha)) return 0;
+            if ((2.0 * d->zeta_b * w + w) * sqrt(2.0 * E) >= g * tan(d->alpha))
+                return 0;
         }
     }
     return 1;
@@ -205,18 +216,20 @@ static int check_pulse(sim_opts_t *so)
     if (so->pulse_duration > 0.0 && w->kind != SW_CLI_END &&
         !(so->pulse.omega >= w->lo && so->pulse.omega <= w->hi)) {
         const double k = so->pulse.shape == SW_PULSE_FULL_SINE ? 2.0 * M_PI : M_PI;
-        sw_cli_error("--pulse-duration: out of range: a %s of omega %g to %g rad/s lasts %g to "
-                     "%g s, got %g s",
-                     sw_pulse_shape_name(so->pulse.shape), w->lo, w->hi, k / w->hi, k / w->lo,
-                     so->pulse_duration);
+        sw_cli_error(
+            "--pulse-duration: out of range: a %s of omega %g to %g rad/s lasts %g to "
+            "%g s, got %g s",
+            sw_pulse_shape_name(so->pulse.shape), w->lo, w->hi, k / w->hi, k / w->lo,
+            so->pulse_duration);
         return SW_EXIT_USAGE;
     }
     /* The limit sw_engine_push() puts on samples; the pulse reaches the
      * engine as a function, unchecked, and beyond it the outputs overflow. */
     if (!(fabs(so->pulse.amplitude) <= SW_MAX_ACCEL)) {
-        sw_cli_error("--%s: the pulse amplitude is beyond any accelerometer: expected at most %g "
-                     "m/s^2 (about %.0f g)",
-                     so->amp_opt->long_name, SW_MAX_ACCEL, SW_MAX_ACCEL / STANDARD_GRAVITY);
+        sw_cli_error(
+            "--%s: the pulse amplitude is beyond any accelerometer: expected at most %g "
+            "m/s^2 (about %.0f g)",
+            so->amp_opt->long_name, SW_MAX_ACCEL, SW_MAX_ACCEL / STANDARD_GRAVITY);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
@@ -234,14 +247,16 @@ static int run_pulse(sw_engine_t *e, sim_opts_t *so, sim_ctx_t *states, double *
         double p_min = INFINITY;
         for (size_t i = 0; i < sw_engine_count(e); i++) {
             const sw_derived_t *d = sw_engine_derived(e, i);
-            if (d && d->p > 0.0 && d->p < p_min) p_min = d->p;
+            if (d && d->p > 0.0 && d->p < p_min)
+                p_min = d->p;
         }
         duration = t_pulse + (isfinite(p_min) ? FREE_PERIODS * 2.0 * M_PI / p_min : 0.0);
     }
     if (duration / so->interval > MAX_ROWS) {
-        sw_cli_error("simulate: %g s in steps of --sample-interval %g s is more than %g steps; "
-                     "give a larger --sample-interval or a shorter --duration",
-                     duration, so->interval, MAX_ROWS);
+        sw_cli_error(
+            "simulate: %g s in steps of --sample-interval %g s is more than %g steps; "
+            "give a larger --sample-interval or a shorter --duration",
+            duration, so->interval, MAX_ROWS);
         return SW_EXIT_USAGE;
     }
     /* Whole steps of the interval from t = 0, computed from the index so
@@ -257,7 +272,8 @@ static int run_pulse(sw_engine_t *e, sim_opts_t *so, sim_ctx_t *states, double *
         }
         t = t1;
         write_states(e, states);
-        if (t >= t_pulse && all_settled(e)) break;
+        if (t >= t_pulse && all_settled(e))
+            break;
     }
     sw_engine_finish(e, 0.0);
     *t_end = t;
@@ -273,9 +289,11 @@ static int check_files(const sw_cli_opts_t *o)
                                      {"--wide", o->wide_path},
                                      {"--plot", o->plot_path}};
     int rc = sw_cli_check_run_files(NULL, &o->scenes, outputs, 4);
-    if (rc != SW_EXIT_OK) return rc;
+    if (rc != SW_EXIT_OK)
+        return rc;
     rc = sw_cli_check_outputs(o->out_path, o->events_path, NULL, o->json, o->quiet);
-    if (rc != SW_EXIT_OK) return rc;
+    if (rc != SW_EXIT_OK)
+        return rc;
     const char *const names[] = {"--out", "--events", "--wide"};
     const char *const paths[] = {o->out_path, o->events_path, o->wide_path};
     return sw_cli_check_stdout(names, paths, 3, o->json, o->quiet);
@@ -286,12 +304,17 @@ static int open_outputs(const sw_cli_opts_t *o, const sw_engine_t *e, const sw_s
                         size_t n, sim_ctx_t *ctx)
 {
     int rc = sw_cli_states_open(ctx->states, o->out_path, o->every, scenes, n);
-    if (rc != SW_EXIT_OK) return rc;
-    if ((rc = sw_cli_events_open(ctx->events, o->events_path, scenes, n)) != SW_EXIT_OK) return rc;
+    if (rc != SW_EXIT_OK)
+        return rc;
+    if ((rc = sw_cli_events_open(ctx->events, o->events_path, scenes, n)) != SW_EXIT_OK)
+        return rc;
     rc = sw_cli_wide_open(ctx->wide, o->wide_path, o->every, e, scenes, n);
-    if (rc != SW_EXIT_OK) return rc;
-    if (o->plot_path && !(ctx->fig = sw_cli_figure_create(e, scenes, n))) return SW_EXIT_IO;
-    if (!(ctx->risk = sw_cli_risk_create(o, scenes, n))) return SW_EXIT_USAGE;
+    if (rc != SW_EXIT_OK)
+        return rc;
+    if (o->plot_path && !(ctx->fig = sw_cli_figure_create(e, scenes, n)))
+        return SW_EXIT_IO;
+    if (!(ctx->risk = sw_cli_risk_create(o, scenes, n)))
+        return SW_EXIT_USAGE;
     ctx->states->risk = ctx->wide->risk = ctx->risk; /* after open, which clears them */
     ctx->events->all_impacts = o->all_impacts;
     return SW_EXIT_OK;
@@ -304,9 +327,11 @@ static int conclude(const sw_cli_opts_t *o, const sw_engine_t *e, size_t n, sim_
     sw_cli_events_finish(ctx->events, ctx->risk, n);
     int rc = sw_cli_states_close(ctx->states);
     int rc2 = sw_cli_events_close(ctx->events);
-    if (rc == SW_EXIT_OK) rc = rc2;
+    if (rc == SW_EXIT_OK)
+        rc = rc2;
     rc2 = sw_cli_wide_close(ctx->wide);
-    if (rc == SW_EXIT_OK) rc = rc2;
+    if (rc == SW_EXIT_OK)
+        rc = rc2;
     if (o->json)
         sw_cli_print_json(stdout, e, run);
     else if (!o->quiet)
@@ -352,38 +377,51 @@ int cmd_simulate(int argc, char **argv)
     if ((rc = sw_cli_parse(&simulate_cmd, groups, ng, argc, argv, &first)) != SW_CLI_CONTINUE)
         goto out;
     rc = SW_EXIT_USAGE;
-    if (sw_cli_no_operand("simulate", argc, argv, first) != SW_EXIT_OK) goto out;
-    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK) goto out;
+    if (sw_cli_no_operand("simulate", argc, argv, first) != SW_EXIT_OK)
+        goto out;
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK)
+        goto out;
     rc = SW_EXIT_USAGE;
-    if (check_pulse(&so) != SW_EXIT_OK) goto out;
+    if (check_pulse(&so) != SW_EXIT_OK)
+        goto out;
 
-    if ((rc = check_files(&o)) != SW_EXIT_OK) goto out;
+    if ((rc = check_files(&o)) != SW_EXIT_OK)
+        goto out;
     rc = sw_cli_load_scenes(&o, &scenes, &n);
-    if (rc != SW_EXIT_OK) goto out;
+    if (rc != SW_EXIT_OK)
+        goto out;
 
     sw_engine_opts_t eo;
     sw_cli_engine_opts(&o, &eo);
-    if ((rc = sw_cli_resolve_accuracy(&o, scenes, n, &eo)) != SW_EXIT_OK) goto out;
+    if ((rc = sw_cli_resolve_accuracy(&o, scenes, n, &eo)) != SW_EXIT_OK)
+        goto out;
     eo.on_event = on_event;
     eo.user = &ctx;
     rc = SW_EXIT_USAGE;
     e = sw_cli_engine_create(scenes, n, &eo);
-    if (!e) goto out;
-    if (o.verbose) sw_cli_print_derived(stderr, e, scenes, n);
+    if (!e)
+        goto out;
+    if (o.verbose)
+        sw_cli_print_derived(stderr, e, scenes, n);
 
-    if ((rc = open_outputs(&o, e, scenes, n, &ctx)) != SW_EXIT_OK) goto out;
+    if ((rc = open_outputs(&o, e, scenes, n, &ctx)) != SW_EXIT_OK)
+        goto out;
     double t = 0.0;
-    if ((rc = run_pulse(e, &so, &ctx, &t)) != SW_EXIT_OK) goto out;
+    if ((rc = run_pulse(e, &so, &ctx, &t)) != SW_EXIT_OK)
+        goto out;
 
     const sw_cli_run_t run = {
         .pulse = pulse, .duration = t, .interrupted = sw_cli_signal, .risk = ctx.risk};
     rc = conclude(&o, e, n, &ctx, &run);
-    if (rc == SW_EXIT_OK) rc = sw_cli_verdict_exit(e, so.fail_on_overturn);
+    if (rc == SW_EXIT_OK)
+        rc = sw_cli_verdict_exit(e, so.fail_on_overturn);
     if (run.interrupted) {
-        sw_cli_error("simulate: interrupted by %s at t = %g s; the output files end with the "
-                     "last whole row",
-                     sw_cli_signal_name(run.interrupted), t);
-        if (rc != SW_EXIT_IO) rc = sw_cli_interrupt_code();
+        sw_cli_error(
+            "simulate: interrupted by %s at t = %g s; the output files end with the "
+            "last whole row",
+            sw_cli_signal_name(run.interrupted), t);
+        if (rc != SW_EXIT_IO)
+            rc = sw_cli_interrupt_code();
     }
 out:
     sw_cli_states_close(&states);

@@ -51,8 +51,8 @@ static int check_channel(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     (void)dest;
     if (!arg[0] || strlen(arg) > 63) { /* LCM's limit on channel names */
-        sw_cli_error("--%s: expected a channel regex of 1 to 63 characters, got '%s'",
-                     o->long_name, arg);
+        sw_cli_error("--%s: expected a channel regex of 1 to 63 characters, got '%s'", o->long_name,
+                     arg);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
@@ -66,8 +66,8 @@ static const sw_cli_option_t watch_lcm_options[] = {
      .help = "LCM URL (default: $LCM_DEFAULT_URL, else LCM's default, "
              "udpm://239.255.76.67:7667?ttl=0)"},
     {SW_CLI_STRING, 0, "state-channel", "REGEX", WO(state_channel), .fn = check_channel,
-     .help = "states: a name or an anchored regex, as LCM subscribes (default "
-             SW_MON_STATE_CHANNEL ")"},
+     .help = "states: a name or an anchored regex, as LCM subscribes (default " SW_MON_STATE_CHANNEL
+             ")"},
     {SW_CLI_STRING, 0, "alarm-channel", "REGEX", WO(alarm_channel), .fn = check_channel,
      .help = "alarms (default " SW_MON_ALARM_CHANNEL ")"},
     {SW_CLI_END},
@@ -99,29 +99,38 @@ static const sw_cli_option_t watch_output_options[] = {
      .help = "the last N alarms are shown (default %g)"},
     {SW_CLI_HELP, 'h', "help", .help = "this help"},
     {SW_CLI_TEXT,
-     .help = "\nOn a terminal the view is redrawn " SW_CLI_STR(REDRAW_HZ) " times a second, at its "
-             "size; q quits.\n"
-             "Per package: model, phase, |theta|/alpha as a bar (| marks the peak so far) and\n"
-             "as a number, theta, margin (1 at rest, 0 at the edge of overturning), states\n"
-             "per second; a package with no state for " SW_CLI_STR(STALE) " s says so.\n"
-             "Input: states per second and their lag behind this computer's clock (the\n"
-             "sensor's clock against it), samples the monitor refused (by reason, from its\n"
-             "INPUT_REJECTED alarms), sensor gaps, states and alarms lost on the way here\n"
-             "(their seq).  Then the last alarms, newest first.  Not on a terminal, or with\n"
-             "--once, the same view is printed as plain text."},
+     .help = "\nOn a terminal the view is redrawn " SW_CLI_STR(
+         REDRAW_HZ) " times a second, at its "
+                    "size; q quits.\n"
+                    "Per package: model, phase, |theta|/alpha as a bar (| marks the peak so far) "
+                    "and\n"
+                    "as a number, theta, margin (1 at rest, 0 at the edge of overturning), states\n"
+                    "per second; a package with no state for " SW_CLI_STR(
+                        STALE) " s says so.\n"
+                               "Input: states per second and their lag behind this computer's "
+                               "clock (the\n"
+                               "sensor's clock against it), samples the monitor refused (by "
+                               "reason, from its\n"
+                               "INPUT_REJECTED alarms), sensor gaps, states and alarms lost on the "
+                               "way here\n"
+                               "(their seq).  Then the last alarms, newest first.  Not on a "
+                               "terminal, or with\n"
+                               "--once, the same view is printed as plain text."},
     {SW_CLI_END},
 };
 
 static const sw_cli_command_t watch_cmd = {
     .name = "watch",
     .usage = "watch [-l URL] [--scene S.ini ...] [--once] [options]",
-    .about = "Live view of the monitor's states and alarms on the LCM bus (swaywatch.state_t\n"
-             "on SWAY_STATE, swaywatch.alarm_t on SWAY_ALARM), in the terminal: every\n"
-             "package's tilt against its tipping angle, margin and phase, the input's\n"
-             "health and the last alarms.  Runs until q, SIGINT or SIGTERM.\n",
-    .exit_text = "Exit codes: 0 ok (q, SIGINT, SIGTERM, or --once done), 2 bad usage or bad\n"
-                 "scene, 3 LCM could not be set up (URL, network) or a scene file could not be\n"
-                 "read.\n",
+    .about =
+        "Live view of the monitor's states and alarms on the LCM bus (swaywatch.state_t\n"
+        "on SWAY_STATE, swaywatch.alarm_t on SWAY_ALARM), in the terminal: every\n"
+        "package's tilt against its tipping angle, margin and phase, the input's\n"
+        "health and the last alarms.  Runs until q, SIGINT or SIGTERM.\n",
+    .exit_text =
+        "Exit codes: 0 ok (q, SIGINT, SIGTERM, or --once done), 2 bad usage or bad\n"
+        "scene, 3 LCM could not be set up (URL, network) or a scene file could not be\n"
+        "read.\n",
 };
 
 /* ---- the loop ------------------------------------------------------------------- */
@@ -242,8 +251,7 @@ static int scene_alphas(const sw_cli_opts_t *so, sw_scene_t **scenes, size_t *n,
 
 int cmd_watch(int argc, char **argv)
 {
-    watch_opts_t o = {.state_channel = SW_MON_STATE_CHANNEL,
-                      .alarm_channel = SW_MON_ALARM_CHANNEL};
+    watch_opts_t o = {.state_channel = SW_MON_STATE_CHANNEL, .alarm_channel = SW_MON_ALARM_CHANNEL};
     sw_cli_opts_t so = {0};
     sw_cli_group_t g[] = {
         SW_CLI_GROUP(watch_lcm_options, &o),

@@ -33,9 +33,10 @@ int sw_cli_world_start(sw_cli_world_t *w)
     const char *tasks = getenv("SLURM_STEP_NUM_TASKS");
     if (tasks && atol(tasks) > 1) {
         /* each task would do the whole work and write the same outputs */
-        sw_cli_error("srun started %s tasks, and this build has no MPI to share the work among "
-                     "them: run one task (srun -n 1), or use a build with MPI",
-                     tasks);
+        sw_cli_error(
+            "srun started %s tasks, and this build has no MPI to share the work among "
+            "them: run one task (srun -n 1), or use a build with MPI",
+            tasks);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
@@ -66,15 +67,19 @@ int sw_cli_world_end(sw_cli_world_t *w, int rc)
 
 int sw_cli_threads(const sw_cli_world_t *w, long n)
 {
-    if (n > 0) return (int)n;
+    if (n > 0)
+        return (int)n;
     long online = sysconf(_SC_NPROCESSORS_ONLN);
-    if (online < 1) online = 1;
+    if (online < 1)
+        online = 1;
     long cpus = online;
     cpu_set_t set;
-    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) cpus = CPU_COUNT(&set);
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0)
+        cpus = CPU_COUNT(&set);
     /* Ranks that were not bound each see every CPU of the machine: share
      * them rather than start ranks x CPUs threads. */
-    if (w->local > 1 && cpus >= online) cpus /= w->local;
+    if (w->local > 1 && cpus >= online)
+        cpus /= w->local;
     return cpus > 0 ? (int)cpus : 1;
 }
 
@@ -85,7 +90,8 @@ int sw_farm_run_one(sw_farm_t *st, size_t i, sw_farm_result_t *r)
     memset(r, 0, sizeof *r);
     FILE *out = open_memstream(&r->data, &r->len);
     FILE *msgs = open_memstream(&r->msgs, &r->mlen);
-    if (!out || !msgs) goto oom;
+    if (!out || !msgs)
+        goto oom;
     FILE *before = sw_cli_msg_to(msgs);
     st->f->run(st->f->user, i, out);
     sw_cli_msg_to(before == stderr ? NULL : before);
@@ -93,12 +99,15 @@ int sw_farm_run_one(sw_farm_t *st, size_t i, sw_farm_result_t *r)
     out = NULL;
     bad |= fclose(msgs) != 0;
     msgs = NULL;
-    if (bad) goto oom;
+    if (bad)
+        goto oom;
     r->ready = 1;
     return 0;
 oom:
-    if (out) fclose(out);
-    if (msgs) fclose(msgs);
+    if (out)
+        fclose(out);
+    if (msgs)
+        fclose(msgs);
     free(r->data);
     free(r->msgs);
     memset(r, 0, sizeof *r);
@@ -107,14 +116,16 @@ oom:
 
 int sw_farm_next(sw_farm_t *st, size_t *i)
 {
-    if (st->stop || st->next >= st->f->n) return 0;
+    if (st->stop || st->next >= st->f->n)
+        return 0;
     *i = st->order[st->next++];
     return 1;
 }
 
 void sw_farm_store(sw_farm_t *st, size_t i, sw_farm_result_t *r, int from)
 {
-    if (st->f->by_rank) st->f->by_rank[from]++;
+    if (st->f->by_rank)
+        st->f->by_rank[from]++;
     st->res[i] = *r;
     st->res[i].ready = 1;
     st->arrived++;
@@ -136,7 +147,8 @@ static void job_rank0(void *user, size_t unused)
     pthread_mutex_lock(&st->mu);
     const int have = sw_farm_next(st, &i);
     pthread_mutex_unlock(&st->mu);
-    if (!have) return;
+    if (!have)
+        return;
     sw_farm_result_t r;
     const int bad = sw_farm_run_one(st, i, &r);
     pthread_mutex_lock(&st->mu);
@@ -227,14 +239,16 @@ static int by_cost(const void *a, const void *b, void *user)
 {
     const double *cost = user;
     const size_t i = *(const size_t *)a, j = *(const size_t *)b;
-    if (cost[i] != cost[j]) return cost[i] < cost[j] ? 1 : -1;
+    if (cost[i] != cost[j])
+        return cost[i] < cost[j] ? 1 : -1;
     return i < j ? -1 : i > j;
 }
 
 static void make_order(sw_farm_t *st)
 {
     for (size_t i = 0; i < st->f->n; i++) st->order[i] = i;
-    if (st->f->cost) qsort_r(st->order, st->f->n, sizeof *st->order, by_cost, (void *)st->f->cost);
+    if (st->f->cost)
+        qsort_r(st->order, st->f->n, sizeof *st->order, by_cost, (void *)st->f->cost);
 }
 
 static void wait_a_little(sw_farm_t *st, long ns)
@@ -264,8 +278,10 @@ static int gather(sw_farm_t *st, pool_arg_t *pa)
             sw_farm_result_t r = st->res[emitted];
             memset(&st->res[emitted], 0, sizeof r);
             pthread_mutex_unlock(&st->mu);
-            if (f->what && r.mlen && shown != (size_t)-1) progress_clear();
-            if (f->take(f->user, emitted, r.data, r.len, r.msgs, r.mlen) != 0) rc = SW_EXIT_IO;
+            if (f->what && r.mlen && shown != (size_t)-1)
+                progress_clear();
+            if (f->take(f->user, emitted, r.data, r.len, r.msgs, r.mlen) != 0)
+                rc = SW_EXIT_IO;
             free(r.data);
             free(r.msgs);
             pthread_mutex_lock(&st->mu);
@@ -288,7 +304,8 @@ static int gather(sw_farm_t *st, pool_arg_t *pa)
             pthread_mutex_lock(&st->mu);
         }
 #endif
-        if (moved) continue;
+        if (moved)
+            continue;
         if (pa->done && emitted < f->n && !st->res[emitted].ready && f->world->size == 1) {
             st->oom = 1; /* every job ran, and one result is missing: cannot be */
             break;
@@ -298,7 +315,8 @@ static int gather(sw_farm_t *st, pool_arg_t *pa)
         wait_a_little(st, f->world->size > 1 ? 1000000L : 100000000L);
     }
     pthread_mutex_unlock(&st->mu);
-    if (f->what && shown != (size_t)-1) fputc('\n', stderr);
+    if (f->what && shown != (size_t)-1)
+        fputc('\n', stderr);
     return rc;
 }
 
@@ -316,23 +334,28 @@ int sw_cli_farm_run(const sw_cli_farm_t *f)
     if (root) {
         st.order = calloc(f->n ? f->n : 1, sizeof *st.order);
         st.res = calloc(f->n ? f->n : 1, sizeof *st.res);
-        if (!st.order || !st.res) st.oom = 1;
+        if (!st.order || !st.res)
+            st.oom = 1;
     } else {
         st.qcap = (size_t)f->threads + 1;
         st.queue = calloc(st.qcap, sizeof *st.queue);
-        if (!st.queue) st.oom = 1;
+        if (!st.queue)
+            st.oom = 1;
     }
     if (st.oom) {
         sw_cli_error("out of memory");
         rc = SW_EXIT_IO;
         goto out;
     }
-    if (root) make_order(&st);
-    if (root && f->by_rank) memset(f->by_rank, 0, (size_t)f->world->size * sizeof *f->by_rank);
+    if (root)
+        make_order(&st);
+    if (root && f->by_rank)
+        memset(f->by_rank, 0, (size_t)f->world->size * sizeof *f->by_rank);
 
     pool_arg_t pa = {.st = &st, .job = job_rank0};
 #ifdef SW_HAVE_MPI
-    if (!root) pa.job = job_remote;
+    if (!root)
+        pa.job = job_remote;
 #endif
     pthread_t helper;
     const int threaded = pthread_create(&helper, NULL, pool, &pa) == 0;

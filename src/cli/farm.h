@@ -68,8 +68,7 @@ typedef struct {
     /* Rank 0: result i (the bytes run wrote) and its messages, in the
      * order i = 0, 1, 2, ..., one at a time.  Returns 0, or non-zero if
      * the results can no longer be written (reported): the farm stops. */
-    int (*take)(void *user, size_t i, const char *data, size_t len, const char *msgs,
-                size_t mlen);
+    int (*take)(void *user, size_t i, const char *data, size_t len, const char *msgs, size_t mlen);
     void *user;
     const char *what; /* "logs", "points": the progress line's unit; NULL: no progress */
     long *by_rank;    /* rank 0, if not NULL: set to the jobs each rank ran (size entries) */

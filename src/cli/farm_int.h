@@ -29,10 +29,10 @@ typedef struct {
     int stop;          /* no new job: take failed, memory ran out */
     int oom;
     /* rank 0 */
-    size_t *order;          /* the jobs, costliest first */
-    size_t next;            /* the next in order to hand out */
-    sw_farm_result_t *res;  /* by job */
-    size_t arrived;         /* results in */
+    size_t *order;         /* the jobs, costliest first */
+    size_t next;           /* the next in order to hand out */
+    sw_farm_result_t *res; /* by job */
+    size_t arrived;        /* results in */
     /* other ranks: the jobs rank 0 gave, not started, and the finished */
     size_t *queue;
     size_t qhead, qlen, qcap;

@@ -48,10 +48,12 @@ void sw_farm_mpi_abort(const char *why, int code)
 /* An MPI call that failed ends the job. */
 static void check(int err, const char *call)
 {
-    if (err == MPI_SUCCESS) return;
+    if (err == MPI_SUCCESS)
+        return;
     char text[MPI_MAX_ERROR_STRING];
     int len = 0;
-    if (MPI_Error_string(err, text, &len) != MPI_SUCCESS) snprintf(text, sizeof text, "error %d", err);
+    if (MPI_Error_string(err, text, &len) != MPI_SUCCESS)
+        snprintf(text, sizeof text, "error %d", err);
     char why[MPI_MAX_ERROR_STRING + 64];
     snprintf(why, sizeof why, "%s failed: %s", call, text);
     sw_farm_mpi_abort(why, SW_EXIT_IO);
@@ -60,7 +62,8 @@ static void check(int err, const char *call)
 static void *alloc_or_abort(size_t n)
 {
     void *p = malloc(n ? n : 1);
-    if (!p) sw_farm_mpi_abort("out of memory", SW_EXIT_IO);
+    if (!p)
+        sw_farm_mpi_abort("out of memory", SW_EXIT_IO);
     return p;
 }
 
@@ -70,10 +73,10 @@ static void *alloc_or_abort(size_t n)
  * (srun --mpi=pmix or pmi2, MPICH's hydra). */
 static int launched(void)
 {
-    static const char *const vars[] = {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK",
-                                       "PMI_SIZE"};
+    static const char *const vars[] = {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"};
     for (size_t i = 0; i < sizeof vars / sizeof vars[0]; i++)
-        if (getenv(vars[i])) return 1;
+        if (getenv(vars[i]))
+            return 1;
     return 0;
 }
 
@@ -83,9 +86,10 @@ int sw_cli_world_start(sw_cli_world_t *w)
     const char *tasks = getenv("SLURM_STEP_NUM_TASKS");
     if (!launched()) {
         if (tasks && atol(tasks) > 1) {
-            sw_cli_error("srun started %s tasks without MPI (no PMI): each would do the whole "
-                         "work; give srun --mpi=pmix (or pmi2), or run one task",
-                         tasks);
+            sw_cli_error(
+                "srun started %s tasks without MPI (no PMI): each would do the whole "
+                "work; give srun --mpi=pmix (or pmi2), or run one task",
+                tasks);
             return SW_EXIT_USAGE;
         }
         return SW_EXIT_OK;
@@ -100,9 +104,10 @@ int sw_cli_world_start(sw_cli_world_t *w)
     check(MPI_Comm_rank(MPI_COMM_WORLD, &w->rank), "MPI_Comm_rank");
     check(MPI_Comm_size(MPI_COMM_WORLD, &w->size), "MPI_Comm_size");
     if (provided < MPI_THREAD_FUNNELED)
-        sw_farm_mpi_abort("the MPI library gives no thread support (MPI_THREAD_FUNNELED), "
-                          "which the worker threads need",
-                          SW_EXIT_IO);
+        sw_farm_mpi_abort(
+            "the MPI library gives no thread support (MPI_THREAD_FUNNELED), "
+            "which the worker threads need",
+            SW_EXIT_IO);
     MPI_Comm node;
     check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node),
           "MPI_Comm_split_type");
@@ -117,7 +122,8 @@ int sw_cli_world_start(sw_cli_world_t *w)
 
 int sw_cli_world_agree(const sw_cli_world_t *w, int rc, const char *msgs, size_t len)
 {
-    if (!w->mpi) return rc;
+    if (!w->mpi)
+        return rc;
     int worst = rc, r0 = rc;
     check(MPI_Allreduce(&rc, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD), "MPI_Allreduce");
     check(MPI_Bcast(&r0, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
@@ -126,7 +132,8 @@ int sw_cli_world_agree(const sw_cli_world_t *w, int rc, const char *msgs, size_t
          * this node): its own words */
         fprintf(stderr, "swaywatch: rank %d of %d failed where rank 0 did not:\n", w->rank,
                 w->size);
-        if (msgs) fwrite(msgs, 1, len, stderr);
+        if (msgs)
+            fwrite(msgs, 1, len, stderr);
         fflush(stderr);
     }
     return worst;
@@ -134,9 +141,11 @@ int sw_cli_world_agree(const sw_cli_world_t *w, int rc, const char *msgs, size_t
 
 int sw_cli_world_share(const sw_cli_world_t *w, int rc, char **text, size_t *len)
 {
-    if (!w->mpi) return rc;
+    if (!w->mpi)
+        return rc;
     check(MPI_Bcast(&rc, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
-    if (rc != SW_EXIT_OK) return rc;
+    if (rc != SW_EXIT_OK)
+        return rc;
     uint64_t n = *len;
     check(MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Bcast");
     if (w->rank != 0) {
@@ -154,7 +163,8 @@ int sw_cli_world_share(const sw_cli_world_t *w, int rc, char **text, size_t *len
 
 int sw_cli_world_end(sw_cli_world_t *w, int rc)
 {
-    if (!w->mpi) return rc;
+    if (!w->mpi)
+        return rc;
     fflush(stdout);
     check(MPI_Bcast(&rc, 1, MPI_INT, 0, MPI_COMM_WORLD), "MPI_Bcast");
     MPI_Finalize();
@@ -169,7 +179,8 @@ static void answer_ask(sw_farm_t *st, int from, int *open)
     int want = 0;
     check(MPI_Recv(&want, 1, MPI_INT, from, TAG_ASK, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
           "MPI_Recv");
-    if (want < 1) want = 1;
+    if (want < 1)
+        want = 1;
     uint64_t *jobs = alloc_or_abort((size_t)want * sizeof *jobs);
     int k = 0;
     size_t i;
@@ -178,7 +189,8 @@ static void answer_ask(sw_farm_t *st, int from, int *open)
     pthread_mutex_unlock(&st->mu);
     check(MPI_Send(jobs, k, MPI_UINT64_T, from, TAG_WORK, MPI_COMM_WORLD), "MPI_Send");
     free(jobs);
-    if (k == 0) (*open)--; /* that rank stops asking */
+    if (k == 0)
+        (*open)--; /* that rank stops asking */
 }
 
 static void take_result(sw_farm_t *st, const MPI_Status *s)
@@ -190,7 +202,8 @@ static void take_result(sw_farm_t *st, const MPI_Status *s)
                    MPI_STATUS_IGNORE),
           "MPI_Recv");
     uint64_t h[3];
-    if ((size_t)count < HEADER) sw_farm_mpi_abort("a result message is too short", SW_EXIT_IO);
+    if ((size_t)count < HEADER)
+        sw_farm_mpi_abort("a result message is too short", SW_EXIT_IO);
     memcpy(h, buf, HEADER);
     if (h[0] >= st->f->n || h[1] + h[2] != (size_t)count - HEADER)
         sw_farm_mpi_abort("a result message does not add up", SW_EXIT_IO);
@@ -218,7 +231,8 @@ int sw_farm_mpi_serve(sw_farm_t *st, int *open)
         int flag = 0;
         MPI_Status s;
         check(MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &s), "MPI_Iprobe");
-        if (!flag) return any;
+        if (!flag)
+            return any;
         any = 1;
         if (s.MPI_TAG == TAG_ASK)
             answer_ask(st, s.MPI_SOURCE, open);
@@ -234,12 +248,15 @@ int sw_farm_mpi_serve(sw_farm_t *st, int *open)
 static void send_result(size_t i, const sw_farm_result_t *r)
 {
     const size_t len = HEADER + r->len + r->mlen;
-    if (len > (size_t)INT32_MAX) sw_farm_mpi_abort("a job's result is over 2 GiB", SW_EXIT_IO);
+    if (len > (size_t)INT32_MAX)
+        sw_farm_mpi_abort("a job's result is over 2 GiB", SW_EXIT_IO);
     char *buf = alloc_or_abort(len);
     const uint64_t h[3] = {i, r->len, r->mlen};
     memcpy(buf, h, HEADER);
-    if (r->len) memcpy(buf + HEADER, r->data, r->len);
-    if (r->mlen) memcpy(buf + HEADER + r->len, r->msgs, r->mlen);
+    if (r->len)
+        memcpy(buf + HEADER, r->data, r->len);
+    if (r->mlen)
+        memcpy(buf + HEADER + r->len, r->msgs, r->mlen);
     check(MPI_Send(buf, (int)len, MPI_BYTE, 0, TAG_RESULT, MPI_COMM_WORLD), "MPI_Send");
     free(buf);
 }
@@ -271,7 +288,8 @@ void sw_farm_mpi_worker(sw_farm_t *st)
         while (st->done) { /* results first: rank 0 writes them as they come */
             sw_farm_done_t *d = st->done;
             st->done = d->next;
-            if (!st->done) st->done_tail = NULL;
+            if (!st->done)
+                st->done_tail = NULL;
             pthread_mutex_unlock(&st->mu);
             send_result(d->i, &d->r);
             free(d->r.data);
@@ -296,7 +314,8 @@ void sw_farm_mpi_worker(sw_farm_t *st)
             pthread_mutex_unlock(&st->mu);
             check(MPI_Test(&req, &flag, &s), "MPI_Test");
             int count = 0;
-            if (flag) check(MPI_Get_count(&s, MPI_UINT64_T, &count), "MPI_Get_count");
+            if (flag)
+                check(MPI_Get_count(&s, MPI_UINT64_T, &count), "MPI_Get_count");
             pthread_mutex_lock(&st->mu);
             if (flag) {
                 asking = 0;
@@ -305,12 +324,15 @@ void sw_farm_mpi_worker(sw_farm_t *st)
                     st->queue[(st->qhead + st->qlen) % st->qcap] = (size_t)got[k];
                     st->qlen++;
                 }
-                if (count == 0) st->exhausted = 1;
+                if (count == 0)
+                    st->exhausted = 1;
                 pthread_cond_broadcast(&st->cv);
             }
         }
-        if (st->exhausted && !st->qlen && !st->running && !st->done) break;
-        if (!moved) nap(st);
+        if (st->exhausted && !st->qlen && !st->running && !st->done)
+            break;
+        if (!moved)
+            nap(st);
     }
     pthread_mutex_unlock(&st->mu);
     free(got);

@@ -33,7 +33,7 @@ typedef struct {
 
 static const char *from_name(int from)
 {
-    return from == SW_CSV_FROM_HEADER ? "from the header"
+    return from == SW_CSV_FROM_HEADER   ? "from the header"
            : from == SW_CSV_FROM_OPTION ? "as given"
                                         : "default";
 }
@@ -43,18 +43,23 @@ static const char *from_name(int from)
 static void say_layout(feed_t *F)
 {
     sw_csv_layout_t L;
-    if (F->layout_said || sw_csv_layout(F->csv, &L) != SW_OK || !L.ready) return;
+    if (F->layout_said || sw_csv_layout(F->csv, &L) != SW_OK || !L.ready)
+        return;
     F->layout_said = 1;
-    if (F->quiet) return;
+    if (F->quiet)
+        return;
     static const char *const role[2] = {"time", "accel"};
     FILE *m = sw_cli_msg();
     fprintf(m, "swaywatch: %s: ", F->name);
     for (int r = 0; r < 2; r++) {
         fprintf(m, "%s%s: column %ld", r ? "; " : "", role[r], L.col[r] + 1);
-        if (L.name[r][0]) fprintf(m, " \"%s\"", L.name[r]);
+        if (L.name[r][0])
+            fprintf(m, " \"%s\"", L.name[r]);
         const char *u = sw_csv_unit_name(L.unit[r]);
-        if (u[0]) fprintf(m, ", %s", u);
-        else fprintf(m, ", x %g", L.scale[r]);
+        if (u[0])
+            fprintf(m, ", %s", u);
+        else
+            fprintf(m, ", x %g", L.scale[r]);
         fprintf(m, " (%s)", from_name(L.unit_from[r]));
     }
     fputc('\n', m);
@@ -84,10 +89,11 @@ static void explain_columns(const feed_t *F)
             fprintf(m, "%s %ld \"%s\"", i ? "," : "", i + 1, sw_csv_header_field(F->csv, i));
         fputc('\n', m);
     }
-    sw_cli_error("%s: say which with --time-col and --accel-col (a name or a 1-based index), "
-                 "and the units with --time-unit and --accel-unit where the names do not say "
-                 "them",
-                 F->name);
+    sw_cli_error(
+        "%s: say which with --time-col and --accel-col (a name or a 1-based index), "
+        "and the units with --time-unit and --accel-unit where the names do not say "
+        "them",
+        F->name);
 }
 
 /* ---- rows into the gate ------------------------------------------------------------ */
@@ -104,10 +110,17 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
         F->unread++;
         return 0;
     }
-    if (F->rej.stop) return 1; /* --strict: nothing after the first bad row counts */
+    if (F->rej.stop)
+        return 1; /* --strict: nothing after the first bad row counts */
     say_layout(F);
-    const sw_sample_t s = {.t = t, .a_g = a_g, .a_z = a_z, .a_max = NAN, .seq = SW_GATE_NO_SEQ,
-                           .rx = NAN, .wall = NAN, .where = line};
+    const sw_sample_t s = {.t = t,
+                           .a_g = a_g,
+                           .a_z = a_z,
+                           .a_max = NAN,
+                           .seq = SW_GATE_NO_SEQ,
+                           .rx = NAN,
+                           .wall = NAN,
+                           .where = line};
     sw_gate_push(F->gate, &s); /* refused samples come back through on_gate_reject */
     return 0;
 }
@@ -139,29 +152,32 @@ static void on_gate_take(void *user, double t, double a_g, double a_z, int resta
 static void on_gate_event(void *user, const sw_gate_event_t *ev)
 {
     feed_t *F = user;
-    if (F->quiet) return;
+    if (F->quiet)
+        return;
     const char *how = ev->restarted ? "the packages restart from rest"
                       : ev->bridged ? "bridged by linear interpolation"
                                     : "no time without samples";
     switch (ev->kind) {
-    case SW_GATE_EV_GAP:
-        sw_cli_error("%s:%ld: note: a gap of %.6g s without samples: %s%s", F->name, ev->where,
-                     ev->span, how,
-                     ev->incomplete ? "; it overlaps rocking or an acceleration past the uplift "
-                                      "threshold: the verdict is incomplete"
-                                    : "");
-        break;
-    case SW_GATE_EV_RESTART:
-        sw_cli_error("%s:%ld: note: time goes back by %.6g s and the log goes on from there (a "
-                     "sensor restart, or a log played twice): %s%s",
-                     F->name, ev->where, -ev->span, how,
-                     ev->incomplete ? "; the verdict is incomplete" : "");
-        break;
-    case SW_GATE_EV_CLOCK_STEP:
-        sw_cli_error("%s:%ld: note: the clock steps by %+.6g s: re-timed", F->name, ev->where,
-                     ev->span);
-        break;
-    case SW_GATE_EV_SEQ_RESTART: break;
+        case SW_GATE_EV_GAP:
+            sw_cli_error("%s:%ld: note: a gap of %.6g s without samples: %s%s", F->name, ev->where,
+                         ev->span, how,
+                         ev->incomplete
+                             ? "; it overlaps rocking or an acceleration past the uplift "
+                               "threshold: the verdict is incomplete"
+                             : "");
+            break;
+        case SW_GATE_EV_RESTART:
+            sw_cli_error(
+                "%s:%ld: note: time goes back by %.6g s and the log goes on from there (a "
+                "sensor restart, or a log played twice): %s%s",
+                F->name, ev->where, -ev->span, how,
+                ev->incomplete ? "; the verdict is incomplete" : "");
+            break;
+        case SW_GATE_EV_CLOCK_STEP:
+            sw_cli_error("%s:%ld: note: the clock steps by %+.6g s: re-timed", F->name, ev->where,
+                         ev->span);
+            break;
+        case SW_GATE_EV_SEQ_RESTART: break;
     }
 }
 
@@ -171,8 +187,8 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
 {
     int rc = SW_EXIT_USAGE, err = 0;
     char msg[256] = "";
-    feed_t F = {.name = lf->name, .quiet = quiet, .take = take, .take_user = take_user,
-                .halt = halt};
+    feed_t F = {
+        .name = lf->name, .quiet = quiet, .take = take, .take_user = take_user, .halt = halt};
     F.rej = (sw_cli_rejects_t){.name = lf->name, .quiet = quiet, .strict = co->strict};
     memset(out, 0, sizeof *out);
     sw_gate_opts_t gopts;
@@ -196,7 +212,8 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
     }
     int fr;
     rc = sw_cli_logfile_pump(lf, F.csv, &F.rej.stop, after_chunk, &F, &fr);
-    if (rc != SW_EXIT_OK) goto out;
+    if (rc != SW_EXIT_OK)
+        goto out;
     if (F.stopped) { /* what was read, without the rest */
         sw_csv_counts_t k;
         sw_csv_counts(F.csv, &k);
@@ -222,7 +239,8 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
         rc = fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
         goto out;
     }
-    if (!F.rej.stop) sw_gate_flush(F.gate);
+    if (!F.rej.stop)
+        sw_gate_flush(F.gate);
     if (F.rej.stop) {
         sw_cli_error("%s: stopped at the first rejected row (--strict)", lf->name);
         goto out;
@@ -269,15 +287,18 @@ int sw_cli_feed_verdict(const char *name, const sw_gate_facts_t *f, const sw_cli
     run->have_facts = 1;
     if (r == SW_GATE_WARN) {
         snprintf(run->check, sizeof run->check, "%s", why);
-        if (!quiet) sw_cli_error("%s: warning: %s", name, why);
+        if (!quiet)
+            sw_cli_error("%s: warning: %s", name, why);
         return SW_EXIT_OK;
     }
-    if (r != SW_GATE_REFUSE) return SW_EXIT_OK;
+    if (r != SW_GATE_REFUSE)
+        return SW_EXIT_OK;
     if (!go->force) {
         sw_cli_error("%s: no verdict: %s", name, why);
-        sw_cli_error("%s: check the columns and units (see the lines above), or give --force "
-                     "for a verdict marked as forced",
-                     name);
+        sw_cli_error(
+            "%s: check the columns and units (see the lines above), or give --force "
+            "for a verdict marked as forced",
+            name);
         return SW_EXIT_USAGE;
     }
     run->forced = 1;

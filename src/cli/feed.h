@@ -29,9 +29,8 @@ typedef struct {
  * their line (rows: the first SW_CLI_MAX_PRINTED_REJECTS; none with
  * quiet).  take (may be NULL) gets each sample the engine got, with
  * take_user (gate.h); once *halt (may be NULL) is non-zero the reading
- * stops before the next row (out->halted).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad options or columns the
- * header does not tell, --strict at a refused row: reported) or
- * SW_EXIT_IO. */
+ * stops before the next row (out->halted).  Returns SW_EXIT_OK, SW_EXIT_USAGE (bad options or
+ * columns the header does not tell, --strict at a refused row: reported) or SW_EXIT_IO. */
 int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_cli_gate_t *go,
                     sw_engine_t *e, int quiet, sw_gate_take_fn take, void *take_user,
                     const volatile sig_atomic_t *halt, sw_cli_fed_t *out);

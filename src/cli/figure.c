@@ -42,7 +42,7 @@ struct sw_cli_figure {
     size_t n;
     sw_event_t *ev;
     size_t nev, cap;
-    long dropped; /* events beyond MAX_EVENTS, or lost to a failed allocation */
+    long dropped;          /* events beyond MAX_EVENTS, or lost to a failed allocation */
     const sw_risk_t *risk; /* NULL: no reserve panel */
 };
 
@@ -420,10 +420,11 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
 
     /* 4. the reserve: the smallest design pulse that would overturn it */
     if (f->risk) {
-        fputs("set format x '%g'\nset xlabel 'time t (s)'\nset ylabel 'reserve (g)'\n"
-              "set yrange [0:*]\nplot 0 with lines lc rgb '#d62828' dt 3 "
-              "title 'no reserve: overturns with no more input'",
-              g);
+        fputs(
+            "set format x '%g'\nset xlabel 'time t (s)'\nset ylabel 'reserve (g)'\n"
+            "set yrange [0:*]\nplot 0 with lines lc rgb '#d62828' dt 3 "
+            "title 'no reserve: overturns with no more input'",
+            g);
         for (size_t k = 0; k < f->n; k++) {
             fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RESERVE,
                     colours[k % NCOLOURS]);

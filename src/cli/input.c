@@ -16,7 +16,7 @@
 
 #include "eventlog.h"
 
-#define CHUNK (64 * 1024)      /* bytes read and fed at a time */
+#define CHUNK (64 * 1024) /* bytes read and fed at a time */
 
 void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o)
 {
@@ -73,7 +73,8 @@ int sw_cli_accel_limit(const sw_cli_option_t *o, const char *arg, void *dest)
     /* the bounds (m/s^2) apply once the value is in m/s^2 */
     sw_cli_option_t unbounded = *o;
     unbounded.lo = unbounded.hi = 0.0;
-    if (sw_cli_opt_double(&unbounded, arg, out) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    if (sw_cli_opt_double(&unbounded, arg, out) != SW_EXIT_OK)
+        return SW_EXIT_USAGE;
     *out *= scale;
     return sw_cli_opt_range(o, given, *out);
 }
@@ -97,7 +98,8 @@ static int parse_policy(const sw_cli_option_t *o, const char *arg, void *dest)
 const sw_cli_option_t sw_cli_gate_options[] = {
     {SW_CLI_SECTION, .help = "Input checks (every source: CSV, lcm-logger, live):"},
     {SW_CLI_CALL, 0, "max-accel", "A", GATE(max_accel), .fn = sw_cli_accel_limit,
-     .rule = SW_NUM_POSITIVE, .lo = 0.1, .hi = SW_MAX_ACCEL, .what = "a positive acceleration in m/s^2, or in g with a g suffix",
+     .rule = SW_NUM_POSITIVE, .lo = 0.1, .hi = SW_MAX_ACCEL,
+     .what = "a positive acceleration in m/s^2, or in g with a g suffix",
      .help = "refuse samples with any axis beyond A (a spike), in m/s^2 or with a g suffix, "
              "e.g. 30g (default 50g); at most the engine's own limit on samples, in m/s^2"},
     {SW_CLI_DOUBLE, 0, "gap", "SECONDS", GATE(gap), .rule = SW_NUM_NONNEGATIVE, .lo = 1e-4,
@@ -110,13 +112,13 @@ const sw_cli_option_t sw_cli_gate_options[] = {
     {SW_CLI_DOUBLE, 0, "max-bridge", "SECONDS", GATE(max_bridge), .rule = SW_NUM_POSITIVE,
      .def = 10, .lo = 1e-3, .hi = 86400, .what = "a positive number of seconds",
      .help = "longest gap bridged; longer ones restart the packages from rest (default %g)"},
-    {SW_CLI_DOUBLE, 0, "max-jump", "SECONDS", GATE(max_jump), .rule = SW_NUM_NONNEGATIVE,
-     .def = -1, .lo = 1e-6, .hi = 86400, .what = "a number of seconds >= 0 (0: take any time at once)",
+    {SW_CLI_DOUBLE, 0, "max-jump", "SECONDS", GATE(max_jump), .rule = SW_NUM_NONNEGATIVE, .def = -1,
+     .lo = 1e-6, .hi = 86400, .what = "a number of seconds >= 0 (0: take any time at once)",
      .help = "a sample whose time leaps further than this beyond the time that passed (or goes "
              "back) waits until the stream confirms it (default: the gap threshold; 0: never "
              "wait)"},
-    {SW_CLI_LONG, 0, "confirm", "N", GATE(confirm), .min = 2, .max = SW_GATE_CONFIRM_MAX,
-     .def = 3, .what = "a number of samples from 2 to " SW_CLI_STR(SW_GATE_CONFIRM_MAX),
+    {SW_CLI_LONG, 0, "confirm", "N", GATE(confirm), .min = 2, .max = SW_GATE_CONFIRM_MAX, .def = 3,
+     .what = "a number of samples from 2 to " SW_CLI_STR(SW_GATE_CONFIRM_MAX),
      .help = "samples in a row that confirm a leap or a restart of the time (default %g)"},
     {SW_CLI_FLAG, 0, "vert-includes-gravity", GATE(vert_gravity), .value = 1,
      .help = "the vertical channel reads +1 g at rest (an accelerometer): gravity is "
@@ -191,8 +193,8 @@ static int check_col(const sw_cli_option_t *o, const char *arg, void *dest)
 }
 
 #define CSV(f) SW_CLI_AT(sw_cli_csv_opts_t, f)
-#define CSV_SECTION                                                                                \
-    "CSV input (default: column 1 time in s, column 2 longitudinal acceleration in\n"             \
+#define CSV_SECTION                                                                   \
+    "CSV input (default: column 1 time in s, column 2 longitudinal acceleration in\n" \
     "m/s^2, x forward: braking is negative; optional header row; '#' comments):"
 
 const sw_cli_option_t sw_cli_csv_options[] = {
@@ -220,12 +222,13 @@ const sw_cli_option_t sw_cli_csv_options[] = {
     {SW_CLI_FLAG, 0, "no-decimal-comma", CSV(csv.decimal_comma), .value = 0,
      .help = "refuse numbers with a ','"},
     {SW_CLI_TEXT,
-     .help = "Columns and units not given are read from the header's names when they say it\n"
-             "without doubt (\"Time (ms)\", \"X (g)\", \"time_ms;accel_g\", \"ax [m/s^2]\"); stderr\n"
-             "says what was chosen.  A header that does not say it is refused, listed, with\n"
-             "these options to name the columns.  Times may be ISO-8601 date-times\n"
-             "(2024-05-20T12:00:00.000Z, 2018-04-08 10:31:37.005628); epoch and date-time\n"
-             "logs are timed from their start."},
+     .help =
+         "Columns and units not given are read from the header's names when they say it\n"
+         "without doubt (\"Time (ms)\", \"X (g)\", \"time_ms;accel_g\", \"ax [m/s^2]\"); stderr\n"
+         "says what was chosen.  A header that does not say it is refused, listed, with\n"
+         "these options to name the columns.  Times may be ISO-8601 date-times\n"
+         "(2024-05-20T12:00:00.000Z, 2018-04-08 10:31:37.005628); epoch and date-time\n"
+         "logs are timed from their start."},
     {SW_CLI_END},
 };
 
@@ -240,10 +243,12 @@ const sw_cli_option_t sw_cli_sample_options[] = {
      .help = "stop at the first rejected row, exit 2"},
     {SW_CLI_TEXT,
      .help = "Rows that cannot be used (missing field, not a number, not finite, time not\n"
-             "increasing) are counted and reported on stderr with their line number (the first\n"
-             SW_CLI_STR(SW_CLI_MAX_PRINTED_REJECTS) " one by one); the run goes on without them "
-             "unless --strict.\n"
-             "With --quiet, they are only counted (one line on stderr)."},
+             "increasing) are counted and reported on stderr with their line number (the "
+             "first\n" SW_CLI_STR(
+                 SW_CLI_MAX_PRINTED_REJECTS) " one by one); the run goes on without them "
+                                             "unless --strict.\n"
+                                             "With --quiet, they are only counted (one line on "
+                                             "stderr)."},
     {SW_CLI_END},
 };
 
@@ -251,17 +256,21 @@ const sw_cli_option_t sw_cli_sample_options[] = {
 
 void sw_cli_rejects_add(sw_cli_rejects_t *r, long line, const char *reason)
 {
-    if (r->stop) return; /* strict: the run already ended at an earlier row */
+    if (r->stop)
+        return; /* strict: the run already ended at an earlier row */
     r->reported++;
-    if (r->strict) r->stop = 1;
-    if (r->quiet || r->printed >= SW_CLI_MAX_PRINTED_REJECTS) return;
+    if (r->strict)
+        r->stop = 1;
+    if (r->quiet || r->printed >= SW_CLI_MAX_PRINTED_REJECTS)
+        return;
     r->printed++;
     sw_cli_error("%s:%ld: %s", r->name, line, reason);
 }
 
 void sw_cli_rejects_summary(const sw_cli_rejects_t *r)
 {
-    if (r->reported <= r->printed) return;
+    if (r->reported <= r->printed)
+        return;
     if (r->quiet)
         sw_cli_error("%s: %ld rejected rows", r->name, r->reported);
     else
@@ -290,14 +299,16 @@ int sw_cli_logfile_open(sw_cli_logfile_t *f, const char *path)
     return SW_EXIT_OK;
 }
 
-int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop,
-                        void (*after)(void *), void *user, int *fr)
+int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop, void (*after)(void *),
+                        void *user, int *fr)
 {
     *fr = SW_OK;
     while (f->len > 0 && !*stop) {
         *fr = sw_csv_feed(csv, f->buf, f->len);
-        if (after) after(user);
-        if (*fr < 0) return SW_EXIT_OK;
+        if (after)
+            after(user);
+        if (*fr < 0)
+            return SW_EXIT_OK;
         f->len = fread(f->buf, 1, CHUNK, f->in);
         if (ferror(f->in)) {
             sw_cli_error("%s: cannot read: %s", f->name, strerror(errno));
@@ -306,7 +317,8 @@ int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop,
     }
     if (!*stop) {
         *fr = sw_csv_finish(csv);
-        if (after) after(user);
+        if (after)
+            after(user);
     }
     return SW_EXIT_OK;
 }
@@ -314,7 +326,8 @@ int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop,
 void sw_cli_logfile_close(sw_cli_logfile_t *f)
 {
     free(f->buf);
-    if (f->in && f->in != stdin) fclose(f->in);
+    if (f->in && f->in != stdin)
+        fclose(f->in);
     memset(f, 0, sizeof *f);
 }
 
@@ -340,15 +353,19 @@ const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f)
 static int grow(sw_cli_log_t *L)
 {
     size_t cap = L->cap ? 2 * L->cap : 4096;
-    if (cap > L->max) cap = L->max;
+    if (cap > L->max)
+        cap = L->max;
     double *t = realloc(L->t, cap * sizeof *t);
-    if (!t) return -1;
+    if (!t)
+        return -1;
     L->t = t;
     double *a = realloc(L->a_g, cap * sizeof *a);
-    if (!a) return -1;
+    if (!a)
+        return -1;
     L->a_g = a;
     double *z = realloc(L->a_z, cap * sizeof *z);
-    if (!z) return -1;
+    if (!z)
+        return -1;
     L->a_z = z;
     L->cap = cap;
     return 0;
@@ -357,7 +374,8 @@ static int grow(sw_cli_log_t *L)
 void sw_cli_log_take(void *user, double t, double a_g, double a_z, int restart)
 {
     sw_cli_log_t *L = user;
-    if (L->halt) return;
+    if (L->halt)
+        return;
     if (L->n == L->max) {
         L->capped = 1;
         L->halt = 1;

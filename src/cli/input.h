@@ -87,8 +87,8 @@ int sw_cli_logfile_open(sw_cli_logfile_t *f, const char *path);
  * then finish it; stops early when the reader fails or *stop is set (after
  * any chunk; after(user), if not NULL, runs after each feed and the
  * finish).  *fr gets the reader's last status (< 0: it failed). */
-int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop,
-                        void (*after)(void *), void *user, int *fr);
+int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop, void (*after)(void *),
+                        void *user, int *fr);
 void sw_cli_logfile_close(sw_cli_logfile_t *f); /* zeroed or open; closes stdin never */
 
 /* What a log file holds, told by its first bytes: a row per kind, the
@@ -110,13 +110,13 @@ const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f);
 typedef struct {
     double *t, *a_g, *a_z; /* a_z: 0 where there is no vertical channel */
     size_t n, cap;
-    int has_z;            /* some a_z is not 0 */
-    size_t *restart;      /* indices of the samples before which the gate restarted the
-                             packages from rest (sw_log_t) */
+    int has_z;       /* some a_z is not 0 */
+    size_t *restart; /* indices of the samples before which the gate restarted the
+                        packages from rest (sw_log_t) */
     size_t nrestart, restart_cap;
-    size_t max;           /* samples kept at most (set before reading) */
-    int capped;           /* one more was offered: the log is longer than max */
-    int oom;              /* out of memory */
+    size_t max;                 /* samples kept at most (set before reading) */
+    int capped;                 /* one more was offered: the log is longer than max */
+    int oom;                    /* out of memory */
     volatile sig_atomic_t halt; /* capped or oom: the reading may stop */
 } sw_cli_log_t;
 

@@ -85,10 +85,10 @@ size_t sw_cli_alarm_format(char *buf, size_t len, const sw_cli_alarm_line_t *a)
         size_t used = strlen(nums);
         snprintf(nums + used, sizeof nums - used, " reserve_g=%.3f", a->reserve_g);
     }
-    int n = snprintf(buf, len, "swaywatch: alarm %s level=%s package=%s%s%s kind=%s %s text=\"%s\"",
-                     when, sw_alarm_level_name(a->level), quote ? "\"" : "",
-                     a->package ? name : "-", quote ? "\"" : "", sw_alarm_kind_name(a->kind),
-                     nums, text);
+    int n =
+        snprintf(buf, len, "swaywatch: alarm %s level=%s package=%s%s%s kind=%s %s text=\"%s\"",
+                 when, sw_alarm_level_name(a->level), quote ? "\"" : "", a->package ? name : "-",
+                 quote ? "\"" : "", sw_alarm_kind_name(a->kind), nums, text);
     return n < 0 ? 0 : (size_t)n;
 }
 

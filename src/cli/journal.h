@@ -37,7 +37,7 @@ void sw_cli_iso_time(char *buf, size_t len, int64_t us);
 
 /* One alarm, as the monitor writes it on standard error. */
 typedef struct {
-    int64_t wall_us;     /* wall clock when it was raised, us since 1970 */
+    int64_t wall_us; /* wall clock when it was raised, us since 1970 */
     sw_alarm_level level;
     sw_alarm_kind kind;
     const char *package; /* NULL: an input alarm, which concerns every package */

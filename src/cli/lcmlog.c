@@ -27,7 +27,8 @@ void sw_cli_print_region(void *user, const sw_lcmlog_region_t *r)
 
 void sw_cli_regions_summary(const sw_cli_regions_t *r)
 {
-    if (r->seen <= r->printed) return;
+    if (r->seen <= r->printed)
+        return;
     if (r->quiet)
         sw_cli_error("%s: %ld corrupted regions skipped", r->name, r->seen);
     else
@@ -82,9 +83,10 @@ int sw_cli_check_lcm_url(const char *cmd, const char *url)
     }
     /* LCM reads the file again after this check: a pipe would be empty. */
     if (!S_ISREG(st.st_mode)) {
-        sw_cli_error("%s: %s: not a regular file; LCM's file:// provider reads logs from files "
-                     "(replay reads pipes)",
-                     cmd, path);
+        sw_cli_error(
+            "%s: %s: not a regular file; LCM's file:// provider reads logs from files "
+            "(replay reads pipes)",
+            cmd, path);
         rc = SW_EXIT_USAGE;
         goto out;
     }
@@ -99,12 +101,13 @@ int sw_cli_check_lcm_url(const char *cmd, const char *url)
     sw_lcmlog_counts(log, &c);
     rc = SW_EXIT_OK;
     if (c.corrupt > 0) {
-        sw_cli_error("%s: %s: %ld corrupted region%s (the first at byte %lld: %lld bytes in "
-                     "all); LCM's file:// provider trusts the length fields of a log, so a "
-                     "damaged one is refused: 'swaywatch replay %s' reads it, skipping the "
-                     "damage",
-                     cmd, path, c.corrupt, c.corrupt == 1 ? "" : "s", c.first_corrupt,
-                     c.corrupt_bytes, path);
+        sw_cli_error(
+            "%s: %s: %ld corrupted region%s (the first at byte %lld: %lld bytes in "
+            "all); LCM's file:// provider trusts the length fields of a log, so a "
+            "damaged one is refused: 'swaywatch replay %s' reads it, skipping the "
+            "damage",
+            cmd, path, c.corrupt, c.corrupt == 1 ? "" : "s", c.first_corrupt, c.corrupt_bytes,
+            path);
         rc = SW_EXIT_USAGE;
     }
 out:

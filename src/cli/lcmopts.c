@@ -49,8 +49,8 @@ static int check_channel(const sw_cli_option_t *o, const char *arg, void *dest)
     (void)dest;
     /* LCM's limit on channel names. */
     if (!arg[0] || strlen(arg) > 63) {
-        sw_cli_error("--%s: expected a channel name of 1 to 63 characters, got '%s'",
-                     o->long_name, arg);
+        sw_cli_error("--%s: expected a channel name of 1 to 63 characters, got '%s'", o->long_name,
+                     arg);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
@@ -63,8 +63,8 @@ const sw_cli_option_t sw_cli_lcm_publish_options[] = {
      .help = "states (default " SW_MON_STATE_CHANNEL ")"},
     {SW_CLI_STRING, 0, "alarm-channel", "CHAN", MON(alarm_channel), .fn = check_channel,
      .help = "alarms (default " SW_MON_ALARM_CHANNEL ")"},
-    {SW_CLI_DOUBLE, 0, "state-rate", "HZ", MON(state_rate), .rule = SW_NUM_NONNEGATIVE,
-     .lo = 1e-3, .hi = 1e6, .what = "a rate in Hz >= 0 (0: every sample)",
+    {SW_CLI_DOUBLE, 0, "state-rate", "HZ", MON(state_rate), .rule = SW_NUM_NONNEGATIVE, .lo = 1e-3,
+     .hi = 1e6, .what = "a rate in Hz >= 0 (0: every sample)",
      .help = "states per package per second of sample time (default 0: one per sample); from "
              "one per 1000 s to one per microsecond of utime"},
     {SW_CLI_END},
@@ -76,8 +76,8 @@ const sw_cli_option_t sw_cli_lcm_input_options[] = {
     {SW_CLI_CALL, 0, "vertical", "x|y|z|none", MON(vertical), .fn = parse_axis, .value = 1,
      .help = "message axis used as vertical acceleration, up (say whether it includes gravity: "
              "--vert-includes-gravity or --vert-excludes-gravity; default none: gravity only)"},
-    {SW_CLI_DOUBLE, 0, "max-skew", "SECONDS", MON(max_skew), .rule = SW_NUM_NONNEGATIVE,
-     .lo = 1e-3, .hi = 1e9, .what = "a number of seconds >= 0 (0: not checked)",
+    {SW_CLI_DOUBLE, 0, "max-skew", "SECONDS", MON(max_skew), .rule = SW_NUM_NONNEGATIVE, .lo = 1e-3,
+     .hi = 1e9, .what = "a number of seconds >= 0 (0: not checked)",
      .help = "refuse samples whose utime is further than this from the time they arrived (live: "
              "the wall clock; a log: when lcm-logger received them; default: not checked)"},
     {SW_CLI_END},
@@ -86,8 +86,9 @@ const sw_cli_option_t sw_cli_lcm_input_options[] = {
 int sw_cli_mon_gate(sw_mon_opts_t *mo, const sw_cli_gate_t *g)
 {
     if (mo->vertical >= 0 && g->vert_gravity < 0) {
-        sw_cli_error("--vertical: say whether that axis includes gravity (an accelerometer reads "
-                     "+1 g at rest): --vert-includes-gravity or --vert-excludes-gravity");
+        sw_cli_error(
+            "--vertical: say whether that axis includes gravity (an accelerometer reads "
+            "+1 g at rest): --vert-includes-gravity or --vert-excludes-gravity");
         return SW_EXIT_USAGE;
     }
     sw_gate_opts_t o;

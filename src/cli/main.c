@@ -32,7 +32,8 @@ static const struct {
     {"watch", cmd_watch, "live view of the monitor's states and alarms in the terminal"},
 #endif
     {"boundary", cmd_boundary, "overturning boundary curves: lowest overturning pulse vs omega/p"},
-    {"forensics", cmd_forensics, "a log's outcome, safety factor, and what support would have saved it"},
+    {"forensics", cmd_forensics,
+     "a log's outcome, safety factor, and what support would have saved it"},
     {"batch", cmd_batch, "many logs on every core (and MPI rank): JSON Lines records, a CSV table"},
 };
 
@@ -59,7 +60,8 @@ void sw_cli_error(const char *fmt, ...)
     va_start(ap, fmt);
     /* Under systemd an error is logged at priority err (journal.h); a
      * batch job's messages are kept, not logged. */
-    if (f == stderr) fputs(sw_cli_journal_prefix(SW_PRIO_ERR), f);
+    if (f == stderr)
+        fputs(sw_cli_journal_prefix(SW_PRIO_ERR), f);
     fputs("swaywatch: ", f);
     vfprintf(f, fmt, ap);
     fputc('\n', f);
@@ -108,7 +110,8 @@ static int is_help(const char *arg)
 static sw_cmd_fn command(const char *name)
 {
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (!strcmp(name, commands[i].name)) return commands[i].fn;
+        if (!strcmp(name, commands[i].name))
+            return commands[i].fn;
     return NULL;
 }
 

@@ -41,19 +41,22 @@ int sw_cli_manifest_read(const char *path, char **text, size_t *len)
         }
         const size_t got = fread(buf + *len, 1, cap - *len, f);
         *len += got;
-        if (got == 0) break;
+        if (got == 0)
+            break;
     }
     if (rc == SW_EXIT_OK && ferror(f)) {
         sw_cli_error("%s: cannot read: %s", path, strerror(errno));
         rc = SW_EXIT_IO;
     }
-    if (!in) fclose(f);
+    if (!in)
+        fclose(f);
     if (rc != SW_EXIT_OK) {
         free(buf);
         *len = 0;
         return rc;
     }
-    if (!buf) buf = calloc(1, 1);
+    if (!buf)
+        buf = calloc(1, 1);
     if (!buf) {
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
@@ -78,7 +81,8 @@ static int put(split_t *S, char c)
     if (S->wlen + 2 > S->wcap) {
         size_t cap = S->wcap ? 2 * S->wcap : 64;
         char *w = realloc(S->word, cap);
-        if (!w) return -1;
+        if (!w)
+            return -1;
         S->word = w;
         S->wcap = cap;
     }
@@ -92,10 +96,12 @@ static int end_word(split_t *S)
 {
     sw_cli_manifest_t *m = S->m;
     char **w = realloc(m->words, (m->nwords + 1) * sizeof *w);
-    if (!w) return -1;
+    if (!w)
+        return -1;
     m->words = w;
     m->words[m->nwords++] = S->word ? S->word : strdup("");
-    if (!m->words[m->nwords - 1]) return -1;
+    if (!m->words[m->nwords - 1])
+        return -1;
     S->word = NULL;
     S->wlen = S->wcap = 0;
     return 0;
@@ -109,7 +115,8 @@ static int split_line(split_t *S, const char *p, const char *end, size_t *first,
     *count = 0;
     for (;;) {
         while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) p++;
-        if (p == end || *p == '#') return SW_EXIT_OK;
+        if (p == end || *p == '#')
+            return SW_EXIT_OK;
         int in_word = 0;
         while (p < end && *p != ' ' && *p != '\t' && *p != '\r') {
             char c = *p++;
@@ -119,7 +126,8 @@ static int split_line(split_t *S, const char *p, const char *end, size_t *first,
                 in_word = 1;
                 while (p < end && *p != q) {
                     c = *p++;
-                    if (q == '"' && c == '\\' && p < end && (*p == '"' || *p == '\\')) c = *p++;
+                    if (q == '"' && c == '\\' && p < end && (*p == '"' || *p == '\\'))
+                        c = *p++;
                     bad |= put(S, c);
                 }
                 if (p == end) {
@@ -129,14 +137,17 @@ static int split_line(split_t *S, const char *p, const char *end, size_t *first,
                 }
                 p++;
             } else {
-                if (c == '\\' && p < end) c = *p++;
+                if (c == '\\' && p < end)
+                    c = *p++;
                 bad |= put(S, c);
                 in_word = 1;
             }
-            if (bad) goto oom;
+            if (bad)
+                goto oom;
         }
         if (in_word) {
-            if (end_word(S) != 0) goto oom;
+            if (end_word(S) != 0)
+                goto oom;
             (*count)++;
         }
     }
@@ -171,9 +182,10 @@ int sw_cli_manifest_parse(const char *name, const char *text, size_t len, sw_cli
         if (rc == SW_EXIT_OK && count > 0) {
             const char *w = m->words[first];
             if (w[0] == '-' && w[1] != '\0') {
-                sw_cli_error("%s:%ld: a line begins with the log, then its options; not with "
-                             "'%s'",
-                             name, S.line, w);
+                sw_cli_error(
+                    "%s:%ld: a line begins with the log, then its options; not with "
+                    "'%s'",
+                    name, S.line, w);
                 rc = SW_EXIT_USAGE;
             } else {
                 if (nlines == cap) {
@@ -219,7 +231,8 @@ int sw_cli_manifest_parse(const char *name, const char *text, size_t len, sw_cli
         }
     }
     free(span);
-    if (rc != SW_EXIT_OK) sw_cli_manifest_free(m);
+    if (rc != SW_EXIT_OK)
+        sw_cli_manifest_free(m);
     return rc;
 }
 

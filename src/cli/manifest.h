@@ -21,7 +21,7 @@ typedef struct {
     char *log;   /* the first word */
     char **args; /* the words after it (NULL-terminated), nargs of them */
     size_t nargs;
-    long line;   /* 1-based */
+    long line; /* 1-based */
 } sw_cli_manifest_line_t;
 
 typedef struct {

@@ -38,11 +38,16 @@ int sw_cli_opt_double(const sw_cli_option_t *o, const char *arg, double *out)
     errno = 0;
     double v = arg ? strtod(arg, &end) : NAN;
     int ok = arg && end != arg && *end == '\0' && errno != ERANGE && isfinite(v);
-    if (ok && o->rule == SW_NUM_POSITIVE) ok = v > 0.0;
-    if (ok && o->rule == SW_NUM_NONNEGATIVE) ok = v >= 0.0;
-    if (ok && o->rule == SW_NUM_NONZERO) ok = v != 0.0;
-    if (!ok) return bad_value(o, arg);
-    if (sw_cli_opt_range(o, arg, v) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    if (ok && o->rule == SW_NUM_POSITIVE)
+        ok = v > 0.0;
+    if (ok && o->rule == SW_NUM_NONNEGATIVE)
+        ok = v >= 0.0;
+    if (ok && o->rule == SW_NUM_NONZERO)
+        ok = v != 0.0;
+    if (!ok)
+        return bad_value(o, arg);
+    if (sw_cli_opt_range(o, arg, v) != SW_EXIT_OK)
+        return SW_EXIT_USAGE;
     *out = v;
     return SW_EXIT_OK;
 }
@@ -63,9 +68,11 @@ static void range_text(char *buf, size_t len, const sw_cli_option_t *o)
 
 int sw_cli_opt_range(const sw_cli_option_t *o, const char *arg, double v)
 {
-    if (!has_range(o) || (v == 0.0 && o->rule == SW_NUM_NONNEGATIVE)) return SW_EXIT_OK;
+    if (!has_range(o) || (v == 0.0 && o->rule == SW_NUM_NONNEGATIVE))
+        return SW_EXIT_OK;
     const double m = o->rule == SW_NUM_NONZERO ? fabs(v) : v;
-    if (m >= o->lo && m <= o->hi) return SW_EXIT_OK;
+    if (m >= o->lo && m <= o->hi)
+        return SW_EXIT_OK;
     char r[96];
     range_text(r, sizeof r, o);
     sw_cli_error("--%s: out of range: expected %s, got '%s'", o->long_name, r, arg ? arg : "");
@@ -96,7 +103,8 @@ int sw_cli_opt_quantity(const sw_cli_option_t *o, const char *arg, int time_role
     char *end = NULL;
     errno = 0;
     const double v = arg ? strtod(arg, &end) : NAN;
-    if (!arg || end == arg || errno == ERANGE || !isfinite(v)) return bad_value(o, arg);
+    if (!arg || end == arg || errno == ERANGE || !isfinite(v))
+        return bad_value(o, arg);
     while (*end == ' ') end++;
     int u = SW_CSV_UNIT_NONE;
     if (*end) {
@@ -112,13 +120,19 @@ int sw_cli_opt_quantity(const sw_cli_option_t *o, const char *arg, int time_role
         return SW_EXIT_USAGE;
     }
     int ok = 1;
-    if (o->rule == SW_NUM_POSITIVE) ok = v > 0.0;
-    if (o->rule == SW_NUM_NONNEGATIVE) ok = v >= 0.0;
-    if (o->rule == SW_NUM_NONZERO) ok = v != 0.0;
-    if (!ok) return bad_value(o, arg);
-    if (sw_cli_opt_range(o, arg, v * sw_csv_unit_scale(u)) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    if (o->rule == SW_NUM_POSITIVE)
+        ok = v > 0.0;
+    if (o->rule == SW_NUM_NONNEGATIVE)
+        ok = v >= 0.0;
+    if (o->rule == SW_NUM_NONZERO)
+        ok = v != 0.0;
+    if (!ok)
+        return bad_value(o, arg);
+    if (sw_cli_opt_range(o, arg, v * sw_csv_unit_scale(u)) != SW_EXIT_OK)
+        return SW_EXIT_USAGE;
     *si = v * sw_csv_unit_scale(u);
-    if (unit) *unit = u;
+    if (unit)
+        *unit = u;
     return SW_EXIT_OK;
 }
 
@@ -127,14 +141,17 @@ static int parse_fraction(const char *s, double *out)
 {
     char *end = NULL;
     double a = strtod(s, &end);
-    if (end == s) return -1;
+    if (end == s)
+        return -1;
     if (*end == '/') {
         const char *q = end + 1;
         double b = strtod(q, &end);
-        if (end == q || b == 0.0) return -1;
+        if (end == q || b == 0.0)
+            return -1;
         a /= b;
     }
-    if (*end != '\0' || !isfinite(a)) return -1;
+    if (*end != '\0' || !isfinite(a))
+        return -1;
     *out = a;
     return 0;
 }
@@ -154,7 +171,8 @@ int sw_cli_parse_list(const char *opt, const char *arg, int positive, double **v
     size_t k = 0;
     for (char *tok = copy, *next; tok; tok = next) {
         next = strchr(tok, ',');
-        if (next) *next++ = '\0'; /* an empty item ("1,,2") is an error, not skipped */
+        if (next)
+            *next++ = '\0'; /* an empty item ("1,,2") is an error, not skipped */
         double x;
         if (parse_fraction(tok, &x) != 0 || (positive && !(x > 0.0))) {
             sw_cli_error("%s: expected %snumbers separated by commas, got '%s'", opt,
@@ -178,7 +196,8 @@ int sw_cli_parse_list(const char *opt, const char *arg, int positive, double **v
 
 int sw_cli_parse_range(const char *opt, const char *arg, size_t max, double **vals, size_t *n)
 {
-    if (!strchr(arg, ':')) return sw_cli_parse_list(opt, arg, 1, vals, n);
+    if (!strchr(arg, ':'))
+        return sw_cli_parse_list(opt, arg, 1, vals, n);
     double a, b, s;
     char tail;
     if (sscanf(arg, "%lf:%lf:%lf%c", &a, &b, &s, &tail) != 3 || !isfinite(a) || !isfinite(b) ||
@@ -245,25 +264,31 @@ static int take(const row_t *r, const char *arg)
     void *dest = dest_of(r);
     int rc = SW_EXIT_OK;
     switch (o->kind) {
-    case SW_CLI_FLAG: *(int *)dest = o->value; break;
-    case SW_CLI_STRING:
-        if (o->fn) rc = o->fn(o, arg, dest);
-        if (rc == SW_EXIT_OK) *(const char **)dest = arg;
-        break;
-    case SW_CLI_LIST:
-        if (o->fn) rc = o->fn(o, arg, dest);
-        if (rc == SW_EXIT_OK) rc = list_append(dest, arg);
-        break;
-    case SW_CLI_DOUBLE:
-        rc = sw_cli_opt_double(o, arg, dest);
-        if (rc == SW_EXIT_OK && o->fn) rc = o->fn(o, arg, dest);
-        break;
-    case SW_CLI_LONG:
-        rc = sw_cli_opt_long(o, arg, dest);
-        if (rc == SW_EXIT_OK && o->fn) rc = o->fn(o, arg, dest);
-        break;
-    case SW_CLI_CALL: rc = o->fn(o, arg, dest); break;
-    default: break;
+        case SW_CLI_FLAG: *(int *)dest = o->value; break;
+        case SW_CLI_STRING:
+            if (o->fn)
+                rc = o->fn(o, arg, dest);
+            if (rc == SW_EXIT_OK)
+                *(const char **)dest = arg;
+            break;
+        case SW_CLI_LIST:
+            if (o->fn)
+                rc = o->fn(o, arg, dest);
+            if (rc == SW_EXIT_OK)
+                rc = list_append(dest, arg);
+            break;
+        case SW_CLI_DOUBLE:
+            rc = sw_cli_opt_double(o, arg, dest);
+            if (rc == SW_EXIT_OK && o->fn)
+                rc = o->fn(o, arg, dest);
+            break;
+        case SW_CLI_LONG:
+            rc = sw_cli_opt_long(o, arg, dest);
+            if (rc == SW_EXIT_OK && o->fn)
+                rc = o->fn(o, arg, dest);
+            break;
+        case SW_CLI_CALL: rc = o->fn(o, arg, dest); break;
+        default: break;
     }
     return rc;
 }
@@ -302,7 +327,8 @@ static int build_table(table_t *t, sw_cli_group_t *g, size_t n)
 {
     size_t count = 0;
     for (size_t i = 0; i < n; i++)
-        for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) count += is_option(o);
+        for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++)
+            count += is_option(o);
     t->rows = calloc(count + 1, sizeof *t->rows);
     t->longopts = calloc(count + 1, sizeof *t->longopts);
     t->shortopts = calloc(3 * count + 2, 1);
@@ -314,14 +340,15 @@ static int build_table(table_t *t, sw_cli_group_t *g, size_t n)
     *s++ = ':';
     for (size_t i = 0; i < n; i++)
         for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) {
-            if (!is_option(o)) continue;
+            if (!is_option(o))
+                continue;
             const int has_arg = o->arg ? required_argument : no_argument;
             t->rows[t->n] = (row_t){o, &g[i]};
-            t->longopts[t->n] = (struct option){o->long_name, has_arg, NULL,
-                                                ROW_CODE + (int)t->n};
+            t->longopts[t->n] = (struct option){o->long_name, has_arg, NULL, ROW_CODE + (int)t->n};
             if (o->short_name) {
                 *s++ = (char)o->short_name;
-                if (o->arg) *s++ = ':';
+                if (o->arg)
+                    *s++ = ':';
             }
             t->n++;
         }
@@ -341,8 +368,10 @@ static void store_defaults(const table_t *t)
 {
     for (size_t k = 0; k < t->n; k++) {
         const row_t *r = &t->rows[k];
-        if (r->o->kind == SW_CLI_DOUBLE) *(double *)dest_of(r) = r->o->def;
-        if (r->o->kind == SW_CLI_LONG) *(long *)dest_of(r) = (long)r->o->def;
+        if (r->o->kind == SW_CLI_DOUBLE)
+            *(double *)dest_of(r) = r->o->def;
+        if (r->o->kind == SW_CLI_LONG)
+            *(long *)dest_of(r) = (long)r->o->def;
     }
 }
 
@@ -351,7 +380,8 @@ int sw_cli_parse(const sw_cli_command_t *cmd, sw_cli_group_t *g, size_t n, int a
 {
     table_t t = {0};
     int rc = build_table(&t, g, n);
-    if (rc != SW_EXIT_OK) goto out;
+    if (rc != SW_EXIT_OK)
+        goto out;
     store_defaults(&t);
     for (size_t i = 0; i < n; i++) {
         g[i].given = NULL;
@@ -365,7 +395,8 @@ int sw_cli_parse(const sw_cli_command_t *cmd, sw_cli_group_t *g, size_t n, int a
         if (c >= ROW_CODE && (size_t)(c - ROW_CODE) < t.n)
             r = &t.rows[c - ROW_CODE];
         for (size_t k = 0; !r && c != '?' && c != ':' && k < t.n; k++)
-            if (t.rows[k].o->short_name == c) r = &t.rows[k];
+            if (t.rows[k].o->short_name == c)
+                r = &t.rows[k];
         if (!r) {
             rc = misuse(c, argv);
             goto out;
@@ -381,7 +412,8 @@ int sw_cli_parse(const sw_cli_command_t *cmd, sw_cli_group_t *g, size_t n, int a
             goto out;
         }
         rc = take(r, optarg);
-        if (rc != SW_EXIT_OK) goto out;
+        if (rc != SW_EXIT_OK)
+            goto out;
     }
     *operand = optind;
     rc = SW_CLI_CONTINUE;
@@ -404,9 +436,10 @@ void sw_cli_parse_free(const sw_cli_group_t *g, size_t n)
 const char *sw_cli_log_operand(const char *cmd, int argc, char **argv, int first)
 {
     if (first >= argc) {
-        sw_cli_error("%s: missing LOG (a CSV file, or - for standard input); see 'swaywatch %s "
-                     "--help'",
-                     cmd, cmd);
+        sw_cli_error(
+            "%s: missing LOG (a CSV file, or - for standard input); see 'swaywatch %s "
+            "--help'",
+            cmd, cmd);
         return NULL;
     }
     if (first + 1 < argc) {
@@ -418,7 +451,8 @@ const char *sw_cli_log_operand(const char *cmd, int argc, char **argv, int first
 
 int sw_cli_no_operand(const char *cmd, int argc, char **argv, int first)
 {
-    if (first >= argc) return SW_EXIT_OK;
+    if (first >= argc)
+        return SW_EXIT_OK;
     sw_cli_error("%s: unexpected argument '%s'; see 'swaywatch %s --help'", cmd, argv[first], cmd);
     return SW_EXIT_USAGE;
 }
@@ -434,7 +468,8 @@ static int visible(const sw_cli_group_t *g, const sw_cli_option_t *o)
 static int label(char *buf, size_t len, const sw_cli_option_t *o)
 {
     char sh[8] = "    ";
-    if (o->short_name) snprintf(sh, sizeof sh, "-%c, ", o->short_name);
+    if (o->short_name)
+        snprintf(sh, sizeof sh, "-%c, ", o->short_name);
     return snprintf(buf, len, "  %s--%s%s%s", sh, o->long_name, o->arg ? " " : "",
                     o->arg ? o->arg : "");
 }
@@ -456,8 +491,8 @@ static void help_text(char *buf, size_t len, const sw_cli_option_t *o)
     if (has_range(o) && used < len) {
         char r[96];
         range_text(r, sizeof r, o);
-        snprintf(buf + used, len - used, " (%s%s)", o->rule == SW_NUM_NONNEGATIVE && o->lo > 0.0
-                                                        ? "" : "range ", r);
+        snprintf(buf + used, len - used, " (%s%s)",
+                 o->rule == SW_NUM_NONNEGATIVE && o->lo > 0.0 ? "" : "range ", r);
     }
 }
 
@@ -481,9 +516,11 @@ static void wrap(FILE *f, const char *text, int col)
                         cut = i;
                         break;
                     }
-            if (cut == 0) cut = (int)strcspn(text, " "); /* no place to cut: the word whole */
+            if (cut == 0)
+                cut = (int)strcspn(text, " "); /* no place to cut: the word whole */
         }
-        if (!first) fprintf(f, "%*s", col, "");
+        if (!first)
+            fprintf(f, "%*s", col, "");
         fprintf(f, "%.*s\n", cut, text);
         text += cut;
         while (*text == ' ') text++;
@@ -497,9 +534,11 @@ static int help_column(const sw_cli_group_t *g, size_t n)
     char buf[128];
     for (size_t i = 0; i < n; i++)
         for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) {
-            if (!is_option(o) || !visible(&g[i], o)) continue;
+            if (!is_option(o) || !visible(&g[i], o))
+                continue;
             int w = label(buf, sizeof buf, o) + 2;
-            if (w > col) col = w;
+            if (w > col)
+                col = w;
         }
     return col < HELP_COLUMN ? col : HELP_COLUMN;
 }
@@ -510,13 +549,18 @@ static void print_section(FILE *f, const char *title, const sw_cli_group_t *g, s
     fprintf(f, "\n%s\n", title);
     for (int texts = 0; texts < 2; texts++)
         for (size_t i = 0; i < n; i++) {
-            if (g[i].flags & SW_CLI_HIDDEN) continue;
+            if (g[i].flags & SW_CLI_HIDDEN)
+                continue;
             const char *sec = g[i].section;
             for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) {
-                if (o->kind == SW_CLI_SECTION) sec = o->help;
-                if (!sec || strcmp(sec, title) != 0 || !visible(&g[i], o)) continue;
-                if (texts && o->kind == SW_CLI_TEXT) fprintf(f, "%s\n", o->help);
-                if (texts || !is_option(o)) continue;
+                if (o->kind == SW_CLI_SECTION)
+                    sec = o->help;
+                if (!sec || strcmp(sec, title) != 0 || !visible(&g[i], o))
+                    continue;
+                if (texts && o->kind == SW_CLI_TEXT)
+                    fprintf(f, "%s\n", o->help);
+                if (texts || !is_option(o))
+                    continue;
                 char lab[128], help[1024];
                 int w = label(lab, sizeof lab, o);
                 if (w + 2 > col)
@@ -537,18 +581,23 @@ void sw_cli_print_help(FILE *f, const sw_cli_command_t *cmd, const sw_cli_group_
     const char *titles[MAX_SECTIONS];
     size_t nt = 0;
     for (size_t i = 0; i < n; i++) {
-        if (g[i].flags & SW_CLI_HIDDEN) continue;
+        if (g[i].flags & SW_CLI_HIDDEN)
+            continue;
         const char *sec = g[i].section;
         for (const sw_cli_option_t *o = g[i].rows; o->kind != SW_CLI_END; o++) {
-            if (o->kind == SW_CLI_SECTION) sec = o->help;
-            if (o->kind == SW_CLI_SECTION || !sec || !visible(&g[i], o)) continue;
+            if (o->kind == SW_CLI_SECTION)
+                sec = o->help;
+            if (o->kind == SW_CLI_SECTION || !sec || !visible(&g[i], o))
+                continue;
             size_t k = 0;
             while (k < nt && strcmp(titles[k], sec) != 0) k++;
-            if (k == nt && nt < MAX_SECTIONS) titles[nt++] = sec;
+            if (k == nt && nt < MAX_SECTIONS)
+                titles[nt++] = sec;
         }
     }
     fprintf(f, "usage: swaywatch %s\n", cmd->usage);
-    if (cmd->about) fprintf(f, "\n%s", cmd->about);
+    if (cmd->about)
+        fprintf(f, "\n%s", cmd->about);
     const int col = help_column(g, n);
     for (size_t k = 0; k < nt; k++) print_section(f, titles[k], g, n, col);
     if (cmd->exit_text) {
@@ -558,10 +607,11 @@ void sw_cli_print_help(FILE *f, const sw_cli_command_t *cmd, const sw_cli_group_
     fprintf(f, "\nExit codes: 0 ok");
     if (cmd->exits & SW_CLI_EXIT_OVERTURN)
         fprintf(f, ", 1 a package overturned and --fail-on-overturn was given");
-    fprintf(f, ",\n2 bad usage or bad input (options, scene files%s%s),\n"
-               "3 a file could not be read or written,\n"
-               "130 or 143 stopped by SIGINT or SIGTERM (the output files end with a whole row;\n"
-               "the summary, marked INTERRUPTED, covers the input up to there).\n",
+    fprintf(f,
+            ",\n2 bad usage or bad input (options, scene files%s%s),\n"
+            "3 a file could not be read or written,\n"
+            "130 or 143 stopped by SIGINT or SIGTERM (the output files end with a whole row;\n"
+            "the summary, marked INTERRUPTED, covers the input up to there).\n",
             cmd->exits & SW_CLI_EXIT_STRICT ? ", rows under --strict" : "",
             cmd->exits & SW_CLI_EXIT_OVERTURN
                 ? ";\nwith --fail-on-overturn also a package whose model faulted: no verdict"

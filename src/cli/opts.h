@@ -100,8 +100,14 @@ typedef struct {
 
 /* A group of rows into base; in section sec (the rows before the table's
  * first SECTION row). */
-#define SW_CLI_GROUP(rows_, base_) {.rows = (rows_), .base = (base_)}
-#define SW_CLI_GROUP_IN(rows_, base_, sec) {.rows = (rows_), .base = (base_), .section = (sec)}
+#define SW_CLI_GROUP(rows_, base_)       \
+    {                                    \
+        .rows = (rows_), .base = (base_) \
+    }
+#define SW_CLI_GROUP_IN(rows_, base_, sec)                 \
+    {                                                      \
+        .rows = (rows_), .base = (base_), .section = (sec) \
+    }
 
 /* What --help says besides the options. */
 enum { SW_CLI_EXIT_OVERTURN = 1, SW_CLI_EXIT_STRICT = 2 };

@@ -10,12 +10,12 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <signal.h>
 #include <string.h>
-#include <time.h>
 #include <sys/stat.h>
+#include <time.h>
 
 /* ---- output files ---------------------------------------------------------- */
 
@@ -43,7 +43,8 @@ int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in
         return SW_EXIT_USAGE;
     }
     if ((is_stdout(out_path) || is_stdout(events_path)) && (json || !quiet)) {
-        sw_cli_error("--%s -: standard output carries the %s", is_stdout(out_path) ? "out" : "events",
+        sw_cli_error("--%s -: standard output carries the %s",
+                     is_stdout(out_path) ? "out" : "events",
                      json ? "JSON summary (--json)" : "summary; add -q to leave it out");
         return SW_EXIT_USAGE;
     }
@@ -78,7 +79,8 @@ void sw_cli_csv_text(FILE *f, const char *s)
     }
     fputc('"', f);
     for (; *s; s++) {
-        if (*s == '"') fputc('"', f);
+        if (*s == '"')
+            fputc('"', f);
         fputc(*s, f);
     }
     fputc('"', f);
@@ -118,15 +120,18 @@ const char *sw_cli_out_name(const char *path)
 
 FILE *sw_cli_out_open(const char *path)
 {
-    if (is_stdout(path)) return stdout;
+    if (is_stdout(path))
+        return stdout;
     FILE *f = fopen(path, "w");
-    if (!f) sw_cli_error("%s: cannot create: %s", path, strerror(errno));
+    if (!f)
+        sw_cli_error("%s: cannot create: %s", path, strerror(errno));
     return f;
 }
 
 int sw_cli_out_close(FILE *f, const char *path)
 {
-    if (!f) return SW_EXIT_OK;
+    if (!f)
+        return SW_EXIT_OK;
     int bad = ferror(f);
     int saved = errno;
     /* Standard output stays open: main() checks it once more at the end. */
@@ -149,7 +154,8 @@ int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const s
     w->scenes = scenes;
     w->n = n;
     w->every = every > 0 ? every : 1;
-    if (!path) return SW_EXIT_OK;
+    if (!path)
+        return SW_EXIT_OK;
     w->seen = calloc(n ? n : 1, sizeof *w->seen);
     if (!w->seen) {
         sw_cli_error("out of memory");
@@ -161,16 +167,19 @@ int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const s
         w->seen = NULL;
         return SW_EXIT_IO;
     }
-    fputs("t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,uplift_ratio,a_g,"
-          "reserve_g\n",
-          w->f);
+    fputs(
+        "t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,uplift_ratio,a_g,"
+        "reserve_g\n",
+        w->f);
     return SW_EXIT_OK;
 }
 
 void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *o)
 {
-    if (!w->f) return;
-    if (o->pkg < w->n && w->seen[o->pkg]++ % w->every != 0) return;
+    if (!w->f)
+        return;
+    if (o->pkg < w->n && w->seen[o->pkg]++ % w->every != 0)
+        return;
     const sw_state_t *s = &o->state;
     long *nf = &w->nonfinite;
     if (isfinite(o->t))
@@ -215,7 +224,8 @@ int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_en
     w->path = path;
     w->n = n;
     w->every = every > 0 ? every : 1;
-    if (!path) return SW_EXIT_OK;
+    if (!path)
+        return SW_EXIT_OK;
     w->alpha = calloc(n ? n : 1, sizeof *w->alpha);
     w->row = calloc(n ? n : 1, sizeof *w->row);
     w->have = calloc(n ? n : 1, 1);
@@ -227,10 +237,10 @@ int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_en
         const sw_derived_t *d = sw_engine_derived(e, i);
         w->alpha[i] = d ? d->alpha : NAN;
     }
-    if (!(w->f = sw_cli_out_open(path))) return SW_EXIT_IO;
-    static const char *const cols[] = {"phase",        "theta",        "theta_dot",
-                                       "ratio",        "margin",       "margin_bound",
-                                       "uplift_ratio", "reserve_g"};
+    if (!(w->f = sw_cli_out_open(path)))
+        return SW_EXIT_IO;
+    static const char *const cols[] = {"phase",  "theta",        "theta_dot",    "ratio",
+                                       "margin", "margin_bound", "uplift_ratio", "reserve_g"};
     fputs("t,a_g", w->f);
     for (size_t i = 0; i < n; i++) {
         long same = 0; /* earlier packages of the same name */
@@ -254,11 +264,13 @@ int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_en
 /* Write the gathered row (unless --every skips it) and start afresh. */
 static void wide_flush(sw_cli_wide_t *w)
 {
-    if (!w->open) return;
+    if (!w->open)
+        return;
     w->open = 0;
     int first = -1, missing = 0;
     for (size_t i = 0; i < w->n; i++) {
-        if (w->have[i] && first < 0) first = (int)i;
+        if (w->have[i] && first < 0)
+            first = (int)i;
         missing += !w->have[i];
     }
     if (w->seen++ % w->every == 0 && first >= 0) {
@@ -293,29 +305,33 @@ static void wide_flush(sw_cli_wide_t *w)
 
 void sw_cli_wide_write(sw_cli_wide_t *w, const sw_output_t *o)
 {
-    if (!w->f || o->pkg >= w->n) return;
+    if (!w->f || o->pkg >= w->n)
+        return;
     /* a new instant, or this package again: the row so far is complete */
     if (w->open) {
         size_t k = 0;
         while (k < w->n && !w->have[k]) k++;
-        if (w->have[o->pkg] || (k < w->n && w->row[k].t != o->t)) wide_flush(w);
+        if (w->have[o->pkg] || (k < w->n && w->row[k].t != o->t))
+            wide_flush(w);
     }
     w->row[o->pkg] = *o;
     w->have[o->pkg] = 1;
     w->open = 1;
-    if (o->pkg == w->n - 1) wide_flush(w);
+    if (o->pkg == w->n - 1)
+        wide_flush(w);
 }
 
 int sw_cli_wide_close(sw_cli_wide_t *w)
 {
-    if (w->f) wide_flush(w);
+    if (w->f)
+        wide_flush(w);
     int rc = sw_cli_out_close(w->f, w->path);
     if (w->f && w->nonfinite)
         sw_cli_error("%s: %ld non-finite values written as empty fields", sw_cli_out_name(w->path),
                      w->nonfinite);
     if (w->f && w->incomplete)
-        sw_cli_error("%s: %ld rows lack a package's state (empty fields)",
-                     sw_cli_out_name(w->path), w->incomplete);
+        sw_cli_error("%s: %ld rows lack a package's state (empty fields)", sw_cli_out_name(w->path),
+                     w->incomplete);
     free(w->alpha);
     free(w->row);
     free(w->have);
@@ -331,7 +347,8 @@ int sw_cli_check_stdout(const char *const names[], const char *const paths[], si
 {
     const char *on_stdout = NULL;
     for (size_t i = 0; i < n; i++) {
-        if (!is_stdout(paths[i])) continue;
+        if (!is_stdout(paths[i]))
+            continue;
         if (on_stdout) {
             sw_cli_error("%s and %s cannot both be standard output", on_stdout, names[i]);
             return SW_EXIT_USAGE;
@@ -352,16 +369,19 @@ int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *s
     w->path = path;
     w->scenes = scenes;
     w->n = n;
-    if (!path) return SW_EXIT_OK;
+    if (!path)
+        return SW_EXIT_OK;
     w->f = sw_cli_out_open(path);
-    if (!w->f) return SW_EXIT_IO;
+    if (!w->f)
+        return SW_EXIT_IO;
     fputs("t,package,event,theta,theta_dot,margin,info\n", w->f);
     return SW_EXIT_OK;
 }
 
 void sw_cli_events_span(sw_cli_events_t *w, size_t pkg, const sw_settle_span_t *span)
 {
-    if (!w->f || w->all_impacts) return; /* its impacts are rows of their own */
+    if (!w->f || w->all_impacts)
+        return; /* its impacts are rows of their own */
     fprintf(w->f, "%.9g,", span->t_start);
     sw_cli_csv_text(w->f, pkg_name(w->scenes, w->n, pkg));
     fprintf(w->f, ",settling,,%.9g,,%ld\n", span->max_speed, span->impacts);
@@ -372,9 +392,12 @@ int sw_cli_events_feed(sw_cli_events_t *w, sw_risk_t *risk, const sw_event_t *ev
 {
     sw_settle_span_t span;
     const int f = risk ? sw_risk_event(risk, ev, &span) : SW_SETTLE_REPORT;
-    if (f < 0) return SW_SETTLE_REPORT; /* a package risk does not know: as it is */
-    if (f & SW_SETTLE_CLOSED) sw_cli_events_span(w, ev->pkg, &span);
-    if ((f & SW_SETTLE_REPORT) || w->all_impacts) sw_cli_events_write(w, ev);
+    if (f < 0)
+        return SW_SETTLE_REPORT; /* a package risk does not know: as it is */
+    if (f & SW_SETTLE_CLOSED)
+        sw_cli_events_span(w, ev->pkg, &span);
+    if ((f & SW_SETTLE_REPORT) || w->all_impacts)
+        sw_cli_events_write(w, ev);
     return w->all_impacts ? f | SW_SETTLE_REPORT : f;
 }
 
@@ -382,12 +405,14 @@ void sw_cli_events_finish(sw_cli_events_t *w, sw_risk_t *risk, size_t n)
 {
     sw_settle_span_t span;
     for (size_t k = 0; risk && k < n; k++)
-        if (sw_risk_finish(risk, k, &span)) sw_cli_events_span(w, k, &span);
+        if (sw_risk_finish(risk, k, &span))
+            sw_cli_events_span(w, k, &span);
 }
 
 void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev)
 {
-    if (!w->f) return;
+    if (!w->f)
+        return;
     long *nf = &w->nonfinite;
     if (isfinite(ev->t))
         fprintf(w->f, "%.9g,", ev->t);

@@ -38,9 +38,9 @@ typedef struct {
     const sw_scene_t *scenes; /* for package names */
     size_t n;
     long every;
-    long *seen;      /* per package: rows offered, for --every */
-    long rows;       /* rows written */
-    long nonfinite;  /* fields left empty because the value was not finite */
+    long *seen;            /* per package: rows offered, for --every */
+    long rows;             /* rows written */
+    long nonfinite;        /* fields left empty because the value was not finite */
     const sw_risk_t *risk; /* the reserve column's source; NULL: empty */
 } sw_cli_states_t;
 
@@ -56,11 +56,10 @@ int sw_cli_states_close(sw_cli_states_t *w);
 /* --wide: the state series one row per output instant, a column group per
  * package, for a plain plot or a spreadsheet: t,a_g, then for each package
  * P: P.phase,P.theta,P.theta_dot,P.ratio,P.margin,P.margin_bound,
- * P.uplift_ratio,P.reserve_g (ratio = theta/alpha; reserve_g as --out's).  The engine reports every package
- * at each instant, in order: a row is written when the last package's
- * state arrives, or when the time moves on before it (the missing fields
- * left empty and counted).  Packages of the same name are told apart as
- * NAME#2, NAME#3, ... --every keeps every Nth row. */
+ * P.uplift_ratio,P.reserve_g (ratio = theta/alpha; reserve_g as --out's).  The engine reports every
+ * package at each instant, in order: a row is written when the last package's state arrives, or
+ * when the time moves on before it (the missing fields left empty and counted).  Packages of the
+ * same name are told apart as NAME#2, NAME#3, ... --every keeps every Nth row. */
 typedef struct {
     FILE *f;
     const char *path;
@@ -114,7 +113,6 @@ int sw_cli_events_feed(sw_cli_events_t *w, sw_risk_t *risk, const sw_event_t *ev
 void sw_cli_events_finish(sw_cli_events_t *w, sw_risk_t *risk, size_t n);
 int sw_cli_events_close(sw_cli_events_t *w);
 
-
 /* What fed the engine, for the summaries. */
 typedef struct {
     const char *log;         /* LOG as given ("-" for stdin), or NULL */
@@ -126,11 +124,11 @@ typedef struct {
     /* a log's facts (the input gate's), and its verdict's check */
     int have_facts;
     sw_gate_facts_t facts;
-    int forced;              /* the plausibility check refused; --force gave the verdict */
-    char check[320];         /* its reason, or a warning (a low rate); "" none */
-    int interrupted;         /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
-                                the summaries say so, and up to which time they cover */
-    const sw_risk_t *risk;   /* reserves and impacts that matter (NULL: none) */
+    int forced;            /* the plausibility check refused; --force gave the verdict */
+    char check[320];       /* its reason, or a warning (a low rate); "" none */
+    int interrupted;       /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
+                              the summaries say so, and up to which time they cover */
+    const sw_risk_t *risk; /* reserves and impacts that matter (NULL: none) */
 } sw_cli_run_t;
 
 /* A package's smallest reserve, in g, and what it means: one line (two

@@ -32,7 +32,8 @@ int sw_cli_plot_check(const sw_cli_option_t *o, const char *path, void *dest)
 {
     (void)dest;
     const char *ext = ext_of(path);
-    if (!strcmp(ext, "png") || !strcmp(ext, "svg")) return SW_EXIT_OK;
+    if (!strcmp(ext, "png") || !strcmp(ext, "svg"))
+        return SW_EXIT_OK;
     sw_cli_error("--%s: '%s': the file name must end in .png or .svg", o->long_name, path);
     return SW_EXIT_USAGE;
 }
@@ -42,7 +43,8 @@ void sw_cli_plot_string(FILE *f, const char *s)
     /* gnuplot single-quoted string: no escapes but '' for a quote */
     fputc('\'', f);
     for (; *s; s++) {
-        if (*s == '\'') fputc('\'', f);
+        if (*s == '\'')
+            fputc('\'', f);
         fputc(*s, f);
     }
     fputc('\'', f);
@@ -58,7 +60,8 @@ void sw_cli_plot_text(FILE *f, const char *s)
             fputs("''", f);
             continue;
         }
-        if (strchr("_^{}@&~\\", *s)) fputc('\\', f);
+        if (strchr("_^{}@&~\\", *s))
+            fputc('\\', f);
         fputc(*s, f);
     }
     fputc('\'', f);
@@ -125,7 +128,8 @@ FILE *sw_cli_plot_file(sw_plot_t *p)
 
 int sw_cli_plot_close(sw_plot_t *p)
 {
-    if (!p) return SW_EXIT_OK;
+    if (!p)
+        return SW_EXIT_OK;
     int rc = SW_EXIT_OK;
     fputs("unset output\n", p->gp);
     int st = pclose(p->gp);
@@ -141,9 +145,11 @@ int sw_cli_plot_close(sw_plot_t *p)
         char line[512];
         for (int n = 0; e && n < 20 && fgets(line, sizeof line, e); n++) {
             line[strcspn(line, "\n")] = '\0';
-            if (line[0]) sw_cli_error("gnuplot: %s", line);
+            if (line[0])
+                sw_cli_error("gnuplot: %s", line);
         }
-        if (e) fclose(e);
+        if (e)
+            fclose(e);
         rc = SW_EXIT_IO;
     }
     unlink(p->errfile);

@@ -63,8 +63,9 @@ static void reserve(FILE *f, const sw_risk_pkg_t *p)
     fprintf(f, "<p><b>Smallest reserve %.3g g</b> at %.3f s (standing at rest: %.3g g): ",
             p->min_reserve_g, p->min_reserve_time, p->rest_reserve_g);
     if (p->min_reserve_g > 0.0)
-        fprintf(f, "from its state then, a %s half-sine pulse of %.3g s and %.3g g would have "
-                   "overturned it.</p>",
+        fprintf(f,
+                "from its state then, a %s half-sine pulse of %.3g s and %.3g g would have "
+                "overturned it.</p>",
                 p->min_direction == SW_RESERVE_ACCELERATING ? "speeding-up" : "braking",
                 p->min_pulse, p->min_reserve_g);
     else

@@ -36,7 +36,8 @@ static int check_set(const sw_cli_option_t *o, const char *arg, void *dest)
 static int check_scheme(const sw_cli_option_t *o, const char *name, void *dest)
 {
     (void)dest;
-    if (sw_scheme_lookup(name)) return SW_EXIT_OK;
+    if (sw_scheme_lookup(name))
+        return SW_EXIT_OK;
     FILE *m = sw_cli_msg();
     fprintf(m, "swaywatch: --%s: unknown scheme '%s'; valid:", o->long_name, name);
     for (size_t i = 0; sw_scheme_at(i); i++)
@@ -51,7 +52,8 @@ static void scheme_help(char *buf, size_t len)
     for (size_t i = 0; sw_scheme_at(i) && k > 0 && (size_t)k < len; i++)
         k += snprintf(buf + k, len - (size_t)k, "%s %s", i ? "," : "",
                       sw_scheme_name(sw_scheme_at(i)));
-    if (k > 0 && (size_t)k < len) snprintf(buf + k, len - (size_t)k, " (default %s)", SW_DEFAULT_SCHEME);
+    if (k > 0 && (size_t)k < len)
+        snprintf(buf + k, len - (size_t)k, " (default %s)", SW_DEFAULT_SCHEME);
 }
 
 #define OPTS(f) SW_CLI_AT(sw_cli_opts_t, f)
@@ -67,8 +69,7 @@ const sw_cli_option_t sw_cli_scene_options[] = {
 
 const sw_cli_option_t sw_cli_integration_options[] = {
     {SW_CLI_SECTION, .help = "Integration:"},
-    {SW_CLI_STRING, 0, "scheme", "NAME", OPTS(scheme), .fn = check_scheme,
-     .help_fn = scheme_help},
+    {SW_CLI_STRING, 0, "scheme", "NAME", OPTS(scheme), .fn = check_scheme, .help_fn = scheme_help},
     {SW_CLI_DOUBLE, 0, "dt", "SECONDS", OPTS(dt), .rule = SW_NUM_POSITIVE, .lo = 1e-7, .hi = 1,
      .what = "a positive number of seconds",
      .help = "internal step; refused if above the scheme's stability bound (default: the "
@@ -98,7 +99,8 @@ const sw_cli_option_t sw_cli_accuracy_options[] = {
 const sw_cli_option_t sw_cli_output_options[] = {
     {SW_CLI_SECTION, .help = "Output:"},
     {SW_CLI_STRING, 'o', "out", "FILE.csv", OPTS(out_path),
-     .help = "state time series ('-': standard output): t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,"
+     .help = "state time series ('-': standard output): "
+             "t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,"
              "margin_bound,uplift_ratio,a_g,reserve_g (SI units, rad; the reserve in g, the "
              "latest evaluation)"},
     {SW_CLI_LONG, 0, "every", "N", OPTS(every), .min = 1, .def = 1,
@@ -212,7 +214,8 @@ static int read_text(const char *path, char **text)
     char *buf = NULL;
     size_t len = 0;
     FILE *f = open_regular(path, &rc);
-    if (!f) goto out;
+    if (!f)
+        goto out;
     rc = SW_EXIT_IO;
     buf = malloc((size_t)SCENE_MAX_BYTES + 1);
     if (!buf) {
@@ -240,7 +243,8 @@ static int read_text(const char *path, char **text)
     rc = SW_EXIT_OK;
 out:
     free(buf);
-    if (f) fclose(f);
+    if (f)
+        fclose(f);
     return rc;
 }
 
@@ -274,14 +278,16 @@ int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n)
         free(text);
         text = NULL;
         if (pr != SW_OK) {
-            if (diag.errors == before) sw_cli_error("%s: %s", path, sw_strerror(pr));
+            if (diag.errors == before)
+                sw_cli_error("%s: %s", path, sw_strerror(pr));
             diag.errors++;
             continue; /* report every file's problems before giving up */
         }
         for (size_t k = 0; k < o->sets.n; k++) {
             before = diag.errors;
             if (sw_scene_set_arg(&sc[i], o->sets.v[k], sw_cli_print_diag, &diag) != SW_OK) {
-                if (diag.errors == before) sw_cli_error("--set %s: rejected", o->sets.v[k]);
+                if (diag.errors == before)
+                    sw_cli_error("--set %s: rejected", o->sets.v[k]);
                 /* The same override would fail the same way on every scene. */
                 goto out;
             }
@@ -295,11 +301,13 @@ int sw_cli_load_scenes(const sw_cli_opts_t *o, sw_scene_t **scenes, size_t *n)
         }
         before = diag.errors;
         if (sw_scene_validate(&sc[i], NULL, path, sw_cli_print_diag, &diag) != SW_OK) {
-            if (diag.errors == before) sw_cli_error("%s: invalid scene", path);
+            if (diag.errors == before)
+                sw_cli_error("%s: invalid scene", path);
             diag.errors++;
         }
     }
-    if (diag.errors) goto out;
+    if (diag.errors)
+        goto out;
     *scenes = sc;
     *n = o->scenes.n;
     sc = NULL;
@@ -327,10 +335,12 @@ void sw_cli_engine_opts(const sw_cli_opts_t *o, sw_engine_opts_t *eo)
 int sw_cli_resolve_accuracy(const sw_cli_opts_t *o, const sw_scene_t *scenes, size_t n,
                             sw_engine_opts_t *eo)
 {
-    if (!(o->accuracy > 0.0)) return SW_EXIT_OK;
+    if (!(o->accuracy > 0.0))
+        return SW_EXIT_OK;
     if (o->scheme || o->dt > 0.0) {
-        sw_cli_error("--accuracy chooses the scheme and the step: give it without --scheme and "
-                     "--dt");
+        sw_cli_error(
+            "--accuracy chooses the scheme and the step: give it without --scheme and "
+            "--dt");
         return SW_EXIT_USAGE;
     }
     /* The engine applies the policy (so do the sweeps' engines, each for
@@ -359,8 +369,10 @@ sw_risk_t *sw_cli_risk_create(const sw_cli_opts_t *o, const sw_scene_t *scenes, 
     int err = SW_OK;
     char msg[512] = "";
     sw_risk_t *r = sw_risk_create(scenes, n, &ro, &err, msg, sizeof msg);
-    if (!r) sw_cli_error("cannot start the reserve: %s", msg[0] ? msg : sw_strerror(err));
-    else sw_cli_warn_no_reserve(r, 0, n, scenes);
+    if (!r)
+        sw_cli_error("cannot start the reserve: %s", msg[0] ? msg : sw_strerror(err));
+    else
+        sw_cli_warn_no_reserve(r, 0, n, scenes);
     return r;
 }
 
@@ -369,7 +381,9 @@ sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_e
     int err = 0;
     char msg[512] = "";
     sw_engine_t *e = sw_engine_create(scenes, n, eo, &err, msg, sizeof msg);
-    if (!e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
-    else sw_cli_warn_scene_cost(scenes, n, eo);
+    if (!e)
+        sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+    else
+        sw_cli_warn_scene_cost(scenes, n, eo);
     return e;
 }

@@ -31,8 +31,8 @@ void sw_cli_read_opts_init(sw_cli_read_opts_t *o)
  * works. */
 const sw_cli_option_t sw_cli_channel_options[] = {
     {SW_CLI_STRING, 0, "accel-channel", "REGEX", RD(channel),
-     .help = "accel channel: a name or an anchored regex, as LCM subscribes (default "
-             SW_MON_ACCEL_CHANNEL ")"},
+     .help = "accel channel: a name or an anchored regex, as LCM subscribes "
+             "(default " SW_MON_ACCEL_CHANNEL ")"},
     {SW_CLI_STRING, 0, "channel", "REGEX", RD(channel), .flags = SW_CLI_HIDDEN},
     {SW_CLI_END},
 };
@@ -44,12 +44,15 @@ sw_cli_given_t sw_cli_source_given(const sw_cli_group_t *g, size_t ng,
     sw_cli_given_t out = {NULL, NULL};
     const sw_cli_group_t *lcm = NULL;
     for (size_t i = 0; i < ng; i++) {
-        if (!g[i].given) continue;
-        if (g[i].rows == sw_cli_csv_options) out.csv = g[i].given->long_name;
+        if (!g[i].given)
+            continue;
+        if (g[i].rows == sw_cli_csv_options)
+            out.csv = g[i].given->long_name;
 #ifdef SW_HAVE_LCM
         int only = g[i].rows == sw_cli_channel_options || g[i].rows == sw_cli_lcm_input_options;
         for (size_t k = 0; extra && extra[k]; k++) only |= g[i].rows == extra[k];
-        if (only && (!lcm || g[i].given_at < lcm->given_at)) lcm = &g[i];
+        if (only && (!lcm || g[i].given_at < lcm->given_at))
+            lcm = &g[i];
 #else
         (void)extra;
 #endif
@@ -60,14 +63,15 @@ sw_cli_given_t sw_cli_source_given(const sw_cli_group_t *g, size_t ng,
 
 /* ---- opening --------------------------------------------------------------------- */
 
-int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_opts_t *o,
-                       int quiet, sw_cli_given_t given)
+int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_opts_t *o, int quiet,
+                       sw_cli_given_t given)
 {
     int rc;
     R->log = log;
     R->o = o;
     R->quiet = quiet;
-    if ((rc = sw_cli_logfile_open(&R->lf, log)) != SW_EXIT_OK) return rc;
+    if ((rc = sw_cli_logfile_open(&R->lf, log)) != SW_EXIT_OK)
+        return rc;
     R->src = sw_cli_logfile_source(&R->lf);
     if (!R->src->available) {
         sw_cli_error("%s: lcm-logger files need the LCM build", log);
@@ -78,8 +82,8 @@ int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_op
         return SW_EXIT_USAGE;
     }
     if (R->src->kind == SW_CLI_SRC_CSV && given.lcm) {
-        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log",
-                     R->lf.name, given.lcm);
+        sw_cli_error("%s: option '--%s' is for lcm-logger files, and this is a CSV log", R->lf.name,
+                     given.lcm);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
@@ -88,7 +92,8 @@ int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_op
 int sw_cli_reader_prepare(sw_cli_reader_t *R)
 {
 #ifdef SW_HAVE_LCM
-    if (R->src->kind != SW_CLI_SRC_LCMLOG) return SW_EXIT_OK;
+    if (R->src->kind != SW_CLI_SRC_LCMLOG)
+        return SW_EXIT_OK;
     int err = 0;
     R->regions = (sw_cli_regions_t){.name = R->lf.name, .quiet = R->quiet};
     const sw_lcmlog_opts_t lo = {
@@ -100,15 +105,17 @@ int sw_cli_reader_prepare(sw_cli_reader_t *R)
     };
     /* The log as opened, its first chunk included: a pipe is read once. */
     R->lcmlog = sw_lcmlog_open_stream(R->lf.in, R->lf.buf, R->lf.len, &lo, &err);
-    if (R->lcmlog) return SW_EXIT_OK;
+    if (R->lcmlog)
+        return SW_EXIT_OK;
     if (err == SW_EINVAL)
         sw_cli_error("--accel-channel: not a valid regular expression: '%s'", R->o->channel);
     else if (err == SW_ENOMEM)
         sw_cli_error("out of memory");
     else if (err == SW_ETOOBIG)
-        sw_cli_error("%s: a log read from a pipe is copied to a temporary file first, and "
-                     "this one is longer than %lld bytes; give its file name",
-                     R->lf.name, (long long)SW_LCMLOG_SPOOL_MAX);
+        sw_cli_error(
+            "%s: a log read from a pipe is copied to a temporary file first, and "
+            "this one is longer than %lld bytes; give its file name",
+            R->lf.name, (long long)SW_LCMLOG_SPOOL_MAX);
     else
         sw_cli_error("%s: cannot read: %s", R->lf.name, strerror(errno));
     return err == SW_EINVAL || err == SW_ETOOBIG ? SW_EXIT_USAGE : SW_EXIT_IO;
@@ -125,7 +132,8 @@ static int lcmlog_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
                          const sw_engine_opts_t *eo, int shared)
 {
     sw_mon_opts_t mo = R->o->mo;
-    if (sw_cli_mon_gate(&mo, &R->o->gate) != SW_EXIT_OK) return SW_EXIT_USAGE;
+    if (sw_cli_mon_gate(&mo, &R->o->gate) != SW_EXIT_OK)
+        return SW_EXIT_USAGE;
     mo.reserve_rate = R->reserve_rate > 0.0 ? R->reserve_rate : -1.0;
     mo.accel_scale = R->o->copts.csv.accel_scale;
     mo.flip = R->o->copts.csv.flip;
@@ -139,7 +147,8 @@ static int lcmlog_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
         sw_cli_error("cannot start the engine: %s", msg[0] ? msg : "unknown reason");
         return SW_EXIT_USAGE;
     }
-    if (!shared) sw_cli_warn_scene_cost(scenes, n, eo);
+    if (!shared)
+        sw_cli_warn_scene_cost(scenes, n, eo);
     R->e = sw_mon_engine(R->mon);
     return SW_EXIT_OK;
 }
@@ -150,7 +159,8 @@ int sw_cli_reader_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
 {
     R->user = eo->user;
 #ifdef SW_HAVE_LCM
-    if (R->src->kind == SW_CLI_SRC_LCMLOG) return lcmlog_engine(R, scenes, n, eo, shared);
+    if (R->src->kind == SW_CLI_SRC_LCMLOG)
+        return lcmlog_engine(R, scenes, n, eo, shared);
 #endif
     if (!shared) {
         R->e = sw_cli_engine_create(scenes, n, eo);
@@ -158,7 +168,8 @@ int sw_cli_reader_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
         int err = 0;
         char msg[512] = "";
         R->e = sw_engine_create(scenes, n, eo, &err, msg, sizeof msg);
-        if (!R->e) sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+        if (!R->e)
+            sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
     }
     return R->e ? SW_EXIT_OK : SW_EXIT_USAGE;
 }
@@ -173,7 +184,8 @@ int sw_cli_reader_risk(sw_cli_reader_t *R, const sw_cli_opts_t *o, const sw_scen
     }
 #endif
     if (!R->risk) {
-        if (!(R->risk = sw_cli_risk_create(o, scenes, n))) return SW_EXIT_USAGE;
+        if (!(R->risk = sw_cli_risk_create(o, scenes, n)))
+            return SW_EXIT_USAGE;
         R->risk_owned = 1;
     }
     R->run.risk = R->risk;
@@ -189,13 +201,16 @@ static int feed_csv(sw_cli_reader_t *R)
     sw_cli_fed_t fed;
     int rc = sw_cli_feed_csv(&R->lf, &R->o->copts, &R->o->gate, R->e, R->quiet, R->take, R->user,
                              R->halt, &fed);
-    if (rc != SW_EXIT_OK) return rc;
-    if ((R->halted = fed.halted)) return SW_EXIT_OK; /* the command says why */
+    if (rc != SW_EXIT_OK)
+        return rc;
+    if ((R->halted = fed.halted))
+        return SW_EXIT_OK; /* the command says why */
     R->run.samples_read = fed.rows;
     R->run.samples_rejected = fed.rejected;
     R->accepted = fed.facts.accepted;
     R->interrupted = fed.interrupted;
-    if (fed.interrupted) return SW_EXIT_OK; /* no check, no settling: the command says why */
+    if (fed.interrupted)
+        return SW_EXIT_OK; /* no check, no settling: the command says why */
     return sw_cli_feed_verdict(R->lf.name, &fed.facts, &R->o->gate,
                                R->o->copts.csv.vert_col != NULL, R->quiet, &R->run);
 }
@@ -223,28 +238,31 @@ static int feed_lcmlog(sw_cli_reader_t *R)
     R->run.samples_rejected = k.received - k.accepted;
     R->accepted = k.accepted;
     R->interrupted = sw_cli_signal != 0;
-    if (k.accepted == 0 || R->interrupted) return SW_EXIT_OK;
+    if (k.accepted == 0 || R->interrupted)
+        return SW_EXIT_OK;
     sw_gate_facts_t f;
     sw_mon_facts(R->mon, &f);
     f.upstream_rejected = k.received - f.received; /* not accel_t, NaN on an axis */
-    return sw_cli_feed_verdict(R->log, &f, &R->o->gate, R->o->mo.vertical >= 0, R->quiet,
-                               &R->run);
+    return sw_cli_feed_verdict(R->log, &f, &R->o->gate, R->o->mo.vertical >= 0, R->quiet, &R->run);
 }
 #endif
 
 int sw_cli_reader_feed(sw_cli_reader_t *R)
 {
 #ifdef SW_HAVE_LCM
-    if (R->src->kind == SW_CLI_SRC_LCMLOG) return feed_lcmlog(R);
+    if (R->src->kind == SW_CLI_SRC_LCMLOG)
+        return feed_lcmlog(R);
 #endif
     return feed_csv(R);
 }
 
 void sw_cli_reader_settle(sw_cli_reader_t *R, double settle)
 {
-    if (R->interrupted || R->halted || sw_cli_signal || R->accepted <= 0) return;
+    if (R->interrupted || R->halted || sw_cli_signal || R->accepted <= 0)
+        return;
 #ifdef SW_HAVE_LCM
-    if (R->src->kind == SW_CLI_SRC_LCMLOG && !(settle > 0.0)) return;
+    if (R->src->kind == SW_CLI_SRC_LCMLOG && !(settle > 0.0))
+        return;
 #endif
     sw_engine_finish(R->e, settle);
 }
@@ -254,7 +272,8 @@ void sw_cli_reader_settle(sw_cli_reader_t *R, double settle)
 int sw_cli_reader_report(sw_cli_reader_t *R)
 {
 #ifdef SW_HAVE_LCM
-    if (R->src->kind != SW_CLI_SRC_LCMLOG) return SW_EXIT_OK;
+    if (R->src->kind != SW_CLI_SRC_LCMLOG)
+        return SW_EXIT_OK;
     sw_mon_counts_t k;
     sw_mon_counts(R->mon, &k);
     sw_lcmlog_counts_t lc;
@@ -269,13 +288,14 @@ int sw_cli_reader_report(sw_cli_reader_t *R)
         fprintf(m, "swaywatch: %s: accel samples: %ld = accepted %ld + ", R->log, k.received,
                 k.accepted);
         sw_cli_print_rejected(m, &k);
-        fprintf(m, "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
-                   "%ld alarms\n",
+        fprintf(m,
+                "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
+                "%ld alarms\n",
                 k.lost, k.gaps, k.restarts, k.clock_steps, k.states, k.alarms);
     }
-    if (k.accepted > 0) return SW_EXIT_OK;
-    sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", R->log,
-                 R->o->channel);
+    if (k.accepted > 0)
+        return SW_EXIT_OK;
+    sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", R->log, R->o->channel);
     return SW_EXIT_USAGE;
 #else
     (void)R;
@@ -285,12 +305,14 @@ int sw_cli_reader_report(sw_cli_reader_t *R)
 
 void sw_cli_reader_close(sw_cli_reader_t *R)
 {
-    if (R->risk_owned) sw_risk_destroy(R->risk);
+    if (R->risk_owned)
+        sw_risk_destroy(R->risk);
     R->risk = NULL;
     R->risk_owned = 0;
     R->run.risk = NULL;
 #ifdef SW_HAVE_LCM
-    if (R->mon) R->e = NULL; /* the monitor's */
+    if (R->mon)
+        R->e = NULL; /* the monitor's */
     sw_mon_destroy(R->mon);
     sw_lcmlog_close(R->lcmlog);
     R->mon = NULL;

@@ -46,8 +46,8 @@ void sw_cli_read_opts_init(sw_cli_read_opts_t *o);
 /* --accel-channel (and --channel, its old name) into a sw_cli_read_opts_t. */
 extern const sw_cli_option_t sw_cli_channel_options[];
 /* The section of the options of lcm-logger files. */
-#define SW_CLI_LCM_SECTION                                                                         \
-    "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit, --flip\n"             \
+#define SW_CLI_LCM_SECTION                                                            \
+    "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit, --flip\n" \
     "and --strict apply):"
 #endif
 
@@ -63,25 +63,25 @@ sw_cli_given_t sw_cli_source_given(const sw_cli_group_t *g, size_t ng,
                                    const sw_cli_option_t *const *extra);
 
 typedef struct {
-    const char *log;               /* LOG as given */
+    const char *log; /* LOG as given */
     const sw_cli_read_opts_t *o;
     sw_cli_logfile_t lf;
     const sw_cli_source_t *src;
-    sw_engine_t *e;                /* the engine fed (the monitor core's for lcm-logger files) */
-    sw_cli_run_t run;              /* what was read: counts, the log's facts, the check */
+    sw_engine_t *e;   /* the engine fed (the monitor core's for lcm-logger files) */
+    sw_cli_run_t run; /* what was read: counts, the log's facts, the check */
     int quiet;
-    int interrupted;               /* a signal stopped the reading (interrupt.h) */
-    long accepted;                 /* samples the engine got */
-    sw_gate_take_fn take;          /* may be NULL: each sample the engine got, with user */
-    void *user;                    /* eo.user of the engine */
-    double reserve_rate;           /* Hz of the log's time, --reserve-rate (0: no reserve) */
-    sw_risk_t *risk;               /* the reserve, impacts that matter (sw_cli_reader_risk) */
-    int risk_owned;                /* made for a CSV log; else the monitor core's */
+    int interrupted;                   /* a signal stopped the reading (interrupt.h) */
+    long accepted;                     /* samples the engine got */
+    sw_gate_take_fn take;              /* may be NULL: each sample the engine got, with user */
+    void *user;                        /* eo.user of the engine */
+    double reserve_rate;               /* Hz of the log's time, --reserve-rate (0: no reserve) */
+    sw_risk_t *risk;                   /* the reserve, impacts that matter (sw_cli_reader_risk) */
+    int risk_owned;                    /* made for a CSV log; else the monitor core's */
     const volatile sig_atomic_t *halt; /* may be NULL: once non-zero (take has all it can
                                           hold) a CSV log is read no further */
-    int halted;                    /* halt stopped the reading */
+    int halted;                        /* halt stopped the reading */
 #ifdef SW_HAVE_LCM
-    lcm_t *publish;                /* may be NULL: where the monitor core publishes */
+    lcm_t *publish; /* may be NULL: where the monitor core publishes */
     sw_mon_t *mon;
     sw_lcmlog_t *lcmlog;
     sw_cli_regions_t regions;
@@ -92,8 +92,8 @@ typedef struct {
  * whatever else is wrong, and its first bytes choose the source; then the
  * options it does not take are refused (given).  SW_EXIT_OK,
  * SW_EXIT_USAGE or SW_EXIT_IO. */
-int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_opts_t *o,
-                       int quiet, sw_cli_given_t given);
+int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_opts_t *o, int quiet,
+                       sw_cli_given_t given);
 
 /* An lcm-logger file: its reader (the channel regex checked first; a pipe
  * spooled).  A CSV log: nothing.  SW_EXIT_OK, SW_EXIT_USAGE or

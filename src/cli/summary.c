@@ -9,12 +9,12 @@
 
 #include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <signal.h>
 #include <string.h>
-#include <time.h>
 #include <sys/stat.h>
+#include <time.h>
 
 /* ---- derived quantities -------------------------------------------------- */
 
@@ -31,11 +31,13 @@ void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scene
     for (size_t i = 0; i < n; i++) {
         const sw_derived_t *d = sw_engine_derived(e, i);
         const sw_scene_t *sc = &scenes[i];
-        if (!d) continue;
+        if (!d)
+            continue;
         fprintf(f, "swaywatch: %s: %s model\n", sc->name, sw_model_name(d->model));
         derived_line(f, "R", d->R, "m", "half-diagonal sqrt(h^2 + b^2)");
         derived_line(f, "alpha", d->alpha * 180.0 / M_PI, "deg", "atan(b/h), slenderness");
-        derived_line(f, "g tan a", sc->g * tan(d->alpha), "m/s^2", "uplift threshold (rigid support)");
+        derived_line(f, "g tan a", sc->g * tan(d->alpha), "m/s^2",
+                     "uplift threshold (rigid support)");
         derived_line(f, "p", d->p, "rad/s", "rocking frequency sqrt(3 g / 4 R)");
         derived_line(f, "eta", d->eta, "", "impact ratio on a rigid support");
         if (sc->has_frame) {
@@ -62,34 +64,38 @@ void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scene
     }
 }
 
-
 /* ---- summaries --------------------------------------------------------------- */
 
 int sw_cli_any_overturned(const sw_engine_t *e)
 {
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
-        if (sw_engine_summary(e, i, &s) == SW_OK && s.overturned) return 1;
+        if (sw_engine_summary(e, i, &s) == SW_OK && s.overturned)
+            return 1;
     }
     return 0;
 }
 
 const char *sw_cli_verdict(const sw_summary_t *s)
 {
-    if (s->overturned) return "overturned";
+    if (s->overturned)
+        return "overturned";
     return s->faults ? "unreliable" : "upright";
 }
 
 int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn)
 {
-    if (!fail_on_overturn) return SW_EXIT_OK;
-    if (sw_cli_any_overturned(e)) return SW_EXIT_OVERTURNED;
+    if (!fail_on_overturn)
+        return SW_EXIT_OK;
+    if (sw_cli_any_overturned(e))
+        return SW_EXIT_OVERTURNED;
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
         if (sw_engine_summary(e, i, &s) == SW_OK && s.faults) {
-            sw_cli_error("%s: the model faulted %ld times: no verdict, and --fail-on-overturn "
-                         "needs one (exit 2)",
-                         s.name, s.faults);
+            sw_cli_error(
+                "%s: the model faulted %ld times: no verdict, and --fail-on-overturn "
+                "needs one (exit 2)",
+                s.name, s.faults);
             return SW_EXIT_USAGE;
         }
     }
@@ -136,11 +142,10 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
 {
     const sw_gate_facts_t *F = &run->facts;
     const double t0 = F->t_first - F->t_origin, t1 = F->t_last - F->t_origin;
-    const double share = run->samples_read
-                             ? 100.0 * (double)run->samples_rejected / (double)run->samples_read
-                             : 0.0;
-    fprintf(f, "  rejected        %ld of %ld (%.2f %%)\n", run->samples_rejected,
-            run->samples_read, share);
+    const double share =
+        run->samples_read ? 100.0 * (double)run->samples_rejected / (double)run->samples_read : 0.0;
+    fprintf(f, "  rejected        %ld of %ld (%.2f %%)\n", run->samples_rejected, run->samples_read,
+            share);
     if (F->t_origin != 0.0) {
         char iso[64];
         sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
@@ -176,7 +181,8 @@ static void print_outcome(FILE *f, const sw_summary_t *s)
     if (s->overturned) {
         fputs("OVERTURNED at ", f);
         print_time(f, s->overturn_time, "an unknown time");
-        if (s->faults) fprintf(f, " (the model faulted %ld times before: see --events)", s->faults);
+        if (s->faults)
+            fprintf(f, " (the model faulted %ld times before: see --events)", s->faults);
     } else if (s->faults) {
         fprintf(f, "stayed upright (model faulted %ld times: not a verdict; see --events)",
                 s->faults);
@@ -192,9 +198,11 @@ static void print_impacts(FILE *f, const sw_summary_t *s, const sw_risk_pkg_t *p
         fprintf(f, "\n  impacts         %ld\n", s->impacts);
         return;
     }
-    fprintf(f, "\n  impacts         %ld that matter (before each, at least %.3g rad/s: a swing of 1 %% "
-               "of the energy that tips it)",
-            p->impacts, p->impact_min);
+    fprintf(
+        f,
+        "\n  impacts         %ld that matter (before each, at least %.3g rad/s: a swing of 1 %% "
+        "of the energy that tips it)",
+        p->impacts, p->impact_min);
     if (p->micro_impacts)
         fprintf(f, "; %ld micro-impacts in %ld settling span%s", p->micro_impacts,
                 p->settling_spans, p->settling_spans == 1 ? "" : "s");
@@ -219,14 +227,17 @@ void sw_cli_print_reserve(FILE *f, const sw_risk_pkg_t *p)
         fprintf(f, "  reserve         none: the scene is too stiff for it to be computed\n");
         return;
     }
-    if (!p || !p->evaluations) return;
+    if (!p || !p->evaluations)
+        return;
     if (!(p->min_reserve_g > 0.0))
-        fprintf(f, "  minimum reserve 0 g at %.4f s: from then on it overturns with no further "
-                   "input (at rest %.3g g)\n",
+        fprintf(f,
+                "  minimum reserve 0 g at %.4f s: from then on it overturns with no further "
+                "input (at rest %.3g g)\n",
                 p->min_reserve_time, p->rest_reserve_g);
     else
-        fprintf(f, "  minimum reserve %.3g g at %.4f s: a %s half-sine of %.3g s that strong "
-                   "would have overturned it then (at rest %.3g g)\n",
+        fprintf(f,
+                "  minimum reserve %.3g g at %.4f s: a %s half-sine of %.3g s that strong "
+                "would have overturned it then (at rest %.3g g)\n",
                 p->min_reserve_g, p->min_reserve_time,
                 p->min_direction == SW_RESERVE_ACCELERATING ? "speeding-up" : "braking",
                 p->min_pulse, p->rest_reserve_g);
@@ -238,7 +249,8 @@ void sw_cli_print_reserve(FILE *f, const sw_risk_pkg_t *p)
 /* The words a summary of an interrupted run starts with. */
 static void print_interrupted(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
 {
-    if (!run->interrupted) return;
+    if (!run->interrupted)
+        return;
     const double t = sw_engine_time(e);
     fprintf(f, "INTERRUPTED by %s", run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
     if (isfinite(t))
@@ -251,33 +263,39 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
 {
     print_interrupted(f, e, run);
     if (run->log) {
-        fprintf(f, "log %s: %ld samples read, %ld accepted, %ld rejected", strcmp(run->log, "-") ? run->log : "(stdin)",
-                run->samples_read, run->samples_read - run->samples_rejected,
-                run->samples_rejected);
-        if (run->settle > 0.0) fprintf(f, "; settle up to %g s after the end", run->settle);
+        fprintf(f, "log %s: %ld samples read, %ld accepted, %ld rejected",
+                strcmp(run->log, "-") ? run->log : "(stdin)", run->samples_read,
+                run->samples_read - run->samples_rejected, run->samples_rejected);
+        if (run->settle > 0.0)
+            fprintf(f, "; settle up to %g s after the end", run->settle);
         fputc('\n', f);
-        if (run->have_facts) print_facts(f, run);
+        if (run->have_facts)
+            print_facts(f, run);
     }
     if (run->pulse) {
         const sw_pulse_t *p = run->pulse;
-        fprintf(f, "pulse %s: amplitude %g m/s^2 (%.4g g), omega %g rad/s, %.6g s long; %.6g s "
-                   "simulated\n",
+        fprintf(f,
+                "pulse %s: amplitude %g m/s^2 (%.4g g), omega %g rad/s, %.6g s long; %.6g s "
+                "simulated\n",
                 sw_pulse_shape_name(p->shape), p->amplitude, p->amplitude / 9.80665, p->omega,
                 sw_pulse_duration(p), run->duration);
     }
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
-        if (sw_engine_summary(e, i, &s) != SW_OK) continue;
+        if (sw_engine_summary(e, i, &s) != SW_OK)
+            continue;
         double alpha = alpha_of(e, i);
         double dt = sw_engine_dt(e, i);
         fprintf(f, "\npackage %s: %s model, scheme %s, dt %.6g ms\n", s.name,
                 sw_model_name(s.model), sw_engine_scheme(e), dt * 1e3);
         if (run->log)
-            fprintf(f, "  samples         %ld read, %ld accepted, %ld rejected\n", run->samples_read,
-                    run->samples_read - run->samples_rejected, run->samples_rejected);
+            fprintf(f, "  samples         %ld read, %ld accepted, %ld rejected\n",
+                    run->samples_read, run->samples_read - run->samples_rejected,
+                    run->samples_rejected);
         fputs("  first uplift    ", f);
         print_time(f, s.uplift_time, "none (never left the upright position)");
-        if (s.uplifts > 1) fprintf(f, " (%ld uplifts in all)", s.uplifts);
+        if (s.uplifts > 1)
+            fprintf(f, " (%ld uplifts in all)", s.uplifts);
         print_impacts(f, &s, sw_risk_pkg(run->risk, i));
         fprintf(f, "  peak |theta|    %.3f deg = %.3f alpha (alpha = %.2f deg)\n",
                 s.max_abs_theta * 180.0 / M_PI, s.max_theta_ratio, alpha * 180.0 / M_PI);
@@ -296,17 +314,17 @@ void sw_cli_json_string(FILE *f, const char *s)
     fputc('"', f);
     for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
         switch (*p) {
-        case '"': fputs("\\\"", f); break;
-        case '\\': fputs("\\\\", f); break;
-        case '\n': fputs("\\n", f); break;
-        case '\r': fputs("\\r", f); break;
-        case '\t': fputs("\\t", f); break;
-        default:
-            /* Other control characters escaped; bytes >= 0x80 pass as UTF-8. */
-            if (*p < 0x20)
-                fprintf(f, "\\u%04x", *p);
-            else
-                fputc(*p, f);
+            case '"': fputs("\\\"", f); break;
+            case '\\': fputs("\\\\", f); break;
+            case '\n': fputs("\\n", f); break;
+            case '\r': fputs("\\r", f); break;
+            case '\t': fputs("\\t", f); break;
+            default:
+                /* Other control characters escaped; bytes >= 0x80 pass as UTF-8. */
+                if (*p < 0x20)
+                    fprintf(f, "\\u%04x", *p);
+                else
+                    fputc(*p, f);
         }
     }
     fputc('"', f);
@@ -338,9 +356,8 @@ void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
 {
     const sw_gate_facts_t *F = &run->facts;
     fprintf(f, "{\"rejected_share\": ");
-    sw_cli_json_num(f, run->samples_read ? (double)run->samples_rejected /
-                                               (double)run->samples_read
-                                         : 0.0);
+    sw_cli_json_num(
+        f, run->samples_read ? (double)run->samples_rejected / (double)run->samples_read : 0.0);
     json_kv(f, ", ", "start", F->t_first - F->t_origin);
     json_kv(f, ", ", "end", F->t_last - F->t_origin);
     fprintf(f, ", \"start_absolute\": ");
@@ -382,7 +399,7 @@ static void json_risk(FILE *f, const sw_risk_pkg_t *p, const char *br)
     json_kv(f, "", "min_reserve_g", rv ? p->min_reserve_g : NAN);
     json_kv(f, ", ", "min_reserve_time", rv ? p->min_reserve_time : NAN);
     fprintf(f, ", \"min_reserve_direction\": %s, \"min_reserve_pulse\": ",
-            !rv || !p->min_direction            ? "null"
+            !rv || !p->min_direction                 ? "null"
             : p->min_direction == SW_RESERVE_BRAKING ? "\"braking\""
                                                      : "\"accelerating\"");
     sw_cli_json_num(f, rv && p->min_pulse > 0.0 ? p->min_pulse : NAN);
@@ -406,7 +423,8 @@ int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_ru
                         const char *br)
 {
     sw_summary_t s;
-    if (sw_engine_summary(e, i, &s) != SW_OK) return -1;
+    if (sw_engine_summary(e, i, &s) != SW_OK)
+        return -1;
     fprintf(f, "\"name\": ");
     sw_cli_json_string(f, s.name);
     fprintf(f, ", \"model\": ");
@@ -464,8 +482,8 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
     }
     fprintf(f, ",\n  \"interrupted\": ");
     if (run->interrupted)
-        fprintf(f, "{\"signal\": \"%s\", \"t\": ",
-                run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+        fprintf(f,
+                "{\"signal\": \"%s\", \"t\": ", run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
     if (run->interrupted) {
         sw_cli_json_num(f, sw_engine_time(e));
         fputc('}', f);
@@ -482,7 +500,8 @@ void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
     const char *sep = "\n    {";
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
-        if (sw_engine_summary(e, i, &s) != SW_OK) continue;
+        if (sw_engine_summary(e, i, &s) != SW_OK)
+            continue;
         fputs(sep, f);
         sw_cli_json_package(f, e, i, run, "\n     ");
         fputc('}', f);

@@ -146,8 +146,8 @@ static void count_rejected(watch_t *w, const char *text)
             snprintf(w->reason[w->nreasons++].name, sizeof w->reason[0].name, "%s", reason);
     }
     /* The count the alarm states, or one more for an alarm that states none. */
-    w->reason[i].so_far = n >= 0 ? (n > w->reason[i].so_far ? n : w->reason[i].so_far)
-                                 : w->reason[i].so_far + 1;
+    w->reason[i].so_far =
+        n >= 0 ? (n > w->reason[i].so_far ? n : w->reason[i].so_far) : w->reason[i].so_far + 1;
 }
 
 static void on_alarm(const lcm_recv_buf_t *rb, const char *channel, void *user)
@@ -211,4 +211,3 @@ int sw_watch_subscribe(lcm_t *lcm, watch_t *w, lcm_subscription_t **s1, lcm_subs
     lcm_subscription_set_queue_capacity(*s2, 1000);
     return SW_EXIT_OK;
 }
-

@@ -71,7 +71,8 @@ static void view_input(view_t *v, const watch_t *w, double now)
     }
     if (w->nreasons && used < sizeof rej - 1)
         snprintf(rej + used, sizeof rej - used, ")");
-    snprintf(buf, sizeof buf, "input: %.1f states/s, lag %s, rejected %ld%s, gaps %ld, lost %ld "
+    snprintf(buf, sizeof buf,
+             "input: %.1f states/s, lag %s, rejected %ld%s, gaps %ld, lost %ld "
              "states %ld alarms",
              isfinite(w->rate) ? w->rate : 0.0, lag, total, rej, w->gaps, w->lost_states,
              w->lost_alarms);
@@ -92,8 +93,10 @@ static void view_input(view_t *v, const watch_t *w, double now)
         used += (size_t)snprintf(extra + used, sizeof extra - used, "%smonitor restarted %ld x",
                                  used ? "; " : "", w->seq_restarts);
     if ((w->undecodable || w->pkg_overflow) && used < sizeof extra)
-        snprintf(extra + used, sizeof extra - used, "%s%ld undecodable messages, %ld states of "
-                 "packages beyond %d", used ? "; " : "", w->undecodable, w->pkg_overflow, MAX_PKG);
+        snprintf(extra + used, sizeof extra - used,
+                 "%s%ld undecodable messages, %ld states of "
+                 "packages beyond %d",
+                 used ? "; " : "", w->undecodable, w->pkg_overflow, MAX_PKG);
     if (extra[0])
         add(v, ATTR_CRIT, "       %s", extra);
 }
@@ -165,8 +168,7 @@ static void table_row(view_t *v, int attr, const layout_t *l, const char *name, 
     int k = snprintf(row, sizeof row, "%-16.16s ", name);
     if (l->model)
         k += snprintf(row + k, sizeof row - (size_t)k, "%-7.7s ", model);
-    k += snprintf(row + k, sizeof row - (size_t)k, "%-10.10s %-*s %5s", phase, l->bar, bar_,
-                  ratio);
+    k += snprintf(row + k, sizeof row - (size_t)k, "%-10.10s %-*s %5s", phase, l->bar, bar_, ratio);
     if (l->theta)
         k += snprintf(row + k, sizeof row - (size_t)k, " %9s", theta);
     k += snprintf(row + k, sizeof row - (size_t)k, " %7s", margin);
@@ -199,8 +201,8 @@ static void view_package(view_t *v, const layout_t *l, const pkg_view_t *p, doub
     else
         snprintf(rate, sizeof rate, "%9.1f", isfinite(p->rate) ? p->rate : 0.0);
     int attr = s->phase == SWAYWATCH_STATE_T_PHASE_OVERTURNED || r >= 1.0 ? ATTR_CRIT
-               : s->phase == SWAYWATCH_STATE_T_PHASE_ROCKING            ? ATTR_WARN
-                                                                        : ATTR_NONE;
+               : s->phase == SWAYWATCH_STATE_T_PHASE_ROCKING              ? ATTR_WARN
+                                                                          : ATTR_NONE;
     table_row(v, attr, l, p->name, model_name(s->model), phase_name(s->phase), b, ratio, theta,
               margin, reserve, rate);
 }
@@ -208,8 +210,8 @@ static void view_package(view_t *v, const layout_t *l, const pkg_view_t *p, doub
 static void view_packages(view_t *v, const watch_t *w, double now)
 {
     const layout_t l = layout(v->layout);
-    table_row(v, ATTR_HEAD, &l, "PACKAGE", "MODEL", "PHASE", "|THETA|/ALPHA", "", "THETA",
-              "MARGIN", "RESERVE", "STATES/S");
+    table_row(v, ATTR_HEAD, &l, "PACKAGE", "MODEL", "PHASE", "|THETA|/ALPHA", "", "THETA", "MARGIN",
+              "RESERVE", "STATES/S");
     for (size_t i = 0; i < w->npkg; i++) view_package(v, &l, &w->pkg[i], now);
     if (!w->npkg)
         add(v, ATTR_NONE, "(no package yet)");
@@ -227,14 +229,15 @@ static void view_alarms(view_t *v, const watch_t *w)
         sw_watch_msg_text(text, e->a.text, sizeof e->a.text);
         /* the text first: on a narrow terminal the numbers are cut, not it */
         if (name[0] && RESERVE_OF(&e->a) >= 0.0)
-            snprintf(nums, sizeof nums, "  (theta %+.4f, margin %.3f, reserve %.3f g)",
-                     e->a.theta, e->a.margin, RESERVE_OF(&e->a));
+            snprintf(nums, sizeof nums, "  (theta %+.4f, margin %.3f, reserve %.3f g)", e->a.theta,
+                     e->a.margin, RESERVE_OF(&e->a));
         else if (name[0])
             snprintf(nums, sizeof nums, "  (theta %+.4f, margin %.3f)", e->a.theta, e->a.margin);
         const int lv = e->a.level;
-        add(v, lv >= SWAYWATCH_ALARM_T_LEVEL_CRITICAL ? ATTR_CRIT
-               : lv == SWAYWATCH_ALARM_T_LEVEL_WARN   ? ATTR_WARN
-                                                      : ATTR_NONE,
+        add(v,
+            lv >= SWAYWATCH_ALARM_T_LEVEL_CRITICAL ? ATTR_CRIT
+            : lv == SWAYWATCH_ALARM_T_LEVEL_WARN   ? ATTR_WARN
+                                                   : ATTR_NONE,
             "%s %-8s %-16.16s %-14s %s%s", when + 11, sw_alarm_level_name((sw_alarm_level)lv),
             name[0] ? name : "-", sw_alarm_kind_name((sw_alarm_kind)e->a.kind), text, nums);
     }
@@ -294,4 +297,3 @@ void sw_watch_screen_draw(const watch_t *w)
     attrset(A_NORMAL);
     refresh();
 }
-

@@ -43,9 +43,10 @@ int sw_cli_opt_frequency(const sw_cli_option_t *o, const char *arg, void *dest)
     if (!strcasecmp(end, "hz"))
         scale = TWO_PI;
     else if (*end && strcasecmp(end, "rad/s")) {
-        sw_cli_error("--%s: unknown unit '%s' in '%s': expected Hz or rad/s (a bare number is "
-                     "rad/s)",
-                     o->long_name, end, arg);
+        sw_cli_error(
+            "--%s: unknown unit '%s' in '%s': expected Hz or rad/s (a bare number is "
+            "rad/s)",
+            o->long_name, end, arg);
         return SW_EXIT_USAGE;
     }
     if (v * scale > 1e4) {
@@ -60,8 +61,8 @@ int sw_cli_opt_frequency(const sw_cli_option_t *o, const char *arg, void *dest)
 int sw_cli_parse_size(const char *arg, double *h, double *w)
 {
     char tail;
-    return sscanf(arg, "%lfx%lf%c", h, w, &tail) == 2 && isfinite(*h) && isfinite(*w) &&
-                   *h > 0.0 && *w > 0.0
+    return sscanf(arg, "%lfx%lf%c", h, w, &tail) == 2 && isfinite(*h) && isfinite(*w) && *h > 0.0 &&
+                   *w > 0.0
                ? 0
                : -1;
 }
@@ -77,7 +78,8 @@ static void note_diag(void *user, const char *origin, int line, const char *msg)
 {
     note_t *n = user;
     (void)line;
-    if (n->buf[0] == '\0') snprintf(n->buf, n->len, "%s: %s", origin ? origin : "scene", msg);
+    if (n->buf[0] == '\0')
+        snprintf(n->buf, n->len, "%s: %s", origin ? origin : "scene", msg);
 }
 
 static int case_set(sw_cli_case_t *C, const char *sec, const char *key, const char *val,
@@ -86,7 +88,8 @@ static int case_set(sw_cli_case_t *C, const char *sec, const char *key, const ch
     note_t n = {C->note, sizeof C->note};
     if (sw_scene_set(&C->scene, sec, key, val, 1, origin, 0, note_diag, &n) != SW_OK) {
         C->available = 0;
-        if (!C->note[0]) snprintf(C->note, sizeof C->note, "%s: rejected", origin);
+        if (!C->note[0])
+            snprintf(C->note, sizeof C->note, "%s: rejected", origin);
         return -1;
     }
     return 0;
@@ -98,7 +101,8 @@ static void describe(sw_cli_case_t *C)
     note_t n = {C->note, sizeof C->note};
     if (sw_scene_validate(&C->scene, &d, C->name, note_diag, &n) != SW_OK) {
         C->available = 0;
-        if (!C->note[0]) snprintf(C->note, sizeof C->note, "invalid scene");
+        if (!C->note[0])
+            snprintf(C->note, sizeof C->note, "invalid scene");
         return;
     }
     C->model = d.model;
@@ -134,15 +138,18 @@ static void frame_case(sw_cli_case_t *C, const sw_scene_t *sc, const sw_cli_what
     C->scene = *sc;
     C->scene.has_cushion = 0;
     C->available = 1;
-    const char *fm = w->frame_mass ? w->frame_mass
+    const char *fm = w->frame_mass   ? w->frame_mass
                      : sc->has_frame ? NULL
                                      : num(mass, sizeof mass, FRAME_MASS_RATIO * sc->mass);
     const char *fz = zeta ? zeta : sc->has_frame ? NULL : SW_CLI_FRAME_ZETA;
-    if (fm) case_set(C, "frame", "mass", fm, "--frame-mass");
+    if (fm)
+        case_set(C, "frame", "mass", fm, "--frame-mass");
     if (C->available && omega > 0.0)
         case_set(C, "frame", "omega", num(om, sizeof om, omega), "--frame-omega");
-    if (C->available && fz) case_set(C, "frame", "zeta", fz, "--frame-zeta");
-    if (C->available) describe(C);
+    if (C->available && fz)
+        case_set(C, "frame", "zeta", fz, "--frame-zeta");
+    if (C->available)
+        describe(C);
 }
 
 /* The package on a cushion: on the bed (a catalogue cushion), or on the
@@ -152,12 +159,16 @@ static void cushion_case(sw_cli_case_t *C, const sw_scene_t *sc, int on_bed, dou
 {
     char om[32];
     C->scene = *sc;
-    if (on_bed) C->scene.has_frame = 0;
+    if (on_bed)
+        C->scene.has_frame = 0;
     C->available = 1;
     const char *cz = zeta ? zeta : sc->has_cushion ? NULL : SW_CLI_CUSHION_ZETA;
-    if (omega > 0.0) case_set(C, "cushion", "omega", num(om, sizeof om, omega), "--cushion-omega");
-    if (C->available && cz) case_set(C, "cushion", "zeta", cz, "--cushion-zeta");
-    if (C->available) describe(C);
+    if (omega > 0.0)
+        case_set(C, "cushion", "omega", num(om, sizeof om, omega), "--cushion-omega");
+    if (C->available && cz)
+        case_set(C, "cushion", "zeta", cz, "--cushion-zeta");
+    if (C->available)
+        describe(C);
 }
 
 /* The cases of one scene into cs (room for 4 + nsupports + sizes). */
@@ -170,7 +181,8 @@ static size_t scene_cases(sw_cli_case_t *cs, const sw_scene_t *sc, size_t pkg,
     C->scene = *sc;
     C->is_scene = C->available = 1;
     describe(C);
-    if (w->no_what_if) goto done;
+    if (w->no_what_if)
+        goto done;
 
     if (sc->has_frame || sc->has_cushion) { /* the package alone on the bed */
         C = &cs[m++];
@@ -185,7 +197,8 @@ static size_t scene_cases(sw_cli_case_t *cs, const sw_scene_t *sc, size_t pkg,
     const int user_cushion = w->cushion_omega > 0.0 || w->cushion_zeta;
     for (size_t k = 0; k < sw_cli_nsupports; k++) {
         const sw_cli_support_t *S = &sw_cli_supports[k];
-        if (S->cushion ? user_cushion : user_frame) continue;
+        if (S->cushion ? user_cushion : user_frame)
+            continue;
         C = &cs[m++];
         snprintf(C->name, sizeof C->name, "%s", S->name);
         C->stands_for = S->stands_for;
@@ -229,25 +242,27 @@ done:
     return m;
 }
 
-sw_cli_case_t *sw_cli_whatif_build(const sw_scene_t *scenes, size_t nsc,
-                                   const sw_cli_whatif_t *w, size_t *n)
+sw_cli_case_t *sw_cli_whatif_build(const sw_scene_t *scenes, size_t nsc, const sw_cli_whatif_t *w,
+                                   size_t *n)
 {
     const size_t per = 4 + sw_cli_nsupports + w->sizes.n;
     sw_cli_case_t *cs = calloc(nsc * per, sizeof *cs);
-    if (!cs) return NULL;
+    if (!cs)
+        return NULL;
     size_t m = 0;
     for (size_t i = 0; i < nsc; i++) m += scene_cases(cs + m, &scenes[i], i, w);
     *n = m;
     return cs;
 }
 
-int sw_cli_whatif_run(sw_cli_case_t *cases, size_t n, const sw_log_t *log,
-                      const sw_run_opts_t *ro, const sw_search_opts_t *so, int threads,
+int sw_cli_whatif_run(sw_cli_case_t *cases, size_t n, const sw_log_t *log, const sw_run_opts_t *ro,
+                      const sw_search_opts_t *so, int threads,
                       void (*progress)(void *user, const sw_safety_progress_t *p), void *user)
 {
     size_t m = 0;
     for (size_t i = 0; i < n; i++) m += cases[i].available != 0;
-    if (m == 0) return SW_OK;
+    if (m == 0)
+        return SW_OK;
     sw_safety_case_t *sc = calloc(m, sizeof *sc);
     size_t *of = calloc(m, sizeof *of);
     if (!sc || !of) {
@@ -262,7 +277,8 @@ int sw_cli_whatif_run(sw_cli_case_t *cases, size_t n, const sw_log_t *log,
             sc[m++].scene = cases[i].scene;
         }
     sw_safety_opts_t o = {.run = *ro, .threads = threads, .progress = progress, .user = user};
-    if (so) o.search = *so;
+    if (so)
+        o.search = *so;
     const int rc = sw_safety_factors(sc, m, log, &o);
     int any = 0; /* a case of its own failed: rc is its status */
     for (size_t k = 0; k < m; k++) any |= sc[k].status != SW_OK;
@@ -270,7 +286,8 @@ int sw_cli_whatif_run(sw_cli_case_t *cases, size_t n, const sw_log_t *log,
         sw_cli_case_t *C = &cases[of[k]];
         C->status = any ? sc[k].status : rc;
         C->sf = sc[k].sf;
-        if (C->status == SW_OK) continue;
+        if (C->status == SW_OK)
+            continue;
         C->available = 0;
         snprintf(C->note, sizeof C->note, "%s", sc[k].msg[0] ? sc[k].msg : sw_strerror(C->status));
     }
@@ -289,10 +306,12 @@ static void digits_apart(char *buf, size_t len, double x, double y, int *prec)
     for (; p < 17; p++) {
         snprintf(a, sizeof a, "%#.*g", p, x);
         snprintf(b, sizeof b, "%#.*g", p, y);
-        if (strcmp(a, b) != 0) break;
+        if (strcmp(a, b) != 0)
+            break;
     }
     snprintf(buf, len, "%#.*g", p, x);
-    if (prec) *prec = p;
+    if (prec)
+        *prec = p;
 }
 
 void sw_cli_safety_bracket(char *buf, size_t len, const sw_safety_t *s)
@@ -322,8 +341,9 @@ void sw_cli_safety_sentence(char *buf, size_t len, const sw_safety_t *s)
     }
     int k = 0;
     if (isinf(s->lift_scale)) {
-        k = snprintf(buf, len, "The log has no longitudinal acceleration: no scale of it moves "
-                               "the package.");
+        k = snprintf(buf, len,
+                     "The log has no longitudinal acceleration: no scale of it moves "
+                     "the package.");
     } else if (!s->found) {
         k = snprintf(buf, len,
                      "%s: no scale of the recorded acceleration up to %.4g times overturns it.",
@@ -358,12 +378,15 @@ void sw_cli_whatif_savers(char *buf, size_t len, const sw_cli_case_t *cs, size_t
     buf[0] = '\0';
     for (size_t i = 0; i < n && k < len; i++) {
         const sw_cli_case_t *C = &cs[i];
-        if (C->pkg != pkg || C->is_scene || !C->available || C->sf.overturned) continue;
+        if (C->pkg != pkg || C->is_scene || !C->available || C->sf.overturned)
+            continue;
         int w = snprintf(buf + k, len - k, "%s%s", k ? "; " : "", C->name);
-        if (w < 0) break;
+        if (w < 0)
+            break;
         k += (size_t)w;
     }
-    if (k >= len && len > 4) snprintf(buf + len - 4, 4, "...");
+    if (k >= len && len > 4)
+        snprintf(buf + len - 4, 4, "...");
 }
 
 void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_t pkg)
@@ -373,7 +396,8 @@ void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_
     int luck = 0;
     for (size_t i = 0; i < n; i++) {
         const sw_cli_case_t *C = &cs[i];
-        if (C->pkg != pkg) continue;
+        if (C->pkg != pkg)
+            continue;
         fprintf(f, "  %-22s ", C->name);
         if (!C->available) {
             fprintf(f, "n/a: %s\n", C->note);
@@ -392,9 +416,10 @@ void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_
                     180.0 / M_PI,
                 r->min_margin, fac, C->desc);
     }
-    fprintf(f, "  peak/a: largest |theta|/alpha; margin: smallest margin to overturn (1 at rest, "
-               "0 at the edge);\n"
-               "  safety factor: scales of the recording that leave it upright / overturn it%s\n",
+    fprintf(f,
+            "  peak/a: largest |theta|/alpha; margin: smallest margin to overturn (1 at rest, "
+            "0 at the edge);\n"
+            "  safety factor: scales of the recording that leave it upright / overturn it%s\n",
             luck ? "\n  *: survived, but a weaker shock of the same shape overturns it" : "");
 }
 
@@ -410,7 +435,8 @@ void sw_cli_whatif_json_safety(FILE *f, const sw_cli_case_t *C)
     }
     char text[640];
     const int both = s->found && s->factor_safe > 0.0;
-    fprintf(f, ", \"overturned\": %s, \"found\": %s, \"bracket\": ", s->overturned ? "true" : "false",
+    fprintf(f,
+            ", \"overturned\": %s, \"found\": %s, \"bracket\": ", s->overturned ? "true" : "false",
             s->found ? "true" : "false");
     if (both) {
         fprintf(f, "[");

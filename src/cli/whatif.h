@@ -63,14 +63,14 @@ int sw_cli_parse_size(const char *arg, double *h, double *w);
 /* The cases of the n scenes (free()), scene by scene, each scene's first
  * the scene as given.  A case that cannot be built is not available, its
  * note says why.  NULL: out of memory. */
-sw_cli_case_t *sw_cli_whatif_build(const sw_scene_t *scenes, size_t nsc,
-                                   const sw_cli_whatif_t *w, size_t *n);
+sw_cli_case_t *sw_cli_whatif_build(const sw_scene_t *scenes, size_t nsc, const sw_cli_whatif_t *w,
+                                   size_t *n);
 
 /* The safety factor of every available case, all at once on threads
  * threads (the results do not depend on their number); progress as for
  * sw_safety_factors() (may be NULL).  SW_OK, or SW_ENOMEM. */
-int sw_cli_whatif_run(sw_cli_case_t *cases, size_t n, const sw_log_t *log,
-                      const sw_run_opts_t *ro, const sw_search_opts_t *so, int threads,
+int sw_cli_whatif_run(sw_cli_case_t *cases, size_t n, const sw_log_t *log, const sw_run_opts_t *ro,
+                      const sw_search_opts_t *so, int threads,
                       void (*progress)(void *user, const sw_safety_progress_t *p), void *user);
 
 /* The bracket of a found factor, with as many digits as its two ends need

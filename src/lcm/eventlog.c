@@ -41,8 +41,8 @@ struct sw_lcmlog {
     sw_lcmlog_opts_t o;
     sw_lcmlog_counts_t c;
     int have_ts0;
-    int64_t ts0; /* us, the first accel event's receive time: arrival times are
-                    fed relative to it, exactly */
+    int64_t ts0;        /* us, the first accel event's receive time: arrival times are
+                           fed relative to it, exactly */
     unsigned char *win; /* bytes [wbase, wbase + wlen) of the log */
     long long wbase;
     size_t wlen;
@@ -323,8 +323,9 @@ static int check_event(sw_lcmlog_t *l, long long pos, event_t *e, char *why, siz
     size_t avail;
     const unsigned char *p = at(l, pos, SW_LCMLOG_HEADER + SW_LCMLOG_MAX_CHANNEL, &avail);
     if (avail < 4 || get32(p) != SW_LCMLOG_SYNC) {
-        snprintf(why, wlen, "%s", avail < 4 ? "stray bytes at the end of the file"
-                                            : "no sync word (bytes between events)");
+        snprintf(why, wlen, "%s",
+                 avail < 4 ? "stray bytes at the end of the file"
+                           : "no sync word (bytes between events)");
         return 0;
     }
     if (avail < SW_LCMLOG_HEADER) {
@@ -333,8 +334,7 @@ static int check_event(sw_lcmlog_t *l, long long pos, event_t *e, char *why, siz
     }
     const int32_t clen = (int32_t)get32(p + 20), dlen = (int32_t)get32(p + 24);
     if (clen < 1 || clen > SW_LCMLOG_MAX_CHANNEL) {
-        snprintf(why, wlen, "channel length %ld is not 1 to %d", (long)clen,
-                 SW_LCMLOG_MAX_CHANNEL);
+        snprintf(why, wlen, "channel length %ld is not 1 to %d", (long)clen, SW_LCMLOG_MAX_CHANNEL);
         return 0;
     }
     if (dlen < 0) {

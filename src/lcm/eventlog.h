@@ -44,9 +44,9 @@ static inline int sw_lcmlog_sniff(const void *buf, size_t len)
                         (unsigned long)b[2] << 8 | b[3]) == SW_LCMLOG_SYNC;
 }
 
-#define SW_LCMLOG_HEADER 28              /* sync, eventnum, timestamp, two lengths */
-#define SW_LCMLOG_MAX_CHANNEL 63         /* LCM's longest channel name */
-#define SW_LCMLOG_MAX_DATA (256L << 20)  /* LCM's largest message, bytes */
+#define SW_LCMLOG_HEADER 28             /* sync, eventnum, timestamp, two lengths */
+#define SW_LCMLOG_MAX_CHANNEL 63        /* LCM's longest channel name */
+#define SW_LCMLOG_MAX_DATA (256L << 20) /* LCM's largest message, bytes */
 /* Bytes of an accel-channel event's data handed to the monitor: more than
  * any accel_t (48 bytes), so a longer message is refused as what it is
  * (not an accel_t, or an accel_t with trailing bytes) without being read
@@ -80,16 +80,16 @@ typedef struct {
 } sw_lcmlog_opts_t;
 
 typedef struct {
-    long events;         /* events read */
-    long on_channel;     /* events on the accel channel, fed to the monitor */
-    long other_channels; /* events on other channels, skipped */
-    long corrupt;        /* corrupted regions skipped */
+    long events;             /* events read */
+    long on_channel;         /* events on the accel channel, fed to the monitor */
+    long other_channels;     /* events on other channels, skipped */
+    long corrupt;            /* corrupted regions skipped */
     long long corrupt_bytes; /* bytes in them */
     long long first_corrupt; /* offset of the first, -1 if none */
-    long long size;      /* bytes in the log */
-    long long examined;  /* bytes read from it (the work done) */
-    int spooled;         /* the log could not seek and was copied first */
-    int stopped;         /* *opts.stop ended the read before the end of the log */
+    long long size;          /* bytes in the log */
+    long long examined;      /* bytes read from it (the work done) */
+    int spooled;             /* the log could not seek and was copied first */
+    int stopped;             /* *opts.stop ended the read before the end of the log */
 } sw_lcmlog_counts_t;
 
 typedef struct sw_lcmlog sw_lcmlog_t;

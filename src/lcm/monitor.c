@@ -63,7 +63,7 @@ typedef struct {
     sw_alarm_t latest;    /* the latest of them, sent in the summary */
     int64_t latest_us;
 } fold_t;
-#define FOLD_BURST 3 /* alarms of a package and kind let through per window */
+#define FOLD_BURST 3  /* alarms of a package and kind let through per window */
 #define FOLD_KINDS 32 /* alarm kinds the limit tells apart (sw_alarm_kind < 32) */
 
 /* Messages are fixed-size; this holds the largest encoded one. */
@@ -85,24 +85,24 @@ struct sw_mon {
 
     /* input stream: the gate decides; these are what the monitor keeps of it */
     sw_gate_t *gate;
-    int have_last;      /* a sample was accepted */
-    int64_t last_us;    /* utime of the last accepted sample */
-    double last_rx;     /* mono s, arrival of the last feed that took a sample */
-    int gap_open;       /* the timer saw the input stop; it has not resumed */
-    double timer_gap;   /* s, no sample arriving for longer is a gap */
-    double feed_mono;   /* mono s of the message being fed */
+    int have_last;    /* a sample was accepted */
+    int64_t last_us;  /* utime of the last accepted sample */
+    double last_rx;   /* mono s, arrival of the last feed that took a sample */
+    int gap_open;     /* the timer saw the input stop; it has not resumed */
+    double timer_gap; /* s, no sample arriving for longer is a gap */
+    double feed_mono; /* mono s of the message being fed */
     long timer_gaps;
     sw_mon_reject feed_why; /* the reason of the last refusal during a feed */
     int have_base;
-    int64_t base_us;    /* utime of the first sample received: the gate is fed
-                           (utime - base) / 1e6 s, exact for any utime near it */
+    int64_t base_us; /* utime of the first sample received: the gate is fed
+                        (utime - base) / 1e6 s, exact for any utime near it */
 
     /* Every other alarm kind: at most one per package and kind per
      * interval; the ones in between are folded into one summary. */
-    fold_t *fold;       /* (n + 1) * FOLD_KINDS: package k at k, input alarms at n */
-    double fold_next;   /* mono s of the earliest pending summary; INFINITY: none */
+    fold_t *fold;          /* (n + 1) * FOLD_KINDS: package k at k, input alarms at n */
+    double fold_next;      /* mono s of the earliest pending summary; INFINITY: none */
     double alarm_interval; /* s; 0: no limit */
-    double now;         /* mono s of the feed or tick in progress */
+    double now;            /* mono s of the feed or tick in progress */
 
     /* INPUT_REJECTED rate limit, per reason */
     double rej_last_alarm[SW_MON_NREJ]; /* mono s; -INFINITY: never */
@@ -114,8 +114,8 @@ struct sw_mon {
 };
 
 static const char *const reject_names[SW_MON_NREJ] = {
-    "decode", "trailing", "nonfinite", "implausible", "skew",
-    "duplicate", "out_of_order", "jump", "engine", "time", "overload"};
+    "decode",       "trailing", "nonfinite", "implausible", "skew",    "duplicate",
+    "out_of_order", "jump",     "engine",    "time",        "overload"};
 
 const char *sw_mon_reject_name(sw_mon_reject r)
 {
@@ -163,7 +163,8 @@ static double source_time(sw_mon_t *m, int64_t utime)
         m->base_us = utime;
     }
     int64_t d;
-    if (__builtin_sub_overflow(utime, m->base_us, &d)) return utime < m->base_us ? -1e300 : 1e300;
+    if (__builtin_sub_overflow(utime, m->base_us, &d))
+        return utime < m->base_us ? -1e300 : 1e300;
     return (double)d / 1e6;
 }
 
@@ -171,7 +172,8 @@ static double source_time(sw_mon_t *m, int64_t utime)
 static int64_t utime_at(const sw_mon_t *m, double t)
 {
     const double us = t * 1e6;
-    if (!(fabs(us) < 9.2e18)) return m->base_us;
+    if (!(fabs(us) < 9.2e18))
+        return m->base_us;
     int64_t u;
     return __builtin_add_overflow(m->base_us, (int64_t)llround(us), &u) ? m->base_us : u;
 }
@@ -406,8 +408,8 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     if (m->o.axis < 0 || m->o.axis > 2 || m->o.vertical < -1 || m->o.vertical > 2 ||
         !(m->o.accel_scale > 0.0) || !(m->o.gap >= 0.0) || !(m->o.max_accel > 0.0) ||
         !(m->o.state_rate >= 0.0) || !(m->o.max_skew >= 0.0) || !(m->o.reject_interval >= 0.0) ||
-        !(m->o.alarm_interval < 1e9) ||
-        !isfinite(m->o.gap) || !isfinite(m->o.state_rate) || !(m->o.max_jump < 1e9) ||
+        !(m->o.alarm_interval < 1e9) || !isfinite(m->o.gap) || !isfinite(m->o.state_rate) ||
+        !(m->o.max_jump < 1e9) ||
         /* in microseconds of int64: a gap beyond 1e9 s or a rate below
          * 1e-9 Hz would overflow */
         !(m->o.gap <= 1e9) || (m->o.state_rate > 0.0 && !(m->o.state_rate >= 1e-9))) {
@@ -544,7 +546,7 @@ static void reject_alarm(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utim
 
 static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_mon_reject *why)
 {
-    static const int code[SW_MON_NREJ] = {SW_EPARSE, SW_EPARSE,      SW_ENONFINITE, SW_ETOOBIG,
+    static const int code[SW_MON_NREJ] = {SW_EPARSE,  SW_EPARSE,      SW_ENONFINITE, SW_ETOOBIG,
                                           SW_ETOOBIG, SW_EORDER,      SW_EORDER,     SW_EORDER,
                                           SW_EINVAL,  SW_ERESOLUTION, SW_ETOOBIG};
     m->c.rejected[r]++;
@@ -559,7 +561,7 @@ static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_m
 static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, const char *text)
 {
     static const sw_mon_reject map[SW_GATE_NREJ] = {
-        SW_MON_REJ_NONFINITE, SW_MON_REJ_IMPLAUSIBLE, SW_MON_REJ_TIME,   SW_MON_REJ_SKEW,
+        SW_MON_REJ_NONFINITE, SW_MON_REJ_IMPLAUSIBLE,  SW_MON_REJ_TIME, SW_MON_REJ_SKEW,
         SW_MON_REJ_DUPLICATE, SW_MON_REJ_OUT_OF_ORDER, SW_MON_REJ_JUMP, SW_MON_REJ_ENGINE};
     sw_mon_t *m = user;
     (void)text;
@@ -581,27 +583,27 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
              ev->incomplete ? "; it overlaps rocking: incomplete" : "");
     sw_alarm_level level = ev->incomplete ? SW_ALARM_LEVEL_CRITICAL : SW_ALARM_LEVEL_WARN;
     switch (ev->kind) {
-    case SW_GATE_EV_GAP:
-        if (m->gap_open) {
-            m->timer_gaps--; /* the gap the timer saw: counted once, by the gate now */
-            snprintf(text, sizeof text, "accel back after %.3f s%s", ev->span, how);
-            level = ev->incomplete ? SW_ALARM_LEVEL_CRITICAL : SW_ALARM_LEVEL_INFO;
-        } else {
-            snprintf(text, sizeof text, "%.3f s between accel samples%s", ev->span, how);
-        }
-        break;
-    case SW_GATE_EV_CLOCK_STEP:
-        snprintf(text, sizeof text, "sensor clock stepped by %+.6g s (re-timed)%s", ev->span,
-                 how);
-        break;
-    case SW_GATE_EV_RESTART:
-        snprintf(text, sizeof text, "sensor time went back by %.6g s: a restart%s", -ev->span,
-                 how);
-        break;
-    case SW_GATE_EV_SEQ_RESTART:
-        snprintf(text, sizeof text, "accel seq went back: the sender restarted");
-        level = SW_ALARM_LEVEL_INFO;
-        break;
+        case SW_GATE_EV_GAP:
+            if (m->gap_open) {
+                m->timer_gaps--; /* the gap the timer saw: counted once, by the gate now */
+                snprintf(text, sizeof text, "accel back after %.3f s%s", ev->span, how);
+                level = ev->incomplete ? SW_ALARM_LEVEL_CRITICAL : SW_ALARM_LEVEL_INFO;
+            } else {
+                snprintf(text, sizeof text, "%.3f s between accel samples%s", ev->span, how);
+            }
+            break;
+        case SW_GATE_EV_CLOCK_STEP:
+            snprintf(text, sizeof text, "sensor clock stepped by %+.6g s (re-timed)%s", ev->span,
+                     how);
+            break;
+        case SW_GATE_EV_RESTART:
+            snprintf(text, sizeof text, "sensor time went back by %.6g s: a restart%s", -ev->span,
+                     how);
+            break;
+        case SW_GATE_EV_SEQ_RESTART:
+            snprintf(text, sizeof text, "accel seq went back: the sender restarted");
+            level = SW_ALARM_LEVEL_INFO;
+            break;
     }
     m->gap_open = 0;
     input_alarm(m, SW_ALARM_SENSOR_GAP, level, utime_at(m, ev->t), text);
@@ -654,7 +656,8 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
     }
     if (rc == SW_GATE_HELD)
         return SW_MON_HELD;
-    if (rc < 0 && why) *why = m->feed_why; /* the sample itself is refused last */
+    if (rc < 0 && why)
+        *why = m->feed_why; /* the sample itself is refused last */
     return rc;
 }
 

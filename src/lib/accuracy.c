@@ -20,9 +20,9 @@
 
 typedef struct {
     sw_model_kind model;
-    double tol;         /* rad: the row serves tolerances >= tol */
+    double tol; /* rad: the row serves tolerances >= tol */
     const char *scheme;
-    double dt;          /* s; 0 = the scheme's default (adaptive: rtol 1e-10) */
+    double dt; /* s; 0 = the scheme's default (adaptive: rtol 1e-10) */
 } acc_row_t;
 
 /* Rows of one model in decreasing tol (cheapest first), as printed by
@@ -34,22 +34,20 @@ typedef struct {
  * bare block, was within 25 % of RK4's cost in this run, so the default
  * serves the loose tolerances.) */
 static const acc_row_t rows[] = {
-    {SW_MODEL_BARE, 1e-10, "rk4", 1e-3},
-    {SW_MODEL_BARE, 1e-11, "rk4", 5e-4},
-    {SW_MODEL_BARE, 1e-13, "rkf45", 0.0},
-    {SW_MODEL_BARE, 1e-14, "rkck", 0.0},
-    {SW_MODEL_FRAME, 1e-10, "rk4", 1e-3},
-    {SW_MODEL_FRAME, 1e-12, "rk4", 5e-4},
-    {SW_MODEL_FRAME, 1e-13, "rkf45", 0.0},
-    {SW_MODEL_FRAME, 1e-14, "rkck", 0.0},
+    {SW_MODEL_BARE, 1e-10, "rk4", 1e-3},   {SW_MODEL_BARE, 1e-11, "rk4", 5e-4},
+    {SW_MODEL_BARE, 1e-13, "rkf45", 0.0},  {SW_MODEL_BARE, 1e-14, "rkck", 0.0},
+    {SW_MODEL_FRAME, 1e-10, "rk4", 1e-3},  {SW_MODEL_FRAME, 1e-12, "rk4", 5e-4},
+    {SW_MODEL_FRAME, 1e-13, "rkf45", 0.0}, {SW_MODEL_FRAME, 1e-14, "rkck", 0.0},
 };
 
 int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const char **scheme, double *dt)
 {
-    if (!scheme || !dt || !(theta_tol > 0.0) || isnan(theta_tol)) return SW_EINVAL;
+    if (!scheme || !dt || !(theta_tol > 0.0) || isnan(theta_tol))
+        return SW_EINVAL;
     int known = 0;
     for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
-        if (rows[i].model != model) continue;
+        if (rows[i].model != model)
+            continue;
         known = 1;
         if (theta_tol >= rows[i].tol) {
             *scheme = rows[i].scheme;
@@ -63,7 +61,8 @@ int sw_scheme_for_accuracy(sw_model_kind model, double theta_tol, const char **s
 int sw_scheme_for_accuracy_n(const sw_scene_t *scenes, size_t n, double theta_tol,
                              const char **scheme, double *dt, size_t *bad)
 {
-    if (!scenes || n == 0 || !scheme || !dt) return SW_EINVAL;
+    if (!scenes || n == 0 || !scheme || !dt)
+        return SW_EINVAL;
     /* The table's rows are ordered from cheap to accurate; for several
      * packages keep the most accurate (adaptive first, then the higher
      * order, then the smaller step). */
@@ -75,9 +74,11 @@ int sw_scheme_for_accuracy_n(const sw_scene_t *scenes, size_t n, double theta_to
         const char *si = NULL;
         double dti = 0.0;
         int r = sw_scene_validate(&scenes[i], &d, NULL, NULL, NULL);
-        if (r == SW_OK) r = sw_scheme_for_accuracy(d.model, theta_tol, &si, &dti);
+        if (r == SW_OK)
+            r = sw_scheme_for_accuracy(d.model, theta_tol, &si, &dti);
         if (r != SW_OK) {
-            if (bad) *bad = i;
+            if (bad)
+                *bad = i;
             return r;
         }
         const sw_scheme_t *T = sw_scheme_lookup(si);

@@ -25,8 +25,7 @@ int sw_alarm_init(sw_alarm_watch_t *w, size_t pkg, double warn_margin, double cr
     return SW_OK;
 }
 
-int sw_alarm_set_reserve(sw_alarm_watch_t *w, double warn_g, double critical_g,
-                         double hysteresis_g)
+int sw_alarm_set_reserve(sw_alarm_watch_t *w, double warn_g, double critical_g, double hysteresis_g)
 {
     if (!w || !isfinite(warn_g) || !isfinite(critical_g) || !isfinite(hysteresis_g))
         return SW_EINVAL;
@@ -41,16 +40,17 @@ int sw_alarm_set_reserve(sw_alarm_watch_t *w, double warn_g, double critical_g,
 
 int sw_alarm_set_impact_min(sw_alarm_watch_t *w, double min_speed)
 {
-    if (!w || !isfinite(min_speed) || min_speed < 0.0) return SW_EINVAL;
+    if (!w || !isfinite(min_speed) || min_speed < 0.0)
+        return SW_EINVAL;
     w->impact_min = min_speed;
     return SW_OK;
 }
 
-int sw_alarm_init_scene(sw_alarm_watch_t *w, size_t pkg, const sw_scene_t *sc,
-                        double hysteresis)
+int sw_alarm_init_scene(sw_alarm_watch_t *w, size_t pkg, const sw_scene_t *sc, double hysteresis)
 {
     sw_derived_t d;
-    if (!w || !sc || sw_scene_validate(sc, &d, NULL, NULL, NULL) != SW_OK) return SW_EINVAL;
+    if (!w || !sc || sw_scene_validate(sc, &d, NULL, NULL, NULL) != SW_OK)
+        return SW_EINVAL;
     int rc = sw_alarm_init(w, pkg, sc->warn_margin, sc->critical_margin, hysteresis);
     if (rc == SW_OK)
         rc = sw_alarm_set_reserve(w, sc->warn_reserve_g, sc->critical_reserve_g, -1.0);
@@ -175,11 +175,12 @@ int sw_alarm_on_reserve(sw_alarm_watch_t *w, double t, double theta, double marg
 {
     char text[SW_ALARM_TEXT_MAX];
     int n = 0;
-    if (!w || !(w->warn_reserve_g > 0.0)) return 0;
+    if (!w || !(w->warn_reserve_g > 0.0))
+        return 0;
     if (crossed(&w->reserve_warn_armed, reserve_g, w->warn_reserve_g, w->reserve_hysteresis_g)) {
         snprintf(text, sizeof text, "reserve %.3f g < warn %.3f g", reserve_g, w->warn_reserve_g);
-        n += emit_alarm(w, SW_ALARM_RESERVE_WARN, SW_ALARM_LEVEL_WARN, t, theta, margin, text,
-                        emit, user);
+        n += emit_alarm(w, SW_ALARM_RESERVE_WARN, SW_ALARM_LEVEL_WARN, t, theta, margin, text, emit,
+                        user);
     }
     if (crossed(&w->reserve_critical_armed, reserve_g, w->critical_reserve_g,
                 w->reserve_hysteresis_g)) {
@@ -236,24 +237,27 @@ const char *sw_alarm_level_name(sw_alarm_level l)
 
 double sw_impact_tip_speed(const sw_derived_t *d, double g)
 {
-    if (!d || d->model == SW_MODEL_CUSHION || !(g > 0.0)) return 0.0;
+    if (!d || d->model == SW_MODEL_CUSHION || !(g > 0.0))
+        return 0.0;
     /* 1/2 I_O w^2 = m g R (1 - cos a) with p^2 = m g R / I_O:
      * w = p sqrt(2 (1 - cos a)) = 2 p sin(a/2); p at this g */
     const double p = sqrt(3.0 * g / (4.0 * d->R)); /* rad/s */
     return 2.0 * p * sin(0.5 * d->alpha);
 }
 
-int sw_impact_significant(const sw_derived_t *d, double g, double theta_dot_before,
-                          double fraction)
+int sw_impact_significant(const sw_derived_t *d, double g, double theta_dot_before, double fraction)
 {
     return fabs(theta_dot_before) >= fraction * sw_impact_tip_speed(d, g);
 }
 
 double sw_margin_presented(double margin, sw_phase phase)
 {
-    if (phase == SW_PHASE_OVERTURNED) return -1.0;
-    if (isnan(margin)) return margin;
-    if (margin >= 0.0) return margin > 1.0 ? 1.0 : margin;
+    if (phase == SW_PHASE_OVERTURNED)
+        return -1.0;
+    if (isnan(margin))
+        return margin;
+    if (margin >= 0.0)
+        return margin > 1.0 ? 1.0 : margin;
     /* expm1: exact near 0 (the sign change stays where it is), -1 only in
      * the limit, so the overturn itself is the first -1 */
     return expm1(margin);
@@ -267,8 +271,10 @@ void sw_settle_init(sw_settle_t *s, double min_speed)
 
 static int settle_close(sw_settle_t *s, sw_settle_span_t *closed)
 {
-    if (!s->open) return 0;
-    if (closed) *closed = s->span;
+    if (!s->open)
+        return 0;
+    if (closed)
+        *closed = s->span;
     s->open = 0;
     return SW_SETTLE_CLOSED;
 }
@@ -285,7 +291,8 @@ int sw_settle_feed(sw_settle_t *s, const sw_event_t *ev, sw_settle_span_t *close
         }
         s->span.t_end = ev->t;
         s->span.impacts++;
-        if (v > s->span.max_speed) s->span.max_speed = v;
+        if (v > s->span.max_speed)
+            s->span.max_speed = v;
         return 0;
     }
     return settle_close(s, closed) | SW_SETTLE_REPORT;

@@ -35,8 +35,13 @@
 
 /* ---------------------------------------------------------------- numbers */
 
-enum { NUM_OK = SW_NUM_OK, NUM_EMPTY = SW_NUM_EMPTY, NUM_BAD = SW_NUM_BAD,
-       NUM_COMMA = SW_NUM_COMMA, NUM_RANGE = SW_NUM_RANGE };
+enum {
+    NUM_OK = SW_NUM_OK,
+    NUM_EMPTY = SW_NUM_EMPTY,
+    NUM_BAD = SW_NUM_BAD,
+    NUM_COMMA = SW_NUM_COMMA,
+    NUM_RANGE = SW_NUM_RANGE
+};
 
 static int parse_number(const sw_csv_t *c, const char *s, size_t n, double *out)
 {
@@ -48,7 +53,8 @@ static int parse_number(const sw_csv_t *c, const char *s, size_t n, double *out)
 static void reject(sw_csv_t *c)
 {
     c->n.rejected++;
-    if (c->on_reject) c->on_reject(c->user, c->lineno, c->reason);
+    if (c->on_reject)
+        c->on_reject(c->user, c->lineno, c->reason);
 }
 
 /* "accel (column 2)" or "accel (column 5, \"acc_x\")" */
@@ -70,8 +76,10 @@ static void fail(sw_csv_t *c, int code, const char *text)
 static int unit_of_scale(int r, double scale)
 {
     if (r == R_TIME)
-        return scale == 1.0 ? SW_CSV_UNIT_S : scale == 1e-3 ? SW_CSV_UNIT_MS
-               : scale == 1e-6 ? SW_CSV_UNIT_US : SW_CSV_UNIT_NONE;
+        return scale == 1.0    ? SW_CSV_UNIT_S
+               : scale == 1e-3 ? SW_CSV_UNIT_MS
+               : scale == 1e-6 ? SW_CSV_UNIT_US
+                               : SW_CSV_UNIT_NONE;
     return scale == 1.0 ? SW_CSV_UNIT_MPS2 : scale == SW_G0 ? SW_CSV_UNIT_G : SW_CSV_UNIT_NONE;
 }
 
@@ -91,14 +99,15 @@ static void fix_layout(sw_csv_t *c, int has_header)
             snprintf(L->name[r], sizeof L->name[r], "%s", c->hdr[c->col[r]]);
         L->scale[r] = r == R_TIME ? c->tscale : c->ascale;
         L->unit[r] = unit_of_scale(r, L->scale[r]);
-        L->header_unit[r] = L->name[r][0] ? sw_csv_name_unit(L->name[r], r == R_TIME)
-                                          : SW_CSV_UNIT_NONE;
+        L->header_unit[r] =
+            L->name[r][0] ? sw_csv_name_unit(L->name[r], r == R_TIME) : SW_CSV_UNIT_NONE;
         if (L->col_from[r] != SW_CSV_FROM_HEADER)
             L->col_from[r] = c->col_given[r] ? SW_CSV_FROM_OPTION : SW_CSV_FROM_DEFAULT;
         const int given = r == R_TIME ? c->tscale_given : c->ascale_given;
         L->unit_from[r] = given ? SW_CSV_FROM_OPTION : SW_CSV_FROM_DEFAULT;
     }
-    if (c->tkind == 2) L->unit[R_TIME] = SW_CSV_UNIT_DATETIME;
+    if (c->tkind == 2)
+        L->unit[R_TIME] = SW_CSV_UNIT_DATETIME;
 }
 
 /* infer: the columns and units nobody gave, from the header's names.  0, or
@@ -107,8 +116,8 @@ static int infer_columns(sw_csv_t *c)
 {
     const int want[SW_CSV_NROLES] = {!c->col_given[R_TIME], !c->col_given[R_ACCEL], 0};
     sw_csv_guess_t g;
-    if ((want[0] || want[1]) && sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])c->hdr, c->nhdr,
-                                             want, c->col[R_VERT], &g) != 0) {
+    if ((want[0] || want[1]) && sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])c->hdr, c->nhdr, want,
+                                             c->col[R_VERT], &g) != 0) {
         char t[300];
         snprintf(t, sizeof t, "cannot tell the columns from the header: %s", g.why);
         fail(c, SW_EAMBIGUOUS, t);
@@ -120,12 +129,14 @@ static int infer_columns(sw_csv_t *c)
             c->lay.col_from[r] = SW_CSV_FROM_HEADER;
         }
     /* units the options did not give, from the chosen columns' names */
-    const int tu = c->col[R_TIME] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_TIME]], 1)
-                                            : SW_CSV_UNIT_NONE;
-    const int au = c->col[R_ACCEL] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_ACCEL]], 0)
-                                             : SW_CSV_UNIT_NONE;
-    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE) c->tscale = sw_csv_unit_scale(tu);
-    if (!c->ascale_given && au != SW_CSV_UNIT_NONE) c->ascale = sw_csv_unit_scale(au);
+    const int tu =
+        c->col[R_TIME] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_TIME]], 1) : SW_CSV_UNIT_NONE;
+    const int au =
+        c->col[R_ACCEL] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_ACCEL]], 0) : SW_CSV_UNIT_NONE;
+    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE)
+        c->tscale = sw_csv_unit_scale(tu);
+    if (!c->ascale_given && au != SW_CSV_UNIT_NONE)
+        c->ascale = sw_csv_unit_scale(au);
     return 0;
 }
 
@@ -134,7 +145,8 @@ static void take_header(sw_csv_t *c)
 {
     c->n.headers++;
     for (int r = 0; r < N_ROLES; r++) {
-        if (!c->name[r]) continue;
+        if (!c->name[r])
+            continue;
         if (c->match[r] < 0) {
             char t[160];
             snprintf(t, sizeof t, "no column named \"%s\" (%s) in the header", c->name[r],
@@ -144,7 +156,8 @@ static void take_header(sw_csv_t *c)
         }
         c->col[r] = c->match[r];
     }
-    if (c->infer && infer_columns(c) != 0) return;
+    if (c->infer && infer_columns(c) != 0)
+        return;
     for (int r = 0; r < N_ROLES; r++)
         for (int q = r + 1; q < N_ROLES; q++)
             if (c->col[r] >= 0 && c->col[r] == c->col[q]) {
@@ -158,7 +171,8 @@ static void take_header(sw_csv_t *c)
     const int tu = c->lay.header_unit[R_TIME], au = c->lay.header_unit[R_ACCEL];
     if (c->tscale_given && tu != SW_CSV_UNIT_NONE && tu != c->lay.unit[R_TIME])
         c->lay.unit_from[R_TIME] = SW_CSV_FROM_OPTION; /* overrides the header */
-    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE) c->lay.unit_from[R_TIME] = SW_CSV_FROM_HEADER;
+    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE)
+        c->lay.unit_from[R_TIME] = SW_CSV_FROM_HEADER;
     if (!c->ascale_given && au != SW_CSV_UNIT_NONE)
         c->lay.unit_from[R_ACCEL] = c->lay.unit_from[R_VERT] = SW_CSV_FROM_HEADER;
 }
@@ -185,7 +199,8 @@ static char detect_delim(const char *s, size_t n)
 static int names_pending(const sw_csv_t *c)
 {
     for (int r = 0; r < N_ROLES; r++)
-        if (c->name[r] && c->col[r] < 0) return 1;
+        if (c->name[r] && c->col[r] < 0)
+            return 1;
     return 0;
 }
 
@@ -221,14 +236,16 @@ static int split_line(sw_csv_t *c, char *s, size_t n, int header_here)
     c->maxwant = -1;
     for (int r = 0; r < N_SLOTS; r++) {
         c->fs[r] = NULL;
-        if (c->want[r] > c->maxwant) c->maxwant = c->want[r];
+        if (c->want[r] > c->maxwant)
+            c->maxwant = c->want[r];
     }
     c->matching = header_here && names_pending(c);
     c->capturing = header_here;
     for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
     c->nf = 0;
     c->scratch_used = 0;
-    const int ok = memchr(s, '"', n) ? sw_csv_split_quoted(c, s, n) : (sw_csv_split_plain(c, s, n), 1);
+    const int ok =
+        memchr(s, '"', n) ? sw_csv_split_quoted(c, s, n) : (sw_csv_split_plain(c, s, n), 1);
     c->capturing = 0;
     return ok;
 }
@@ -242,10 +259,12 @@ static int corrupt_row(sw_csv_t *c, const char *t, size_t tn)
 {
     int digits = 0;
     for (size_t i = 0; i < tn; i++) digits |= t[i] >= '0' && t[i] <= '9';
-    if (!digits) return 0;
+    if (!digits)
+        return 0;
     for (long k = 0; k < c->nhdr; k++) {
         double v;
-        if (parse_number(c, c->hdr[k], strlen(c->hdr[k]), &v) == NUM_OK) return 1;
+        if (parse_number(c, c->hdr[k], strlen(c->hdr[k]), &v) == NUM_OK)
+            return 1;
     }
     return 0;
 }
@@ -289,13 +308,15 @@ static int first_line(sw_csv_t *c, int ok)
  * one (a ',' file cannot use ',' as its decimal mark). */
 static void decide_comma(sw_csv_t *c)
 {
-    if (c->dcomma != -1) return;
+    if (c->dcomma != -1)
+        return;
     if (c->delim == ',') {
         c->dcomma = c->lay.decimal_comma = 0;
         return;
     }
     for (int r = 0; r < N_ROLES; r++) {
-        if (!c->fs[r]) continue;
+        if (!c->fs[r])
+            continue;
         if (memchr(c->fs[r], ',', c->fl[r])) {
             c->dcomma = c->lay.decimal_comma = 1;
             return;
@@ -314,8 +335,10 @@ static int parse_time(sw_csv_t *c, double *out)
     const size_t n = c->fl[R_TIME];
     if (c->tkind != 2) {
         const int res = parse_number(c, s, n, out);
-        if (res == NUM_OK) c->tkind = 1;
-        if (res != NUM_BAD || c->tkind == 1) return res;
+        if (res == NUM_OK)
+            c->tkind = 1;
+        if (res != NUM_BAD || c->tkind == 1)
+            return res;
     }
     if (sw_csv_datetime(s, n, out)) {
         if (c->tkind == 0) {
@@ -335,21 +358,21 @@ static void field_reason(sw_csv_t *c, int r, int res)
     column_label(c, r, label, sizeof label);
     sw_csv_excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
     switch (res) {
-    case NUM_EMPTY: snprintf(c->reason, sizeof c->reason, "%s is empty", label); break;
-    case NUM_COMMA:
-        snprintf(c->reason, sizeof c->reason, "%s is not a number (decimal comma?): %s", label,
-                 ex);
-        break;
-    case NUM_RANGE:
-        snprintf(c->reason, sizeof c->reason, "%s is out of range: %s", label, ex);
-        break;
-    default:
-        if (r == R_TIME && c->tkind == 2)
-            snprintf(c->reason, sizeof c->reason,
-                     "%s is not a date-time like the rows before it: %s", label, ex);
-        else
-            snprintf(c->reason, sizeof c->reason, "%s is not a number: %s", label, ex);
-        break;
+        case NUM_EMPTY: snprintf(c->reason, sizeof c->reason, "%s is empty", label); break;
+        case NUM_COMMA:
+            snprintf(c->reason, sizeof c->reason, "%s is not a number (decimal comma?): %s", label,
+                     ex);
+            break;
+        case NUM_RANGE:
+            snprintf(c->reason, sizeof c->reason, "%s is out of range: %s", label, ex);
+            break;
+        default:
+            if (r == R_TIME && c->tkind == 2)
+                snprintf(c->reason, sizeof c->reason,
+                         "%s is not a date-time like the rows before it: %s", label, ex);
+            else
+                snprintf(c->reason, sizeof c->reason, "%s is not a number: %s", label, ex);
+            break;
     }
 }
 
@@ -364,7 +387,8 @@ static void data_row(sw_csv_t *c, int ok)
     decide_comma(c);
     double v[N_ROLES] = {0.0, 0.0, 0.0};
     for (int r = 0; r < N_ROLES; r++) {
-        if (r == R_VERT && !c->have_vert) break;
+        if (r == R_VERT && !c->have_vert)
+            break;
         if (!c->fs[r]) {
             char label[120];
             column_label(c, r, label, sizeof label);
@@ -373,8 +397,8 @@ static void data_row(sw_csv_t *c, int ok)
             reject(c);
             return;
         }
-        const int res = r == R_TIME ? parse_time(c, &v[r]) : parse_number(c, c->fs[r], c->fl[r],
-                                                                          &v[r]);
+        const int res =
+            r == R_TIME ? parse_time(c, &v[r]) : parse_number(c, c->fs[r], c->fl[r], &v[r]);
         if (res != NUM_OK) {
             field_reason(c, r, res);
             reject(c);
@@ -390,12 +414,13 @@ static void data_row(sw_csv_t *c, int ok)
         char label[120], ex[EXCERPT_MAX + 8];
         column_label(c, r, label, sizeof label);
         sw_csv_excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
-        snprintf(c->reason, sizeof c->reason, "%s is out of range after unit conversion: %s",
-                 label, ex);
+        snprintf(c->reason, sizeof c->reason, "%s is out of range after unit conversion: %s", label,
+                 ex);
         reject(c);
         return;
     }
-    if (c->flip) a = -a;
+    if (c->flip)
+        a = -a;
     if (!c->any_order && c->have_last && t <= c->last_t) {
         if (t == c->last_t)
             snprintf(c->reason, sizeof c->reason,
@@ -421,9 +446,11 @@ static void data_line(sw_csv_t *c, char *s, size_t n)
 {
     const int header_here = c->header_open;
     c->header_open = 0; /* whatever this line is, no later line is a header */
-    if (!c->delim && !choose_delim(c, s, n, header_here)) return;
+    if (!c->delim && !choose_delim(c, s, n, header_here))
+        return;
     const int ok = split_line(c, s, n, header_here);
-    if (header_here && (first_line(c, ok) || c->status < 0)) return;
+    if (header_here && (first_line(c, ok) || c->status < 0))
+        return;
     data_row(c, ok);
 }
 
@@ -438,9 +465,12 @@ static void end_line(sw_csv_t *c)
     c->lineno++;
     c->n.lines++;
 
-    if (c->lineno == 1 && n >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3)) s += 3, n -= 3;
-    if (!overlong && n && s[n - 1] == '\r') n--;
-    if (n > (size_t)SW_CSV_MAX_LINE) overlong = 1;
+    if (c->lineno == 1 && n >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3))
+        s += 3, n -= 3;
+    if (!overlong && n && s[n - 1] == '\r')
+        n--;
+    if (n > (size_t)SW_CSV_MAX_LINE)
+        overlong = 1;
 
     size_t i = 0;
     while (i < n && sw_csv_is_blank(s[i])) i++;
@@ -474,8 +504,10 @@ static void end_line(sw_csv_t *c)
 
 static int bad_opts(int *err, char *msg, size_t msglen, int code, const char *text)
 {
-    if (err) *err = code;
-    if (msg && msglen) snprintf(msg, msglen, "%s", text);
+    if (err)
+        *err = code;
+    if (msg && msglen)
+        snprintf(msg, msglen, "%s", text);
     return code;
 }
 
@@ -497,7 +529,8 @@ static int parse_column(const char *spec, const char *role, long *col, char **na
         long v = 0;
         for (size_t i = 0; i < n; i++) {
             v = v * 10 + (spec[i] - '0');
-            if (v > MAX_COLUMN_INDEX) break;
+            if (v > MAX_COLUMN_INDEX)
+                break;
         }
         if (v < 1 || v > MAX_COLUMN_INDEX) {
             snprintf(t, tlen, "%s column %.*s: index out of range (1..%ld)", role, (int)n, spec,
@@ -526,19 +559,20 @@ static int set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen
     const char *spec[N_ROLES] = {o->time_col ? o->time_col : "1", o->accel_col ? o->accel_col : "2",
                                  o->vert_col};
     for (int r = 0; r < N_ROLES; r++) {
-        if (!spec[r]) continue;
+        if (!spec[r])
+            continue;
         int rc = parse_column(spec[r], role_name[r], &c->col[r], &c->name[r], t, tlen);
-        if (rc != SW_OK) return rc;
+        if (rc != SW_OK)
+            return rc;
     }
     c->have_vert = spec[R_VERT] != NULL;
     for (int r = 0; r < N_ROLES; r++) {
         for (int q = r + 1; q < N_ROLES; q++) {
             int same = (c->col[r] >= 0 && c->col[r] == c->col[q]) ||
-                       (c->name[r] && c->name[q] && sw_csv_name_equal(c->name[r], strlen(c->name[r]),
-                                                              c->name[q]));
+                       (c->name[r] && c->name[q] &&
+                        sw_csv_name_equal(c->name[r], strlen(c->name[r]), c->name[q]));
             if (same) {
-                snprintf(t, tlen, "%s and %s columns are the same", role_name[r],
-                         role_name[q]);
+                snprintf(t, tlen, "%s and %s columns are the same", role_name[r], role_name[q]);
                 return SW_EINVAL;
             }
         }
@@ -626,16 +660,20 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
         return NULL;
     }
     sw_csv_lcsv_init(c);
-    if (err) *err = SW_OK;
-    if (msg && msglen) msg[0] = '\0';
+    if (err)
+        *err = SW_OK;
+    if (msg && msglen)
+        msg[0] = '\0';
     return c;
 }
 
 void sw_csv_destroy(sw_csv_t *c)
 {
-    if (!c) return;
+    if (!c)
+        return;
     csv_free(&c->lp);
-    if (c->cloc != (locale_t)0) freelocale(c->cloc);
+    if (c->cloc != (locale_t)0)
+        freelocale(c->cloc);
     for (int r = 0; r < N_ROLES; r++) free(c->name[r]);
     free(c->line);
     free(c->scratch);
@@ -646,7 +684,8 @@ void sw_csv_destroy(sw_csv_t *c)
  * to recognise a comment) and drop the rest up to the newline. */
 static void append(sw_csv_t *c, const char *s, size_t n)
 {
-    if (c->overlong) return;
+    if (c->overlong)
+        return;
     if (n > LINE_CAP - c->len) {
         memcpy(c->line + c->len, s, LINE_CAP - c->len);
         c->len = LINE_CAP;
@@ -659,8 +698,10 @@ static void append(sw_csv_t *c, const char *s, size_t n)
 
 int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len)
 {
-    if (!c || (!buf && len)) return SW_EINVAL;
-    if (c->status < 0) return c->status;
+    if (!c || (!buf && len))
+        return SW_EINVAL;
+    if (c->status < 0)
+        return c->status;
     if (c->finished) {
         c->status = SW_EINVAL;
         snprintf(c->msg, sizeof c->msg, "sw_csv_feed called after sw_csv_finish");
@@ -670,9 +711,11 @@ int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len)
         const char *nl = memchr(buf, '\n', len);
         size_t seg = nl ? (size_t)(nl - buf) : len;
         append(c, buf, seg);
-        if (!nl) break;
+        if (!nl)
+            break;
         end_line(c);
-        if (c->status < 0) return c->status;
+        if (c->status < 0)
+            return c->status;
         buf += seg + 1;
         len -= seg + 1;
     }
@@ -681,17 +724,22 @@ int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len)
 
 int sw_csv_finish(sw_csv_t *c)
 {
-    if (!c) return SW_EINVAL;
-    if (c->status < 0) return c->status;
-    if (c->finished) return SW_OK;
+    if (!c)
+        return SW_EINVAL;
+    if (c->status < 0)
+        return c->status;
+    if (c->finished)
+        return SW_OK;
     c->finished = 1;
-    if (c->len || c->overlong) end_line(c);
+    if (c->len || c->overlong)
+        end_line(c);
     return c->status;
 }
 
 void sw_csv_counts(const sw_csv_t *c, sw_csv_counts_t *out)
 {
-    if (!out) return;
+    if (!out)
+        return;
     if (!c) {
         memset(out, 0, sizeof *out);
         return;
@@ -706,7 +754,8 @@ const char *sw_csv_error_message(const sw_csv_t *c)
 
 int sw_csv_layout(const sw_csv_t *c, sw_csv_layout_t *out)
 {
-    if (!c || !out) return SW_EINVAL;
+    if (!c || !out)
+        return SW_EINVAL;
     *out = c->lay;
     return SW_OK;
 }
@@ -724,12 +773,12 @@ const char *sw_csv_header_field(const sw_csv_t *c, long i)
 const char *sw_csv_unit_name(int unit)
 {
     switch (unit) {
-    case SW_CSV_UNIT_S: return "s";
-    case SW_CSV_UNIT_MS: return "ms";
-    case SW_CSV_UNIT_US: return "us";
-    case SW_CSV_UNIT_DATETIME: return "date-time";
-    case SW_CSV_UNIT_MPS2: return "m/s^2";
-    case SW_CSV_UNIT_G: return "g";
-    default: return "";
+        case SW_CSV_UNIT_S: return "s";
+        case SW_CSV_UNIT_MS: return "ms";
+        case SW_CSV_UNIT_US: return "us";
+        case SW_CSV_UNIT_DATETIME: return "date-time";
+        case SW_CSV_UNIT_MPS2: return "m/s^2";
+        case SW_CSV_UNIT_G: return "g";
+        default: return "";
     }
 }

@@ -27,7 +27,7 @@
 typedef struct {
     char w[MAX_WORDS][WORD_MAX]; /* lowercase words, the unit left out */
     int nw;
-    char unit[WORD_MAX * 2];     /* unit text, spaces removed, lowercase */
+    char unit[WORD_MAX * 2]; /* unit text, spaces removed, lowercase */
 } words_t;
 
 static char lower(char c)
@@ -51,9 +51,11 @@ static void split_words(const char *name, words_t *o)
             const char close = *p == '(' ? ')' : *p == '[' ? ']' : '}';
             size_t k = 0;
             for (p++; *p && *p != close; p++)
-                if (*p != ' ' && k + 1 < sizeof o->unit) o->unit[k++] = lower(*p);
+                if (*p != ' ' && k + 1 < sizeof o->unit)
+                    o->unit[k++] = lower(*p);
             o->unit[k] = '\0';
-            if (*p) p++;
+            if (*p)
+                p++;
             continue;
         }
         if (!is_alnum((unsigned char)*p)) {
@@ -63,7 +65,8 @@ static void split_words(const char *name, words_t *o)
         size_t k = 0;
         char *w = o->nw < MAX_WORDS ? o->w[o->nw] : NULL;
         for (; *p && is_alnum((unsigned char)*p); p++)
-            if (w && k + 1 < WORD_MAX) w[k++] = lower(*p);
+            if (w && k + 1 < WORD_MAX)
+                w[k++] = lower(*p);
         if (w) {
             w[k] = '\0';
             o->nw++;
@@ -74,7 +77,8 @@ static void split_words(const char *name, words_t *o)
 static int in(const char *w, const char *const *set)
 {
     for (; *set; set++)
-        if (!strcmp(w, *set)) return 1;
+        if (!strcmp(w, *set))
+            return 1;
     return 0;
 }
 
@@ -82,25 +86,43 @@ static int in(const char *w, const char *const *set)
 static int unit_of(const char *u, int time_role)
 {
     static const char *const s[] = {"s", "sec", "secs", "second", "seconds", NULL};
-    static const char *const ms[] = {"ms", "msec", "msecs", "millis", "millisecond",
-                                     "milliseconds", NULL};
-    static const char *const us[] = {"us", "\xc2\xb5s", "\xce\xbcs", "usec", "usecs", "micros",
-                                     "microsecond", "microseconds", NULL};
+    static const char *const ms[] = {"ms",          "msec",         "msecs", "millis",
+                                     "millisecond", "milliseconds", NULL};
+    static const char *const us[] = {"us",     "\xc2\xb5s",   "\xce\xbcs",    "usec", "usecs",
+                                     "micros", "microsecond", "microseconds", NULL};
     static const char *const g[] = {"g", "gs", "g0", "gee", "gees", NULL};
-    static const char *const mps2[] = {"m/s2",      "m/s^2",   "m/s\xc2\xb2", "ms2",  "ms^-2",
-                                       "ms-2",      "mps2",    "m/s/s",       "mss",  "m*s^-2",
-                                       "m.s-2",     "m.s^-2",  "ms\xe2\x81\xbb\xc2\xb2",
-                                       "m\xc2\xb7s\xe2\x81\xbb\xc2\xb2", "m/sec2", "m/sec^2",
+    static const char *const mps2[] = {"m/s2",
+                                       "m/s^2",
+                                       "m/s\xc2\xb2",
+                                       "ms2",
+                                       "ms^-2",
+                                       "ms-2",
+                                       "mps2",
+                                       "m/s/s",
+                                       "mss",
+                                       "m*s^-2",
+                                       "m.s-2",
+                                       "m.s^-2",
+                                       "ms\xe2\x81\xbb\xc2\xb2",
+                                       "m\xc2\xb7s\xe2\x81\xbb\xc2\xb2",
+                                       "m/sec2",
+                                       "m/sec^2",
                                        NULL};
-    if (!u[0]) return SW_CSV_UNIT_NONE;
+    if (!u[0])
+        return SW_CSV_UNIT_NONE;
     if (time_role) {
-        if (in(u, s)) return SW_CSV_UNIT_S;
-        if (in(u, ms)) return SW_CSV_UNIT_MS;
-        if (in(u, us)) return SW_CSV_UNIT_US;
+        if (in(u, s))
+            return SW_CSV_UNIT_S;
+        if (in(u, ms))
+            return SW_CSV_UNIT_MS;
+        if (in(u, us))
+            return SW_CSV_UNIT_US;
         return SW_CSV_UNIT_NONE;
     }
-    if (in(u, g)) return SW_CSV_UNIT_G;
-    if (in(u, mps2)) return SW_CSV_UNIT_MPS2;
+    if (in(u, g))
+        return SW_CSV_UNIT_G;
+    if (in(u, mps2))
+        return SW_CSV_UNIT_MPS2;
     return SW_CSV_UNIT_NONE;
 }
 
@@ -109,10 +131,12 @@ static int unit_of(const char *u, int time_role)
 static int unit_in(const words_t *w, int time_role, int *last_is_unit)
 {
     *last_is_unit = 0;
-    if (w->unit[0]) return unit_of(w->unit, time_role);
+    if (w->unit[0])
+        return unit_of(w->unit, time_role);
     if (w->nw >= 2) {
         const int u = unit_of(w->w[w->nw - 1], time_role);
-        if (u != SW_CSV_UNIT_NONE) *last_is_unit = 1;
+        if (u != SW_CSV_UNIT_NONE)
+            *last_is_unit = 1;
         return u;
     }
     return SW_CSV_UNIT_NONE;
@@ -123,7 +147,8 @@ int sw_csv_unit_parse(const char *text, int time_role)
     char u[WORD_MAX * 2];
     size_t k = 0;
     for (const char *p = text; p && *p && k + 1 < sizeof u; p++)
-        if (*p != ' ') u[k++] = lower(*p);
+        if (*p != ' ')
+            u[k++] = lower(*p);
     u[k] = '\0';
     return unit_of(u, time_role);
 }
@@ -139,10 +164,10 @@ int sw_csv_name_unit(const char *name, int time_role)
 double sw_csv_unit_scale(int unit)
 {
     switch (unit) {
-    case SW_CSV_UNIT_MS: return 1e-3;
-    case SW_CSV_UNIT_US: return 1e-6;
-    case SW_CSV_UNIT_G: return SW_G0;
-    default: return 1.0;
+        case SW_CSV_UNIT_MS: return 1e-3;
+        case SW_CSV_UNIT_US: return 1e-6;
+        case SW_CSV_UNIT_G: return SW_G0;
+        default: return 1.0;
     }
 }
 
@@ -154,19 +179,20 @@ typedef struct {
 
 static void classify(const char *name, kind_t *k)
 {
-    static const char *const time_w[] = {"time", "t", "timestamp", "ts", "elapsed", "date",
-                                         "datetime", "utc", "epoch", "clock", NULL};
-    static const char *const index_w[] = {"sample", "samples", "index", "idx", "n", "no", "nr",
-                                          "num", "count", "seq", "id", "record", "row", NULL};
-    static const char *const accel_w[] = {"accel", "acc", "acceleration", "accelerometer", "a",
-                                          NULL};
-    static const char *const x_w[] = {"x", "ax", "accx", "accelx", "xaccel", "xacc",
-                                      "long", "longitudinal", "lon", "forward", "fwd", "surge",
+    static const char *const time_w[] = {"time",     "t",   "timestamp", "ts",    "elapsed", "date",
+                                         "datetime", "utc", "epoch",     "clock", NULL};
+    static const char *const index_w[] = {"sample", "samples", "index", "idx",   "n",
+                                          "no",     "nr",      "num",   "count", "seq",
+                                          "id",     "record",  "row",   NULL};
+    static const char *const accel_w[] = {"accel",         "acc", "acceleration",
+                                          "accelerometer", "a",   NULL};
+    static const char *const x_w[] = {"x",    "ax",           "accx", "accelx",  "xaccel", "xacc",
+                                      "long", "longitudinal", "lon",  "forward", "fwd",    "surge",
                                       NULL};
-    static const char *const y_w[] = {"y", "ay", "accy", "accely", "yaccel", "yacc", "lat",
-                                      "lateral", "sway", NULL};
-    static const char *const z_w[] = {"z", "az", "accz", "accelz", "zaccel", "zacc", "vert",
-                                      "vertical", "heave", "up", NULL};
+    static const char *const y_w[] = {"y",    "ay",  "accy",    "accely", "yaccel",
+                                      "yacc", "lat", "lateral", "sway",   NULL};
+    static const char *const z_w[] = {"z",    "az",       "accz",  "accelz", "zaccel", "zacc",
+                                      "vert", "vertical", "heave", "up",     NULL};
     words_t w;
     int tlast, alast;
     split_words(name, &w);
@@ -179,17 +205,27 @@ static void classify(const char *name, kind_t *k)
         snprintf(x, sizeof x, "%s", w.w[i]);
         size_t xl = strlen(x);
         while (xl > 1 && x[xl - 1] >= '0' && x[xl - 1] <= '9') x[--xl] = '\0';
-        if (in(x, index_w)) k->index = 1;
-        if (in(x, time_w) && !(tlast && i == w.nw - 1)) k->time = 1;
-        if (alast && i == w.nw - 1) continue; /* the unit word */
-        if (in(x, accel_w)) k->accel = 1;
-        if (in(x, x_w)) k->axis = 'x';
-        if (in(x, y_w)) k->axis = 'y';
-        if (in(x, z_w)) k->axis = 'z';
+        if (in(x, index_w))
+            k->index = 1;
+        if (in(x, time_w) && !(tlast && i == w.nw - 1))
+            k->time = 1;
+        if (alast && i == w.nw - 1)
+            continue; /* the unit word */
+        if (in(x, accel_w))
+            k->accel = 1;
+        if (in(x, x_w))
+            k->axis = 'x';
+        if (in(x, y_w))
+            k->axis = 'y';
+        if (in(x, z_w))
+            k->axis = 'z';
     }
-    if (k->aunit != SW_CSV_UNIT_NONE || (k->axis && !k->time)) k->accel = 1;
-    if (k->index || k->accel) k->time = 0;
-    if (k->time) k->accel = 0;
+    if (k->aunit != SW_CSV_UNIT_NONE || (k->axis && !k->time))
+        k->accel = 1;
+    if (k->index || k->accel)
+        k->time = 0;
+    if (k->time)
+        k->accel = 0;
 }
 
 /* "\"a\", \"b\"" of the columns in set, into dst. */
@@ -214,16 +250,20 @@ int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_
     for (int r = 0; r < SW_CSV_NROLES; r++) g->col[r] = -1;
     for (long i = 0; i < n; i++) {
         kind_t k;
-        if (i == skip) continue;
+        if (i == skip)
+            continue;
         classify(names[i], &k);
         if (k.time && ntc < CAP) {
             tc[ntc++] = i;
-            if (k.tunit != SW_CSV_UNIT_NONE && ntu < CAP) tu[ntu++] = i;
+            if (k.tunit != SW_CSV_UNIT_NONE && ntu < CAP)
+                tu[ntu++] = i;
         }
         if (k.accel && nac < CAP) {
             ac[nac++] = i;
-            if (k.axis == 'x' && nax < CAP) ax[nax++] = i;
-            if (!k.axis && nan_ < CAP) an[nan_++] = i; /* no axis: not lateral, not vertical */
+            if (k.axis == 'x' && nax < CAP)
+                ax[nax++] = i;
+            if (!k.axis && nan_ < CAP)
+                an[nan_++] = i; /* no axis: not lateral, not vertical */
         }
     }
     if (want[SW_CSV_ROLE_TIME]) {

@@ -27,15 +27,15 @@ static const char *const role_name[N_ROLES] = {"time", "accel", "vertical"};
 /* Copies of the wanted fields on the libcsv path: at most the line itself
  * plus one NUL per slot. */
 #define SCRATCH_CAP ((size_t)SW_CSV_MAX_LINE + 2 + N_SLOTS)
-#define EXCERPT_MAX 40 /* bytes of offending text quoted in a reason */
+#define EXCERPT_MAX 40                           /* bytes of offending text quoted in a reason */
 #define MAX_COLUMN_INDEX ((long)SW_CSV_MAX_LINE) /* a line cannot hold more fields */
 
 #define LIBCSV_OPTS (CSV_STRICT | CSV_STRICT_FINI | CSV_APPEND_NULL)
 
 struct sw_csv {
     /* options, fixed at create */
-    char delim;     /* 0 until detected */
-    int header;     /* -1 detect, 0 none, 1 present */
+    char delim; /* 0 until detected */
+    int header; /* -1 detect, 0 none, 1 present */
     double tscale, ascale;
     int flip;
     char *name[N_ROLES]; /* column name as given, looked up in the header; NULL: by index */
@@ -45,17 +45,17 @@ struct sw_csv {
     sw_csv_row_fn on_row;
     sw_csv_reject_fn on_reject;
     void *user;
-    locale_t cloc; /* "C" numeric locale: '.' is the decimal point whatever
-                      the program's locale says */
-    int infer;                  /* read unnamed columns and units from the header */
-    int col_given[N_ROLES];     /* the caller named or numbered the column */
+    locale_t cloc;          /* "C" numeric locale: '.' is the decimal point whatever
+                               the program's locale says */
+    int infer;              /* read unnamed columns and units from the header */
+    int col_given[N_ROLES]; /* the caller named or numbered the column */
     int tscale_given, ascale_given;
-    int dcomma;                 /* decimal comma: -1 not decided yet, 0, 1 */
-    int tkind;                  /* time column: 0 not seen yet, 1 numbers, 2 date-times */
+    int dcomma; /* decimal comma: -1 not decided yet, 0, 1 */
+    int tkind;  /* time column: 0 not seen yet, 1 numbers, 2 date-times */
     sw_csv_layout_t lay;
     char hdr[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
     long nhdr;
-    int capturing;              /* keep the fields of this line: it may be the header */
+    int capturing; /* keep the fields of this line: it may be the header */
 
     /* the physical line being gathered */
     char *line;
@@ -82,7 +82,7 @@ struct sw_csv {
     double last_t;
     int any_order; /* the options' any_order: no time-order check here */
     sw_csv_counts_t n;
-    int status; /* sticky error ending the parse, or SW_OK */
+    int status;    /* sticky error ending the parse, or SW_OK */
     char msg[400]; /* "line N: " + a reason */
     char reason[256];
 };
@@ -143,6 +143,5 @@ int sw_csv_name_unit(const char *name, int time_role);
  * no candidate or several equally good ones. */
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
                  long skip, sw_csv_guess_t *g);
-
 
 #endif

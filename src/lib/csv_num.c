@@ -33,33 +33,42 @@ static int fast_decimal(const char *p, const char *end, char mark, double *out)
 {
     int neg = 0, any = 0, k = 0;
     uint64_t m = 0;
-    if (p < end && (*p == '+' || *p == '-')) neg = *p++ == '-';
+    if (p < end && (*p == '+' || *p == '-'))
+        neg = *p++ == '-';
     for (; p < end && *p >= '0' && *p <= '9'; p++, any = 1) {
-        if (m > UINT64_C(1) << 53) return 0;
+        if (m > UINT64_C(1) << 53)
+            return 0;
         m = m * 10 + (uint64_t)(*p - '0');
     }
     if (p < end && *p == mark) {
         for (p++; p < end && *p >= '0' && *p <= '9'; p++, any = 1, k--) {
-            if (m > UINT64_C(1) << 53) return 0;
+            if (m > UINT64_C(1) << 53)
+                return 0;
             m = m * 10 + (uint64_t)(*p - '0');
         }
     }
-    if (!any) return 0;
+    if (!any)
+        return 0;
     if (p < end && (*p == 'e' || *p == 'E')) {
         int eneg = 0, e = 0, edigits = 0;
         p++;
-        if (p < end && (*p == '+' || *p == '-')) eneg = *p++ == '-';
+        if (p < end && (*p == '+' || *p == '-'))
+            eneg = *p++ == '-';
         for (; p < end && *p >= '0' && *p <= '9'; p++, edigits++) {
-            if (e > 1000) return 0;
+            if (e > 1000)
+                return 0;
             e = e * 10 + (*p - '0');
         }
-        if (!edigits) return 0;
+        if (!edigits)
+            return 0;
         k += eneg ? -e : e;
     }
-    if (p != end || m > UINT64_C(1) << 53) return 0;
+    if (p != end || m > UINT64_C(1) << 53)
+        return 0;
     double v = (double)m;
     if (m != 0) {
-        if (k < -22 || k > 22) return 0;
+        if (k < -22 || k > 22)
+            return 0;
         v = k < 0 ? v / pow10_exact[-k] : v * pow10_exact[k];
     }
     *out = neg ? -v : v;
@@ -71,9 +80,11 @@ int sw_csv_number(locale_t cloc, const char *s, size_t n, int decimal_comma, dou
 {
     while (n && is_blank(*s)) s++, n--;
     while (n && is_blank(s[n - 1])) n--;
-    if (!n) return SW_NUM_EMPTY;
+    if (!n)
+        return SW_NUM_EMPTY;
 #if FLT_EVAL_METHOD == 0
-    if (fast_decimal(s, s + n, decimal_comma ? ',' : '.', out)) return SW_NUM_OK;
+    if (fast_decimal(s, s + n, decimal_comma ? ',' : '.', out))
+        return SW_NUM_OK;
 #endif
     int comma = 0, dot = 0, bad = 0;
     for (size_t i = 0; i < n; i++) {
@@ -87,16 +98,19 @@ int sw_csv_number(locale_t cloc, const char *s, size_t n, int decimal_comma, dou
         else
             bad = 1;
     }
-    if (bad) return SW_NUM_BAD;
+    if (bad)
+        return SW_NUM_BAD;
     char buf[64];
     const char *p = s;
     if (decimal_comma) {
         /* "1.000,5": a thousands separator or a second mark, not a number */
-        if (dot || comma > 1 || n >= sizeof buf) return SW_NUM_BAD;
+        if (dot || comma > 1 || n >= sizeof buf)
+            return SW_NUM_BAD;
         memcpy(buf, s, n);
         buf[n] = '\0';
         char *c = memchr(buf, ',', n);
-        if (c) *c = '.';
+        if (c)
+            *c = '.';
         p = buf;
     } else if (comma) {
         return SW_NUM_COMMA; /* "0,001": a number, but not in this format */
@@ -105,10 +119,12 @@ int sw_csv_number(locale_t cloc, const char *s, size_t n, int decimal_comma, dou
     const locale_t prev = uselocale(cloc);
     const double v = strtod(p, &end);
     uselocale(prev);
-    if (end != p + n) return SW_NUM_BAD;
+    if (end != p + n)
+        return SW_NUM_BAD;
     /* Overflow gives HUGE_VAL; underflow (1e-400) gives a tiny finite
      * value with ERANGE, which is as good as zero here and accepted. */
-    if (!isfinite(v)) return SW_NUM_RANGE;
+    if (!isfinite(v))
+        return SW_NUM_RANGE;
     *out = v;
     return SW_NUM_OK;
 }
@@ -120,7 +136,8 @@ static int digits(const char **p, const char *end, int k, int *v)
 {
     int x = 0;
     for (int i = 0; i < k; i++, (*p)++) {
-        if (*p >= end || **p < '0' || **p > '9') return 0;
+        if (*p >= end || **p < '0' || **p > '9')
+            return 0;
         x = x * 10 + (**p - '0');
     }
     *v = x;
@@ -155,12 +172,15 @@ int sw_csv_datetime(const char *s, size_t n, double *out)
     if (!digits(&p, end, 4, &y) || p >= end || *p++ != '-' || !digits(&p, end, 2, &mo) ||
         p >= end || *p++ != '-' || !digits(&p, end, 2, &d))
         return 0;
-    if (p >= end || (*p != 'T' && *p != 't' && *p != ' ')) return 0;
+    if (p >= end || (*p != 'T' && *p != 't' && *p != ' '))
+        return 0;
     p++;
-    if (!digits(&p, end, 2, &h) || p >= end || *p++ != ':' || !digits(&p, end, 2, &mi)) return 0;
+    if (!digits(&p, end, 2, &h) || p >= end || *p++ != ':' || !digits(&p, end, 2, &mi))
+        return 0;
     if (p < end && *p == ':') {
         p++;
-        if (!digits(&p, end, 2, &sec)) return 0;
+        if (!digits(&p, end, 2, &sec))
+            return 0;
     }
     double frac = 0.0, scale = 1.0;
     if (p < end && (*p == '.' || *p == ',')) {
@@ -171,7 +191,8 @@ int sw_csv_datetime(const char *s, size_t n, double *out)
                 frac = frac * 10.0 + (*p - '0');
                 scale *= 10.0;
             }
-        if (!nd) return 0;
+        if (!nd)
+            return 0;
     }
     long offset = 0; /* s east of UTC */
     if (p < end && (*p == 'Z' || *p == 'z')) {
@@ -179,13 +200,18 @@ int sw_csv_datetime(const char *s, size_t n, double *out)
     } else if (p < end && (*p == '+' || *p == '-')) {
         const int sign = *p++ == '-' ? -1 : 1;
         int oh, om = 0;
-        if (!digits(&p, end, 2, &oh)) return 0;
-        if (p < end && *p == ':') p++;
-        if (p < end && !digits(&p, end, 2, &om)) return 0;
-        if (oh > 23 || om > 59) return 0;
+        if (!digits(&p, end, 2, &oh))
+            return 0;
+        if (p < end && *p == ':')
+            p++;
+        if (p < end && !digits(&p, end, 2, &om))
+            return 0;
+        if (oh > 23 || om > 59)
+            return 0;
         offset = sign * (oh * 3600L + om * 60L);
     }
-    if (p != end) return 0;
+    if (p != end)
+        return 0;
     if (mo < 1 || mo > 12 || d < 1 || d > days_in_month(y, mo) || h > 23 || mi > 59 || sec > 60)
         return 0;
     const long whole = days_from_civil(y, mo, d) * 86400L + h * 3600L + mi * 60L + sec - offset;

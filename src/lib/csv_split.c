@@ -27,12 +27,16 @@ int sw_csv_name_equal(const char *a, size_t an, const char *b)
     while (an && sw_csv_is_blank(*a)) a++, an--;
     while (an && sw_csv_is_blank(a[an - 1])) an--;
     size_t bn = strlen(b);
-    if (an != bn) return 0;
+    if (an != bn)
+        return 0;
     for (size_t i = 0; i < an; i++) {
         unsigned char x = (unsigned char)a[i], y = (unsigned char)b[i];
-        if (x >= 'A' && x <= 'Z') x = (unsigned char)(x - 'A' + 'a');
-        if (y >= 'A' && y <= 'Z') y = (unsigned char)(y - 'A' + 'a');
-        if (x != y) return 0;
+        if (x >= 'A' && x <= 'Z')
+            x = (unsigned char)(x - 'A' + 'a');
+        if (y >= 'A' && y <= 'Z')
+            y = (unsigned char)(y - 'A' + 'a');
+        if (x != y)
+            return 0;
     }
     return 1;
 }
@@ -44,7 +48,8 @@ void sw_csv_excerpt(char *dst, size_t cap, const char *s, size_t n)
 {
     size_t k = 0, lim = n > EXCERPT_MAX ? EXCERPT_MAX : n;
     if (cap < EXCERPT_MAX + 6) {
-        if (cap) dst[0] = '\0';
+        if (cap)
+            dst[0] = '\0';
         return;
     }
     dst[k++] = '"';
@@ -73,22 +78,27 @@ static void take_field(sw_csv_t *c, char *s, size_t n, int copy)
         size_t an = n;
         while (an && sw_csv_is_blank(*a)) a++, an--;
         while (an && sw_csv_is_blank(a[an - 1])) an--;
-        if (an >= SW_CSV_NAME_MAX) an = SW_CSV_NAME_MAX - 1;
+        if (an >= SW_CSV_NAME_MAX)
+            an = SW_CSV_NAME_MAX - 1;
         memcpy(c->hdr[k], a, an);
         c->hdr[k][an] = '\0';
         c->nhdr = k + 1;
     }
     if (c->matching) {
         for (int r = 0; r < N_ROLES; r++)
-            if (c->name[r] && c->match[r] < 0 && sw_csv_name_equal(s, n, c->name[r])) c->match[r] = k;
+            if (c->name[r] && c->match[r] < 0 && sw_csv_name_equal(s, n, c->name[r]))
+                c->match[r] = k;
     }
-    if (k > c->maxwant) return;
+    if (k > c->maxwant)
+        return;
     const char *kept = NULL;
     for (int r = 0; r < N_SLOTS; r++) {
-        if (c->want[r] != k) continue;
+        if (c->want[r] != k)
+            continue;
         if (!kept) {
             if (copy) {
-                if (c->scratch_used + n + 1 > SCRATCH_CAP) return; /* cannot happen */
+                if (c->scratch_used + n + 1 > SCRATCH_CAP)
+                    return; /* cannot happen */
                 char *d = c->scratch + c->scratch_used;
                 memcpy(d, s, n);
                 d[n] = '\0';
@@ -115,9 +125,11 @@ void sw_csv_split_plain(sw_csv_t *c, char *s, size_t n)
         while (p < e && sw_csv_is_blank(*p)) p++;
         while (e > p && sw_csv_is_blank(e[-1])) e--;
         take_field(c, p, (size_t)(e - p), 0);
-        if (!d) return;
+        if (!d)
+            return;
         /* Thousands of columns: stop once every wanted field is in hand. */
-        if (!c->matching && !c->capturing && c->nf > c->maxwant) return;
+        if (!c->matching && !c->capturing && c->nf > c->maxwant)
+            return;
         p = d + 1;
     }
 }
@@ -155,8 +167,8 @@ int sw_csv_split_quoted(sw_csv_t *c, char *s, size_t n)
         if (err == CSV_EPARSE) {
             char ex[EXCERPT_MAX + 8];
             sw_csv_excerpt(ex, sizeof ex, s + used, n - used);
-            snprintf(c->reason, sizeof c->reason, "malformed quoting in field %ld at %s",
-                     c->nf + 1, ex);
+            snprintf(c->reason, sizeof c->reason, "malformed quoting in field %ld at %s", c->nf + 1,
+                     ex);
         } else {
             snprintf(c->reason, sizeof c->reason, "CSV parser: %s", csv_strerror(err));
         }
@@ -177,5 +189,6 @@ void sw_csv_lcsv_init(sw_csv_t *c)
     /* libcsv grows its field buffer linearly by this much: the default (128)
      * would mean thousands of reallocations for one long quoted field. */
     csv_set_blk_size(&c->lp, 64 * 1024);
-    if (c->delim) csv_set_delim(&c->lp, (unsigned char)c->delim);
+    if (c->delim)
+        csv_set_delim(&c->lp, (unsigned char)c->delim);
 }

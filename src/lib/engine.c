@@ -22,7 +22,7 @@ struct sw_engine {
     size_t n;
     sw_pkg_t *pk;
     sw_engine_opts_t o;
-    sw_ctx_t C;     /* what the layers share: scheme, options, event sink */
+    sw_ctx_t C; /* what the layers share: scheme, options, event sink */
     int started;
     int restart;    /* the next sample starts afresh: packages at rest, no bridge */
     int origin_set; /* sw_engine_set_origin(): C.origin is not the first sample's time */
@@ -56,7 +56,8 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
     int guard = 0, same_t = 0, checked = 0;
     if (sw_input_geff(P, P->t) <= 0.0 || sw_input_geff(P, t1) <= 0.0) {
         /* airborne: outside the model, never integrated */
-        if (P->phase != SW_PHASE_OVERTURNED) sw_pkg_fault(C, P, P->t, SW_EFAULT);
+        if (P->phase != SW_PHASE_OVERTURNED)
+            sw_pkg_fault(C, P, P->t, SW_EFAULT);
         P->t = t1;
         return;
     }
@@ -65,12 +66,15 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
             sw_pkg_fault(C, P, P->t, SW_EFAULT);
             break;
         }
-        if (P->phase == SW_PHASE_OVERTURNED) break;
+        if (P->phase == SW_PHASE_OVERTURNED)
+            break;
         if (P->phase == SW_PHASE_STUCK && P->ops->stuck_advance) {
             int side = 0;
             const int r = P->ops->stuck_advance(C, P, t1, &side);
-            if (r == SW_STUCK_STILL) break;
-            if (r == SW_STUCK_MOVED) continue;
+            if (r == SW_STUCK_STILL)
+                break;
+            if (r == SW_STUCK_MOVED)
+                continue;
             if (r == SW_STUCK_FAULT) {
                 sw_pkg_fault(C, P, P->t, SW_EFAULT);
                 break;
@@ -107,8 +111,10 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
         if (ev == SW_EVF_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->n);
             P->t = (h == rem) ? t1 : t0 + h;
-            if (P->phase == SW_PHASE_ROCKING) sw_pkg_track_theta(P, P->y[P->ith]);
-            if (P->ops->after_step) P->ops->after_step(C, P, P->t);
+            if (P->phase == SW_PHASE_ROCKING)
+                sw_pkg_track_theta(P, P->y[P->ith]);
+            if (P->ops->after_step)
+                P->ops->after_step(C, P, P->t);
             continue;
         }
         const double te = sw_event_polish(C, P, ev, t0, h, P->y, tau, ys);
@@ -123,7 +129,8 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
          * a step's worth of theta'); the overturn map records pi/2. */
         if (P->phase == SW_PHASE_ROCKING && ev != SW_EVF_OVERTURN)
             sw_pkg_track_theta(P, P->y[P->ith]);
-        if (P->ops->at_cut) P->ops->at_cut(P);
+        if (P->ops->at_cut)
+            P->ops->at_cut(P);
         sw_pkg_on_cut(C, P, ev, te);
     }
     P->t = t1;
@@ -132,9 +139,10 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
 /* Every number of an output, finite?  Inline: checked on every report. */
 static inline int output_finite(const sw_output_t *o)
 {
-    const double v[] = {o->t,         o->state.u,      o->state.u_dot,  o->state.theta,
-                        o->state.theta_dot, o->state.z,    o->state.z_dot, o->margin,
-                        o->margin_bound, o->uplift_ratio, o->a_g,          o->a_support};
+    const double v[] = {
+        o->t,       o->state.u,     o->state.u_dot, o->state.theta,  o->state.theta_dot,
+        o->state.z, o->state.z_dot, o->margin,      o->margin_bound, o->uplift_ratio,
+        o->a_g,     o->a_support};
     return sw_all_finite(v, sizeof v / sizeof v[0]);
 }
 
@@ -157,10 +165,14 @@ static void report_states(sw_engine_t *e, double t)
         }
         o.pkg = i;
         o.t = e->C.origin + t;
-        if (o.margin < P->sum.min_margin) P->sum.min_margin = o.margin;
-        if (o.margin_bound < P->sum.min_margin_bound) P->sum.min_margin_bound = o.margin_bound;
-        if (o.uplift_ratio > P->sum.max_uplift_ratio) P->sum.max_uplift_ratio = o.uplift_ratio;
-        if (e->o.on_state) e->o.on_state(e->o.user, &o);
+        if (o.margin < P->sum.min_margin)
+            P->sum.min_margin = o.margin;
+        if (o.margin_bound < P->sum.min_margin_bound)
+            P->sum.min_margin_bound = o.margin_bound;
+        if (o.uplift_ratio > P->sum.max_uplift_ratio)
+            P->sum.max_uplift_ratio = o.uplift_ratio;
+        if (e->o.on_state)
+            e->o.on_state(e->o.user, &o);
     }
 }
 
@@ -186,12 +198,13 @@ static void pkg_reset(sw_pkg_t *P)
 /* Build package number index of e from scene into P (zeroed), for the
  * engine's scheme and options.  On failure msg says why; P may hold work
  * space to free with sw_step_free(). */
-static int pkg_init(sw_engine_t *e, sw_pkg_t *P, const sw_scene_t *scene, size_t index,
-                    char *msg, size_t msglen)
+static int pkg_init(sw_engine_t *e, sw_pkg_t *P, const sw_scene_t *scene, size_t index, char *msg,
+                    size_t msglen)
 {
     P->scene = *scene;
     if (sw_scene_validate(&P->scene, &P->d, NULL, NULL, NULL) != SW_OK) {
-        if (msg && msglen) snprintf(msg, msglen, "scene '%s' is not valid", scene->name);
+        if (msg && msglen)
+            snprintf(msg, msglen, "scene '%s' is not valid", scene->name);
         return SW_EINVAL;
     }
     sw_model_setup(P);
@@ -205,7 +218,8 @@ static int pkg_init(sw_engine_t *e, sw_pkg_t *P, const sw_scene_t *scene, size_t
 
 void sw_engine_reset(sw_engine_t *e)
 {
-    if (!e) return;
+    if (!e)
+        return;
     e->started = 0;
     e->restart = 0;
     e->origin_set = 0;
@@ -218,7 +232,8 @@ void sw_engine_reset(sw_engine_t *e)
 
 void sw_engine_destroy(sw_engine_t *e)
 {
-    if (!e) return;
+    if (!e)
+        return;
     for (size_t i = 0; i < e->n; i++) sw_step_free(&e->pk[i]);
     free(e->pk);
     free(e);
@@ -226,8 +241,10 @@ void sw_engine_destroy(sw_engine_t *e)
 
 static int fail(int *err, int code, char *msg, size_t msglen, const char *text)
 {
-    if (err) *err = code;
-    if (msg && msglen) snprintf(msg, msglen, "%s", text);
+    if (err)
+        *err = code;
+    if (msg && msglen)
+        snprintf(msg, msglen, "%s", text);
     return code;
 }
 
@@ -240,11 +257,13 @@ static int fail(int *err, int code, char *msg, size_t msglen, const char *text)
  * keeps rk4, so that the dt is honoured or refused. */
 static const char *default_scheme(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *o)
 {
-    if (o->dt_forced) return SW_DEFAULT_SCHEME;
+    if (o->dt_forced)
+        return SW_DEFAULT_SCHEME;
     const double dt = o->dt > 0.0 ? o->dt : SW_DEFAULT_DT; /* s */
     for (size_t i = 0; i < n; i++) {
         sw_derived_t d;
-        if (sw_scene_validate(&scenes[i], &d, NULL, NULL, NULL) != SW_OK) continue;
+        if (sw_scene_validate(&scenes[i], &d, NULL, NULL, NULL) != SW_OK)
+            continue;
         if (d.model == SW_MODEL_CUSHION && d.omega_max * dt > SW_STIFF_OMEGA_DT)
             return SW_STIFF_SCHEME;
     }
@@ -252,8 +271,8 @@ static const char *default_scheme(const sw_scene_t *scenes, size_t n, const sw_e
 }
 
 /* --accuracy: the scheme and step of the measured table, for every scene. */
-static int resolve_accuracy(sw_engine_t *e, const sw_scene_t *scenes, size_t n, int *err,
-                            char *msg, size_t msglen)
+static int resolve_accuracy(sw_engine_t *e, const sw_scene_t *scenes, size_t n, int *err, char *msg,
+                            size_t msglen)
 {
     char buf[512];
     if (e->o.scheme || e->o.dt != 0.0 || !(e->o.accuracy > 0.0))
@@ -261,8 +280,7 @@ static int resolve_accuracy(sw_engine_t *e, const sw_scene_t *scenes, size_t n, 
                     "accuracy must be > 0 and chooses the scheme and the step: give it "
                     "without scheme and dt");
     size_t bad = 0;
-    const int r =
-        sw_scheme_for_accuracy_n(scenes, n, e->o.accuracy, &e->o.scheme, &e->o.dt, &bad);
+    const int r = sw_scheme_for_accuracy_n(scenes, n, e->o.accuracy, &e->o.scheme, &e->o.dt, &bad);
     if (r != SW_OK) {
         snprintf(buf, sizeof buf, "accuracy %g rad, scene '%s': %s", e->o.accuracy,
                  scenes[bad].name,
@@ -281,8 +299,10 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
                               int *err, char *msg, size_t msglen)
 {
     char buf[512];
-    if (err) *err = SW_OK;
-    if (msg && msglen) msg[0] = '\0';
+    if (err)
+        *err = SW_OK;
+    if (msg && msglen)
+        msg[0] = '\0';
     if (!scenes || n == 0) {
         fail(err, SW_EINVAL, msg, msglen, "no scene");
         return NULL;
@@ -294,7 +314,8 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
         return NULL;
     }
     e->n = n;
-    if (opts) e->o = *opts;
+    if (opts)
+        e->o = *opts;
     if (e->o.accuracy != 0.0 && resolve_accuracy(e, scenes, n, err, msg, msglen) != SW_OK)
         goto out_fail;
     const sw_scheme_t *S =
@@ -339,9 +360,11 @@ static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
         sw_pkg_fault(&e->C, P, t, SW_EFAULT);
         return;
     }
-    if (P->phase != SW_PHASE_STUCK) return;
+    if (P->phase != SW_PHASE_STUCK)
+        return;
     const int side = P->ops->uplift_side(P, t);
-    if (side) sw_pkg_start_rocking(&e->C, P, t, side);
+    if (side)
+        sw_pkg_start_rocking(&e->C, P, t, side);
 }
 
 /* The stream starts (or starts again, after sw_engine_restart()) at t
@@ -368,15 +391,20 @@ static inline int coarse_time(double t_abs)
 
 int sw_engine_push(sw_engine_t *e, double t_abs, double a_g, double a_z)
 {
-    if (!e) return SW_EINVAL;
-    if (!isfinite(t_abs) || !isfinite(a_g) || !isfinite(a_z)) return SW_ENONFINITE;
-    if (fabs(a_g) > SW_MAX_ACCEL || fabs(a_z) > SW_MAX_ACCEL) return SW_ETOOBIG;
+    if (!e)
+        return SW_EINVAL;
+    if (!isfinite(t_abs) || !isfinite(a_g) || !isfinite(a_z))
+        return SW_ENONFINITE;
+    if (fabs(a_g) > SW_MAX_ACCEL || fabs(a_z) > SW_MAX_ACCEL)
+        return SW_ETOOBIG;
     e->C.events = 0;
     if (!e->started) {
-        if (coarse_time(t_abs)) return SW_ERESOLUTION;
+        if (coarse_time(t_abs))
+            return SW_ERESOLUTION;
         if (e->origin_set) {
             const double t = t_abs - e->C.origin;
-            if (!(t >= 0.0)) return SW_EORDER;
+            if (!(t >= 0.0))
+                return SW_EORDER;
             e->t_abs = t_abs;
             start_at(e, t, a_g, a_z);
             report_states(e, t);
@@ -388,10 +416,13 @@ int sw_engine_push(sw_engine_t *e, double t_abs, double a_g, double a_z)
         report_states(e, 0.0);
         return e->C.events ? SW_EVENT : SW_OK;
     }
-    if (!(t_abs > e->t_abs)) return SW_EORDER;
-    if (coarse_time(t_abs)) return SW_ERESOLUTION;
+    if (!(t_abs > e->t_abs))
+        return SW_EORDER;
+    if (coarse_time(t_abs))
+        return SW_ERESOLUTION;
     const double t = t_abs - e->C.origin; /* s, relative */
-    if (!(t > e->t)) return SW_ERESOLUTION; /* cannot happen: rounding is monotonic */
+    if (!(t > e->t))
+        return SW_ERESOLUTION; /* cannot happen: rounding is monotonic */
     e->t_abs = t_abs;
     if (e->restart) {
         e->restart = 0;
@@ -425,7 +456,8 @@ static int advance_to(sw_engine_t *e, double t1, sw_input_fn f, void *user)
         e->t_abs = e->C.origin;
         for (size_t i = 0; i < e->n; i++) initial_uplift(e, &e->pk[i], 0.0);
     }
-    if (!(t1 > e->t)) return t1 == e->t ? SW_OK : SW_EORDER;
+    if (!(t1 > e->t))
+        return t1 == e->t ? SW_OK : SW_EORDER;
     e->restart = 0; /* a function input is defined everywhere: nothing to bridge */
     for (size_t i = 0; i < e->n; i++) advance_pkg(e, &e->pk[i], t1);
     e->t = t1;
@@ -439,15 +471,19 @@ static int advance_to(sw_engine_t *e, double t1, sw_input_fn f, void *user)
 
 int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
 {
-    if (!e || !f || !isfinite(t1)) return SW_EINVAL;
-    if (coarse_time(t1)) return SW_ERESOLUTION;
+    if (!e || !f || !isfinite(t1))
+        return SW_EINVAL;
+    if (coarse_time(t1))
+        return SW_ERESOLUTION;
     return advance_to(e, t1 - e->C.origin, f, user);
 }
 
 int sw_engine_set_origin(sw_engine_t *e, double t0)
 {
-    if (!e || e->started || !isfinite(t0)) return SW_EINVAL;
-    if (coarse_time(t0)) return SW_ERESOLUTION;
+    if (!e || e->started || !isfinite(t0))
+        return SW_EINVAL;
+    if (coarse_time(t0))
+        return SW_ERESOLUTION;
     e->C.origin = t0;
     e->origin_set = 1;
     return SW_OK;
@@ -455,8 +491,10 @@ int sw_engine_set_origin(sw_engine_t *e, double t0)
 
 int sw_engine_restart(sw_engine_t *e)
 {
-    if (!e) return SW_EINVAL;
-    if (!e->started) return SW_OK;
+    if (!e)
+        return SW_EINVAL;
+    if (!e->started)
+        return SW_OK;
     for (size_t i = 0; i < e->n; i++) {
         sw_pkg_t *P = &e->pk[i];
         if (P->phase != SW_PHASE_OVERTURNED) {
@@ -477,26 +515,33 @@ static double zero_input(void *user, double t)
 
 int sw_engine_finish(sw_engine_t *e, double settle)
 {
-    if (!e) return SW_EINVAL;
+    if (!e)
+        return SW_EINVAL;
     int any = 0;
-    if (!(settle > 0.0) || !e->started) return SW_OK;
+    if (!(settle > 0.0) || !e->started)
+        return SW_OK;
     const double t_end = e->t + settle;
     const double chunk = 1e-3; /* s, state reports while settling */
     while (e->t < t_end) {
         int moving = 0;
         for (size_t i = 0; i < e->n; i++)
-            if (e->pk[i].ops->moving(&e->pk[i], e->C.rest_eps)) moving = 1;
-        if (!moving) break;
+            if (e->pk[i].ops->moving(&e->pk[i], e->C.rest_eps))
+                moving = 1;
+        if (!moving)
+            break;
         const double tn = fmin(t_end, e->t + chunk);
-        if (!(tn > e->t)) break; /* beyond the clock's resolution: no progress */
-        if (advance_to(e, tn, zero_input, NULL) == SW_EVENT) any = 1;
+        if (!(tn > e->t))
+            break; /* beyond the clock's resolution: no progress */
+        if (advance_to(e, tn, zero_input, NULL) == SW_EVENT)
+            any = 1;
     }
     return any ? SW_EVENT : SW_OK;
 }
 
 int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
 {
-    if (!e || pkg >= e->n || !s) return SW_EINVAL;
+    if (!e || pkg >= e->n || !s)
+        return SW_EINVAL;
     sw_pkg_t *P = &e->pk[pkg];
     sw_model_from_state(P, s);
     P->beyond_alpha = fabs(P->y[P->ith]) >= P->d.alpha;
@@ -506,7 +551,8 @@ int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
 
 int sw_engine_get_output(const sw_engine_t *e, size_t pkg, sw_output_t *out)
 {
-    if (!e || pkg >= e->n || !out) return SW_EINVAL;
+    if (!e || pkg >= e->n || !out)
+        return SW_EINVAL;
     const sw_pkg_t *P = &e->pk[pkg];
     const double t = e->started ? e->t : 0.0;
     sw_model_output(P, t, out);
@@ -532,7 +578,8 @@ const sw_derived_t *sw_engine_derived(const sw_engine_t *e, size_t pkg)
 
 int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s)
 {
-    if (!e || pkg >= e->n || !s) return SW_EINVAL;
+    if (!e || pkg >= e->n || !s)
+        return SW_EINVAL;
     *s = e->pk[pkg].sum;
     /* kept relative, reported as the caller's times (NAN stays NAN) */
     s->overturn_time += e->C.origin;
@@ -554,12 +601,12 @@ double sw_engine_dt(const sw_engine_t *e, size_t pkg)
 const char *sw_event_name(sw_event_kind k)
 {
     switch (k) {
-    case SW_EV_UPLIFT: return "uplift";
-    case SW_EV_IMPACT: return "impact";
-    case SW_EV_REST: return "rest";
-    case SW_EV_TIP: return "tip";
-    case SW_EV_OVERTURN: return "overturn";
-    case SW_EV_FAULT: return "fault";
+        case SW_EV_UPLIFT: return "uplift";
+        case SW_EV_IMPACT: return "impact";
+        case SW_EV_REST: return "rest";
+        case SW_EV_TIP: return "tip";
+        case SW_EV_OVERTURN: return "overturn";
+        case SW_EV_FAULT: return "fault";
     }
     return "unknown";
 }
@@ -573,12 +620,13 @@ const char *sw_event_name(sw_event_kind k)
  * failure leaves the engine unchanged; then moved into place, and the
  * pointers that lead back into it (the ODE system's parameters, an implicit
  * stepper's driver) are set again. */
-int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char *msg,
-                      size_t msglen)
+int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char *msg, size_t msglen)
 {
-    if (msg && msglen) msg[0] = '\0';
+    if (msg && msglen)
+        msg[0] = '\0';
     if (!e || !scene || pkg >= e->n) {
-        if (msg && msglen) snprintf(msg, msglen, "no such package");
+        if (msg && msglen)
+            snprintf(msg, msglen, "no such package");
         return SW_EINVAL;
     }
     sw_pkg_t fresh;

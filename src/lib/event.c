@@ -39,17 +39,21 @@ static double root_of(const sw_pkg_t *P, const sw_evcand_t *c, double t0, double
 {
     double v[2], d[2];
     const sw_herm_t H = interpolant(P, c->ev, t0, h, y0, f0, y1, f1, v, d);
-    if (c->clear && v[1] < 0.0 && v[0] < 0.0 && fmax(v[0], v[1]) < -0.5 * h * (fabs(d[0]) + fabs(d[1])))
+    if (c->clear && v[1] < 0.0 && v[0] < 0.0 &&
+        fmax(v[0], v[1]) < -0.5 * h * (fabs(d[0]) + fabs(d[1])))
         return -1.0; /* clearly below the threshold all step */
-    if (c->rule == SW_RULE_PLAIN) return sw_herm_first_rise(&H, 0.0);
+    if (c->rule == SW_RULE_PLAIN)
+        return sw_herm_first_rise(&H, 0.0);
     if (c->rule == SW_RULE_KINK) {
-        if (v[0] > 0.0) return -1.0; /* crossed already: we are past this kink */
+        if (v[0] > 0.0)
+            return -1.0; /* crossed already: we are past this kink */
     } else if (v[0] > 0.0 || (v[0] == 0.0 && d[0] > 0.0)) {
         return 0.0; /* already through at the start of the step */
     }
     const double tol = sw_herm_tol(&H);
     double tau = sw_herm_first_rise(&H, tol);
-    if (tau < 0.0 && v[0] < 0.0 && v[1] > tol) tau = 1.0; /* round-off in the pieces */
+    if (tau < 0.0 && v[0] < 0.0 && v[1] > tol)
+        tau = 1.0; /* round-off in the pieces */
     return tau;
 }
 
@@ -57,8 +61,8 @@ static double root_of(const sw_pkg_t *P, const sw_evcand_t *c, double t0, double
  * tau = lim, polished by re-stepping so that max |theta| is as accurate as
  * the scheme, even for long adaptive steps. */
 static void track_peak(const sw_ctx_t *C, sw_pkg_t *P, const sw_evcand_t *c, double t0, double h,
-                       const double y0[], const double f0[], const double y1[],
-                       const double f1[], double lim)
+                       const double y0[], const double f0[], const double y1[], const double f1[],
+                       double lim)
 {
     double yt[SW_NMAX];
     const double tau = root_of(P, c, t0, h, y0, f0, y1, f1);
@@ -79,7 +83,8 @@ int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double 
     int best = SW_EVF_NONE;
     double best_tau = 2.0;
     for (int i = 0; i < nc; i++) {
-        if (c[i].role != SW_ROLE_CUT) continue;
+        if (c[i].role != SW_ROLE_CUT)
+            continue;
         const double tau = root_of(P, &c[i], t0, h, y0, f0, y1, f1);
         const int inside = c[i].rule == SW_RULE_KINK ? tau > 0.0 && tau < 1.0 : tau >= 0.0;
         if (inside && tau < best_tau) {
@@ -90,16 +95,20 @@ int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double 
     /* what happens before it is timed */
     const double lim = best == SW_EVF_NONE ? 1.0 : best_tau;
     for (int i = 0; i < nc; i++) {
-        if (c[i].role == SW_ROLE_CUT) continue;
+        if (c[i].role == SW_ROLE_CUT)
+            continue;
         if (c[i].role == SW_ROLE_PEAK) {
             track_peak(C, P, &c[i], t0, h, y0, f0, y1, f1, lim);
             continue;
         }
         const double tau = root_of(P, &c[i], t0, h, y0, f0, y1, f1);
-        if (!(tau >= 0.0 && tau <= lim)) continue;
+        if (!(tau >= 0.0 && tau <= lim))
+            continue;
         sw_herm_state(P->n, h, y0, f0, y1, f1, tau, yt);
-        if (c[i].role == SW_ROLE_TIP) sw_pkg_tip(C, P, t0 + tau * h, yt);
-        else sw_pkg_lift(C, P, t0 + tau * h, yt);
+        if (c[i].role == SW_ROLE_TIP)
+            sw_pkg_tip(C, P, t0 + tau * h, yt);
+        else
+            sw_pkg_lift(C, P, t0 + tau * h, yt);
     }
     *tau_out = lim;
     return best;
@@ -120,22 +129,28 @@ double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double
     }
     const double t1 = t0 + h;
     for (int it = 0; it < 8; it++) {
-        if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK) return ts;
+        if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK)
+            return ts;
         sw_model_rhs(ts, y, f, P);
         P->ops->event_fn(P, ev, ts, y, f, &v, &d);
-        if (v == 0.0 || d == 0.0) break;
+        if (v == 0.0 || d == 0.0)
+            break;
         double tn = ts - v / d;
-        if (tn <= t0) tn = 0.5 * (t0 + ts);
-        if (tn > t1) tn = t1;
+        if (tn <= t0)
+            tn = 0.5 * (t0 + ts);
+        if (tn > t1)
+            tn = t1;
         const double dt = fabs(tn - ts);
-        if (dt <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(ts))) break;
+        if (dt <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(ts)))
+            break;
         ts = tn;
     }
     for (int it = 0; it < 8 && v < 0.0 && ts < t1; it++) {
         double dt = d > 0.0 ? -2.0 * v / d : 0.0;
         dt = fmax(dt, 8.0 * DBL_EPSILON * fmax(1.0, fabs(ts)) * (1 << it));
         ts = fmin(t1, ts + dt);
-        if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK) break;
+        if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK)
+            break;
         sw_model_rhs(ts, y, f, P);
         P->ops->event_fn(P, ev, ts, y, f, &v, &d);
     }

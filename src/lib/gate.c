@@ -13,13 +13,13 @@
 #include "swaywatch/status.h"
 
 #define CHAINS SW_GATE_CHAINS
-#define DT_WINDOW 5          /* intervals in the typical-interval median */
-#define HIST_PER_DECADE 96   /* interval histogram: 2.4 % wide bins */
-#define HIST_DECADES 12      /* 1e-7 s .. 1e5 s */
+#define DT_WINDOW 5        /* intervals in the typical-interval median */
+#define HIST_PER_DECADE 96 /* interval histogram: 2.4 % wide bins */
+#define HIST_DECADES 12    /* 1e-7 s .. 1e5 s */
 #define HIST_BINS (HIST_PER_DECADE * HIST_DECADES)
 #define HIST_LO 1e-7
-#define G0 9.80665           /* m/s^2 per g */
-#define EPOCH_LIKE 1e6       /* s: a first time this large is a clock, not elapsed time */
+#define G0 9.80665            /* m/s^2 per g */
+#define EPOCH_LIKE 1e6        /* s: a first time this large is a clock, not elapsed time */
 #define TIME_MAX 8589934592.0 /* 2^33 s: the engine's limit (SW_ERESOLUTION) */
 
 typedef struct {
@@ -30,13 +30,13 @@ typedef struct {
 struct sw_gate {
     sw_engine_t *e;
     sw_gate_opts_t o;
-    int relative;         /* resolved at the first sample */
+    int relative; /* resolved at the first sample */
     /* the timeline */
     int have_last;
-    sw_sample_t last;     /* the last accepted sample (source time) */
-    double last_engine;   /* s, the engine time it was pushed at */
-    double offset;        /* s, engine time = source time + offset */
-    int restarted;        /* the engine was restarted: the next sample taken says so */
+    sw_sample_t last;   /* the last accepted sample (source time) */
+    double last_engine; /* s, the engine time it was pushed at */
+    double offset;      /* s, engine time = source time + offset */
+    int restarted;      /* the engine was restarted: the next sample taken says so */
     int64_t last_seq;
     int have_seq;
     double dts[DT_WINDOW];
@@ -61,10 +61,10 @@ const char *sw_gate_reject_name(sw_gate_reject r)
 const char *sw_gate_event_name(sw_gate_event_kind k)
 {
     switch (k) {
-    case SW_GATE_EV_GAP: return "gap";
-    case SW_GATE_EV_CLOCK_STEP: return "clock step";
-    case SW_GATE_EV_RESTART: return "restart";
-    case SW_GATE_EV_SEQ_RESTART: return "seq restart";
+        case SW_GATE_EV_GAP: return "gap";
+        case SW_GATE_EV_CLOCK_STEP: return "clock step";
+        case SW_GATE_EV_RESTART: return "restart";
+        case SW_GATE_EV_SEQ_RESTART: return "seq restart";
     }
     return "unknown";
 }
@@ -79,32 +79,46 @@ long sw_gate_rejected(const sw_gate_facts_t *f)
 sw_gate_t *sw_gate_create(sw_engine_t *e, const sw_gate_opts_t *o, char *msg, size_t msglen)
 {
     static const sw_gate_opts_t defaults;
-    if (msg && msglen) msg[0] = '\0';
-    if (!o) o = &defaults;
+    if (msg && msglen)
+        msg[0] = '\0';
+    if (!o)
+        o = &defaults;
     const char *bad = NULL;
-    if (!e) bad = "no engine";
-    else if (!(o->gap >= 0.0) || !isfinite(o->gap)) bad = "gap must be >= 0";
-    else if (!(o->max_bridge >= 0.0) || !isfinite(o->max_bridge)) bad = "max_bridge must be >= 0";
-    else if (!(o->max_accel >= 0.0) || !isfinite(o->max_accel)) bad = "max_accel must be >= 0";
-    else if (isnan(o->jump) || isinf(o->jump)) bad = "jump must be finite";
-    else if (!(o->max_skew >= 0.0) || !isfinite(o->max_skew)) bad = "max_skew must be >= 0";
-    else if (o->confirm < 0 || o->confirm > SW_GATE_CONFIRM_MAX) bad = "confirm must be 0..8";
+    if (!e)
+        bad = "no engine";
+    else if (!(o->gap >= 0.0) || !isfinite(o->gap))
+        bad = "gap must be >= 0";
+    else if (!(o->max_bridge >= 0.0) || !isfinite(o->max_bridge))
+        bad = "max_bridge must be >= 0";
+    else if (!(o->max_accel >= 0.0) || !isfinite(o->max_accel))
+        bad = "max_accel must be >= 0";
+    else if (isnan(o->jump) || isinf(o->jump))
+        bad = "jump must be finite";
+    else if (!(o->max_skew >= 0.0) || !isfinite(o->max_skew))
+        bad = "max_skew must be >= 0";
+    else if (o->confirm < 0 || o->confirm > SW_GATE_CONFIRM_MAX)
+        bad = "confirm must be 0..8";
     else if (o->gap_policy != SW_GAP_BRIDGE && o->gap_policy != SW_GAP_RESTART)
         bad = "unknown gap policy";
     if (bad) {
-        if (msg && msglen) snprintf(msg, msglen, "%s", bad);
+        if (msg && msglen)
+            snprintf(msg, msglen, "%s", bad);
         return NULL;
     }
     sw_gate_t *g = calloc(1, sizeof *g);
     if (!g) {
-        if (msg && msglen) snprintf(msg, msglen, "out of memory");
+        if (msg && msglen)
+            snprintf(msg, msglen, "out of memory");
         return NULL;
     }
     g->e = e;
     g->o = *o;
-    if (g->o.max_bridge == 0.0) g->o.max_bridge = 10.0;
-    if (g->o.max_accel == 0.0) g->o.max_accel = 50.0 * G0;
-    if (g->o.confirm == 0) g->o.confirm = 3;
+    if (g->o.max_bridge == 0.0)
+        g->o.max_bridge = 10.0;
+    if (g->o.max_accel == 0.0)
+        g->o.max_accel = 50.0 * G0;
+    if (g->o.confirm == 0)
+        g->o.confirm = 3;
     g->f.t_first = g->f.t_last = g->f.first_incomplete = NAN;
     g->f.dt_min = g->f.dt_median = g->f.dt_max = g->f.rate = NAN;
     return g;
@@ -122,7 +136,8 @@ static double typical_dt(const sw_gate_t *g)
 {
     double v[DT_WINDOW];
     const int n = g->ndt < DT_WINDOW ? g->ndt : DT_WINDOW;
-    if (n == 0) return NAN;
+    if (n == 0)
+        return NAN;
     memcpy(v, g->dts, sizeof(double) * (size_t)n);
     for (int i = 1; i < n; i++) /* insertion sort: five numbers */
         for (int j = i; j > 0 && v[j - 1] > v[j]; j--) {
@@ -135,15 +150,18 @@ static double typical_dt(const sw_gate_t *g)
 
 static double gap_of(const sw_gate_t *g)
 {
-    if (g->o.gap > 0.0) return g->o.gap;
+    if (g->o.gap > 0.0)
+        return g->o.gap;
     const double d = typical_dt(g);
     return isnan(d) ? INFINITY : fmax(5.0 * d, 1e-3);
 }
 
 static double jump_of(const sw_gate_t *g)
 {
-    if (g->o.jump < 0.0) return INFINITY;
-    if (g->o.jump > 0.0) return g->o.jump;
+    if (g->o.jump < 0.0)
+        return INFINITY;
+    if (g->o.jump > 0.0)
+        return g->o.jump;
     const double gap = gap_of(g);
     return isinf(gap) ? 1.0 : gap; /* no typical interval yet: 1 s */
 }
@@ -152,12 +170,17 @@ static void note_interval(sw_gate_t *g, double dt)
 {
     g->dts[g->ndt % DT_WINDOW] = dt;
     g->ndt++;
-    if (!(dt > 0.0)) return;
-    if (isnan(g->f.dt_min) || dt < g->f.dt_min) g->f.dt_min = dt;
-    if (isnan(g->f.dt_max) || dt > g->f.dt_max) g->f.dt_max = dt;
+    if (!(dt > 0.0))
+        return;
+    if (isnan(g->f.dt_min) || dt < g->f.dt_min)
+        g->f.dt_min = dt;
+    if (isnan(g->f.dt_max) || dt > g->f.dt_max)
+        g->f.dt_max = dt;
     int b = (int)floor(log10(dt / HIST_LO) * HIST_PER_DECADE);
-    if (b < 0) b = 0;
-    if (b >= HIST_BINS) b = HIST_BINS - 1;
+    if (b < 0)
+        b = 0;
+    if (b >= HIST_BINS)
+        b = HIST_BINS - 1;
     g->hist[b]++;
     g->hist_sum[b] += dt;
 }
@@ -171,11 +194,11 @@ static int refuse(sw_gate_t *g, const sw_sample_t *s, sw_gate_reject r, const ch
         s->seq != SW_GATE_NO_SEQ && s->seq > g->last_seq &&
         (uint64_t)s->seq - (uint64_t)g->last_seq < 1000000000ULL)
         g->last_seq = s->seq;
-    static const int code[SW_GATE_NREJ] = {SW_ENONFINITE, SW_ETOOBIG, SW_ERESOLUTION,
-                                           SW_ETOOBIG,    SW_EORDER,  SW_EORDER,
-                                           SW_EORDER,     SW_EINVAL};
+    static const int code[SW_GATE_NREJ] = {SW_ENONFINITE, SW_ETOOBIG, SW_ERESOLUTION, SW_ETOOBIG,
+                                           SW_EORDER,     SW_EORDER,  SW_EORDER,      SW_EINVAL};
     g->f.rejected[r]++;
-    if (g->o.on_reject) g->o.on_reject(g->o.user, s, r, text);
+    if (g->o.on_reject)
+        g->o.on_reject(g->o.user, s, r, text);
     return code[r];
 }
 
@@ -188,12 +211,15 @@ static int motion_near(const sw_gate_t *g, double a_next)
 {
     for (size_t k = 0; k < sw_engine_count(g->e); k++) {
         sw_output_t o;
-        if (sw_engine_get_output(g->e, k, &o) != SW_OK) continue;
-        if (o.state.phase == SW_PHASE_ROCKING || o.uplift_ratio >= 0.25) return 1;
+        if (sw_engine_get_output(g->e, k, &o) != SW_OK)
+            continue;
+        if (o.state.phase == SW_PHASE_ROCKING || o.uplift_ratio >= 0.25)
+            return 1;
         const sw_derived_t *d = sw_engine_derived(g->e, k);
         /* g from p^2 = 3 g / (4 R): the scene's own gravity */
         const double grav = d->p * d->p * 4.0 * d->R / 3.0;
-        if (fabs(a_next) >= 0.25 * grav * tan(d->alpha)) return 1;
+        if (fabs(a_next) >= 0.25 * grav * tan(d->alpha))
+            return 1;
     }
     return 0;
 }
@@ -202,24 +228,28 @@ static void emit(sw_gate_t *g, sw_gate_event_t *ev)
 {
     if (ev->incomplete) {
         g->f.incomplete++;
-        if (isnan(g->f.first_incomplete)) g->f.first_incomplete = ev->t;
+        if (isnan(g->f.first_incomplete))
+            g->f.first_incomplete = ev->t;
     }
-    if (g->o.on_event) g->o.on_event(g->o.user, ev);
+    if (g->o.on_event)
+        g->o.on_event(g->o.user, ev);
 }
 
 /* The sender's seq: missing ones counted, a seq that goes back while time
  * goes on is a sender restart.  Overflow-free for any int64. */
 static void note_seq(sw_gate_t *g, const sw_sample_t *s)
 {
-    if (s->seq == SW_GATE_NO_SEQ) return;
+    if (s->seq == SW_GATE_NO_SEQ)
+        return;
     if (g->have_seq) {
         if (s->seq > g->last_seq) {
             const uint64_t d = (uint64_t)s->seq - (uint64_t)g->last_seq; /* >= 1, no overflow */
-            if (d > 1 && d <= 1000000000ULL) g->f.lost += (long)(d - 1);
+            if (d > 1 && d <= 1000000000ULL)
+                g->f.lost += (long)(d - 1);
         } else if (s->seq < g->last_seq) {
             g->f.seq_restarts++;
-            sw_gate_event_t ev = {.kind = SW_GATE_EV_SEQ_RESTART, .t = g->last.t,
-                                  .where = s->where};
+            sw_gate_event_t ev = {
+                .kind = SW_GATE_EV_SEQ_RESTART, .t = g->last.t, .where = s->where};
             emit(g, &ev);
         }
     }
@@ -232,8 +262,10 @@ static int take(sw_gate_t *g, const sw_sample_t *s, double te)
 {
     const double az = g->o.vert_gravity ? s->a_z - G0 : s->a_z;
     const int rc = sw_engine_push(g->e, te, s->a_g, az);
-    if (rc < 0) return refuse(g, s, SW_GATE_REJ_ENGINE, sw_strerror(rc));
-    if (g->o.on_take) g->o.on_take(g->o.user, te, s->a_g, az, g->restarted);
+    if (rc < 0)
+        return refuse(g, s, SW_GATE_REJ_ENGINE, sw_strerror(rc));
+    if (g->o.on_take)
+        g->o.on_take(g->o.user, te, s->a_g, az, g->restarted);
     g->restarted = 0;
     if (g->have_last) {
         const double dt = s->t - g->last.t;
@@ -247,8 +279,10 @@ static int take(sw_gate_t *g, const sw_sample_t *s, double te)
     note_seq(g, s);
     g->f.t_last = s->t;
     g->f.accepted++;
-    if (fabs(s->a_g) > g->f.peak_a) g->f.peak_a = fabs(s->a_g);
-    if (fabs(s->a_z) > g->f.peak_z) g->f.peak_z = fabs(s->a_z);
+    if (fabs(s->a_g) > g->f.peak_a)
+        g->f.peak_a = fabs(s->a_g);
+    if (fabs(s->a_z) > g->f.peak_z)
+        g->f.peak_z = fabs(s->a_z);
     g->sum_z += s->a_z;
     g->have_last = 1;
     g->last = *s;
@@ -296,11 +330,12 @@ static double resume(sw_gate_t *g, const sw_sample_t *s)
     if (gap) {
         g->f.gaps++;
         g->f.gap_total += elapsed;
-        if (elapsed > g->f.gap_max) g->f.gap_max = elapsed;
+        if (elapsed > g->f.gap_max)
+            g->f.gap_max = elapsed;
     }
     const int unknown = ev.kind == SW_GATE_EV_RESTART && isnan(s->rx);
-    ev.restarted = unknown || (gap && (g->o.gap_policy == SW_GAP_RESTART ||
-                                       elapsed > g->o.max_bridge));
+    ev.restarted =
+        unknown || (gap && (g->o.gap_policy == SW_GAP_RESTART || elapsed > g->o.max_bridge));
     ev.bridged = gap && !ev.restarted;
     ev.incomplete = (gap || unknown) && motion_near(g, s->a_g);
     if (ev.restarted) {
@@ -310,7 +345,8 @@ static double resume(sw_gate_t *g, const sw_sample_t *s)
     const double te = g->last_engine + elapsed;
     g->offset = te - s->t;
     ev.t_engine = te;
-    if (ev.kind != SW_GATE_EV_GAP || gap) emit(g, &ev);
+    if (ev.kind != SW_GATE_EV_GAP || gap)
+        emit(g, &ev);
     return te;
 }
 
@@ -321,7 +357,8 @@ static double resume(sw_gate_t *g, const sw_sample_t *s)
 static int follows(const sw_gate_t *g, const sw_sample_t *a, const sw_sample_t *b)
 {
     const double dt = b->t - a->t;
-    if (!(dt > 0.0)) return 0;
+    if (!(dt > 0.0))
+        return 0;
     const double real = !isnan(a->rx) && !isnan(b->rx) ? b->rx - a->rx : 0.0;
     return dt - fmax(real, 0.0) <= jump_of(g);
 }
@@ -361,7 +398,8 @@ static int confirm(sw_gate_t *g, int k)
     for (int i = 0; i < c.n; i++) {
         double te;
         if (!g->have_last) {
-            g->relative = g->o.relative == 1 || (g->o.relative != 0 && fabs(c.s[0].t) >= EPOCH_LIKE);
+            g->relative =
+                g->o.relative == 1 || (g->o.relative != 0 && fabs(c.s[0].t) >= EPOCH_LIKE);
             g->f.t_origin = g->relative ? c.s[0].t : 0.0;
             g->offset = -g->f.t_origin;
             te = c.s[i].t + g->offset;
@@ -371,7 +409,8 @@ static int confirm(sw_gate_t *g, int k)
             te = c.s[i].t + g->offset;
         }
         const int r = take(g, &c.s[i], te);
-        if (r != SW_OK && (rc == SW_OK || r < 0)) rc = r;
+        if (r != SW_OK && (rc == SW_OK || r < 0))
+            rc = r;
     }
     return rc;
 }
@@ -386,16 +425,20 @@ static int hold(sw_gate_t *g, const sw_sample_t *s)
             snprintf(text, sizeof text, "time %.15g s is a duplicate of a waiting sample", s->t);
             return refuse(g, s, SW_GATE_REJ_DUPLICATE, text);
         }
-        if (!follows(g, &c->s[c->n - 1], s)) continue;
+        if (!follows(g, &c->s[c->n - 1], s))
+            continue;
         c->s[c->n++] = *s;
-        if (c->n >= g->o.confirm) return confirm(g, k);
+        if (c->n >= g->o.confirm)
+            return confirm(g, k);
         return SW_GATE_HELD;
     }
-    if (g->nchain == CHAINS) drop_chain(g, 0); /* the oldest makes room */
+    if (g->nchain == CHAINS)
+        drop_chain(g, 0); /* the oldest makes room */
     chain_t *c = &g->chain[g->nchain++];
     c->s[0] = *s;
     c->n = 1;
-    if (c->n >= g->o.confirm) return confirm(g, g->nchain - 1);
+    if (c->n >= g->o.confirm)
+        return confirm(g, g->nchain - 1);
     return SW_GATE_HELD;
 }
 
@@ -403,21 +446,21 @@ static int hold(sw_gate_t *g, const sw_sample_t *s)
 
 int sw_gate_push(sw_gate_t *g, const sw_sample_t *s)
 {
-    if (!g || !s) return SW_EINVAL;
+    if (!g || !s)
+        return SW_EINVAL;
     g->f.received++;
     char text[160];
     if (!isfinite(s->t) || !isfinite(s->a_g) || !isfinite(s->a_z))
         return refuse(g, s, SW_GATE_REJ_NONFINITE, "a value is not finite");
     const double amax = isnan(s->a_max) ? fmax(fabs(s->a_g), fabs(s->a_z)) : s->a_max;
     if (!(amax <= g->o.max_accel)) {
-        snprintf(text, sizeof text, "|a| = %.6g m/s^2 (%.4g g) beyond the limit %.6g m/s^2",
-                 amax, amax / G0, g->o.max_accel);
+        snprintf(text, sizeof text, "|a| = %.6g m/s^2 (%.4g g) beyond the limit %.6g m/s^2", amax,
+                 amax / G0, g->o.max_accel);
         return refuse(g, s, SW_GATE_REJ_IMPLAUSIBLE, text);
     }
     if (!(fabs(s->t) < TIME_MAX)) {
         snprintf(text, sizeof text,
-                 "time %.15g s: its steps are coarser than 2e-6 s (a time unit mistake?)",
-                 s->t);
+                 "time %.15g s: its steps are coarser than 2e-6 s (a time unit mistake?)", s->t);
         return refuse(g, s, SW_GATE_REJ_TIME, text);
     }
     if (g->o.max_skew > 0.0 && !isnan(s->wall) && !(fabs(s->t - s->wall) <= g->o.max_skew)) {
@@ -426,14 +469,14 @@ int sw_gate_push(sw_gate_t *g, const sw_sample_t *s)
         return refuse(g, s, SW_GATE_REJ_SKEW, text);
     }
     if (g->have_last && s->t == g->last.t) {
-        snprintf(text, sizeof text, "duplicate time %.15g s (same as the previous sample)",
-                 s->t);
+        snprintf(text, sizeof text, "duplicate time %.15g s (same as the previous sample)", s->t);
         return refuse(g, s, SW_GATE_REJ_DUPLICATE, text);
     }
     if (g->have_last && follows(g, &g->last, s)) {
         drop_chains(g); /* the stream went on: waiting samples are refuted */
         const double dt = s->t - g->last.t;
-        if (dt > gap_of(g)) return take(g, s, resume(g, s));
+        if (dt > gap_of(g))
+            return take(g, s, resume(g, s));
         return take(g, s, s->t + g->offset);
     }
     return hold(g, s);
@@ -441,13 +484,15 @@ int sw_gate_push(sw_gate_t *g, const sw_sample_t *s)
 
 int sw_gate_flush(sw_gate_t *g)
 {
-    if (!g) return SW_EINVAL;
+    if (!g)
+        return SW_EINVAL;
     if (!g->have_last && g->nchain) {
         /* a stream too short to confirm anything: its longest stretch,
          * which nothing contradicts, is the timeline */
         int best = 0;
         for (int k = 1; k < g->nchain; k++)
-            if (g->chain[k].n > g->chain[best].n) best = k;
+            if (g->chain[k].n > g->chain[best].n)
+                best = k;
         confirm(g, best);
     }
     drop_chains(g);
@@ -479,11 +524,11 @@ double sw_gate_source_time(const sw_gate_t *g, double t_engine)
 
 /* ---- plausibility --------------------------------------------------------------- */
 
-int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *why,
-                  size_t whylen)
+int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *why, size_t whylen)
 {
     static const sw_gate_limits_t defaults;
-    if (!lim) lim = &defaults;
+    if (!lim)
+        lim = &defaults;
     const double max_rej = lim->max_rejected > 0.0 ? lim->max_rejected : 0.01;
     const double min_rate = lim->min_rate > 0.0 ? lim->min_rate : 2.0;
     const double warn_rate = lim->warn_rate > 0.0 ? lim->warn_rate : 20.0;
@@ -491,7 +536,8 @@ int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *w
     const double max_peak = lim->max_peak > 0.0 ? lim->max_peak : 25.0 * G0;
     const long rej = sw_gate_rejected(f) + f->upstream_rejected;
     const long seen = f->received + f->upstream_rejected;
-    if (why && whylen) why[0] = '\0';
+    if (why && whylen)
+        why[0] = '\0';
     if (seen > 0 && (double)rej > max_rej * (double)seen) {
         snprintf(why, whylen,
                  "%ld of %ld samples (%.1f %%) were refused, more than %.3g %%: a wrong "

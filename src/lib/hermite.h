@@ -46,19 +46,24 @@ static inline int sw_herm_crit(const sw_herm_t *H, double x[2])
     int k = 0;
     double r[2];
     if (fabs(a) < 1e-300) {
-        if (fabs(b) > 1e-300) r[k++] = -c / b;
+        if (fabs(b) > 1e-300)
+            r[k++] = -c / b;
     } else {
         const double disc = b * b - 4.0 * a * c;
         if (disc >= 0.0) {
             const double q = -0.5 * (b + copysign(sqrt(disc), b));
-            if (q != 0.0) r[k++] = q / a;
-            if (q != 0.0) r[k++] = c / q;
-            else r[k++] = 0.0;
+            if (q != 0.0)
+                r[k++] = q / a;
+            if (q != 0.0)
+                r[k++] = c / q;
+            else
+                r[k++] = 0.0;
         }
     }
     int m = 0;
     for (int i = 0; i < k; i++)
-        if (r[i] > 0.0 && r[i] < 1.0) x[m++] = r[i];
+        if (r[i] > 0.0 && r[i] < 1.0)
+            x[m++] = r[i];
     if (m == 2 && x[0] > x[1]) {
         const double tmp = x[0];
         x[0] = x[1];
@@ -88,12 +93,16 @@ static inline double sw_herm_first_rise(const sw_herm_t *H, double tol)
         /* A rise straight from an exact 0 at the start (a package just
          * lifted or just landed, whose true motion starts the other way by
          * construction) is the interpolant's artefact, not a crossing. */
-        if (i == 0 && va == 0.0) continue;
-        if (!(va <= 0.0 && vb >= tol)) continue;
+        if (i == 0 && va == 0.0)
+            continue;
+        if (!(va <= 0.0 && vb >= tol))
+            continue;
         for (int it = 0; it < 64 && b - a > 1e-16; it++) { /* monotone piece */
             const double m = 0.5 * (a + b);
-            if (sw_herm_at(H, m) >= 0.0) b = m;
-            else a = m;
+            if (sw_herm_at(H, m) >= 0.0)
+                b = m;
+            else
+                a = m;
         }
         return b;
     }

@@ -34,12 +34,12 @@
 /* The input seen by a package inside one step: linear in time between two
  * samples (a_g = ag0 + ag_slope (t - t0)), or a function (pulses). */
 typedef struct {
-    double t0;                /* s */
-    double ag0, ag_slope;     /* m/s^2, m/s^3 */
-    double az0, az_slope;     /* m/s^2, m/s^3 (vertical, up) */
-    sw_input_fn fn;           /* if not NULL: a_g = fn(fn_user, fn_t0 + t), a_z = 0 */
+    double t0;            /* s */
+    double ag0, ag_slope; /* m/s^2, m/s^3 */
+    double az0, az_slope; /* m/s^2, m/s^3 (vertical, up) */
+    sw_input_fn fn;       /* if not NULL: a_g = fn(fn_user, fn_t0 + t), a_z = 0 */
     void *fn_user;
-    double fn_t0;             /* s: the engine's origin (fn takes absolute time) */
+    double fn_t0; /* s: the engine's origin (fn takes absolute time) */
 } sw_input_t;
 
 typedef struct sw_pkg sw_pkg_t;
@@ -53,10 +53,10 @@ typedef void (*sw_fixed_step_fn)(sw_pkg_t *P, double t, double h, const double y
  * Owned by the engine, embedded in it. */
 typedef struct {
     const sw_scheme_t *scheme;
-    double rest_eps;       /* rest threshold, a fraction of the energy barrier */
-    int dt_forced;         /* a forced dt is refused, never sub-stepped */
-    int stuck_stepped;     /* step a stuck frame instead of its exact solution */
-    sw_event_fn on_event;  /* may be NULL */
+    double rest_eps;      /* rest threshold, a fraction of the energy barrier */
+    int dt_forced;        /* a forced dt is refused, never sub-stepped */
+    int stuck_stepped;    /* step a stuck frame instead of its exact solution */
+    sw_event_fn on_event; /* may be NULL */
     void *user;
     double origin;         /* s: the absolute time of the engine's t = 0 (the first
                               sample's); the layers run on time relative to it */
@@ -75,45 +75,45 @@ struct sw_pkg {
     sw_scene_t scene;
     sw_derived_t d;
     const sw_model_ops_t *ops; /* the model's behaviour table */
-    size_t index;      /* its place in the engine (events and states say it) */
-    double g;          /* m/s^2, nominal gravity */
-    double kR;         /* 1/m, 3/(4R) = p^2/g */
+    size_t index;              /* its place in the engine (events and states say it) */
+    double g;                  /* m/s^2, nominal gravity */
+    double kR;                 /* 1/m, 3/(4R) = p^2/g */
     double tan_alpha;
-    int n;             /* length of the state vector */
-    int ith, idth;     /* indices of theta and theta_dot in y */
-    int iu, idu;       /* u, u_dot (-1 without a frame) */
-    int iz, idz;       /* z, z_dot (-1 without a cushion) */
+    int n;                  /* length of the state vector */
+    int ith, idth;          /* indices of theta and theta_dot in y */
+    int iu, idu;            /* u, u_dot (-1 without a frame) */
+    int iz, idz;            /* z, z_dot (-1 without a cushion) */
     double yscale[SW_NMAX]; /* typical size of each component (finite-difference Jacobian) */
-    double e_lift;     /* J/kg, cushion: least energy above rest that lifts an edge */
-    double rate_rest;  /* 1/s, the contact's rate bound at rest (model_cushion.c) */
+    double e_lift;          /* J/kg, cushion: least energy above rest that lifts an edge */
+    double rate_rest;       /* 1/s, the contact's rate bound at rest (model_cushion.c) */
 
     /* the model's scratch, written by its right-hand side */
-    int track_rate;    /* cushion: the right-hand side records rate_seen */
-    double rate_seen;  /* rad/s, fastest contact rate met by the stages of a step */
-    double trig[3];    /* model_rigid.h: an angle (NAN: none yet), its sin and cos */
+    int track_rate;   /* cushion: the right-hand side records rate_seen */
+    double rate_seen; /* rad/s, fastest contact rate met by the stages of a step */
+    double trig[3];   /* model_rigid.h: an angle (NAN: none yet), its sin and cos */
 
     /* integration state: the phase machine (pkg.c) and the loop (engine.c) */
-    double t;          /* s */
+    double t; /* s */
     double y[SW_NMAX];
     sw_phase phase;
-    int side;          /* s = +1 / -1 while rocking */
+    int side;             /* s = +1 / -1 while rocking */
     const sw_input_t *in; /* the engine's input over the interval being integrated */
-    int beyond_alpha;  /* |theta| >= alpha at the last check */
-    double t_lift;     /* s, time of the last uplift */
-    int hold;          /* keep the package stuck for one step (see pkg_after_impact) */
+    int beyond_alpha;     /* |theta| >= alpha at the last check */
+    double t_lift;        /* s, time of the last uplift */
+    int hold;             /* keep the package stuck for one step (see pkg_after_impact) */
     sw_summary_t sum;
 
     /* stepping (step.c): the scheme's work space for this package */
-    double h;          /* s, largest internal step for this package */
+    double h;              /* s, largest internal step for this package */
     sw_advance_fn advance; /* the scheme's advance for this model */
     sw_fixed_step_fn step; /* fixed-step schemes: the body for this model */
     gsl_odeiv2_system sys;
-    gsl_odeiv2_step *gstep;   /* adaptive schemes only */
+    gsl_odeiv2_step *gstep; /* adaptive schemes only */
     gsl_odeiv2_control *gctl;
     gsl_odeiv2_evolve *gevo;
-    double h_adapt;    /* s, GSL's proposed next step */
+    double h_adapt;         /* s, GSL's proposed next step */
     gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
-    double nj_cache[5]; /* stuck.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
+    double nj_cache[5];     /* stuck.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
 };
 
 /* ---- small numerical helpers ---------------------------------------------- */
@@ -138,7 +138,8 @@ static inline int sw_all_finite(const double v[], size_t n)
         s0 += 0.0 * v[i];
         s1 += 0.0 * v[i + 1];
     }
-    if (i < n) s0 += 0.0 * v[i];
+    if (i < n)
+        s0 += 0.0 * v[i];
     return s0 + s1 == 0.0;
 }
 
@@ -158,13 +159,15 @@ static inline double sw_min2(double a, double b)
  * right-hand side evaluates them at every stage. */
 static inline double sw_input_ag(const sw_input_t *in, double t)
 {
-    if (in->fn) return in->fn(in->fn_user, in->fn_t0 + t);
+    if (in->fn)
+        return in->fn(in->fn_user, in->fn_t0 + t);
     return in->ag0 + in->ag_slope * (t - in->t0);
 }
 static inline double sw_input_geff(const sw_pkg_t *P, double t)
 {
     const sw_input_t *in = P->in;
-    if (in->fn) return P->g;
+    if (in->fn)
+        return P->g;
     return P->g + in->az0 + in->az_slope * (t - in->t0);
 }
 
@@ -175,16 +178,19 @@ static inline double sw_input_geff(const sw_pkg_t *P, double t)
  * inside the step. */
 enum {
     SW_EVF_NONE = 0,
-    SW_EVF_IMPACT,       /* the rocking corner's other side lands */
-    SW_EVF_OVERTURN,     /* |theta| reaches pi/2 */
-    SW_EVF_UPLIFT_FWD,   /* a stuck frame's support reaches the threshold, top forward */
-    SW_EVF_UPLIFT_BACK,  /* ... backward */
-    SW_EVF_TIP,          /* |theta| reaches alpha */
-    SW_EVF_TURN,         /* |theta| stops growing: a peak */
+    SW_EVF_IMPACT,      /* the rocking corner's other side lands */
+    SW_EVF_OVERTURN,    /* |theta| reaches pi/2 */
+    SW_EVF_UPLIFT_FWD,  /* a stuck frame's support reaches the threshold, top forward */
+    SW_EVF_UPLIFT_BACK, /* ... backward */
+    SW_EVF_TIP,         /* |theta| reaches alpha */
+    SW_EVF_TURN,        /* |theta| stops growing: a peak */
     /* cushion: an edge leaves / regains the cushion (B below the surface:
      * full <-> partial contact), the last edge does (B above: partial <->
      * free flight); the _IN variants are the reverse crossings */
-    SW_EVF_LIFT, SW_EVF_LIFT_IN, SW_EVF_FLY, SW_EVF_FLY_IN
+    SW_EVF_LIFT,
+    SW_EVF_LIFT_IN,
+    SW_EVF_FLY,
+    SW_EVF_FLY_IN
 };
 
 /* What the event layer does with a candidate. */
@@ -313,13 +319,13 @@ struct sw_scheme {
     /* fixed steps: the body specialised for a model (the right-hand side
      * inlined per stage), or NULL for the generic body below */
     sw_fixed_step_fn step_for[3];
-    sw_fixed_step_fn step;     /* the generic body (the model's rhs per stage) */
+    sw_fixed_step_fn step;                       /* the generic body (the model's rhs per stage) */
     const gsl_odeiv2_step_type *const *gsl_type; /* adaptive schemes */
-    int implicit;      /* needs the Jacobian, and a driver for its Newton tolerances */
-    int cut_kinks;     /* fixed steps lose their order across a kink of the
-                          right-hand side: cut them there */
-    int exact_stuck;   /* a stuck frame may take its exact solution (the adaptive
-                          schemes step it, under their own error control) */
+    int implicit;    /* needs the Jacobian, and a driver for its Newton tolerances */
+    int cut_kinks;   /* fixed steps lose their order across a kink of the
+                        right-hand side: cut them there */
+    int exact_stuck; /* a stuck frame may take its exact solution (the adaptive
+                        schemes step it, under their own error control) */
 };
 
 /* One fixed step from (P->t, P->y) into y1, no longer than the package's
@@ -354,7 +360,8 @@ static SW_ALWAYS_INLINE int sw_step_fixed_with(sw_ctx_t *C, sw_pkg_t *P, double 
         P->track_rate = 1;
         body(P, t0, h, P->y, y1);
         P->track_rate = 0;
-        if (P->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60) break;
+        if (P->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
+            break;
         hmax = fmin(0.5 * h, bound / P->rate_seen);
     }
     *hout = h;
@@ -409,8 +416,8 @@ int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double 
                     const double y1[], const sw_evcand_t c[], int nc, double *tau);
 /* The same, asking the model for its candidates first: inline, because
  * most steps have none and the question is then all the work. */
-static inline int sw_event_find(sw_ctx_t *C, sw_pkg_t *P, double t0, double h,
-                                const double y0[], const double y1[], double *tau)
+static inline int sw_event_find(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                                const double y1[], double *tau)
 {
     sw_evcand_t c[SW_MAX_CANDS];
     const int nc = P->ops->candidates(P, C->scheme->cut_kinks, h, y0, y1, c);

@@ -13,9 +13,9 @@
 const char *sw_phase_name(sw_phase p)
 {
     switch (p) {
-    case SW_PHASE_STUCK: return "stuck";
-    case SW_PHASE_ROCKING: return "rocking";
-    case SW_PHASE_OVERTURNED: return "overturned";
+        case SW_PHASE_STUCK: return "stuck";
+        case SW_PHASE_ROCKING: return "rocking";
+        case SW_PHASE_OVERTURNED: return "overturned";
     }
     return "unknown";
 }
@@ -100,7 +100,8 @@ void sw_model_from_state(sw_pkg_t *P, const sw_state_t *s)
     P->side = s->side ? (s->side > 0 ? 1 : -1) : (s->theta < 0 ? -1 : 1);
     if (!P->ops->stuck_advance) {
         /* a model that is never stuck (a cushion): side follows theta */
-        if (P->phase == SW_PHASE_STUCK) P->phase = SW_PHASE_ROCKING;
+        if (P->phase == SW_PHASE_STUCK)
+            P->phase = SW_PHASE_ROCKING;
         P->side = s->theta < 0.0 ? -1 : 1;
         return;
     }

@@ -96,13 +96,17 @@ static double f_root(const cush_t *c, const kin_t *k, double p, double q)
     double x = f_at(c, k, p) > 0.0 ? p : q;
     for (int it = 0; it < 60; it++) {
         const double fx = f_at(c, k, x), dx = df_at(c, k, x);
-        if (fx == 0.0 || dx == 0.0) break;
+        if (fx == 0.0 || dx == 0.0)
+            break;
         double xn = x - fx / dx;
-        if (xn < p) xn = p;
-        if (xn > q) xn = q;
+        if (xn < p)
+            xn = p;
+        if (xn > q)
+            xn = q;
         const double step = fabs(xn - x);
         x = xn;
-        if (step <= 4.0 * DBL_EPSILON * (c->b + fabs(x))) break;
+        if (step <= 4.0 * DBL_EPSILON * (c->b + fabs(x)))
+            break;
     }
     return x;
 }
@@ -139,7 +143,8 @@ static void contact(const cush_t *c, double th, double z, double dth, double dz,
     memset(o, 0, sizeof *o);
     const double s = sin(th), b = c->b;
     const double zr = z - b * s, zf = z + b * s; /* m, compression of the rear / front edge */
-    if (zr <= 0.0 && zf <= 0.0) return;          /* free flight */
+    if (zr <= 0.0 && zf <= 0.0)
+        return; /* free flight */
     /* the compressed interval [l, r]; where an edge is not compressed the
      * end is the zero of z(sigma), which lies inside [-b, b] */
     const double l = zr > 0.0 ? -b : -z / s;
@@ -169,28 +174,32 @@ static void contact(const cush_t *c, double th, double z, double dth, double dz,
          * z^2 = -(kp s + cp v1) / (3 bp s) */
         const double z2 = -(c->kp * s + c->cp * k.v1) / (3.0 * c->bp * s);
         m = z2 > 0.0 ? (sqrt(z2) - z) / s : 0.5 * (l + r);
-        if (!(m > l && m < r)) m = 0.5 * (l + r);
+        if (!(m > l && m < r))
+            m = 0.5 * (l + r);
     }
     const double fl = f_at(c, &k, l), fr = f_at(c, &k, r), fm = f_at(c, &k, m);
     if (fm >= 0.0) {
         /* pushes everywhere (an end can only be < 0 by round-off in m) */
-        add_piece(c, &k, fl < 0.0 ? f_root(c, &k, l, m) : l, fr < 0.0 ? f_root(c, &k, m, r) : r,
-                  o);
+        add_piece(c, &k, fl < 0.0 ? f_root(c, &k, l, m) : l, fr < 0.0 ? f_root(c, &k, m, r) : r, o);
         return;
     }
     /* convex: f < 0 on one interval around m, >= 0 outside it */
-    if (fl > 0.0) add_piece(c, &k, l, f_root(c, &k, l, m), o);
-    if (fr > 0.0) add_piece(c, &k, f_root(c, &k, m, r), r, o);
+    if (fl > 0.0)
+        add_piece(c, &k, l, f_root(c, &k, l, m), o);
+    if (fr > 0.0)
+        add_piece(c, &k, f_root(c, &k, m, r), r, o);
 }
 
 /* ---- rest --------------------------------------------------------------- */
 
 double sw_cushion_static_deflection(const sw_derived_t *d, double g)
 {
-    const double w2 = d->omega_c * d->omega_c;      /* 1/s^2, K/m */
+    const double w2 = d->omega_c * d->omega_c;             /* 1/s^2, K/m */
     const double q = d->K > 0.0 ? d->B3 / d->K * w2 : 0.0; /* 1/(s^2 m^2), B3/m */
-    if (!(w2 > 0.0)) return NAN;
-    if (q <= 0.0) return g / w2;
+    if (!(w2 > 0.0))
+        return NAN;
+    if (q <= 0.0)
+        return g / w2;
     /* w2 z + q z^3 = g has one real root; the hyperbolic form of Cardano's
      * formula has no cancellation when the cubic term is small. */
     const double P = w2 / q, Q = g / q;
@@ -212,15 +221,18 @@ void sw_cushion_frequencies(const sw_derived_t *d, double g, double *omega_z, do
     const double kt = tangent_w2(d, g);
     const double J = d->R * d->R / 3.0 + d->h * d->h; /* m^2, (I_C + m h^2)/m */
     const double kr = kt * d->b * d->b / 3.0 - g * d->h;
-    if (omega_z) *omega_z = sqrt(kt);
-    if (omega_theta) *omega_theta = kr > 0.0 ? sqrt(kr / J) : 0.0;
+    if (omega_z)
+        *omega_z = sqrt(kt);
+    if (omega_theta)
+        *omega_theta = kr > 0.0 ? sqrt(kr / J) : 0.0;
 }
 
 /* Largest |lambda| of m x'' + c x' + k x = 0 (rad/s). */
 static double rate_1dof(double m, double c, double k)
 {
     const double disc = c * c - 4.0 * m * k;
-    if (disc <= 0.0) return sqrt(k / m);
+    if (disc <= 0.0)
+        return sqrt(k / m);
     return (c + sqrt(disc)) / (2.0 * m);
 }
 
@@ -237,7 +249,8 @@ double sw_cushion_omega_max(const sw_derived_t *d, double g)
     const double J = d->R * d->R / 3.0 + d->h * d->h; /* m^2, (I_C + m h^2)/m */
     const double b2 = d->b * d->b / 3.0, kr = kt * b2 - g * d->h, cr = cz * b2;
     double w = rate_1dof(1.0, cz, kt);
-    if (!(d->gamma > 0.0)) return fmax(w, rate_1dof(J, cr, fabs(kr)));
+    if (!(d->gamma > 0.0))
+        return fmax(w, rate_1dof(J, cr, fabs(kr)));
     /* frame: det(l^2 M + l C + K) = 0 with M = [1/gam, h; h, J],
      * C = diag(2 zeta_b w_b/gam, cr), K = diag(w_b^2/gam, kr): a quartic,
      * solved on its companion matrix without allocation */
@@ -280,7 +293,8 @@ static double eig2(double a11, double a12, double a22, double m11, double m12, d
 static double contact_rate(const sw_pkg_t *P, double th, const contact_t *k)
 {
     const sw_derived_t *d = &P->d;
-    if (!(k->L0 > 0.0)) return 0.0;
+    if (!(k->L0 > 0.0))
+        return 0.0;
     const double h = d->h, s = sin(th), co = cos(th), cp = cush_of(d).cp;
     const double m11 = d->R * d->R / 3.0 + h * h - d->gamma * h * h * co * co;
     const double m12 = h * s, m22 = 1.0;
@@ -288,7 +302,6 @@ static double contact_rate(const sw_pkg_t *P, double th, const contact_t *k)
     const double kC = cp * eig2(co * co * k->L2, co * k->L1, k->L0, m11, m12, m22);
     return d->omega_max * fmax(1.0, fmax(sqrt(kK), kC) / P->rate_rest);
 }
-
 
 /* ---- equations of motion ------------------------------------------------ */
 
@@ -300,7 +313,8 @@ static double contact_rate(const sw_pkg_t *P, double th, const contact_t *k)
 static int finite_or_fail(const sw_pkg_t *P, const double f[])
 {
     for (int i = 0; i < P->n; i++)
-        if (!isfinite(f[i])) return GSL_ERANGE;
+        if (!isfinite(f[i]))
+            return GSL_ERANGE;
     return GSL_SUCCESS;
 }
 
@@ -312,7 +326,8 @@ static int cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[])
     const double th = y[P->ith], z = y[P->iz], dth = y[P->idth], dz = y[P->idz];
     contact_t k;
     contact(&c, th, z, dth, dz, &k);
-    if (P->track_rate) P->rate_seen = fmax(P->rate_seen, contact_rate(P, th, &k));
+    if (P->track_rate)
+        P->rate_seen = fmax(P->rate_seen, contact_rate(P, th, &k));
     const double s = sin(th), co = cos(th), h = d->h;
     const double J = d->R * d->R / 3.0 + h * h; /* m^2, (I_C + m h^2)/m */
     const double hs = h * s, hc = h * co;
@@ -358,7 +373,8 @@ static double cushion_lift(const sw_pkg_t *P, const double y[], double *der)
      * surface (b |sin theta| > z), smooth through theta = 0 and z = 0 */
     const double b = P->d.b, th = y[P->ith], z = y[P->iz];
     const double s = sin(th);
-    if (der) *der = 2.0 * b * b * s * cos(th) * y[P->idth] - 2.0 * fabs(z) * y[P->idz];
+    if (der)
+        *der = 2.0 * b * b * s * cos(th) * y[P->idth] - 2.0 * fabs(z) * y[P->idz];
     return b * b * s * s - z * fabs(z);
 }
 
@@ -392,10 +408,12 @@ double sw_cushion_barrier(const sw_derived_t *d, double g)
     for (int it = 0; it < 200; it++) {
         contact_t k;
         contact(&c, d->alpha, z, 0.0, 0.0, &k);
-        if (!(k.S > 0.0)) break;
+        if (!(k.S > 0.0))
+            break;
         const double dz = (k.F - g) / k.S;
         z -= dz;
-        if (fabs(dz) <= 1e-14 * (fabs(z) + zs)) break;
+        if (fabs(dz) <= 1e-14 * (fabs(z) + zs))
+            break;
     }
     return potential(&c, d, g, d->alpha, z) - potential_rest(&c, d, g);
 }
@@ -423,7 +441,8 @@ static double lift_energy(const sw_derived_t *d, double g)
         }
         prev = th;
     }
-    if (best_th == 0.0) return best;
+    if (best_th == 0.0)
+        return best;
     const double gr = 0.5 * (sqrt(5.0) - 1.0);
     double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
     double v1 = potential(&c, d, g, x1, d->b * sin(x1)) - V0;
@@ -454,7 +473,8 @@ static void kinetic(const sw_derived_t *d, const sw_state_t *s, double *rel, dou
     const double st = sin(s->theta), ct = cos(s->theta), w = s->theta_dot;
     *rel = 0.5 * J * w * w + h * st * w * s->z_dot + 0.5 * s->z_dot * s->z_dot;
     *tot = *rel;
-    if (d->gamma > 0.0) *tot += 0.5 * s->u_dot * s->u_dot / d->gamma + h * ct * s->u_dot * w;
+    if (d->gamma > 0.0)
+        *tot += 0.5 * s->u_dot * s->u_dot / d->gamma + h * ct * s->u_dot * w;
 }
 
 double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s)
@@ -463,7 +483,8 @@ double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *
     double rel, tot;
     kinetic(d, s, &rel, &tot);
     double E = tot + potential(&c, d, g_eff, s->theta, s->z) - potential_rest(&c, d, g_eff);
-    if (d->gamma > 0.0) E += 0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
+    if (d->gamma > 0.0)
+        E += 0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
     return E;
 }
 
@@ -489,7 +510,8 @@ void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s,
     }
     if (margin_bound) {
         double Et = tot + V;
-        if (d->gamma > 0.0) Et += 0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
+        if (d->gamma > 0.0)
+            Et += 0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
         const double mb = 1.0 - Et / Eb;
         *margin_bound = inside ? mb : fmin(mb, 0.0);
     }
@@ -564,7 +586,8 @@ static int cushion_candidates(const sw_pkg_t *P, int cut_kinks, double h, const 
         c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};
     if (a0 < al && (a1 >= al || al - fmax(a0, a1) < v))
         c[n++] = (sw_evcand_t){SW_EVF_TIP, SW_ROLE_TIP, SW_RULE_RISE, 0};
-    if (isnan(P->t_lift)) c[n++] = (sw_evcand_t){SW_EVF_LIFT, SW_ROLE_LIFT, SW_RULE_RISE, 0};
+    if (isnan(P->t_lift))
+        c[n++] = (sw_evcand_t){SW_EVF_LIFT, SW_ROLE_LIFT, SW_RULE_RISE, 0};
     return n;
 }
 
@@ -576,32 +599,32 @@ static void cushion_event_fn(const sw_pkg_t *P, int ev, double t, const double y
     (void)t;
     const double th = y[P->ith], w = y[P->idth];
     switch (ev) {
-    case SW_EVF_OVERTURN:
-        *val = th * th - M_PI_2 * M_PI_2;
-        *der = 2.0 * th * w;
-        return;
-    case SW_EVF_TIP:
-        *val = th * th - P->d.alpha * P->d.alpha;
-        *der = 2.0 * th * w;
-        return;
-    case SW_EVF_TURN: /* |theta| stops growing */
-        *val = -th * w;
-        *der = -(w * w + th * f[P->idth]);
-        return;
-    case SW_EVF_LIFT:
-    case SW_EVF_LIFT_IN: {
-        const double v = cushion_lift(P, y, der), sg = ev == SW_EVF_LIFT ? 1.0 : -1.0;
-        *val = sg * v;
-        *der *= sg;
-        return;
-    }
-    default: { /* b^2 sin^2(theta) + z |z| */
-        const double b = P->d.b, sn = sin(th), z = y[P->iz];
-        const double sg = ev == SW_EVF_FLY_IN ? 1.0 : -1.0; /* rises when the base flies */
-        *val = sg * (b * b * sn * sn + z * fabs(z));
-        *der = sg * (2.0 * b * b * sn * cos(th) * w + 2.0 * fabs(z) * y[P->idz]);
-        return;
-    }
+        case SW_EVF_OVERTURN:
+            *val = th * th - M_PI_2 * M_PI_2;
+            *der = 2.0 * th * w;
+            return;
+        case SW_EVF_TIP:
+            *val = th * th - P->d.alpha * P->d.alpha;
+            *der = 2.0 * th * w;
+            return;
+        case SW_EVF_TURN: /* |theta| stops growing */
+            *val = -th * w;
+            *der = -(w * w + th * f[P->idth]);
+            return;
+        case SW_EVF_LIFT:
+        case SW_EVF_LIFT_IN: {
+            const double v = cushion_lift(P, y, der), sg = ev == SW_EVF_LIFT ? 1.0 : -1.0;
+            *val = sg * v;
+            *der *= sg;
+            return;
+        }
+        default: { /* b^2 sin^2(theta) + z |z| */
+            const double b = P->d.b, sn = sin(th), z = y[P->iz];
+            const double sg = ev == SW_EVF_FLY_IN ? 1.0 : -1.0; /* rises when the base flies */
+            *val = sg * (b * b * sn * sn + z * fabs(z));
+            *der = sg * (2.0 * b * b * sn * cos(th) * w + 2.0 * fabs(z) * y[P->idz]);
+            return;
+        }
     }
 }
 
@@ -618,9 +641,12 @@ static int cushion_uplift_side(const sw_pkg_t *P, double t)
 static void cushion_after_step(sw_ctx_t *C, sw_pkg_t *P, double t)
 {
     P->side = P->y[P->ith] < 0.0 ? -1 : 1;
-    if (P->phase != SW_PHASE_ROCKING || isnan(P->t_lift)) return;
-    if (cushion_lift(P, P->y, NULL) >= 0.0) return;
-    if (motion_energy(P, P->y) >= P->e_lift) return;
+    if (P->phase != SW_PHASE_ROCKING || isnan(P->t_lift))
+        return;
+    if (cushion_lift(P, P->y, NULL) >= 0.0)
+        return;
+    if (motion_energy(P, P->y) >= P->e_lift)
+        return;
     P->t_lift = NAN;
     P->beyond_alpha = 0;
     P->sum.rests++;
@@ -649,7 +675,8 @@ static void cushion_output(const sw_pkg_t *P, double t, sw_output_t *o)
     o->a_support = P->iu < 0 ? sw_input_ag(P->in, t) : sw_input_ag(P->in, t) + f[P->idu];
     /* Airborne (g + a_z <= 0): the engine has faulted the package and
      * reset it; its energy is judged under nominal gravity. */
-    if (!(ge > 0.0)) ge = P->g;
+    if (!(ge > 0.0))
+        ge = P->g;
     o->uplift_ratio = fabs(o->a_support) / (P->tan_alpha * P->g);
     if (P->phase == SW_PHASE_OVERTURNED) {
         o->margin = o->margin_bound = -1.0;

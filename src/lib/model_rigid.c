@@ -40,9 +40,12 @@ static double margin_rocking_c(const sw_derived_t *d, double r, double theta, do
     const double KE = theta_dot * theta_dot * k;
     const double E = PE + KE;
     const int outward = theta * theta_dot > 0.0 || (theta == 0.0 && theta_dot != 0.0);
-    if (theta == 0.0 && theta_dot == 0.0) return 1.0;
-    if (ath < d->alpha) return outward ? 1.0 - E : 1.0 - r * r * E;
-    if (!outward && E > 1.0) return 1.0 - r * r * E;
+    if (theta == 0.0 && theta_dot == 0.0)
+        return 1.0;
+    if (ath < d->alpha)
+        return outward ? 1.0 - E : 1.0 - r * r * E;
+    if (!outward && E > 1.0)
+        return 1.0 - r * r * E;
     return PE - KE - 1.0;
 }
 
@@ -70,7 +73,8 @@ double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 
 static double energy_frame_c(const sw_derived_t *d, double g_eff, const sw_state_t *s, double cA)
 {
-    if (d->gamma <= 0.0) return energy_bare_c(d, g_eff, s, cA);
+    if (d->gamma <= 0.0)
+        return energy_bare_c(d, g_eff, s, cA);
     const double wb = d->omega_b;
     return (0.5 / d->gamma) * (s->u_dot * s->u_dot + wb * wb * s->u * s->u) +
            d->R * cA * s->u_dot * s->theta_dot +
@@ -158,40 +162,41 @@ static int rigid_candidates(const sw_pkg_t *P, int cut_kinks, double h, const do
 
 /* Value and time derivative of event ev at (t, y) with f = y'.  Every
  * event is "the function rises through 0". */
-static void rigid_event_fn(const sw_pkg_t *P, int ev, double t, const double y[],
-                           const double f[], double *val, double *der)
+static void rigid_event_fn(const sw_pkg_t *P, int ev, double t, const double y[], const double f[],
+                           double *val, double *der)
 {
     const double s = P->side;
     switch (ev) {
-    case SW_EVF_IMPACT:
-        *val = -s * y[P->ith];
-        *der = -s * f[P->ith];
-        return;
-    case SW_EVF_OVERTURN:
-        *val = s * y[P->ith] - M_PI_2;
-        *der = s * f[P->ith];
-        return;
-    case SW_EVF_TIP:
-        *val = s * y[P->ith] - P->d.alpha;
-        *der = s * f[P->ith];
-        return;
-    case SW_EVF_TURN: /* the package stops swinging outward: the peak of |theta| */
-        *val = -s * y[P->idth];
-        *der = -s * f[P->idth];
-        return;
-    default: {
-        /* frame stuck: support acceleration W = -(2 z w u' + w^2 u) against
-         * the uplift threshold T = tan(alpha) g_eff */
-        const double w = P->d.omega_b, c = 2.0 * P->d.zeta_b * w;
-        const double W = -(c * y[P->idu] + w * w * y[P->iu]);
-        const double Wd = -(c * f[P->idu] + w * w * f[P->iu]);
-        const double T = P->tan_alpha * sw_input_geff(P, t);
-        const double Td = P->in->fn ? 0.0 : P->tan_alpha * P->in->az_slope;
-        const double sg = ev == SW_EVF_UPLIFT_BACK ? 1.0 : -1.0; /* back: W >= T; fwd: W <= -T */
-        *val = sg * W - T;
-        *der = sg * Wd - Td;
-        return;
-    }
+        case SW_EVF_IMPACT:
+            *val = -s * y[P->ith];
+            *der = -s * f[P->ith];
+            return;
+        case SW_EVF_OVERTURN:
+            *val = s * y[P->ith] - M_PI_2;
+            *der = s * f[P->ith];
+            return;
+        case SW_EVF_TIP:
+            *val = s * y[P->ith] - P->d.alpha;
+            *der = s * f[P->ith];
+            return;
+        case SW_EVF_TURN: /* the package stops swinging outward: the peak of |theta| */
+            *val = -s * y[P->idth];
+            *der = -s * f[P->idth];
+            return;
+        default: {
+            /* frame stuck: support acceleration W = -(2 z w u' + w^2 u) against
+             * the uplift threshold T = tan(alpha) g_eff */
+            const double w = P->d.omega_b, c = 2.0 * P->d.zeta_b * w;
+            const double W = -(c * y[P->idu] + w * w * y[P->iu]);
+            const double Wd = -(c * f[P->idu] + w * w * f[P->iu]);
+            const double T = P->tan_alpha * sw_input_geff(P, t);
+            const double Td = P->in->fn ? 0.0 : P->tan_alpha * P->in->az_slope;
+            const double sg =
+                ev == SW_EVF_UPLIFT_BACK ? 1.0 : -1.0; /* back: W >= T; fwd: W <= -T */
+            *val = sg * W - T;
+            *der = sg * Wd - Td;
+            return;
+        }
     }
 }
 
@@ -250,8 +255,7 @@ static int frame_moving(const sw_pkg_t *P, double rest_eps)
 {
     (void)rest_eps;
     return P->phase == SW_PHASE_ROCKING ||
-           (P->phase == SW_PHASE_STUCK &&
-            (fabs(P->y[P->iu]) > 1e-9 || fabs(P->y[P->idu]) > 1e-9));
+           (P->phase == SW_PHASE_STUCK && (fabs(P->y[P->iu]) > 1e-9 || fabs(P->y[P->idu]) > 1e-9));
 }
 
 /* ---- the report ---------------------------------------------------------------- */

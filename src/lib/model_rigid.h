@@ -44,7 +44,8 @@ static inline int sw_rigid_sincos_near(const double trig[3], double A, double *s
 /* The same, moving the cache to A when libm was called. */
 static inline void sw_rigid_sincos(sw_pkg_t *P, double A, double *sn, double *cs)
 {
-    if (sw_rigid_sincos_near(P->trig, A, sn, cs)) return;
+    if (sw_rigid_sincos_near(P->trig, A, sn, cs))
+        return;
     P->trig[0] = A;
     P->trig[1] = *sn;
     P->trig[2] = *cs;
@@ -97,8 +98,8 @@ static SW_ALWAYS_INLINE void sw_rigid_rhs_trig(const sw_pkg_t *P, sw_model_kind 
 }
 
 /* The same, taking sin and cos of A1 = alpha - s theta from the cache. */
-static SW_ALWAYS_INLINE void sw_rigid_rhs_of(sw_pkg_t *P, sw_model_kind model, double ag,
-                                              double ge, const double y[], double f[])
+static SW_ALWAYS_INLINE void sw_rigid_rhs_of(sw_pkg_t *P, sw_model_kind model, double ag, double ge,
+                                             const double y[], double f[])
 {
     double sn = 0.0, c1 = 0.0;
     if (P->phase == SW_PHASE_ROCKING)
@@ -108,8 +109,10 @@ static SW_ALWAYS_INLINE void sw_rigid_rhs_of(sw_pkg_t *P, sw_model_kind model, d
 
 static inline void sw_rigid_rhs(sw_pkg_t *P, double ag, double ge, const double y[], double f[])
 {
-    if (P->d.model == SW_MODEL_BARE) sw_rigid_rhs_of(P, SW_MODEL_BARE, ag, ge, y, f);
-    else sw_rigid_rhs_of(P, SW_MODEL_FRAME, ag, ge, y, f);
+    if (P->d.model == SW_MODEL_BARE)
+        sw_rigid_rhs_of(P, SW_MODEL_BARE, ag, ge, y, f);
+    else
+        sw_rigid_rhs_of(P, SW_MODEL_FRAME, ag, ge, y, f);
 }
 
 /* While stuck the support's acceleration A is a_g (bare) or a_g + u'' =
@@ -119,10 +122,13 @@ static inline void sw_rigid_rhs(sw_pkg_t *P, double ag, double ge, const double 
 static inline int sw_rigid_side_of(const sw_pkg_t *P, double A, double t)
 {
     const double ge = sw_input_geff(P, t);
-    if (!(ge > 0.0)) return 0; /* airborne: outside the model (the engine faults) */
+    if (!(ge > 0.0))
+        return 0; /* airborne: outside the model (the engine faults) */
     const double thr = P->tan_alpha * ge;
-    if (A <= -thr) return +1; /* braking tips the top forward */
-    if (A >= thr) return -1;
+    if (A <= -thr)
+        return +1; /* braking tips the top forward */
+    if (A >= thr)
+        return -1;
     return 0;
 }
 

@@ -23,7 +23,8 @@ void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, doub
         memcpy(P->y, y_at, sizeof(double) * (size_t)P->n);
     }
     sw_model_output(P, t, &o);
-    if (y_at) memcpy(P->y, keep, sizeof keep);
+    if (y_at)
+        memcpy(P->y, keep, sizeof keep);
     ev.pkg = P->index;
     ev.kind = kind;
     ev.t = C->origin + t;
@@ -31,9 +32,11 @@ void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, doub
     ev.theta_dot = o.state.theta_dot;
     ev.margin = o.margin;
     ev.info = info;
-    if (o.margin < P->sum.min_margin) P->sum.min_margin = o.margin;
+    if (o.margin < P->sum.min_margin)
+        P->sum.min_margin = o.margin;
     C->events++;
-    if (C->on_event) C->on_event(C->user, &ev);
+    if (C->on_event)
+        C->on_event(C->user, &ev);
 }
 
 static void emit(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info)
@@ -58,14 +61,16 @@ void sw_pkg_rest(sw_pkg_t *P)
     P->phase = SW_PHASE_STUCK;
     P->side = 1;
     P->beyond_alpha = 0;
-    if (P->ops->rest) P->ops->rest(P);
+    if (P->ops->rest)
+        P->ops->rest(P);
 }
 
 void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code)
 {
     P->sum.faults++;
     sw_pkg_rest(P);
-    if (P->gevo) gsl_odeiv2_evolve_reset(P->gevo);
+    if (P->gevo)
+        gsl_odeiv2_evolve_reset(P->gevo);
     emit(C, P, SW_EV_FAULT, t, code);
 }
 
@@ -76,14 +81,16 @@ void sw_pkg_start_rocking(sw_ctx_t *C, sw_pkg_t *P, double t, int side)
     P->t_lift = t;
     P->y[P->ith] = P->y[P->idth] = 0.0;
     P->sum.uplifts++;
-    if (isnan(P->sum.uplift_time)) P->sum.uplift_time = t;
+    if (isnan(P->sum.uplift_time))
+        P->sum.uplift_time = t;
     emit(C, P, SW_EV_UPLIFT, t, side);
 }
 
 /* |theta| reached alpha at t (the state there: y_at). */
 void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
 {
-    if (isnan(P->sum.tip_time)) P->sum.tip_time = t;
+    if (isnan(P->sum.tip_time))
+        P->sum.tip_time = t;
     P->beyond_alpha = 1;
     sw_pkg_emit_at(C, P, SW_EV_TIP, t, (y_at[P->ith] < 0.0 ? -1.0 : 1.0) * P->d.alpha, y_at);
 }
@@ -97,7 +104,8 @@ void sw_pkg_lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
     const double side = th == 0.0 ? 0.0 : th < 0.0 ? -1.0 : 1.0;
     P->t_lift = t;
     P->sum.uplifts++;
-    if (isnan(P->sum.uplift_time)) P->sum.uplift_time = t;
+    if (isnan(P->sum.uplift_time))
+        P->sum.uplift_time = t;
     sw_pkg_emit_at(C, P, SW_EV_UPLIFT, t, side, y_at);
 }
 
@@ -113,7 +121,8 @@ static int below_rest(const sw_ctx_t *C, const sw_pkg_t *P, double theta_dot)
  * at once if its support is still beyond the uplift threshold. */
 static void after_impact(sw_ctx_t *C, sw_pkg_t *P, double t)
 {
-    if (!below_rest(C, P, P->y[P->idth])) return;
+    if (!below_rest(C, P, P->y[P->idth]))
+        return;
     P->ops->land(P);
     const int side = P->ops->uplift_side(P, t);
     if (side != 0 && t == P->t_lift) {
@@ -137,42 +146,43 @@ static void after_impact(sw_ctx_t *C, sw_pkg_t *P, double t)
 void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t)
 {
     switch (ev) {
-    case SW_EVF_IMPACT: {
-        const double before = P->y[P->idth];
-        if (below_rest(C, P, before)) {
-            /* arriving with less than the rest energy: a landing, not an
-             * impact (the step's round-off after a lift, or the end of a
-             * cascade) */
+        case SW_EVF_IMPACT: {
+            const double before = P->y[P->idth];
+            if (below_rest(C, P, before)) {
+                /* arriving with less than the rest energy: a landing, not an
+                 * impact (the step's round-off after a lift, or the end of a
+                 * cascade) */
+                P->y[P->ith] = 0.0;
+                P->ops->land(P);
+                after_impact(C, P, t);
+                break;
+            }
             P->y[P->ith] = 0.0;
-            P->ops->land(P);
+            P->ops->impact(P);
+            P->beyond_alpha = 0;
+            P->sum.impacts++;
+            emit(C, P, SW_EV_IMPACT, t, before);
             after_impact(C, P, t);
             break;
         }
-        P->y[P->ith] = 0.0;
-        P->ops->impact(P);
-        P->beyond_alpha = 0;
-        P->sum.impacts++;
-        emit(C, P, SW_EV_IMPACT, t, before);
-        after_impact(C, P, t);
-        break;
-    }
-    case SW_EVF_OVERTURN: {
-        const double rate = P->y[P->idth];
-        P->y[P->ith] = P->side * M_PI_2;
-        sw_pkg_track_theta(P, M_PI_2);
-        P->phase = SW_PHASE_OVERTURNED;
-        P->sum.overturned = 1;
-        P->sum.overturn_time = t;
-        emit(C, P, SW_EV_OVERTURN, t, rate);
-        for (int i = 0; i < P->n; i++)
-            if (i != P->ith) P->y[i] = 0.0;
-        break;
-    }
-    case SW_EVF_UPLIFT_FWD:
-    case SW_EVF_UPLIFT_BACK:
-        sw_pkg_start_rocking(C, P, t, ev == SW_EVF_UPLIFT_FWD ? +1 : -1);
-        break;
-    default: break; /* a kink: the step was cut there, nothing changes */
+        case SW_EVF_OVERTURN: {
+            const double rate = P->y[P->idth];
+            P->y[P->ith] = P->side * M_PI_2;
+            sw_pkg_track_theta(P, M_PI_2);
+            P->phase = SW_PHASE_OVERTURNED;
+            P->sum.overturned = 1;
+            P->sum.overturn_time = t;
+            emit(C, P, SW_EV_OVERTURN, t, rate);
+            for (int i = 0; i < P->n; i++)
+                if (i != P->ith)
+                    P->y[i] = 0.0;
+            break;
+        }
+        case SW_EVF_UPLIFT_FWD:
+        case SW_EVF_UPLIFT_BACK:
+            sw_pkg_start_rocking(C, P, t, ev == SW_EVF_UPLIFT_FWD ? +1 : -1);
+            break;
+        default: break; /* a kink: the step was cut there, nothing changes */
     }
     sw_step_reset(P);
 }

@@ -32,6 +32,7 @@ double sw_pulse_duration(const sw_pulse_t *p)
 double sw_pulse_eval(void *pulse, double t)
 {
     const sw_pulse_t *p = pulse;
-    if (t < 0.0 || t > sw_pulse_duration(p)) return 0.0;
+    if (t < 0.0 || t > sw_pulse_duration(p))
+        return 0.0;
     return p->amplitude * sin(p->omega * t);
 }

@@ -55,18 +55,18 @@
 
 #define DEFAULT_STEP 0.02
 #define DEFAULT_TOL 0.01
-#define DEFAULT_X_MAX 20.0      /* in units of g tan(alpha), as the boundary search */
-#define DEFAULT_RTOL 1e-5       /* adaptive schemes: the answer is wanted to 1 % */
+#define DEFAULT_X_MAX 20.0 /* in units of g tan(alpha), as the boundary search */
+#define DEFAULT_RTOL 1e-5  /* adaptive schemes: the answer is wanted to 1 % */
 #define DEFAULT_ATOL 1e-7
-#define DEFAULT_REST_EPS 1e-6   /* rest below 1e-6 of the barrier: ends impact cascades */
-#define CHECKS_PER_PERIOD 32.0  /* certificate checks per rocking period of free motion */
-#define LIFT_SAMPLES 400.0      /* samples per shortest period of the frame's lift table */
-#define LIFT_RINGING 2.0        /* bearing periods sampled after the pulse */
-#define LIFT_MAX_SAMPLES 50000  /* larger tables (very stiff bearings): no lift bound */
-#define LIFT_SLACK 0.995        /* sampled peaks are within 3e-5 of the true ones */
-#define ENERGY_SLACK 0.98       /* the energy bound is exact; the runs are not */
-#define CERT_SLACK 0.99         /* the same for the certificate during a pulse */
-#define CHECKS_PER_PULSE 16.0   /* certificate checks during a pulse */
+#define DEFAULT_REST_EPS 1e-6  /* rest below 1e-6 of the barrier: ends impact cascades */
+#define CHECKS_PER_PERIOD 32.0 /* certificate checks per rocking period of free motion */
+#define LIFT_SAMPLES 400.0     /* samples per shortest period of the frame's lift table */
+#define LIFT_RINGING 2.0       /* bearing periods sampled after the pulse */
+#define LIFT_MAX_SAMPLES 50000 /* larger tables (very stiff bearings): no lift bound */
+#define LIFT_SLACK 0.995       /* sampled peaks are within 3e-5 of the true ones */
+#define ENERGY_SLACK 0.98      /* the energy bound is exact; the runs are not */
+#define CERT_SLACK 0.99        /* the same for the certificate during a pulse */
+#define CHECKS_PER_PULSE 16.0  /* certificate checks during a pulse */
 
 /* One design pulse: its engine and, for a frame, the stuck frame's linear
  * response sampled every h seconds: support acceleration per unit pulse
@@ -76,8 +76,8 @@ typedef struct {
     double T;     /* s */
     double check; /* s, between certificate checks during the pulse: whole steps */
     sw_engine_t *e;
-    size_t n;  /* samples; 0 = no table */
-    double h;  /* s */
+    size_t n; /* samples; 0 = no table */
+    double h; /* s */
     double *Au, *A1, *A2;
     double end_u[2], end_1[2], end_2[2]; /* (u, u') at the end: m, m/s per unit */
 } pulse_ctx_t;
@@ -86,14 +86,14 @@ struct sw_reserve {
     sw_scene_t sc;
     sw_derived_t d;
     sw_reserve_opts_t o;
-    double step, tol;     /* relative */
+    double step, tol; /* relative */
     double max_g, floor_g;
-    double lift_g;        /* g: g tan(alpha) / SW_G0 */
-    double z_rest;        /* m, cushion static deflection */
-    double t_free;        /* s, free motion after a pulse */
-    double chunk;         /* s, between certificate checks after the pulse */
-    double sqrt_eb;       /* sqrt(J/kg): square root of the barrier energy */
-    double c_energy;      /* 1: energy_c() */
+    double lift_g;   /* g: g tan(alpha) / SW_G0 */
+    double z_rest;   /* m, cushion static deflection */
+    double t_free;   /* s, free motion after a pulse */
+    double chunk;    /* s, between certificate checks after the pulse */
+    double sqrt_eb;  /* sqrt(J/kg): square root of the barrier energy */
+    double c_energy; /* 1: energy_c() */
     size_t np;
     pulse_ctx_t p[SW_DESIGN_PULSES_MAX];
     sw_reserve_result_t rest;
@@ -103,7 +103,8 @@ static void set_msg(char *msg, size_t len, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 static void set_msg(char *msg, size_t len, const char *fmt, ...)
 {
-    if (!msg || !len) return;
+    if (!msg || !len)
+        return;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, len, fmt, ap);
@@ -131,17 +132,19 @@ static double zero_input(void *user, double t)
 static double energy_c(const sw_derived_t *d)
 {
     switch (d->model) {
-    case SW_MODEL_BARE:
-        /* KE = (2/3) m R^2 th'^2 about the corner, |X'| <= R |th'|:
-         * X'^2 <= (3/2) KE/m */
-        return sqrt(3.0 / 8.0);
-    case SW_MODEL_FRAME: return 1.0 / sqrt(2.0 * d->gamma); /* KE >= M X'^2/2, M = m/gamma */
-    case SW_MODEL_CUSHION:
-        if (d->gamma > 0.0) return 1.0 / sqrt(2.0 * d->gamma);
-        /* on the bed B holds still: X' = h cos(th) th', and
-         * KE >= m X'^2/2 + I_C th'^2/2 >= (m + I_C/h^2) X'^2/2 */
-        return sqrt(d->h * d->h / (2.0 * (d->h * d->h + d->R * d->R / 3.0))); /* I_C/m = R^2/3 */
-    default: return INFINITY;
+        case SW_MODEL_BARE:
+            /* KE = (2/3) m R^2 th'^2 about the corner, |X'| <= R |th'|:
+             * X'^2 <= (3/2) KE/m */
+            return sqrt(3.0 / 8.0);
+        case SW_MODEL_FRAME: return 1.0 / sqrt(2.0 * d->gamma); /* KE >= M X'^2/2, M = m/gamma */
+        case SW_MODEL_CUSHION:
+            if (d->gamma > 0.0)
+                return 1.0 / sqrt(2.0 * d->gamma);
+            /* on the bed B holds still: X' = h cos(th) th', and
+             * KE >= m X'^2/2 + I_C th'^2/2 >= (m + I_C/h^2) X'^2/2 */
+            return sqrt(d->h * d->h /
+                        (2.0 * (d->h * d->h + d->R * d->R / 3.0))); /* I_C/m = R^2/3 */
+        default: return INFINITY;
     }
 }
 
@@ -149,29 +152,34 @@ static double energy_c(const sw_derived_t *d)
 static double energy_of(const sw_derived_t *d, double g, const sw_state_t *s)
 {
     switch (d->model) {
-    case SW_MODEL_BARE: return sw_energy_bare(d, g, s);
-    case SW_MODEL_FRAME: return sw_energy_frame(d, g, s);
-    case SW_MODEL_CUSHION: return sw_energy_cushion(d, g, s);
-    default: return 0.0;
+        case SW_MODEL_BARE: return sw_energy_bare(d, g, s);
+        case SW_MODEL_FRAME: return sw_energy_frame(d, g, s);
+        case SW_MODEL_CUSHION: return sw_energy_cushion(d, g, s);
+        default: return 0.0;
     }
 }
 
 static double barrier_of(const sw_derived_t *d, double g)
 {
-    if (d->model == SW_MODEL_CUSHION) return sw_cushion_barrier(d, g);
+    if (d->model == SW_MODEL_CUSHION)
+        return sw_cushion_barrier(d, g);
     return g * d->R * (1.0 - d->h / d->R); /* g R (1 - cos alpha) */
 }
 
 double sw_reserve_energy_bound(const sw_derived_t *d, double g, const sw_state_t *s, double T)
 {
-    if (!d || !s || !(T > 0.0) || !(g > 0.0)) return 0.0;
-    if (fabs(s->theta) >= d->alpha || s->phase == SW_PHASE_OVERTURNED) return 0.0;
+    if (!d || !s || !(T > 0.0) || !(g > 0.0))
+        return 0.0;
+    if (fabs(s->theta) >= d->alpha || s->phase == SW_PHASE_OVERTURNED)
+        return 0.0;
     const double c = energy_c(d);
-    if (!isfinite(c)) return 0.0;
+    if (!isfinite(c))
+        return 0.0;
     /* int |a| dt over the half-sine = 2 a_e T / pi; quiet input after the
      * pulse only loses energy */
     const double gap = sqrt(barrier_of(d, g)) - sqrt(fmax(energy_of(d, g, s), 0.0));
-    if (!(gap > 0.0)) return 0.0;
+    if (!(gap > 0.0))
+        return 0.0;
     return M_PI * gap / (2.0 * T * c) / SW_G0;
 }
 
@@ -191,8 +199,7 @@ static double frame_accel(const sw_derived_t *d, const double y[2])
     return -(2.0 * z * w * y[1] + w * w * y[0]);
 }
 
-static void frame_rk4(const sw_derived_t *d, double T, double t, double h, double y[2],
-                      int forced)
+static void frame_rk4(const sw_derived_t *d, double T, double t, double h, double y[2], int forced)
 {
     double k1[2], k2[2], k3[2], k4[2], yt[2];
     const double w = M_PI / T;
@@ -214,11 +221,13 @@ static int lift_table(const sw_derived_t *d, pulse_ctx_t *P)
     const double span = P->T + LIFT_RINGING * Tb;
     const double h = fmin(Tb, 2.0 * P->T) / LIFT_SAMPLES;
     const double nd = ceil(span / h) + 1.0;
-    if (nd > LIFT_MAX_SAMPLES) return SW_OK; /* no table: the energy bound alone */
+    if (nd > LIFT_MAX_SAMPLES)
+        return SW_OK; /* no table: the energy bound alone */
     P->n = (size_t)nd;
     P->h = span / (double)(P->n - 1);
     P->Au = malloc(3 * P->n * sizeof *P->Au);
-    if (!P->Au) return SW_ENOMEM;
+    if (!P->Au)
+        return SW_ENOMEM;
     P->A1 = P->Au + P->n;
     P->A2 = P->A1 + P->n;
     double yu[2] = {0.0, 0.0}, y1[2] = {1.0, 0.0}, y2[2] = {0.0, 1.0};
@@ -227,7 +236,8 @@ static int lift_table(const sw_derived_t *d, pulse_ctx_t *P)
         P->Au[k] = frame_accel(d, yu);
         P->A1[k] = frame_accel(d, y1);
         P->A2[k] = frame_accel(d, y2);
-        if (k + 1 == P->n) break;
+        if (k + 1 == P->n)
+            break;
         frame_rk4(d, P->T, t, P->h, yu, 1);
         frame_rk4(d, P->T, t, P->h, y1, 0);
         frame_rk4(d, P->T, t, P->h, y2, 0);
@@ -247,7 +257,8 @@ static int lift_table(const sw_derived_t *d, pulse_ctx_t *P)
 static double frame_lift_g(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
                            int dir)
 {
-    if (!P->n) return 0.0;
+    if (!P->n)
+        return 0.0;
     const sw_derived_t *d = &R->d;
     const double L = R->sc.g * tan(d->alpha); /* m/s^2 */
     const double k = dir * SW_G0;             /* m/s^2 per g */
@@ -255,10 +266,12 @@ static double frame_lift_g(const sw_reserve_t *R, const pulse_ctx_t *P, const sw
     for (size_t i = 0; i < P->n; i++) {
         const double U = k * P->Au[i];
         const double F = s->u * P->A1[i] + s->u_dot * P->A2[i];
-        if (fabs(F) >= L) return 0.0;
+        if (fabs(F) >= L)
+            return 0.0;
         if (U != 0.0) {
             const double need = (L - (U > 0.0 ? F : -F)) / fabs(U);
-            if (need < x) x = need;
+            if (need < x)
+                x = need;
         }
     }
     /* the ringing after the table */
@@ -268,10 +281,12 @@ static double frame_lift_g(const sw_reserve_t *R, const pulse_ctx_t *P, const sw
     const double b0 = (s->u * P->end_1[0] + s->u_dot * P->end_2[0]) * w;
     const double b1 = s->u * P->end_1[1] + s->u_dot * P->end_2[1];
     const double aa = a0 * a0 + a1 * a1, ab = a0 * b0 + a1 * b1, bb = b0 * b0 + b1 * b1;
-    if (bb >= Lp * Lp) return 0.0;
+    if (bb >= Lp * Lp)
+        return 0.0;
     if (aa > 0.0) {
         const double xt = (-ab + sqrt(ab * ab - aa * (bb - Lp * Lp))) / aa;
-        if (xt < x) x = xt;
+        if (xt < x)
+            x = xt;
     }
     return isfinite(x) ? LIFT_SLACK * x : 0.0;
 }
@@ -309,7 +324,8 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
     const int bare = R->d.model == SW_MODEL_BARE;
     sw_engine_reset(e);
     int rc = sw_engine_set_state(e, 0, s);
-    if (rc < 0) return rc;
+    if (rc < 0)
+        return rc;
     double t = 0.0;
     sw_summary_t sum;
     sw_output_t o;
@@ -323,12 +339,16 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
         while (t < P->T) {
             t = fmin(P->T, t + P->check);
             rc = sw_engine_advance_fn(e, t, sw_pulse_eval, &pl);
-            if (rc < 0) return rc;
-            if (!(t < P->T)) break;
+            if (rc < 0)
+                return rc;
+            if (!(t < P->T))
+                break;
             sw_engine_summary(e, 0, &sum);
-            if (sum.overturned || sum.faults) break;
+            if (sum.overturned || sum.faults)
+                break;
             sw_engine_get_output(e, 0, &o);
-            if (fabs(o.state.theta) >= R->d.alpha) continue;
+            if (fabs(o.state.theta) >= R->d.alpha)
+                continue;
             const double E = fmax(energy_of(&R->d, R->sc.g, &o.state), 0.0); /* J/kg */
             if (sqrt(E) + ca * (1.0 + cos(w * t)) < CERT_SLACK * R->sqrt_eb) {
                 r->end = bare ? SW_END_REST : SW_END_BOUND;
@@ -353,8 +373,10 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
         sw_engine_get_output(e, 0, &o);
         if (bare) {
             /* exact for free rocking (physics.md): decided now */
-            if (o.state.phase == SW_PHASE_STUCK) r->end = SW_END_REST;
-            else r->end = o.margin > 0.0 ? SW_END_REST : SW_END_FALLING;
+            if (o.state.phase == SW_PHASE_STUCK)
+                r->end = SW_END_REST;
+            else
+                r->end = o.margin > 0.0 ? SW_END_REST : SW_END_FALLING;
             break;
         }
         if (o.margin_bound > 0.0) {
@@ -367,7 +389,8 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
         }
         t = fmin(t_limit, t + R->chunk);
         rc = sw_engine_advance_fn(e, t, zero_input, NULL);
-        if (rc < 0) return rc;
+        if (rc < 0)
+            return rc;
     }
     r->overturned = r->end == SW_END_OVERTURN || r->end == SW_END_FALLING;
     r->t_end = t;
@@ -396,12 +419,12 @@ static int trial(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *
 static int is_rest(const sw_reserve_t *R, const sw_state_t *s)
 {
     switch (R->d.model) {
-    case SW_MODEL_BARE: return s->phase == SW_PHASE_STUCK;
-    case SW_MODEL_FRAME: return s->phase == SW_PHASE_STUCK && s->u == 0.0 && s->u_dot == 0.0;
-    case SW_MODEL_CUSHION:
-        return s->phase != SW_PHASE_OVERTURNED && s->theta == 0.0 && s->theta_dot == 0.0 &&
-               s->z == R->z_rest && s->z_dot == 0.0 && s->u == 0.0 && s->u_dot == 0.0;
-    default: return 0;
+        case SW_MODEL_BARE: return s->phase == SW_PHASE_STUCK;
+        case SW_MODEL_FRAME: return s->phase == SW_PHASE_STUCK && s->u == 0.0 && s->u_dot == 0.0;
+        case SW_MODEL_CUSHION:
+            return s->phase != SW_PHASE_OVERTURNED && s->theta == 0.0 && s->theta_dot == 0.0 &&
+                   s->z == R->z_rest && s->z_dot == 0.0 && s->u == 0.0 && s->u_dot == 0.0;
+        default: return 0;
     }
 }
 
@@ -412,8 +435,8 @@ int sw_reserve_is_rest(const sw_reserve_t *r, const sw_state_t *s)
 
 static int state_ok(const sw_state_t *s)
 {
-    return isfinite(s->u) && isfinite(s->u_dot) && isfinite(s->theta) &&
-           isfinite(s->theta_dot) && isfinite(s->z) && isfinite(s->z_dot) &&
+    return isfinite(s->u) && isfinite(s->u_dot) && isfinite(s->theta) && isfinite(s->theta_dot) &&
+           isfinite(s->z) && isfinite(s->z_dot) &&
            (s->phase == SW_PHASE_STUCK || s->phase == SW_PHASE_ROCKING ||
             s->phase == SW_PHASE_OVERTURNED);
 }
@@ -463,21 +486,25 @@ static int merged_scan(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, in
         int best = -1;
         double x = INFINITY;
         for (int i = 0; i < n; i++) {
-            if (c[i].done) continue;
+            if (c[i].done)
+                continue;
             const double xi = scan_next(R, &c[i]);
             if (xi < x) {
                 x = xi;
                 best = i;
             }
         }
-        if (best < 0) return SW_OK; /* nothing overturns up to max_g */
+        if (best < 0)
+            return SW_OK; /* nothing overturns up to max_g */
         scan_t *b = &c[best];
         const int over = trial(R, b->P, s, b->dir, x, faulted, &out->trials);
-        if (over < 0) return over;
+        if (over < 0)
+            return over;
         if (!over) {
             b->safe = x;
             b->k++;
-            if (x >= R->max_g) b->done = 1;
+            if (x >= R->max_g)
+                b->done = 1;
             continue;
         }
         /* the first overturn: bisect down to the last safe point */
@@ -485,11 +512,15 @@ static int merged_scan(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, in
         const int at_min = b->k == 0;
         while (!at_min && hi / lo - 1.0 > R->tol) {
             const double m = sqrt(lo * hi);
-            if (!(m > lo && m < hi)) break;
+            if (!(m > lo && m < hi))
+                break;
             const int o = trial(R, b->P, s, b->dir, m, faulted, &out->trials);
-            if (o < 0) return o;
-            if (o) hi = m;
-            else lo = m;
+            if (o < 0)
+                return o;
+            if (o)
+                hi = m;
+            else
+                lo = m;
         }
         out->found = 1;
         out->reserve_g = hi;
@@ -516,8 +547,10 @@ static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *ou
     memset(&rq, 0, sizeof rq);
     out->trials++;
     int rc = run(R, &R->p[0], s, 0.0, &rq);
-    if (rc == SW_EFAULT) faulted = 1;
-    else if (rc < 0) return rc;
+    if (rc == SW_EFAULT)
+        faulted = 1;
+    else if (rc < 0)
+        return rc;
     if (rq.overturned) {
         result_zero(out);
         return SW_OK;
@@ -532,12 +565,13 @@ static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *ou
     scan_t c[2 * SW_DESIGN_PULSES_MAX];
     sw_reserve_result_t part[2];
     double known[2] = {R->max_g, R->max_g}; /* g: each direction is at least this */
-    int complete[2] = {1, 1};                /* every scan of it went to max_g */
+    int complete[2] = {1, 1};               /* every scan of it went to max_g */
     for (int pass = 0; pass < passes; pass++) {
         int n = 0;
         for (int k = 0; k < ndir; k++) {
             const int dir = k == 0 ? SW_RESERVE_BRAKING : SW_RESERVE_ACCELERATING;
-            if (passes == 2 && k != pass) continue;
+            if (passes == 2 && k != pass)
+                continue;
             for (size_t j = 0; j < R->np; j++) {
                 scan_t *ci = &c[n++];
                 memset(ci, 0, sizeof *ci);
@@ -545,17 +579,21 @@ static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *ou
                 ci->dir = dir;
                 ci->lo = lower_bound_g(R, ci->P, s, dir);
                 ci->bounded = ci->lo >= R->floor_g;
-                if (!ci->bounded) ci->lo = R->floor_g;
-                if (!(ci->lo < R->max_g)) ci->done = 1;
+                if (!ci->bounded)
+                    ci->lo = R->floor_g;
+                if (!(ci->lo < R->max_g))
+                    ci->done = 1;
             }
         }
         memset(&part[pass], 0, sizeof part[pass]);
         rc = merged_scan(R, s, c, n, &part[pass], &faulted);
         out->trials += part[pass].trials;
-        if (rc < 0) return rc;
+        if (rc < 0)
+            return rc;
         for (int i = 0; i < n; i++) {
             const int di = c[i].dir == SW_RESERVE_BRAKING ? 0 : 1;
-            if (!c[i].done) complete[di] = 0;
+            if (!c[i].done)
+                complete[di] = 0;
             known[di] = fmin(known[di], c[i].done ? R->max_g : scan_next(R, &c[i]));
         }
     }
@@ -571,7 +609,8 @@ static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *ou
         out->dir_exact[di] = complete[di];
     }
     for (int p = 0; p < passes; p++) {
-        if (!part[p].found) continue;
+        if (!part[p].found)
+            continue;
         const int di = part[p].direction == SW_RESERVE_BRAKING ? 0 : 1;
         out->dir_g[di] = part[p].reserve_g;
         out->dir_exact[di] = 1;
@@ -590,8 +629,10 @@ static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *ou
 
 int sw_reserve_eval(sw_reserve_t *r, const sw_state_t *s, sw_reserve_result_t *out)
 {
-    if (!r || !s || !out) return SW_EINVAL;
-    if (!state_ok(s)) return SW_EINVAL;
+    if (!r || !s || !out)
+        return SW_EINVAL;
+    if (!state_ok(s))
+        return SW_EINVAL;
     if (!r->o.no_cache && is_rest(r, s)) {
         *out = r->rest;
         return SW_OK;
@@ -601,17 +642,20 @@ int sw_reserve_eval(sw_reserve_t *r, const sw_state_t *s, sw_reserve_result_t *o
 
 void sw_reserve_rest(const sw_reserve_t *r, sw_reserve_result_t *out)
 {
-    if (r && out) *out = r->rest;
+    if (r && out)
+        *out = r->rest;
 }
 
 size_t sw_reserve_pulses(const sw_reserve_t *r, const double **T)
 {
     static const double none[1] = {0.0};
     if (!r) {
-        if (T) *T = none;
+        if (T)
+            *T = none;
         return 0;
     }
-    if (T) *T = r->sc.design_pulse;
+    if (T)
+        *T = r->sc.design_pulse;
     return r->np;
 }
 
@@ -619,7 +663,8 @@ size_t sw_reserve_pulses(const sw_reserve_t *r, const double **T)
 
 void sw_reserve_destroy(sw_reserve_t *r)
 {
-    if (!r) return;
+    if (!r)
+        return;
     for (size_t j = 0; j < r->np; j++) {
         sw_engine_destroy(r->p[j].e);
         free(r->p[j].Au);
@@ -632,7 +677,8 @@ void sw_reserve_destroy(sw_reserve_t *r)
 static double auto_dt(const sw_derived_t *d, double T)
 {
     double period = fmin(2.0 * T, 2.0 * M_PI / d->p); /* s */
-    if (d->omega_max > 0.0) period = fmin(period, 2.0 * M_PI / d->omega_max);
+    if (d->omega_max > 0.0)
+        period = fmin(period, 2.0 * M_PI / d->omega_max);
     return period / SW_RESERVE_STEPS;
 }
 
@@ -640,7 +686,8 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
                                 char *msg, size_t msglen)
 {
     int e_ = SW_OK;
-    if (!err) err = &e_;
+    if (!err)
+        err = &e_;
     *err = SW_OK;
     set_msg(msg, msglen, "%s", "");
     if (!sc) {
@@ -655,7 +702,8 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
         return NULL;
     }
     R->sc = *sc;
-    if (opts) R->o = *opts;
+    if (opts)
+        R->o = *opts;
     if (sw_scene_validate(&R->sc, &R->d, NULL, NULL, NULL) != SW_OK) {
         *err = SW_EINVAL;
         set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
@@ -667,11 +715,11 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
     R->lift_g = R->sc.g * tan(d->alpha) / SW_G0;
     R->max_g = R->o.max_g > 0.0 ? R->o.max_g : DEFAULT_X_MAX * R->lift_g;
     R->floor_g = R->o.floor_g > 0.0 ? R->o.floor_g : SW_RESERVE_FLOOR_G;
-    if (!isfinite(R->step) || !isfinite(R->tol) || !isfinite(R->max_g) ||
-        !isfinite(R->floor_g) || !(R->floor_g < R->max_g)) {
+    if (!isfinite(R->step) || !isfinite(R->tol) || !isfinite(R->max_g) || !isfinite(R->floor_g) ||
+        !(R->floor_g < R->max_g)) {
         *err = SW_EINVAL;
-        set_msg(msg, msglen, "bad reserve options (step %g, tol %g, floor %g g, max %g g)",
-                R->step, R->tol, R->floor_g, R->max_g);
+        set_msg(msg, msglen, "bad reserve options (step %g, tol %g, floor %g g, max %g g)", R->step,
+                R->tol, R->floor_g, R->max_g);
         goto fail;
     }
     const double fp = R->o.run.free_periods > 0.0 ? R->o.run.free_periods : SW_RESERVE_FREE_PERIODS;
@@ -690,7 +738,8 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
         eo.on_state = NULL;
         eo.user = NULL;
         eo.dt_forced = 0;
-        if (!(eo.dt > 0.0) && !(eo.accuracy > 0.0)) eo.dt = auto_dt(d, P->T);
+        if (!(eo.dt > 0.0) && !(eo.accuracy > 0.0))
+            eo.dt = auto_dt(d, P->T);
         /* checks at whole steps, so that they do not cut the step grid */
         const double dt = eo.dt > 0.0 ? eo.dt : auto_dt(d, P->T);
         /* a fixed step that a stiff support forces down to microseconds
@@ -708,9 +757,12 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
             goto fail;
         }
         P->check = dt * ceil(P->T / CHECKS_PER_PULSE / dt);
-        if (!(eo.rtol > 0.0)) eo.rtol = DEFAULT_RTOL;
-        if (!(eo.atol > 0.0)) eo.atol = DEFAULT_ATOL;
-        if (!(eo.rest_eps > 0.0)) eo.rest_eps = DEFAULT_REST_EPS;
+        if (!(eo.rtol > 0.0))
+            eo.rtol = DEFAULT_RTOL;
+        if (!(eo.atol > 0.0))
+            eo.atol = DEFAULT_ATOL;
+        if (!(eo.rest_eps > 0.0))
+            eo.rest_eps = DEFAULT_REST_EPS;
         char why[256] = "";
         P->e = sw_engine_create(&R->sc, 1, &eo, err, why, sizeof why);
         if (!P->e) {

@@ -13,12 +13,12 @@
 typedef struct {
     sw_reserve_t *reserve; /* NULL: no reserve (rate < 0) */
     sw_settle_t settle;
-    int settles;           /* impacts can be told apart (not a cushion) */
-    double next;           /* s of engine time: the next evaluation at or after it; NAN: the
-                              first output */
-    double origin;         /* s, time of the first evaluation of the schedule */
-    double m;              /* evaluations scheduled since origin: next = origin + m period
-                              (a product, not a sum: no drift over hours) */
+    int settles;   /* impacts can be told apart (not a cushion) */
+    double next;   /* s of engine time: the next evaluation at or after it; NAN: the
+                      first output */
+    double origin; /* s, time of the first evaluation of the schedule */
+    double m;      /* evaluations scheduled since origin: next = origin + m period
+                      (a product, not a sum: no drift over hours) */
     sw_risk_pkg_t f;
     char no_reserve[256]; /* why this package has no reserve; "" when it has one */
 } pkg_t;
@@ -44,62 +44,72 @@ static void figures_init(pkg_t *p)
         p->f.rest_reserve_g = rest.reserve_g;
     }
     p->next = NAN;
-    if (p->settles) sw_settle_init(&p->settle, impact_min);
+    if (p->settles)
+        sw_settle_init(&p->settle, impact_min);
 }
 
 /* Package p for scene sc: its reserve and its significance. */
-static int pkg_build(const sw_risk_t *r, const sw_scene_t *sc, pkg_t *p, char *msg,
-                     size_t msglen)
+static int pkg_build(const sw_risk_t *r, const sw_scene_t *sc, pkg_t *p, char *msg, size_t msglen)
 {
     sw_derived_t d;
     memset(p, 0, sizeof *p);
     if (sw_scene_validate(sc, &d, sc->name, NULL, NULL) != SW_OK) {
-        if (msg) snprintf(msg, msglen, "%s: the scene does not validate", sc->name);
+        if (msg)
+            snprintf(msg, msglen, "%s: the scene does not validate", sc->name);
         return SW_EINVAL;
     }
     p->f.impact_min = SW_IMPACT_SIGNIFICANCE * sw_impact_tip_speed(&d, sc->g);
     p->settles = p->f.impact_min > 0.0;
     if (r->period > 0.0) {
         int err = SW_OK;
-        p->reserve = sw_reserve_create(sc, &r->o.reserve, &err, p->no_reserve,
-                                       sizeof p->no_reserve);
+        p->reserve =
+            sw_reserve_create(sc, &r->o.reserve, &err, p->no_reserve, sizeof p->no_reserve);
         /* too stiff to evaluate: the package goes on without a reserve,
          * and says so (f.no_reserve) */
         if (!p->reserve && err != SW_ETOOBIG) {
-            if (msg) snprintf(msg, msglen, "%s", p->no_reserve);
+            if (msg)
+                snprintf(msg, msglen, "%s", p->no_reserve);
             return err != SW_OK ? err : SW_ENOMEM;
         }
-        if (p->reserve) p->no_reserve[0] = '\0';
+        if (p->reserve)
+            p->no_reserve[0] = '\0';
     }
     figures_init(p);
     return SW_OK;
 }
 
-sw_risk_t *sw_risk_create(const sw_scene_t *scenes, size_t n, const sw_risk_opts_t *o,
-                          int *err, char *msg, size_t msglen)
+sw_risk_t *sw_risk_create(const sw_scene_t *scenes, size_t n, const sw_risk_opts_t *o, int *err,
+                          char *msg, size_t msglen)
 {
     int e = SW_ENOMEM;
     sw_risk_t *r = calloc(1, sizeof *r);
     if (r) {
-        if (o) r->o = *o;
+        if (o)
+            r->o = *o;
         const double rate = r->o.reserve_rate == 0.0 ? SW_RISK_RATE : r->o.reserve_rate;
         r->n = n;
         r->p = calloc(n ? n : 1, sizeof *r->p);
         e = !r->p ? SW_ENOMEM : !(rate < 1e9) || (!scenes && n) ? SW_EINVAL : SW_OK;
-        if (e == SW_EINVAL && msg) snprintf(msg, msglen, "reserve rate not a rate");
+        if (e == SW_EINVAL && msg)
+            snprintf(msg, msglen, "reserve rate not a rate");
         r->period = rate > 0.0 ? 1.0 / rate : 0.0;
-        for (size_t k = 0; e == SW_OK && k < n; k++) e = pkg_build(r, &scenes[k], &r->p[k], msg, msglen);
+        for (size_t k = 0; e == SW_OK && k < n; k++)
+            e = pkg_build(r, &scenes[k], &r->p[k], msg, msglen);
     }
-    if (err) *err = e;
-    if (e == SW_OK) return r;
-    if (e == SW_ENOMEM && msg) snprintf(msg, msglen, "%s", sw_strerror(SW_ENOMEM));
+    if (err)
+        *err = e;
+    if (e == SW_OK)
+        return r;
+    if (e == SW_ENOMEM && msg)
+        snprintf(msg, msglen, "%s", sw_strerror(SW_ENOMEM));
     sw_risk_destroy(r);
     return NULL;
 }
 
 void sw_risk_destroy(sw_risk_t *r)
 {
-    if (!r) return;
+    if (!r)
+        return;
     for (size_t k = 0; r->p && k < r->n; k++) sw_reserve_destroy(r->p[k].reserve);
     free(r->p);
     free(r);
@@ -110,8 +120,10 @@ static void evaluate(pkg_t *p, const sw_output_t *out)
 {
     sw_reserve_result_t res;
     const int rc = sw_reserve_eval(p->reserve, &out->state, &res);
-    if (rc == SW_EINVAL) return; /* a state not finite: no value, none kept */
-    if (rc != SW_OK) p->f.reserve_faults++;
+    if (rc == SW_EINVAL)
+        return; /* a state not finite: no value, none kept */
+    if (rc != SW_OK)
+        p->f.reserve_faults++;
     p->f.evaluations++;
     p->f.reserve_g = res.reserve_g;
     p->f.direction = res.direction;
@@ -127,12 +139,16 @@ static void evaluate(pkg_t *p, const sw_output_t *out)
 
 int sw_risk_output(sw_risk_t *r, const sw_output_t *out)
 {
-    if (!r || !out || out->pkg >= r->n) return SW_EINVAL;
+    if (!r || !out || out->pkg >= r->n)
+        return SW_EINVAL;
     pkg_t *p = &r->p[out->pkg];
-    if (!p->reserve || !isfinite(out->t)) return 0;
+    if (!p->reserve || !isfinite(out->t))
+        return 0;
     /* the engine's clock went back (restarted): schedule from here */
-    if (!isnan(p->next) && out->t < p->next - r->period) p->next = NAN;
-    if (!isnan(p->next) && out->t < p->next) return 0;
+    if (!isnan(p->next) && out->t < p->next - r->period)
+        p->next = NAN;
+    if (!isnan(p->next) && out->t < p->next)
+        return 0;
     evaluate(p, out);
     if (isnan(p->next)) {
         p->origin = out->t;
@@ -147,10 +163,12 @@ int sw_risk_output(sw_risk_t *r, const sw_output_t *out)
 
 int sw_risk_event(sw_risk_t *r, const sw_event_t *ev, sw_settle_span_t *closed)
 {
-    if (!r || !ev || ev->pkg >= r->n) return SW_EINVAL;
+    if (!r || !ev || ev->pkg >= r->n)
+        return SW_EINVAL;
     pkg_t *p = &r->p[ev->pkg];
     const int f = p->settles ? sw_settle_feed(&p->settle, ev, closed) : SW_SETTLE_REPORT;
-    if (f & SW_SETTLE_CLOSED) p->f.settling_spans++;
+    if (f & SW_SETTLE_CLOSED)
+        p->f.settling_spans++;
     if (ev->kind == SW_EV_IMPACT) {
         if (f & SW_SETTLE_REPORT)
             p->f.impacts++;
@@ -162,7 +180,8 @@ int sw_risk_event(sw_risk_t *r, const sw_event_t *ev, sw_settle_span_t *closed)
 
 int sw_risk_finish(sw_risk_t *r, size_t k, sw_settle_span_t *closed)
 {
-    if (!r || k >= r->n || !r->p[k].settles) return 0;
+    if (!r || k >= r->n || !r->p[k].settles)
+        return 0;
     const int closed_one = sw_settle_finish(&r->p[k].settle, closed);
     r->p[k].f.settling_spans += closed_one;
     return closed_one;
@@ -176,7 +195,8 @@ const sw_risk_pkg_t *sw_risk_pkg(const sw_risk_t *r, size_t k)
 int sw_risk_replace(sw_risk_t *r, size_t k, const sw_scene_t *scene, char *msg, size_t msglen)
 {
     if (!r || !scene || k >= r->n) {
-        if (msg) snprintf(msg, msglen, "no such package");
+        if (msg)
+            snprintf(msg, msglen, "no such package");
         return SW_EINVAL;
     }
     pkg_t fresh;

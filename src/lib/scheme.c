@@ -34,20 +34,23 @@
 static SW_ALWAYS_INLINE void stage(sw_pkg_t *P, int model, double t, double ag, double ge,
                                    const double y[], double f[])
 {
-    if (model == GENERIC) P->ops->rhs(P, t, y, f);
-    else sw_rigid_rhs_of(P, (sw_model_kind)model, ag, ge, y, f);
+    if (model == GENERIC)
+        P->ops->rhs(P, t, y, f);
+    else
+        sw_rigid_rhs_of(P, (sw_model_kind)model, ag, ge, y, f);
 }
 
 static SW_ALWAYS_INLINE void stage_input(const sw_pkg_t *P, int model, double t, double *ag,
                                          double *ge)
 {
-    if (model == GENERIC) return;
+    if (model == GENERIC)
+        return;
     *ag = sw_input_ag(P->in, t);
     *ge = sw_input_geff(P, t);
 }
 
-static SW_ALWAYS_INLINE void euler_of(sw_pkg_t *P, int model, int n, double t,
-                                      double h, const double y[], double yout[])
+static SW_ALWAYS_INLINE void euler_of(sw_pkg_t *P, int model, int n, double t, double h,
+                                      const double y[], double yout[])
 {
     double k1[SW_NMAX], ag = 0.0, ge = 0.0;
     stage_input(P, model, t, &ag, &ge);
@@ -91,31 +94,28 @@ static SW_ALWAYS_INLINE void rk4_of(sw_pkg_t *P, int model, int n, double t, dou
  * side inlined per stage, and the generic one (the cushion; any model
  * added without a body of its own).  The package picks its body once, when
  * it is built: no dispatch per step or per stage. */
-#define SW_FIXED_STEPS(name, body)                                                         \
-    static void name##_bare(sw_pkg_t *P, double t, double h, const double y[], double yout[]) \
-    {                                                                                      \
-        body(P, SW_MODEL_BARE, 2, t, h, y, yout);                                          \
-    }                                                                                      \
-    static void name##_frame(sw_pkg_t *P, double t, double h, const double y[],            \
-                             double yout[])                                                \
-    {                                                                                      \
-        body(P, SW_MODEL_FRAME, 4, t, h, y, yout);                                         \
-    }                                                                                      \
-    static void name##_generic(sw_pkg_t *P, double t, double h, const double y[],          \
-                               double yout[])                                              \
-    {                                                                                      \
-        body(P, GENERIC, P->n, t, h, y, yout);                                             \
+#define SW_FIXED_STEPS(name, body)                                                               \
+    static void name##_bare(sw_pkg_t *P, double t, double h, const double y[], double yout[])    \
+    {                                                                                            \
+        body(P, SW_MODEL_BARE, 2, t, h, y, yout);                                                \
+    }                                                                                            \
+    static void name##_frame(sw_pkg_t *P, double t, double h, const double y[], double yout[])   \
+    {                                                                                            \
+        body(P, SW_MODEL_FRAME, 4, t, h, y, yout);                                               \
+    }                                                                                            \
+    static void name##_generic(sw_pkg_t *P, double t, double h, const double y[], double yout[]) \
+    {                                                                                            \
+        body(P, GENERIC, P->n, t, h, y, yout);                                                   \
     }
 /* ... and the advance of each, the sub-step logic around the body. */
-#define SW_FIXED_ADVANCES(name)                                                            \
-    static int name##_adv_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h) \
-    {                                                                                      \
-        return sw_step_fixed_with(C, P, t1, y1, h, name##_bare, 0);                        \
-    }                                                                                      \
-    static int name##_adv_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[],          \
-                                double *h)                                                 \
-    {                                                                                      \
-        return sw_step_fixed_with(C, P, t1, y1, h, name##_frame, 0);                       \
+#define SW_FIXED_ADVANCES(name)                                                              \
+    static int name##_adv_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h)  \
+    {                                                                                        \
+        return sw_step_fixed_with(C, P, t1, y1, h, name##_bare, 0);                          \
+    }                                                                                        \
+    static int name##_adv_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h) \
+    {                                                                                        \
+        return sw_step_fixed_with(C, P, t1, y1, h, name##_frame, 0);                         \
     }
 SW_FIXED_STEPS(euler_step, euler_of)
 SW_FIXED_STEPS(heun_step, heun_of)
@@ -152,32 +152,53 @@ int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], v
 /* One row per scheme: adding a scheme is adding a row.  stab: see the top
  * of this file.  gsl_odeiv2_step_* are variables, not constants: the rows
  * store their addresses. */
-#define FIXED(body)                                                                        \
-    .advance = sw_step_fixed, .restep = sw_restep_fixed,                                   \
+#define FIXED(body)                                                                          \
+    .advance = sw_step_fixed, .restep = sw_restep_fixed,                                     \
     .advance_for = {[SW_MODEL_BARE] = body##_adv_bare, [SW_MODEL_FRAME] = body##_adv_frame}, \
-    .step_for = {[SW_MODEL_BARE] = body##_bare, [SW_MODEL_FRAME] = body##_frame},          \
+    .step_for = {[SW_MODEL_BARE] = body##_bare, [SW_MODEL_FRAME] = body##_frame},            \
     .step = body##_generic, .cut_kinks = 1, .exact_stuck = 1
 #define ADAPTIVE(type) .adaptive = 1, .advance = sw_step_evolve, .gsl_type = &type
 static const sw_scheme_t schemes[] = {
     {.name = "rk4", .order = 4, .stab = 2.785, .default_dt = 1e-3, FIXED(rk4_step)},
     {.name = "heun", .order = 2, .stab = 2.0, .default_dt = 2.5e-4, FIXED(heun_step)},
     {.name = "euler", .order = 1, .stab = 2.0, .default_dt = 1e-5, FIXED(euler_step)},
-    {.name = "rkf45", .order = 5, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_rkf45),
+    {.name = "rkf45",
+     .order = 5,
+     .default_dt = 1e-3,
+     ADAPTIVE(gsl_odeiv2_step_rkf45),
      .restep = sw_restep_gsl},
-    {.name = "rkck", .order = 5, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_rkck),
+    {.name = "rkck",
+     .order = 5,
+     .default_dt = 1e-3,
+     ADAPTIVE(gsl_odeiv2_step_rkck),
      .restep = sw_restep_gsl},
-    {.name = "rk8pd", .order = 8, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_rk8pd),
+    {.name = "rk8pd",
+     .order = 8,
+     .default_dt = 1e-3,
+     ADAPTIVE(gsl_odeiv2_step_rk8pd),
      .restep = sw_restep_gsl},
     /* implicit Gauss RK (step doubling for the error), Bader-Deuflhard
      * semi-implicit extrapolation, variable-order BDF; order as GSL reports
      * it (the highest for bsimp and msbdf, which vary it); msbdf, a
      * multistep method, is re-stepped on the Hermite interpolant */
-    {.name = "rk4imp", .order = 4, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_rk4imp),
-     .restep = sw_restep_gsl, .implicit = 1},
-    {.name = "bsimp", .order = 12, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_bsimp),
-     .restep = sw_restep_gsl, .implicit = 1},
-    {.name = "msbdf", .order = 5, .default_dt = 1e-3, ADAPTIVE(gsl_odeiv2_step_msbdf),
-     .restep = sw_restep_hermite, .implicit = 1},
+    {.name = "rk4imp",
+     .order = 4,
+     .default_dt = 1e-3,
+     ADAPTIVE(gsl_odeiv2_step_rk4imp),
+     .restep = sw_restep_gsl,
+     .implicit = 1},
+    {.name = "bsimp",
+     .order = 12,
+     .default_dt = 1e-3,
+     ADAPTIVE(gsl_odeiv2_step_bsimp),
+     .restep = sw_restep_gsl,
+     .implicit = 1},
+    {.name = "msbdf",
+     .order = 5,
+     .default_dt = 1e-3,
+     ADAPTIVE(gsl_odeiv2_step_msbdf),
+     .restep = sw_restep_hermite,
+     .implicit = 1},
 };
 
 const sw_scheme_t *sw_scheme_at(size_t i)
@@ -188,7 +209,8 @@ const sw_scheme_t *sw_scheme_at(size_t i)
 const sw_scheme_t *sw_scheme_lookup(const char *name)
 {
     for (size_t i = 0; i < sizeof schemes / sizeof schemes[0]; i++)
-        if (name && !strcmp(name, schemes[i].name)) return &schemes[i];
+        if (name && !strcmp(name, schemes[i].name))
+            return &schemes[i];
     return NULL;
 }
 

@@ -30,14 +30,15 @@ int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double 
                          "scene '%s': dt = %g s gives omega*dt = %.3g, above the %s stability "
                          "bound %.3g for the scene's fastest frequency omega = %.4g rad/s "
                          "(use dt <= %.3g s)",
-                         P->scene.name, dt, P->d.omega_max * dt, S->name, S->stab,
-                         P->d.omega_max, bound);
+                         P->scene.name, dt, P->d.omega_max * dt, S->name, S->stab, P->d.omega_max,
+                         bound);
             return SW_EUNSTABLE;
         }
         /* Sub-step so that omega_max h <= 0.5: inside every explicit
          * scheme's stability bound, and accurate enough for the fast
          * bearing mode that decides uplift. */
-        if (!C->dt_forced && P->h > 0.5 / P->d.omega_max) P->h = 0.5 / P->d.omega_max;
+        if (!C->dt_forced && P->h > 0.5 / P->d.omega_max)
+            P->h = 0.5 / P->d.omega_max;
     }
     P->step = S->step_for[P->d.model] ? S->step_for[P->d.model] : S->step;
     P->advance = S->advance_for[P->d.model] ? S->advance_for[P->d.model] : S->advance;
@@ -45,7 +46,8 @@ int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double 
     P->sys.jacobian = S->implicit ? sw_model_jacobian : NULL;
     P->sys.dimension = (size_t)P->n;
     P->sys.params = P;
-    if (!S->gsl_type) return SW_OK;
+    if (!S->gsl_type)
+        return SW_OK;
     rtol = rtol > 0.0 ? rtol : 1e-10;
     atol = atol > 0.0 ? atol : 1e-12;
     if (P->iz >= 0) {
@@ -59,7 +61,8 @@ int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double 
     P->gctl = gsl_odeiv2_control_y_new(atol, rtol);
     P->gevo = gsl_odeiv2_evolve_alloc((size_t)P->n);
     if (!P->gstep || !P->gctl || !P->gevo) {
-        if (msg && msglen) snprintf(msg, msglen, "out of memory");
+        if (msg && msglen)
+            snprintf(msg, msglen, "out of memory");
         return SW_ENOMEM;
     }
     sw_step_bind(P);
@@ -69,20 +72,24 @@ int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double 
 void sw_step_bind(sw_pkg_t *P)
 {
     P->sys.params = P;
-    if (!P->gstep || !P->sys.jacobian) return;
+    if (!P->gstep || !P->sys.jacobian)
+        return;
     /* GSL's implicit steppers read their Newton tolerances from the
      * control through a driver (without one they fail with GSL_EFAULT):
      * hand them one that only points at ours */
-    P->gdrv = (gsl_odeiv2_driver){.sys = &P->sys, .s = P->gstep, .c = P->gctl, .e = P->gevo,
-                                  .h = P->h, .hmax = DBL_MAX};
+    P->gdrv = (gsl_odeiv2_driver){
+        .sys = &P->sys, .s = P->gstep, .c = P->gctl, .e = P->gevo, .h = P->h, .hmax = DBL_MAX};
     gsl_odeiv2_step_set_driver(P->gstep, &P->gdrv);
 }
 
 void sw_step_free(sw_pkg_t *P)
 {
-    if (P->gevo) gsl_odeiv2_evolve_free(P->gevo);
-    if (P->gctl) gsl_odeiv2_control_free(P->gctl);
-    if (P->gstep) gsl_odeiv2_step_free(P->gstep);
+    if (P->gevo)
+        gsl_odeiv2_evolve_free(P->gevo);
+    if (P->gctl)
+        gsl_odeiv2_control_free(P->gctl);
+    if (P->gstep)
+        gsl_odeiv2_step_free(P->gstep);
     P->gevo = NULL;
     P->gctl = NULL;
     P->gstep = NULL;
@@ -90,7 +97,8 @@ void sw_step_free(sw_pkg_t *P)
 
 void sw_step_reset(sw_pkg_t *P)
 {
-    if (!P->gevo) return;
+    if (!P->gevo)
+        return;
     gsl_odeiv2_evolve_reset(P->gevo);
     gsl_odeiv2_step_reset(P->gstep);
 }
@@ -104,10 +112,10 @@ void sw_step_reset(sw_pkg_t *P)
 int sw_step_input_unstable(const sw_ctx_t *C, const sw_pkg_t *P, double t0, double t1)
 {
     const double stab = C->scheme->stab;
-    if (!(stab > 0.0)) return 0; /* GSL shortens its steps itself */
-    const double a =
-        sw_max2(sw_max2(fabs(sw_input_ag(P->in, t0)), fabs(sw_input_ag(P->in, t1))),
-                sw_max2(fabs(sw_input_geff(P, t0)), fabs(sw_input_geff(P, t1))));
+    if (!(stab > 0.0))
+        return 0; /* GSL shortens its steps itself */
+    const double a = sw_max2(sw_max2(fabs(sw_input_ag(P->in, t0)), fabs(sw_input_ag(P->in, t1))),
+                             sw_max2(fabs(sw_input_geff(P, t0)), fabs(sw_input_geff(P, t1))));
     return !(P->kR * a * P->h * P->h <= stab * stab); /* NaN: unstable */
 }
 
@@ -123,10 +131,12 @@ int sw_step_evolve(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h)
     const double t0 = P->t, rem = t1 - t0;
     double tt = t0;
     memcpy(y1, P->y, sizeof(double) * (size_t)P->n);
-    if (P->h_adapt > rem) P->h_adapt = rem;
+    if (P->h_adapt > rem)
+        P->h_adapt = rem;
     const int st =
         gsl_odeiv2_evolve_apply(P->gevo, P->gctl, P->gstep, &P->sys, &tt, t1, &P->h_adapt, y1);
-    if (st != GSL_SUCCESS || !(tt > t0)) return SW_EGSL;
+    if (st != GSL_SUCCESS || !(tt > t0))
+        return SW_EGSL;
     *h = tt - t0;
     return SW_OK;
 }

@@ -18,7 +18,8 @@
  * interval is scanned at the package's step and the crossing bisected. */
 static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
 {
-    if ((*side = sw_bare_uplift_side(P, t)) != 0) return t;
+    if ((*side = sw_bare_uplift_side(P, t)) != 0)
+        return t;
     const sw_input_t *in = P->in;
     if (!in->fn) {
         const double ta = P->tan_alpha;
@@ -41,7 +42,8 @@ static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
                 *side = -1;
             }
         }
-        if (tu == INFINITY) return -1.0;
+        if (tu == INFINITY)
+            return -1.0;
         return fmax(t, tu);
     }
     /* (capped: a scan of more than 1e8 pieces is a caller's absurd
@@ -56,11 +58,14 @@ static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
             double lo = ta, hi = tb;
             for (int it = 0; it < 60 && hi - lo > 1e-15 * fmax(1.0, fabs(hi)); it++) {
                 const double m = 0.5 * (lo + hi);
-                if (sw_bare_uplift_side(P, m) != 0) hi = m;
-                else lo = m;
+                if (sw_bare_uplift_side(P, m) != 0)
+                    hi = m;
+                else
+                    lo = m;
             }
             *side = sw_bare_uplift_side(P, hi);
-            if (*side == 0) *side = sb;
+            if (*side == 0)
+                *side = sb;
             return hi;
         }
         ta = tb;
@@ -81,8 +86,8 @@ static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
  * Taylor series of g (recurrence of the equation itself); otherwise from
  * the closed forms of the under-, critically or over-damped oscillator. */
 typedef struct {
-    double g, gd;   /* s, 1: g(H), g'(H) */
-    double i1, i2;  /* s^2, s^3 */
+    double g, gd;  /* s, 1: g(H), g'(H) */
+    double i1, i2; /* s^2, s^3 */
 } nj_t;
 
 static void nj_coef_wz(double w, double z, double H, nj_t *c)
@@ -210,7 +215,8 @@ static double nj_bound(const sw_pkg_t *P, const double d[2], double L)
     double smax = L;
     if (kap > 0.0) {
         smax = fmin(smax, 1.0 / sqrt(kap));
-        if (zw > 0.0) smax = fmin(smax, 1.0 / (M_E * zw));
+        if (zw > 0.0)
+            smax = fmin(smax, 1.0 / (M_E * zw));
         return fmin(fabs(d[0]) + fabs(q) * smax, sqrt(d[0] * d[0] + q * q / kap));
     }
     const double slow = w * w / (zw + w * sqrt(fmax(0.0, (z - 1.0) * (z + 1.0))));
@@ -223,9 +229,9 @@ static double nj_bound(const sw_pkg_t *P, const double d[2], double L)
  * piece start, where the free part is d0). */
 typedef struct {
     const sw_pkg_t *P;
-    double ta;            /* s, absolute time of the piece start */
-    double d0[2];         /* D, D' at ta */
-    double sg;            /* +1: back (W >= T), -1: forward (W <= -T) */
+    double ta;    /* s, absolute time of the piece start */
+    double d0[2]; /* D, D' at ta */
+    double sg;    /* +1: back (W >= T), -1: forward (W <= -T) */
 } nj_piece_t;
 
 static void nj_G(const nj_piece_t *pc, double tau, double G[3])
@@ -250,11 +256,14 @@ static double nj_bisect(const nj_piece_t *pc, int k, double a, double b)
 {
     for (int it = 0; it < 200; it++) {
         const double m = 0.5 * (a + b);
-        if (!(m > a && m < b)) break;
+        if (!(m > a && m < b))
+            break;
         double G[3];
         nj_G(pc, m, G);
-        if (k == 0 ? G[0] >= 0.0 : G[1] <= 0.0) b = m;
-        else a = m;
+        if (k == 0 ? G[0] >= 0.0 : G[1] <= 0.0)
+            b = m;
+        else
+            a = m;
     }
     return b;
 }
@@ -266,10 +275,13 @@ static double nj_rise_mono(const nj_piece_t *pc, double a, double b)
     double Ga[3], Gb[3];
     nj_G(pc, a, Ga);
     nj_G(pc, b, Gb);
-    if (Ga[0] >= 0.0) return a;
+    if (Ga[0] >= 0.0)
+        return a;
     double top = b;
-    if (Ga[1] > 0.0 && Gb[1] < 0.0) top = nj_bisect(pc, 1, a, b); /* the maximum of G */
-    else if (Ga[1] <= 0.0 && Gb[1] <= 0.0) return -1.0;             /* G falls */
+    if (Ga[1] > 0.0 && Gb[1] < 0.0)
+        top = nj_bisect(pc, 1, a, b); /* the maximum of G */
+    else if (Ga[1] <= 0.0 && Gb[1] <= 0.0)
+        return -1.0; /* G falls */
     double Gt[3];
     nj_G(pc, top, Gt);
     return Gt[0] >= 0.0 ? nj_bisect(pc, 0, a, top) : -1.0;
@@ -286,11 +298,14 @@ static double nj_rise(const nj_piece_t *pc, double L)
         double a = 0.0, b = L; /* split at the inflection */
         for (int it = 0; it < 200; it++) {
             const double m = 0.5 * (a + b);
-            if (!(m > a && m < b)) break;
+            if (!(m > a && m < b))
+                break;
             double G[3];
             nj_G(pc, m, G);
-            if ((G[2] > 0.0) == (G0[2] > 0.0)) a = m;
-            else b = m;
+            if ((G[2] > 0.0) == (G0[2] > 0.0))
+                a = m;
+            else
+                b = m;
         }
         const double r = nj_rise_mono(pc, 0.0, a);
         return r >= 0.0 ? r : nj_rise_mono(pc, a, L);
@@ -301,15 +316,16 @@ static double nj_rise(const nj_piece_t *pc, double L)
 /* Advance a stuck frame from P->t toward t1 under the sampled (linear)
  * input with the exact solution.  Returns the uplift time (P->t and P->y
  * are then the state there and *side the direction), -1 with the state
- * at t1, or -2 when it cannot make progress.  The uplift condition is checked exactly: on pieces of the
- * interval, a bound on the free part D rules out a crossing at once
- * (always, for a quiet road or a frame at rest across a long gap); pieces
- * it does not clear are halved down to w L <= 0.5 and searched. */
+ * at t1, or -2 when it cannot make progress.  The uplift condition is checked exactly: on pieces of
+ * the interval, a bound on the free part D rules out a crossing at once (always, for a quiet road
+ * or a frame at rest across a long gap); pieces it does not clear are halved down to w L <= 0.5 and
+ * searched. */
 static double frame_advance(sw_pkg_t *P, double t1, int *side)
 {
     const double w = P->d.omega_b, zw = P->d.zeta_b * w, ta = P->tan_alpha;
     const double s = P->in->ag_slope, small = 0.5 / w;
-    if ((*side = sw_frame_uplift_side(P, P->t)) != 0) return P->t;
+    if ((*side = sw_frame_uplift_side(P, P->t)) != 0)
+        return P->t;
     double y[2] = {P->y[P->iu], P->y[P->idu]};
     /* D = u'' and D' at the start */
     double d[2];
@@ -322,11 +338,14 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
          * takes at most about 2 w T pieces; ten million (days bridged) or a
          * piece that cannot move tp (an interval beyond the arithmetic's
          * resolution) is a fault, never a hang (-2). */
-        if (++pieces > 10000000L) return -2.0;
+        if (++pieces > 10000000L)
+            return -2.0;
         const int last = L >= t1 - tp;
-        if (last) L = t1 - tp;
+        if (last)
+            L = t1 - tp;
         const double tb = last ? t1 : tp + L;
-        if (!(tb > tp)) return -2.0;
+        if (!(tb > tp))
+            return -2.0;
         nj_t c;
         double y1[2], d1[2];
         const double a_tp = sw_input_ag(P->in, tp), a_tb = sw_input_ag(P->in, tb);
@@ -340,10 +359,10 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
         const double T0 = ta * sw_input_geff(P, tp), T1 = ta * sw_input_geff(P, tb);
         const double dd = -2.0 * zw * d[1] - w * w * d[0]; /* D'' and its rate */
         const double ddd[2] = {dd, -2.0 * zw * dd - w * w * d[1]};
-        const int clear =
-            fmax(fabs(a_tp + d[0]), fabs(a_tb + d1[0])) - fmin(T0, T1) +
-                    0.125 * L * L * nj_bound(P, ddd, L) < 0.0 ||
-            fmax(fabs(a_tp) - T0, fabs(a_tb) - T1) + nj_bound(P, d, L) < 0.0;
+        const int clear = fmax(fabs(a_tp + d[0]), fabs(a_tb + d1[0])) - fmin(T0, T1) +
+                                  0.125 * L * L * nj_bound(P, ddd, L) <
+                              0.0 ||
+                          fmax(fabs(a_tp) - T0, fabs(a_tb) - T1) + nj_bound(P, d, L) < 0.0;
         double tu = -1.0;
         if (!clear) {
             if (L > small) {
@@ -353,7 +372,8 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
             for (int k = 0; k < 2; k++) {
                 const nj_piece_t pc = {P, tp, {d[0], d[1]}, k == 0 ? 1.0 : -1.0};
                 const double r = nj_rise(&pc, L);
-                if (r >= 0.0 && (tu < 0.0 || r < tu)) tu = r;
+                if (r >= 0.0 && (tu < 0.0 || r < tu))
+                    tu = r;
             }
         }
         for (int it = 0; tu >= 0.0; it++) {
@@ -375,7 +395,8 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
             }
             P->y[P->iu] = y[0];
             P->y[P->idu] = y[1];
-            if (tu >= L || it >= 40) break;
+            if (tu >= L || it >= 40)
+                break;
             tu = fmin(L, tu + 4.0 * DBL_EPSILON * fmax(1.0, fabs(tp + tu)) * (double)(1L << it));
         }
         y[0] = y1[0];
@@ -396,12 +417,14 @@ int sw_stuck_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
     (void)C;
     if (P->hold) { /* see pkg.c's after_impact: stand for one step, then look again */
         P->hold = 0;
-        if (t1 - P->t <= P->h) return SW_STUCK_STILL;
+        if (t1 - P->t <= P->h)
+            return SW_STUCK_STILL;
         P->t += P->h;
         return SW_STUCK_MOVED;
     }
     const double tu = bare_uplift(P, P->t, t1, side);
-    if (tu < 0.0) return SW_STUCK_STILL;
+    if (tu < 0.0)
+        return SW_STUCK_STILL;
     P->t = tu;
     return SW_STUCK_LIFT;
 }
@@ -411,7 +434,8 @@ int sw_stuck_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
  * schemes and comparisons (stuck_stepped) step the stuck frame. */
 int sw_stuck_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
 {
-    if (P->in->fn || P->hold || !C->scheme->exact_stuck || C->stuck_stepped) return SW_STUCK_STEP;
+    if (P->in->fn || P->hold || !C->scheme->exact_stuck || C->stuck_stepped)
+        return SW_STUCK_STEP;
     P->sum.steps++;
     const double tu = frame_advance(P, t1, side);
     return tu >= 0.0 ? SW_STUCK_LIFT : tu == -1.0 ? SW_STUCK_STILL : SW_STUCK_FAULT;

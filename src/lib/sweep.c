@@ -22,10 +22,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "run.h"
 #include "swaywatch/model.h"
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
-#include "run.h"
 
 #define DEFAULT_FREE_PERIODS 20.0
 #define DEFAULT_STEP 0.02
@@ -40,7 +40,8 @@
 
 void sw_set_msg(char *msg, size_t len, const char *fmt, ...)
 {
-    if (!msg || !len) return;
+    if (!msg || !len)
+        return;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, len, fmt, ap);
@@ -64,7 +65,8 @@ static void on_run_event(void *user, const sw_event_t *ev)
     /* a level base leaving a cushion (info 0) has no direction yet */
     if (ev->kind == SW_EV_UPLIFT && !R->uplift_side && ev->info != 0.0)
         R->uplift_side = ev->info > 0.0 ? 1 : -1;
-    if (ev->kind == SW_EV_OVERTURN) R->overturn_side = ev->theta > 0.0 ? 1 : -1;
+    if (ev->kind == SW_EV_OVERTURN)
+        R->overturn_side = ev->theta > 0.0 ? 1 : -1;
 }
 
 void sw_runner_reset(sw_runner_t *R)
@@ -90,7 +92,8 @@ int sw_runner_make(sw_runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o,
     }
     sw_engine_opts_t eo;
     memset(&eo, 0, sizeof eo);
-    if (o) eo = o->engine;
+    if (o)
+        eo = o->engine;
     eo.dt_forced = 0;
     eo.on_event = NULL;
     eo.on_state = NULL;
@@ -104,21 +107,25 @@ int sw_runner_make(sw_runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o,
         /* as given, or chosen by the engine for the accuracy */
     } else {
         double period = 2.0 * M_PI / d.p; /* s */
-        if (omega_e > 0.0) period = fmin(period, 2.0 * M_PI / omega_e);
+        if (omega_e > 0.0)
+            period = fmin(period, 2.0 * M_PI / omega_e);
         eo.dt = fmin(sw_scheme_default_dt(s), period / STEPS_PER_PERIOD);
     }
     eo.on_event = on_run_event;
     eo.user = R;
     why[0] = '\0';
     R->e = sw_engine_create(sc, 1, &eo, err, why, sizeof why);
-    if (!R->e) sw_set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
+    if (!R->e)
+        sw_set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
     return R->e ? SW_OK : *err;
 }
 
 double sw_run_free_time(const sw_run_opts_t *o, double p)
 {
-    if (o && o->settle > 0.0) return o->settle;
-    if (o && o->settle < 0.0) return 0.0;
+    if (o && o->settle > 0.0)
+        return o->settle;
+    if (o && o->settle < 0.0)
+        return 0.0;
     const double n = o && o->free_periods > 0.0 ? o->free_periods : DEFAULT_FREE_PERIODS;
     return n * 2.0 * M_PI / p;
 }
@@ -179,7 +186,8 @@ int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_resu
             break;
         }
         const int rc = sw_engine_advance_fn(e, fmin(t_limit, t + chunk), zero_input, NULL);
-        if (rc < 0) return rc;
+        if (rc < 0)
+            return rc;
     }
     fill_result(R, end, &o, r);
     return r->faults ? SW_EFAULT : SW_OK;
@@ -195,11 +203,13 @@ static int run_pulse_from(sw_runner_t *R, const sw_state_t *s, const sw_pulse_t 
     sw_runner_reset(R);
     if (s) {
         const int rc = sw_engine_set_state(R->e, 0, s);
-        if (rc < 0) return rc;
+        if (rc < 0)
+            return rc;
     }
     /* Up to the end of the pulse first, so that a step ends on its kink. */
     const int rc = sw_engine_advance_fn(R->e, T, sw_pulse_eval, &pl);
-    if (rc < 0) return rc;
+    if (rc < 0)
+        return rc;
     return sw_run_free_motion(R, T + sw_run_free_time(o, p),
                               2.0 * M_PI / p / SW_RUN_CHECKS_PER_PERIOD, r);
 }
@@ -212,8 +222,7 @@ static int run_pulse_on(sw_runner_t *R, const sw_pulse_t *pulse, const sw_run_op
 
 static int check_pulse(const sw_pulse_t *pulse, char *msg, size_t msglen)
 {
-    if (!pulse || !(pulse->omega > 0.0) || !isfinite(pulse->omega) ||
-        !isfinite(pulse->amplitude)) {
+    if (!pulse || !(pulse->omega > 0.0) || !isfinite(pulse->omega) || !isfinite(pulse->amplitude)) {
         sw_set_msg(msg, msglen, "the pulse needs a finite amplitude and omega > 0");
         return SW_EINVAL;
     }
@@ -225,13 +234,17 @@ int sw_pulse_run(const sw_scene_t *sc, const sw_pulse_t *pulse, const sw_run_opt
 {
     int err = SW_OK;
     sw_set_msg(msg, msglen, "%s", "");
-    if (!sc || !r) return SW_EINVAL;
+    if (!sc || !r)
+        return SW_EINVAL;
     memset(r, 0, sizeof *r);
-    if ((err = check_pulse(pulse, msg, msglen)) != SW_OK) return err;
+    if ((err = check_pulse(pulse, msg, msglen)) != SW_OK)
+        return err;
     sw_runner_t R;
-    if (sw_runner_make(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK) return err;
+    if (sw_runner_make(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK)
+        return err;
     err = run_pulse_on(&R, pulse, o, r);
-    if (err == SW_EFAULT) sw_set_msg(msg, msglen, "the model faulted during the run");
+    if (err == SW_EFAULT)
+        sw_set_msg(msg, msglen, "the model faulted during the run");
     sw_engine_destroy(R.e);
     return err;
 }
@@ -241,9 +254,11 @@ int sw_pulse_run_from(const sw_scene_t *sc, const sw_state_t *s, const sw_pulse_
 {
     int err = SW_OK;
     sw_set_msg(msg, msglen, "%s", "");
-    if (!sc || !s || !r) return SW_EINVAL;
+    if (!sc || !s || !r)
+        return SW_EINVAL;
     memset(r, 0, sizeof *r);
-    if ((err = check_pulse(pulse, msg, msglen)) != SW_OK) return err;
+    if ((err = check_pulse(pulse, msg, msglen)) != SW_OK)
+        return err;
     if (s->phase == SW_PHASE_OVERTURNED) { /* frozen: the engine would not say so */
         r->overturned = 1;
         r->end = SW_END_OVERTURN;
@@ -253,10 +268,13 @@ int sw_pulse_run_from(const sw_scene_t *sc, const sw_state_t *s, const sw_pulse_
         return SW_OK;
     }
     sw_runner_t R;
-    if (sw_runner_make(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK) return err;
+    if (sw_runner_make(&R, sc, o, pulse->omega, &err, msg, msglen) != SW_OK)
+        return err;
     err = run_pulse_from(&R, s, pulse, o, r);
-    if (err == SW_EINVAL) sw_set_msg(msg, msglen, "the state was refused");
-    if (err == SW_EFAULT) sw_set_msg(msg, msglen, "the model faulted during the run");
+    if (err == SW_EINVAL)
+        sw_set_msg(msg, msglen, "the state was refused");
+    if (err == SW_EFAULT)
+        sw_set_msg(msg, msglen, "the model faulted during the run");
     sw_engine_destroy(R.e);
     return err;
 }
@@ -270,17 +288,20 @@ int sw_run_log_on(sw_runner_t *R, const sw_log_t *log, double scale, const sw_ru
     size_t next_restart = 0;
     for (size_t i = 0; i < log->n; i++) {
         while (next_restart < log->nrestart && log->restart[next_restart] <= i)
-            if (log->restart[next_restart++] == i) sw_engine_restart(e);
+            if (log->restart[next_restart++] == i)
+                sw_engine_restart(e);
         const int rc =
             sw_engine_push(e, log->t[i], scale * log->a_g[i], log->a_z ? log->a_z[i] : 0.0);
         if (rc == SW_EVENT) {
             sw_summary_t s;
             sw_engine_summary(e, 0, &s);
-            if (s.overturned) break; /* frozen from here on */
+            if (s.overturned)
+                break; /* frozen from here on */
         }
     }
     const double t = sw_engine_time(e);
-    if (isnan(t)) return SW_EINVAL; /* no usable sample */
+    if (isnan(t))
+        return SW_EINVAL; /* no usable sample */
     return sw_run_free_motion(R, t + sw_run_free_time(o, p),
                               2.0 * M_PI / p / SW_RUN_CHECKS_PER_PERIOD, r);
 }
@@ -290,13 +311,17 @@ int sw_log_run(const sw_scene_t *sc, const sw_log_t *log, double scale, const sw
 {
     int err = SW_OK;
     sw_set_msg(msg, msglen, "%s", "");
-    if (!sc || !r || !log || !log->t || !log->a_g || !isfinite(scale)) return SW_EINVAL;
+    if (!sc || !r || !log || !log->t || !log->a_g || !isfinite(scale))
+        return SW_EINVAL;
     memset(r, 0, sizeof *r);
     sw_runner_t R;
-    if (sw_runner_make(&R, sc, o, 0.0, &err, msg, msglen) != SW_OK) return err;
+    if (sw_runner_make(&R, sc, o, 0.0, &err, msg, msglen) != SW_OK)
+        return err;
     err = sw_run_log_on(&R, log, scale, o, r);
-    if (err == SW_EINVAL) sw_set_msg(msg, msglen, "the log has no usable sample");
-    if (err == SW_EFAULT) sw_set_msg(msg, msglen, "the model faulted during the run");
+    if (err == SW_EINVAL)
+        sw_set_msg(msg, msglen, "the log has no usable sample");
+    if (err == SW_EFAULT)
+        sw_set_msg(msg, msglen, "the model faulted during the run");
     sw_engine_destroy(R.e);
     return err;
 }
@@ -321,17 +346,20 @@ static int trial(const search_t *S, double x, sw_run_result_t *r)
  * either order, to the relative tolerance; *safe and *over get the final
  * ends and *r_over (may be NULL) the run at *over.  Geometric midpoints:
  * the scan is geometric too. */
-static int bisect(const search_t *S, double xs, double xo, const sw_run_result_t *ro,
-                  double *safe, double *over, sw_run_result_t *r_over)
+static int bisect(const search_t *S, double xs, double xo, const sw_run_result_t *ro, double *safe,
+                  double *over, sw_run_result_t *r_over)
 {
     sw_run_result_t r, r_o = *ro;
     for (;;) {
         const double lo = fmin(xs, xo), hi = fmax(xs, xo);
-        if (hi / lo - 1.0 <= S->tol) break;
+        if (hi / lo - 1.0 <= S->tol)
+            break;
         const double m = sqrt(lo * hi);
-        if (!(m > lo && m < hi)) break;
+        if (!(m > lo && m < hi))
+            break;
         const int rc = trial(S, m, &r);
-        if (rc < 0) return rc;
+        if (rc < 0)
+            return rc;
         if (r.overturned) {
             xo = m;
             r_o = r;
@@ -341,13 +369,15 @@ static int bisect(const search_t *S, double xs, double xo, const sw_run_result_t
     }
     *safe = xs;
     *over = xo;
-    if (r_over) *r_over = r_o;
+    if (r_over)
+        *r_over = r_o;
     return SW_OK;
 }
 
 int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw_threshold_t *out)
 {
-    if (!f || !o || !out) return SW_EINVAL;
+    if (!f || !o || !out)
+        return SW_EINVAL;
     memset(out, 0, sizeof *out);
     const double step = o->step > 0.0 ? o->step : DEFAULT_STEP;
     const double tol = o->tol > 0.0 ? o->tol : DEFAULT_TOL;
@@ -362,10 +392,13 @@ int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw
     /* scan for the first overturn */
     for (;; k++) {
         x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
-        if ((rc = trial(&S, x, &r)) < 0) return rc;
-        if (r.overturned) break;
+        if ((rc = trial(&S, x, &r)) < 0)
+            return rc;
+        if (r.overturned)
+            break;
         last = x;
-        if (x >= o->x_max) return SW_OK; /* nothing overturns up to x_max */
+        if (x >= o->x_max)
+            return SW_OK; /* nothing overturns up to x_max */
     }
     out->found = 1;
     if (k == 0) {
@@ -375,9 +408,11 @@ int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw
         out->at_x = r;
     } else {
         rc = bisect(&S, last, x, &r, &out->x_safe, &out->x, &out->at_x);
-        if (rc < 0) return rc;
+        if (rc < 0)
+            return rc;
     }
-    if (!o->islands) return SW_OK;
+    if (!o->islands)
+        return SW_OK;
 
     /* map the safe islands above: walk the same scan grid to x_max */
     int over = 1;
@@ -387,17 +422,20 @@ int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw
     while (prev < o->x_max) {
         k++;
         x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
-        if ((rc = trial(&S, x, &r)) < 0) return rc;
+        if ((rc = trial(&S, x, &r)) < 0)
+            return rc;
         if (over && !r.overturned) {
             double safe, ov;
             rc = bisect(&S, x, prev, &r_prev, &safe, &ov, NULL);
-            if (rc < 0) return rc;
+            if (rc < 0)
+                return rc;
             cur.lo = safe;
             over = 0;
         } else if (!over && r.overturned) {
             double safe, ov;
             rc = bisect(&S, prev, x, &r, &safe, &ov, NULL);
-            if (rc < 0) return rc;
+            if (rc < 0)
+                return rc;
             cur.hi = safe;
             cur.open = 0;
             if (out->n_islands < SW_MAX_ISLANDS)
@@ -436,7 +474,8 @@ static void *pool_worker(void *arg)
         pthread_mutex_lock(&p->mu);
         const size_t i = p->next++;
         pthread_mutex_unlock(&p->mu);
-        if (i >= p->n) break;
+        if (i >= p->n)
+            break;
         p->job(p->user, i);
     }
     return NULL;
@@ -444,7 +483,8 @@ static void *pool_worker(void *arg)
 
 void sw_parallel_for(size_t n, int threads, void (*job)(void *user, size_t i), void *user)
 {
-    if (!job || n == 0) return;
+    if (!job || n == 0)
+        return;
     if (threads <= 1 || n == 1) {
         for (size_t i = 0; i < n; i++) job(user, i);
         return;
@@ -456,12 +496,16 @@ void sw_parallel_for(size_t n, int threads, void (*job)(void *user, size_t i), v
     }
     pthread_t tid[MAX_THREADS];
     size_t want = (size_t)threads;
-    if (want > MAX_THREADS) want = MAX_THREADS;
-    if (want > n) want = n;
+    if (want > MAX_THREADS)
+        want = MAX_THREADS;
+    if (want > n)
+        want = n;
     size_t started = 0;
     for (; started < want; started++)
-        if (pthread_create(&tid[started], NULL, pool_worker, &p) != 0) break;
-    if (started == 0) pool_worker(&p); /* no thread at all: do it here */
+        if (pthread_create(&tid[started], NULL, pool_worker, &p) != 0)
+            break;
+    if (started == 0)
+        pool_worker(&p); /* no thread at all: do it here */
     for (size_t i = 0; i < started; i++) pthread_join(tid[i], NULL);
     pthread_mutex_destroy(&p.mu);
 }
@@ -497,7 +541,8 @@ double sw_run_probe_value(const sw_derived_t *d, const sw_output_t *o, double z_
  * first lifts: frame at a ratio of 1, cushion at a drive of z_s. */
 double sw_run_probe_lift(const sw_derived_t *d, double probe, double peak, double z_s)
 {
-    if (!(peak > 0.0)) return INFINITY;
+    if (!(peak > 0.0))
+        return INFINITY;
     return probe * (d->model == SW_MODEL_CUSHION ? z_s : 1.0) / peak;
 }
 
@@ -524,8 +569,9 @@ static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pul
         wslow = d->omega_b > 0.0 ? fmin(d->omega_b, wth) : wth;
     }
     const double t_end = sw_pulse_duration(&pulse) + 1.5 * 2.0 * M_PI / wslow; /* s */
-    double dt = 2.0 * M_PI / wmax / PROBE_SAMPLES;                            /* s */
-    if (t_end / dt > PROBE_MAX_SAMPLES) dt = t_end / PROBE_MAX_SAMPLES;
+    double dt = 2.0 * M_PI / wmax / PROBE_SAMPLES;                             /* s */
+    if (t_end / dt > PROBE_MAX_SAMPLES)
+        dt = t_end / PROBE_MAX_SAMPLES;
     double peak = 0.0;
     for (double t = 0.0; t < t_end;) {
         t = fmin(t_end, t + dt);
@@ -533,7 +579,8 @@ static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pul
         sw_output_t o;
         sw_engine_get_output(e, 0, &o);
         const double v = sw_run_probe_value(d, &o, z_s);
-        if (v > peak) peak = v;
+        if (v > peak)
+            peak = v;
     }
     return sw_run_probe_lift(d, probe, peak, z_s);
 }
@@ -541,8 +588,10 @@ static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pul
 int sw_curve_scene(const sw_curve_t *c, double omega_e, sw_scene_t *out)
 {
     *out = c->scene;
-    if (!(c->bearing_ratio > 0.0)) return SW_OK;
-    if (!c->scene.has_frame) return SW_EINVAL;
+    if (!(c->bearing_ratio > 0.0))
+        return SW_OK;
+    if (!c->scene.has_frame)
+        return SW_EINVAL;
     out->frame_omega = omega_e > 0.0 ? c->bearing_ratio * omega_e : 1.0;
     out->frame_stiffness = NAN;
     out->frame_k_given = SW_GIVEN_RATIO;
@@ -554,7 +603,8 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
 {
     int err = SW_OK;
     sw_set_msg(msg, msglen, "%s", "");
-    if (!c || !o || !out) return SW_EINVAL;
+    if (!c || !o || !out)
+        return SW_EINVAL;
     memset(out, 0, sizeof *out);
     out->omega_ratio = omega_ratio;
     sw_scene_t sc = c->scene;
@@ -580,12 +630,13 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
         }
         if (sw_scene_validate(&sc, &d, NULL, NULL, NULL) != SW_OK) {
             sw_set_msg(msg, msglen, "scene '%s' with omega_b = %g rad/s is not valid", sc.name,
-                    sc.frame_omega);
+                       sc.frame_omega);
             err = SW_EINVAL;
             goto out;
         }
     }
-    if (sw_runner_make(&R, &sc, &o->run, omega_e, &err, msg, msglen) != SW_OK) goto out;
+    if (sw_runner_make(&R, &sc, &o->run, omega_e, &err, msg, msglen) != SW_OK)
+        goto out;
 
     pulse_trial_t T = {&R, &o->run, {o->shape, 0.0, omega_e}, sc.g * tan(d.alpha)};
     sw_search_opts_t so = o->search;
@@ -594,7 +645,8 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
         out->x_lift = 1.0; /* the bed acceleration itself must reach g tan(alpha) */
     else
         out->x_lift = pulse_lift(R.e, &d, sc.g, T.pulse, T.unit, z_s);
-    if (!(so.x_max > 0.0)) so.x_max = DEFAULT_X_MAX;
+    if (!(so.x_max > 0.0))
+        so.x_max = DEFAULT_X_MAX;
     if (!(so.x_min > 0.0)) {
         so.x_min = d.model == SW_MODEL_BARE      ? 1.0
                    : d.model == SW_MODEL_CUSHION ? LIFT_MARGIN_CUSHION * out->x_lift
@@ -607,7 +659,7 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
     err = sw_threshold_search(pulse_trial, &T, &so, &out->th);
     if (err == SW_EINVAL)
         sw_set_msg(msg, msglen, "bad search range or steps (x_min %g, x_max %g)", so.x_min,
-                so.x_max);
+                   so.x_max);
     else if (err == SW_EFAULT)
         sw_set_msg(msg, msglen, "the model faulted at omega_e/p = %g", omega_ratio);
     else if (err < 0)
@@ -633,8 +685,7 @@ static void sweep_job(void *user, size_t i)
 {
     sweep_t *S = user;
     const size_t c = i / S->nratios, k = i % S->nratios;
-    sw_boundary_point(&S->curves[c], S->ratios[k], S->o, &S->out[i], S->msgs[i],
-                      sizeof S->msgs[i]);
+    sw_boundary_point(&S->curves[c], S->ratios[k], S->o, &S->out[i], S->msgs[i], sizeof S->msgs[i]);
     if (S->o->progress) {
         pthread_mutex_lock(&S->mu);
         S->done++;
@@ -648,9 +699,10 @@ int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ra
                       char *msg, size_t msglen)
 {
     sw_set_msg(msg, msglen, "%s", "");
-    if (!curves || !ratios || !o || !out || ncurves == 0 || nratios == 0) return SW_EINVAL;
-    sweep_t S = {curves, ratios, nratios, ncurves * nratios, o, out, NULL,
-                 PTHREAD_MUTEX_INITIALIZER, 0};
+    if (!curves || !ratios || !o || !out || ncurves == 0 || nratios == 0)
+        return SW_EINVAL;
+    sweep_t S = {
+        curves, ratios, nratios, ncurves * nratios, o, out, NULL, PTHREAD_MUTEX_INITIALIZER, 0};
     S.msgs = calloc(S.total, sizeof *S.msgs);
     if (!S.msgs) {
         sw_set_msg(msg, msglen, "out of memory");
@@ -662,7 +714,7 @@ int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ra
         if (out[i].status < 0) {
             rc = out[i].status;
             sw_set_msg(msg, msglen, "curve %zu, omega_e/p = %g: %s", i / nratios + 1,
-                    out[i].omega_ratio, S.msgs[i][0] ? S.msgs[i] : sw_strerror(rc));
+                       out[i].omega_ratio, S.msgs[i][0] ? S.msgs[i] : sw_strerror(rc));
             break;
         }
     free(S.msgs);

@@ -125,7 +125,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* header inference and the decimal comma: seed bits 6 and 7 */
     o.infer = (seed >> 6) & 1;
     o.decimal_comma = (seed >> 7) & 1 ? -1 : (o1 & 1);
-    if (o.infer && (o2 & 1)) o.time_col = o.accel_col = NULL; /* let the header choose */
+    if (o.infer && (o2 & 1))
+        o.time_col = o.accel_col = NULL; /* let the header choose */
 
     size_t len = b.n > MAX_TEXT ? MAX_TEXT : b.n;
     run_t whole, chunked;

@@ -105,8 +105,8 @@ static int64_t extreme(uint8_t k)
                                 -1,
                                 0,
                                 1,
-                                1700000000000000LL,              /* 2023 */
-                                1700000000000000LL + 9500000,    /* + 9.5 s */
+                                1700000000000000LL,                    /* 2023 */
+                                1700000000000000LL + 9500000,          /* + 9.5 s */
                                 1700000000000000LL + 31536000000000LL, /* + 1 year */
                                 1700000000000000LL - 31536000000000LL, /* - 1 year */
                                 1700000000000000LL + 86400000000LL,    /* + 1 day */
@@ -119,9 +119,9 @@ static int64_t extreme(uint8_t k)
 
 static double special(uint8_t k)
 {
-    static const double t[] = {NAN,      INFINITY, -INFINITY, 1e300,   -1e300, DBL_MAX,
-                               DBL_MIN,  4.9e-324, -0.0,      0.0,     490.0,  490.4,
-                               -490.4,   -20.0,    -9.81,     -9.8067, 1e-300, 3.5};
+    static const double t[] = {NAN,     INFINITY, -INFINITY, 1e300,   -1e300, DBL_MAX,
+                               DBL_MIN, 4.9e-324, -0.0,      0.0,     490.0,  490.4,
+                               -490.4,  -20.0,    -9.81,     -9.8067, 1e-300, 3.5};
     return t[k % (sizeof t / sizeof t[0])];
 }
 

@@ -67,7 +67,7 @@ static const double specials[] = {NAN, INFINITY,  -INFINITY, 1e300,  -1e300,  1e
 
 static void run_engine(const sw_scene_t *sc, fz_bytes_t *b, int have_samples)
 {
-    static const char *const schemes[] = {NULL,    "rk4",   "heun",   "euler", "rkf45",
+    static const char *const schemes[] = {NULL,   "rk4",   "heun",   "euler", "rkf45",
                                           "rkck", "rk8pd", "rk4imp", "bsimp", "msbdf"};
     ctx_t c = {0};
     sw_engine_opts_t o;

@@ -74,9 +74,12 @@ static void write_log(const char *path, long n, long *good)
     *good = 0;
     for (long k = 0; k < n; k++) {
         int64_t dl = -1;
-        if (k % 4 == 1) dl = 0x0ffffff0;     /* past the end, under LCM's 256 MB */
-        else if (k % 4 == 3) dl = 48 + 81 * 3 + 7; /* lands in the middle of an event */
-        else (*good)++;
+        if (k % 4 == 1)
+            dl = 0x0ffffff0; /* past the end, under LCM's 256 MB */
+        else if (k % 4 == 3)
+            dl = 48 + 81 * 3 + 7; /* lands in the middle of an event */
+        else
+            (*good)++;
         size_t len = event(ev, k, dl);
         assert_true(fwrite(ev, 1, len, f) == len);
     }
@@ -87,11 +90,13 @@ static void write_log(const char *path, long n, long *good)
 static long long rchar(void)
 {
     FILE *f = fopen("/proc/self/io", "r");
-    if (!f) return -1;
+    if (!f)
+        return -1;
     char line[128];
     long long v = -1;
     while (fgets(line, sizeof line, f))
-        if (sscanf(line, "rchar: %lld", &v) == 1) break;
+        if (sscanf(line, "rchar: %lld", &v) == 1)
+            break;
     fclose(f);
     return v;
 }
@@ -163,8 +168,10 @@ static void test_resync_is_linear(void **state)
     double first = 0.0;
     for (long n = 2000; n <= 16000; n *= 2) {
         const double r = read_ratio(n);
-        if (n == 2000) first = r;
-        else assert_true(r < 1.5 * first + 0.1);
+        if (n == 2000)
+            first = r;
+        else
+            assert_true(r < 1.5 * first + 0.1);
     }
 }
 

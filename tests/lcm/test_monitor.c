@@ -202,7 +202,7 @@ static void check_all_finite(const bus_t *b)
 {
     for (int i = 0; i < b->nst; i++) {
         const swaywatch_state_t *s = &b->st[i];
-        const double v[] = {s->theta,        s->theta_dot,    s->u,  s->z_b, s->margin,
+        const double v[] = {s->theta,        s->theta_dot,    s->u,   s->z_b,      s->margin,
                             s->margin_bound, s->uplift_ratio, s->a_g, s->reserve_g};
         for (size_t j = 0; j < sizeof v / sizeof v[0]; j++) assert_true(isfinite(v[j]));
     }
@@ -342,8 +342,7 @@ static void test_lcm_equals_csv(void **st)
     assert_int_equal(r->bus.nal, ref->nal);
     assert_true(ref->nal >= 3); /* uplift, impacts, warn at least */
     int reserve_alarms = 0;
-    for (int i = 0; i < ref->nal; i++)
-        reserve_alarms += ref->al[i].kind == SW_ALARM_RESERVE_WARN;
+    for (int i = 0; i < ref->nal; i++) reserve_alarms += ref->al[i].kind == SW_ALARM_RESERVE_WARN;
     assert_true(reserve_alarms >= 1); /* the pulse brings the reserve below its level */
     for (int i = 0; i < ref->nal; i++) {
         assert_int_equal(r->bus.al[i].kind, (int)ref->al[i].kind);
@@ -492,9 +491,9 @@ static void test_gap(void **st)
         send_k(r, k);
     }
     assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, -1), 2);
-    assert_int_equal(count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP,
-                                  SWAYWATCH_ALARM_T_LEVEL_CRITICAL),
-                     1);
+    assert_int_equal(
+        count_alarms(&r->bus, SWAYWATCH_ALARM_T_KIND_SENSOR_GAP, SWAYWATCH_ALARM_T_LEVEL_CRITICAL),
+        1);
     int back = 0;
     for (int i = 0; i < r->bus.nal; i++)
         back += strstr((const char *)r->bus.al[i].text, "accel back after 0.3") &&
@@ -671,8 +670,7 @@ static void test_alarm_escalation_passes(void **st)
      * each at most its burst and a summary */
     assert_true(count_alarms(&r->bus, gap, -1) <= 2 * (3 + 1));
     /* now a gap during rocking: its end is CRITICAL (incomplete), sent at once */
-    for (long j = 0; j < 400; j++, k++)
-        send(r, k, UTIME0 + k * 1000, pulse_a(j + 150), 0.0, 0.0);
+    for (long j = 0; j < 400; j++, k++) send(r, k, UTIME0 + k * 1000, pulse_a(j + 150), 0.0, 0.0);
     k += 300;
     send(r, k, UTIME0 + k * 1000, 0.0, 0.0, 0.0);
     assert_true(count_alarms(&r->bus, gap, SWAYWATCH_ALARM_T_LEVEL_CRITICAL) >= 1);
@@ -755,7 +753,8 @@ static void test_jump(void **st)
     for (long k = 0; k < NSAMP; k++) {
         send_k(clean, k);
         send_k(r, k);
-        if (k == 700) send_forged(r, k + 1, UTIME0 + k * 1000 + year, 0.0);
+        if (k == 700)
+            send_forged(r, k + 1, UTIME0 + k * 1000 + year, 0.0);
         if (k == 800) { /* two in a row */
             send_forged(r, k + 1, UTIME0 + k * 1000 + year, 0.0);
             send_forged(r, k + 2, UTIME0 + k * 1000 + year + 1000, 0.0);

@@ -111,10 +111,10 @@ static const char *const event_name[NEVKIND] = {"restart", "step",  "future", "u
                                                 "seq",     "flood", "fall",   "pause"};
 
 typedef struct {
-    long k;       /* before good sample k */
+    long k; /* before good sample k */
     int kind;
-    double arg;   /* s, or a count */
-    int extreme;  /* utime, seq: +1 max, -1 min */
+    double arg;  /* s, or a count */
+    int extreme; /* utime, seq: +1 max, -1 min */
 } event_t;
 
 typedef struct {
@@ -136,8 +136,8 @@ typedef struct {
     const char *channel;
     long published, good, by_kind[NKIND];
     long jump, time, skipped; /* forged samples sent (future, utime), pause's unsent */
-    int64_t stamp;      /* us, the log's receive time for the next event */
-    unsigned char *buf; /* OVERSIZE + room for a message */
+    int64_t stamp;            /* us, the log's receive time for the next event */
+    unsigned char *buf;       /* OVERSIZE + room for a message */
     int failed;
 } sink_t;
 
