@@ -11,6 +11,10 @@
 set -eu
 cd "$(dirname "$0")/.."
 scripts/setup-debian.sh
+# The tree's conventions first, in seconds: the style of .clang-format
+# and the licence line on every source file.
+scripts/format.sh --check
+scripts/spdx.sh --check
 JOBS=$(nproc)
 START=$(date +%s)
 elapsed() {
