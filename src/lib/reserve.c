@@ -41,7 +41,6 @@
  *
  * Everything is allocated in create; eval allocates nothing. */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,6 +51,8 @@
 #include "swaywatch/reserve.h"
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
+
+#include "run.h" /* sw_set_msg */
 
 #define DEFAULT_STEP 0.02
 #define DEFAULT_TOL 0.01
@@ -98,18 +99,6 @@ struct sw_reserve {
     pulse_ctx_t p[SW_DESIGN_PULSES_MAX];
     sw_reserve_result_t rest;
 };
-
-static void set_msg(char *msg, size_t len, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void set_msg(char *msg, size_t len, const char *fmt, ...)
-{
-    if (!msg || !len)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, len, fmt, ap);
-    va_end(ap);
-}
 
 static double zero_input(void *user, double t)
 {
@@ -689,16 +678,16 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
     if (!err)
         err = &e_;
     *err = SW_OK;
-    set_msg(msg, msglen, "%s", "");
+    sw_set_msg(msg, msglen, "%s", "");
     if (!sc) {
         *err = SW_EINVAL;
-        set_msg(msg, msglen, "no scene");
+        sw_set_msg(msg, msglen, "no scene");
         return NULL;
     }
     sw_reserve_t *R = calloc(1, sizeof *R);
     if (!R) {
         *err = SW_ENOMEM;
-        set_msg(msg, msglen, "out of memory");
+        sw_set_msg(msg, msglen, "out of memory");
         return NULL;
     }
     R->sc = *sc;
@@ -706,7 +695,7 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
         R->o = *opts;
     if (sw_scene_validate(&R->sc, &R->d, NULL, NULL, NULL) != SW_OK) {
         *err = SW_EINVAL;
-        set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
+        sw_set_msg(msg, msglen, "scene '%s' is not valid", sc->name);
         goto fail;
     }
     const sw_derived_t *d = &R->d;
@@ -718,8 +707,8 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
     if (!isfinite(R->step) || !isfinite(R->tol) || !isfinite(R->max_g) || !isfinite(R->floor_g) ||
         !(R->floor_g < R->max_g)) {
         *err = SW_EINVAL;
-        set_msg(msg, msglen, "bad reserve options (step %g, tol %g, floor %g g, max %g g)", R->step,
-                R->tol, R->floor_g, R->max_g);
+        sw_set_msg(msg, msglen, "bad reserve options (step %g, tol %g, floor %g g, max %g g)",
+                   R->step, R->tol, R->floor_g, R->max_g);
         goto fail;
     }
     const double fp = R->o.run.free_periods > 0.0 ? R->o.run.free_periods : SW_RESERVE_FREE_PERIODS;
@@ -749,11 +738,11 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
         const double steps = (P->T + R->t_free) / dt;
         if (!(eo.accuracy > 0.0) && !(steps <= max_steps)) {
             *err = SW_ETOOBIG;
-            set_msg(msg, msglen,
-                    "a design-pulse run would take %.3g steps of %.3g s (%.3g s of "
-                    "pulse and free motion), more than %.3g; the scene is too stiff for the "
-                    "reserve to keep up",
-                    steps, dt, P->T + R->t_free, max_steps);
+            sw_set_msg(msg, msglen,
+                       "a design-pulse run would take %.3g steps of %.3g s (%.3g s of "
+                       "pulse and free motion), more than %.3g; the scene is too stiff for the "
+                       "reserve to keep up",
+                       steps, dt, P->T + R->t_free, max_steps);
             goto fail;
         }
         P->check = dt * ceil(P->T / CHECKS_PER_PULSE / dt);
@@ -766,11 +755,11 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
         char why[256] = "";
         P->e = sw_engine_create(&R->sc, 1, &eo, err, why, sizeof why);
         if (!P->e) {
-            set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
+            sw_set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
             goto fail;
         }
         if (d->model == SW_MODEL_FRAME && (*err = lift_table(d, P)) != SW_OK) {
-            set_msg(msg, msglen, "out of memory");
+            sw_set_msg(msg, msglen, "out of memory");
             goto fail;
         }
     }
@@ -784,7 +773,7 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
     const int rc = compute(R, &rest, &R->rest);
     if (rc < 0) {
         *err = rc;
-        set_msg(msg, msglen, "the reserve at rest: %s", sw_strerror(rc));
+        sw_set_msg(msg, msglen, "the reserve at rest: %s", sw_strerror(rc));
         goto fail;
     }
     R->rest.cached = 1;
