@@ -25,6 +25,21 @@ typedef struct sw_cli_records sw_cli_records_t;
 void sw_cli_records_package(sw_cli_records_t *rec, const char *json, size_t jlen, const char *csv,
                             size_t clen);
 
+/* One package's record while a job writes it: the JSON members to j and
+ * the CSV fields to c, two memory streams. */
+typedef struct {
+    FILE *j, *c;
+    char *json, *csv;
+    size_t jlen, clen;
+} sw_cli_record_t;
+/* Open both streams: 0, or -1 when memory ran out (then write nothing,
+ * but still call sw_cli_record_end). */
+int sw_cli_record_begin(sw_cli_record_t *r);
+/* Close the streams and, if nothing failed, hand the record to rec with
+ * its JSON on one line (its own line breaks become spaces); free it.  0,
+ * or -1 when memory ran out (nothing handed over). */
+int sw_cli_record_end(sw_cli_records_t *rec, sw_cli_record_t *r);
+
 typedef struct {
     const char *name;  /* --job NAME */
     const char *about; /* one line for --help */

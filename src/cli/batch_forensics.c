@@ -87,11 +87,9 @@ static void report(void *user, const sw_cli_forensics_t *F)
         const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
         if (!C || !sw_cli_forensics_summary(F, k, &s))
             continue;
-        char *json = NULL, *csv = NULL;
-        size_t jlen = 0, clen = 0;
-        FILE *j = open_memstream(&json, &jlen);
-        FILE *c = open_memstream(&csv, &clen);
-        if (j && c) {
+        sw_cli_record_t r;
+        if (sw_cli_record_begin(&r) == 0) {
+            FILE *j = r.j;
             sw_cli_forensics_json_package(j, F, k);
             fprintf(j, ", \"samples_read\": %ld, \"samples_rejected\": %ld, \"samples_used\": %zu",
                     F->R.run.samples_read, F->R.run.samples_rejected, F->L.n);
@@ -99,24 +97,10 @@ static void report(void *user, const sw_cli_forensics_t *F)
                 fprintf(j, ", \"input\": ");
                 sw_cli_json_facts(j, &F->R.run, " ");
             }
-            csv_row(c, F, k, &s, C);
+            csv_row(r.c, F, k, &s, C);
         }
-        int bad = !j || !c;
-        if (j && fclose(j) != 0)
-            bad = 1;
-        if (c && fclose(c) != 0)
-            bad = 1;
-        if (bad) {
+        if (sw_cli_record_end(R->rec, &r) != 0)
             R->oom = 1;
-        } else {
-            /* one record a line: the JSON's own line breaks become spaces */
-            for (size_t i = 0; i < jlen; i++)
-                if (json[i] == '\n')
-                    json[i] = ' ';
-            sw_cli_records_package(R->rec, json, jlen, csv, clen);
-        }
-        free(json);
-        free(csv);
     }
 }
 

@@ -114,11 +114,9 @@ static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
         sw_summary_t s;
         if (sw_engine_summary(e, i, &s) != SW_OK)
             continue;
-        char *json = NULL, *csv = NULL;
-        size_t jlen = 0, clen = 0;
-        FILE *j = open_memstream(&json, &jlen);
-        FILE *c = open_memstream(&csv, &clen);
-        if (j && c) {
+        sw_cli_record_t r;
+        if (sw_cli_record_begin(&r) == 0) {
+            FILE *j = r.j;
             sw_cli_json_package(j, e, i, run, " ");
             fprintf(j, ", \"settle\": ");
             sw_cli_json_num(j, run->settle);
@@ -126,19 +124,10 @@ static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
                 fprintf(j, ", \"input\": ");
                 sw_cli_json_facts(j, run, " ");
             }
-            csv_row(c, e, i, run, &s);
+            csv_row(r.c, e, i, run, &s);
         }
-        int bad = !j || !c;
-        if (j && fclose(j) != 0)
-            bad = 1;
-        if (c && fclose(c) != 0)
-            bad = 1;
-        if (bad)
+        if (sw_cli_record_end(R->rec, &r) != 0)
             R->oom = 1;
-        else
-            sw_cli_records_package(R->rec, json, jlen, csv, clen);
-        free(json);
-        free(csv);
     }
 }
 

@@ -57,6 +57,33 @@ void sw_cli_records_package(sw_cli_records_t *rec, const char *json, size_t jlen
     rec->n++;
 }
 
+int sw_cli_record_begin(sw_cli_record_t *r)
+{
+    memset(r, 0, sizeof *r);
+    r->j = open_memstream(&r->json, &r->jlen);
+    r->c = open_memstream(&r->csv, &r->clen);
+    return r->j && r->c ? 0 : -1;
+}
+
+int sw_cli_record_end(sw_cli_records_t *rec, sw_cli_record_t *r)
+{
+    int bad = !r->j || !r->c;
+    if (r->j && fclose(r->j) != 0)
+        bad = 1;
+    if (r->c && fclose(r->c) != 0)
+        bad = 1;
+    if (!bad) {
+        for (size_t i = 0; i < r->jlen; i++)
+            if (r->json[i] == '\n')
+                r->json[i] = ' ';
+        sw_cli_records_package(rec, r->json, r->jlen, r->csv, r->clen);
+    }
+    free(r->json);
+    free(r->csv);
+    memset(r, 0, sizeof *r);
+    return bad ? -1 : 0;
+}
+
 /* ---- options ---------------------------------------------------------------------- */
 
 typedef struct {
