@@ -100,7 +100,13 @@ static int parse_job(const sw_cli_option_t *o, const char *arg, void *dest)
     const sw_cli_job_t **j = dest;
     if ((*j = job_named(arg)))
         return SW_EXIT_OK;
-    sw_cli_error("--%s: expected replay, got '%s'", o->long_name, arg);
+    char names[128] = "";
+    for (size_t i = 0; i < sizeof jobs / sizeof jobs[0]; i++) {
+        const size_t k = strlen(names);
+        snprintf(names + k, sizeof names - k, "%s%s",
+                 i ? (i + 1 < sizeof jobs / sizeof jobs[0] ? ", " : " or ") : "", jobs[i]->name);
+    }
+    sw_cli_error("--%s: expected %s, got '%s'", o->long_name, names, arg);
     return SW_EXIT_USAGE;
 }
 

@@ -31,6 +31,7 @@ run "$SW" batch --scene "$CRATE" --manifest "$TMP/none.txt"
 expect_rc 3 "missing manifest"
 run "$SW" batch --scene "$CRATE" --job nonesuch "$B/a01.csv"
 expect_rc 2 "--job nonesuch"
+expect_err "--job: expected replay or forensics, got 'nonesuch'" "--job nonesuch"
 run "$SW" batch --scene "$CRATE" -
 expect_rc 2 "standard input as a log"
 printf '%s/a01.csv\n%s/a02.csv "--scene\n' "$B" "$B" >"$TMP/m1"
