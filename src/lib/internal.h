@@ -86,6 +86,8 @@ struct sw_pkg {
     double yscale[SW_NMAX]; /* typical size of each component (finite-difference Jacobian) */
     double e_lift;          /* J/kg, cushion: least energy above rest that lifts an edge */
     double rate_rest;       /* 1/s, the contact's rate bound at rest (model_cushion.c) */
+    double e_barrier;       /* J/kg, cushion: sw_cushion_barrier() under nominal gravity */
+    double v_rest;          /* J/kg, cushion: potential at rest under nominal gravity */
 
     /* the model's scratch, written by its right-hand side */
     int track_rate;   /* cushion: the right-hand side records rate_seen */

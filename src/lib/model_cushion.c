@@ -137,11 +137,13 @@ static void add_piece(const cush_t *c, const kin_t *k, double p, double q, conta
 }
 
 /* Forces, tangent stiffness and strain energy of the cushion at (theta, z)
- * moving at (theta', z'). */
-static void contact(const cush_t *c, double th, double z, double dth, double dz, contact_t *o)
+ * moving at (theta', z'), given s = sin(theta) and co = cos(theta): the
+ * right-hand side needs them too, and they are a fifth of its cost. */
+static void contact(const cush_t *c, double s, double co, double z, double dth, double dz,
+                    contact_t *o)
 {
     memset(o, 0, sizeof *o);
-    const double s = sin(th), b = c->b;
+    const double b = c->b;
     const double zr = z - b * s, zf = z + b * s; /* m, compression of the rear / front edge */
     if (zr <= 0.0 && zf <= 0.0)
         return; /* free flight */
@@ -149,7 +151,7 @@ static void contact(const cush_t *c, double th, double z, double dth, double dz,
      * end is the zero of z(sigma), which lies inside [-b, b] */
     const double l = zr > 0.0 ? -b : -z / s;
     const double r = zf > 0.0 ? b : -z / s;
-    const kin_t k = {z, s, dz, dth * cos(th)};
+    const kin_t k = {z, s, dz, dth * co};
 
     /* strain energy, over the compressed part whatever the damping does */
     {
@@ -324,11 +326,11 @@ static int cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[])
     const cush_t c = cush_of(d);
     const double ag = sw_input_ag(P->in, t), ge = sw_input_geff(P, t);
     const double th = y[P->ith], z = y[P->iz], dth = y[P->idth], dz = y[P->idz];
+    const double s = sin(th), co = cos(th), h = d->h;
     contact_t k;
-    contact(&c, th, z, dth, dz, &k);
+    contact(&c, s, co, z, dth, dz, &k);
     if (P->track_rate)
         P->rate_seen = fmax(P->rate_seen, contact_rate(P, th, &k));
-    const double s = sin(th), co = cos(th), h = d->h;
     const double J = d->R * d->R / 3.0 + h * h; /* m^2, (I_C + m h^2)/m */
     const double hs = h * s, hc = h * co;
     /* right-hand sides of physics.md divided by m */
@@ -385,7 +387,7 @@ static double cushion_lift(const sw_pkg_t *P, const double y[], double *der)
 static double potential(const cush_t *c, const sw_derived_t *d, double g, double th, double z)
 {
     contact_t k;
-    contact(c, th, z, 0.0, 0.0, &k);
+    contact(c, sin(th), cos(th), z, 0.0, 0.0, &k);
     return k.U - g * z + g * d->h * (cos(th) - 1.0);
 }
 
@@ -407,7 +409,7 @@ double sw_cushion_barrier(const sw_derived_t *d, double g)
     double z = zs + d->b * sin(d->alpha);
     for (int it = 0; it < 200; it++) {
         contact_t k;
-        contact(&c, d->alpha, z, 0.0, 0.0, &k);
+        contact(&c, sin(d->alpha), cos(d->alpha), z, 0.0, 0.0, &k);
         if (!(k.S > 0.0))
             break;
         const double dz = (k.F - g) / k.S;
@@ -477,25 +479,34 @@ static void kinetic(const sw_derived_t *d, const sw_state_t *s, double *rel, dou
         *tot += 0.5 * s->u_dot * s->u_dot / d->gamma + h * ct * s->u_dot * w;
 }
 
-double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s)
+/* The energy of s given the potential at rest V0 (J/kg) under g_eff. */
+static double energy_with(const sw_derived_t *d, double g_eff, double V0, const sw_state_t *s)
 {
     const cush_t c = cush_of(d);
     double rel, tot;
     kinetic(d, s, &rel, &tot);
-    double E = tot + potential(&c, d, g_eff, s->theta, s->z) - potential_rest(&c, d, g_eff);
+    double E = tot + potential(&c, d, g_eff, s->theta, s->z) - V0;
     if (d->gamma > 0.0)
         E += 0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
     return E;
 }
 
-void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s, double *margin,
-                       double *margin_bound)
+double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 {
     const cush_t c = cush_of(d);
-    const double Eb = sw_cushion_barrier(d, g_eff);
+    return energy_with(d, g_eff, potential_rest(&c, d, g_eff), s);
+}
+
+/* The margins given the barrier Eb and the potential at rest V0 (J/kg)
+ * under g_eff: the engine passes the values it computed once for nominal
+ * gravity, which are the same numbers, bit for bit. */
+static void margin_with(const sw_derived_t *d, double g_eff, double Eb, double V0,
+                        const sw_state_t *s, double *margin, double *margin_bound)
+{
+    const cush_t c = cush_of(d);
     double rel, tot;
     kinetic(d, s, &rel, &tot);
-    const double V = potential(&c, d, g_eff, s->theta, s->z) - potential_rest(&c, d, g_eff);
+    const double V = potential(&c, d, g_eff, s->theta, s->z) - V0;
     const double PE = V / Eb, KE = rel / Eb, E = PE + KE;
     const int inside = fabs(s->theta) < d->alpha;
     if (margin) {
@@ -517,6 +528,14 @@ void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s,
     }
 }
 
+void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s, double *margin,
+                       double *margin_bound)
+{
+    const cush_t c = cush_of(d);
+    margin_with(d, g_eff, sw_cushion_barrier(d, g_eff), potential_rest(&c, d, g_eff), s, margin,
+                margin_bound);
+}
+
 static double motion_energy(const sw_pkg_t *P, const double y[])
 {
     sw_state_t s;
@@ -529,7 +548,7 @@ static double motion_energy(const sw_pkg_t *P, const double y[])
         s.u = y[P->iu];
         s.u_dot = y[P->idu];
     }
-    return sw_energy_cushion(&P->d, P->g, &s);
+    return energy_with(&P->d, P->g, P->v_rest, &s);
 }
 
 /* ---- the engine's view: layout, events, rest -------------------------------- */
@@ -556,6 +575,11 @@ static void cushion_setup(sw_pkg_t *P)
      * largest eigenvalues */
     P->rate_rest = fmax(sqrt(tangent_w2(&P->d, P->g)), 2.0 * P->d.zeta_c * P->d.omega_c);
     P->e_lift = lift_energy(&P->d, P->g);
+    /* constants of every output and rest test under nominal gravity: the
+     * barrier alone is a Newton solve, most of an output's cost */
+    const cush_t c = cush_of(&P->d);
+    P->e_barrier = sw_cushion_barrier(&P->d, P->g);
+    P->v_rest = potential_rest(&c, &P->d, P->g);
 }
 
 /* A package on a cushion moves from the start: it is never stuck and never
@@ -661,8 +685,7 @@ static void cushion_at_cut(sw_pkg_t *P)
 /* Moving unless its energy of motion is below rest_eps of the barrier. */
 static int cushion_moving(const sw_pkg_t *P, double rest_eps)
 {
-    return P->phase == SW_PHASE_ROCKING &&
-           !(motion_energy(P, P->y) < rest_eps * sw_cushion_barrier(&P->d, P->g));
+    return P->phase == SW_PHASE_ROCKING && !(motion_energy(P, P->y) < rest_eps * P->e_barrier);
 }
 
 /* After the common part: the support's acceleration (the bed, or a_g + u''
@@ -682,7 +705,10 @@ static void cushion_output(const sw_pkg_t *P, double t, sw_output_t *o)
         o->margin = o->margin_bound = -1.0;
         return;
     }
-    sw_margin_cushion(&P->d, ge, &o->state, &o->margin, &o->margin_bound);
+    if (ge == P->g)
+        margin_with(&P->d, ge, P->e_barrier, P->v_rest, &o->state, &o->margin, &o->margin_bound);
+    else
+        sw_margin_cushion(&P->d, ge, &o->state, &o->margin, &o->margin_bound);
 }
 
 const sw_model_ops_t sw_model_cushion = {
