@@ -525,6 +525,84 @@ static void test_deterministic(void **state)
     sw_reserve_destroy(fresh);
 }
 
+/* One half-sine run from s through the engine, with or without
+ * outcome_only; the final state, summary and TIP events. */
+typedef struct {
+    sw_state_t end;
+    sw_output_t out;
+    sw_summary_t sum;
+    int tips;
+} oo_run_t;
+
+static oo_run_t outcome_run(const sw_scene_t *sc, const char *scheme, double dt, int outcome_only,
+                            const sw_state_t *s, double a_g)
+{
+    tu_events_t *rec = calloc(1, sizeof *rec);
+    assert_non_null(rec);
+    sw_engine_opts_t o = {0};
+    o.scheme = scheme;
+    o.dt = dt;
+    o.rtol = 1e-6;
+    o.outcome_only = outcome_only;
+    o.on_event = tu_on_event;
+    o.user = rec;
+    int err;
+    char msg[256];
+    sw_engine_t *e = sw_engine_create(sc, 1, &o, &err, msg, sizeof msg);
+    assert_non_null(e);
+    assert_int_equal(sw_engine_set_state(e, 0, s), SW_OK);
+    sw_pulse_t pl = {SW_PULSE_HALF_SINE, a_g, M_PI / 1.0};
+    assert_true(sw_engine_advance_fn(e, 1.0, sw_pulse_eval, &pl) >= 0);
+    oo_run_t r;
+    memset(&r, 0, sizeof r);
+    for (int k = 1; k <= 40; k++) /* free motion, in chunks as the reserve's runs */
+        assert_true(sw_engine_advance_fn(e, 1.0 + 0.1 * k, sw_pulse_eval, &pl) >= 0);
+    assert_int_equal(sw_engine_get_state(e, 0, &r.end), SW_OK);
+    assert_int_equal(sw_engine_get_output(e, 0, &r.out), SW_OK);
+    assert_int_equal(sw_engine_summary(e, 0, &r.sum), SW_OK);
+    r.tips = tu_count(rec, SW_EV_TIP);
+    sw_engine_destroy(e);
+    free(rec);
+    return r;
+}
+
+/* outcome_only leaves the motion alone: the same final state bit for bit,
+ * the same verdict and overturn time, on every model and for a run that
+ * overturns and one that does not; what it drops is only the report (TIP
+ * events here).  The reserve runs this way. */
+static void test_outcome_only_same_motion(void **state)
+{
+    (void)state;
+    const sw_scene_t sc[3] = {crate(), crate_frame(), with_cushion(crate(), 44.7, 0.045)};
+    const char *scheme[3] = {"rk4", "rk4", "rkck"};
+    const double dt[3] = {1e-3, 1e-3, 5e-3};
+    for (int m = 0; m < 3; m++) {
+        const sw_state_t s = m == 2 ? rocking(0.02, 0.05) : rocking(0.3 * A20, 0.1);
+        sw_state_t s0 = s;
+        if (m == 2)
+            s0.z = 9.81 / (44.7 * 44.7); /* near the static deflection */
+        int overturned = 0, survived = 0;
+        for (double x = 0.2; x <= 1.6; x += 0.35) {
+            const oo_run_t full = outcome_run(&sc[m], scheme[m], dt[m], 0, &s0, -x * SW_G0);
+            const oo_run_t oo = outcome_run(&sc[m], scheme[m], dt[m], 1, &s0, -x * SW_G0);
+            assert_memory_equal(&full.end, &oo.end, sizeof full.end);
+            assert_memory_equal(&full.out.state, &oo.end, sizeof oo.end);
+            assert_int_equal(full.sum.overturned, oo.sum.overturned);
+            assert_int_equal(full.sum.impacts, oo.sum.impacts);
+            if (full.sum.overturned)
+                assert_true(full.sum.overturn_time == oo.sum.overturn_time);
+            assert_int_equal(oo.tips, 0);
+            if (full.sum.overturned)
+                assert_true(full.tips > 0);
+            overturned += full.sum.overturned;
+            survived += !full.sum.overturned;
+        }
+        /* both outcomes were exercised */
+        assert_true(overturned > 0);
+        assert_true(survived > 0);
+    }
+}
+
 static void test_rest_cache(void **state)
 {
     (void)state;
@@ -606,6 +684,7 @@ int main(void)
         cmocka_unit_test(test_lift_bound_tight),
         cmocka_unit_test(test_several_pulses),
         cmocka_unit_test(test_deterministic),
+        cmocka_unit_test(test_outcome_only_same_motion),
         cmocka_unit_test(test_rest_cache),
         cmocka_unit_test(test_bad_arguments),
     };

@@ -85,6 +85,14 @@ typedef struct {
     double rest_eps;    /* rest threshold as a fraction of the energy barrier; 0 = 1e-9 */
     int stuck_stepped;  /* non-zero: step a stuck frame with the fixed-step scheme instead of
                            its exact solution (comparisons; the default is exact and cheaper) */
+    int outcome_only;   /* non-zero: do not time what only the report needs inside steps:
+                           peaks of |theta|, tips past alpha, a cushion's lifts (the
+                           summary's max |theta| then comes from step ends; no TIP, no
+                           cushion UPLIFT or REST events), and, without on_state, no
+                           margins after each call (the summary's minimum margins see
+                           only the events; sw_engine_get_output computes them on
+                           demand); for runs that need only whether and when a package
+                           overturns, such as the reserve's */
     sw_event_fn on_event;
     sw_state_fn on_state; /* called once per pushed sample and package; may be NULL */
     void *user;
@@ -176,6 +184,8 @@ SW_API int sw_engine_finish(sw_engine_t *e, double settle);
 /* Replace a package's state at the current time (tests, what-if runs). */
 SW_API int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s);
 SW_API int sw_engine_get_output(const sw_engine_t *e, size_t pkg, sw_output_t *out);
+/* The state alone: what get_output reports first, without its margins. */
+SW_API int sw_engine_get_state(const sw_engine_t *e, size_t pkg, sw_state_t *s);
 
 SW_API size_t sw_engine_count(const sw_engine_t *e);
 SW_API double sw_engine_time(const sw_engine_t *e); /* s, NAN before the first sample */

@@ -55,10 +55,10 @@ extern "C" {
 typedef enum { SW_RESERVE_BRAKING = -1, SW_RESERVE_ACCELERATING = 1 } sw_reserve_dir;
 
 typedef struct {
-    sw_run_opts_t
-        run;              /* engine.scheme, rtol, atol, rest_eps as for sw_engine_create()
-                             (callbacks ignored), except the defaults: rtol 1e-5, atol 1e-7,
-                             rest_eps 1e-6 (docs/reserve.md); engine.dt 0 = automatic: 1/SW_RESERVE_STEPS
+    sw_run_opts_t run;    /* engine.scheme, rtol, atol, rest_eps as for sw_engine_create()
+                             (callbacks ignored; outcome_only always), except the defaults:
+                             rtol 3e-4, atol 1e-7, rest_eps 1e-6 (docs/reserve.md);
+                             engine.dt 0 = automatic: 1/SW_RESERVE_STEPS
                              of the shortest of the pulse's period 2T, the rocking period
                              2 pi/p and the scene's fastest period 2 pi/omega_max, at most
                              the scheme's default; free_periods 0 = SW_RESERVE_FREE_PERIODS

@@ -151,11 +151,25 @@ int sw_output_finite(const sw_output_t *o)
     return output_finite(o);
 }
 
+static int state_finite(const sw_state_t *s)
+{
+    const double v[] = {s->u, s->u_dot, s->theta, s->theta_dot, s->z, s->z_dot};
+    return sw_all_finite(v, sizeof v / sizeof v[0]);
+}
+
 static void report_states(sw_engine_t *e, double t)
 {
     for (size_t i = 0; i < e->n; i++) {
         sw_pkg_t *P = &e->pk[i];
         sw_output_t o;
+        if (e->C.outcome_only && !e->o.on_state) {
+            /* no one reads the report (its margins cost about a step):
+             * only the last line of defence */
+            sw_model_to_state(P, &o.state);
+            if (!state_finite(&o.state))
+                sw_pkg_fault(&e->C, P, t, SW_EFAULT);
+            continue;
+        }
         sw_model_output(P, t, &o);
         /* Last line of defence: a non-finite number is never reported; the
          * package faults and is reported at rest instead. */
@@ -334,6 +348,7 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
                       .rest_eps = e->o.rest_eps > 0.0 ? e->o.rest_eps : 1e-9,
                       .dt_forced = e->o.dt_forced,
                       .stuck_stepped = e->o.stuck_stepped,
+                      .outcome_only = e->o.outcome_only,
                       .on_event = e->o.on_event,
                       .user = e->o.user};
     for (size_t i = 0; i < n; i++) {
@@ -546,6 +561,14 @@ int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
     sw_model_from_state(P, s);
     P->beyond_alpha = fabs(P->y[P->ith]) >= P->d.alpha;
     sw_step_reset(P);
+    return SW_OK;
+}
+
+int sw_engine_get_state(const sw_engine_t *e, size_t pkg, sw_state_t *s)
+{
+    if (!e || pkg >= e->n || !s)
+        return SW_EINVAL;
+    sw_model_to_state(&e->pk[pkg], s);
     return SW_OK;
 }
 

@@ -72,6 +72,15 @@ static void track_peak(const sw_ctx_t *C, sw_pkg_t *P, const sw_evcand_t *c, dou
     }
 }
 
+int sw_event_keep_outcome(sw_evcand_t c[], int nc)
+{
+    int n = 0;
+    for (int i = 0; i < nc; i++)
+        if (c[i].role == SW_ROLE_CUT)
+            c[n++] = c[i];
+    return n;
+}
+
 int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
                     const double y1[], const sw_evcand_t c[], int nc, double *tau_out)
 {

@@ -56,6 +56,7 @@ typedef struct {
     double rest_eps;      /* rest threshold, a fraction of the energy barrier */
     int dt_forced;        /* a forced dt is refused, never sub-stepped */
     int stuck_stepped;    /* step a stuck frame instead of its exact solution */
+    int outcome_only;     /* peaks and tips are not timed (sw_engine_opts_t) */
     sw_event_fn on_event; /* may be NULL */
     void *user;
     double origin;         /* s: the absolute time of the engine's t = 0 (the first
@@ -416,13 +417,18 @@ static inline int sw_step_restep(const sw_ctx_t *C, sw_pkg_t *P, double t0, doub
  * in [0, 1]); the timed events before it are reported on the way. */
 int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
                     const double y1[], const sw_evcand_t c[], int nc, double *tau);
+/* Keep the candidates that end a step (the dynamics), drop those that only
+ * time a peak, a tip or a cushion's lift (the report); the count left. */
+int sw_event_keep_outcome(sw_evcand_t c[], int nc);
 /* The same, asking the model for its candidates first: inline, because
  * most steps have none and the question is then all the work. */
 static inline int sw_event_find(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
                                 const double y1[], double *tau)
 {
     sw_evcand_t c[SW_MAX_CANDS];
-    const int nc = P->ops->candidates(P, C->scheme->cut_kinks, h, y0, y1, c);
+    int nc = P->ops->candidates(P, C->scheme->cut_kinks, h, y0, y1, c);
+    if (nc && C->outcome_only)
+        nc = sw_event_keep_outcome(c, nc);
     return nc ? sw_event_locate(C, P, t0, h, y0, y1, c, nc, tau) : SW_EVF_NONE;
 }
 /* Polish the event time by re-stepping; the state there in y; its time. */
