@@ -8,17 +8,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sched.h"
 #include "swaywatch/status.h"
 
 typedef struct {
     sw_reserve_t *reserve; /* NULL: no reserve (rate < 0) */
     sw_settle_t settle;
-    int settles;   /* impacts can be told apart (not a cushion) */
-    double next;   /* s of engine time: the next evaluation at or after it; NAN: the
-                      first output */
-    double origin; /* s, time of the first evaluation of the schedule */
-    double m;      /* evaluations scheduled since origin: next = origin + m period
-                      (a product, not a sum: no drift over hours) */
+    int settles;    /* impacts can be told apart (not a cushion) */
+    sw_sched_t due; /* when the next evaluation is due */
     sw_risk_pkg_t f;
     char no_reserve[256]; /* why this package has no reserve; "" when it has one */
 } pkg_t;
@@ -43,7 +40,7 @@ static void figures_init(pkg_t *p)
         sw_reserve_rest(p->reserve, &rest);
         p->f.rest_reserve_g = rest.reserve_g;
     }
-    p->next = NAN;
+    sw_sched_reset(&p->due);
     if (p->settles)
         sw_settle_init(&p->settle, impact_min);
 }
@@ -144,20 +141,9 @@ int sw_risk_output(sw_risk_t *r, const sw_output_t *out)
     pkg_t *p = &r->p[out->pkg];
     if (!p->reserve || !isfinite(out->t))
         return 0;
-    /* the engine's clock went back (restarted): schedule from here */
-    if (!isnan(p->next) && out->t < p->next - r->period)
-        p->next = NAN;
-    if (!isnan(p->next) && out->t < p->next)
+    if (!sw_sched_due(&p->due, out->t, r->period))
         return 0;
     evaluate(p, out);
-    if (isnan(p->next)) {
-        p->origin = out->t;
-        p->m = 0.0;
-    }
-    /* the next multiple of the period after this output (after a gap, the
-     * first one past it) */
-    p->m = fmax(p->m + 1.0, floor((out->t - p->origin) / r->period) + 1.0);
-    p->next = p->origin + p->m * r->period;
     return 1;
 }
 
