@@ -157,6 +157,47 @@ SW_API double sw_reserve_lower_bound(const sw_reserve_t *r, const sw_state_t *s,
 /* The scene's design pulses, s (n of them; at most SW_DESIGN_PULSES_MAX). */
 SW_API size_t sw_reserve_pulses(const sw_reserve_t *r, const double **T);
 
+/* ---- the smallest reserve along a log ---------------------------------- */
+
+#define SW_RESERVE_LOG_RATE 10.0 /* Hz of log time: states taken, as sw_risk's default */
+
+typedef struct {
+    double rate;               /* Hz of log time; 0 = SW_RESERVE_LOG_RATE */
+    long max_evals;            /* reserve evaluations at most; 0 = no limit */
+    sw_run_opts_t run;         /* the log's run, as sw_log_run() (callbacks ignored) */
+    sw_reserve_opts_t reserve; /* the reserve's options; zeros: its defaults */
+} sw_reserve_log_opts_t;
+
+typedef struct {
+    double min_g;    /* g: the smallest reserve found, the earliest if several (NAN: no
+                        state taken) */
+    double min_time; /* s, log time of that state (NAN: none) */
+    int direction;   /* sw_reserve_dir of min_g (0: none needed) */
+    double pulse;    /* s, its design pulse (0: none) */
+    double lower_g;  /* g: proven, no state taken has a smaller reserve (= min_g when
+                        exact) */
+    int exact;       /* every state taken was evaluated or proven not smaller */
+    size_t states;   /* states taken */
+    long evaluated;  /* reserve evaluations run (states at rest cost none) */
+    long faults;     /* evaluations in which a pulse run faulted */
+} sw_reserve_log_t;
+
+/* The smallest reserve along a log at scale 1, for what-if questions: the
+ * log is run as sw_log_run() runs it (then free motion), its states taken
+ * as sw_risk takes them (the first, then the first at or after each
+ * multiple of 1/rate s), and the reserve evaluated on them in the order of
+ * their proven lower bounds, smallest first (the most threatened states
+ * first), until no state left can have a smaller reserve than the
+ * smallest found: the same minimum as evaluating every state, at a
+ * fraction of the cost.  With max_evals the search may stop before that:
+ * exact is then 0 and the minimum lies in [lower_g, min_g].  Allocates
+ * (a state per evaluation time); no I/O.  Returns SW_OK, SW_EINVAL (bad
+ * arguments, no usable sample), SW_ENOMEM, the reserve's SW_ETOOBIG (a
+ * scene too stiff for it) or a run's error, with the reason in msg. */
+SW_API int sw_reserve_log_min(const sw_scene_t *sc, const sw_log_t *log,
+                              const sw_reserve_log_opts_t *o, sw_reserve_log_t *out, char *msg,
+                              size_t msglen);
+
 #ifdef __cplusplus
 }
 #endif

@@ -20,6 +20,7 @@
 typedef struct {
     sw_engine_t *e;
     int uplift_side, overturn_side;
+    void *state_user; /* the on_state callback's user (sw_runner_make_watched) */
 } sw_runner_t;
 
 /* An engine for one scene.  dt: the option, or the scheme's default capped
@@ -27,6 +28,12 @@ typedef struct {
  * rocking period.  Returns SW_OK, or the error with msg set. */
 int sw_runner_make(sw_runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o, double omega_e,
                    int *err, char *msg, size_t msglen);
+/* The same, with the engine's on_state callback (may be NULL).  The
+ * engine's user is the runner (its events need it): the callback gets R
+ * and finds its own user in R->state_user. */
+int sw_runner_make_watched(sw_runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o,
+                           double omega_e, sw_state_fn on_state, void *user, int *err, char *msg,
+                           size_t msglen);
 void sw_runner_reset(sw_runner_t *R);
 
 /* Free motion allowed after the input (s), for a package of rocking

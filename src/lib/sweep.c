@@ -82,6 +82,13 @@ void sw_runner_reset(sw_runner_t *R)
 int sw_runner_make(sw_runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o, double omega_e,
                    int *err, char *msg, size_t msglen)
 {
+    return sw_runner_make_watched(R, sc, o, omega_e, NULL, NULL, err, msg, msglen);
+}
+
+int sw_runner_make_watched(sw_runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o,
+                           double omega_e, sw_state_fn on_state, void *user, int *err, char *msg,
+                           size_t msglen)
+{
     memset(R, 0, sizeof *R);
     sw_derived_t d;
     char why[256];
@@ -113,6 +120,8 @@ int sw_runner_make(sw_runner_t *R, const sw_scene_t *sc, const sw_run_opts_t *o,
     }
     eo.on_event = on_run_event;
     eo.user = R;
+    eo.on_state = on_state;
+    R->state_user = user;
     why[0] = '\0';
     R->e = sw_engine_create(sc, 1, &eo, err, why, sizeof why);
     if (!R->e)
