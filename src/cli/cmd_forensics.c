@@ -108,6 +108,10 @@ static const sw_cli_option_t forensics_options[] = {
      .help = "the package with height H and width W (m), on the scene's support; repeatable"},
     {SW_CLI_FLAG, 0, "no-what-if", FO(w.no_what_if), .value = 1,
      .help = "only the replay and the safety factor"},
+    {SW_CLI_LONG, 0, "reserve-evals", "N", FO(w.reserve_evals), .min = 0, .max = 1L << 30,
+     .def = SW_CLI_WHATIF_RESERVE_EVALS, .what = "a whole number >= 0",
+     .help = "a what-if case's smallest reserve: at most N evaluations, the most threatened "
+             "moments first (default %g; 0: no limit); a case that needs more shows a bracket"},
     {SW_CLI_END},
 };
 
@@ -299,6 +303,30 @@ static void progress(void *user, const sw_safety_progress_t *p)
     F->progress_shown = 1;
 }
 
+/* The rows of the scenes as given: the replay's smallest reserve, every
+ * due state evaluated. */
+static void scene_reserves(sw_cli_forensics_t *F)
+{
+    for (size_t i = 0; i < F->ncases; i++) {
+        sw_cli_case_t *C = &F->cases[i];
+        const sw_risk_pkg_t *p = C->is_scene ? sw_risk_pkg(F->R.risk, C->pkg) : NULL;
+        if (!p)
+            continue;
+        if (p->no_reserve) {
+            snprintf(C->reserve_note, sizeof C->reserve_note, "%s", p->no_reserve);
+            continue;
+        }
+        C->has_reserve = 1;
+        C->rl.min_g = C->rl.lower_g = p->min_reserve_g;
+        C->rl.min_time = p->min_reserve_time;
+        C->rl.direction = p->min_direction;
+        C->rl.pulse = p->min_pulse;
+        C->rl.exact = 1;
+        C->rl.states = C->rl.evaluated = p->evaluations;
+        C->rl.faults = p->reserve_faults;
+    }
+}
+
 static int run_cases(sw_cli_forensics_t *F)
 {
     F->cases = sw_cli_whatif_build(F->scenes, F->n, &F->fo.w, &F->ncases);
@@ -325,8 +353,19 @@ static int run_cases(sw_cli_forensics_t *F)
         sw_cli_interrupt_now(
             "forensics: interrupted during the safety-factor search; --out and "
             "--events are complete, no report");
-    const int rc = sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads,
-                                     show ? progress : NULL, F);
+    int rc = sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads,
+                               show ? progress : NULL, F);
+    if (rc == SW_OK && F->R.risk && F->o.reserve_rate > 0.0) {
+        if (show)
+            fprintf(stderr,
+                    "\rswaywatch: forensics: the smallest reserve of each what-if case, "
+                    "%.0f s \033[K",
+                    now_s() - F->started);
+        F->progress_shown |= show;
+        scene_reserves(F);
+        rc = sw_cli_whatif_reserve(F->cases, F->ncases, &lg, &ro, F->o.reserve_rate,
+                                   F->fo.w.reserve_evals, (int)F->fo.threads);
+    }
     if (!F->scenes_shared)
         sw_cli_interrupt_now(NULL);
     F->search_s = now_s() - F->started;

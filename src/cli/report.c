@@ -253,16 +253,18 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
 {
     fprintf(f,
             "<h2>What would have saved it</h2>\n<p>The same recording, with each package "
-            "as given, alone on the bed, on typical supports and in other sizes. Safety "
-            "factor: the recording scaled by the first number leaves it upright, by the "
-            "second it overturns.</p>\n");
+            "as given, alone on the bed, on typical supports and in other sizes. Smallest "
+            "reserve: the design braking pulse, in g, that would have overturned it at its "
+            "most threatened moment (&le; x (&ge; y): between y and x, the search stopped at "
+            "its budget). Safety factor: the recording scaled by the first number leaves it "
+            "upright, by the second it overturns.</p>\n");
     for (size_t k = 0; k < F->n; k++) {
         fprintf(f, "<h3>");
         html(f, F->scenes[k].name);
         fprintf(f,
                 "</h3>\n<table class=\"whatif\"><tr><th>case</th><th>outcome</th>"
-                "<th>peak &theta;/&alpha;</th><th>smallest margin</th><th>safety "
-                "factor</th><th>package and support</th></tr>\n");
+                "<th>peak &theta;/&alpha;</th><th>smallest margin</th><th>smallest "
+                "reserve</th><th>safety factor</th><th>package and support</th></tr>\n");
         for (size_t i = 0; i < F->ncases; i++) {
             const sw_cli_case_t *C = &F->cases[i];
             if (C->pkg != k)
@@ -270,7 +272,7 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
             fprintf(f, "<tr><td>");
             html(f, C->name);
             if (!C->available) {
-                fprintf(f, "</td><td colspan=\"5\">not computed: ");
+                fprintf(f, "</td><td colspan=\"6\">not computed: ");
                 html(f, C->note);
                 fprintf(f, "</td></tr>\n");
                 continue;
@@ -283,6 +285,10 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
             num(f, "%.3f", r->max_theta_ratio);
             fprintf(f, "</td><td class=\"n\">");
             num(f, "%.3f", r->min_margin);
+            char rsv[192];
+            sw_cli_whatif_reserve_text(rsv, sizeof rsv, C);
+            fprintf(f, "</td><td class=\"n\">");
+            html(f, rsv);
             fprintf(f, "</td><td class=\"n\">");
             html(f, b);
             if (!C->sf.overturned && C->sf.below.found)

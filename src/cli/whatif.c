@@ -296,6 +296,60 @@ int sw_cli_whatif_run(sw_cli_case_t *cases, size_t n, const sw_log_t *log, const
     return rc == SW_ENOMEM ? SW_ENOMEM : SW_OK;
 }
 
+typedef struct {
+    sw_cli_case_t *cases;
+    size_t *of;
+    const sw_log_t *log;
+    sw_reserve_log_opts_t o;
+} reserve_job_t;
+
+static void reserve_job(void *user, size_t k)
+{
+    const reserve_job_t *J = user;
+    sw_cli_case_t *C = &J->cases[J->of[k]];
+    const int rc = sw_reserve_log_min(&C->scene, J->log, &J->o, &C->rl, C->reserve_note,
+                                      sizeof C->reserve_note);
+    C->reserve_status = rc;
+    C->has_reserve = rc == SW_OK;
+    if (rc != SW_OK && !C->reserve_note[0])
+        snprintf(C->reserve_note, sizeof C->reserve_note, "%s", sw_strerror(rc));
+}
+
+int sw_cli_whatif_reserve(sw_cli_case_t *cases, size_t n, const sw_log_t *log,
+                          const sw_run_opts_t *ro, double rate, long max_evals, int threads)
+{
+    size_t *of = calloc(n ? n : 1, sizeof *of), m = 0;
+    if (!of)
+        return SW_ENOMEM;
+    for (size_t i = 0; i < n; i++)
+        if (cases[i].available && !cases[i].is_scene)
+            of[m++] = i;
+    reserve_job_t J = {.cases = cases, .of = of, .log = log};
+    J.o.rate = rate;
+    J.o.max_evals = max_evals;
+    J.o.run = *ro;
+    sw_parallel_for(m, threads, reserve_job, &J);
+    int rc = SW_OK;
+    for (size_t k = 0; k < m; k++)
+        if (cases[of[k]].reserve_status == SW_ENOMEM)
+            rc = SW_ENOMEM;
+    free(of);
+    return rc;
+}
+
+void sw_cli_whatif_reserve_text(char *buf, size_t len, const sw_cli_case_t *C)
+{
+    const sw_reserve_log_t *r = &C->rl;
+    if (!C->has_reserve)
+        snprintf(buf, len, "%s%s", C->reserve_note[0] ? "n/a: " : "-", C->reserve_note);
+    else if (isnan(r->min_g))
+        snprintf(buf, len, "-");
+    else if (r->exact)
+        snprintf(buf, len, "%.3f g", r->min_g);
+    else
+        snprintf(buf, len, "<= %.3f g (>= %.3f)", r->min_g, r->lower_g);
+}
+
 /* ---- report ---------------------------------------------------------------------- */
 
 /* x with the fewest significant digits (at least 4) that tell it from y. */
@@ -391,8 +445,9 @@ void sw_cli_whatif_savers(char *buf, size_t len, const sw_cli_case_t *cs, size_t
 
 void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_t pkg)
 {
-    fprintf(f, "  %-22s %-10s %7s %8s %8s  %-20s %s\n", "case", "outcome", "peak/a", "peak",
-            "margin", "safety factor", "package and support");
+    fprintf(f, "  %-22s %-10s %7s %8s %8s  %-12s %-20s %s\n", "case", "outcome", "peak/a", "peak",
+            "margin", "min reserve", "safety factor", "package and support");
+    int bracket = 0;
     int luck = 0;
     for (size_t i = 0; i < n; i++) {
         const sw_cli_case_t *C = &cs[i];
@@ -410,16 +465,22 @@ void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_
             strncat(fac, " *", sizeof fac - strlen(fac) - 1);
             luck = 1;
         }
-        fprintf(f, "%-10s %7.3f %6.1f deg %8.3f  %-20s %s\n",
+        char rsv[192];
+        sw_cli_whatif_reserve_text(rsv, sizeof rsv, C);
+        bracket |= C->has_reserve && !C->rl.exact;
+        fprintf(f, "%-10s %7.3f %6.1f deg %8.3f  %-12s %-20s %s\n",
                 r->overturned ? "OVERTURNED" : "upright", r->max_theta_ratio,
                 fmin(r->max_theta_ratio * atan2(C->scene.width, C->scene.height), M_PI / 2) *
                     180.0 / M_PI,
-                r->min_margin, fac, C->desc);
+                r->min_margin, rsv, fac, C->desc);
     }
     fprintf(f,
             "  peak/a: largest |theta|/alpha; margin: smallest margin to overturn (1 at rest, "
             "0 at the edge);\n"
+            "  min reserve: the smallest reserve along the recording (the design pulse, in g, "
+            "that would\n  have overturned it at that moment; docs/reserve.md)%s;\n"
             "  safety factor: scales of the recording that leave it upright / overturn it%s\n",
+            bracket ? ", '<= x (>= y)': between y and x, the search stopped at its budget" : "",
             luck ? "\n  *: survived, but a weaker shock of the same shape overturns it" : "");
 }
 
@@ -466,6 +527,27 @@ void sw_cli_whatif_json_safety(FILE *f, const sw_cli_case_t *C)
     fprintf(f, ", \"trials\": %ld}", s->trials);
 }
 
+/* "min_reserve_g", its time, whether exact, its proven lower end, and
+ * the states evaluated; nulls without a reserve (and why). */
+static void whatif_json_reserve(FILE *f, const sw_cli_case_t *C)
+{
+    const sw_reserve_log_t *r = &C->rl;
+    const int has = C->has_reserve && !isnan(r->min_g);
+    fprintf(f, "\"min_reserve_g\": ");
+    sw_cli_json_num(f, has ? r->min_g : NAN);
+    fprintf(f, ", \"min_reserve_time\": ");
+    sw_cli_json_num(f, has ? r->min_time : NAN);
+    fprintf(f, ", \"min_reserve_exact\": %s, \"min_reserve_lower_g\": ",
+            has ? (r->exact ? "true" : "false") : "null");
+    sw_cli_json_num(f, has ? r->lower_g : NAN);
+    fprintf(f, ", \"reserve_states\": %zu, \"reserve_evaluations\": %ld", has ? r->states : 0,
+            has ? r->evaluated : 0L);
+    if (!C->has_reserve && C->reserve_note[0]) {
+        fprintf(f, ", \"no_reserve\": ");
+        sw_cli_json_string(f, C->reserve_note);
+    }
+}
+
 void sw_cli_whatif_json_case(FILE *f, const sw_cli_case_t *C)
 {
     fprintf(f, "{\"case\": ");
@@ -499,7 +581,9 @@ void sw_cli_whatif_json_case(FILE *f, const sw_cli_case_t *C)
     sw_cli_json_num(f, r->max_theta_ratio);
     fprintf(f, ", \"min_margin\": ");
     sw_cli_json_num(f, r->min_margin);
-    fprintf(f, ", \"impacts\": %ld, \"safety_factor\": ", r->impacts);
+    fprintf(f, ", \"impacts\": %ld, ", r->impacts);
+    whatif_json_reserve(f, C);
+    fprintf(f, ", \"safety_factor\": ");
     sw_cli_whatif_json_safety(f, C);
     fputc('}', f);
 }

@@ -37,6 +37,7 @@ typedef struct {
     double frame_omega, cushion_omega;
     sw_cli_list_t sizes; /* --size HxW */
     int no_what_if;      /* only the scenes as given */
+    long reserve_evals;  /* --reserve-evals: per case, at most (0: no limit) */
 } sw_cli_whatif_t;
 
 /* An option's check for a frequency (dest: a double, rad/s): "2Hz",
@@ -55,7 +56,19 @@ typedef struct {
     sw_model_kind model;
     int status;
     sw_safety_t sf;
+    /* the smallest reserve along the log (sw_reserve_log_min; the scene as
+     * given: the replay's): has_reserve 0 when not computed, reserve_note
+     * says why when it could not be */
+    int has_reserve, reserve_status;
+    sw_reserve_log_t rl;
+    char reserve_note[160];
 } sw_cli_case_t;
+
+/* Reserve evaluations at most per what-if case by default
+ * (--reserve-evals, sw_reserve_log_min's max_evals): the most threatened
+ * states first; a case that needs more shows its minimum as a bracket
+ * (docs/forensics.md). */
+#define SW_CLI_WHATIF_RESERVE_EVALS 400
 
 /* "HEIGHTxWIDTH" (m, both > 0) into *h, *w: 0, or -1 if it is not one. */
 int sw_cli_parse_size(const char *arg, double *h, double *w);
@@ -72,6 +85,15 @@ sw_cli_case_t *sw_cli_whatif_build(const sw_scene_t *scenes, size_t nsc, const s
 int sw_cli_whatif_run(sw_cli_case_t *cases, size_t n, const sw_log_t *log, const sw_run_opts_t *ro,
                       const sw_search_opts_t *so, int threads,
                       void (*progress)(void *user, const sw_safety_progress_t *p), void *user);
+
+/* The smallest reserve along the log of every available case that is not
+ * a scene as given, at rate Hz, on threads threads (the results do not
+ * depend on their number).  SW_OK or SW_ENOMEM. */
+int sw_cli_whatif_reserve(sw_cli_case_t *cases, size_t n, const sw_log_t *log,
+                          const sw_run_opts_t *ro, double rate, long max_evals, int threads);
+/* The case's smallest reserve as text: "0.236 g", "<= 0.236 g (>= 0.150)",
+ * "n/a: ..." or "-" (not computed). */
+void sw_cli_whatif_reserve_text(char *buf, size_t len, const sw_cli_case_t *C);
 
 /* The bracket of a found factor, with as many digits as its two ends need
  * to differ: "[0.459, 0.4593]". */

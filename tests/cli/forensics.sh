@@ -99,6 +99,48 @@ for pf, pr in zip(f["packages"], r["packages"]):
     assert pr["min_reserve_g"] is not None, pr  # 0 for the frame: it overturned
     assert pf["min_reserve_g"] == pr["min_reserve_g"], (pf["min_reserve_g"], pr["min_reserve_g"])
     assert pf["min_reserve_time"] == pr["min_reserve_time"]
+    # the row "as given" is the package's own
+    w = pf["what_if"][0]
+    assert w["min_reserve_g"] == pf["min_reserve_g"] and w["min_reserve_exact"], w
+PY
+# every what-if row has its smallest reserve: 0 where it overturned; the
+# frame's "bed" row is the bare crate, whose exhaustive minimum replay
+# found (the pruned search must find the very same state)
+python3 - "$TMP/two.json" <<'PY' || fail "what-if reserves"
+import json, sys
+j = json.load(open(sys.argv[1]))
+for p in j["packages"]:
+    for c in p["what_if"]:
+        if not c["available"]:
+            continue
+        assert c["min_reserve_g"] is not None, c
+        assert c["min_reserve_lower_g"] <= c["min_reserve_g"], c
+        if c["overturned"]:
+            assert c["min_reserve_g"] == 0 and c["min_reserve_exact"], c
+        assert c["reserve_evaluations"] <= 400 or c["as_given"], c
+bed = j["packages"][1]["what_if"][1]
+crate = j["packages"][0]
+assert bed["min_reserve_exact"], bed
+assert bed["min_reserve_g"] == crate["min_reserve_g"], (bed, crate["min_reserve_g"])
+assert bed["min_reserve_time"] == crate["min_reserve_time"], (bed, crate["min_reserve_time"])
+PY
+# a budget of one evaluation: a bracket that holds the exact value
+run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$CRATE" --json --reserve-evals 1 \
+    --frame-omega 5Hz --cushion-omega 60
+expect_rc 0 "--reserve-evals 1"
+cp "$TMP/out" "$TMP/ev1.json"
+run "$SW" forensics "$LOGS/braking-pothole.csv" --scene "$CRATE" --json --reserve-evals 0 \
+    --frame-omega 5Hz --cushion-omega 60
+expect_rc 0 "--reserve-evals 0"
+cp "$TMP/out" "$TMP/ev0.json"
+python3 - "$TMP/ev1.json" "$TMP/ev0.json" <<'PY' || fail "--reserve-evals bracket"
+import json, sys
+a, b = (json.load(open(p))["packages"][0]["what_if"] for p in sys.argv[1:])
+for ca, cb in zip(a[1:], b[1:]):
+    assert cb["min_reserve_exact"], cb
+    assert ca["reserve_evaluations"] <= 1, ca
+    assert ca["min_reserve_lower_g"] <= cb["min_reserve_g"] <= ca["min_reserve_g"], (ca, cb)
+assert any(not c["min_reserve_exact"] for c in a[1:]), "one evaluation cannot prove every minimum"
 PY
 
 # Hz and rad/s name the same frame: 1Hz = 6.283185307179586 rad/s.
