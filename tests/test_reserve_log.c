@@ -100,10 +100,11 @@ static void check_scene(const sw_scene_t *sc, double amp, int expect_overturn)
     sw_reserve_log_t got;
     char msg[256];
     assert_int_equal(sw_reserve_log_min(sc, &L->log, NULL, &got, msg, sizeof msg), SW_OK);
-    print_message("%s, %.2f g: exhaustive %.4f g at %.2f s (%ld evaluations); pruned %.4f g at "
-                  "%.2f s (%ld of %zu states)\n",
-                  sc->name, amp, ref.min_reserve_g, ref.min_reserve_time, ref.evaluations,
-                  got.min_g, got.min_time, got.evaluated, got.states);
+    print_message(
+        "%s, %.2f g: exhaustive %.4f g at %.2f s (%ld evaluations); pruned %.4f g at "
+        "%.2f s (%ld of %zu states)\n",
+        sc->name, amp, ref.min_reserve_g, ref.min_reserve_time, ref.evaluations, got.min_g,
+        got.min_time, got.evaluated, got.states);
     assert_true(got.exact);
     assert_true(got.min_g == got.lower_g);
     if (expect_overturn) {

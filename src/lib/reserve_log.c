@@ -22,7 +22,7 @@
 #include "swaywatch/status.h"
 
 typedef struct {
-    double t; /* s, log time */
+    double t;  /* s, log time */
     double lb; /* g, the proven lower bound of its reserve; the value at rest */
     int rest;  /* at rest: lb is its reserve */
     sw_state_t s;
@@ -111,8 +111,7 @@ static int search(sw_reserve_t *r, taken_t *v, size_t n, long max_evals, sw_rese
             else if (rc < 0)
                 return rc;
         }
-        if (res.reserve_g < out->min_g ||
-            (res.reserve_g == out->min_g && x->t < out->min_time)) {
+        if (res.reserve_g < out->min_g || (res.reserve_g == out->min_g && x->t < out->min_time)) {
             out->min_g = res.reserve_g;
             out->min_time = x->t;
             out->direction = res.direction;
