@@ -1,0 +1,583 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* safety_prep.c - one trial of a safety-factor search (safety.c): the log
+ * with its longitudinal acceleration scaled, run until the outcome is
+ * known, and what is prepared once per scene so that an hour-long log is
+ * affordable.
+ *
+ * Trials start as late as their outcome allows ("checkpoints").  Nothing
+ * can overturn a package before it leaves its rest contact, and until then
+ * its motion is known without running the model:
+ *   - on the bed it stands still while |x a_g| < g_eff tan(alpha) at the
+ *     samples (the input is linear between them), so a trial at scale x
+ *     starts at the sample before the first one that can lift it, and
+ *     whenever the package is at rest again it jumps to the sample before
+ *     the next one.  The engine integrates on the log's own time origin
+ *     (sw_engine_set_origin), so this is the very arithmetic of a run from
+ *     the start: the same result to the last bit;
+ *   - on a frame the package rides the frame, a linear oscillator: its
+ *     state at scale x is x times the state at scale 1, taken from one run
+ *     at a scale far too small to lift anything (the probe), stored every
+ *     CHECK samples.  A trial starts from the stored state before the first
+ *     sample at which the scaled support acceleration can reach the uplift
+ *     threshold (the same as a run from the start but for rounding);
+ *   - on a cushion (on the bed, no cubic term, no vertical input) the
+ *     rocking about rest is, to first order, a damped oscillator in closed
+ *     form; the trial starts from its scaled state a lead-in before the
+ *     first possible edge lift, long enough for what the linear state got
+ *     wrong (second order in the tilt) to decay below FORGET of itself;
+ *     and since the same holds after each stretch in which an edge lifted,
+ *     a trial in which no edge has lifted for a lead-in jumps, as on the
+ *     bed, to the linear state a lead-in before the next sample that can
+ *     lift an edge at its scale (a soft cushion rocks under a calm road
+ *     now and then all through a long log).
+ * Elsewhere (a cushion on a frame, vertical input, adaptive schemes on a
+ * frame, sample intervals long against the support's period) trials run
+ * from the start. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+#include "run.h"
+#include "safety_prep.h"
+#include "swaywatch/status.h"
+
+#define BLOCK 256              /* samples per block of the bed's lift index */
+#define SUPER 256              /* blocks per superblock */
+#define CHECK 256              /* samples between stored linear states */
+#define BARE_EDGE (1.0 - 1e-9) /* rounding of the interpolated input, with room */
+#define LONG_STEP 0.25         /* omega dt beyond which a sample interval may hide a peak */
+#define FORGET 1e-6            /* cushion: share of the start state's error left after the lead */
+
+/* ---- checkpoints ----------------------------------------------------------- */
+
+/* The scale at which sample i lifts a package standing on the bed: 0 if
+ * the bed falls away (g_eff <= 0), INFINITY without acceleration. */
+static double bare_scale(const prep_t *P, size_t i)
+{
+    const sw_log_t *L = P->log;
+    const double geff = P->sc->g + (L->a_z ? L->a_z[i] : 0.0); /* m/s^2 */
+    if (!(geff > 0.0))
+        return 0.0;
+    const double a = fabs(L->a_g[i]);
+    return a > 0.0 ? geff * P->tan_alpha / a : INFINITY;
+}
+
+/* The minima of the lifting scale per block and superblock, all
+ * INFINITY. */
+static int blocks_alloc(prep_t *P)
+{
+    const size_t n = P->log->n, nb = (n + BLOCK - 1) / BLOCK, ns = (nb + SUPER - 1) / SUPER;
+    P->blk = malloc(nb * sizeof *P->blk);
+    P->sup = malloc(ns * sizeof *P->sup);
+    if (!P->blk || !P->sup)
+        return SW_ENOMEM;
+    for (size_t b = 0; b < nb; b++) P->blk[b] = INFINITY;
+    for (size_t b = 0; b < ns; b++) P->sup[b] = INFINITY;
+    return SW_OK;
+}
+
+/* Sample i lifts at scale s. */
+static void block_min(prep_t *P, size_t i, double s)
+{
+    if (s < P->blk[i / BLOCK])
+        P->blk[i / BLOCK] = s;
+    if (s < P->sup[i / BLOCK / SUPER])
+        P->sup[i / BLOCK / SUPER] = s;
+}
+
+static int prep_bare(prep_t *P)
+{
+    if (blocks_alloc(P) != SW_OK)
+        return SW_ENOMEM;
+    for (size_t i = 0; i < P->log->n; i++) block_min(P, i, bare_scale(P, i));
+    P->kind = CK_BARE;
+    return SW_OK;
+}
+
+/* The first sample of the first block after sample i's with a sample
+ * that can lift at a scale up to X (blocks); n if none. */
+static size_t next_block(const prep_t *P, size_t i, double X)
+{
+    const size_t n = P->log->n, nb = (n + BLOCK - 1) / BLOCK;
+    size_t b = i / BLOCK + 1;
+    while (b < nb) {
+        if (b % SUPER == 0 && P->sup[b / SUPER] > X) {
+            b = (b / SUPER + 1) * SUPER;
+            continue;
+        }
+        if (P->blk[b] <= X)
+            return b * BLOCK;
+        b++;
+    }
+    return n;
+}
+
+/* The first sample at or after i that can lift a package on the bed at a
+ * scale up to X; n if none. */
+static size_t next_lift(const prep_t *P, size_t i, double X)
+{
+    const size_t n = P->log->n;
+    while (i < n) {
+        if (i % BLOCK == 0) {
+            const size_t b = i / BLOCK;
+            if (b % SUPER == 0 && P->sup[b / SUPER] > X) {
+                i = (b / SUPER + 1) * SUPER * BLOCK;
+                continue;
+            }
+            if (P->blk[b] > X) {
+                i = (b + 1) * BLOCK;
+                continue;
+            }
+        }
+        if (bare_scale(P, i) <= X)
+            return i;
+        i++;
+    }
+    return n;
+}
+
+/* A new lowest lifting scale s at sample i. */
+static int add_record(prep_t *P, size_t i, double s)
+{
+    if (P->nrec && !(s < P->rec[P->nrec - 1].s))
+        return SW_OK;
+    if (P->nrec == P->caprec) {
+        const size_t cap = P->caprec ? 2 * P->caprec : 64;
+        rec_t *r = realloc(P->rec, cap * sizeof *r);
+        if (!r)
+            return SW_ENOMEM;
+        P->rec = r;
+        P->caprec = cap;
+    }
+    P->rec[P->nrec++] = (rec_t){i, s};
+    return SW_OK;
+}
+
+/* The first sample that can lift the package at scale X (records); n if
+ * none. */
+static size_t first_lift(const prep_t *P, double X)
+{
+    size_t lo = 0, hi = P->nrec; /* records: i increasing, s decreasing */
+    while (lo < hi) {
+        const size_t m = lo + (hi - lo) / 2;
+        if (P->rec[m].s <= X)
+            hi = m;
+        else
+            lo = m + 1;
+    }
+    return lo < P->nrec ? P->rec[lo].i : P->log->n;
+}
+
+static int store_state(prep_t *P, size_t i, double a, double b)
+{
+    if (i % CHECK)
+        return SW_OK;
+    P->st[2 * (i / CHECK)] = a;
+    P->st[2 * (i / CHECK) + 1] = b;
+    return SW_OK;
+}
+
+/* A sample interval too long for its samples to bound the support's
+ * motion between them (a bridged gap): it may lift at any scale. */
+static int long_interval(const prep_t *P, size_t i, double w)
+{
+    return i > 0 && w * (P->log->t[i] - P->log->t[i - 1]) > LONG_STEP;
+}
+
+/* The frame: one run at a scale far too small to lift anything, which
+ * the stuck frame follows exactly (linear).  CK_NONE (no checkpoints) if
+ * the scheme steps the stuck frame adaptively or the probe ever left the
+ * stuck phase. */
+static int prep_frame(prep_t *P, sw_runner_t *R)
+{
+    const sw_log_t *L = P->log;
+    const sw_scheme_t *S = sw_scheme_lookup(sw_engine_scheme(R->e));
+    if (!S || sw_scheme_adaptive(S) || (P->ro && P->ro->engine.stuck_stepped))
+        return SW_OK;
+    const double probe = 1e-4 * P->bare_lift;
+    size_t next_restart = 0;
+    double peak = 0.0;
+    sw_runner_reset(R);
+    for (size_t i = 0; i < L->n; i++) {
+        while (next_restart < L->nrestart && L->restart[next_restart] <= i)
+            if (L->restart[next_restart++] == i)
+                sw_engine_restart(R->e);
+        if (sw_engine_push(R->e, L->t[i], probe * L->a_g[i], L->a_z ? L->a_z[i] : 0.0) < 0)
+            return SW_OK;
+        sw_output_t o;
+        sw_engine_get_output(R->e, 0, &o);
+        if (o.state.phase != SW_PHASE_STUCK)
+            return SW_OK;
+        const double v = o.uplift_ratio / probe; /* at scale 1 */
+        if (v > peak) {
+            peak = v;
+            P->i_peak = i;
+        }
+        const double s = long_interval(P, i, P->d.omega_b) ? 0.0 : v > 0.0 ? 1.0 / v : INFINITY;
+        if (add_record(P, i, s) != SW_OK)
+            return SW_ENOMEM;
+        store_state(P, i, o.state.u / probe, o.state.u_dot / probe);
+    }
+    P->lift_scale = peak > 0.0 ? 1.0 / peak : INFINITY;
+    P->kind = CK_FRAME;
+    return SW_OK;
+}
+
+/* Decay rate (1/s) of the slower mode of a damped oscillator. */
+static double decay_rate(double w, double zeta)
+{
+    return zeta < 1.0 ? zeta * w : w * (zeta - sqrt((zeta - 1.0) * (zeta + 1.0)));
+}
+
+/* A cushion on the bed: the rocking about rest to first order,
+ *   (I_C + m h^2) theta'' + C b^2/3 theta' + (K b^2/3 - m g h) theta = -m h a_g,
+ * in closed form between samples (sw_nj_step); an edge lifts when
+ * b |theta| reaches the static deflection z_s. */
+static int prep_cushion(prep_t *P)
+{
+    const sw_log_t *L = P->log;
+    const sw_derived_t *d = &P->d;
+    const double m = P->sc->mass, g = P->sc->g;
+    const double I = d->I_C + m * d->h * d->h;                /* kg m^2 */
+    const double k = d->K * d->b * d->b / 3.0 - m * g * d->h; /* N m/rad */
+    const double c = d->C * d->b * d->b / 3.0;                /* N m s/rad */
+    if (!(k > 0.0) || !(c > 0.0))
+        return SW_OK;
+    P->w = sqrt(k / I);
+    P->zeta = c / (2.0 * I * P->w);
+    P->gain = m * d->h / I;
+    const double lam = fmin(decay_rate(P->w, P->zeta), decay_rate(d->omega_c, d->zeta_c));
+    P->lead = log(1.0 / FORGET) / lam;
+    const double z_s = sw_cushion_static_deflection(d, g); /* m */
+    const double per = d->b * P->gain / z_s;               /* lift drive per unit u, 1/m */
+    if (blocks_alloc(P) != SW_OK)
+        return SW_ENOMEM;
+    double u[2] = {0.0, 0.0}, peak = 0.0;
+    size_t next_restart = 0;
+    for (size_t i = 0; i < L->n; i++) {
+        int fresh = i == 0;
+        while (next_restart < L->nrestart && L->restart[next_restart] <= i)
+            if (L->restart[next_restart++] == i)
+                fresh = 1;
+        if (fresh) {
+            u[0] = u[1] = 0.0;
+        } else {
+            const double H = L->t[i] - L->t[i - 1];
+            const double s = (L->a_g[i] - L->a_g[i - 1]) / H;
+            double u1[2];
+            sw_nj_step(P->w, P->zeta, H, L->a_g[i - 1], s, u, u1);
+            u[0] = u1[0];
+            u[1] = u1[1];
+        }
+        const double v = per * fabs(u[0]); /* drive / z_s at scale 1 */
+        if (v > peak) {
+            peak = v;
+            P->i_peak = i;
+        }
+        const double s = long_interval(P, i, P->w) ? 0.0 : v > 0.0 ? 1.0 / v : INFINITY;
+        if (add_record(P, i, s) != SW_OK)
+            return SW_ENOMEM;
+        block_min(P, i, s);
+        store_state(P, i, u[0], u[1]);
+    }
+    P->lift_scale = peak > 0.0 ? 1.0 / peak : INFINITY;
+    P->kind = CK_CUSHION;
+    return SW_OK;
+}
+
+/* Without checkpoints: the lifting scale from a run far too small to lift
+ * anything (linear to first order), as sweep.c's pulses do. */
+static void prep_probe(prep_t *P, sw_runner_t *R)
+{
+    const sw_log_t *L = P->log;
+    const double probe = 1e-4 * P->bare_lift;
+    const double z_s =
+        P->d.model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(&P->d, P->sc->g) : 0.0;
+    double peak = 0.0;
+    size_t next_restart = 0;
+    sw_runner_reset(R);
+    for (size_t i = 0; i < L->n; i++) {
+        while (next_restart < L->nrestart && L->restart[next_restart] <= i)
+            if (L->restart[next_restart++] == i)
+                sw_engine_restart(R->e);
+        if (sw_engine_push(R->e, L->t[i], probe * L->a_g[i], L->a_z ? L->a_z[i] : 0.0) < 0)
+            continue;
+        sw_output_t o;
+        sw_engine_get_output(R->e, 0, &o);
+        const double v = sw_run_probe_value(&P->d, &o, z_s);
+        if (v > peak)
+            peak = v;
+    }
+    P->lift_scale = sw_run_probe_lift(&P->d, probe, peak, z_s);
+}
+
+/* Times strictly increasing and every value finite: what checkpoints rely
+ * on (the engine would refuse the others, and a run from the start skips
+ * them). */
+static int clean_log(const sw_log_t *L)
+{
+    for (size_t i = 0; i < L->n; i++) {
+        if (!isfinite(L->t[i]) || !isfinite(L->a_g[i]) || (L->a_z && !isfinite(L->a_z[i])))
+            return 0;
+        if (i > 0 && !(L->t[i] > L->t[i - 1]))
+            return 0;
+    }
+    return L->n > 0;
+}
+
+void sw_safety_prep_free(prep_t *P)
+{
+    free(P->blk);
+    free(P->sup);
+    free(P->rec);
+    free(P->st);
+    P->blk = P->sup = P->st = NULL;
+    P->rec = NULL;
+}
+
+/* Everything a trial needs: the lifting scale and the checkpoints. */
+int sw_safety_prep_make(prep_t *P, char *msg, size_t msglen)
+{
+    int err = SW_OK;
+    const sw_log_t *L = P->log;
+    if (sw_scene_validate(P->sc, &P->d, NULL, NULL, NULL) != SW_OK) {
+        sw_set_msg(msg, msglen, "scene '%s' is not valid", P->sc->name);
+        return SW_EINVAL;
+    }
+    P->tan_alpha = tan(P->d.alpha);
+    for (size_t i = 0; i < L->n; i++)
+        if (isfinite(L->a_g[i]) && fabs(L->a_g[i]) > P->a_peak)
+            P->a_peak = fabs(L->a_g[i]);
+    if (P->a_peak == 0.0)
+        return SW_OK;
+    P->bare_lift = P->sc->g * P->tan_alpha / P->a_peak; /* scale lifting a package on the bed */
+    const int clean = clean_log(L);
+    if (P->d.model == SW_MODEL_BARE && clean) { /* the lowest of every sample's */
+        if ((err = prep_bare(P)) != SW_OK)
+            return err;
+        P->lift_scale = INFINITY;
+        for (size_t b = 0; b < (L->n + BLOCK * SUPER - 1) / (BLOCK * SUPER); b++)
+            P->lift_scale = fmin(P->lift_scale, P->sup[b]);
+        return SW_OK;
+    }
+    if (P->d.model == SW_MODEL_BARE && !L->a_z) {
+        P->lift_scale = P->bare_lift;
+        return SW_OK;
+    }
+    if (clean && !(P->st = calloc(2 * (L->n / CHECK + 1), sizeof *P->st)))
+        return SW_ENOMEM;
+    sw_runner_t R;
+    if (sw_runner_make(&R, P->sc, P->ro, 0.0, &err, msg, msglen) != SW_OK)
+        return err;
+    if (clean && P->d.model == SW_MODEL_FRAME)
+        err = prep_frame(P, &R);
+    else if (clean && !P->sc->has_frame && P->d.B3 == 0.0 && !L->a_z)
+        err = prep_cushion(P);
+    if (err == SW_OK && P->kind == CK_NONE)
+        prep_probe(P, &R);
+    sw_engine_destroy(R.e);
+    return err;
+}
+
+/* ---- one trial ---------------------------------------------------------------- */
+
+/* The last sample from lo up to i at least a lead-in before sample i
+ * (lo if none). */
+static size_t lead_in(const prep_t *P, size_t lo, size_t i)
+{
+    const sw_log_t *L = P->log;
+    const double t0 = L->t[i] - P->lead;
+    const size_t first = lo;
+    size_t hi = i;
+    while (lo < hi) {
+        const size_t m = lo + (hi - lo + 1) / 2;
+        if (L->t[m] <= t0)
+            lo = m;
+        else
+            hi = m - 1;
+    }
+    return L->t[lo] <= t0 ? lo : first;
+}
+
+/* Where a trial at scale x starts: the sample, and whether a lift is
+ * possible at all. */
+static size_t trial_start(const prep_t *P, double x, int *none)
+{
+    const sw_log_t *L = P->log;
+    size_t k = 0;
+    *none = 0;
+    if (P->kind == CK_BARE)
+        k = next_lift(P, 0, x / BARE_EDGE);
+    else if (P->kind != CK_NONE)
+        k = first_lift(P, x / LIFT_MARGIN_LOG);
+    if (k >= L->n) {
+        *none = 1;
+        k = P->kind == CK_BARE ? L->n - 1 : P->i_peak;
+    }
+    size_t i = k > 0 ? k - 1 : 0;
+    if (P->kind == CK_CUSHION) /* the lead-in */
+        i = lead_in(P, 0, i);
+    if (P->kind == CK_FRAME || P->kind == CK_CUSHION)
+        i -= i % CHECK;
+    return i;
+}
+
+/* The package at sample i (just pushed, at rest) in the scaled stored
+ * state. */
+static int linear_state(const prep_t *P, sw_engine_t *e, double x, size_t i)
+{
+    sw_output_t o;
+    sw_engine_get_output(e, 0, &o); /* at rest */
+    sw_state_t s = o.state;
+    const double *q = &P->st[2 * (i / CHECK)];
+    if (P->kind == CK_FRAME) {
+        s.u = x * q[0];
+        s.u_dot = x * q[1];
+    } else {
+        s.theta = x * P->gain * q[0];
+        s.theta_dot = x * P->gain * q[1];
+    }
+    return sw_engine_set_state(e, 0, &s);
+}
+
+/* After sample i on a cushion, no edge lifted since last_lift (s;
+ * INFINITY: one may be lifted now): the sample to jump to (a checkpoint a
+ * lead-in before the next that can lift an edge at X), or 0 for none
+ * worth it. */
+static size_t cushion_jump(const prep_t *P, size_t i, double last_lift, double X)
+{
+    const sw_log_t *L = P->log;
+    if (i % CHECK || L->t[i] - last_lift < P->lead)
+        return 0;
+    const size_t k = next_block(P, i, X);
+    size_t to = lead_in(P, i, k >= L->n ? L->n - 1 : k);
+    to -= to % CHECK;
+    return to >= i + 2 * CHECK && to + 2 < L->n ? to : 0;
+}
+
+/* The engine at sample i with the scaled stored state. */
+static int trial_begin(const prep_t *P, sw_runner_t *R, double x, size_t i)
+{
+    const sw_log_t *L = P->log;
+    sw_engine_t *e = R->e;
+    sw_runner_reset(R);
+    if (P->kind == CK_NONE) { /* from the start, skipping what the engine refuses */
+        sw_engine_push(e, L->t[0], x * L->a_g[0], L->a_z ? L->a_z[0] : 0.0);
+        return SW_OK;
+    }
+    if (sw_engine_set_origin(e, L->t[0]) != SW_OK)
+        return SW_EINVAL;
+    const int rc = sw_engine_push(e, L->t[i], x * L->a_g[i], L->a_z ? L->a_z[i] : 0.0);
+    if (rc < 0 || P->kind == CK_BARE || i == 0)
+        return rc < 0 ? rc : SW_OK;
+    return linear_state(P, e, x, i);
+}
+
+/* After sample i, on the bed: may the run jump ahead?  JUMP_GO with *to,
+ * the sample before the next that can lift the package, when it stands at
+ * rest and the input at samples i - 1 and i cannot lift it (nor, then,
+ * hold it: pkg.c); JUMP_KEEP: not now, look again after the next sample;
+ * JUMP_STOP: it moves (look again after its next event). */
+enum { JUMP_KEEP, JUMP_STOP, JUMP_GO };
+static int bare_jump(const prep_t *P, const sw_runner_t *R, size_t i, double X, size_t *to)
+{
+    const size_t n = P->log->n;
+    if (i == 0 || i + 2 >= n)
+        return JUMP_STOP;
+    if (bare_scale(P, i) <= X || bare_scale(P, i - 1) <= X)
+        return JUMP_KEEP;
+    sw_output_t o;
+    sw_engine_get_output(R->e, 0, &o);
+    if (o.state.phase != SW_PHASE_STUCK)
+        return JUMP_STOP;
+    const size_t k = next_lift(P, i + 1, X);
+    *to = k >= n ? n - 1 : k - 1;
+    return *to >= i + 2 ? JUMP_GO : JUMP_KEEP;
+}
+
+/* The trial's samples from i0 on, then the free motion (sw_run_log_on's
+ * loop, with the bed's jumps). */
+static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_run_result_t *r)
+{
+    const sw_log_t *L = P->log;
+    sw_engine_t *e = R->e;
+    const double X = x / BARE_EDGE;
+    size_t next_restart = 0;
+    while (next_restart < L->nrestart && L->restart[next_restart] <= i0) next_restart++;
+    int look = P->kind == CK_BARE; /* look for a jump: from the start, and after events */
+    double last_lift = L->t[i0];   /* cushion: the start's error decays as a lift's does */
+    for (size_t i = i0 + 1; i < L->n; i++) {
+        size_t to;
+        if (P->kind == CK_CUSHION &&
+            (to = cushion_jump(P, i - 1, last_lift, x / LIFT_MARGIN_LOG))) {
+            while (next_restart < L->nrestart && L->restart[next_restart] <= to) next_restart++;
+            sw_engine_restart(e);
+            const int rc = sw_engine_push(e, L->t[to], x * L->a_g[to], 0.0);
+            if (rc < 0)
+                return rc;
+            const int sr = linear_state(P, e, x, to);
+            if (sr != SW_OK)
+                return sr;
+            last_lift = L->t[to];
+            i = to;
+            continue; /* the loop goes on at sample to + 1 */
+        }
+        const int j = look ? bare_jump(P, R, i - 1, X, &to) : JUMP_STOP;
+        if (j == JUMP_STOP)
+            look = 0;
+        if (j == JUMP_GO) {
+            while (next_restart < L->nrestart && L->restart[next_restart] <= to) next_restart++;
+            sw_engine_restart(e); /* at rest already: the run goes on afresh from sample to */
+            i = to;
+        }
+        while (next_restart < L->nrestart && L->restart[next_restart] <= i)
+            if (L->restart[next_restart++] == i)
+                sw_engine_restart(e);
+        const int rc = sw_engine_push(e, L->t[i], x * L->a_g[i], L->a_z ? L->a_z[i] : 0.0);
+        if (rc == SW_EVENT) {
+            sw_summary_t s;
+            sw_engine_summary(e, 0, &s);
+            if (s.overturned)
+                break;
+            /* an edge lifts only between an uplift and the rest after it */
+            last_lift = s.uplifts > s.rests ? INFINITY : L->t[i];
+            look = P->kind == CK_BARE;
+        }
+    }
+    const double p = sw_engine_derived(e, 0)->p;
+    const double t = sw_engine_time(e);
+    if (isnan(t))
+        return SW_EINVAL;
+    return sw_run_free_motion(R, t + sw_run_free_time(P->ro, p),
+                              2.0 * M_PI / p / SW_RUN_CHECKS_PER_PERIOD, r);
+}
+
+/* One trial at scale x into r.  A search trial (full 0) at which nothing
+ * can lift the package is safe without a run; a full one runs anyway, over
+ * its largest response. */
+int sw_safety_trial(const prep_t *P, double x, int full, sw_run_result_t *r, char *msg,
+                    size_t msglen)
+{
+    memset(r, 0, sizeof *r);
+    int none, err = SW_OK;
+    const size_t i0 = trial_start(P, x, &none);
+    if (none && !full) {
+        r->end = SW_END_REST;
+        r->uplift_time = r->tip_time = r->overturn_time = NAN;
+        r->min_margin = 1.0;
+        r->t_end = P->log->t[P->log->n - 1];
+        return SW_OK;
+    }
+    sw_runner_t R;
+    if (sw_runner_make(&R, P->sc, P->ro, 0.0, &err, msg, msglen) != SW_OK)
+        return err;
+    if ((err = trial_begin(P, &R, x, i0)) == SW_OK)
+        err = trial_run(P, &R, x, i0, r);
+    sw_engine_destroy(R.e);
+    if (err == SW_EFAULT)
+        sw_set_msg(msg, msglen, "the model faulted during a trial");
+    else if (err < 0)
+        sw_set_msg(msg, msglen, "%s", sw_strerror(err));
+    return err;
+}

@@ -1,0 +1,53 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* safety_prep.h - the checkpoints of the safety-factor trials (safety_prep.c)
+ * and one trial, for the search of safety.c.  Internal. */
+#ifndef SWAYWATCH_SAFETY_PREP_H
+#define SWAYWATCH_SAFETY_PREP_H
+
+#include <stddef.h>
+
+#include "swaywatch/model.h"
+#include "swaywatch/sweep.h"
+
+#define LIFT_MARGIN_LOG 0.9 /* probes are sampled only at the log's samples */
+
+typedef enum { CK_NONE, CK_BARE, CK_FRAME, CK_CUSHION } ck_kind;
+
+typedef struct {
+    size_t i; /* sample */
+    double s; /* the lowest scale at which a sample up to i can lift the package */
+} rec_t;
+
+/* What every trial of one scene uses, made once before its search. */
+typedef struct {
+    const sw_scene_t *sc;
+    sw_derived_t d;
+    const sw_log_t *log;
+    const sw_run_opts_t *ro;
+    ck_kind kind;
+    double tan_alpha;
+    double *blk, *sup; /* bed, cushion: minima of the lifting scale per block and
+                          superblock */
+    rec_t *rec;        /* frame, cushion: prefix minima of the lifting scale */
+    size_t nrec, caprec;
+    double *st;           /* unit-scale states every CHECK samples: (u, u') of the frame, or of
+                             the cushion's rocking oscillator (theta = gain u) */
+    double w, zeta, gain; /* cushion's rocking oscillator: rad/s, 1, theta per u (rad/m) */
+    double lead;          /* s, cushion: lead-in before the first possible lift */
+    size_t i_peak;        /* sample of the largest drive (frame, cushion) */
+    double a_peak, bare_lift, lift_scale;
+} prep_t;
+
+/* What every trial of scene *P->sc on *P->log uses, made once before its
+ * search (P->sc, P->log and P->ro set by the caller).  SW_OK, or an error
+ * with msg set. */
+int sw_safety_prep_make(prep_t *P, char *msg, size_t msglen);
+void sw_safety_prep_free(prep_t *P);
+
+/* One trial at scale x into r.  A search trial (full 0) at which nothing
+ * can lift the package is safe without a run; a full one runs anyway, over
+ * its largest response. */
+int sw_safety_trial(const prep_t *P, double x, int full, sw_run_result_t *r, char *msg,
+                    size_t msglen);
+
+#endif
