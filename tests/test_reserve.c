@@ -362,6 +362,33 @@ static void test_energy_bound_closed_form(void **state)
     assert_true(sw_reserve_energy_bound(&d, sc.g, &s, T) == 0.0);
 }
 
+/* The energies behind the bound, per model, against closed forms: the
+ * rigid barrier g R (1 - cos alpha), the work rates sqrt(3/8) on the bed
+ * and 1/sqrt(2 gamma) on a frame, a block held still at theta holding
+ * g R (cos(alpha - theta) - cos(alpha)) above rest; a cushion's barrier
+ * is sw_cushion_barrier's; a model outside the enum gives NAN. */
+static void test_model_energies(void **state)
+{
+    (void)state;
+    const sw_scene_t bare = crate(), frame = crate_frame();
+    const sw_scene_t cush = with_cushion(crate(), 44.7, 0.045);
+    const sw_derived_t db = derived(&bare), df = derived(&frame), dc = derived(&cush);
+    const double g = bare.g;
+    assert_float_equal(sw_model_barrier(&db, g), g * db.R * (1.0 - cos(db.alpha)), 1e-12);
+    assert_float_equal(sw_model_barrier(&df, g), g * df.R * (1.0 - cos(df.alpha)), 1e-12);
+    assert_true(sw_model_barrier(&dc, g) == sw_cushion_barrier(&dc, g));
+    assert_float_equal(sw_model_work_rate(&db), sqrt(3.0 / 8.0), 1e-15);
+    assert_float_equal(sw_model_work_rate(&df), 1.0 / sqrt(2.0 * df.gamma), 1e-15);
+    const sw_state_t s = rocking(0.5 * db.alpha, 0.0);
+    const double want = g * db.R * (cos(db.alpha - s.theta) - cos(db.alpha));
+    assert_float_equal(sw_model_energy(&db, g, &s), want, 1e-12);
+    sw_derived_t bad = db;
+    bad.model = (sw_model_kind)7;
+    assert_true(isnan(sw_model_energy(&bad, g, &s)));
+    assert_true(isnan(sw_model_barrier(&bad, g)));
+    assert_true(isnan(sw_model_work_rate(&bad)));
+}
+
 /* The bound is a bound: just below it nothing overturns, from rest and
  * from rocking states, on the bed, the frame and a cushion, for short and
  * long pulses (rk8pd runs; rkck on the cushion). */
@@ -679,6 +706,7 @@ int main(void)
         cmocka_unit_test(test_already_falling),
         cmocka_unit_test(test_island),
         cmocka_unit_test(test_energy_bound_closed_form),
+        cmocka_unit_test(test_model_energies),
         cmocka_unit_test(test_energy_bound_holds),
         cmocka_unit_test(test_frame_lift_bound),
         cmocka_unit_test(test_lift_bound_tight),

@@ -175,6 +175,8 @@ SW_API int sw_engine_restart(sw_engine_t *e);
  * time is 0 if nothing was pushed. */
 typedef double (*sw_input_fn)(void *user, double t);
 SW_API int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user);
+/* The quiet input, 0 m/s^2 at every t (user ignored): free motion. */
+SW_API double sw_input_zero(void *user, double t);
 
 /* End of stream: with settle > 0, continue with zero input for up to settle
  * seconds or until every package is at rest or overturned.  Returns SW_OK or

@@ -51,6 +51,20 @@ SW_API double sw_energy_frame(const sw_derived_t *d, double g_eff, const sw_stat
 /* Energy of the bare block per unit mass (J/kg), from upright. */
 SW_API double sw_energy_bare(const sw_derived_t *d, double g_eff, const sw_state_t *s);
 
+/* --- any model, by d->model ---------------------------------------------
+ * Energies per unit package mass (J/kg) from rest, as the margins use
+ * them; NAN for a model outside the enum. */
+
+/* The total mechanical energy of state s (package, frame and supports). */
+SW_API double sw_model_energy(const sw_derived_t *d, double g, const sw_state_t *s);
+/* The energy barrier: the least energy with which |theta| reaches alpha. */
+SW_API double sw_model_barrier(const sw_derived_t *d, double g);
+/* c (1) with d sqrt(E)/dt <= c |a| for a bed acceleration a (m/s^2), E
+ * per unit package mass, while |theta| < alpha: the input's work rate
+ * over the centre of mass's largest horizontal speed that the kinetic
+ * energy allows (docs/reserve.md, the energy bound). */
+SW_API double sw_model_work_rate(const sw_derived_t *d);
+
 /* --- cushion (scene 3) ---------------------------------------------------
  * d comes from sw_scene_validate() of a cushion scene; g is the gravity to
  * use (m/s^2, the scene's g, or g_eff = g + a_z). */

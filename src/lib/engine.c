@@ -521,7 +521,7 @@ int sw_engine_restart(sw_engine_t *e)
     return SW_OK;
 }
 
-static double zero_input(void *user, double t)
+double sw_input_zero(void *user, double t)
 {
     (void)user;
     (void)t;
@@ -547,7 +547,7 @@ int sw_engine_finish(sw_engine_t *e, double settle)
         const double tn = fmin(t_end, e->t + chunk);
         if (!(tn > e->t))
             break; /* beyond the clock's resolution: no progress */
-        if (advance_to(e, tn, zero_input, NULL) == SW_EVENT)
+        if (advance_to(e, tn, sw_input_zero, NULL) == SW_EVENT)
             any = 1;
     }
     return any ? SW_EVENT : SW_OK;

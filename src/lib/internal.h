@@ -45,6 +45,10 @@ typedef struct {
 typedef struct sw_pkg sw_pkg_t;
 typedef struct sw_model_ops sw_model_ops_t;
 
+/* The values of sw_model_kind: the rows of every table indexed by it (the
+ * models in model.c, the schemes' specialised bodies in scheme.c). */
+#define SW_MODEL_KINDS 3
+
 /* One fixed step of length h (s) from (t, y) into yout. */
 typedef void (*sw_fixed_step_fn)(sw_pkg_t *P, double t, double h, const double y[], double yout[]);
 
@@ -271,6 +275,11 @@ struct sw_model_ops {
     /* the right-hand side reports the fastest contact rate of its stages,
      * and a fixed step is retaken shorter where that rate is too fast */
     int tracks_rate;
+    /* pure functions of the scene and a state (model.h's sw_model_energy,
+     * sw_model_barrier, sw_model_work_rate) */
+    double (*energy)(const sw_derived_t *d, double g, const sw_state_t *s);
+    double (*barrier)(const sw_derived_t *d, double g);
+    double (*work_rate)(const sw_derived_t *d);
 };
 
 extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
@@ -313,7 +322,7 @@ struct sw_scheme {
      * the fixed schemes also one per model with its body inlined (NULL:
      * the generic one serves) */
     sw_advance_fn advance;
-    sw_advance_fn advance_for[3];
+    sw_advance_fn advance_for[SW_MODEL_KINDS];
     /* the solution at t0 + h inside the step being examined (step.c:
      * re-step from its start, or the Hermite interpolant of a multistep
      * scheme, which cannot restart without losing its history) */
@@ -321,7 +330,7 @@ struct sw_scheme {
                   double y1[]);
     /* fixed steps: the body specialised for a model (the right-hand side
      * inlined per stage), or NULL for the generic body below */
-    sw_fixed_step_fn step_for[3];
+    sw_fixed_step_fn step_for[SW_MODEL_KINDS];
     sw_fixed_step_fn step;                       /* the generic body (the model's rhs per stage) */
     const gsl_odeiv2_step_type *const *gsl_type; /* adaptive schemes */
     int implicit;    /* needs the Jacobian, and a driver for its Newton tolerances */

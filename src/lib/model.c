@@ -23,12 +23,32 @@ const char *sw_phase_name(sw_phase p)
 /* The scene decides the model; a model is a row here. */
 const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind)
 {
-    static const sw_model_ops_t *const table[] = {
+    static const sw_model_ops_t *const table[SW_MODEL_KINDS] = {
         [SW_MODEL_BARE] = &sw_model_bare,
         [SW_MODEL_FRAME] = &sw_model_frame,
         [SW_MODEL_CUSHION] = &sw_model_cushion,
     };
+    _Static_assert(SW_MODEL_CUSHION + 1 == SW_MODEL_KINDS,
+                   "a new sw_model_kind needs SW_MODEL_KINDS and a row here");
     return (unsigned)kind < sizeof table / sizeof table[0] ? table[kind] : NULL;
+}
+
+double sw_model_energy(const sw_derived_t *d, double g, const sw_state_t *s)
+{
+    const sw_model_ops_t *m = d && s ? sw_model_ops_of(d->model) : NULL;
+    return m ? m->energy(d, g, s) : NAN;
+}
+
+double sw_model_barrier(const sw_derived_t *d, double g)
+{
+    const sw_model_ops_t *m = d ? sw_model_ops_of(d->model) : NULL;
+    return m ? m->barrier(d, g) : NAN;
+}
+
+double sw_model_work_rate(const sw_derived_t *d)
+{
+    const sw_model_ops_t *m = d ? sw_model_ops_of(d->model) : NULL;
+    return m ? m->work_rate(d) : NAN;
 }
 
 void sw_model_setup(sw_pkg_t *P)

@@ -711,6 +711,16 @@ static void cushion_output(const sw_pkg_t *P, double t, sw_output_t *o)
         sw_margin_cushion(&P->d, ge, &o->state, &o->margin, &o->margin_bound);
 }
 
+/* As the rigid models' (model_rigid.c); on the bed B holds still:
+ * X' = h cos(th) th', and KE >= m X'^2/2 + I_C th'^2/2 >= (m + I_C/h^2)
+ * X'^2/2, I_C/m = R^2/3. */
+static double cushion_work_rate(const sw_derived_t *d)
+{
+    if (d->gamma > 0.0)
+        return 1.0 / sqrt(2.0 * d->gamma);
+    return sqrt(d->h * d->h / (2.0 * (d->h * d->h + d->R * d->R / 3.0)));
+}
+
 const sw_model_ops_t sw_model_cushion = {
     .name = "cushion",
     .setup = cushion_setup,
@@ -724,4 +734,7 @@ const sw_model_ops_t sw_model_cushion = {
     .at_cut = cushion_at_cut,
     .moving = cushion_moving,
     .tracks_rate = 1,
+    .energy = sw_energy_cushion,
+    .barrier = sw_cushion_barrier,
+    .work_rate = cushion_work_rate,
 };

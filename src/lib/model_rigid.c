@@ -312,6 +312,29 @@ static void frame_output(const sw_pkg_t *P, double t, sw_output_t *o)
     rigid_output(P, SW_MODEL_FRAME, t, o);
 }
 
+/* g R (1 - cos alpha): the package's centre of mass raised over its
+ * corner, whatever the frame does. */
+static double rigid_barrier(const sw_derived_t *d, double g)
+{
+    return g * d->R * (1.0 - d->h / d->R);
+}
+
+/* In the bed's frame the input acts as the force -M a on the centre of
+ * mass of everything that moves (mass M, horizontal velocity X'): on the
+ * bed the block rotates about a corner, KE = (2/3) m R^2 th'^2 and
+ * |X'| <= R |th'|, so X'^2 <= (3/2) KE/m; with a frame KE >= M X'^2/2,
+ * M = m/gamma. */
+static double bare_work_rate(const sw_derived_t *d)
+{
+    (void)d;
+    return sqrt(3.0 / 8.0);
+}
+
+static double frame_work_rate(const sw_derived_t *d)
+{
+    return 1.0 / sqrt(2.0 * d->gamma);
+}
+
 const sw_model_ops_t sw_model_bare = {
     .name = "bare",
     .setup = bare_setup,
@@ -324,6 +347,9 @@ const sw_model_ops_t sw_model_bare = {
     .stuck_advance = sw_stuck_bare,
     .output = bare_output,
     .moving = bare_moving,
+    .energy = sw_energy_bare,
+    .barrier = rigid_barrier,
+    .work_rate = bare_work_rate,
 };
 
 const sw_model_ops_t sw_model_frame = {
@@ -338,4 +364,7 @@ const sw_model_ops_t sw_model_frame = {
     .stuck_advance = sw_stuck_frame,
     .output = frame_output,
     .moving = frame_moving,
+    .energy = sw_energy_frame,
+    .barrier = rigid_barrier,
+    .work_rate = frame_work_rate,
 };

@@ -54,6 +54,7 @@
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
 
+#include "reserve_lift.h"
 #include "run.h" /* sw_set_msg */
 
 #define DEFAULT_STEP 0.02
@@ -65,26 +66,17 @@
 #define DEFAULT_ATOL 1e-7
 #define DEFAULT_REST_EPS 1e-6  /* rest below 1e-6 of the barrier: ends impact cascades */
 #define CHECKS_PER_PERIOD 32.0 /* certificate checks per rocking period of free motion */
-#define LIFT_SAMPLES 400.0     /* samples per shortest period of the frame's lift table */
-#define LIFT_RINGING 2.0       /* bearing periods sampled after the pulse */
-#define LIFT_MAX_SAMPLES 50000 /* larger tables (very stiff bearings): no lift bound */
-#define LIFT_SLACK 0.995       /* sampled peaks are within 3e-5 of the true ones */
 #define ENERGY_SLACK 0.98      /* the energy bound is exact; the runs are not */
 #define CERT_SLACK 0.99        /* the same for the certificate during a pulse */
 #define CHECKS_PER_PULSE 16.0  /* certificate checks during a pulse */
 
 /* One design pulse: its engine and, for a frame, the stuck frame's linear
- * response sampled every h seconds: support acceleration per unit pulse
- * amplitude (A_u, 1), and per unit initial displacement and velocity
- * (A_1 in 1/s^2, A_2 in 1/s), with the states at the table's end. */
+ * response (reserve_lift.h). */
 typedef struct {
     double T;     /* s */
     double check; /* s, between certificate checks during the pulse: whole steps */
     sw_engine_t *e;
-    size_t n; /* samples; 0 = no table */
-    double h; /* s */
-    double *Au, *A1, *A2;
-    double end_u[2], end_1[2], end_2[2]; /* (u, u') at the end: m, m/s per unit */
+    sw_lift_table_t lift;
 } pulse_ctx_t;
 
 struct sw_reserve {
@@ -98,190 +90,35 @@ struct sw_reserve {
     double t_free;   /* s, free motion after a pulse */
     double chunk;    /* s, between certificate checks after the pulse */
     double sqrt_eb;  /* sqrt(J/kg): square root of the barrier energy */
-    double c_energy; /* 1: energy_c() */
+    double c_energy; /* 1: sw_model_work_rate() */
     size_t np;
     pulse_ctx_t p[SW_DESIGN_PULSES_MAX];
     sw_reserve_result_t rest;
 };
 
-static double zero_input(void *user, double t)
-{
-    (void)user;
-    (void)t;
-    return 0.0;
-}
-
 /* ---- bounds ------------------------------------------------------------- */
 
 /* The energy argument (docs/reserve.md).  In the bed's frame the input
- * acts as the force -M a on the centre of mass of everything that moves
- * (mass M, horizontal velocity X' relative to the bed), the rest of the
- * forces are conservative (gravity, springs) or dissipate (dampers,
- * impacts, the cushion's clamp): dE/dt <= M |a| |X'|.  With
- * |X'| <= sqrt(2 KE / M') for a mass M' <= M read off the kinetic energy
- * and KE <= E (the potential energy, from rest, is >= 0 while
- * |theta| < alpha), d sqrt(E/m)/dt <= c |a| with c below, E per unit
- * package mass m.  Reaching |theta| = alpha needs E >= E_b. */
-static double energy_c(const sw_derived_t *d)
-{
-    switch (d->model) {
-        case SW_MODEL_BARE:
-            /* KE = (2/3) m R^2 th'^2 about the corner, |X'| <= R |th'|:
-             * X'^2 <= (3/2) KE/m */
-            return sqrt(3.0 / 8.0);
-        case SW_MODEL_FRAME: return 1.0 / sqrt(2.0 * d->gamma); /* KE >= M X'^2/2, M = m/gamma */
-        case SW_MODEL_CUSHION:
-            if (d->gamma > 0.0)
-                return 1.0 / sqrt(2.0 * d->gamma);
-            /* on the bed B holds still: X' = h cos(th) th', and
-             * KE >= m X'^2/2 + I_C th'^2/2 >= (m + I_C/h^2) X'^2/2 */
-            return sqrt(d->h * d->h /
-                        (2.0 * (d->h * d->h + d->R * d->R / 3.0))); /* I_C/m = R^2/3 */
-        default: return INFINITY;
-    }
-}
-
-/* Energy of s and the barrier, J/kg of package mass; 0 if unknown. */
-static double energy_of(const sw_derived_t *d, double g, const sw_state_t *s)
-{
-    switch (d->model) {
-        case SW_MODEL_BARE: return sw_energy_bare(d, g, s);
-        case SW_MODEL_FRAME: return sw_energy_frame(d, g, s);
-        case SW_MODEL_CUSHION: return sw_energy_cushion(d, g, s);
-        default: return 0.0;
-    }
-}
-
-static double barrier_of(const sw_derived_t *d, double g)
-{
-    if (d->model == SW_MODEL_CUSHION)
-        return sw_cushion_barrier(d, g);
-    return g * d->R * (1.0 - d->h / d->R); /* g R (1 - cos alpha) */
-}
-
+ * acts on the centre of mass of everything that moves, the rest of the
+ * forces are conservative or dissipate, so d sqrt(E)/dt <= c |a| while
+ * |theta| < alpha (the potential energy from rest is >= 0 there), with c
+ * the model's work rate (sw_model_work_rate) and E per unit package mass.
+ * Reaching |theta| = alpha needs E >= E_b. */
 double sw_reserve_energy_bound(const sw_derived_t *d, double g, const sw_state_t *s, double T)
 {
     if (!d || !s || !(T > 0.0) || !(g > 0.0))
         return 0.0;
     if (fabs(s->theta) >= d->alpha || s->phase == SW_PHASE_OVERTURNED)
         return 0.0;
-    const double c = energy_c(d);
+    const double c = sw_model_work_rate(d);
     if (!isfinite(c))
         return 0.0;
     /* int |a| dt over the half-sine = 2 a_e T / pi; quiet input after the
      * pulse only loses energy */
-    const double gap = sqrt(barrier_of(d, g)) - sqrt(fmax(energy_of(d, g, s), 0.0));
+    const double gap = sqrt(sw_model_barrier(d, g)) - sqrt(fmax(sw_model_energy(d, g, s), 0.0));
     if (!(gap > 0.0))
         return 0.0;
     return M_PI * gap / (2.0 * T * c) / SW_G0;
-}
-
-/* The stuck frame's support acceleration A = -(2 zeta w u' + w^2 u), and
- * its linear response tables (see pulse_ctx_t), by RK4 at LIFT_SAMPLES
- * steps per shortest period (error ~1e-10 relative). */
-static void frame_deriv(const sw_derived_t *d, double a, const double y[2], double f[2])
-{
-    const double w = d->omega_b, z = d->zeta_b;
-    f[0] = y[1];
-    f[1] = -2.0 * z * w * y[1] - w * w * y[0] - a;
-}
-
-static double frame_accel(const sw_derived_t *d, const double y[2])
-{
-    const double w = d->omega_b, z = d->zeta_b;
-    return -(2.0 * z * w * y[1] + w * w * y[0]);
-}
-
-static void frame_rk4(const sw_derived_t *d, double T, double t, double h, double y[2], int forced)
-{
-    double k1[2], k2[2], k3[2], k4[2], yt[2];
-    const double w = M_PI / T;
-#define IN(tt) (forced && (tt) <= T ? sin(w * (tt)) : 0.0)
-    frame_deriv(d, IN(t), y, k1);
-    for (int i = 0; i < 2; i++) yt[i] = y[i] + 0.5 * h * k1[i];
-    frame_deriv(d, IN(t + 0.5 * h), yt, k2);
-    for (int i = 0; i < 2; i++) yt[i] = y[i] + 0.5 * h * k2[i];
-    frame_deriv(d, IN(t + 0.5 * h), yt, k3);
-    for (int i = 0; i < 2; i++) yt[i] = y[i] + h * k3[i];
-    frame_deriv(d, IN(t + h), yt, k4);
-#undef IN
-    for (int i = 0; i < 2; i++) y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-}
-
-static int lift_table(const sw_derived_t *d, pulse_ctx_t *P)
-{
-    const double Tb = 2.0 * M_PI / d->omega_b; /* s, bearing period */
-    const double span = P->T + LIFT_RINGING * Tb;
-    const double h = fmin(Tb, 2.0 * P->T) / LIFT_SAMPLES;
-    const double nd = ceil(span / h) + 1.0;
-    if (nd > LIFT_MAX_SAMPLES)
-        return SW_OK; /* no table: the energy bound alone */
-    P->n = (size_t)nd;
-    P->h = span / (double)(P->n - 1);
-    P->Au = malloc(3 * P->n * sizeof *P->Au);
-    if (!P->Au)
-        return SW_ENOMEM;
-    P->A1 = P->Au + P->n;
-    P->A2 = P->A1 + P->n;
-    double yu[2] = {0.0, 0.0}, y1[2] = {1.0, 0.0}, y2[2] = {0.0, 1.0};
-    for (size_t k = 0; k < P->n; k++) {
-        const double t = (double)k * P->h;
-        P->Au[k] = frame_accel(d, yu);
-        P->A1[k] = frame_accel(d, y1);
-        P->A2[k] = frame_accel(d, y2);
-        if (k + 1 == P->n)
-            break;
-        frame_rk4(d, P->T, t, P->h, yu, 1);
-        frame_rk4(d, P->T, t, P->h, y1, 0);
-        frame_rk4(d, P->T, t, P->h, y2, 0);
-    }
-    memcpy(P->end_u, yu, sizeof yu);
-    memcpy(P->end_1, y1, sizeof y1);
-    memcpy(P->end_2, y2, sizeof y2);
-    return SW_OK;
-}
-
-/* The lowest amplitude (g) of a pulse in direction dir that can lift the
- * package off the stuck frame in state s, or 0 if none is known.  On the
- * samples: |x U(t) + F(t)| >= L, with U the pulse's and F the initial
- * state's share of the support acceleration.  After them, with no input,
- * the bearing's energy e = (u'^2 + w^2 u^2)/2 can only fall and
- * |A| <= w sqrt(1 + 4 zeta^2) sqrt(2 e), which bounds every later peak. */
-static double frame_lift_g(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
-                           int dir)
-{
-    if (!P->n)
-        return 0.0;
-    const sw_derived_t *d = &R->d;
-    const double L = R->sc.g * tan(d->alpha); /* m/s^2 */
-    const double k = dir * SW_G0;             /* m/s^2 per g */
-    double x = INFINITY;
-    for (size_t i = 0; i < P->n; i++) {
-        const double U = k * P->Au[i];
-        const double F = s->u * P->A1[i] + s->u_dot * P->A2[i];
-        if (fabs(F) >= L)
-            return 0.0;
-        if (U != 0.0) {
-            const double need = (L - (U > 0.0 ? F : -F)) / fabs(U);
-            if (need < x)
-                x = need;
-        }
-    }
-    /* the ringing after the table */
-    const double w = d->omega_b;
-    const double Lp = L / (w * sqrt(1.0 + 4.0 * d->zeta_b * d->zeta_b));
-    const double a0 = k * P->end_u[0] * w, a1 = k * P->end_u[1];
-    const double b0 = (s->u * P->end_1[0] + s->u_dot * P->end_2[0]) * w;
-    const double b1 = s->u * P->end_1[1] + s->u_dot * P->end_2[1];
-    const double aa = a0 * a0 + a1 * a1, ab = a0 * b0 + a1 * b1, bb = b0 * b0 + b1 * b1;
-    if (bb >= Lp * Lp)
-        return 0.0;
-    if (aa > 0.0) {
-        const double xt = (-ab + sqrt(ab * ab - aa * (bb - Lp * Lp))) / aa;
-        if (xt < x)
-            x = xt;
-    }
-    return isfinite(x) ? LIFT_SLACK * x : 0.0;
 }
 
 /* The proven lower bound of the amplitude (g) that can overturn the
@@ -294,7 +131,7 @@ static double lower_bound_g(const sw_reserve_t *R, const pulse_ctx_t *P, const s
         if (R->d.model == SW_MODEL_BARE)
             x = fmax(x, R->lift_g); /* the half-sine's peak must reach g tan(alpha) */
         else if (R->d.model == SW_MODEL_FRAME)
-            x = fmax(x, frame_lift_g(R, P, s, dir));
+            x = fmax(x, sw_lift_table_bound(&P->lift, &R->d, R->sc.g, s, dir));
     }
     return x;
 }
@@ -325,7 +162,7 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
     if (a != 0.0) {
         /* The pulse, in whole steps between checks of the energy
          * certificate: if even all the work the rest of the pulse could do
-         * (c |a| int_t^T sin, energy_c()) cannot lift sqrt(E) to the
+         * (c |a| int_t^T sin, c the work rate) cannot lift sqrt(E) to the
          * barrier's, the run is safe now. */
         sw_pulse_t pl = {SW_PULSE_HALF_SINE, a, M_PI / P->T};
         const double w = M_PI / P->T, ca = R->c_energy * fabs(a) / w; /* sqrt(J/kg) */
@@ -342,7 +179,7 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
             sw_engine_get_state(e, 0, &o.state); /* the margins are not needed here */
             if (fabs(o.state.theta) >= R->d.alpha)
                 continue;
-            const double E = fmax(energy_of(&R->d, R->sc.g, &o.state), 0.0); /* J/kg */
+            const double E = fmax(sw_model_energy(&R->d, R->sc.g, &o.state), 0.0); /* J/kg */
             if (sqrt(E) + ca * (1.0 + cos(w * t)) < CERT_SLACK * R->sqrt_eb) {
                 r->end = bare ? SW_END_REST : SW_END_BOUND;
                 r->overturned = 0;
@@ -381,7 +218,7 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
             break;
         }
         t = fmin(t_limit, t + R->chunk);
-        rc = sw_engine_advance_fn(e, t, zero_input, NULL);
+        rc = sw_engine_advance_fn(e, t, sw_input_zero, NULL);
         if (rc < 0)
             return rc;
     }
@@ -527,6 +364,32 @@ static int merged_scan(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, in
     }
 }
 
+/* The scans of one pass into c, each from its lower bound: every design
+ * pulse in the first ndir directions (braking first), or in direction
+ * number only (>= 0) alone.  Returns how many. */
+static int scans_of(const sw_reserve_t *R, const sw_state_t *s, int ndir, int only, scan_t c[])
+{
+    int n = 0;
+    for (int k = 0; k < ndir; k++) {
+        const int dir = k == 0 ? SW_RESERVE_BRAKING : SW_RESERVE_ACCELERATING;
+        if (only >= 0 && k != only)
+            continue;
+        for (size_t j = 0; j < R->np; j++) {
+            scan_t *ci = &c[n++];
+            memset(ci, 0, sizeof *ci);
+            ci->P = &R->p[j];
+            ci->dir = dir;
+            ci->lo = lower_bound_g(R, ci->P, s, dir);
+            ci->bounded = ci->lo >= R->floor_g;
+            if (!ci->bounded)
+                ci->lo = R->floor_g;
+            if (!(ci->lo < R->max_g))
+                ci->done = 1;
+        }
+    }
+    return n;
+}
+
 static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *out)
 {
     memset(out, 0, sizeof *out);
@@ -560,24 +423,7 @@ static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *ou
     double known[2] = {R->max_g, R->max_g}; /* g: each direction is at least this */
     int complete[2] = {1, 1};               /* every scan of it went to max_g */
     for (int pass = 0; pass < passes; pass++) {
-        int n = 0;
-        for (int k = 0; k < ndir; k++) {
-            const int dir = k == 0 ? SW_RESERVE_BRAKING : SW_RESERVE_ACCELERATING;
-            if (passes == 2 && k != pass)
-                continue;
-            for (size_t j = 0; j < R->np; j++) {
-                scan_t *ci = &c[n++];
-                memset(ci, 0, sizeof *ci);
-                ci->P = &R->p[j];
-                ci->dir = dir;
-                ci->lo = lower_bound_g(R, ci->P, s, dir);
-                ci->bounded = ci->lo >= R->floor_g;
-                if (!ci->bounded)
-                    ci->lo = R->floor_g;
-                if (!(ci->lo < R->max_g))
-                    ci->done = 1;
-            }
-        }
+        const int n = scans_of(R, s, ndir, passes == 2 ? pass : -1, c);
         memset(&part[pass], 0, sizeof part[pass]);
         rc = merged_scan(R, s, c, n, &part[pass], &faulted);
         out->trials += part[pass].trials;
@@ -660,7 +506,7 @@ void sw_reserve_destroy(sw_reserve_t *r)
         return;
     for (size_t j = 0; j < r->np; j++) {
         sw_engine_destroy(r->p[j].e);
-        free(r->p[j].Au);
+        sw_lift_table_free(&r->p[j].lift);
     }
     free(r);
 }
@@ -719,8 +565,8 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
     R->t_free = fp * 2.0 * M_PI / d->p;
     R->chunk = 2.0 * M_PI / d->p / CHECKS_PER_PERIOD;
     R->z_rest = d->model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(d, R->sc.g) : 0.0;
-    R->sqrt_eb = sqrt(barrier_of(d, R->sc.g));
-    R->c_energy = energy_c(d);
+    R->sqrt_eb = sqrt(sw_model_barrier(d, R->sc.g));
+    R->c_energy = sw_model_work_rate(d);
 
     R->np = (size_t)R->sc.n_design_pulse;
     for (size_t j = 0; j < R->np; j++) {
@@ -763,7 +609,7 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
             sw_set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
             goto fail;
         }
-        if (d->model == SW_MODEL_FRAME && (*err = lift_table(d, P)) != SW_OK) {
+        if (d->model == SW_MODEL_FRAME && (*err = sw_lift_table_make(&P->lift, d, P->T)) != SW_OK) {
             sw_set_msg(msg, msglen, "out of memory");
             goto fail;
         }

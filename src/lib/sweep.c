@@ -48,13 +48,6 @@ void sw_set_msg(char *msg, size_t len, const char *fmt, ...)
     va_end(ap);
 }
 
-static double zero_input(void *user, double t)
-{
-    (void)user;
-    (void)t;
-    return 0.0;
-}
-
 /* ---- one run --------------------------------------------------------------- */
 
 /* The runner's event callback (run.h): the direction of the first uplift
@@ -194,7 +187,7 @@ int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_resu
             end = SW_END_TIMEOUT;
             break;
         }
-        const int rc = sw_engine_advance_fn(e, fmin(t_limit, t + chunk), zero_input, NULL);
+        const int rc = sw_engine_advance_fn(e, fmin(t_limit, t + chunk), sw_input_zero, NULL);
         if (rc < 0)
             return rc;
     }
