@@ -313,6 +313,38 @@ static double nj_rise(const nj_piece_t *pc, double L)
     return nj_rise_mono(pc, 0.0, L);
 }
 
+/* The uplift found tu (s) into the piece at tp of length L (s), from the
+ * state y = (u, u') at tp under input a_tp + s t: confirm it on the state
+ * itself, as the rocking phase will see it (the search works on a_g + D,
+ * which rounds differently), moving on by a few ulps if needed: a package
+ * lifted a hair before the crossing is pushed the wrong way and lands at
+ * once.  1 with P->t, P->y and *side at the uplift; 0 with P->y as it
+ * was. */
+static int confirm_uplift(sw_pkg_t *P, double tp, double tu, double L, const double y[2],
+                          double a_tp, int *side)
+{
+    const double s = P->in->ag_slope;
+    for (int it = 0;; it++) {
+        nj_t cu;
+        double yu[2];
+        nj_coef(P, tu, &cu);
+        nj_state(P, &cu, a_tp, s, y, yu);
+        P->y[P->iu] = yu[0];
+        P->y[P->idu] = yu[1];
+        const int now = sw_frame_uplift_side(P, tp + tu);
+        if (now != 0) {
+            P->t = tp + tu;
+            *side = now;
+            return 1;
+        }
+        P->y[P->iu] = y[0];
+        P->y[P->idu] = y[1];
+        if (tu >= L || it >= 40)
+            return 0;
+        tu = fmin(L, tu + 4.0 * DBL_EPSILON * fmax(1.0, fabs(tp + tu)) * (double)(1L << it));
+    }
+}
+
 /* Advance a stuck frame from P->t toward t1 under the sampled (linear)
  * input with the exact solution.  Returns the uplift time (P->t and P->y
  * are then the state there and *side the direction), -1 with the state
@@ -376,29 +408,8 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
                     tu = r;
             }
         }
-        for (int it = 0; tu >= 0.0; it++) {
-            /* Confirm on the state itself, as the rocking phase will see it
-             * (the search works on a_g + D, which rounds differently), moving
-             * on by a few ulps if needed: a package lifted a hair before the
-             * crossing is pushed the wrong way and lands at once. */
-            nj_t cu;
-            double yu[2];
-            nj_coef(P, tu, &cu);
-            nj_state(P, &cu, a_tp, s, y, yu);
-            P->y[P->iu] = yu[0];
-            P->y[P->idu] = yu[1];
-            const int now = sw_frame_uplift_side(P, tp + tu);
-            if (now != 0) {
-                P->t = tp + tu;
-                *side = now;
-                return P->t;
-            }
-            P->y[P->iu] = y[0];
-            P->y[P->idu] = y[1];
-            if (tu >= L || it >= 40)
-                break;
-            tu = fmin(L, tu + 4.0 * DBL_EPSILON * fmax(1.0, fabs(tp + tu)) * (double)(1L << it));
-        }
+        if (tu >= 0.0 && confirm_uplift(P, tp, tu, L, y, a_tp, side))
+            return P->t;
         y[0] = y1[0];
         y[1] = y1[1];
         d[0] = d1[0];
