@@ -115,8 +115,16 @@ static double f_root(const cush_t *c, const kin_t *k, double p, double q)
 static const double GL_X = 0.77459666924148337704; /* sqrt(3/5) */
 static const double GL_W0 = 8.0 / 9.0, GL_W1 = 5.0 / 9.0;
 
-/* Add F, Ms and S of the pushing piece [p, q]. */
-static void add_piece(const cush_t *c, const kin_t *k, double p, double q, contact_t *o)
+/* What a caller of contact() needs: the push (F, Ms), the stiffness and
+ * damping moments (S, S1, S2, L0, L1, L2), the strain energy (U).  The
+ * right-hand side needs the moments only while its rate is tracked, and
+ * the strain energy never; each sum is the same, bit for bit, whatever
+ * else is computed. */
+enum { CT_PUSH = 1, CT_MOMENTS = 2, CT_STRAIN = 4 };
+
+/* Add F and Ms, and with CT_MOMENTS the moments, of the pushing piece
+ * [p, q]. */
+static void add_piece(const cush_t *c, const kin_t *k, double p, double q, int what, contact_t *o)
 {
     const double mid = 0.5 * (p + q), half = 0.5 * (q - p);
     const double xs[3] = {mid - half * GL_X, mid, mid + half * GL_X};
@@ -124,9 +132,11 @@ static void add_piece(const cush_t *c, const kin_t *k, double p, double q, conta
     for (int i = 0; i < 3; i++) {
         const double z = k->z0 + k->s1 * xs[i];
         const double f = c->kp * z + c->bp * z * z * z + c->cp * (k->v0 + k->v1 * xs[i]);
-        const double kt = c->kp + 3.0 * c->bp * z * z;
         o->F += ws[i] * f;
         o->Ms += ws[i] * f * xs[i];
+        if (!(what & CT_MOMENTS))
+            continue;
+        const double kt = c->kp + 3.0 * c->bp * z * z;
         o->S += ws[i] * kt;
         o->S1 += ws[i] * kt * xs[i];
         o->S2 += ws[i] * kt * xs[i] * xs[i];
@@ -139,7 +149,7 @@ static void add_piece(const cush_t *c, const kin_t *k, double p, double q, conta
 /* Forces, tangent stiffness and strain energy of the cushion at (theta, z)
  * moving at (theta', z'), given s = sin(theta) and co = cos(theta): the
  * right-hand side needs them too, and they are a fifth of its cost. */
-static void contact(const cush_t *c, double s, double co, double z, double dth, double dz,
+static void contact(const cush_t *c, double s, double co, double z, double dth, double dz, int what,
                     contact_t *o)
 {
     memset(o, 0, sizeof *o);
@@ -154,7 +164,7 @@ static void contact(const cush_t *c, double s, double co, double z, double dth, 
     const kin_t k = {z, s, dz, dth * co};
 
     /* strain energy, over the compressed part whatever the damping does */
-    {
+    if (what & CT_STRAIN) {
         const double mid = 0.5 * (l + r), half = 0.5 * (r - l);
         const double xs[3] = {mid - half * GL_X, mid, mid + half * GL_X};
         const double ws[3] = {GL_W1 * half, GL_W0 * half, GL_W1 * half};
@@ -164,6 +174,8 @@ static void contact(const cush_t *c, double s, double co, double z, double dth, 
         }
     }
 
+    if (!(what & (CT_PUSH | CT_MOMENTS)))
+        return;
     /* f is convex on [l, r]: find its lowest point m */
     const double dl = df_at(c, &k, l), dr = df_at(c, &k, r);
     double m;
@@ -182,14 +194,15 @@ static void contact(const cush_t *c, double s, double co, double z, double dth, 
     const double fl = f_at(c, &k, l), fr = f_at(c, &k, r), fm = f_at(c, &k, m);
     if (fm >= 0.0) {
         /* pushes everywhere (an end can only be < 0 by round-off in m) */
-        add_piece(c, &k, fl < 0.0 ? f_root(c, &k, l, m) : l, fr < 0.0 ? f_root(c, &k, m, r) : r, o);
+        add_piece(c, &k, fl < 0.0 ? f_root(c, &k, l, m) : l, fr < 0.0 ? f_root(c, &k, m, r) : r,
+                  what, o);
         return;
     }
     /* convex: f < 0 on one interval around m, >= 0 outside it */
     if (fl > 0.0)
-        add_piece(c, &k, l, f_root(c, &k, l, m), o);
+        add_piece(c, &k, l, f_root(c, &k, l, m), what, o);
     if (fr > 0.0)
-        add_piece(c, &k, f_root(c, &k, m, r), r, o);
+        add_piece(c, &k, f_root(c, &k, m, r), r, what, o);
 }
 
 /* ---- rest --------------------------------------------------------------- */
@@ -328,7 +341,7 @@ static int cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[])
     const double th = y[P->ith], z = y[P->iz], dth = y[P->idth], dz = y[P->idz];
     const double s = sin(th), co = cos(th), h = d->h;
     contact_t k;
-    contact(&c, s, co, z, dth, dz, &k);
+    contact(&c, s, co, z, dth, dz, P->track_rate ? CT_PUSH | CT_MOMENTS : CT_PUSH, &k);
     if (P->track_rate)
         P->rate_seen = fmax(P->rate_seen, contact_rate(P, th, &k));
     const double J = d->R * d->R / 3.0 + h * h; /* m^2, (I_C + m h^2)/m */
@@ -387,7 +400,7 @@ static double cushion_lift(const sw_pkg_t *P, const double y[], double *der)
 static double potential(const cush_t *c, const sw_derived_t *d, double g, double th, double z)
 {
     contact_t k;
-    contact(c, sin(th), cos(th), z, 0.0, 0.0, &k);
+    contact(c, sin(th), cos(th), z, 0.0, 0.0, CT_STRAIN, &k);
     return k.U - g * z + g * d->h * (cos(th) - 1.0);
 }
 
@@ -409,7 +422,7 @@ double sw_cushion_barrier(const sw_derived_t *d, double g)
     double z = zs + d->b * sin(d->alpha);
     for (int it = 0; it < 200; it++) {
         contact_t k;
-        contact(&c, sin(d->alpha), cos(d->alpha), z, 0.0, 0.0, &k);
+        contact(&c, sin(d->alpha), cos(d->alpha), z, 0.0, 0.0, CT_PUSH | CT_MOMENTS, &k);
         if (!(k.S > 0.0))
             break;
         const double dz = (k.F - g) / k.S;
