@@ -99,7 +99,7 @@ double sw_lift_table_bound(const sw_lift_table_t *P, const sw_derived_t *d, doub
     if (!P->n)
         return 0.0;
     const double L = g * tan(d->alpha); /* m/s^2 */
-    const double k = dir * SW_G0;             /* m/s^2 per g */
+    const double k = dir * SW_G0;       /* m/s^2 per g */
     double x = INFINITY;
     for (size_t i = 0; i < P->n; i++) {
         const double U = k * P->Au[i];
