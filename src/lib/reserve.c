@@ -68,7 +68,7 @@
 #define CHECKS_PER_PERIOD 32.0 /* certificate checks per rocking period of free motion */
 #define ENERGY_SLACK 0.98      /* the energy bound is exact; the runs are not */
 #define CERT_SLACK 0.99        /* the same for the certificate during a pulse */
-#define CHECKS_PER_PULSE 16.0  /* certificate checks during a pulse */
+#define CHECKS_PER_PULSE 8.0   /* certificate checks during a pulse (fewer cut adaptive steps) */
 
 /* One design pulse: its engine and, for a frame, the stuck frame's linear
  * response (reserve_lift.h). */
