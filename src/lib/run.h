@@ -44,6 +44,12 @@ double sw_run_free_time(const sw_run_opts_t *o, double p);
  * t_limit (s) passes; checks every chunk seconds.  Fills r. */
 int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_result_t *r);
 
+/* Push sample i of the log, its longitudinal acceleration times scale,
+ * restarting the engine first where the input gate restarted it
+ * (*next_restart: the next entry of log->restart to look at, 0 at the
+ * start).  Returns sw_engine_push()'s status. */
+int sw_run_push(sw_engine_t *e, const sw_log_t *log, size_t i, double scale, size_t *next_restart);
+
 /* The log scaled, from the start, then free motion (sw_log_run()). */
 int sw_run_log_on(sw_runner_t *R, const sw_log_t *log, double scale, const sw_run_opts_t *o,
                   sw_run_result_t *r);

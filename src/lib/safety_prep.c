@@ -200,10 +200,7 @@ static int prep_frame(prep_t *P, sw_runner_t *R)
     double peak = 0.0;
     sw_runner_reset(R);
     for (size_t i = 0; i < L->n; i++) {
-        while (next_restart < L->nrestart && L->restart[next_restart] <= i)
-            if (L->restart[next_restart++] == i)
-                sw_engine_restart(R->e);
-        if (sw_engine_push(R->e, L->t[i], probe * L->a_g[i], L->a_z ? L->a_z[i] : 0.0) < 0)
+        if (sw_run_push(R->e, L, i, probe, &next_restart) < 0)
             return SW_OK;
         sw_output_t o;
         sw_engine_get_output(R->e, 0, &o);
@@ -298,10 +295,7 @@ static void prep_probe(prep_t *P, sw_runner_t *R)
     size_t next_restart = 0;
     sw_runner_reset(R);
     for (size_t i = 0; i < L->n; i++) {
-        while (next_restart < L->nrestart && L->restart[next_restart] <= i)
-            if (L->restart[next_restart++] == i)
-                sw_engine_restart(R->e);
-        if (sw_engine_push(R->e, L->t[i], probe * L->a_g[i], L->a_z ? L->a_z[i] : 0.0) < 0)
+        if (sw_run_push(R->e, L, i, probe, &next_restart) < 0)
             continue;
         sw_output_t o;
         sw_engine_get_output(R->e, 0, &o);
@@ -531,10 +525,7 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_ru
             sw_engine_restart(e); /* at rest already: the run goes on afresh from sample to */
             i = to;
         }
-        while (next_restart < L->nrestart && L->restart[next_restart] <= i)
-            if (L->restart[next_restart++] == i)
-                sw_engine_restart(e);
-        const int rc = sw_engine_push(e, L->t[i], x * L->a_g[i], L->a_z ? L->a_z[i] : 0.0);
+        const int rc = sw_run_push(e, L, i, x, &next_restart);
         if (rc == SW_EVENT) {
             sw_summary_t s;
             sw_engine_summary(e, 0, &s);

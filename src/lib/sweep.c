@@ -281,6 +281,14 @@ int sw_pulse_run_from(const sw_scene_t *sc, const sw_state_t *s, const sw_pulse_
     return err;
 }
 
+int sw_run_push(sw_engine_t *e, const sw_log_t *log, size_t i, double scale, size_t *next_restart)
+{
+    while (*next_restart < log->nrestart && log->restart[*next_restart] <= i)
+        if (log->restart[(*next_restart)++] == i)
+            sw_engine_restart(e);
+    return sw_engine_push(e, log->t[i], scale * log->a_g[i], log->a_z ? log->a_z[i] : 0.0);
+}
+
 int sw_run_log_on(sw_runner_t *R, const sw_log_t *log, double scale, const sw_run_opts_t *o,
                   sw_run_result_t *r)
 {
@@ -289,11 +297,7 @@ int sw_run_log_on(sw_runner_t *R, const sw_log_t *log, double scale, const sw_ru
     sw_runner_reset(R);
     size_t next_restart = 0;
     for (size_t i = 0; i < log->n; i++) {
-        while (next_restart < log->nrestart && log->restart[next_restart] <= i)
-            if (log->restart[next_restart++] == i)
-                sw_engine_restart(e);
-        const int rc =
-            sw_engine_push(e, log->t[i], scale * log->a_g[i], log->a_z ? log->a_z[i] : 0.0);
+        const int rc = sw_run_push(e, log, i, scale, &next_restart);
         if (rc == SW_EVENT) {
             sw_summary_t s;
             sw_engine_summary(e, 0, &s);
