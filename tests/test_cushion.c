@@ -31,11 +31,7 @@ static sw_scene_t cushion(double height, double width, double wc, double zc, dou
 {
     sw_scene_t sc =
         omega_b > 0.0 ? tu_frame(height, width, 250.0, omega_b, zeta_b) : tu_bare(height, width);
-    sc.has_cushion = 1;
-    sc.cushion_omega = wc;
-    sc.cushion_k_given = SW_GIVEN_RATIO;
-    sc.cushion_zeta = zc;
-    sc.cushion_c_given = SW_GIVEN_RATIO;
+    sc = tu_cushion(sc, wc, zc);
     sc.cushion_cubic = B3;
     return sc;
 }

@@ -127,12 +127,7 @@ static void test_frame_past_alpha(void **state)
 
 static sw_scene_t cushion(double omega_c, double zeta_c)
 {
-    sw_scene_t sc = tu_bare(2.0, 2.0 * tan(A20));
-    sc.has_cushion = 1;
-    sc.cushion_omega = omega_c;
-    sc.cushion_zeta = zeta_c;
-    sc.cushion_k_given = sc.cushion_c_given = SW_GIVEN_RATIO;
-    return sc;
+    return tu_cushion(tu_bare(2.0, 2.0 * tan(A20)), omega_c, zeta_c);
 }
 
 typedef struct {

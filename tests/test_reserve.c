@@ -31,15 +31,6 @@ static sw_scene_t crate_frame(void)
     return tu_frame(2.0, 2.0 * tan(A20), 250.0, 5.59, 0.1);
 }
 
-static sw_scene_t with_cushion(sw_scene_t sc, double omega_c, double zeta_c)
-{
-    sc.has_cushion = 1;
-    sc.cushion_omega = omega_c;
-    sc.cushion_zeta = zeta_c;
-    sc.cushion_k_given = sc.cushion_c_given = SW_GIVEN_RATIO;
-    return sc;
-}
-
 static sw_scene_t with_pulse(sw_scene_t sc, double T)
 {
     sc.design_pulse[0] = T;
@@ -170,9 +161,9 @@ static void test_rest_boundary_models(void **state)
     const sw_scene_t fr = crate_frame();
     check_rest_boundary(&fr, 1.0);
     check_rest_boundary(&fr, 0.3);
-    const sw_scene_t cu = with_cushion(crate(), 44.7, 0.045);
+    const sw_scene_t cu = tu_cushion(crate(), 44.7, 0.045);
     check_rest_boundary(&cu, 1.0);
-    const sw_scene_t cf = with_cushion(crate_frame(), 100.0, 0.1);
+    const sw_scene_t cf = tu_cushion(crate_frame(), 100.0, 0.1);
     check_rest_boundary(&cf, 0.5);
 }
 
@@ -261,7 +252,7 @@ static void test_frame_lift_bound(void **state)
 static void test_rocking_cushion(void **state)
 {
     (void)state;
-    const sw_scene_t sc = with_cushion(crate(), 44.7, 0.045);
+    const sw_scene_t sc = tu_cushion(crate(), 44.7, 0.045);
     const sw_derived_t d = derived(&sc);
     sw_state_t s = rocking(0.15 * A20, 0.05);
     s.z = sw_cushion_static_deflection(&d, sc.g);
@@ -371,7 +362,7 @@ static void test_model_energies(void **state)
 {
     (void)state;
     const sw_scene_t bare = crate(), frame = crate_frame();
-    const sw_scene_t cush = with_cushion(crate(), 44.7, 0.045);
+    const sw_scene_t cush = tu_cushion(crate(), 44.7, 0.045);
     const sw_derived_t db = derived(&bare), df = derived(&frame), dc = derived(&cush);
     const double g = bare.g;
     assert_float_equal(sw_model_barrier(&db, g), g * db.R * (1.0 - cos(db.alpha)), 1e-12);
@@ -422,7 +413,7 @@ static void test_energy_bound_holds(void **state)
     sw_state_t s = rocking(-0.2 * A20, 0.1);
     s.u = 0.01;
     check_bound(&fr, &s, NULL);
-    const sw_scene_t cu = with_cushion(crate(), 44.7, 0.045);
+    const sw_scene_t cu = tu_cushion(crate(), 44.7, 0.045);
     const sw_derived_t dc = derived(&cu);
     sw_state_t sc0;
     memset(&sc0, 0, sizeof sc0);
@@ -600,7 +591,7 @@ static oo_run_t outcome_run(const sw_scene_t *sc, const char *scheme, double dt,
 static void test_outcome_only_same_motion(void **state)
 {
     (void)state;
-    const sw_scene_t sc[3] = {crate(), crate_frame(), with_cushion(crate(), 44.7, 0.045)};
+    const sw_scene_t sc[3] = {crate(), crate_frame(), tu_cushion(crate(), 44.7, 0.045)};
     const char *scheme[3] = {"rk4", "rk4", "rkck"};
     const double dt[3] = {1e-3, 1e-3, 5e-3};
     for (int m = 0; m < 3; m++) {
@@ -633,7 +624,7 @@ static void test_outcome_only_same_motion(void **state)
 static void test_rest_cache(void **state)
 {
     (void)state;
-    const sw_scene_t scenes[3] = {crate(), crate_frame(), with_cushion(crate(), 44.7, 0.045)};
+    const sw_scene_t scenes[3] = {crate(), crate_frame(), tu_cushion(crate(), 44.7, 0.045)};
     for (int i = 0; i < 3; i++) {
         sw_reserve_opts_t o;
         memset(&o, 0, sizeof o);

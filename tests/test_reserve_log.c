@@ -20,15 +20,6 @@ static const double A20 = 20.0 * M_PI / 180.0; /* rad */
 #define SECONDS 16.0
 #define N 3200 /* RATE * SECONDS */
 
-static sw_scene_t with_cushion(sw_scene_t sc, double omega_c, double zeta_c)
-{
-    sc.has_cushion = 1;
-    sc.cushion_omega = omega_c;
-    sc.cushion_zeta = zeta_c;
-    sc.cushion_k_given = sc.cushion_c_given = SW_GIVEN_RATIO;
-    return sc;
-}
-
 /* A braking of peak amp g at 2 s (half-sine, 1 s), a pothole-like jolt of
  * 3 amp g at 6 s (50 ms), another braking at 9 s, then quiet. */
 typedef struct {
@@ -154,7 +145,7 @@ static void test_frame(void **state)
 static void test_cushion(void **state)
 {
     (void)state;
-    const sw_scene_t sc = with_cushion(tu_bare(2.0, 2.0 * tan(A20)), 50.0, 0.1);
+    const sw_scene_t sc = tu_cushion(tu_bare(2.0, 2.0 * tan(A20)), 50.0, 0.1);
     check_scene(&sc, 0.10, 0);
     check_scene(&sc, 0.50, 1);
 }

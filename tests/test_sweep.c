@@ -138,17 +138,6 @@ static void test_boundary_rk8pd(void **state)
     check_point(&frame, SW_PULSE_FULL_SINE, 2.0);
 }
 
-/* The package on a cushion given by omega_c (rad/s) and zeta_c. */
-static sw_scene_t with_cushion(sw_scene_t sc, double omega, double zeta)
-{
-    sc.has_cushion = 1;
-    sc.cushion_omega = omega;
-    sc.cushion_zeta = zeta;
-    sc.cushion_k_given = SW_GIVEN_RATIO;
-    sc.cushion_c_given = SW_GIVEN_RATIO;
-    return sc;
-}
-
 /* On a cushion nothing lifts at once: the search starts where an edge can
  * first leave the cushion, from the linear response.  The boundary found
  * from there is the one a scan from far below finds, and it holds against
@@ -158,8 +147,8 @@ static void test_boundary_cushion(void **state)
     (void)state;
     const double a20 = 20.0 * M_PI / 180.0;
     const sw_curve_t on_frame =
-        curve_of(with_cushion(tu_frame(2.0, 2.0 * tan(a20), 250.0, 1.0, 0.1), 60.0, 0.1), 0.5);
-    const sw_curve_t on_bed = curve_of(with_cushion(tu_bare(2.0, 2.0 * tan(a20)), 40.0, 0.2), 0.0);
+        curve_of(tu_cushion(tu_frame(2.0, 2.0 * tan(a20), 250.0, 1.0, 0.1), 60.0, 0.1), 0.5);
+    const sw_curve_t on_bed = curve_of(tu_cushion(tu_bare(2.0, 2.0 * tan(a20)), 40.0, 0.2), 0.0);
     check_point(&on_frame, SW_PULSE_HALF_SINE, 4.0);
     check_point(&on_bed, SW_PULSE_FULL_SINE, 2.0);
 
@@ -367,7 +356,7 @@ static void test_safety_factor_frame(void **state)
 static void test_safety_factor_cushion(void **state)
 {
     (void)state;
-    const sw_scene_t sc = with_cushion(tu_bare(2.0, 2.0 * tan(0.25)), 40.0, 0.2);
+    const sw_scene_t sc = tu_cushion(tu_bare(2.0, 2.0 * tan(0.25)), 40.0, 0.2);
     sw_derived_t d;
     sw_scene_validate(&sc, &d, NULL, NULL, NULL);
     static double t[4000], ag[4000];
@@ -414,7 +403,7 @@ static void test_run_accuracy(void **state)
     assert_true(acc.overturned && fixed.overturned && dflt.overturned);
     assert_true(acc.tip_time == fixed.tip_time);
     assert_true(acc.tip_time != dflt.tip_time);
-    const sw_scene_t cu = with_cushion(block025(), 60.0, 0.1);
+    const sw_scene_t cu = tu_cushion(block025(), 60.0, 0.1);
     assert_int_equal(sw_log_run(&cu, &log, 1.0, &ro, &acc, msg, sizeof msg), SW_EINVAL);
     assert_non_null(strstr(msg, "no measured table"));
 }

@@ -38,6 +38,17 @@ static inline sw_scene_t tu_frame(double height, double width, double frame_mass
     return sc;
 }
 
+/* The scene sc on a cushion of natural frequency omega_c (rad/s) and
+ * damping ratio zeta_c, both given as ratios. */
+static inline sw_scene_t tu_cushion(sw_scene_t sc, double omega_c, double zeta_c)
+{
+    sc.has_cushion = 1;
+    sc.cushion_omega = omega_c;
+    sc.cushion_zeta = zeta_c;
+    sc.cushion_k_given = sc.cushion_c_given = SW_GIVEN_RATIO;
+    return sc;
+}
+
 #define TU_MAX_EV 4096
 typedef struct {
     int n;
