@@ -85,12 +85,12 @@ struct sw_reserve {
     sw_reserve_opts_t o;
     double step, tol; /* relative */
     double max_g, floor_g;
-    double lift_g;   /* g: g tan(alpha) / SW_G0 */
-    double z_rest;   /* m, cushion static deflection */
-    double t_free;   /* s, free motion after a pulse */
-    double chunk;    /* s, between certificate checks after the pulse */
-    double sqrt_eb;  /* sqrt(J/kg): square root of the barrier energy */
-    double c_energy; /* 1: sw_model_work_rate() */
+    double lift_g;         /* g: g tan(alpha) / SW_G0 */
+    sw_state_t rest_state; /* the engine's state of rest (side aside) */
+    double t_free;         /* s, free motion after a pulse */
+    double chunk;          /* s, between certificate checks after the pulse */
+    double sqrt_eb;        /* sqrt(J/kg): square root of the barrier energy */
+    double c_energy;       /* 1: sw_model_work_rate() */
     size_t np;
     pulse_ctx_t p[SW_DESIGN_PULSES_MAX];
     sw_reserve_result_t rest;
@@ -246,16 +246,14 @@ static int trial(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *
 
 /* ---- evaluation ---------------------------------------------------------- */
 
+/* The state of rest as the engine makes it (a reset engine's), whatever
+ * the model: on the bed stuck, on a frame stuck and centred, on a cushion
+ * upright and still at its static deflection. */
 static int is_rest(const sw_reserve_t *R, const sw_state_t *s)
 {
-    switch (R->d.model) {
-        case SW_MODEL_BARE: return s->phase == SW_PHASE_STUCK;
-        case SW_MODEL_FRAME: return s->phase == SW_PHASE_STUCK && s->u == 0.0 && s->u_dot == 0.0;
-        case SW_MODEL_CUSHION:
-            return s->phase != SW_PHASE_OVERTURNED && s->theta == 0.0 && s->theta_dot == 0.0 &&
-                   s->z == R->z_rest && s->z_dot == 0.0 && s->u == 0.0 && s->u_dot == 0.0;
-        default: return 0;
-    }
+    const sw_state_t *r = &R->rest_state;
+    return s->phase == r->phase && s->theta == r->theta && s->theta_dot == r->theta_dot &&
+           s->u == r->u && s->u_dot == r->u_dot && s->z == r->z && s->z_dot == r->z_dot;
 }
 
 int sw_reserve_is_rest(const sw_reserve_t *r, const sw_state_t *s)
@@ -564,7 +562,6 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
     const double fp = R->o.run.free_periods > 0.0 ? R->o.run.free_periods : SW_RESERVE_FREE_PERIODS;
     R->t_free = fp * 2.0 * M_PI / d->p;
     R->chunk = 2.0 * M_PI / d->p / CHECKS_PER_PERIOD;
-    R->z_rest = d->model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(d, R->sc.g) : 0.0;
     R->sqrt_eb = sqrt(sw_model_barrier(d, R->sc.g));
     R->c_energy = sw_model_work_rate(d);
 
@@ -616,12 +613,9 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
     }
 
     /* the value at rest, by the same search as any state */
-    sw_state_t rest;
-    memset(&rest, 0, sizeof rest);
-    rest.phase = d->model == SW_MODEL_CUSHION ? SW_PHASE_ROCKING : SW_PHASE_STUCK;
-    rest.side = d->model == SW_MODEL_CUSHION ? 1 : 0;
-    rest.z = R->z_rest;
-    const int rc = compute(R, &rest, &R->rest);
+    sw_engine_reset(R->p[0].e);
+    sw_engine_get_state(R->p[0].e, 0, &R->rest_state);
+    const int rc = compute(R, &R->rest_state, &R->rest);
     if (rc < 0) {
         *err = rc;
         sw_set_msg(msg, msglen, "the reserve at rest: %s", sw_strerror(rc));
