@@ -511,82 +511,6 @@ static int bad_opts(int *err, char *msg, size_t msglen, int code, const char *te
     return code;
 }
 
-/* Column spec: 1-based index ("3") or a name.  Sets *col (0-based) or
- * *name (a trimmed copy). */
-static int parse_column(const char *spec, const char *role, long *col, char **name, char *t,
-                        size_t tlen)
-{
-    while (sw_csv_is_blank(*spec)) spec++;
-    size_t n = strlen(spec);
-    while (n && sw_csv_is_blank(spec[n - 1])) n--;
-    if (!n) {
-        snprintf(t, tlen, "%s column: empty name", role);
-        return SW_EINVAL;
-    }
-    size_t digits = 0;
-    while (digits < n && spec[digits] >= '0' && spec[digits] <= '9') digits++;
-    if (digits == n) {
-        long v = 0;
-        for (size_t i = 0; i < n; i++) {
-            v = v * 10 + (spec[i] - '0');
-            if (v > MAX_COLUMN_INDEX)
-                break;
-        }
-        if (v < 1 || v > MAX_COLUMN_INDEX) {
-            snprintf(t, tlen, "%s column %.*s: index out of range (1..%ld)", role, (int)n, spec,
-                     MAX_COLUMN_INDEX);
-            return SW_EINVAL;
-        }
-        *col = v - 1;
-        return SW_OK;
-    }
-    *name = malloc(n + 1);
-    if (!*name) {
-        snprintf(t, tlen, "out of memory");
-        return SW_ENOMEM;
-    }
-    memcpy(*name, spec, n);
-    (*name)[n] = '\0';
-    *col = -1;
-    return SW_OK;
-}
-
-/* The columns of the options: parsed, and refused (code, the reason in t)
- * when two are the same or a named one cannot be found without a header. */
-static int set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen)
-{
-    c->col[R_VERT] = -1;
-    const char *spec[N_ROLES] = {o->time_col ? o->time_col : "1", o->accel_col ? o->accel_col : "2",
-                                 o->vert_col};
-    for (int r = 0; r < N_ROLES; r++) {
-        if (!spec[r])
-            continue;
-        int rc = parse_column(spec[r], role_name[r], &c->col[r], &c->name[r], t, tlen);
-        if (rc != SW_OK)
-            return rc;
-    }
-    c->have_vert = spec[R_VERT] != NULL;
-    for (int r = 0; r < N_ROLES; r++) {
-        for (int q = r + 1; q < N_ROLES; q++) {
-            int same = (c->col[r] >= 0 && c->col[r] == c->col[q]) ||
-                       (c->name[r] && c->name[q] &&
-                        sw_csv_name_equal(c->name[r], strlen(c->name[r]), c->name[q]));
-            if (same) {
-                snprintf(t, tlen, "%s and %s columns are the same", role_name[r], role_name[q]);
-                return SW_EINVAL;
-            }
-        }
-        if (c->name[r] && o->header == 0) {
-            snprintf(t, tlen,
-                     "%s column \"%s\" is named but the input has no header (header = 0); "
-                     "give a 1-based index",
-                     role_name[r], c->name[r]);
-            return SW_ENOTFOUND;
-        }
-    }
-    return SW_OK;
-}
-
 sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_reject_fn on_reject,
                         void *user, int *err, char *msg, size_t msglen)
 {
@@ -619,7 +543,7 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
         bad_opts(err, msg, msglen, SW_ENOMEM, "out of memory");
         return NULL;
     }
-    const int rc = set_columns(c, o, t, sizeof t);
+    const int rc = sw_csv_set_columns(c, o, t, sizeof t);
     if (rc != SW_OK) {
         bad_opts(err, msg, msglen, rc, t);
         sw_csv_destroy(c);

@@ -15,11 +15,14 @@
  * forward) or one named longitudinal or forward, else the only one that
  * names no axis beside lateral and vertical ones; among several time
  * columns the one with a unit (elapsed seconds) is preferred to one without
- * (a date-time). */
+ * (a date-time).  The columns the caller names or numbers instead are
+ * read here too (sw_csv_set_columns). */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "csv_int.h"
+#include "swaywatch/status.h"
 
 #define MAX_WORDS 8
 #define WORD_MAX 24
@@ -300,4 +303,80 @@ int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_
         g->unit[SW_CSV_ROLE_ACCEL] = sw_csv_name_unit(names[set[0]], 0);
     }
     return 0;
+}
+
+/* ---- the columns the caller names ------------------------------------------ */
+
+/* Column spec: 1-based index ("3") or a name.  Sets *col (0-based) or
+ * *name (a trimmed copy). */
+static int parse_column(const char *spec, const char *role, long *col, char **name, char *t,
+                        size_t tlen)
+{
+    while (sw_csv_is_blank(*spec)) spec++;
+    size_t n = strlen(spec);
+    while (n && sw_csv_is_blank(spec[n - 1])) n--;
+    if (!n) {
+        snprintf(t, tlen, "%s column: empty name", role);
+        return SW_EINVAL;
+    }
+    size_t digits = 0;
+    while (digits < n && spec[digits] >= '0' && spec[digits] <= '9') digits++;
+    if (digits == n) {
+        long v = 0;
+        for (size_t i = 0; i < n; i++) {
+            v = v * 10 + (spec[i] - '0');
+            if (v > MAX_COLUMN_INDEX)
+                break;
+        }
+        if (v < 1 || v > MAX_COLUMN_INDEX) {
+            snprintf(t, tlen, "%s column %.*s: index out of range (1..%ld)", role, (int)n, spec,
+                     MAX_COLUMN_INDEX);
+            return SW_EINVAL;
+        }
+        *col = v - 1;
+        return SW_OK;
+    }
+    *name = malloc(n + 1);
+    if (!*name) {
+        snprintf(t, tlen, "out of memory");
+        return SW_ENOMEM;
+    }
+    memcpy(*name, spec, n);
+    (*name)[n] = '\0';
+    *col = -1;
+    return SW_OK;
+}
+
+int sw_csv_set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen)
+{
+    c->col[R_VERT] = -1;
+    const char *spec[N_ROLES] = {o->time_col ? o->time_col : "1", o->accel_col ? o->accel_col : "2",
+                                 o->vert_col};
+    for (int r = 0; r < N_ROLES; r++) {
+        if (!spec[r])
+            continue;
+        int rc = parse_column(spec[r], role_name[r], &c->col[r], &c->name[r], t, tlen);
+        if (rc != SW_OK)
+            return rc;
+    }
+    c->have_vert = spec[R_VERT] != NULL;
+    for (int r = 0; r < N_ROLES; r++) {
+        for (int q = r + 1; q < N_ROLES; q++) {
+            int same = (c->col[r] >= 0 && c->col[r] == c->col[q]) ||
+                       (c->name[r] && c->name[q] &&
+                        sw_csv_name_equal(c->name[r], strlen(c->name[r]), c->name[q]));
+            if (same) {
+                snprintf(t, tlen, "%s and %s columns are the same", role_name[r], role_name[q]);
+                return SW_EINVAL;
+            }
+        }
+        if (c->name[r] && o->header == 0) {
+            snprintf(t, tlen,
+                     "%s column \"%s\" is named but the input has no header (header = 0); "
+                     "give a 1-based index",
+                     role_name[r], c->name[r]);
+            return SW_ENOTFOUND;
+        }
+    }
+    return SW_OK;
 }

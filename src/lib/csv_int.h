@@ -144,4 +144,9 @@ int sw_csv_name_unit(const char *name, int time_role);
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
                  long skip, sw_csv_guess_t *g);
 
+/* The columns of the options (csv_infer.c): parsed, and refused (code,
+ * the reason in t) when two are the same or a named one cannot be found
+ * without a header. */
+int sw_csv_set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen);
+
 #endif
