@@ -104,21 +104,24 @@ struct sw_reserve {
  * |theta| < alpha (the potential energy from rest is >= 0 there), with c
  * the model's work rate (sw_model_work_rate) and E per unit package mass.
  * Reaching |theta| = alpha needs E >= E_b. */
+static double energy_bound(const sw_derived_t *d, double g, double sqrt_eb, double c,
+                           const sw_state_t *s, double T)
+{
+    if (fabs(s->theta) >= d->alpha || s->phase == SW_PHASE_OVERTURNED || !isfinite(c))
+        return 0.0;
+    /* int |a| dt over the half-sine = 2 a_e T / pi; quiet input after the
+     * pulse only loses energy */
+    const double gap = sqrt_eb - sqrt(fmax(sw_model_energy(d, g, s), 0.0));
+    if (!(gap > 0.0))
+        return 0.0;
+    return M_PI * gap / (2.0 * T * c) / SW_G0;
+}
+
 double sw_reserve_energy_bound(const sw_derived_t *d, double g, const sw_state_t *s, double T)
 {
     if (!d || !s || !(T > 0.0) || !(g > 0.0))
         return 0.0;
-    if (fabs(s->theta) >= d->alpha || s->phase == SW_PHASE_OVERTURNED)
-        return 0.0;
-    const double c = sw_model_work_rate(d);
-    if (!isfinite(c))
-        return 0.0;
-    /* int |a| dt over the half-sine = 2 a_e T / pi; quiet input after the
-     * pulse only loses energy */
-    const double gap = sqrt(sw_model_barrier(d, g)) - sqrt(fmax(sw_model_energy(d, g, s), 0.0));
-    if (!(gap > 0.0))
-        return 0.0;
-    return M_PI * gap / (2.0 * T * c) / SW_G0;
+    return energy_bound(d, g, sqrt(sw_model_barrier(d, g)), sw_model_work_rate(d), s, T);
 }
 
 /* The proven lower bound of the amplitude (g) that can overturn the
@@ -126,7 +129,9 @@ double sw_reserve_energy_bound(const sw_derived_t *d, double g, const sw_state_t
 static double lower_bound_g(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
                             int dir)
 {
-    double x = ENERGY_SLACK * sw_reserve_energy_bound(&R->d, R->sc.g, s, P->T);
+    /* the barrier and the work rate as create computed them (a cushion's
+     * barrier is a Newton solve) */
+    double x = ENERGY_SLACK * energy_bound(&R->d, R->sc.g, R->sqrt_eb, R->c_energy, s, P->T);
     if (s->phase == SW_PHASE_STUCK) {
         if (R->d.model == SW_MODEL_BARE)
             x = fmax(x, R->lift_g); /* the half-sine's peak must reach g tan(alpha) */
