@@ -278,7 +278,7 @@ static const char *default_scheme(const sw_scene_t *scenes, size_t n, const sw_e
         sw_derived_t d;
         if (sw_scene_validate(&scenes[i], &d, NULL, NULL, NULL) != SW_OK)
             continue;
-        if (d.model == SW_MODEL_CUSHION && d.omega_max * dt > SW_STIFF_OMEGA_DT)
+        if (sw_model_stiff(&d, dt))
             return SW_STIFF_SCHEME;
     }
     return SW_DEFAULT_SCHEME;

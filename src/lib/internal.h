@@ -235,6 +235,16 @@ enum {
     SW_STUCK_FAULT = 3  /* the exact advance made no progress: a fault, never a hang */
 };
 
+/* The rocking about rest to first order as one damped oscillator
+ * u'' + 2 zeta w u' + w^2 u = -a (the input, m/s^2), theta = gain u: what
+ * checkpoints step in closed form between samples (safety_prep.c). */
+typedef struct {
+    double w, zeta; /* rad/s, 1 */
+    double gain;    /* theta per u, rad/m */
+    double per;     /* the lift drive over its level per unit u, 1/m */
+    double lam;     /* 1/s: the decay rate of the slowest mode about rest */
+} sw_rock_linear_t;
+
 /* A model's behaviour: everything the layers above need to know of it.
  * Adding a model is one model_X.c with one of these and a row in
  * sw_model_ops_of() (model.c). */
@@ -273,18 +283,56 @@ struct sw_model_ops {
     /* still moving, for sw_engine_finish (settled packages end it early) */
     int (*moving)(const sw_pkg_t *P, double rest_eps);
     /* the right-hand side reports the fastest contact rate of its stages,
-     * and a fixed step is retaken shorter where that rate is too fast */
+     * and a fixed step is retaken shorter where that rate is too fast; a
+     * model with such a contact can be stiff (sw_model_stiff) */
     int tracks_rate;
     /* pure functions of the scene and a state (model.h's sw_model_energy,
      * sw_model_barrier, sw_model_work_rate) */
     double (*energy)(const sw_derived_t *d, double g, const sw_state_t *s);
     double (*barrier)(const sw_derived_t *d, double g);
     double (*work_rate)(const sw_derived_t *d);
+
+    /* ---- what the analyses that run a package many times rely on
+     * (sweep.c, safety*.c, reserve*.c), so that they never ask which model
+     * it is ---- */
+    /* the package leaves its rest contact exactly when the input itself
+     * reaches g tan(alpha) (the bare block): there is nothing to probe */
+    int lift_direct;
+    /* free rocking is decided by the margin exactly (physics.md's closed
+     * form for the bare block): stuck it rests, past alpha moving out it
+     * falls */
+    int free_exact;
+    /* standing, the package rides a linear oscillator (u, u') driven by
+     * the input (the frame: sw_stuck_frame, reserve_lift.c's table) */
+    int stuck_linear;
+    /* leaving the rest contact: the drive of a report, and the drive at
+     * which the package leaves (the level); about rest the drive is linear
+     * in the input, to first order, so a probe far too small to lift
+     * scales to the lifting input */
+    double (*lift_level)(const sw_derived_t *d, double g);
+    double (*lift_drive)(const sw_derived_t *d, double level, const sw_output_t *o);
+    /* the fastest and the slowest rate (rad/s) of the response about rest,
+     * which a probe must sample and wait for; NULL with lift_direct */
+    void (*probe_rates)(const sw_derived_t *d, double g, double *fast, double *slow);
+    /* a pulse's probe finds at least this fraction of the lifting
+     * amplitude (the search starts there) */
+    double probe_margin;
+    /* the rocking about rest, to first order, as one damped oscillator
+     * (sw_rock_linear_t) for a package of mass m (kg): 1 and *r filled, or
+     * 0 when the model has none; NULL: never */
+    int (*rock_linear)(const sw_derived_t *d, double m, double g, sw_rock_linear_t *r);
 };
 
 extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
 const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind);
 
+/* ops->lift_level and ops->lift_drive of the scene's model (NAN for an
+ * unknown model). */
+double sw_model_lift_level(const sw_derived_t *d, double g);
+double sw_model_lift_drive(const sw_derived_t *d, double level, const sw_output_t *o);
+/* The model's contact is too fast for fixed steps of dt (s): the default
+ * scheme is then SW_STIFF_SCHEME (engine.c). */
+int sw_model_stiff(const sw_derived_t *d, double dt);
 void sw_model_setup(sw_pkg_t *P); /* common constants, then ops->setup */
 int sw_model_rhs(double t, const double y[], double f[], void *pkg); /* GSL signature */
 void sw_model_to_state(const sw_pkg_t *P, sw_state_t *s);

@@ -33,6 +33,33 @@ const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind)
     return (unsigned)kind < sizeof table / sizeof table[0] ? table[kind] : NULL;
 }
 
+const char *sw_model_name(sw_model_kind k)
+{
+    const sw_model_ops_t *m = sw_model_ops_of(k);
+    return m ? m->name : "unknown";
+}
+
+/* A contact faster than the fixed steps of dt can follow (omega_max dt >
+ * SW_STIFF_OMEGA_DT): only a model whose right-hand side tracks its
+ * contact rate has one. */
+int sw_model_stiff(const sw_derived_t *d, double dt)
+{
+    const sw_model_ops_t *m = sw_model_ops_of(d->model);
+    return m && m->tracks_rate && d->omega_max * dt > SW_STIFF_OMEGA_DT;
+}
+
+double sw_model_lift_level(const sw_derived_t *d, double g)
+{
+    const sw_model_ops_t *m = sw_model_ops_of(d->model);
+    return m ? m->lift_level(d, g) : NAN;
+}
+
+double sw_model_lift_drive(const sw_derived_t *d, double level, const sw_output_t *o)
+{
+    const sw_model_ops_t *m = sw_model_ops_of(d->model);
+    return m ? m->lift_drive(d, level, o) : NAN;
+}
+
 double sw_model_energy(const sw_derived_t *d, double g, const sw_state_t *s)
 {
     const sw_model_ops_t *m = d && s ? sw_model_ops_of(d->model) : NULL;

@@ -558,6 +558,54 @@ static double cushion_work_rate(const sw_derived_t *d)
     return sqrt(d->h * d->h / (2.0 * (d->h * d->h + d->R * d->R / 3.0)));
 }
 
+/* An edge leaves the cushion when its lift drive b |sin theta| - (z -
+ * z_s) (m) reaches the static deflection z_s. */
+static double cushion_lift_level(const sw_derived_t *d, double g)
+{
+    return sw_cushion_static_deflection(d, g);
+}
+
+static double cushion_lift_drive(const sw_derived_t *d, double level, const sw_output_t *o)
+{
+    return d->b * fabs(sin(o->state.theta)) - (o->state.z - level);
+}
+
+/* The rocking mode on the cushion, and the bearings' on a frame. */
+static void cushion_probe_rates(const sw_derived_t *d, double g, double *fast, double *slow)
+{
+    double wz, wth; /* rad/s */
+    sw_cushion_frequencies(d, g, &wz, &wth);
+    *fast = fmax(d->omega_b, wth);
+    *slow = d->omega_b > 0.0 ? fmin(d->omega_b, wth) : wth;
+}
+
+/* Decay rate (1/s) of the slower mode of a damped oscillator. */
+static double decay_rate(double w, double zeta)
+{
+    return zeta < 1.0 ? zeta * w : w * (zeta - sqrt((zeta - 1.0) * (zeta + 1.0)));
+}
+
+/* A linear cushion on the bed: the rocking about rest to first order,
+ *   (I_C + m h^2) theta'' + C b^2/3 theta' + (K b^2/3 - m g h) theta = -m h a_g,
+ * theta = gain u; an edge lifts when b |theta| reaches z_s.  None on a
+ * frame, with a cubic term, or without restoring stiffness and damping. */
+static int cushion_rock_linear(const sw_derived_t *d, double m, double g, sw_rock_linear_t *r)
+{
+    if (d->gamma > 0.0 || d->B3 != 0.0)
+        return 0;
+    const double I = d->I_C + m * d->h * d->h;                /* kg m^2 */
+    const double k = d->K * d->b * d->b / 3.0 - m * g * d->h; /* N m/rad */
+    const double c = d->C * d->b * d->b / 3.0;                /* N m s/rad */
+    if (!(k > 0.0) || !(c > 0.0))
+        return 0;
+    r->w = sqrt(k / I);
+    r->zeta = c / (2.0 * I * r->w);
+    r->gain = m * d->h / I;
+    r->lam = fmin(decay_rate(r->w, r->zeta), decay_rate(d->omega_c, d->zeta_c));
+    r->per = d->b * r->gain / sw_cushion_static_deflection(d, g);
+    return 1;
+}
+
 const sw_model_ops_t sw_model_cushion = {
     .name = "cushion",
     .setup = cushion_setup,
@@ -574,4 +622,9 @@ const sw_model_ops_t sw_model_cushion = {
     .energy = sw_energy_cushion,
     .barrier = sw_cushion_barrier,
     .work_rate = cushion_work_rate,
+    .lift_level = cushion_lift_level,
+    .lift_drive = cushion_lift_drive,
+    .probe_rates = cushion_probe_rates,
+    .probe_margin = 0.9, /* linear only to O(theta^2), and its probe's sampling is capped */
+    .rock_linear = cushion_rock_linear,
 };

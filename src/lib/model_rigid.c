@@ -335,6 +335,29 @@ static double frame_work_rate(const sw_derived_t *d)
     return 1.0 / sqrt(2.0 * d->gamma);
 }
 
+/* The bed and the frame leave their rest contact when the support's
+ * acceleration reaches g tan(alpha): an uplift ratio of 1. */
+static double rigid_lift_level(const sw_derived_t *d, double g)
+{
+    (void)d;
+    (void)g;
+    return 1.0;
+}
+
+static double rigid_lift_drive(const sw_derived_t *d, double level, const sw_output_t *o)
+{
+    (void)d;
+    (void)level;
+    return o->uplift_ratio;
+}
+
+/* Standing on its frame the package moves with it: the bearings' rate. */
+static void frame_probe_rates(const sw_derived_t *d, double g, double *fast, double *slow)
+{
+    (void)g;
+    *fast = *slow = d->omega_b;
+}
+
 const sw_model_ops_t sw_model_bare = {
     .name = "bare",
     .setup = bare_setup,
@@ -350,6 +373,10 @@ const sw_model_ops_t sw_model_bare = {
     .energy = sw_energy_bare,
     .barrier = rigid_barrier,
     .work_rate = bare_work_rate,
+    .lift_direct = 1,
+    .free_exact = 1,
+    .lift_level = rigid_lift_level,
+    .lift_drive = rigid_lift_drive,
 };
 
 const sw_model_ops_t sw_model_frame = {
@@ -367,4 +394,9 @@ const sw_model_ops_t sw_model_frame = {
     .energy = sw_energy_frame,
     .barrier = rigid_barrier,
     .work_rate = frame_work_rate,
+    .stuck_linear = 1,
+    .lift_level = rigid_lift_level,
+    .lift_drive = rigid_lift_drive,
+    .probe_rates = frame_probe_rates,
+    .probe_margin = 0.99, /* linear: sampled to 3e-5 of the peak (sweep.c) */
 };

@@ -54,6 +54,7 @@
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
 
+#include "internal.h"
 #include "reserve_lift.h"
 #include "run.h" /* sw_set_msg */
 
@@ -85,12 +86,13 @@ struct sw_reserve {
     sw_reserve_opts_t o;
     double step, tol; /* relative */
     double max_g, floor_g;
-    double lift_g;         /* g: g tan(alpha) / SW_G0 */
-    sw_state_t rest_state; /* the engine's state of rest (side aside) */
-    double t_free;         /* s, free motion after a pulse */
-    double chunk;          /* s, between certificate checks after the pulse */
-    double sqrt_eb;        /* sqrt(J/kg): square root of the barrier energy */
-    double c_energy;       /* 1: sw_model_work_rate() */
+    double lift_g;             /* g: g tan(alpha) / SW_G0 */
+    const sw_model_ops_t *ops; /* the model's: its traits choose the bounds and the ends */
+    sw_state_t rest_state;     /* the engine's state of rest (side aside) */
+    double t_free;             /* s, free motion after a pulse */
+    double chunk;              /* s, between certificate checks after the pulse */
+    double sqrt_eb;            /* sqrt(J/kg): square root of the barrier energy */
+    double c_energy;           /* 1: sw_model_work_rate() */
     size_t np;
     pulse_ctx_t p[SW_DESIGN_PULSES_MAX];
     sw_reserve_result_t rest;
@@ -133,9 +135,9 @@ static double lower_bound_g(const sw_reserve_t *R, const pulse_ctx_t *P, const s
      * barrier is a Newton solve) */
     double x = ENERGY_SLACK * energy_bound(&R->d, R->sc.g, R->sqrt_eb, R->c_energy, s, P->T);
     if (s->phase == SW_PHASE_STUCK) {
-        if (R->d.model == SW_MODEL_BARE)
+        if (R->ops->lift_direct)
             x = fmax(x, R->lift_g); /* the half-sine's peak must reach g tan(alpha) */
-        else if (R->d.model == SW_MODEL_FRAME)
+        else if (R->ops->stuck_linear)
             x = fmax(x, sw_lift_table_bound(&P->lift, &R->d, R->sc.g, s, dir));
     }
     return x;
@@ -156,7 +158,7 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
                sw_run_result_t *r)
 {
     sw_engine_t *e = P->e;
-    const int bare = R->d.model == SW_MODEL_BARE;
+    const int exact = R->ops->free_exact;
     sw_engine_reset(e);
     int rc = sw_engine_set_state(e, 0, s);
     if (rc < 0)
@@ -186,7 +188,7 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
                 continue;
             const double E = fmax(sw_model_energy(&R->d, R->sc.g, &o.state), 0.0); /* J/kg */
             if (sqrt(E) + ca * (1.0 + cos(w * t)) < CERT_SLACK * R->sqrt_eb) {
-                r->end = bare ? SW_END_REST : SW_END_BOUND;
+                r->end = exact ? SW_END_REST : SW_END_BOUND;
                 r->overturned = 0;
                 r->t_end = t;
                 return SW_OK;
@@ -206,7 +208,7 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
             break;
         }
         sw_engine_get_output(e, 0, &o);
-        if (bare) {
+        if (exact) {
             /* exact for free rocking (physics.md): decided now */
             if (o.state.phase == SW_PHASE_STUCK)
                 r->end = SW_END_REST;
@@ -555,6 +557,7 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
     R->step = R->o.step > 0.0 ? R->o.step : DEFAULT_STEP;
     R->tol = R->o.tol > 0.0 ? R->o.tol : DEFAULT_TOL;
     R->lift_g = R->sc.g * tan(d->alpha) / SW_G0;
+    R->ops = sw_model_ops_of(d->model);
     R->max_g = R->o.max_g > 0.0 ? R->o.max_g : DEFAULT_X_MAX * R->lift_g;
     R->floor_g = R->o.floor_g > 0.0 ? R->o.floor_g : SW_RESERVE_FLOOR_G;
     if (!isfinite(R->step) || !isfinite(R->tol) || !isfinite(R->max_g) || !isfinite(R->floor_g) ||
@@ -611,7 +614,7 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
             sw_set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
             goto fail;
         }
-        if (d->model == SW_MODEL_FRAME && (*err = sw_lift_table_make(&P->lift, d, P->T)) != SW_OK) {
+        if (R->ops->stuck_linear && (*err = sw_lift_table_make(&P->lift, d, P->T)) != SW_OK) {
             sw_set_msg(msg, msglen, "out of memory");
             goto fail;
         }

@@ -54,14 +54,10 @@ int sw_run_push(sw_engine_t *e, const sw_log_t *log, size_t i, double scale, siz
 int sw_run_log_on(sw_runner_t *R, const sw_log_t *log, double scale, const sw_run_opts_t *o,
                   sw_run_result_t *r);
 
-/* How far the package is from leaving its rest contact: frame or bed, the
- * support's acceleration over g tan(alpha) (uplift at 1); cushion, the
- * lift drive b |sin theta| - (z - z_s) in m (an edge leaves the cushion
- * when it reaches z_s). */
-double sw_run_probe_value(const sw_derived_t *d, const sw_output_t *o, double z_s);
-/* A probe's peak, at scale probe, turned into the scale at which the
- * package first lifts: INFINITY if the peak is 0. */
-double sw_run_probe_lift(const sw_derived_t *d, double probe, double peak, double z_s);
+/* A probe's peak drive (ops->lift_drive), at scale probe, turned into the
+ * scale at which the package first lifts, at a drive of level
+ * (ops->lift_level): INFINITY if the peak is 0. */
+double sw_run_probe_lift(double probe, double peak, double level);
 
 void sw_set_msg(char *msg, size_t len, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 

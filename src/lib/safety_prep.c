@@ -86,12 +86,13 @@ static void block_min(prep_t *P, size_t i, double s)
         P->sup[i / BLOCK / SUPER] = s;
 }
 
-static int prep_bare(prep_t *P)
+/* A package the input itself lifts (the bed): every sample's scale. */
+static int prep_direct(prep_t *P)
 {
     if (blocks_alloc(P) != SW_OK)
         return SW_ENOMEM;
     for (size_t i = 0; i < P->log->n; i++) block_min(P, i, bare_scale(P, i));
-    P->kind = CK_BARE;
+    P->kind = CK_DIRECT;
     return SW_OK;
 }
 
@@ -185,11 +186,11 @@ static int long_interval(const prep_t *P, size_t i, double w)
     return i > 0 && w * (P->log->t[i] - P->log->t[i - 1]) > LONG_STEP;
 }
 
-/* The frame: one run at a scale far too small to lift anything, which
- * the stuck frame follows exactly (linear).  CK_NONE (no checkpoints) if
- * the scheme steps the stuck frame adaptively or the probe ever left the
- * stuck phase. */
-static int prep_frame(prep_t *P, sw_runner_t *R)
+/* A package standing on a linear support (the frame): one run at a scale
+ * far too small to lift anything, which the stuck package follows exactly.  CK_NONE (no
+ * checkpoints) if the scheme steps the stuck frame adaptively or the probe ever left the stuck
+ * phase. */
+static int prep_stuck(prep_t *P, sw_runner_t *R)
 {
     const sw_log_t *L = P->log;
     const sw_scheme_t *S = sw_scheme_lookup(sw_engine_scheme(R->e));
@@ -217,37 +218,22 @@ static int prep_frame(prep_t *P, sw_runner_t *R)
         store_state(P, i, o.state.u / probe, o.state.u_dot / probe);
     }
     P->lift_scale = peak > 0.0 ? 1.0 / peak : INFINITY;
-    P->kind = CK_FRAME;
+    P->kind = CK_STUCK;
     return SW_OK;
 }
 
-/* Decay rate (1/s) of the slower mode of a damped oscillator. */
-static double decay_rate(double w, double zeta)
-{
-    return zeta < 1.0 ? zeta * w : w * (zeta - sqrt((zeta - 1.0) * (zeta + 1.0)));
-}
-
-/* A cushion on the bed: the rocking about rest to first order,
- *   (I_C + m h^2) theta'' + C b^2/3 theta' + (K b^2/3 - m g h) theta = -m h a_g,
- * in closed form between samples (sw_nj_step); an edge lifts when
- * b |theta| reaches the static deflection z_s. */
-static int prep_cushion(prep_t *P)
+/* A package whose rocking about rest is, to first order, one damped
+ * oscillator (ops->rock_linear: a linear cushion on the bed), stepped in
+ * closed form between samples (sw_nj_step); an edge lifts when the drive
+ * reaches its level. */
+static int prep_rock(prep_t *P, const sw_rock_linear_t *rl)
 {
     const sw_log_t *L = P->log;
-    const sw_derived_t *d = &P->d;
-    const double m = P->sc->mass, g = P->sc->g;
-    const double I = d->I_C + m * d->h * d->h;                /* kg m^2 */
-    const double k = d->K * d->b * d->b / 3.0 - m * g * d->h; /* N m/rad */
-    const double c = d->C * d->b * d->b / 3.0;                /* N m s/rad */
-    if (!(k > 0.0) || !(c > 0.0))
-        return SW_OK;
-    P->w = sqrt(k / I);
-    P->zeta = c / (2.0 * I * P->w);
-    P->gain = m * d->h / I;
-    const double lam = fmin(decay_rate(P->w, P->zeta), decay_rate(d->omega_c, d->zeta_c));
-    P->lead = log(1.0 / FORGET) / lam;
-    const double z_s = sw_cushion_static_deflection(d, g); /* m */
-    const double per = d->b * P->gain / z_s;               /* lift drive per unit u, 1/m */
+    P->w = rl->w;
+    P->zeta = rl->zeta;
+    P->gain = rl->gain;
+    P->lead = log(1.0 / FORGET) / rl->lam;
+    const double per = rl->per; /* lift drive over its level per unit u, 1/m */
     if (blocks_alloc(P) != SW_OK)
         return SW_ENOMEM;
     double u[2] = {0.0, 0.0}, peak = 0.0;
@@ -279,7 +265,7 @@ static int prep_cushion(prep_t *P)
         store_state(P, i, u[0], u[1]);
     }
     P->lift_scale = peak > 0.0 ? 1.0 / peak : INFINITY;
-    P->kind = CK_CUSHION;
+    P->kind = CK_ROCK;
     return SW_OK;
 }
 
@@ -289,8 +275,7 @@ static void prep_probe(prep_t *P, sw_runner_t *R)
 {
     const sw_log_t *L = P->log;
     const double probe = 1e-4 * P->bare_lift;
-    const double z_s =
-        P->d.model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(&P->d, P->sc->g) : 0.0;
+    const double level = sw_model_lift_level(&P->d, P->sc->g);
     double peak = 0.0;
     size_t next_restart = 0;
     sw_runner_reset(R);
@@ -299,11 +284,11 @@ static void prep_probe(prep_t *P, sw_runner_t *R)
             continue;
         sw_output_t o;
         sw_engine_get_output(R->e, 0, &o);
-        const double v = sw_run_probe_value(&P->d, &o, z_s);
+        const double v = sw_model_lift_drive(&P->d, level, &o);
         if (v > peak)
             peak = v;
     }
-    P->lift_scale = sw_run_probe_lift(&P->d, probe, peak, z_s);
+    P->lift_scale = sw_run_probe_lift(probe, peak, level);
 }
 
 /* Times strictly increasing and every value finite: what checkpoints rely
@@ -347,15 +332,16 @@ int sw_safety_prep_make(prep_t *P, char *msg, size_t msglen)
         return SW_OK;
     P->bare_lift = P->sc->g * P->tan_alpha / P->a_peak; /* scale lifting a package on the bed */
     const int clean = clean_log(L);
-    if (P->d.model == SW_MODEL_BARE && clean) { /* the lowest of every sample's */
-        if ((err = prep_bare(P)) != SW_OK)
+    const sw_model_ops_t *ops = sw_model_ops_of(P->d.model);
+    if (ops->lift_direct && clean) { /* the lowest of every sample's */
+        if ((err = prep_direct(P)) != SW_OK)
             return err;
         P->lift_scale = INFINITY;
         for (size_t b = 0; b < (L->n + BLOCK * SUPER - 1) / (BLOCK * SUPER); b++)
             P->lift_scale = fmin(P->lift_scale, P->sup[b]);
         return SW_OK;
     }
-    if (P->d.model == SW_MODEL_BARE && !L->a_z) {
+    if (ops->lift_direct && !L->a_z) {
         P->lift_scale = P->bare_lift;
         return SW_OK;
     }
@@ -364,10 +350,12 @@ int sw_safety_prep_make(prep_t *P, char *msg, size_t msglen)
     sw_runner_t R;
     if (sw_runner_make(&R, P->sc, P->ro, 0.0, &err, msg, msglen) != SW_OK)
         return err;
-    if (clean && P->d.model == SW_MODEL_FRAME)
-        err = prep_frame(P, &R);
-    else if (clean && !P->sc->has_frame && P->d.B3 == 0.0 && !L->a_z)
-        err = prep_cushion(P);
+    sw_rock_linear_t rl;
+    if (clean && ops->stuck_linear)
+        err = prep_stuck(P, &R);
+    else if (clean && !L->a_z && ops->rock_linear &&
+             ops->rock_linear(&P->d, P->sc->mass, P->sc->g, &rl))
+        err = prep_rock(P, &rl);
     if (err == SW_OK && P->kind == CK_NONE)
         prep_probe(P, &R);
     sw_engine_destroy(R.e);
@@ -401,18 +389,18 @@ static size_t trial_start(const prep_t *P, double x, int *none)
     const sw_log_t *L = P->log;
     size_t k = 0;
     *none = 0;
-    if (P->kind == CK_BARE)
+    if (P->kind == CK_DIRECT)
         k = next_lift(P, 0, x / BARE_EDGE);
     else if (P->kind != CK_NONE)
         k = first_lift(P, x / LIFT_MARGIN_LOG);
     if (k >= L->n) {
         *none = 1;
-        k = P->kind == CK_BARE ? L->n - 1 : P->i_peak;
+        k = P->kind == CK_DIRECT ? L->n - 1 : P->i_peak;
     }
     size_t i = k > 0 ? k - 1 : 0;
-    if (P->kind == CK_CUSHION) /* the lead-in */
+    if (P->kind == CK_ROCK) /* the lead-in */
         i = lead_in(P, 0, i);
-    if (P->kind == CK_FRAME || P->kind == CK_CUSHION)
+    if (P->kind == CK_STUCK || P->kind == CK_ROCK)
         i -= i % CHECK;
     return i;
 }
@@ -425,7 +413,7 @@ static int linear_state(const prep_t *P, sw_engine_t *e, double x, size_t i)
     sw_engine_get_output(e, 0, &o); /* at rest */
     sw_state_t s = o.state;
     const double *q = &P->st[2 * (i / CHECK)];
-    if (P->kind == CK_FRAME) {
+    if (P->kind == CK_STUCK) {
         s.u = x * q[0];
         s.u_dot = x * q[1];
     } else {
@@ -463,7 +451,7 @@ static int trial_begin(const prep_t *P, sw_runner_t *R, double x, size_t i)
     if (sw_engine_set_origin(e, L->t[0]) != SW_OK)
         return SW_EINVAL;
     const int rc = sw_engine_push(e, L->t[i], x * L->a_g[i], L->a_z ? L->a_z[i] : 0.0);
-    if (rc < 0 || P->kind == CK_BARE || i == 0)
+    if (rc < 0 || P->kind == CK_DIRECT || i == 0)
         return rc < 0 ? rc : SW_OK;
     return linear_state(P, e, x, i);
 }
@@ -499,12 +487,11 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_ru
     const double X = x / BARE_EDGE;
     size_t next_restart = 0;
     while (next_restart < L->nrestart && L->restart[next_restart] <= i0) next_restart++;
-    int look = P->kind == CK_BARE; /* look for a jump: from the start, and after events */
-    double last_lift = L->t[i0];   /* cushion: the start's error decays as a lift's does */
+    int look = P->kind == CK_DIRECT; /* look for a jump: from the start, and after events */
+    double last_lift = L->t[i0];     /* cushion: the start's error decays as a lift's does */
     for (size_t i = i0 + 1; i < L->n; i++) {
         size_t to;
-        if (P->kind == CK_CUSHION &&
-            (to = cushion_jump(P, i - 1, last_lift, x / LIFT_MARGIN_LOG))) {
+        if (P->kind == CK_ROCK && (to = cushion_jump(P, i - 1, last_lift, x / LIFT_MARGIN_LOG))) {
             while (next_restart < L->nrestart && L->restart[next_restart] <= to) next_restart++;
             sw_engine_restart(e);
             const int rc = sw_engine_push(e, L->t[to], x * L->a_g[to], 0.0);
@@ -533,7 +520,7 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_ru
                 break;
             /* an edge lifts only between an uplift and the rest after it */
             last_lift = s.uplifts > s.rests ? INFINITY : L->t[i];
-            look = P->kind == CK_BARE;
+            look = P->kind == CK_DIRECT;
         }
     }
     const double p = sw_engine_derived(e, 0)->p;

@@ -11,7 +11,11 @@
 
 #define LIFT_MARGIN_LOG 0.9 /* probes are sampled only at the log's samples */
 
-typedef enum { CK_NONE, CK_BARE, CK_FRAME, CK_CUSHION } ck_kind;
+/* How trials start late, chosen by the model's ops (internal.h): none;
+ * the input itself lifts the package (lift_direct: the bed); it stands on
+ * a linear support (stuck_linear: the frame); its rocking about rest is
+ * one linear oscillator (rock_linear: a linear cushion on the bed). */
+typedef enum { CK_NONE, CK_DIRECT, CK_STUCK, CK_ROCK } ck_kind;
 
 typedef struct {
     size_t i; /* sample */

@@ -407,13 +407,3 @@ int sw_scene_equal(const sw_scene_t *a, const sw_scene_t *b)
            same_number(a->warn_reserve_g, b->warn_reserve_g) &&
            same_number(a->critical_reserve_g, b->critical_reserve_g);
 }
-
-const char *sw_model_name(sw_model_kind k)
-{
-    switch (k) {
-        case SW_MODEL_BARE: return "bare";
-        case SW_MODEL_FRAME: return "frame";
-        case SW_MODEL_CUSHION: return "cushion";
-        default: return "unknown";
-    }
-}

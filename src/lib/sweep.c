@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "internal.h"
 #include "run.h"
 #include "swaywatch/model.h"
 #include "swaywatch/status.h"
@@ -33,8 +34,6 @@
 #define DEFAULT_X_MAX 20.0
 #define STEPS_PER_PERIOD 400.0  /* automatic dt: steps per shortest period */
 #define PROBE_SAMPLES 400.0     /* samples per period when probing the stuck frame */
-#define LIFT_MARGIN_PULSE 0.99  /* probe of a pulse: sampled to 3e-5 of the peak */
-#define LIFT_MARGIN_CUSHION 0.9 /* probe of a pulse on a cushion: sampling capped, see below */
 #define PROBE_MAX_SAMPLES 20000 /* cap on the samples of one probe run */
 #define MAX_THREADS 256
 
@@ -159,6 +158,7 @@ int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_resu
 {
     sw_engine_t *e = R->e;
     const sw_derived_t *d = sw_engine_derived(e, 0);
+    const int free_exact = sw_model_ops_of(d->model)->free_exact;
     sw_run_end end;
     sw_output_t o;
     for (;;) {
@@ -170,7 +170,7 @@ int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_resu
             end = SW_END_OVERTURN;
             break;
         }
-        if (d->model == SW_MODEL_BARE) {
+        if (free_exact) {
             if (o.state.phase == SW_PHASE_STUCK) {
                 end = SW_END_REST;
                 break;
@@ -532,24 +532,13 @@ static int pulse_trial(void *user, double x, sw_run_result_t *r)
     return run_pulse_on(T->R, &T->pulse, T->ro, r);
 }
 
-/* How far the package is from leaving its rest contact, for the probes
- * below.  Frame: the support's acceleration over g tan(alpha) (uplift at
- * 1).  Cushion: the lift drive b |sin theta| - (z - z_s) in m (an edge
- * leaves the cushion when it exceeds the static deflection z_s). */
-double sw_run_probe_value(const sw_derived_t *d, const sw_output_t *o, double z_s)
-{
-    if (d->model == SW_MODEL_CUSHION)
-        return d->b * fabs(sin(o->state.theta)) - (o->state.z - z_s);
-    return o->uplift_ratio;
-}
-
-/* The probe's peak turned into the x (or scale) at which the package
- * first lifts: frame at a ratio of 1, cushion at a drive of z_s. */
-double sw_run_probe_lift(const sw_derived_t *d, double probe, double peak, double z_s)
+/* The probe's peak drive turned into the x (or scale) at which the
+ * package first lifts, at a drive of level (ops->lift_level). */
+double sw_run_probe_lift(double probe, double peak, double level)
 {
     if (!(peak > 0.0))
         return INFINITY;
-    return probe * (d->model == SW_MODEL_CUSHION ? z_s : 1.0) / peak;
+    return probe * level / peak;
 }
 
 /* The lowest x at which the package can leave its rest contact at all
@@ -562,18 +551,14 @@ double sw_run_probe_lift(const sw_derived_t *d, double probe, double peak, doubl
  * it, and scale.  The peak of a decaying free oscillation comes within its
  * first period after the pulse. */
 static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pulse_t pulse,
-                         double unit, double z_s)
+                         double unit, double level)
 {
     const double probe = 1e-4;
     pulse.amplitude = probe * unit;
     sw_engine_reset(e);
-    double wmax = fmax(pulse.omega, d->omega_b), wslow = d->omega_b;
-    if (d->model == SW_MODEL_CUSHION) {
-        double wz, wth;
-        sw_cushion_frequencies(d, g, &wz, &wth);
-        wmax = fmax(wmax, wth);
-        wslow = d->omega_b > 0.0 ? fmin(d->omega_b, wth) : wth;
-    }
+    double wfast, wslow; /* rad/s */
+    sw_model_ops_of(d->model)->probe_rates(d, g, &wfast, &wslow);
+    const double wmax = fmax(pulse.omega, wfast);
     const double t_end = sw_pulse_duration(&pulse) + 1.5 * 2.0 * M_PI / wslow; /* s */
     double dt = 2.0 * M_PI / wmax / PROBE_SAMPLES;                             /* s */
     if (t_end / dt > PROBE_MAX_SAMPLES)
@@ -584,11 +569,11 @@ static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pul
         sw_engine_advance_fn(e, t, sw_pulse_eval, &pulse);
         sw_output_t o;
         sw_engine_get_output(e, 0, &o);
-        const double v = sw_run_probe_value(d, &o, z_s);
+        const double v = sw_model_lift_drive(d, level, &o);
         if (v > peak)
             peak = v;
     }
-    return sw_run_probe_lift(d, probe, peak, z_s);
+    return sw_run_probe_lift(probe, peak, level);
 }
 
 int sw_curve_scene(const sw_curve_t *c, double omega_e, sw_scene_t *out)
@@ -646,17 +631,15 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
 
     pulse_trial_t T = {&R, &o->run, {o->shape, 0.0, omega_e}, sc.g * tan(d.alpha)};
     sw_search_opts_t so = o->search;
-    const double z_s = d.model == SW_MODEL_CUSHION ? sw_cushion_static_deflection(&d, sc.g) : 0.0;
-    if (d.model == SW_MODEL_BARE)
+    const sw_model_ops_t *ops = sw_model_ops_of(d.model);
+    if (ops->lift_direct)
         out->x_lift = 1.0; /* the bed acceleration itself must reach g tan(alpha) */
     else
-        out->x_lift = pulse_lift(R.e, &d, sc.g, T.pulse, T.unit, z_s);
+        out->x_lift = pulse_lift(R.e, &d, sc.g, T.pulse, T.unit, ops->lift_level(&d, sc.g));
     if (!(so.x_max > 0.0))
         so.x_max = DEFAULT_X_MAX;
     if (!(so.x_min > 0.0)) {
-        so.x_min = d.model == SW_MODEL_BARE      ? 1.0
-                   : d.model == SW_MODEL_CUSHION ? LIFT_MARGIN_CUSHION * out->x_lift
-                                                 : LIFT_MARGIN_PULSE * out->x_lift;
+        so.x_min = ops->lift_direct ? 1.0 : ops->probe_margin * out->x_lift;
         if (!(so.x_min < so.x_max)) { /* cannot even lift below x_max */
             out->th.found = 0;
             goto out;
