@@ -243,6 +243,44 @@ static void test_rest_takes_momentum(void **state)
     sw_engine_destroy(e);
 }
 
+/* sw_model_settled on a frame is the closed form of the undamped
+ * oscillator: standing still at u, the support's acceleration peaks at
+ * w^2 |u|.  Just below g tan(alpha)/w^2 the package stays put for good;
+ * just above it lifts, and the test says so. */
+static void test_settled_frame(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_frame(2.0, 0.728, 250.0, 5.0, 0.0);
+    for (int k = 0; k < 2; k++) {
+        const double f = k == 0 ? 0.99 : 1.01;
+        tu_events_t rec = {0};
+        sw_engine_t *e = tu_engine(&sc, "rk4", 1e-3, &rec);
+        assert_non_null(e);
+        const sw_derived_t *d = sw_engine_derived(e, 0);
+        const double w = d->omega_b, u0 = f * sc.g * tan(d->alpha) / (w * w); /* m */
+        const sw_state_t s0 = {.phase = SW_PHASE_STUCK, .u = u0};
+        assert_int_equal(sw_model_settled(d, sc.g, &s0), k == 0);
+        assert_int_equal(sw_engine_set_state(e, 0, &s0), SW_OK);
+        assert_true(sw_engine_advance_fn(e, 5.0 * 2.0 * M_PI / w, zero, NULL) >= 0);
+        assert_int_equal(tu_count(&rec, SW_EV_UPLIFT) > 0, k == 1);
+        sw_engine_destroy(e);
+    }
+    /* overturned is final; rocking is not settled; the bed holds still */
+    sw_derived_t d;
+    assert_int_equal(sw_scene_validate(&sc, &d, NULL, NULL, NULL), SW_OK);
+    const sw_state_t over = {.phase = SW_PHASE_OVERTURNED}, rock = {.phase = SW_PHASE_ROCKING};
+    assert_true(sw_model_settled(&d, sc.g, &over));
+    assert_false(sw_model_settled(&d, sc.g, &rock));
+    const sw_scene_t bare = tu_bare(2.0, 0.728);
+    assert_int_equal(sw_scene_validate(&bare, &d, NULL, NULL, NULL), SW_OK);
+    const sw_state_t still = {.phase = SW_PHASE_STUCK};
+    assert_true(sw_model_settled(&d, bare.g, &still));
+    /* a cushion cannot prove it (its phase is always rocking) */
+    const sw_scene_t cu = tu_cushion(tu_bare(2.0, 0.728), 40.0, 0.1);
+    assert_int_equal(sw_scene_validate(&cu, &d, NULL, NULL, NULL), SW_OK);
+    assert_false(sw_model_settled(&d, cu.g, &rock));
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -250,6 +288,7 @@ int main(void)
         cmocka_unit_test(test_stuck_frame_uplift),  cmocka_unit_test(test_impact_ratio),
         cmocka_unit_test(test_energy_conservation), cmocka_unit_test(test_stiff_limit_is_bare),
         cmocka_unit_test(test_forced_dt_refused),   cmocka_unit_test(test_rest_takes_momentum),
+        cmocka_unit_test(test_settled_frame),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

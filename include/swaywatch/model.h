@@ -64,6 +64,12 @@ SW_API double sw_model_barrier(const sw_derived_t *d, double g);
  * over the centre of mass's largest horizontal speed that the kinetic
  * energy allows (docs/reserve.md, the energy bound). */
 SW_API double sw_model_work_rate(const sw_derived_t *d);
+/* 1 if state s can no longer change once the input stops: overturned, or
+ * standing where nothing left in it can lift the package again (on a
+ * frame, the bearings' remaining energy cannot drive the support's
+ * acceleration up to g tan(alpha)); 0 if it may still move, or if the
+ * model cannot prove it. */
+SW_API int sw_model_settled(const sw_derived_t *d, double g, const sw_state_t *s);
 
 /* --- cushion (scene 3) ---------------------------------------------------
  * d comes from sw_scene_validate() of a cushion scene; g is the gravity to

@@ -162,31 +162,18 @@ static void write_states(sw_engine_t *e, sim_ctx_t *c)
     }
 }
 
-/* Nothing left to happen: every package at rest or overturned. */
-/* Every package overturned, or standing with no way to lift again once the
- * input has stopped.  A stuck package on a frame is settled only when the
- * bearing's remaining energy E = u'^2/2 + w^2 u^2/2 (per unit mass, which
- * damping only lowers) cannot drive the support's acceleration
- * |A| = |2 z w u' + w^2 u| <= (2 z w + w) sqrt(2 E) up to the uplift
- * threshold g tan(alpha). */
+/* Nothing left to happen: every package overturned, or standing with no
+ * way to lift again once the input has stopped (sw_model_settled). */
 static int all_settled(const sw_engine_t *e)
 {
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_output_t out;
         if (sw_engine_get_output(e, i, &out) != SW_OK)
             return 0;
-        if (out.state.phase == SW_PHASE_OVERTURNED)
-            continue;
-        if (out.state.phase == SW_PHASE_ROCKING)
-            return 0;
         const sw_derived_t *d = sw_engine_derived(e, i);
-        if (d->model == SW_MODEL_FRAME) {
-            const double w = d->omega_b, u = out.state.u, v = out.state.u_dot;
-            const double E = 0.5 * v * v + 0.5 * w * w * u * u; /* J/kg */
-            const double g = d->p * d->p * 4.0 * d->R / 3.0;    /* m/s^2 */
-            if ((2.0 * d->zeta_b * w + w) * sqrt(2.0 * E) >= g * tan(d->alpha))
-                return 0;
-        }
+        const double g = d->p * d->p * 4.0 * d->R / 3.0; /* m/s^2: p = sqrt(3 g / (4 R)) */
+        if (!sw_model_settled(d, g, &out.state))
+            return 0;
     }
     return 1;
 }

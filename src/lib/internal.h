@@ -292,6 +292,10 @@ struct sw_model_ops {
     double (*barrier)(const sw_derived_t *d, double g);
     double (*work_rate)(const sw_derived_t *d);
 
+    /* a package not rocking can no longer lift without input
+     * (sw_model_settled); NULL: never proven */
+    int (*settled)(const sw_derived_t *d, double g, const sw_state_t *s);
+
     /* ---- what the analyses that run a package many times rely on
      * (sweep.c, safety*.c, reserve*.c), so that they never ask which model
      * it is ---- */

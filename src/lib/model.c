@@ -48,6 +48,16 @@ int sw_model_stiff(const sw_derived_t *d, double dt)
     return m && m->tracks_rate && d->omega_max * dt > SW_STIFF_OMEGA_DT;
 }
 
+int sw_model_settled(const sw_derived_t *d, double g, const sw_state_t *s)
+{
+    const sw_model_ops_t *m = d && s ? sw_model_ops_of(d->model) : NULL;
+    if (!m)
+        return 0;
+    if (s->phase == SW_PHASE_OVERTURNED)
+        return 1;
+    return s->phase != SW_PHASE_ROCKING && m->settled && m->settled(d, g, s);
+}
+
 double sw_model_lift_level(const sw_derived_t *d, double g)
 {
     const sw_model_ops_t *m = sw_model_ops_of(d->model);

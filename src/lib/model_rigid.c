@@ -335,6 +335,26 @@ static double frame_work_rate(const sw_derived_t *d)
     return 1.0 / sqrt(2.0 * d->gamma);
 }
 
+/* Standing on the bed, nothing moves it without input. */
+static int bare_settled(const sw_derived_t *d, double g, const sw_state_t *s)
+{
+    (void)d;
+    (void)g;
+    (void)s;
+    return 1;
+}
+
+/* Standing on the frame: settled when the bearings' remaining energy
+ * E = u'^2/2 + w^2 u^2/2 (per unit mass, which damping only lowers) cannot
+ * drive the support's acceleration |A| = |2 z w u' + w^2 u| <=
+ * (2 z w + w) sqrt(2 E) up to the uplift threshold g tan(alpha). */
+static int frame_settled(const sw_derived_t *d, double g, const sw_state_t *s)
+{
+    const double w = d->omega_b, u = s->u, v = s->u_dot; /* rad/s, m, m/s */
+    const double E = 0.5 * v * v + 0.5 * w * w * u * u;  /* J/kg */
+    return (2.0 * d->zeta_b * w + w) * sqrt(2.0 * E) < g * tan(d->alpha);
+}
+
 /* The bed and the frame leave their rest contact when the support's
  * acceleration reaches g tan(alpha): an uplift ratio of 1. */
 static double rigid_lift_level(const sw_derived_t *d, double g)
@@ -373,6 +393,7 @@ const sw_model_ops_t sw_model_bare = {
     .energy = sw_energy_bare,
     .barrier = rigid_barrier,
     .work_rate = bare_work_rate,
+    .settled = bare_settled,
     .lift_direct = 1,
     .free_exact = 1,
     .lift_level = rigid_lift_level,
@@ -394,6 +415,7 @@ const sw_model_ops_t sw_model_frame = {
     .energy = sw_energy_frame,
     .barrier = rigid_barrier,
     .work_rate = frame_work_rate,
+    .settled = frame_settled,
     .stuck_linear = 1,
     .lift_level = rigid_lift_level,
     .lift_drive = rigid_lift_drive,
