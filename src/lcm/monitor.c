@@ -12,6 +12,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "alarm_fold.h"
 #include "swaywatch/status.h"
 #include "swaywatch_accel_t.h"
 #include "swaywatch_alarm_t.h"
@@ -48,24 +49,6 @@ _Static_assert(sizeof(((swaywatch_state_t *)0)->name) == SW_NAME_MAX,
 _Static_assert(sizeof(((swaywatch_alarm_t *)0)->text) == SW_ALARM_TEXT_MAX,
                "alarm_t.text holds an alarm text");
 
-/* The alarm rate limit of one package and kind (journald's
- * RateLimitIntervalSec/RateLimitBurst, per kind): within a window of
- * alarm_interval from its first alarm, FOLD_BURST alarms go out and the
- * rest are held back, counted, and go out as one summary when the window
- * ends; an alarm of a higher level than any sent in the window always goes
- * out at once. */
-typedef struct {
-    double win;           /* mono s, start of the window; -INFINITY: none yet */
-    int sent;             /* alarms sent in the window */
-    sw_alarm_level top;   /* highest level sent in the window */
-    long folded;          /* held back since */
-    sw_alarm_level level; /* the highest level among them */
-    sw_alarm_t latest;    /* the latest of them, sent in the summary */
-    int64_t latest_us;
-} fold_t;
-#define FOLD_BURST 3  /* alarms of a package and kind let through per window */
-#define FOLD_KINDS 32 /* alarm kinds the limit tells apart (sw_alarm_kind < 32) */
-
 /* Messages are fixed-size; this holds the largest encoded one. */
 #define SW_MON_BUF 512
 
@@ -97,12 +80,10 @@ struct sw_mon {
     int64_t base_us; /* utime of the first sample received: the gate is fed
                         (utime - base) / 1e6 s, exact for any utime near it */
 
-    /* Every other alarm kind: at most one per package and kind per
-     * interval; the ones in between are folded into one summary. */
-    fold_t *fold;          /* (n + 1) * FOLD_KINDS: package k at k, input alarms at n */
-    double fold_next;      /* mono s of the earliest pending summary; INFINITY: none */
-    double alarm_interval; /* s; 0: no limit */
-    double now;            /* mono s of the feed or tick in progress */
+    /* Every other alarm kind: a burst per package and kind per interval;
+     * the ones after it are folded into one summary (alarm_fold.h). */
+    sw_fold_t *fold;
+    double now; /* mono s of the feed or tick in progress */
 
     /* INPUT_REJECTED rate limit, per reason */
     double rej_last_alarm[SW_MON_NREJ]; /* mono s; -INFINITY: never */
@@ -193,9 +174,10 @@ static double reserve_of(const sw_mon_t *m, size_t pkg)
     return p && isfinite(p->reserve_g) ? p->reserve_g : -1.0;
 }
 
-/* Publish one alarm (no rate limit: send_alarm() decides). */
-static void emit_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
+/* Publish one alarm (no rate limit: the fold decides). */
+static void emit_alarm(void *user, const sw_alarm_t *a, int64_t utime)
 {
+    sw_mon_t *m = user;
     m->c.alarms++;
     if (m->o.on_alarm)
         m->o.on_alarm(m->o.user, a);
@@ -218,95 +200,10 @@ static void emit_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
     publish(m, m->alarm_channel, swaywatch_alarm_t_encode(m->buf, 0, SW_MON_BUF, &msg));
 }
 
-/* The fold slot of an alarm; NULL for INPUT_REJECTED, which is folded
- * per reason (reject_alarm) before it gets here. */
-static fold_t *fold_slot(sw_mon_t *m, const sw_alarm_t *a)
-{
-    if (a->kind == SW_ALARM_INPUT_REJECTED || m->alarm_interval <= 0.0)
-        return NULL;
-    const size_t row = a->pkg < m->n ? a->pkg : m->n;
-    const unsigned k = (unsigned)a->kind < FOLD_KINDS ? (unsigned)a->kind : FOLD_KINDS - 1;
-    return &m->fold[row * FOLD_KINDS + k];
-}
-
-/* Send what f held back: the one alarm as it was, or a summary with the
- * count, the highest level and the latest one's text. */
-static void fold_send(sw_mon_t *m, fold_t *f, double span)
-{
-    sw_alarm_t a = f->latest;
-    a.level = f->level;
-    if (f->folded > 1) {
-        char head[64];
-        snprintf(head, sizeof head, "%ld more in %.3g s, the last: ", f->folded, span);
-        const size_t hl = strlen(head); /* < 64 < SW_ALARM_TEXT_MAX */
-        size_t tl = strlen(f->latest.text);
-        if (tl > sizeof a.text - 1 - hl)
-            tl = sizeof a.text - 1 - hl; /* the latest text, cut to fit */
-        memcpy(a.text, head, hl);
-        memcpy(a.text + hl, f->latest.text, tl);
-        a.text[hl + tl] = '\0';
-    }
-    m->c.alarms_folded += f->folded - 1;
-    f->folded = 0;
-    emit_alarm(m, &a, f->latest_us);
-}
-
-/* Send a now, as alarm number f->sent + 1 of the window. */
-static void fold_pass(sw_mon_t *m, fold_t *f, const sw_alarm_t *a, int64_t utime)
-{
-    f->sent++;
-    if (a->level > f->top)
-        f->top = a->level;
-    emit_alarm(m, a, utime);
-}
-
-/* Every alarm goes through here (see fold_t).  A storm of 2,000
- * MODEL_FAULTs a second is FOLD_BURST alarms and one summary a second. */
+/* Every alarm goes through the rate limit. */
 static void send_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
 {
-    fold_t *f = fold_slot(m, a);
-    if (!f) {
-        emit_alarm(m, a, utime);
-        return;
-    }
-    const double mono = m->now;
-    if (!(mono - f->win < m->alarm_interval)) { /* a new window (NaN: a flush) */
-        if (f->folded > 0)
-            fold_send(m, f, m->alarm_interval);
-        f->win = isfinite(mono) ? mono : -INFINITY; /* after a flush, a fresh start */
-        f->sent = 0;
-        f->top = a->level;
-        fold_pass(m, f, a, utime);
-        return;
-    }
-    if (f->sent < FOLD_BURST || a->level > f->top) {
-        fold_pass(m, f, a, utime);
-        return;
-    }
-    if (f->folded == 0 || a->level > f->level)
-        f->level = a->level;
-    f->folded++;
-    f->latest = *a;
-    f->latest_us = utime;
-    if (f->win + m->alarm_interval < m->fold_next)
-        m->fold_next = f->win + m->alarm_interval;
-}
-
-/* Send the summaries of the windows that ended by mono (all: INFINITY). */
-static void fold_tick(sw_mon_t *m, double mono)
-{
-    if (!(mono >= m->fold_next))
-        return;
-    m->fold_next = INFINITY;
-    for (size_t i = 0; i < (m->n + 1) * FOLD_KINDS; i++) {
-        fold_t *f = &m->fold[i];
-        if (f->folded == 0)
-            continue;
-        if (!(mono - f->win < m->alarm_interval))
-            fold_send(m, f, m->alarm_interval);
-        else if (f->win + m->alarm_interval < m->fold_next)
-            m->fold_next = f->win + m->alarm_interval;
-    }
+    sw_fold_send(m->fold, a, utime, m->now);
 }
 
 static void on_alarm(void *user, const sw_alarm_t *a)
@@ -427,17 +324,15 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         m->state_period_us = 1;
     m->rej_interval = m->o.reject_interval > 0.0 ? m->o.reject_interval : 1.0;
     for (int r = 0; r < SW_MON_NREJ; r++) m->rej_last_alarm[r] = -INFINITY;
-    m->alarm_interval = m->o.alarm_interval == 0.0 ? 1.0 : fmax(m->o.alarm_interval, 0.0);
-    m->fold_next = INFINITY;
+    const double interval = m->o.alarm_interval == 0.0 ? 1.0 : fmax(m->o.alarm_interval, 0.0);
 
     m->watch = calloc(n ? n : 1, sizeof *m->watch);
     m->names = calloc(n ? n : 1, sizeof *m->names);
     m->next_state_us = calloc(n ? n : 1, sizeof *m->next_state_us);
     m->buf = malloc(SW_MON_BUF);
-    m->fold = calloc((n + 1) * FOLD_KINDS, sizeof *m->fold);
+    m->fold = sw_fold_create(n, interval, emit_alarm, m);
     if (!m->watch || !m->names || !m->next_state_us || !m->buf || !m->fold)
         goto nomem;
-    for (size_t i = 0; i < (n + 1) * FOLD_KINDS; i++) m->fold[i].win = -INFINITY;
 
     sw_engine_opts_t e = *eo;
     e.on_event = on_event;
@@ -501,7 +396,7 @@ void sw_mon_destroy(sw_mon_t *m)
     free(m->names);
     free(m->next_state_us);
     free(m->buf);
-    free(m->fold);
+    sw_fold_destroy(m->fold);
     free(m);
 }
 
@@ -678,7 +573,8 @@ double sw_mon_deadline(const sw_mon_t *m)
     for (int r = 0; r < SW_MON_NREJ; r++)
         if (m->rej_pending[r] > 0 && m->rej_last_alarm[r] + m->rej_interval < d)
             d = m->rej_last_alarm[r] + m->rej_interval;
-    return m->fold_next < d ? m->fold_next : d;
+    const double f = sw_fold_deadline(m->fold);
+    return f < d ? f : d;
 }
 
 void sw_mon_tick(sw_mon_t *m, double mono)
@@ -694,7 +590,7 @@ void sw_mon_tick(sw_mon_t *m, double mono)
                     m->last_us + (int64_t)llround(waited * 1e6), text);
     }
     for (int r = 0; r < SW_MON_NREJ; r++) reject_alarm(m, (sw_mon_reject)r, mono, m->last_us);
-    fold_tick(m, mono);
+    sw_fold_tick(m->fold, mono);
 }
 
 void sw_mon_flush(sw_mon_t *m)
@@ -706,7 +602,7 @@ void sw_mon_flush(sw_mon_t *m)
     sw_gate_facts(m->gate, &f);
     m->c.accepted = f.accepted;
     for (int r = 0; r < SW_MON_NREJ; r++) reject_alarm(m, (sw_mon_reject)r, INFINITY, m->last_us);
-    fold_tick(m, INFINITY);
+    sw_fold_tick(m->fold, INFINITY);
 }
 
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
@@ -714,6 +610,7 @@ void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
     sw_gate_facts_t f;
     sw_gate_facts(m->gate, &f);
     *c = m->c;
+    c->alarms_folded = sw_fold_folded(m->fold);
     c->accepted = f.accepted;
     c->held = f.held;
     c->lost = f.lost;
