@@ -1,0 +1,319 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* batch_out.c - the run of "swaywatch batch" (batch_int.h) and its
+ * records: the outputs checked and opened, each log run by its job on the
+ * farm, and one JSON Lines record per log and package (and a CSV row of
+ * the same) written on rank 0.
+ *
+ * The logs run on the farm (farm.h): on every core, and under mpirun or
+ * srun on every rank, the longest (biggest) first; the records are written
+ * in the order of the logs, the same bytes whatever the number of threads
+ * or ranks.  A log that fails (unreadable, refused by the input gate) gives
+ * an error record with the reason, and the batch goes on. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "batch_int.h"
+#include "output.h"
+
+/* ---- records -------------------------------------------------------------------- */
+
+/* What a job's run writes for a log: each package's JSON members and CSV
+ * fields, with their lengths. */
+struct sw_cli_records {
+    FILE *f;
+    long n;
+};
+
+void sw_cli_records_package(sw_cli_records_t *rec, const char *json, size_t jlen, const char *csv,
+                            size_t clen)
+{
+    fprintf(rec->f, "%zu %zu\n", jlen, clen);
+    fwrite(json, 1, jlen, rec->f);
+    fwrite(csv, 1, clen, rec->f);
+    rec->n++;
+}
+
+int sw_cli_record_begin(sw_cli_record_t *r)
+{
+    memset(r, 0, sizeof *r);
+    r->j = open_memstream(&r->json, &r->jlen);
+    r->c = open_memstream(&r->csv, &r->clen);
+    return r->j && r->c ? 0 : -1;
+}
+
+int sw_cli_record_end(sw_cli_records_t *rec, sw_cli_record_t *r)
+{
+    int bad = !r->j || !r->c;
+    if (r->j && fclose(r->j) != 0)
+        bad = 1;
+    if (r->c && fclose(r->c) != 0)
+        bad = 1;
+    if (!bad) {
+        for (size_t i = 0; i < r->jlen; i++)
+            if (r->json[i] == '\n')
+                r->json[i] = ' ';
+        sw_cli_records_package(rec, r->json, r->jlen, r->csv, r->clen);
+    }
+    free(r->json);
+    free(r->csv);
+    memset(r, 0, sizeof *r);
+    return bad ? -1 : 0;
+}
+
+/* ---- outputs ---------------------------------------------------------------------- */
+
+static int is_stdout(const char *path)
+{
+    return !path || !strcmp(path, "-");
+}
+
+static int check_outputs(const batch_t *B)
+{
+    if (B->b.csv && is_stdout(B->b.out) && is_stdout(B->b.csv)) {
+        sw_cli_error("--csv -: standard output already carries the records (give --out a file)");
+        return SW_EXIT_USAGE;
+    }
+    struct stat a, b;
+    if (B->b.csv && !is_stdout(B->b.out) && !is_stdout(B->b.csv) &&
+        (!strcmp(B->b.out, B->b.csv) || (stat(B->b.out, &a) == 0 && stat(B->b.csv, &b) == 0 &&
+                                         a.st_dev == b.st_dev && a.st_ino == b.st_ino))) {
+        sw_cli_error("--out and --csv name the same file '%s'", B->b.out);
+        return SW_EXIT_USAGE;
+    }
+    /* an output that is an input would be truncated before it is read */
+    const char *outs[2] = {is_stdout(B->b.out) ? NULL : B->b.out,
+                           B->b.csv && !is_stdout(B->b.csv) ? B->b.csv : NULL};
+    for (int k = 0; k < 2; k++) {
+        if (!outs[k] || stat(outs[k], &a) != 0)
+            continue;
+        if (B->b.manifest && strcmp(B->b.manifest, "-") && stat(B->b.manifest, &b) == 0 &&
+            a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
+            sw_cli_error("--%s %s: that is the manifest", k ? "csv" : "out", outs[k]);
+            return SW_EXIT_USAGE;
+        }
+        for (size_t i = 0; i < B->n; i++)
+            if (stat(B->items[i].log, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
+                sw_cli_error("--%s %s: that is a log of the batch", k ? "csv" : "out", outs[k]);
+                return SW_EXIT_USAGE;
+            }
+    }
+    return SW_EXIT_OK;
+}
+
+static int open_outputs(batch_t *B)
+{
+    B->out = sw_cli_out_open(B->b.out ? B->b.out : "-");
+    if (!B->out)
+        return SW_EXIT_IO;
+    if (!B->b.csv)
+        return SW_EXIT_OK;
+    B->csv = sw_cli_out_open(B->b.csv);
+    if (!B->csv)
+        return SW_EXIT_IO;
+    fprintf(B->csv, "index,line,log,job,status,%s,messages\n", B->job->csv_header);
+    return SW_EXIT_OK;
+}
+
+/* ---- one log, on any thread of any rank --------------------------------------------- */
+
+static void run_item(void *user, size_t i, FILE *out)
+{
+    const batch_t *B = user;
+    const item_t *it = &B->items[i];
+    char *buf = NULL;
+    size_t len = 0;
+    sw_cli_records_t rec = {.f = open_memstream(&buf, &len)};
+    int rc = SW_EXIT_IO;
+    if (!rec.f)
+        sw_cli_error("%s: out of memory", it->log);
+    else
+        rc = B->job->run(B->sets[it->set].opts, it->log, &rec);
+    if (rec.f && fclose(rec.f) != 0 && (rc == SW_EXIT_OK || rc == SW_EXIT_OVERTURNED)) {
+        sw_cli_error("%s: out of memory", it->log);
+        rc = SW_EXIT_IO;
+    }
+    const int good = rc == SW_EXIT_OK || rc == SW_EXIT_OVERTURNED;
+    fprintf(out, "%d %ld\n", rc, good ? rec.n : 0L);
+    if (good)
+        fwrite(buf, 1, len, out);
+    free(buf);
+}
+
+/* ---- the records, on rank 0, in order ----------------------------------------------- */
+
+/* The messages as a JSON array and as one CSV field (joined by " | "),
+ * each without the "swaywatch: " prefix. */
+static void messages(FILE *jf, FILE *cf, const char *msgs, size_t mlen)
+{
+    char *joined = NULL;
+    size_t jlen = 0;
+    FILE *j = cf ? open_memstream(&joined, &jlen) : NULL;
+    fputc('[', jf);
+    const char *p = msgs, *end = msgs + mlen;
+    for (int k = 0; p < end; k++) {
+        const char *nl = memchr(p, '\n', (size_t)(end - p));
+        const char *le = nl ? nl : end;
+        if (le - p >= 11 && !strncmp(p, "swaywatch: ", 11))
+            p += 11;
+        char *line = strndup(p, (size_t)(le - p));
+        if (line) {
+            if (k)
+                fputs(", ", jf);
+            sw_cli_json_string(jf, line);
+            if (j)
+                fprintf(j, "%s%s", k ? " | " : "", line);
+            free(line);
+        }
+        p = nl ? nl + 1 : end;
+    }
+    fputc(']', jf);
+    if (j && fclose(j) == 0) {
+        fputc(',', cf);
+        sw_cli_csv_text(cf, joined);
+    } else if (cf) {
+        fputc(',', cf);
+    }
+    free(joined);
+}
+
+/* What every record of log i begins with. */
+static void head(const batch_t *B, size_t i, const char *status)
+{
+    const item_t *it = &B->items[i];
+    fprintf(B->out, "{\"index\": %zu, \"line\": ", i + 1);
+    if (it->line)
+        fprintf(B->out, "%ld", it->line);
+    else
+        fputs("null", B->out);
+    fputs(", \"log\": ", B->out);
+    sw_cli_json_string(B->out, it->log);
+    fputs(", \"job\": ", B->out);
+    sw_cli_json_string(B->out, B->job->name);
+    fprintf(B->out, ", \"status\": \"%s\"", status);
+    if (!B->csv)
+        return;
+    fprintf(B->csv, "%zu,", i + 1);
+    if (it->line)
+        fprintf(B->csv, "%ld", it->line);
+    fputc(',', B->csv);
+    sw_cli_csv_text(B->csv, it->log);
+    fprintf(B->csv, ",%s,%s", B->job->name, status);
+}
+
+static int take_item(void *user, size_t i, const char *data, size_t len, const char *msgs,
+                     size_t mlen)
+{
+    batch_t *B = user;
+    int rc = SW_EXIT_IO;
+    long npkg = 0;
+    const char *p = data, *end = data + len;
+    if (sscanf(p, "%d %ld", &rc, &npkg) != 2)
+        rc = SW_EXIT_IO, npkg = 0;
+    p = memchr(p, '\n', len);
+    p = p ? p + 1 : end;
+    const int good = rc == SW_EXIT_OK || rc == SW_EXIT_OVERTURNED;
+    if (!B->b.quiet && mlen)
+        fwrite(msgs, 1, mlen, stderr);
+    if (good) {
+        B->ok++;
+        B->overturned |= rc == SW_EXIT_OVERTURNED;
+        for (long k = 0; k < npkg && p < end; k++) {
+            size_t jl = 0, cl = 0;
+            if (sscanf(p, "%zu %zu", &jl, &cl) != 2)
+                break;
+            const char *nl = memchr(p, '\n', (size_t)(end - p));
+            if (!nl || (size_t)(end - nl - 1) < jl + cl)
+                break;
+            p = nl + 1;
+            head(B, i, "ok");
+            fputs(", ", B->out);
+            fwrite(p, 1, jl, B->out);
+            fputs(", \"messages\": ", B->out);
+            if (B->csv) {
+                fputc(',', B->csv);
+                fwrite(p + jl, 1, cl, B->csv);
+            }
+            messages(B->out, B->csv, msgs, mlen);
+            fputs("}\n", B->out);
+            if (B->csv)
+                fputc('\n', B->csv);
+            p += jl + cl;
+            B->records++;
+        }
+    } else {
+        B->failed++;
+        head(B, i, "error");
+        fprintf(B->out, ", \"exit\": %d, \"messages\": ", rc);
+        if (B->csv)
+            for (size_t k = 0; k < B->csv_fields; k++) fputc(',', B->csv);
+        messages(B->out, B->csv, msgs, mlen);
+        fputs("}\n", B->out);
+        if (B->csv)
+            fputc('\n', B->csv);
+        B->records++;
+    }
+    if (ferror(B->out) || (B->csv && ferror(B->csv))) {
+        sw_cli_error(
+            "%s: write failed: %s",
+            ferror(B->out) ? sw_cli_out_name(B->b.out ? B->b.out : "-") : sw_cli_out_name(B->b.csv),
+            strerror(errno));
+        B->write_failed = 1;
+        return -1;
+    }
+    return 0;
+}
+
+/* ---- the run -------------------------------------------------------------------- */
+
+int sw_batch_run(batch_t *B)
+{
+    int rc = SW_EXIT_OK;
+    if (B->world.rank == 0 &&
+        ((rc = check_outputs(B)) != SW_EXIT_OK || (rc = open_outputs(B)) != SW_EXIT_OK)) {
+        /* fall through to agree: the other ranks wait for the verdict */
+    }
+    if ((rc = sw_cli_world_agree(&B->world, rc, NULL, 0)) != SW_EXIT_OK)
+        return rc;
+    B->threads = sw_cli_threads(&B->world, B->b.threads);
+    B->by_rank = calloc((size_t)B->world.size, sizeof *B->by_rank);
+    const sw_cli_farm_t farm = {
+        .world = &B->world,
+        .n = B->n,
+        .cost = B->cost,
+        .threads = B->threads,
+        .by_rank = B->by_rank,
+        .run = run_item,
+        .take = take_item,
+        .user = B,
+        .what = B->b.progress ? "logs" : NULL,
+    };
+    rc = sw_cli_farm_run(&farm);
+    if (B->world.rank != 0)
+        return rc;
+    int rc2 = B->out ? sw_cli_out_close(B->out, B->b.out ? B->b.out : "-") : SW_EXIT_OK;
+    int rc3 = B->csv ? sw_cli_out_close(B->csv, B->b.csv) : SW_EXIT_OK;
+    B->out = B->csv = NULL;
+    if (rc == SW_EXIT_OK)
+        rc = rc2 != SW_EXIT_OK ? rc2 : rc3;
+    if (rc != SW_EXIT_OK)
+        return rc;
+    if (!B->b.quiet) {
+        sw_cli_error("batch: %zu log%s: %ld done, %ld failed; %ld record%s to %s%s%s", B->n,
+                     B->n == 1 ? "" : "s", B->ok, B->failed, B->records, B->records == 1 ? "" : "s",
+                     sw_cli_out_name(B->b.out ? B->b.out : "-"), B->b.csv ? ", the table to " : "",
+                     B->b.csv ? sw_cli_out_name(B->b.csv) : "");
+        if (B->world.size > 1 && B->by_rank) { /* how the work was shared */
+            FILE *m = sw_cli_msg();
+            fprintf(m, "swaywatch: batch: %d ranks (rank 0 with %d thread%s); logs run by each:",
+                    B->world.size, B->threads, B->threads == 1 ? "" : "s");
+            for (int r = 0; r < B->world.size; r++) fprintf(m, " %ld", B->by_rank[r]);
+            fputc('\n', m);
+        }
+    }
+    if (B->failed)
+        return SW_EXIT_PARTIAL;
+    return B->overturned ? SW_EXIT_OVERTURNED : SW_EXIT_OK;
+}
