@@ -2,7 +2,7 @@
 /* test_reserve.c - the reserve in g (reserve.h) against values it does
  * not compute itself: the published boundary table of the bare block
  * (rocking-anchors.md section 2.2), sw_boundary_point with its fine steps,
- * brute-force scans of sw_pulse_run_from (sweep.c's run machinery, GSL
+ * brute-force scans of sw_pulse_run_from (run.c's machinery, GSL
  * rk8pd where cheap enough) from rocking states, closed forms of the
  * energy bound, and the physics of a state that overturns with no input.
  * Also: safe islands above the lowest overturning amplitude, the merged
@@ -67,7 +67,7 @@ static sw_state_t rocking(double theta, double theta_dot)
 }
 
 /* Does a half-sine of amplitude x g in direction dir, duration T, overturn
- * the package from s?  sweep.c's runs, full free motion, rk8pd unless
+ * the package from s?  run.c's runs, full free motion, rk8pd unless
  * scheme is given. */
 static int overturns(const sw_scene_t *sc, const sw_state_t *s, int dir, double x, double T,
                      const char *scheme)
@@ -293,7 +293,7 @@ static void test_already_falling(void **state)
 
 /* From this state (rocking back, moving in) a speeding-up pulse of 1 s
  * overturns it in a window of amplitudes, then a safe island, then again
- * (found by a scan of sweep.c's runs; checked here).  The reserve must be
+ * (found by a scan of run.c's runs; checked here).  The reserve must be
  * the window's lower end, not the island's upper one. */
 static void test_island(void **state)
 {

@@ -297,7 +297,7 @@ struct sw_model_ops {
     int (*settled)(const sw_derived_t *d, double g, const sw_state_t *s);
 
     /* ---- what the analyses that run a package many times rely on
-     * (sweep.c, safety*.c, reserve*.c), so that they never ask which model
+     * (run.c, sweep.c, safety*.c, reserve*.c), so that they never ask which model
      * it is ---- */
     /* the package leaves its rest contact exactly when the input itself
      * reaches g tan(alpha) (the bare block): there is nothing to probe */

@@ -420,5 +420,5 @@ const sw_model_ops_t sw_model_frame = {
     .lift_level = rigid_lift_level,
     .lift_drive = rigid_lift_drive,
     .probe_rates = frame_probe_rates,
-    .probe_margin = 0.99, /* linear: sampled to 3e-5 of the peak (sweep.c) */
+    .probe_margin = 0.99, /* linear: sampled to 3e-5 of the peak (sweep.c's pulse_lift) */
 };

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* run.h - what the library's run-many-times modules share (sweep.c: one
- * run, boundaries; safety.c: the safety factors of a log): an engine made
+/* run.h - what the library's run-many-times modules share (run.c: one
+ * run; sweep.c: boundaries; safety.c: the safety factors of a log): an engine made
  * for runs, the free motion after the input until the outcome is certain,
  * and the probe of how far a package is from leaving its rest contact.
  * Internal: not part of the public API. */
@@ -49,6 +49,10 @@ int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_resu
  * (*next_restart: the next entry of log->restart to look at, 0 at the
  * start).  Returns sw_engine_push()'s status. */
 int sw_run_push(sw_engine_t *e, const sw_log_t *log, size_t i, double scale, size_t *next_restart);
+
+/* The pulse from rest, then free motion (sw_pulse_run()). */
+int sw_run_pulse_on(sw_runner_t *R, const sw_pulse_t *pulse, const sw_run_opts_t *o,
+                    sw_run_result_t *r);
 
 /* The log scaled, from the start, then free motion (sw_log_run()). */
 int sw_run_log_on(sw_runner_t *R, const sw_log_t *log, double scale, const sw_run_opts_t *o,
