@@ -526,6 +526,57 @@ static double auto_dt(const sw_derived_t *d, double T)
     return period / SW_RESERVE_STEPS;
 }
 
+/* The private engine of design pulse P (duration P->T set) and what its
+ * runs need: SW_OK, or an error with msg set. */
+static int pulse_make(const sw_reserve_t *R, pulse_ctx_t *P, char *msg, size_t msglen)
+{
+    const sw_derived_t *d = &R->d;
+    sw_engine_opts_t eo = R->o.run.engine;
+    eo.on_event = NULL;
+    eo.outcome_only = 1; /* the outcome alone: no report to time or compute */
+    eo.on_state = NULL;
+    eo.user = NULL;
+    eo.dt_forced = 0;
+    if (!(eo.dt > 0.0) && !(eo.accuracy > 0.0))
+        eo.dt = auto_dt(d, P->T);
+    /* checks at whole steps, so that they do not cut the step grid */
+    const double dt = eo.dt > 0.0 ? eo.dt : auto_dt(d, P->T);
+    /* a fixed step that a stiff support forces down to microseconds
+     * makes every run millions of steps: refuse, and say why */
+    const double max_steps =
+        R->o.max_run_steps > 0.0 ? R->o.max_run_steps : SW_RESERVE_MAX_RUN_STEPS;
+    const double steps = (P->T + R->t_free) / dt;
+    if (!(eo.accuracy > 0.0) && !(steps <= max_steps)) {
+        sw_set_msg(msg, msglen,
+                   "a design-pulse run would take %.3g steps of %.3g s (%.3g s of "
+                   "pulse and free motion), more than %.3g; the scene is too stiff for the "
+                   "reserve to keep up",
+                   steps, dt, P->T + R->t_free, max_steps);
+        return SW_ETOOBIG;
+    }
+    P->check = dt * ceil(P->T / CHECKS_PER_PULSE / dt);
+    if (!(eo.rtol > 0.0))
+        eo.rtol = DEFAULT_RTOL;
+    if (!(eo.atol > 0.0))
+        eo.atol = DEFAULT_ATOL;
+    if (!(eo.rest_eps > 0.0))
+        eo.rest_eps = DEFAULT_REST_EPS;
+    char why[256] = "";
+    int err = SW_OK;
+    P->e = sw_engine_create(&R->sc, 1, &eo, &err, why, sizeof why);
+    if (!P->e) {
+        if (err == SW_OK)
+            err = SW_ENOMEM;
+        sw_set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(err));
+        return err;
+    }
+    if (R->ops->stuck_linear && (err = sw_lift_table_make(&P->lift, d, P->T)) != SW_OK) {
+        sw_set_msg(msg, msglen, "out of memory");
+        return err;
+    }
+    return SW_OK;
+}
+
 sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *opts, int *err,
                                 char *msg, size_t msglen)
 {
@@ -575,49 +626,9 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
 
     R->np = (size_t)R->sc.n_design_pulse;
     for (size_t j = 0; j < R->np; j++) {
-        pulse_ctx_t *P = &R->p[j];
-        P->T = R->sc.design_pulse[j];
-        sw_engine_opts_t eo = R->o.run.engine;
-        eo.on_event = NULL;
-        eo.outcome_only = 1; /* the outcome alone: no report to time or compute */
-        eo.on_state = NULL;
-        eo.user = NULL;
-        eo.dt_forced = 0;
-        if (!(eo.dt > 0.0) && !(eo.accuracy > 0.0))
-            eo.dt = auto_dt(d, P->T);
-        /* checks at whole steps, so that they do not cut the step grid */
-        const double dt = eo.dt > 0.0 ? eo.dt : auto_dt(d, P->T);
-        /* a fixed step that a stiff support forces down to microseconds
-         * makes every run millions of steps: refuse, and say why */
-        const double max_steps =
-            R->o.max_run_steps > 0.0 ? R->o.max_run_steps : SW_RESERVE_MAX_RUN_STEPS;
-        const double steps = (P->T + R->t_free) / dt;
-        if (!(eo.accuracy > 0.0) && !(steps <= max_steps)) {
-            *err = SW_ETOOBIG;
-            sw_set_msg(msg, msglen,
-                       "a design-pulse run would take %.3g steps of %.3g s (%.3g s of "
-                       "pulse and free motion), more than %.3g; the scene is too stiff for the "
-                       "reserve to keep up",
-                       steps, dt, P->T + R->t_free, max_steps);
+        R->p[j].T = R->sc.design_pulse[j];
+        if ((*err = pulse_make(R, &R->p[j], msg, msglen)) != SW_OK)
             goto fail;
-        }
-        P->check = dt * ceil(P->T / CHECKS_PER_PULSE / dt);
-        if (!(eo.rtol > 0.0))
-            eo.rtol = DEFAULT_RTOL;
-        if (!(eo.atol > 0.0))
-            eo.atol = DEFAULT_ATOL;
-        if (!(eo.rest_eps > 0.0))
-            eo.rest_eps = DEFAULT_REST_EPS;
-        char why[256] = "";
-        P->e = sw_engine_create(&R->sc, 1, &eo, err, why, sizeof why);
-        if (!P->e) {
-            sw_set_msg(msg, msglen, "%s", why[0] ? why : sw_strerror(*err));
-            goto fail;
-        }
-        if (R->ops->stuck_linear && (*err = sw_lift_table_make(&P->lift, d, P->T)) != SW_OK) {
-            sw_set_msg(msg, msglen, "out of memory");
-            goto fail;
-        }
     }
 
     /* the value at rest, by the same search as any state */
