@@ -290,6 +290,38 @@ static void on_gate_take(void *user, double t, double a_g, double a_z, int resta
     m->o.on_take(m->o.user, t, a_g, a_z, restart);
 }
 
+/* The options, their defaults filled in, are in range. */
+static int opts_valid(const sw_mon_opts_t *o)
+{
+    return o->axis >= 0 && o->axis <= 2 && o->vertical >= -1 && o->vertical <= 2 &&
+           o->accel_scale > 0.0 && o->gap >= 0.0 && o->max_accel > 0.0 && o->state_rate >= 0.0 &&
+           o->max_skew >= 0.0 && o->reject_interval >= 0.0 && o->alarm_interval < 1e9 &&
+           isfinite(o->gap) && isfinite(o->state_rate) && o->max_jump < 1e9 &&
+           /* in microseconds of int64: a gap beyond 1e9 s or a rate below
+            * 1e-9 Hz would overflow */
+           o->gap <= 1e9 && !(o->state_rate > 0.0 && !(o->state_rate >= 1e-9));
+}
+
+/* The input gate of the monitor's engine, with the monitor's checks; its
+ * user is the monitor. */
+static sw_gate_t *make_gate(sw_mon_t *m, char *msg, size_t msglen)
+{
+    const sw_gate_opts_t go = {.gap = m->o.gap,
+                               .gap_policy = m->o.gap_policy,
+                               .max_bridge = m->o.max_bridge,
+                               .max_accel = m->o.max_accel,
+                               .jump = m->o.max_jump,
+                               .max_skew = m->o.max_skew,
+                               .confirm = m->o.confirm,
+                               .relative = 1,
+                               .vert_gravity = m->o.vert_gravity,
+                               .on_event = on_gate_event,
+                               .on_reject = on_gate_reject,
+                               .on_take = m->o.on_take ? on_gate_take : NULL,
+                               .user = m};
+    return sw_gate_create(m->engine, &go, msg, msglen);
+}
+
 sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo,
                         const sw_mon_opts_t *mo, lcm_t *out, char *msg, size_t msglen)
 {
@@ -302,14 +334,7 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     if (m->o.max_accel == 0.0)
         m->o.max_accel = SW_MON_MAX_ACCEL;
     m->timer_gap = m->o.gap > 0.0 ? m->o.gap : SW_MON_GAP;
-    if (m->o.axis < 0 || m->o.axis > 2 || m->o.vertical < -1 || m->o.vertical > 2 ||
-        !(m->o.accel_scale > 0.0) || !(m->o.gap >= 0.0) || !(m->o.max_accel > 0.0) ||
-        !(m->o.state_rate >= 0.0) || !(m->o.max_skew >= 0.0) || !(m->o.reject_interval >= 0.0) ||
-        !(m->o.alarm_interval < 1e9) || !isfinite(m->o.gap) || !isfinite(m->o.state_rate) ||
-        !(m->o.max_jump < 1e9) ||
-        /* in microseconds of int64: a gap beyond 1e9 s or a rate below
-         * 1e-9 Hz would overflow */
-        !(m->o.gap <= 1e9) || (m->o.state_rate > 0.0 && !(m->o.state_rate >= 1e-9))) {
+    if (!opts_valid(&m->o)) {
         if (msg)
             snprintf(msg, msglen, "invalid monitor options");
         free(m);
@@ -344,21 +369,7 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         sw_mon_destroy(m);
         return NULL;
     }
-    const sw_gate_opts_t go = {.gap = m->o.gap,
-                               .gap_policy = m->o.gap_policy,
-                               .max_bridge = m->o.max_bridge,
-                               .max_accel = m->o.max_accel,
-                               .jump = m->o.max_jump,
-                               .max_skew = m->o.max_skew,
-                               .confirm = m->o.confirm,
-                               .relative = 1,
-                               .vert_gravity = m->o.vert_gravity,
-                               .on_event = on_gate_event,
-                               .on_reject = on_gate_reject,
-                               .on_take = m->o.on_take ? on_gate_take : NULL,
-                               .user = m};
-    m->gate = sw_gate_create(m->engine, &go, msg, msglen);
-    if (!m->gate) {
+    if (!(m->gate = make_gate(m, msg, msglen))) {
         sw_mon_destroy(m);
         return NULL;
     }
