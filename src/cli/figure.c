@@ -338,6 +338,68 @@ static void series_title(FILE *g, const char *what, const char *name)
     sw_cli_plot_text(g, t);
 }
 
+/* Panel 2: theta / alpha, the events on it. */
+static void panel_tilt(FILE *g, const sw_cli_figure_t *f)
+{
+    fputs(
+        "set ylabel 'tilt θ / α'\nplot 1 with lines lc rgb '#d62828' dt 3 "
+        "title 'tipping: |θ| = α (±1)', -1 with lines lc rgb '#d62828' dt 3 notitle",
+        g);
+    for (size_t k = 0; k < f->n; k++) {
+        const char *c = colours[k % NCOLOURS];
+        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RATIO, c);
+        series_title(g, "θ/α", f->tr[k].name);
+        fprintf(g,
+                ", $e%zu_%d using 1:2 with points pt 6 ps 0.5 lc rgb '%s' notitle"
+                ", $e%zu_%d using 1:2 with points pt 9 ps 1.2 lc rgb '%s' notitle"
+                ", $e%zu_%d using 1:2 with points pt 13 ps 1.2 lc rgb '%s' notitle"
+                ", $e%zu_%d using 1:2 with points pt 7 ps 1.6 lc rgb '#d62828' notitle"
+                ", $e%zu_%d using 1:2 with points pt 4 ps 1.2 lc rgb '%s' notitle",
+                k, SW_EV_IMPACT, c, k, SW_EV_UPLIFT, c, k, SW_EV_TIP, c, k, SW_EV_OVERTURN, k,
+                SW_EV_FAULT, c);
+    }
+    event_legend(g, f);
+    fputc('\n', g);
+}
+
+/* Panel 3: the margin to overturn, as presented: below 0 the package is
+ * past the edge, and -1 is overturned (mmin: the lowest drawn). */
+static void panel_margin(FILE *g, const sw_cli_figure_t *f, double mmin)
+{
+    const double lo = fmax(MARGIN_FLOOR, fmin(0.0, mmin)) - 0.05;
+    if (!f->risk)
+        fputs("set format x '%g'\nset xlabel 'time t (s)'\n", g);
+    fprintf(g,
+            "set ylabel 'margin to overturn%s'\n"
+            "set yrange [%.6g:1.05]\n"
+            "plot 0 with lines lc rgb '#d62828' dt 3 title 'overturns with no more input "
+            "below 0'",
+            mmin < 0.0 ? " (-1: overturned)" : "", lo);
+    for (size_t k = 0; k < f->n; k++) {
+        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_MARGIN,
+                colours[k % NCOLOURS]);
+        series_title(g, "margin", f->tr[k].name);
+    }
+    fputc('\n', g);
+}
+
+/* Panel 4: the reserve, the smallest design pulse that would overturn
+ * the package. */
+static void panel_reserve(FILE *g, const sw_cli_figure_t *f)
+{
+    fputs(
+        "set format x '%g'\nset xlabel 'time t (s)'\nset ylabel 'reserve (g)'\n"
+        "set yrange [0:*]\nplot 0 with lines lc rgb '#d62828' dt 3 "
+        "title 'no reserve: overturns with no more input'",
+        g);
+    for (size_t k = 0; k < f->n; k++) {
+        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RESERVE,
+                colours[k % NCOLOURS]);
+        series_title(g, "reserve", f->tr[k].name);
+    }
+    fputc('\n', g);
+}
+
 int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *title)
 {
     double t0, t1, mmin;
@@ -379,59 +441,10 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
     threshold_plots(g, f);
     fputc('\n', g);
 
-    /* 2. theta / alpha, the events on it */
-    fputs(
-        "set ylabel 'tilt θ / α'\nplot 1 with lines lc rgb '#d62828' dt 3 "
-        "title 'tipping: |θ| = α (±1)', -1 with lines lc rgb '#d62828' dt 3 notitle",
-        g);
-    for (size_t k = 0; k < f->n; k++) {
-        const char *c = colours[k % NCOLOURS];
-        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RATIO, c);
-        series_title(g, "θ/α", f->tr[k].name);
-        fprintf(g,
-                ", $e%zu_%d using 1:2 with points pt 6 ps 0.5 lc rgb '%s' notitle"
-                ", $e%zu_%d using 1:2 with points pt 9 ps 1.2 lc rgb '%s' notitle"
-                ", $e%zu_%d using 1:2 with points pt 13 ps 1.2 lc rgb '%s' notitle"
-                ", $e%zu_%d using 1:2 with points pt 7 ps 1.6 lc rgb '#d62828' notitle"
-                ", $e%zu_%d using 1:2 with points pt 4 ps 1.2 lc rgb '%s' notitle",
-                k, SW_EV_IMPACT, c, k, SW_EV_UPLIFT, c, k, SW_EV_TIP, c, k, SW_EV_OVERTURN, k,
-                SW_EV_FAULT, c);
-    }
-    event_legend(g, f);
-    fputc('\n', g);
-
-    /* 3. the margin to overturn, as presented: below 0 the package is past
-     * the edge, and -1 is overturned */
-    const double lo = fmax(MARGIN_FLOOR, fmin(0.0, mmin)) - 0.05;
-    if (!f->risk)
-        fputs("set format x '%g'\nset xlabel 'time t (s)'\n", g);
-    fprintf(g,
-            "set ylabel 'margin to overturn%s'\n"
-            "set yrange [%.6g:1.05]\n"
-            "plot 0 with lines lc rgb '#d62828' dt 3 title 'overturns with no more input "
-            "below 0'",
-            mmin < 0.0 ? " (-1: overturned)" : "", lo);
-    for (size_t k = 0; k < f->n; k++) {
-        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_MARGIN,
-                colours[k % NCOLOURS]);
-        series_title(g, "margin", f->tr[k].name);
-    }
-    fputc('\n', g);
-
-    /* 4. the reserve: the smallest design pulse that would overturn it */
-    if (f->risk) {
-        fputs(
-            "set format x '%g'\nset xlabel 'time t (s)'\nset ylabel 'reserve (g)'\n"
-            "set yrange [0:*]\nplot 0 with lines lc rgb '#d62828' dt 3 "
-            "title 'no reserve: overturns with no more input'",
-            g);
-        for (size_t k = 0; k < f->n; k++) {
-            fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RESERVE,
-                    colours[k % NCOLOURS]);
-            series_title(g, "reserve", f->tr[k].name);
-        }
-        fputc('\n', g);
-    }
+    panel_tilt(g, f);
+    panel_margin(g, f, mmin);
+    if (f->risk)
+        panel_reserve(g, f);
     fputs("unset multiplot\n", g);
     if (f->dropped)
         sw_cli_error("%s: %ld events beyond the %d kept are not marked", path, f->dropped,
