@@ -66,115 +66,10 @@ static void column_label(const sw_csv_t *c, int r, char *dst, size_t cap)
         snprintf(dst, cap, "%s (column %ld)", role_name[r], c->col[r] + 1);
 }
 
-static void fail(sw_csv_t *c, int code, const char *text)
+void sw_csv_fail(sw_csv_t *c, int code, const char *text)
 {
     c->status = code;
     snprintf(c->msg, sizeof c->msg, "line %ld: %s", c->lineno, text);
-}
-
-/* The unit a scale stands for: s, ms, us for time; m/s^2 or g. */
-static int unit_of_scale(int r, double scale)
-{
-    if (r == R_TIME)
-        return scale == 1.0    ? SW_CSV_UNIT_S
-               : scale == 1e-3 ? SW_CSV_UNIT_MS
-               : scale == 1e-6 ? SW_CSV_UNIT_US
-                               : SW_CSV_UNIT_NONE;
-    return scale == 1.0 ? SW_CSV_UNIT_MPS2 : scale == SW_G0 ? SW_CSV_UNIT_G : SW_CSV_UNIT_NONE;
-}
-
-/* The columns are known (from the options, the header, or the defaults):
- * the layout says which, in which units, and where each came from. */
-static void fix_layout(sw_csv_t *c, int has_header)
-{
-    sw_csv_layout_t *L = &c->lay;
-    L->ready = 1;
-    L->delim = c->delim;
-    L->has_header = has_header;
-    L->decimal_comma = c->dcomma;
-    for (int r = 0; r < N_ROLES; r++) {
-        L->col[r] = c->col[r];
-        L->name[r][0] = '\0';
-        if (has_header && c->col[r] >= 0 && c->col[r] < c->nhdr)
-            snprintf(L->name[r], sizeof L->name[r], "%s", c->hdr[c->col[r]]);
-        L->scale[r] = r == R_TIME ? c->tscale : c->ascale;
-        L->unit[r] = unit_of_scale(r, L->scale[r]);
-        L->header_unit[r] =
-            L->name[r][0] ? sw_csv_name_unit(L->name[r], r == R_TIME) : SW_CSV_UNIT_NONE;
-        if (L->col_from[r] != SW_CSV_FROM_HEADER)
-            L->col_from[r] = c->col_given[r] ? SW_CSV_FROM_OPTION : SW_CSV_FROM_DEFAULT;
-        const int given = r == R_TIME ? c->tscale_given : c->ascale_given;
-        L->unit_from[r] = given ? SW_CSV_FROM_OPTION : SW_CSV_FROM_DEFAULT;
-    }
-    if (c->tkind == 2)
-        L->unit[R_TIME] = SW_CSV_UNIT_DATETIME;
-}
-
-/* infer: the columns and units nobody gave, from the header's names.  0, or
- * -1 with the parse ended (SW_EAMBIGUOUS) when the names do not tell. */
-static int infer_columns(sw_csv_t *c)
-{
-    const int want[SW_CSV_NROLES] = {!c->col_given[R_TIME], !c->col_given[R_ACCEL], 0};
-    sw_csv_guess_t g;
-    if ((want[0] || want[1]) && sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])c->hdr, c->nhdr, want,
-                                             c->col[R_VERT], &g) != 0) {
-        char t[300];
-        snprintf(t, sizeof t, "cannot tell the columns from the header: %s", g.why);
-        fail(c, SW_EAMBIGUOUS, t);
-        return -1;
-    }
-    for (int r = 0; r < 2; r++)
-        if (want[r]) {
-            c->col[r] = g.col[r];
-            c->lay.col_from[r] = SW_CSV_FROM_HEADER;
-        }
-    /* units the options did not give, from the chosen columns' names */
-    const int tu =
-        c->col[R_TIME] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_TIME]], 1) : SW_CSV_UNIT_NONE;
-    const int au =
-        c->col[R_ACCEL] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_ACCEL]], 0) : SW_CSV_UNIT_NONE;
-    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE)
-        c->tscale = sw_csv_unit_scale(tu);
-    if (!c->ascale_given && au != SW_CSV_UNIT_NONE)
-        c->ascale = sw_csv_unit_scale(au);
-    return 0;
-}
-
-/* The first data-like line was a header: resolve the named columns. */
-static void take_header(sw_csv_t *c)
-{
-    c->n.headers++;
-    for (int r = 0; r < N_ROLES; r++) {
-        if (!c->name[r])
-            continue;
-        if (c->match[r] < 0) {
-            char t[160];
-            snprintf(t, sizeof t, "no column named \"%s\" (%s) in the header", c->name[r],
-                     role_name[r]);
-            fail(c, SW_ENOTFOUND, t);
-            return;
-        }
-        c->col[r] = c->match[r];
-    }
-    if (c->infer && infer_columns(c) != 0)
-        return;
-    for (int r = 0; r < N_ROLES; r++)
-        for (int q = r + 1; q < N_ROLES; q++)
-            if (c->col[r] >= 0 && c->col[r] == c->col[q]) {
-                char t[160];
-                snprintf(t, sizeof t, "%s and %s are the same column (%ld)", role_name[r],
-                         role_name[q], c->col[r] + 1);
-                fail(c, SW_EINVAL, t);
-                return;
-            }
-    fix_layout(c, 1);
-    const int tu = c->lay.header_unit[R_TIME], au = c->lay.header_unit[R_ACCEL];
-    if (c->tscale_given && tu != SW_CSV_UNIT_NONE && tu != c->lay.unit[R_TIME])
-        c->lay.unit_from[R_TIME] = SW_CSV_FROM_OPTION; /* overrides the header */
-    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE)
-        c->lay.unit_from[R_TIME] = SW_CSV_FROM_HEADER;
-    if (!c->ascale_given && au != SW_CSV_UNIT_NONE)
-        c->lay.unit_from[R_ACCEL] = c->lay.unit_from[R_VERT] = SW_CSV_FROM_HEADER;
 }
 
 /* A delimiter among tab, ';', ',' occurring outside quotes, in that order of
@@ -217,7 +112,7 @@ static int choose_delim(sw_csv_t *c, const char *s, size_t n, int header_here)
     if (header_here && c->header == 1) {
         c->matching = 0;
         for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
-        take_header(c); /* a one-column header: named columns fail */
+        sw_csv_take_header(c); /* a one-column header: named columns fail */
         return 0;
     }
     c->n.rows++;
@@ -284,7 +179,7 @@ static int first_line(sw_csv_t *c, int ok)
                     !corrupt_row(c, c->fs[R_PROBE], c->fl[R_PROBE]);
     }
     if (is_header) {
-        take_header(c);
+        sw_csv_take_header(c);
         return 1;
     }
     c->nhdr = 0;
@@ -297,10 +192,10 @@ static int first_line(sw_csv_t *c, int ok)
                  role_name[r]);
         c->n.rows++;
         reject(c);
-        fail(c, SW_ENOTFOUND, c->reason);
+        sw_csv_fail(c, SW_ENOTFOUND, c->reason);
         return 0;
     }
-    fix_layout(c, 0);
+    sw_csv_fix_layout(c, 0);
     return 0;
 }
 
@@ -487,7 +382,7 @@ static void end_line(sw_csv_t *c)
             c->header_open = 0;
             c->matching = 0;
             for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
-            take_header(c);
+            sw_csv_take_header(c);
             return;
         }
         c->header_open = 0;

@@ -147,6 +147,14 @@ int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_
 /* The columns of the options (csv_infer.c): parsed, and refused (code,
  * the reason in t) when two are the same or a named one cannot be found
  * without a header. */
+/* csv.c: end the parse with code and "line N: text". */
+void sw_csv_fail(sw_csv_t *c, int code, const char *text);
+/* csv_infer.c: the layout once the columns are known (from the options,
+ * the header or the defaults); the first data-like line was a header:
+ * resolve the named columns, infer the others if asked (may end the parse
+ * with sw_csv_fail). */
+void sw_csv_fix_layout(sw_csv_t *c, int has_header);
+void sw_csv_take_header(sw_csv_t *c);
 int sw_csv_set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen);
 
 #endif

@@ -209,7 +209,7 @@ static int run_pulse_from(sw_runner_t *R, const sw_state_t *s, const sw_pulse_t 
 }
 
 int sw_run_pulse_on(sw_runner_t *R, const sw_pulse_t *pulse, const sw_run_opts_t *o,
-                        sw_run_result_t *r)
+                    sw_run_result_t *r)
 {
     return run_pulse_from(R, NULL, pulse, o, r);
 }
