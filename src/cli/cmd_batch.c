@@ -54,8 +54,8 @@ const sw_cli_option_t sw_batch_options[] = {
     {SW_CLI_STRING, 'm', "manifest", "FILE", BO(manifest),
      .help = "the logs, one a line, each followed by its own options ('-': standard input); "
              "after the LOG operands"},
-    {SW_CLI_LONG, 0, "threads", "N", BO(threads), .min = 0, .max = 1024, .def = 0,
-     .what = "a whole number of threads >= 0",
+    {SW_CLI_LONG, 0, "threads", "N", BO(threads), .flags = SW_CLI_CAP, .min = 0, .max = 1024,
+     .def = 0, .what = "a whole number of threads >= 0",
      .help = "worker threads (per MPI rank); 0, the default: the CPUs this process may run on; "
              "results do not depend on it"},
     {SW_CLI_SECTION, .help = "Output:"},

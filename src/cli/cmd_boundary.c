@@ -310,8 +310,8 @@ static const sw_cli_option_t boundary_options[] = {
      .lo = 1e-2, .hi = 1e4, .what = "a positive number of rocking periods",
      .help = "free motion after the pulse, in rocking periods 2 pi/p (default 20); more than "
              "1e4 would make every trial hours of motion"},
-    {SW_CLI_LONG, 0, "threads", "N", BO(threads), .min = 0, .max = 256, .def = 0,
-     .what = "a whole number of threads >= 0",
+    {SW_CLI_LONG, 0, "threads", "N", BO(threads), .flags = SW_CLI_CAP, .min = 0, .max = 256,
+     .def = 0, .what = "a whole number of threads >= 0",
      .help = "worker threads (per MPI rank); 0, the default: the CPUs this process may run on; "
              "results do not depend on it"},
     {SW_CLI_SECTION, .help = "Integration:"},

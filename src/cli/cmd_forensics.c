@@ -119,8 +119,8 @@ static const sw_cli_option_t forensics_options[] = {
  * threads (each log's searches then run on the thread of its job). */
 static const sw_cli_option_t forensics_thread_options[] = {
     {SW_CLI_SECTION, .help = "Run:"},
-    {SW_CLI_LONG, 0, "threads", "N", FO(threads), .min = 1, .max = 256, .def = 2,
-     .what = "a whole number of threads >= 1",
+    {SW_CLI_LONG, 0, "threads", "N", FO(threads), .flags = SW_CLI_CAP, .min = 1, .max = 256,
+     .def = 2, .what = "a whole number of threads >= 1",
      .help = "searches run on N threads (default %g); the results are the same for any N"},
     {SW_CLI_END},
 };

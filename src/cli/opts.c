@@ -86,8 +86,17 @@ int sw_cli_opt_long(const sw_cli_option_t *o, const char *arg, long *out)
     long v = arg ? strtol(arg, &end, 10) : 0;
     if (!arg || end == arg || *end != '\0' || errno == ERANGE || v < o->min)
         return bad_value(o, arg);
-    /* An upper bound is a cap (threads), not a reason to refuse. */
-    *out = o->max > 0 && v > o->max ? o->max : v;
+    if (o->max > 0 && v > o->max) {
+        /* A thread count is capped: the results do not depend on it.
+         * Anything else above its bound is refused, never quietly cut. */
+        if (!(o->flags & SW_CLI_CAP)) {
+            sw_cli_error("--%s: out of range: expected %ld to %ld, got '%s'", o->long_name, o->min,
+                         o->max, arg);
+            return SW_EXIT_USAGE;
+        }
+        v = o->max;
+    }
+    *out = v;
     return SW_EXIT_OK;
 }
 

@@ -30,7 +30,7 @@ typedef enum {
     SW_CLI_FLAG,    /* no value: stores the row's value (an int) */
     SW_CLI_STRING,  /* stores the argument (a const char *, pointing into argv) */
     SW_CLI_DOUBLE,  /* a number (double) that follows the row's rule */
-    SW_CLI_LONG,    /* a whole number (long), at least min; above max (if > 0) taken as max */
+    SW_CLI_LONG,    /* a whole number (long), min to max (if max > 0); see SW_CLI_CAP */
     SW_CLI_LIST,    /* repeatable: appends the argument to a sw_cli_list_t */
     SW_CLI_CALL,    /* fn reads the argument (or none, if the row has no arg) */
     SW_CLI_HELP     /* -h, --help: the help on stdout, exit 0 */
@@ -40,6 +40,7 @@ typedef enum {
 enum { SW_NUM_ANY = 0, SW_NUM_POSITIVE, SW_NUM_NONNEGATIVE, SW_NUM_NONZERO };
 
 #define SW_CLI_HIDDEN 1u /* a row or a group left out of --help (aliases, refused options) */
+#define SW_CLI_CAP 2u    /* SW_CLI_LONG: above max taken as max (a thread count), not refused */
 
 typedef struct sw_cli_option sw_cli_option_t;
 
@@ -64,7 +65,7 @@ struct sw_cli_option {
     sw_cli_option_fn fn;   /* SW_CLI_CALL: reads the value; STRING, LIST: checks it before it
                               is stored; DOUBLE, LONG: checks (or adjusts) it after the rule */
     void (*help_fn)(char *buf, size_t len); /* help made at run time, instead of help */
-    unsigned flags;                         /* SW_CLI_HIDDEN */
+    unsigned flags;                         /* SW_CLI_HIDDEN, SW_CLI_CAP */
     /* SW_CLI_DOUBLE (and CALL rows that read with sw_cli_opt_double()):
      * the bounds, inclusive, when hi > lo: a value (its magnitude under
      * SW_NUM_NONZERO) outside [lo, hi] is refused, but for 0 under

@@ -70,6 +70,17 @@ if [ "$HAVE_LCM" = 1 ]; then
     out replay --speed 1e-300 "0, or 0.001 to 1e+06"
 fi
 
+# Whole-number options: above the bound is refused, not quietly cut to it
+# (a --confirm of 500 used to run with 8); only a thread count is capped.
+run timeout 10 "$SW" replay "$LOG" --scene "$SCENE" --confirm 500 -q
+expect_rc 2 "--confirm 500"
+expect_err "swaywatch: --confirm: out of range: expected 2 to 8, got '500'" "--confirm 500"
+run timeout 10 "$SW" forensics "$LOG" --scene "$SCENE" --no-what-if --max-samples 999999999999 -q
+expect_rc 2 "--max-samples 999999999999"
+expect_err "--max-samples: out of range: expected 1 to 268435456" "--max-samples"
+run timeout 60 "$SW" forensics "$LOG" --scene "$SCENE" --no-what-if --threads 100000 -q
+expect_rc 0 "--threads 100000 is capped"
+
 # The bounds themselves and the off values are taken.
 run "$SW" replay "$LOG" --scene "$SCENE" --dt 1e-4 --rtol 1e-14 --atol 1e-16 --settle 0 -q
 expect_rc 0 "values inside the bounds"
