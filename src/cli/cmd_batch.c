@@ -79,7 +79,7 @@ const sw_cli_option_t sw_batch_options[] = {
              "one record, with status error and the reason in messages; the batch goes on.\n"
              "Under mpirun or srun (a build with MPI) the logs are shared among the ranks;\n"
              "rank 0 writes the same bytes as a single process."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 const sw_cli_command_t sw_batch_cmd = {

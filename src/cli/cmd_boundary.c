@@ -345,7 +345,7 @@ static const sw_cli_option_t boundary_options[] = {
      .help = "percentage on stderr (default: only when stderr is a terminal)"},
     {SW_CLI_FLAG, 0, "no-progress", BO(progress), .value = 0, .help = "no percentage"},
     {SW_CLI_FLAG, 'q', "quiet", BO(quiet), .value = 1, .help = "no summary on stderr"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 static const sw_cli_command_t boundary_cmd = {

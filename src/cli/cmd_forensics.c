@@ -112,7 +112,7 @@ static const sw_cli_option_t forensics_options[] = {
      .def = SW_CLI_WHATIF_RESERVE_EVALS, .what = "a whole number >= 0",
      .help = "a what-if case's smallest reserve: at most N evaluations, the most threatened "
              "moments first (default %g; 0: no limit); a case that needs more shows a bracket"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 /* The searches' threads: not in a batch, which runs its logs on its own
@@ -122,7 +122,7 @@ static const sw_cli_option_t forensics_thread_options[] = {
     {SW_CLI_LONG, 0, "threads", "N", FO(threads), .flags = SW_CLI_CAP, .min = 1, .max = 256,
      .def = 2, .what = "a whole number of threads >= 1",
      .help = "searches run on N threads (default %g); the results are the same for any N"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 /* forensics' files, in the Output section with the shared rows. */
@@ -139,7 +139,7 @@ static const sw_cli_option_t forensics_output_options[] = {
              "with its 'safety_factor' and 'what_if'.  With --out - or --events - (which need\n"
              "-q) the answer goes to standard error.  A progress line goes to standard error\n"
              "when it is a terminal (not with -q)."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 static const sw_cli_command_t forensics_cmd = {

@@ -75,7 +75,7 @@ static const sw_cli_option_t monitor_lcm_options[] = {
     {SW_CLI_STRING, 0, "accel-channel", "REGEX", MO(accel_channel), .fn = check_accel_channel,
      .help = "accel channel: a name or an anchored regex, as LCM subscribes "
              "(default " SW_MON_ACCEL_CHANNEL ")"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 static const sw_cli_option_t monitor_input_options[] = {
@@ -129,7 +129,7 @@ static const sw_cli_option_t monitor_input_options[] = {
              "second with their count.  Samples lost on the way are counted from the sender's\n"
              "seq.  A state whose numbers are not all finite is never published: a MODEL_FAULT\n"
              "alarm is, instead."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 /* What the monitor publishes: the states and alarms (sw_cli_lcm_publish_options). */
@@ -150,7 +150,7 @@ static const sw_cli_option_t monitor_output_notes[] = {
              "Under systemd (Type=notify) the monitor sends READY=1 once it is subscribed,\n"
              "WATCHDOG=1 from its main loop at half of WatchdogSec= (a stalled loop is\n"
              "killed and restarted), its status line as STATUS= and STOPPING=1 at the end."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 static const sw_cli_command_t monitor_cmd = {

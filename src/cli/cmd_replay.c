@@ -48,7 +48,7 @@ static const sw_cli_option_t replay_options[] = {
              "log); at most 1e5 s (a day), since an undamped frame never comes to rest"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", RO(fail_on_overturn), .value = 1,
      .help = "exit 1 if any package overturned"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 #ifdef SW_HAVE_LCM
@@ -67,7 +67,7 @@ static const sw_cli_option_t replay_publish_options[] = {
              "are skipped, counted and reported with their byte offset (--strict: exit 2);\n"
              "bad, duplicate and late samples are refused as by the monitor.  With --publish,\n"
              "only accepted samples are paced on."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 #endif
 

@@ -105,14 +105,14 @@ static const sw_cli_option_t sim_options[] = {
                                                                                    "all"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", SIM(fail_on_overturn), .value = 1,
      .help = "exit 1 if any package overturned"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 static const sw_cli_option_t sim_output_notes[] = {
     {SW_CLI_SECTION, .help = "Output:"},
     {SW_CLI_TEXT, .help = "\nsamples_read and samples_rejected are 0 in the JSON summary: there is "
                           "no log."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 static const sw_cli_command_t simulate_cmd = {

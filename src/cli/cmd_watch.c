@@ -70,7 +70,7 @@ static const sw_cli_option_t watch_lcm_options[] = {
              ")"},
     {SW_CLI_STRING, 0, "alarm-channel", "REGEX", WO(alarm_channel), .fn = check_channel,
      .help = "alarms (default " SW_MON_ALARM_CHANNEL ")"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 static const sw_cli_option_t watch_scene_options[] = {
@@ -82,7 +82,7 @@ static const sw_cli_option_t watch_scene_options[] = {
      .help = "\nWithout its scene, a package on the bed (bare model) gets alpha from its\n"
              "states (their uplift_ratio, with standard gravity); a package on a frame or\n"
              "cushion shows theta in degrees and no bar."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 static const sw_cli_option_t watch_output_options[] = {
@@ -116,7 +116,7 @@ static const sw_cli_option_t watch_output_options[] = {
                                "(their seq).  Then the last alarms, newest first.  Not on a "
                                "terminal, or with\n"
                                "--once, the same view is printed as plain text."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 static const sw_cli_command_t watch_cmd = {

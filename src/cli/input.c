@@ -132,7 +132,7 @@ const sw_cli_option_t sw_cli_gate_options[] = {
     {SW_CLI_FLAG, 0, "force", GATE(force), .value = 1,
      .help = "give a verdict even for a log the plausibility check refuses (a rate or span no "
              "vehicle log has, an impossible peak, too many rejected rows); marked as forced"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 /* The value of a text option, one of a few names: dest gets the value of
@@ -229,7 +229,7 @@ const sw_cli_option_t sw_cli_csv_options[] = {
          "these options to name the columns.  Times may be ISO-8601 date-times\n"
          "(2024-05-20T12:00:00.000Z, 2018-04-08 10:31:37.005628); epoch and date-time\n"
          "logs are timed from their start."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 const sw_cli_option_t sw_cli_sample_options[] = {
@@ -249,7 +249,7 @@ const sw_cli_option_t sw_cli_sample_options[] = {
                                              "unless --strict.\n"
                                              "With --quiet, they are only counted (one line on "
                                              "stderr)."},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 /* ---- rejected rows, log files ------------------------------------------------- */

@@ -67,7 +67,7 @@ const sw_cli_option_t sw_cli_lcm_publish_options[] = {
      .hi = 1e6, .what = "a rate in Hz >= 0 (0: every sample)",
      .help = "states per package per second of sample time (default 0: one per sample); from "
              "one per 1000 s to one per microsecond of utime"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 const sw_cli_option_t sw_cli_lcm_input_options[] = {
@@ -80,7 +80,7 @@ const sw_cli_option_t sw_cli_lcm_input_options[] = {
      .hi = 1e9, .what = "a number of seconds >= 0 (0: not checked)",
      .help = "refuse samples whose utime is further than this from the time they arrived (live: "
              "the wall clock; a log: when lcm-logger received them; default: not checked)"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 int sw_cli_mon_gate(sw_mon_opts_t *mo, const sw_cli_gate_t *g)

@@ -64,7 +64,7 @@ const sw_cli_option_t sw_cli_scene_options[] = {
      .help = "scene file (INI); at least one, repeatable"},
     {SW_CLI_LIST, 0, "set", "SEC.KEY=VALUE", OPTS(sets), .fn = check_set,
      .help = "override a key in every scene, e.g. --set frame.zeta=0.2"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 const sw_cli_option_t sw_cli_integration_options[] = {
@@ -83,7 +83,7 @@ const sw_cli_option_t sw_cli_integration_options[] = {
      .what = "a positive tolerance",
      .help = "absolute tolerance of the adaptive schemes (default 1e-12); below 1e-16 rad it is "
              "under the rounding of angles near 1 rad and steps fail"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 const sw_cli_option_t sw_cli_accuracy_options[] = {
@@ -93,7 +93,7 @@ const sw_cli_option_t sw_cli_accuracy_options[] = {
      .help = "pick the cheapest scheme and step measured to keep the error of theta within RAD "
              "(docs/accuracy-speed.md); bounded by that table: tighter than about 1e-14 rad is "
              "refused"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 const sw_cli_option_t sw_cli_output_options[] = {
@@ -115,7 +115,7 @@ const sw_cli_option_t sw_cli_output_options[] = {
     {SW_CLI_FLAG, 0, "json", OPTS(json), .value = 1,
      .help = "JSON summary on stdout instead of the human summary"},
     {SW_CLI_FLAG, 'q', "quiet", OPTS(quiet), .value = 1, .help = "no human summary"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 const sw_cli_option_t sw_cli_reserve_options[] = {
@@ -129,7 +129,7 @@ const sw_cli_option_t sw_cli_reserve_options[] = {
     {SW_CLI_FLAG, 0, "all-impacts", OPTS(all_impacts), .value = 1,
      .help = "write every impact in --events; without it the micro-impacts of settling (slower "
              "than a tenth of the tipping speed) are one 'settling' row per cascade"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 const sw_cli_option_t sw_cli_picture_options[] = {
@@ -142,14 +142,14 @@ const sw_cli_option_t sw_cli_picture_options[] = {
     {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", OPTS(plot_path), .fn = sw_cli_plot_check,
      .help = "a figure drawn by gnuplot: the bed acceleration with the uplift thresholds "
              "+-g tan alpha, theta/alpha and the margin of every package, the events marked"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 const sw_cli_option_t sw_cli_common_options[] = {
     {SW_CLI_FLAG, 'v', "verbose", OPTS(verbose), .value = 1,
      .help = "derived quantities of each scene, on stderr"},
     {SW_CLI_HELP, 'h', "help", .help = "this help"},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 
 /* ---- scenes --------------------------------------------------------------- */

@@ -34,7 +34,7 @@ const sw_cli_option_t sw_cli_channel_options[] = {
      .help = "accel channel: a name or an anchored regex, as LCM subscribes "
              "(default " SW_MON_ACCEL_CHANNEL ")"},
     {SW_CLI_STRING, 0, "channel", "REGEX", RD(channel), .flags = SW_CLI_HIDDEN},
-    {SW_CLI_END},
+    {.kind = SW_CLI_END},
 };
 #endif
 
