@@ -48,7 +48,7 @@ static int ready(void *opts, const sw_cli_group_t *g, size_t ng)
     "max_theta_ratio,alpha,min_margin,min_margin_bound,max_uplift_ratio,impacts,uplifts,rests," \
     "faults,samples_read,samples_rejected,scheme,dt,steps,settle,rejected_share,start,end,"     \
     "start_absolute,duration,dt_median,rate,peak_accel_g,gaps,gap_max,restarts,clock_steps,"    \
-    "incomplete,forced,check"
+    "incomplete,forced,check,verdict,min_reserve_g,min_reserve_time,rest_reserve_g"
 
 /* The CSV row of package i: the fields of CSV_HEADER. */
 static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
@@ -99,6 +99,15 @@ static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t 
         fputs(",,,", f);
     fprintf(f, ",%d,", run->forced);
     sw_cli_csv_text(f, run->check);
+    /* the verdict, and the reserve as the JSON record has it (empty where
+     * it has null) */
+    fputc(',', f);
+    sw_cli_csv_text(f, sw_cli_verdict(s));
+    const sw_risk_pkg_t *p = run->risk ? sw_risk_pkg(run->risk, i) : NULL;
+    const int rv = p && p->evaluations > 0;
+    sw_cli_csv_num(f, rv ? p->min_reserve_g : NAN);
+    sw_cli_csv_num(f, rv ? p->min_reserve_time : NAN);
+    sw_cli_csv_num(f, p ? p->rest_reserve_g : NAN);
 }
 
 typedef struct {

@@ -142,8 +142,9 @@ for index, (no, log, opts) in enumerate(lines, 1):
         # the table holds the same numbers
         assert row["package"] == pkg["name"] and row["model"] == pkg["model"], row
         assert row["overturned"] == str(int(pkg["overturned"])), row
+        assert row["verdict"] == pkg["verdict"], (row["verdict"], pkg["verdict"])
         for k in ("overturn_time", "tip_time", "uplift_time", "max_abs_theta", "min_margin",
-                  "dt"):
+                  "dt", "min_reserve_g", "min_reserve_time", "rest_reserve_g"):
             want = pkg[k]
             assert (row[k] == "" if want is None else abs(float(row[k]) - want) <= 1e-9 * abs(want)), (k, row[k], want)
         for k in ("impacts", "uplifts", "samples_read", "samples_rejected", "steps"):
