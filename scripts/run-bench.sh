@@ -77,17 +77,25 @@ for m in bare frame; do
 done
 SW="$BUILD/swaywatch"
 if cmake --build "$BUILD" -j 2 --target swaywatch-cli >/dev/null 2>&1 && "$SW" replay --help >/dev/null 2>&1; then
-    for m in bare frame; do
-        : >"$TMP/t"
-        for _ in $(seq "$RUNS"); do
-            /usr/bin/time -f "%U %S %e %M" -o "$TMP/tm" "$SW" replay "$TMP/road.csv" \
-                --scene "tests/scenes/crate-a-$m.ini" >/dev/null
-            cat "$TMP/tm" >>"$TMP/t"
+    # the defaults (the reserve at 10 Hz of sample time included), and
+    # the replay alone (--reserve-rate 0)
+    for rr in default 0; do
+        for m in bare frame; do
+            : >"$TMP/t"
+            for _ in $(seq "$RUNS"); do
+                # shellcheck disable=SC2046
+                /usr/bin/time -f "%U %S %e %M" -o "$TMP/tm" "$SW" replay "$TMP/road.csv" \
+                    --scene "tests/scenes/crate-a-$m.ini" \
+                    $([ "$rr" = 0 ] && echo --reserve-rate 0) >/dev/null
+                cat "$TMP/tm" >>"$TMP/t"
+            done
+            c=$(awk '{print $1 + $2}' "$TMP/t" | median)
+            w=$(cut -d' ' -f3 "$TMP/t" | median)
+            rss=$(cut -d' ' -f4 "$TMP/t" | sort -n | tail -1)
+            what="\`swaywatch replay\` (whole process)"
+            [ "$rr" = 0 ] && what="\`swaywatch replay --reserve-rate 0\`"
+            echo "| $what | $m | $rows | $c | $w | $(awk -v c="$c" -v n="$rows" 'BEGIN{printf "%.0f", 1e9*c/n}') | $rss |" >>"$OUT"
         done
-        c=$(awk '{print $1 + $2}' "$TMP/t" | median)
-        w=$(cut -d' ' -f3 "$TMP/t" | median)
-        rss=$(cut -d' ' -f4 "$TMP/t" | sort -n | tail -1)
-        echo "| \`swaywatch replay\` (whole process) | $m | $rows | $c | $w | $(awk -v c="$c" -v n="$rows" 'BEGIN{printf "%.0f", 1e9*c/n}') | $rss |" >>"$OUT"
     done
 else
     echo "| \`swaywatch replay\` | - | - | not built in this tree | | | |" >>"$OUT"
