@@ -330,10 +330,6 @@ struct sw_model_ops {
 extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
 const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind);
 
-/* ops->lift_level and ops->lift_drive of the scene's model (NAN for an
- * unknown model). */
-double sw_model_lift_level(const sw_derived_t *d, double g);
-double sw_model_lift_drive(const sw_derived_t *d, double level, const sw_output_t *o);
 /* The model's contact is too fast for fixed steps of dt (s): the default
  * scheme is then SW_STIFF_SCHEME (engine.c). */
 int sw_model_stiff(const sw_derived_t *d, double dt);

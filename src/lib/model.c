@@ -58,18 +58,6 @@ int sw_model_settled(const sw_derived_t *d, double g, const sw_state_t *s)
     return s->phase != SW_PHASE_ROCKING && m->settled && m->settled(d, g, s);
 }
 
-double sw_model_lift_level(const sw_derived_t *d, double g)
-{
-    const sw_model_ops_t *m = sw_model_ops_of(d->model);
-    return m ? m->lift_level(d, g) : NAN;
-}
-
-double sw_model_lift_drive(const sw_derived_t *d, double level, const sw_output_t *o)
-{
-    const sw_model_ops_t *m = sw_model_ops_of(d->model);
-    return m ? m->lift_drive(d, level, o) : NAN;
-}
-
 double sw_model_energy(const sw_derived_t *d, double g, const sw_state_t *s)
 {
     const sw_model_ops_t *m = d && s ? sw_model_ops_of(d->model) : NULL;

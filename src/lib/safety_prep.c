@@ -229,9 +229,7 @@ static int prep_stuck(prep_t *P, sw_runner_t *R)
 static int prep_rock(prep_t *P, const sw_rock_linear_t *rl)
 {
     const sw_log_t *L = P->log;
-    P->w = rl->w;
-    P->zeta = rl->zeta;
-    P->gain = rl->gain;
+    P->rock = *rl;
     P->lead = log(1.0 / FORGET) / rl->lam;
     const double per = rl->per; /* lift drive over its level per unit u, 1/m */
     if (blocks_alloc(P) != SW_OK)
@@ -249,7 +247,7 @@ static int prep_rock(prep_t *P, const sw_rock_linear_t *rl)
             const double H = L->t[i] - L->t[i - 1];
             const double s = (L->a_g[i] - L->a_g[i - 1]) / H;
             double u1[2];
-            sw_nj_step(P->w, P->zeta, H, L->a_g[i - 1], s, u, u1);
+            sw_nj_step(P->rock.w, P->rock.zeta, H, L->a_g[i - 1], s, u, u1);
             u[0] = u1[0];
             u[1] = u1[1];
         }
@@ -258,7 +256,7 @@ static int prep_rock(prep_t *P, const sw_rock_linear_t *rl)
             peak = v;
             P->i_peak = i;
         }
-        const double s = long_interval(P, i, P->w) ? 0.0 : v > 0.0 ? 1.0 / v : INFINITY;
+        const double s = long_interval(P, i, P->rock.w) ? 0.0 : v > 0.0 ? 1.0 / v : INFINITY;
         if (add_record(P, i, s) != SW_OK)
             return SW_ENOMEM;
         block_min(P, i, s);
@@ -275,7 +273,8 @@ static void prep_probe(prep_t *P, sw_runner_t *R)
 {
     const sw_log_t *L = P->log;
     const double probe = 1e-4 * P->bare_lift;
-    const double level = sw_model_lift_level(&P->d, P->sc->g);
+    const sw_model_ops_t *ops = sw_model_ops_of(P->d.model);
+    const double level = ops->lift_level(&P->d, P->sc->g);
     double peak = 0.0;
     size_t next_restart = 0;
     sw_runner_reset(R);
@@ -284,7 +283,7 @@ static void prep_probe(prep_t *P, sw_runner_t *R)
             continue;
         sw_output_t o;
         sw_engine_get_output(R->e, 0, &o);
-        const double v = sw_model_lift_drive(&P->d, level, &o);
+        const double v = ops->lift_drive(&P->d, level, &o);
         if (v > peak)
             peak = v;
     }
@@ -417,8 +416,8 @@ static int linear_state(const prep_t *P, sw_engine_t *e, double x, size_t i)
         s.u = x * q[0];
         s.u_dot = x * q[1];
     } else {
-        s.theta = x * P->gain * q[0];
-        s.theta_dot = x * P->gain * q[1];
+        s.theta = x * P->rock.gain * q[0];
+        s.theta_dot = x * P->rock.gain * q[1];
     }
     return sw_engine_set_state(e, 0, &s);
 }

@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 
+#include "internal.h"
 #include "swaywatch/model.h"
 #include "swaywatch/sweep.h"
 
@@ -34,11 +35,11 @@ typedef struct {
                           superblock */
     rec_t *rec;        /* frame, cushion: prefix minima of the lifting scale */
     size_t nrec, caprec;
-    double *st;           /* unit-scale states every CHECK samples: (u, u') of the frame, or of
-                             the cushion's rocking oscillator (theta = gain u) */
-    double w, zeta, gain; /* cushion's rocking oscillator: rad/s, 1, theta per u (rad/m) */
-    double lead;          /* s, cushion: lead-in before the first possible lift */
-    size_t i_peak;        /* sample of the largest drive (frame, cushion) */
+    double *st;            /* unit-scale states every CHECK samples: (u, u') of the frame, or of
+                              the cushion's rocking oscillator (theta = gain u) */
+    sw_rock_linear_t rock; /* CK_ROCK: the rocking oscillator (ops->rock_linear) */
+    double lead;           /* s, cushion: lead-in before the first possible lift */
+    size_t i_peak;         /* sample of the largest drive (frame, cushion) */
     double a_peak, bare_lift, lift_scale;
 } prep_t;
 

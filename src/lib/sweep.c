@@ -237,8 +237,9 @@ static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pul
     const double probe = 1e-4;
     pulse.amplitude = probe * unit;
     sw_engine_reset(e);
+    const sw_model_ops_t *ops = sw_model_ops_of(d->model);
     double wfast, wslow; /* rad/s */
-    sw_model_ops_of(d->model)->probe_rates(d, g, &wfast, &wslow);
+    ops->probe_rates(d, g, &wfast, &wslow);
     const double wmax = fmax(pulse.omega, wfast);
     const double t_end = sw_pulse_duration(&pulse) + 1.5 * 2.0 * M_PI / wslow; /* s */
     double dt = 2.0 * M_PI / wmax / PROBE_SAMPLES;                             /* s */
@@ -250,7 +251,7 @@ static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pul
         sw_engine_advance_fn(e, t, sw_pulse_eval, &pulse);
         sw_output_t o;
         sw_engine_get_output(e, 0, &o);
-        const double v = sw_model_lift_drive(d, level, &o);
+        const double v = ops->lift_drive(d, level, &o);
         if (v > peak)
             peak = v;
     }
