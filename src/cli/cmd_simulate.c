@@ -164,15 +164,13 @@ static void write_states(sw_engine_t *e, sim_ctx_t *c)
 
 /* Nothing left to happen: every package overturned, or standing with no
  * way to lift again once the input has stopped (sw_model_settled). */
-static int all_settled(const sw_engine_t *e)
+static int all_settled(const sw_engine_t *e, const sw_scene_t *scenes)
 {
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_output_t out;
         if (sw_engine_get_output(e, i, &out) != SW_OK)
             return 0;
-        const sw_derived_t *d = sw_engine_derived(e, i);
-        const double g = d->p * d->p * 4.0 * d->R / 3.0; /* m/s^2: p = sqrt(3 g / (4 R)) */
-        if (!sw_model_settled(d, g, &out.state))
+        if (!sw_model_settled(sw_engine_derived(e, i), scenes[i].g, &out.state))
             return 0;
     }
     return 1;
@@ -226,7 +224,8 @@ static int check_pulse(sim_opts_t *so)
  * until --duration or until nothing can happen any more; *t_end gets the
  * time reached.  SW_EXIT_OK, or SW_EXIT_USAGE (reported) if the engine
  * stopped. */
-static int run_pulse(sw_engine_t *e, sim_opts_t *so, sim_ctx_t *states, double *t_end)
+static int run_pulse(sw_engine_t *e, const sw_scene_t *scenes, sim_opts_t *so, sim_ctx_t *states,
+                     double *t_end)
 {
     const double t_pulse = sw_pulse_duration(&so->pulse);
     double duration = so->duration;
@@ -259,7 +258,7 @@ static int run_pulse(sw_engine_t *e, sim_opts_t *so, sim_ctx_t *states, double *
         }
         t = t1;
         write_states(e, states);
-        if (t >= t_pulse && all_settled(e))
+        if (t >= t_pulse && all_settled(e, scenes))
             break;
     }
     sw_engine_finish(e, 0.0);
@@ -394,7 +393,7 @@ int cmd_simulate(int argc, char **argv)
     if ((rc = open_outputs(&o, e, scenes, n, &ctx)) != SW_EXIT_OK)
         goto out;
     double t = 0.0;
-    if ((rc = run_pulse(e, &so, &ctx, &t)) != SW_EXIT_OK)
+    if ((rc = run_pulse(e, scenes, &so, &ctx, &t)) != SW_EXIT_OK)
         goto out;
 
     const sw_cli_run_t run = {

@@ -105,7 +105,7 @@ void sw_fold_send(sw_fold_t *f, const sw_alarm_t *a, int64_t utime, double mono)
         f->emit(f->user, a, utime);
         return;
     }
-    if (!(mono - s->win < f->interval)) { /* a new window (NaN: a flush) */
+    if (!(mono - s->win < f->interval)) { /* a new window (not finite: a flush) */
         if (s->folded > 0)
             summary(f, s, f->interval);
         s->win = isfinite(mono) ? mono : -INFINITY; /* after a flush, a fresh start */

@@ -28,7 +28,8 @@ typedef struct sw_fold sw_fold_t;
 sw_fold_t *sw_fold_create(size_t n, double interval, sw_fold_emit_fn emit, void *user);
 void sw_fold_destroy(sw_fold_t *f);
 
-/* Alarm a at monotonic time mono (s; NAN after a flush: a fresh start):
+/* Alarm a at monotonic time mono (s; not finite during a flush: a fresh
+ * start):
  * sent now, or held back.  INPUT_REJECTED is never held here: the monitor
  * folds it per reason before. */
 void sw_fold_send(sw_fold_t *f, const sw_alarm_t *a, int64_t utime, double mono);
