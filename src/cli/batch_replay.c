@@ -100,13 +100,12 @@ static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t 
     fprintf(f, ",%d,", run->forced);
     sw_cli_csv_text(f, run->check);
     /* the verdict, and the reserve as the JSON record has it (empty where
-     * it has null) */
+     * it has null: risk.h keeps NAN until there is a value) */
     fputc(',', f);
     sw_cli_csv_text(f, sw_cli_verdict(s));
     const sw_risk_pkg_t *p = run->risk ? sw_risk_pkg(run->risk, i) : NULL;
-    const int rv = p && p->evaluations > 0;
-    sw_cli_csv_num(f, rv ? p->min_reserve_g : NAN);
-    sw_cli_csv_num(f, rv ? p->min_reserve_time : NAN);
+    sw_cli_csv_num(f, p ? p->min_reserve_g : NAN);
+    sw_cli_csv_num(f, p ? p->min_reserve_time : NAN);
     sw_cli_csv_num(f, p ? p->rest_reserve_g : NAN);
 }
 
