@@ -38,33 +38,48 @@ int sw_cli_plot_check(const sw_cli_option_t *o, const char *path, void *dest)
     return SW_EXIT_USAGE;
 }
 
+/* One byte inside a gnuplot double-quoted string.  Every byte that is not
+ * printable ASCII goes as an octal escape, so that no byte of a string
+ * from a file name, a scene or the command line can end the string or the
+ * command (a newline ends a gnuplot command, and a single-quoted string
+ * has no escapes at all): gnuplot turns the escape back into the same
+ * byte, so a file name keeps every byte it has.  A backquote too: gnuplot
+ * substitutes `...` with a shell command's output before it parses a
+ * line, inside double-quoted strings as well. */
+static void put_byte(FILE *f, unsigned char c)
+{
+    if (c == '"' || c == '\\')
+        fprintf(f, "\\%c", c);
+    else if (c < 0x20 || c > 0x7e || c == '`')
+        fprintf(f, "\\%03o", c);
+    else
+        fputc(c, f);
+}
+
 void sw_cli_plot_string(FILE *f, const char *s)
 {
-    /* gnuplot single-quoted string: no escapes but '' for a quote */
-    fputc('\'', f);
-    for (; *s; s++) {
-        if (*s == '\'')
-            fputc('\'', f);
-        fputc(*s, f);
-    }
-    fputc('\'', f);
+    fputc('"', f);
+    for (; *s; s++) put_byte(f, (unsigned char)*s);
+    fputc('"', f);
 }
 
 void sw_cli_plot_text(FILE *f, const char *s)
 {
     /* the terminals are set up "enhanced": _ ^ { } @ & ~ are markup unless
-     * escaped, and a backslash is itself escaped by another */
-    fputc('\'', f);
+     * escaped by a backslash, itself escaped in a double-quoted string; a
+     * control byte would only draw as a box or break a line: shown as '?' */
+    fputc('"', f);
     for (; *s; s++) {
-        if (*s == '\'') {
-            fputs("''", f);
+        const unsigned char c = (unsigned char)*s;
+        if (c < 0x20 || c == 0x7f) {
+            fputc('?', f);
             continue;
         }
-        if (strchr("_^{}@&~\\", *s))
-            fputc('\\', f);
-        fputc(*s, f);
+        if (strchr("_^{}@&~\\", c))
+            fputs("\\\\", f);
+        put_byte(f, c);
     }
-    fputc('\'', f);
+    fputc('"', f);
 }
 
 sw_plot_t *sw_cli_plot_open(const char *path, int width, int height)
