@@ -104,7 +104,11 @@ configure_file(${PROJECT_SOURCE_DIR}/scripts/debian/changelog.in
                ${PROJECT_BINARY_DIR}/debian/changelog @ONLY)
 set(CPACK_SW_DEB_CHANGELOG ${PROJECT_BINARY_DIR}/debian/changelog)
 set(CPACK_SW_DEB_COPYRIGHT ${PROJECT_SOURCE_DIR}/scripts/debian/copyright)
-set(CPACK_PRE_BUILD_SCRIPTS ${PROJECT_SOURCE_DIR}/scripts/debian/stage.cmake)
+# stage.cmake: the Debian packages; release-commit.cmake: the source
+# tarball's COMMIT (each leaves the other's packages alone).
+set(CPACK_PRE_BUILD_SCRIPTS ${PROJECT_SOURCE_DIR}/scripts/debian/stage.cmake
+                            ${PROJECT_SOURCE_DIR}/scripts/release-commit.cmake)
+set(CPACK_SW_SOURCE_DIR ${PROJECT_SOURCE_DIR})
 
 # swaywatch: run-time dependencies from the ELF files (dpkg-shlibdeps, from
 # dpkg-dev), a shlibs file and the ldconfig trigger for libswaywatch.so.0.
@@ -144,5 +148,6 @@ engine and the CSV reader.  Headers, static library and swaywatch.pc:
   cc app.c $(pkg-config --cflags --libs swaywatch)")
 
 set(CPACK_SOURCE_GENERATOR TGZ)
-set(CPACK_SOURCE_IGNORE_FILES "/\\\\.git/" "/build[^/]*/")
+# .git is a file in a worktree: neither it nor a checkout's folder is packed.
+set(CPACK_SOURCE_IGNORE_FILES "/\\\\.git/" "/\\\\.git$" "/build[^/]*/")
 include(CPack)

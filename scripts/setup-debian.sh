@@ -6,7 +6,7 @@
 # is missing.
 set -eu
 PKGS="build-essential cmake pkg-config liblcm-dev liblcm-bin libcsv-dev libgsl-dev
-libcmocka-dev libinih-dev libglib2.0-dev gnuplot-nox python3 iproute2 util-linux
+libcmocka-dev libinih-dev libsodium-dev libglib2.0-dev gnuplot-nox python3 iproute2 util-linux
 clang clang-format libclang-rt-14-dev valgrind help2man liblcm-java
 dpkg-dev file lintian libsystemd-dev libncurses-dev tmux openmpi-bin libopenmpi-dev
 chromium"
