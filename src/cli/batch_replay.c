@@ -79,11 +79,9 @@ static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t 
     sw_cli_csv_num(f, h ? F->t_first - F->t_origin : NAN);
     sw_cli_csv_num(f, h ? F->t_last - F->t_origin : NAN);
     fputc(',', f);
-    if (h && F->t_origin != 0.0) {
-        char iso[64];
-        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
+    char iso[64];
+    if (h && sw_cli_run_utc(run, 0.0, iso, sizeof iso))
         fputs(iso, f);
-    }
     sw_cli_csv_num(f, h ? F->duration : NAN);
     sw_cli_csv_num(f, h ? F->dt_median : NAN);
     sw_cli_csv_num(f, h ? F->rate : NAN);

@@ -27,6 +27,7 @@ typedef struct {
      * read; the pump stops after the chunk */
     int stopped;
     long unread, unread_rejected;
+    sw_cli_unused_t *unused; /* the caller's record of what was not used */
 } feed_t;
 
 /* ---- what the reader chose ------------------------------------------------------- */
@@ -132,6 +133,8 @@ static void on_reject(void *user, long line, const char *reason)
         F->unread_rejected++;
         return;
     }
+    if (!F->rej.stop) /* --strict counts none after the first */
+        sw_cli_unused_reject(F->unused, line, NULL, reason);
     sw_cli_rejects_add(&F->rej, line, reason);
 }
 
@@ -140,6 +143,8 @@ static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, c
     feed_t *F = user;
     char buf[240];
     snprintf(buf, sizeof buf, "%s (%s)", text, sw_gate_reject_name(r));
+    if (!F->rej.stop)
+        sw_cli_unused_reject(F->unused, s->where, sw_cli_unused_gate_reason(r), buf);
     sw_cli_rejects_add(&F->rej, s->where, buf);
 }
 
@@ -152,6 +157,7 @@ static void on_gate_take(void *user, double t, double a_g, double a_z, int resta
 static void on_gate_event(void *user, const sw_gate_event_t *ev)
 {
     feed_t *F = user;
+    sw_cli_unused_event(F->unused, ev);
     if (F->quiet)
         return;
     const char *how = ev->restarted ? "the packages restart from rest"
@@ -191,6 +197,9 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
         .name = lf->name, .quiet = quiet, .take = take, .take_user = take_user, .halt = halt};
     F.rej = (sw_cli_rejects_t){.name = lf->name, .quiet = quiet, .strict = co->strict};
     memset(out, 0, sizeof *out);
+    sw_cli_unused_init(&out->unused, 1);
+    out->unused.listed = 1;
+    F.unused = &out->unused;
     sw_gate_opts_t gopts;
     sw_cli_gate_opts(go, &gopts);
     gopts.on_event = on_gate_event;
@@ -245,6 +254,9 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
         sw_cli_error("%s: stopped at the first rejected row (--strict)", lf->name);
         goto out;
     }
+    sw_csv_layout_t layout;
+    if (sw_csv_layout(F.csv, &layout) == SW_OK && layout.ready)
+        out->time_unit = layout.unit[0];
     sw_csv_counts_t counts;
     sw_csv_counts(F.csv, &counts);
     sw_gate_facts(F.gate, &out->facts);

@@ -14,12 +14,14 @@
 
 /* What a fed log was. */
 typedef struct {
-    long rows;             /* data rows the CSV reader saw */
-    long rejected;         /* rows refused, by the reader or the gate */
-    sw_gate_facts_t facts; /* the gate's */
-    int interrupted;       /* SIGINT or SIGTERM stopped the reading: the counts cover the
-                              rows fed before it (interrupt.h) */
-    int halted;            /* the caller's halt stopped it (nothing else is filled) */
+    long rows;              /* data rows the CSV reader saw */
+    long rejected;          /* rows refused, by the reader or the gate */
+    sw_gate_facts_t facts;  /* the gate's */
+    int interrupted;        /* SIGINT or SIGTERM stopped the reading: the counts cover the
+                               rows fed before it (interrupt.h) */
+    int halted;             /* the caller's halt stopped it (nothing else is filled) */
+    int time_unit;          /* SW_CSV_UNIT_* of the time column (DATETIME: dates) */
+    sw_cli_unused_t unused; /* the rows refused and the stream's events, kept */
 } sw_cli_fed_t;
 
 /* Stream the CSV log lf (opened) through the reader and the gate into e,

@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "unused.h"
 
 /* Derived quantities of every package (--verbose), on f. */
 void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scenes, size_t n);
@@ -124,12 +125,32 @@ typedef struct {
     /* a log's facts (the input gate's), and its verdict's check */
     int have_facts;
     sw_gate_facts_t facts;
-    int forced;            /* the plausibility check refused; --force gave the verdict */
-    char check[320];       /* its reason, or a warning (a low rate); "" none */
-    int interrupted;       /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
-                              the summaries say so, and up to which time they cover */
-    const sw_risk_t *risk; /* reserves and impacts that matter (NULL: none) */
+    int forced;             /* the plausibility check refused; --force gave the verdict */
+    char check[320];        /* its reason, or a warning (a low rate); "" none */
+    int interrupted;        /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
+                               the summaries say so, and up to which time they cover */
+    const sw_risk_t *risk;  /* reserves and impacts that matter (NULL: none) */
+    sw_cli_unused_t unused; /* a log's: what its reading did not use (rows, gaps) */
+    /* a log whose times are dates (a date-time column, epoch times, an
+     * lcm-logger file): a source time plus abs_base is UTC (s since 1970);
+     * abs_start and abs_end are its first and last samples'; abs_from says
+     * where the dates come from */
+    int absolute;
+    double abs_base, abs_start, abs_end; /* s */
+    const char *abs_from;
 } sw_cli_run_t;
+
+/* Epoch times outside these are no date of a recording (an uptime in s,
+ * a clock never set): no UTC is given for them. */
+#define SW_CLI_EPOCH_MIN 631152000.0  /* s since 1970: 1990-01-01 */
+#define SW_CLI_EPOCH_MAX 4102444800.0 /* 2100-01-01 */
+int sw_cli_epoch_plausible(double t);
+
+/* The UTC of engine time t (s) of run, ISO-8601 with ms, into buf: 1, or
+ * 0 (buf "") when the log has no dates or t is after a clock step or a
+ * restart that re-timed the log (what followed is not the source's time
+ * plus a constant). */
+int sw_cli_run_utc(const sw_cli_run_t *run, double t, char *buf, size_t len);
 
 /* A package's smallest reserve, in g, and what it means: one line (two
  * with faults) as the human summary has it; nothing without a reserve. */

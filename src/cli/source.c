@@ -207,8 +207,21 @@ static int feed_csv(sw_cli_reader_t *R)
         return SW_EXIT_OK; /* the command says why */
     R->run.samples_read = fed.rows;
     R->run.samples_rejected = fed.rejected;
+    R->run.unused = fed.unused;
     R->accepted = fed.facts.accepted;
     R->interrupted = fed.interrupted;
+    /* dates: a date-time column, or epoch times (the gate timed the log
+     * from its first sample) that fall in the years of recordings */
+    const sw_gate_facts_t *f = &fed.facts;
+    if (fed.facts.accepted > 0 && (fed.time_unit == SW_CSV_UNIT_DATETIME ||
+                                   (f->t_origin != 0.0 && sw_cli_epoch_plausible(f->t_origin)))) {
+        R->run.absolute = 1;
+        R->run.abs_base = 0.0; /* the source's times are dates */
+        R->run.abs_start = f->t_first;
+        R->run.abs_end = f->t_last;
+        R->run.abs_from = fed.time_unit == SW_CSV_UNIT_DATETIME ? "the log's date-times"
+                                                                : "the log's epoch times";
+    }
     if (fed.interrupted)
         return SW_EXIT_OK; /* no check, no settling: the command says why */
     return sw_cli_feed_verdict(R->lf.name, &fed.facts, &R->o->gate,
@@ -216,6 +229,43 @@ static int feed_csv(sw_cli_reader_t *R)
 }
 
 #ifdef SW_HAVE_LCM
+/* The samples the monitor core refused, by reason (it keeps no places). */
+static void lcmlog_unused(sw_cli_reader_t *R, const sw_mon_counts_t *k)
+{
+    sw_cli_unused_init(&R->run.unused, 0);
+    for (int r = 0; r < SW_MON_NREJ; r++)
+        sw_cli_unused_count(&R->run.unused, sw_mon_reject_name((sw_mon_reject)r), k->rejected[r]);
+}
+
+/* The dates of an lcm-logger file: the samples' utime when it is one (µs
+ * since 1970, as accel_t says), else the times lcm-logger received them
+ * (its own clock: a sensor that counts from its boot still has a date
+ * there, to the logger's latency).  The monitor core times the gate from
+ * the first sample it received, the base, at source time 0. */
+static void lcmlog_dates(sw_cli_reader_t *R, const sw_gate_facts_t *f)
+{
+    const double origin = (double)sw_mon_origin(R->mon) / 1e6; /* s, engine t = 0 */
+    sw_lcmlog_counts_t lc;
+    sw_lcmlog_counts(R->lcmlog, &lc);
+    sw_cli_run_t *run = &R->run;
+    int logger = 0;
+    if (sw_cli_epoch_plausible(origin)) {
+        run->abs_base = origin - f->t_origin;
+        run->abs_from = "the samples' utime";
+    } else if (lc.first_utime > 0 && sw_cli_epoch_plausible((double)lc.first_utime / 1e6)) {
+        run->abs_base = (double)lc.first_utime / 1e6;
+        run->abs_from = "lcm-logger's receive times (the samples' utime is no date)";
+        logger = 1;
+    } else {
+        return;
+    }
+    run->absolute = 1;
+    run->abs_start = f->t_first + run->abs_base;
+    run->abs_end = f->t_last + run->abs_base;
+    if (logger && (f->restarts || f->clock_steps))
+        run->abs_end = (double)lc.last_utime / 1e6; /* the sensor's clock went back or leapt */
+}
+
 static int feed_lcmlog(sw_cli_reader_t *R)
 {
     const int lr = sw_lcmlog_read(R->lcmlog, R->mon);
@@ -243,6 +293,8 @@ static int feed_lcmlog(sw_cli_reader_t *R)
     sw_gate_facts_t f;
     sw_mon_facts(R->mon, &f);
     f.upstream_rejected = k.received - f.received; /* not accel_t, NaN on an axis */
+    lcmlog_unused(R, &k);
+    lcmlog_dates(R, &f);
     return sw_cli_feed_verdict(R->log, &f, &R->o->gate, R->o->mo.vertical >= 0, R->quiet, &R->run);
 }
 #endif

@@ -136,6 +136,27 @@ void sw_cli_iso_seconds(char *buf, size_t len, double t)
     snprintf(buf + n, len - n, ".%03ldZ", ms);
 }
 
+int sw_cli_epoch_plausible(double t)
+{
+    return t >= SW_CLI_EPOCH_MIN && t < SW_CLI_EPOCH_MAX;
+}
+
+int sw_cli_run_utc(const sw_cli_run_t *run, double t, char *buf, size_t len)
+{
+    if (len)
+        buf[0] = '\0';
+    if (!run->absolute || !run->have_facts || !isfinite(t))
+        return 0;
+    /* after a step or a restart, engine times are no longer the source's
+     * shifted by the origin; an lcm-logger file's events are not listed,
+     * so none is known after its first */
+    const sw_gate_facts_t *F = &run->facts;
+    if (run->unused.listed ? !(t < run->unused.first_shift) : (F->restarts || F->clock_steps))
+        return 0;
+    sw_cli_iso_seconds(buf, len, t + F->t_origin + run->abs_base);
+    return 1;
+}
+
 /* The facts of the log: what would expose a misread (duration, rate, peak,
  * gaps), and whether the verdict is incomplete or forced. */
 static void print_facts(FILE *f, const sw_cli_run_t *run)
@@ -146,10 +167,13 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
         run->samples_read ? 100.0 * (double)run->samples_rejected / (double)run->samples_read : 0.0;
     fprintf(f, "  rejected        %ld of %ld (%.2f %%)\n", run->samples_rejected, run->samples_read,
             share);
-    if (F->t_origin != 0.0) {
-        char iso[64];
-        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
-        fprintf(f, "  starts          %s (the times below are from there)\n", iso);
+    if (run->absolute) {
+        char iso[64], end[64];
+        sw_cli_iso_seconds(iso, sizeof iso, run->abs_start);
+        sw_cli_iso_seconds(end, sizeof end, run->abs_end);
+        fprintf(
+            f, "  starts          %s, ends %s (UTC, from %s; the times below are from the start)\n",
+            iso, end, run->abs_from);
     }
     fprintf(f, "  times           %.4f s to %.4f s (%.4f s of samples)\n", t0, t1, F->duration);
     if (isfinite(F->dt_median))
@@ -361,9 +385,14 @@ void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
     json_kv(f, ", ", "start", F->t_first - F->t_origin);
     json_kv(f, ", ", "end", F->t_last - F->t_origin);
     fprintf(f, ", \"start_absolute\": ");
-    if (F->t_origin != 0.0) {
-        char iso[64];
-        sw_cli_iso_seconds(iso, sizeof iso, F->t_origin);
+    char iso[64];
+    if (sw_cli_run_utc(run, 0.0, iso, sizeof iso))
+        sw_cli_json_string(f, iso);
+    else
+        fputs("null", f);
+    fprintf(f, ", \"end_absolute\": ");
+    if (run->absolute) {
+        sw_cli_iso_seconds(iso, sizeof iso, run->abs_end);
         sw_cli_json_string(f, iso);
     } else {
         fputs("null", f);

@@ -398,7 +398,9 @@ static void handle(sw_lcmlog_t *l, sw_mon_t *mon, const event_t *e)
     if (!l->have_ts0) {
         l->have_ts0 = 1;
         l->ts0 = e->timestamp;
+        l->c.first_utime = e->timestamp;
     }
+    l->c.last_utime = e->timestamp; /* what lcm-logger wrote: its clock, not the sensor's */
     int64_t rx_us; /* when lcm-logger received it, relative to the first: exact in double */
     const double rx =
         __builtin_sub_overflow(e->timestamp, l->ts0, &rx_us) ? NAN : (double)rx_us / 1e6;

@@ -88,6 +88,9 @@ typedef struct {
     long long first_corrupt; /* offset of the first, -1 if none */
     long long size;          /* bytes in the log */
     long long examined;      /* bytes read from it (the work done) */
+    long long first_utime;   /* us since 1970 on lcm-logger's clock: when it received the
+                                first event on the accel channel (0: none) */
+    long long last_utime;    /* the same of the last one */
     int spooled;             /* the log could not seek and was copied first */
     int stopped;             /* *opts.stop ended the read before the end of the log */
 } sw_lcmlog_counts_t;
