@@ -17,21 +17,29 @@
 #include <stdio.h>
 
 #include "opts.h"
+#include "output.h"
 
 /* Where a job writes one log's records: for each package, one call of
- * package() with the JSON members (no braces; the batch puts its own
- * before them) and the CSV fields (as many as the job's header names). */
+ * package() with its status (a word: "ok", "incomplete"), the JSON members
+ * (no braces; the batch puts its own before them) and the CSV fields (as
+ * many as the job's header names). */
 typedef struct sw_cli_records sw_cli_records_t;
-void sw_cli_records_package(sw_cli_records_t *rec, const char *json, size_t jlen, const char *csv,
-                            size_t clen);
+void sw_cli_records_package(sw_cli_records_t *rec, const char *status, const char *json,
+                            size_t jlen, const char *csv, size_t clen);
 
 /* One package's record while a job writes it: the JSON members to j and
- * the CSV fields to c, two memory streams. */
+ * the CSV fields to c, two memory streams; its status (NULL: "ok"). */
 typedef struct {
     FILE *j, *c;
     char *json, *csv;
     size_t jlen, clen;
+    const char *status;
 } sw_cli_record_t;
+
+/* A package's record status: "incomplete" when its verdict is (a gap may
+ * have hidden an overturn: a script reading "ok" must not take it as
+ * one), else "ok"; a log that fails has "error" records (batch_out.c). */
+const char *sw_cli_record_status(const sw_summary_t *s, const sw_cli_run_t *run);
 /* Open both streams: 0, or -1 when memory ran out (then write nothing,
  * but still call sw_cli_record_end). */
 int sw_cli_record_begin(sw_cli_record_t *r);

@@ -47,7 +47,7 @@ static void csv_row(FILE *f, const sw_cli_forensics_t *F, size_t k, const sw_sum
                     const sw_cli_case_t *C)
 {
     sw_cli_csv_text(f, s->name);
-    fprintf(f, ",%s,%s,%d", sw_model_name(s->model), sw_cli_verdict(s), s->overturned);
+    fprintf(f, ",%s,%s,%d", sw_model_name(s->model), sw_cli_verdict(s, &F->R.run), s->overturned);
     sw_cli_csv_num(f, s->overturn_time);
     sw_cli_csv_num(f, s->max_theta_ratio);
     sw_cli_csv_num(f, s->min_margin);
@@ -89,6 +89,7 @@ static void report(void *user, const sw_cli_forensics_t *F)
             continue;
         sw_cli_record_t r;
         if (sw_cli_record_begin(&r) == 0) {
+            r.status = sw_cli_record_status(&s, &F->R.run);
             FILE *j = r.j;
             sw_cli_forensics_json_package(j, F, k);
             fprintf(j, ", \"samples_read\": %ld, \"samples_rejected\": %ld, \"samples_used\": %zu",

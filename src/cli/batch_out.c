@@ -27,10 +27,16 @@ struct sw_cli_records {
     long n;
 };
 
-void sw_cli_records_package(sw_cli_records_t *rec, const char *json, size_t jlen, const char *csv,
-                            size_t clen)
+const char *sw_cli_record_status(const sw_summary_t *s, const sw_cli_run_t *run)
 {
-    fprintf(rec->f, "%zu %zu\n", jlen, clen);
+    return strcmp(sw_cli_verdict(s, run), "incomplete") ? "ok" : "incomplete";
+}
+
+void sw_cli_records_package(sw_cli_records_t *rec, const char *status, const char *json,
+                            size_t jlen, const char *csv, size_t clen)
+{
+    /* a status is one word of letters: nothing else can end it */
+    fprintf(rec->f, "%zu %zu %s\n", jlen, clen, status ? status : "ok");
     fwrite(json, 1, jlen, rec->f);
     fwrite(csv, 1, clen, rec->f);
     rec->n++;
@@ -55,7 +61,7 @@ int sw_cli_record_end(sw_cli_records_t *rec, sw_cli_record_t *r)
         for (size_t i = 0; i < r->jlen; i++)
             if (r->json[i] == '\n')
                 r->json[i] = ' ';
-        sw_cli_records_package(rec, r->json, r->jlen, r->csv, r->clen);
+        sw_cli_records_package(rec, r->status, r->json, r->jlen, r->csv, r->clen);
     }
     free(r->json);
     free(r->csv);
@@ -222,13 +228,14 @@ static int take_item(void *user, size_t i, const char *data, size_t len, const c
         B->overturned |= rc == SW_EXIT_OVERTURNED;
         for (long k = 0; k < npkg && p < end; k++) {
             size_t jl = 0, cl = 0;
-            if (sscanf(p, "%zu %zu", &jl, &cl) != 2)
+            char status[16];
+            if (sscanf(p, "%zu %zu %15[a-z]", &jl, &cl, status) != 3)
                 break;
             const char *nl = memchr(p, '\n', (size_t)(end - p));
             if (!nl || (size_t)(end - nl - 1) < jl + cl)
                 break;
             p = nl + 1;
-            head(B, i, "ok");
+            head(B, i, status);
             fputs(", ", B->out);
             fwrite(p, 1, jl, B->out);
             fputs(", \"messages\": ", B->out);

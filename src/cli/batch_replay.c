@@ -100,7 +100,7 @@ static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t 
     /* the verdict, and the reserve as the JSON record has it (empty where
      * it has null: risk.h keeps NAN until there is a value) */
     fputc(',', f);
-    sw_cli_csv_text(f, sw_cli_verdict(s));
+    sw_cli_csv_text(f, sw_cli_verdict(s, run));
     const sw_risk_pkg_t *p = run->risk ? sw_risk_pkg(run->risk, i) : NULL;
     sw_cli_csv_num(f, p ? p->min_reserve_g : NAN);
     sw_cli_csv_num(f, p ? p->min_reserve_time : NAN);
@@ -122,6 +122,7 @@ static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
             continue;
         sw_cli_record_t r;
         if (sw_cli_record_begin(&r) == 0) {
+            r.status = sw_cli_record_status(&s, run);
             FILE *j = r.j;
             sw_cli_json_package(j, e, i, run, " ");
             fprintf(j, ", \"settle\": ");

@@ -73,10 +73,12 @@ const sw_cli_option_t sw_batch_options[] = {
     {SW_CLI_HELP, 'h', "help", .help = "this help"},
     {SW_CLI_TEXT,
      .help = "A record has the place of the log in the batch (index, from 1; line: its line in\n"
-             "the manifest), the log, the job, status ok or error, the fields of the job's\n"
-             "--json summary for one package (replay: the package's, settle, input: the\n"
-             "log's facts) and the log's messages.  A log that fails (exit code in exit) has\n"
-             "one record, with status error and the reason in messages; the batch goes on.\n"
+             "the manifest), the log, the job, status (ok, incomplete or error), the fields\n"
+             "of the job's --json summary for one package (replay: the package's, settle,\n"
+             "input: the log's facts) and the log's messages.  Status incomplete: the\n"
+             "package's verdict is, because a gap or restart of its log overlapped motion\n"
+             "and may hide an overturn.  A log that fails (exit code in exit) has one\n"
+             "record, with status error and the reason in messages; the batch goes on.\n"
              "Under mpirun or srun (a build with MPI) the logs are shared among the ranks;\n"
              "rank 0 writes the same bytes as a single process."},
     {.kind = SW_CLI_END},
@@ -94,7 +96,8 @@ const sw_cli_command_t sw_batch_cmd = {
         "(its --scene replacing the command line's).  Options and scenes are checked\n"
         "before any log runs.\n",
     .exit_text =
-        "Exit codes: 0 every log gave its records, 1 a package overturned and\n"
+        "Exit codes: 0 every log gave its records, 1 a package overturned, or a log's\n"
+        "verdict is incomplete (its records' status: a gap or restart over motion), and\n"
         "--fail-on-overturn was given, 2 bad usage or input (options, manifest, scene\n"
         "files), 3 an output or the manifest could not be written or read, 4 some logs\n"
         "failed: their records say why, the others are done.\n",

@@ -69,7 +69,8 @@ static const sw_cli_option_t forensics_options[] = {
      .help = "after the log, zero acceleration for up to this long or until the outcome is "
              "certain (default %g; 0: none); at most a day: an undamped frame never rests"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", FO(fail_on_overturn), .value = 1,
-     .help = "exit 1 if a package as given overturned"},
+     .help = "exit 1 if a package as given overturned, or if the verdict is incomplete (a gap "
+             "or restart over motion may hide an overturn)"},
     {SW_CLI_LONG, 0, "max-samples", "N", FO(max_samples), .min = 1, .max = 1L << 28,
      .def = SW_CLI_LOG_MAX_SAMPLES, .what = "a whole number of samples >= 1",
      .help = "hold at most N samples of the log in memory (24 bytes each; default " SW_CLI_STR(
@@ -157,7 +158,7 @@ static const sw_cli_command_t forensics_cmd = {
         "    sizes (--size), each with its outcome, peak and safety factor.\n"
         "The log is held in memory (24 bytes a sample, at most --max-samples): the searches\n"
         "replay it many times for every case.\n",
-    .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
+    .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT | SW_CLI_EXIT_INCOMPLETE,
 };
 
 /* ---- the replay -------------------------------------------------------------------- */
@@ -539,7 +540,7 @@ int cmd_forensics(int argc, char **argv)
     }
     if (F->fo.report && (rc = sw_cli_forensics_report(F, F->fo.report)) != SW_EXIT_OK)
         goto out;
-    rc = sw_cli_verdict_exit(F->R.e, F->fo.fail_on_overturn);
+    rc = sw_cli_verdict_exit(F->R.e, &F->R.run, F->fo.fail_on_overturn);
     if (sw_cli_signal) { /* while the report or the figure was written: both are whole */
         sw_cli_error("forensics: interrupted by %s after the report",
                      sw_cli_signal_name(sw_cli_signal));
@@ -610,7 +611,7 @@ int sw_cli_forensics_log(const sw_cli_forensics_t *opts, const char *log,
         (rc = run_cases(F)) == SW_EXIT_OK) {
         check_agree(F);
         report(user, F);
-        rc = sw_cli_verdict_exit(F->R.e, F->fo.fail_on_overturn);
+        rc = sw_cli_verdict_exit(F->R.e, &F->R.run, F->fo.fail_on_overturn);
     }
     cleanup(F);
     free(F);

@@ -47,7 +47,8 @@ static const sw_cli_option_t replay_options[] = {
              "every package is at rest or has overturned (default %g; 0: stop at the end of the "
              "log); at most 1e5 s (a day), since an undamped frame never comes to rest"},
     {SW_CLI_FLAG, 0, "fail-on-overturn", RO(fail_on_overturn), .value = 1,
-     .help = "exit 1 if any package overturned"},
+     .help = "exit 1 if any package overturned, or if the verdict is incomplete (a gap or "
+             "restart over motion may hide an overturn)"},
     {.kind = SW_CLI_END},
 };
 
@@ -80,7 +81,7 @@ static const sw_cli_command_t replay_cmd = {
         "LOG is a CSV file, '-' for standard input, or an lcm-logger file (recognised by\n"
         "its first bytes; needs a build with LCM).  An lcm-logger log that cannot seek (a\n"
         "pipe, '-') is copied to a temporary file first (at most 4 GiB), in one pass.\n",
-    .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT,
+    .exits = SW_CLI_EXIT_OVERTURN | SW_CLI_EXIT_STRICT | SW_CLI_EXIT_INCOMPLETE,
 };
 
 /* Everything a replay uses, whatever the source: the options (parsed
@@ -319,7 +320,7 @@ static int finish(replay_t *r, int rc)
         rc = sw_cli_figure_draw(r->fig, r->o.plot_path, title);
     }
     if (rc == SW_EXIT_OK)
-        rc = sw_cli_verdict_exit(r->R.e, r->ro.fail_on_overturn);
+        rc = sw_cli_verdict_exit(r->R.e, &r->R.run, r->ro.fail_on_overturn);
     if (run->interrupted) {
         sw_cli_error(
             "replay: interrupted by %s after %ld samples; the output files end with "
@@ -469,7 +470,7 @@ int sw_cli_replay_log(const sw_cli_replay_t *opts, const char *log, sw_cli_repla
     int rc = replay_one(r);
     if (rc == SW_EXIT_OK && r->concluded) {
         report(user, r->R.e, &r->R.run);
-        rc = sw_cli_verdict_exit(r->R.e, r->ro.fail_on_overturn);
+        rc = sw_cli_verdict_exit(r->R.e, &r->R.run, r->ro.fail_on_overturn);
     }
     cleanup(r);
     free(r);

@@ -400,7 +400,7 @@ int cmd_simulate(int argc, char **argv)
         .pulse = pulse, .duration = t, .interrupted = sw_cli_signal, .risk = ctx.risk};
     rc = conclude(&o, e, n, &ctx, &run);
     if (rc == SW_EXIT_OK)
-        rc = sw_cli_verdict_exit(e, so.fail_on_overturn);
+        rc = sw_cli_verdict_exit(e, NULL, so.fail_on_overturn);
     if (run.interrupted) {
         sw_cli_error(
             "simulate: interrupted by %s at t = %g s; the output files end with the "

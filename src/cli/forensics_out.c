@@ -93,13 +93,22 @@ static void answer(FILE *f, const sw_cli_forensics_t *F, size_t k)
     if (!C || !sw_cli_forensics_summary(F, k, &s))
         return;
     fprintf(f, "%s (%s): ", F->scenes[k].name, C->desc);
-    if (s.overturned)
+    const char *verdict = sw_cli_verdict(&s, &F->R.run);
+    if (s.overturned) {
         fprintf(f, "OVERTURNED at %.3f s\n", s.overturn_time);
-    else
+    } else if (!strcmp(verdict, "incomplete")) {
+        char why[256];
+        sw_cli_incomplete_why(&F->R.run, why, sizeof why);
+        fprintf(f,
+                "INCOMPLETE: %s as far as the samples go; peak %.3f alpha, minimum margin %.3f\n",
+                s.faults ? "no verdict (the model faulted)" : "upright", s.max_theta_ratio,
+                s.min_margin);
+        fprintf(f, "  but %s: an overturn may be hidden there\n", why);
+    } else {
         fprintf(f, "%s; peak %.3f alpha, minimum margin %.3f\n",
-                strcmp(sw_cli_verdict(&s), "upright") ? "NO VERDICT (the model faulted)"
-                                                      : "stayed upright",
+                strcmp(verdict, "upright") ? "NO VERDICT (the model faulted)" : "stayed upright",
                 s.max_theta_ratio, s.min_margin);
+    }
     if (F->R.risk)
         sw_cli_print_reserve(f, sw_risk_pkg(F->R.risk, k));
     char b[64], sentence[640];
@@ -176,7 +185,11 @@ void sw_cli_forensics_json_package(FILE *f, const sw_cli_forensics_t *F, size_t 
     fprintf(f, ", \"model\": ");
     sw_cli_json_string(f, sw_model_name(s.model));
     fprintf(f, ", \"verdict\": ");
-    sw_cli_json_string(f, sw_cli_verdict(&s));
+    sw_cli_json_string(f, sw_cli_verdict(&s, &F->R.run));
+    fprintf(f, ", \"seen\": ");
+    sw_cli_json_string(f, sw_cli_verdict_seen(&s));
+    fprintf(f, ", ");
+    sw_cli_json_incomplete(f, &s, &F->R.run);
     fprintf(f, ", \"overturned\": %s, \"overturn_time\": ", s.overturned ? "true" : "false");
     sw_cli_json_num(f, s.overturn_time);
     fprintf(f, ", \"max_theta_ratio\": ");

@@ -615,7 +615,10 @@ void sw_cli_print_help(FILE *f, const sw_cli_command_t *cmd, const sw_cli_group_
     }
     fprintf(f, "\nExit codes: 0 ok");
     if (cmd->exits & SW_CLI_EXIT_OVERTURN)
-        fprintf(f, ", 1 a package overturned and --fail-on-overturn was given");
+        fprintf(f, ", 1 a package overturned and --fail-on-overturn was given%s",
+                cmd->exits & SW_CLI_EXIT_INCOMPLETE
+                    ? "\n(with it also a verdict left incomplete by a gap or restart over motion)"
+                    : "");
     fprintf(f,
             ",\n2 bad usage or bad input (options, scene files%s%s),\n"
             "3 a file could not be read or written,\n"

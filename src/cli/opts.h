@@ -111,7 +111,7 @@ typedef struct {
     }
 
 /* What --help says besides the options. */
-enum { SW_CLI_EXIT_OVERTURN = 1, SW_CLI_EXIT_STRICT = 2 };
+enum { SW_CLI_EXIT_OVERTURN = 1, SW_CLI_EXIT_STRICT = 2, SW_CLI_EXIT_INCOMPLETE = 4 };
 typedef struct {
     const char *name;      /* "replay", as in messages */
     const char *usage;     /* after "usage: swaywatch " (may go on over indented lines) */

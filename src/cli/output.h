@@ -180,16 +180,36 @@ void sw_cli_iso_seconds(char *buf, size_t len, double t);
 /* Non-zero if any package overturned. */
 int sw_cli_any_overturned(const sw_engine_t *e);
 
-/* A package's verdict: "overturned", "upright", or "unreliable" when it
- * did not overturn but its model faulted (reset to rest mid-run: "stayed
- * upright" would not be a verdict).  JSON "verdict"; the human summary
- * says it in words. */
-const char *sw_cli_verdict(const sw_summary_t *s);
+/* What the run saw of a package: "overturned", "upright", or "unreliable"
+ * when it did not overturn but its model faulted (reset to rest mid-run:
+ * "stayed upright" would not be a verdict). */
+const char *sw_cli_verdict_seen(const sw_summary_t *s);
+
+/* How many things the input did not show may have changed the run's
+ * verdicts: the gate's gaps and restarts over motion (gate.h's
+ * incomplete); 0 with none, or without a run (a simulation).  The one
+ * place that decides it: other doubts (a contested stream) belong here. */
+long sw_cli_run_incomplete(const sw_cli_run_t *run);
+/* The first of them in words ("a gap of 2 s at 6.499 s overlapped rocking
+ * or an acceleration near the uplift threshold"); "" with none. */
+void sw_cli_incomplete_why(const sw_cli_run_t *run, char *buf, size_t len);
+
+/* A package's verdict (JSON "verdict"; the summaries say it in words):
+ * "overturned" whatever the gaps (an overturn seen is one); "incomplete"
+ * when the run is (sw_cli_run_incomplete: what it saw is
+ * sw_cli_verdict_seen); else what it saw.  run may be NULL. */
+const char *sw_cli_verdict(const sw_summary_t *s, const sw_cli_run_t *run);
+
+/* "incomplete_because": null, or {count, first_time, first_kind,
+ * first_span, text} of an incomplete verdict, as a JSON member. */
+void sw_cli_json_incomplete(FILE *f, const sw_summary_t *s, const sw_cli_run_t *run);
 
 /* The exit code of a run that went well, from its verdicts: SW_EXIT_OK
  * without fail_on_overturn; with it SW_EXIT_OVERTURNED if a package
- * overturned, else SW_EXIT_USAGE (reported, naming the package) if one
- * has no verdict because its model faulted, else SW_EXIT_OK. */
-int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn);
+ * overturned or the verdict is incomplete (fail safe: it may hide an
+ * overturn; reported), else SW_EXIT_USAGE (reported, naming the package)
+ * if one has no verdict because its model faulted, else SW_EXIT_OK.  run
+ * may be NULL (a simulation). */
+int sw_cli_verdict_exit(const sw_engine_t *e, const sw_cli_run_t *run, int fail_on_overturn);
 
 #endif

@@ -86,15 +86,26 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
         fprintf(f, "</b> (");
         html(f, C->desc);
         fprintf(f, "): ");
-        if (s.overturned)
+        const char *verdict = sw_cli_verdict(&s, &F->R.run);
+        if (s.overturned) {
             fprintf(f, "<span class=\"over\">OVERTURNED</span> at %.3f s.", s.overturn_time);
-        else if (!strcmp(sw_cli_verdict(&s), "upright"))
+        } else if (!strcmp(verdict, "incomplete")) {
+            char why[256];
+            sw_cli_incomplete_why(&F->R.run, why, sizeof why);
+            fprintf(f,
+                    "<span class=\"over\">INCOMPLETE</span>: %s as far as the samples go "
+                    "(its tilt reached %.3f of the tipping angle), but ",
+                    s.faults ? "no verdict (the model faulted)" : "upright", s.max_theta_ratio);
+            html(f, why);
+            fprintf(f, ": an overturn may be hidden there.");
+        } else if (!strcmp(verdict, "upright")) {
             fprintf(f,
                     "<span class=\"up\">stayed upright</span>; its tilt reached %.3f of the "
                     "tipping angle, its smallest margin to overturn was %.3f.",
                     s.max_theta_ratio, s.min_margin);
-        else
+        } else {
             fprintf(f, "<span class=\"over\">no verdict</span>: the model faulted.");
+        }
         fprintf(f, "</p>");
         reserve(f, F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL);
         char b[64], sentence[640];

@@ -76,19 +76,75 @@ int sw_cli_any_overturned(const sw_engine_t *e)
     return 0;
 }
 
-const char *sw_cli_verdict(const sw_summary_t *s)
+const char *sw_cli_verdict_seen(const sw_summary_t *s)
 {
     if (s->overturned)
         return "overturned";
     return s->faults ? "unreliable" : "upright";
 }
 
-int sw_cli_verdict_exit(const sw_engine_t *e, int fail_on_overturn)
+long sw_cli_run_incomplete(const sw_cli_run_t *run)
+{
+    /* the one place that says which doubts about the input leave a
+     * verdict open: today the gate's gaps and restarts over motion */
+    return run && run->have_facts ? run->facts.incomplete : 0;
+}
+
+const char *sw_cli_verdict(const sw_summary_t *s, const sw_cli_run_t *run)
+{
+    if (!s->overturned && sw_cli_run_incomplete(run) > 0)
+        return "incomplete";
+    return sw_cli_verdict_seen(s);
+}
+
+void sw_cli_incomplete_why(const sw_cli_run_t *run, char *buf, size_t len)
+{
+    const long n = sw_cli_run_incomplete(run);
+    if (len)
+        buf[0] = '\0';
+    if (n <= 0)
+        return;
+    const sw_gate_facts_t *F = &run->facts;
+    const sw_cli_unused_t *u = &run->unused;
+    int k;
+    if (u->have_incomplete) {
+        const sw_cli_unused_gap_t *g = &u->first_incomplete;
+        const double at = g->t - F->t_origin;
+        if (g->kind == SW_GATE_EV_GAP)
+            k = snprintf(buf, len, "a gap of %.4g s at %.3f s", g->span, at);
+        else if (g->kind == SW_GATE_EV_RESTART)
+            k = snprintf(buf, len, "a restart of the log's clock at %.3f s (back by %.4g s)", at,
+                         -g->span);
+        else
+            k = snprintf(buf, len, "a step of the log's clock at %.3f s", at);
+    } else { /* an lcm-logger file: the monitor core keeps the first time alone */
+        k = snprintf(buf, len, "a gap or restart at %.3f s", F->first_incomplete - F->t_origin);
+    }
+    if (k < 0 || (size_t)k >= len)
+        return;
+    snprintf(buf + k, len - (size_t)k,
+             " overlapped rocking or an acceleration near the uplift threshold");
+    if (n > 1) {
+        const size_t m = strlen(buf);
+        snprintf(buf + m, len - m, " (%ld such in all)", n);
+    }
+}
+
+int sw_cli_verdict_exit(const sw_engine_t *e, const sw_cli_run_t *run, int fail_on_overturn)
 {
     if (!fail_on_overturn)
         return SW_EXIT_OK;
     if (sw_cli_any_overturned(e))
         return SW_EXIT_OVERTURNED;
+    if (sw_cli_run_incomplete(run) > 0) {
+        char why[256];
+        sw_cli_incomplete_why(run, why, sizeof why);
+        sw_cli_error(
+            "%s: the verdict is incomplete: %s; an overturn may be hidden there, so "
+            "--fail-on-overturn exits 1",
+            run->log && strcmp(run->log, "-") ? run->log : "(stdin)", why);
+        return SW_EXIT_OVERTURNED;
+    }
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
         if (sw_engine_summary(e, i, &s) == SW_OK && s.faults) {
@@ -189,20 +245,30 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
         fputs("  gaps            none\n", f);
     if (F->incomplete)
         fprintf(f,
-                "  VERDICT INCOMPLETE: %ld gap%s or restart%s overlap rocking or an "
-                "acceleration past the uplift threshold (first at %.4f s)\n",
+                "  VERDICT INCOMPLETE: %ld gap%s or restart%s overlap%s rocking or an "
+                "acceleration near the uplift threshold (first at %.4f s)\n",
                 F->incomplete, F->incomplete == 1 ? "" : "s", F->incomplete == 1 ? "" : "s",
-                F->first_incomplete - F->t_origin);
+                F->incomplete == 1 ? "s" : "", F->first_incomplete - F->t_origin);
     if (run->forced)
         fprintf(f, "  VERDICT FORCED (--force): %s\n", run->check);
     else if (run->check[0])
         fprintf(f, "  warning         %s\n", run->check);
 }
 
-/* The outcome line's words: a faulted run never reads as a plain verdict. */
-static void print_outcome(FILE *f, const sw_summary_t *s)
+/* The outcome line's words: a faulted run never reads as a plain verdict,
+ * nor one that a gap may have changed. */
+static void print_outcome(FILE *f, const sw_summary_t *s, const sw_cli_run_t *run)
 {
-    if (s->overturned) {
+    if (!s->overturned && sw_cli_run_incomplete(run) > 0) {
+        char why[256];
+        sw_cli_incomplete_why(run, why, sizeof why);
+        if (s->faults)
+            fprintf(f, "INCOMPLETE: no verdict as far as the samples go (model faulted %ld times)",
+                    s->faults);
+        else
+            fputs("INCOMPLETE: upright as far as the samples go", f);
+        fprintf(f, ", but %s", why);
+    } else if (s->overturned) {
         fputs("OVERTURNED at ", f);
         print_time(f, s->overturn_time, "an unknown time");
         if (s->faults)
@@ -328,7 +394,7 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
         print_margin(f, &s);
         sw_cli_print_reserve(f, sw_risk_pkg(run->risk, i));
         fputs("  outcome         ", f);
-        print_outcome(f, &s);
+        print_outcome(f, &s, run);
         fputc('\n', f);
     }
 }
@@ -420,6 +486,33 @@ void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
     fputc('}', f);
 }
 
+void sw_cli_json_incomplete(FILE *f, const sw_summary_t *s, const sw_cli_run_t *run)
+{
+    fputs("\"incomplete_because\": ", f);
+    const long n = s->overturned ? 0 : sw_cli_run_incomplete(run);
+    if (n <= 0) {
+        fputs("null", f);
+        return;
+    }
+    const sw_gate_facts_t *F = &run->facts;
+    const sw_cli_unused_t *u = &run->unused;
+    const sw_cli_unused_gap_t *g = u->have_incomplete ? &u->first_incomplete : NULL;
+    fprintf(f, "{\"count\": %ld, \"first_time\": ", n);
+    sw_cli_json_num(f, (g ? g->t : F->first_incomplete) - F->t_origin);
+    fputs(", \"first_kind\": ", f);
+    if (g)
+        sw_cli_json_string(f, sw_gate_event_name(g->kind));
+    else
+        fputs("null", f);
+    fputs(", \"first_span\": ", f);
+    sw_cli_json_num(f, g ? g->span : NAN);
+    char why[256];
+    sw_cli_incomplete_why(run, why, sizeof why);
+    fputs(", \"text\": ", f);
+    sw_cli_json_string(f, why);
+    fputc('}', f);
+}
+
 /* The reserve and the impacts that matter (null without them). */
 static void json_risk(FILE *f, const sw_risk_pkg_t *p, const char *br)
 {
@@ -458,8 +551,10 @@ int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_ru
     sw_cli_json_string(f, s.name);
     fprintf(f, ", \"model\": ");
     sw_cli_json_string(f, sw_model_name(s.model));
-    fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\"", s.overturned ? "true" : "false",
-            sw_cli_verdict(&s));
+    fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\", \"seen\": \"%s\"",
+            s.overturned ? "true" : "false", sw_cli_verdict(&s, run), sw_cli_verdict_seen(&s));
+    json_sep(f, br);
+    sw_cli_json_incomplete(f, &s, run);
     json_sep(f, br);
     json_kv(f, "", "overturn_time", s.overturn_time);
     json_kv(f, ", ", "tip_time", s.tip_time);
