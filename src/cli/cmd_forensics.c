@@ -512,7 +512,7 @@ int cmd_forensics(int argc, char **argv)
         rc = report_interrupted(F);
         goto out;
     }
-    if ((rc = run_cases(F)) != SW_EXIT_OK)
+    if ((rc = run_cases(F)) != SW_EXIT_OK || (rc = sw_cli_forensics_fingerprint(F)) != SW_EXIT_OK)
         goto out;
     check_agree(F);
     /* --out - / --events -: standard output carries that file. */

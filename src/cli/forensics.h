@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "figure.h"
+#include "fingerprint.h"
 #include "input.h"
 #include "opts.h"
 #include "output.h"
@@ -57,6 +58,11 @@ typedef struct {
     /* the search's progress line and its time */
     double started, progress_at, search_s;
     int progress_shown;
+    /* what ties the answer to its inputs (sw_cli_forensics_fingerprint) */
+    int fingerprinted;
+    sw_cli_digest_t log_digest;
+    sw_cli_digest_t *scene_digest; /* one per --scene file, in order */
+    char *command_line;            /* the command, quoted for a POSIX shell */
 } sw_cli_forensics_t;
 
 /* The events kept for the report: begin before the replay (SW_EXIT_OK or
@@ -65,6 +71,17 @@ int sw_cli_forensics_begin(sw_cli_forensics_t *F);
 void sw_cli_forensics_event(sw_cli_forensics_t *F, const sw_event_t *ev);
 void sw_cli_forensics_end(sw_cli_forensics_t *F);
 void sw_cli_forensics_free(sw_cli_forensics_t *F); /* what begin allocated */
+
+/* After the replay: the SHA-256 and size of the log (the file being read,
+ * through its open descriptor) and of each scene file, and the command
+ * line quoted for a shell.  SW_EXIT_OK, or SW_EXIT_IO when memory ran out
+ * (reported); a file that cannot be hashed is no failure: its digest says
+ * why. */
+int sw_cli_forensics_fingerprint(sw_cli_forensics_t *F);
+
+/* The UTC of engine time t (s) of the replay in buf ("" when the log has
+ * no dates, or t is after a clock step or restart): 1 or 0. */
+int sw_cli_forensics_utc(const sw_cli_forensics_t *F, double t, char *buf, size_t len);
 
 /* The answer first, then (without -q) the method: the replay summary and
  * how the safety factors were found. */

@@ -204,13 +204,15 @@ python3 - "$TMP/one.json" "$TMP/out" <<'PY' || fail "the JSON differs between 1 
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:])
 ca, cb = a.pop("command"), b.pop("command")
+la, lb = a.pop("command_line"), b.pop("command_line")
 assert cb[-2:] == ["--threads", "2"], cb
+assert la.endswith(" --threads 1") and lb == la[:-1] + "2", (la, lb)
 assert a == b
 PY
 for n in 1 2; do
     run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --scene "$LOGS/crate-on-frame.ini" \
         --threads $n
-    cp "$TMP/out" "$TMP/t$n.txt"
+    grep -v '^  command ' "$TMP/out" >"$TMP/t$n.txt"
 done
 cmp "$TMP/t1.txt" "$TMP/t2.txt" || fail "the report differs between 1 and 2 threads"
 
@@ -231,6 +233,12 @@ import json, sys
 c, l = (json.load(open(p)) for p in sys.argv[1:])
 assert c["log"]["source"] == "a CSV log" and l["log"]["source"] == "an lcm-logger file"
 assert c["log"]["samples_used"] == l["log"]["samples_used"] == 8001
+# lcm-logger's utimes are dates: 1700000000 s is 2023-11-14T22:13:20Z
+assert c["log"]["start_utc"] is None
+assert l["log"]["start_utc"] == "2023-11-14T22:13:20.000Z", l["log"]["start_utc"]
+assert l["log"]["end_utc"] == "2023-11-14T22:13:28.000Z", l["log"]["end_utc"]
+assert l["log"]["dates_from"] == "the samples' utime", l["log"]["dates_from"]
+assert l["packages"][0]["utc"]["overturn"] == "2023-11-14T22:13:%06.3fZ" % (20 + l["packages"][0]["overturn_time"])
 for pc, pl in zip(c["packages"], l["packages"]):
     assert pc["overturned"] and pl["overturned"]
     assert abs(pc["overturn_time"] - pl["overturn_time"]) < 1e-6
@@ -243,6 +251,92 @@ PY
     run "$SW" forensics "$TMP/drive.lcmlog" --scene "$CRATE" --time-col 1
     expect_rc 2 "a CSV option on an lcm-logger file"
 fi
+
+# The fingerprint: the log's and the scenes' SHA-256 and size as sha256sum
+# and wc count them, the command line quoted so that a shell reads it back
+# into the same words (a name with a space and a quote), the version with
+# the commit git names for the source.
+cp "$LOGS/hard-stop-overturn.csv" "$TMP/it's a log.csv"
+cp "$CRATE" "$TMP/the crate.ini"
+run "$SW" forensics "$TMP/it's a log.csv" --scene "$TMP/the crate.ini" --no-what-if --json \
+    --set 'package.name=crate "A"'
+expect_rc 0 "forensics of a log with a quote in its name"
+cp "$TMP/out" "$TMP/fp.json"
+log_sum=$(sha256sum <"$TMP/it's a log.csv" | cut -d' ' -f1)
+scene_sum=$(sha256sum <"$TMP/the crate.ini" | cut -d' ' -f1)
+log_size=$(wc -c <"$TMP/it's a log.csv" | tr -d ' ')
+json_check "$TMP/fp.json" "j['log']['sha256'] == '$log_sum' and j['log']['size'] == $log_size and j['log']['no_digest'] is None"
+json_check "$TMP/fp.json" "[s['sha256'] for s in j['scenes']] == ['$scene_sum'] and j['scenes'][0]['path'].endswith('the crate.ini')"
+json_check "$TMP/fp.json" '__import__("shlex").split(j["command_line"]) == j["command"] and j["command"][:3] == ["swaywatch", "forensics", j["log"]["name"]]'
+# the line, pasted into a shell, runs the same forensics
+cmdline=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["command_line"])' "$TMP/fp.json")
+run sh -c 'swaywatch() { "$0" "$@"; }; eval "$1"' "$SW" "$cmdline"
+expect_rc 0 "the command line run again"
+json_check "$TMP/out" "j['packages'][0]['name'] == 'crate \"A\"' and j['log']['sha256'] == '$log_sum'"
+json_check "$TMP/fp.json" 'j["build"]["version"] == j["swaywatch"] and j["build"]["text"].startswith(j["swaywatch"] + " (commit ")'
+if command -v git >/dev/null 2>&1 && [ "$(git -C "$SRC" rev-parse --show-toplevel 2>/dev/null)" = "$(cd "$SRC" && pwd -P)" ]; then
+    # the commit of the build is one of this checkout's history: HEAD, or
+    # an ancestor when commits came after the last build
+    built=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["build"]["commit"])' "$TMP/fp.json")
+    git -C "$SRC" merge-base --is-ancestor "$built" HEAD ||
+        fail "the build's commit '$built' is not in the history of HEAD"
+    [ ${#built} -eq 40 ] || fail "the build's commit '$built' is not 40 hex digits"
+fi
+# a pipe cannot be read again: no digest, and why; a file given as standard
+# input can
+# shellcheck disable=SC2002 # the pipe is the point
+cat "$LOGS/hard-stop-overturn.csv" | "$SW" forensics - --scene "$CRATE" --no-what-if --json \
+    >"$TMP/pipe.json" 2>/dev/null || fail "forensics of a pipe"
+json_check "$TMP/pipe.json" 'j["log"]["sha256"] is None and "pipe" in j["log"]["no_digest"]'
+"$SW" forensics - --scene "$CRATE" --no-what-if --json <"$TMP/it's a log.csv" >"$TMP/stdin.json" 2>/dev/null ||
+    fail "forensics of standard input"
+json_check "$TMP/stdin.json" "j['log']['sha256'] == '$log_sum'"
+# the text says it too, after the method
+run "$SW" forensics "$TMP/it's a log.csv" --scene "$TMP/the crate.ini" --no-what-if
+grep -qF "SHA-256 $log_sum" "$TMP/out" || { show; fail "the text lacks the log's SHA-256"; }
+
+# UTC: a log of epoch times (2024-05-20T12:00:00Z at its start, made here)
+# gives its start, end and decisive moments as dates; the same log timed
+# from 0 gives none.
+python3 - "$LOGS/hard-stop-overturn.csv" "$TMP/epoch.csv" <<'PY'
+import sys
+with open(sys.argv[1]) as i, open(sys.argv[2], "w") as o:
+    o.write("time,accel\n")
+    next(i)
+    for line in i:
+        t, a = line.strip().split(",")
+        o.write("%.3f,%s\n" % (1716206400 + float(t), a))
+PY
+run "$SW" forensics "$TMP/epoch.csv" --scene "$CRATE" --no-what-if --json
+expect_rc 0 "forensics of an epoch log"
+cp "$TMP/out" "$TMP/epoch.json"
+python3 - "$TMP/epoch.json" <<'PY' || fail "UTC times of an epoch log"
+import datetime, json, sys
+j = json.load(open(sys.argv[1]))
+t0 = datetime.datetime(2024, 5, 20, 12, 0, 0, tzinfo=datetime.timezone.utc)
+def iso(s):
+    return (t0 + datetime.timedelta(milliseconds=round(s * 1000))).strftime("%Y-%m-%dT%H:%M:%S.%f")[:-3] + "Z"
+assert j["log"]["start_utc"] == "2024-05-20T12:00:00.000Z", j["log"]["start_utc"]
+assert j["log"]["end_utc"] == "2024-05-20T12:00:08.000Z", j["log"]["end_utc"]
+assert j["replay"]["input"]["start_absolute"] == j["log"]["start_utc"]
+p = j["packages"][0]
+r = j["replay"]["packages"][0]
+for k, t in (("uplift", r["uplift_time"]), ("tip", r["tip_time"]), ("overturn", r["overturn_time"]),
+             ("min_reserve", r["min_reserve_time"])):
+    assert t is not None and p["utc"][k] == iso(t), (k, t, p["utc"][k])
+PY
+run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --no-what-if --json
+json_check "$TMP/out" 'j["log"]["start_utc"] is None and j["replay"]["input"]["start_absolute"] is None and set(j["packages"][0]["utc"].values()) == {None}'
+# an uptime in seconds is no date (it would read as January 1970)
+sed '2,$s/^/1000000+/' "$LOGS/hard-stop-overturn.csv" | python3 -c '
+import sys
+print(sys.stdin.readline().strip())
+for l in sys.stdin:
+    t, a = l.strip().split(",")
+    print("%.3f,%s" % (eval(t), a))' >"$TMP/uptime.csv"
+run "$SW" forensics "$TMP/uptime.csv" --scene "$CRATE" --no-what-if --json
+expect_rc 0 "forensics of an uptime log"
+json_check "$TMP/out" 'j["log"]["start_utc"] is None and j["packages"][0]["overturned"]'
 
 # --fail-on-overturn, --plot
 run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$CRATE" --fail-on-overturn --no-what-if
