@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* figure.c - the state figure of replay, simulate and forensics (figure.h):
  * the series kept in merging min/max buckets, the events, and the gnuplot
- * script that draws them in three panels sharing the time axis. */
+ * script that draws them in panels sharing the time axis (a table: what
+ * is drawn and the caption that says it come from the same rows). */
 #include "figure.h"
 
 #include <math.h>
@@ -20,6 +21,12 @@
 
 /* The quantities kept per package (the reserve only with a risk). */
 enum { Q_AG, Q_RATIO, Q_MARGIN, Q_RESERVE, NQ };
+
+/* The panels, top to bottom. */
+enum { P_ACCEL, P_TILT, P_MARGIN, P_RESERVE, NPANELS };
+
+#define MAX_GAPS 50 /* gaps shaded */
+#define MAX_MARKS 8 /* decisive moments marked */
 
 /* The samples of one bucket: per quantity, its minimum and maximum and
  * when they were reached (the first of equal values). */
@@ -42,8 +49,15 @@ struct sw_cli_figure {
     size_t n;
     sw_event_t *ev;
     size_t nev, cap;
-    long dropped;          /* events beyond MAX_EVENTS, or lost to a failed allocation */
-    const sw_risk_t *risk; /* NULL: no reserve panel */
+    long dropped;            /* events beyond MAX_EVENTS, or lost to a failed allocation */
+    const sw_risk_t *risk;   /* NULL: no reserve panel */
+    int windowed;            /* only states and events in [w0, w1] are kept */
+    double w0, w1;           /* s */
+    int no_margin;           /* the margin panel left out */
+    double gap[MAX_GAPS][2]; /* s, spans without samples, shaded */
+    size_t ngap;
+    double mark[MAX_MARKS]; /* s, decisive moments: a solid line */
+    size_t nmark;
 };
 
 /* Line colours of the packages, in order (then again). */
@@ -131,9 +145,15 @@ static void trace_add(trace_t *T, double t, const double v[NQ])
     T->width *= 2;
 }
 
+/* Outside the window of a zoom? */
+static int outside(const sw_cli_figure_t *f, double t)
+{
+    return f->windowed && !(t >= f->w0 && t <= f->w1);
+}
+
 void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out)
 {
-    if (!f || out->pkg >= f->n)
+    if (!f || out->pkg >= f->n || outside(f, out->t))
         return;
     trace_t *T = &f->tr[out->pkg];
     /* the margin as presented (alarm.h): in [-1, 1], -1 at overturn, so a
@@ -154,9 +174,39 @@ void sw_cli_figure_risk(sw_cli_figure_t *f, const sw_risk_t *risk)
         f->risk = risk;
 }
 
+void sw_cli_figure_window(sw_cli_figure_t *f, double t0, double t1)
+{
+    if (!f)
+        return;
+    f->windowed = 1;
+    f->w0 = t0;
+    f->w1 = t1;
+}
+
+void sw_cli_figure_no_margin(sw_cli_figure_t *f)
+{
+    if (f)
+        f->no_margin = 1;
+}
+
+void sw_cli_figure_gap(sw_cli_figure_t *f, double t0, double t1)
+{
+    if (!f || f->ngap == MAX_GAPS || !(t1 > t0) || outside(f, t0) + outside(f, t1) == 2)
+        return;
+    f->gap[f->ngap][0] = t0;
+    f->gap[f->ngap][1] = t1;
+    f->ngap++;
+}
+
+void sw_cli_figure_mark(sw_cli_figure_t *f, double t)
+{
+    if (f && f->nmark < MAX_MARKS && isfinite(t))
+        f->mark[f->nmark++] = t;
+}
+
 void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev)
 {
-    if (!f || ev->pkg >= f->n)
+    if (!f || ev->pkg >= f->n || outside(f, ev->t))
         return;
     if (f->nev == f->cap) {
         size_t cap = f->cap ? 2 * f->cap : 256;
@@ -267,10 +317,21 @@ static const char *line_colour(sw_event_kind k)
 }
 
 /* Vertical lines through every panel at the uplifts (the first ones),
- * tips, overturns and faults; a label at each overturn. */
+ * tips, overturns and faults; solid black ones at the decisive moments;
+ * the gaps shaded. */
 static void event_lines(FILE *g, const sw_cli_figure_t *f)
 {
     int arrows = 0, uplifts = 0;
+    for (size_t i = 0; i < f->nmark; i++)
+        fprintf(g,
+                "set arrow %d from first %.9g, graph 0 to first %.9g, graph 1 nohead lc rgb "
+                "'#000000' lw 2 back\n",
+                ++arrows, f->mark[i], f->mark[i]);
+    for (size_t i = 0; i < f->ngap; i++)
+        fprintf(g,
+                "set object %zu rect from first %.9g, graph 0 to first %.9g, graph 1 back "
+                "fc rgb '#bbbbbb' fs transparent solid 0.35 noborder\n",
+                i + 1, f->gap[i][0], f->gap[i][1]);
     for (size_t i = 0; i < f->nev && arrows < MAX_LINES; i++) {
         const sw_event_t *ev = &f->ev[i];
         const char *col = line_colour(ev->kind);
@@ -367,8 +428,6 @@ static void panel_tilt(FILE *g, const sw_cli_figure_t *f)
 static void panel_margin(FILE *g, const sw_cli_figure_t *f, double mmin)
 {
     const double lo = fmax(MARGIN_FLOOR, fmin(0.0, mmin)) - 0.05;
-    if (!f->risk)
-        fputs("set format x '%g'\nset xlabel 'time t (s)'\n", g);
     fprintf(g,
             "set ylabel 'margin to overturn%s'\n"
             "set yrange [%.6g:1.05]\n"
@@ -388,7 +447,7 @@ static void panel_margin(FILE *g, const sw_cli_figure_t *f, double mmin)
 static void panel_reserve(FILE *g, const sw_cli_figure_t *f)
 {
     fputs(
-        "set format x '%g'\nset xlabel 'time t (s)'\nset ylabel 'reserve (g)'\n"
+        "set ylabel 'reserve (g)'\n"
         "set yrange [0:*]\nplot 0 with lines lc rgb '#d62828' dt 3 "
         "title 'no reserve: overturns with no more input'",
         g);
@@ -400,6 +459,94 @@ static void panel_reserve(FILE *g, const sw_cli_figure_t *f)
     fputc('\n', g);
 }
 
+/* Panel 1: the bed's acceleration and the uplift thresholds. */
+static void panel_accel(FILE *g, const sw_cli_figure_t *f)
+{
+    fputs(
+        "set ylabel 'bed acceleration a_g (m/s^2)'\n"
+        "plot $s0_0 using 1:2 with lines lc rgb '#264653' lw 1.2 title 'bed acceleration a_g'",
+        g);
+    threshold_plots(g, f);
+    fputc('\n', g);
+}
+
+/* The panels drawn, top to bottom, into p; how many. */
+static int panel_list(const sw_cli_figure_t *f, int p[NPANELS])
+{
+    int n = 0;
+    p[n++] = P_ACCEL;
+    p[n++] = P_TILT;
+    if (!f->no_margin)
+        p[n++] = P_MARGIN;
+    if (f->risk)
+        p[n++] = P_RESERVE;
+    return n;
+}
+
+/* What each panel shows, in words, for a caption. */
+static const char *const panel_words[NPANELS] = {
+    [P_ACCEL] =
+        "the bed acceleration a_g (m/s², negative is braking) with the thresholds "
+        "±g tan α at which a package standing on the bed starts to rock",
+    [P_TILT] =
+        "the tilt θ of each package as a fraction of its tipping angle α (at 1 its "
+        "centre of mass is over the edge: past it, it falls unless the truck pushes it "
+        "back), with the events marked",
+    [P_MARGIN] =
+        "the margin to overturn of each package (1 at rest, 0: it overturns with no "
+        "more input, -1: overturned)",
+    [P_RESERVE] =
+        "the reserve of each package in g: the smallest design pulse, braking or "
+        "speeding up, that would have overturned it from its state then (0: it "
+        "overturns with no more input)",
+};
+
+size_t sw_cli_figure_caption(const sw_cli_figure_t *f, char *buf, size_t len)
+{
+    static const char *const places[][NPANELS] = {
+        {"", "", "", ""},
+        {"", "", "", ""},
+        {"Top", "bottom", "", ""},
+        {"Top", "middle", "bottom", ""},
+        {"Top", "second", "third", "bottom"},
+    };
+    int p[NPANELS];
+    const int n = panel_list(f, p);
+    FILE *m = fmemopen(buf, len, "w");
+    if (!m || !len)
+        return 0;
+    for (int i = 0; i < n; i++)
+        fprintf(m, "%s%s: %s", i ? "; " : "", places[n][i], panel_words[p[i]]);
+    fputs(". ", m);
+    static const struct {
+        sw_event_kind kind;
+        const char *words;
+    } lines[] = {{SW_EV_UPLIFT, "uplifts (green)"},
+                 {SW_EV_TIP, "tips (yellow)"},
+                 {SW_EV_OVERTURN, "overturns (red)"},
+                 {SW_EV_FAULT, "model faults (black)"}};
+    int said = 0;
+    for (size_t j = 0; j < sizeof lines / sizeof lines[0]; j++)
+        for (size_t i = 0; i < f->nev; i++)
+            if (f->ev[i].kind == lines[j].kind) {
+                fprintf(m, "%s%s", said++ ? ", " : "Dashed vertical lines: ", lines[j].words);
+                break;
+            }
+    if (said)
+        fputs(". ", m);
+    if (f->nmark)
+        fputs("The solid black line is the moment this view is centred on. ", m);
+    if (f->ngap)
+        fputs("Grey bands: spans the log has no samples for (gaps), bridged or restarted. ", m);
+    if (f->windowed)
+        fputs("Every sample of this span is drawn.", m);
+    else
+        fputs("Long logs are drawn from the extremes of each stretch, so no peak is lost.", m);
+    const int bad = ferror(m);
+    fclose(m);
+    return bad ? 0 : strlen(buf);
+}
+
 int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *title)
 {
     double t0, t1, mmin;
@@ -409,7 +556,8 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
     }
     if (!(t1 > t0))
         t1 = t0 + 1.0;
-    const int panels = f->risk ? 4 : 3;
+    int list[NPANELS];
+    const int panels = panel_list(f, list);
     sw_plot_t *p = sw_cli_plot_open(path, 1200, 320 * panels);
     if (!p)
         return SW_EXIT_IO;
@@ -433,18 +581,16 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
             "set xrange [%.9g:%.9g]\nset xlabel ''\nset format x ''\n",
             t0, t1);
 
-    /* 1. the bed's acceleration and the uplift thresholds */
-    fputs(
-        "set ylabel 'bed acceleration a_g (m/s^2)'\n"
-        "plot $s0_0 using 1:2 with lines lc rgb '#264653' lw 1.2 title 'bed acceleration a_g'",
-        g);
-    threshold_plots(g, f);
-    fputc('\n', g);
-
-    panel_tilt(g, f);
-    panel_margin(g, f, mmin);
-    if (f->risk)
-        panel_reserve(g, f);
+    for (int i = 0; i < panels; i++) {
+        if (i == panels - 1) /* the time axis under the last panel */
+            fputs("set format x '%g'\nset xlabel 'time t (s)'\n", g);
+        switch (list[i]) {
+            case P_ACCEL: panel_accel(g, f); break;
+            case P_TILT: panel_tilt(g, f); break;
+            case P_MARGIN: panel_margin(g, f, mmin); break;
+            case P_RESERVE: panel_reserve(g, f); break;
+        }
+    }
     fputs("unset multiplot\n", g);
     if (f->dropped)
         sw_cli_error("%s: %ld events beyond the %d kept are not marked", path, f->dropped,

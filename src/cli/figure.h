@@ -30,6 +30,21 @@ void sw_cli_figure_risk(sw_cli_figure_t *f, const sw_risk_t *risk);
 void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out);
 void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev);
 
+/* A zoom: only the states and events between t0 and t1 (s) are kept (call
+ * before feeding it). */
+void sw_cli_figure_window(sw_cli_figure_t *f, double t0, double t1);
+/* Leave the margin panel out. */
+void sw_cli_figure_no_margin(sw_cli_figure_t *f);
+/* A span without samples (s, engine time), shaded in every panel. */
+void sw_cli_figure_gap(sw_cli_figure_t *f, double t0, double t1);
+/* A decisive moment (s): a solid line through every panel. */
+void sw_cli_figure_mark(sw_cli_figure_t *f, double t);
+
+/* The caption of the figure as it is drawn, in plain UTF-8 words: what
+ * each panel shows, top to bottom, what the lines and bands mean.  The
+ * length written (0: nothing, or buf too small). */
+size_t sw_cli_figure_caption(const sw_cli_figure_t *f, char *buf, size_t len);
+
 /* Draw the figure into path (.png or .svg) under title: SW_EXIT_OK, or
  * SW_EXIT_IO (reported; gnuplot's own messages passed on). */
 int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *title);
