@@ -279,6 +279,12 @@ static int replay_log(sw_cli_forensics_t *F)
     run->log = F->log;
     run->settle = F->fo.settle;
     run->interrupted = sw_cli_signal;
+    /* the spans without samples, shaded in the figure */
+    for (size_t i = 0; F->fig && i < run->unused.ngap; i++) {
+        const sw_cli_unused_gap_t *g = &run->unused.gap[i];
+        if (g->kind == SW_GATE_EV_GAP)
+            sw_cli_figure_gap(F->fig, g->t_engine - g->span, g->t_engine);
+    }
     return rc;
 }
 

@@ -92,6 +92,29 @@ void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F);
  * (reported). */
 int sw_cli_forensics_report(const sw_cli_forensics_t *F, const char *path);
 
+/* The report's close-ups (report_zoom.c): a window of SW_CLI_ZOOM_HALF s
+ * either side of each decisive moment (a package's overturn, else its
+ * smallest reserve, else its first uplift); moments closer than that
+ * share a window.  At most SW_CLI_ZOOMS windows, in time order, into z;
+ * how many. */
+#define SW_CLI_ZOOMS 4
+#define SW_CLI_ZOOM_HALF 3.0 /* s */
+#define SW_CLI_ZOOM_MARKS 4
+typedef struct {
+    double t, t0, t1; /* s: the (first) moment, the window */
+    double marks[SW_CLI_ZOOM_MARKS];
+    int nmarks;
+    char what[400]; /* "the overturn of crate-A at 3.764 s; ..." */
+} sw_cli_zoom_t;
+size_t sw_cli_report_moments(const sw_cli_forensics_t *F, sw_cli_zoom_t *z, size_t max);
+/* A figure of each window (no margin panel; the reserve with its own
+ * evaluations from the window's start), from the held log run again
+ * through a fresh engine up to the last window's end: fig[i] and risk[i]
+ * (the figure's reserve: destroy it after the figure).  SW_EXIT_OK, or
+ * SW_EXIT_IO (reported; nothing made). */
+int sw_cli_report_zooms(const sw_cli_forensics_t *F, const sw_cli_zoom_t *z, size_t nz,
+                        sw_cli_figure_t **fig, sw_risk_t **risk);
+
 /* Shared by the text, JSON and HTML: package k's summary of the replay
  * (0 if there is none), and its case as given. */
 int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t *s);

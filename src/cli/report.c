@@ -2,10 +2,14 @@
 /* report.c - "swaywatch forensics --report FILE.html": the incident report
  * as one self-contained HTML page an investigator can attach to a claim.
  * It needs no network and no script to be read: the style is inline, the
- * figure is the one replay draws (figure.c), drawn by gnuplot as SVG and
- * written into the page.  It says what --json says (forensics_out.c), in
- * the same order: the answer first, the method and the model's limits
- * after. */
+ * figures are the one replay draws (figure.c) and a close-up of each
+ * decisive moment (report_zoom.c), drawn by gnuplot as SVG and written
+ * into the page, each with the caption its panels give.  It says what
+ * --json says (forensics_out.c), in the same order: the answer first (and
+ * above it, in words, why a verdict is incomplete), the recording with its
+ * times in UTC and what of it was not used, the method and the model's
+ * limits, and last the fingerprint that ties the page to the log, the
+ * scenes and the program. */
 #define _DEFAULT_SOURCE /* mkstemps */
 #include <errno.h>
 #include <math.h>
@@ -53,7 +57,9 @@ static const char style[] =
     ".answer{border:2px solid #444;padding:0.5em 1em;margin:0.8em 0;background:#fafafa}\n"
     ".fig svg{width:100%;height:auto}code{background:#f3f3f3;padding:0 0.2em;"
     "word-break:break-all}\n"
-    ".note{color:#555;font-size:0.9em}\n";
+    ".note{color:#555;font-size:0.9em}\n"
+    ".alert{border:2px solid #b00020;background:#fff3f3;padding:0.5em 1em;margin:0.8em 0}\n"
+    "figure{margin:1em 0}figcaption{color:#333;font-size:0.9em}\n";
 
 /* The smallest reserve of a package, in words. */
 static void reserve(FILE *f, const sw_risk_pkg_t *p)
@@ -74,6 +80,31 @@ static void reserve(FILE *f, const sw_risk_pkg_t *p)
 
 /* ---- the answer -------------------------------------------------------------------- */
 
+/* Above the answers, in words: a verdict the log may not support. */
+static void banner(FILE *f, const sw_cli_forensics_t *F)
+{
+    const sw_cli_run_t *run = &F->R.run;
+    if (sw_cli_run_incomplete(run) > 0) {
+        char why[256];
+        sw_cli_incomplete_why(run, why, sizeof why);
+        fprintf(f,
+                "<div class=\"alert\" id=\"incomplete\"><p><b>The verdict is INCOMPLETE.</b> "
+                "The recording has a hole where it matters: ");
+        html(f, why);
+        fprintf(f,
+                ". What the samples do not show may have overturned a package, so no package "
+                "that stayed upright in the samples can be said to have stayed upright. The "
+                "gaps are listed under <a href=\"#unused\">What was not used</a>.</p></div>\n");
+    }
+    if (run->forced) {
+        fprintf(f,
+                "<div class=\"alert\" id=\"forced\"><p><b>The verdict was forced</b> "
+                "(<code>--force</code>) although the recording fails the plausibility check: ");
+        html(f, run->check);
+        fprintf(f, ".</p></div>\n");
+    }
+}
+
 static void answers(FILE *f, const sw_cli_forensics_t *F)
 {
     for (size_t k = 0; k < F->n; k++) {
@@ -87,8 +118,12 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
         html(f, C->desc);
         fprintf(f, "): ");
         const char *verdict = sw_cli_verdict(&s, &F->R.run);
+        char utc[64];
         if (s.overturned) {
-            fprintf(f, "<span class=\"over\">OVERTURNED</span> at %.3f s.", s.overturn_time);
+            fprintf(f, "<span class=\"over\">OVERTURNED</span> at %.3f s", s.overturn_time);
+            if (sw_cli_forensics_utc(F, s.overturn_time, utc, sizeof utc))
+                fprintf(f, " (%s)", utc);
+            fputc('.', f);
         } else if (!strcmp(verdict, "incomplete")) {
             char why[256];
             sw_cli_incomplete_why(&F->R.run, why, sizeof why);
@@ -97,7 +132,10 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
                     "(its tilt reached %.3f of the tipping angle), but ",
                     s.faults ? "no verdict (the model faulted)" : "upright", s.max_theta_ratio);
             html(f, why);
-            fprintf(f, ": an overturn may be hidden there.");
+            fprintf(f,
+                    ": an overturn may be hidden there. (The reserve and the safety factor "
+                    "below are those of the samples, across the gap as the replay handled "
+                    "it.)");
         } else if (!strcmp(verdict, "upright")) {
             fprintf(f,
                     "<span class=\"up\">stayed upright</span>; its tilt reached %.3f of the "
@@ -141,10 +179,15 @@ static void log_facts(FILE *f, const sw_cli_forensics_t *F)
     fprintf(f, "<h2>The recording</h2>\n<table id=\"log\">\n");
     row_text(f, "log", strcmp(F->log, "-") ? F->log : "(standard input)");
     row_text(f, "kind", F->R.src ? F->R.src->name : "");
-    if (run->have_facts && x->t_origin != 0.0) {
+    if (run->absolute) {
         char iso[64];
-        sw_cli_iso_seconds(iso, sizeof iso, x->t_origin);
+        sw_cli_iso_seconds(iso, sizeof iso, run->abs_start);
         row_text(f, "starts at (UTC)", iso);
+        sw_cli_iso_seconds(iso, sizeof iso, run->abs_end);
+        row_text(f, "ends at (UTC)", iso);
+        row_text(f, "dates from", run->abs_from);
+    } else {
+        row_text(f, "dates", "none: the log's times count from an unknown start");
     }
     fprintf(f, "<tr><th>duration</th><td>");
     num(f, "%.3f s", run->have_facts ? x->duration : NAN);
@@ -161,23 +204,162 @@ static void log_facts(FILE *f, const sw_cli_forensics_t *F)
     fprintf(f, "; %ld restarts, %ld clock steps", run->have_facts ? x->restarts : 0L,
             run->have_facts ? x->clock_steps : 0L);
     if (run->have_facts && x->incomplete > 0)
-        fprintf(f, "; <b>%ld of them leave the verdict incomplete</b>", x->incomplete);
+        fprintf(f, "; <b>%ld of them leave%s the verdict incomplete</b>", x->incomplete,
+                x->incomplete == 1 ? "s" : "");
     fprintf(f, "</td></tr>\n");
     if (run->check[0])
         row_text(f, run->forced ? "verdict forced although" : "warning", run->check);
     fprintf(f,
-            "</table>\n<p class=\"note\">Times are seconds from the first sample. Rejected "
-            "samples (unreadable rows, spikes, times out of order) are listed with their line "
-            "on the standard error of the command that made this report.</p>\n");
+            "</table>\n<p class=\"note\">Times are seconds from the first sample%s. What of "
+            "the recording was not used is listed <a href=\"#unused\">below</a>.</p>\n",
+            run->absolute ? "; beside them, where the log has dates, the time in UTC" : "");
+}
+
+/* A time in seconds and, where the log has dates, in UTC: two cells. */
+static void time_cells(FILE *f, const sw_cli_forensics_t *F, double t)
+{
+    char utc[64];
+    fprintf(f, "<td class=\"n\">");
+    num(f, "%.4f", t);
+    fprintf(f, "</td>");
+    if (F->R.run.absolute) {
+        fprintf(f, "<td>");
+        if (sw_cli_forensics_utc(F, t, utc, sizeof utc))
+            fputs(utc, f);
+        else
+            fputs(isfinite(t) ? "unknown (after a clock step or restart)" : "&ndash;", f);
+        fprintf(f, "</td>");
+    }
+}
+
+/* The decisive moments of each package, in seconds and in UTC. */
+static void moments(FILE *f, const sw_cli_forensics_t *F)
+{
+    const int utc = F->R.run.absolute;
+    fprintf(f,
+            "<h2>When</h2>\n<table id=\"times\"><tr><th>package</th><th>moment</th>"
+            "<th>t (s)</th>%s</tr>\n",
+            utc ? "<th>UTC</th>" : "");
+    for (size_t k = 0; k < F->n; k++) {
+        sw_summary_t s;
+        if (!sw_cli_forensics_summary(F, k, &s))
+            continue;
+        const sw_risk_pkg_t *rp = F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
+        const struct {
+            const char *what;
+            double t;
+        } when[] = {
+            {"first uplift", s.uplift_time},
+            {"tipped (|θ| = α)", s.tip_time},
+            {"overturned", s.overturn_time},
+            {"smallest reserve", rp && rp->evaluations > 0 ? rp->min_reserve_time : NAN},
+        };
+        for (size_t i = 0; i < sizeof when / sizeof when[0]; i++) {
+            if (!isfinite(when[i].t))
+                continue;
+            fprintf(f, "<tr><td>");
+            html(f, F->scenes[k].name);
+            fprintf(f, "</td><td>%s</td>", when[i].what);
+            time_cells(f, F, when[i].t);
+            fprintf(f, "</tr>\n");
+        }
+    }
+    fprintf(f, "</table>\n");
+    if (!utc)
+        fprintf(f,
+                "<p class=\"note\">The log has no dates (its times count from an unknown "
+                "start), so no time of day can be given.</p>\n");
+}
+
+/* What of the recording the replay did not use: refusals by reason, gaps. */
+static void unused(FILE *f, const sw_cli_forensics_t *F)
+{
+    const sw_cli_run_t *run = &F->R.run;
+    const sw_cli_unused_t *u = &run->unused;
+    const double t0 = run->have_facts ? run->facts.t_origin : 0.0;
+    fprintf(f, "<h2 id=\"unused\">What was not used</h2>\n");
+    if (u->rejected == 0) {
+        fprintf(f, "<p>No sample was refused: %ld read, all used.</p>\n", run->samples_read);
+    } else {
+        fprintf(f,
+                "<p>%ld of %ld %s refused, by reason (the first %s of each):</p>\n"
+                "<table id=\"rejected\"><tr><th>reason</th><th>count</th>%s</tr>\n",
+                u->rejected, run->samples_read, u->places ? "rows were" : "samples were",
+                u->places ? "lines" : "count",
+                u->places ? "<th>first lines</th><th>the first "
+                            "one</th>"
+                          : "");
+        for (size_t i = 0; i < u->nreason; i++) {
+            const sw_cli_unused_reason_t *r = &u->reason[i];
+            fprintf(f, "<tr><td>");
+            html(f, r->reason);
+            fprintf(f, "</td><td class=\"n\">%ld</td>", r->count);
+            if (u->places) {
+                fprintf(f, "<td>");
+                for (int k = 0; k < r->nwhere; k++) fprintf(f, "%s%ld", k ? ", " : "", r->where[k]);
+                if (r->count > r->nwhere)
+                    fprintf(f, ", &hellip;");
+                fprintf(f, "</td><td><code>");
+                html(f, r->first);
+                fprintf(f, "</code></td>");
+            }
+            fprintf(f, "</tr>\n");
+        }
+        if (u->other)
+            fprintf(f, "<tr><td>other reasons</td><td class=\"n\">%ld</td></tr>\n", u->other);
+        fprintf(f, "</table>\n");
+    }
+    const long events =
+        u->listed ? u->events : run->facts.gaps + run->facts.restarts + run->facts.clock_steps;
+    if (events == 0) {
+        fprintf(f, "<p>No gap, restart or clock step: the samples cover the recording.</p>\n");
+        return;
+    }
+    if (!u->listed) { /* an lcm-logger file: the monitor core counts them */
+        fprintf(f,
+                "<p>%ld gaps (%.3f s in all, the longest %.3f s), %ld restarts and %ld clock "
+                "steps; the monitor core that reads lcm-logger files counts them without "
+                "listing them (its SENSOR_GAP alarms name each one).</p>\n",
+                run->facts.gaps, run->facts.gap_total, run->facts.gap_max, run->facts.restarts,
+                run->facts.clock_steps);
+        return;
+    }
+    fprintf(f,
+            "<p>%ld span%s without samples or with a clock that stepped%s:</p>\n"
+            "<table id=\"gaps\"><tr><th>what</th><th>from (s)</th>%s<th>for (s)</th>"
+            "<th>line after</th><th>handled</th><th>verdict</th></tr>\n",
+            u->events, u->events == 1 ? "" : "s",
+            u->events > (long)u->ngap ? " (the first are listed)" : "",
+            run->absolute ? "<th>from (UTC)</th>" : "");
+    for (size_t i = 0; i < u->ngap; i++) {
+        const sw_cli_unused_gap_t *g = &u->gap[i];
+        fprintf(f, "<tr><td>%s</td>", sw_gate_event_name(g->kind));
+        const double at = g->t - t0;
+        fprintf(f, "<td class=\"n\">%.4f</td>", at);
+        if (run->absolute) {
+            char utc[64];
+            sw_cli_iso_seconds(utc, sizeof utc, g->t + run->abs_base);
+            fprintf(f, "<td>%s</td>", utc);
+        }
+        fprintf(f, "<td class=\"n\">%.4g</td><td class=\"n\">%ld</td><td>%s</td><td>%s</td></tr>\n",
+                fabs(g->span), g->where,
+                g->restarted ? "the packages restarted from rest"
+                : g->bridged ? "bridged by a straight line"
+                             : "re-timed",
+                g->incomplete ? "<span class=\"over\">left incomplete: it overlapped motion</span>"
+                              : "not affected");
+    }
+    fprintf(f, "</table>\n");
 }
 
 /* ---- the figure -------------------------------------------------------------------- */
 
-/* The figure drawn by gnuplot into a temporary SVG file, copied in from
- * its <svg> element on.  0, or -1 (a note is written instead). */
-static int figure(FILE *f, const sw_cli_forensics_t *F)
+/* fig drawn by gnuplot into a temporary SVG file, copied in from its
+ * <svg> element on, in a <figure> with the caption its panels give.  0,
+ * or -1 (a note is written instead). */
+static int embed(FILE *f, const sw_cli_figure_t *fig, const char *title, const char *id,
+                 const char *before)
 {
-    fprintf(f, "<h2>What the packages went through</h2>\n");
     const char *dir = getenv("TMPDIR");
     char path[4096];
     snprintf(path, sizeof path, "%s/swaywatch-report-XXXXXX.svg", dir && *dir ? dir : "/tmp");
@@ -185,13 +367,11 @@ static int figure(FILE *f, const sw_cli_forensics_t *F)
     int ok = 0;
     if (fd >= 0) {
         close(fd);
-        char title[512];
-        snprintf(title, sizeof title, "%s", strcmp(F->log, "-") ? F->log : "(standard input)");
-        if (F->fig && sw_cli_figure_draw(F->fig, path, title) == SW_EXIT_OK) {
+        if (fig && sw_cli_figure_draw(fig, path, title) == SW_EXIT_OK) {
             FILE *in = fopen(path, "r");
             if (in) {
                 int started = 0;
-                fprintf(f, "<div class=\"fig\" id=\"figure\">\n");
+                fprintf(f, "<figure class=\"fig\" id=\"%s\">\n", id);
                 char line[8192];
                 while (fgets(line, sizeof line, in)) { /* the prolog up to <svg dropped */
                     if (!started) {
@@ -206,29 +386,65 @@ static int figure(FILE *f, const sw_cli_forensics_t *F)
                 }
                 ok = started && !ferror(in);
                 fclose(in);
-                fprintf(f, "</div>\n");
+                char caption[2048];
+                fprintf(f, "<figcaption>");
+                html(f, before);
+                if (sw_cli_figure_caption(fig, caption, sizeof caption))
+                    html(f, caption);
+                fprintf(f, "</figcaption></figure>\n");
             }
         }
         unlink(path);
     }
     if (!ok) {
         sw_cli_error(
-            "--report: the figure could not be drawn (gnuplot is needed); the report "
+            "--report: a figure could not be drawn (gnuplot is needed); the report "
             "says so in its place");
         fprintf(f,
                 "<p class=\"over\">The figure could not be drawn: gnuplot was not found or "
                 "failed.</p>\n");
         return -1;
     }
-    fprintf(f,
-            "<p class=\"note\">Top: the bed acceleration a<sub>g</sub> (m/s&sup2;; negative is "
-            "braking) with the thresholds &plusmn;g&nbsp;tan&nbsp;&alpha; at which a package "
-            "standing on the bed starts to rock. Middle: the tilt &theta; of each package as a "
-            "fraction of its tipping angle &alpha; (1: it tips over the edge; past it, it falls "
-            "unless the truck pushes it back), with the events marked. Bottom: the margin to "
-            "overturn (1 at rest, 0: it overturns with no more input). Long logs are drawn from "
-            "the extremes of each stretch, so no peak is lost.</p>\n");
     return 0;
+}
+
+/* The whole recording, then a close-up of each decisive moment. */
+static int figures(FILE *f, const sw_cli_forensics_t *F)
+{
+    fprintf(f, "<h2>What the packages went through</h2>\n");
+    const char *name = strcmp(F->log, "-") ? F->log : "(standard input)";
+    int rc = embed(f, F->fig, name, "figure", "The whole recording. ");
+    sw_cli_zoom_t z[SW_CLI_ZOOMS];
+    const size_t nz = sw_cli_report_moments(F, z, SW_CLI_ZOOMS);
+    if (nz == 0)
+        return rc;
+    sw_cli_figure_t *fig[SW_CLI_ZOOMS];
+    sw_risk_t *risk[SW_CLI_ZOOMS];
+    fprintf(f,
+            "<h2>The moments that mattered</h2>\n<p>Each package's decisive moment (its "
+            "overturn, else its smallest reserve), %.0f s either side, with every sample. The "
+            "recording was run again for these, exactly as the replay ran it.</p>\n",
+            SW_CLI_ZOOM_HALF);
+    if (sw_cli_report_zooms(F, z, nz, fig, risk) != SW_EXIT_OK) {
+        fprintf(f, "<p class=\"over\">The close-ups could not be made.</p>\n");
+        return -1;
+    }
+    for (size_t i = 0; i < nz; i++) {
+        char title[640], id[32], before[1024];
+        snprintf(title, sizeof title, "%s: %.3f s to %.3f s", name, z[i].t0, z[i].t1);
+        snprintf(id, sizeof id, "zoom-%zu", i);
+        char u0[64], u1[64], utc[160] = "";
+        if (sw_cli_forensics_utc(F, z[i].t0, u0, sizeof u0) &&
+            sw_cli_forensics_utc(F, z[i].t1, u1, sizeof u1))
+            snprintf(utc, sizeof utc, " (%s to %s)", u0, u1);
+        snprintf(before, sizeof before, "Close-up: %.3f s to %.3f s%s, around %s. ", z[i].t0,
+                 z[i].t1, utc, z[i].what);
+        if (embed(f, fig[i], title, id, before) != 0)
+            rc = -1;
+        sw_cli_figure_destroy(fig[i]);
+        sw_risk_destroy(risk[i]);
+    }
+    return rc;
 }
 
 /* ---- tables ------------------------------------------------------------------------ */
@@ -236,12 +452,15 @@ static int figure(FILE *f, const sw_cli_forensics_t *F)
 static void events(FILE *f, const sw_cli_forensics_t *F)
 {
     fprintf(f,
-            "<h2>Events</h2>\n<table id=\"events\"><tr><th>t (s)</th><th>package</th>"
-            "<th>event</th><th>&theta;/&alpha;</th><th>margin</th></tr>\n");
+            "<h2>Events</h2>\n<table id=\"events\"><tr><th>t (s)</th>%s<th>package</th>"
+            "<th>event</th><th>&theta;/&alpha;</th><th>margin</th></tr>\n",
+            F->R.run.absolute ? "<th>UTC</th>" : "");
     for (size_t i = 0; i < F->nev; i++) {
         const sw_event_t *e = &F->ev[i];
         const double alpha = atan2(F->scenes[e->pkg].width, F->scenes[e->pkg].height);
-        fprintf(f, "<tr><td class=\"n\">%.4f</td><td>", e->t);
+        fprintf(f, "<tr>");
+        time_cells(f, F, e->t);
+        fprintf(f, "<td>");
         html(f, F->scenes[e->pkg].name);
         fprintf(f, "</td><td>%s</td><td class=\"n\">", sw_event_name(e->kind));
         num(f, "%.3f", e->theta / alpha);
@@ -354,27 +573,41 @@ static void limits(FILE *f, const sw_cli_forensics_t *F)
             runs);
 }
 
-static void provenance(FILE *f, const sw_cli_forensics_t *F)
+/* A file's row of the fingerprint. */
+static void digest_row(FILE *f, const char *what, const char *path, const sw_cli_digest_t *d)
 {
-    fprintf(f, "<h2>Made by</h2>\n<p>swaywatch %s, with the command</p>\n<p><code>swaywatch",
-            SW_VERSION);
-    for (int i = 0; i < F->argc; i++) {
-        fputc(' ', f);
-        const char *a = F->argv[i];
-        const int quote = strpbrk(a, " \t'\"\\$`!*?;&|<>()") != NULL || !*a;
-        if (quote)
-            fputc('\'', f);
-        for (const char *p = a; *p; p++) {
-            if (*p == '\'')
-                fputs("'\\''", f);
-            else {
-                char c[2] = {*p, 0};
-                html(f, c);
-            }
-        }
-        if (quote)
-            fputc('\'', f);
+    fprintf(f, "<tr><th>%s</th><td><code>", what);
+    html(f, path);
+    fprintf(f, "</code></td>");
+    if (d && d->ok)
+        fprintf(f, "<td class=\"n\">%lld</td><td><code class=\"sha256\">%s</code></td></tr>\n",
+                d->size, d->sha256);
+    else {
+        fprintf(f, "<td colspan=\"2\">no digest: ");
+        html(f, d ? d->why : "not computed");
+        fprintf(f, "</td></tr>\n");
     }
+}
+
+static void fingerprint(FILE *f, const sw_cli_forensics_t *F)
+{
+    char v[160];
+    sw_cli_version_text(v, sizeof v);
+    fprintf(f,
+            "<h2 id=\"fingerprint\">Fingerprint</h2>\n<p>What this report was made from: "
+            "<code>sha256sum FILE</code> gives the same digits for the same file.</p>\n"
+            "<table id=\"digests\"><tr><th></th><th>file</th><th>bytes</th><th>SHA-256</th>"
+            "</tr>\n");
+    digest_row(f, "log", strcmp(F->log, "-") ? F->log : "(standard input)",
+               F->fingerprinted ? &F->log_digest : NULL);
+    for (size_t i = 0; i < F->o.scenes.n; i++)
+        digest_row(f, "scene", F->o.scenes.v[i], F->scene_digest ? &F->scene_digest[i] : NULL);
+    fprintf(f, "</table>\n<p>Made by swaywatch <span id=\"version\">");
+    html(f, v);
+    fprintf(f,
+            "</span>, with the command (as a POSIX shell reads it back)</p>\n<p><code "
+            "id=\"command\">");
+    html(f, F->command_line ? F->command_line : "(not known)");
     char when[64] = "";
     const time_t now = time(NULL);
     struct tm tm;
@@ -402,14 +635,17 @@ int sw_cli_forensics_report(const sw_cli_forensics_t *F, const char *path)
             "<p class=\"note\">Whether the recorded motion of the truck bed overturned the "
             "cargo, how close it came, and what would have saved it.</p>\n",
             style);
+    banner(f, F);
     answers(f, F);
     log_facts(f, F);
-    figure(f, F);
+    moments(f, F);
+    unused(f, F);
+    figures(f, F);
     events(f, F);
     if (!F->fo.w.no_what_if)
         whatif(f, F);
     limits(f, F);
-    provenance(f, F);
+    fingerprint(f, F);
     fprintf(f, "</body>\n</html>\n");
     if (ferror(f) | (fclose(f) != 0)) {
         sw_cli_error("--report %s: write error", path);
