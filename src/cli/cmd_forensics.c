@@ -130,16 +130,21 @@ static const sw_cli_option_t forensics_thread_options[] = {
 static const sw_cli_option_t forensics_output_options[] = {
     {SW_CLI_SECTION, .help = "Output:"},
     {SW_CLI_STRING, 0, "report", "FILE.html", FO(report), .fn = check_report,
-     .help = "the whole report as one self-contained HTML page to hand over: the log's facts, "
-             "figures, events, safety factors, what-if tables, the model's limits"},
+     .help = "the whole report as one self-contained HTML page to hand over: the log's facts "
+             "and times in UTC, what of it was not used, the figure and a close-up of each "
+             "decisive moment, events, safety factors, what-if tables, the model's limits, "
+             "and the fingerprint (SHA-256 of the log and scenes, version and commit, "
+             "command)"},
     {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", FO(plot), .fn = sw_cli_plot_check,
      .help = "a_g(t), theta(t)/alpha and margin(t) with the events"},
     {SW_CLI_TEXT,
      .help = "\nWith --json the whole report is one JSON object on stdout (docs/forensics.md):\n"
-             "'log' (the log's facts), 'replay' (replay's JSON summary) and 'packages', each\n"
-             "with its 'safety_factor' and 'what_if'.  With --out - or --events - (which need\n"
-             "-q) the answer goes to standard error.  A progress line goes to standard error\n"
-             "when it is a terminal (not with -q)."},
+             "'build' (version and commit), 'command_line', 'log' (its facts, SHA-256, UTC\n"
+             "start and end, what was not used), 'scenes' (their SHA-256), 'replay' (replay's\n"
+             "JSON summary) and 'packages', each with its 'utc' times, 'safety_factor' and\n"
+             "'what_if'.  With --out - or --events - (which need -q) the answer goes to\n"
+             "standard error.  A progress line goes to standard error when it is a terminal\n"
+             "(not with -q)."},
     {.kind = SW_CLI_END},
 };
 
