@@ -17,9 +17,12 @@
  * Overturning is not monotonic in the amplitude (safe islands), so every
  * search scans upward from a proven lower bound in small relative steps
  * and bisects the first overturning step (as sw_threshold_search does);
- * the answer is the upper end of a bracket of relative width opts.tol (an
- * amplitude that was run and overturned).  A window of overturning
- * amplitudes narrower than one scan step can be missed.
+ * every other pulse and direction is then run at that bracket's top and
+ * bisected where it overturns.  The answer is the safe end of a bracket
+ * of relative width opts.tol: an amplitude shown not to overturn the
+ * package (run and survived, or a proven bound), so the reserve is never
+ * above the true one.  A window of overturning amplitudes narrower than
+ * one scan step can be missed.
  *
  * Cost: everything is allocated by sw_reserve_create() (one private engine
  * per design pulse); sw_reserve_eval() allocates nothing.  The value at
@@ -84,22 +87,28 @@ typedef struct {
 #define SW_RESERVE_MAX_RUN_STEPS 2e5 /* steps a pulse run may need at most (docs/reserve.md) */
 
 typedef struct {
-    double reserve_g; /* g: the reserve, an amplitude that was run and overturned (the
-                         upper end of the final bracket); 0 if the package overturns
-                         with no further input; max_g if nothing up to max_g overturns
-                         (found = 0) */
-    double safe_g;    /* g: the lower end of that bracket: no amplitude below it
-                         overturns, up to a window narrower than a scan step (0 when
-                         reserve_g is 0 or at the floor) */
+    double reserve_g; /* g: the reserve, the safe end of the final bracket: no scanned
+                         pulse overturns the package below it (up to a window narrower
+                         than a scan step), an amplitude that was run and survived or a
+                         proven bound, never above the true reserve and within tol of
+                         it; 0 if the package overturns with no further input; max_g if
+                         nothing up to max_g overturns (found = 0) */
+    double safe_g;    /* g: the same number as reserve_g (the bracket's safe end; kept
+                         for callers that read it by this name) */
+    double over_g;    /* g: the bracket's top, the lowest amplitude that was run and
+                         overturned (over_g / reserve_g - 1 <= tol unless at_floor);
+                         0 when reserve_g is 0, INFINITY when found is 0 */
     int found;        /* some amplitude up to max_g overturns (or none is needed) */
-    int at_floor;     /* reserve_g is the floor: the true value is in (0, floor_g] */
+    int at_floor;     /* the first amplitude tried, the floor, overturned: the true value
+                         is in (reserve_g, floor_g], reserve_g the proven bound (0 if
+                         none) */
     int direction;    /* sw_reserve_dir of reserve_g (0 when reserve_g is 0: no pulse) */
     double pulse;     /* s, the design pulse duration T of reserve_g (0 when reserve_g
                          is 0) */
     double dir_g[2];  /* g, [0] braking, [1] speeding up: each direction's reserve over
-                         the design pulses; when dir_exact[i] is 0 that direction was
-                         searched only as far as the smaller one needed, and its reserve
-                         is at least dir_g[i] */
+                         the design pulses, its safe end as reserve_g's; when
+                         dir_exact[i] is 0 that direction was searched only as far as the
+                         smaller one needed, and its reserve is at least dir_g[i] */
     int dir_exact[2];
     int cached;  /* the state was at rest: the value computed in create */
     long trials; /* pulse runs made by this call (0 when cached) */

@@ -23,7 +23,11 @@
  *   - the scans of all pulses and directions are merged: the lowest next
  *     scan point of them all is tried first, so the first overturn found
  *     is the lowest on every grid and no scan runs past it (values that
- *     could not be the minimum are never computed);
+ *     could not be the minimum are never computed); the other scans are
+ *     then run once at that bracket's top, since their grids differ and
+ *     one may overturn below it, and bisected where they do;
+ *   - what is published is the bracket's safe end (an amplitude run and
+ *     survived, or a proven bound), never above the true reserve;
  *   - the engines compute no report (outcome_only): no peaks, tips or
  *     margins inside their runs, only the state the certificate reads;
  *   - a state that is its own mirror image (upright and still) needs one
@@ -284,7 +288,7 @@ static int symmetric(const sw_state_t *s)
 
 static void result_zero(sw_reserve_result_t *out)
 {
-    out->reserve_g = out->safe_g = 0.0;
+    out->reserve_g = out->safe_g = out->over_g = 0.0;
     out->found = 1;
     out->direction = 0;
     out->pulse = 0.0;
@@ -297,10 +301,14 @@ typedef struct {
     const pulse_ctx_t *P;
     int dir;
     double lo;   /* g, the first amplitude tried */
-    int bounded; /* lo is a proven bound (else the floor) */
+    int bounded; /* lo is the proven bound (else the floor, above it) */
     int k;       /* next scan point: lo (1 + step)^k, clipped to max_g */
-    double safe; /* g, the last amplitude found safe (0 if none) */
+    double safe; /* g, no amplitude of this scan below it overturns (up to a window
+                    narrower than a scan step): the proven bound (0 if none), then
+                    each amplitude run and found safe, in increasing order */
     int done;    /* scanned up to max_g */
+    int over;    /* an amplitude overturned: (safe, top] holds the scan's threshold */
+    double top;  /* g, the lowest amplitude run that overturned */
 } scan_t;
 
 static double scan_next(const sw_reserve_t *R, const scan_t *c)
@@ -308,65 +316,92 @@ static double scan_next(const sw_reserve_t *R, const scan_t *c)
     return fmin(c->lo * pow(1.0 + R->step, c->k), R->max_g);
 }
 
+/* Scan c overturned at x: bisect between its safe amplitude and x to tol
+ * (geometric midpoints, as sw_threshold_search).  Not at the scan's first
+ * point: below a proven bound nothing overturns, and below the floor
+ * nothing is searched. */
+static int bisect(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, double x, long *trials,
+                  int *faulted)
+{
+    double lo = c->safe, hi = x;
+    while (c->k > 0 && hi / lo - 1.0 > R->tol) {
+        const double m = sqrt(lo * hi);
+        if (!(m > lo && m < hi))
+            break;
+        const int o = trial(R, c->P, s, c->dir, m, faulted, trials);
+        if (o < 0)
+            return o;
+        if (o)
+            hi = m;
+        else
+            lo = m;
+    }
+    c->over = 1;
+    c->safe = lo;
+    c->top = hi;
+    return SW_OK;
+}
+
 /* The merged scan over the n scans (pulses x directions): always try the
  * lowest next scan point of them all, so that the first overturn found is
- * the lowest on every scan's grid, and no scan goes past it.  Then bisect
- * that scan's last safe point and the overturning one to tol (geometric
- * midpoints, as sw_threshold_search).  Fills out; returns SW_OK or the
+ * the lowest on every scan's grid, and no scan goes past it; bisect that
+ * scan.  Another scan's threshold may still lie between its last safe
+ * grid point and the bracket's top (the grids differ): every other scan
+ * is run at the top, lowered as it goes, and bisected where it
+ * overturns.  Then no scan overturns below the smallest of their safe
+ * ends, and one overturned within tol above it.  Returns SW_OK or the
  * first error. */
-static int merged_scan(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, int n,
-                       sw_reserve_result_t *out, int *faulted)
+static int merged_scan(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, int n, long *trials,
+                       int *faulted)
 {
+    int b;
+    double x;
     for (;;) {
-        int best = -1;
-        double x = INFINITY;
+        b = -1;
+        x = INFINITY;
         for (int i = 0; i < n; i++) {
             if (c[i].done)
                 continue;
             const double xi = scan_next(R, &c[i]);
             if (xi < x) {
                 x = xi;
-                best = i;
+                b = i;
             }
         }
-        if (best < 0)
+        if (b < 0)
             return SW_OK; /* nothing overturns up to max_g */
-        scan_t *b = &c[best];
-        const int over = trial(R, b->P, s, b->dir, x, faulted, &out->trials);
+        const int over = trial(R, c[b].P, s, c[b].dir, x, faulted, trials);
         if (over < 0)
             return over;
-        if (!over) {
-            b->safe = x;
-            b->k++;
-            if (x >= R->max_g)
-                b->done = 1;
+        if (over)
+            break;
+        c[b].safe = x;
+        c[b].k++;
+        if (x >= R->max_g)
+            c[b].done = 1;
+    }
+    int rc = bisect(R, s, &c[b], x, trials, faulted);
+    if (rc < 0)
+        return rc;
+    double top = c[b].top;
+    for (int i = 0; i < n; i++) {
+        scan_t *ci = &c[i];
+        /* every grid point of ci below x was run and survived; its next
+         * is at or above x */
+        if (i == b || ci->done || !(ci->safe < top))
+            continue;
+        const int o = trial(R, ci->P, s, ci->dir, top, faulted, trials);
+        if (o < 0)
+            return o;
+        if (!o) {
+            ci->safe = top;
             continue;
         }
-        /* the first overturn: bisect down to the last safe point */
-        double lo = b->safe, hi = x;
-        const int at_min = b->k == 0;
-        while (!at_min && hi / lo - 1.0 > R->tol) {
-            const double m = sqrt(lo * hi);
-            if (!(m > lo && m < hi))
-                break;
-            const int o = trial(R, b->P, s, b->dir, m, faulted, &out->trials);
-            if (o < 0)
-                return o;
-            if (o)
-                hi = m;
-            else
-                lo = m;
-        }
-        out->found = 1;
-        out->reserve_g = hi;
-        /* at the scan's start: nothing below a proven bound overturns; at
-         * the floor the value is only known to be at most the floor */
-        out->safe_g = at_min ? (b->bounded ? b->lo : 0.0) : lo;
-        out->at_floor = at_min && !b->bounded;
-        out->direction = b->dir;
-        out->pulse = b->P->T;
-        return SW_OK;
+        if ((rc = bisect(R, s, ci, top, trials, faulted)) < 0)
+            return rc;
+        top = ci->top;
     }
+    return SW_OK;
 }
 
 /* The scans of one pass into c, each from its lower bound: every design
@@ -384,15 +419,64 @@ static int scans_of(const sw_reserve_t *R, const sw_state_t *s, int ndir, int on
             memset(ci, 0, sizeof *ci);
             ci->P = &R->p[j];
             ci->dir = dir;
-            ci->lo = lower_bound_g(R, ci->P, s, dir);
+            ci->safe = lower_bound_g(R, ci->P, s, dir);
+            ci->lo = ci->safe;
             ci->bounded = ci->lo >= R->floor_g;
             if (!ci->bounded)
                 ci->lo = R->floor_g;
-            if (!(ci->lo < R->max_g))
+            if (!(ci->lo < R->max_g)) {
                 ci->done = 1;
+                ci->safe = R->max_g;
+            }
         }
     }
     return n;
+}
+
+/* The result of the scans c[0..n): the reserve is the smallest safe end
+ * (no scan overturns below it), each direction's the smallest of its
+ * scans; a direction is exact when one of its scans overturned within tol
+ * above that, or none overturned up to max_g.  The direction and pulse
+ * are those of the scan whose safe end is the reserve. */
+static void conclude(const sw_reserve_t *R, const scan_t *c, int n, int mirror,
+                     sw_reserve_result_t *out)
+{
+    double lo[2] = {R->max_g, R->max_g}, top[2] = {INFINITY, INFINITY}; /* g */
+    int best = -1;
+    for (int i = 0; i < n; i++) {
+        const int di = c[i].dir == SW_RESERVE_BRAKING ? 0 : 1;
+        lo[di] = fmin(lo[di], c[i].safe);
+        if (!c[i].over)
+            continue;
+        top[di] = fmin(top[di], c[i].top);
+        if (best < 0 || c[i].safe < c[best].safe ||
+            (c[i].safe == c[best].safe && c[i].top < c[best].top))
+            best = i;
+    }
+    if (mirror) {
+        lo[1] = lo[0];
+        top[1] = top[0];
+    }
+    for (int di = 0; di < 2; di++) {
+        out->dir_g[di] = lo[di];
+        out->dir_exact[di] = isfinite(top[di]) ? top[di] / lo[di] - 1.0 <= R->tol * (1.0 + 1e-9)
+                                               : !(lo[di] < R->max_g);
+    }
+    out->found = best >= 0;
+    if (!out->found) {
+        out->reserve_g = out->safe_g = R->max_g;
+        out->over_g = INFINITY;
+        out->direction = SW_RESERVE_BRAKING;
+        out->pulse = R->p[0].T;
+        return;
+    }
+    out->reserve_g = out->safe_g = fmin(lo[0], lo[1]);
+    out->over_g = fmin(top[0], top[1]);
+    out->direction = c[best].dir;
+    out->pulse = c[best].P->T;
+    /* overturned at the floor, the first amplitude tried: nothing below it
+     * was searched */
+    out->at_floor = c[best].k == 0 && !c[best].bounded;
 }
 
 static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *out)
@@ -424,50 +508,15 @@ static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *ou
     const int ndir = mirror ? 1 : 2;
     const int passes = R->o.each_direction && !mirror ? 2 : 1;
     scan_t c[2 * SW_DESIGN_PULSES_MAX];
-    sw_reserve_result_t part[2];
-    double known[2] = {R->max_g, R->max_g}; /* g: each direction is at least this */
-    int complete[2] = {1, 1};               /* every scan of it went to max_g */
+    int n = 0;
     for (int pass = 0; pass < passes; pass++) {
-        const int n = scans_of(R, s, ndir, passes == 2 ? pass : -1, c);
-        memset(&part[pass], 0, sizeof part[pass]);
-        rc = merged_scan(R, s, c, n, &part[pass], &faulted);
-        out->trials += part[pass].trials;
+        const int m = scans_of(R, s, ndir, passes == 2 ? pass : -1, c + n);
+        rc = merged_scan(R, s, c + n, m, &out->trials, &faulted);
         if (rc < 0)
             return rc;
-        for (int i = 0; i < n; i++) {
-            const int di = c[i].dir == SW_RESERVE_BRAKING ? 0 : 1;
-            if (!c[i].done)
-                complete[di] = 0;
-            known[di] = fmin(known[di], c[i].done ? R->max_g : scan_next(R, &c[i]));
-        }
+        n += m;
     }
-    /* the smaller of the passes */
-    int wi = 0;
-    if (passes == 2 && part[1].found && (!part[0].found || part[1].reserve_g < part[0].reserve_g))
-        wi = 1;
-    const long trials = out->trials;
-    *out = part[wi];
-    out->trials = trials;
-    for (int di = 0; di < 2; di++) {
-        out->dir_g[di] = known[di];
-        out->dir_exact[di] = complete[di];
-    }
-    for (int p = 0; p < passes; p++) {
-        if (!part[p].found)
-            continue;
-        const int di = part[p].direction == SW_RESERVE_BRAKING ? 0 : 1;
-        out->dir_g[di] = part[p].reserve_g;
-        out->dir_exact[di] = 1;
-    }
-    if (mirror) {
-        out->dir_g[1] = out->dir_g[0];
-        out->dir_exact[1] = out->dir_exact[0];
-    }
-    if (!out->found) {
-        out->reserve_g = out->safe_g = R->max_g;
-        out->direction = SW_RESERVE_BRAKING;
-        out->pulse = R->p[0].T;
-    }
+    conclude(R, c, n, mirror, out);
     return faulted ? SW_EFAULT : SW_OK;
 }
 
