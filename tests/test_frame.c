@@ -130,9 +130,10 @@ static void test_energy_conservation(void **state)
         const char *scheme;
         double dt, lo, hi, abs_max;
     } cases[] = {
+        /* (Euler is refused on these undamped bearings: no step is inside
+         * its stability region, test_stability.c) */
         {"rk4", 2e-3, 12.0, 20.0, 1e-9},
         {"heun", 1e-3, 3.0, 9.0, 1e-4},
-        {"euler", 1e-4, 1.7, 2.3, 1e-2},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         const double e1 = energy_drift(cases[k].scheme, cases[k].dt);

@@ -71,6 +71,34 @@ SW_API double sw_model_work_rate(const sw_derived_t *d);
  * model cannot prove it. */
 SW_API int sw_model_settled(const sw_derived_t *d, double g, const sw_state_t *s);
 
+/* One mode of a scene linearised about rest, damping included: the
+ * eigenvalue lambda = re + i im (1/s) with re <= 0 and im >= 0 (its
+ * conjugate is implied), omega = |lambda| (rad/s), zeta = -re / |lambda|
+ * (1 for a real root, whatever the mode's own damping ratio), and what it
+ * is ("the bearing mode", ...). */
+typedef struct {
+    double re, im;    /* 1/s */
+    double omega;     /* rad/s */
+    double zeta;      /* 1 */
+    const char *name; /* static text */
+} sw_mode_t;
+
+#define SW_MODES_MAX 8
+
+/* The modes an explicit fixed step must keep inside its stability region
+ * (sw_scheme_stable_dt), at most SW_MODES_MAX of them into m; returns how
+ * many.  A rocking block on the bed is a saddle, lambda = +-p sqrt(cos(alpha
+ * - |theta|)): its decaying root at its fastest (|theta| = alpha), -p
+ * (-p / sqrt(1 - 3 gamma / 4) on a frame, where the package's inertia
+ * seen by the frame is least); the growing root is the motion itself, not
+ * an instability of a scheme.  A frame adds its bearing mode standing
+ * (lambda^2 + 2 zeta_b w_b lambda + w_b^2 = 0) and while the package rocks
+ * (the inertia factor D = 1 - 3 gamma / 4 on lambda^2).  A cushion has its
+ * vertical mode (tangent stiffness, zeta_c) and its rocking mode about
+ * rest (coupled to the frame's, if any: the roots of sw_cushion_omega_max).
+ * g in m/s^2 (the scene's).  0 for a model outside the enum. */
+SW_API int sw_model_modes(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX]);
+
 /* --- cushion (scene 3) ---------------------------------------------------
  * d comes from sw_scene_validate() of a cushion scene; g is the gravity to
  * use (m/s^2, the scene's g, or g_eff = g + a_z). */

@@ -12,6 +12,7 @@
 #include <stddef.h>
 
 #include "export.h"
+#include "model.h"
 #include "scene.h"
 
 #ifdef __cplusplus
@@ -25,6 +26,23 @@ SW_API const char *sw_scheme_name(const sw_scheme_t *s);
 SW_API int sw_scheme_order(const sw_scheme_t *s);
 SW_API int sw_scheme_adaptive(const sw_scheme_t *s);
 SW_API double sw_scheme_default_dt(const sw_scheme_t *s); /* s */
+
+/* The amplification |R(z)| of one step of a fixed-step scheme at z =
+ * lambda h = re + i im: R(z) = 1 + z (euler), 1 + z + z^2/2 (heun),
+ * 1 + z + z^2/2 + z^3/6 + z^4/24 (rk4).  The scheme is stable on a mode
+ * lambda with step h where |R(lambda h)| <= 1.  NAN for an adaptive scheme
+ * (its error control chooses the steps). */
+SW_API double sw_scheme_amplification(const sw_scheme_t *s, double re, double im);
+
+/* The largest fixed step (s) that keeps lambda dt of each of the n modes
+ * (sw_model_modes) inside the scheme's stability region, every shorter
+ * step too; *worst (may be NULL) the index of the mode that sets it (-1:
+ * none).  A step that lets a mode grow by less than 1e-6 per period of it
+ * counts as stable (rounding; Heun on an undamped mode up to omega dt =
+ * 0.011).  0 when no step of at least 1e-4 / omega is stable for some mode
+ * (an undamped mode under euler); INFINITY for an adaptive scheme or no
+ * mode. */
+SW_API double sw_scheme_stable_dt(const sw_scheme_t *s, const sw_mode_t *m, int n, int *worst);
 
 /* Accuracy option: the cheapest scheme and internal step dt (s; 0 = the
  * scheme's default, for the adaptive ones) that kept the error of max|theta|

@@ -27,6 +27,7 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "swaywatch/engine.h"
+#include "swaywatch/model.h"
 #include "swaywatch/scene.h"
 
 #define SW_NMAX 6 /* longest state vector: cushion on a frame (u, theta, z and rates) */
@@ -112,6 +113,8 @@ struct sw_pkg {
 
     /* stepping (step.c): the scheme's work space for this package */
     double h;              /* s, largest internal step for this package */
+    double stab_rate;      /* omega_max h at the edge of the scheme's stability region
+                              for the modes at rest (INFINITY: adaptive, or no mode) */
     sw_advance_fn advance; /* the scheme's advance for this model */
     sw_fixed_step_fn step; /* fixed-step schemes: the body for this model */
     gsl_odeiv2_system sys;
@@ -325,10 +328,24 @@ struct sw_model_ops {
      * (sw_rock_linear_t) for a package of mass m (kg): 1 and *r filled, or
      * 0 when the model has none; NULL: never */
     int (*rock_linear)(const sw_derived_t *d, double m, double g, sw_rock_linear_t *r);
+    /* the modes about rest a fixed step must keep stable (model.h's
+     * sw_model_modes): how many into m */
+    int (*modes)(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX]);
 };
 
 extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
 const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind);
+
+/* The decaying roots of a lambda^2 + b lambda + c = 0 (a > 0, b >= 0) as
+ * modes named name, appended to m[0..n) up to SW_MODES_MAX: one (with its
+ * conjugate implied) when they are complex, two when real; the new count.
+ * A root at 0 or growing is not a mode to keep stable; an undamped
+ * oscillation is. */
+int sw_modes_quadratic(sw_mode_t m[SW_MODES_MAX], int n, double a, double b, double c,
+                       const char *name);
+/* The complex root re + i im appended as a mode (if it decays, or
+ * oscillates undamped): the new count. */
+int sw_modes_add(sw_mode_t m[SW_MODES_MAX], int n, double re, double im, const char *name);
 
 /* The model's contact is too fast for fixed steps of dt (s): the default
  * scheme is then SW_STIFF_SCHEME (engine.c). */
@@ -363,8 +380,12 @@ struct sw_scheme {
     const char *name;
     int order;
     int adaptive;      /* GSL's error control chooses the steps */
-    double stab;       /* |lambda h| bound on the imaginary / negative real axis
-                          (fixed steps; 0: none to check, the error control keeps it) */
+    double stab;       /* |lambda h| bound on the negative real axis (fixed steps; 0:
+                          none to check, the error control keeps it) */
+    int region;        /* fixed steps: the stability function R(z) is the Taylor
+                          polynomial of e^z of this degree (an explicit Runge-Kutta
+                          scheme with as many stages as its order, up to 4); its
+                          stability region is |R(z)| <= 1.  0: adaptive */
     double default_dt; /* s */
     /* one step toward t1 (step.c: fixed sub-steps, or GSL's evolve); for
      * the fixed schemes also one per model with its body inlined (NULL:
@@ -415,7 +436,7 @@ static SW_ALWAYS_INLINE int sw_step_fixed_with(sw_ctx_t *C, sw_pkg_t *P, double 
             body(P, t0, h, P->y, y1);
             break;
         }
-        const double bound = C->dt_forced ? C->scheme->stab : 0.5;
+        const double bound = sw_min2(C->dt_forced ? C->scheme->stab : 0.5, P->stab_rate);
         P->rate_seen = 0.0;
         P->track_rate = 1;
         body(P, t0, h, P->y, y1);

@@ -48,6 +48,35 @@ int sw_model_stiff(const sw_derived_t *d, double dt)
     return m && m->tracks_rate && d->omega_max * dt > SW_STIFF_OMEGA_DT;
 }
 
+int sw_modes_add(sw_mode_t m[SW_MODES_MAX], int n, double re, double im, const char *name)
+{
+    /* decaying, or oscillating undamped; not growing, not at rest */
+    if (n >= SW_MODES_MAX || !(re < 0.0 || (re == 0.0 && im != 0.0)))
+        return n;
+    const double w = hypot(re, im);
+    m[n] = (sw_mode_t){.re = re, .im = fabs(im), .omega = w, .zeta = -re / w, .name = name};
+    return n + 1;
+}
+
+int sw_modes_quadratic(sw_mode_t m[SW_MODES_MAX], int n, double a, double b, double c,
+                       const char *name)
+{
+    const double disc = b * b - 4.0 * a * c;
+    if (disc < 0.0)
+        return sw_modes_add(m, n, -b / (2.0 * a), sqrt(-disc) / (2.0 * a), name);
+    /* real roots: the larger in size without cancellation, the other from
+     * their product c / a */
+    const double big = -(b + sqrt(disc)) / (2.0 * a);
+    n = sw_modes_add(m, n, big, 0.0, name);
+    return big != 0.0 ? sw_modes_add(m, n, c / (a * big), 0.0, name) : n;
+}
+
+int sw_model_modes(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX])
+{
+    const sw_model_ops_t *ops = d && m ? sw_model_ops_of(d->model) : NULL;
+    return ops && ops->modes ? ops->modes(d, g, m) : 0;
+}
+
 int sw_model_settled(const sw_derived_t *d, double g, const sw_state_t *s)
 {
     const sw_model_ops_t *m = d && s ? sw_model_ops_of(d->model) : NULL;

@@ -110,6 +110,34 @@ double sw_cushion_omega_max(const sw_derived_t *d, double g)
     return w;
 }
 
+/* The modes of sw_cushion_omega_max's linearisation, as eigenvalues: the
+ * vertical mode, and the rocking mode on the bed or the two coupled
+ * rocking and bearing modes on a frame (model.h). */
+static int cushion_modes(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX])
+{
+    const double kt = tangent_w2(d, g), cz = 2.0 * d->zeta_c * d->omega_c;
+    const double J = d->R * d->R / 3.0 + d->h * d->h; /* m^2, (I_C + m h^2)/m */
+    const double b2 = d->b * d->b / 3.0, kr = kt * b2 - g * d->h, cr = cz * b2;
+    int n = sw_modes_quadratic(m, 0, 1.0, cz, kt, "cushion's vertical mode");
+    if (!(d->gamma > 0.0))
+        return sw_modes_quadratic(m, n, J, cr, kr, "cushion's rocking mode");
+    const double gi = 1.0 / d->gamma, h = d->h;
+    const double c1 = 2.0 * d->zeta_b * d->omega_b * gi, k1 = d->omega_b * d->omega_b * gi;
+    const double a[5] = {k1 * kr, c1 * kr + k1 * cr, kr * gi + c1 * cr + k1 * J, cr * gi + c1 * J,
+                         J * gi - h * h};
+    double mat[16], zr[8];
+    gsl_poly_complex_workspace ws = {4, mat};
+    if (gsl_poly_complex_solve(a, 5, &ws, zr) != GSL_SUCCESS) {
+        /* not expected: each mode with its reduced mass, as omega_max */
+        n = sw_modes_quadratic(m, n, gi - h * h / J, c1, k1, "bearing mode");
+        return sw_modes_quadratic(m, n, J - h * h * d->gamma, cr, kr, "cushion's rocking mode");
+    }
+    for (int i = 0; i < 4; i++)
+        if (zr[2 * i + 1] >= 0.0) /* one of each conjugate pair; real roots each */
+            n = sw_modes_add(m, n, zr[2 * i], zr[2 * i + 1], "cushion's rocking and bearing mode");
+    return n;
+}
+
 /* Largest eigenvalue of M^-1 A for symmetric 2x2 A (a11, a12, a22) and
  * positive definite M (m11, m12, m22). */
 static double eig2(double a11, double a12, double a22, double m11, double m12, double m22)
@@ -627,4 +655,5 @@ const sw_model_ops_t sw_model_cushion = {
     .probe_rates = cushion_probe_rates,
     .probe_margin = 0.9, /* linear only to O(theta^2), and its probe's sampling is capped */
     .rock_linear = cushion_rock_linear,
+    .modes = cushion_modes,
 };

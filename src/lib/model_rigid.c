@@ -378,6 +378,24 @@ static void frame_probe_rates(const sw_derived_t *d, double g, double *fast, dou
     *fast = *slow = d->omega_b;
 }
 
+/* The block's rocking saddle at its fastest (|theta| = alpha): its
+ * decaying root.  On a frame, that root with the least inertia factor D,
+ * and the bearing mode standing and while the package rocks (model.h). */
+static int bare_modes(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX])
+{
+    (void)g;
+    return sw_modes_add(m, 0, -d->p, 0.0, "rocking mode");
+}
+
+static int frame_modes(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX])
+{
+    (void)g;
+    const double D = 1.0 - 0.75 * d->gamma, w = d->omega_b, c = 2.0 * d->zeta_b * w;
+    int n = sw_modes_add(m, 0, -d->p / sqrt(D), 0.0, "rocking mode");
+    n = sw_modes_quadratic(m, n, 1.0, c, w * w, "bearing mode");
+    return sw_modes_quadratic(m, n, D, c, w * w, "bearing mode while rocking");
+}
+
 const sw_model_ops_t sw_model_bare = {
     .name = "bare",
     .setup = bare_setup,
@@ -398,6 +416,7 @@ const sw_model_ops_t sw_model_bare = {
     .free_exact = 1,
     .lift_level = rigid_lift_level,
     .lift_drive = rigid_lift_drive,
+    .modes = bare_modes,
 };
 
 const sw_model_ops_t sw_model_frame = {
@@ -421,4 +440,5 @@ const sw_model_ops_t sw_model_frame = {
     .lift_drive = rigid_lift_drive,
     .probe_rates = frame_probe_rates,
     .probe_margin = 0.99, /* linear: sampled to 3e-5 of the peak (sweep.c's pulse_lift) */
+    .modes = frame_modes,
 };

@@ -17,11 +17,64 @@
 #include "internal.h"
 #include "swaywatch/status.h"
 
+/* A fixed step inside the scheme's stability region for every mode of the
+ * scene about rest (sw_model_modes, sw_scheme_stable_dt): a forced dt
+ * outside it is refused, naming a stable dt or the default scheme; an
+ * unforced one is shortened to 0.9 of the region's edge (sw_engine_dt
+ * gives it).  No stable step at all (an undamped mode under euler) is
+ * refused either way.  P->stab_rate gets omega_max times the stable step,
+ * the bound of a tracked contact rate times h (sw_step_fixed_with): at
+ * rest the two agree, and a stiffer contact shortens the step in
+ * proportion. */
+static int stable_step(const sw_ctx_t *C, sw_pkg_t *P, double dt, char *msg, size_t msglen)
+{
+    const sw_scheme_t *S = C->scheme;
+    sw_mode_t m[SW_MODES_MAX];
+    const int n = sw_model_modes(&P->d, P->g, m);
+    int w = -1;
+    const double hs = sw_scheme_stable_dt(S, m, n, &w); /* s */
+    /* in the units of a tracked contact rate, omega_max at rest */
+    if (P->d.omega_max > 0.0 && hs < INFINITY)
+        P->stab_rate = hs * P->d.omega_max;
+    if (w < 0 || !(C->dt_forced ? dt > hs : hs == 0.0))
+        goto ok;
+    if (msg && msglen && hs > 0.0) {
+        const double amp = sw_scheme_amplification(S, m[w].re * dt, m[w].im * dt);
+        char a[32];
+        if (amp < 1.001)
+            snprintf(a, sizeof a, "1 + %.2g", amp - 1.0);
+        else
+            snprintf(a, sizeof a, "%.4g", amp);
+        snprintf(msg, msglen,
+                 "scene '%s': dt = %g s is above the %s stability bound for its %s (omega = "
+                 "%.4g rad/s, zeta = %.3g: |R(lambda dt)| = %s > 1): use dt <= %.3g s, or the "
+                 "default scheme %s",
+                 P->scene.name, dt, S->name, m[w].name, m[w].omega, m[w].zeta, a, hs,
+                 SW_DEFAULT_SCHEME);
+    } else if (msg && msglen) {
+        snprintf(msg, msglen,
+                 "scene '%s': %s is unstable for its %s (omega = %.4g rad/s, zeta = %.3g) at "
+                 "every step: use the default scheme %s or an adaptive one",
+                 P->scene.name, S->name, m[w].name, m[w].omega, m[w].zeta, SW_DEFAULT_SCHEME);
+    }
+    return SW_EUNSTABLE;
+ok:
+    if (!C->dt_forced && P->h > 0.9 * hs)
+        P->h = 0.9 * hs;
+    return SW_OK;
+}
+
 int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double atol, char *msg,
                  size_t msglen)
 {
     const sw_scheme_t *S = C->scheme;
     P->h = dt;
+    P->stab_rate = INFINITY;
+    if (S->region > 0) {
+        const int r = stable_step(C, P, dt, msg, msglen);
+        if (r != SW_OK)
+            return r;
+    }
     if (S->stab > 0.0 && P->d.omega_max > 0.0) {
         const double bound = S->stab / P->d.omega_max; /* s */
         if (C->dt_forced && dt > bound) {
