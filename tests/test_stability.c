@@ -203,7 +203,7 @@ static sw_engine_t *make(const sw_scene_t *sc, const char *scheme_name, double d
  * sample logs: 2.24 ms), with the stable dt and the default scheme named,
  * and accepted just inside it; the refusal of the issue's case (euler at
  * 5 ms, omega_c dt = 0.22) and of Heun at 40 ms.  Unforced, the step is
- * shortened to 0.9 of the edge.  An
+ * shortened to 0.9 of the edge and the engine says what was asked.  An
  * undamped bearing mode has no stable Euler step at all: refused, the
  * default scheme named. */
 static void test_engine_refuses_or_shortens(void **state)
@@ -230,6 +230,7 @@ static void test_engine_refuses_or_shortens(void **state)
     e = make(&cu, "euler", 0.005, 0, &err, msg, sizeof msg);
     assert_non_null(e);
     assert_true(sw_engine_dt(e, 0) <= 0.9 * edge * (1.0 + 1e-4));
+    tu_near(sw_engine_dt_requested(e), 0.005, 0.0);
     sw_engine_destroy(e);
 
     const sw_scene_t und = tu_frame(2.0, 0.728, 250.0, 5.59, 0.0);

@@ -195,6 +195,15 @@ SW_API const sw_derived_t *sw_engine_derived(const sw_engine_t *e, size_t pkg);
 SW_API int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s);
 SW_API const char *sw_engine_scheme(const sw_engine_t *e);
 SW_API double sw_engine_dt(const sw_engine_t *e, size_t pkg); /* s, internal step in use */
+/* The step a package's fixed-step scheme actually took: the longest so
+ * far (s; a sample interval shorter than sw_engine_dt cuts the steps to
+ * it, an event cuts one short).  sw_engine_dt before the first step, and
+ * for an adaptive scheme (whose steps its error control chooses). */
+SW_API double sw_engine_dt_used(const sw_engine_t *e, size_t pkg);
+/* The step asked for (s): opts.dt, or the scheme's default; where the
+ * engine shortened it (an unforced dt above a mode's stability bound)
+ * sw_engine_dt is less. */
+SW_API double sw_engine_dt_requested(const sw_engine_t *e);
 
 /* m/s^2 (about 10,000 g): no accelerometer on a vehicle reads more; a
  * larger value is a corrupt sample, refused by sw_engine_push(). */

@@ -69,7 +69,7 @@ static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t 
     fprintf(f, ",%ld,%ld,%ld,%ld,%ld,%ld,", s->impacts, s->uplifts, s->rests, s->faults,
             run->samples_read, run->samples_rejected);
     sw_cli_csv_text(f, sw_engine_scheme(e));
-    sw_cli_csv_num(f, sw_engine_dt(e, i));
+    sw_cli_csv_num(f, sw_engine_dt_used(e, i)); /* the step taken, as the JSON's dt */
     fprintf(f, ",%ld", s->steps);
     sw_cli_csv_num(f, run->settle);
     const sw_gate_facts_t *F = &run->facts;

@@ -30,6 +30,7 @@ struct sw_engine {
     double t_abs;   /* s, the same as the caller gave it */
     double ag, az;  /* m/s^2, last sample */
     sw_input_t in;  /* input over the interval being integrated */
+    double dt_req;  /* s, the step asked for (sw_engine_dt_requested) */
 };
 
 /* ---- the sample loop ----------------------------------------------------- */
@@ -99,6 +100,7 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
             break;
         }
         P->sum.steps++;
+        P->h_used = sw_max2(P->h_used, h);
         if (!finite_state(P, y1)) {
             sw_pkg_fault(C, P, t0, SW_EFAULT);
             break;
@@ -197,6 +199,7 @@ static void pkg_reset(sw_pkg_t *P)
     sw_pkg_rest(P);
     P->t = 0.0;
     P->h_adapt = P->h;
+    P->h_used = 0.0;
     memset(&P->sum, 0, sizeof P->sum);
     snprintf(P->sum.name, sizeof P->sum.name, "%s", P->scene.name);
     P->sum.model = P->d.model;
@@ -351,6 +354,7 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
                       .outcome_only = e->o.outcome_only,
                       .on_event = e->o.on_event,
                       .user = e->o.user};
+    e->dt_req = e->o.dt > 0.0 ? e->o.dt : S->default_dt;
     for (size_t i = 0; i < n; i++) {
         buf[0] = '\0';
         const int r = pkg_init(e, &e->pk[i], &scenes[i], i, buf, sizeof buf);
@@ -619,6 +623,19 @@ const char *sw_engine_scheme(const sw_engine_t *e)
 double sw_engine_dt(const sw_engine_t *e, size_t pkg)
 {
     return e && pkg < e->n ? e->pk[pkg].h : NAN;
+}
+
+double sw_engine_dt_used(const sw_engine_t *e, size_t pkg)
+{
+    if (!e || pkg >= e->n)
+        return NAN;
+    const sw_pkg_t *P = &e->pk[pkg];
+    return !e->C.scheme->adaptive && P->h_used > 0.0 ? P->h_used : P->h;
+}
+
+double sw_engine_dt_requested(const sw_engine_t *e)
+{
+    return e ? e->dt_req : NAN;
 }
 
 const char *sw_event_name(sw_event_kind k)

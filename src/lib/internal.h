@@ -113,6 +113,7 @@ struct sw_pkg {
 
     /* stepping (step.c): the scheme's work space for this package */
     double h;              /* s, largest internal step for this package */
+    double h_used;         /* s, the longest step taken (sw_engine_dt_used) */
     double stab_rate;      /* omega_max h at the edge of the scheme's stability region
                               for the modes at rest (INFINITY: adaptive, or no mode) */
     sw_advance_fn advance; /* the scheme's advance for this model */

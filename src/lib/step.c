@@ -20,8 +20,9 @@
 /* A fixed step inside the scheme's stability region for every mode of the
  * scene about rest (sw_model_modes, sw_scheme_stable_dt): a forced dt
  * outside it is refused, naming a stable dt or the default scheme; an
- * unforced one is shortened to 0.9 of the region's edge (sw_engine_dt
- * gives it).  No stable step at all (an undamped mode under euler) is
+ * unforced one is shortened to 0.9 of the region's edge (the engine's
+ * sw_engine_dt_requested and sw_engine_dt then differ, which the commands
+ * say).  No stable step at all (an undamped mode under euler) is
  * refused either way.  P->stab_rate gets omega_max times the stable step,
  * the bound of a tracked contact rate times h (sw_step_fixed_with): at
  * rest the two agree, and a stiffer contact shortens the step in

@@ -7,7 +7,8 @@
 # (Euler beyond 2 zeta_c / omega_c = 2.24 ms, Heun beyond 17.9 ms) are
 # refused with a stable dt named, where they used to report it
 # overturned.  The default's tilt is the quasi-static one, m h a /
-# (K b^2/3 - m g h) = 0.0062 rad, amplified less than twice.
+# (K b^2/3 - m g h) = 0.0062 rad, amplified less than twice.  The step
+# reported is the step taken.
 . "$(dirname "$0")/lib.sh"
 
 CUSHION="$SRC/sample_logs/crate-on-cushion.ini"
@@ -17,6 +18,7 @@ run "$SW" simulate --scene "$CUSHION" $PULSE --amplitude -0.05g --json
 expect_rc 0 "default"
 json_check "$TMP/out" 'j["packages"][0]["verdict"] == "upright"'
 json_check "$TMP/out" '0.0062 < j["packages"][0]["max_abs_theta"] < 2 * 0.0063'
+json_check "$TMP/out" '"dt_requested" not in j["packages"][0]'
 
 for opts in "--scheme euler --dt 0.005 --sample-interval 0.005" "--scheme euler --dt 0.02" \
     "--scheme heun --dt 0.04"; do
@@ -31,4 +33,24 @@ done
 run "$SW" simulate --scene "$CUSHION" $PULSE --amplitude -0.05g --scheme euler --dt 0.002 --json
 expect_rc 0 "euler 2 ms"
 json_check "$TMP/out" 'j["packages"][0]["verdict"] == "upright"'
+# The step used is the one reported: on a 1 kHz log a larger --dt is cut
+# to the sample interval (steps are aligned to samples), and the JSON and
+# the summary say both; a smaller one, or none, is what was asked.
+LOG="$SRC/sample_logs/braking-pothole.csv"
+CRATE="$SRC/sample_logs/crate.ini"
+run "$SW" replay "$LOG" --scene "$CRATE" --dt 0.005 --reserve-rate 0 --json
+expect_rc 0 "replay --dt 0.005"
+json_check "$TMP/out" 'j["packages"][0]["dt"] == 0.001 and j["packages"][0]["dt_requested"] == 0.005'
+run "$SW" replay "$LOG" --scene "$CRATE" --dt 0.005 --reserve-rate 0
+grep -q "scheme rk4, dt 1 ms (requested 5 ms)" "$TMP/out" || {
+    show
+    fail "the summary does not say the step used and the one requested"
+}
+for opts in "--dt 0.0005" ""; do
+    # shellcheck disable=SC2086
+    run "$SW" replay "$LOG" --scene "$CRATE" $opts --reserve-rate 0 --json
+    expect_rc 0 "replay $opts"
+    json_check "$TMP/out" '"dt_requested" not in j["packages"][0]'
+done
+json_check "$TMP/out" 'j["packages"][0]["dt"] == 0.001'
 echo "schemes: ok"
