@@ -7,7 +7,8 @@
  * cubic; RK4 2 sqrt(2) on the imaginary axis and 2.7853 on the negative
  * real one); the modes of the frame and the cushion from their omega and
  * zeta.  Then the engine: a forced dt outside the region is refused with a
- * stable dt named, an unforced one is shortened inside it. */
+ * stable dt named, an unforced one is shortened inside it, and a chosen
+ * scheme or dt runs the default beside it (sw_engine_checker). */
 #include <complex.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -189,12 +190,13 @@ static void test_modes(void **state)
 }
 
 static sw_engine_t *make(const sw_scene_t *sc, const char *scheme_name, double dt, int forced,
-                         int *err, char *msg, size_t msglen)
+                         int check, int *err, char *msg, size_t msglen)
 {
     sw_engine_opts_t o = {0};
     o.scheme = scheme_name;
     o.dt = dt;
     o.dt_forced = forced;
+    o.check_default = check;
     return sw_engine_create(sc, 1, &o, err, msg, msglen);
 }
 
@@ -213,21 +215,21 @@ static void test_engine_refuses_or_shortens(void **state)
     char msg[512];
     const sw_scene_t cu = tu_cushion(tu_bare(2.0, 0.728), 44.72, 0.05);
     const double edge = 2.0 * 0.05 / 44.72; /* s */
-    sw_engine_t *e = make(&cu, "euler", 1.02 * edge, 1, &err, msg, sizeof msg);
+    sw_engine_t *e = make(&cu, "euler", 1.02 * edge, 1, 0, &err, msg, sizeof msg);
     assert_null(e);
     assert_int_equal(err, SW_EUNSTABLE);
     assert_non_null(strstr(msg, "vertical mode"));
     assert_non_null(strstr(msg, "use dt <= 0.00224 s"));
     assert_non_null(strstr(msg, "default scheme rk4"));
-    e = make(&cu, "euler", 0.98 * edge, 1, &err, msg, sizeof msg);
+    e = make(&cu, "euler", 0.98 * edge, 1, 0, &err, msg, sizeof msg);
     assert_non_null(e);
     tu_near(sw_engine_dt(e, 0), 0.98 * edge, 1e-15);
     sw_engine_destroy(e);
-    assert_null(make(&cu, "euler", 0.005, 1, &err, msg, sizeof msg));
-    assert_null(make(&cu, "heun", 0.04, 1, &err, msg, sizeof msg));
+    assert_null(make(&cu, "euler", 0.005, 1, 0, &err, msg, sizeof msg));
+    assert_null(make(&cu, "heun", 0.04, 1, 0, &err, msg, sizeof msg));
     assert_int_equal(err, SW_EUNSTABLE);
 
-    e = make(&cu, "euler", 0.005, 0, &err, msg, sizeof msg);
+    e = make(&cu, "euler", 0.005, 0, 0, &err, msg, sizeof msg);
     assert_non_null(e);
     assert_true(sw_engine_dt(e, 0) <= 0.9 * edge * (1.0 + 1e-4));
     tu_near(sw_engine_dt_requested(e), 0.005, 0.0);
@@ -235,14 +237,64 @@ static void test_engine_refuses_or_shortens(void **state)
 
     const sw_scene_t und = tu_frame(2.0, 0.728, 250.0, 5.59, 0.0);
     for (int forced = 0; forced < 2; forced++) {
-        assert_null(make(&und, "euler", 1e-5, forced, &err, msg, sizeof msg));
+        assert_null(make(&und, "euler", 1e-5, forced, 0, &err, msg, sizeof msg));
         assert_int_equal(err, SW_EUNSTABLE);
         assert_non_null(strstr(msg, "euler is unstable for its bearing mode"));
         assert_non_null(strstr(msg, "at every step: use the default scheme rk4"));
     }
-    e = make(&und, "rk4", 1e-3, 1, &err, msg, sizeof msg);
+    e = make(&und, "rk4", 1e-3, 1, 0, &err, msg, sizeof msg);
     assert_non_null(e);
     sw_engine_destroy(e);
+}
+
+/* The default beside a chosen scheme or dt: none when the choice is the
+ * default (rk4 named without a dt, or the default dt forced), none unless
+ * asked for, one otherwise, running the default scheme at its step.  Its
+ * verdict on 1 s braking half-sines around the frame crate's boundary
+ * (0.36 to 0.42 g) is that of a separate engine made with no scheme and
+ * no dt on the same input, while the chosen Euler at 20 ms (inside the
+ * bearings' region, 2 zeta_b / omega_b = 36 ms) runs beside it. */
+static void test_checker(void **state)
+{
+    (void)state;
+    int err = 0;
+    char msg[512];
+    const sw_scene_t fr = tu_frame(2.0, 0.728, 250.0, 5.59, 0.1);
+    sw_engine_t *e = make(&fr, "rk4", 0.0, 0, 1, &err, msg, sizeof msg);
+    assert_non_null(e);
+    assert_null(sw_engine_checker(e));
+    sw_engine_destroy(e);
+    e = make(&fr, NULL, 1e-3, 1, 1, &err, msg, sizeof msg);
+    assert_non_null(e);
+    assert_null(sw_engine_checker(e));
+    sw_engine_destroy(e);
+    e = make(&fr, "euler", 0.0, 0, 0, &err, msg, sizeof msg);
+    assert_null(sw_engine_checker(e)); /* not asked for */
+    sw_engine_destroy(e);
+
+    for (double x = 0.36; x <= 0.42; x += 0.01) {
+        sw_pulse_t pl = {SW_PULSE_HALF_SINE, -x * SW_G0, M_PI};
+        e = make(&fr, "euler", 0.02, 1, 1, &err, msg, sizeof msg);
+        assert_non_null(e);
+        const sw_engine_t *c = sw_engine_checker(e);
+        assert_non_null(c);
+        assert_string_equal(sw_engine_scheme(c), SW_DEFAULT_SCHEME);
+        tu_near(sw_engine_dt(c, 0), SW_DEFAULT_DT, 0.0);
+        sw_engine_t *d = make(&fr, NULL, 0.0, 0, 0, &err, msg, sizeof msg);
+        for (int k = 1; k <= 100; k++) {
+            assert_true(sw_engine_advance_fn(e, 0.1 * k, sw_pulse_eval, &pl) >= 0);
+            assert_true(sw_engine_advance_fn(d, 0.1 * k, sw_pulse_eval, &pl) >= 0);
+        }
+        sw_summary_t sc, sd;
+        assert_int_equal(sw_engine_summary(c, 0, &sc), SW_OK);
+        assert_int_equal(sw_engine_summary(d, 0, &sd), SW_OK);
+        assert_int_equal(sc.overturned, sd.overturned);
+        assert_int_equal(sc.faults, sd.faults);
+        if (sc.overturned)
+            tu_near(sc.overturn_time, sd.overturn_time, 0.0);
+        sw_engine_destroy(d);
+        sw_engine_destroy(e);
+    }
 }
 
 int main(void)
@@ -253,6 +305,7 @@ int main(void)
         cmocka_unit_test(test_stable_dt_closed_forms),
         cmocka_unit_test(test_modes),
         cmocka_unit_test(test_engine_refuses_or_shortens),
+        cmocka_unit_test(test_checker),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -93,6 +93,11 @@ typedef struct {
                            only the events; sw_engine_get_output computes them on
                            demand); for runs that need only whether and when a package
                            overturns, such as the reserve's */
+    int check_default;  /* non-zero: where scheme or dt (given, not chosen by accuracy) make
+                           the engine integrate otherwise than it would by itself (no
+                           scheme, no dt), run that default beside it on the same input,
+                           outcome only, so that a verdict can be checked against it
+                           (sw_engine_checker); it costs that second engine */
     sw_event_fn on_event;
     sw_state_fn on_state; /* called once per pushed sample and package; may be NULL */
     void *user;
@@ -204,6 +209,11 @@ SW_API double sw_engine_dt_used(const sw_engine_t *e, size_t pkg);
  * engine shortened it (an unforced dt above a mode's stability bound)
  * sw_engine_dt is less. */
 SW_API double sw_engine_dt_requested(const sw_engine_t *e);
+/* The engine running the default scheme and step beside e (opts
+ * check_default), outcome only, on the same input; NULL when there is
+ * none (not asked for, or e's own setting is the default).  Read with
+ * sw_engine_summary, sw_engine_scheme, sw_engine_dt; owned by e. */
+SW_API const sw_engine_t *sw_engine_checker(const sw_engine_t *e);
 
 /* m/s^2 (about 10,000 g): no accelerometer on a vehicle reads more; a
  * larger value is a corrupt sample, refused by sw_engine_push(). */

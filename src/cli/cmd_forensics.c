@@ -222,6 +222,7 @@ static int load(sw_cli_forensics_t *F)
     if ((rc = sw_cli_load_scenes(&F->o, &F->scenes, &F->n)) != SW_EXIT_OK)
         return rc;
     sw_cli_engine_opts(&F->o, &F->eo);
+    F->eo.check_default = 1; /* a chosen scheme or dt: its verdict checked (summary.c) */
     return sw_cli_resolve_accuracy(&F->o, F->scenes, F->n, &F->eo);
 }
 

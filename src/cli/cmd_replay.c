@@ -154,6 +154,7 @@ static int load(replay_t *r)
     if ((rc = sw_cli_load_scenes(&r->o, &r->scenes, &r->n)) != SW_EXIT_OK)
         return rc;
     sw_cli_engine_opts(&r->o, &r->eo);
+    r->eo.check_default = 1; /* a chosen scheme or dt: its verdict checked (summary.c) */
     return sw_cli_resolve_accuracy(&r->o, r->scenes, r->n, &r->eo);
 }
 

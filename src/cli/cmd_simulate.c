@@ -163,9 +163,13 @@ static void write_states(sw_engine_t *e, sim_ctx_t *c)
 }
 
 /* Nothing left to happen: every package overturned, or standing with no
- * way to lift again once the input has stopped (sw_model_settled). */
+ * way to lift again once the input has stopped (sw_model_settled); in
+ * the default's run beside it too (sw_engine_checker), whose verdict is
+ * still to come. */
 static int all_settled(const sw_engine_t *e, const sw_scene_t *scenes)
 {
+    if (sw_engine_checker(e) && !all_settled(sw_engine_checker(e), scenes))
+        return 0;
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_output_t out;
         if (sw_engine_get_output(e, i, &out) != SW_OK)
@@ -379,6 +383,7 @@ int cmd_simulate(int argc, char **argv)
 
     sw_engine_opts_t eo;
     sw_cli_engine_opts(&o, &eo);
+    eo.check_default = 1; /* a chosen scheme or dt: its verdict checked (summary.c) */
     if ((rc = sw_cli_resolve_accuracy(&o, scenes, n, &eo)) != SW_EXIT_OK)
         goto out;
     eo.on_event = on_event;

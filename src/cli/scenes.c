@@ -73,9 +73,10 @@ const sw_cli_option_t sw_cli_integration_options[] = {
     {SW_CLI_DOUBLE, 0, "dt", "SECONDS", OPTS(dt), .rule = SW_NUM_POSITIVE, .lo = 1e-7, .hi = 1,
      .what = "a positive number of seconds",
      .help = "internal step; refused outside the scheme's stability region for the scene's "
-             "modes, with a stable dt named (default: the scheme's own, shortened as needed); at "
-             "least 1e-7 s, 10,000 steps per 1 ms sample, which already runs slower than real "
-             "time"},
+             "modes, with a stable dt named (default: the scheme's own, shortened as needed); "
+             "replay, simulate and forensics run the default scheme and step beside a chosen "
+             "--scheme or --dt and warn of a verdict they contradict; at least 1e-7 s, 10,000 "
+             "steps per 1 ms sample, which already runs slower than real time"},
     {SW_CLI_DOUBLE, 0, "rtol", "X", OPTS(rtol), .rule = SW_NUM_POSITIVE, .lo = 1e-14, .hi = 1e-2,
      .what = "a positive tolerance",
      .help = "relative tolerance of the adaptive schemes (default 1e-10); below 1e-14 double "

@@ -138,8 +138,41 @@ static int dt_differs(const sw_engine_t *e, size_t i)
     return !(fabs(dt - req) <= 1e-9 * req);
 }
 
+/* What the default scheme and step said of package i, where a chosen
+ * scheme or dt ran beside it (sw_engine_checker): its verdict word into
+ * *word, and 1 if it agrees with this run's; -1 where there is no check. */
+static int check_agrees(const sw_engine_t *e, size_t i, const sw_summary_t *s, const char **word)
+{
+    const sw_engine_t *c = sw_engine_checker(e);
+    sw_summary_t cs;
+    if (!c || sw_engine_summary(c, i, &cs) != SW_OK)
+        return -1;
+    *word = sw_cli_verdict_seen(&cs);
+    return !strcmp(*word, sw_cli_verdict_seen(s));
+}
+
+/* A verdict the default scheme and step contradict: said on stderr, so
+ * that no chosen --scheme or --dt changes a verdict quietly. */
+static void warn_checks(const sw_engine_t *e)
+{
+    const sw_engine_t *c = sw_engine_checker(e);
+    for (size_t i = 0; c && i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        const char *dw = NULL;
+        if (sw_engine_summary(e, i, &s) != SW_OK || check_agrees(e, i, &s, &dw) != 0)
+            continue;
+        sw_cli_error(
+            "warning: %s: %s at dt %.3g ms says %s, the default (%s at dt %.3g ms) says %s: "
+            "the verdict depends on the scheme or the step; trust the default, or check with "
+            "--accuracy",
+            s.name, sw_engine_scheme(e), sw_engine_dt_used(e, i) * 1e3, sw_cli_verdict_seen(&s),
+            sw_engine_scheme(c), sw_engine_dt_used(c, i) * 1e3, dw);
+    }
+}
+
 int sw_cli_verdict_exit(const sw_engine_t *e, const sw_cli_run_t *run, int fail_on_overturn)
 {
+    warn_checks(e);
     if (!fail_on_overturn)
         return SW_EXIT_OK;
     if (sw_cli_any_overturned(e))
@@ -407,6 +440,14 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
         fputs("  outcome         ", f);
         print_outcome(f, &s, run);
         fputc('\n', f);
+        const char *dw = NULL;
+        const int agrees = check_agrees(e, i, &s, &dw);
+        if (agrees >= 0)
+            fprintf(
+                f, "  default scheme  %s at dt %.6g ms: %s%s\n",
+                sw_engine_scheme(sw_engine_checker(e)),
+                sw_engine_dt_used(sw_engine_checker(e), i) * 1e3, dw,
+                agrees ? " (agrees)" : " -- DIFFERS: this verdict depends on the scheme or step");
     }
 }
 
@@ -592,6 +633,16 @@ int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_ru
     if (dt_differs(e, i))
         json_kv(f, ", ", "dt_requested", sw_engine_dt_requested(e));
     fprintf(f, ", \"steps\": %ld", s.steps);
+    const char *dw = NULL;
+    const int agrees = check_agrees(e, i, &s, &dw);
+    if (agrees >= 0) {
+        const sw_engine_t *c = sw_engine_checker(e);
+        json_sep(f, br);
+        fprintf(f, "\"scheme_check\": {\"scheme\": ");
+        sw_cli_json_string(f, sw_engine_scheme(c));
+        json_kv(f, ", ", "dt", sw_engine_dt_used(c, i));
+        fprintf(f, ", \"verdict\": \"%s\", \"agrees\": %s}", dw, agrees ? "true" : "false");
+    }
     return 0;
 }
 

@@ -24,13 +24,14 @@ struct sw_engine {
     sw_engine_opts_t o;
     sw_ctx_t C; /* what the layers share: scheme, options, event sink */
     int started;
-    int restart;    /* the next sample starts afresh: packages at rest, no bridge */
-    int origin_set; /* sw_engine_set_origin(): C.origin is not the first sample's time */
-    double t;       /* s, time of the last sample, relative to C.origin */
-    double t_abs;   /* s, the same as the caller gave it */
-    double ag, az;  /* m/s^2, last sample */
-    sw_input_t in;  /* input over the interval being integrated */
-    double dt_req;  /* s, the step asked for (sw_engine_dt_requested) */
+    int restart;        /* the next sample starts afresh: packages at rest, no bridge */
+    int origin_set;     /* sw_engine_set_origin(): C.origin is not the first sample's time */
+    double t;           /* s, time of the last sample, relative to C.origin */
+    double t_abs;       /* s, the same as the caller gave it */
+    double ag, az;      /* m/s^2, last sample */
+    sw_input_t in;      /* input over the interval being integrated */
+    double dt_req;      /* s, the step asked for (sw_engine_dt_requested) */
+    sw_engine_t *check; /* the default scheme and step beside it (opts.check_default) */
 };
 
 /* ---- the sample loop ----------------------------------------------------- */
@@ -245,6 +246,7 @@ void sw_engine_reset(sw_engine_t *e)
     e->ag = e->az = 0.0;
     memset(&e->in, 0, sizeof e->in);
     for (size_t i = 0; i < e->n; i++) pkg_reset(&e->pk[i]);
+    sw_engine_reset(e->check);
 }
 
 void sw_engine_destroy(sw_engine_t *e)
@@ -252,6 +254,7 @@ void sw_engine_destroy(sw_engine_t *e)
     if (!e)
         return;
     for (size_t i = 0; i < e->n; i++) sw_step_free(&e->pk[i]);
+    sw_engine_destroy(e->check);
     free(e->pk);
     free(e);
 }
@@ -312,6 +315,27 @@ static int resolve_accuracy(sw_engine_t *e, const sw_scene_t *scenes, size_t n, 
     return SW_OK;
 }
 
+/* The engine the same scenes get with no scheme and no dt (the default
+ * scheme, or the stiff one; its step), beside e when e integrates
+ * otherwise, outcome only and without callbacks; left out when e's
+ * scheme, steps and tolerances are the default's, or if it cannot be made
+ * (e then runs unchecked: sw_engine_checker is NULL). */
+static void make_check(sw_engine_t *e, const sw_scene_t *scenes, size_t n)
+{
+    const sw_engine_opts_t d = {
+        .rest_eps = e->o.rest_eps, .stuck_stepped = e->o.stuck_stepped, .outcome_only = 1};
+    sw_engine_t *c = sw_engine_create(scenes, n, &d, NULL, NULL, 0);
+    if (!c)
+        return;
+    int same = c->C.scheme == e->C.scheme &&
+               (!e->C.scheme->adaptive || (!(e->o.rtol > 0.0) && !(e->o.atol > 0.0)));
+    for (size_t i = 0; same && i < n; i++) same = c->pk[i].h == e->pk[i].h;
+    if (same)
+        sw_engine_destroy(c);
+    else
+        e->check = c;
+}
+
 sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *opts,
                               int *err, char *msg, size_t msglen)
 {
@@ -333,6 +357,8 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
     e->n = n;
     if (opts)
         e->o = *opts;
+    /* a scheme or a dt chosen by the caller (not by the accuracy table) */
+    const int check = e->o.check_default && (e->o.scheme || e->o.dt > 0.0);
     if (e->o.accuracy != 0.0 && resolve_accuracy(e, scenes, n, err, msg, msglen) != SW_OK)
         goto out_fail;
     const sw_scheme_t *S =
@@ -363,6 +389,8 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
             goto out_fail;
         }
     }
+    if (check)
+        make_check(e, scenes, n);
     sw_engine_reset(e);
     return e;
 out_fail:
@@ -408,10 +436,20 @@ static inline int coarse_time(double t_abs)
     return !(fabs(t_abs) < 8589934592.0);
 }
 
+static int push(sw_engine_t *e, double t_abs, double a_g, double a_z);
+
 int sw_engine_push(sw_engine_t *e, double t_abs, double a_g, double a_z)
 {
     if (!e)
         return SW_EINVAL;
+    const int rc = push(e, t_abs, a_g, a_z);
+    if (rc >= 0 && e->check)
+        push(e->check, t_abs, a_g, a_z);
+    return rc;
+}
+
+static int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
+{
     if (!isfinite(t_abs) || !isfinite(a_g) || !isfinite(a_z))
         return SW_ENONFINITE;
     if (fabs(a_g) > SW_MAX_ACCEL || fabs(a_z) > SW_MAX_ACCEL)
@@ -494,7 +532,10 @@ int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
         return SW_EINVAL;
     if (coarse_time(t1))
         return SW_ERESOLUTION;
-    return advance_to(e, t1 - e->C.origin, f, user);
+    const int rc = advance_to(e, t1 - e->C.origin, f, user);
+    if (rc >= 0 && e->check)
+        advance_to(e->check, t1 - e->check->C.origin, f, user);
+    return rc;
 }
 
 int sw_engine_set_origin(sw_engine_t *e, double t0)
@@ -505,6 +546,8 @@ int sw_engine_set_origin(sw_engine_t *e, double t0)
         return SW_ERESOLUTION;
     e->C.origin = t0;
     e->origin_set = 1;
+    if (e->check)
+        sw_engine_set_origin(e->check, t0);
     return SW_OK;
 }
 
@@ -522,6 +565,8 @@ int sw_engine_restart(sw_engine_t *e)
         }
     }
     e->restart = 1;
+    if (e->check)
+        sw_engine_restart(e->check);
     return SW_OK;
 }
 
@@ -536,6 +581,8 @@ int sw_engine_finish(sw_engine_t *e, double settle)
 {
     if (!e)
         return SW_EINVAL;
+    if (e->check)
+        sw_engine_finish(e->check, settle);
     int any = 0;
     if (!(settle > 0.0) || !e->started)
         return SW_OK;
@@ -565,6 +612,8 @@ int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
     sw_model_from_state(P, s);
     P->beyond_alpha = fabs(P->y[P->ith]) >= P->d.alpha;
     sw_step_reset(P);
+    if (e->check)
+        sw_engine_set_state(e->check, pkg, s);
     return SW_OK;
 }
 
@@ -638,6 +687,11 @@ double sw_engine_dt_requested(const sw_engine_t *e)
     return e ? e->dt_req : NAN;
 }
 
+const sw_engine_t *sw_engine_checker(const sw_engine_t *e)
+{
+    return e ? e->check : NULL;
+}
+
 const char *sw_event_name(sw_event_kind k)
 {
     switch (k) {
@@ -682,5 +736,10 @@ int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char 
     sw_step_bind(P);
     pkg_reset(P);
     P->t = e->started ? e->t : 0.0;
+    if (e->check && sw_engine_replace(e->check, pkg, scene, NULL, 0) != SW_OK) {
+        /* the check can no longer follow: drop it rather than check wrongly */
+        sw_engine_destroy(e->check);
+        e->check = NULL;
+    }
     return SW_OK;
 }

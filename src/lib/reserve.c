@@ -583,6 +583,7 @@ static int pulse_make(const sw_reserve_t *R, pulse_ctx_t *P, char *msg, size_t m
     sw_engine_opts_t eo = R->o.run.engine;
     eo.on_event = NULL;
     eo.outcome_only = 1; /* the outcome alone: no report to time or compute */
+    eo.check_default = 0;
     eo.on_state = NULL;
     eo.user = NULL;
     eo.dt_forced = 0;

@@ -86,6 +86,7 @@ int sw_runner_make_watched(sw_runner_t *R, const sw_scene_t *sc, const sw_run_op
     if (o)
         eo = o->engine;
     eo.dt_forced = 0;
+    eo.check_default = 0; /* a run is one of many: the caller checks what it concludes */
     eo.on_event = NULL;
     eo.on_state = NULL;
     const sw_scheme_t *s = sw_scheme_lookup(eo.scheme ? eo.scheme : SW_DEFAULT_SCHEME);
