@@ -525,8 +525,8 @@ static int cmd_run(int quick, int runs, const char *data)
          * scene may set near zero (their errors on this crate's damped
          * bearings do not show it). */
         printf(
-            "\nAccuracy option rows for `%s` (src/lib/accuracy.c; a row serves the "
-            "tolerances from the one before it down to its own):\n\n```\n",
+            "\nRows this run measured for `%s` (the cheapest setting per decade of "
+            "tolerance; the rows in use are under \"Accuracy option\"):\n\n```\n",
             models[m].name);
         int prev = -1;
         double prev_tol = 0.0;

@@ -377,9 +377,9 @@ static void test_safety_factor_cushion(void **state)
 
 /* Bad arguments are refused with a reason. */
 /* The run options carry the engine's: an accuracy reaches the run's
- * engine (the scheme it picks, here rkf45 for 1e-13 rad, gives the same
- * run bit for bit), and a model without a measured table is refused
- * rather than run at the defaults. */
+ * engine (the scheme it picks, here rkf45 for 1e-13 rad, gives that
+ * scheme's run), and a model without a measured table is refused rather
+ * than run at the defaults. */
 static void test_run_accuracy(void **state)
 {
     (void)state;
@@ -401,8 +401,10 @@ static void test_run_accuracy(void **state)
     ro.engine.accuracy = 1e-13;
     assert_int_equal(sw_log_run(&sc, &log, 1.0, &ro, &acc, msg, sizeof msg), SW_OK);
     assert_true(acc.overturned && fixed.overturned && dflt.overturned);
-    assert_true(acc.tip_time == fixed.tip_time);
-    assert_true(acc.tip_time != dflt.tip_time);
+    /* rkf45, with its steps kept within the 1 ms of the table's
+     * measurement (SW_ACCURACY_HMAX) in the free motion too: far closer to
+     * rkf45 at its own steps than to the default rk4 */
+    assert_true(fabs(acc.tip_time - fixed.tip_time) < 0.1 * fabs(acc.tip_time - dflt.tip_time));
     const sw_scene_t cu = tu_cushion(block025(), 60.0, 0.1);
     assert_int_equal(sw_log_run(&cu, &log, 1.0, &ro, &acc, msg, sizeof msg), SW_EINVAL);
     assert_non_null(strstr(msg, "no measured table"));

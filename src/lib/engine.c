@@ -312,6 +312,7 @@ static int resolve_accuracy(sw_engine_t *e, const sw_scene_t *scenes, size_t n, 
     }
     e->o.dt_forced = 0;
     e->o.accuracy = 0.0; /* resolved: e->o now names the scheme */
+    e->C.hmax = SW_ACCURACY_HMAX;
     return SW_OK;
 }
 
@@ -373,7 +374,9 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
         fail(err, SW_EINVAL, msg, msglen, "dt, rtol, atol and rest_eps must be >= 0");
         goto out_fail;
     }
+    const double hmax = e->C.hmax > 0.0 ? e->C.hmax : INFINITY; /* s */
     e->C = (sw_ctx_t){.scheme = S,
+                      .hmax = hmax,
                       .rest_eps = e->o.rest_eps > 0.0 ? e->o.rest_eps : 1e-9,
                       .dt_forced = e->o.dt_forced,
                       .stuck_stepped = e->o.stuck_stepped,

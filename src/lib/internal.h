@@ -62,6 +62,8 @@ typedef struct {
     int dt_forced;        /* a forced dt is refused, never sub-stepped */
     int stuck_stepped;    /* step a stuck frame instead of its exact solution */
     int outcome_only;     /* peaks and tips are not timed (sw_engine_opts_t) */
+    double hmax;          /* s, longest step (SW_ACCURACY_HMAX under the accuracy option,
+                             else INFINITY) */
     sw_event_fn on_event; /* may be NULL */
     void *user;
     double origin;         /* s: the absolute time of the engine's t = 0 (the first

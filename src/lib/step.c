@@ -69,7 +69,7 @@ int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double 
                  size_t msglen)
 {
     const sw_scheme_t *S = C->scheme;
-    P->h = dt;
+    P->h = sw_min2(dt, C->hmax);
     P->stab_rate = INFINITY;
     if (S->region > 0) {
         const int r = stable_step(C, P, dt, msg, msglen);
@@ -181,8 +181,7 @@ int sw_step_fixed(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *hout
 /* One step of GSL's evolve under its error control, toward t1. */
 int sw_step_evolve(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h)
 {
-    (void)C;
-    const double t0 = P->t, rem = t1 - t0;
+    const double t0 = P->t, rem = sw_min2(t1 - t0, C->hmax);
     double tt = t0;
     memcpy(y1, P->y, sizeof(double) * (size_t)P->n);
     if (P->h_adapt > rem)

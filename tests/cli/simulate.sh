@@ -174,6 +174,33 @@ json_check "$TMP/out" 'j["packages"][0]["scheme"] == "rk4" and abs(j["packages"]
 run "$SW" simulate --scene "$SCENE" --scene "$FRAME" --pulse half-sine --amplitude -6 --omega 6.2832 --accuracy 5e-14 --json
 expect_rc 0 "--accuracy 5e-14"
 json_check "$TMP/out" 'all(p["scheme"] == "rkck" for p in j["packages"])'
+# ... and simulate delivers it: max|theta| within 1e-9 rad of rk8pd at
+# rtol 1e-13 (the JSON's 9 digits resolve about 1e-10 rad here;
+# tests/test_accuracy.c checks 1e-10 to 1e-13 at full precision).  A step
+# across the pulse's end missed it by 1e-7 rad.  Rows of 0.1 s: steps of
+# an adaptive row stay within the 1 ms it was measured at.
+for sc in "$SCENE:-7.1417:7.8882" "$FRAME:-6.0704:7.8882"; do
+    IFS=: read -r scene amp omega <<EOF2
+$sc
+EOF2
+    for rows in 0.001 0.1; do
+        run "$SW" simulate --scene "$scene" --pulse half-sine --amplitude "$amp" --omega "$omega" \
+            --sample-interval "$rows" --reserve-rate 0 --scheme rk8pd --rtol 1e-13 --atol 1e-15 --json
+        expect_rc 0 "rk8pd reference"
+        cp "$TMP/out" "$TMP/ref.json"
+        for acc in 1e-9 1e-12; do
+            run "$SW" simulate --scene "$scene" --pulse half-sine --amplitude "$amp" --omega "$omega" \
+                --sample-interval "$rows" --reserve-rate 0 --accuracy "$acc" --json
+            expect_rc 0 "--accuracy $acc"
+            python3 - "$TMP/out" "$TMP/ref.json" <<'PY' || fail "$scene, rows of $rows s: --accuracy $acc not met"
+import json, sys
+a, r = (json.load(open(f))["packages"][0]["max_abs_theta"] for f in sys.argv[1:3])
+print("max|theta| %.9g, reference %.9g, error %.2g" % (a, r, abs(a - r)), file=sys.stderr)
+sys.exit(0 if abs(a - r) <= 1e-9 else 1)
+PY
+        done
+    done
+done
 run "$SW" simulate --scene "$SCENE" --pulse half-sine --amplitude -6 --omega 6.2832 --accuracy 1e-20
 expect_rc 2 "--accuracy beyond the table"
 expect_err "tighter than any measured setting"
