@@ -116,8 +116,18 @@ typedef struct {
     double min_margin_bound;
     double max_uplift_ratio;
     long impacts, uplifts, rests, faults;
-    long steps; /* internal steps taken */
+    long steps;              /* internal steps taken */
+    long flights;            /* times the package left its support in free flight (the bed
+                                falling faster than gravity: physics.md, "Free flight") */
+    double flight_max;       /* s, the longest of them (0: none) */
+    double flight_long_time; /* s, when the first flight longer than SW_FLIGHT_LONG began
+                                (NAN: none): what followed it is not a verdict */
 } sw_summary_t;
+
+/* s: a flight longer than this leaves the verdict incomplete: its landing
+ * from centimetres up is where the no-bounce, no-slide impact of the
+ * model is doubtful (physics.md, "Free flight"). */
+#define SW_FLIGHT_LONG 0.1
 
 typedef struct sw_engine sw_engine_t;
 

@@ -99,6 +99,22 @@ typedef struct {
  * g in m/s^2 (the scene's).  0 for a model outside the enum. */
 SW_API int sw_model_modes(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX]);
 
+/* The landing of a rigid package from free flight (physics.md, "Free
+ * flight") on the corner on side s (+1 the front) at tilt theta (rad):
+ * theta' after it (rad/s), from theta' = theta_dot in the air, the centre
+ * of mass's velocity (vx, vy) and the support's u_dot (m/s, all relative
+ * to the bed; u_dot 0 and gamma 0 on the bed).  It keeps the package's
+ * angular momentum about that corner and the horizontal momentum of
+ * package and frame, with no bounce and no slide:
+ *   (4R^2/3 - gamma r_y^2) theta'+ = R^2/3 theta' - r_x vy + (1 - gamma)
+ *   r_y (vx - u_dot), r = (-s R sin(alpha - s theta), R cos(alpha - s theta))
+ * the vector from the corner to the centre of mass.  *u_dot_after (may be
+ * NULL) gets the support's velocity after it.  With the velocities of
+ * rocking about the other corner at theta = 0 it is the impact map: eta
+ * on the bed, r_frame on a frame. */
+SW_API double sw_landing_map(const sw_derived_t *d, int s, double theta, double theta_dot,
+                             double vx, double vy, double u_dot, double *u_dot_after);
+
 /* --- cushion (scene 3) ---------------------------------------------------
  * d comes from sw_scene_validate() of a cushion scene; g is the gravity to
  * use (m/s^2, the scene's g, or g_eff = g + a_z). */

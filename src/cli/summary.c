@@ -76,6 +76,15 @@ int sw_cli_any_overturned(const sw_engine_t *e)
     return 0;
 }
 
+/* A free flight longer than SW_FLIGHT_LONG (physics.md "Free flight"): its
+ * landing is outside the model, so what followed it is not a verdict,
+ * unless the package had overturned before it. */
+static int flight_open(const sw_summary_t *s)
+{
+    return !isnan(s->flight_long_time) &&
+           !(s->overturned && s->overturn_time < s->flight_long_time);
+}
+
 const char *sw_cli_verdict_seen(const sw_summary_t *s)
 {
     if (s->overturned)
@@ -86,13 +95,14 @@ const char *sw_cli_verdict_seen(const sw_summary_t *s)
 long sw_cli_run_incomplete(const sw_cli_run_t *run)
 {
     /* the one place that says which doubts about the input leave a
-     * verdict open: today the gate's gaps and restarts over motion */
+     * verdict open: today the gate's gaps and restarts over motion (a
+     * long free flight, a doubt about the model, is flight_open()'s) */
     return run && run->have_facts ? run->facts.incomplete : 0;
 }
 
 const char *sw_cli_verdict(const sw_summary_t *s, const sw_cli_run_t *run)
 {
-    if (!s->overturned && sw_cli_run_incomplete(run) > 0)
+    if (flight_open(s) || (!s->overturned && sw_cli_run_incomplete(run) > 0))
         return "incomplete";
     return sw_cli_verdict_seen(s);
 }
@@ -177,6 +187,16 @@ int sw_cli_verdict_exit(const sw_engine_t *e, const sw_cli_run_t *run, int fail_
         return SW_EXIT_OK;
     if (sw_cli_any_overturned(e))
         return SW_EXIT_OVERTURNED;
+    for (size_t i = 0; i < sw_engine_count(e); i++) {
+        sw_summary_t s;
+        if (sw_engine_summary(e, i, &s) == SW_OK && flight_open(&s)) {
+            sw_cli_error(
+                "%s: the verdict is incomplete: in the air over %g s from %.4f s, the landing "
+                "is outside the model; --fail-on-overturn exits 1",
+                s.name, SW_FLIGHT_LONG, s.flight_long_time);
+            return SW_EXIT_OVERTURNED;
+        }
+    }
     if (sw_cli_run_incomplete(run) > 0) {
         char why[256];
         sw_cli_incomplete_why(run, why, sizeof why);
@@ -320,6 +340,14 @@ static void print_outcome(FILE *f, const sw_summary_t *s, const sw_cli_run_t *ru
     } else {
         fputs("stayed upright", f);
     }
+    if (s->flights)
+        fprintf(f, "; %ld free flight%s, the longest %.3g s", s->flights,
+                s->flights == 1 ? "" : "s", s->flight_max);
+    if (flight_open(s))
+        fprintf(f,
+                " -- INCOMPLETE: in the air over %g s from %.4f s, the landing is outside "
+                "the model",
+                SW_FLIGHT_LONG, s->flight_long_time);
 }
 
 /* Impacts: the ones that matter, the settling apart. */
@@ -542,6 +570,19 @@ void sw_cli_json_incomplete(FILE *f, const sw_summary_t *s, const sw_cli_run_t *
 {
     fputs("\"incomplete_because\": ", f);
     const long n = s->overturned ? 0 : sw_cli_run_incomplete(run);
+    if (n <= 0 && flight_open(s)) {
+        char why[160];
+        snprintf(why, sizeof why,
+                 "in the air over %g s from %.4f s: the landing is outside the model",
+                 SW_FLIGHT_LONG, s->flight_long_time);
+        fputs("{\"count\": 1, \"first_time\": ", f);
+        sw_cli_json_num(f, s->flight_long_time);
+        fputs(", \"first_kind\": \"flight\", \"first_span\": null", f);
+        fputs(", \"text\": ", f);
+        sw_cli_json_string(f, why);
+        fputc('}', f);
+        return;
+    }
     if (n <= 0) {
         fputs("null", f);
         return;
@@ -622,6 +663,11 @@ int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_ru
     json_sep(f, br);
     fprintf(f, "\"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld", s.impacts,
             s.uplifts, s.rests, s.faults);
+    if (s.flights) { /* free flights (physics.md): only where there were some */
+        fprintf(f, ", \"flights\": %ld", s.flights);
+        json_kv(f, ", ", "flight_max", s.flight_max);
+        json_kv(f, ", ", "flight_long_time", s.flight_long_time);
+    }
     json_risk(f, sw_risk_pkg(run->risk, i), br);
     json_sep(f, br);
     fprintf(f, "\"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,

@@ -46,23 +46,17 @@ static int finite_state(const sw_pkg_t *P, const double y[])
            !(P->phase == SW_PHASE_ROCKING && fabs(y[P->ith]) > M_PI);
 }
 
-/* Advance one package from P->t to t1 under the input e->in.  The loop
- * guards against a map that keeps re-triggering without progress and
- * against a step count no finite number of events explains; either is a
- * fault, never a hang.  (Longer than 80 lines: the loop is the engine's
- * one control flow, and splitting it would hide the order of its cases.) */
-static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
+/* Advance one package on its support from P->t to t1 under the input
+ * e->in.  The loop guards against a map that keeps re-triggering without
+ * progress and against a step count no finite number of events explains;
+ * either is a fault, never a hang.  (Longer than 80 lines: the loop is the
+ * engine's one control flow, and splitting it would hide the order of its
+ * cases.) */
+static void advance_ground(sw_engine_t *e, sw_pkg_t *P, double t1)
 {
     sw_ctx_t *C = &e->C;
     double y1[SW_NMAX], ys[SW_NMAX];
     int guard = 0, same_t = 0, checked = 0;
-    if (sw_input_geff(P, P->t) <= 0.0 || sw_input_geff(P, t1) <= 0.0) {
-        /* airborne: outside the model, never integrated */
-        if (P->phase != SW_PHASE_OVERTURNED)
-            sw_pkg_fault(C, P, P->t, SW_EFAULT);
-        P->t = t1;
-        return;
-    }
     while (P->t < t1) {
         if (++guard > 100000000) { /* cannot happen with a finite event count */
             sw_pkg_fault(C, P, P->t, SW_EFAULT);
@@ -139,6 +133,80 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
     P->t = t1;
 }
 
+/* The first time in [t0, t1] at which g_eff = g + a_z falls to 0 (the bed
+ * falls away faster than gravity; linear between samples), or INFINITY. */
+static double take_off_time(const sw_pkg_t *P, double t0, double t1)
+{
+    const double g0 = sw_input_geff(P, t0), g1 = sw_input_geff(P, t1); /* m/s^2 */
+    if (!(g0 > 0.0))
+        return t0;
+    if (g1 > 0.0)
+        return INFINITY;
+    const double t = t0 + (t1 - t0) * (g0 / (g0 - g1));
+    return t < t1 ? t : t1;
+}
+
+/* A model whose equations hold in the air (a cushion's): its flights
+ * timed as the spans of g_eff <= 0 in [t0, t1] (the bed falling away
+ * faster than gravity), for the summary; P->flying and P->fl_t0 say one
+ * is going on.  Its support holds it horizontally in the air too
+ * (physics.md): a long flight is where that is doubtful. */
+static void time_in_air(sw_pkg_t *P, double t0, double t1)
+{
+    const double g0 = sw_input_geff(P, t0), g1 = sw_input_geff(P, t1);         /* m/s^2 */
+    const double tz = g0 != g1 ? t0 + (t1 - t0) * (g0 / (g0 - g1)) : INFINITY; /* g_eff = 0 */
+    if (!P->flying && (!(g0 > 0.0) || !(g1 > 0.0))) {
+        P->flying = 1;
+        P->fl_t0 = g0 > 0.0 ? tz : t0;
+        P->sum.flights++;
+    }
+    if (P->flying && g1 > 0.0) {
+        const double end = g0 > 0.0 ? t0 : tz, dur = end - P->fl_t0; /* s */
+        P->flying = 0;
+        P->sum.flight_max = sw_max2(P->sum.flight_max, dur);
+        if (dur > SW_FLIGHT_LONG && isnan(P->sum.flight_long_time))
+            P->sum.flight_long_time = P->fl_t0;
+    }
+}
+
+/* Advance one package from P->t to t1: on its support, and in free flight
+ * while the bed falls away from it (flight.c), for a model that flies;
+ * for one that does not, g_eff <= 0 is outside the model: a fault. */
+static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
+{
+    sw_ctx_t *C = &e->C;
+    for (int guard = 0; P->t < t1 && P->phase != SW_PHASE_OVERTURNED; guard++) {
+        if (guard > 1000000) { /* take-offs and landings without progress */
+            sw_pkg_fault(C, P, P->t, SW_EFAULT);
+            break;
+        }
+        if (P->ops->flies == SW_FLIES_INTEGRATED) {
+            time_in_air(P, P->t, t1);
+            advance_ground(e, P, t1);
+            break;
+        }
+        if (P->flying) {
+            if (sw_flight_advance(C, P, t1) == SW_STUCK_STILL)
+                break;
+            continue;
+        }
+        const double toff = take_off_time(P, P->t, t1); /* s */
+        if (toff <= P->t) {
+            if (!P->ops->flies) {
+                sw_pkg_fault(C, P, P->t, SW_EFAULT);
+                break;
+            }
+            sw_flight_take_off(C, P, P->t);
+            continue;
+        }
+        advance_ground(e, P, sw_min2(toff, t1));
+        if (!(toff < t1))
+            break;
+        P->t = toff; /* g_eff is 0 here: it takes off next */
+    }
+    P->t = t1;
+}
+
 /* Every number of an output, finite?  Inline: checked on every report. */
 static inline int output_finite(const sw_output_t *o)
 {
@@ -205,6 +273,7 @@ static void pkg_reset(sw_pkg_t *P)
     snprintf(P->sum.name, sizeof P->sum.name, "%s", P->scene.name);
     P->sum.model = P->d.model;
     P->sum.overturn_time = P->sum.tip_time = P->sum.uplift_time = NAN;
+    P->sum.flight_long_time = NAN;
     P->sum.min_margin = P->sum.min_margin_bound = 1.0;
     /* A reset engine runs as a new one: nothing of an earlier run (the
      * stuck frame's coefficients of its last interval) changes a bit of
@@ -406,8 +475,13 @@ out_fail:
 static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
 {
     P->t = t;
-    if (!(sw_input_geff(P, t) > 0.0)) {
-        sw_pkg_fault(&e->C, P, t, SW_EFAULT);
+    if (!(sw_input_geff(P, t) > 0.0) && P->ops->flies != SW_FLIES_INTEGRATED) {
+        if (P->phase == SW_PHASE_OVERTURNED || P->flying)
+            return;
+        if (P->ops->flies)
+            sw_flight_take_off(&e->C, P, t);
+        else
+            sw_pkg_fault(&e->C, P, t, SW_EFAULT);
         return;
     }
     if (P->phase != SW_PHASE_STUCK)
@@ -612,6 +686,7 @@ int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
     if (!e || pkg >= e->n || !s)
         return SW_EINVAL;
     sw_pkg_t *P = &e->pk[pkg];
+    P->flying = 0; /* a state given is on its support */
     sw_model_from_state(P, s);
     P->beyond_alpha = fabs(P->y[P->ith]) >= P->d.alpha;
     sw_step_reset(P);
@@ -659,11 +734,18 @@ int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s)
 {
     if (!e || pkg >= e->n || !s)
         return SW_EINVAL;
-    *s = e->pk[pkg].sum;
+    const sw_pkg_t *P = &e->pk[pkg];
+    *s = P->sum;
+    if (P->flying) { /* a flight not yet over counts as long as it has lasted */
+        s->flight_max = sw_max2(s->flight_max, P->t - P->fl_t0);
+        if (P->t - P->fl_t0 > SW_FLIGHT_LONG && isnan(s->flight_long_time))
+            s->flight_long_time = P->fl_t0;
+    }
     /* kept relative, reported as the caller's times (NAN stays NAN) */
     s->overturn_time += e->C.origin;
     s->tip_time += e->C.origin;
     s->uplift_time += e->C.origin;
+    s->flight_long_time += e->C.origin;
     return SW_OK;
 }
 

@@ -111,6 +111,12 @@ struct sw_pkg {
     int beyond_alpha;     /* |theta| >= alpha at the last check */
     double t_lift;        /* s, time of the last uplift */
     int hold;             /* keep the package stuck for one step (see pkg_after_impact) */
+    /* free flight (flight.c): the centre of mass relative to the bed */
+    int flying;          /* in the air since fl_t0 (s) */
+    int fl_up;           /* it has risen clear of its support */
+    double fl_t0;        /* s */
+    double fl_yc;        /* m, height of the centre of mass over the support */
+    double fl_vx, fl_vy; /* m/s, its velocity */
     sw_summary_t sum;
 
     /* stepping (step.c): the scheme's work space for this package */
@@ -334,7 +340,14 @@ struct sw_model_ops {
     /* the modes about rest a fixed step must keep stable (model.h's
      * sw_model_modes): how many into m */
     int (*modes)(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX]);
+    /* g_eff <= 0, the bed falling away faster than gravity: SW_FLIES_CLOSED,
+     * a rigid package flies in closed form (flight.c); SW_FLIES_INTEGRATED,
+     * the model's equations hold with no contact (a cushion's free
+     * flight); 0: outside the model, a fault */
+    int flies;
 };
+
+enum { SW_FLIES_CLOSED = 1, SW_FLIES_INTEGRATED = 2 };
 
 extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
 const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind);
@@ -515,6 +528,14 @@ static inline int sw_event_find(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, c
 /* Polish the event time by re-stepping; the state there in y; its time. */
 double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double h,
                        const double y0[], double tau, double y[]);
+
+/* ---- flight.c: a rigid package in free flight ----------------------------------- */
+
+/* P leaves its support at t (g_eff reached 0), with its momentum. */
+void sw_flight_take_off(sw_ctx_t *C, sw_pkg_t *P, double t);
+/* Advance a flying P toward t1 in closed form: SW_STUCK_STILL (in the
+ * air at t1), SW_STUCK_MOVED (landed, or on its side, at P->t). */
+int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1);
 
 /* ---- pkg.c: one package's phase machine ---------------------------------------- */
 

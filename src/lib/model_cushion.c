@@ -656,4 +656,5 @@ const sw_model_ops_t sw_model_cushion = {
     .probe_margin = 0.9, /* linear only to O(theta^2), and its probe's sampling is capped */
     .rock_linear = cushion_rock_linear,
     .modes = cushion_modes,
+    .flies = SW_FLIES_INTEGRATED,
 };

@@ -265,9 +265,9 @@ static int frame_moving(const sw_pkg_t *P, double rest_eps)
 static inline void rigid_output(const sw_pkg_t *P, sw_model_kind model, double t, sw_output_t *o)
 {
     const double ge_in = sw_input_geff(P, t); /* m/s^2, as the right-hand side sees it */
-    /* Airborne (g + a_z <= 0): the engine has faulted the package and reset
-     * it; its energy bound is judged under nominal gravity, not divided by
-     * a zero or negative barrier. */
+    /* Airborne (g + a_z <= 0): the package flies (flight.c); its energy
+     * bound is judged under nominal gravity, not divided by a zero or
+     * negative barrier. */
     const double ge = ge_in > 0.0 ? ge_in : P->g;
     double cA = cos_alpha(&P->d); /* cos(alpha - |theta|) */
     /* bare: the support is the bed; frame: a_g + u''.  sin and cos of
@@ -280,7 +280,11 @@ static inline void rigid_output(const sw_pkg_t *P, sw_model_kind model, double t
         cA = sth >= 0.0 ? c1 : cos(P->d.alpha + sth);
     }
     o->a_support = o->a_g;
-    if (model == SW_MODEL_FRAME) {
+    if (model == SW_MODEL_FRAME && P->flying) {
+        /* the frame rings on its own: u'' = -(c_b u' + k_b u) / m_b - a_g */
+        const double mb = P->scene.frame_mass; /* kg */
+        o->a_support = -(P->d.c_b * P->y[P->idu] + P->d.k_b * P->y[P->iu]) / mb;
+    } else if (model == SW_MODEL_FRAME) {
         double f[SW_NMAX];
         sw_rigid_rhs_trig(P, SW_MODEL_FRAME, o->a_g, ge_in, P->y, sn, c1, f);
         o->a_support += f[P->idu];
@@ -417,6 +421,7 @@ const sw_model_ops_t sw_model_bare = {
     .lift_level = rigid_lift_level,
     .lift_drive = rigid_lift_drive,
     .modes = bare_modes,
+    .flies = SW_FLIES_CLOSED,
 };
 
 const sw_model_ops_t sw_model_frame = {
@@ -441,4 +446,5 @@ const sw_model_ops_t sw_model_frame = {
     .probe_rates = frame_probe_rates,
     .probe_margin = 0.99, /* linear: sampled to 3e-5 of the peak (sweep.c's pulse_lift) */
     .modes = frame_modes,
+    .flies = SW_FLIES_CLOSED,
 };

@@ -57,6 +57,7 @@ void sw_pkg_rest(sw_pkg_t *P)
 {
     memset(P->y, 0, sizeof P->y);
     P->hold = 0;
+    P->flying = 0;
     P->t_lift = NAN;
     P->phase = SW_PHASE_STUCK;
     P->side = 1;

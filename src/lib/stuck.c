@@ -44,6 +44,11 @@ static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
         }
         if (tu == INFINITY)
             return -1.0;
+        /* the threshold tan(alpha) g_eff reached with g_eff itself at 0:
+         * the bed falls away, the package leaves level (a take-off, the
+         * engine's), it does not tip to a side */
+        if (!(sw_input_geff(P, fmax(t, tu)) > 1e-9 * P->g))
+            return -1.0;
         return fmax(t, tu);
     }
     /* (capped: a scan of more than 1e8 pieces is a caller's absurd
