@@ -123,6 +123,7 @@ static void test_events(void **st)
         {SW_EV_TIP, 0, SW_ALARM_TIP, SW_ALARM_LEVEL_CRITICAL, "corner"},
         {SW_EV_OVERTURN, 0, SW_ALARM_OVERTURNED, SW_ALARM_LEVEL_CRITICAL, "overturned"},
         {SW_EV_FAULT, SW_EFAULT, SW_ALARM_MODEL_FAULT, SW_ALARM_LEVEL_CRITICAL, "model fault"},
+        {SW_EV_FLIGHT, 1.0, SW_ALARM_MODEL_FAULT, SW_ALARM_LEVEL_CRITICAL, "free flight"},
     };
     sw_alarm_watch_t w;
     sink_t s = {.n = 0};

@@ -238,19 +238,27 @@ static void test_short_jolt_keeps_the_overturn(void **state)
 }
 
 /* A flight longer than SW_FLIGHT_LONG leaves the verdict incomplete (its
- * start recorded); on a cushion, whose equations run on in the air, the
- * same. */
+ * start recorded) and is said once, as SW_EV_FLIGHT when it has lasted
+ * SW_FLIGHT_LONG (a monitor raises its alarm then, in the air); on a
+ * cushion, whose equations run on in the air, the same. */
 static void test_long_flight(void **state)
 {
     (void)state;
     const sw_scene_t sc[3] = {tu_bare(2.0, 0.728), tu_frame(2.0, 0.728, 250.0, 5.59, 0.1),
                               tu_cushion(tu_bare(2.0, 0.728), 44.72, 0.05)};
     for (int m = 0; m < 3; m++) {
-        sw_engine_t *e = engine(&sc[m], NULL);
+        tu_events_t *rec = calloc(1, sizeof *rec);
+        assert_non_null(rec);
+        sw_engine_t *e = engine(&sc[m], rec);
         for (int i = 0; i <= 3000; i++) {
             const double t = i * 1e-3;
             sw_engine_push(e, t, 0.0, jolt(t, 1.0, 1.2, -2.0 * 9.81));
         }
+        assert_int_equal(tu_count(rec, SW_EV_FLIGHT), 1);
+        const sw_event_t *fl = tu_first(rec, SW_EV_FLIGHT);
+        tu_near(fl->info, 1.0 + 1e-3 / 2.0, 1e-9);               /* began */
+        tu_near(fl->t, 1.0 + 1e-3 / 2.0 + SW_FLIGHT_LONG, 1e-9); /* said */
+        free(rec);
         sw_summary_t s;
         sw_engine_summary(e, 0, &s);
         print_message("%s: %ld flights, longest %.4f s, from %.4f s\n", sw_model_name(s.model),

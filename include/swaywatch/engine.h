@@ -37,7 +37,10 @@ typedef enum {
     SW_EV_REST = 3,     /* the cascade of impacts ended: stuck again */
     SW_EV_TIP = 4,      /* |theta| reached alpha (centre of mass over the corner) */
     SW_EV_OVERTURN = 5, /* |theta| reached pi/2 */
-    SW_EV_FAULT = 6     /* model fault (info = status code); package reset to rest */
+    SW_EV_FAULT = 6,    /* model fault (info = status code); package reset to rest */
+    SW_EV_FLIGHT = 7    /* in free flight for SW_FLIGHT_LONG already (at t): its landing is
+                           outside the model, the verdict incomplete; info = when the
+                           flight began (s) */
 } sw_event_kind;
 
 /* "uplift", "impact", "rest", "tip", "overturn", "fault" (the events CSV's

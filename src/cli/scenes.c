@@ -113,7 +113,7 @@ const sw_cli_option_t sw_cli_output_options[] = {
              "uplift the direction (+1 top forward), impact theta_dot before it (rad/s), "
              "settling the micro-impacts in the cascade (theta_dot: the fastest), rest 0, tip "
              "+-alpha (rad, its sign the side), overturn theta_dot then (rad/s), fault the "
-             "status code"},
+             "status code, flight when the flight began (s)"},
     {SW_CLI_FLAG, 0, "json", OPTS(json), .value = 1,
      .help = "JSON summary on stdout instead of the human summary"},
     {SW_CLI_FLAG, 'q', "quiet", OPTS(quiet), .value = 1, .help = "no human summary"},

@@ -121,6 +121,14 @@ int sw_alarm_on_event(sw_alarm_watch_t *w, const sw_event_t *ev, sw_alarm_fn emi
             snprintf(text, sizeof text, "model fault: %s; package reset to rest",
                      sw_strerror(isfinite(ev->info) ? (int)ev->info : SW_EFAULT));
             break;
+        case SW_EV_FLIGHT:
+            /* the model cannot say where it lands: fail safe */
+            kind = SW_ALARM_MODEL_FAULT;
+            level = SW_ALARM_LEVEL_CRITICAL;
+            snprintf(text, sizeof text,
+                     "in free flight for over %g s: the landing is outside the model",
+                     SW_FLIGHT_LONG);
+            break;
         default: return 0;
     }
     return emit_alarm(w, kind, level, ev->t, ev->theta, ev->margin, text, emit, user);

@@ -47,6 +47,16 @@ static void corner_to_cm(const sw_pkg_t *P, int s, double theta, double *rx, dou
     *ry = P->d.R * cos(A);
 }
 
+void sw_flight_note(sw_ctx_t *C, sw_pkg_t *P, double dur)
+{
+    if (P->fl_long || !(dur > SW_FLIGHT_LONG))
+        return;
+    P->fl_long = 1;
+    if (isnan(P->sum.flight_long_time))
+        P->sum.flight_long_time = P->fl_t0;
+    sw_pkg_emit_at(C, P, SW_EV_FLIGHT, P->fl_t0 + SW_FLIGHT_LONG, C->origin + P->fl_t0, NULL);
+}
+
 void sw_flight_take_off(sw_ctx_t *C, sw_pkg_t *P, double t)
 {
     const double th = P->y[P->ith], w = P->y[P->idth]; /* rad, rad/s */
@@ -65,6 +75,7 @@ void sw_flight_take_off(sw_ctx_t *C, sw_pkg_t *P, double t)
         P->fl_yc = ry;
     }
     P->flying = 1;
+    P->fl_long = 0;
     P->fl_t0 = t;
     P->fl_up = 0;
     P->sum.flights++;
@@ -147,10 +158,9 @@ static void land(sw_ctx_t *C, sw_pkg_t *P)
     const double t = P->t, th = P->y[P->ith], w = P->y[P->idth];
     const double du = P->iu >= 0 ? P->y[P->idu] : 0.0;
     const double dur = t - P->fl_t0; /* s */
+    sw_flight_note(C, P, dur);
     P->flying = 0;
     P->sum.flight_max = sw_max2(P->sum.flight_max, dur);
-    if (dur > SW_FLIGHT_LONG && isnan(P->sum.flight_long_time))
-        P->sum.flight_long_time = P->fl_t0;
     sw_step_reset(P);
     int s = th > 0.0 ? 1 : th < 0.0 ? -1 : 0;
     double wp = 0.0, du_after = du;
@@ -276,6 +286,7 @@ int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1)
     }
     if (t_over <= H) {
         arc_move(P, &a, t_over);
+        sw_flight_note(C, P, P->t - P->fl_t0);
         P->flying = 0;
         P->sum.flight_max = sw_max2(P->sum.flight_max, P->t - P->fl_t0);
         P->side = a.w > 0.0 ? 1 : -1;

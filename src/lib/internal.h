@@ -113,6 +113,7 @@ struct sw_pkg {
     int hold;             /* keep the package stuck for one step (see pkg_after_impact) */
     /* free flight (flight.c): the centre of mass relative to the bed */
     int flying;          /* in the air since fl_t0 (s) */
+    int fl_long;         /* this flight has lasted SW_FLIGHT_LONG: said (SW_EV_FLIGHT) */
     int fl_up;           /* it has risen clear of its support */
     double fl_t0;        /* s */
     double fl_yc;        /* m, height of the centre of mass over the support */
@@ -533,6 +534,10 @@ double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double
 
 /* P leaves its support at t (g_eff reached 0), with its momentum. */
 void sw_flight_take_off(sw_ctx_t *C, sw_pkg_t *P, double t);
+/* A flight of P (flying since P->fl_t0, or landed after dur s) that has
+ * lasted SW_FLIGHT_LONG: said once, as SW_EV_FLIGHT at fl_t0 +
+ * SW_FLIGHT_LONG, and kept in the summary.  dur: s in the air so far. */
+void sw_flight_note(sw_ctx_t *C, sw_pkg_t *P, double dur);
 /* Advance a flying P toward t1 in closed form: SW_STUCK_STILL (in the
  * air at t1), SW_STUCK_MOVED (landed, or on its side, at P->t). */
 int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1);

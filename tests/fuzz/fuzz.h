@@ -74,7 +74,7 @@ static inline void fz_check_output(const sw_output_t *o)
 
 static inline void fz_check_event(const sw_event_t *ev)
 {
-    FZ_CHECK(ev->kind >= SW_EV_UPLIFT && ev->kind <= SW_EV_FAULT);
+    FZ_CHECK(ev->kind >= SW_EV_UPLIFT && ev->kind <= SW_EV_FLIGHT);
     FZ_CHECK(isfinite(ev->t) && isfinite(ev->theta) && isfinite(ev->theta_dot));
     FZ_CHECK(isfinite(ev->margin) && isfinite(ev->info));
     FZ_CHECK(fabs(ev->theta) <= M_PI_2 + 1e-6);

@@ -13,7 +13,7 @@
 # a forged sample a year ahead; samples stamped INT64_MAX and INT64_MIN; a
 # sensor restart (seq from 0, time 30 s back); a clock step of an hour
 # forward; a flood of 20,000 copies of one sample; a second of vertical
-# acceleration below -1 g (every sample a model fault: an alarm storm); a
+# acceleration below -1 g (the packages fly: a critical alarm each); a
 # 2 s outage.  Meanwhile the monitor gets SIGHUP every 2 s, in turn with an
 # unchanged scene file, a changed bare crate, a broken scene file and a
 # FIFO in place of one, with a stiff cushion (adaptive scheme) beside the
@@ -23,7 +23,7 @@
 #     RESUME samples (default 50: three to confirm, ten to the next state on
 #     the 100 Hz grid, and room for the scheduler);
 #   - no state stops for longer than 2.5 s of wall time outside the outage
-#     and the model-fault second (a blinded monitor is silent for good);
+#     and the second of free fall (a blinded monitor is silent for good);
 #   - every message is accounted for: received = accepted + rejected by
 #     reason (nothing held after the stop), received = published less the
 #     kernel's UDP drops, the refusals by reason those sent (the faults
