@@ -52,7 +52,7 @@ static int finite_state(const sw_pkg_t *P, const double y[])
  * either is a fault, never a hang.  (Longer than 80 lines: the loop is the
  * engine's one control flow, and splitting it would hide the order of its
  * cases.) */
-static void advance_ground(sw_engine_t *e, sw_pkg_t *P, double t1)
+static SW_ALWAYS_INLINE void advance_ground(sw_engine_t *e, sw_pkg_t *P, double t1)
 {
     sw_ctx_t *C = &e->C;
     double y1[SW_NMAX], ys[SW_NMAX];
@@ -533,8 +533,8 @@ int sw_engine_push(sw_engine_t *e, double t_abs, double a_g, double a_z)
     if (!e)
         return SW_EINVAL;
     const int rc = push(e, t_abs, a_g, a_z);
-    if (rc >= 0 && e->check)
-        push(e->check, t_abs, a_g, a_z);
+    if (rc >= 0 && e->check) /* through the API: push() stays inlined here */
+        sw_engine_push(e->check, t_abs, a_g, a_z);
     return rc;
 }
 
