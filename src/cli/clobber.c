@@ -10,6 +10,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "lcmurl.h"
+
 /* Symbolic links followed at most (as the kernel's ELOOP limit). */
 #define MAX_LINKS 40
 
@@ -155,18 +157,8 @@ int sw_cli_check_run_files(const char *log, const sw_cli_list_t *scenes, const s
 
 const char *sw_cli_lcm_url_output(const char *url, char *buf, size_t len)
 {
-    if (!url || strncmp(url, "file://", 7) != 0)
+    url = sw_cli_lcm_url_effective(url);
+    if (sw_cli_lcm_url_file(url, buf, len) != SW_CLI_URL_WRITES || !buf[0])
         return NULL;
-    const char *path = url + 7;
-    const char *q = strchr(path, '?');
-    int writes = 0;
-    for (const char *o = q ? q + 1 : ""; *o; o += strcspn(o, "&"), o += *o == '&')
-        if (!strncmp(o, "mode=", 5))
-            writes = o[5] == 'w' || o[5] == 'a';
-    size_t n = q ? (size_t)(q - path) : strlen(path);
-    if (!writes || n == 0 || n >= len)
-        return NULL;
-    memcpy(buf, path, n);
-    buf[n] = '\0';
     return buf;
 }

@@ -35,8 +35,10 @@ int sw_cli_check_files(const sw_cli_file_t *in, size_t nin, const sw_cli_file_t 
 int sw_cli_check_run_files(const char *log, const sw_cli_list_t *scenes, const sw_cli_file_t *out,
                            size_t nout);
 
-/* The file an LCM URL makes LCM write (file://PATH?mode=w or mode=a), in
- * buf; NULL if url writes no file (or buf is too small). */
+/* The file an LCM URL makes LCM write (file://PATH?mode=w or mode=a, its
+ * options read as liblcm reads them: lcmurl.h), in buf; NULL if url
+ * writes no file (or buf is too small).  url NULL or "": $LCM_DEFAULT_URL,
+ * as LCM does. */
 const char *sw_cli_lcm_url_output(const char *url, char *buf, size_t len);
 
 #endif

@@ -26,6 +26,7 @@
 #include "cost.h"
 #include "figure.h"
 #include "interrupt.h"
+#include "lcmurl.h"
 #include "replay.h"
 #include "source.h"
 
@@ -169,6 +170,16 @@ static int publish(replay_t *r)
     r->pacer.stop = &sw_cli_signal;
     if (!r->ro.publish_url)
         return SW_EXIT_OK;
+    /* LCM's file provider reads a log unless told to write one: nothing
+     * could be published, and a damaged log would crash its reader. */
+    if (sw_cli_lcm_url_file(sw_cli_lcm_url_effective(r->ro.publish_url), NULL, 0) ==
+        SW_CLI_URL_READS) {
+        sw_cli_error(
+            "--publish %s: LCM reads that file instead of writing it (as liblcm reads the "
+            "URL: its last mode= decides); add ?mode=w to write a log",
+            r->ro.publish_url);
+        return SW_EXIT_USAGE;
+    }
     r->lcm = lcm_create(r->ro.publish_url);
     if (!r->lcm) {
         sw_cli_error("--publish: cannot set up LCM with '%s'", r->ro.publish_url);

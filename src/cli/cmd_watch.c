@@ -41,6 +41,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "lcmlog.h"
 #include "monitor.h"
 #include "opts.h"
 #include "watch.h"
@@ -283,6 +284,10 @@ int cmd_watch(int argc, char **argv)
     w->nscenes = n;
     w->start = w->win_start = sw_watch_mono_now();
     w->rate = w->lag = NAN;
+    /* A file:// URL: LCM's reader trusts the log, ours checks it first. */
+    if ((rc = sw_cli_check_lcm_url("watch", o.url)) != SW_EXIT_OK)
+        goto out;
+    rc = SW_EXIT_IO;
     if (!(lcm = lcm_create(o.url))) {
         sw_cli_error("watch: cannot set up LCM with %s (udpm needs a route for 224.0.0.0/4)",
                      o.url && o.url[0] ? o.url : "the default URL");

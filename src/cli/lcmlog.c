@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "lcmurl.h"
 #include "monitor.h"
 
 void sw_cli_print_region(void *user, const sw_lcmlog_region_t *r)
@@ -35,44 +36,20 @@ void sw_cli_regions_summary(const sw_cli_regions_t *r)
         sw_cli_error("%s: ... %ld more corrupted regions", r->name, r->seen - r->printed);
 }
 
-/* The path of a file:// URL LCM would read (mode r, its default), in a
- * new string; NULL if url is not one (or out of memory: then *oom). */
-static char *file_url_path(const char *url, int *oom)
-{
-    *oom = 0;
-    if (strncmp(url, "file://", 7) != 0)
-        return NULL;
-    const char *path = url + 7;
-    const char *q = strchr(path, '?');
-    if (q) {
-        /* options: mode=w or mode=a write a log, nothing is read */
-        for (const char *o = q + 1; *o; o += strcspn(o, "&"), o += *o == '&')
-            if (!strncmp(o, "mode=", 5) && o[5] != 'r')
-                return NULL;
-    }
-    size_t len = q ? (size_t)(q - path) : strlen(path);
-    char *p = malloc(len + 1);
-    if (!p) {
-        *oom = 1;
-        return NULL;
-    }
-    memcpy(p, path, len);
-    p[len] = '\0';
-    return p;
-}
-
 int sw_cli_check_lcm_url(const char *cmd, const char *url)
 {
-    if (!url || !url[0])
-        url = getenv("LCM_DEFAULT_URL");
+    url = sw_cli_lcm_url_effective(url);
     if (!url)
         return SW_EXIT_OK;
-    int oom;
-    char *path = file_url_path(url, &oom);
+    /* The path as liblcm takes it: the same options, the last of each. */
+    char *path = malloc(strlen(url) + 1);
     if (!path) {
-        if (oom)
-            sw_cli_error("out of memory");
-        return oom ? SW_EXIT_IO : SW_EXIT_OK;
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    if (sw_cli_lcm_url_file(url, path, strlen(url) + 1) != SW_CLI_URL_READS) {
+        free(path);
+        return SW_EXIT_OK;
     }
     int rc = SW_EXIT_IO;
     sw_lcmlog_t *log = NULL;
