@@ -13,9 +13,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "batch_int.h"
+#include "clobber.h"
 #include "output.h"
 
 /* ---- records -------------------------------------------------------------------- */
@@ -76,37 +76,34 @@ static int is_stdout(const char *path)
     return !path || !strcmp(path, "-");
 }
 
+/* The rules of every command (clobber.h): no output is a log, the
+ * manifest or a scene of any line, and --out and --csv are two files
+ * (also when one is named ./x and the other x). */
 static int check_outputs(const batch_t *B)
 {
     if (B->b.csv && is_stdout(B->b.out) && is_stdout(B->b.csv)) {
         sw_cli_error("--csv -: standard output already carries the records (give --out a file)");
         return SW_EXIT_USAGE;
     }
-    struct stat a, b;
-    if (B->b.csv && !is_stdout(B->b.out) && !is_stdout(B->b.csv) &&
-        (!strcmp(B->b.out, B->b.csv) || (stat(B->b.out, &a) == 0 && stat(B->b.csv, &b) == 0 &&
-                                         a.st_dev == b.st_dev && a.st_ino == b.st_ino))) {
-        sw_cli_error("--out and --csv name the same file '%s'", B->b.out);
-        return SW_EXIT_USAGE;
+    const sw_cli_file_t out[] = {{"--out", is_stdout(B->b.out) ? NULL : B->b.out},
+                                 {"--csv", B->b.csv}};
+    size_t nin = 1 + B->n;
+    for (size_t k = 0; k < B->nsets; k++) nin += B->job->common(B->sets[k].opts)->scenes.n;
+    sw_cli_file_t *in = calloc(nin, sizeof *in);
+    if (!in) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
     }
-    /* an output that is an input would be truncated before it is read */
-    const char *outs[2] = {is_stdout(B->b.out) ? NULL : B->b.out,
-                           B->b.csv && !is_stdout(B->b.csv) ? B->b.csv : NULL};
-    for (int k = 0; k < 2; k++) {
-        if (!outs[k] || stat(outs[k], &a) != 0)
-            continue;
-        if (B->b.manifest && strcmp(B->b.manifest, "-") && stat(B->b.manifest, &b) == 0 &&
-            a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
-            sw_cli_error("--%s %s: that is the manifest", k ? "csv" : "out", outs[k]);
-            return SW_EXIT_USAGE;
-        }
-        for (size_t i = 0; i < B->n; i++)
-            if (stat(B->items[i].log, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
-                sw_cli_error("--%s %s: that is a log of the batch", k ? "csv" : "out", outs[k]);
-                return SW_EXIT_USAGE;
-            }
+    size_t m = 0;
+    in[m++] = (sw_cli_file_t){"--manifest", B->b.manifest};
+    for (size_t i = 0; i < B->n; i++) in[m++] = (sw_cli_file_t){"LOG", B->items[i].log};
+    for (size_t k = 0; k < B->nsets; k++) {
+        const sw_cli_list_t *sc = &B->job->common(B->sets[k].opts)->scenes;
+        for (size_t i = 0; i < sc->n; i++) in[m++] = (sw_cli_file_t){"--scene", sc->v[i]};
     }
-    return SW_EXIT_OK;
+    const int rc = sw_cli_check_files(in, m, out, sizeof out / sizeof out[0]);
+    free(in);
+    return rc;
 }
 
 static int open_outputs(batch_t *B)

@@ -99,6 +99,8 @@ static const char *kind(const sw_cli_file_t *in)
         return "the log being read";
     if (!strcmp(in->what, "--scene"))
         return "a scene file being read";
+    if (!strcmp(in->what, "--manifest"))
+        return "the manifest being read";
     return "an input being read";
 }
 

@@ -99,6 +99,41 @@ refused "boundary --detail X --islands X" "--detail keep.csv and --islands keep.
     "same file" "$SW" boundary -s s.ini --pulse half-sine --omega-ratio 2 --out new.csv \
     --detail keep.csv --islands keep.csv
 
+# batch: the same rules (logs, scenes of the command line and of a
+# manifest line, the manifest; --out and --csv apart)
+printf '%s\n' log.csv >man.txt
+cp man.txt man.orig
+cp s.ini line.ini
+cp s.ini line.orig
+printf 'log.csv --scene line.ini\n' >man2.txt
+refused "batch -o SCENE" "--out s.ini: that is a scene file being read" "(--scene s.ini)" \
+    "$SW" batch log.csv -s s.ini -o s.ini
+refused "batch --csv symlink to SCENE" "--csv sym.ini: that is a scene file being read" \
+    "(--scene s.ini)" "$SW" batch log.csv -s s.ini -o new.jsonl --csv sym.ini
+refused "batch -o a manifest line's scene" "--out line.ini: that is a scene file being read" \
+    "(--scene line.ini)" "$SW" batch -s s.ini --manifest man2.txt -o line.ini
+cmp -s line.ini line.orig || fail "batch: a manifest line's scene changed"
+refused "batch -o LOG" "--out log.csv: that is the log being read" "(LOG log.csv)" \
+    "$SW" batch log.csv -s s.ini -o log.csv
+refused "batch --csv hard link to LOG" "--csv hard.csv: that is the log being read" \
+    "(LOG log.csv)" "$SW" batch log.csv -s s.ini --csv hard.csv -o new.jsonl
+refused "batch -o the manifest" "--out man.txt: that is the manifest being read" \
+    "(--manifest man.txt)" "$SW" batch -s s.ini --manifest man.txt -o man.txt
+cmp -s man.txt man.orig || fail "batch: the manifest changed"
+refused "batch -o ./new --csv new" "--out ./new.csv and --csv new.csv name the same file" \
+    "one would overwrite the other" "$SW" batch log.csv -s s.ini -o ./new.csv --csv new.csv
+[ ! -e new.csv ] || fail "batch -o ./new --csv new: a file was written"
+refused "batch -o X --csv X" "--out keep.csv and --csv keep.csv name the same file" \
+    "keep.csv" "$SW" batch log.csv -s s.ini -o keep.csv --csv keep.csv
+refused "batch -o dangling link --csv its target" \
+    "--out dangling.csv and --csv new.csv name the same file" "new.csv" \
+    "$SW" batch log.csv -s s.ini -o dangling.csv --csv new.csv
+run "$SW" batch log.csv -s s.ini -o a.jsonl --csv b.csv -q
+expect_rc 0 "batch with distinct outputs"
+python3 -c 'import json,sys; [json.loads(l) for l in open("a.jsonl")]' ||
+    fail "batch: the JSON Lines are not whole"
+head -1 b.csv | grep -q '^index,line,log,' || fail "batch: the CSV table has no header"
+
 # Different files are still fine.
 run "$SW" replay log.csv -s s.ini --out a.csv --events b.csv -q
 expect_rc 0 "replay with distinct outputs"
