@@ -10,6 +10,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "text.h"
+
 int sw_cli_stderr_is_journal(void)
 {
     static int known, journal;
@@ -60,12 +62,15 @@ void sw_cli_iso_time(char *buf, size_t len, int64_t us)
     snprintf(buf, len, "%s.%03dZ", date, (int)(rem / 1000));
 }
 
-/* s into dst (cap bytes, NUL-terminated), '"' replaced by '\''. */
+/* s into dst (cap bytes, NUL-terminated) for a line on a terminal or in
+ * the journal: control characters and bytes that are not UTF-8 as '?'
+ * (text.h), '"' replaced by '\''. */
 static void clean(char *dst, size_t cap, const char *s)
 {
-    size_t i = 0;
-    for (; s && s[i] && i + 1 < cap; i++) dst[i] = s[i] == '"' ? '\'' : s[i];
-    dst[i] = '\0';
+    sw_cli_term_text(dst, cap, s ? s : "", s ? strlen(s) : 0);
+    for (char *p = dst; *p; p++)
+        if (*p == '"')
+            *p = '\'';
 }
 
 size_t sw_cli_alarm_format(char *buf, size_t len, const sw_cli_alarm_line_t *a)

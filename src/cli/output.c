@@ -71,21 +71,6 @@ int sw_cli_check_outputs(const char *out_path, const char *events_path, FILE *in
 
 /* ---- CSV writers ------------------------------------------------------------ */
 
-void sw_cli_csv_text(FILE *f, const char *s)
-{
-    if (!strpbrk(s, ",;\t\"\r\n")) {
-        fputs(s, f);
-        return;
-    }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 /* A number field preceded by a comma; non-finite values stay empty. */
 static void csv_num(FILE *f, double v, long *nonfinite)
 {

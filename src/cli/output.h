@@ -7,6 +7,7 @@
 
 #include "cli.h"
 #include "unused.h"
+#include "text.h"
 
 /* Derived quantities of every package (--verbose), on f. */
 void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scenes, size_t n);
@@ -49,8 +50,6 @@ typedef struct {
 int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const sw_scene_t *scenes,
                        size_t n);
 void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *out);
-/* A CSV text field, quoted only when it has to be (RFC 4180). */
-void sw_cli_csv_text(FILE *f, const char *s);
 /* Flush and close; returns SW_EXIT_OK or SW_EXIT_IO (reported). */
 int sw_cli_states_close(sw_cli_states_t *w);
 
@@ -169,8 +168,6 @@ void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br);
 int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
                         const char *br);
 
-/* s as a JSON string literal (quotes included). */
-void sw_cli_json_string(FILE *f, const char *s);
 /* v as a JSON number, or null: JSON has no NaN or infinity. */
 void sw_cli_json_num(FILE *f, double v);
 

@@ -479,27 +479,6 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
     }
 }
 
-void sw_cli_json_string(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        switch (*p) {
-            case '"': fputs("\\\"", f); break;
-            case '\\': fputs("\\\\", f); break;
-            case '\n': fputs("\\n", f); break;
-            case '\r': fputs("\\r", f); break;
-            case '\t': fputs("\\t", f); break;
-            default:
-                /* Other control characters escaped; bytes >= 0x80 pass as UTF-8. */
-                if (*p < 0x20)
-                    fprintf(f, "\\u%04x", *p);
-                else
-                    fputc(*p, f);
-        }
-    }
-    fputc('"', f);
-}
-
 void sw_cli_json_num(FILE *f, double v)
 {
     if (isfinite(v))

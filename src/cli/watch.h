@@ -98,8 +98,10 @@ typedef struct {
 double sw_watch_mono_now(void);
 /* us since the epoch, this computer's clock. */
 int64_t sw_watch_wall_now_us(void);
-/* An int8_t[cap] text of a message as a C string: NUL-terminated, control
- * characters as '?'. */
+/* An int8_t[cap] text of a message as a C string for a terminal (at most
+ * cap bytes with the NUL): control characters (C0, DEL and C1, which a
+ * terminal reads as escape sequences) and bytes that are not UTF-8 as
+ * '?' (text.h). */
 void sw_watch_msg_text(char *dst, const int8_t *src, size_t cap);
 
 /* Subscribe w to the state and alarm channels of its options; SW_EXIT_*

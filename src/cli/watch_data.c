@@ -14,6 +14,7 @@
 
 #include "monitor.h"
 #include "opts.h"
+#include "text.h"
 #include "watch.h"
 
 double sw_watch_mono_now(void)
@@ -32,12 +33,7 @@ int64_t sw_watch_wall_now_us(void)
  * characters as '?'. */
 void sw_watch_msg_text(char *dst, const int8_t *src, size_t cap)
 {
-    size_t i = 0;
-    for (; i + 1 < cap && src[i]; i++) {
-        unsigned char c = (unsigned char)src[i];
-        dst[i] = c < 0x20 || c == 0x7f ? '?' : (char)c;
-    }
-    dst[i] = '\0';
+    sw_cli_term_text(dst, cap, (const char *)src, cap);
 }
 
 /* Messages lost between last and seq (the publisher's counter); a seq at or

@@ -13,6 +13,7 @@
 
 #include "journal.h"
 #include "opts.h"
+#include "text.h"
 #include "watch.h"
 
 /* ---- the view as lines of text ------------------------------------------------ */
@@ -33,10 +34,15 @@ static void add(view_t *v, int attr, const char *fmt, ...)
 {
     if (v->n >= v->rows || v->n >= MAX_ROWS)
         return;
+    char full[2 * MAX_COLS + 1];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(v->line[v->n], (size_t)v->width + 1, fmt, ap);
+    vsnprintf(full, sizeof full, fmt, ap);
     va_end(ap);
+    /* cut to the room there is, never inside a character */
+    const size_t k = sw_cli_utf8_fit(full, (size_t)v->width);
+    memcpy(v->line[v->n], full, k);
+    v->line[v->n][k] = '\0';
     v->attr[v->n++] = attr;
 }
 
@@ -165,7 +171,7 @@ static void table_row(view_t *v, int attr, const layout_t *l, const char *name, 
                       const char *margin, const char *reserve, const char *rate)
 {
     char row[MAX_COLS + 1];
-    int k = snprintf(row, sizeof row, "%-16.16s ", name);
+    int k = snprintf(row, sizeof row, "%-16.*s ", (int)sw_cli_utf8_fit(name, 16), name);
     if (l->model)
         k += snprintf(row + k, sizeof row - (size_t)k, "%-7.7s ", model);
     k += snprintf(row + k, sizeof row - (size_t)k, "%-10.10s %-*s %5s", phase, l->bar, bar_, ratio);
@@ -238,8 +244,9 @@ static void view_alarms(view_t *v, const watch_t *w)
             lv >= SWAYWATCH_ALARM_T_LEVEL_CRITICAL ? ATTR_CRIT
             : lv == SWAYWATCH_ALARM_T_LEVEL_WARN   ? ATTR_WARN
                                                    : ATTR_NONE,
-            "%s %-8s %-16.16s %-14s %s%s", when + 11, sw_alarm_level_name((sw_alarm_level)lv),
-            name[0] ? name : "-", sw_alarm_kind_name((sw_alarm_kind)e->a.kind), text, nums);
+            "%s %-8s %-16.*s %-14s %s%s", when + 11, sw_alarm_level_name((sw_alarm_level)lv),
+            (int)sw_cli_utf8_fit(name[0] ? name : "-", 16), name[0] ? name : "-",
+            sw_alarm_kind_name((sw_alarm_kind)e->a.kind), text, nums);
     }
     if (!w->ring_n)
         add(v, ATTR_NONE, "(none)");

@@ -1,0 +1,48 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* text.h - text the command writes for other programs to parse or for
+ * people to read on a terminal: JSON strings, CSV cells, lines shown by
+ * watch.  A name comes from anywhere (a file name, a scene, a message off
+ * the bus) and may hold any byte; what is written stays valid whatever it
+ * holds, and every writer of such text goes through here.
+ *
+ * UTF-8 is checked as Unicode defines it (The Unicode Standard, table 3-7
+ * "Well-Formed UTF-8 Byte Sequences": no overlong forms, no surrogates,
+ * nothing above U+10FFFF).  An ill-formed sequence counts as one error per
+ * maximal subpart (section 3.9, "U+FFFD Substitution of Maximal
+ * Subparts"), as Python's and the WHATWG decoders count them. */
+#ifndef SWAYWATCH_CLI_TEXT_H
+#define SWAYWATCH_CLI_TEXT_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+/* The character at s (n > 0 bytes there): 1 and its length in *len, with
+ * its code point in *cp; or 0 when s starts an ill-formed sequence, its
+ * maximal subpart *len bytes long (at least 1). */
+int sw_cli_utf8_next(const unsigned char *s, size_t n, size_t *len, uint32_t *cp);
+
+/* s as a JSON string literal, quotes included (RFC 8259): '"' and '\'
+ * escaped, control characters as \n, \r, \t or \u00XX, well-formed UTF-8
+ * as it is, each ill-formed subpart as \ufffd (the replacement character):
+ * the output is valid JSON and valid UTF-8 whatever s holds. */
+void sw_cli_json_string(FILE *f, const char *s);
+
+/* s as a CSV text cell (RFC 4180): quoted only when it has to be.  A cell
+ * that begins with '=', '+', '-', '@', a tab or a carriage return gets a
+ * leading "'", so that no spreadsheet reads it as a formula (OWASP, "CSV
+ * injection").  For text only: numbers are written as numbers. */
+void sw_cli_csv_text(FILE *f, const char *s);
+
+/* n bytes of src (up to its first NUL) as a line for a terminal, into dst
+ * (cap > 0 bytes, NUL-terminated, cut at a character): well-formed UTF-8
+ * as it is, but each control character (C0, DEL, C1: U+0080 to U+009F,
+ * which a terminal reads as CSI, OSC and the like) and each ill-formed
+ * subpart as '?'.  Returns the '?' put in. */
+size_t sw_cli_term_text(char *dst, size_t cap, const char *src, size_t n);
+
+/* The longest prefix of s (a C string) of at most max bytes that does not
+ * end inside a character: where to cut s to fit max bytes. */
+size_t sw_cli_utf8_fit(const char *s, size_t max);
+
+#endif
