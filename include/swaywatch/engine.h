@@ -15,6 +15,7 @@
 #ifndef SWAYWATCH_ENGINE_H
 #define SWAYWATCH_ENGINE_H
 
+#include <signal.h>
 #include <stddef.h>
 
 #include "export.h"
@@ -197,9 +198,16 @@ SW_API int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *
 SW_API double sw_input_zero(void *user, double t);
 
 /* End of stream: with settle > 0, continue with zero input for up to settle
- * seconds or until every package is at rest or overturned.  Returns SW_OK or
- * SW_EVENT. */
+ * seconds or until every package is at rest or overturned, or until the
+ * stop flag (sw_engine_set_stop) is set.  Returns SW_OK or SW_EVENT. */
 SW_API int sw_engine_finish(sw_engine_t *e, double settle);
+
+/* A flag of the caller's that ends sw_engine_finish() early: once *stop
+ * is non-zero, the free motion ends after the millisecond of it being
+ * computed (its states reported whole), so a long settle cannot outlast
+ * a signal.  The engine only reads it (a signal handler may set it).
+ * NULL, the default: nothing ends it early. */
+SW_API void sw_engine_set_stop(sw_engine_t *e, const volatile sig_atomic_t *stop);
 
 /* Replace a package's state at the current time (tests, what-if runs). */
 SW_API int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s);

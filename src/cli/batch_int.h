@@ -62,6 +62,7 @@ typedef struct {
     /* outputs (rank 0) */
     FILE *out, *csv;
     long ok, failed, records;
+    long cut;       /* logs a signal stopped: no record */
     int overturned; /* a log's job gave 1 (--fail-on-overturn) */
     int write_failed;
     long *by_rank; /* logs each rank ran */

@@ -16,6 +16,7 @@
 
 #include "batch_int.h"
 #include "clobber.h"
+#include "interrupt.h"
 #include "output.h"
 
 /* ---- records -------------------------------------------------------------------- */
@@ -138,6 +139,10 @@ static void run_item(void *user, size_t i, FILE *out)
         sw_cli_error("%s: out of memory", it->log);
         rc = SW_EXIT_IO;
     }
+    if (sw_cli_signal) { /* the run may have been cut short: no record from it */
+        sw_cli_error("%s: interrupted by %s", it->log, sw_cli_signal_name(sw_cli_signal));
+        rc = 128 + sw_cli_signal;
+    }
     const int good = rc == SW_EXIT_OK || rc == SW_EXIT_OVERTURNED;
     fprintf(out, "%d %ld\n", rc, good ? rec.n : 0L);
     if (good)
@@ -218,6 +223,10 @@ static int take_item(void *user, size_t i, const char *data, size_t len, const c
     p = memchr(p, '\n', len);
     p = p ? p + 1 : end;
     const int good = rc == SW_EXIT_OK || rc == SW_EXIT_OVERTURNED;
+    if (rc > 128 && sw_cli_signal) {
+        B->cut++; /* this process is stopping: a log not done has no record */
+        return 0;
+    }
     if (!B->b.quiet && mlen)
         fwrite(msgs, 1, mlen, stderr);
     if (good) {
@@ -272,6 +281,26 @@ static int take_item(void *user, size_t i, const char *data, size_t len, const c
 
 /* ---- the run -------------------------------------------------------------------- */
 
+/* A signal stopped the farm (rank 0): the records of the logs done are
+ * written, whole, the outputs closed, and the process ends at once (jobs
+ * still running on other threads and ranks are not waited for) with 128 +
+ * the signal. */
+static void interrupted(batch_t *B)
+{
+    const int code = sw_cli_interrupt_code();
+    int rc = B->out ? sw_cli_out_close(B->out, B->b.out ? B->b.out : "-") : SW_EXIT_OK;
+    const int rc2 = B->csv ? sw_cli_out_close(B->csv, B->b.csv) : SW_EXIT_OK;
+    B->out = B->csv = NULL;
+    const long done = B->ok + B->failed;
+    sw_cli_error(
+        "batch: interrupted by %s: %ld of %zu logs done, their %ld record%s written whole to "
+        "%s%s%s; the other %zu logs have no record",
+        sw_cli_signal_name(sw_cli_signal), done, B->n, B->records, B->records == 1 ? "" : "s",
+        sw_cli_out_name(B->b.out ? B->b.out : "-"), B->b.csv ? " and " : "",
+        B->b.csv ? sw_cli_out_name(B->b.csv) : "", B->n - (size_t)done);
+    sw_cli_world_exit(&B->world, rc != SW_EXIT_OK || rc2 != SW_EXIT_OK ? SW_EXIT_IO : code);
+}
+
 int sw_batch_run(batch_t *B)
 {
     int rc = SW_EXIT_OK;
@@ -293,8 +322,11 @@ int sw_batch_run(batch_t *B)
         .take = take_item,
         .user = B,
         .what = B->b.progress ? "logs" : NULL,
+        .stop = &sw_cli_signal,
     };
     rc = sw_cli_farm_run(&farm);
+    if (rc == SW_CLI_FARM_INTERRUPTED)
+        interrupted(B); /* does not return */
     if (B->world.rank != 0)
         return rc;
     int rc2 = B->out ? sw_cli_out_close(B->out, B->b.out ? B->b.out : "-") : SW_EXIT_OK;

@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 
 #include "batch_int.h"
+#include "interrupt.h"
 
 /* The messages printed while f ran, each line again as
  * "swaywatch: WHERE: message". */
@@ -208,6 +209,11 @@ static int collect(batch_t *B)
             return rc;
     for (size_t i = 0; i < B->man.n; i++) {
         const sw_cli_manifest_line_t *L = &B->man.v[i];
+        if (sw_cli_signal) { /* a long manifest: nothing is written yet */
+            sw_cli_error("batch: interrupted by %s while reading the manifest; nothing written",
+                         sw_cli_signal_name(sw_cli_signal));
+            return sw_cli_interrupt_code();
+        }
         if ((rc = set_for(B, L, &set)) != SW_EXIT_OK ||
             (rc = add_item(B, L->log, L->line, set, cap)) != SW_EXIT_OK)
             return rc;

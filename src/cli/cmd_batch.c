@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "batch_int.h"
+#include "interrupt.h"
 #include "output.h"
 
 /* ---- the jobs ------------------------------------------------------------------- */
@@ -100,7 +101,8 @@ const sw_cli_command_t sw_batch_cmd = {
         "verdict is incomplete (its records' status: a gap or restart over motion), and\n"
         "--fail-on-overturn was given, 2 bad usage or input (options, manifest, scene\n"
         "files), 3 an output or the manifest could not be written or read, 4 some logs\n"
-        "failed: their records say why, the others are done.\n",
+        "failed: their records say why, the others are done, 130 or 143 stopped by SIGINT\n"
+        "or SIGTERM: the logs done have their records, whole; the others have none.\n",
 };
 
 /* ---- the command -------------------------------------------------------------------- */
@@ -149,6 +151,12 @@ int cmd_batch(int argc, char **argv)
     int rc = sw_cli_world_start(&B.world);
     if (rc != SW_EXIT_OK)
         return rc;
+    /* SIGINT, SIGTERM: the logs done get their records, whole, and the
+     * batch ends within a second (batch_out.c); never from inside a
+     * job's search. */
+    if ((rc = sw_cli_interrupt_install()) != SW_EXIT_OK)
+        return sw_cli_world_end(&B.world, rc);
+    sw_cli_interrupt_deferred();
     /* The other ranks set up as rank 0 does, and keep their messages to
      * themselves unless they alone fail. */
     char *msgs = NULL;

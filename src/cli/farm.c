@@ -63,6 +63,13 @@ int sw_cli_world_end(sw_cli_world_t *w, int rc)
     (void)w;
     return rc;
 }
+
+void sw_cli_world_exit(const sw_cli_world_t *w, int code)
+{
+    (void)w;
+    fflush(stderr);
+    _exit(code);
+}
 #endif
 
 int sw_cli_threads(const sw_cli_world_t *w, long n)
@@ -114,9 +121,15 @@ oom:
     return -1;
 }
 
+/* The farm's stop flag (a signal) is set. */
+static int stopped(const sw_farm_t *st)
+{
+    return st->f->stop && *st->f->stop;
+}
+
 int sw_farm_next(sw_farm_t *st, size_t *i)
 {
-    if (st->stop || st->next >= st->f->n)
+    if (st->stop || stopped(st) || st->next >= st->f->n)
         return 0;
     *i = st->order[st->next++];
     return 1;
@@ -293,6 +306,25 @@ static int gather(sw_farm_t *st, pool_arg_t *pa)
             pthread_cond_broadcast(&st->cv);
             break;
         }
+        if (stopped(st)) {
+            /* a signal: no new job; what is in is handed over, in order
+             * with gaps, and the jobs still running are not waited for */
+            st->stop = st->interrupted = 1;
+            pthread_cond_broadcast(&st->cv);
+            for (; emitted < f->n && rc == SW_EXIT_OK; emitted++) {
+                if (!st->res[emitted].ready)
+                    continue;
+                sw_farm_result_t r = st->res[emitted];
+                memset(&st->res[emitted], 0, sizeof r);
+                pthread_mutex_unlock(&st->mu);
+                if (f->take(f->user, emitted, r.data, r.len, r.msgs, r.mlen) != 0)
+                    rc = SW_EXIT_IO;
+                free(r.data);
+                free(r.msgs);
+                pthread_mutex_lock(&st->mu);
+            }
+            break;
+        }
         if (f->what && (moved || st->arrived != shown)) {
             shown = st->arrived;
             progress_line(st, shown);
@@ -317,95 +349,107 @@ static int gather(sw_farm_t *st, pool_arg_t *pa)
     pthread_mutex_unlock(&st->mu);
     if (f->what && shown != (size_t)-1)
         fputc('\n', stderr);
-    return rc;
+    return rc == SW_EXIT_OK && st->interrupted ? SW_CLI_FARM_INTERRUPTED : rc;
 }
 
 /* ---- the farm ---------------------------------------------------------------------------- */
 
 int sw_cli_farm_run(const sw_cli_farm_t *f)
 {
-    sw_farm_t st;
-    memset(&st, 0, sizeof st);
-    st.f = f;
-    pthread_mutex_init(&st.mu, NULL);
-    pthread_cond_init(&st.cv, NULL);
+    /* On the heap: after a signal the farm returns while jobs still run
+     * and use it (the caller then ends the process). */
+    sw_farm_t *st = calloc(1, sizeof *st);
+    pool_arg_t *pa = calloc(1, sizeof *pa);
+    if (!st || !pa) {
+        free(st);
+        free(pa);
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    st->f = f;
+    pthread_mutex_init(&st->mu, NULL);
+    pthread_cond_init(&st->cv, NULL);
     const int root = f->world->rank == 0;
     int rc = SW_EXIT_OK;
     if (root) {
-        st.order = calloc(f->n ? f->n : 1, sizeof *st.order);
-        st.res = calloc(f->n ? f->n : 1, sizeof *st.res);
-        if (!st.order || !st.res)
-            st.oom = 1;
+        st->order = calloc(f->n ? f->n : 1, sizeof *st->order);
+        st->res = calloc(f->n ? f->n : 1, sizeof *st->res);
+        if (!st->order || !st->res)
+            st->oom = 1;
     } else {
-        st.qcap = (size_t)f->threads + 1;
-        st.queue = calloc(st.qcap, sizeof *st.queue);
-        if (!st.queue)
-            st.oom = 1;
+        st->qcap = (size_t)f->threads + 1;
+        st->queue = calloc(st->qcap, sizeof *st->queue);
+        if (!st->queue)
+            st->oom = 1;
     }
-    if (st.oom) {
+    if (st->oom) {
         sw_cli_error("out of memory");
         rc = SW_EXIT_IO;
         goto out;
     }
     if (root)
-        make_order(&st);
+        make_order(st);
     if (root && f->by_rank)
         memset(f->by_rank, 0, (size_t)f->world->size * sizeof *f->by_rank);
 
-    pool_arg_t pa = {.st = &st, .job = job_rank0};
+    *pa = (pool_arg_t){.st = st, .job = job_rank0};
 #ifdef SW_HAVE_MPI
     if (!root)
-        pa.job = job_remote;
+        pa->job = job_remote;
 #endif
     pthread_t helper;
-    const int threaded = pthread_create(&helper, NULL, pool, &pa) == 0;
+    const int threaded = pthread_create(&helper, NULL, pool, pa) == 0;
     if (!threaded) {
         if (f->world->size > 1) {
             sw_cli_error("cannot start a thread: %s", strerror(errno));
             rc = SW_EXIT_IO;
             goto out;
         }
-        pool(&pa); /* one process: run everything here, then hand it over */
+        pool(pa); /* one process: run everything here, then hand it over */
     }
     if (root)
-        rc = gather(&st, &pa);
+        rc = gather(st, pa);
 #ifdef SW_HAVE_MPI
     else
-        sw_farm_mpi_worker(&st);
+        sw_farm_mpi_worker(st);
 #endif
+    if (rc == SW_CLI_FARM_INTERRUPTED)
+        return rc; /* st and pa stay: jobs may be running */
 #ifdef SW_HAVE_MPI
     /* The other ranks wait for work or answers that will not come. */
-    if (f->world->size > 1 && (rc != SW_EXIT_OK || st.oom))
-        sw_farm_mpi_abort(st.oom ? "out of memory" : "the results cannot be written", SW_EXIT_IO);
+    if (f->world->size > 1 && (rc != SW_EXIT_OK || st->oom))
+        sw_farm_mpi_abort(st->oom ? "out of memory" : "the results cannot be written", SW_EXIT_IO);
 #endif
     if (threaded) {
-        pthread_mutex_lock(&st.mu);
-        st.stop = 1; /* jobs not started stay so */
-        pthread_cond_broadcast(&st.cv);
-        pthread_mutex_unlock(&st.mu);
+        pthread_mutex_lock(&st->mu);
+        st->stop = 1; /* jobs not started stay so */
+        pthread_cond_broadcast(&st->cv);
+        pthread_mutex_unlock(&st->mu);
         pthread_join(helper, NULL);
     }
-    if (st.oom) {
+    if (st->oom) {
         sw_cli_error("out of memory");
         rc = SW_EXIT_IO;
     }
 out:
-    if (st.res)
+    if (st->res)
         for (size_t i = 0; i < f->n; i++) {
-            free(st.res[i].data);
-            free(st.res[i].msgs);
+            free(st->res[i].data);
+            free(st->res[i].msgs);
         }
-    free(st.res);
-    free(st.order);
-    free(st.queue);
-    while (st.done) {
-        sw_farm_done_t *d = st.done;
-        st.done = d->next;
+    free(st->res);
+    free(st->order);
+    free(st->queue);
+    while (st->done) {
+        sw_farm_done_t *d = st->done;
+        st->done = d->next;
         free(d->r.data);
         free(d->r.msgs);
         free(d);
     }
-    pthread_cond_destroy(&st.cv);
-    pthread_mutex_destroy(&st.mu);
+    pthread_cond_destroy(&st->cv);
+    pthread_mutex_destroy(&st->mu);
+    free(st);
+    free(pa);
     return rc;
 }

@@ -18,6 +18,7 @@
 #ifndef SWAYWATCH_CLI_FARM_H
 #define SWAYWATCH_CLI_FARM_H
 
+#include <signal.h>
 #include <stddef.h>
 #include <stdio.h>
 
@@ -72,12 +73,28 @@ typedef struct {
     void *user;
     const char *what; /* "logs", "points": the progress line's unit; NULL: no progress */
     long *by_rank;    /* rank 0, if not NULL: set to the jobs each rank ran (size entries) */
+    /* If not NULL, a flag a signal handler sets (interrupt.h): once it is
+     * non-zero no job starts any more, and rank 0 takes, in order, the
+     * results that are in and returns SW_CLI_FARM_INTERRUPTED within a
+     * tenth of a second, without waiting for the jobs still running. */
+    const volatile sig_atomic_t *stop;
 } sw_cli_farm_t;
 
+/* sw_cli_farm_run() was stopped by f->stop: jobs may still be running on
+ * other threads and ranks, using the farm's and the caller's data, so the
+ * caller must end the process (sw_cli_world_exit) once it has closed its
+ * outputs, and must not free anything the jobs use. */
+#define SW_CLI_FARM_INTERRUPTED (-1)
+
 /* Run every job once and take every result on rank 0 (collective: every
- * rank calls it).  Returns SW_EXIT_OK, or SW_EXIT_IO when take failed
- * (under MPI the job is then aborted, with the reason) or memory ran
- * out (reported). */
+ * rank calls it).  Returns SW_EXIT_OK, SW_CLI_FARM_INTERRUPTED, or
+ * SW_EXIT_IO when take failed (under MPI the job is then aborted, with
+ * the reason) or memory ran out (reported). */
 int sw_cli_farm_run(const sw_cli_farm_t *f);
+
+/* End the process at once with code (every rank, under MPI: MPI_Abort),
+ * without waiting for threads still running: after an interrupted farm,
+ * once the outputs are closed. */
+void sw_cli_world_exit(const sw_cli_world_t *w, int code) __attribute__((noreturn));
 
 #endif

@@ -26,7 +26,8 @@ typedef struct {
     const sw_cli_farm_t *f;
     pthread_mutex_t mu;
     pthread_cond_t cv; /* a job finished, work arrived, or the farm stops */
-    int stop;          /* no new job: take failed, memory ran out */
+    int stop;          /* no new job: take failed, memory ran out, a signal */
+    int interrupted;   /* rank 0: the farm's stop flag ended it */
     int oom;
     /* rank 0 */
     size_t *order;         /* the jobs, costliest first */

@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "farm.h"
@@ -170,6 +171,15 @@ int sw_cli_world_end(sw_cli_world_t *w, int rc)
     MPI_Finalize();
     w->mpi = 0;
     return rc;
+}
+
+void sw_cli_world_exit(const sw_cli_world_t *w, int code)
+{
+    fflush(stdout);
+    fflush(stderr);
+    if (w->mpi && w->size > 1)
+        MPI_Abort(MPI_COMM_WORLD, code); /* the other ranks too */
+    _exit(code);
 }
 
 /* ---- rank 0 ----------------------------------------------------------------------- */

@@ -11,6 +11,8 @@ volatile sig_atomic_t sw_cli_signal;
 
 /* Immediate mode's message; read by the handler. */
 static const char *volatile immediate;
+/* sw_cli_interrupt_deferred(): never immediate. */
+static volatile sig_atomic_t deferred;
 
 static void say(const char *s)
 {
@@ -48,8 +50,16 @@ int sw_cli_interrupt_install(void)
     return SW_EXIT_IO;
 }
 
+void sw_cli_interrupt_deferred(void)
+{
+    deferred = 1;
+    immediate = NULL;
+}
+
 void sw_cli_interrupt_now(const char *msg)
 {
+    if (deferred)
+        return;
     immediate = msg;
     /* a signal that came while the flag alone was looked at */
     if (msg && sw_cli_signal) {

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* interrupt.h - SIGINT and SIGTERM in the commands that run to an end
- * (replay, simulate, forensics, boundary).
+ * (replay, simulate, forensics, boundary, batch).
  *
  * The handler (installed with sigaction, SA_RESTART) only records the
  * signal in sw_cli_signal; the loops look at it between rows or samples
@@ -29,6 +29,12 @@ int sw_cli_interrupt_install(void);
 /* Immediate mode while msg is not NULL: a signal prints "swaywatch: MSG
  * (SIGINT)" and exits.  msg must stay valid until the next call. */
 void sw_cli_interrupt_now(const char *msg);
+
+/* Immediate mode off for the rest of the process: batch runs searches on
+ * worker threads, and its main thread writes the records of the logs that
+ * are done before it ends the process (a search's _exit would lose
+ * them). */
+void sw_cli_interrupt_deferred(void);
 
 /* 128 + the signal received (SW_EXIT_OK if none). */
 int sw_cli_interrupt_code(void);

@@ -622,8 +622,8 @@ void sw_cli_print_help(FILE *f, const sw_cli_command_t *cmd, const sw_cli_group_
     fprintf(f,
             ",\n2 bad usage or bad input (options, scene files%s%s),\n"
             "3 a file could not be read or written,\n"
-            "130 or 143 stopped by SIGINT or SIGTERM (the output files end with a whole row;\n"
-            "the summary, marked INTERRUPTED, covers the input up to there).\n",
+            "130 or 143 stopped by SIGINT or SIGTERM, within a second (the output files end\n"
+            "with a whole row; the summary, marked INTERRUPTED, covers the input up to there).\n",
             cmd->exits & SW_CLI_EXIT_STRICT ? ", rows under --strict" : "",
             cmd->exits & SW_CLI_EXIT_OVERTURN
                 ? ";\nwith --fail-on-overturn also a package whose model faulted: no verdict"

@@ -6,8 +6,8 @@
 #include <stdio.h>
 
 #include "cli.h"
-#include "unused.h"
 #include "text.h"
+#include "unused.h"
 
 /* Derived quantities of every package (--verbose), on f. */
 void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scenes, size_t n);

@@ -316,7 +316,10 @@ void sw_cli_reader_settle(sw_cli_reader_t *R, double settle)
     if (R->src->kind == SW_CLI_SRC_LCMLOG && !(settle > 0.0))
         return;
 #endif
+    /* a signal ends the free motion too: --settle may be long */
+    sw_engine_set_stop(R->e, &sw_cli_signal);
     sw_engine_finish(R->e, settle);
+    sw_engine_set_stop(R->e, NULL);
 }
 
 /* ---- after the run ------------------------------------------------------------------- */

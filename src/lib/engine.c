@@ -32,6 +32,7 @@ struct sw_engine {
     sw_input_t in;      /* input over the interval being integrated */
     double dt_req;      /* s, the step asked for (sw_engine_dt_requested) */
     sw_engine_t *check; /* the default scheme and step beside it (opts.check_default) */
+    const volatile sig_atomic_t *stop; /* the caller's: ends sw_engine_finish() early */
 };
 
 /* ---- the sample loop ----------------------------------------------------- */
@@ -678,7 +679,7 @@ int sw_engine_finish(sw_engine_t *e, double settle)
         return SW_OK;
     const double t_end = e->t + settle;
     const double chunk = 1e-3; /* s, state reports while settling */
-    while (e->t < t_end) {
+    while (e->t < t_end && !(e->stop && *e->stop)) {
         int moving = 0;
         for (size_t i = 0; i < e->n; i++)
             if (e->pk[i].ops->moving(&e->pk[i], e->C.rest_eps))
@@ -692,6 +693,14 @@ int sw_engine_finish(sw_engine_t *e, double settle)
             any = 1;
     }
     return any ? SW_EVENT : SW_OK;
+}
+
+void sw_engine_set_stop(sw_engine_t *e, const volatile sig_atomic_t *stop)
+{
+    if (!e)
+        return;
+    e->stop = stop;
+    sw_engine_set_stop(e->check, stop); /* the default beside it settles too */
 }
 
 int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
