@@ -163,9 +163,11 @@ static const sw_cli_command_t monitor_cmd = {
         "SIGTERM, then prints a summary on stderr.  Samples are integrated by their own\n"
         "utime, never by arrival time.\n"
         "\n"
-        "SIGHUP (systemctl reload) re-reads the scene files: a package whose scene values\n"
-        "changed is rebuilt and starts from rest; the others keep their state, alarms and\n"
-        "message sequence.  If a file is unreadable or invalid, nothing changes.\n",
+        "SIGHUP (systemctl reload) re-reads the scene files once none has changed for 1 s:\n"
+        "a package whose scene values changed is rebuilt and starts from rest; the others\n"
+        "keep their state, alarms and message sequence.  If a file is unreadable, invalid,\n"
+        "changes while it is read or is still changing 10 s after the SIGHUP, nothing\n"
+        "changes.  Write a new scene to another file and rename it over the old one.\n",
     .exit_text =
         "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
         "3 LCM could not be set up (URL, network) or a scene file could not be read.\n",
@@ -294,6 +296,8 @@ int cmd_monitor(int argc, char **argv)
     ctx.scenes = scenes;
     ctx.n = n;
     ctx.max_backlog = network_url(m.url) ? m.max_backlog : 0.0;
+    if (sw_cli_mon_reload_init(&ctx) != 0)
+        goto out;
     if ((rc = start(&ctx, &m.mo, lcm)) != SW_EXIT_OK)
         goto out;
 
@@ -315,6 +319,7 @@ out:
     if (sub)
         lcm_unsubscribe(lcm, sub);
     sw_mon_destroy(ctx.mon);
+    sw_cli_mon_reload_free(&ctx);
     if (lcm)
         lcm_destroy(lcm);
     sw_cli_mon_signals_remove();

@@ -295,6 +295,7 @@ int sw_cli_mon_run(lcm_t *lcm, mon_ctx_t *c, double status_every)
     while (!stop_signal) {
         double now = sw_mon_clock();
         double deadline = fmin(sw_mon_deadline(c->mon), fmin(tm.next_status, tm.next_ping));
+        deadline = fmin(deadline, sw_cli_mon_reload_due(c));
         int timeout = -1;
         if (isfinite(deadline))
             timeout = deadline <= now ? 0 : (int)ceil((deadline - now) * 1e3);
@@ -321,10 +322,12 @@ int sw_cli_mon_run(lcm_t *lcm, mon_ctx_t *c, double status_every)
             }
             reload_signal = 0;
             sw_cli_notify("RELOADING=1");
-            sw_cli_mon_reload(c->mon, c->opts, c->scenes, c->n);
-            sw_cli_notify("READY=1");
+            sw_cli_mon_reload_ask(c, sw_mon_clock());
         }
         now = sw_mon_clock();
+        /* the files are read once they stay unchanged: the loop goes on */
+        if (sw_cli_mon_reload_poll(c, now))
+            sw_cli_notify("READY=1");
         if (now >= sw_mon_deadline(c->mon))
             sw_mon_tick(c->mon, now);
         timers_run(&tm, c, now);

@@ -3,6 +3,16 @@
  * SIGHUP (systemctl reload; monitor_cli.h), without losing the state of
  * the packages whose scene did not change.
  *
+ * A file being written is never read half-way.  The SIGHUP only asks for
+ * a reload; the loop goes on with the samples, and the files are read once
+ * none has changed (stat(): size, modification and change times, inode)
+ * for SW_CLI_RELOAD_QUIET seconds, and refused if one changed while it was
+ * read.  A file still changing SW_CLI_RELOAD_GIVE_UP seconds after the
+ * SIGHUP is not applied.  The safe way to change a scene is the rename(2)
+ * convention of editors and configuration tools: write the new file beside
+ * the old one and rename it over it; a scene rewritten in place is said so
+ * when it is applied.
+ *
  * Every --scene file is read again, with the --set overrides, exactly as at
  * start.  A package whose scene values are the same as before (comments,
  * layout and the order of keys do not count) is left alone: its state, its
@@ -12,20 +22,138 @@
  * valid scene, or a changed scene cannot be built, nothing is changed and
  * the monitor goes on with the scenes it had.  The file list itself is the
  * one given at start. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
 
 #include "cost.h"
 #include "monitor_cli.h"
 
-int sw_cli_mon_reload(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scenes, size_t n)
+/* ---- what the files look like --------------------------------------------------- */
+
+static void file_id(const char *path, sw_cli_file_id_t *id)
 {
-    sw_scene_t *fresh = NULL, *changed = NULL;
+    struct stat st;
+    memset(id, 0, sizeof *id);
+    if (stat(path, &st) != 0)
+        return; /* reading it will say why */
+    id->exists = 1;
+    id->dev = st.st_dev;
+    id->ino = st.st_ino;
+    id->size = st.st_size;
+    id->mtime = st.st_mtim;
+    id->ctime = st.st_ctim;
+}
+
+static int same_time(struct timespec a, struct timespec b)
+{
+    return a.tv_sec == b.tv_sec && a.tv_nsec == b.tv_nsec;
+}
+
+static int same_id(const sw_cli_file_id_t *a, const sw_cli_file_id_t *b)
+{
+    return a->exists == b->exists && a->dev == b->dev && a->ino == b->ino && a->size == b->size &&
+           same_time(a->mtime, b->mtime) && same_time(a->ctime, b->ctime);
+}
+
+/* The first scene file (of n) whose id differs from ids[], or n; ids[]
+ * updated. */
+static size_t look(const sw_cli_opts_t *o, sw_cli_file_id_t *ids, size_t n)
+{
+    size_t first = n;
+    for (size_t k = 0; k < n; k++) {
+        sw_cli_file_id_t now;
+        file_id(o->scenes.v[k], &now);
+        if (!same_id(&now, &ids[k]) && first == n)
+            first = k;
+        ids[k] = now;
+    }
+    return first;
+}
+
+int sw_cli_mon_reload_init(mon_ctx_t *c)
+{
+    sw_cli_reload_t *r = &c->reload;
+    memset(r, 0, sizeof *r);
+    r->seen = calloc(c->n ? c->n : 1, sizeof *r->seen);
+    r->loaded = calloc(c->n ? c->n : 1, sizeof *r->loaded);
+    if (!r->seen || !r->loaded) {
+        sw_cli_error("monitor: out of memory");
+        return -1;
+    }
+    look(c->opts, r->loaded, c->n);
+    return 0;
+}
+
+void sw_cli_mon_reload_free(mon_ctx_t *c)
+{
+    free(c->reload.seen);
+    free(c->reload.loaded);
+    memset(&c->reload, 0, sizeof c->reload);
+}
+
+void sw_cli_mon_reload_ask(mon_ctx_t *c, double now)
+{
+    sw_cli_reload_t *r = &c->reload;
+    if (!r->seen)
+        return;
+    r->pending = 1;
+    r->asked = r->since = now;
+    look(c->opts, r->seen, c->n);
+    fprintf(stderr,
+            "swaywatch: monitor: reload: SIGHUP; the scene files are read once none has "
+            "changed for %g s\n",
+            SW_CLI_RELOAD_QUIET);
+}
+
+double sw_cli_mon_reload_due(const mon_ctx_t *c)
+{
+    return c->reload.pending ? c->reload.since + SW_CLI_RELOAD_QUIET : INFINITY;
+}
+
+/* ---- the reload ----------------------------------------------------------------- */
+
+/* How scene file k came to change since it was read: "" (it did not),
+ * or a note for the message. */
+static const char *how_changed(const sw_cli_reload_t *r, size_t k)
+{
+    const sw_cli_file_id_t *a = &r->loaded[k], *b = &r->seen[k];
+    if (same_id(a, b))
+        return "";
+    if (a->exists && b->exists && a->dev == b->dev && a->ino == b->ino)
+        return "; it was rewritten in place: renaming a new file over it is safer";
+    return "";
+}
+
+/* Read the files, now quiet, and apply what changed: SW_EXIT_OK (or the
+ * code of the refusal, nothing changed); *again set when a file changed
+ * while it was read (nothing changed, the wait starts over). */
+static int reload(mon_ctx_t *c, int *again)
+{
+    sw_cli_reload_t *r = &c->reload;
+    const sw_cli_opts_t *o = c->opts;
+    sw_scene_t *scenes = c->scenes, *fresh = NULL, *changed = NULL;
+    const size_t n = c->n;
     size_t nf = 0, nchanged = 0;
     sw_engine_t *trial = NULL;
     char msg[512] = "";
+    *again = 0;
 
     int rc = sw_cli_load_scenes(o, &fresh, &nf);
+    /* The files must still be what was waited on: else one was written
+     * while it was read. */
+    const size_t moved = look(o, r->seen, n);
+    if (moved < n) {
+        fprintf(stderr,
+                "swaywatch: monitor: reload: %s changed while it was read; waiting until it "
+                "stays unchanged for %g s\n",
+                o->scenes.v[moved], SW_CLI_RELOAD_QUIET);
+        r->changing = moved;
+        *again = 1;
+        goto done;
+    }
     if (rc != SW_EXIT_OK)
         goto keep;
     if (nf != n) { /* the same files as at start: cannot happen */
@@ -44,7 +172,7 @@ int sw_cli_mon_reload(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scenes,
             changed[nchanged++] = fresh[k];
     if (nchanged == 0) {
         fprintf(stderr, "swaywatch: monitor: reload: no scene changed; %zu packages kept\n", n);
-        goto done;
+        goto applied;
     }
     /* Build the changed packages once on the side with the monitor's
      * options: what passes here cannot fail in sw_mon_replace() but for
@@ -61,19 +189,21 @@ int sw_cli_mon_reload(sw_mon_t *mon, const sw_cli_opts_t *o, sw_scene_t *scenes,
     for (size_t k = 0; k < n; k++) {
         if (sw_scene_equal(&scenes[k], &fresh[k]))
             continue;
-        if (sw_mon_replace(mon, k, &fresh[k], msg, sizeof msg) != SW_OK) {
+        if (sw_mon_replace(c->mon, k, &fresh[k], msg, sizeof msg) != SW_OK) {
             sw_cli_error("monitor: reload: %s: %s", fresh[k].name, msg);
             rc = SW_EXIT_IO;
             continue; /* only memory: the package keeps its old scene */
         }
-        fprintf(stderr, "swaywatch: monitor: reload: %s rebuilt from %s (scene changed)\n",
-                fresh[k].name, o->scenes.v[k]);
+        fprintf(stderr, "swaywatch: monitor: reload: %s rebuilt from %s (scene changed%s)\n",
+                fresh[k].name, o->scenes.v[k], how_changed(r, k));
         scenes[k] = fresh[k];
-        sw_cli_warn_no_reserve(sw_mon_risk(mon), k, k + 1, scenes);
+        sw_cli_warn_no_reserve(sw_mon_risk(c->mon), k, k + 1, scenes);
     }
     fprintf(stderr, "swaywatch: monitor: reload: %zu of %zu packages rebuilt, the others kept\n",
             nchanged, n);
     sw_cli_warn_scene_cost(changed, nchanged, &eo);
+applied:
+    memcpy(r->loaded, r->seen, n * sizeof *r->loaded);
     goto done;
 
 keep:
@@ -83,4 +213,32 @@ done:
     free(changed);
     free(fresh);
     return rc;
+}
+
+int sw_cli_mon_reload_poll(mon_ctx_t *c, double now)
+{
+    sw_cli_reload_t *r = &c->reload;
+    if (!r->pending || now < r->since + SW_CLI_RELOAD_QUIET)
+        return 0;
+    const size_t moved = look(c->opts, r->seen, c->n);
+    int again = moved < c->n;
+    if (again)
+        r->changing = moved;
+    else
+        reload(c, &again);
+    if (!again) {
+        r->pending = 0;
+        return 1;
+    }
+    if (now - r->asked < SW_CLI_RELOAD_GIVE_UP) {
+        r->since = now; /* changed: wait for it to stay the same */
+        return 0;
+    }
+    sw_cli_error(
+        "monitor: reload: %s is still changing %g s after the SIGHUP: scene files not "
+        "applied; going on with the scenes of before (write the new scene to another file "
+        "and rename it over the old one)",
+        c->opts->scenes.v[r->changing], now - r->asked);
+    r->pending = 0;
+    return 1;
 }

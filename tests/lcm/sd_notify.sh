@@ -64,7 +64,9 @@ until_in "$T/a.txt" READY=1
 sleep 1
 kill -HUP "$MON"
 until_in "$T/a.txt" RELOADING=1
-sleep 0.6
+# the reload reads the scene once it stayed unchanged for a second
+until_in "$T/a.err" "reload: no scene changed"
+sleep 0.3
 kill -TERM "$MON"
 rc=0
 wait "$MON" || rc=$?
