@@ -25,6 +25,9 @@ SW_API const sw_scheme_t *sw_scheme_at(size_t i);             /* NULL past the e
 SW_API const char *sw_scheme_name(const sw_scheme_t *s);
 SW_API int sw_scheme_order(const sw_scheme_t *s);
 SW_API int sw_scheme_adaptive(const sw_scheme_t *s);
+/* Non-zero for an implicit scheme (rk4imp, bsimp, msbdf): its step is not
+ * bounded by the fastest mode, and costs a Jacobian and a linear solve. */
+SW_API int sw_scheme_implicit(const sw_scheme_t *s);
 SW_API double sw_scheme_default_dt(const sw_scheme_t *s); /* s */
 
 /* The amplification |R(z)| of one step of a fixed-step scheme at z =

@@ -57,6 +57,7 @@ typedef struct {
     double lag_sum, lag_max; /* s, wall clock at handling minus sample utime */
     double busy;             /* s spent handling samples */
     double max_backlog;      /* s; 0: no shedding (a log, memq: the receive time is not now) */
+    double reserve_rate;     /* Hz of sample time; < 0: no reserve */
     sw_cli_reload_t reload;
 } mon_ctx_t;
 

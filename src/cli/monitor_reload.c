@@ -202,6 +202,7 @@ static int reload(mon_ctx_t *c, int *again)
     fprintf(stderr, "swaywatch: monitor: reload: %zu of %zu packages rebuilt, the others kept\n",
             nchanged, n);
     sw_cli_warn_scene_cost(changed, nchanged, &eo);
+    sw_cli_warn_reserve_cost(sw_mon_risk(c->mon), 0, n, scenes, c->reserve_rate);
 applied:
     memcpy(r->loaded, r->seen, n * sizeof *r->loaded);
     goto done;

@@ -373,8 +373,10 @@ sw_risk_t *sw_cli_risk_create(const sw_cli_opts_t *o, const sw_scene_t *scenes, 
     sw_risk_t *r = sw_risk_create(scenes, n, &ro, &err, msg, sizeof msg);
     if (!r)
         sw_cli_error("cannot start the reserve: %s", msg[0] ? msg : sw_strerror(err));
-    else
+    else {
         sw_cli_warn_no_reserve(r, 0, n, scenes);
+        sw_cli_warn_reserve_cost(r, 0, n, scenes, o->reserve_rate);
+    }
     return r;
 }
 

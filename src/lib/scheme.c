@@ -233,6 +233,11 @@ int sw_scheme_adaptive(const sw_scheme_t *s)
     return s->adaptive;
 }
 
+int sw_scheme_implicit(const sw_scheme_t *s)
+{
+    return s->implicit;
+}
+
 double sw_scheme_default_dt(const sw_scheme_t *s)
 {
     return s->default_dt;
