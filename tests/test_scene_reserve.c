@@ -117,7 +117,7 @@ static void test_parse_errors(void **state)
     }
 }
 
-/* Ranges: durations 1 ms to 60 s, levels in (0, 10] g, critical below
+/* Ranges: durations 1 ms to 60 s, levels from 0.001 to 10 g, critical below
  * warn; every problem is reported, at the [alarm] line. */
 static void test_validation(void **state)
 {
@@ -130,7 +130,8 @@ static void test_validation(void **state)
         {PKG "[alarm]\ndesign_pulse = 0.0005\n", "design_pulse item 1", "between 0.001 and 60"},
         {PKG "[alarm]\ndesign_pulse = 1, 100\n", "design_pulse item 2", "between"},
         {PKG "[alarm]\ndesign_pulse = -1\n", "design_pulse item 1", NULL},
-        {PKG "[alarm]\nwarn_reserve_g = 0\n", "alarm.warn_reserve_g = 0", "(0, 10]"},
+        {PKG "[alarm]\nwarn_reserve_g = 0\n", "alarm.warn_reserve_g = 0", "from 0.001 to 10"},
+        {PKG "[alarm]\nwarn_reserve_g = 1e-320\n", "alarm.warn_reserve_g", "from 0.001 to 10"},
         {PKG "[alarm]\nwarn_reserve_g = 11\n", "alarm.warn_reserve_g = 11", NULL},
         {PKG "[alarm]\ncritical_reserve_g = -0.1\n", "alarm.critical_reserve_g", NULL},
         {PKG "[alarm]\nwarn_reserve_g = 0.1\ncritical_reserve_g = 0.1\n",

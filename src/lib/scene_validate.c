@@ -13,17 +13,27 @@
 #include "swaywatch/scene.h"
 #include "swaywatch/status.h"
 
-/* Limits beyond which a value is a typo rather than a package. */
+/* Limits beyond which a value is a typo rather than a package.  Every
+ * physical key has both: a value far below the lower one (a mass of
+ * 1e-320 kg, a subnormal number) makes the derived quantities overflow or
+ * lose every digit, and the model faults at every sample. */
 #define SIZE_MIN 1e-3      /* m */
 #define SIZE_MAX_ 100.0    /* m (SIZE_MAX is taken by stdint.h) */
+#define MASS_MIN 1e-3      /* kg, of the package and of the frame */
 #define MASS_MAX 1e6       /* kg */
 #define FRAME_MASS_MAX 1e7 /* kg */
 #define G_MIN 1.0          /* m/s^2 */
 #define G_MAX 100.0        /* m/s^2 */
+#define OMEGA_MIN 1e-2     /* rad/s: a spring with a period over ten minutes */
 #define OMEGA_MAX 1e6      /* rad/s */
+#define ZETA_MIN 1e-6      /* 1: a damping ratio other than 0 (undamped) */
+#define ZETA_MAX 100.0     /* 1 */
+#define CUBIC_MIN 1e-3     /* N/m^3: a cubic stiffness other than 0 */
 #define PULSE_MIN 1e-3     /* s: a shorter design pulse is a typo for ms */
 #define PULSE_MAX 60.0     /* s: longer is a steady acceleration, not a pulse */
 #define RESERVE_G_MAX 10.0 /* g: no truck brakes or speeds up harder */
+#define MARGIN_MIN 1e-3    /* 1: an alarm level so close to the edge is the edge */
+#define RESERVE_G_MIN 1e-3 /* g: a reserve alarm level below any measurable one */
 
 /* Fastest rate (1/s) of a spring-damper mode of frequency w (rad/s) and
  * damping ratio z: w while underdamped; an overdamped mode also has a fast
@@ -53,8 +63,8 @@ static const char *qty(char *buf, size_t size, double x, const char *unit)
 }
 
 /* Check one given value: finite, > 0 (>= 0 when zero_ok), within [lo, hi]
- * (lo = 0: no lower limit beyond the sign).  what says what the key is.
- * Returns 1 if good. */
+ * (lo = 0: no lower limit beyond the sign; with zero_ok, 0 itself is
+ * allowed below lo).  what says what the key is.  Returns 1 if good. */
 static int check_value(vctx *v, int line, const char *key, double x, const char *unit,
                        const char *what, int zero_ok, double lo, double hi)
 {
@@ -72,9 +82,10 @@ static int check_value(vctx *v, int line, const char *key, double x, const char 
                 zero_ok ? "a non-negative" : "a positive", what);
         return 0;
     }
-    if (lo > 0 && x < lo) {
-        VREPORT(v, line, "%s = %s is too small: expected at least %s (%s)", key,
-                qty(a, sizeof a, x, unit), qty(b, sizeof b, lo, unit), what);
+    if (lo > 0 && x < lo && !(zero_ok && x == 0)) {
+        VREPORT(v, line, "%s = %s is too small: expected %sat least %s (%s)", key,
+                qty(a, sizeof a, x, unit), zero_ok ? "0 or " : "", qty(b, sizeof b, lo, unit),
+                what);
         return 0;
     }
     if (x > hi) {
@@ -88,8 +99,8 @@ static int check_value(vctx *v, int line, const char *key, double x, const char 
 /* A (stiffness|omega) or (damping|zeta) pair, given in the form `given`.
  * Returns 1 if good (or absent and optional). */
 static int check_pair(vctx *v, int line, const char *sec, sw_given given, double dim, double ratio,
-                      int dim_key, int ratio_key, int required, int zero_ok, double ratio_max,
-                      const char *dim_what, const char *ratio_what)
+                      int dim_key, int ratio_key, int required, int zero_ok, double ratio_min,
+                      double ratio_max, const char *dim_what, const char *ratio_what)
 {
     char key[48];
     if (given == SW_GIVEN_NONE) {
@@ -104,7 +115,7 @@ static int check_pair(vctx *v, int line, const char *sec, sw_given given, double
     int k = given == SW_GIVEN_RATIO ? ratio_key : dim_key;
     snprintf(key, sizeof key, "%s.%s", sec, sw_scene_keys[k].name);
     return given == SW_GIVEN_RATIO ? check_value(v, line, key, ratio, sw_scene_keys[k].unit,
-                                                 ratio_what, zero_ok, 0, ratio_max)
+                                                 ratio_what, zero_ok, ratio_min, ratio_max)
                                    : check_value(v, line, key, dim, sw_scene_keys[k].unit, dim_what,
                                                  zero_ok, 0, INFINITY);
 }
@@ -124,6 +135,7 @@ static spring_t spring_of(vctx *v, int line, const char *sec, const char *sym, c
 {
     char a[64];
     spring_t r = {0, 0, 0, 0};
+    int bad_zeta = 0;
     if (k_given == SW_GIVEN_RATIO) {
         r.omega = omega;
         r.k = omega * omega * mt;
@@ -135,6 +147,11 @@ static spring_t spring_of(vctx *v, int line, const char *sec, const char *sym, c
                     "%s.stiffness = %s gives omega_%s = %g rad/s, which is absurd: expected at "
                     "most %g rad/s",
                     sec, qty(a, sizeof a, r.k, "N/m"), sym, r.omega, OMEGA_MAX);
+        else if (r.omega < OMEGA_MIN)
+            VREPORT(v, line,
+                    "%s.stiffness = %s gives omega_%s = %g rad/s, which is too small: expected "
+                    "at least %g rad/s",
+                    sec, qty(a, sizeof a, r.k, "N/m"), sym, r.omega, OMEGA_MIN);
     }
     if (c_given == SW_GIVEN_RATIO) {
         r.zeta = zeta;
@@ -142,8 +159,14 @@ static spring_t spring_of(vctx *v, int line, const char *sec, const char *sym, c
     } else if (c_given == SW_GIVEN_DIMENSIONAL) {
         r.c = damping;
         r.zeta = r.c / (2 * r.omega * mt);
+        if (r.c != 0 && !(r.zeta >= ZETA_MIN && r.zeta <= ZETA_MAX) && (bad_zeta = 1))
+            VREPORT(v, line,
+                    "%s.damping = %s gives zeta_%s = %g, which is %s: expected 0 or a damping "
+                    "ratio from %g to %g",
+                    sec, qty(a, sizeof a, r.c, "N*s/m"), sym, r.zeta,
+                    r.zeta < ZETA_MIN ? "too small" : "absurd", ZETA_MIN, ZETA_MAX);
     }
-    if (r.omega <= OMEGA_MAX && mode_rate(r.omega, r.zeta) > OMEGA_MAX)
+    if (!bad_zeta && r.omega <= OMEGA_MAX && mode_rate(r.omega, r.zeta) > OMEGA_MAX)
         VREPORT(v, line,
                 "%s.%s: zeta_%s = %g with omega_%s = %g rad/s makes %s decay at %g 1/s, which "
                 "is absurd: expected at most %g 1/s",
@@ -161,8 +184,8 @@ static int check_package(vctx *v, const sw_scene_t *sc)
                              SIZE_MIN, SIZE_MAX_);
     pkg_ok &= check_value(v, lp, "package.width", sc->width, "m",
                           "the package width 2b along the axis of travel", 0, SIZE_MIN, SIZE_MAX_);
-    pkg_ok &=
-        check_value(v, lp, "package.mass", sc->mass, "kg", "the package mass m", 0, 0, MASS_MAX);
+    pkg_ok &= check_value(v, lp, "package.mass", sc->mass, "kg", "the package mass m", 0, MASS_MIN,
+                          MASS_MAX);
     if (!isfinite(sc->g) || sc->g < G_MIN || sc->g > G_MAX) {
         VREPORT(v, lp, "package.g = %s: expected gravity between %g and %g m/s^2",
                 qty(a, sizeof a, sc->g, "m/s^2"), G_MIN, G_MAX);
@@ -187,15 +210,15 @@ static frame_t check_frame(vctx *v, const sw_scene_t *sc, int pkg_ok)
         return f;
     const double m = sc->mass; /* kg */
     int lf = sc->line_frame;
-    int mb_ok = check_value(v, lf, "frame.mass", sc->frame_mass, "kg", "the frame mass m_b", 0, 0,
-                            FRAME_MASS_MAX);
-    int k_ok =
-        check_pair(v, lf, "frame", sc->frame_k_given, sc->frame_stiffness, sc->frame_omega,
-                   K_FRAME_STIFFNESS, K_FRAME_OMEGA, 1, 0, OMEGA_MAX, "the bearing stiffness k_b",
-                   "the bearing frequency omega_b = sqrt(k_b/(m+m_b))");
+    int mb_ok = check_value(v, lf, "frame.mass", sc->frame_mass, "kg", "the frame mass m_b", 0,
+                            MASS_MIN, FRAME_MASS_MAX);
+    int k_ok = check_pair(v, lf, "frame", sc->frame_k_given, sc->frame_stiffness, sc->frame_omega,
+                          K_FRAME_STIFFNESS, K_FRAME_OMEGA, 1, 0, OMEGA_MIN, OMEGA_MAX,
+                          "the bearing stiffness k_b",
+                          "the bearing frequency omega_b = sqrt(k_b/(m+m_b))");
     int c_ok = check_pair(v, lf, "frame", sc->frame_c_given, sc->frame_damping, sc->frame_zeta,
-                          K_FRAME_DAMPING, K_FRAME_ZETA, 1, 1, INFINITY, "the bearing damping c_b",
-                          "the bearing damping ratio zeta_b");
+                          K_FRAME_DAMPING, K_FRAME_ZETA, 1, 1, ZETA_MIN, ZETA_MAX,
+                          "the bearing damping c_b", "the bearing damping ratio zeta_b");
     if (pkg_ok && mb_ok && k_ok && c_ok) {
         f.m_b = sc->frame_mass;
         const double mt = m + f.m_b; /* kg, package and frame move together */
@@ -229,13 +252,14 @@ static cushion_t check_cushion(vctx *v, const sw_scene_t *sc, int pkg_ok)
     int lc = sc->line_cushion;
     int k_ok =
         check_pair(v, lc, "cushion", sc->cushion_k_given, sc->cushion_stiffness, sc->cushion_omega,
-                   K_CUSHION_STIFFNESS, K_CUSHION_OMEGA, 1, 0, OMEGA_MAX,
+                   K_CUSHION_STIFFNESS, K_CUSHION_OMEGA, 1, 0, OMEGA_MIN, OMEGA_MAX,
                    "the total cushion stiffness K", "the cushion frequency omega_c = sqrt(K/m)");
-    int c_ok = check_pair(v, lc, "cushion", sc->cushion_c_given, sc->cushion_damping,
-                          sc->cushion_zeta, K_CUSHION_DAMPING, K_CUSHION_ZETA, 0, 1, INFINITY,
-                          "the total cushion damping C", "the cushion damping ratio zeta_c");
+    int c_ok =
+        check_pair(v, lc, "cushion", sc->cushion_c_given, sc->cushion_damping, sc->cushion_zeta,
+                   K_CUSHION_DAMPING, K_CUSHION_ZETA, 0, 1, ZETA_MIN, ZETA_MAX,
+                   "the total cushion damping C", "the cushion damping ratio zeta_c");
     int b_ok = check_value(v, lc, "cushion.cubic", sc->cushion_cubic, "N/m^3",
-                           "the total cubic cushion stiffness B3", 1, 0, INFINITY);
+                           "the total cubic cushion stiffness B3", 1, CUBIC_MIN, INFINITY);
     if (!(pkg_ok && k_ok && c_ok && b_ok))
         return cu;
     const char *kkey =
@@ -244,6 +268,21 @@ static cushion_t check_cushion(vctx *v, const sw_scene_t *sc, int pkg_ok)
                      sc->cushion_stiffness, sc->cushion_omega, sc->cushion_c_given,
                      sc->cushion_damping, sc->cushion_zeta);
     cu.B3 = sc->cushion_cubic;
+    /* The cubic term bounded as a spring's frequency is: the cushion's
+     * tangent stiffness where the weight alone presses it, K + 3 B3 z^2 at
+     * z = m g / K, gives at most OMEGA_MAX. */
+    const double zw = m * g / cu.s.k; /* m */
+    const double w_t = sqrt((cu.s.k + 3 * cu.B3 * zw * zw) / m);
+    if (cu.s.omega <= OMEGA_MAX && w_t > OMEGA_MAX)
+        VREPORT(
+            v, lc,
+            "cushion.cubic = %s makes the cushion's frequency %g rad/s where the weight "
+            "presses it (z = m g / K = %g m), which is absurd: expected at most %g rad/s "
+            "(B3 at most %s)",
+            qty(a, sizeof a, cu.B3, "N/m^3"), w_t, zw, OMEGA_MAX,
+            qty(b, sizeof b,
+                (m * OMEGA_MAX * OMEGA_MAX - cu.s.k) * cu.s.k * cu.s.k / (3 * (m * g) * (m * g)),
+                "N/m^3"));
     /* physics.md, static stability: tilting by a small angle the
      * cushion's restoring moment K b^2/3 per radian must beat the
      * overturning moment m g h of gravity. */
@@ -266,14 +305,17 @@ static cushion_t check_cushion(vctx *v, const sw_scene_t *sc, int pkg_ok)
 static void check_margins(vctx *v, const sw_scene_t *sc)
 {
     int la = sc->line_alarm;
-    int warn_ok = isfinite(sc->warn_margin) && sc->warn_margin > 0 && sc->warn_margin <= 1;
+    int warn_ok =
+        isfinite(sc->warn_margin) && sc->warn_margin >= MARGIN_MIN && sc->warn_margin <= 1;
     if (!warn_ok)
-        VREPORT(v, la, "alarm.warn_margin = %g: expected a value in (0, 1]", sc->warn_margin);
-    if (!isfinite(sc->critical_margin) || sc->critical_margin <= 0 || sc->critical_margin > 1) {
+        VREPORT(v, la, "alarm.warn_margin = %g: expected a value from %g to 1", sc->warn_margin,
+                MARGIN_MIN);
+    if (!isfinite(sc->critical_margin) || sc->critical_margin < MARGIN_MIN ||
+        sc->critical_margin > 1) {
         VREPORT(v, la,
-                "alarm.critical_margin = %g: expected a value in (0, 1) below "
+                "alarm.critical_margin = %g: expected a value from %g to 1, below "
                 "alarm.warn_margin",
-                sc->critical_margin);
+                sc->critical_margin, MARGIN_MIN);
     } else if (warn_ok && sc->critical_margin >= sc->warn_margin) {
         VREPORT(v, la,
                 "alarm.critical_margin = %g is not below alarm.warn_margin = %g: expected "
@@ -300,17 +342,17 @@ static void check_reserve(vctx *v, const sw_scene_t *sc)
                         i + 1, T, PULSE_MIN, PULSE_MAX);
         }
     }
-    int wr_ok = isfinite(sc->warn_reserve_g) && sc->warn_reserve_g > 0 &&
+    int wr_ok = isfinite(sc->warn_reserve_g) && sc->warn_reserve_g >= RESERVE_G_MIN &&
                 sc->warn_reserve_g <= RESERVE_G_MAX;
     if (!wr_ok)
-        VREPORT(v, la, "alarm.warn_reserve_g = %g: expected a value in (0, %g] g",
-                sc->warn_reserve_g, RESERVE_G_MAX);
-    if (!isfinite(sc->critical_reserve_g) || sc->critical_reserve_g <= 0 ||
+        VREPORT(v, la, "alarm.warn_reserve_g = %g: expected a value from %g to %g g",
+                sc->warn_reserve_g, RESERVE_G_MIN, RESERVE_G_MAX);
+    if (!isfinite(sc->critical_reserve_g) || sc->critical_reserve_g < RESERVE_G_MIN ||
         sc->critical_reserve_g > RESERVE_G_MAX) {
         VREPORT(v, la,
-                "alarm.critical_reserve_g = %g: expected a value in (0, %g] g below "
+                "alarm.critical_reserve_g = %g: expected a value from %g to %g g, below "
                 "alarm.warn_reserve_g",
-                sc->critical_reserve_g, RESERVE_G_MAX);
+                sc->critical_reserve_g, RESERVE_G_MIN, RESERVE_G_MAX);
     } else if (wr_ok && sc->critical_reserve_g >= sc->warn_reserve_g) {
         VREPORT(v, la,
                 "alarm.critical_reserve_g = %g is not below alarm.warn_reserve_g = %g: "

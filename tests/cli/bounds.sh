@@ -81,6 +81,52 @@ expect_err "--max-samples: out of range: expected 1 to 268435456" "--max-samples
 run timeout 60 "$SW" forensics "$LOG" --scene "$SCENE" --no-what-if --threads 100000 -q
 expect_rc 0 "--threads 100000 is capped"
 
+# Every physical key of a scene has both bounds: a subnormal or an
+# astronomical value (package.mass = 1e-320 was accepted, and the model
+# then faulted at every sample) is refused with the file and line, before
+# any sample is read; 0 stays allowed where it means "none".
+FULL=$TMP/full.ini
+cat >"$FULL" <<'INI'
+[package]
+name = full
+height = 2.0
+width = 0.728
+mass = 1000
+[cushion]
+omega = 60
+zeta = 0.05
+cubic = 0
+[alarm]
+warn_margin = 0.5
+INI
+FRAME=$SRC/sample_logs/crate-on-frame.ini
+for key in package.height package.width package.mass package.g frame.mass frame.stiffness \
+    frame.omega frame.damping frame.zeta cushion.stiffness cushion.omega cushion.damping \
+    cushion.zeta cushion.cubic alarm.warn_margin alarm.critical_margin alarm.design_pulse \
+    alarm.warn_reserve_g alarm.critical_reserve_g; do
+    case $key in
+    frame.*) sc=$FRAME ;;
+    *) sc=$FULL ;;
+    esac
+    for val in 1e-320 1e-300 1e300; do
+        run timeout 10 "$SW" replay "$LOG" --scene "$sc" --set "$key=$val" -q
+        expect_rc 2 "--set $key=$val"
+        grep -q "^swaywatch: $sc:[0-9]*: ${key}[ =:]\|^swaywatch: $sc:[0-9]*: .*$key" "$TMP/err" ||
+            {
+                show
+                fail "--set $key=$val: not refused with the file, its line and the key"
+            }
+    done
+done
+for key in frame.damping frame.zeta cushion.damping cushion.zeta cushion.cubic; do
+    case $key in
+    frame.*) sc=$FRAME ;;
+    *) sc=$FULL ;;
+    esac
+    run timeout 10 "$SW" replay "$LOG" --scene "$sc" --set "$key=0" -q
+    expect_rc 0 "--set $key=0 (none)"
+done
+
 # The bounds themselves and the off values are taken.
 run "$SW" replay "$LOG" --scene "$SCENE" --dt 1e-4 --rtol 1e-14 --atol 1e-16 --settle 0 -q
 expect_rc 0 "values inside the bounds"
