@@ -57,7 +57,7 @@ typedef struct {
     item_t *items;
     size_t n;
     optset_t *sets;
-    size_t nsets;
+    size_t nsets, sets_cap;
     double *cost;
     /* outputs (rank 0) */
     FILE *out, *csv;

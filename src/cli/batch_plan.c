@@ -7,6 +7,7 @@
  * manifest line's options is parsed once more, on top of them (a line's
  * --scene replaces the command line's scenes), and its scenes read then,
  * so that a bad option or scene stops the batch before any log is run. */
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +15,7 @@
 
 #include "batch_int.h"
 #include "interrupt.h"
+#include "keyset.h"
 
 /* The messages printed while f ran, each line again as
  * "swaywatch: WHERE: message". */
@@ -120,40 +122,48 @@ out:
     return rc;
 }
 
-/* The set of options for a manifest line (NULL args: the command line's). */
-static int set_for(batch_t *B, const sw_cli_manifest_line_t *L, size_t *idx)
+/* The key of a manifest line's options: its words joined by a unit
+ * separator (no option has one); NULL when it has none (the command
+ * line's set), or when memory ran out (*oom). */
+static char *line_key(const sw_cli_manifest_line_t *L, int *oom)
 {
-    char *key = NULL;
-    if (L && L->nargs) {
-        size_t len = 1;
-        for (size_t i = 0; i < L->nargs; i++) len += strlen(L->args[i]) + 1;
-        key = malloc(len);
-        if (!key) {
+    *oom = 0;
+    if (!L->nargs)
+        return NULL;
+    size_t len = 1;
+    for (size_t i = 0; i < L->nargs; i++) len += strlen(L->args[i]) + 1;
+    char *key = malloc(len);
+    if (!key) {
+        *oom = 1;
+        return NULL;
+    }
+    char *p = key;
+    for (size_t i = 0; i < L->nargs; i++) {
+        const size_t l = strlen(L->args[i]);
+        memcpy(p, L->args[i], l);
+        p[l] = '\x1f';
+        p += l + 1;
+    }
+    *p = '\0';
+    return key;
+}
+
+/* A new set of options for key (taken; NULL: the command line's alone)
+ * and manifest line L (NULL for the command line's), parsed and made
+ * ready; its index in *idx. */
+static int add_set(batch_t *B, char *key, const sw_cli_manifest_line_t *L, size_t *idx)
+{
+    if (B->nsets == B->sets_cap) {
+        const size_t cap = B->sets_cap ? 2 * B->sets_cap : 16;
+        optset_t *s = realloc(B->sets, cap * sizeof *s);
+        if (!s) {
+            free(key);
             sw_cli_error("out of memory");
             return SW_EXIT_IO;
         }
-        char *p = key;
-        for (size_t i = 0; i < L->nargs; i++) {
-            const size_t l = strlen(L->args[i]);
-            memcpy(p, L->args[i], l);
-            p[l] = '\x1f'; /* a unit separator: no option has one */
-            p += l + 1;
-        }
-        *p = '\0';
+        B->sets = s;
+        B->sets_cap = cap;
     }
-    for (size_t i = 0; i < B->nsets; i++)
-        if ((!key && !B->sets[i].key) || (key && B->sets[i].key && !strcmp(key, B->sets[i].key))) {
-            free(key);
-            *idx = i;
-            return SW_EXIT_OK;
-        }
-    optset_t *s = realloc(B->sets, (B->nsets + 1) * sizeof *s);
-    if (!s) {
-        free(key);
-        sw_cli_error("out of memory");
-        return SW_EXIT_IO;
-    }
-    B->sets = s;
     optset_t *set = &B->sets[B->nsets++];
     memset(set, 0, sizeof *set);
     set->key = key;
@@ -202,23 +212,54 @@ static int collect(batch_t *B)
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
     }
-    size_t set;
+    size_t cmd_set = SIZE_MAX; /* the command line's options alone, once needed */
     for (int i = B->first; i < B->argc; i++)
-        if ((rc = set_for(B, NULL, &set)) != SW_EXIT_OK ||
-            (rc = add_item(B, B->argv[i], 0, set, cap)) != SW_EXIT_OK)
+        if ((cmd_set == SIZE_MAX && (rc = add_set(B, NULL, NULL, &cmd_set)) != SW_EXIT_OK) ||
+            (rc = add_item(B, B->argv[i], 0, cmd_set, cap)) != SW_EXIT_OK)
             return rc;
-    for (size_t i = 0; i < B->man.n; i++) {
+    /* The lines grouped by their options in n log n (keyset.h); each
+     * distinct set is parsed at its first line, as the lines come. */
+    const size_t n = B->man.n;
+    char **keys = calloc(n ? n : 1, sizeof *keys);
+    size_t *first = calloc(n ? n : 1, sizeof *first);
+    size_t *set_of = calloc(n ? n : 1, sizeof *set_of);
+    rc = keys && first && set_of ? SW_EXIT_OK : SW_EXIT_IO;
+    for (size_t i = 0; i < n && rc == SW_EXIT_OK; i++) {
+        int oom;
+        keys[i] = line_key(&B->man.v[i], &oom);
+        if (oom)
+            rc = SW_EXIT_IO;
+    }
+    if (rc == SW_EXIT_OK && sw_cli_keyset_first((const char *const *)keys, n, first, NULL) != 0)
+        rc = SW_EXIT_IO;
+    if (rc != SW_EXIT_OK)
+        sw_cli_error("out of memory");
+    for (size_t i = 0; i < n && rc == SW_EXIT_OK; i++) {
         const sw_cli_manifest_line_t *L = &B->man.v[i];
         if (sw_cli_signal) { /* a long manifest: nothing is written yet */
             sw_cli_error("batch: interrupted by %s while reading the manifest; nothing written",
                          sw_cli_signal_name(sw_cli_signal));
-            return sw_cli_interrupt_code();
+            rc = sw_cli_interrupt_code();
+            break;
         }
-        if ((rc = set_for(B, L, &set)) != SW_EXIT_OK ||
-            (rc = add_item(B, L->log, L->line, set, cap)) != SW_EXIT_OK)
-            return rc;
+        if (first[i] != i) {
+            set_of[i] = set_of[first[i]];
+        } else if (!keys[i]) {
+            if (cmd_set == SIZE_MAX)
+                rc = add_set(B, NULL, NULL, &cmd_set);
+            set_of[i] = cmd_set;
+        } else {
+            rc = add_set(B, keys[i], L, &set_of[i]);
+            keys[i] = NULL; /* the set's now */
+        }
+        if (rc == SW_EXIT_OK)
+            rc = add_item(B, L->log, L->line, set_of[i], cap);
     }
-    return SW_EXIT_OK;
+    for (size_t i = 0; keys && i < n; i++) free(keys[i]);
+    free(keys);
+    free(first);
+    free(set_of);
+    return rc;
 }
 
 /* The logs' sizes: the longest go first.  A log that cannot be read costs

@@ -223,6 +223,34 @@ assert v[("braking-pothole.csv", "crate-A")] == "upright"
 assert v[("braking-pothole.csv", "crate-A-on-frame")] == "overturned"
 PY
 
+# A large manifest (generated: 20,000 lines over 1,000 sets of options, in
+# a scrambled order) is planned whole: each set parsed once, at its first
+# line, and a bad option on the last line stops the batch before any log
+# runs.  Lines that share options, and lines that have none, share a set:
+# a small batch of the same shape gives each record its own line's scene.
+# (The work of the grouping is counted in test_keyset.)
+python3 - "$TMP/big.txt" "$B/a01.csv" <<'PY'
+import sys
+with open(sys.argv[1], "w") as f:
+    for i in range(20000):
+        f.write("%s --set package.mass=%d\n" % (sys.argv[2], 100 + (i * 7919) % 1000))
+    f.write("%s --no-such-option\n" % sys.argv[2])
+PY
+run "$SW" batch --scene "$CRATE" --manifest "$TMP/big.txt" -o "$TMP/big.jsonl"
+expect_rc 2 "a large manifest with a bad last line"
+expect_err "$TMP/big.txt:20001: batch: unknown option '--no-such-option'" "large manifest"
+[ ! -e "$TMP/big.jsonl" ] || fail "a large manifest with a bad last line: records written"
+sed 's/name *= *.*/name = other/' "$CRATE" >"$TMP/other.ini"
+printf '%s\n%s --scene %s\n%s\n%s --scene %s\n' "$B/a01.csv" "$B/a01.csv" "$TMP/other.ini" \
+    "$B/a01.csv" "$B/a01.csv" "$TMP/other.ini" >"$TMP/mix.txt"
+run "$SW" batch --scene "$CRATE" --manifest "$TMP/mix.txt" -o "$TMP/mix.jsonl" -q
+expect_rc 0 "lines sharing sets"
+python3 - "$TMP/mix.jsonl" <<'PY' || fail "lines sharing sets: a record has another line's scene"
+import json, sys
+names = [json.loads(l)["name"] for l in open(sys.argv[1])]
+assert names == ["crate-A", "other", "crate-A", "other"], names
+PY
+
 # --progress: the logs done, on stderr
 run "$SW" batch --scene "$CRATE" "$B/a04.csv" "$B/a01.csv" --progress -o "$TMP/p.jsonl"
 expect_rc 0 "--progress"
