@@ -4,15 +4,26 @@
 # The library, its headers and swaywatch.pc are installed by src/lib, the
 # manual pages by docs, the LCM definitions and bindings by lcmtypes.
 #
-# Two packages, as Debian splits a library:
-#   swaywatch         the command, libswaywatch.so.0, manual pages, bash
-#                     completion, the systemd unit, example scenes and
-#                     drives, LCM types and bindings;
-#   libswaywatch-dev  headers, libswaywatch.a, the .so link, swaywatch.pc.
+# Two packages, as Debian splits a library, and a third for clusters:
+#   swaywatch         the command (never linked with MPI: what a vehicle
+#                     installs pulls in no cluster stack), libswaywatch.so.0,
+#                     manual pages, bash completion, the systemd unit,
+#                     example scenes and drives, LCM types and bindings;
+#   libswaywatch-dev  headers, libswaywatch.a, the .so link, swaywatch.pc;
+#   swaywatch-mpi     in a build with MPI (SW_MPI): swaywatch-mpi, the same
+#                     command that runs batch and boundary over the ranks of
+#                     mpirun or srun, and what it needs of Open MPI.
 # Install rules without a COMPONENT land in swaywatch (see the default
 # component set at the top of the top-level CMakeLists.txt).
 
 install(TARGETS swaywatch-cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+if(TARGET swaywatch-mpi-cli)
+  install(TARGETS swaywatch-mpi-cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT mpi)
+  # its manual page is swaywatch's (the same options), by a .so link
+  file(WRITE ${PROJECT_BINARY_DIR}/debian/swaywatch-mpi.1 ".so man1/swaywatch.1\n")
+  install(FILES ${PROJECT_BINARY_DIR}/debian/swaywatch-mpi.1
+          DESTINATION ${CMAKE_INSTALL_MANDIR}/man1 COMPONENT mpi)
+endif()
 install(FILES ${PROJECT_SOURCE_DIR}/scripts/bash-completion/swaywatch
         DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/scripts/systemd/monitor.default
@@ -88,6 +99,9 @@ set(CPACK_PACKAGE_CONTACT "${SW_DEB_MAINTAINER}")
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_GENERATOR DEB)
 set(CPACK_COMPONENTS_ALL runtime dev)
+if(TARGET swaywatch-mpi-cli)
+  list(APPEND CPACK_COMPONENTS_ALL mpi)
+endif()
 set(CPACK_DEB_COMPONENT_INSTALL ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_RELEASE 1)
@@ -146,6 +160,22 @@ set(CPACK_DEBIAN_DEV_DESCRIPTION
 The C11 library of swaywatch: scene files, rocking models, the streaming
 engine and the CSV reader.  Headers, static library and swaywatch.pc:
   cc app.c $(pkg-config --cflags --libs swaywatch)")
+
+# swaywatch-mpi: Open MPI's libraries found by dpkg-shlibdeps, and the
+# swaywatch package for the library, data and manual pages.
+set(CPACK_DEBIAN_MPI_PACKAGE_NAME swaywatch-mpi)
+set(CPACK_DEBIAN_MPI_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_MPI_PACKAGE_DEPENDS
+    "swaywatch (= ${PROJECT_VERSION}-${CPACK_DEBIAN_PACKAGE_RELEASE})")
+set(CPACK_DEBIAN_MPI_PACKAGE_RECOMMENDS "openmpi-bin")
+set(CPACK_DEBIAN_MPI_DESCRIPTION
+"tip-over watch for floating cargo on a truck - MPI build for clusters
+swaywatch-mpi is the swaywatch command built with MPI: under mpirun or
+srun, 'swaywatch-mpi batch' and 'swaywatch-mpi boundary' share their work
+among the ranks of the job, with the same output as one process.
+.
+For fleet analysis on a cluster; a vehicle needs only the swaywatch
+package, which does not depend on MPI.")
 
 set(CPACK_SOURCE_GENERATOR TGZ)
 # .git is a file in a worktree: neither it nor a checkout's folder is packed.

@@ -17,8 +17,9 @@ RUNS=${RUNS:-5}
 DOC=docs/hpc.md
 cmake -S . -B "$BUILD" -DSW_WERROR=ON -DSW_BUILD_BENCH=ON -DSW_MPI=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$BUILD" -j 2 --target sw_bench swaywatch-cli >/dev/null
+cmake --build "$BUILD" -j 2 --target sw_bench swaywatch-cli swaywatch-mpi-cli >/dev/null
 SW=$BUILD/swaywatch
+SWMPI=$BUILD/swaywatch-mpi # the same command with MPI
 GEN=$BUILD/bench/sw_bench
 TMP=$(mktemp -d /tmp/sw-batch-bench.XXXXXX)
 trap 'rm -rf "$TMP"' EXIT
@@ -78,8 +79,8 @@ BATCH="batch $SCENES --manifest $TMP/replay.txt -q"
 # shellcheck disable=SC2086
 for _ in $(seq "$RUNS"); do
     once r1 "$SW" $BATCH --threads 1
-    once rm1 $MPI -np 1 "$SW" $BATCH --threads 1
-    once rm2 $MPI -np 2 "$SW" $BATCH --threads 1
+    once rm1 $MPI -np 1 "$SWMPI" $BATCH --threads 1
+    once rm2 $MPI -np 2 "$SWMPI" $BATCH --threads 1
     once rt2 "$SW" $BATCH --threads 2
 done
 for k in rm1 rm2 rt2; do
@@ -92,8 +93,8 @@ FOR="batch --job forensics --scene tests/scenes/crate-a.ini --manifest $TMP/fore
 # shellcheck disable=SC2086
 for _ in $(seq "$FRUNS"); do
     once f1 "$SW" $FOR --threads 1
-    once fm1 $MPI -np 1 "$SW" $FOR --threads 1
-    once fm2 $MPI -np 2 "$SW" $FOR --threads 1
+    once fm1 $MPI -np 1 "$SWMPI" $FOR --threads 1
+    once fm2 $MPI -np 2 "$SWMPI" $FOR --threads 1
 done
 for k in fm1 fm2; do
     cmp "$TMP/f1.out" "$TMP/$k.out" || { echo "run-batch-bench: $k wrote other records" >&2; exit 1; }

@@ -30,14 +30,21 @@
 int sw_cli_world_start(sw_cli_world_t *w)
 {
     *w = (sw_cli_world_t){.rank = 0, .size = 1, .mpi = 0, .local = 1};
-    const char *tasks = getenv("SLURM_STEP_NUM_TASKS");
-    if (tasks && atol(tasks) > 1) {
-        /* each task would do the whole work and write the same outputs */
-        sw_cli_error(
-            "srun started %s tasks, and this build has no MPI to share the work among "
-            "them: run one task (srun -n 1), or use a build with MPI",
-            tasks);
-        return SW_EXIT_USAGE;
+    /* srun, Open MPI's mpirun, MPICH's: each task would do the whole work
+     * and write the same outputs */
+    static const char *const launchers[][2] = {{"SLURM_STEP_NUM_TASKS", "srun"},
+                                               {"OMPI_COMM_WORLD_SIZE", "mpirun"},
+                                               {"PMI_SIZE", "mpiexec"}};
+    for (size_t i = 0; i < sizeof launchers / sizeof launchers[0]; i++) {
+        const char *tasks = getenv(launchers[i][0]);
+        if (tasks && atol(tasks) > 1) {
+            sw_cli_error(
+                "%s started %s tasks, and this program has no MPI to share the work among "
+                "them: run one task, or run swaywatch-mpi (the swaywatch-mpi package, a "
+                "build with MPI)",
+                launchers[i][1], tasks);
+            return SW_EXIT_USAGE;
+        }
     }
     return SW_EXIT_OK;
 }

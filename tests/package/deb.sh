@@ -7,7 +7,10 @@
 # the installed command runs, a program builds against the installed
 # library through pkg-config and runs; the packages are purged again, so
 # the machine is left as it was.  Needs root: exits 77 (skipped) otherwise.
-# usage: deb.sh BUILD_DIR SOURCE_DIR   (env: SW_VERSION, SW_LCM, SW_MAN, SW_CC_FLAGS)
+# The vehicle package never depends on MPI (it pulled in Open MPI, 71
+# packages instead of 24, when the build found MPI); a build with MPI makes
+# swaywatch-mpi as a package of its own, which does.
+# usage: deb.sh BUILD_DIR SOURCE_DIR   (env: SW_VERSION, SW_LCM, SW_MAN, SW_MPI, SW_CC_FLAGS)
 set -eu
 BUILD=$1 SRC=$2
 if [ "$(id -u)" -ne 0 ]; then
@@ -35,20 +38,41 @@ trap 'exit 1' INT TERM
 exec 9>/var/lock/swaywatch-package-test.lock
 flock -w 600 9 || fail "another package test holds the lock"
 
-for p in $PKGS; do
+for p in swaywatch-mpi $PKGS; do
     if dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q ' installed$'; then
-        [ -e "$MARK" ] || fail "$p is installed on this machine: the test would replace and remove it; remove it first (apt-get purge $PKGS)"
+        [ -e "$MARK" ] || fail "$p is installed on this machine: the test would replace and remove it; remove it first (apt-get purge $p)"
         echo "deb.sh: purging $p left by an interrupted run"
-        $APT purge $PKGS >/dev/null
-        rm -f "$MARK"
+        $APT purge "$p" >/dev/null
     fi
 done
+rm -f "$MARK"
 
 cpack -G DEB -B "$T/pkg" --config "$BUILD/CPackConfig.cmake" >"$T/cpack.log" 2>&1 ||
     { cat "$T/cpack.log" >&2; fail "cpack failed"; }
 main=$(ls "$T"/pkg/swaywatch_"$SW_VERSION"-*.deb 2>/dev/null | head -n 1)
 dev=$(ls "$T"/pkg/libswaywatch-dev_"$SW_VERSION"-*.deb 2>/dev/null | head -n 1)
+mpi=$(ls "$T"/pkg/swaywatch-mpi_"$SW_VERSION"-*.deb 2>/dev/null | head -n 1)
 [ -n "$main" ] && [ -n "$dev" ] || { ls -l "$T/pkg" >&2; fail "packages not made"; }
+
+# MPI only in swaywatch-mpi: the vehicle's package names no MPI library,
+# its program links none.
+echo "$(dpkg-deb -f "$main" Depends)" | grep -Eiq 'mpi|pmix|hwloc|fabric|ucx' &&
+    fail "swaywatch depends on MPI: $(dpkg-deb -f "$main" Depends)"
+dpkg-deb -x "$main" "$T/main"
+if ldd "$T/main/usr/bin/swaywatch" | grep -Eiq 'libmpi|libopen-'; then
+    fail "/usr/bin/swaywatch links MPI"
+fi
+if [ "${SW_MPI:-0}" = 1 ]; then
+    [ -n "$mpi" ] || { ls -l "$T/pkg" >&2; fail "no swaywatch-mpi package in a build with MPI"; }
+    dpkg-deb -f "$mpi" Depends | grep -q 'libopenmpi' ||
+        fail "swaywatch-mpi does not depend on Open MPI: $(dpkg-deb -f "$mpi" Depends)"
+    dpkg-deb -f "$mpi" Depends | grep -q "swaywatch (= $SW_VERSION-" ||
+        fail "swaywatch-mpi does not depend on swaywatch"
+    dpkg-deb -c "$mpi" | grep -q ' ./usr/bin/swaywatch-mpi$' || fail "no /usr/bin/swaywatch-mpi"
+    dpkg-deb -c "$mpi" | grep -q ' ./usr/bin/swaywatch$' && fail "swaywatch-mpi has /usr/bin/swaywatch"
+else
+    [ -z "$mpi" ] || fail "a swaywatch-mpi package from a build without MPI"
+fi
 
 # Control fields: run-time dependencies found by dpkg-shlibdeps.
 depends=$(dpkg-deb -f "$main" Depends)
@@ -70,7 +94,7 @@ for f in Section Priority; do
 done
 dpkg-deb -c "$main" | grep -q ' ./usr/share/man/man5/swaywatch-scene.5.gz$' ||
     fail "no swaywatch-scene(5), compressed, in the package"
-for deb in "$main" "$dev"; do
+for deb in "$main" "$dev" $mpi; do
     pkg=$(dpkg-deb -f "$deb" Package)
     for f in copyright changelog.Debian.gz; do
         dpkg-deb -c "$deb" | grep -q " ./usr/share/doc/$pkg/$f\$" || fail "$pkg: no /usr/share/doc/$pkg/$f"
@@ -83,7 +107,7 @@ command -v lintian >/dev/null 2>&1 ||
     fail "lintian is not installed (scripts/setup-debian.sh installs it)"
 # Exit status 0: nothing at error level, 1: errors, 2: lintian itself failed.
 rc=0
-lintian --no-tag-display-limit "$main" "$dev" >"$T/lintian.log" 2>"$T/lintian.err" || rc=$?
+lintian --no-tag-display-limit "$main" "$dev" $mpi >"$T/lintian.log" 2>"$T/lintian.err" || rc=$?
 grep -v '^running with root privileges' "$T/lintian.err" >&2 || true
 [ "$rc" -le 1 ] || fail "lintian did not run (exit $rc)"
 errors=$(grep -c '^E: ' "$T/lintian.log" || true)
@@ -98,7 +122,8 @@ done
 
 touch "$MARK"
 installed=1
-$APT install --no-install-recommends "$main" "$dev" >"$T/apt.log" 2>&1 ||
+[ -z "$mpi" ] || PKGS="$PKGS swaywatch-mpi"
+$APT install --no-install-recommends "$main" "$dev" $mpi >"$T/apt.log" 2>&1 ||
     { cat "$T/apt.log" >&2; fail "apt-get install failed"; }
 dpkg -s swaywatch | grep -q '^Status: install ok installed' || fail "swaywatch not installed"
 
@@ -128,6 +153,10 @@ E=/usr/share/swaywatch/examples
 if [ "${SW_LCM:-0}" = 1 ]; then
     [ -e /usr/share/swaywatch/lcmtypes/state_t.lcm ] || fail "no LCM definitions"
 fi
+if [ -n "$mpi" ]; then
+    /usr/bin/swaywatch-mpi replay "$E/hard-stop-overturn.csv" --scene "$E/crate.ini" -q ||
+        fail "the installed swaywatch-mpi"
+fi
 
 # A program against the installed library, through pkg-config only.
 cd "$T"
@@ -144,7 +173,8 @@ for p in $PKGS; do
         fail "$p still installed"
     fi
 done
-for f in /usr/bin/swaywatch /usr/share/swaywatch /usr/share/doc/swaywatch "$U"; do
+for f in /usr/bin/swaywatch /usr/bin/swaywatch-mpi /usr/share/swaywatch /usr/share/doc/swaywatch \
+    "$U"; do
     [ ! -e "$f" ] || fail "$f left behind"
 done
 echo "deb.sh: ok"
