@@ -4,6 +4,7 @@
  * and events are made up here. */
 #include <gsl/gsl_errno.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* cmocka.h needs these before it. */
@@ -203,13 +204,59 @@ static void test_input_and_names(void **st)
     assert_int_equal(sw_alarm_init(NULL, 0, 0.5, 0.2, 0.05), SW_EINVAL);
 }
 
+/* The two numbers of "margin X < critical Y" (or "reserve X g < warn
+ * Y g"), read back. */
+static void numbers(const char *text, double *x, double *y)
+{
+    const char *lt = strstr(text, " < ");
+    assert_non_null(lt);
+    const char *a = strchr(text, ' ');
+    *x = strtod(a, NULL);
+    const char *b = strchr(lt + 3, ' ');
+    *y = strtod(b, NULL);
+}
+
+/* What an alarm says is true as printed: a margin or reserve just below
+ * its level ("margin 0.200 < critical 0.200" was printed for 0.19996)
+ * comes with the digits that show it below; an ordinary one keeps three
+ * decimals.  The alarm is raised at the exact crossing, never later. */
+static void test_text_compares_as_printed(void **st)
+{
+    (void)st;
+    const double below[] = {1e-2, 1e-3, 4e-4, 5e-5, 1e-6, 1e-7, 1e-8};
+    for (size_t k = 0; k < sizeof below / sizeof below[0]; k++) {
+        sw_alarm_watch_t w;
+        sink_t s = {.n = 0};
+        assert_int_equal(sw_alarm_init(&w, 0, 0.5, 0.2, 0.05), SW_OK);
+        assert_int_equal(sw_alarm_set_reserve(&w, 0.2, 0.1, 0.02), SW_OK);
+        feed(&w, &s, 0.0, 1.0);
+        assert_int_equal(feed(&w, &s, 0.1, 0.2 - below[k]), 2); /* warn and critical */
+        sw_alarm_on_reserve(&w, 0.2, 0.0, 1.0, 0.1 - below[k], collect, &s);
+        assert_int_equal(s.n, 2 + 2);
+        for (int i = 0; i < s.n; i++) {
+            double x, y;
+            numbers(s.a[i].text, &x, &y);
+            if (!(x < y))
+                fail_msg("'%s' does not read as below (%g under the level)", s.a[i].text, below[k]);
+        }
+        if (below[k] >= 1e-3)
+            assert_non_null(strstr(s.a[1].text, "< critical 0.200"));
+    }
+    sw_alarm_watch_t w;
+    sink_t s = {.n = 0};
+    assert_int_equal(sw_alarm_init(&w, 0, 0.5, 0.2, 0.05), SW_OK);
+    feed(&w, &s, 0.0, 0.15);
+    assert_string_equal(s.a[0].text, "margin 0.150 < warn 0.500");
+    assert_string_equal(s.a[1].text, "margin 0.150 < critical 0.200");
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_warn_hysteresis), cmocka_unit_test(test_warn_and_critical),
         cmocka_unit_test(test_events),          cmocka_unit_test(test_nonfinite_output),
-        cmocka_unit_test(test_input_and_names),
+        cmocka_unit_test(test_input_and_names), cmocka_unit_test(test_text_compares_as_printed),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

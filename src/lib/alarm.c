@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
@@ -152,6 +153,25 @@ static int crossed(int *armed, double margin, double threshold, double hysteresi
     return 0;
 }
 
+/* "WHAT X UNIT< LEVEL Y UNIT" for x below y, into text: both with three
+ * decimals, as many more as it takes (up to nine) for the numbers printed
+ * to compare as x and y do; "margin 0.200 < critical 0.200" was printed
+ * for a margin of 0.19996.  The alarm itself compares x and y exactly: no
+ * rounding delays it. */
+static void below_text(char *text, size_t len, const char *what, double x, const char *level,
+                       double y, const char *unit)
+{
+    char a[64], b[64];
+    int d = 3;
+    for (; d < 9; d++) {
+        snprintf(a, sizeof a, "%.*f", d, x);
+        snprintf(b, sizeof b, "%.*f", d, y);
+        if (strtod(a, NULL) < strtod(b, NULL))
+            break;
+    }
+    snprintf(text, len, "%s %.*f%s < %s %.*f%s", what, d, x, unit, level, d, y, unit);
+}
+
 int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *o, sw_alarm_fn emit, void *user)
 {
     char text[SW_ALARM_TEXT_MAX];
@@ -167,12 +187,12 @@ int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *o, sw_alarm_fn em
     w->fault_armed = 1;
 
     if (crossed(&w->warn_armed, o->margin, w->warn_margin, w->hysteresis)) {
-        snprintf(text, sizeof text, "margin %.3f < warn %.3f", o->margin, w->warn_margin);
+        below_text(text, sizeof text, "margin", o->margin, "warn", w->warn_margin, "");
         n += emit_alarm(w, SW_ALARM_WARN, SW_ALARM_LEVEL_WARN, o->t, o->state.theta, o->margin,
                         text, emit, user);
     }
     if (crossed(&w->critical_armed, o->margin, w->critical_margin, w->hysteresis)) {
-        snprintf(text, sizeof text, "margin %.3f < critical %.3f", o->margin, w->critical_margin);
+        below_text(text, sizeof text, "margin", o->margin, "critical", w->critical_margin, "");
         n += emit_alarm(w, SW_ALARM_CRITICAL, SW_ALARM_LEVEL_CRITICAL, o->t, o->state.theta,
                         o->margin, text, emit, user);
     }
@@ -187,14 +207,14 @@ int sw_alarm_on_reserve(sw_alarm_watch_t *w, double t, double theta, double marg
     if (!w || !(w->warn_reserve_g > 0.0))
         return 0;
     if (crossed(&w->reserve_warn_armed, reserve_g, w->warn_reserve_g, w->reserve_hysteresis_g)) {
-        snprintf(text, sizeof text, "reserve %.3f g < warn %.3f g", reserve_g, w->warn_reserve_g);
+        below_text(text, sizeof text, "reserve", reserve_g, "warn", w->warn_reserve_g, " g");
         n += emit_alarm(w, SW_ALARM_RESERVE_WARN, SW_ALARM_LEVEL_WARN, t, theta, margin, text, emit,
                         user);
     }
     if (crossed(&w->reserve_critical_armed, reserve_g, w->critical_reserve_g,
                 w->reserve_hysteresis_g)) {
-        snprintf(text, sizeof text, "reserve %.3f g < critical %.3f g", reserve_g,
-                 w->critical_reserve_g);
+        below_text(text, sizeof text, "reserve", reserve_g, "critical", w->critical_reserve_g,
+                   " g");
         n += emit_alarm(w, SW_ALARM_RESERVE_CRITICAL, SW_ALARM_LEVEL_CRITICAL, t, theta, margin,
                         text, emit, user);
     }
