@@ -5,9 +5,13 @@
  * millisecond), and tells when alarms were lost on the way (by the
  * publisher's seq).
  *
- * Build with the generated C types (installed in share/swaywatch/lcmtypes/c,
- * or made with 'lcm-gen -c alarm_t.lcm'):
- *     cc -o alarm_listener alarm_listener.c swaywatch_alarm_t.c -I. -llcm
+ * Build with the generated C types, installed beside the LCM definitions
+ * (share/swaywatch/lcmtypes/c; or made with 'lcm-gen -c alarm_t.lcm'),
+ * from any folder (tests/package checks this line as it is installed):
+ *     T=/usr/share/swaywatch/lcmtypes/c
+ *     cc -o alarm_listener /usr/share/doc/swaywatch/examples/alarm_listener.c \
+ *         $T/swaywatch_alarm_t.c -I$T -llcm
+ * (/usr/local for a build installed with 'cmake --install').
  *
  * usage: alarm_listener [-l URL] [-c CHANNEL] [-n COUNT] [-t SECONDS]
  *   -l URL      LCM URL (default: $LCM_DEFAULT_URL, else LCM's default)
@@ -42,12 +46,37 @@ typedef struct {
     int64_t last_seq;
 } listener_t;
 
-static const char *kind_name(int k)
+/* The kind's name, from the generated constants; a kind this program was
+ * built before (alarm_t only ever gains kinds) by its number. */
+static const char *kind_name(int k, char *buf, size_t size)
 {
-    static const char *const names[] = {"?",           "UPLIFT",     "IMPACT",        "WARN",
-                                        "CRITICAL",    "TIP",        "OVERTURNED",    "REST",
-                                        "MODEL_FAULT", "SENSOR_GAP", "INPUT_REJECTED"};
-    return k > 0 && k < (int)(sizeof names / sizeof names[0]) ? names[k] : "?";
+    switch (k) {
+        case SWAYWATCH_ALARM_T_KIND_UPLIFT: return "UPLIFT";
+        case SWAYWATCH_ALARM_T_KIND_IMPACT: return "IMPACT";
+        case SWAYWATCH_ALARM_T_KIND_WARN: return "WARN";
+        case SWAYWATCH_ALARM_T_KIND_CRITICAL: return "CRITICAL";
+        case SWAYWATCH_ALARM_T_KIND_TIP: return "TIP";
+        case SWAYWATCH_ALARM_T_KIND_OVERTURNED: return "OVERTURNED";
+        case SWAYWATCH_ALARM_T_KIND_REST: return "REST";
+        case SWAYWATCH_ALARM_T_KIND_MODEL_FAULT: return "MODEL_FAULT";
+        case SWAYWATCH_ALARM_T_KIND_SENSOR_GAP: return "SENSOR_GAP";
+        case SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED: return "INPUT_REJECTED";
+        case SWAYWATCH_ALARM_T_KIND_RESERVE_WARN: return "RESERVE_WARN";
+        case SWAYWATCH_ALARM_T_KIND_RESERVE_CRITICAL: return "RESERVE_CRITICAL";
+        default: snprintf(buf, size, "KIND_%d", k); return buf;
+    }
+}
+
+/* A NUL-padded text of the message as a C string for the terminal: a
+ * control byte (an escape sequence a hostile sender put there) as '?'. */
+static void clean(char *dst, const int8_t *src, size_t cap)
+{
+    size_t i = 0;
+    for (; i < cap && src[i]; i++) {
+        const unsigned char c = (unsigned char)src[i];
+        dst[i] = c < 0x20 || c == 0x7f ? '?' : (char)c;
+    }
+    dst[i] = '\0';
 }
 
 static const char *level_name(int l)
@@ -85,22 +114,21 @@ static void on_alarm(const lcm_recv_buf_t *rbuf, const char *channel, const sway
     (void)rbuf;
     (void)channel;
     listener_t *L = user;
-    /* The texts are fixed arrays, NUL-padded; copy them to be sure of the
+    /* The texts are fixed arrays, NUL-padded; copied to be sure of the
      * terminating NUL whatever the sender put there. */
-    char name[sizeof a->name + 1], text[sizeof a->text + 1];
-    memcpy(name, a->name, sizeof a->name);
-    name[sizeof a->name] = '\0';
-    memcpy(text, a->text, sizeof a->text);
-    text[sizeof a->text] = '\0';
+    char name[sizeof a->name + 1], text[sizeof a->text + 1], kind[24];
+    clean(name, a->name, sizeof a->name);
+    clean(text, a->text, sizeof a->text);
 
     if (L->received > 0 && a->seq > L->last_seq + 1)
         L->lost += (long)(a->seq - L->last_seq - 1);
     L->last_seq = a->seq;
     L->received++;
     char when[48];
-    printf("%s seq %" PRId64 " %-8s %-14s %-12s theta %+.4f margin %+.3f  %s\n",
-           iso_time(a->utime, when, sizeof when), a->seq, level_name(a->level), kind_name(a->kind),
-           name[0] ? name : "(input)", a->theta, a->margin, text);
+    printf("%s seq %" PRId64 " %-8s %-16s %-12s theta %+.4f margin %+.3f  %s\n",
+           iso_time(a->utime, when, sizeof when), a->seq, level_name(a->level),
+           kind_name(a->kind, kind, sizeof kind), name[0] ? name : "(input)", a->theta, a->margin,
+           text);
     fflush(stdout);
 }
 

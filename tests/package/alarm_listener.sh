@@ -5,7 +5,8 @@
 # loopback, with the multicast route LCM needs), the listener runs while
 # 'swaywatch replay --publish' replays a braking pulse; it must print every
 # alarm that the same replay writes to a log file, in the same order, each
-# stamped with its utime as ISO 8601 UTC to the millisecond.
+# stamped with its utime as ISO 8601 UTC to the millisecond, and named by
+# its kind (the reserve's alarms too: they were printed as '?').
 # Needs a network namespace (root, or user namespaces): exits 77 otherwise.
 # usage: alarm_listener.sh SWAYWATCH LISTENER SOURCE_DIR PYTHON_TYPES_DIR
 set -eu
@@ -30,6 +31,9 @@ name = crate-A
 height = 2.0
 width = 0.728
 mass = 1000
+[alarm]
+warn_reserve_g = 2.0
+critical_reserve_g = 1.0
 INI
 
 # The alarms, as a log file.
@@ -45,7 +49,8 @@ while (h := f.read(28)) and len(h) == 28:
     if ch == "SWAY_ALARM":
         a = alarm_t.decode(data)
         t = datetime.datetime.fromtimestamp(a.utime // 1000000, datetime.timezone.utc)
-        print(a.seq, a.kind, "%s.%03dZ" % (t.strftime("%Y-%m-%dT%H:%M:%S"), a.utime % 1000000 // 1000))
+        kinds = {v: k[5:] for k, v in vars(alarm_t).items() if k.startswith("KIND_")}
+        print(a.seq, kinds[a.kind], "%s.%03dZ" % (t.strftime("%Y-%m-%dT%H:%M:%S"), a.utime % 1000000 // 1000))
 PY
 n=$(wc -l <"$T/expected")
 [ "$n" -ge 3 ] || fail "the replay raised only $n alarms"
@@ -74,7 +79,11 @@ awk '{print $3}' "$T/expected" | diff - "$T/times" >/dev/null ||
     fail "times differ from the alarms' utime: $(head -n 2 "$T/times" | tr '\n' ' ')"
 grep -Eqv '^[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9]{2}:[0-9]{2}:[0-9]{2}\.[0-9]{3}Z seq ' "$T/printed" &&
     fail "a line without an ISO 8601 time: $(grep -Ev '^[0-9-]{10}T' "$T/printed" | head -n 1)"
+awk '{print $5}' "$T/printed" >"$T/kinds"
+awk '{print $2}' "$T/expected" | diff - "$T/kinds" >/dev/null ||
+    fail "kinds differ: $(paste "$T/kinds" "$T/expected" | head -n 5 | tr '\n' ';')"
 grep -q 'UPLIFT' "$T/printed" || fail "no UPLIFT alarm printed"
+grep -q 'RESERVE_WARN' "$T/printed" || fail "no RESERVE_WARN alarm printed"
 grep -q 'crate-A' "$T/printed" || fail "no package name printed"
 grep -q '0 lost' "$T/listener.err" || fail "the listener lost alarms: $(cat "$T/listener.err")"
 echo "alarm_listener.sh: ok ($n alarms)"

@@ -91,15 +91,30 @@ if [ "${SW_LCM:-0}" = 1 ]; then
 fi
 bin/swaywatch --version | grep -qx "swaywatch $SW_VERSION" || fail "swaywatch --version"
 
-# The LCM examples build and run on the installed bindings alone.
+# The LCM examples build and run on the installed bindings alone, by the
+# lines their headers give, as installed (their /usr this prefix), run
+# from another folder.
 if [ "${SW_LCM:-0}" = 1 ]; then
     L=share/swaywatch/lcmtypes
-    cc ${SW_CC_FLAGS:-} -o "$T/alarm_listener" "$SRC/docs/examples/alarm_listener.c" "$L/c/swaywatch_alarm_t.c" \
-        -I"$L/c" -llcm
-    "$T/alarm_listener" -h >/dev/null
-    PYTHONPATH="$P/$L/python" python3 "$SRC/tests/package/mkaccel.py" "$T/a.lcmlog" --duration 0.1
-    PYTHONPATH="$P/$L/python" python3 "$SRC/docs/examples/decode_states.py" "$T/a.lcmlog" \
-        --expect 0 >/dev/null
+    X=share/doc/swaywatch/examples
+    mkdir "$T/elsewhere"
+    sed -n 's/^ \*     //p' "$X/alarm_listener.c" | sed "s|/usr/|$P/|g" >"$T/elsewhere/build.sh"
+    grep -q 'cc -o alarm_listener' "$T/elsewhere/build.sh" ||
+        fail "no build line in the installed alarm_listener.c"
+    (cd "$T/elsewhere" && sh -e build.sh) || fail "the build line of alarm_listener.c: $(cat "$T/elsewhere/build.sh")"
+    "$T/elsewhere/alarm_listener" -h >/dev/null
+    PYTHONPATH="$P/$L/python" python3 "$SRC/tests/package/mkaccel.py" "$T/elsewhere/drive.lcmlog" \
+        --duration 0.1
+    python3 - "$X/decode_states.py" "$P" >"$T/elsewhere/run.sh" <<'PY'
+import re, sys
+doc = open(sys.argv[1]).read().split('"""')[1]  # the docstring as the file has it
+block = re.search(r"\n\n(    PYTHONPATH=.*?)\n\n", doc, re.S).group(1)
+print(block.replace("\\\\\n", "\\\n").replace("/usr/", sys.argv[2] + "/"))
+PY
+    grep -q 'decode_states.py drive.lcmlog' "$T/elsewhere/run.sh" ||
+        fail "no usage line in the installed decode_states.py"
+    (cd "$T/elsewhere" && sh -e run.sh >/dev/null) ||
+        fail "the usage line of decode_states.py: $(cat "$T/elsewhere/run.sh")"
 fi
 
 # The relocatable .pc file points into this prefix.
