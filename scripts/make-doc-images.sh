@@ -12,7 +12,7 @@ ROOT=$PWD
 BUILD=${BUILD:-build}
 case $BUILD in /*) ;; *) BUILD=$ROOT/$BUILD ;; esac
 SW=$BUILD/swaywatch
-OUT=$ROOT/docs/img
+OUT=${OUT:-$ROOT/docs/img} # where the pictures go (the tests: a scratch folder)
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 mkdir -p "$OUT"
