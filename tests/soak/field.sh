@@ -15,10 +15,13 @@
 # forward; a flood of 20,000 copies of one sample; a second of vertical
 # acceleration below -1 g (the packages fly: a critical alarm each); a
 # 2 s outage.  Meanwhile the monitor gets SIGHUP every 2 s, in turn with an
-# unchanged scene file, a changed bare crate, a broken scene file and a
-# FIFO in place of one, with a stiff cushion (adaptive scheme) beside the
-# bare crate.  Asserted:
+# unchanged scene file, a changed bare crate, a broken scene file, a FIFO
+# in place of one, and the bare crate's file being rewritten in place (its
+# first lines a valid scene of a package named after the file, the name
+# 0.5 s after the SIGHUP), with a stiff cushion (adaptive scheme) beside
+# the bare crate.  Asserted:
 #   - the monitor never exits until SIGINT, and then exits 0;
+#   - no half-written scene file is ever applied;
 #   - after each fault, states of the samples after it are published within
 #     RESUME samples (default 50: three to confirm, ten to the next state on
 #     the 100 Hz grid, and room for the scheduler);
@@ -84,9 +87,20 @@ reloads() {
     i=0
     while kill -0 "$MON" 2>/dev/null; do
         sleep 2
-        case $((i % 5)) in
+        case $((i % 6)) in
+        5)
+            # rewritten in place, slowly: SIGHUP between the halves
+            sed '/^name/d' "$WORK/scenes/bare.ini" >"$WORK/bare.body"
+            grep '^name' "$WORK/scenes/bare.ini" >"$WORK/bare.name"
+            {
+                cat "$WORK/bare.body"
+                sleep 0.5
+                cat "$WORK/bare.name"
+            } >"$WORK/scenes/bare.ini" &
+            sleep 0.1
+            ;;
         0) printf '# checked\n' >>"$WORK/scenes/bare.ini" ;;
-        1) sed -i "s/^width .*/width = 0.7$((i % 3))/" "$WORK/scenes/bare.ini" ;;
+        1) sed -i "s/^width .*/width = 0.7$((i / 6 % 3))/" "$WORK/scenes/bare.ini" ;;
         2) printf '[package]\nheight = -1\n' >"$WORK/scenes/stiff.ini" ;;
         3) rm -f "$WORK/scenes/stiff.ini" && mkfifo "$WORK/scenes/stiff.ini" ;;
         4) rm -f "$WORK/scenes/stiff.ini" &&
@@ -136,6 +150,10 @@ kill -INT "$LOGGER" 2>/dev/null || true
 wait "$LOGGER" 2>/dev/null || true
 LOGGER=""
 "$FEED" check "$WORK/output.lcmlog" >"$WORK/output.txt"
+# a half-written bare.ini has no name: applied, its package would be 'bare'
+if grep -q 'reload: bare rebuilt' "$WORK/monitor.err"; then
+    fail "a half-written scene file was applied"
+fi
 asan=0
 ldd "$SW" 2>/dev/null | grep -q libasan && asan=1
 
