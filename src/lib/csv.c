@@ -106,12 +106,10 @@ static int choose_delim(sw_csv_t *c, const char *s, size_t n, int header_here)
     const char d = detect_delim(s, n);
     if (d) {
         c->delim = d;
-        csv_set_delim(&c->lp, (unsigned char)d);
         return 1;
     }
     if (header_here && c->header == 1) {
-        c->matching = 0;
-        for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
+        for (int r = 0; r < N_ROLES; r++) c->f.match[r] = -1;
         sw_csv_take_header(c); /* a one-column header: named columns fail */
         return 0;
     }
@@ -126,23 +124,20 @@ static int choose_delim(sw_csv_t *c, const char *s, size_t n, int header_here)
  * is malformed. */
 static int split_line(sw_csv_t *c, char *s, size_t n, int header_here)
 {
-    for (int r = 0; r < N_ROLES; r++) c->want[r] = c->col[r];
-    c->want[R_PROBE] = header_here && c->header < 0 ? c->probe : -1;
-    c->maxwant = -1;
-    for (int r = 0; r < N_SLOTS; r++) {
-        c->fs[r] = NULL;
-        if (c->want[r] > c->maxwant)
-            c->maxwant = c->want[r];
+    sw_csv_split_opts_t *o = &c->so;
+    o->delim = c->delim;
+    for (int r = 0; r < N_ROLES; r++) o->want[r] = c->col[r];
+    o->want[R_PROBE] = header_here && c->header < 0 ? c->probe : -1;
+    o->names = header_here && names_pending(c) ? (const char *const *)c->name : NULL;
+    o->capture = header_here ? c->hdr : NULL;
+    const int rc = sw_csv_split(&c->sp, s, n, o, &c->f);
+    if (header_here)
+        c->nhdr = c->f.ncap;
+    if (rc != SW_CSV_SPLIT_OK) {
+        snprintf(c->reason, sizeof c->reason, "%s", c->f.reason);
+        return 0;
     }
-    c->matching = header_here && names_pending(c);
-    c->capturing = header_here;
-    for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
-    c->nf = 0;
-    c->scratch_used = 0;
-    const int ok =
-        memchr(s, '"', n) ? sw_csv_split_quoted(c, s, n) : (sw_csv_split_plain(c, s, n), 1);
-    c->capturing = 0;
-    return ok;
+    return 1;
 }
 
 /* A first line whose time field is not a number may still be a data row
@@ -169,21 +164,21 @@ static int corrupt_row(sw_csv_t *c, const char *t, size_t tn)
 static int first_line(sw_csv_t *c, int ok)
 {
     int is_header = c->header == 1;
-    if (c->header < 0 && ok && c->fs[R_PROBE]) {
+    if (c->header < 0 && ok && c->f.fs[R_PROBE]) {
         /* "0,001", "1e400" and date-times are data as far as this is
          * concerned: such a first row is reported, not taken for a header. */
         double v;
-        const int res = parse_number(c, c->fs[R_PROBE], c->fl[R_PROBE], &v);
+        const int res = parse_number(c, c->f.fs[R_PROBE], c->f.fl[R_PROBE], &v);
         is_header = (res == NUM_EMPTY || res == NUM_BAD) &&
-                    !sw_csv_datetime(c->fs[R_PROBE], c->fl[R_PROBE], &v) &&
-                    !corrupt_row(c, c->fs[R_PROBE], c->fl[R_PROBE]);
+                    !sw_csv_datetime(c->f.fs[R_PROBE], c->f.fl[R_PROBE], &v) &&
+                    !corrupt_row(c, c->f.fs[R_PROBE], c->f.fl[R_PROBE]);
     }
     if (is_header) {
         sw_csv_take_header(c);
         return 1;
     }
     c->nhdr = 0;
-    if (c->matching) {
+    if (c->so.names) {
         /* Reported like any unusable row, then the parse ends. */
         int r = 0;
         while (!(c->name[r] && c->col[r] < 0)) r++;
@@ -210,13 +205,13 @@ static void decide_comma(sw_csv_t *c)
         return;
     }
     for (int r = 0; r < N_ROLES; r++) {
-        if (!c->fs[r])
+        if (!c->f.fs[r])
             continue;
-        if (memchr(c->fs[r], ',', c->fl[r])) {
+        if (memchr(c->f.fs[r], ',', c->f.fl[r])) {
             c->dcomma = c->lay.decimal_comma = 1;
             return;
         }
-        if (memchr(c->fs[r], '.', c->fl[r])) {
+        if (memchr(c->f.fs[r], '.', c->f.fl[r])) {
             c->dcomma = c->lay.decimal_comma = 0;
             return;
         }
@@ -226,8 +221,8 @@ static void decide_comma(sw_csv_t *c)
 /* The time field: a number, or a date-time (all rows as the first). */
 static int parse_time(sw_csv_t *c, double *out)
 {
-    const char *s = c->fs[R_TIME];
-    const size_t n = c->fl[R_TIME];
+    const char *s = c->f.fs[R_TIME];
+    const size_t n = c->f.fl[R_TIME];
     if (c->tkind != 2) {
         const int res = parse_number(c, s, n, out);
         if (res == NUM_OK)
@@ -251,7 +246,7 @@ static void field_reason(sw_csv_t *c, int r, int res)
 {
     char label[120], ex[EXCERPT_MAX + 8];
     column_label(c, r, label, sizeof label);
-    sw_csv_excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
+    sw_csv_excerpt(ex, sizeof ex, c->f.fs[r], c->f.fl[r]);
     switch (res) {
         case NUM_EMPTY: snprintf(c->reason, sizeof c->reason, "%s is empty", label); break;
         case NUM_COMMA:
@@ -284,16 +279,16 @@ static void data_row(sw_csv_t *c, int ok)
     for (int r = 0; r < N_ROLES; r++) {
         if (r == R_VERT && !c->have_vert)
             break;
-        if (!c->fs[r]) {
+        if (!c->f.fs[r]) {
             char label[120];
             column_label(c, r, label, sizeof label);
             snprintf(c->reason, sizeof c->reason, "missing field: %s; the line has %ld field%s",
-                     label, c->nf, c->nf == 1 ? "" : "s");
+                     label, c->f.nf, c->f.nf == 1 ? "" : "s");
             reject(c);
             return;
         }
         const int res =
-            r == R_TIME ? parse_time(c, &v[r]) : parse_number(c, c->fs[r], c->fl[r], &v[r]);
+            r == R_TIME ? parse_time(c, &v[r]) : parse_number(c, c->f.fs[r], c->f.fl[r], &v[r]);
         if (res != NUM_OK) {
             field_reason(c, r, res);
             reject(c);
@@ -308,7 +303,7 @@ static void data_row(sw_csv_t *c, int ok)
         int r = !isfinite(t) ? R_TIME : !isfinite(a) ? R_ACCEL : R_VERT;
         char label[120], ex[EXCERPT_MAX + 8];
         column_label(c, r, label, sizeof label);
-        sw_csv_excerpt(ex, sizeof ex, c->fs[r], c->fl[r]);
+        sw_csv_excerpt(ex, sizeof ex, c->f.fs[r], c->f.fl[r]);
         snprintf(c->reason, sizeof c->reason, "%s is out of range after unit conversion: %s", label,
                  ex);
         reject(c);
@@ -380,8 +375,7 @@ static void end_line(sw_csv_t *c)
     if (overlong) {
         if (c->header_open && c->header == 1) {
             c->header_open = 0;
-            c->matching = 0;
-            for (int r = 0; r < N_ROLES; r++) c->match[r] = -1;
+            for (int r = 0; r < N_ROLES; r++) c->f.match[r] = -1;
             sw_csv_take_header(c);
             return;
         }
@@ -471,14 +465,12 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
     c->user = user;
 
     c->line = malloc(LINE_CAP + 1);
-    c->scratch = malloc(SCRATCH_CAP);
     c->cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-    if (!c->line || !c->scratch || c->cloc == (locale_t)0) {
+    if (!c->line || c->cloc == (locale_t)0 || sw_csv_splitter_init(&c->sp) != 0) {
         bad_opts(err, msg, msglen, SW_ENOMEM, "out of memory");
         sw_csv_destroy(c);
         return NULL;
     }
-    sw_csv_lcsv_init(c);
     if (err)
         *err = SW_OK;
     if (msg && msglen)
@@ -490,12 +482,11 @@ void sw_csv_destroy(sw_csv_t *c)
 {
     if (!c)
         return;
-    csv_free(&c->lp);
+    sw_csv_splitter_free(&c->sp);
     if (c->cloc != (locale_t)0)
         freelocale(c->cloc);
     for (int r = 0; r < N_ROLES; r++) free(c->name[r]);
     free(c->line);
-    free(c->scratch);
     free(c);
 }
 

@@ -459,14 +459,14 @@ void sw_csv_take_header(sw_csv_t *c)
     for (int r = 0; r < N_ROLES; r++) {
         if (!c->name[r])
             continue;
-        if (c->match[r] < 0) {
+        if (c->f.match[r] < 0) {
             char t[160];
             snprintf(t, sizeof t, "no column named \"%s\" (%s) in the header", c->name[r],
                      role_name[r]);
             sw_csv_fail(c, SW_ENOTFOUND, t);
             return;
         }
-        c->col[r] = c->match[r];
+        c->col[r] = c->f.match[r];
     }
     if (c->infer && infer_columns(c) != 0)
         return;

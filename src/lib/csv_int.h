@@ -32,6 +32,63 @@ static const char *const role_name[N_ROLES] = {"time", "accel", "vertical"};
 
 #define LIBCSV_OPTS (CSV_STRICT | CSV_STRICT_FINI | CSV_APPEND_NULL)
 
+/* ---- csv_split.c: a line into fields --------------------------------------------- */
+
+int sw_csv_is_blank(char ch);
+/* Case-insensitive ASCII comparison of a header field with a column name,
+ * both trimmed of spaces and tabs. */
+int sw_csv_name_equal(const char *a, size_t an, const char *b);
+/* s[0..n) quoted for a message, at most EXCERPT_MAX bytes, non-ASCII as '?'. */
+void sw_csv_excerpt(char *dst, size_t cap, const char *s, size_t n);
+
+/* What to take from a line. */
+typedef struct {
+    char delim;         /* ',', ';' or tab */
+    long want[N_SLOTS]; /* 0-based column per slot, -1 none */
+    /* names to look up among the fields (the columns named by the caller;
+       NULL entries: none), or NULL: no look-up */
+    const char *const *names;
+    /* where to keep the first SW_CSV_MAX_FIELDS fields, trimmed and cut to
+       SW_CSV_NAME_MAX - 1 bytes (a header), or NULL */
+    char (*capture)[SW_CSV_NAME_MAX];
+} sw_csv_split_opts_t;
+
+/* What a line held. */
+typedef struct {
+    const char *fs[N_SLOTS]; /* NUL-terminated field text per slot, NULL = absent */
+    size_t fl[N_SLOTS];
+    long nf;             /* fields seen (all of them unless the line was cut short
+                            after the last wanted one, with neither names nor capture) */
+    long match[N_ROLES]; /* field of each name looked up, -1 not found */
+    long ncap;           /* fields captured */
+    char reason[256];    /* why the line could not be split */
+} sw_csv_fields_t;
+
+/* libcsv's parser and the copies of quoted fields: the state splitting
+ * needs, allocated once. */
+typedef struct {
+    struct csv_parser lp;
+    char *scratch;
+    size_t scratch_used;
+    int ready;
+    long maxwant;                 /* during a split */
+    const sw_csv_split_opts_t *o; /* during a split */
+    sw_csv_fields_t *f;           /* during a split */
+} sw_csv_splitter_t;
+
+enum { SW_CSV_SPLIT_OK = 0, SW_CSV_SPLIT_BAD = -1 };
+
+/* 0 or -1 (out of memory). */
+int sw_csv_splitter_init(sw_csv_splitter_t *sp);
+void sw_csv_splitter_free(sw_csv_splitter_t *sp); /* zeroed or initialised */
+/* Split s[0..n) (s[n] writable; field ends are overwritten with NULs) as o
+ * says into f: SW_CSV_SPLIT_OK, or SW_CSV_SPLIT_BAD with f->reason when
+ * its quoting is malformed (f holds the fields before the fault). */
+int sw_csv_split(sw_csv_splitter_t *sp, char *s, size_t n, const sw_csv_split_opts_t *o,
+                 sw_csv_fields_t *f);
+
+/* ---- the reader's state (csv.c) ------------------------------------------- */
+
 struct sw_csv {
     /* options, fixed at create */
     char delim; /* 0 until detected */
@@ -55,7 +112,6 @@ struct sw_csv {
     sw_csv_layout_t lay;
     char hdr[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
     long nhdr;
-    int capturing; /* keep the fields of this line: it may be the header */
 
     /* the physical line being gathered */
     char *line;
@@ -63,17 +119,10 @@ struct sw_csv {
     int overlong; /* the line outgrew the buffer: the rest is dropped */
     int finished;
 
-    /* one line's split, reset for every data line */
-    long want[N_SLOTS]; /* column index per slot, -1 none */
-    long maxwant;
-    const char *fs[N_SLOTS]; /* NUL-terminated field text, NULL = absent */
-    size_t fl[N_SLOTS];
-    long nf;      /* fields seen so far in the line */
-    int matching; /* header line: look up the column names */
-    long match[N_ROLES];
-    char *scratch;
-    size_t scratch_used;
-    struct csv_parser lp;
+    /* one line's split */
+    sw_csv_splitter_t sp;
+    sw_csv_split_opts_t so;
+    sw_csv_fields_t f;
 
     /* stream state */
     long lineno;
@@ -86,23 +135,6 @@ struct sw_csv {
     char msg[400]; /* "line N: " + a reason */
     char reason[256];
 };
-
-/* ---- csv_split.c ------------------------------------------------------------- */
-
-int sw_csv_is_blank(char ch);
-/* Case-insensitive ASCII comparison of a header field with a column name,
- * both trimmed of spaces and tabs. */
-int sw_csv_name_equal(const char *a, size_t an, const char *b);
-/* s[0..n) quoted for a message, at most EXCERPT_MAX bytes, non-ASCII as '?'. */
-void sw_csv_excerpt(char *dst, size_t cap, const char *s, size_t n);
-/* Split a line without / with a quote character into c's slots (the
- * latter: 0 with c->reason set when its quoting is malformed). */
-void sw_csv_split_plain(sw_csv_t *c, char *s, size_t n);
-int sw_csv_split_quoted(sw_csv_t *c, char *s, size_t n);
-/* libcsv set up for one line at a time (after the options are known), and
- * back to a clean state after an error. */
-void sw_csv_lcsv_init(sw_csv_t *c);
-void sw_csv_lcsv_reset(sw_csv_t *c);
 
 /* ---- csv_num.c ------------------------------------------------------------- */
 

@@ -1,12 +1,16 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* csv_split.c - one line of a CSV log split into the fields its reader
- * wants: directly on the delimiter when the line holds no quote (the fast
- * path, most rows of a numeric log), through libcsv in strict mode when it
- * does.  The fast path reproduces libcsv's treatment of unquoted fields
- * exactly (spaces and tabs around a field are dropped); the tests compare
- * the two.  While a line may be the header every field is kept (its names
- * choose the columns, and messages list them). */
+/* csv_split.c - one line of a CSV log split into the fields a caller wants
+ * (csv_int.h: bytes, a length and a small options struct in; fields, or
+ * why the line cannot be split, out).  Directly on the delimiter when the
+ * line holds no quote (the fast path, most rows of a numeric log), through
+ * libcsv in strict mode when it does.  The fast path reproduces libcsv's
+ * treatment of unquoted fields exactly (spaces and tabs around a field are
+ * dropped); the tests compare the two.  A line that may be the header has
+ * every field kept (its names choose the columns, and messages list them).
+ * Nothing here knows the reader's state: the splitter holds only libcsv's
+ * parser and the copies of quoted fields. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <csv.h>
@@ -67,68 +71,71 @@ void sw_csv_excerpt(char *dst, size_t cap, const char *s, size_t n)
 
 /* ----------------------------------------------------------------- fields */
 
-/* One field of the current line: remember it if a slot wants this column,
- * and look its text up among the column names while reading a header.
- * copy: the text lives in libcsv's buffer, which the next field reuses. */
-static void take_field(sw_csv_t *c, char *s, size_t n, int copy)
+/* One field of the line: remember it if a slot wants this column, keep its
+ * name while capturing, and look it up among the names asked for.  copy:
+ * the text lives in libcsv's buffer, which the next field reuses. */
+static void take_field(sw_csv_splitter_t *sp, char *s, size_t n, int copy)
 {
-    long k = c->nf++;
-    if (c->capturing && k < SW_CSV_MAX_FIELDS) {
+    const sw_csv_split_opts_t *o = sp->o;
+    sw_csv_fields_t *f = sp->f;
+    long k = f->nf++;
+    if (o->capture && k < SW_CSV_MAX_FIELDS) {
         const char *a = s;
         size_t an = n;
         while (an && sw_csv_is_blank(*a)) a++, an--;
         while (an && sw_csv_is_blank(a[an - 1])) an--;
         if (an >= SW_CSV_NAME_MAX)
             an = SW_CSV_NAME_MAX - 1;
-        memcpy(c->hdr[k], a, an);
-        c->hdr[k][an] = '\0';
-        c->nhdr = k + 1;
+        memcpy(o->capture[k], a, an);
+        o->capture[k][an] = '\0';
+        f->ncap = k + 1;
     }
-    if (c->matching) {
+    if (o->names) {
         for (int r = 0; r < N_ROLES; r++)
-            if (c->name[r] && c->match[r] < 0 && sw_csv_name_equal(s, n, c->name[r]))
-                c->match[r] = k;
+            if (o->names[r] && f->match[r] < 0 && sw_csv_name_equal(s, n, o->names[r]))
+                f->match[r] = k;
     }
-    if (k > c->maxwant)
+    if (k > sp->maxwant)
         return;
     const char *kept = NULL;
     for (int r = 0; r < N_SLOTS; r++) {
-        if (c->want[r] != k)
+        if (o->want[r] != k)
             continue;
         if (!kept) {
             if (copy) {
-                if (c->scratch_used + n + 1 > SCRATCH_CAP)
+                if (sp->scratch_used + n + 1 > SCRATCH_CAP)
                     return; /* cannot happen */
-                char *d = c->scratch + c->scratch_used;
+                char *d = sp->scratch + sp->scratch_used;
                 memcpy(d, s, n);
                 d[n] = '\0';
-                c->scratch_used += n + 1;
+                sp->scratch_used += n + 1;
                 kept = d;
             } else {
                 s[n] = '\0'; /* within the field or on its delimiter: already scanned */
                 kept = s;
             }
         }
-        c->fs[r] = kept;
-        c->fl[r] = n;
+        f->fs[r] = kept;
+        f->fl[r] = n;
     }
 }
 
 /* Split a line that holds no quote character: exactly what libcsv does with
  * unquoted fields, without its per-byte state machine and field copies. */
-void sw_csv_split_plain(sw_csv_t *c, char *s, size_t n)
+static void split_plain(sw_csv_splitter_t *sp, char *s, size_t n)
 {
+    const sw_csv_split_opts_t *o = sp->o;
     char *p = s, *end = s + n;
     for (;;) {
-        char *d = memchr(p, c->delim, (size_t)(end - p));
+        char *d = memchr(p, o->delim, (size_t)(end - p));
         char *e = d ? d : end;
         while (p < e && sw_csv_is_blank(*p)) p++;
         while (e > p && sw_csv_is_blank(e[-1])) e--;
-        take_field(c, p, (size_t)(e - p), 0);
+        take_field(sp, p, (size_t)(e - p), 0);
         if (!d)
             return;
         /* Thousands of columns: stop once every wanted field is in hand. */
-        if (!c->matching && !c->capturing && c->nf > c->maxwant)
+        if (!o->names && !o->capture && sp->f->nf > sp->maxwant)
             return;
         p = d + 1;
     }
@@ -149,46 +156,86 @@ static int lcsv_term(unsigned char ch)
 /* Back to a clean state after an error.  csv_fini does not reset the parser
  * after a CSV_STRICT_FINI error, so that check is switched off for the
  * discarding call; no callbacks, so the partial row is dropped. */
-void sw_csv_lcsv_reset(sw_csv_t *c)
+static void lcsv_reset(sw_csv_splitter_t *sp)
 {
-    csv_set_opts(&c->lp, LIBCSV_OPTS & ~CSV_STRICT_FINI);
-    csv_fini(&c->lp, NULL, NULL, NULL);
-    csv_set_opts(&c->lp, LIBCSV_OPTS);
+    csv_set_opts(&sp->lp, LIBCSV_OPTS & ~CSV_STRICT_FINI);
+    csv_fini(&sp->lp, NULL, NULL, NULL);
+    csv_set_opts(&sp->lp, LIBCSV_OPTS);
 }
 
-/* Split a line holding a quote through libcsv.  0 with c->reason set when
- * the quoting is malformed. */
-int sw_csv_split_quoted(sw_csv_t *c, char *s, size_t n)
+/* Split a line holding a quote through libcsv. */
+static int split_quoted(sw_csv_splitter_t *sp, char *s, size_t n)
 {
-    size_t used = csv_parse(&c->lp, s, n, lcsv_field, NULL, c);
+    sw_csv_fields_t *f = sp->f;
+    csv_set_delim(&sp->lp, (unsigned char)sp->o->delim);
+    size_t used = csv_parse(&sp->lp, s, n, lcsv_field, NULL, sp);
     if (used < n) {
-        int err = csv_error(&c->lp);
-        sw_csv_lcsv_reset(c);
+        int err = csv_error(&sp->lp);
+        lcsv_reset(sp);
         if (err == CSV_EPARSE) {
             char ex[EXCERPT_MAX + 8];
             sw_csv_excerpt(ex, sizeof ex, s + used, n - used);
-            snprintf(c->reason, sizeof c->reason, "malformed quoting in field %ld at %s", c->nf + 1,
+            snprintf(f->reason, sizeof f->reason, "malformed quoting in field %ld at %s", f->nf + 1,
                      ex);
         } else {
-            snprintf(c->reason, sizeof c->reason, "CSV parser: %s", csv_strerror(err));
+            snprintf(f->reason, sizeof f->reason, "CSV parser: %s", csv_strerror(err));
         }
-        return 0;
+        return SW_CSV_SPLIT_BAD;
     }
-    if (csv_fini(&c->lp, lcsv_field, NULL, c) != 0) {
-        sw_csv_lcsv_reset(c);
-        snprintf(c->reason, sizeof c->reason, "unterminated quote in field %ld", c->nf + 1);
-        return 0;
+    if (csv_fini(&sp->lp, lcsv_field, NULL, sp) != 0) {
+        lcsv_reset(sp);
+        snprintf(f->reason, sizeof f->reason, "unterminated quote in field %ld", f->nf + 1);
+        return SW_CSV_SPLIT_BAD;
     }
-    return 1;
+    return SW_CSV_SPLIT_OK;
 }
 
-void sw_csv_lcsv_init(sw_csv_t *c)
+int sw_csv_split(sw_csv_splitter_t *sp, char *s, size_t n, const sw_csv_split_opts_t *o,
+                 sw_csv_fields_t *f)
 {
-    csv_init(&c->lp, LIBCSV_OPTS);
-    csv_set_term_func(&c->lp, lcsv_term);
+    sp->o = o;
+    sp->f = f;
+    sp->maxwant = -1;
+    for (int r = 0; r < N_SLOTS; r++) {
+        f->fs[r] = NULL;
+        f->fl[r] = 0;
+        if (o->want[r] > sp->maxwant)
+            sp->maxwant = o->want[r];
+    }
+    for (int r = 0; r < N_ROLES; r++) f->match[r] = -1;
+    f->nf = 0;
+    f->ncap = 0;
+    f->reason[0] = '\0';
+    sp->scratch_used = 0;
+    int rc = SW_CSV_SPLIT_OK;
+    if (memchr(s, '"', n))
+        rc = split_quoted(sp, s, n);
+    else
+        split_plain(sp, s, n);
+    sp->o = NULL;
+    sp->f = NULL;
+    return rc;
+}
+
+int sw_csv_splitter_init(sw_csv_splitter_t *sp)
+{
+    memset(sp, 0, sizeof *sp);
+    sp->scratch = malloc(SCRATCH_CAP);
+    if (!sp->scratch)
+        return -1;
+    csv_init(&sp->lp, LIBCSV_OPTS);
+    csv_set_term_func(&sp->lp, lcsv_term);
     /* libcsv grows its field buffer linearly by this much: the default (128)
      * would mean thousands of reallocations for one long quoted field. */
-    csv_set_blk_size(&c->lp, 64 * 1024);
-    if (c->delim)
-        csv_set_delim(&c->lp, (unsigned char)c->delim);
+    csv_set_blk_size(&sp->lp, 64 * 1024);
+    sp->ready = 1;
+    return 0;
+}
+
+void sw_csv_splitter_free(sw_csv_splitter_t *sp)
+{
+    if (sp->ready)
+        csv_free(&sp->lp);
+    free(sp->scratch);
+    memset(sp, 0, sizeof *sp);
 }
