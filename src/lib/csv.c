@@ -33,6 +33,54 @@
 #include "swaywatch/csv.h"
 #include "swaywatch/status.h"
 
+/* The reader's state: the only place it lives. */
+struct sw_csv {
+    /* options, fixed at create */
+    char delim; /* 0 until detected */
+    int header; /* -1 detect, 0 none, 1 present */
+    double tscale, ascale;
+    int flip;
+    char *name[N_ROLES]; /* column name as given, looked up in the header; NULL: by index */
+    long col[N_ROLES];   /* 0-based column index; -1 unknown (named) or unused */
+    long probe;          /* column tested by header detection */
+    int have_vert;
+    int col_given[N_ROLES]; /* the caller named or numbered the column */
+    sw_csv_row_fn on_row;
+    sw_csv_reject_fn on_reject;
+    void *user;
+    locale_t cloc; /* "C" numeric locale: '.' is the decimal point whatever
+                      the program's locale says */
+    int infer;     /* read unnamed columns and units from the header */
+    int tscale_given, ascale_given;
+    int dcomma; /* decimal comma: -1 not decided yet, 0, 1 */
+    int tkind;  /* time column: 0 not seen yet, 1 numbers, 2 date-times */
+    sw_csv_layout_t lay;
+    char hdr[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
+    long nhdr;
+
+    /* the physical line being gathered */
+    char *line;
+    size_t len;
+    int overlong; /* the line outgrew the buffer: the rest is dropped */
+    int finished;
+
+    /* one line's split */
+    sw_csv_splitter_t sp;
+    sw_csv_split_opts_t so;
+    sw_csv_fields_t f;
+
+    /* stream state */
+    long lineno;
+    int header_open; /* the next data-like line may still be the header */
+    int have_last;
+    double last_t;
+    int any_order; /* the options' any_order: no time-order check here */
+    sw_csv_counts_t n;
+    int status;    /* sticky error ending the parse, or SW_OK */
+    char msg[400]; /* "line N: " + a reason */
+    char reason[256];
+};
+
 /* ---------------------------------------------------------------- numbers */
 
 enum {
@@ -66,7 +114,8 @@ static void column_label(const sw_csv_t *c, int r, char *dst, size_t cap)
         snprintf(dst, cap, "%s (column %ld)", role_name[r], c->col[r] + 1);
 }
 
-void sw_csv_fail(sw_csv_t *c, int code, const char *text)
+/* End the parse with code and "line N: text". */
+static void fail(sw_csv_t *c, int code, const char *text)
 {
     c->status = code;
     snprintf(c->msg, sizeof c->msg, "line %ld: %s", c->lineno, text);
@@ -99,6 +148,44 @@ static int names_pending(const sw_csv_t *c)
     return 0;
 }
 
+/* The layout once the columns are known (from the options, the header's
+ * names or the defaults), or the parse ended. */
+static int fix_layout(sw_csv_t *c, int has_header)
+{
+    const sw_csv_infer_in_t in = {
+        .col = {c->col[R_TIME], c->col[R_ACCEL], c->col[R_VERT]},
+        .name = (const char *const *)c->name,
+        .match = c->f.match,
+        .col_given = {c->col_given[R_TIME], c->col_given[R_ACCEL], c->col_given[R_VERT]},
+        .scale = {c->tscale, c->ascale},
+        .scale_given = {c->tscale_given, c->ascale_given},
+        .infer = c->infer,
+        .has_header = has_header,
+        .names = (const char(*)[SW_CSV_NAME_MAX])c->hdr,
+        .nnames = c->nhdr,
+        .delim = c->delim,
+        .decimal_comma = c->dcomma,
+        .tkind = c->tkind,
+    };
+    char t[320];
+    const int rc = sw_csv_infer(&in, &c->lay, t, sizeof t);
+    if (rc != SW_OK) {
+        fail(c, rc, t);
+        return rc;
+    }
+    for (int r = 0; r < N_ROLES; r++) c->col[r] = c->lay.col[r];
+    c->tscale = c->lay.scale[R_TIME];
+    c->ascale = c->lay.scale[R_ACCEL];
+    return SW_OK;
+}
+
+/* The first data-like line was a header. */
+static void take_header(sw_csv_t *c)
+{
+    c->n.headers++;
+    fix_layout(c, 1);
+}
+
 /* The delimiter of the first data-like line, if not given.  0 when the line
  * has none: a one-column header, or a row reported as such. */
 static int choose_delim(sw_csv_t *c, const char *s, size_t n, int header_here)
@@ -110,7 +197,7 @@ static int choose_delim(sw_csv_t *c, const char *s, size_t n, int header_here)
     }
     if (header_here && c->header == 1) {
         for (int r = 0; r < N_ROLES; r++) c->f.match[r] = -1;
-        sw_csv_take_header(c); /* a one-column header: named columns fail */
+        take_header(c); /* a one-column header: named columns fail */
         return 0;
     }
     c->n.rows++;
@@ -174,7 +261,7 @@ static int first_line(sw_csv_t *c, int ok)
                     !corrupt_row(c, c->f.fs[R_PROBE], c->f.fl[R_PROBE]);
     }
     if (is_header) {
-        sw_csv_take_header(c);
+        take_header(c);
         return 1;
     }
     c->nhdr = 0;
@@ -187,10 +274,10 @@ static int first_line(sw_csv_t *c, int ok)
                  role_name[r]);
         c->n.rows++;
         reject(c);
-        sw_csv_fail(c, SW_ENOTFOUND, c->reason);
+        fail(c, SW_ENOTFOUND, c->reason);
         return 0;
     }
-    sw_csv_fix_layout(c, 0);
+    fix_layout(c, 0);
     return 0;
 }
 
@@ -376,7 +463,7 @@ static void end_line(sw_csv_t *c)
         if (c->header_open && c->header == 1) {
             c->header_open = 0;
             for (int r = 0; r < N_ROLES; r++) c->f.match[r] = -1;
-            sw_csv_take_header(c);
+            take_header(c);
             return;
         }
         c->header_open = 0;
@@ -432,21 +519,34 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
         bad_opts(err, msg, msglen, SW_ENOMEM, "out of memory");
         return NULL;
     }
-    const int rc = sw_csv_set_columns(c, o, t, sizeof t);
+    sw_csv_colspec_t cs;
+    const int rc = sw_csv_colspec_parse(o, &cs, t, sizeof t);
     if (rc != SW_OK) {
         bad_opts(err, msg, msglen, rc, t);
         sw_csv_destroy(c);
         return NULL;
     }
+    for (int r = 0; r < N_ROLES; r++) {
+        c->col[r] = cs.col[r];
+        c->col_given[r] = cs.given[r];
+        if (!cs.name[r])
+            continue;
+        c->name[r] = malloc(cs.len[r] + 1);
+        if (!c->name[r]) {
+            bad_opts(err, msg, msglen, SW_ENOMEM, "out of memory");
+            sw_csv_destroy(c);
+            return NULL;
+        }
+        memcpy(c->name[r], cs.name[r], cs.len[r]);
+        c->name[r][cs.len[r]] = '\0';
+    }
+    c->have_vert = o->vert_col != NULL;
     if (o->decimal_comma < -1 || o->decimal_comma > 1) {
         bad_opts(err, msg, msglen, SW_EINVAL, "decimal_comma must be -1 (detect), 0 or 1");
         sw_csv_destroy(c);
         return NULL;
     }
     c->infer = o->infer != 0;
-    c->col_given[R_TIME] = o->time_col != NULL;
-    c->col_given[R_ACCEL] = o->accel_col != NULL;
-    c->col_given[R_VERT] = o->vert_col != NULL;
     c->tscale_given = o->time_scale != 0.0;
     c->ascale_given = o->accel_scale != 0.0;
     c->dcomma = o->decimal_comma;

@@ -16,8 +16,9 @@
  * names no axis beside lateral and vertical ones; among several time
  * columns the one with a unit (elapsed seconds) is preferred to one without
  * (a date-time).  The columns the caller names or numbers instead are
- * read here too (sw_csv_set_columns), and so is the header line itself
- * once the reader has one (sw_csv_take_header, sw_csv_fix_layout). */
+ * read here too (sw_csv_colspec_parse).  Everything here is a function of
+ * its arguments: the reader (csv.c) hands in what it read and applies the
+ * layout, or ends the parse with the code and message returned. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -308,10 +309,10 @@ int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_
 
 /* ---- the columns the caller names ------------------------------------------ */
 
-/* Column spec: 1-based index ("3") or a name.  Sets *col (0-based) or
- * *name (a trimmed copy). */
-static int parse_column(const char *spec, const char *role, long *col, char **name, char *t,
-                        size_t tlen)
+/* Column spec: 1-based index ("3") or a name.  Sets *col (0-based), or
+ * *name and *len (trimmed, pointing into spec) with *col = -1. */
+static int parse_column(const char *spec, const char *role, long *col, const char **name,
+                        size_t *len, char *t, size_t tlen)
 {
     while (sw_csv_is_blank(*spec)) spec++;
     size_t n = strlen(spec);
@@ -337,45 +338,55 @@ static int parse_column(const char *spec, const char *role, long *col, char **na
         *col = v - 1;
         return SW_OK;
     }
-    *name = malloc(n + 1);
-    if (!*name) {
-        snprintf(t, tlen, "out of memory");
-        return SW_ENOMEM;
-    }
-    memcpy(*name, spec, n);
-    (*name)[n] = '\0';
+    *name = spec;
+    *len = n;
     *col = -1;
     return SW_OK;
 }
 
-int sw_csv_set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen)
+/* Two trimmed names, case-insensitively (ASCII). */
+static int same_name(const char *a, size_t an, const char *b, size_t bn)
 {
-    c->col[R_VERT] = -1;
+    if (an != bn)
+        return 0;
+    for (size_t i = 0; i < an; i++)
+        if (lower(a[i]) != lower(b[i]))
+            return 0;
+    return 1;
+}
+
+int sw_csv_colspec_parse(const sw_csv_opts_t *o, sw_csv_colspec_t *cs, char *t, size_t tlen)
+{
+    memset(cs, 0, sizeof *cs);
+    cs->col[R_VERT] = -1;
     const char *spec[N_ROLES] = {o->time_col ? o->time_col : "1", o->accel_col ? o->accel_col : "2",
                                  o->vert_col};
     for (int r = 0; r < N_ROLES; r++) {
+        cs->given[r] = (r == R_TIME    ? o->time_col
+                        : r == R_ACCEL ? o->accel_col
+                                       : o->vert_col) != NULL;
         if (!spec[r])
             continue;
-        int rc = parse_column(spec[r], role_name[r], &c->col[r], &c->name[r], t, tlen);
+        int rc =
+            parse_column(spec[r], role_name[r], &cs->col[r], &cs->name[r], &cs->len[r], t, tlen);
         if (rc != SW_OK)
             return rc;
     }
-    c->have_vert = spec[R_VERT] != NULL;
     for (int r = 0; r < N_ROLES; r++) {
         for (int q = r + 1; q < N_ROLES; q++) {
-            int same = (c->col[r] >= 0 && c->col[r] == c->col[q]) ||
-                       (c->name[r] && c->name[q] &&
-                        sw_csv_name_equal(c->name[r], strlen(c->name[r]), c->name[q]));
+            int same = (cs->col[r] >= 0 && cs->col[r] == cs->col[q]) ||
+                       (cs->name[r] && cs->name[q] &&
+                        same_name(cs->name[r], cs->len[r], cs->name[q], cs->len[q]));
             if (same) {
                 snprintf(t, tlen, "%s and %s columns are the same", role_name[r], role_name[q]);
                 return SW_EINVAL;
             }
         }
-        if (c->name[r] && o->header == 0) {
+        if (cs->name[r] && o->header == 0) {
             snprintf(t, tlen,
-                     "%s column \"%s\" is named but the input has no header (header = 0); "
+                     "%s column \"%.*s\" is named but the input has no header (header = 0); "
                      "give a 1-based index",
-                     role_name[r], c->name[r]);
+                     role_name[r], (int)cs->len[r], cs->name[r]);
             return SW_ENOTFOUND;
         }
     }
@@ -395,96 +406,86 @@ static int unit_of_scale(int r, double scale)
     return scale == 1.0 ? SW_CSV_UNIT_MPS2 : scale == SW_G0 ? SW_CSV_UNIT_G : SW_CSV_UNIT_NONE;
 }
 
-/* The columns are known (from the options, the header, or the defaults):
- * the layout says which, in which units, and where each came from. */
-void sw_csv_fix_layout(sw_csv_t *c, int has_header)
+int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen)
 {
-    sw_csv_layout_t *L = &c->lay;
+    long col[N_ROLES];
+    double tscale = in->scale[0], ascale = in->scale[1];
+    memset(L, 0, sizeof *L);
+    msg[0] = '\0';
+    for (int r = 0; r < N_ROLES; r++) col[r] = in->col[r];
+    if (in->has_header) {
+        /* the named columns */
+        for (int r = 0; r < N_ROLES; r++) {
+            if (!in->name[r])
+                continue;
+            if (in->match[r] < 0) {
+                snprintf(msg, msglen, "no column named \"%s\" (%s) in the header", in->name[r],
+                         role_name[r]);
+                return SW_ENOTFOUND;
+            }
+            col[r] = in->match[r];
+        }
+        /* the columns and units nobody gave, from the names */
+        const int want[SW_CSV_NROLES] = {!in->col_given[R_TIME], !in->col_given[R_ACCEL], 0};
+        if (in->infer) {
+            sw_csv_guess_t g;
+            if ((want[0] || want[1]) &&
+                sw_csv_guess(in->names, in->nnames, want, col[R_VERT], &g) != 0) {
+                snprintf(msg, msglen, "cannot tell the columns from the header: %s", g.why);
+                return SW_EAMBIGUOUS;
+            }
+            for (int r = 0; r < 2; r++)
+                if (want[r]) {
+                    col[r] = g.col[r];
+                    L->col_from[r] = SW_CSV_FROM_HEADER;
+                }
+            const int tu = col[R_TIME] < in->nnames ? sw_csv_name_unit(in->names[col[R_TIME]], 1)
+                                                    : SW_CSV_UNIT_NONE;
+            const int au = col[R_ACCEL] < in->nnames ? sw_csv_name_unit(in->names[col[R_ACCEL]], 0)
+                                                     : SW_CSV_UNIT_NONE;
+            if (!in->scale_given[0] && tu != SW_CSV_UNIT_NONE)
+                tscale = sw_csv_unit_scale(tu);
+            if (!in->scale_given[1] && au != SW_CSV_UNIT_NONE)
+                ascale = sw_csv_unit_scale(au);
+        }
+        for (int r = 0; r < N_ROLES; r++)
+            for (int q = r + 1; q < N_ROLES; q++)
+                if (col[r] >= 0 && col[r] == col[q]) {
+                    snprintf(msg, msglen, "%s and %s are the same column (%ld)", role_name[r],
+                             role_name[q], col[r] + 1);
+                    return SW_EINVAL;
+                }
+    }
+
+    /* the layout: which columns, in which units, and where each came from */
     L->ready = 1;
-    L->delim = c->delim;
-    L->has_header = has_header;
-    L->decimal_comma = c->dcomma;
+    L->delim = in->delim;
+    L->has_header = in->has_header;
+    L->decimal_comma = in->decimal_comma;
     for (int r = 0; r < N_ROLES; r++) {
-        L->col[r] = c->col[r];
+        L->col[r] = col[r];
         L->name[r][0] = '\0';
-        if (has_header && c->col[r] >= 0 && c->col[r] < c->nhdr)
-            snprintf(L->name[r], sizeof L->name[r], "%s", c->hdr[c->col[r]]);
-        L->scale[r] = r == R_TIME ? c->tscale : c->ascale;
+        if (in->has_header && col[r] >= 0 && col[r] < in->nnames)
+            snprintf(L->name[r], sizeof L->name[r], "%s", in->names[col[r]]);
+        L->scale[r] = r == R_TIME ? tscale : ascale;
         L->unit[r] = unit_of_scale(r, L->scale[r]);
         L->header_unit[r] =
             L->name[r][0] ? sw_csv_name_unit(L->name[r], r == R_TIME) : SW_CSV_UNIT_NONE;
         if (L->col_from[r] != SW_CSV_FROM_HEADER)
-            L->col_from[r] = c->col_given[r] ? SW_CSV_FROM_OPTION : SW_CSV_FROM_DEFAULT;
-        const int given = r == R_TIME ? c->tscale_given : c->ascale_given;
+            L->col_from[r] = in->col_given[r] ? SW_CSV_FROM_OPTION : SW_CSV_FROM_DEFAULT;
+        const int given = in->scale_given[r == R_TIME ? 0 : 1];
         L->unit_from[r] = given ? SW_CSV_FROM_OPTION : SW_CSV_FROM_DEFAULT;
     }
-    if (c->tkind == 2)
+    if (in->tkind == 2)
         L->unit[R_TIME] = SW_CSV_UNIT_DATETIME;
-}
-
-/* infer: the columns and units nobody gave, from the header's names.  0, or
- * -1 with the parse ended (SW_EAMBIGUOUS) when the names do not tell. */
-static int infer_columns(sw_csv_t *c)
-{
-    const int want[SW_CSV_NROLES] = {!c->col_given[R_TIME], !c->col_given[R_ACCEL], 0};
-    sw_csv_guess_t g;
-    if ((want[0] || want[1]) && sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])c->hdr, c->nhdr, want,
-                                             c->col[R_VERT], &g) != 0) {
-        char t[300];
-        snprintf(t, sizeof t, "cannot tell the columns from the header: %s", g.why);
-        sw_csv_fail(c, SW_EAMBIGUOUS, t);
-        return -1;
+    if (in->has_header) {
+        const int tu = L->header_unit[R_TIME], au = L->header_unit[R_ACCEL];
+        if (in->scale_given[0] && tu != SW_CSV_UNIT_NONE && tu != L->unit[R_TIME])
+            L->unit_from[R_TIME] = SW_CSV_FROM_OPTION; /* overrides the header */
+        if (!in->scale_given[0] && tu != SW_CSV_UNIT_NONE)
+            L->unit_from[R_TIME] = SW_CSV_FROM_HEADER;
+        if (!in->scale_given[1] && au != SW_CSV_UNIT_NONE)
+            L->unit_from[R_ACCEL] = L->unit_from[R_VERT] = SW_CSV_FROM_HEADER;
     }
-    for (int r = 0; r < 2; r++)
-        if (want[r]) {
-            c->col[r] = g.col[r];
-            c->lay.col_from[r] = SW_CSV_FROM_HEADER;
-        }
-    /* units the options did not give, from the chosen columns' names */
-    const int tu =
-        c->col[R_TIME] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_TIME]], 1) : SW_CSV_UNIT_NONE;
-    const int au =
-        c->col[R_ACCEL] < c->nhdr ? sw_csv_name_unit(c->hdr[c->col[R_ACCEL]], 0) : SW_CSV_UNIT_NONE;
-    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE)
-        c->tscale = sw_csv_unit_scale(tu);
-    if (!c->ascale_given && au != SW_CSV_UNIT_NONE)
-        c->ascale = sw_csv_unit_scale(au);
-    return 0;
-}
-
-/* The first data-like line was a header: resolve the named columns. */
-void sw_csv_take_header(sw_csv_t *c)
-{
-    c->n.headers++;
-    for (int r = 0; r < N_ROLES; r++) {
-        if (!c->name[r])
-            continue;
-        if (c->f.match[r] < 0) {
-            char t[160];
-            snprintf(t, sizeof t, "no column named \"%s\" (%s) in the header", c->name[r],
-                     role_name[r]);
-            sw_csv_fail(c, SW_ENOTFOUND, t);
-            return;
-        }
-        c->col[r] = c->f.match[r];
-    }
-    if (c->infer && infer_columns(c) != 0)
-        return;
-    for (int r = 0; r < N_ROLES; r++)
-        for (int q = r + 1; q < N_ROLES; q++)
-            if (c->col[r] >= 0 && c->col[r] == c->col[q]) {
-                char t[160];
-                snprintf(t, sizeof t, "%s and %s are the same column (%ld)", role_name[r],
-                         role_name[q], c->col[r] + 1);
-                sw_csv_fail(c, SW_EINVAL, t);
-                return;
-            }
-    sw_csv_fix_layout(c, 1);
-    const int tu = c->lay.header_unit[R_TIME], au = c->lay.header_unit[R_ACCEL];
-    if (c->tscale_given && tu != SW_CSV_UNIT_NONE && tu != c->lay.unit[R_TIME])
-        c->lay.unit_from[R_TIME] = SW_CSV_FROM_OPTION; /* overrides the header */
-    if (!c->tscale_given && tu != SW_CSV_UNIT_NONE)
-        c->lay.unit_from[R_TIME] = SW_CSV_FROM_HEADER;
-    if (!c->ascale_given && au != SW_CSV_UNIT_NONE)
-        c->lay.unit_from[R_ACCEL] = c->lay.unit_from[R_VERT] = SW_CSV_FROM_HEADER;
+    return SW_OK;
 }

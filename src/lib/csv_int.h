@@ -1,7 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* csv_int.h - what the CSV reader's files share (csv.h is the API): the
- * number and date-time readers (csv_num.c) and the reading of a header's
- * names into columns and units (csv_infer.c). */
+/* csv_int.h - the stages of the CSV reader (csv.h is the API), each a
+ * function of its arguments that returns its result: a line split into
+ * fields (csv_split.c), numbers and date-times (csv_num.c), a header's
+ * names read into columns and units (csv_infer.c).  csv.c alone holds the
+ * reader's state and calls them. */
 #ifndef SWAYWATCH_CSV_INT_H
 #define SWAYWATCH_CSV_INT_H
 
@@ -12,7 +14,7 @@
 
 #include "swaywatch/csv.h"
 
-/* ---- the reader's state (csv.c) ----------------------------------------------- */
+/* ---- what the stages share -------------------------------------------------------- */
 
 /* Field slots filled while splitting a line.  PROBE is the field looked at to
  * decide whether the first line is a header. */
@@ -87,55 +89,6 @@ void sw_csv_splitter_free(sw_csv_splitter_t *sp); /* zeroed or initialised */
 int sw_csv_split(sw_csv_splitter_t *sp, char *s, size_t n, const sw_csv_split_opts_t *o,
                  sw_csv_fields_t *f);
 
-/* ---- the reader's state (csv.c) ------------------------------------------- */
-
-struct sw_csv {
-    /* options, fixed at create */
-    char delim; /* 0 until detected */
-    int header; /* -1 detect, 0 none, 1 present */
-    double tscale, ascale;
-    int flip;
-    char *name[N_ROLES]; /* column name as given, looked up in the header; NULL: by index */
-    long col[N_ROLES];   /* 0-based column index; -1 unknown (named) or unused */
-    long probe;          /* column tested by header detection */
-    int have_vert;
-    sw_csv_row_fn on_row;
-    sw_csv_reject_fn on_reject;
-    void *user;
-    locale_t cloc;          /* "C" numeric locale: '.' is the decimal point whatever
-                               the program's locale says */
-    int infer;              /* read unnamed columns and units from the header */
-    int col_given[N_ROLES]; /* the caller named or numbered the column */
-    int tscale_given, ascale_given;
-    int dcomma; /* decimal comma: -1 not decided yet, 0, 1 */
-    int tkind;  /* time column: 0 not seen yet, 1 numbers, 2 date-times */
-    sw_csv_layout_t lay;
-    char hdr[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
-    long nhdr;
-
-    /* the physical line being gathered */
-    char *line;
-    size_t len;
-    int overlong; /* the line outgrew the buffer: the rest is dropped */
-    int finished;
-
-    /* one line's split */
-    sw_csv_splitter_t sp;
-    sw_csv_split_opts_t so;
-    sw_csv_fields_t f;
-
-    /* stream state */
-    long lineno;
-    int header_open; /* the next data-like line may still be the header */
-    int have_last;
-    double last_t;
-    int any_order; /* the options' any_order: no time-order check here */
-    sw_csv_counts_t n;
-    int status;    /* sticky error ending the parse, or SW_OK */
-    char msg[400]; /* "line N: " + a reason */
-    char reason[256];
-};
-
 /* ---- csv_num.c ------------------------------------------------------------- */
 
 enum { SW_NUM_OK, SW_NUM_EMPTY, SW_NUM_BAD, SW_NUM_COMMA, SW_NUM_RANGE };
@@ -176,17 +129,42 @@ int sw_csv_name_unit(const char *name, int time_role);
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
                  long skip, sw_csv_guess_t *g);
 
-/* The columns of the options (csv_infer.c): parsed, and refused (code,
- * the reason in t) when two are the same or a named one cannot be found
- * without a header. */
-/* csv.c: end the parse with code and "line N: text". */
-void sw_csv_fail(sw_csv_t *c, int code, const char *text);
-/* csv_infer.c: the layout once the columns are known (from the options,
- * the header or the defaults); the first data-like line was a header:
- * resolve the named columns, infer the others if asked (may end the parse
- * with sw_csv_fail). */
-void sw_csv_fix_layout(sw_csv_t *c, int has_header);
-void sw_csv_take_header(sw_csv_t *c);
-int sw_csv_set_columns(sw_csv_t *c, const sw_csv_opts_t *o, char *t, size_t tlen);
+/* The columns the caller gave (sw_csv_opts_t's time_col, accel_col,
+ * vert_col): a 0-based index, or a name (trimmed; it points into the
+ * option's text and is not NUL-terminated). */
+typedef struct {
+    long col[N_ROLES];         /* -1: named, or the vertical column not given */
+    const char *name[N_ROLES]; /* NULL: by index */
+    size_t len[N_ROLES];
+    int given[N_ROLES]; /* the caller named or numbered it (else time is 1, accel 2) */
+} sw_csv_colspec_t;
+
+/* Parse and check the options' columns: SW_OK, or the code with the reason
+ * in t (two the same, a bad index, a name with header = 0). */
+int sw_csv_colspec_parse(const sw_csv_opts_t *o, sw_csv_colspec_t *cs, char *t, size_t tlen);
+
+/* What the reader knows once the table's first line is read: what the
+ * caller gave, and the header's fields if it has one. */
+typedef struct {
+    long col[N_ROLES];       /* columns given by index, -1: named or none */
+    const char *const *name; /* names given (NUL-terminated), NULL entries: by index */
+    const long *match;       /* the header field holding each name, -1 not found */
+    int col_given[N_ROLES];  /* the caller named or numbered the column */
+    double scale[2];         /* s per unit of time, m/s^2 per unit of acceleration */
+    int scale_given[2];      /* ... given by the caller (else 1, the default) */
+    int infer;               /* read the columns and units nobody gave from the names */
+    int has_header;
+    const char (*names)[SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
+    long nnames;
+    char delim;
+    int decimal_comma; /* -1 not decided yet, 0, 1 */
+    int tkind;         /* time column: 0 not seen yet, 1 numbers, 2 date-times */
+} sw_csv_infer_in_t;
+
+/* The layout (csv.h) the header and the options give: SW_OK, or
+ * SW_ENOTFOUND (a named column is not in the header), SW_EAMBIGUOUS (infer
+ * cannot tell the columns from the names), SW_EINVAL (two roles on one
+ * column), with the reason in msg. */
+int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen);
 
 #endif
