@@ -104,6 +104,8 @@ static void run(const char *in, size_t len, const sw_csv_opts_t *o, size_t chunk
     for (size_t off = 0; off < len && r->feed_rc == SW_OK; off += chunk)
         r->feed_rc = sw_csv_feed(c, in + off, len - off < chunk ? len - off : chunk);
     r->finish_rc = sw_csv_finish(c);
+    if (r->feed_rc == SW_OK)
+        r->feed_rc = r->finish_rc; /* an error found when the look-ahead ends at finish */
     sw_csv_counts(c, &r->counts);
     snprintf(r->msg, sizeof r->msg, "%s", sw_csv_error_message(c));
     sw_csv_destroy(c);
@@ -556,16 +558,96 @@ static void test_named_column_errors(void **state)
     assert_string_equal(r.msg, "line 1: time and accel are the same column (1)");
     result_free(&r);
 
-    /* the error is sticky: later feeds do nothing */
+    /* the error is sticky: later feeds do nothing.  The header is read
+     * when the look-ahead ends (here at finish), and the error with it. */
     o.accel_col = "nope";
     result_t u = {0};
     sw_csv_t *c = sw_csv_create(&o, on_row, on_reject, &u, NULL, NULL, 0);
     assert_non_null(c);
-    assert_int_equal(sw_csv_feed(c, "t,a\n", 4), SW_ENOTFOUND);
+    assert_int_equal(sw_csv_feed(c, "t,a\n", 4), SW_OK);
+    assert_int_equal(sw_csv_feed(c, "0,1\n", 4), SW_OK);
+    assert_int_equal(sw_csv_finish(c), SW_ENOTFOUND);
     assert_int_equal(sw_csv_feed(c, "0,1\n", 4), SW_ENOTFOUND);
     assert_int_equal(sw_csv_finish(c), SW_ENOTFOUND);
     assert_int_equal(u.nrows, 0);
     sw_csv_destroy(c);
+}
+
+/* The first lines are held until the layout is fixed: no row reaches the
+ * caller before SW_CSV_AHEAD_ROWS data-like lines are in (or the input
+ * ends), then they come in order with their own line numbers, and the
+ * header's errors surface then. */
+static void test_lookahead(void **state)
+{
+    (void)state;
+    sw_csv_opts_t o = defaults();
+    result_t u = {0};
+    sw_csv_t *c = sw_csv_create(&o, on_row, on_reject, &u, NULL, NULL, 0);
+    assert_non_null(c);
+    char line[64];
+    assert_int_equal(sw_csv_feed(c, "t,a\n# note\n", 11), SW_OK);
+    /* the header and 254 rows: 255 data-like lines, all held */
+    for (int i = 0; i < SW_CSV_AHEAD_ROWS - 2; i++) {
+        const int k = snprintf(line, sizeof line, "%d,%d\n", i, -i);
+        assert_int_equal(sw_csv_feed(c, line, (size_t)k), SW_OK);
+    }
+    sw_csv_layout_t L;
+    assert_int_equal(sw_csv_layout(c, &L), SW_OK);
+    assert_int_equal(L.ready, 0);
+    assert_int_equal(u.nrows, 0);
+    /* the 256th: the look-ahead is full, everything held is read */
+    assert_int_equal(sw_csv_feed(c, "1000,5\n", 7), SW_OK);
+    assert_int_equal(u.nrejs, 0);
+    assert_int_equal(u.nrows, SW_CSV_AHEAD_ROWS - 1);
+    assert_int_equal(sw_csv_layout(c, &L), SW_OK);
+    assert_int_equal(L.ready, 1);
+    assert_int_equal(L.has_header, 1);
+    assert_int_equal(u.rows[0].line, 3); /* after the header and the comment */
+    assert_true(u.rows[0].t == 0.0);
+    assert_int_equal(u.rows[SW_CSV_AHEAD_ROWS - 3].line, SW_CSV_AHEAD_ROWS);
+    assert_true(u.rows[SW_CSV_AHEAD_ROWS - 3].a == -(SW_CSV_AHEAD_ROWS - 3));
+    assert_true(u.rows[SW_CSV_AHEAD_ROWS - 2].t == 1000.0);
+    /* later rows go through at once */
+    assert_int_equal(sw_csv_feed(c, "1001,6\n", 7), SW_OK);
+    assert_int_equal(u.nrows, SW_CSV_AHEAD_ROWS);
+    assert_int_equal(u.rows[SW_CSV_AHEAD_ROWS - 1].line, SW_CSV_AHEAD_ROWS + 2);
+    assert_int_equal(sw_csv_finish(c), SW_OK);
+    sw_csv_counts_t n;
+    sw_csv_counts(c, &n);
+    assert_int_equal(n.lines, SW_CSV_AHEAD_ROWS + 2);
+    assert_int_equal(n.comments, 1);
+    assert_int_equal(n.headers, 1);
+    sw_csv_destroy(c);
+    result_free(&u);
+
+    /* a named column missing from the header: the error comes with the
+     * look-ahead's end, and nothing after the header is counted */
+    o.accel_col = "nope";
+    c = sw_csv_create(&o, on_row, on_reject, &u, NULL, NULL, 0);
+    assert_non_null(c);
+    int rc = SW_OK;
+    for (int i = 0; i <= SW_CSV_AHEAD_ROWS && rc == SW_OK; i++)
+        rc = sw_csv_feed(c, i ? "1,2\n" : "t,a\n", 4);
+    assert_int_equal(rc, SW_ENOTFOUND);
+    assert_string_equal(sw_csv_error_message(c),
+                        "line 1: no column named \"nope\" (accel) in the header");
+    sw_csv_counts(c, &n);
+    assert_int_equal(n.lines, 1);
+    assert_int_equal(n.headers, 1);
+    assert_int_equal(u.nrows, 0);
+    sw_csv_destroy(c);
+    result_free(&u);
+
+    /* many comment lines end the look-ahead too */
+    o = defaults();
+    c = sw_csv_create(&o, on_row, on_reject, &u, NULL, NULL, 0);
+    assert_non_null(c);
+    assert_int_equal(sw_csv_feed(c, "t,a\n0,1\n", 8), SW_OK);
+    for (int i = 0; i < SW_CSV_AHEAD_LINES - 2; i++)
+        assert_int_equal(sw_csv_feed(c, "#\n", 2), SW_OK);
+    assert_int_equal(u.nrows, 1);
+    sw_csv_destroy(c);
+    result_free(&u);
 }
 
 static void test_bad_options(void **state)
@@ -1152,6 +1234,7 @@ int main(void)
         cmocka_unit_test(test_units_and_flip),
         cmocka_unit_test(test_columns),
         cmocka_unit_test(test_named_column_errors),
+        cmocka_unit_test(test_lookahead),
         cmocka_unit_test(test_bad_options),
         cmocka_unit_test(test_bad_row_in_the_middle),
         cmocka_unit_test(test_time_order),

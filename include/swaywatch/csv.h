@@ -47,6 +47,12 @@ extern "C" {
 #define SW_CSV_NAME_MAX 64        /* bytes kept of a header field's name */
 #define SW_CSV_MAX_FIELDS 64      /* header fields kept (inference, messages) */
 #define SW_G0 9.80665             /* m/s^2 per g: standard gravity, the logger's g */
+/* The look-ahead: the first lines of a log are held until its layout is
+ * fixed (the preamble, the columns and the time format are decided on
+ * them), at most this many data-like lines, lines, or bytes of text. */
+#define SW_CSV_AHEAD_ROWS 256
+#define SW_CSV_AHEAD_LINES 1024
+#define SW_CSV_AHEAD_BYTES (256 * 1024)
 
 /* Units of the time and acceleration columns. */
 enum {
@@ -131,12 +137,20 @@ SW_API void sw_csv_destroy(sw_csv_t *c);
  * returned again by every later call: SW_ENOTFOUND when a named column is
  * not in the header or the input has no header (that first data row is also
  * reported as rejected), SW_EINVAL when two roles resolve to the same header
- * field, SW_EAMBIGUOUS when infer cannot tell the columns from the header.  sw_csv_error_message()
- * says which column and line.  Bad rows are not errors: they are counted and reported. */
+ * field, SW_EAMBIGUOUS when infer cannot tell the columns from the header.
+ * sw_csv_error_message() says which column and line.  Bad rows are not
+ * errors: they are counted and reported.
+ *
+ * The first lines are held (the look-ahead, SW_CSV_AHEAD_*) until the
+ * layout is fixed on them; then they are read in order, counted and
+ * delivered with their own line numbers, and every later line as it comes.
+ * So rows, and an error of the header, come from the feed that fills the
+ * look-ahead, or from sw_csv_finish() for a shorter input. */
 SW_API int sw_csv_feed(sw_csv_t *c, const char *buf, size_t len);
 
-/* Flush the last line (with or without a final newline).  Feeding after
- * finish is an error (SW_EINVAL). */
+/* Flush the last line (with or without a final newline) and the
+ * look-ahead; returns SW_OK or the code that ended the parse.  Feeding
+ * after finish is an error (SW_EINVAL). */
 SW_API int sw_csv_finish(sw_csv_t *c);
 
 SW_API void sw_csv_counts(const sw_csv_t *c, sw_csv_counts_t *out);

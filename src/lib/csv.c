@@ -33,6 +33,16 @@
 #include "swaywatch/csv.h"
 #include "swaywatch/status.h"
 
+/* A line held in the look-ahead. */
+typedef struct {
+    int kind;        /* L_* */
+    long lineno;     /* 1-based physical line */
+    size_t off, len; /* its text in abuf (data-like lines only) */
+} ahead_t;
+
+/* Any line fits while less than SW_CSV_AHEAD_BYTES are held. */
+#define AHEAD_CAP ((size_t)SW_CSV_AHEAD_BYTES + SW_CSV_MAX_LINE + 1)
+
 /* The reader's state: the only place it lives. */
 struct sw_csv {
     /* options, fixed at create */
@@ -68,6 +78,13 @@ struct sw_csv {
     sw_csv_splitter_t sp;
     sw_csv_split_opts_t so;
     sw_csv_fields_t f;
+
+    /* the look-ahead: the first lines, held until the layout is fixed */
+    int deciding;      /* still holding lines */
+    char *abuf;        /* their text, AHEAD_CAP bytes */
+    size_t aused;      /* bytes of abuf in use */
+    ahead_t *ahead;    /* SW_CSV_AHEAD_LINES lines */
+    int nahead, adata; /* lines held, of which data-like */
 
     /* stream state */
     long lineno;
@@ -431,6 +448,83 @@ static void data_line(sw_csv_t *c, char *s, size_t n)
     data_row(c, ok);
 }
 
+/* What a physical line is, judged before anything else is known. */
+enum { L_BLANK, L_COMMENT, L_DATA, L_OVERLONG };
+
+static int classify(const char *s, size_t n, int overlong)
+{
+    size_t i = 0;
+    while (i < n && sw_csv_is_blank(s[i])) i++;
+    if (i < n && s[i] == '#') /* judged on the kept prefix, however long */
+        return L_COMMENT;
+    if (i == n && !overlong)
+        return L_BLANK;
+    return overlong ? L_OVERLONG : L_DATA;
+}
+
+/* One physical line (s[n] writable) at c->lineno, once the look-ahead is
+ * over: counted, and read as what it is. */
+static void process(sw_csv_t *c, int kind, char *s, size_t n)
+{
+    c->n.lines++;
+    switch (kind) {
+        case L_COMMENT: c->n.comments++; return;
+        case L_BLANK: c->n.blanks++; return;
+        case L_OVERLONG:
+            if (c->header_open && c->header == 1) {
+                c->header_open = 0;
+                for (int r = 0; r < N_ROLES; r++) c->f.match[r] = -1;
+                take_header(c);
+                return;
+            }
+            c->header_open = 0;
+            c->n.rows++;
+            snprintf(c->reason, sizeof c->reason, "line longer than %d bytes", SW_CSV_MAX_LINE);
+            reject(c);
+            return;
+        default:
+            s[n] = '\0';
+            data_line(c, s, n);
+            return;
+    }
+}
+
+/* The look-ahead is over: the lines held are read in order, as any later
+ * line is, up to an error that ends the parse. */
+static void decide(sw_csv_t *c)
+{
+    const long read = c->lineno;
+    c->deciding = 0;
+    for (int i = 0; i < c->nahead && c->status >= 0; i++) {
+        const ahead_t *e = &c->ahead[i];
+        c->lineno = e->lineno;
+        process(c, e->kind, c->abuf + e->off, e->len);
+    }
+    c->lineno = read;
+    c->nahead = 0;
+    c->aused = 0;
+}
+
+/* Hold a line while the layout is not fixed; decide once the look-ahead
+ * is full. */
+static void hold(sw_csv_t *c, int kind, const char *s, size_t n)
+{
+    ahead_t *e = &c->ahead[c->nahead++];
+    e->kind = kind;
+    e->lineno = c->lineno;
+    e->off = c->aused;
+    e->len = kind == L_DATA ? n : 0;
+    if (kind == L_DATA) {
+        memcpy(c->abuf + c->aused, s, n);
+        c->abuf[c->aused + n] = '\0';
+        c->aused += n + 1;
+        c->adata++;
+    }
+    if (c->nahead == SW_CSV_AHEAD_LINES || c->adata == SW_CSV_AHEAD_ROWS ||
+        c->aused >= SW_CSV_AHEAD_BYTES)
+        decide(c);
+}
+
 /* A complete physical line is in c->line (without its '\n'). */
 static void end_line(sw_csv_t *c)
 {
@@ -440,7 +534,6 @@ static void end_line(sw_csv_t *c)
     c->len = 0;
     c->overlong = 0;
     c->lineno++;
-    c->n.lines++;
 
     if (c->lineno == 1 && n >= 3 && !memcmp(s, "\xEF\xBB\xBF", 3))
         s += 3, n -= 3;
@@ -448,32 +541,11 @@ static void end_line(sw_csv_t *c)
         n--;
     if (n > (size_t)SW_CSV_MAX_LINE)
         overlong = 1;
-
-    size_t i = 0;
-    while (i < n && sw_csv_is_blank(s[i])) i++;
-    if (i < n && s[i] == '#') { /* judged on the kept prefix, however long */
-        c->n.comments++;
-        return;
-    }
-    if (i == n && !overlong) {
-        c->n.blanks++;
-        return;
-    }
-    if (overlong) {
-        if (c->header_open && c->header == 1) {
-            c->header_open = 0;
-            for (int r = 0; r < N_ROLES; r++) c->f.match[r] = -1;
-            take_header(c);
-            return;
-        }
-        c->header_open = 0;
-        c->n.rows++;
-        snprintf(c->reason, sizeof c->reason, "line longer than %d bytes", SW_CSV_MAX_LINE);
-        reject(c);
-        return;
-    }
-    s[n] = '\0';
-    data_line(c, s, n);
+    const int kind = classify(s, n, overlong);
+    if (c->deciding)
+        hold(c, kind, s, n);
+    else
+        process(c, kind, s, n);
 }
 
 /* ------------------------------------------------------------- public API */
@@ -565,8 +637,12 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
     c->user = user;
 
     c->line = malloc(LINE_CAP + 1);
+    c->abuf = malloc(AHEAD_CAP);
+    c->ahead = malloc(SW_CSV_AHEAD_LINES * sizeof *c->ahead);
+    c->deciding = 1;
     c->cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-    if (!c->line || c->cloc == (locale_t)0 || sw_csv_splitter_init(&c->sp) != 0) {
+    if (!c->line || !c->abuf || !c->ahead || c->cloc == (locale_t)0 ||
+        sw_csv_splitter_init(&c->sp) != 0) {
         bad_opts(err, msg, msglen, SW_ENOMEM, "out of memory");
         sw_csv_destroy(c);
         return NULL;
@@ -587,6 +663,8 @@ void sw_csv_destroy(sw_csv_t *c)
         freelocale(c->cloc);
     for (int r = 0; r < N_ROLES; r++) free(c->name[r]);
     free(c->line);
+    free(c->abuf);
+    free(c->ahead);
     free(c);
 }
 
@@ -643,6 +721,8 @@ int sw_csv_finish(sw_csv_t *c)
     c->finished = 1;
     if (c->len || c->overlong)
         end_line(c);
+    if (c->deciding && c->status >= 0)
+        decide(c); /* a log shorter than the look-ahead */
     return c->status;
 }
 
