@@ -26,156 +26,6 @@
 #include "csv_int.h"
 #include "swaywatch/status.h"
 
-#define MAX_WORDS 8
-#define WORD_MAX 24
-
-typedef struct {
-    char w[MAX_WORDS][WORD_MAX]; /* lowercase words, the unit left out */
-    int nw;
-    char unit[WORD_MAX * 2]; /* unit text, spaces removed, lowercase */
-} words_t;
-
-static char lower(char c)
-{
-    return c >= 'A' && c <= 'Z' ? (char)(c - 'A' + 'a') : c;
-}
-
-static int is_alnum(unsigned char c)
-{
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-           c >= 0x80; /* UTF-8 (µ, ², ...) stays inside words and units */
-}
-
-/* Split a header name into words and a bracketed unit. */
-static void split_words(const char *name, words_t *o)
-{
-    memset(o, 0, sizeof *o);
-    const char *p = name;
-    while (*p) {
-        if (*p == '(' || *p == '[' || *p == '{') {
-            const char close = *p == '(' ? ')' : *p == '[' ? ']' : '}';
-            size_t k = 0;
-            for (p++; *p && *p != close; p++)
-                if (*p != ' ' && k + 1 < sizeof o->unit)
-                    o->unit[k++] = lower(*p);
-            o->unit[k] = '\0';
-            if (*p)
-                p++;
-            continue;
-        }
-        if (!is_alnum((unsigned char)*p)) {
-            p++;
-            continue;
-        }
-        size_t k = 0;
-        char *w = o->nw < MAX_WORDS ? o->w[o->nw] : NULL;
-        for (; *p && is_alnum((unsigned char)*p); p++)
-            if (w && k + 1 < WORD_MAX)
-                w[k++] = lower(*p);
-        if (w) {
-            w[k] = '\0';
-            o->nw++;
-        }
-    }
-}
-
-static int in(const char *w, const char *const *set)
-{
-    for (; *set; set++)
-        if (!strcmp(w, *set))
-            return 1;
-    return 0;
-}
-
-/* The unit of a unit text, for the time role or an acceleration. */
-static int unit_of(const char *u, int time_role)
-{
-    static const char *const s[] = {"s", "sec", "secs", "second", "seconds", NULL};
-    static const char *const ms[] = {"ms",          "msec",         "msecs", "millis",
-                                     "millisecond", "milliseconds", NULL};
-    static const char *const us[] = {"us",     "\xc2\xb5s",   "\xce\xbcs",    "usec", "usecs",
-                                     "micros", "microsecond", "microseconds", NULL};
-    static const char *const g[] = {"g", "gs", "g0", "gee", "gees", NULL};
-    static const char *const mps2[] = {"m/s2",
-                                       "m/s^2",
-                                       "m/s\xc2\xb2",
-                                       "ms2",
-                                       "ms^-2",
-                                       "ms-2",
-                                       "mps2",
-                                       "m/s/s",
-                                       "mss",
-                                       "m*s^-2",
-                                       "m.s-2",
-                                       "m.s^-2",
-                                       "ms\xe2\x81\xbb\xc2\xb2",
-                                       "m\xc2\xb7s\xe2\x81\xbb\xc2\xb2",
-                                       "m/sec2",
-                                       "m/sec^2",
-                                       NULL};
-    if (!u[0])
-        return SW_CSV_UNIT_NONE;
-    if (time_role) {
-        if (in(u, s))
-            return SW_CSV_UNIT_S;
-        if (in(u, ms))
-            return SW_CSV_UNIT_MS;
-        if (in(u, us))
-            return SW_CSV_UNIT_US;
-        return SW_CSV_UNIT_NONE;
-    }
-    if (in(u, g))
-        return SW_CSV_UNIT_G;
-    if (in(u, mps2))
-        return SW_CSV_UNIT_MPS2;
-    return SW_CSV_UNIT_NONE;
-}
-
-/* The unit of a name: its bracketed part, else its last word when it is a
- * unit and not the only word ("accel_g", "time_ms"; "g" alone is a name). */
-static int unit_in(const words_t *w, int time_role, int *last_is_unit)
-{
-    *last_is_unit = 0;
-    if (w->unit[0])
-        return unit_of(w->unit, time_role);
-    if (w->nw >= 2) {
-        const int u = unit_of(w->w[w->nw - 1], time_role);
-        if (u != SW_CSV_UNIT_NONE)
-            *last_is_unit = 1;
-        return u;
-    }
-    return SW_CSV_UNIT_NONE;
-}
-
-int sw_csv_unit_parse(const char *text, int time_role)
-{
-    char u[WORD_MAX * 2];
-    size_t k = 0;
-    for (const char *p = text; p && *p && k + 1 < sizeof u; p++)
-        if (*p != ' ')
-            u[k++] = lower(*p);
-    u[k] = '\0';
-    return unit_of(u, time_role);
-}
-
-int sw_csv_name_unit(const char *name, int time_role)
-{
-    words_t w;
-    int last;
-    split_words(name, &w);
-    return unit_in(&w, time_role, &last);
-}
-
-double sw_csv_unit_scale(int unit)
-{
-    switch (unit) {
-        case SW_CSV_UNIT_MS: return 1e-3;
-        case SW_CSV_UNIT_US: return 1e-6;
-        case SW_CSV_UNIT_G: return SW_G0;
-        default: return 1.0;
-    }
-}
-
 typedef struct {
     int time, index, accel; /* the name reads as time, a sample index, an acceleration */
     int axis;               /* 'x' (longitudinal), 'y', 'z', or 0 */
@@ -198,31 +48,31 @@ static void classify(const char *name, kind_t *k)
                                       "yacc", "lat", "lateral", "sway",   NULL};
     static const char *const z_w[] = {"z",    "az",       "accz",  "accelz", "zaccel", "zacc",
                                       "vert", "vertical", "heave", "up",     NULL};
-    words_t w;
+    sw_csv_words_t w;
     int tlast, alast;
-    split_words(name, &w);
+    sw_csv_words(name, &w);
     memset(k, 0, sizeof *k);
-    k->tunit = unit_in(&w, 1, &tlast);
-    k->aunit = unit_in(&w, 0, &alast);
+    k->tunit = sw_csv_words_unit(&w, 1, &tlast);
+    k->aunit = sw_csv_words_unit(&w, 0, &alast);
     for (int i = 0; i < w.nw; i++) {
         /* a numbered name reads as its word: "acc1", "time2" */
-        char x[WORD_MAX];
+        char x[SW_CSV_WORD_MAX];
         snprintf(x, sizeof x, "%s", w.w[i]);
         size_t xl = strlen(x);
         while (xl > 1 && x[xl - 1] >= '0' && x[xl - 1] <= '9') x[--xl] = '\0';
-        if (in(x, index_w))
+        if (sw_csv_word_in(x, index_w))
             k->index = 1;
-        if (in(x, time_w) && !(tlast && i == w.nw - 1))
+        if (sw_csv_word_in(x, time_w) && !(tlast && i == w.nw - 1))
             k->time = 1;
         if (alast && i == w.nw - 1)
             continue; /* the unit word */
-        if (in(x, accel_w))
+        if (sw_csv_word_in(x, accel_w))
             k->accel = 1;
-        if (in(x, x_w))
+        if (sw_csv_word_in(x, x_w))
             k->axis = 'x';
-        if (in(x, y_w))
+        if (sw_csv_word_in(x, y_w))
             k->axis = 'y';
-        if (in(x, z_w))
+        if (sw_csv_word_in(x, z_w))
             k->axis = 'z';
     }
     if (k->aunit != SW_CSV_UNIT_NONE || (k->axis && !k->time))
@@ -350,7 +200,7 @@ static int same_name(const char *a, size_t an, const char *b, size_t bn)
     if (an != bn)
         return 0;
     for (size_t i = 0; i < an; i++)
-        if (lower(a[i]) != lower(b[i]))
+        if (sw_csv_lower(a[i]) != sw_csv_lower(b[i]))
             return 0;
     return 1;
 }

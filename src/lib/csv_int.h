@@ -105,6 +105,31 @@ int sw_csv_number(locale_t cloc, const char *s, size_t n, int decimal_comma, dou
  * as UTC) in s[0..n): 1 with *out in seconds since 1970-01-01 UTC, else 0. */
 int sw_csv_datetime(const char *s, size_t n, double *out);
 
+/* ---- csv_unit.c: names into words and units ---------------------------------- */
+
+#define SW_CSV_MAX_WORDS 8
+#define SW_CSV_WORD_MAX 24
+
+/* A header name as words and a unit. */
+typedef struct {
+    char w[SW_CSV_MAX_WORDS][SW_CSV_WORD_MAX]; /* lowercase words, the unit left out */
+    int nw;
+    char unit[SW_CSV_WORD_MAX * 2]; /* bracketed unit text, spaces removed, lowercase */
+} sw_csv_words_t;
+
+char sw_csv_lower(char c); /* ASCII */
+/* Split a header name into words and a bracketed unit. */
+void sw_csv_words(const char *name, sw_csv_words_t *w);
+/* w is one of the NULL-terminated set. */
+int sw_csv_word_in(const char *w, const char *const *set);
+/* The unit of a name: its bracketed part, else its last word when it is a
+ * unit and not the only word (*last_is_unit then). */
+int sw_csv_words_unit(const sw_csv_words_t *w, int time_role, int *last_is_unit);
+/* The unit a header name carries ("Time (ms)", "accel_g", "X [m/s²]"),
+ * SW_CSV_UNIT_NONE if none; time units for the time role, acceleration
+ * units otherwise. */
+int sw_csv_name_unit(const char *name, int time_role);
+
 /* ---- csv_infer.c ------------------------------------------------------------ */
 
 enum { SW_CSV_ROLE_TIME, SW_CSV_ROLE_ACCEL, SW_CSV_ROLE_VERT, SW_CSV_NROLES };
@@ -116,11 +141,6 @@ typedef struct {
     int unit[SW_CSV_NROLES];
     char why[256]; /* when a role cannot be told: the reason, naming the candidates */
 } sw_csv_guess_t;
-
-/* The unit a header name carries ("Time (ms)", "accel_g", "X [m/s²]"),
- * SW_CSV_UNIT_NONE if none; time units for the time role, acceleration
- * units otherwise. */
-int sw_csv_name_unit(const char *name, int time_role);
 
 /* Which of the n header fields are time and longitudinal acceleration.
  * want[r]: look for role r; skip: a column taken already (the vertical
