@@ -291,6 +291,38 @@ static void test_option_against_header(void **state)
     assert_int_equal(r.lay.unit_from[1], SW_CSV_FROM_DEFAULT);
 }
 
+/* Issue 24: a CAN export with GPS columns.  "Longitude / X Position
+ * (Degrees)" names the x axis, but its unit is an angle: the acceleration
+ * is "Acceleration Gs", in g. */
+static void test_units_not_accelerations(void **state)
+{
+    (void)state;
+    res_t r;
+    const sw_csv_opts_t o = infer_opts();
+    run("Time (s),Latitude / Y Position (Degrees),Longitude / X Position (Degrees),"
+        "Speed (km/h),Acceleration Gs,Lateral Gs\n"
+        "0.00,48.137154,11.576124,50.2,0.01,0.00\n"
+        "0.10,48.137160,11.576180,50.1,-0.35,0.02\n",
+        &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.col[1], 4);
+    assert_string_equal(r.lay.name[1], "Acceleration Gs");
+    assert_int_equal(r.lay.unit[1], SW_CSV_UNIT_G);
+    assert_true(r.a[1] == -0.35 * 9.80665);
+    /* German units in brackets say everything */
+    run("Zeit [s];Beschl. [m/s\xc2\xb2]\n0,00;0,1\n0,01;-2,5\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.col[0], 0);
+    assert_int_equal(r.lay.col[1], 1);
+    assert_int_equal(r.lay.unit_from[0], SW_CSV_FROM_HEADER);
+    assert_int_equal(r.lay.unit[1], SW_CSV_UNIT_MPS2);
+    assert_true(r.t[1] == 0.01 && r.a[1] == -2.5);
+    /* only angles: no acceleration, and the reason names them */
+    run("t,X (deg),Y (deg)\n0,1,2\n", &o, &r);
+    assert_int_equal(r.rc, SW_EAMBIGUOUS);
+    assert_non_null(strstr(r.msg, "their units are not accelerations"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -301,6 +333,7 @@ int main(void)
         cmocka_unit_test(test_decimal_comma),
         cmocka_unit_test(test_ambiguous),
         cmocka_unit_test(test_option_against_header),
+        cmocka_unit_test(test_units_not_accelerations),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

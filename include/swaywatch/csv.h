@@ -62,7 +62,9 @@ enum {
     SW_CSV_UNIT_US,
     SW_CSV_UNIT_DATETIME, /* ISO-8601 date-times, in s since 1970 UTC */
     SW_CSV_UNIT_MPS2,
-    SW_CSV_UNIT_G
+    SW_CSV_UNIT_G,
+    SW_CSV_UNIT_NS, /* time in nanoseconds */
+    SW_CSV_UNIT_MG  /* acceleration in thousandths of g */
 };
 
 /* Where a column or a unit came from. */
@@ -165,17 +167,19 @@ SW_API int sw_csv_layout(const sw_csv_t *c, sw_csv_layout_t *out);
 SW_API long sw_csv_header_count(const sw_csv_t *c);
 SW_API const char *sw_csv_header_field(const sw_csv_t *c, long i);
 
-/* A unit as written ("ms", "s", "us", "µs"; "g", "G", "Gs", "m/s2",
- * "m/s^2", "m/s²", "mps2", ...; spaces and case ignored): SW_CSV_UNIT_*,
- * or SW_CSV_UNIT_NONE if it is none of the time units (time_role) or the
- * acceleration units.  The same reading a header's names get. */
+/* A unit as written ("s", "ms", "us", "µs", "ns", "nanos"; "g", "G", "Gs",
+ * "mg", "m/s2", "m/s^2", "m/s²", "mps2", ...; spaces and case ignored):
+ * SW_CSV_UNIT_*, or SW_CSV_UNIT_NONE if it is none of the time units
+ * (time_role) or the acceleration units.  The same reading a header's
+ * names get. */
 SW_API int sw_csv_unit_parse(const char *text, int time_role);
 
-/* s or m/s^2 per unit: 1e-3 for ms, 9.80665 for g; 1 for the SI units,
- * date-times and SW_CSV_UNIT_NONE. */
+/* s or m/s^2 per unit: 1e-3 for ms, 1e-9 for ns, 9.80665 for g; 1 for the
+ * SI units, date-times and SW_CSV_UNIT_NONE. */
 SW_API double sw_csv_unit_scale(int unit);
 
-/* "s", "ms", "us", "date-time", "m/s^2", "g", or "" for SW_CSV_UNIT_NONE. */
+/* "s", "ms", "us", "ns", "date-time", "m/s^2", "g", "mg", or "" for
+ * SW_CSV_UNIT_NONE. */
 SW_API const char *sw_csv_unit_name(int unit);
 
 /* Details of the error that ended the parse ("line 1: no column named

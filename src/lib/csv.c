@@ -769,6 +769,8 @@ const char *sw_csv_unit_name(int unit)
         case SW_CSV_UNIT_DATETIME: return "date-time";
         case SW_CSV_UNIT_MPS2: return "m/s^2";
         case SW_CSV_UNIT_G: return "g";
+        case SW_CSV_UNIT_NS: return "ns";
+        case SW_CSV_UNIT_MG: return "mg";
         default: return "";
     }
 }

@@ -6,19 +6,25 @@
  * two columns fit equally, or none does, it says so and the caller asks the
  * user, because a wrong guess gives a confident wrong verdict.
  *
- * A name is split into words (letters and digits; a bracketed part is its
- * unit); a unit may also be the last word ("time_ms", "accel_g").  Time is
- * a word such as time, t, timestamp or elapsed (not sample, index, count);
- * acceleration a word such as accel, acc, acceleration, ax, or any name
- * whose unit is an acceleration ("X (g)").  Among several acceleration
- * columns the longitudinal one is the x axis (the vehicle frame: x points
- * forward) or one named longitudinal or forward, else the only one that
- * names no axis beside lateral and vertical ones; among several time
- * columns the one with a unit (elapsed seconds) is preferred to one without
- * (a date-time).  The columns the caller names or numbers instead are
- * read here too (sw_csv_colspec_parse).  Everything here is a function of
- * its arguments: the reader (csv.c) hands in what it read and applies the
- * layout, or ends the parse with the code and message returned. */
+ * A name is read as words and a unit (csv_unit.c).  Time is a name whose
+ * unit is one of time ("Zeit [s]", "uptimeNanos") or a word such as time,
+ * t, timestamp, elapsed, uptime (not sample, index, count); acceleration a
+ * name whose unit is one ("X (g)", "Beschl. [m/s²]") or a word such as
+ * accel, acc, acceleration, or only an axis ("ax", "X").  A name whose
+ * unit is anything else is never an acceleration ("Longitude / X Position
+ * (Degrees)"), and a magnitude ("Absolute acceleration", "TgF") is never
+ * the longitudinal one.  A name that says acceleration, in a word or by
+ * its unit, beats a bare axis; then, among several, the longitudinal one
+ * is the x axis (the vehicle frame: x points forward) or one named
+ * longitudinal or forward, else the only one that names no axis beside
+ * lateral and vertical ones.  Among several time columns one with a unit
+ * (elapsed seconds) is preferred to one without (a date-time), and of
+ * those with units, the ones that say time in words ("Duration (ms)" does
+ * not).  Two still equal: refused, both named.  The columns the caller
+ * names or numbers instead are read here too (sw_csv_colspec_parse).
+ * Everything here is a function of its arguments: the reader (csv.c) hands
+ * in what it read and applies the layout, or ends the parse with the code
+ * and message returned. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,33 +33,54 @@
 #include "swaywatch/status.h"
 
 typedef struct {
-    int time, index, accel; /* the name reads as time, a sample index, an acceleration */
-    int axis;               /* 'x' (longitudinal), 'y', 'z', or 0 */
-    int tunit, aunit;       /* units read for the time role and as an acceleration */
+    int time;   /* the name reads as time */
+    int twords; /* ... and says so in words, not only by its unit */
+    int accel;  /* as an acceleration that may be the longitudinal one */
+    int named;  /* ... and says it is an acceleration (a word or its unit), not only
+                   an axis */
+    int axis;   /* 'x' (longitudinal), 'y', 'z', or 0 */
+    int nonacc; /* it names an axis or an acceleration, but its unit is not one */
+    int tunit;  /* SW_CSV_UNIT_* of a time unit */
 } kind_t;
+
+static const char *const time_w[] = {
+    "time",  "t",     "timestamp", "ts",     "elapsed",    "date",        "datetime",
+    "utc",   "epoch", "clock",     "uptime", "zeit",       "temps",       "tiempo",
+    "tempo", "czas",  "tid",       "aika",   "horodatage", "zeitstempel", NULL};
+static const char *const index_w[] = {"sample", "samples", "index", "idx", "n",      "no",  "nr",
+                                      "num",    "count",   "seq",   "id",  "record", "row", NULL};
+static const char *const accel_w[] = {"accel",
+                                      "acc",
+                                      "accl",
+                                      "acceleration",
+                                      "accelerometer",
+                                      "a",
+                                      "gforce",
+                                      "beschleunigung",
+                                      "beschl",
+                                      "acc\xc3\xa9l\xc3\xa9ration",
+                                      "aceleraci\xc3\xb3n",
+                                      "accelerazione",
+                                      "versnelling",
+                                      "przyspieszenie",
+                                      NULL};
+/* the magnitude of the acceleration: never the longitudinal axis */
+static const char *const mag_w[] = {"absolute", "abs",       "total", "magnitude", "mag",
+                                    "norm",     "resultant", "tgf",   "at",        NULL};
+static const char *const x_w[] = {"x",    "ax",    "accx",         "accelx", "xaccel",
+                                  "xacc", "long",  "longitudinal", "lon",    "forward",
+                                  "fwd",  "surge", "gfx",          NULL};
+static const char *const y_w[] = {"y",   "ay",      "accy", "accely", "yaccel", "yacc",
+                                  "lat", "lateral", "sway", "gfy",    NULL};
+static const char *const z_w[] = {"z",    "az",       "accz",  "accelz", "zaccel", "zacc",
+                                  "vert", "vertical", "heave", "up",     "gfz",    NULL};
 
 static void classify(const char *name, kind_t *k)
 {
-    static const char *const time_w[] = {"time",     "t",   "timestamp", "ts",    "elapsed", "date",
-                                         "datetime", "utc", "epoch",     "clock", NULL};
-    static const char *const index_w[] = {"sample", "samples", "index", "idx",   "n",
-                                          "no",     "nr",      "num",   "count", "seq",
-                                          "id",     "record",  "row",   NULL};
-    static const char *const accel_w[] = {"accel",         "acc", "acceleration",
-                                          "accelerometer", "a",   NULL};
-    static const char *const x_w[] = {"x",    "ax",           "accx", "accelx",  "xaccel", "xacc",
-                                      "long", "longitudinal", "lon",  "forward", "fwd",    "surge",
-                                      NULL};
-    static const char *const y_w[] = {"y",    "ay",  "accy",    "accely", "yaccel",
-                                      "yacc", "lat", "lateral", "sway",   NULL};
-    static const char *const z_w[] = {"z",    "az",       "accz",  "accelz", "zaccel", "zacc",
-                                      "vert", "vertical", "heave", "up",     NULL};
     sw_csv_words_t w;
-    int tlast, alast;
     sw_csv_words(name, &w);
     memset(k, 0, sizeof *k);
-    k->tunit = sw_csv_words_unit(&w, 1, &tlast);
-    k->aunit = sw_csv_words_unit(&w, 0, &alast);
+    int index = 0, mag = 0, tw = -1, aw = -1; /* the last time and acceleration words */
     for (int i = 0; i < w.nw; i++) {
         /* a numbered name reads as its word: "acc1", "time2" */
         char x[SW_CSV_WORD_MAX];
@@ -61,13 +88,13 @@ static void classify(const char *name, kind_t *k)
         size_t xl = strlen(x);
         while (xl > 1 && x[xl - 1] >= '0' && x[xl - 1] <= '9') x[--xl] = '\0';
         if (sw_csv_word_in(x, index_w))
-            k->index = 1;
-        if (sw_csv_word_in(x, time_w) && !(tlast && i == w.nw - 1))
-            k->time = 1;
-        if (alast && i == w.nw - 1)
-            continue; /* the unit word */
+            index = 1;
+        if (sw_csv_word_in(x, time_w))
+            tw = i;
         if (sw_csv_word_in(x, accel_w))
-            k->accel = 1;
+            aw = i;
+        if (sw_csv_word_in(x, mag_w))
+            mag = 1;
         if (sw_csv_word_in(x, x_w))
             k->axis = 'x';
         if (sw_csv_word_in(x, y_w))
@@ -75,12 +102,39 @@ static void classify(const char *name, kind_t *k)
         if (sw_csv_word_in(x, z_w))
             k->axis = 'z';
     }
-    if (k->aunit != SW_CSV_UNIT_NONE || (k->axis && !k->time))
-        k->accel = 1;
-    if (k->index || k->accel)
-        k->time = 0;
-    if (k->time)
-        k->accel = 0;
+    if (index)
+        return;
+    switch (w.uclass) {
+        case SW_CSV_UC_TIME: /* "Zeit [s]", "seconds_elapsed", "uptimeNanos" */
+            k->time = 1;
+            k->twords = tw >= 0;
+            k->tunit = w.unit_id;
+            return;
+        case SW_CSV_UC_ACCEL: /* "X (g)", "Beschl. [m/s²]" */
+            k->accel = !mag;
+            k->named = 1;
+            return;
+        case SW_CSV_UC_OTHER:
+        case SW_CSV_UC_UNKNOWN:
+            /* a time word beside a unit that is not a known one is still
+             * time ("loggingTime(txt)"); nothing with a unit that is not an
+             * acceleration is one ("Longitude / X Position (Degrees)") */
+            k->time = tw >= 0 && w.uclass == SW_CSV_UC_UNKNOWN;
+            k->twords = k->time;
+            k->nonacc = aw >= 0 || k->axis;
+            return;
+        default: break;
+    }
+    /* no unit: the words say it; of a time word and an acceleration word the
+     * last one names the thing ("accelerometerTimestamp") */
+    if (aw >= 0 && aw > tw) {
+        k->accel = !mag;
+        k->named = 1;
+    } else if (tw >= 0) {
+        k->time = k->twords = 1;
+    } else if (k->axis) {
+        k->accel = !mag;
+    }
 }
 
 /* "\"a\", \"b\"" of the columns in set, into dst. */
@@ -94,65 +148,123 @@ static void list_names(const char names[][SW_CSV_NAME_MAX], const long *set, int
                               names[set[i]], set[i] + 1);
 }
 
+enum { CAP = 16 };
+
+/* A set of columns. */
+typedef struct {
+    long c[CAP];
+    int n;
+} set_t;
+
+static void put(set_t *s, long i)
+{
+    if (s->n < CAP)
+        s->c[s->n++] = i;
+}
+
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
                  long skip, sw_csv_guess_t *g)
 {
-    enum { CAP = 16 };
-    long tc[CAP] = {0}, tu[CAP] = {0}, ac[CAP] = {0}, ax[CAP] = {0}, an[CAP] = {0};
-    int ntc = 0, ntu = 0, nac = 0, nax = 0, nan_ = 0;
+    set_t tu = {0}, tw = {0}, tc = {0}; /* time: with a unit, with a time word, any */
+    set_t named = {0}, bare = {0};      /* accelerations: named as such, an axis only */
+    set_t nonacc = {0};                 /* axes whose unit is not an acceleration */
+    kind_t kinds[SW_CSV_MAX_FIELDS];
     char list[200];
     memset(g, 0, sizeof *g);
     for (int r = 0; r < SW_CSV_NROLES; r++) g->col[r] = -1;
-    for (long i = 0; i < n; i++) {
+    for (long i = 0; i < n && i < SW_CSV_MAX_FIELDS; i++) {
         kind_t k;
         if (i == skip)
             continue;
         classify(names[i], &k);
-        if (k.time && ntc < CAP) {
-            tc[ntc++] = i;
-            if (k.tunit != SW_CSV_UNIT_NONE && ntu < CAP)
-                tu[ntu++] = i;
+        if (i < SW_CSV_MAX_FIELDS)
+            kinds[i] = k;
+        if (k.time) {
+            put(&tc, i);
+            if (k.tunit != SW_CSV_UNIT_NONE)
+                put(&tu, i);
+            if (k.twords)
+                put(&tw, i);
         }
-        if (k.accel && nac < CAP) {
-            ac[nac++] = i;
-            if (k.axis == 'x' && nax < CAP)
-                ax[nax++] = i;
-            if (!k.axis && nan_ < CAP)
-                an[nan_++] = i; /* no axis: not lateral, not vertical */
-        }
+        if (k.accel)
+            put(k.named ? &named : &bare, i);
+        if (k.nonacc)
+            put(&nonacc, i);
     }
     if (want[SW_CSV_ROLE_TIME]) {
-        /* elapsed time with a unit beats a date-time or a bare name */
-        const long *set = ntu ? tu : tc;
-        const int ns = ntu ? ntu : ntc;
-        if (ns != 1) {
-            list_names(names, set, ns, list, sizeof list);
-            if (ns == 0)
+        /* elapsed time with a unit beats a date-time or a bare name; of
+         * several with units, those that say time in words ("Duration (s)"
+         * does not) */
+        set_t set = tu.n ? tu : tc;
+        if (set.n > 1 && tw.n) {
+            set_t kept = {0};
+            for (int i = 0; i < set.n; i++)
+                if (kinds[set.c[i]].twords)
+                    put(&kept, set.c[i]);
+            if (kept.n)
+                set = kept;
+        }
+        if (set.n != 1) {
+            list_names(names, set.c, set.n, list, sizeof list);
+            if (set.n == 0)
                 snprintf(g->why, sizeof g->why, "no column is named as time");
             else
                 snprintf(g->why, sizeof g->why, "several columns could be time: %s", list);
             return -1;
         }
-        g->col[SW_CSV_ROLE_TIME] = set[0];
-        g->unit[SW_CSV_ROLE_TIME] = sw_csv_name_unit(names[set[0]], 1);
+        g->col[SW_CSV_ROLE_TIME] = set.c[0];
+        g->unit[SW_CSV_ROLE_TIME] = sw_csv_name_unit(names[set.c[0]], 1);
     }
     if (want[SW_CSV_ROLE_ACCEL]) {
-        /* one acceleration column; or among several the one along x; or,
-         * with no x, the one that names no axis beside lateral and
-         * vertical ones ("accel, z") */
-        const long *set = nac == 1 ? ac : nax ? ax : an;
-        const int ns = nac == 1 ? 1 : nax ? nax : nan_;
-        if (ns != 1) {
-            list_names(names, nac ? ac : ax, nac ? nac : nax, list, sizeof list);
-            if (nac == 0)
+        /* a name that says acceleration ("Acceleration Gs", "Accel X (g)")
+         * beats a bare axis ("X"); then one column; or among several the
+         * one along x; or, with no x, the one that names no axis beside
+         * lateral and vertical ones ("accel, z") */
+        const set_t *tier = named.n ? &named : &bare;
+        set_t ax = {0}, an = {0};
+        for (int i = 0; i < tier->n; i++) {
+            const int a = kinds[tier->c[i]].axis;
+            if (a == 'x')
+                put(&ax, tier->c[i]);
+            if (!a)
+                put(&an, tier->c[i]); /* no axis: not lateral, not vertical */
+        }
+        const set_t *pick = tier->n == 1 ? tier : ax.n ? &ax : &an;
+        if (pick->n != 1) {
+            list_names(names, tier->c, tier->n, list, sizeof list);
+            if (tier->n == 0)
                 snprintf(g->why, sizeof g->why, "no column is named as an acceleration");
             else
                 snprintf(g->why, sizeof g->why,
                          "several columns could be the longitudinal acceleration: %s", list);
+            if (tier->n == 0 && nonacc.n) {
+                list_names(names, nonacc.c, nonacc.n, list, sizeof list);
+                const size_t k = strlen(g->why);
+                snprintf(g->why + k, sizeof g->why - k, " (%s: %s)",
+                         nonacc.n == 1 ? "its unit is not an acceleration"
+                                       : "their units are not accelerations",
+                         list);
+            }
             return -1;
         }
-        g->col[SW_CSV_ROLE_ACCEL] = set[0];
-        g->unit[SW_CSV_ROLE_ACCEL] = sw_csv_name_unit(names[set[0]], 0);
+        /* a lone lateral or vertical acceleration named as such is not
+         * taken over a bare x ("X", "Accel Y (g)"): ask */
+        const long c = pick->c[0];
+        if (tier == &named && kinds[c].axis && kinds[c].axis != 'x') {
+            set_t both = {0};
+            put(&both, c);
+            for (int i = 0; i < bare.n; i++)
+                if (kinds[bare.c[i]].axis == 'x')
+                    put(&both, bare.c[i]);
+            if (both.n > 1) {
+                list_names(names, both.c, both.n, list, sizeof list);
+                snprintf(g->why, sizeof g->why,
+                         "several columns could be the longitudinal acceleration: %s", list);
+                return -1;
+            }
+        }
+        g->col[SW_CSV_ROLE_ACCEL] = c;
+        g->unit[SW_CSV_ROLE_ACCEL] = sw_csv_name_unit(names[c], 0);
     }
     return 0;
 }
@@ -252,8 +364,12 @@ static int unit_of_scale(int r, double scale)
         return scale == 1.0    ? SW_CSV_UNIT_S
                : scale == 1e-3 ? SW_CSV_UNIT_MS
                : scale == 1e-6 ? SW_CSV_UNIT_US
+               : scale == 1e-9 ? SW_CSV_UNIT_NS
                                : SW_CSV_UNIT_NONE;
-    return scale == 1.0 ? SW_CSV_UNIT_MPS2 : scale == SW_G0 ? SW_CSV_UNIT_G : SW_CSV_UNIT_NONE;
+    return scale == 1.0            ? SW_CSV_UNIT_MPS2
+           : scale == SW_G0        ? SW_CSV_UNIT_G
+           : scale == SW_G0 * 1e-3 ? SW_CSV_UNIT_MG
+                                   : SW_CSV_UNIT_NONE;
 }
 
 int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen)
@@ -328,7 +444,8 @@ int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, siz
     }
     if (in->tkind == 2)
         L->unit[R_TIME] = SW_CSV_UNIT_DATETIME;
-    if (in->has_header) {
+    if (in->has_header && in->infer) {
+        /* without infer the names are not read: the units are the defaults */
         const int tu = L->header_unit[R_TIME], au = L->header_unit[R_ACCEL];
         if (in->scale_given[0] && tu != SW_CSV_UNIT_NONE && tu != L->unit[R_TIME])
             L->unit_from[R_TIME] = SW_CSV_FROM_OPTION; /* overrides the header */

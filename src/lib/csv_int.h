@@ -110,21 +110,33 @@ int sw_csv_datetime(const char *s, size_t n, double *out);
 #define SW_CSV_MAX_WORDS 8
 #define SW_CSV_WORD_MAX 24
 
+/* What a unit measures. */
+enum {
+    SW_CSV_UC_NONE = 0, /* no unit written */
+    SW_CSV_UC_TIME,     /* s, ms, us, ns */
+    SW_CSV_UC_ACCEL,    /* g, mg, m/s^2 (or a range in one: "100g") */
+    SW_CSV_UC_OTHER,    /* a known unit of another quantity: deg, m, km/h, rpm, %, uT, ... */
+    SW_CSV_UC_UNKNOWN   /* written, but none of these ("raw", "txt", "WGS84") */
+};
+
 /* A header name as words and a unit. */
 typedef struct {
     char w[SW_CSV_MAX_WORDS][SW_CSV_WORD_MAX]; /* lowercase words, the unit left out */
     int nw;
-    char unit[SW_CSV_WORD_MAX * 2]; /* bracketed unit text, spaces removed, lowercase */
+    char unit[SW_CSV_WORD_MAX * 2]; /* the unit's text, spaces removed, lowercase */
+    int uclass;                     /* SW_CSV_UC_* */
+    int unit_id;                    /* SW_CSV_UNIT_* of a time or acceleration unit, else NONE */
 } sw_csv_words_t;
 
 char sw_csv_lower(char c); /* ASCII */
-/* Split a header name into words and a bracketed unit. */
+/* Split a header name into words and its unit (csv_unit.c says where a
+ * unit is written). */
 void sw_csv_words(const char *name, sw_csv_words_t *w);
 /* w is one of the NULL-terminated set. */
 int sw_csv_word_in(const char *w, const char *const *set);
-/* The unit of a name: its bracketed part, else its last word when it is a
- * unit and not the only word (*last_is_unit then). */
-int sw_csv_words_unit(const sw_csv_words_t *w, int time_role, int *last_is_unit);
+/* The class (SW_CSV_UC_*) of a unit's text, with its SW_CSV_UNIT_* in
+ * *unit (may be NULL). */
+int sw_csv_unit_class(const char *text, int *unit);
 /* The unit a header name carries ("Time (ms)", "accel_g", "X [m/s²]"),
  * SW_CSV_UNIT_NONE if none; time units for the time role, acceleration
  * units otherwise. */

@@ -1,0 +1,242 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* test_csv_stages.c - the CSV reader's stages one by one (csv_int.h): the
+ * unit reader, the inference of columns from a header's names.  Every
+ * expected value is what the header text itself says (its unit, its
+ * words), not what the reader happened to return. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "csv_int.h"
+#include "swaywatch/csv.h"
+#include "swaywatch/status.h"
+
+/* ---- the unit reader ----------------------------------------------------------- */
+
+static void expect_class(const char *text, int cls, int unit)
+{
+    int u = -1;
+    const int c = sw_csv_unit_class(text, &u);
+    if (c != cls || u != unit)
+        fail_msg("\"%s\": class %d unit %d, expected %d %d", text, c, u, cls, unit);
+}
+
+static void test_unit_class(void **state)
+{
+    (void)state;
+    /* time */
+    expect_class("s", SW_CSV_UC_TIME, SW_CSV_UNIT_S);
+    expect_class("Sec", SW_CSV_UC_TIME, SW_CSV_UNIT_S);
+    expect_class("ms", SW_CSV_UC_TIME, SW_CSV_UNIT_MS);
+    expect_class("\xc2\xb5s", SW_CSV_UC_TIME, SW_CSV_UNIT_US);
+    expect_class("ns", SW_CSV_UC_TIME, SW_CSV_UNIT_NS);
+    expect_class("Nanos", SW_CSV_UC_TIME, SW_CSV_UNIT_NS);
+    /* accelerations, and a logger's range written as the unit */
+    expect_class("g", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G);
+    expect_class("Gs", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G);
+    expect_class("G's", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G);
+    expect_class("mg", SW_CSV_UC_ACCEL, SW_CSV_UNIT_MG);
+    expect_class("m/s\xc2\xb2", SW_CSV_UC_ACCEL, SW_CSV_UNIT_MPS2);
+    expect_class("m / s ^ 2", SW_CSV_UC_ACCEL, SW_CSV_UNIT_MPS2);
+    expect_class("100g", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G);
+    expect_class(
+        "\xc2\xb1"
+        "16 g",
+        SW_CSV_UC_ACCEL, SW_CSV_UNIT_G);
+    expect_class("+-2g", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G);
+    /* the units the issue lists, and more: never an acceleration */
+    const char *const other[] = {"deg",
+                                 "Degrees",
+                                 "m",
+                                 "mi",
+                                 "km/h",
+                                 "mph",
+                                 "rpm",
+                                 "%",
+                                 "\xc2\xb5T",
+                                 "rad/s",
+                                 "\xc2\xb0"
+                                 "C",
+                                 "Hz",
+                                 "hPa",
+                                 "m/s",
+                                 "\xc2\xb0/s",
+                                 NULL};
+    for (int i = 0; other[i]; i++) expect_class(other[i], SW_CSV_UC_OTHER, SW_CSV_UNIT_NONE);
+    /* written, but no unit known: not an acceleration either */
+    expect_class("raw", SW_CSV_UC_UNKNOWN, SW_CSV_UNIT_NONE);
+    expect_class("16 deg", SW_CSV_UC_UNKNOWN, SW_CSV_UNIT_NONE); /* a range only of g */
+    expect_class("", SW_CSV_UC_NONE, SW_CSV_UNIT_NONE);
+    /* the options' reading: one role at a time */
+    assert_int_equal(sw_csv_unit_parse("ns", 1), SW_CSV_UNIT_NS);
+    assert_int_equal(sw_csv_unit_parse("ns", 0), SW_CSV_UNIT_NONE);
+    assert_int_equal(sw_csv_unit_parse("g", 1), SW_CSV_UNIT_NONE);
+    assert_true(sw_csv_unit_scale(SW_CSV_UNIT_NS) == 1e-9);
+    assert_true(sw_csv_unit_scale(SW_CSV_UNIT_MG) == 9.80665e-3);
+}
+
+/* name -> its unit's class and unit, and its words joined by '|' */
+static void expect_words(const char *name, int cls, int unit, const char *words)
+{
+    sw_csv_words_t w;
+    sw_csv_words(name, &w);
+    char got[256] = "";
+    for (int i = 0; i < w.nw; i++) {
+        strcat(got, i ? "|" : "");
+        strcat(got, w.w[i]);
+    }
+    if (w.uclass != cls || w.unit_id != unit || strcmp(got, words))
+        fail_msg("\"%s\": class %d unit %d words \"%s\", expected %d %d \"%s\"", name, w.uclass,
+                 w.unit_id, got, cls, unit, words);
+}
+
+static void test_words(void **state)
+{
+    (void)state;
+    expect_words("Longitude / X Position (Degrees)", SW_CSV_UC_OTHER, SW_CSV_UNIT_NONE,
+                 "longitude|x|position");
+    expect_words("Acceleration Gs", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G, "acceleration");
+    expect_words("Accel X (g)", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G, "accel|x");
+    expect_words("Beschl. [m/s\xc2\xb2]", SW_CSV_UC_ACCEL, SW_CSV_UNIT_MPS2, "beschl");
+    expect_words("Zeit [s]", SW_CSV_UC_TIME, SW_CSV_UNIT_S, "zeit");
+    expect_words("Temps (s)", SW_CSV_UC_TIME, SW_CSV_UNIT_S, "temps");
+    expect_words("Acc\xc3\xa9l\xc3\xa9ration (g)", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G,
+                 "acc\xc3\xa9l\xc3\xa9ration");
+    /* camel case, unit words first or last */
+    expect_words("uptimeNanos", SW_CSV_UC_TIME, SW_CSV_UNIT_NS, "uptime");
+    expect_words("seconds_elapsed", SW_CSV_UC_TIME, SW_CSV_UNIT_S, "elapsed");
+    expect_words("time_ns", SW_CSV_UC_TIME, SW_CSV_UNIT_NS, "time");
+    expect_words("Time (ns)", SW_CSV_UC_TIME, SW_CSV_UNIT_NS, "time");
+    expect_words("accelerometerAccelerationX(G)", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G,
+                 "accelerometer|acceleration|x");
+    expect_words("accelerometerTimestamp_sinceReboot(s)", SW_CSV_UC_TIME, SW_CSV_UNIT_S,
+                 "accelerometer|timestamp|since|reboot");
+    expect_words("GPSTime", SW_CSV_UC_NONE, SW_CSV_UNIT_NONE, "gps|time");
+    expect_words("AccX", SW_CSV_UC_NONE, SW_CSV_UNIT_NONE, "acc|x");
+    expect_words("aT", SW_CSV_UC_NONE, SW_CSV_UNIT_NONE, "at");
+    /* Physics Toolbox's g-force names its unit */
+    expect_words("gFx", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G, "gfx");
+    expect_words("G-Force X", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G, "g|force|x");
+    /* ranges, several brackets, units that are not accelerations */
+    expect_words("X (100g)", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G, "x");
+    expect_words("Acc [g] (filtered)", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G, "acc");
+    expect_words("heading_deg", SW_CSV_UC_OTHER, SW_CSV_UNIT_NONE, "heading");
+    expect_words("X (raw)", SW_CSV_UC_UNKNOWN, SW_CSV_UNIT_NONE, "x");
+    expect_words("acc_v", SW_CSV_UC_NONE, SW_CSV_UNIT_NONE, "acc|v"); /* an axis, not volts */
+    expect_words("g", SW_CSV_UC_NONE, SW_CSV_UNIT_NONE, "g");         /* a name alone is a name */
+    expect_words("accel_g", SW_CSV_UC_ACCEL, SW_CSV_UNIT_G, "accel");
+    expect_words("time_ms", SW_CSV_UC_TIME, SW_CSV_UNIT_MS, "time");
+}
+
+/* ---- the inference ----------------------------------------------------------- */
+
+/* The header in one string, fields split on '|'. */
+static long header(const char *text, char names[][SW_CSV_NAME_MAX])
+{
+    long n = 0;
+    const char *p = text;
+    for (;;) {
+        const char *e = strchr(p, '|');
+        const size_t k = e ? (size_t)(e - p) : strlen(p);
+        snprintf(names[n], SW_CSV_NAME_MAX, "%.*s", (int)k, p);
+        n++;
+        if (!e)
+            return n;
+        p = e + 1;
+    }
+}
+
+/* Guess time and accel: their 1-based columns (0: refused, with the
+ * reason in why). */
+static void guess(const char *text, long *t, long *a, char *why, size_t cap)
+{
+    char names[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX];
+    const long n = header(text, names);
+    const int want[SW_CSV_NROLES] = {1, 1, 0};
+    sw_csv_guess_t g;
+    *t = *a = 0;
+    if (sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])names, n, want, -1, &g) != 0) {
+        snprintf(why, cap, "%s", g.why);
+        return;
+    }
+    why[0] = '\0';
+    *t = g.col[SW_CSV_ROLE_TIME] + 1;
+    *a = g.col[SW_CSV_ROLE_ACCEL] + 1;
+}
+
+static void expect_cols(const char *text, long t, long a)
+{
+    long gt, ga;
+    char why[256];
+    guess(text, &gt, &ga, why, sizeof why);
+    if (gt != t || ga != a)
+        fail_msg("%s: time %ld accel %ld (%s), expected %ld %ld", text, gt, ga, why, t, a);
+}
+
+static void expect_refused(const char *text, const char *says)
+{
+    long gt, ga;
+    char why[256];
+    guess(text, &gt, &ga, why, sizeof why);
+    if (gt || ga || !strstr(why, says))
+        fail_msg("%s: time %ld accel %ld (%s), expected a refusal saying \"%s\"", text, gt, ga, why,
+                 says);
+}
+
+static void test_inference(void **state)
+{
+    (void)state;
+    /* units beat axis letters; a unit that is not an acceleration is never
+     * one (the CAN export with GPS columns of the issue) */
+    expect_cols(
+        "Time (s)|Latitude / Y Position (Degrees)|Longitude / X Position (Degrees)|"
+        "Speed (km/h)|Heading (Degrees)|Acceleration Gs|Lateral Gs|Engine (rpm)",
+        1, 6);
+    expect_cols("t|X|Acceleration Gs", 1, 3);
+    expect_cols("Zeit [s]|Beschl. [m/s\xc2\xb2]", 1, 2);
+    expect_cols("Temps (s)|Acc\xc3\xa9l\xc3\xa9ration (g)", 1, 2);
+    expect_cols("time|gFx|gFy|gFz|TgF", 1, 2);
+    expect_cols("time|ax|ay|az|aT", 1, 2);
+    expect_cols(
+        "Time (s)|Acceleration x (m/s^2)|Acceleration y (m/s^2)|Acceleration z "
+        "(m/s^2)|Absolute acceleration (m/s^2)",
+        1, 2);
+    expect_cols(
+        "Time (s)|X (100g)|Y (100g)|Z (100g)|Temperature (\xc2\xb0"
+        "C)",
+        1, 2);
+    /* the phone apps: a unit-suffixed iPhone export, Sensor Logger */
+    expect_cols(
+        "loggingTime(txt)|loggingSample(N)|accelerometerTimestamp_sinceReboot(s)|"
+        "accelerometerAccelerationX(G)|accelerometerAccelerationY(G)|"
+        "accelerometerAccelerationZ(G)",
+        3, 4);
+    expect_cols("time|seconds_elapsed|z|y|x", 2, 5);
+    expect_cols("uptimeNanos|x|y|z", 1, 2);
+    /* a time named in words beats a duration with only a unit */
+    expect_cols("Duration (ms)|Time (s)|ax", 2, 3);
+    /* refusals: nothing left, or two still equal */
+    expect_refused("t|X (deg)|Y (deg)", "their units are not accelerations: \"X (deg)\"");
+    expect_refused("t|Magnetic field x (\xc2\xb5T)|Gyroscope x (rad/s)", "not accelerations");
+    expect_refused("time|acc1 (g)|acc2 (g)", "\"acc2 (g)\" (column 3)");
+    expect_refused("t|X|Accel Y (g)", "\"Accel Y (g)\" (column 3), \"X\" (column 2)");
+    expect_refused("Time (s)|Absolute acceleration (m/s^2)", "no column is named as an acc");
+    expect_refused("t1 (s)|t2 (s)|ax", "several columns could be time");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_unit_class),
+        cmocka_unit_test(test_words),
+        cmocka_unit_test(test_inference),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
