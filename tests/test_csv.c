@@ -112,7 +112,7 @@ static void run(const char *in, size_t len, const sw_csv_opts_t *o, size_t chunk
 
     const sw_csv_counts_t *n = &r->counts;
     assert_int_equal(n->rows, n->accepted + n->rejected);
-    assert_int_equal(n->lines, n->rows + n->comments + n->blanks + n->headers);
+    assert_int_equal(n->lines, n->rows + n->comments + n->blanks + n->headers + n->preamble);
     assert_int_equal((long)r->nrows, n->accepted);
     assert_int_equal((long)r->nrejs, n->rejected);
     if (r->feed_rc == SW_OK) {
@@ -175,7 +175,9 @@ static void run3(const char *in, size_t len, const sw_csv_opts_t *o, result_t *r
 
 static sw_csv_opts_t defaults(void)
 {
-    sw_csv_opts_t o = {0, NULL, NULL, NULL, 0.0, 0.0, 0, -1, 0, 0, 0};
+    sw_csv_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.header = -1;
     return o;
 }
 
@@ -650,6 +652,22 @@ static void test_lookahead(void **state)
     result_free(&u);
 }
 
+/* Options: delimiter, columns, scales, header; the rest zero. */
+static sw_csv_opts_t mk(char delim, const char *tc, const char *ac, const char *vc, double ts,
+                        double as, int header)
+{
+    sw_csv_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.delim = delim;
+    o.time_col = tc;
+    o.accel_col = ac;
+    o.vert_col = vc;
+    o.time_scale = ts;
+    o.accel_scale = as;
+    o.header = header;
+    return o;
+}
+
 static void test_bad_options(void **state)
 {
     (void)state;
@@ -657,18 +675,18 @@ static void test_bad_options(void **state)
         sw_csv_opts_t o;
         int err;
     } cases[] = {
-        {{'|', NULL, NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},
-        {{0, NULL, NULL, NULL, 0, 0, 0, 2, 0, 0, 0}, SW_EINVAL},
-        {{0, NULL, NULL, NULL, -1.0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},
-        {{0, NULL, NULL, NULL, 0, NAN, 0, -1, 0, 0, 0}, SW_EINVAL},
-        {{0, NULL, NULL, NULL, 0, -9.80665, 0, -1, 0, 0, 0}, SW_EINVAL},
-        {{0, "0", NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},
-        {{0, "  ", NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},
-        {{0, "99999999999999999999", NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},
-        {{0, "2", NULL, NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},      /* same as accel */
-        {{0, "t", "T", NULL, 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},       /* same name */
-        {{0, NULL, NULL, "1", 0, 0, 0, -1, 0, 0, 0}, SW_EINVAL},      /* vertical = time */
-        {{0, "time", NULL, NULL, 0, 0, 0, 0, 0, 0, 0}, SW_ENOTFOUND}, /* named, no header */
+        {mk('|', NULL, NULL, NULL, 0, 0, -1), SW_EINVAL},
+        {mk(0, NULL, NULL, NULL, 0, 0, 2), SW_EINVAL},
+        {mk(0, NULL, NULL, NULL, -1.0, 0, -1), SW_EINVAL},
+        {mk(0, NULL, NULL, NULL, 0, NAN, -1), SW_EINVAL},
+        {mk(0, NULL, NULL, NULL, 0, -9.80665, -1), SW_EINVAL},
+        {mk(0, "0", NULL, NULL, 0, 0, -1), SW_EINVAL},
+        {mk(0, "  ", NULL, NULL, 0, 0, -1), SW_EINVAL},
+        {mk(0, "99999999999999999999", NULL, NULL, 0, 0, -1), SW_EINVAL},
+        {mk(0, "2", NULL, NULL, 0, 0, -1), SW_EINVAL},      /* same as accel */
+        {mk(0, "t", "T", NULL, 0, 0, -1), SW_EINVAL},       /* same name */
+        {mk(0, NULL, NULL, "1", 0, 0, -1), SW_EINVAL},      /* vertical = time */
+        {mk(0, "time", NULL, NULL, 0, 0, 0), SW_ENOTFOUND}, /* named, no header */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         int err = 0;
@@ -695,6 +713,73 @@ static void test_bad_options(void **state)
     sw_csv_destroy(c);
     sw_csv_destroy(NULL);
     assert_int_equal(sw_csv_feed(NULL, "x", 1), SW_EINVAL);
+}
+
+/* Issue 24: a logger export with lines about the recording before its
+ * header was read with the header as a bad row and default units on a g
+ * column.  The preamble is skipped and counted, the header read. */
+static void test_preamble(void **state)
+{
+    (void)state;
+    const char *in =
+        "Shock recorder export\r\n"      /* 1 */
+        "Instrument:,SR-3X\r\n"          /* 2 */
+        "Serial Number:,10427\r\n"       /* 3 */
+        "\r\n"                           /* 4: a blank line stays a blank line */
+        "Trigger:,X axis 0.50 G\r\n"     /* 5 */
+        "# exported with defaults\r\n"   /* 6: and a comment a comment */
+        "Sample Rate:,1000 Hz\r\n"       /* 7 */
+        "Time (s),X (G),Y (G),Z (G)\r\n" /* 8 */
+        "0.000,0.01,0.00,1.00\r\n"
+        "0.001,-0.50,0.01,1.01\r\n"
+        "0.002,-0.25,0.00,0.99\r\n";
+    sw_csv_opts_t o = defaults();
+    o.infer = 1;
+    result_t r;
+    RUN_STR(in, &o, &r);
+    assert_int_equal(r.feed_rc, SW_OK);
+    assert_counts(&r, 11, 3, 3, 1, 1, 1);
+    assert_int_equal(r.counts.preamble, 5);
+    assert_row(&r, 1, 10, 0.001, -0.50 * 9.80665, 0.0);
+    result_free(&r);
+    /* the layout says where the table starts, and why */
+    int err;
+    sw_csv_t *c = sw_csv_create(&o, NULL, NULL, NULL, &err, NULL, 0);
+    assert_non_null(c);
+    assert_int_equal(sw_csv_feed(c, in, strlen(in)), SW_OK);
+    assert_int_equal(sw_csv_finish(c), SW_OK);
+    sw_csv_layout_t L;
+    assert_int_equal(sw_csv_layout(c, &L), SW_OK);
+    assert_int_equal(L.preamble, 5);
+    assert_int_equal(L.preamble_from, SW_CSV_FROM_VALUES);
+    assert_int_equal(L.first_line, 8);
+    assert_string_equal(L.name[1], "X (G)");
+    assert_int_equal(L.unit[1], SW_CSV_UNIT_G);
+    sw_csv_destroy(c);
+
+    /* skip_lines: the first N physical lines, whatever they are */
+    o.skip_lines = 7;
+    RUN_STR(in, &o, &r);
+    assert_int_equal(r.feed_rc, SW_OK);
+    assert_counts(&r, 11, 3, 3, 0, 0, 1);
+    assert_int_equal(r.counts.preamble, 7);
+    result_free(&r);
+    /* too few: the last metadata line is taken for the header */
+    o.skip_lines = 6;
+    RUN_STR(in, &o, &r);
+    assert_int_equal(r.feed_rc, SW_EAMBIGUOUS);
+    result_free(&r);
+    /* none: as before the preamble was known, every line of it and the
+     * table's header are rows refused */
+    o.skip_lines = -1;
+    o.infer = 0;
+    RUN_STR(in, &o, &r);
+    assert_int_equal(r.feed_rc, SW_OK);
+    assert_int_equal(r.counts.preamble, 0);
+    assert_counts(&r, 11, 9, 3, 1, 1, 0);
+    assert_rej(&r, 0, 1, "expected at least 2 columns, found 1 (no ',' ';' or tab delimiter)");
+    assert_rej(&r, 5, 8, "time (column 1) is not a number: \"Time (s)\"");
+    result_free(&r);
 }
 
 static void test_bad_row_in_the_middle(void **state)
@@ -1235,6 +1320,7 @@ int main(void)
         cmocka_unit_test(test_columns),
         cmocka_unit_test(test_named_column_errors),
         cmocka_unit_test(test_lookahead),
+        cmocka_unit_test(test_preamble),
         cmocka_unit_test(test_bad_options),
         cmocka_unit_test(test_bad_row_in_the_middle),
         cmocka_unit_test(test_time_order),

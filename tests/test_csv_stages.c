@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_csv_stages.c - the CSV reader's stages one by one (csv_int.h): the
- * unit reader, the inference of columns from a header's names.  Every
+ * unit reader, the inference of columns from a header's names, the
+ * preamble finder.  Every
  * expected value is what the header text itself says (its unit, its
  * words), not what the reader happened to return. */
 #include <setjmp.h>
@@ -10,6 +11,7 @@
 
 #include <cmocka.h>
 
+#include <locale.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -231,12 +233,89 @@ static void test_inference(void **state)
     expect_refused("t1 (s)|t2 (s)|ax", "several columns could be time");
 }
 
+/* ---- the preamble finder ------------------------------------------------------- */
+
+/* The lines of text (one string, '\n' between lines; all data-like). */
+static long find(const char *text, char delim, int header)
+{
+    static char buf[4096];
+    sw_csv_line_t lines[64];
+    long n = 0;
+    snprintf(buf, sizeof buf, "%s", text);
+    for (char *p = buf; *p && n < 64;) {
+        char *e = strchr(p, '\n');
+        lines[n].s = p;
+        lines[n].n = e ? (size_t)(e - p) : strlen(p);
+        n++;
+        if (!e)
+            break;
+        p = e + 1;
+    }
+    const sw_csv_preamble_opts_t o = {delim, header, newlocale(LC_NUMERIC_MASK, "C", (locale_t)0)};
+    const long k = sw_csv_preamble_find(lines, n, &o);
+    freelocale(o.cloc);
+    return k;
+}
+
+static void test_preamble(void **state)
+{
+    (void)state;
+    /* a shock logger's export: 8 lines about the recording, then the table */
+    const char *saver =
+        "Shock recorder export\n"
+        "Instrument:,SR-3X\n"
+        "Serial Number:,10427\n"
+        "Event:,17\n"
+        "Trigger:,X axis 0.50 G\n"
+        "Sample Rate:,1000 Hz\n"
+        "Pre-trigger:,10 %\n"
+        "Units:,G\n"
+        "Time (s),X (G),Y (G),Z (G)\n"
+        "0.000,0.01,0.00,1.00\n"
+        "0.001,-0.02,0.01,1.01\n"
+        "0.002,-0.05,0.00,0.99\n";
+    assert_int_equal(find(saver, 0, -1), 8);
+    assert_int_equal(find(saver, ',', 1), 8);
+    assert_int_equal(find(saver, 0, 0), 0); /* no header: the first line is a row */
+    /* "key,value" lines over a table of two columns */
+    assert_int_equal(
+        find("Device,Phone\nRate,100 Hz\nSerial,12345\ntime,accel\n0,1\n0.01,2\n0.02,3\n", 0, -1),
+        3);
+    /* no header: the lines of words before the first row */
+    assert_int_equal(find("Logger X\nStarted 2024-05-20\n0,1\n0.1,2\n0.2,3\n", 0, -1), 2);
+    /* ';' with decimal commas, tab, quotes, a trailing delimiter in the rows */
+    assert_int_equal(find("Ger\xc3\xa4t;SR-3X\nZeit [s];Beschl. [m/s\xc2\xb2]\n0,00;0,1\n0,01;0,2\n"
+                          "0,02;0,3\n",
+                          0, -1),
+                     1);
+    assert_int_equal(find("title\t\nt\ta\n0\t1\n1\t2\n2\t3\n", 0, -1), 1);
+    assert_int_equal(find("\"Instrument\",\"X\"\n\"t\",\"a\"\n\"0\",\"1\"\n\"1\",\"2\"\n", 0, -1),
+                     1);
+    assert_int_equal(find("Title\na,b\n0,1,\n1,2,\n2,3,\n", 0, -1), 1);
+    /* no preamble: the table starts at the first line */
+    assert_int_equal(find("t,a\n0,1\n1,2\n", 0, -1), 0);
+    assert_int_equal(find("0,1\n1,2\n", 0, -1), 0);
+    /* doubt: the table starts at the first line, as without a preamble */
+    assert_int_equal(find("0,nan\n1,inf\n2,1\n3,1\n4,1\n", 0, -1), 0); /* rows spoilt */
+    assert_int_equal(find("0,nan\n2,1e400\nt,a\n3,1\n4,1\n", 0, -1), 0);
+    assert_int_equal(find("0.00O,-9\n0.001,-9\n0.002,-9\n", 0, -1), 0); /* a corrupt time */
+    assert_int_equal(find("12345\n0,1\n1,2\n", 0, -1), 0);              /* no words */
+    assert_int_equal(find("time,accel\n0.000,0.1\n0.001;0.2\n0.002\t0.3\n0.003,0.4\n0.004;0.5\n"
+                          "0.005,0.6\n",
+                          0, -1),
+                     0); /* the rows do not keep a field count */
+    assert_int_equal(find("Title\nCal,1.0,2.0,3.0\nt,a\n0,1\n1,2\n2,3\n", 0, -1), 0);
+    assert_int_equal(find("Title\nt,a\n0,1\n1,2,3\n2,3,4\n3\n", 0, -1), 0);
+    assert_int_equal(find("Title only\n", 0, -1), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_unit_class),
         cmocka_unit_test(test_words),
         cmocka_unit_test(test_inference),
+        cmocka_unit_test(test_preamble),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -30,8 +30,15 @@
  * parse ends with SW_EAMBIGUOUS, because a wrong guess gives a confident
  * wrong answer.
  *
+ * Lines before the table that are not part of it (a logger's title,
+ * instrument, serial number, trigger, units...) are its preamble: found in
+ * the look-ahead when the lines show it without doubt (the first row is the
+ * first line of two or more numbers whose field count the lines under it
+ * keep; the header is the line above it when that holds names), or the
+ * first skip_lines lines; skipped and counted.
+ *
  * Counts always satisfy rows == accepted + rejected and
- * lines == rows + comments + blanks + headers. */
+ * lines == rows + comments + blanks + headers + preamble. */
 #ifndef SWAYWATCH_CSV_H
 #define SWAYWATCH_CSV_H
 
@@ -68,7 +75,12 @@ enum {
 };
 
 /* Where a column or a unit came from. */
-enum { SW_CSV_FROM_DEFAULT = 0, SW_CSV_FROM_OPTION, SW_CSV_FROM_HEADER };
+enum {
+    SW_CSV_FROM_DEFAULT = 0,
+    SW_CSV_FROM_OPTION,
+    SW_CSV_FROM_HEADER,
+    SW_CSV_FROM_VALUES /* the lines or values of the look-ahead showed it */
+};
 
 typedef struct {
     char delim;            /* ',', ';', '\t', or 0 to detect */
@@ -81,7 +93,8 @@ typedef struct {
     int header;            /* -1 detect: the first non-comment, non-blank line is the header
                               when its time field (column 1 if time is named) is empty or not
                               numeric ("0,5" and "1e400" count as numeric: such a row is
-                              reported, not skipped); 0 none; 1 that line is the header.  Named
+                              reported, not skipped); 0 none (the first line is a row: no
+                              preamble is looked for); 1 that line is the header.  Named
                               columns match the trimmed header fields case-insensitively. */
     int infer;             /* non-zero: the columns and units not given above are read from
                               the header's names (see the top of this file); without a
@@ -94,6 +107,10 @@ typedef struct {
                               gate, gate.h: a lone row whose time is off is that row's fault,
                               not the fault of the rows after it); 0: a time not after the
                               previous row's is refused here */
+    long skip_lines;       /* 0: find a preamble (lines before the table that are not part
+                              of it: titles, "key: value" and "key,value" lines; see the top
+                              of this file); N > 0: the first N physical lines are the
+                              preamble, whatever they hold; < 0: there is none */
 } sw_csv_opts_t;
 
 /* The layout in use, once the header (or the first data row) has fixed it.
@@ -110,6 +127,10 @@ typedef struct {
     int col_from[3], unit_from[3]; /* SW_CSV_FROM_* */
     int header_unit[3];            /* the unit the column's name says (NONE: none); when it
                                       differs from unit, the option given overrode it */
+    long preamble;                 /* lines skipped before the table */
+    long first_line;               /* the table's first line (its header, or its first row) */
+    int preamble_from;             /* SW_CSV_FROM_OPTION (skip_lines), SW_CSV_FROM_VALUES
+                                      (found), SW_CSV_FROM_DEFAULT (none) */
 } sw_csv_layout_t;
 
 typedef struct {
@@ -118,6 +139,7 @@ typedef struct {
     long accepted; /* rows delivered */
     long rejected; /* rows refused; rows == accepted + rejected */
     long comments, blanks, headers;
+    long preamble; /* lines before the table (sw_csv_opts_t.skip_lines) */
 } sw_csv_counts_t;
 
 /* line is the 1-based physical line number. */

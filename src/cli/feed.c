@@ -51,6 +51,16 @@ static void say_layout(feed_t *F)
         return;
     static const char *const role[2] = {"time", "accel"};
     FILE *m = sw_cli_msg();
+    if (L.preamble > 0 && L.preamble_from == SW_CSV_FROM_OPTION)
+        fprintf(m,
+                "swaywatch: %s: skipped %ld line%s of preamble (--skip-lines); the table starts "
+                "on line %ld\n",
+                F->name, L.preamble, L.preamble == 1 ? "" : "s", L.first_line);
+    else if (L.preamble > 0)
+        fprintf(m,
+                "swaywatch: %s: skipped %ld line%s of preamble; the table starts on line %ld "
+                "(--skip-lines N says otherwise)\n",
+                F->name, L.preamble, L.preamble == 1 ? "" : "s", L.first_line);
     fprintf(m, "swaywatch: %s: ", F->name);
     for (int r = 0; r < 2; r++) {
         fprintf(m, "%s%s: column %ld", r ? "; " : "", role[r], L.col[r] + 1);
@@ -93,7 +103,7 @@ static void explain_columns(const feed_t *F)
     sw_cli_error(
         "%s: say which with --time-col and --accel-col (a name or a 1-based index), "
         "and the units with --time-unit and --accel-unit where the names do not say "
-        "them",
+        "them; --skip-lines N if the header is not the table's first line",
         F->name);
 }
 
@@ -129,6 +139,7 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
 static void on_reject(void *user, long line, const char *reason)
 {
     feed_t *F = user;
+    say_layout(F); /* what the row was read as, before why it was refused */
     if (F->stopped) {
         F->unread_rejected++;
         return;

@@ -192,6 +192,18 @@ static int check_col(const sw_cli_option_t *o, const char *arg, void *dest)
     return SW_EXIT_OK;
 }
 
+/* --skip-lines 0 says there is no preamble: the reader's -1 (its 0 is
+ * "find it"). */
+static int skip_lines(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    (void)o;
+    (void)arg;
+    long *n = dest;
+    if (*n == 0)
+        *n = -1;
+    return SW_EXIT_OK;
+}
+
 #define CSV(f) SW_CLI_AT(sw_cli_csv_opts_t, f)
 #define CSV_SECTION                                                                   \
     "CSV input (default: column 1 time in s, column 2 longitudinal acceleration in\n" \
@@ -213,7 +225,12 @@ const sw_cli_option_t sw_cli_csv_options[] = {
      .help = "',', ';' or tab (default: detected from the first line)"},
     {SW_CLI_FLAG, 0, "header", CSV(csv.header), .value = 1,
      .help = "the first row is a header (default: detected)"},
-    {SW_CLI_FLAG, 0, "no-header", CSV(csv.header), .value = 0, .help = "the first row is data"},
+    {SW_CLI_FLAG, 0, "no-header", CSV(csv.header), .value = 0,
+     .help = "the first row is data (and no preamble is looked for)"},
+    {SW_CLI_LONG, 0, "skip-lines", "N", CSV(csv.skip_lines), .min = 0, .max = 1000000,
+     .fn = skip_lines, .what = "a number of lines from 0 to 1000000",
+     .help = "the first N lines are a preamble before the table (its header, or its first row), "
+             "skipped and counted; 0: there is none (default: found, see below)"},
     {SW_CLI_CALL, 0, "time-unit", "U", CSV(csv.time_scale), .fn = parse_time_unit,
      .help = "s, ms or us (default: from the header's name, else s)"},
     {SW_CLI_FLAG, 0, "decimal-comma", CSV(csv.decimal_comma), .value = 1,

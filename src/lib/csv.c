@@ -80,11 +80,15 @@ struct sw_csv {
     sw_csv_fields_t f;
 
     /* the look-ahead: the first lines, held until the layout is fixed */
-    int deciding;      /* still holding lines */
-    char *abuf;        /* their text, AHEAD_CAP bytes */
-    size_t aused;      /* bytes of abuf in use */
-    ahead_t *ahead;    /* SW_CSV_AHEAD_LINES lines */
-    int nahead, adata; /* lines held, of which data-like */
+    int deciding;          /* still holding lines */
+    char *abuf;            /* their text, AHEAD_CAP bytes */
+    size_t aused;          /* bytes of abuf in use */
+    ahead_t *ahead;        /* SW_CSV_AHEAD_LINES lines */
+    int nahead, adata;     /* lines held, of which data-like */
+    sw_csv_line_t *alines; /* the data-like ones, for the preamble's finder */
+    long skip_lines;       /* the options': 0 find the preamble, N > 0 the first N lines,
+                              < 0 none */
+    long pre_data;         /* data-like lines of the preamble found, still to come */
 
     /* stream state */
     long lineno;
@@ -138,31 +142,33 @@ static void fail(sw_csv_t *c, int code, const char *text)
     snprintf(c->msg, sizeof c->msg, "line %ld: %s", c->lineno, text);
 }
 
-/* A delimiter among tab, ';', ',' occurring outside quotes, in that order of
- * preference: ';' files use ',' as the decimal mark, so a line holding both
- * is ';'-delimited; tab-delimited headers may well contain commas. */
-static char detect_delim(const char *s, size_t n)
-{
-    int tab = 0, semi = 0, comma = 0, q = 0;
-    for (size_t i = 0; i < n; i++) {
-        char ch = s[i];
-        if (ch == '"')
-            q = !q;
-        else if (!q) {
-            tab |= ch == '\t';
-            semi |= ch == ';';
-            comma |= ch == ',';
-        }
-    }
-    return tab ? '\t' : semi ? ';' : comma ? ',' : 0;
-}
-
 static int names_pending(const sw_csv_t *c)
 {
     for (int r = 0; r < N_ROLES; r++)
         if (c->name[r] && c->col[r] < 0)
             return 1;
     return 0;
+}
+
+static int fix_layout(sw_csv_t *c, int has_header);
+
+/* The first data-like line is a row that cannot be used (c->reason says
+ * why): the file has no header, so a named column cannot be found; else
+ * the defaults apply.  The row is refused after the layout is fixed, so
+ * that a caller can say how rows are read before why this one was not. */
+static void no_header(sw_csv_t *c)
+{
+    for (int r = 0; r < N_ROLES; r++)
+        if (c->name[r] && c->col[r] < 0) {
+            char t[200];
+            snprintf(t, sizeof t, "column \"%s\" (%s) is named but the input has no header",
+                     c->name[r], role_name[r]);
+            reject(c);
+            fail(c, SW_ENOTFOUND, t);
+            return;
+        }
+    if (fix_layout(c, 0) == SW_OK)
+        reject(c);
 }
 
 /* The layout once the columns are known (from the options, the header's
@@ -191,6 +197,11 @@ static int fix_layout(sw_csv_t *c, int has_header)
         return rc;
     }
     for (int r = 0; r < N_ROLES; r++) c->col[r] = c->lay.col[r];
+    c->lay.preamble = c->n.preamble; /* the preamble comes before the table */
+    c->lay.first_line = c->lineno;
+    c->lay.preamble_from = c->skip_lines > 0 ? SW_CSV_FROM_OPTION
+                           : c->n.preamble   ? SW_CSV_FROM_VALUES
+                                             : SW_CSV_FROM_DEFAULT;
     c->tscale = c->lay.scale[R_TIME];
     c->ascale = c->lay.scale[R_ACCEL];
     return SW_OK;
@@ -207,7 +218,7 @@ static void take_header(sw_csv_t *c)
  * has none: a one-column header, or a row reported as such. */
 static int choose_delim(sw_csv_t *c, const char *s, size_t n, int header_here)
 {
-    const char d = detect_delim(s, n);
+    const char d = sw_csv_detect_delim(s, n);
     if (d) {
         c->delim = d;
         return 1;
@@ -220,7 +231,10 @@ static int choose_delim(sw_csv_t *c, const char *s, size_t n, int header_here)
     c->n.rows++;
     snprintf(c->reason, sizeof c->reason,
              "expected at least 2 columns, found 1 (no ',' ';' or tab delimiter)");
-    reject(c);
+    if (header_here)
+        no_header(c);
+    else
+        reject(c);
     return 0;
 }
 
@@ -467,6 +481,11 @@ static int classify(const char *s, size_t n, int overlong)
 static void process(sw_csv_t *c, int kind, char *s, size_t n)
 {
     c->n.lines++;
+    if (c->lineno <= c->skip_lines || (kind >= L_DATA && c->pre_data > 0)) {
+        c->n.preamble++; /* --skip-lines, or the preamble found */
+        c->pre_data -= kind >= L_DATA && c->lineno > c->skip_lines;
+        return;
+    }
     switch (kind) {
         case L_COMMENT: c->n.comments++; return;
         case L_BLANK: c->n.blanks++; return;
@@ -477,10 +496,14 @@ static void process(sw_csv_t *c, int kind, char *s, size_t n)
                 take_header(c);
                 return;
             }
-            c->header_open = 0;
             c->n.rows++;
             snprintf(c->reason, sizeof c->reason, "line longer than %d bytes", SW_CSV_MAX_LINE);
-            reject(c);
+            if (c->header_open) {
+                c->header_open = 0;
+                no_header(c);
+            } else {
+                reject(c);
+            }
             return;
         default:
             s[n] = '\0';
@@ -495,6 +518,15 @@ static void decide(sw_csv_t *c)
 {
     const long read = c->lineno;
     c->deciding = 0;
+    if (c->skip_lines == 0) { /* find the preamble */
+        long n = 0;
+        for (int i = 0; i < c->nahead; i++)
+            if (c->ahead[i].kind >= L_DATA)
+                c->alines[n++] = (sw_csv_line_t){
+                    c->ahead[i].kind == L_DATA ? c->abuf + c->ahead[i].off : "", c->ahead[i].len};
+        const sw_csv_preamble_opts_t po = {c->delim, c->header, c->cloc};
+        c->pre_data = sw_csv_preamble_find(c->alines, n, &po);
+    }
     for (int i = 0; i < c->nahead && c->status >= 0; i++) {
         const ahead_t *e = &c->ahead[i];
         c->lineno = e->lineno;
@@ -639,9 +671,11 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
     c->line = malloc(LINE_CAP + 1);
     c->abuf = malloc(AHEAD_CAP);
     c->ahead = malloc(SW_CSV_AHEAD_LINES * sizeof *c->ahead);
+    c->alines = malloc(SW_CSV_AHEAD_LINES * sizeof *c->alines);
+    c->skip_lines = o->skip_lines;
     c->deciding = 1;
     c->cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-    if (!c->line || !c->abuf || !c->ahead || c->cloc == (locale_t)0 ||
+    if (!c->line || !c->abuf || !c->ahead || !c->alines || c->cloc == (locale_t)0 ||
         sw_csv_splitter_init(&c->sp) != 0) {
         bad_opts(err, msg, msglen, SW_ENOMEM, "out of memory");
         sw_csv_destroy(c);
@@ -665,6 +699,7 @@ void sw_csv_destroy(sw_csv_t *c)
     free(c->line);
     free(c->abuf);
     free(c->ahead);
+    free(c->alines);
     free(c);
 }
 

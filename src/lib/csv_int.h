@@ -105,6 +105,27 @@ int sw_csv_number(locale_t cloc, const char *s, size_t n, int decimal_comma, dou
  * as UTC) in s[0..n): 1 with *out in seconds since 1970-01-01 UTC, else 0. */
 int sw_csv_datetime(const char *s, size_t n, double *out);
 
+/* ---- csv_preamble.c: where the table starts ------------------------------------- */
+
+/* A data-like line of the look-ahead (not blank, not a comment); s NULL
+ * for a line too long to hold. */
+typedef struct {
+    const char *s;
+    size_t n;
+} sw_csv_line_t;
+
+typedef struct {
+    char delim;    /* given, or 0 */
+    int header;    /* the options' header: -1 detect, 0 none, 1 present */
+    locale_t cloc; /* "C" numeric locale */
+} sw_csv_preamble_opts_t;
+
+/* A delimiter among tab, ';', ',' outside quotes (in that order), or 0. */
+char sw_csv_detect_delim(const char *s, size_t n);
+/* How many of the n data-like lines come before the table (its header, or
+ * its first row without one): 0 unless the lines show it without doubt. */
+long sw_csv_preamble_find(const sw_csv_line_t *lines, long n, const sw_csv_preamble_opts_t *o);
+
 /* ---- csv_unit.c: names into words and units ---------------------------------- */
 
 #define SW_CSV_MAX_WORDS 8

@@ -97,7 +97,8 @@ static void run(const sw_csv_opts_t *o, const uint8_t *text, size_t len, uint32_
     }
     sw_csv_counts(c, counts);
     FZ_CHECK(counts->rows == counts->accepted + counts->rejected);
-    FZ_CHECK(counts->lines == counts->rows + counts->comments + counts->blanks + counts->headers);
+    FZ_CHECK(counts->lines ==
+             counts->rows + counts->comments + counts->blanks + counts->headers + counts->preamble);
     FZ_CHECK(counts->headers <= 1);
     FZ_CHECK(counts->accepted == r->rows && counts->rejected == r->rejects);
     FZ_CHECK(r->last_line <= counts->lines);
