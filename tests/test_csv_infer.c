@@ -323,6 +323,83 @@ static void test_units_not_accelerations(void **state)
     assert_non_null(strstr(r.msg, "their units are not accelerations"));
 }
 
+/* Issue 24's times: ns, epochs told by their magnitude, day-first dates,
+ * and of two time columns the finer.  The expected times are the texts'
+ * (1716206400 s is 2024-05-20T12:00:00Z: date -u -d 2024-05-20T12:00:00Z
+ * +%s). */
+static void test_times(void **state)
+{
+    (void)state;
+    res_t r;
+    sw_csv_opts_t o = infer_opts();
+    /* Android's uptime in ns, named so */
+    run("uptimeNanos,x,y,z\n36000000000000,0.1,0,9.8\n36000010000000,-0.2,0,9.8\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.unit[0], SW_CSV_UNIT_NS);
+    assert_int_equal(r.lay.unit_from[0], SW_CSV_FROM_HEADER);
+    assert_true(fabs(r.t[1] - r.t[0] - 0.01) < 1e-9);
+    run("Time (ns);Acceleration (g)\n0;0\n2500000;1\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_true(r.t[1] == 0.0025);
+    /* an epoch in ms named "timestamp": its unit from its magnitude */
+    run("timestamp,accel_x\n1716206400000,0.1\n1716206400010,0.2\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.unit[0], SW_CSV_UNIT_MS);
+    assert_int_equal(r.lay.unit_from[0], SW_CSV_FROM_VALUES);
+    assert_int_equal(r.lay.epoch, 1);
+    assert_true(r.t[0] == 1716206400.0);
+    assert_true(fabs(r.t[1] - 1716206400.01) < 1e-6);
+    /* in ns, from Sensor Logger's "time" beside its "seconds_elapsed" */
+    run("time,seconds_elapsed,z,y,x\n1716206400000000000,0,9.8,0,0.1\n"
+        "1716206400010000000,0.01,9.8,0,0.2\n",
+        &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.col[0], 1); /* the same resolution: the one with a unit */
+    assert_int_equal(r.lay.col[1], 4);
+    /* day-first date-times, decided by a day above 12 */
+    run("Date/Time,Acceleration X (g)\n14/05/2016 11:17:09.000,0.1\n14/05/2016 11:17:09.010,0.2\n",
+        &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.unit[0], SW_CSV_UNIT_DATETIME);
+    assert_int_equal(r.lay.date_order, SW_CSV_DATE_DMY);
+    assert_int_equal(r.lay.unit_from[0], SW_CSV_FROM_VALUES);
+    assert_true(r.t[0] == 1463224629.0); /* date -u -d "2016-05-14 11:17:09" +%s */
+    assert_true(fabs(r.t[1] - 1463224629.01) < 1e-6);
+    run("Zeit;Beschl. [g]\n20.05.2024 12:00:00,000;0,1\n20.05.2024 12:00:00,010;0,2\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_true(r.t[0] == 1716206400.0);
+    /* month first, decided the same way */
+    run("Time,Accel (g)\n5/14/2016 1:17:09.000 PM,0.1\n5/14/2016 1:17:09.010 PM,0.2\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.date_order, SW_CSV_DATE_MDY);
+    assert_true(r.t[0] == 1463231829.0); /* date -u -d "2016-05-14 13:17:09" +%s */
+    /* undecidable: refused, the option named; given, read */
+    const char *undecided =
+        "Date,Accel (g)\n05/06/2024 12:00:00.000,0.1\n05/06/2024 12:00:00.010,0.2\n";
+    run(undecided, &o, &r);
+    assert_int_equal(r.rc, SW_EAMBIGUOUS);
+    assert_non_null(strstr(r.msg, "--date-order dmy"));
+    assert_int_equal(r.n, 0);
+    o.date_order = SW_CSV_DATE_DMY;
+    run(undecided, &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.unit_from[0], SW_CSV_FROM_OPTION);
+    assert_true(r.t[0] == 1717588800.0); /* 5 June: date -u -d "2024-06-05 12:00" +%s */
+    o.date_order = SW_CSV_DATE_MDY;
+    run(undecided, &o, &r);
+    assert_true(r.t[0] == 1714996800.0); /* 6 May: date -u -d "2024-05-06 12:00" +%s */
+    o = infer_opts();
+    /* a date to the second beside an uptime in ns: the uptime */
+    run("date,uptimeNanos,x\n"
+        "2024-05-20 12:00:01,36000000000000,0.1\n"
+        "2024-05-20 12:00:01,36000010000000,0.1\n"
+        "2024-05-20 12:00:01,36000020000000,0.1\n",
+        &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.col[0], 1);
+    assert_int_equal(r.n, 3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -334,6 +411,7 @@ int main(void)
         cmocka_unit_test(test_ambiguous),
         cmocka_unit_test(test_option_against_header),
         cmocka_unit_test(test_units_not_accelerations),
+        cmocka_unit_test(test_times),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

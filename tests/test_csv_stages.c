@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_csv_stages.c - the CSV reader's stages one by one (csv_int.h): the
  * unit reader, the inference of columns from a header's names, the
- * preamble finder.  Every
+ * preamble finder, the time readers and the columns' profiles.  Every
  * expected value is what the header text itself says (its unit, its
  * words), not what the reader happened to return. */
 #include <setjmp.h>
@@ -80,6 +80,7 @@ static void test_unit_class(void **state)
     assert_int_equal(sw_csv_unit_parse("ns", 1), SW_CSV_UNIT_NS);
     assert_int_equal(sw_csv_unit_parse("ns", 0), SW_CSV_UNIT_NONE);
     assert_int_equal(sw_csv_unit_parse("g", 1), SW_CSV_UNIT_NONE);
+    assert_int_equal(sw_csv_unit_parse("100g", 0), SW_CSV_UNIT_NONE); /* a range is a header's */
     assert_true(sw_csv_unit_scale(SW_CSV_UNIT_NS) == 1e-9);
     assert_true(sw_csv_unit_scale(SW_CSV_UNIT_MG) == 9.80665e-3);
 }
@@ -164,7 +165,7 @@ static void guess(const char *text, long *t, long *a, char *why, size_t cap)
     const int want[SW_CSV_NROLES] = {1, 1, 0};
     sw_csv_guess_t g;
     *t = *a = 0;
-    if (sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])names, n, want, -1, &g) != 0) {
+    if (sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])names, n, want, -1, NULL, 0, &g) != 0) {
         snprintf(why, cap, "%s", g.why);
         return;
     }
@@ -309,13 +310,177 @@ static void test_preamble(void **state)
     assert_int_equal(find("Title only\n", 0, -1), 0);
 }
 
+/* ---- the time readers ---------------------------------------------------------- */
+
+/* Seconds since 1970 of the dates below, from GNU date (date -u -d
+ * "2024-05-20 12:00:00" +%s, and so on): an independent calendar. */
+#define T_2024_05_20_1200 1716206400.0
+#define T_2016_05_14_111709 1463224629.0
+#define T_2016_05_14_131709 1463231829.0
+#define T_2000_02_29_235959 951868799.0
+#define T_2024_06_05_1200 1717588800.0
+#define T_2024_05_06_1200 1714996800.0
+#define T_2024_01_01_0030 1704069000.0
+
+static void expect_time(const char *s, int order, int rc, double t)
+{
+    double v = -1.0;
+    const int got = sw_csv_datetime(s, strlen(s), order, &v);
+    if (got != rc || (rc == 1 && fabs(v - t) > 1e-6))
+        fail_msg("\"%s\" order %d: %d %.6f, expected %d %.6f", s, order, got, v, rc, t);
+}
+
+static void test_datetimes(void **state)
+{
+    (void)state;
+    const int D = SW_CSV_DATE_DMY, M = SW_CSV_DATE_MDY, A = SW_CSV_DATE_AUTO;
+    /* year first: ISO-8601 and its kin, whatever the order option */
+    expect_time("2024-05-20T12:00:00.000Z", A, 1, T_2024_05_20_1200);
+    expect_time("2024-05-20 14:00:00+02:00", A, 1, T_2024_05_20_1200);
+    expect_time("2016/05/14 11:17:09", M, 1, T_2016_05_14_111709);
+    /* day and month first: the two shapes, and a spreadsheet's */
+    expect_time("14/05/2016 11:17:09", D, 1, T_2016_05_14_111709);
+    expect_time("20.05.2024 12:00:00.000", D, 1, T_2024_05_20_1200);
+    expect_time("20-05-2024 12:00:00.250", D, 1, T_2024_05_20_1200 + 0.25);
+    expect_time("05/14/2016 11:17:09", M, 1, T_2016_05_14_111709);
+    expect_time("5/14/2016 1:17:09 PM", M, 1, T_2016_05_14_131709);
+    expect_time("1/1/2024 12:30 AM", D, 1, T_2024_01_01_0030);
+    expect_time("29.02.2000 23:59:59", D, 1, T_2000_02_29_235959);
+    /* one text, two dates: the order decides */
+    expect_time("05/06/2024 12:00:00", D, 1, T_2024_06_05_1200);
+    expect_time("05/06/2024 12:00:00", M, 1, T_2024_05_06_1200);
+    expect_time("05/06/2024 12:00:00", A, -1, 0.0); /* not known: neither */
+    /* impossible dates, and texts that are not date-times */
+    expect_time("31/02/2024 00:00:00", D, 0, 0.0);
+    expect_time("14/05/2016 11:17:09", M, 0, 0.0); /* month 14 */
+    expect_time("29.02.2023 12:00:00", D, 0, 0.0);
+    expect_time("13:00 PM", D, 0, 0.0);
+    expect_time("14/05/2016", D, 0, 0.0);        /* a date without a time */
+    expect_time("14/05/16 11:17:09", D, 0, 0.0); /* a year of two digits */
+    expect_time("14/05-2016 11:17:09", D, 0, 0.0);
+    expect_time("1.5", D, 0, 0.0);
+    expect_time("1/1/2024 13:30 PM", D, 0, 0.0);
+    assert_true(sw_csv_is_datetime("05/06/2024 12:00:00", 19));
+    assert_false(sw_csv_is_datetime("45/06/2024 12:00:00", 19));
+}
+
+static void test_epoch(void **state)
+{
+    (void)state;
+    /* 2000-01-01 and 2100-01-01 bound an epoch (date -u -d 2000-01-01 +%s:
+     * 946684800; 2100-01-01: 4102444800) */
+    assert_int_equal(sw_csv_epoch_unit(946684800.0), SW_CSV_UNIT_S);
+    assert_int_equal(sw_csv_epoch_unit(946684799.0), SW_CSV_UNIT_NONE);
+    assert_int_equal(sw_csv_epoch_unit(4102444799.0), SW_CSV_UNIT_S);
+    assert_int_equal(sw_csv_epoch_unit(T_2024_05_20_1200), SW_CSV_UNIT_S);
+    assert_int_equal(sw_csv_epoch_unit(T_2024_05_20_1200 * 1e3 + 123), SW_CSV_UNIT_MS);
+    assert_int_equal(sw_csv_epoch_unit(T_2024_05_20_1200 * 1e6), SW_CSV_UNIT_US);
+    assert_int_equal(sw_csv_epoch_unit(T_2024_05_20_1200 * 1e9), SW_CSV_UNIT_NS);
+    /* an uptime of ten hours in ns, a plain elapsed time: no epoch */
+    assert_int_equal(sw_csv_epoch_unit(3.6e13), SW_CSV_UNIT_NONE);
+    assert_int_equal(sw_csv_epoch_unit(0.5), SW_CSV_UNIT_NONE);
+}
+
+/* Profiles of the columns of rows given as one string ('|' between fields,
+ * '\n' between rows). */
+static long profiles(const char *rows, sw_csv_profile_t *p)
+{
+    locale_t cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+    long nc = 0;
+    memset(p, 0, SW_CSV_MAX_FIELDS * sizeof *p);
+    for (const char *r = rows; *r;) {
+        const char *e = strchr(r, '\n');
+        const size_t len = e ? (size_t)(e - r) : strlen(r);
+        long k = 0;
+        for (size_t a = 0; a <= len; k++) {
+            size_t b = a;
+            while (b < len && r[b] != '|') b++;
+            sw_csv_profile_add(&p[k], r + a, b - a, ',', cloc);
+            a = b + 1;
+        }
+        if (k > nc)
+            nc = k;
+        r += len + (e != NULL);
+    }
+    freelocale(cloc);
+    return nc;
+}
+
+static void test_profiles(void **state)
+{
+    (void)state;
+    sw_csv_profile_t p[SW_CSV_MAX_FIELDS];
+    /* a date to the second beside an uptime in ns, at 4 Hz */
+    const char *rows =
+        "2024-05-20 12:00:01|3600000000000|0.01\n"
+        "2024-05-20 12:00:01|3600250000000|0.02\n"
+        "2024-05-20 12:00:01|3600500000000|0.03\n"
+        "2024-05-20 12:00:01|3600750000000|0.04\n"
+        "2024-05-20 12:00:02|3601000000000|0.05\n"
+        "2024-05-20 12:00:02|3601250000000|0.06\n";
+    assert_int_equal(profiles(rows, p), 3);
+    assert_int_equal(p[0].niso, 6);
+    assert_int_equal(p[0].steps, 5);
+    assert_int_equal(p[0].zero, 4); /* the stamp repeats */
+    assert_true(p[0].minstep == 1.0);
+    assert_int_equal(p[1].nnum, 6);
+    assert_int_equal(p[1].zero, 0);
+    assert_true(p[1].minstep == 250000000.0);
+    assert_true(p[1].first == 3600000000000.0);
+    /* the finer one is time; the coarse one first in the header */
+    char names[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX] = {"date", "uptimeNanos", "x"};
+    const int want[SW_CSV_NROLES] = {1, 1, 0};
+    sw_csv_guess_t g;
+    assert_int_equal(sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])names, 3, want, -1, p, 3, &g), 0);
+    assert_int_equal(g.col[SW_CSV_ROLE_TIME], 1);
+    /* the same resolution: the one with a unit, as without profiles */
+    rows =
+        "2024-05-20 12:00:00.000|0.00|0.1\n"
+        "2024-05-20 12:00:00.100|0.10|0.1\n"
+        "2024-05-20 12:00:00.200|0.20|0.1\n";
+    profiles(rows, p);
+    char names2[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX] = {"Timestamp", "Time (s)", "Acceleration Gs"};
+    assert_int_equal(sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])names2, 3, want, -1, p, 3, &g),
+                     0);
+    assert_int_equal(g.col[SW_CSV_ROLE_TIME], 1);
+    /* two clocks in ns, one coarse: the fine one even without a unit; both
+     * fine: both named in the refusal */
+    rows =
+        "1716206400000000000|1716206400000000000|0.1\n"
+        "1716206400000000000|1716206400010000000|0.1\n"
+        "1716206401000000000|1716206400020000000|0.1\n";
+    profiles(rows, p);
+    char names3[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX] = {"time_ns", "timestamp", "ax"};
+    assert_int_equal(sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])names3, 3, want, -1, p, 3, &g),
+                     0);
+    assert_int_equal(g.col[SW_CSV_ROLE_TIME], 1);
+    rows =
+        "1716206400000000000|1716206400000000000|0.1\n"
+        "1716206400010000000|1716206400010000000|0.1\n"
+        "1716206400020000000|1716206400020000000|0.1\n";
+    profiles(rows, p);
+    char names4[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX] = {"time_ns", "timestamp_ns", "ax"};
+    assert_int_not_equal(
+        sw_csv_guess((const char(*)[SW_CSV_NAME_MAX])names4, 3, want, -1, p, 3, &g), 0);
+    assert_non_null(strstr(g.why, "\"time_ns\" (column 1), \"timestamp_ns\" (column 2)"));
+    /* day and month first: a number above 12 says which is the day */
+    profiles("14/05/2016 11:17:09|1\n14/05/2016 11:17:10|2\n", p);
+    assert_int_equal(p[0].ndm, 2);
+    assert_int_equal(p[0].a13, 2);
+    assert_int_equal(p[0].b13, 0);
+    assert_true(p[0].minstep == 1.0);
+    profiles("05/06/2024 12:00:00|1\n05/06/2024 12:00:01|2\n", p);
+    assert_int_equal(p[0].ndm, 2);
+    assert_int_equal(p[0].a13 + p[0].b13, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_unit_class),
-        cmocka_unit_test(test_words),
-        cmocka_unit_test(test_inference),
-        cmocka_unit_test(test_preamble),
+        cmocka_unit_test(test_unit_class), cmocka_unit_test(test_words),
+        cmocka_unit_test(test_inference),  cmocka_unit_test(test_preamble),
+        cmocka_unit_test(test_datetimes),  cmocka_unit_test(test_epoch),
+        cmocka_unit_test(test_profiles),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

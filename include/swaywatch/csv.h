@@ -74,6 +74,10 @@ enum {
     SW_CSV_UNIT_MG  /* acceleration in thousandths of g */
 };
 
+/* The order of day and month in date-times that write them before the
+ * year ("14/05/2016", "05/14/2016"). */
+enum { SW_CSV_DATE_AUTO = 0, SW_CSV_DATE_DMY, SW_CSV_DATE_MDY };
+
 /* Where a column or a unit came from. */
 enum {
     SW_CSV_FROM_DEFAULT = 0,
@@ -111,6 +115,10 @@ typedef struct {
                               of it: titles, "key: value" and "key,value" lines; see the top
                               of this file); N > 0: the first N physical lines are the
                               preamble, whatever they hold; < 0: there is none */
+    int date_order;        /* SW_CSV_DATE_AUTO: day and month before the year are told apart
+                              by the look-ahead's rows (a number above 12 is the day), and
+                              refused (SW_EAMBIGUOUS) when they cannot be; SW_CSV_DATE_DMY,
+                              SW_CSV_DATE_MDY: as given */
 } sw_csv_opts_t;
 
 /* The layout in use, once the header (or the first data row) has fixed it.
@@ -129,6 +137,9 @@ typedef struct {
                                       differs from unit, the option given overrode it */
     long preamble;                 /* lines skipped before the table */
     long first_line;               /* the table's first line (its header, or its first row) */
+    int date_order;                /* date-times with day and month first: SW_CSV_DATE_DMY or
+                                      SW_CSV_DATE_MDY (unit_from[0] says whence); else AUTO */
+    int epoch;                     /* the time column's values are a time since 1970 */
     int preamble_from;             /* SW_CSV_FROM_OPTION (skip_lines), SW_CSV_FROM_VALUES
                                       (found), SW_CSV_FROM_DEFAULT (none) */
 } sw_csv_layout_t;

@@ -36,6 +36,7 @@ static const char *from_name(int from)
 {
     return from == SW_CSV_FROM_HEADER   ? "from the header"
            : from == SW_CSV_FROM_OPTION ? "as given"
+           : from == SW_CSV_FROM_VALUES ? "from the values"
                                         : "default";
 }
 
@@ -67,8 +68,13 @@ static void say_layout(feed_t *F)
         if (L.name[r][0])
             fprintf(m, " \"%s\"", L.name[r]);
         const char *u = sw_csv_unit_name(L.unit[r]);
+        const char *how = "";
+        if (r == 0 && L.date_order == SW_CSV_DATE_DMY)
+            how = ", day first";
+        else if (r == 0 && L.date_order == SW_CSV_DATE_MDY)
+            how = ", month first";
         if (u[0])
-            fprintf(m, ", %s", u);
+            fprintf(m, ", %s%s%s", r == 0 && L.epoch ? "epoch " : "", u, how);
         else
             fprintf(m, ", x %g", L.scale[r]);
         fprintf(m, " (%s)", from_name(L.unit_from[r]));
@@ -91,7 +97,10 @@ static void after_chunk(void *user)
 /* The header did not say which column is which: it, and how to say it. */
 static void explain_columns(const feed_t *F)
 {
-    sw_cli_error("%s: %s", F->name, sw_csv_error_message(F->csv));
+    const char *why = sw_csv_error_message(F->csv);
+    sw_cli_error("%s: %s", F->name, why);
+    if (strstr(why, "--date-order"))
+        return; /* the reason names the option: the columns are not in question */
     const long n = sw_csv_header_count(F->csv);
     if (n > 0) {
         FILE *m = sw_cli_msg();
@@ -319,8 +328,9 @@ int sw_cli_feed_verdict(const char *name, const sw_gate_facts_t *f, const sw_cli
     if (!go->force) {
         sw_cli_error("%s: no verdict: %s", name, why);
         sw_cli_error(
-            "%s: check the columns and units (see the lines above), or give --force "
-            "for a verdict marked as forced",
+            "%s: check the columns and units (see the lines above; --time-col, "
+            "--time-unit, --accel-col, --accel-unit), or give --force for a verdict "
+            "marked as forced",
             name);
         return SW_EXIT_USAGE;
     }

@@ -159,9 +159,10 @@ static int parse_unit(const sw_cli_option_t *o, const char *arg, double *scale, 
 {
     const int u = sw_csv_unit_parse(arg, time_role);
     if (u == SW_CSV_UNIT_NONE) {
-        sw_cli_error("--%s: expected %s, got '%s'", o->long_name,
-                     time_role ? "s, ms or us" : "m/s2 (or m/s^2, m/s\xc2\xb2, mps2) or g (G, Gs)",
-                     arg);
+        sw_cli_error(
+            "--%s: expected %s, got '%s'", o->long_name,
+            time_role ? "s, ms, us or ns" : "m/s2 (or m/s^2, m/s\xc2\xb2, mps2), g (G, Gs) or mg",
+            arg);
         return SW_EXIT_USAGE;
     }
     *scale = sw_csv_unit_scale(u);
@@ -176,6 +177,21 @@ int sw_cli_accel_unit(const sw_cli_option_t *o, const char *arg, void *dest)
 static int parse_time_unit(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     return parse_unit(o, arg, dest, 1);
+}
+
+static int parse_date_order(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    int *out = dest;
+    if (!strcmp(arg, "dmy"))
+        *out = SW_CSV_DATE_DMY;
+    else if (!strcmp(arg, "mdy"))
+        *out = SW_CSV_DATE_MDY;
+    else {
+        sw_cli_error("--%s: expected dmy (day first) or mdy (month first), got '%s'", o->long_name,
+                     arg);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
 }
 
 /* Column choice: a header name or a 1-based index; "0" is neither. */
@@ -232,7 +248,12 @@ const sw_cli_option_t sw_cli_csv_options[] = {
      .help = "the first N lines are a preamble before the table (its header, or its first row), "
              "skipped and counted; 0: there is none (default: found, see below)"},
     {SW_CLI_CALL, 0, "time-unit", "U", CSV(csv.time_scale), .fn = parse_time_unit,
-     .help = "s, ms or us (default: from the header's name, else s)"},
+     .help = "s, ms, us or ns (default: from the header's name, else from the values when they "
+             "are an epoch, else s)"},
+    {SW_CLI_CALL, 0, "date-order", "dmy|mdy", CSV(csv.date_order), .fn = parse_date_order,
+     .help = "date-times that write day and month before the year (14/05/2016, 20.05.2024): "
+             "day first (dmy) or month first (mdy) (default: told from the values, where a "
+             "number above 12 is the day)"},
     {SW_CLI_FLAG, 0, "decimal-comma", CSV(csv.decimal_comma), .value = 1,
      .help = "',' is the decimal mark (default: detected in ';' and tab files from the first "
              "number with a mark)"},
@@ -252,7 +273,7 @@ const sw_cli_option_t sw_cli_csv_options[] = {
 const sw_cli_option_t sw_cli_sample_options[] = {
     {SW_CLI_SECTION, .help = CSV_SECTION},
     {SW_CLI_CALL, 0, "accel-unit", "U", CSV(csv.accel_scale), .fn = sw_cli_accel_unit,
-     .help = "m/s2 (m/s^2, mps2) or g (G, Gs), 1 g = 9.80665 m/s^2 (default: from the "
+     .help = "m/s2 (m/s^2, mps2), g (G, Gs) or mg, 1 g = 9.80665 m/s^2 (default: from the "
              "header's name, else m/s2)"},
     {SW_CLI_FLAG, 0, "flip", CSV(csv.flip), .value = 1,
      .help = "negate the longitudinal axis (logger mounted backwards)"},

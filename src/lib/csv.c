@@ -89,6 +89,11 @@ struct sw_csv {
     long skip_lines;       /* the options': 0 find the preamble, N > 0 the first N lines,
                               < 0 none */
     long pre_data;         /* data-like lines of the preamble found, still to come */
+    sw_csv_profile_t prof[SW_CSV_MAX_FIELDS]; /* the columns as the look-ahead's rows show them */
+    long nprof;
+    char pcap[SW_CSV_MAX_FIELDS][SW_CSV_NAME_MAX]; /* a row's fields, for the profiles */
+    int date_order;                                /* the options' */
+    int dorder; /* day and month first: the order in use, or AUTO: not known */
 
     /* stream state */
     long lineno;
@@ -109,7 +114,8 @@ enum {
     NUM_EMPTY = SW_NUM_EMPTY,
     NUM_BAD = SW_NUM_BAD,
     NUM_COMMA = SW_NUM_COMMA,
-    NUM_RANGE = SW_NUM_RANGE
+    NUM_RANGE = SW_NUM_RANGE,
+    NUM_ORDER /* a date-time with day and month first, the order not known */
 };
 
 static int parse_number(const sw_csv_t *c, const char *s, size_t n, double *out)
@@ -189,6 +195,9 @@ static int fix_layout(sw_csv_t *c, int has_header)
         .delim = c->delim,
         .decimal_comma = c->dcomma,
         .tkind = c->tkind,
+        .date_order = c->date_order,
+        .prof = c->prof,
+        .nprof = c->nprof,
     };
     char t[320];
     const int rc = sw_csv_infer(&in, &c->lay, t, sizeof t);
@@ -203,6 +212,8 @@ static int fix_layout(sw_csv_t *c, int has_header)
                            : c->n.preamble   ? SW_CSV_FROM_VALUES
                                              : SW_CSV_FROM_DEFAULT;
     c->tscale = c->lay.scale[R_TIME];
+    if (c->lay.date_order != SW_CSV_DATE_AUTO)
+        c->dorder = c->lay.date_order;
     c->ascale = c->lay.scale[R_ACCEL];
     return SW_OK;
 }
@@ -288,7 +299,7 @@ static int first_line(sw_csv_t *c, int ok)
         double v;
         const int res = parse_number(c, c->f.fs[R_PROBE], c->f.fl[R_PROBE], &v);
         is_header = (res == NUM_EMPTY || res == NUM_BAD) &&
-                    !sw_csv_datetime(c->f.fs[R_PROBE], c->f.fl[R_PROBE], &v) &&
+                    !sw_csv_is_datetime(c->f.fs[R_PROBE], c->f.fl[R_PROBE]) &&
                     !corrupt_row(c, c->f.fs[R_PROBE], c->f.fl[R_PROBE]);
     }
     if (is_header) {
@@ -348,7 +359,10 @@ static int parse_time(sw_csv_t *c, double *out)
         if (res != NUM_BAD || c->tkind == 1)
             return res;
     }
-    if (sw_csv_datetime(s, n, out)) {
+    const int dt = sw_csv_datetime(s, n, c->dorder, out);
+    if (dt < 0)
+        return NUM_ORDER;
+    if (dt > 0) {
         if (c->tkind == 0) {
             c->tkind = 2;
             c->tscale = 1.0;
@@ -373,6 +387,11 @@ static void field_reason(sw_csv_t *c, int r, int res)
             break;
         case NUM_RANGE:
             snprintf(c->reason, sizeof c->reason, "%s is out of range: %s", label, ex);
+            break;
+        case NUM_ORDER:
+            snprintf(c->reason, sizeof c->reason,
+                     "%s: day and month in an order not known: %s (say --date-order dmy or mdy)",
+                     label, ex);
             break;
         default:
             if (r == R_TIME && c->tkind == 2)
@@ -512,6 +531,42 @@ static void process(sw_csv_t *c, int kind, char *s, size_t n)
     }
 }
 
+/* The columns as the rows of the look-ahead show them: every data-like
+ * line after the table's first (its header, or a row: one row less does
+ * not matter), split on the delimiter the first line will be given. */
+static void profile(sw_csv_t *c)
+{
+    long skipped = 0;
+    int i = 0;
+    for (; i < c->nahead; i++) {
+        const ahead_t *e = &c->ahead[i];
+        if (e->kind < L_DATA || e->lineno <= c->skip_lines)
+            continue;
+        if (skipped++ < c->pre_data)
+            continue;
+        break;
+    }
+    if (i == c->nahead || c->ahead[i].kind != L_DATA)
+        return;
+    const char d =
+        c->delim ? c->delim : sw_csv_detect_delim(c->abuf + c->ahead[i].off, c->ahead[i].len);
+    if (!d)
+        return;
+    sw_csv_split_opts_t so = {.delim = d, .want = {-1, -1, -1, -1}, .capture = c->pcap};
+    sw_csv_fields_t f;
+    for (i++; i < c->nahead; i++) {
+        const ahead_t *e = &c->ahead[i];
+        if (e->kind != L_DATA)
+            continue;
+        /* nothing is written into the line: no field is wanted */
+        sw_csv_split(&c->sp, c->abuf + e->off, e->len, &so, &f);
+        for (long k = 0; k < f.ncap; k++)
+            sw_csv_profile_add(&c->prof[k], c->pcap[k], strlen(c->pcap[k]), d, c->cloc);
+        if (f.ncap > c->nprof)
+            c->nprof = f.ncap;
+    }
+}
+
 /* The look-ahead is over: the lines held are read in order, as any later
  * line is, up to an error that ends the parse. */
 static void decide(sw_csv_t *c)
@@ -527,6 +582,7 @@ static void decide(sw_csv_t *c)
         const sw_csv_preamble_opts_t po = {c->delim, c->header, c->cloc};
         c->pre_data = sw_csv_preamble_find(c->alines, n, &po);
     }
+    profile(c);
     for (int i = 0; i < c->nahead && c->status >= 0; i++) {
         const ahead_t *e = &c->ahead[i];
         c->lineno = e->lineno;
@@ -645,6 +701,11 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
         c->name[r][cs.len[r]] = '\0';
     }
     c->have_vert = o->vert_col != NULL;
+    if (o->date_order < SW_CSV_DATE_AUTO || o->date_order > SW_CSV_DATE_MDY) {
+        bad_opts(err, msg, msglen, SW_EINVAL, "date_order must be SW_CSV_DATE_AUTO, _DMY or _MDY");
+        sw_csv_destroy(c);
+        return NULL;
+    }
     if (o->decimal_comma < -1 || o->decimal_comma > 1) {
         bad_opts(err, msg, msglen, SW_EINVAL, "decimal_comma must be -1 (detect), 0 or 1");
         sw_csv_destroy(c);
@@ -673,6 +734,8 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
     c->ahead = malloc(SW_CSV_AHEAD_LINES * sizeof *c->ahead);
     c->alines = malloc(SW_CSV_AHEAD_LINES * sizeof *c->alines);
     c->skip_lines = o->skip_lines;
+    c->date_order = o->date_order;
+    c->dorder = o->date_order;
     c->deciding = 1;
     c->cloc = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
     if (!c->line || !c->abuf || !c->ahead || !c->alines || c->cloc == (locale_t)0 ||

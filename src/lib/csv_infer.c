@@ -25,6 +25,7 @@
  * Everything here is a function of its arguments: the reader (csv.c) hands
  * in what it read and applies the layout, or ends the parse with the code
  * and message returned. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -162,8 +163,45 @@ static void put(set_t *s, long i)
         s->c[s->n++] = i;
 }
 
+/* The resolution of a time column in the look-ahead's rows: how often a
+ * stamp repeats (share of the steps) and the smallest positive step in s.
+ * 0 when its rows do not show it. */
+typedef struct {
+    int known;
+    double repeats; /* share of the steps that are zero */
+    double q;       /* s, the smallest positive step (infinite: every step is zero) */
+} res_t;
+
+static res_t resolution(const char *name, const sw_csv_profile_t *p)
+{
+    res_t r = {0, 0.0, 0.0};
+    if (!p || p->steps < 2)
+        return r;
+    double scale = 1.0; /* date-times: s */
+    const int u = sw_csv_name_unit(name, 1);
+    if (u != SW_CSV_UNIT_NONE)
+        scale = sw_csv_unit_scale(u);
+    else if (p->nnum > p->niso + p->ndm && sw_csv_epoch_unit(p->first) != SW_CSV_UNIT_NONE)
+        scale = sw_csv_unit_scale(sw_csv_epoch_unit(p->first));
+    r.known = 1;
+    r.repeats = (double)p->zero / (double)p->steps;
+    r.q = p->minstep > 0.0 ? p->minstep * scale : HUGE_VAL;
+    return r;
+}
+
+/* a repeats its stamps clearly more often than b, or as often with a step
+ * more than twice as long */
+static int coarser(const res_t *a, const res_t *b)
+{
+    if (!a->known || !b->known)
+        return 0;
+    if (a->repeats > b->repeats + 0.25)
+        return 1;
+    return fabs(a->repeats - b->repeats) <= 0.25 && a->q > 2.0 * b->q;
+}
+
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
-                 long skip, sw_csv_guess_t *g)
+                 long skip, const sw_csv_profile_t *prof, long nprof, sw_csv_guess_t *g)
 {
     set_t tu = {0}, tw = {0}, tc = {0}; /* time: with a unit, with a time word, any */
     set_t named = {0}, bare = {0};      /* accelerations: named as such, an axis only */
@@ -192,9 +230,29 @@ int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_
             put(&nonacc, i);
     }
     if (want[SW_CSV_ROLE_TIME]) {
-        /* elapsed time with a unit beats a date-time or a bare name; of
-         * several with units, those that say time in words ("Duration (s)"
-         * does not) */
+        /* the finer time (a date to the second beside a clock in ns) */
+        res_t res[CAP];
+        for (int i = 0; i < tc.n; i++)
+            res[i] = resolution(names[tc.c[i]], tc.c[i] < nprof ? &prof[tc.c[i]] : NULL);
+        set_t fine = {0};
+        for (int i = 0; i < tc.n; i++) {
+            int worse = 0;
+            for (int j = 0; j < tc.n && !worse; j++) worse = j != i && coarser(&res[i], &res[j]);
+            if (!worse)
+                put(&fine, tc.c[i]);
+        }
+        if (fine.n < tc.n) {
+            set_t keep = {0};
+            for (int i = 0; i < tu.n; i++)
+                for (int j = 0; j < fine.n; j++)
+                    if (tu.c[i] == fine.c[j])
+                        put(&keep, tu.c[i]);
+            tu = keep;
+            tc = fine;
+        }
+        /* then elapsed time with a unit beats a date-time or a bare name;
+         * of several with units, those that say time in words ("Duration
+         * (s)" does not) */
         set_t set = tu.n ? tu : tc;
         if (set.n > 1 && tw.n) {
             set_t kept = {0};
@@ -372,6 +430,76 @@ static int unit_of_scale(int r, double scale)
                                    : SW_CSV_UNIT_NONE;
 }
 
+/* "column 2 \"Date\"" or "column 2", into dst. */
+static void column_name(const sw_csv_layout_t *L, char *dst, size_t cap)
+{
+    if (L->name[R_TIME][0])
+        snprintf(dst, cap, "column %ld \"%s\"", L->col[R_TIME] + 1, L->name[R_TIME]);
+    else
+        snprintf(dst, cap, "column %ld", L->col[R_TIME] + 1);
+}
+
+/* What the time column's values say, once it is chosen: date-times (with
+ * day and month in which order), or numbers whose magnitude is an epoch's
+ * (its unit, when neither the caller nor the name gave one). */
+static int time_values(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen)
+{
+    const long tc = L->col[R_TIME];
+    const sw_csv_profile_t *p = tc >= 0 && tc < in->nprof ? &in->prof[tc] : NULL;
+    char what[SW_CSV_NAME_MAX + 32];
+    if (!p)
+        return SW_OK;
+    column_name(L, what, sizeof what);
+    if (p->ndm > 0 && p->ndm >= p->nnum + p->niso) {
+        int order = in->date_order, from = SW_CSV_FROM_OPTION;
+        if (order == SW_CSV_DATE_AUTO) {
+            from = SW_CSV_FROM_VALUES;
+            order = p->a13 && !p->b13   ? SW_CSV_DATE_DMY
+                    : p->b13 && !p->a13 ? SW_CSV_DATE_MDY
+                                        : SW_CSV_DATE_AUTO;
+        }
+        if (order == SW_CSV_DATE_AUTO) {
+            if (p->a13 && p->b13)
+                snprintf(msg, msglen,
+                         "time %s: its dates have a day above 12 first in %ld rows and second "
+                         "in %ld: say which order is right with --date-order dmy or "
+                         "--date-order mdy",
+                         what, p->a13, p->b13);
+            else
+                snprintf(msg, msglen,
+                         "time %s: its dates write day and month before the year, and none of "
+                         "the first %ld has a number above 12 to tell which is the day: say "
+                         "--date-order dmy (day first) or --date-order mdy (month first)",
+                         what, p->ndm);
+            return SW_EAMBIGUOUS;
+        }
+        L->date_order = order;
+        L->unit[R_TIME] = SW_CSV_UNIT_DATETIME;
+        L->unit_from[R_TIME] = from;
+        L->scale[R_TIME] = 1.0;
+        return SW_OK;
+    }
+    if (p->niso > 0 && p->niso >= p->nnum) {
+        L->unit[R_TIME] = SW_CSV_UNIT_DATETIME;
+        L->unit_from[R_TIME] = SW_CSV_FROM_VALUES;
+        L->scale[R_TIME] = 1.0;
+        return SW_OK;
+    }
+    if (p->nnum == 0)
+        return SW_OK;
+    const int eu = sw_csv_epoch_unit(p->first);
+    if (in->infer && !in->scale_given[0] && L->header_unit[R_TIME] == SW_CSV_UNIT_NONE &&
+        eu != SW_CSV_UNIT_NONE) {
+        L->scale[R_TIME] = sw_csv_unit_scale(eu);
+        L->unit[R_TIME] = eu;
+        L->unit_from[R_TIME] = SW_CSV_FROM_VALUES;
+        L->epoch = 1;
+        return SW_OK;
+    }
+    L->epoch = sw_csv_epoch_unit(p->first * L->scale[R_TIME]) == SW_CSV_UNIT_S;
+    return SW_OK;
+}
+
 int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen)
 {
     long col[N_ROLES];
@@ -395,8 +523,8 @@ int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, siz
         const int want[SW_CSV_NROLES] = {!in->col_given[R_TIME], !in->col_given[R_ACCEL], 0};
         if (in->infer) {
             sw_csv_guess_t g;
-            if ((want[0] || want[1]) &&
-                sw_csv_guess(in->names, in->nnames, want, col[R_VERT], &g) != 0) {
+            if ((want[0] || want[1]) && sw_csv_guess(in->names, in->nnames, want, col[R_VERT],
+                                                     in->prof, in->nprof, &g) != 0) {
                 snprintf(msg, msglen, "cannot tell the columns from the header: %s", g.why);
                 return SW_EAMBIGUOUS;
             }
@@ -454,5 +582,5 @@ int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, siz
         if (!in->scale_given[1] && au != SW_CSV_UNIT_NONE)
             L->unit_from[R_ACCEL] = L->unit_from[R_VERT] = SW_CSV_FROM_HEADER;
     }
-    return SW_OK;
+    return time_values(in, L, msg, msglen);
 }

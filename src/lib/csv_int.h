@@ -100,10 +100,50 @@ enum { SW_NUM_OK, SW_NUM_EMPTY, SW_NUM_BAD, SW_NUM_COMMA, SW_NUM_RANGE };
  * Read in the "C" locale cloc whatever the program's locale is. */
 int sw_csv_number(locale_t cloc, const char *s, size_t n, int decimal_comma, double *out);
 
-/* An ISO-8601 date-time ("2024-05-20T12:00:00.000Z", "2018-04-08
- * 10:31:37.005628", "2024-05-20T14:00:00+02:00"; without a zone it is read
- * as UTC) in s[0..n): 1 with *out in seconds since 1970-01-01 UTC, else 0. */
-int sw_csv_datetime(const char *s, size_t n, double *out);
+/* ---- csv_time.c: date-times, epochs ------------------------------------------------ */
+
+/* A date-time's fields as written. */
+typedef struct {
+    int dm;   /* 0: year first ("2024-05-20", "2016/05/14"); 1: day and month
+                 first, in an order the text does not say ("14/05/2016") */
+    long y;   /* year */
+    int a, b; /* year first: month, day; dm: the first and second numbers */
+    int h, mi, sec;
+    double frac; /* s */
+    long offset; /* s east of UTC */
+} sw_csv_dt_t;
+
+/* s[0..n) read as a date-time of a form csv_time.c lists: 1, else 0 (the
+ * date may still be impossible). */
+int sw_csv_dt_read(const char *s, size_t n, sw_csv_dt_t *dt);
+/* Its time in s since 1970-01-01 UTC, with order (SW_CSV_DATE_DMY or
+ * SW_CSV_DATE_MDY) for the day-and-month form: 1, 0 for an impossible date,
+ * -1 for that form without an order. */
+int sw_csv_dt_seconds(const sw_csv_dt_t *dt, int order, double *out);
+/* Both at once: 1 with *out, 0 not a date-time (or an impossible one), -1
+ * day and month first without an order. */
+int sw_csv_datetime(const char *s, size_t n, int order, double *out);
+/* A date-time in some order. */
+int sw_csv_is_datetime(const char *s, size_t n);
+/* The unit in which v is a time since 1970 between 2000 and 2100
+ * (SW_CSV_UNIT_S, _MS, _US, _NS), or SW_CSV_UNIT_NONE. */
+int sw_csv_epoch_unit(double v);
+
+/* ---- csv_profile.c: a column as the look-ahead's rows show it ------------------------ */
+
+typedef struct {
+    long n;               /* fields holding something */
+    long nnum, niso, ndm; /* numbers, year-first date-times, day-and-month date-times */
+    long a13, b13;        /* day-and-month: the first / second number above 12 (the day) */
+    double first;         /* the first number */
+    long steps, zero;     /* steps between consecutive values of one kind, of which zero */
+    double minstep;       /* the smallest positive step (the column's unit; s for date-times) */
+    double prev;          /* the previous value, */
+    int kind_prev;        /* ... and its kind */
+} sw_csv_profile_t;
+
+/* One field of a row in the column (zeroed profile to start). */
+void sw_csv_profile_add(sw_csv_profile_t *p, const char *s, size_t n, char delim, locale_t cloc);
 
 /* ---- csv_preamble.c: where the table starts ------------------------------------- */
 
@@ -177,10 +217,12 @@ typedef struct {
 
 /* Which of the n header fields are time and longitudinal acceleration.
  * want[r]: look for role r; skip: a column taken already (the vertical
- * one), or -1.  Returns 0, or -1 with g->why set when a wanted role has
- * no candidate or several equally good ones. */
+ * one), or -1; prof: the first nprof columns as the look-ahead's rows show
+ * them (may be NULL), so that of several time columns the finer is chosen.
+ * Returns 0, or -1 with g->why set when a wanted role has no candidate or
+ * several equally good ones. */
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
-                 long skip, sw_csv_guess_t *g);
+                 long skip, const sw_csv_profile_t *prof, long nprof, sw_csv_guess_t *g);
 
 /* The columns the caller gave (sw_csv_opts_t's time_col, accel_col,
  * vert_col): a 0-based index, or a name (trimmed; it points into the
@@ -210,8 +252,11 @@ typedef struct {
     const char (*names)[SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
     long nnames;
     char delim;
-    int decimal_comma; /* -1 not decided yet, 0, 1 */
-    int tkind;         /* time column: 0 not seen yet, 1 numbers, 2 date-times */
+    int decimal_comma;            /* -1 not decided yet, 0, 1 */
+    int tkind;                    /* time column: 0 not seen yet, 1 numbers, 2 date-times */
+    int date_order;               /* the options': SW_CSV_DATE_* */
+    const sw_csv_profile_t *prof; /* the columns as the look-ahead's rows show them */
+    long nprof;
 } sw_csv_infer_in_t;
 
 /* The layout (csv.h) the header and the options give: SW_OK, or

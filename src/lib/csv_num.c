@@ -1,9 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* csv_num.c - the numbers of a CSV log: plain decimals (with '.' or, in a
- * ';' export, ',' as the decimal mark) and ISO-8601 date-times.  Strict:
- * strtod alone would also take "nan", "inf", hex floats and leading junk
- * like "\v"; a date-time parser from libc would depend on the locale and
- * the time zone of the machine. */
+ * ';' export, ',' as the decimal mark).  Strict: strtod alone would also
+ * take "nan", "inf", hex floats and leading junk like "\v".  Date-times
+ * are csv_time.c's. */
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -127,94 +126,4 @@ int sw_csv_number(locale_t cloc, const char *s, size_t n, int decimal_comma, dou
         return SW_NUM_RANGE;
     *out = v;
     return SW_NUM_OK;
-}
-
-/* ---- date-times ------------------------------------------------------------- */
-
-/* k decimal digits at *p into *v; advances *p.  0 if fewer than k. */
-static int digits(const char **p, const char *end, int k, int *v)
-{
-    int x = 0;
-    for (int i = 0; i < k; i++, (*p)++) {
-        if (*p >= end || **p < '0' || **p > '9')
-            return 0;
-        x = x * 10 + (**p - '0');
-    }
-    *v = x;
-    return 1;
-}
-
-/* Days from 1970-01-01 to y-m-d in the proleptic Gregorian calendar
- * (H. Hinnant's days_from_civil: exact for every date, no libc, no zone). */
-static long days_from_civil(long y, int m, int d)
-{
-    y -= m <= 2;
-    const long era = (y >= 0 ? y : y - 399) / 400;
-    const long yoe = y - era * 400;
-    const long doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
-    const long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-    return era * 146097 + doe - 719468;
-}
-
-static int days_in_month(long y, int m)
-{
-    static const int dm[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    const int leap = (y % 4 == 0 && y % 100 != 0) || y % 400 == 0;
-    return m == 2 ? 28 + leap : dm[m - 1];
-}
-
-int sw_csv_datetime(const char *s, size_t n, double *out)
-{
-    while (n && is_blank(*s)) s++, n--;
-    while (n && is_blank(s[n - 1])) n--;
-    const char *p = s, *end = s + n;
-    int y, mo, d, h, mi, sec = 0;
-    if (!digits(&p, end, 4, &y) || p >= end || *p++ != '-' || !digits(&p, end, 2, &mo) ||
-        p >= end || *p++ != '-' || !digits(&p, end, 2, &d))
-        return 0;
-    if (p >= end || (*p != 'T' && *p != 't' && *p != ' '))
-        return 0;
-    p++;
-    if (!digits(&p, end, 2, &h) || p >= end || *p++ != ':' || !digits(&p, end, 2, &mi))
-        return 0;
-    if (p < end && *p == ':') {
-        p++;
-        if (!digits(&p, end, 2, &sec))
-            return 0;
-    }
-    double frac = 0.0, scale = 1.0;
-    if (p < end && (*p == '.' || *p == ',')) {
-        p++;
-        int nd = 0;
-        for (; p < end && *p >= '0' && *p <= '9'; p++, nd++)
-            if (nd < 15) {
-                frac = frac * 10.0 + (*p - '0');
-                scale *= 10.0;
-            }
-        if (!nd)
-            return 0;
-    }
-    long offset = 0; /* s east of UTC */
-    if (p < end && (*p == 'Z' || *p == 'z')) {
-        p++;
-    } else if (p < end && (*p == '+' || *p == '-')) {
-        const int sign = *p++ == '-' ? -1 : 1;
-        int oh, om = 0;
-        if (!digits(&p, end, 2, &oh))
-            return 0;
-        if (p < end && *p == ':')
-            p++;
-        if (p < end && !digits(&p, end, 2, &om))
-            return 0;
-        if (oh > 23 || om > 59)
-            return 0;
-        offset = sign * (oh * 3600L + om * 60L);
-    }
-    if (p != end)
-        return 0;
-    if (mo < 1 || mo > 12 || d < 1 || d > days_in_month(y, mo) || h > 23 || mi > 59 || sec > 60)
-        return 0;
-    const long whole = days_from_civil(y, mo, d) * 86400L + h * 3600L + mi * 60L + sec - offset;
-    *out = (double)whole + frac / scale;
-    return 1;
 }

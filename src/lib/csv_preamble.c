@@ -52,7 +52,7 @@ static int is_value(const char *s, size_t n, char d, const sw_csv_preamble_opts_
         return 1;
     if (d != ',' && sw_csv_number(o->cloc, s, n, 1, &v) == SW_NUM_OK)
         return 1;
-    return sw_csv_datetime(s, n, &v);
+    return sw_csv_is_datetime(s, n);
 }
 
 /* The shape of a line split on d: its fields, how many are not empty, and

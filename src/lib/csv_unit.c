@@ -221,8 +221,11 @@ int sw_csv_unit_class(const char *text, int *unit)
 
 int sw_csv_unit_parse(const char *text, int time_role)
 {
-    int unit;
-    const int cls = sw_csv_unit_class(text, &unit);
+    /* a unit alone: a range ("100g") is a header's way of writing one */
+    char u[SW_CSV_WORD_MAX * 2];
+    int cls;
+    squeeze(text, text ? strlen(text) : 0, u, sizeof u);
+    const int unit = unit_read(u, &cls);
     return cls == (time_role ? SW_CSV_UC_TIME : SW_CSV_UC_ACCEL) ? unit : SW_CSV_UNIT_NONE;
 }
 
