@@ -368,6 +368,12 @@ static void test_times(void **state)
     run("Zeit;Beschl. [g]\n20.05.2024 12:00:00,000;0,1\n20.05.2024 12:00:00,010;0,2\n", &o, &r);
     assert_int_equal(r.rc, SW_OK);
     assert_true(r.t[0] == 1716206400.0);
+    /* the date's '.' is not the decimal mark of the numbers beside it */
+    run("Zeit;Beschl. [g]\n20.05.2024 12:00:00.000;0,1\n20.05.2024 12:00:00.010;-0,2\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.n, 2);
+    assert_int_equal(r.lay.decimal_comma, 1);
+    assert_true(r.a[1] == -0.2 * 9.80665);
     /* month first, decided the same way */
     run("Time,Accel (g)\n5/14/2016 1:17:09.000 PM,0.1\n5/14/2016 1:17:09.010 PM,0.2\n", &o, &r);
     assert_int_equal(r.rc, SW_OK);

@@ -336,6 +336,9 @@ static void decide_comma(sw_csv_t *c)
     for (int r = 0; r < N_ROLES; r++) {
         if (!c->f.fs[r])
             continue;
+        /* a date-time's marks are its own ("20.05.2024 12:00:00.000") */
+        if (r == R_TIME && sw_csv_is_datetime(c->f.fs[r], c->f.fl[r]))
+            continue;
         if (memchr(c->f.fs[r], ',', c->f.fl[r])) {
             c->dcomma = c->lay.decimal_comma = 1;
             return;
