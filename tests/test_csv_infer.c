@@ -386,6 +386,13 @@ static void test_times(void **state)
     assert_int_equal(r.rc, SW_EAMBIGUOUS);
     assert_non_null(strstr(r.msg, "--date-order dmy"));
     assert_int_equal(r.n, 0);
+    assert_int_equal(r.lay.ready, 0); /* no layout is half given */
+    /* a column of date-times is time, whatever its name */
+    run("Aufgezeichnet;Beschl. [g]\n20.05.2024 12:00:00.000;0,1\n20.05.2024 12:00:00.010;0,2\n", &o,
+        &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.col_from[0], SW_CSV_FROM_HEADER);
+    assert_true(r.t[0] == 1716206400.0);
     o.date_order = SW_CSV_DATE_DMY;
     run(undecided, &o, &r);
     assert_int_equal(r.rc, SW_OK);

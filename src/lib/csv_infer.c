@@ -47,7 +47,8 @@ typedef struct {
 static const char *const time_w[] = {
     "time",  "t",     "timestamp", "ts",     "elapsed",    "date",        "datetime",
     "utc",   "epoch", "clock",     "uptime", "zeit",       "temps",       "tiempo",
-    "tempo", "czas",  "tid",       "aika",   "horodatage", "zeitstempel", NULL};
+    "tempo", "czas",  "tid",       "aika",   "horodatage", "zeitstempel", "uhrzeit",
+    "datum", "heure", "hora",      "fecha",  NULL};
 static const char *const index_w[] = {"sample", "samples", "index", "idx", "n",      "no",  "nr",
                                       "num",    "count",   "seq",   "id",  "record", "row", NULL};
 static const char *const accel_w[] = {"accel",
@@ -215,6 +216,11 @@ int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_
         if (i == skip)
             continue;
         classify(names[i], &k);
+        /* a column of date-times is time, whatever its name ("Datum/Uhrzeit") */
+        const sw_csv_profile_t *p = i < nprof ? &prof[i] : NULL;
+        if (!k.time && !k.accel && p && p->niso + p->ndm > p->nnum &&
+            2 * (p->niso + p->ndm) >= p->n)
+            k.time = 1;
         if (i < SW_CSV_MAX_FIELDS)
             kinds[i] = k;
         if (k.time) {
@@ -500,7 +506,18 @@ static int time_values(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *ms
     return SW_OK;
 }
 
-int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen)
+static int infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen);
+
+int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *out, char *msg, size_t msglen)
+{
+    sw_csv_layout_t L;
+    const int rc = infer(in, &L, msg, msglen);
+    if (rc == SW_OK)
+        *out = L; /* a layout is given whole, or not at all */
+    return rc;
+}
+
+static int infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen)
 {
     long col[N_ROLES];
     double tscale = in->scale[0], ascale = in->scale[1];
