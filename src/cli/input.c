@@ -260,13 +260,30 @@ const sw_cli_option_t sw_cli_csv_options[] = {
     {SW_CLI_FLAG, 0, "no-decimal-comma", CSV(csv.decimal_comma), .value = 0,
      .help = "refuse numbers with a ','"},
     {SW_CLI_TEXT,
-     .help =
-         "Columns and units not given are read from the header's names when they say it\n"
-         "without doubt (\"Time (ms)\", \"X (g)\", \"time_ms;accel_g\", \"ax [m/s^2]\"); stderr\n"
-         "says what was chosen.  A header that does not say it is refused, listed, with\n"
-         "these options to name the columns.  Times may be ISO-8601 date-times\n"
-         "(2024-05-20T12:00:00.000Z, 2018-04-08 10:31:37.005628); epoch and date-time\n"
-         "logs are timed from their start."},
+     .help = "How a CSV log is read (docs/input.md has the table): the first 256 rows are\n"
+             "looked at before anything is decided; stderr says what was chosen and from\n"
+             "where; what the file does not say is refused, naming the option that says it.\n"
+             "  preamble  lines above the table (a title, key: value lines) are skipped when\n"
+             "            the first row of two or more numbers, whose field count the rows\n"
+             "            under it keep, shows where the table starts; in doubt, none.\n"
+             "  header    the table's first line, if its time field is not a number.\n"
+             "  time      a column with a time unit (Zeit [s], uptimeNanos), named as time\n"
+             "            (time, timestamp, elapsed, uptime, Datum...) or holding date-times;\n"
+             "            of several the finer (fewer repeated stamps, shorter steps), then\n"
+             "            one with a unit; still several or none: refused, --time-col.\n"
+             "  accel     a column whose unit is an acceleration (X (g), Beschl. [m/s^2],\n"
+             "            Acceleration Gs, X (100g)) or named one (accel, acc, ax); a name\n"
+             "            that says acceleration beats a bare axis (X); never a column whose\n"
+             "            unit is anything else (deg, m, km/h, rpm, %, uT, rad/s, degC, raw)\n"
+             "            nor a magnitude; of several the x axis, else the one with no axis;\n"
+             "            still several or none: refused, --accel-col.\n"
+             "  units     as given, else the name's (in brackets in any language, or a last\n"
+             "            word: _ms, Gs, Nanos), else for time an epoch's told by its size\n"
+             "            (s, ms, us or ns since 1970: \"from the values\"), else s and m/s^2.\n"
+             "  dates     ISO-8601 and year first; day and month first (14/05/2016 11:17:09,\n"
+             "            20.05.2024 12:00:00.000, 5/14/2016 1:17:09 PM) in the order a day\n"
+             "            above 12 shows; none above 12: refused, --date-order dmy|mdy.\n"
+             "Epoch and date-time logs are timed from their start."},
     {.kind = SW_CLI_END},
 };
 
