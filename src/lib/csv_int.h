@@ -58,12 +58,13 @@ typedef struct {
 /* What a line held. */
 typedef struct {
     const char *fs[N_SLOTS]; /* NUL-terminated field text per slot, NULL = absent */
-    size_t fl[N_SLOTS];
-    long nf;             /* fields seen (all of them unless the line was cut short
-                            after the last wanted one, with neither names nor capture) */
-    long match[N_ROLES]; /* field of each name looked up, -1 not found */
-    long ncap;           /* fields captured */
-    char reason[256];    /* why the line could not be split */
+    size_t fl[N_SLOTS];      /* their lengths (only where fs is set) */
+    long nf;                 /* fields seen (all of them unless the line was cut short
+                                after the last wanted one, with neither names nor capture) */
+    long match[N_ROLES];     /* field of each name looked up, -1 not found (set only with
+                                names to look up) */
+    long ncap;               /* fields captured */
+    char reason[256];        /* why the line could not be split */
 } sw_csv_fields_t;
 
 /* libcsv's parser and the copies of quoted fields: the state splitting

@@ -193,28 +193,26 @@ static int split_quoted(sw_csv_splitter_t *sp, char *s, size_t n)
 int sw_csv_split(sw_csv_splitter_t *sp, char *s, size_t n, const sw_csv_split_opts_t *o,
                  sw_csv_fields_t *f)
 {
+    /* every row of a log comes here: only what a reader of f may look at
+     * is reset (fl and reason are read only with fs set, or on an error) */
     sp->o = o;
     sp->f = f;
     sp->maxwant = -1;
     for (int r = 0; r < N_SLOTS; r++) {
         f->fs[r] = NULL;
-        f->fl[r] = 0;
         if (o->want[r] > sp->maxwant)
             sp->maxwant = o->want[r];
     }
-    for (int r = 0; r < N_ROLES; r++) f->match[r] = -1;
+    if (o->names)
+        for (int r = 0; r < N_ROLES; r++) f->match[r] = -1;
     f->nf = 0;
     f->ncap = 0;
-    f->reason[0] = '\0';
-    sp->scratch_used = 0;
-    int rc = SW_CSV_SPLIT_OK;
-    if (memchr(s, '"', n))
-        rc = split_quoted(sp, s, n);
-    else
+    if (!memchr(s, '"', n)) {
         split_plain(sp, s, n);
-    sp->o = NULL;
-    sp->f = NULL;
-    return rc;
+        return SW_CSV_SPLIT_OK;
+    }
+    sp->scratch_used = 0;
+    return split_quoted(sp, s, n);
 }
 
 int sw_csv_splitter_init(sw_csv_splitter_t *sp)
