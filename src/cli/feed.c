@@ -285,8 +285,11 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
     out->rejected = counts.rejected + sw_gate_rejected(&out->facts);
     sw_cli_rejects_summary(&F.rej);
     if (out->facts.accepted <= 0) {
-        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)", lf->name, out->rows,
-                     out->rejected);
+        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)%s", lf->name, out->rows,
+                     out->rejected,
+                     out->rows > 0 ? ": the lines above say why; check the columns and units "
+                                     "(--time-col, --time-unit, --accel-col, --accel-unit)"
+                                   : "");
         goto out;
     }
     rc = SW_EXIT_OK;

@@ -236,6 +236,11 @@ def files(out):
         )
     made["date-1s-uptime-ns.csv"] = ("\n".join(lines) + "\n", {})
 
+    # A logger that writes no header: time in s, the acceleration in m/s^2.
+    sig = signal(100, 3, 20)
+    lines = ["%.2f,%.5f" % (t, ax * G0) for t, ax, ay, az in sig]
+    made["no-header.csv"] = ("\n".join(lines) + "\n", {})
+
     for name, (text, how) in made.items():
         write(os.path.join(out, name), text, **how)
     return sorted(made)
