@@ -73,6 +73,10 @@ if [ "${SW_MAN:-0}" = 1 ]; then
         grep -q '^\.SH EXAMPLES' "$p" || fail "no EXAMPLES in $p"
     done
     for p in share/man/man1/swaywatch*.1; do
+        # A page that is a link (".so man1/swaywatch.1") is checked
+        # through the page it names.
+        so=$(sed -n '1s/^\.so //p' "$p")
+        [ -z "$so" ] || p=share/man/$so
         grep -q 'swaywatch\\-scene (5)' "$p" || fail "no SEE ALSO swaywatch-scene(5) in $p"
     done
     for c in $(bin/swaywatch --help | awk '/^Commands:/ {on = 1; next}
