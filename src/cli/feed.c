@@ -203,7 +203,10 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
             sw_cli_error("%s:%ld: note: the clock steps by %+.6g s: re-timed", F->name, ev->where,
                          ev->span);
             break;
-        case SW_GATE_EV_SEQ_RESTART: break;
+        case SW_GATE_EV_SEQ_RESTART:
+        case SW_GATE_EV_RECONSTRUCT:
+        case SW_GATE_EV_CONTESTED:
+        case SW_GATE_EV_UNCONTESTED: break;
     }
 }
 

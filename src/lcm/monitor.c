@@ -95,8 +95,8 @@ struct sw_mon {
 };
 
 static const char *const reject_names[SW_MON_NREJ] = {
-    "decode",       "trailing", "nonfinite", "implausible", "skew",    "duplicate",
-    "out_of_order", "jump",     "engine",    "time",        "overload"};
+    "decode",       "trailing", "nonfinite", "implausible", "skew",     "duplicate",
+    "out_of_order", "jump",     "engine",    "time",        "overload", "contested"};
 
 const char *sw_mon_reject_name(sw_mon_reject r)
 {
@@ -454,7 +454,7 @@ static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_m
 {
     static const int code[SW_MON_NREJ] = {SW_EPARSE,  SW_EPARSE,      SW_ENONFINITE, SW_ETOOBIG,
                                           SW_ETOOBIG, SW_EORDER,      SW_EORDER,     SW_EORDER,
-                                          SW_EINVAL,  SW_ERESOLUTION, SW_ETOOBIG};
+                                          SW_EINVAL,  SW_ERESOLUTION, SW_ETOOBIG,    SW_EORDER};
     m->c.rejected[r]++;
     m->rej_pending[r]++;
     reject_alarm(m, r, mono, input_utime(m, utime));
@@ -467,8 +467,9 @@ static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_m
 static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, const char *text)
 {
     static const sw_mon_reject map[SW_GATE_NREJ] = {
-        SW_MON_REJ_NONFINITE, SW_MON_REJ_IMPLAUSIBLE,  SW_MON_REJ_TIME, SW_MON_REJ_SKEW,
-        SW_MON_REJ_DUPLICATE, SW_MON_REJ_OUT_OF_ORDER, SW_MON_REJ_JUMP, SW_MON_REJ_ENGINE};
+        SW_MON_REJ_NONFINITE, SW_MON_REJ_IMPLAUSIBLE, SW_MON_REJ_TIME,
+        SW_MON_REJ_SKEW,      SW_MON_REJ_DUPLICATE,   SW_MON_REJ_OUT_OF_ORDER,
+        SW_MON_REJ_JUMP,      SW_MON_REJ_ENGINE,      SW_MON_REJ_CONTESTED};
     sw_mon_t *m = user;
     (void)text;
     m->feed_why = map[r];
@@ -510,6 +511,9 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
             snprintf(text, sizeof text, "accel seq went back: the sender restarted");
             level = SW_ALARM_LEVEL_INFO;
             break;
+        case SW_GATE_EV_RECONSTRUCT:
+        case SW_GATE_EV_CONTESTED:
+        case SW_GATE_EV_UNCONTESTED: return;
     }
     m->gap_open = 0;
     input_alarm(m, SW_ALARM_SENSOR_GAP, level, utime_at(m, ev->t), text);

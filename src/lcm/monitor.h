@@ -61,6 +61,8 @@ typedef enum {
     SW_MON_REJ_TIME,         /* utime outside 0 .. SW_MON_UTIME_MAX (1970 to 2112) */
     SW_MON_REJ_OVERLOAD,     /* refused unread: it waited too long in the receive queue
                                 (the caller sheds load with sw_mon_refuse) */
+    SW_MON_REJ_CONTESTED,    /* from a second sender whose seq numbers interleave with
+                                the kept one's (evaluated apart: docs/timing.md) */
     SW_MON_NREJ
 } sw_mon_reject;
 
@@ -183,7 +185,7 @@ int64_t sw_mon_last_utime(
     const sw_mon_t *m); /* utime of the last accepted sample (us), 0 if none */
 
 /* "decode", "trailing", "nonfinite", "implausible", "skew", "duplicate",
- * "out_of_order", "jump", "engine", "time", "overload". */
+ * "out_of_order", "jump", "engine", "time", "overload", "contested". */
 const char *sw_mon_reject_name(sw_mon_reject r);
 
 /* Axis name "x" | "y" | "z" to 0..2; -1 if none of them. */

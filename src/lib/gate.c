@@ -1,9 +1,17 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* gate.c - the input gate (gate.h): every source's samples pass here on
- * their way to the engine.  The timeline is the last accepted sample's
- * time; a sample that does not continue it waits in a chain until the
- * stream confirms or refutes it (see gate.h).  Memory is fixed: at most
- * CHAINS chains of confirm samples each. */
+ * their way to the engine.  Three parts:
+ *   - the timing model: the logger's spacing from a time-weighted histogram
+ *     of every interval, what a gap is, the engine's time across one;
+ *   - a log without receive times, read through a look-ahead window: a
+ *     time is refused only when the rows around it share a timeline it is
+ *     off; repeated coarse stamps are spread over their unit;
+ *   - a stream with receive times: chains of samples that do not continue
+ *     the timeline wait until the stream confirms or refutes them; refused
+ *     samples that agree with each other, or seq numbers that interleave,
+ *     are a second timeline competing with the first (contested input).
+ * Memory is fixed at create: the look-ahead window, CHAINS chains of
+ * confirm samples each, a few rival samples. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,8 +21,7 @@
 #include "swaywatch/status.h"
 
 #define CHAINS SW_GATE_CHAINS
-#define DT_WINDOW 5        /* intervals in the typical-interval median */
-#define HIST_PER_DECADE 96 /* interval histogram: 2.4 % wide bins */
+#define HIST_PER_DECADE 96 /* the facts' interval histogram: 2.4 % wide bins */
 #define HIST_DECADES 12    /* 1e-7 s .. 1e5 s */
 #define HIST_BINS (HIST_PER_DECADE * HIST_DECADES)
 #define HIST_LO 1e-7
@@ -22,10 +29,81 @@
 #define EPOCH_LIKE 1e6        /* s: a first time this large is a clock, not elapsed time */
 #define TIME_MAX 8589934592.0 /* 2^33 s: the engine's limit (SW_ERESOLUTION) */
 
+/* The timing model (docs/timing.md). */
+#define TM_PER_DECADE 8                        /* spacing histogram: 33 % wide bins */
+#define TM_BINS (TM_PER_DECADE * HIST_DECADES) /* 1e-7 s .. 1e5 s */
+#define TM_WINDOW 120.0 /* s of covered time remembered; halved beyond (rate changes) */
+#define TM_REFRESH 32   /* intervals between two readings of the histogram */
+#define RECENT 8        /* the last intervals, whose median is the short-term spacing */
+#define RING 64         /* ... and of which 90 % of the time says a batched pace at once */
+#define GAP_FACTOR 10.0 /* a gap is longer than this many spacings ... */
+#define GAP_FLOOR 0.01  /* s, ... and than this */
+#define TM_QUANTILE                                                                           \
+    0.9                       /* of the time covered: the spacing is the interval below which \
+                                 the logger writes 90 % of the time */
+#define JUMP_FACTOR 1.5       /* s per spacing: how far a sample may run ahead of real time */
+#define JUMP_FLOOR 1e-4       /* s */
+#define WARM_N 64             /* live: the first intervals teach the pace; none is a gap */
+#define WARM_TIME 10.0        /* s of a log: gaps before are judged again once the pace is known */
+#define DEFER 16              /* gap events that wait for that */
+#define RECON_MIN 4           /* repeated stamps in the look-ahead that reveal a coarse clock */
+#define RIVAL_MIN 3           /* refused samples in a row on one timeline: contested */
+#define RIVAL_KEEP 8          /* the last of them, handed over when the contest is declared */
+#define SEQ_WINDOW 256        /* accepted samples: two seq outliers within are a second sender */
+#define SEQ_LIVE 3            /* +1 steps before seq numbers count as evidence */
+#define SEQ_FAR 1000000000ULL /* seq steps beyond: corrupt, never a loss */
+
 typedef struct {
     sw_sample_t s[SW_GATE_CONFIRM_MAX];
     int n;
 } chain_t;
+
+/* The logger's timing: time covered by the intervals of each bin (so that
+ * the spacing is the one that covers most of the log, whatever the count
+ * of short intervals in bursts), and the last few intervals. */
+typedef struct {
+    double w[TM_BINS];  /* s, decayed */
+    double c[TM_BINS];  /* intervals, decayed */
+    double total;       /* s */
+    double n;           /* intervals */
+    double spacing;     /* s, the time-weighted median read at the last refresh; NAN */
+    int since;          /* intervals added since */
+    double ring[RING];  /* s, the last intervals, gaps included */
+    char ring_ok[RING]; /* learnable: no gap, nor normal only beside a gap */
+    long nring;
+    double rx_recent[RECENT]; /* s, receive-time intervals of accepted samples */
+    long nrx;
+    long seen;      /* intervals ever added */
+    double covered; /* s, time covered by them */
+} timing_t;
+
+/* A gap in the first seconds of a log, waiting to be judged again. */
+typedef struct {
+    sw_gate_event_t ev;
+    double dt; /* s, the interval */
+} deferred_t;
+
+/* The sender's seq numbers, with a discontinuity pending until the next
+ * sample says whether it was real (a loss, a restart) or an outlier. */
+typedef struct {
+    int have;
+    int64_t last;
+    long normal; /* +1 steps seen */
+    int pend;
+    int64_t pend_seq;
+    long outlier_at; /* accepted count at the last outlier; < 0 none */
+} seqs_t;
+
+/* The second timeline: refused samples consistent with each other. */
+typedef struct {
+    sw_sample_t last;
+    int n; /* in a row on one timeline */
+    sw_sample_t keep[RIVAL_KEEP];
+    int nkeep, head;
+    double active; /* rx of its last sample */
+    double since;  /* rx when the contest began */
+    int contested, by_seq;
+} rival_t;
 
 struct sw_gate {
     sw_engine_t *e;
@@ -37,21 +115,33 @@ struct sw_gate {
     double last_engine; /* s, the engine time it was pushed at */
     double offset;      /* s, engine time = source time + offset */
     int restarted;      /* the engine was restarted: the next sample taken says so */
-    int64_t last_seq;
-    int have_seq;
-    double dts[DT_WINDOW];
-    int ndt;
+    int have_env;
+    double env;   /* s, the largest stamp minus receive time taken on this stretch: no
+                     genuine sample arrives sooner after it was stamped (it may later) */
+    int flushing; /* the end: refused chains are no evidence of a rival */
+    timing_t tm;
+    seqs_t seq;
+    rival_t rv;
+    /* receive times known: chains */
     chain_t chain[CHAINS];
     int nchain;
+    /* no receive times: the look-ahead (a ring of window samples) */
+    sw_sample_t *ahead;
+    int window, head, nahead;
+    int desc, ndup; /* adjacent pairs in it that go back, and that repeat */
+    int recon;      /* repeated stamps are spread */
+    double unit;    /* s, their unit (0: spread to the next stamp) */
+    deferred_t deferred[DEFER];
+    int ndeferred;
     /* facts */
     sw_gate_facts_t f;
     long hist[HIST_BINS];
     double hist_sum[HIST_BINS];
-    double sum_z;
+    double sum_z, sum_abs_a;
 };
 
 static const char *const reject_names[SW_GATE_NREJ] = {
-    "nonfinite", "implausible", "time", "skew", "duplicate", "late", "jump", "engine"};
+    "nonfinite", "implausible", "time", "skew", "duplicate", "late", "jump", "engine", "contested"};
 
 const char *sw_gate_reject_name(sw_gate_reject r)
 {
@@ -65,6 +155,9 @@ const char *sw_gate_event_name(sw_gate_event_kind k)
         case SW_GATE_EV_CLOCK_STEP: return "clock step";
         case SW_GATE_EV_RESTART: return "restart";
         case SW_GATE_EV_SEQ_RESTART: return "seq restart";
+        case SW_GATE_EV_RECONSTRUCT: return "reconstructed";
+        case SW_GATE_EV_CONTESTED: return "contested";
+        case SW_GATE_EV_UNCONTESTED: return "uncontested";
     }
     return "unknown";
 }
@@ -74,6 +167,26 @@ long sw_gate_rejected(const sw_gate_facts_t *f)
     long n = 0;
     for (int r = 0; r < SW_GATE_NREJ; r++) n += f->rejected[r];
     return n;
+}
+
+static void clear(sw_gate_t *g)
+{
+    sw_engine_t *e = g->e;
+    sw_gate_opts_t o = g->o;
+    sw_sample_t *ahead = g->ahead;
+    const int window = g->window;
+    memset(g, 0, sizeof *g);
+    g->e = e;
+    g->o = o;
+    g->ahead = ahead;
+    g->window = window;
+    g->tm.spacing = NAN;
+    g->seq.outlier_at = -1;
+    g->f.t_first = g->f.t_last = g->f.first_incomplete = NAN;
+    g->f.dt_min = g->f.dt_median = g->f.dt_max = g->f.rate = NAN;
+    g->f.spacing = NAN;
+    g->f.gap_threshold = INFINITY;
+    g->f.min_a = g->f.max_a = NAN;
 }
 
 sw_gate_t *sw_gate_create(sw_engine_t *e, const sw_gate_opts_t *o, char *msg, size_t msglen)
@@ -100,13 +213,19 @@ sw_gate_t *sw_gate_create(sw_engine_t *e, const sw_gate_opts_t *o, char *msg, si
         bad = "confirm must be 0..8";
     else if (o->gap_policy != SW_GAP_BRIDGE && o->gap_policy != SW_GAP_RESTART)
         bad = "unknown gap policy";
+    else if (o->lookahead != 0 && (o->lookahead < 2 || o->lookahead > SW_GATE_LOOKAHEAD))
+        bad = "lookahead must be 2..64";
     if (bad) {
         if (msg && msglen)
             snprintf(msg, msglen, "%s", bad);
         return NULL;
     }
     sw_gate_t *g = calloc(1, sizeof *g);
-    if (!g) {
+    const int window = o->lookahead ? o->lookahead : SW_GATE_LOOKAHEAD;
+    sw_sample_t *ahead = calloc((size_t)window, sizeof *ahead);
+    if (!g || !ahead) {
+        free(g);
+        free(ahead);
         if (msg && msglen)
             snprintf(msg, msglen, "out of memory");
         return NULL;
@@ -119,57 +238,217 @@ sw_gate_t *sw_gate_create(sw_engine_t *e, const sw_gate_opts_t *o, char *msg, si
         g->o.max_accel = 50.0 * G0;
     if (g->o.confirm == 0)
         g->o.confirm = 3;
-    g->f.t_first = g->f.t_last = g->f.first_incomplete = NAN;
-    g->f.dt_min = g->f.dt_median = g->f.dt_max = g->f.rate = NAN;
+    g->ahead = ahead;
+    g->window = window;
+    clear(g);
     return g;
 }
 
 void sw_gate_destroy(sw_gate_t *g)
 {
+    if (!g)
+        return;
+    free(g->ahead);
     free(g);
 }
 
-/* ---- the typical interval, and the facts ----------------------------------- */
-
-/* Median of the last DT_WINDOW intervals (fewer at the start); NAN: none. */
-static double typical_dt(const sw_gate_t *g)
+void sw_gate_reset(sw_gate_t *g)
 {
-    double v[DT_WINDOW];
-    const int n = g->ndt < DT_WINDOW ? g->ndt : DT_WINDOW;
-    if (n == 0)
-        return NAN;
-    memcpy(v, g->dts, sizeof(double) * (size_t)n);
-    for (int i = 1; i < n; i++) /* insertion sort: five numbers */
+    if (g)
+        clear(g);
+}
+
+/* ---- the timing model ------------------------------------------------------------ */
+
+static int tm_bin(double dt)
+{
+    int b = (int)floor(log10(dt / HIST_LO) * TM_PER_DECADE);
+    return b < 0 ? 0 : b >= TM_BINS ? TM_BINS - 1 : b;
+}
+
+static void sort_doubles(double *v, int n)
+{
+    for (int i = 1; i < n; i++) /* insertion sort: at most 64 numbers, most in order */
         for (int j = i; j > 0 && v[j - 1] > v[j]; j--) {
             const double x = v[j];
             v[j] = v[j - 1];
             v[j - 1] = x;
         }
-    return v[n / 2];
 }
 
-static double gap_of(const sw_gate_t *g)
+static double median8(const double *ring, long n)
+{
+    double v[RECENT];
+    const int k = n <= 0 ? 0 : n < RECENT ? (int)n : RECENT;
+    if (k == 0)
+        return NAN;
+    for (int i = 0; i < k; i++) v[i] = ring[i];
+    sort_doubles(v, k);
+    return v[k / 2];
+}
+
+/* The interval below which q of the time of v[0..n) is covered (sorts v). */
+static double time_quantile(double *v, int n, double q)
+{
+    if (n == 0)
+        return NAN;
+    double tot = 0.0;
+    for (int i = 0; i < n; i++) tot += v[i];
+    sort_doubles(v, n);
+    double acc = 0.0;
+    for (int i = 0; i < n; i++) {
+        acc += v[i];
+        if (acc >= q * tot)
+            return v[i];
+    }
+    return v[n - 1];
+}
+
+/* The last k intervals of the ring (only the learnable ones if ok_only),
+ * newest first, into v; their count. */
+static int ring_last(const timing_t *tm, double *v, int k, int ok_only)
+{
+    const int n = tm->nring < k ? (int)tm->nring : k;
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        const long j = (tm->nring - 1 - i) % RING;
+        if (!ok_only || tm->ring_ok[j])
+            v[m++] = tm->ring[j];
+    }
+    return m;
+}
+
+/* The time-weighted 90th percentile interval: the interval length below
+ * which 90 % of the time the histogram remembers is covered (the mean
+ * interval of its bin).  Weighted by time, so that bursts of short
+ * intervals, however many, do not hide the pace of the rest; a high
+ * quantile, so that a pace the logger keeps a tenth of the time is its
+ * own, not a gap. */
+static void tm_refresh(timing_t *tm)
+{
+    tm->since = 0;
+    if (!(tm->total > 0.0)) {
+        tm->spacing = NAN;
+        return;
+    }
+    double acc = 0.0;
+    for (int b = 0; b < TM_BINS; b++) {
+        acc += tm->w[b];
+        if (acc >= TM_QUANTILE * tm->total) {
+            tm->spacing = tm->c[b] > 0.0 ? tm->w[b] / tm->c[b] : NAN;
+            return;
+        }
+    }
+    tm->spacing = NAN;
+}
+
+/* An interval between two accepted samples: every one into the recent
+ * ring (ok: learnable); the ones that teach the pace (long_run) into the
+ * long-run histogram. */
+static void tm_add(timing_t *tm, double dt, int long_run, int ok)
+{
+    tm->ring_ok[tm->nring % RING] = (char)ok;
+    tm->ring[tm->nring++ % RING] = dt;
+    tm->seen++;
+    tm->covered += dt;
+    if (!long_run)
+        return;
+    const int b = tm_bin(dt);
+    tm->w[b] += dt;
+    tm->c[b] += 1.0;
+    tm->total += dt;
+    tm->n += 1.0;
+    if (tm->total > TM_WINDOW) { /* forget slowly: a new rate takes over */
+        for (int i = 0; i < TM_BINS; i++) {
+            tm->w[i] *= 0.5;
+            tm->c[i] *= 0.5;
+        }
+        tm->total *= 0.5;
+        tm->n *= 0.5;
+    }
+    if (++tm->since >= TM_REFRESH || tm->n < 2.0 * TM_REFRESH || isnan(tm->spacing))
+        tm_refresh(tm);
+}
+
+static double fmax_nan(double a, double b)
+{
+    return isnan(a) ? b : isnan(b) ? a : fmax(a, b);
+}
+
+/* s: the logger's spacing now, the larger of the long-run one and the
+ * median of the last eight intervals (a rate that dropped is followed
+ * within a few samples); NAN before any interval.  Cheap: for every
+ * sample. */
+static double spacing(const sw_gate_t *g)
+{
+    double v[RECENT];
+    const int n = ring_last(&g->tm, v, RECENT, 0);
+    return fmax_nan(g->tm.spacing, median8(v, n));
+}
+
+/* The same, and the pace of the last 64 intervals weighted by the time
+ * each covers (all of them, or the learnable ones): a FIFO read every 30
+ * samples, or the pause between two bursts, is the logger's pace from
+ * its second time on; an outage is forgotten 64 samples later.  For
+ * intervals that look long. */
+static double spacing_full(const sw_gate_t *g, int ok_only)
+{
+    double v[RING];
+    const int n = ring_last(&g->tm, v, RING, ok_only);
+    return fmax_nan(spacing(g), time_quantile(v, n, TM_QUANTILE));
+}
+
+static double threshold_of(const sw_gate_t *g, double s)
 {
     if (g->o.gap > 0.0)
         return g->o.gap;
-    const double d = typical_dt(g);
-    return isnan(d) ? INFINITY : fmax(5.0 * d, 1e-3);
+    return isnan(s) ? INFINITY : fmax(GAP_FLOOR, GAP_FACTOR * s);
 }
 
-static double jump_of(const sw_gate_t *g)
+/* s: longer intervals are gaps, whatever the stream has seen; after: the
+ * spacing of the intervals that follow (the look-ahead), NAN if unknown. */
+static double gap_threshold_of(const sw_gate_t *g, double after)
+{
+    return threshold_of(g, fmax_nan(spacing_full(g, 0), after));
+}
+
+/* Live, the first WARM_N intervals teach the pace (the first read of a
+ * FIFO, the first of two CAN frames): none of them is a gap, unless it is
+ * longer than max_bridge (the timer of a monitor still sees a silence). */
+static int warming(const sw_gate_t *g)
+{
+    return g->o.gap == 0.0 && !isnan(g->last.rx) && g->tm.seen < WARM_N;
+}
+
+static double gap_threshold(const sw_gate_t *g, double after)
+{
+    return warming(g) ? INFINITY : gap_threshold_of(g, after);
+}
+
+/* s: how far a sample may run ahead of the time that really passed. */
+static double jump_tol(const sw_gate_t *g)
 {
     if (g->o.jump < 0.0)
         return INFINITY;
     if (g->o.jump > 0.0)
         return g->o.jump;
-    const double gap = gap_of(g);
-    return isinf(gap) ? 1.0 : gap; /* no typical interval yet: 1 s */
+    const double s = spacing(g);
+    return isnan(s) ? 1.0 : fmax(JUMP_FLOOR, JUMP_FACTOR * s); /* none yet: 1 s */
 }
 
+double sw_gate_gap_threshold(const sw_gate_t *g)
+{
+    return g ? gap_threshold(g, NAN) : INFINITY;
+}
+
+int sw_gate_contested(const sw_gate_t *g)
+{
+    return g ? g->rv.contested : 0;
+}
+
+/* The facts' interval histogram (count-based, the whole log). */
 static void note_interval(sw_gate_t *g, double dt)
 {
-    g->dts[g->ndt % DT_WINDOW] = dt;
-    g->ndt++;
     if (!(dt > 0.0))
         return;
     if (isnan(g->f.dt_min) || dt < g->f.dt_min)
@@ -185,22 +464,206 @@ static void note_interval(sw_gate_t *g, double dt)
     g->hist_sum[b] += dt;
 }
 
-/* ---- refusing and accepting -------------------------------------------------- */
+/* ---- events, refusals, the second timeline --------------------------------------- */
+
+static void emit(sw_gate_t *g, sw_gate_event_t *ev)
+{
+    if (ev->incomplete) {
+        g->f.incomplete++;
+        if (isnan(g->f.first_incomplete))
+            g->f.first_incomplete = ev->t;
+    }
+    if (g->o.on_event)
+        g->o.on_event(g->o.user, ev);
+}
+
+static void to_rival(sw_gate_t *g, const sw_sample_t *s)
+{
+    g->f.contested++;
+    if (g->o.on_rival)
+        g->o.on_rival(g->o.user, s);
+}
+
+/* Two timelines compete from s on: said at once, and the rival samples
+ * kept so far go to on_rival, in the order they came. */
+static void contest_begin(sw_gate_t *g, const sw_sample_t *s, int by_seq)
+{
+    rival_t *r = &g->rv;
+    r->contested = 1;
+    r->by_seq = by_seq;
+    r->since = r->active = s->rx;
+    g->f.contests++;
+    sw_gate_event_t ev = {.kind = SW_GATE_EV_CONTESTED,
+                          .t = g->have_last ? g->last.t : s->t,
+                          .t_engine = g->last_engine,
+                          .where = s->where};
+    emit(g, &ev);
+    for (int i = 0; i < r->nkeep; i++)
+        to_rival(g, &r->keep[(r->head + RIVAL_KEEP - r->nkeep + i) % RIVAL_KEEP]);
+    r->nkeep = 0;
+}
+
+/* s: the second timeline is over when nothing of it came for this long. */
+static double contest_quiet(const sw_gate_t *g)
+{
+    const double s = spacing(g);
+    return isnan(s) ? 2.0 : fmax(2.0, 50.0 * s);
+}
+
+static void contest_check_end(sw_gate_t *g, double rx)
+{
+    rival_t *r = &g->rv;
+    if (!r->contested || !(rx - r->active > contest_quiet(g)))
+        return;
+    sw_gate_event_t ev = {.kind = SW_GATE_EV_UNCONTESTED,
+                          .t = g->have_last ? g->last.t : NAN,
+                          .t_engine = g->last_engine,
+                          .span = r->active - r->since,
+                          .where = g->have_last ? g->last.where : 0};
+    r->contested = r->by_seq = 0;
+    r->n = r->nkeep = 0;
+    emit(g, &ev);
+}
+
+/* A sample refused for its time, with a receive time: is it on a second
+ * timeline (after the last one refused, as far ahead of it as real time
+ * allows, not long after it)? */
+static void rival_note(sw_gate_t *g, const sw_sample_t *s)
+{
+    rival_t *r = &g->rv;
+    if (isnan(s->rx) || g->flushing)
+        return;
+    const double sp = spacing(g), expire = isnan(sp) ? 1.0 : fmax(1.0, 20.0 * sp);
+    const double real = s->rx - r->last.rx, dt = s->t - r->last.t;
+    if (r->n > 0 && dt > 0.0 && real <= expire && dt - fmax(real, 0.0) <= jump_tol(g))
+        r->n++;
+    else
+        r->n = 1;
+    r->last = *s;
+    r->active = s->rx;
+    if (r->contested) {
+        to_rival(g, s);
+        return;
+    }
+    r->keep[r->head] = *s;
+    r->head = (r->head + 1) % RIVAL_KEEP;
+    if (r->nkeep < RIVAL_KEEP)
+        r->nkeep++;
+    if (r->n >= RIVAL_MIN)
+        contest_begin(g, s, 0);
+}
+
+static void note_seq(sw_gate_t *g, const sw_sample_t *s);
 
 static int refuse(sw_gate_t *g, const sw_sample_t *s, sw_gate_reject r, const char *text)
 {
     /* a sample refused for its values did arrive: its seq is no loss */
-    if ((r == SW_GATE_REJ_NONFINITE || r == SW_GATE_REJ_IMPLAUSIBLE) && g->have_seq &&
-        s->seq != SW_GATE_NO_SEQ && s->seq > g->last_seq &&
-        (uint64_t)s->seq - (uint64_t)g->last_seq < 1000000000ULL)
-        g->last_seq = s->seq;
-    static const int code[SW_GATE_NREJ] = {SW_ENONFINITE, SW_ETOOBIG, SW_ERESOLUTION, SW_ETOOBIG,
-                                           SW_EORDER,     SW_EORDER,  SW_EORDER,      SW_EINVAL};
+    if ((r == SW_GATE_REJ_NONFINITE || r == SW_GATE_REJ_IMPLAUSIBLE) && g->seq.have &&
+        s->seq != SW_GATE_NO_SEQ && s->seq > g->seq.last &&
+        (uint64_t)s->seq - (uint64_t)g->seq.last < SEQ_FAR)
+        note_seq(g, s);
+    static const int code[SW_GATE_NREJ] = {SW_ENONFINITE, SW_ETOOBIG, SW_ERESOLUTION,
+                                           SW_ETOOBIG,    SW_EORDER,  SW_EORDER,
+                                           SW_EORDER,     SW_EINVAL,  SW_EORDER};
     g->f.rejected[r]++;
     if (g->o.on_reject)
         g->o.on_reject(g->o.user, s, r, text);
+    if (r == SW_GATE_REJ_LATE || r == SW_GATE_REJ_JUMP)
+        rival_note(g, s);
     return code[r];
 }
+
+/* ---- the sender's seq -------------------------------------------------------------- */
+
+static void seq_outlier(sw_gate_t *g, const sw_sample_t *s)
+{
+    seqs_t *q = &g->seq;
+    g->f.seq_outliers++;
+    const long at = g->f.accepted;
+    const int again = q->outlier_at >= 0 && at - q->outlier_at <= SEQ_WINDOW;
+    q->outlier_at = at;
+    if (isnan(s->rx) || g->flushing)
+        return;
+    g->rv.active = s->rx;
+    if (!again || q->normal < SEQ_LIVE)
+        return;
+    if (g->rv.contested)
+        g->rv.by_seq = 1; /* from now on told apart by seq as well */
+    else
+        contest_begin(g, s, 1);
+}
+
+/* A seq that leaps or goes back waits for the next one: a loss is counted
+ * and a sender restart reported only when the next continues it; when
+ * the next continues the old numbers instead, it was an outlier (another
+ * sender's, or corrupt).  Overflow-free for any int64. */
+static void note_seq(sw_gate_t *g, const sw_sample_t *s)
+{
+    seqs_t *q = &g->seq;
+    const int64_t v = s->seq;
+    if (v == SW_GATE_NO_SEQ)
+        return;
+    if (!q->have) {
+        q->have = 1;
+        q->last = v;
+        return;
+    }
+    if (q->pend) {
+        const int64_t p = q->pend_seq;
+        q->pend = 0;
+        if (p > q->last) { /* a leap forward */
+            if (v >= p) {
+                const uint64_t d = (uint64_t)p - (uint64_t)q->last;
+                if (d <= SEQ_FAR)
+                    g->f.lost += (long)(d - 1);
+                q->last = p;
+                if (v == p)
+                    return; /* the same seq again: confirmed, nothing more */
+            } else {
+                seq_outlier(g, s);
+            }
+        } else { /* back, or the same again */
+            const int old =
+                v > q->last && (uint64_t)v - (uint64_t)q->last <= (uint64_t)v - (uint64_t)p;
+            if (old) {
+                seq_outlier(g, s);
+            } else if (v > p) {
+                g->f.seq_restarts++;
+                sw_gate_event_t ev = {
+                    .kind = SW_GATE_EV_SEQ_RESTART, .t = g->last.t, .where = s->where};
+                emit(g, &ev);
+                q->last = p;
+            } else {
+                seq_outlier(g, s);
+            }
+        }
+    }
+    if (v > q->last && (uint64_t)v - (uint64_t)q->last == 1) {
+        q->last = v;
+        q->normal++;
+    } else {
+        q->pend = 1;
+        q->pend_seq = v;
+    }
+}
+
+/* While two senders' seq streams interleave: is s on the kept one?  It
+ * must follow its last number, by no more than the samples its time
+ * allows. */
+static int seq_kept(const sw_gate_t *g, const sw_sample_t *s)
+{
+    const seqs_t *q = &g->seq;
+    if (s->seq == SW_GATE_NO_SEQ || !q->have)
+        return 1;
+    const int64_t last = q->pend && q->pend_seq > q->last ? q->pend_seq : q->last;
+    if (!(s->seq > last))
+        return 0;
+    const double sp = spacing(g), dt = g->have_last ? s->t - g->last.t : 0.0;
+    const double near = 64.0 + (sp > 0.0 && dt > 0.0 ? 2.0 * dt / sp : 0.0);
+    return (double)((uint64_t)s->seq - (uint64_t)last) <= near;
+}
+
+/* ---- accepting ------------------------------------------------------------------- */
 
 /* Could the motion across a gap have mattered?  A package rocking, or the
  * bed at either end of the gap at a quarter of a package's uplift
@@ -224,41 +687,25 @@ static int motion_near(const sw_gate_t *g, double a_next)
     return 0;
 }
 
-static void emit(sw_gate_t *g, sw_gate_event_t *ev)
+static void judge_deferred(sw_gate_t *g);
+
+static void count_gap(sw_gate_t *g, double span)
 {
-    if (ev->incomplete) {
-        g->f.incomplete++;
-        if (isnan(g->f.first_incomplete))
-            g->f.first_incomplete = ev->t;
-    }
-    if (g->o.on_event)
-        g->o.on_event(g->o.user, ev);
+    g->f.gaps++;
+    g->f.gap_total += span;
+    if (span > g->f.gap_max)
+        g->f.gap_max = span;
 }
 
-/* The sender's seq: missing ones counted, a seq that goes back while time
- * goes on is a sender restart.  Overflow-free for any int64. */
-static void note_seq(sw_gate_t *g, const sw_sample_t *s)
-{
-    if (s->seq == SW_GATE_NO_SEQ)
-        return;
-    if (g->have_seq) {
-        if (s->seq > g->last_seq) {
-            const uint64_t d = (uint64_t)s->seq - (uint64_t)g->last_seq; /* >= 1, no overflow */
-            if (d > 1 && d <= 1000000000ULL)
-                g->f.lost += (long)(d - 1);
-        } else if (s->seq < g->last_seq) {
-            g->f.seq_restarts++;
-            sw_gate_event_t ev = {
-                .kind = SW_GATE_EV_SEQ_RESTART, .t = g->last.t, .where = s->where};
-            emit(g, &ev);
-        }
-    }
-    g->have_seq = 1;
-    g->last_seq = s->seq;
-}
+/* What the interval before an accepted sample teaches the timing model:
+ * the pace (learned, and learnable in the ring); nothing beyond the ring,
+ * being normal only beside a gap or a gap itself (tainted); the ring only,
+ * learnable (the first intervals of a live stream); nothing at all (a
+ * clock step, a restart). */
+enum { IV_NORMAL, IV_TAINT, IV_GAP, IV_WARM, IV_BREAK };
 
 /* Push an accepted sample at engine time te. */
-static int take(sw_gate_t *g, const sw_sample_t *s, double te)
+static int take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
 {
     const double az = g->o.vert_gravity ? s->a_z - G0 : s->a_z;
     const int rc = sw_engine_push(g->e, te, s->a_g, az);
@@ -272,67 +719,93 @@ static int take(sw_gate_t *g, const sw_sample_t *s, double te)
         if (dt > 0.0) {
             note_interval(g, dt);
             g->f.duration += te - g->last_engine;
+            if (iv != IV_BREAK)
+                tm_add(&g->tm, dt, iv == IV_NORMAL, iv == IV_NORMAL || iv == IV_WARM);
         }
+        const double drx = s->rx - g->last.rx;
+        if (drx >= 0.0)
+            g->tm.rx_recent[g->tm.nrx++ % RECENT] = drx;
     } else {
         g->f.t_first = s->t;
     }
     note_seq(g, s);
+    if (g->ndeferred && g->tm.covered >= WARM_TIME)
+        judge_deferred(g);
     g->f.t_last = s->t;
     g->f.accepted++;
-    if (fabs(s->a_g) > g->f.peak_a)
-        g->f.peak_a = fabs(s->a_g);
+    const double aa = fabs(s->a_g);
+    if (aa > g->f.peak_a)
+        g->f.peak_a = aa;
     if (fabs(s->a_z) > g->f.peak_z)
         g->f.peak_z = fabs(s->a_z);
+    if (aa > 0.5 * G0)
+        g->f.above_half_g++;
+    if (isnan(g->f.min_a) || s->a_g < g->f.min_a)
+        g->f.min_a = s->a_g;
+    if (isnan(g->f.max_a) || s->a_g > g->f.max_a)
+        g->f.max_a = s->a_g;
+    g->sum_abs_a += aa;
     g->sum_z += s->a_z;
+    if (!isnan(s->rx)) {
+        const double off = s->t - s->rx;
+        g->env = g->have_env ? fmax(g->env, off) : off;
+        g->have_env = 1;
+    }
     g->have_last = 1;
     g->last = *s;
     g->last_engine = te;
     return rc;
 }
 
-/* The first sample of a stretch that does not continue the timeline (a
- * gap; or a confirmed chain, ahead or behind): what happened, the gap
- * policy, and its engine time.  The engine's clock moves by the time that
- * really passed: the receive times' difference where the source has them,
- * else the source's own; a restart in a log with no receive time moves it
- * by one typical interval, the packages starting again from rest. */
-static double resume(sw_gate_t *g, const sw_sample_t *s)
+/* The first sample of the stream sets the origin. */
+static int take_first(sw_gate_t *g, const sw_sample_t *s)
+{
+    g->relative = g->o.relative == 1 || (g->o.relative != 0 && fabs(s->t) >= EPOCH_LIKE);
+    g->f.t_origin = g->relative ? s->t : 0.0;
+    g->offset = -g->f.t_origin;
+    return take(g, s, s->t + g->offset, IV_BREAK);
+}
+
+/* The first sample of a stretch that does not continue the timeline at
+ * its pace (a gap, a clock step, a restart): what happened, the gap
+ * policy, and its engine time.  The engine's clock moves by the source's
+ * own time, so that what is reported is on the source's clock; where the
+ * source's clock leapt ahead of the time that really passed (known from
+ * the receive times) it moves by that time instead, and when the source's
+ * time went back, by the time that passed (one spacing when unknown or
+ * beyond max_bridge).  Every such interval, however long, costs the engine
+ * no more than max_bridge of bridging or a restart from rest. */
+static double resume(sw_gate_t *g, const sw_sample_t *s, double thr, int *iv)
 {
     const double dt = s->t - g->last.t; /* s, > 0 ahead, < 0 back */
-    const double typ = typical_dt(g), one = isnan(typ) ? 1e-3 : typ;
+    const double real = s->rx - g->last.rx, sp = spacing(g), one = isnan(sp) ? 1e-3 : sp;
+    /* s: how far the source's clock ran ahead of the time that passed */
+    const double ahead = isnan(real)   ? NAN
+                         : g->have_env ? (s->t - s->rx) - g->env
+                                       : dt - fmax(real, 0.0);
     sw_gate_event_t ev = {.t = g->last.t, .where = s->where};
     double elapsed;
-    if (!isnan(s->rx) && !isnan(g->last.rx)) {
-        const double real = s->rx - g->last.rx;
-        elapsed = real > 0.0 ? real : one;
-        if (!(dt > 0.0)) {
-            ev.kind = SW_GATE_EV_RESTART;
-            ev.span = dt;
-            g->f.restarts++;
-        } else if (fabs(dt - elapsed) > jump_of(g)) {
+    *iv = IV_BREAK;
+    if (dt > 0.0) {
+        if (ahead > jump_tol(g) && ahead > fmin(thr, gap_threshold_of(g, NAN))) {
             ev.kind = SW_GATE_EV_CLOCK_STEP;
-            ev.span = dt - elapsed;
+            ev.span = ahead;
+            elapsed = dt - ahead > 0.0 ? dt - ahead : one;
             g->f.clock_steps++;
         } else {
             ev.kind = SW_GATE_EV_GAP;
-            ev.span = elapsed;
+            ev.span = elapsed = dt;
+            *iv = IV_GAP;
         }
-    } else if (dt > 0.0) {
-        ev.kind = SW_GATE_EV_GAP;
-        ev.span = elapsed = dt;
     } else {
         ev.kind = SW_GATE_EV_RESTART;
         ev.span = dt;
-        elapsed = one;
+        elapsed = real > 0.0 && real <= g->o.max_bridge ? real : one;
         g->f.restarts++;
     }
-    const int gap = elapsed > gap_of(g); /* a time with no samples */
-    if (gap) {
-        g->f.gaps++;
-        g->f.gap_total += elapsed;
-        if (elapsed > g->f.gap_max)
-            g->f.gap_max = elapsed;
-    }
+    const int gap = elapsed > thr || elapsed > g->o.max_bridge; /* a time with no samples */
+    if (ev.kind == SW_GATE_EV_GAP && !gap)
+        *iv = IV_NORMAL; /* ahead of real time a little (a latency that changed) */
     const int unknown = ev.kind == SW_GATE_EV_RESTART && isnan(s->rx);
     ev.restarted =
         unknown || (gap && (g->o.gap_policy == SW_GAP_RESTART || elapsed > g->o.max_bridge));
@@ -344,42 +817,119 @@ static double resume(sw_gate_t *g, const sw_sample_t *s)
     }
     const double te = g->last_engine + elapsed;
     g->offset = te - s->t;
+    g->have_env = 0; /* a new stretch: its own relation to real time */
     ev.t_engine = te;
+    /* A bridged gap in the first seconds of a log may be the logger's pace
+     * (the first pause between 1 kHz bursts): judged again once the pace
+     * is known.  Bridging is what the engine does between any samples, so
+     * nothing but the word waits. */
+    if (gap && ev.bridged && ev.kind == SW_GATE_EV_GAP && isnan(s->rx) && g->o.gap == 0.0 &&
+        g->tm.covered < WARM_TIME && g->ndeferred < DEFER) {
+        g->deferred[g->ndeferred++] = (deferred_t){.ev = ev, .dt = elapsed};
+        return te;
+    }
+    if (gap)
+        count_gap(g, elapsed);
     if (ev.kind != SW_GATE_EV_GAP || gap)
         emit(g, &ev);
     return te;
 }
 
-/* ---- chains ------------------------------------------------------------------- */
+/* The deferred gaps of a log's first seconds, judged by the pace learned
+ * since: the ones still far beyond it are said (late, with where they
+ * were); the others were the logger's pace, and are learned as such. */
+static void judge_deferred(sw_gate_t *g)
+{
+    const int n = g->ndeferred;
+    if (n == 0)
+        return;
+    g->ndeferred = 0;
+    const double thr = gap_threshold(g, NAN);
+    for (int i = 0; i < n; i++) {
+        deferred_t *d = &g->deferred[i];
+        if (d->dt > thr) {
+            count_gap(g, d->dt);
+            emit(g, &d->ev);
+        } else {
+            tm_add(&g->tm, d->dt, 1, 1);
+        }
+    }
+}
 
-/* Does b continue a (consistent: later, and not ahead of the time that
- * really passed by more than the jump tolerance)? */
+/* A sample that continues the timeline forward: at its own time, or
+ * across a gap (after: the look-ahead's spacing, NAN if none). */
+static int advance(sw_gate_t *g, const sw_sample_t *s, double after)
+{
+    const double dt = s->t - g->last.t;
+    if (dt <= 0.0 || dt > g->o.max_bridge) {
+        int iv;
+        const double te = resume(g, s, gap_threshold(g, after), &iv);
+        return take(g, s, te, iv);
+    }
+    const double te = s->t + g->offset;
+    if (!(dt > threshold_of(g, spacing(g)))) /* the common case, cheap */
+        return take(g, s, te, IV_NORMAL);
+    /* a closer look: the pace of the recent intervals, and of the ones
+     * that follow where a log shows them */
+    if (!(dt > threshold_of(g, fmax_nan(spacing_full(g, 1), after))))
+        return take(g, s, te, IV_NORMAL);
+    const double thr = gap_threshold_of(g, after);
+    if (!(dt > thr))
+        return take(g, s, te, IV_TAINT); /* normal only beside a recent gap */
+    if (warming(g))
+        return take(g, s, te, IV_WARM); /* no gap yet: the pace is being learned */
+    int iv;
+    const double te_gap = resume(g, s, thr, &iv);
+    return take(g, s, te_gap, iv);
+}
+
+/* ---- with receive times: chains --------------------------------------------------- */
+
+/* Does s continue the timeline: later than the last sample taken, and not
+ * stamped further ahead of its arrival than any sample taken on this
+ * stretch (the envelope), by more than the jump tolerance?  Samples that
+ * arrive late (a stall, then a burst) are never ahead of it; forged ones
+ * stamped ahead of the genuine stream are. */
+static int continues(const sw_gate_t *g, const sw_sample_t *s)
+{
+    if (!(s->t > g->last.t))
+        return 0;
+    if (isnan(s->rx) || !g->have_env)
+        return s->t - g->last.t - fmax(s->rx - g->last.rx, 0.0) <= jump_tol(g) ||
+               isnan(s->rx - g->last.rx);
+    return (s->t - s->rx) - g->env <= jump_tol(g);
+}
+
+/* Does b continue a (later, and not ahead of the time that really passed
+ * by more than the jump tolerance)?  For chains and rival samples. */
 static int follows(const sw_gate_t *g, const sw_sample_t *a, const sw_sample_t *b)
 {
     const double dt = b->t - a->t;
     if (!(dt > 0.0))
         return 0;
     const double real = !isnan(a->rx) && !isnan(b->rx) ? b->rx - a->rx : 0.0;
-    return dt - fmax(real, 0.0) <= jump_of(g);
+    return dt - fmax(real, 0.0) <= jump_tol(g);
+}
+
+static void refuse_held(sw_gate_t *g, const sw_sample_t *s)
+{
+    const int late = g->have_last && s->t < g->last.t;
+    char text[160];
+    snprintf(text, sizeof text,
+             late ? "time %.15g s is before the timeline (%.15g s) and the stream did "
+                    "not follow it"
+                  : "time %.15g s leaps from the timeline (%.15g s) and the stream did "
+                    "not follow it",
+             s->t, g->have_last ? g->last.t : NAN);
+    refuse(g, s, late ? SW_GATE_REJ_LATE : SW_GATE_REJ_JUMP, text);
 }
 
 static void drop_chain(sw_gate_t *g, int k)
 {
-    chain_t *c = &g->chain[k];
-    for (int i = 0; i < c->n; i++) {
-        const sw_sample_t *s = &c->s[i];
-        const int late = g->have_last && s->t < g->last.t;
-        char text[160];
-        snprintf(text, sizeof text,
-                 late ? "time %.15g s is before the timeline (%.15g s) and the stream did "
-                        "not follow it"
-                      : "time %.15g s leaps from the timeline (%.15g s) and the stream did "
-                        "not follow it",
-                 s->t, g->have_last ? g->last.t : NAN);
-        refuse(g, s, late ? SW_GATE_REJ_LATE : SW_GATE_REJ_JUMP, text);
-    }
+    chain_t c = g->chain[k];
     g->chain[k] = g->chain[g->nchain - 1];
     g->nchain--;
+    for (int i = 0; i < c.n; i++) refuse_held(g, &c.s[i]);
 }
 
 static void drop_chains(sw_gate_t *g)
@@ -387,7 +937,8 @@ static void drop_chains(sw_gate_t *g)
     while (g->nchain) drop_chain(g, g->nchain - 1);
 }
 
-/* A chain confirmed: it is the timeline now. */
+/* A chain confirmed: it is the timeline now; each of its intervals gets
+ * the treatment of any interval. */
 static int confirm(sw_gate_t *g, int k)
 {
     chain_t c = g->chain[k];
@@ -396,23 +947,33 @@ static int confirm(sw_gate_t *g, int k)
     drop_chains(g); /* the others are refuted */
     int rc = SW_OK;
     for (int i = 0; i < c.n; i++) {
-        double te;
+        int r;
         if (!g->have_last) {
-            g->relative =
-                g->o.relative == 1 || (g->o.relative != 0 && fabs(c.s[0].t) >= EPOCH_LIKE);
-            g->f.t_origin = g->relative ? c.s[0].t : 0.0;
-            g->offset = -g->f.t_origin;
-            te = c.s[i].t + g->offset;
+            r = take_first(g, &c.s[i]);
         } else if (i == 0) {
-            te = resume(g, &c.s[0]);
+            int iv;
+            const double te = resume(g, &c.s[0], gap_threshold(g, NAN), &iv);
+            r = take(g, &c.s[0], te, iv);
         } else {
-            te = c.s[i].t + g->offset;
+            r = advance(g, &c.s[i], NAN);
         }
-        const int r = take(g, &c.s[i], te);
         if (r != SW_OK && (rc == SW_OK || r < 0))
             rc = r;
     }
     return rc;
+}
+
+/* Has a chain waited long enough?  confirm samples, spanning at least half
+ * the real time in which the timeline's own samples arrive: a burst of
+ * forged samples cannot confirm itself while the genuine stream goes on. */
+static int confirmable(const sw_gate_t *g, const chain_t *c)
+{
+    if (c->n < g->o.confirm)
+        return 0;
+    if (!g->have_last || g->tm.nrx == 0)
+        return 1;
+    const double rx_sp = median8(g->tm.rx_recent, g->tm.nrx);
+    return c->s[c->n - 1].rx - c->s[0].rx >= 0.5 * (g->o.confirm - 1) * rx_sp;
 }
 
 /* A sample that does not continue the timeline: into a chain. */
@@ -427,8 +988,15 @@ static int hold(sw_gate_t *g, const sw_sample_t *s)
         }
         if (!follows(g, &c->s[c->n - 1], s))
             continue;
+        if (c->n == SW_GATE_CONFIRM_MAX) { /* full, and not confirmed yet: the oldest goes */
+            const sw_sample_t old = c->s[0];
+            memmove(c->s, c->s + 1, sizeof c->s[0] * (size_t)(c->n - 1));
+            c->n--;
+            refuse_held(g, &old);
+            c = &g->chain[k];
+        }
         c->s[c->n++] = *s;
-        if (c->n >= g->o.confirm)
+        if (confirmable(g, c))
             return confirm(g, k);
         return SW_GATE_HELD;
     }
@@ -437,9 +1005,324 @@ static int hold(sw_gate_t *g, const sw_sample_t *s)
     chain_t *c = &g->chain[g->nchain++];
     c->s[0] = *s;
     c->n = 1;
-    if (c->n >= g->o.confirm)
+    if (confirmable(g, c))
         return confirm(g, g->nchain - 1);
     return SW_GATE_HELD;
+}
+
+/* s continues the timeline: held samples stamped between the timeline and
+ * s were on it all along, only quicker to arrive than any before (the
+ * envelope was not yet its own): taken first, in order of their time. */
+static void take_early(sw_gate_t *g, const sw_sample_t *s)
+{
+    sw_sample_t early[SW_GATE_HELD_MAX];
+    int n = 0;
+    for (int k = 0; k < g->nchain; k++) {
+        chain_t *c = &g->chain[k];
+        int kept = 0;
+        for (int i = 0; i < c->n; i++) {
+            if (c->s[i].t > g->last.t && c->s[i].t < s->t)
+                early[n++] = c->s[i];
+            else
+                c->s[kept++] = c->s[i];
+        }
+        c->n = kept;
+    }
+    for (int k = 0; k < g->nchain;) { /* chains left empty go */
+        if (g->chain[k].n == 0)
+            g->chain[k] = g->chain[--g->nchain];
+        else
+            k++;
+    }
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && early[j - 1].t > early[j].t; j--) {
+            const sw_sample_t x = early[j];
+            early[j] = early[j - 1];
+            early[j - 1] = x;
+        }
+    for (int i = 0; i < n; i++) {
+        if (early[i].t > g->last.t)
+            advance(g, &early[i], NAN);
+        else
+            refuse_held(g, &early[i]); /* the same time as one before it */
+    }
+}
+
+/* The same sample again (a network duplicate) is no rival; the same time
+ * with other values or another seq is. */
+static int same_sample(const sw_sample_t *a, const sw_sample_t *b)
+{
+    return a->t == b->t && a->seq == b->seq && a->a_g == b->a_g && a->a_z == b->a_z;
+}
+
+static int live_push(sw_gate_t *g, const sw_sample_t *s)
+{
+    contest_check_end(g, s->rx);
+    char text[160];
+    if (g->rv.contested && g->rv.by_seq && !seq_kept(g, s)) {
+        g->rv.active = s->rx;
+        snprintf(text, sizeof text,
+                 "seq %lld is not the kept sender's (two senders' seq numbers interleave)",
+                 (long long)s->seq);
+        g->f.rejected[SW_GATE_REJ_CONTESTED]++;
+        if (g->o.on_reject)
+            g->o.on_reject(g->o.user, s, SW_GATE_REJ_CONTESTED, text);
+        to_rival(g, s);
+        return SW_EORDER;
+    }
+    if (g->have_last && s->t == g->last.t) {
+        snprintf(text, sizeof text, "time %.15g s is a duplicate (the same as the sample before)",
+                 s->t);
+        const int rc = refuse(g, s, SW_GATE_REJ_DUPLICATE, text);
+        if (!same_sample(s, &g->last))
+            rival_note(g, s);
+        return rc;
+    }
+    if (g->have_last && continues(g, s)) {
+        take_early(g, s);
+        drop_chains(g); /* the stream went on: waiting samples are refuted */
+        return advance(g, s, NAN);
+    }
+    return hold(g, s);
+}
+
+/* ---- without receive times: the look-ahead ----------------------------------------- */
+
+#define AT(g, i) (&(g)->ahead[((g)->head + (i)) % (g)->window])
+
+/* The order of the look-ahead, counted again (after times were spread). */
+static void recount(sw_gate_t *g)
+{
+    g->desc = g->ndup = 0;
+    for (int i = 0; i + 1 < g->nahead; i++) {
+        const double a = AT(g, i)->t, b = AT(g, i + 1)->t;
+        g->desc += b < a;
+        g->ndup += b == a;
+    }
+}
+
+/* Length of the longest strictly increasing run of look-ahead times in
+ * (lo, hi), from index `from` on (patience sorting: n log n, n <= 64). */
+static int lis(const sw_gate_t *g, int from, double lo, double hi)
+{
+    double tails[SW_GATE_LOOKAHEAD];
+    int len = 0;
+    for (int i = from; i < g->nahead; i++) {
+        const double x = AT(g, i)->t;
+        if (!(x > lo && x < hi))
+            continue;
+        int a = 0, b = len;
+        while (a < b) {
+            const int m = (a + b) / 2;
+            if (tails[m] < x)
+                a = m + 1;
+            else
+                b = m;
+        }
+        tails[a] = x;
+        if (a == len)
+            len++;
+    }
+    return len;
+}
+
+/* s: the pace of the look-ahead after the front sample (how fast the
+ * logger writes from here), as the timing model reads it: the interval
+ * below which 90 % of its time is covered; NAN if none. */
+static double spacing_after(const sw_gate_t *g)
+{
+    double v[SW_GATE_LOOKAHEAD], tot = 0.0;
+    int n = 0;
+    for (int i = 0; i + 1 < g->nahead; i++) {
+        const double d = AT(g, i + 1)->t - AT(g, i)->t;
+        if (d > 0.0) {
+            v[n++] = d;
+            tot += d;
+        }
+    }
+    if (n == 0)
+        return NAN;
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && v[j - 1] > v[j]; j--) {
+            const double x = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = x;
+        }
+    double acc = 0.0;
+    for (int i = 0; i < n; i++) {
+        acc += v[i];
+        if (acc >= TM_QUANTILE * tot)
+            return v[i];
+    }
+    return v[n - 1];
+}
+
+/* s: the coarsest decimal unit all times of the look-ahead are whole
+ * multiples of, when the distinct times step by about one unit (a logger
+ * that stamps whole milliseconds); 0 when there is none. */
+static double stamp_unit(const sw_gate_t *g)
+{
+    static const double units[] = {1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5, 1e-6};
+    for (size_t u = 0; u < sizeof units / sizeof units[0]; u++) {
+        const double q = units[u];
+        int ok = 1;
+        for (int i = 0; i < g->nahead && ok; i++) {
+            const double x = AT(g, i)->t / q;
+            ok = fabs(x - nearbyint(x)) <= 1e-3 * fmax(1.0, fabs(x) * 1e-12);
+        }
+        if (!ok)
+            continue;
+        /* the distinct times: do they step by about one unit? */
+        double steps[SW_GATE_LOOKAHEAD];
+        int n = 0;
+        for (int i = 0; i + 1 < g->nahead; i++) {
+            const double d = AT(g, i + 1)->t - AT(g, i)->t;
+            if (d > 0.0)
+                steps[n++] = d;
+        }
+        if (n == 0)
+            return q;
+        for (int i = 1; i < n; i++)
+            for (int j = i; j > 0 && steps[j - 1] > steps[j]; j--) {
+                const double x = steps[j];
+                steps[j] = steps[j - 1];
+                steps[j - 1] = x;
+            }
+        return steps[n / 2] <= 1.5 * q ? q : 0.0;
+    }
+    return 0.0;
+}
+
+/* Repeated times in the look-ahead, enough of them to show a logger that
+ * stamps coarser than it samples: spread from here on (said once). */
+static void maybe_reconstruct(sw_gate_t *g)
+{
+    if (g->recon || g->ndup < RECON_MIN)
+        return;
+    g->recon = 1;
+    g->unit = stamp_unit(g);
+    g->f.stamp_unit = g->unit;
+    const sw_sample_t *p0 = AT(g, 0);
+    sw_gate_event_t ev = {.kind = SW_GATE_EV_RECONSTRUCT,
+                          .t = p0->t,
+                          .t_engine = g->last_engine,
+                          .span = g->unit,
+                          .where = p0->where};
+    emit(g, &ev);
+}
+
+/* The front sample starts a run of k equal times: spread them evenly over
+ * their unit, or over the time to the next distinct stamp when it is
+ * sooner (or when the unit is unknown). */
+static void spread_run(sw_gate_t *g)
+{
+    const double t0 = AT(g, 0)->t;
+    int k = 1;
+    while (k < g->nahead && AT(g, k)->t == t0) k++;
+    if (k == 1)
+        return;
+    double span = g->unit > 0.0 ? g->unit : INFINITY;
+    if (k < g->nahead && AT(g, k)->t > t0)
+        span = fmin(span, AT(g, k)->t - t0);
+    if (isinf(span)) {
+        span = spacing(g) * k; /* the log's end: at the logger's pace */
+        if (!(span > 0.0))
+            return;
+    }
+    for (int i = 1; i < k; i++) AT(g, i)->t = t0 + span * i / k;
+    g->f.reconstructed += k - 1;
+    recount(g);
+}
+
+/* Is the front sample, ahead of the timeline, on a longest increasing run
+ * of the look-ahead above it?  If not, the rows around it share a timeline
+ * it is off. */
+static int forward_ok(const sw_gate_t *g, double T)
+{
+    if (g->desc == 0 || g->o.jump < 0.0)
+        return 1;
+    const double t0 = AT(g, 0)->t;
+    return 1 + lis(g, 1, t0, INFINITY) >= lis(g, 0, T, INFINITY);
+}
+
+/* The front sample is behind the timeline: a restart when it starts a run
+ * of at least confirm rows back in time that the rows continuing the old
+ * timeline do not outnumber. */
+static int backward_restart(const sw_gate_t *g, double T)
+{
+    const double t0 = AT(g, 0)->t;
+    const int back = 1 + lis(g, 1, t0, T);
+    return back >= g->o.confirm && back > lis(g, 0, T, INFINITY);
+}
+
+/* Decide the front sample of the look-ahead, and drop it from there. */
+static void decide_front(sw_gate_t *g)
+{
+    sw_sample_t *p0 = AT(g, 0);
+    const double T = g->have_last ? g->last.t : -INFINITY;
+    if (g->nahead > 1 && AT(g, 1)->t == p0->t) {
+        maybe_reconstruct(g);
+        if (g->recon && p0->t > T)
+            spread_run(g);
+    }
+    const sw_sample_t s = *p0;
+    const double after = g->nahead > 1 ? spacing_after(g) : NAN;
+    const int fwd = s.t > T && forward_ok(g, T);
+    const int restart = s.t < T && backward_restart(g, T);
+    /* leave the window before the callbacks: they may look at the facts */
+    if (g->nahead > 1) {
+        const double t1 = AT(g, 1)->t;
+        g->desc -= t1 < s.t;
+        g->ndup -= t1 == s.t;
+    }
+    g->head = (g->head + 1) % g->window;
+    g->nahead--;
+    char text[160];
+    if (!g->have_last) {
+        if (fwd)
+            take_first(g, &s);
+        else
+            refuse_held(g, &s);
+        return;
+    }
+    if (s.t == T) {
+        snprintf(text, sizeof text, "time %.15g s is a duplicate (the same as the row before)",
+                 s.t);
+        refuse(g, &s, SW_GATE_REJ_DUPLICATE, text);
+        return;
+    }
+    if (s.t > T) {
+        if (fwd)
+            advance(g, &s, after);
+        else
+            refuse_held(g, &s);
+        return;
+    }
+    if (restart) {
+        int iv;
+        const double te = resume(g, &s, gap_threshold(g, after), &iv);
+        take(g, &s, te, iv);
+    } else {
+        refuse_held(g, &s);
+    }
+}
+
+static int ahead_push(sw_gate_t *g, const sw_sample_t *s)
+{
+    if (g->nahead > 0) {
+        const double tl = AT(g, g->nahead - 1)->t;
+        g->desc += s->t < tl;
+        g->ndup += s->t == tl;
+    }
+    *AT(g, g->nahead) = *s;
+    g->nahead++;
+    while (g->nahead >= g->window) decide_front(g);
+    return SW_GATE_HELD;
+}
+
+static void ahead_drain(sw_gate_t *g)
+{
+    while (g->nahead > 0) decide_front(g);
 }
 
 /* ---- the sample --------------------------------------------------------------- */
@@ -468,24 +1351,19 @@ int sw_gate_push(sw_gate_t *g, const sw_sample_t *s)
                  s->t - s->wall);
         return refuse(g, s, SW_GATE_REJ_SKEW, text);
     }
-    if (g->have_last && s->t == g->last.t) {
-        snprintf(text, sizeof text, "duplicate time %.15g s (same as the previous sample)", s->t);
-        return refuse(g, s, SW_GATE_REJ_DUPLICATE, text);
-    }
-    if (g->have_last && follows(g, &g->last, s)) {
-        drop_chains(g); /* the stream went on: waiting samples are refuted */
-        const double dt = s->t - g->last.t;
-        if (dt > gap_of(g))
-            return take(g, s, resume(g, s));
-        return take(g, s, s->t + g->offset);
-    }
-    return hold(g, s);
+    if (isnan(s->rx))
+        return ahead_push(g, s);
+    ahead_drain(g); /* a source that gains receive times: what waits is decided */
+    return live_push(g, s);
 }
 
 int sw_gate_flush(sw_gate_t *g)
 {
     if (!g)
         return SW_EINVAL;
+    g->flushing = 1;
+    ahead_drain(g);
+    judge_deferred(g);
     if (!g->have_last && g->nchain) {
         /* a stream too short to confirm anything: its longest stretch,
          * which nothing contradicts, is the timeline */
@@ -496,15 +1374,17 @@ int sw_gate_flush(sw_gate_t *g)
         confirm(g, best);
     }
     drop_chains(g);
+    g->flushing = 0;
     return SW_OK;
 }
 
 void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f)
 {
     *f = g->f;
-    f->held = 0;
+    f->held = g->nahead;
     for (int k = 0; k < g->nchain; k++) f->held += g->chain[k].n;
     f->mean_z = f->accepted ? g->sum_z / (double)f->accepted : 0.0;
+    f->mean_abs_a = f->accepted ? g->sum_abs_a / (double)f->accepted : 0.0;
     long n = 0, half = 0;
     for (int b = 0; b < HIST_BINS; b++) n += g->hist[b];
     for (int b = 0; b < HIST_BINS && n; b++) {
@@ -515,6 +1395,8 @@ void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f)
         }
     }
     f->rate = f->dt_median > 0.0 ? 1.0 / f->dt_median : NAN;
+    f->spacing = spacing_full(g, 0);
+    f->gap_threshold = gap_threshold(g, NAN);
 }
 
 double sw_gate_source_time(const sw_gate_t *g, double t_engine)
@@ -534,6 +1416,7 @@ int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *w
     const double warn_rate = lim->warn_rate > 0.0 ? lim->warn_rate : 20.0;
     const double max_dur = lim->max_duration > 0.0 ? lim->max_duration : 366.0 * 86400.0;
     const double max_peak = lim->max_peak > 0.0 ? lim->max_peak : 25.0 * G0;
+    const double min_still = lim->min_still > 0.0 ? lim->min_still : 60.0;
     const long rej = sw_gate_rejected(f) + f->upstream_rejected;
     const long seen = f->received + f->upstream_rejected;
     if (why && whylen)
@@ -568,6 +1451,31 @@ int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *w
                  "a wrong column?",
                  f->peak_a, f->peak_a / G0, max_peak / G0);
         return SW_GATE_REFUSE;
+    }
+    /* A truck brakes at 0.5 g for seconds, never for a minute: a channel
+     * beyond it most of a long log, or one that never moves, is no
+     * longitudinal acceleration (gravity on a vertical axis, a GPS, speed or
+     * angle column). */
+    if (f->duration >= min_still && f->accepted >= 100) {
+        const int high = 2 * f->above_half_g > f->accepted;
+        const int still = f->min_a == f->max_a;
+        if (high || still) {
+            if (high)
+                snprintf(why, whylen,
+                         "the longitudinal channel looks like gravity or not an acceleration: "
+                         "%.0f %% of %.3g min beyond 0.5 g (mean |a| %.3g g), which no truck "
+                         "brakes or speeds up for that long; choose the acceleration column "
+                         "with --accel-col NAME|N, or give --force",
+                         100.0 * (double)f->above_half_g / (double)f->accepted, f->duration / 60.0,
+                         f->mean_abs_a / G0);
+            else
+                snprintf(why, whylen,
+                         "the longitudinal channel looks like gravity or not an acceleration: "
+                         "it reads %.6g m/s^2 for all %.3g min and never varies; choose the "
+                         "acceleration column with --accel-col NAME|N, or give --force",
+                         f->min_a, f->duration / 60.0);
+            return SW_GATE_REFUSE;
+        }
     }
     if (f->rate < warn_rate) {
         snprintf(why, whylen,

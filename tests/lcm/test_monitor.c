@@ -684,8 +684,11 @@ static void test_alarm_escalation_passes(void **st)
     (void)st;
     rig_t *r = rig_new(1, NULL);
     /* a gap storm on the input slot: 0.3 s gaps, each a warn (timer) and
-     * its end; a verdict-incomplete end is critical */
+     * its end; a verdict-incomplete end is critical.  The sensor's pace
+     * first: the first 64 intervals of a stream teach it (gate.h), and a
+     * stream that starts with pauses would teach them as its pace. */
     long k = 0;
+    for (; k < 100; k++) send(r, k, UTIME0 + k * 1000, 0.0, 0.0, 0.0);
     for (int g = 0; g < 6; g++) {
         for (int i = 0; i < 5; i++, k++) send(r, k, UTIME0 + k * 1000, 0.0, 0.0, 0.0);
         k += 300; /* 0.3 s without samples */
