@@ -48,6 +48,8 @@
 #define DEFER 16              /* gap events that wait for that */
 #define RECON_MIN 4           /* repeated stamps in the look-ahead that reveal a coarse clock */
 #define RIVAL_MIN 3           /* refused samples in a row on one timeline: contested */
+#define RIVAL_DENSE 4         /* or this many refused for their time ... */
+#define RIVAL_SPAN 64         /* ... within this many samples received */
 #define RIVAL_KEEP 8          /* the last of them, handed over when the contest is declared */
 #define SEQ_WINDOW 256        /* accepted samples: two seq outliers within are a second sender */
 #define SEQ_LIVE 3            /* +1 steps before seq numbers count as evidence */
@@ -100,6 +102,9 @@ typedef struct {
     int n; /* in a row on one timeline */
     sw_sample_t keep[RIVAL_KEEP];
     int nkeep, head;
+    long at[RIVAL_DENSE]; /* received count at the last refusals for their time */
+    int nat;
+    long switched; /* received count at the last clock step or restart; < 0 none */
     double active; /* rx of its last sample */
     double since;  /* rx when the contest began */
     int contested, by_seq;
@@ -182,6 +187,7 @@ static void clear(sw_gate_t *g)
     g->window = window;
     g->tm.spacing = NAN;
     g->seq.outlier_at = -1;
+    g->rv.switched = -1;
     g->f.t_first = g->f.t_last = g->f.first_incomplete = NAN;
     g->f.dt_min = g->f.dt_median = g->f.dt_max = g->f.rate = NAN;
     g->f.spacing = NAN;
@@ -521,7 +527,7 @@ static void contest_check_end(sw_gate_t *g, double rx)
                           .span = r->active - r->since,
                           .where = g->have_last ? g->last.where : 0};
     r->contested = r->by_seq = 0;
-    r->n = r->nkeep = 0;
+    r->n = r->nkeep = r->nat = 0;
     emit(g, &ev);
 }
 
@@ -541,6 +547,11 @@ static void rival_note(sw_gate_t *g, const sw_sample_t *s)
         r->n = 1;
     r->last = *s;
     r->active = s->rx;
+    /* however the refused samples are mixed (a forger may interleave
+     * garbage with its timeline), many refusals for time are two senders */
+    r->at[r->nat++ % RIVAL_DENSE] = g->f.received;
+    const int dense =
+        r->nat >= RIVAL_DENSE && g->f.received - r->at[r->nat % RIVAL_DENSE] < RIVAL_SPAN;
     if (r->contested) {
         to_rival(g, s);
         return;
@@ -549,11 +560,26 @@ static void rival_note(sw_gate_t *g, const sw_sample_t *s)
     r->head = (r->head + 1) % RIVAL_KEEP;
     if (r->nkeep < RIVAL_KEEP)
         r->nkeep++;
-    if (r->n >= RIVAL_MIN)
+    if (r->n >= RIVAL_MIN || dense)
         contest_begin(g, s, 0);
 }
 
 static void note_seq(sw_gate_t *g, const sw_sample_t *s);
+
+/* The timeline moved to another (a clock step, a restart), with receive
+ * times: once is a sensor's doing; twice within RIVAL_SPAN * 4 samples is
+ * two timelines taking turns. */
+static void note_switch(sw_gate_t *g, const sw_sample_t *s)
+{
+    rival_t *r = &g->rv;
+    if (isnan(s->rx) || g->flushing)
+        return;
+    const int again = r->switched >= 0 && g->f.received - r->switched < 4 * RIVAL_SPAN;
+    r->switched = g->f.received;
+    r->active = s->rx;
+    if (again && !r->contested)
+        contest_begin(g, s, 0);
+}
 
 static int refuse(sw_gate_t *g, const sw_sample_t *s, sw_gate_reject r, const char *text)
 {
@@ -614,7 +640,9 @@ static void note_seq(sw_gate_t *g, const sw_sample_t *s)
         if (p > q->last) { /* a leap forward */
             if (v >= p) {
                 const uint64_t d = (uint64_t)p - (uint64_t)q->last;
-                if (d <= SEQ_FAR)
+                /* while two timelines compete, the numbers between may
+                 * have come on the other one: no evidence of a loss */
+                if (d <= SEQ_FAR && !g->rv.contested)
                     g->f.lost += (long)(d - 1);
                 q->last = p;
                 if (v == p)
@@ -787,11 +815,14 @@ static double resume(sw_gate_t *g, const sw_sample_t *s, double thr, int *iv)
     double elapsed;
     *iv = IV_BREAK;
     if (dt > 0.0) {
-        if (ahead > jump_tol(g) && ahead > fmin(thr, gap_threshold_of(g, NAN))) {
+        /* ahead of the time that passed by more than a gap: the clock
+         * stepped (whether the sample waited for it or not) */
+        if (ahead > fmin(fmin(thr, gap_threshold_of(g, NAN)), g->o.max_bridge)) {
             ev.kind = SW_GATE_EV_CLOCK_STEP;
             ev.span = ahead;
             elapsed = dt - ahead > 0.0 ? dt - ahead : one;
             g->f.clock_steps++;
+            note_switch(g, s);
         } else {
             ev.kind = SW_GATE_EV_GAP;
             ev.span = elapsed = dt;
@@ -802,6 +833,7 @@ static double resume(sw_gate_t *g, const sw_sample_t *s, double thr, int *iv)
         ev.span = dt;
         elapsed = real > 0.0 && real <= g->o.max_bridge ? real : one;
         g->f.restarts++;
+        note_switch(g, s);
     }
     const int gap = elapsed > thr || elapsed > g->o.max_bridge; /* a time with no samples */
     if (ev.kind == SW_GATE_EV_GAP && !gap)
@@ -901,7 +933,7 @@ static int continues(const sw_gate_t *g, const sw_sample_t *s)
 }
 
 /* Does b continue a (later, and not ahead of the time that really passed
- * by more than the jump tolerance)?  For chains and rival samples. */
+ * by more than tol)?  For chains and rival samples. */
 static int follows(const sw_gate_t *g, const sw_sample_t *a, const sw_sample_t *b)
 {
     const double dt = b->t - a->t;
@@ -970,10 +1002,17 @@ static int confirmable(const sw_gate_t *g, const chain_t *c)
 {
     if (c->n < g->o.confirm)
         return 0;
-    if (!g->have_last || g->tm.nrx == 0)
+    const double rx_span = c->s[c->n - 1].rx - c->s[0].rx;
+    if (!g->have_last) /* the first: it must arrive at least half as fast as it is stamped */
+        return c->n == SW_GATE_CONFIRM_MAX || g->o.jump < 0.0 ||
+               rx_span >= 0.5 * (c->s[c->n - 1].t - c->s[0].t);
+    if (g->tm.nrx == 0)
         return 1;
-    const double rx_sp = median8(g->tm.rx_recent, g->tm.nrx);
-    return c->s[c->n - 1].rx - c->s[0].rx >= 0.5 * (g->o.confirm - 1) * rx_sp;
+    double v[RECENT];
+    const int n = g->tm.nrx < RECENT ? (int)g->tm.nrx : RECENT;
+    memcpy(v, g->tm.rx_recent, sizeof v[0] * (size_t)n);
+    const double rx_sp = time_quantile(v, n, TM_QUANTILE); /* bursts do not shrink it */
+    return rx_span >= 0.5 * (g->o.confirm - 1) * rx_sp;
 }
 
 /* A sample that does not continue the timeline: into a chain. */
@@ -1394,6 +1433,10 @@ void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f)
             break;
         }
     }
+    /* spread stamps alternate (half a unit, a unit): their median says
+     * nothing of the logger's pace, their mean does */
+    if (f->reconstructed > 0 && f->accepted > 1 && f->duration > 0.0)
+        f->dt_median = f->duration / (double)(f->accepted - 1);
     f->rate = f->dt_median > 0.0 ? 1.0 / f->dt_median : NAN;
     f->spacing = spacing_full(g, 0);
     f->gap_threshold = gap_threshold(g, NAN);
