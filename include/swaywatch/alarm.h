@@ -20,8 +20,9 @@
  * impact slower than it raises no IMPACT alarm; sw_settle_t folds such
  * micro-impacts into one "settling" span for reports.
  *
- * Input-level alarms (SENSOR_GAP, INPUT_REJECTED) concern the input stream,
- * not a package; the monitor raises them with sw_alarm_input().
+ * Input-level alarms (SENSOR_GAP, INPUT_REJECTED, INPUT_CONTESTED) concern
+ * the input stream, not a package; the monitor raises them with
+ * sw_alarm_input().
  *
  * The kind and level values are those of the LCM type swaywatch.alarm_t
  * (lcmtypes/alarm_t.lcm), so they can be copied across unchanged. */
@@ -38,18 +39,20 @@ extern "C" {
 #endif
 
 typedef enum {
-    SW_ALARM_UPLIFT = 1,           /* a base corner lifted: rocking started (info) */
-    SW_ALARM_IMPACT = 2,           /* the other corner landed (info) */
-    SW_ALARM_WARN = 3,             /* margin < warn_margin (warn) */
-    SW_ALARM_CRITICAL = 4,         /* margin < critical_margin (critical) */
-    SW_ALARM_TIP = 5,              /* |theta| reached alpha (critical) */
-    SW_ALARM_OVERTURNED = 6,       /* |theta| reached pi/2 (critical) */
-    SW_ALARM_REST = 7,             /* back to rest after rocking (info) */
-    SW_ALARM_MODEL_FAULT = 8,      /* model fault or non-finite output (critical) */
-    SW_ALARM_SENSOR_GAP = 9,       /* input: no samples for too long (warn; info when it ends) */
-    SW_ALARM_INPUT_REJECTED = 10,  /* input: samples refused (warn) */
-    SW_ALARM_RESERVE_WARN = 11,    /* reserve < warn_reserve_g (warn) */
-    SW_ALARM_RESERVE_CRITICAL = 12 /* reserve < critical_reserve_g (critical) */
+    SW_ALARM_UPLIFT = 1,            /* a base corner lifted: rocking started (info) */
+    SW_ALARM_IMPACT = 2,            /* the other corner landed (info) */
+    SW_ALARM_WARN = 3,              /* margin < warn_margin (warn) */
+    SW_ALARM_CRITICAL = 4,          /* margin < critical_margin (critical) */
+    SW_ALARM_TIP = 5,               /* |theta| reached alpha (critical) */
+    SW_ALARM_OVERTURNED = 6,        /* |theta| reached pi/2 (critical) */
+    SW_ALARM_REST = 7,              /* back to rest after rocking (info) */
+    SW_ALARM_MODEL_FAULT = 8,       /* model fault or non-finite output (critical) */
+    SW_ALARM_SENSOR_GAP = 9,        /* input: no samples for too long (warn; info when it ends) */
+    SW_ALARM_INPUT_REJECTED = 10,   /* input: samples refused (warn) */
+    SW_ALARM_RESERVE_WARN = 11,     /* reserve < warn_reserve_g (warn) */
+    SW_ALARM_RESERVE_CRITICAL = 12, /* reserve < critical_reserve_g (critical) */
+    SW_ALARM_INPUT_CONTESTED = 13   /* input: two timelines compete (critical; info when
+                                       it ends): a forged or duplicated sender */
 } sw_alarm_kind;
 
 typedef enum {
@@ -149,7 +152,7 @@ SW_API void sw_alarm_input(sw_alarm_t *a, sw_alarm_kind kind, sw_alarm_level lev
 
 /* "uplift", "impact", "warn", "critical", "tip", "overturned", "rest",
  * "model_fault", "sensor_gap", "input_rejected", "reserve_warn",
- * "reserve_critical"; "unknown" otherwise. */
+ * "reserve_critical", "input_contested"; "unknown" otherwise. */
 SW_API const char *sw_alarm_kind_name(sw_alarm_kind k);
 /* "info", "warn", "critical"; "unknown" otherwise. */
 SW_API const char *sw_alarm_level_name(sw_alarm_level l);

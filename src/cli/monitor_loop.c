@@ -214,6 +214,9 @@ static void status_text(mon_ctx_t *c, double elapsed, double interval, char *buf
         sw_cli_print_rejected(f, &k);
         fprintf(f, ", held %ld of %ld received, lost %ld, gaps %ld, states %ld, alarms %ld", k.held,
                 k.received, k.lost, k.gaps, k.states, k.alarms);
+        if (k.contests > 0)
+            fprintf(f, ", contested %ld (%ld samples on a second timeline)", k.contests,
+                    k.contested);
         const long drops = socket_drops();
         if (drops >= 0)
             fprintf(f, ", kernel drops %ld", drops);
@@ -233,9 +236,10 @@ static void print_final(sw_mon_t *mon, double elapsed)
     fprintf(stderr,
             "; lost %ld (by seq), seq restarts %ld, gaps %ld, sensor restarts %ld, clock "
             "steps %ld; published %ld states (%ld withheld), %ld alarms (%ld more folded into "
-            "them by the rate limit); %ld publish errors",
+            "them by the rate limit); %ld publish errors; contested %ld (%ld samples on a "
+            "second timeline, evaluated apart)",
             k.lost, k.seq_restarts, k.gaps, k.restarts, k.clock_steps, k.states, k.states_withheld,
-            k.alarms, k.alarms_folded, k.publish_errors);
+            k.alarms, k.alarms_folded, k.publish_errors, k.contests, k.contested);
     const long drops = socket_drops();
     if (drops >= 0)
         fprintf(stderr, "; %ld datagrams dropped by the kernel before LCM read them", drops);

@@ -347,6 +347,13 @@ int sw_cli_reader_report(sw_cli_reader_t *R)
                 "; lost %ld (by seq), gaps %ld, restarts %ld, clock steps %ld; %ld states, "
                 "%ld alarms\n",
                 k.lost, k.gaps, k.restarts, k.clock_steps, k.states, k.alarms);
+        if (k.contests > 0)
+            fprintf(m,
+                    "swaywatch: %s: contested %ld time%s: two timelines on the accel channel (a "
+                    "forged or duplicated sender); the one the arrival times support was "
+                    "replayed, the other's %ld samples evaluated beside it (INPUT_CONTESTED "
+                    "alarms)\n",
+                    R->log, k.contests, k.contests == 1 ? "" : "s", k.contested);
     }
     if (k.accepted > 0)
         return SW_EXIT_OK;

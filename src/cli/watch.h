@@ -85,7 +85,9 @@ typedef struct {
     reason_t reason[MAX_REASONS];
     size_t nreasons;
     long gaps;
-    int gap_open; /* the monitor said no sample arrives, and nothing has come since */
+    int gap_open;     /* the monitor said no sample arrives, and nothing has come since */
+    long contests;    /* INPUT_CONTESTED alarms at critical level */
+    int contest_open; /* the last of them has not been followed by its end (info) */
 
     double start, last_rx; /* monotonic s: start, last state */
     double win_start;      /* the rate and lag window */

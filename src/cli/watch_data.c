@@ -167,6 +167,11 @@ static void on_alarm(const lcm_recv_buf_t *rb, const char *channel, void *user)
     sw_watch_msg_text(text, a.text, sizeof a.text);
     if (a.kind == SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED)
         count_rejected(w, text);
+    if (a.kind == SWAYWATCH_ALARM_T_KIND_INPUT_CONTESTED) {
+        if (a.level >= SWAYWATCH_ALARM_T_LEVEL_CRITICAL)
+            w->contests++;
+        w->contest_open = a.level >= SWAYWATCH_ALARM_T_LEVEL_CRITICAL;
+    }
     if (a.kind == SWAYWATCH_ALARM_T_KIND_SENSOR_GAP) {
         if (a.level >= SWAYWATCH_ALARM_T_LEVEL_WARN) {
             w->gaps++;

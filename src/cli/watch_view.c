@@ -95,6 +95,13 @@ static void view_input(view_t *v, const watch_t *w, double now)
                                  w->gap_open ? " (the monitor reports a sensor gap)" : "");
     } else if (w->gap_open)
         used += (size_t)snprintf(extra, sizeof extra, "SENSOR GAP: the monitor has no samples");
+    if (w->contest_open && used < sizeof extra)
+        used += (size_t)snprintf(extra + used, sizeof extra - used,
+                                 "%sINPUT CONTESTED: two timelines on the accel channel",
+                                 used ? "; " : "");
+    else if (w->contests && used < sizeof extra)
+        used += (size_t)snprintf(extra + used, sizeof extra - used, "%scontested %ld x",
+                                 used ? "; " : "", w->contests);
     if (w->seq_restarts && used < sizeof extra)
         used += (size_t)snprintf(extra + used, sizeof extra - used, "%smonitor restarted %ld x",
                                  used ? "; " : "", w->seq_restarts);

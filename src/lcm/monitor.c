@@ -1,6 +1,11 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* monitor.c - the monitor core (monitor.h): checks accel_t messages, drives
- * the engine and the alarm logic, publishes state_t and alarm_t.
+ * the engine and the alarm logic, publishes state_t and alarm_t.  While
+ * two timelines compete on the accel channel (gate.h: a forged or
+ * duplicated sender), the one the receive times do not support goes
+ * through a gate of its own into a second set of engines, made at create
+ * time, whose alarms from WARN up are raised as well: the worse of the
+ * two is never silent.
  *
  * Nothing in here allocates after sw_mon_create(): messages are encoded
  * into a buffer made at create time and handed to lcm_publish(). */
@@ -30,7 +35,8 @@ _Static_assert(SWAYWATCH_ALARM_T_KIND_UPLIFT == SW_ALARM_UPLIFT &&
                    SWAYWATCH_ALARM_T_KIND_SENSOR_GAP == SW_ALARM_SENSOR_GAP &&
                    SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED == SW_ALARM_INPUT_REJECTED &&
                    SWAYWATCH_ALARM_T_KIND_RESERVE_WARN == SW_ALARM_RESERVE_WARN &&
-                   SWAYWATCH_ALARM_T_KIND_RESERVE_CRITICAL == SW_ALARM_RESERVE_CRITICAL,
+                   SWAYWATCH_ALARM_T_KIND_RESERVE_CRITICAL == SW_ALARM_RESERVE_CRITICAL &&
+                   SWAYWATCH_ALARM_T_KIND_INPUT_CONTESTED == SW_ALARM_INPUT_CONTESTED,
                "alarm_t.KIND_* == sw_alarm_kind");
 _Static_assert(SWAYWATCH_ALARM_T_LEVEL_INFO == SW_ALARM_LEVEL_INFO &&
                    SWAYWATCH_ALARM_T_LEVEL_WARN == SW_ALARM_LEVEL_WARN &&
@@ -68,11 +74,16 @@ struct sw_mon {
 
     /* input stream: the gate decides; these are what the monitor keeps of it */
     sw_gate_t *gate;
-    int have_last;    /* a sample was accepted */
-    int64_t last_us;  /* utime of the last accepted sample */
+    /* the second timeline while the input is contested: its own gate, engines
+     * and alarm watches (no reserve, no states published) */
+    sw_gate_t *gate_b;
+    sw_engine_t *engine_b;
+    sw_alarm_watch_t *watch_b, *watch_fresh; /* fresh: as set up, for a new contest */
+    int have_last;                           /* a sample was accepted */
+    int64_t last_us;                         /* utime of the last accepted sample */
     double last_rx;   /* mono s, arrival of the last feed that took a sample */
     int gap_open;     /* the timer saw the input stop; it has not resumed */
-    double timer_gap; /* s, no sample arriving for longer is a gap */
+    double timer_gap; /* s, no sample arriving for longer is a gap; 0: the gate's threshold */
     double feed_mono; /* mono s of the message being fed */
     long timer_gaps;
     sw_mon_reject feed_why; /* the reason of the last refusal during a feed */
@@ -283,6 +294,55 @@ static void on_state(void *user, const sw_output_t *out)
 static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, const char *text);
 static void on_gate_event(void *user, const sw_gate_event_t *ev);
 
+/* ---- the second timeline ---------------------------------------------------------- */
+
+/* An alarm of the second timeline's engines: from WARN up it is raised as
+ * the first's are, saying where it comes from, at its sample's utime. */
+static void on_alarm_b(void *user, const sw_alarm_t *a)
+{
+    sw_mon_t *m = user;
+    if (a->level < SW_ALARM_LEVEL_WARN)
+        return;
+    sw_alarm_t b = *a;
+    static const char head[] = "second timeline: ";
+    size_t tl = strlen(a->text);
+    if (tl > sizeof b.text - sizeof head)
+        tl = sizeof b.text - sizeof head; /* cut to fit */
+    memcpy(b.text, head, sizeof head - 1);
+    memcpy(b.text + sizeof head - 1, a->text, tl);
+    b.text[sizeof head - 1 + tl] = '\0';
+    send_alarm(m, &b, utime_at(m, sw_gate_source_time(m->gate_b, a->t)));
+}
+
+static void on_event_b(void *user, const sw_event_t *ev)
+{
+    sw_mon_t *m = user;
+    if (ev->pkg < m->n)
+        sw_alarm_on_event(&m->watch_b[ev->pkg], ev, on_alarm_b, m);
+}
+
+static void on_state_b(void *user, const sw_output_t *out)
+{
+    sw_mon_t *m = user;
+    if (out->pkg < m->n && sw_output_finite(out))
+        sw_alarm_on_output(&m->watch_b[out->pkg], out, on_alarm_b, m);
+}
+
+/* A sample of the second timeline (the gate counted it as refused). */
+static void on_rival(void *user, const sw_sample_t *s)
+{
+    sw_mon_t *m = user;
+    sw_gate_push(m->gate_b, s);
+}
+
+/* A contest begins: the second engines start afresh, at rest. */
+static void second_reset(sw_mon_t *m)
+{
+    sw_engine_reset(m->engine_b);
+    sw_gate_reset(m->gate_b);
+    memcpy(m->watch_b, m->watch_fresh, m->n * sizeof *m->watch_b);
+}
+
 /* The gate's user is the monitor; the caller's recorder gets its own. */
 static void on_gate_take(void *user, double t, double a_g, double a_z, int restart)
 {
@@ -318,7 +378,8 @@ static sw_gate_t *make_gate(sw_mon_t *m, char *msg, size_t msglen)
                                .on_event = on_gate_event,
                                .on_reject = on_gate_reject,
                                .on_take = m->o.on_take ? on_gate_take : NULL,
-                               .user = m};
+                               .user = m,
+                               .on_rival = on_rival};
     return sw_gate_create(m->engine, &go, msg, msglen);
 }
 
@@ -333,7 +394,7 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         m->o.accel_scale = 1.0;
     if (m->o.max_accel == 0.0)
         m->o.max_accel = SW_MON_MAX_ACCEL;
-    m->timer_gap = m->o.gap > 0.0 ? m->o.gap : SW_MON_GAP;
+    m->timer_gap = m->o.gap;
     if (!opts_valid(&m->o)) {
         if (msg)
             snprintf(msg, msglen, "invalid monitor options");
@@ -352,11 +413,14 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     const double interval = m->o.alarm_interval == 0.0 ? 1.0 : fmax(m->o.alarm_interval, 0.0);
 
     m->watch = calloc(n ? n : 1, sizeof *m->watch);
+    m->watch_b = calloc(n ? n : 1, sizeof *m->watch_b);
+    m->watch_fresh = calloc(n ? n : 1, sizeof *m->watch_fresh);
     m->names = calloc(n ? n : 1, sizeof *m->names);
     m->next_state_us = calloc(n ? n : 1, sizeof *m->next_state_us);
     m->buf = malloc(SW_MON_BUF);
     m->fold = sw_fold_create(n, interval, emit_alarm, m);
-    if (!m->watch || !m->names || !m->next_state_us || !m->buf || !m->fold)
+    if (!m->watch || !m->watch_b || !m->watch_fresh || !m->names || !m->next_state_us || !m->buf ||
+        !m->fold)
         goto nomem;
 
     sw_engine_opts_t e = *eo;
@@ -373,6 +437,25 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         sw_mon_destroy(m);
         return NULL;
     }
+    /* the second timeline's engines and gate: the same scenes and checks,
+     * nothing reported but their alarms */
+    sw_engine_opts_t eb = *eo;
+    eb.on_event = on_event_b;
+    eb.on_state = on_state_b;
+    eb.user = m;
+    const sw_gate_opts_t gb = {.gap = m->o.gap,
+                               .gap_policy = m->o.gap_policy,
+                               .max_bridge = m->o.max_bridge,
+                               .max_accel = m->o.max_accel,
+                               .jump = m->o.max_jump,
+                               .confirm = m->o.confirm,
+                               .relative = 1,
+                               .vert_gravity = m->o.vert_gravity};
+    if (!(m->engine_b = sw_engine_create(scenes, n, &eb, &err, msg, msglen)) ||
+        !(m->gate_b = sw_gate_create(m->engine_b, &gb, msg, msglen))) {
+        sw_mon_destroy(m);
+        return NULL;
+    }
     const sw_risk_opts_t ro = {.reserve_rate = m->o.reserve_rate};
     if (!(m->risk = sw_risk_create(scenes, n, &ro, &err, msg, msglen))) {
         sw_mon_destroy(m);
@@ -386,6 +469,7 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
             return NULL;
         }
         snprintf(m->names[k], sizeof m->names[k], "%s", scenes[k].name);
+        m->watch_fresh[k] = m->watch_b[k] = m->watch[k];
     }
     return m;
 
@@ -401,14 +485,29 @@ void sw_mon_destroy(sw_mon_t *m)
     if (!m)
         return;
     sw_gate_destroy(m->gate);
+    sw_gate_destroy(m->gate_b);
     sw_risk_destroy(m->risk);
     sw_engine_destroy(m->engine);
+    sw_engine_destroy(m->engine_b);
     free(m->watch);
+    free(m->watch_b);
+    free(m->watch_fresh);
     free(m->names);
     free(m->next_state_us);
     free(m->buf);
     sw_fold_destroy(m->fold);
     free(m);
+}
+
+/* s: no sample arriving for longer is a gap: the option, or the gate's
+ * threshold for the sensor's pace (a 10 Hz sensor is not silent after
+ * 0.1 s), at least SW_MON_GAP. */
+static double timer_gap(const sw_mon_t *m)
+{
+    if (m->timer_gap > 0.0)
+        return m->timer_gap;
+    const double thr = sw_gate_gap_threshold(m->gate);
+    return isfinite(thr) && thr > SW_MON_GAP ? thr : SW_MON_GAP;
 }
 
 /* utime for an input alarm: on the sensor's clock once it is known. */
@@ -511,9 +610,21 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
             snprintf(text, sizeof text, "accel seq went back: the sender restarted");
             level = SW_ALARM_LEVEL_INFO;
             break;
-        case SW_GATE_EV_RECONSTRUCT:
         case SW_GATE_EV_CONTESTED:
-        case SW_GATE_EV_UNCONTESTED: return;
+            second_reset(m);
+            snprintf(text, sizeof text,
+                     "two timelines on the accel channel (a forged or duplicated sender): "
+                     "the one the arrival times support kept, both evaluated");
+            input_alarm(m, SW_ALARM_INPUT_CONTESTED, SW_ALARM_LEVEL_CRITICAL, m->last_us, text);
+            return;
+        case SW_GATE_EV_UNCONTESTED:
+            snprintf(text, sizeof text,
+                     "accel channel no longer contested: the second timeline stopped after "
+                     "%.3f s",
+                     ev->span);
+            input_alarm(m, SW_ALARM_INPUT_CONTESTED, SW_ALARM_LEVEL_INFO, m->last_us, text);
+            return;
+        case SW_GATE_EV_RECONSTRUCT: return; /* a log's, never live */
     }
     m->gap_open = 0;
     input_alarm(m, SW_ALARM_SENSOR_GAP, level, utime_at(m, ev->t), text);
@@ -546,7 +657,8 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
         .a_g = m->o.flip ? -v[m->o.axis] : v[m->o.axis],
         .a_z = m->o.vertical >= 0 ? v[m->o.vertical] : 0.0,
         .a_max = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))),
-        .seq = s.seq,
+        /* INT64_MIN is a seq like any other, never "none" */
+        .seq = s.seq == SW_GATE_NO_SEQ ? s.seq + 1 : s.seq,
         .rx = mono,
         .wall = m->o.max_skew > 0.0 ? source_time(m, wall_us) : NAN,
         .where = m->c.received,
@@ -584,7 +696,7 @@ double sw_mon_deadline(const sw_mon_t *m)
 {
     double d = INFINITY;
     if (m->have_last && !m->gap_open)
-        d = m->last_rx + m->timer_gap;
+        d = m->last_rx + timer_gap(m);
     for (int r = 0; r < SW_MON_NREJ; r++)
         if (m->rej_pending[r] > 0 && m->rej_last_alarm[r] + m->rej_interval < d)
             d = m->rej_last_alarm[r] + m->rej_interval;
@@ -595,7 +707,7 @@ double sw_mon_deadline(const sw_mon_t *m)
 void sw_mon_tick(sw_mon_t *m, double mono)
 {
     m->now = mono;
-    if (m->have_last && !m->gap_open && mono - m->last_rx > m->timer_gap) {
+    if (m->have_last && !m->gap_open && mono - m->last_rx > timer_gap(m)) {
         char text[SW_ALARM_TEXT_MAX];
         double waited = mono - m->last_rx;
         m->gap_open = 1;
@@ -633,6 +745,8 @@ void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
     c->gaps = f.gaps + m->timer_gaps;
     c->clock_steps = f.clock_steps;
     c->restarts = f.restarts;
+    c->contests = f.contests;
+    c->contested = f.contested;
 }
 
 void sw_mon_facts(const sw_mon_t *m, sw_gate_facts_t *f)
@@ -680,7 +794,11 @@ int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, si
     int rc = sw_engine_replace(m->engine, k, scene, msg, msglen);
     if (rc != SW_OK)
         return rc;
-    m->watch[k] = w;
+    /* the second timeline's package too; if it cannot be rebuilt (it was
+     * in the first engine), it goes on with the old scene until the next
+     * contest starts it afresh */
+    sw_engine_replace(m->engine_b, k, scene, NULL, 0);
+    m->watch[k] = m->watch_b[k] = m->watch_fresh[k] = w;
     snprintf(m->names[k], sizeof m->names[k], "%s", scene->name);
     /* the reserve of the new scene; if it cannot be built the package goes
      * on with the old one, and the caller hears why */

@@ -19,7 +19,14 @@
  * sensor restart: each an alarm and a counter) or refutes it (refused), so
  * one forged or corrupt utime costs that sample only, and no stretch of
  * input blinds the monitor for more than a few samples.  Gaps follow the
- * gap policy at a cost independent of their length. */
+ * gap policy at a cost independent of their length.
+ *
+ * Contested input (docs/timing.md): when refused samples form a second
+ * timeline, or a second sender's seq numbers interleave, INPUT_CONTESTED
+ * is raised at once (critical), the timeline the arrival times support is
+ * kept, and the other is evaluated by a second set of engines made at
+ * create time, whose alarms from WARN up are raised too ("second
+ * timeline: ..."): no pattern of forged samples silences an overturn. */
 #ifndef SWAYWATCH_LCM_MONITOR_H
 #define SWAYWATCH_LCM_MONITOR_H
 
@@ -75,8 +82,9 @@ typedef struct {
     double accel_scale;        /* m/s^2 per message unit: 1, or SW_G0; 0 = 1 */
     double state_rate;         /* Hz, states per package per second of sample time; 0 = all */
     double gap;                /* s, sensor gap threshold: between samples (the gate's gap;
-                                  0 = 5 typical intervals) and with none arriving (the
-                                  timer; 0 = SW_MON_GAP) */
+                                  0 = the sensor's pace as the gate learns it) and with
+                                  none arriving (the timer; 0 = the gate's threshold, at
+                                  least SW_MON_GAP) */
     sw_gap_policy gap_policy;  /* bridge (up to max_bridge) or restart from rest */
     double max_bridge;         /* s, longest gap bridged; 0 = 10 s */
     int confirm;               /* samples that confirm a jump or a restart; 0 = 3 */
@@ -122,6 +130,9 @@ typedef struct {
                                    summary that went out ("N more in 1 s, the last: ...");
                                    alarms raised = alarms + alarms_folded */
     long publish_errors;        /* lcm_publish failures */
+    long contests;              /* times two timelines competed (INPUT_CONTESTED) */
+    long contested;             /* samples of the second timeline, evaluated apart (they
+                                   are among the rejected) */
 } sw_mon_counts_t;
 
 typedef struct sw_mon sw_mon_t;

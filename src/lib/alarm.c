@@ -248,6 +248,7 @@ const char *sw_alarm_kind_name(sw_alarm_kind k)
         case SW_ALARM_INPUT_REJECTED: return "input_rejected";
         case SW_ALARM_RESERVE_WARN: return "reserve_warn";
         case SW_ALARM_RESERVE_CRITICAL: return "reserve_critical";
+        case SW_ALARM_INPUT_CONTESTED: return "input_contested";
     }
     return "unknown";
 }

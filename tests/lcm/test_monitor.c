@@ -977,6 +977,71 @@ static void test_refuse_overload(void **st)
     rig_free(r);
 }
 
+/* A loss is counted on evidence: a forged sample in time order whose seq
+ * leaps a million ahead is no loss (the next sample continues the old
+ * numbers); ten samples that never came, the seq of the next confirming
+ * it, are ten.  Before, the forged seq counted 999999 lost. */
+static void test_lost_on_evidence(void **st)
+{
+    (void)st;
+    rig_t *r = rig_new(1, NULL);
+    for (long k = 0; k < NSAMP; k++) {
+        if (k >= 1500 && k < 1510)
+            continue; /* never sent */
+        send_k(r, k);
+        if (k == 500) {
+            swaywatch_accel_t s = {.utime = UTIME0 + k * 1000 + 500, .seq = k + 1000000};
+            unsigned char buf[128];
+            const int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+            r->mono += 5e-4;
+            send_raw(r, buf, len);
+        }
+    }
+    sw_mon_counts_t c;
+    sw_mon_counts(r->mon, &c);
+    assert_int_equal(c.lost, 10);
+    assert_int_equal(c.seq_restarts, 0);
+    check_counts_add_up(r->mon);
+    rig_free(r);
+}
+
+/* Times on the source's clock: the receive time (lcm-logger's, or the
+ * arrival clock) leaps 8e9 s where the samples have a 20 ms hole; the
+ * crate's overturn is reported at its time in the drive, not 8e9 s later
+ * (it was, and the log was refused as spanning 92000 days). */
+static void test_rx_leap_source_clock(void **st)
+{
+    (void)st;
+    rig_t *r = rig_new(1, NULL);
+    for (long k = 0; k < 4000; k++) {
+        if (k >= 1980 && k < 2000)
+            continue;
+        const double t = (double)k / RATE;
+        /* a braking that overturns the crate: 12 m/s^2 at 8 rad/s from 1 s */
+        const double a = t >= 1.0 && t <= 1.0 + M_PI / 8.0 ? -12.0 * sin(8.0 * (t - 1.0)) : 0.0;
+        swaywatch_accel_t s = {.utime = UTIME0 + k * 1000, .seq = k, .ax = a};
+        unsigned char buf[128];
+        const int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+        r->mono = t + (k >= 2000 ? 8e9 : 0.0);
+        send_raw(r, buf, len);
+    }
+    sw_mon_flush(r->mon);
+    drain(r);
+    sw_summary_t sum;
+    assert_int_equal(sw_engine_summary(sw_mon_engine(r->mon), 0, &sum), SW_OK);
+    assert_true(sum.overturned);
+    assert_true(sum.overturn_time > 1.0 && sum.overturn_time < 4.0);
+    int seen = 0;
+    for (int i = 0; i < r->bus.nal; i++)
+        if (r->bus.al[i].kind == SWAYWATCH_ALARM_T_KIND_OVERTURNED) {
+            seen++;
+            assert_true(r->bus.al[i].utime > UTIME0 + 1000000 &&
+                        r->bus.al[i].utime < UTIME0 + 4000000);
+        }
+    assert_int_equal(seen, 1);
+    rig_free(r);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -995,6 +1060,8 @@ int main(void)
         cmocka_unit_test(test_played_twice),
         cmocka_unit_test(test_state_rate_follows_clock),
         cmocka_unit_test(test_refuse_overload),
+        cmocka_unit_test(test_lost_on_evidence),
+        cmocka_unit_test(test_rx_leap_source_clock),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
