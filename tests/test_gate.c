@@ -401,6 +401,72 @@ static void test_plausibility(void **state)
     assert_int_equal(sw_gate_check(&f, NULL, why, sizeof why), SW_GATE_REFUSE);
 }
 
+/* A longitudinal channel that is no acceleration: gravity (a vertical axis
+ * chosen as longitudinal, 1 g for two minutes), a GPS column read as g
+ * (a constant 10), a channel that never moves; refused with the reason and
+ * the options, the counts exact.  A real drive of two minutes with a hard
+ * braking (0.7 g for 3 s), and a one-minute log that is never off, are
+ * not; nor is 1 g for ten seconds (a minute is the rule's span). */
+static int still_verdict(double seconds, double (*a)(double t), char *why, size_t whylen)
+{
+    rig_t r;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    rig_open(&r, &sc, defaults);
+    const long n = (long)(seconds * 100.0);
+    for (long i = 0; i <= n; i++)
+        sw_gate_push(r.g, &(sw_sample_t){.t = i * 0.01,
+                                         .a_g = a(i * 0.01),
+                                         .a_max = NAN,
+                                         .seq = SW_GATE_NO_SEQ,
+                                         .rx = NAN,
+                                         .wall = NAN,
+                                         .where = i});
+    const sw_gate_facts_t f = rig_close(&r);
+    assert_int_equal(f.received, n + 1);
+    assert_int_equal(f.accepted, n + 1);
+    return sw_gate_check(&f, NULL, why, whylen);
+}
+
+static double gravity(double t)
+{
+    return 9.80665 + 0.2 * sin(37.0 * t) + 0.05 * sin(211.0 * t);
+}
+
+static double gps_as_g(double t)
+{
+    (void)t;
+    return 10.0 * 9.80665; /* "Longitude (Degrees)" read as g */
+}
+
+static double stuck(double t)
+{
+    (void)t;
+    return 0.0490333; /* 0.005 g, never a change */
+}
+
+static double drive(double t)
+{
+    const double brake = t > 60.0 && t < 63.0 ? -0.7 * 9.80665 : 0.0;
+    return brake + 0.5 * sin(13.0 * t) + 0.2 * sin(71.0 * t);
+}
+
+static void test_plausibility_still(void **state)
+{
+    (void)state;
+    char why[400];
+    assert_int_equal(still_verdict(120.0, gravity, why, sizeof why), SW_GATE_REFUSE);
+    assert_non_null(strstr(why, "looks like gravity or not an acceleration"));
+    assert_non_null(strstr(why, "--accel-col"));
+    assert_non_null(strstr(why, "--force"));
+    assert_int_equal(still_verdict(120.0, gps_as_g, why, sizeof why), SW_GATE_REFUSE);
+    assert_non_null(strstr(why, "looks like gravity or not an acceleration"));
+    assert_int_equal(still_verdict(120.0, stuck, why, sizeof why), SW_GATE_REFUSE);
+    assert_non_null(strstr(why, "never varies"));
+    assert_int_equal(still_verdict(120.0, drive, why, sizeof why), SW_OK);
+    assert_int_equal(still_verdict(60.0, drive, why, sizeof why), SW_OK);
+    assert_int_equal(still_verdict(10.0, gravity, why, sizeof why), SW_OK);
+}
+
 /* ---- what the engine got, recorded (on_take) ---------------------------- */
 
 #define TAKE_MAX 8000
@@ -504,6 +570,7 @@ int main(void)
         cmocka_unit_test(test_hostile_values),
         cmocka_unit_test(test_vertical_gravity),
         cmocka_unit_test(test_plausibility),
+        cmocka_unit_test(test_plausibility_still),
         cmocka_unit_test(test_takes_replay),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
