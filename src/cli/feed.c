@@ -203,8 +203,20 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
             sw_cli_error("%s:%ld: note: the clock steps by %+.6g s: re-timed", F->name, ev->where,
                          ev->span);
             break;
-        case SW_GATE_EV_SEQ_RESTART:
         case SW_GATE_EV_RECONSTRUCT:
+            if (ev->span > 0.0)
+                sw_cli_error(
+                    "%s:%ld: note: times repeat: the logger stamps whole units of %g s at a "
+                    "higher rate; each run of equal times is spread evenly over its unit "
+                    "(reconstructed)",
+                    F->name, ev->where, ev->span);
+            else
+                sw_cli_error(
+                    "%s:%ld: note: times repeat in runs (samples stamped in batches); each run "
+                    "of equal times is spread evenly up to the next time (reconstructed)",
+                    F->name, ev->where);
+            break;
+        case SW_GATE_EV_SEQ_RESTART:
         case SW_GATE_EV_CONTESTED:
         case SW_GATE_EV_UNCONTESTED: break;
     }
@@ -287,6 +299,9 @@ int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_
     out->rows = counts.rows;
     out->rejected = counts.rejected + sw_gate_rejected(&out->facts);
     sw_cli_rejects_summary(&F.rej);
+    if (out->facts.reconstructed > 0 && !quiet)
+        sw_cli_error("%s: %ld of %ld times reconstructed (repeated stamps spread over their unit)",
+                     lf->name, out->facts.reconstructed, out->rows);
     if (out->facts.accepted <= 0) {
         sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)%s", lf->name, out->rows,
                      out->rejected,
