@@ -1,0 +1,219 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* gate_live.c - a stream with receive times (live, lcm-logger files): a
+ * sample continues the timeline unless it is stamped ahead of the
+ * envelope of its arrival or goes back; then it waits in a chain of
+ * consistent samples until the stream confirms (across real time) or
+ * refutes it. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "gate_int.h"
+
+/* Does s continue the timeline: later than the last sample taken, and not
+ * stamped further ahead of its arrival than any sample taken on this
+ * stretch (the envelope), by more than the jump tolerance?  Samples that
+ * arrive late (a stall, then a burst) are never ahead of it; forged ones
+ * stamped ahead of the genuine stream are. */
+static int continues(const sw_gate_t *g, const sw_sample_t *s)
+{
+    if (!(s->t > g->last.t))
+        return 0;
+    if (isnan(s->rx) || !g->have_env)
+        return s->t - g->last.t - fmax(s->rx - g->last.rx, 0.0) <= gate_jump_tol(g) ||
+               isnan(s->rx - g->last.rx);
+    return (s->t - s->rx) - g->env <= gate_jump_tol(g);
+}
+
+/* Does b continue a (later, and not ahead of the time that really passed
+ * by more than tol)?  For chains and rival samples. */
+static int follows(const sw_gate_t *g, const sw_sample_t *a, const sw_sample_t *b)
+{
+    const double dt = b->t - a->t;
+    if (!(dt > 0.0))
+        return 0;
+    const double real = !isnan(a->rx) && !isnan(b->rx) ? b->rx - a->rx : 0.0;
+    return dt - fmax(real, 0.0) <= gate_jump_tol(g);
+}
+
+void gate_refuse_held(sw_gate_t *g, const sw_sample_t *s)
+{
+    const int late = g->have_last && s->t < g->last.t;
+    char text[160];
+    snprintf(text, sizeof text,
+             late ? "time %.15g s is before the timeline (%.15g s) and the stream did "
+                    "not follow it"
+                  : "time %.15g s leaps from the timeline (%.15g s) and the stream did "
+                    "not follow it",
+             s->t, g->have_last ? g->last.t : NAN);
+    gate_refuse(g, s, late ? SW_GATE_REJ_LATE : SW_GATE_REJ_JUMP, text);
+}
+
+static void drop_chain(sw_gate_t *g, int k)
+{
+    chain_t c = g->chain[k];
+    g->chain[k] = g->chain[g->nchain - 1];
+    g->nchain--;
+    for (int i = 0; i < c.n; i++) gate_refuse_held(g, &c.s[i]);
+}
+
+void gate_drop_chains(sw_gate_t *g)
+{
+    while (g->nchain) drop_chain(g, g->nchain - 1);
+}
+
+/* A chain confirmed: it is the timeline now; each of its intervals gets
+ * the treatment of any interval. */
+int gate_confirm(sw_gate_t *g, int k)
+{
+    chain_t c = g->chain[k];
+    g->chain[k] = g->chain[g->nchain - 1];
+    g->nchain--;
+    gate_drop_chains(g); /* the others are refuted */
+    int rc = SW_OK;
+    for (int i = 0; i < c.n; i++) {
+        int r;
+        if (!g->have_last) {
+            r = gate_take_first(g, &c.s[i]);
+        } else if (i == 0) {
+            int iv;
+            const double te = gate_resume(g, &c.s[0], gate_gap_threshold(g, NAN), &iv);
+            r = gate_take(g, &c.s[0], te, iv);
+        } else {
+            r = gate_advance(g, &c.s[i], NAN);
+        }
+        if (r != SW_OK && (rc == SW_OK || r < 0))
+            rc = r;
+    }
+    return rc;
+}
+
+/* Has a chain waited long enough?  confirm samples, spanning at least half
+ * the real time in which the timeline's own samples arrive: a burst of
+ * forged samples cannot confirm itself while the genuine stream goes on. */
+static int confirmable(const sw_gate_t *g, const chain_t *c)
+{
+    if (c->n < g->o.confirm)
+        return 0;
+    const double rx_span = c->s[c->n - 1].rx - c->s[0].rx;
+    if (!g->have_last) /* the first: it must arrive at least half as fast as it is stamped */
+        return c->n == SW_GATE_CONFIRM_MAX || g->o.jump < 0.0 ||
+               rx_span >= 0.5 * (c->s[c->n - 1].t - c->s[0].t);
+    if (g->tm.nrx == 0)
+        return 1;
+    double v[RECENT];
+    const int n = g->tm.nrx < RECENT ? (int)g->tm.nrx : RECENT;
+    memcpy(v, g->tm.rx_recent, sizeof v[0] * (size_t)n);
+    const double rx_sp = gate_time_quantile(v, n, TM_QUANTILE); /* bursts do not shrink it */
+    return rx_span >= 0.5 * (g->o.confirm - 1) * rx_sp;
+}
+
+/* A sample that does not continue the timeline: into a chain. */
+static int hold(sw_gate_t *g, const sw_sample_t *s)
+{
+    for (int k = 0; k < g->nchain; k++) {
+        chain_t *c = &g->chain[k];
+        if (s->t == c->s[c->n - 1].t) {
+            char text[120];
+            snprintf(text, sizeof text, "time %.15g s is a duplicate of a waiting sample", s->t);
+            return gate_refuse(g, s, SW_GATE_REJ_DUPLICATE, text);
+        }
+        if (!follows(g, &c->s[c->n - 1], s))
+            continue;
+        if (c->n == SW_GATE_CONFIRM_MAX) { /* full, and not confirmed yet: the oldest goes */
+            const sw_sample_t old = c->s[0];
+            memmove(c->s, c->s + 1, sizeof c->s[0] * (size_t)(c->n - 1));
+            c->n--;
+            gate_refuse_held(g, &old);
+            c = &g->chain[k];
+        }
+        c->s[c->n++] = *s;
+        if (confirmable(g, c))
+            return gate_confirm(g, k);
+        return SW_GATE_HELD;
+    }
+    if (g->nchain == CHAINS)
+        drop_chain(g, 0); /* the oldest makes room */
+    chain_t *c = &g->chain[g->nchain++];
+    c->s[0] = *s;
+    c->n = 1;
+    if (confirmable(g, c))
+        return gate_confirm(g, g->nchain - 1);
+    return SW_GATE_HELD;
+}
+
+/* s continues the timeline: held samples stamped between the timeline and
+ * s were on it all along, only quicker to arrive than any before (the
+ * envelope was not yet its own): taken first, in order of their time. */
+static void take_early(sw_gate_t *g, const sw_sample_t *s)
+{
+    sw_sample_t early[SW_GATE_HELD_MAX];
+    int n = 0;
+    for (int k = 0; k < g->nchain; k++) {
+        chain_t *c = &g->chain[k];
+        int kept = 0;
+        for (int i = 0; i < c->n; i++) {
+            if (c->s[i].t > g->last.t && c->s[i].t < s->t)
+                early[n++] = c->s[i];
+            else
+                c->s[kept++] = c->s[i];
+        }
+        c->n = kept;
+    }
+    for (int k = 0; k < g->nchain;) { /* chains left empty go */
+        if (g->chain[k].n == 0)
+            g->chain[k] = g->chain[--g->nchain];
+        else
+            k++;
+    }
+    for (int i = 1; i < n; i++)
+        for (int j = i; j > 0 && early[j - 1].t > early[j].t; j--) {
+            const sw_sample_t x = early[j];
+            early[j] = early[j - 1];
+            early[j - 1] = x;
+        }
+    for (int i = 0; i < n; i++) {
+        if (early[i].t > g->last.t)
+            gate_advance(g, &early[i], NAN);
+        else
+            gate_refuse_held(g, &early[i]); /* the same time as one before it */
+    }
+}
+
+/* The same sample again (a network duplicate) is no rival; the same time
+ * with other values or another seq is. */
+static int same_sample(const sw_sample_t *a, const sw_sample_t *b)
+{
+    return a->t == b->t && a->seq == b->seq && a->a_g == b->a_g && a->a_z == b->a_z;
+}
+
+int gate_live_push(sw_gate_t *g, const sw_sample_t *s)
+{
+    gate_contest_check_end(g, s->rx);
+    char text[160];
+    if (g->rv.contested && g->rv.by_seq && !gate_seq_kept(g, s)) {
+        g->rv.active = s->rx;
+        snprintf(text, sizeof text,
+                 "seq %lld is not the kept sender's (two senders' seq numbers interleave)",
+                 (long long)s->seq);
+        g->f.rejected[SW_GATE_REJ_CONTESTED]++;
+        if (g->o.on_reject)
+            g->o.on_reject(g->o.user, s, SW_GATE_REJ_CONTESTED, text);
+        gate_to_rival(g, s);
+        return SW_EORDER;
+    }
+    if (g->have_last && s->t == g->last.t) {
+        snprintf(text, sizeof text, "time %.15g s is a duplicate (the same as the sample before)",
+                 s->t);
+        const int rc = gate_refuse(g, s, SW_GATE_REJ_DUPLICATE, text);
+        if (!same_sample(s, &g->last))
+            gate_rival_note(g, s);
+        return rc;
+    }
+    if (g->have_last && continues(g, s)) {
+        take_early(g, s);
+        gate_drop_chains(g); /* the stream went on: waiting samples are refuted */
+        return gate_advance(g, s, NAN);
+    }
+    return hold(g, s);
+}

@@ -1,0 +1,417 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* gate_timing.c - the gate's timing model (docs/timing.md): the logger's
+ * pace from a time-weighted histogram of every interval and from the
+ * recent ones, what a gap is, and a sample taken into the engine at its
+ * time, across a gap, a clock step or a restart at a cost independent of
+ * its length. */
+#include <math.h>
+#include <string.h>
+
+#include "gate_int.h"
+
+static int tm_bin(double dt)
+{
+    int b = (int)floor(log10(dt / HIST_LO) * TM_PER_DECADE);
+    return b < 0 ? 0 : b >= TM_BINS ? TM_BINS - 1 : b;
+}
+
+static void sort_doubles(double *v, int n)
+{
+    for (int i = 1; i < n; i++) /* insertion sort: at most 64 numbers, most in order */
+        for (int j = i; j > 0 && v[j - 1] > v[j]; j--) {
+            const double x = v[j];
+            v[j] = v[j - 1];
+            v[j - 1] = x;
+        }
+}
+
+static double median8(const double *ring, long n)
+{
+    double v[RECENT];
+    const int k = n <= 0 ? 0 : n < RECENT ? (int)n : RECENT;
+    if (k == 0)
+        return NAN;
+    for (int i = 0; i < k; i++) v[i] = ring[i];
+    sort_doubles(v, k);
+    return v[k / 2];
+}
+
+/* The interval below which q of the time of v[0..n) is covered (sorts v). */
+double gate_time_quantile(double *v, int n, double q)
+{
+    if (n == 0)
+        return NAN;
+    double tot = 0.0;
+    for (int i = 0; i < n; i++) tot += v[i];
+    sort_doubles(v, n);
+    double acc = 0.0;
+    for (int i = 0; i < n; i++) {
+        acc += v[i];
+        if (acc >= q * tot)
+            return v[i];
+    }
+    return v[n - 1];
+}
+
+/* The last k intervals of the ring (only the learnable ones if ok_only),
+ * newest first, into v; their count. */
+static int ring_last(const timing_t *tm, double *v, int k, int ok_only)
+{
+    const int n = tm->nring < k ? (int)tm->nring : k;
+    int m = 0;
+    for (int i = 0; i < n; i++) {
+        const long j = (tm->nring - 1 - i) % RING;
+        if (!ok_only || tm->ring_ok[j])
+            v[m++] = tm->ring[j];
+    }
+    return m;
+}
+
+/* The time-weighted 90th percentile interval: the interval length below
+ * which 90 % of the time the histogram remembers is covered (the mean
+ * interval of its bin).  Weighted by time, so that bursts of short
+ * intervals, however many, do not hide the pace of the rest; a high
+ * quantile, so that a pace the logger keeps a tenth of the time is its
+ * own, not a gap. */
+static void tm_refresh(timing_t *tm)
+{
+    tm->since = 0;
+    if (!(tm->total > 0.0)) {
+        tm->spacing = NAN;
+        return;
+    }
+    double acc = 0.0;
+    for (int b = 0; b < TM_BINS; b++) {
+        acc += tm->w[b];
+        if (acc >= TM_QUANTILE * tm->total) {
+            tm->spacing = tm->c[b] > 0.0 ? tm->w[b] / tm->c[b] : NAN;
+            return;
+        }
+    }
+    tm->spacing = NAN;
+}
+
+/* An interval between two accepted samples: every one into the recent
+ * ring (ok: learnable); the ones that teach the pace (long_run) into the
+ * long-run histogram. */
+static void tm_add(timing_t *tm, double dt, int long_run, int ok)
+{
+    tm->ring_ok[tm->nring % RING] = (char)ok;
+    tm->ring[tm->nring++ % RING] = dt;
+    tm->seen++;
+    tm->covered += dt;
+    if (!long_run)
+        return;
+    const int b = tm_bin(dt);
+    tm->w[b] += dt;
+    tm->c[b] += 1.0;
+    tm->total += dt;
+    tm->n += 1.0;
+    if (tm->total > TM_WINDOW) { /* forget slowly: a new rate takes over */
+        for (int i = 0; i < TM_BINS; i++) {
+            tm->w[i] *= 0.5;
+            tm->c[i] *= 0.5;
+        }
+        tm->total *= 0.5;
+        tm->n *= 0.5;
+    }
+    if (++tm->since >= TM_REFRESH || tm->n < 2.0 * TM_REFRESH || isnan(tm->spacing))
+        tm_refresh(tm);
+}
+
+static double fmax_nan(double a, double b)
+{
+    return isnan(a) ? b : isnan(b) ? a : fmax(a, b);
+}
+
+/* s: the logger's spacing now, the larger of the long-run one and the
+ * median of the last eight intervals (a rate that dropped is followed
+ * within a few samples); NAN before any interval.  Cheap: for every
+ * sample. */
+double gate_spacing(const sw_gate_t *g)
+{
+    double v[RECENT];
+    const int n = ring_last(&g->tm, v, RECENT, 0);
+    return fmax_nan(g->tm.spacing, median8(v, n));
+}
+
+/* The same, and the pace of the last 64 intervals weighted by the time
+ * each covers (all of them, or the learnable ones): a FIFO read every 30
+ * samples, or the pause between two bursts, is the logger's pace from
+ * its second time on; an outage is forgotten 64 samples later.  For
+ * intervals that look long. */
+double gate_spacing_full(const sw_gate_t *g, int ok_only)
+{
+    double v[RING];
+    const int n = ring_last(&g->tm, v, RING, ok_only);
+    return fmax_nan(gate_spacing(g), gate_time_quantile(v, n, TM_QUANTILE));
+}
+
+static double threshold_of(const sw_gate_t *g, double s)
+{
+    if (g->o.gap > 0.0)
+        return g->o.gap;
+    return isnan(s) ? INFINITY : fmax(GAP_FLOOR, GAP_FACTOR * s);
+}
+
+/* s: longer intervals are gaps, whatever the stream has seen; after: the
+ * spacing of the intervals that follow (the look-ahead), NAN if unknown. */
+static double gap_threshold_of(const sw_gate_t *g, double after)
+{
+    return threshold_of(g, fmax_nan(gate_spacing_full(g, 0), after));
+}
+
+/* Live, the first WARM_N intervals teach the pace (the first read of a
+ * FIFO, the first of two CAN frames): none of them is a gap, unless it is
+ * longer than max_bridge (the timer of a monitor still sees a silence). */
+static int warming(const sw_gate_t *g)
+{
+    return g->o.gap == 0.0 && !isnan(g->last.rx) && g->tm.seen < WARM_N;
+}
+
+double gate_gap_threshold(const sw_gate_t *g, double after)
+{
+    return warming(g) ? INFINITY : gap_threshold_of(g, after);
+}
+
+/* s: how far a sample may run ahead of the time that really passed. */
+double gate_jump_tol(const sw_gate_t *g)
+{
+    if (g->o.jump < 0.0)
+        return INFINITY;
+    if (g->o.jump > 0.0)
+        return g->o.jump;
+    const double s = gate_spacing(g);
+    return isnan(s) ? 1.0 : fmax(JUMP_FLOOR, JUMP_FACTOR * s); /* none yet: 1 s */
+}
+
+/* The facts' interval histogram (count-based, the whole log). */
+static void note_interval(sw_gate_t *g, double dt)
+{
+    if (!(dt > 0.0))
+        return;
+    if (isnan(g->f.dt_min) || dt < g->f.dt_min)
+        g->f.dt_min = dt;
+    if (isnan(g->f.dt_max) || dt > g->f.dt_max)
+        g->f.dt_max = dt;
+    int b = (int)floor(log10(dt / HIST_LO) * HIST_PER_DECADE);
+    if (b < 0)
+        b = 0;
+    if (b >= HIST_BINS)
+        b = HIST_BINS - 1;
+    g->hist[b]++;
+    g->hist_sum[b] += dt;
+}
+
+/* Could the motion across a gap have mattered?  A package rocking, or the
+ * bed at either end of the gap at a quarter of a package's uplift
+ * threshold or more: what the gap hid (a braking's peak, a shock) can have
+ * lifted or overturned it, and no interpolation knows.  A quiet bed and
+ * standing packages at both ends leave the verdict complete. */
+static int motion_near(const sw_gate_t *g, double a_next)
+{
+    for (size_t k = 0; k < sw_engine_count(g->e); k++) {
+        sw_output_t o;
+        if (sw_engine_get_output(g->e, k, &o) != SW_OK)
+            continue;
+        if (o.state.phase == SW_PHASE_ROCKING || o.uplift_ratio >= 0.25)
+            return 1;
+        const sw_derived_t *d = sw_engine_derived(g->e, k);
+        /* g from p^2 = 3 g / (4 R): the scene's own gravity */
+        const double grav = d->p * d->p * 4.0 * d->R / 3.0;
+        if (fabs(a_next) >= 0.25 * grav * tan(d->alpha))
+            return 1;
+    }
+    return 0;
+}
+
+static void count_gap(sw_gate_t *g, double span)
+{
+    g->f.gaps++;
+    g->f.gap_total += span;
+    if (span > g->f.gap_max)
+        g->f.gap_max = span;
+}
+
+/* Push an accepted sample at engine time te. */
+int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
+{
+    const double az = g->o.vert_gravity ? s->a_z - G0 : s->a_z;
+    const int rc = sw_engine_push(g->e, te, s->a_g, az);
+    if (rc < 0)
+        return gate_refuse(g, s, SW_GATE_REJ_ENGINE, sw_strerror(rc));
+    if (g->o.on_take)
+        g->o.on_take(g->o.user, te, s->a_g, az, g->restarted);
+    g->restarted = 0;
+    if (g->have_last) {
+        const double dt = s->t - g->last.t;
+        if (dt > 0.0) {
+            note_interval(g, dt);
+            g->f.duration += te - g->last_engine;
+            if (iv != IV_BREAK)
+                tm_add(&g->tm, dt, iv == IV_NORMAL, iv == IV_NORMAL || iv == IV_WARM);
+        }
+        const double drx = s->rx - g->last.rx;
+        if (drx >= 0.0)
+            g->tm.rx_recent[g->tm.nrx++ % RECENT] = drx;
+    } else {
+        g->f.t_first = s->t;
+    }
+    gate_note_seq(g, s);
+    if (g->ndeferred && g->tm.covered >= WARM_TIME)
+        gate_judge_deferred(g);
+    g->f.t_last = s->t;
+    g->f.accepted++;
+    const double aa = fabs(s->a_g);
+    if (aa > g->f.peak_a)
+        g->f.peak_a = aa;
+    if (fabs(s->a_z) > g->f.peak_z)
+        g->f.peak_z = fabs(s->a_z);
+    if (aa > 0.5 * G0)
+        g->f.above_half_g++;
+    if (isnan(g->f.min_a) || s->a_g < g->f.min_a)
+        g->f.min_a = s->a_g;
+    if (isnan(g->f.max_a) || s->a_g > g->f.max_a)
+        g->f.max_a = s->a_g;
+    g->sum_abs_a += aa;
+    g->sum_z += s->a_z;
+    if (!isnan(s->rx)) {
+        const double off = s->t - s->rx;
+        g->env = g->have_env ? fmax(g->env, off) : off;
+        g->have_env = 1;
+    }
+    g->have_last = 1;
+    g->last = *s;
+    g->last_engine = te;
+    return rc;
+}
+
+/* The first sample of the stream sets the origin. */
+int gate_take_first(sw_gate_t *g, const sw_sample_t *s)
+{
+    g->relative = g->o.relative == 1 || (g->o.relative != 0 && fabs(s->t) >= EPOCH_LIKE);
+    g->f.t_origin = g->relative ? s->t : 0.0;
+    g->offset = -g->f.t_origin;
+    return gate_take(g, s, s->t + g->offset, IV_BREAK);
+}
+
+/* The first sample of a stretch that does not continue the timeline at
+ * its pace (a gap, a clock step, a restart): what happened, the gap
+ * policy, and its engine time.  The engine's clock moves by the source's
+ * own time, so that what is reported is on the source's clock; where the
+ * source's clock leapt ahead of the time that really passed (known from
+ * the receive times) it moves by that time instead, and when the source's
+ * time went back, by the time that passed (one spacing when unknown or
+ * beyond max_bridge).  Every such interval, however long, costs the engine
+ * no more than max_bridge of bridging or a restart from rest. */
+double gate_resume(sw_gate_t *g, const sw_sample_t *s, double thr, int *iv)
+{
+    const double dt = s->t - g->last.t; /* s, > 0 ahead, < 0 back */
+    const double real = s->rx - g->last.rx, sp = gate_spacing(g), one = isnan(sp) ? 1e-3 : sp;
+    /* s: how far the source's clock ran ahead of the time that passed */
+    const double ahead = isnan(real)   ? NAN
+                         : g->have_env ? (s->t - s->rx) - g->env
+                                       : dt - fmax(real, 0.0);
+    sw_gate_event_t ev = {.t = g->last.t, .where = s->where};
+    double elapsed;
+    *iv = IV_BREAK;
+    if (dt > 0.0) {
+        /* ahead of the time that passed by more than a gap: the clock
+         * stepped (whether the sample waited for it or not) */
+        if (ahead > fmin(fmin(thr, gap_threshold_of(g, NAN)), g->o.max_bridge)) {
+            ev.kind = SW_GATE_EV_CLOCK_STEP;
+            ev.span = ahead;
+            elapsed = dt - ahead > 0.0 ? dt - ahead : one;
+            g->f.clock_steps++;
+            gate_note_switch(g, s);
+        } else {
+            ev.kind = SW_GATE_EV_GAP;
+            ev.span = elapsed = dt;
+            *iv = IV_GAP;
+        }
+    } else {
+        ev.kind = SW_GATE_EV_RESTART;
+        ev.span = dt;
+        elapsed = real > 0.0 && real <= g->o.max_bridge ? real : one;
+        g->f.restarts++;
+        gate_note_switch(g, s);
+    }
+    const int gap = elapsed > thr || elapsed > g->o.max_bridge; /* a time with no samples */
+    if (ev.kind == SW_GATE_EV_GAP && !gap)
+        *iv = IV_NORMAL; /* ahead of real time a little (a latency that changed) */
+    const int unknown = ev.kind == SW_GATE_EV_RESTART && isnan(s->rx);
+    ev.restarted =
+        unknown || (gap && (g->o.gap_policy == SW_GAP_RESTART || elapsed > g->o.max_bridge));
+    ev.bridged = gap && !ev.restarted;
+    ev.incomplete = (gap || unknown) && motion_near(g, s->a_g);
+    if (ev.restarted) {
+        sw_engine_restart(g->e);
+        g->restarted = 1;
+    }
+    const double te = g->last_engine + elapsed;
+    g->offset = te - s->t;
+    g->have_env = 0; /* a new stretch: its own relation to real time */
+    ev.t_engine = te;
+    /* A bridged gap in the first seconds of a log may be the logger's pace
+     * (the first pause between 1 kHz bursts): judged again once the pace
+     * is known.  Bridging is what the engine does between any samples, so
+     * nothing but the word waits. */
+    if (gap && ev.bridged && ev.kind == SW_GATE_EV_GAP && isnan(s->rx) && g->o.gap == 0.0 &&
+        g->tm.covered < WARM_TIME && g->ndeferred < DEFER) {
+        g->deferred[g->ndeferred++] = (deferred_t){.ev = ev, .dt = elapsed};
+        return te;
+    }
+    if (gap)
+        count_gap(g, elapsed);
+    if (ev.kind != SW_GATE_EV_GAP || gap)
+        gate_emit(g, &ev);
+    return te;
+}
+
+/* The deferred gaps of a log's first seconds, judged by the pace learned
+ * since: the ones still far beyond it are said (late, with where they
+ * were); the others were the logger's pace, and are learned as such. */
+void gate_judge_deferred(sw_gate_t *g)
+{
+    const int n = g->ndeferred;
+    if (n == 0)
+        return;
+    g->ndeferred = 0;
+    const double thr = gate_gap_threshold(g, NAN);
+    for (int i = 0; i < n; i++) {
+        deferred_t *d = &g->deferred[i];
+        if (d->dt > thr) {
+            count_gap(g, d->dt);
+            gate_emit(g, &d->ev);
+        } else {
+            tm_add(&g->tm, d->dt, 1, 1);
+        }
+    }
+}
+
+/* A sample that continues the timeline forward: at its own time, or
+ * across a gap (after: the look-ahead's spacing, NAN if none). */
+int gate_advance(sw_gate_t *g, const sw_sample_t *s, double after)
+{
+    const double dt = s->t - g->last.t;
+    if (dt <= 0.0 || dt > g->o.max_bridge) {
+        int iv;
+        const double te = gate_resume(g, s, gate_gap_threshold(g, after), &iv);
+        return gate_take(g, s, te, iv);
+    }
+    const double te = s->t + g->offset;
+    if (!(dt > threshold_of(g, gate_spacing(g)))) /* the common case, cheap */
+        return gate_take(g, s, te, IV_NORMAL);
+    /* a closer look: the pace of the recent intervals, and of the ones
+     * that follow where a log shows them */
+    if (!(dt > threshold_of(g, fmax_nan(gate_spacing_full(g, 1), after))))
+        return gate_take(g, s, te, IV_NORMAL);
+    const double thr = gap_threshold_of(g, after);
+    if (!(dt > thr))
+        return gate_take(g, s, te, IV_TAINT); /* normal only beside a recent gap */
+    if (warming(g))
+        return gate_take(g, s, te, IV_WARM); /* no gap yet: the pace is being learned */
+    int iv;
+    const double te_gap = gate_resume(g, s, thr, &iv);
+    return gate_take(g, s, te_gap, iv);
+}
