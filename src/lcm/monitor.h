@@ -92,9 +92,9 @@ typedef struct {
     double max_accel;          /* m/s^2, plausibility limit (in m/s^2 after scaling);
                                   0 = SW_MON_MAX_ACCEL */
     double max_skew;           /* s, largest |utime - wall clock|; 0 = not checked */
-    double max_jump;           /* s, how far utime may leap beyond the time that passed
-                                  before the stream must confirm it; 0 = the gap threshold,
-                                  < 0 = any (no sample held) */
+    double max_jump;           /* s, how far utime may run ahead of its arrival (beyond any
+                                  sample before) before the stream must confirm it; 0 = 1.5
+                                  sample intervals (gate.h), < 0 = any (no sample held) */
     double hysteresis;         /* 1, margin alarms; < 0 = SW_ALARM_HYSTERESIS */
     double reserve_rate;       /* Hz of sample time: reserve evaluations per package (risk.h;
                                   state_t.reserve_g, RESERVE_WARN/CRITICAL alarms); 0 = 10,
