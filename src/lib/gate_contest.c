@@ -75,7 +75,10 @@ void gate_rival_note(sw_gate_t *g, const sw_sample_t *s)
     rival_t *r = &g->rv;
     if (isnan(s->rx) || g->flushing)
         return;
-    const double sp = gate_spacing(g), expire = isnan(sp) ? 1.0 : fmax(1.0, 20.0 * sp);
+    /* a timeline of its own has a pace: the next of its samples comes within
+     * 16 of the kept stream's intervals (a forger at 1:8 does; samples
+     * refused here and there, on the kept clock, do not) */
+    const double sp = gate_spacing(g), expire = isnan(sp) ? 0.1 : 16.0 * sp;
     const double real = s->rx - r->last.rx, dt = s->t - r->last.t;
     if (r->n > 0 && dt > 0.0 && real <= expire && dt - fmax(real, 0.0) <= gate_jump_tol(g))
         r->n++;
@@ -166,6 +169,7 @@ void gate_note_seq(sw_gate_t *g, const sw_sample_t *s)
         q->last = v;
         return;
     }
+    int refuted = 0; /* the pending one was an outlier */
     if (q->pend) {
         const int64_t p = q->pend_seq;
         q->pend = 0;
@@ -181,12 +185,14 @@ void gate_note_seq(sw_gate_t *g, const sw_sample_t *s)
                     return; /* the same seq again: confirmed, nothing more */
             } else {
                 seq_outlier(g, s);
+                refuted = 1;
             }
         } else { /* back, or the same again */
             const int old =
                 v > q->last && (uint64_t)v - (uint64_t)q->last <= (uint64_t)v - (uint64_t)p;
             if (old) {
                 seq_outlier(g, s);
+                refuted = 1;
             } else if (v > p) {
                 g->f.seq_restarts++;
                 sw_gate_event_t ev = {
@@ -195,9 +201,12 @@ void gate_note_seq(sw_gate_t *g, const sw_sample_t *s)
                 q->last = p;
             } else {
                 seq_outlier(g, s);
+                refuted = 1;
             }
         }
     }
+    if (refuted && v > q->last && (uint64_t)v - (uint64_t)q->last == 2)
+        q->last++; /* the outlier's own slot: a sample with a corrupt seq came */
     if (v > q->last && (uint64_t)v - (uint64_t)q->last == 1) {
         q->last = v;
         q->normal++;

@@ -43,7 +43,7 @@
 #define DEFER 16              /* gap events that wait for that */
 #define RECON_MIN 4           /* repeated stamps in the look-ahead that reveal a coarse clock */
 #define RIVAL_MIN 3           /* refused samples in a row on one timeline: contested */
-#define RIVAL_DENSE 4         /* or this many refused for their time ... */
+#define RIVAL_DENSE 8         /* or this many refused for their time ... */
 #define RIVAL_SPAN 64         /* ... within this many samples received */
 #define RIVAL_KEEP 8          /* the last of them, handed over when the contest is declared */
 #define SEQ_WINDOW 256        /* accepted samples: two seq outliers within are a second sender */
