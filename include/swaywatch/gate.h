@@ -208,7 +208,8 @@ typedef struct {
     double peak_a, peak_z;            /* m/s^2, largest |a_g| and |a_z| accepted */
     double mean_z;                    /* m/s^2, mean a_z as read (before gravity removal) */
     /* added with the whole-stream timing model (docs/timing.md) */
-    double spacing;       /* s, the logger's long-run spacing at the end (NAN: none) */
+    double spacing;       /* s, the logger's pace now: its long-run pace and the median of
+                             the last eight intervals (NAN: none) */
     double gap_threshold; /* s, intervals longer were gaps at the end (INFINITY: none yet) */
     long reconstructed;   /* samples whose repeated time was spread over its unit */
     double stamp_unit;    /* s, the unit of the stamps that were spread (0: none found) */
@@ -241,9 +242,13 @@ SW_API int sw_gate_flush(sw_gate_t *g);
  * options; nothing is allocated.  For a second timeline evaluated afresh. */
 SW_API void sw_gate_reset(sw_gate_t *g);
 
-/* s: an interval longer than this is a gap now (the gap option, or what the
- * timing model learned; INFINITY before the first interval).  A monitor's
- * timer waits at least this long before it calls the input silent. */
+/* s: an interval longer than this is a gap now (the gap option, or ten
+ * times the long-run pace and the median of the last eight intervals, at
+ * least 10 ms; INFINITY before the first interval and while a live stream
+ * warms up).  Cheap, for a monitor's timer, which waits at least this
+ * long before it calls the input silent; a sample's own interval is also
+ * judged against the recent and the look-ahead pace, which can only say
+ * more. */
 SW_API double sw_gate_gap_threshold(const sw_gate_t *g);
 
 /* Non-zero while a second timeline competes (SW_GATE_EV_CONTESTED). */

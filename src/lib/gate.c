@@ -133,7 +133,11 @@ void sw_gate_reset(sw_gate_t *g)
 
 double sw_gate_gap_threshold(const sw_gate_t *g)
 {
-    return g ? gate_gap_threshold(g, NAN) : INFINITY;
+    /* cheap (a monitor asks after every message): the long-run pace and the
+     * median of the last eight, not the sorted ring of the last 64 */
+    return !g                                          ? INFINITY
+           : isnan(g->last.rx) || g->tm.seen >= WARM_N ? gate_threshold_of(g, gate_spacing(g))
+                                                       : INFINITY;
 }
 
 int sw_gate_contested(const sw_gate_t *g)
@@ -213,8 +217,9 @@ void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f)
     if (f->reconstructed > 0 && f->accepted > 1 && f->duration > 0.0)
         f->dt_median = f->duration / (double)(f->accepted - 1);
     f->rate = f->dt_median > 0.0 ? 1.0 / f->dt_median : NAN;
-    f->spacing = gate_spacing_full(g, 0);
-    f->gap_threshold = gate_gap_threshold(g, NAN);
+    /* cheap: a monitor reads the facts after every message */
+    f->spacing = gate_spacing(g);
+    f->gap_threshold = sw_gate_gap_threshold(g);
 }
 
 double sw_gate_source_time(const sw_gate_t *g, double t_engine)

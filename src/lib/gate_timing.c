@@ -147,7 +147,7 @@ double gate_spacing_full(const sw_gate_t *g, int ok_only)
     return fmax_nan(gate_spacing(g), gate_time_quantile(v, n, TM_QUANTILE));
 }
 
-static double threshold_of(const sw_gate_t *g, double s)
+double gate_threshold_of(const sw_gate_t *g, double s)
 {
     if (g->o.gap > 0.0)
         return g->o.gap;
@@ -158,7 +158,7 @@ static double threshold_of(const sw_gate_t *g, double s)
  * spacing of the intervals that follow (the look-ahead), NAN if unknown. */
 static double gap_threshold_of(const sw_gate_t *g, double after)
 {
-    return threshold_of(g, fmax_nan(gate_spacing_full(g, 0), after));
+    return gate_threshold_of(g, fmax_nan(gate_spacing_full(g, 0), after));
 }
 
 /* Live, the first WARM_N intervals teach the pace (the first read of a
@@ -400,11 +400,11 @@ int gate_advance(sw_gate_t *g, const sw_sample_t *s, double after)
         return gate_take(g, s, te, iv);
     }
     const double te = s->t + g->offset;
-    if (!(dt > threshold_of(g, gate_spacing(g)))) /* the common case, cheap */
+    if (!(dt > gate_threshold_of(g, gate_spacing(g)))) /* the common case, cheap */
         return gate_take(g, s, te, IV_NORMAL);
     /* a closer look: the pace of the recent intervals, and of the ones
      * that follow where a log shows them */
-    if (!(dt > threshold_of(g, fmax_nan(gate_spacing_full(g, 1), after))))
+    if (!(dt > gate_threshold_of(g, fmax_nan(gate_spacing_full(g, 1), after))))
         return gate_take(g, s, te, IV_NORMAL);
     const double thr = gap_threshold_of(g, after);
     if (!(dt > thr))
