@@ -255,6 +255,9 @@ SW_API double sw_gate_gap_threshold(const sw_gate_t *g);
 SW_API int sw_gate_contested(const sw_gate_t *g);
 
 SW_API void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f);
+/* Samples pushed into the engine so far (sw_gate_facts_t.accepted), cheap:
+ * for a caller that asks after every sample. */
+SW_API long sw_gate_accepted(const sw_gate_t *g);
 
 /* The source's time (s) of an engine time on the current stretch of the
  * timeline (since the last gap, step or restart): for publishing times on

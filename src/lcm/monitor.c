@@ -666,10 +666,8 @@ int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, doub
     const long before = m->c.accepted;
     m->feed_why = SW_MON_NREJ;
     int rc = sw_gate_push(m->gate, &smp);
-    sw_gate_facts_t f;
-    sw_gate_facts(m->gate, &f);
-    m->c.accepted = f.accepted;
-    if (f.accepted > before) {
+    m->c.accepted = sw_gate_accepted(m->gate);
+    if (m->c.accepted > before) {
         /* this sample, or held ones it confirmed, went in */
         m->have_last = 1;
         m->last_us = s.utime; /* the last one pushed: held ones go in before it */

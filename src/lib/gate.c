@@ -222,6 +222,11 @@ void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f)
     f->gap_threshold = sw_gate_gap_threshold(g);
 }
 
+long sw_gate_accepted(const sw_gate_t *g)
+{
+    return g ? g->f.accepted : 0;
+}
+
 double sw_gate_source_time(const sw_gate_t *g, double t_engine)
 {
     return t_engine - g->offset;

@@ -187,9 +187,13 @@ static void decide_front(sw_gate_t *g)
             spread_run(g);
     }
     const sw_sample_t s = *p0;
-    const double after = g->nahead > 1 ? spacing_after(g) : NAN;
     const int fwd = s.t > T && forward_ok(g, T);
     const int restart = s.t < T && backward_restart(g, T);
+    /* the pace ahead matters only for an interval that looks long (or
+     * where a restart begins): read only then */
+    double after = NAN;
+    if (g->nahead > 1 && g->have_last && (restart || (fwd && gate_looks_long(g, s.t - T))))
+        after = spacing_after(g);
     /* leave the window before the callbacks: they may look at the facts */
     if (g->nahead > 1) {
         const double t1 = AT(g, 1)->t;

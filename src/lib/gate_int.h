@@ -152,6 +152,7 @@ double gate_time_quantile(double *v, int n, double q);
 double gate_spacing(const sw_gate_t *g);
 double gate_spacing_full(const sw_gate_t *g, int ok_only);
 double gate_threshold_of(const sw_gate_t *g, double s);
+int gate_looks_long(const sw_gate_t *g, double dt);
 double gate_gap_threshold(const sw_gate_t *g, double after);
 double gate_jump_tol(const sw_gate_t *g);
 int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv);

@@ -22,7 +22,8 @@ static int continues(const sw_gate_t *g, const sw_sample_t *s)
     if (isnan(s->rx) || !g->have_env)
         return s->t - g->last.t - fmax(s->rx - g->last.rx, 0.0) <= gate_jump_tol(g) ||
                isnan(s->rx - g->last.rx);
-    return (s->t - s->rx) - g->env <= gate_jump_tol(g);
+    const double ahead = (s->t - s->rx) - g->env;
+    return ahead <= 0.0 || ahead <= gate_jump_tol(g); /* most are not ahead at all */
 }
 
 /* Does b continue a (later, and not ahead of the time that really passed

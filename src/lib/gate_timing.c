@@ -9,9 +9,10 @@
 
 #include "gate_int.h"
 
-static int tm_bin(double dt)
+/* The bin of an interval whose position in decades above HIST_LO is x. */
+static int tm_bin(double x)
 {
-    int b = (int)floor(log10(dt / HIST_LO) * TM_PER_DECADE);
+    const int b = (int)floor(x * TM_PER_DECADE);
     return b < 0 ? 0 : b >= TM_BINS ? TM_BINS - 1 : b;
 }
 
@@ -94,7 +95,7 @@ static void tm_refresh(timing_t *tm)
 /* An interval between two accepted samples: every one into the recent
  * ring (ok: learnable); the ones that teach the pace (long_run) into the
  * long-run histogram. */
-static void tm_add(timing_t *tm, double dt, int long_run, int ok)
+static void tm_add(timing_t *tm, double dt, double x, int long_run, int ok)
 {
     tm->ring_ok[tm->nring % RING] = (char)ok;
     tm->ring[tm->nring++ % RING] = dt;
@@ -102,7 +103,7 @@ static void tm_add(timing_t *tm, double dt, int long_run, int ok)
     tm->covered += dt;
     if (!long_run)
         return;
-    const int b = tm_bin(dt);
+    const int b = tm_bin(x);
     tm->w[b] += dt;
     tm->c[b] += 1.0;
     tm->total += dt;
@@ -147,6 +148,16 @@ double gate_spacing_full(const sw_gate_t *g, int ok_only)
     return fmax_nan(gate_spacing(g), gate_time_quantile(v, n, TM_QUANTILE));
 }
 
+/* Is an interval dt beyond the cheap threshold (the long-run pace alone,
+ * then with the median of the last eight: the threshold only grows)?  If
+ * not, it is no gap whatever a closer look says; for every sample. */
+int gate_looks_long(const sw_gate_t *g, double dt)
+{
+    if (!isnan(g->tm.spacing) && !(dt > gate_threshold_of(g, g->tm.spacing)))
+        return 0;
+    return dt > gate_threshold_of(g, gate_spacing(g));
+}
+
 double gate_threshold_of(const sw_gate_t *g, double s)
 {
     if (g->o.gap > 0.0)
@@ -186,7 +197,7 @@ double gate_jump_tol(const sw_gate_t *g)
 }
 
 /* The facts' interval histogram (count-based, the whole log). */
-static void note_interval(sw_gate_t *g, double dt)
+static void note_interval(sw_gate_t *g, double dt, double x)
 {
     if (!(dt > 0.0))
         return;
@@ -194,7 +205,7 @@ static void note_interval(sw_gate_t *g, double dt)
         g->f.dt_min = dt;
     if (isnan(g->f.dt_max) || dt > g->f.dt_max)
         g->f.dt_max = dt;
-    int b = (int)floor(log10(dt / HIST_LO) * HIST_PER_DECADE);
+    int b = (int)floor(x * HIST_PER_DECADE);
     if (b < 0)
         b = 0;
     if (b >= HIST_BINS)
@@ -246,10 +257,11 @@ int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
     if (g->have_last) {
         const double dt = s->t - g->last.t;
         if (dt > 0.0) {
-            note_interval(g, dt);
+            const double x = log10(dt / HIST_LO); /* once for both histograms */
+            note_interval(g, dt, x);
             g->f.duration += te - g->last_engine;
             if (iv != IV_BREAK)
-                tm_add(&g->tm, dt, iv == IV_NORMAL, iv == IV_NORMAL || iv == IV_WARM);
+                tm_add(&g->tm, dt, x, iv == IV_NORMAL, iv == IV_NORMAL || iv == IV_WARM);
         }
         const double drx = s->rx - g->last.rx;
         if (drx >= 0.0)
@@ -384,7 +396,7 @@ void gate_judge_deferred(sw_gate_t *g)
             count_gap(g, d->dt);
             gate_emit(g, &d->ev);
         } else {
-            tm_add(&g->tm, d->dt, 1, 1);
+            tm_add(&g->tm, d->dt, log10(d->dt / HIST_LO), 1, 1);
         }
     }
 }
@@ -400,7 +412,7 @@ int gate_advance(sw_gate_t *g, const sw_sample_t *s, double after)
         return gate_take(g, s, te, iv);
     }
     const double te = s->t + g->offset;
-    if (!(dt > gate_threshold_of(g, gate_spacing(g)))) /* the common case, cheap */
+    if (!gate_looks_long(g, dt)) /* the common case */
         return gate_take(g, s, te, IV_NORMAL);
     /* a closer look: the pace of the recent intervals, and of the ones
      * that follow where a log shows them */
