@@ -31,6 +31,7 @@
 #define TM_REFRESH 32   /* intervals between two readings of the histogram */
 #define RECENT 8        /* the last intervals, whose median is the short-term spacing */
 #define RING 64         /* ... and of which 90 % of the time says a batched pace at once */
+#define ENV_N 64        /* samples whose arrival makes the envelope */
 #define GAP_FACTOR 10.0 /* a gap is longer than this many spacings ... */
 #define GAP_FLOOR 0.01  /* s, ... and than this */
 #define TM_QUANTILE                                                                           \
@@ -116,9 +117,13 @@ struct sw_gate {
     double offset;      /* s, engine time = source time + offset */
     int restarted;      /* the engine was restarted: the next sample taken says so */
     int have_env;
-    double env;   /* s, the largest stamp minus receive time taken on this stretch: no
-                     genuine sample arrives sooner after it was stamped (it may later) */
-    int flushing; /* the end: refused chains are no evidence of a rival */
+    double env; /* s, the largest stamp minus receive time of the last ENV_N samples taken
+                   on this stretch: no genuine sample arrives sooner after it was stamped
+                   (it may later); the recent ones, so that it follows a latency that
+                   drifts up */
+    double env_ring[ENV_N];
+    long nenv, env_at; /* samples in the ring; the index of the largest */
+    int flushing;      /* the end: refused chains are no evidence of a rival */
     timing_t tm;
     seqs_t seq;
     rival_t rv;
@@ -153,6 +158,7 @@ double gate_spacing(const sw_gate_t *g);
 double gate_spacing_full(const sw_gate_t *g, int ok_only);
 double gate_threshold_of(const sw_gate_t *g, double s);
 int gate_looks_long(const sw_gate_t *g, double dt);
+double gate_recent_max(const sw_gate_t *g);
 double gate_gap_threshold(const sw_gate_t *g, double after);
 double gate_jump_tol(const sw_gate_t *g);
 int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv);

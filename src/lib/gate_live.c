@@ -23,7 +23,16 @@ static int continues(const sw_gate_t *g, const sw_sample_t *s)
         return s->t - g->last.t - fmax(s->rx - g->last.rx, 0.0) <= gate_jump_tol(g) ||
                isnan(s->rx - g->last.rx);
     const double ahead = (s->t - s->rx) - g->env;
-    return ahead <= 0.0 || ahead <= gate_jump_tol(g); /* most are not ahead at all */
+    if (ahead <= 0.0) /* most are not ahead at all (a burst after a stall: late) */
+        return 1;
+    if (ahead > gate_jump_tol(g))
+        return 0;
+    /* a little ahead: then also beside the last sample, which may have been
+     * late itself (the envelope alone lets a forged sample through when the
+     * genuine one before it was): stamped after it by no more than the
+     * time that passed and an interval the stream has shown lately */
+    const double lead = s->t - g->last.t - fmax(s->rx - g->last.rx, 0.0);
+    return lead <= gate_jump_tol(g) || lead <= gate_recent_max(g);
 }
 
 /* Does b continue a (later, and not ahead of the time that really passed

@@ -148,6 +148,18 @@ double gate_spacing_full(const sw_gate_t *g, int ok_only)
     return fmax_nan(gate_spacing(g), gate_time_quantile(v, n, TM_QUANTILE));
 }
 
+/* s: the longest of the last 64 intervals taken (NAN: none). */
+double gate_recent_max(const sw_gate_t *g)
+{
+    double v[RING];
+    const int n = ring_last(&g->tm, v, RING, 0);
+    double m = NAN;
+    for (int i = 0; i < n; i++)
+        if (isnan(m) || v[i] > m)
+            m = v[i];
+    return m;
+}
+
 /* Is an interval dt beyond the cheap threshold (the long-run pace alone,
  * then with the median of the last eight: the threshold only grows)?  If
  * not, it is no gap whatever a closer look says; for every sample. */
@@ -244,6 +256,29 @@ static void count_gap(sw_gate_t *g, double span)
         g->f.gap_max = span;
 }
 
+/* The envelope: the largest stamp minus arrival of the last ENV_N samples
+ * (a sliding maximum, scanned again only when the largest leaves). */
+static void env_add(sw_gate_t *g, double off)
+{
+    if (!g->have_env) {
+        g->nenv = 0;
+        g->have_env = 1;
+    }
+    const long i = g->nenv++;
+    g->env_ring[i % ENV_N] = off;
+    if (i == 0 || off >= g->env) {
+        g->env = off;
+        g->env_at = i;
+    } else if (i - g->env_at >= ENV_N) { /* the largest is gone: the next one */
+        const long lo = g->nenv > ENV_N ? g->nenv - ENV_N : 0;
+        g->env_at = lo;
+        for (long k = lo; k < g->nenv; k++)
+            if (g->env_ring[k % ENV_N] >= g->env_ring[g->env_at % ENV_N])
+                g->env_at = k;
+        g->env = g->env_ring[g->env_at % ENV_N];
+    }
+}
+
 /* Push an accepted sample at engine time te. */
 int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
 {
@@ -289,8 +324,7 @@ int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
     g->sum_z += s->a_z;
     if (!isnan(s->rx)) {
         const double off = s->t - s->rx;
-        g->env = g->have_env ? fmax(g->env, off) : off;
-        g->have_env = 1;
+        env_add(g, off);
     }
     g->have_last = 1;
     g->last = *s;
