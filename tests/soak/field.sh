@@ -14,12 +14,14 @@
 # sensor restart (seq from 0, time 30 s back); a clock step of an hour
 # forward; a flood of 20,000 copies of one sample; a second of vertical
 # acceleration below -1 g (the packages fly: a critical alarm each); a
-# 2 s outage.  Meanwhile the monitor gets SIGHUP every 2 s, in turn with an
-# unchanged scene file, a changed bare crate, a broken scene file, a FIFO
-# in place of one, and the bare crate's file being rewritten in place (its
-# first lines a valid scene of a package named after the file, the name
-# 0.5 s after the SIGHUP), with a stiff cushion (adaptive scheme) beside
-# the bare crate.  Asserted:
+# 2 s outage; 2 s of a forger sending a quiet sample stamped 2.5 ms ahead
+# after every second genuine one; 2 s of samples read from an IMU's FIFO,
+# 32 at a time, each stamped when read.  Meanwhile the monitor gets SIGHUP
+# every 2 s, in turn with an unchanged scene file, a changed bare crate, a
+# broken scene file, a FIFO in place of one, and the bare crate's file
+# being rewritten in place (its first lines a valid scene of a package
+# named after the file, the name 0.5 s after the SIGHUP), with a stiff
+# cushion (adaptive scheme) beside the bare crate.  Asserted:
 #   - the monitor never exits until SIGINT, and then exits 0;
 #   - no half-written scene file is ever applied;
 #   - after each fault, states of the samples after it are published within
@@ -35,6 +37,9 @@
 #   - no published number is non-finite;
 #   - alarms are rate-limited: no package and kind has more than 8 in any
 #     second (three, a summary, three), the storm was folded;
+#   - the forger raised INPUT_CONTESTED (critical) and cost only its own
+#     samples (every genuine one accepted); the FIFO reads raised at most
+#     one SENSOR_GAP (the first batch, before its pace is known), no storm;
 #   - memory stays flat: VmRSS at the end within SOAK_RSS_KB (default 4096:
 #     LCM's receive ring may double once when the machine stalls) of VmRSS
 #     after the first 10 s (skipped under AddressSanitizer, whose
@@ -121,7 +126,8 @@ utime=$(($(date +%s) * 1000000))
     --event "$(at 9):utime:max" --event "$(($(at 9) + 500)):utime:min" \
     --event "$(at 11):restart:30" --event "$(at 15):step:3600" \
     --event "$(at 19):flood:20000" --event "$(at 23):fall:1" --event "$(at 27):pause:2" \
-    --event "$(at 31):seq:min" >"$WORK/feed.txt" 2>"$WORK/feed.err" &
+    --event "$(at 31):seq:min" --event "$(at 33):forge:2" --event "$(at 36):fifo:2" \
+    >"$WORK/feed.txt" 2>"$WORK/feed.err" &
 FEEDER=$!
 sleep 10
 rss_warm=$(rss_kb "$MON")

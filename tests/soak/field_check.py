@@ -69,15 +69,25 @@ if drops == 0:
         check(by.get(r, 0) == sent.get(r, 0),
               "refused as %s: %d, sent %d" % (r, by.get(r, 0), sent.get(r, 0)))
     # a late or repeated copy next to a sample held for confirmation may be
-    # refused under another of these names; each is refused once
-    timing = ("duplicate", "out_of_order", "jump", "time", "overload")
-    check(sum(by.get(r, 0) for r in timing) == sum(sent.get(r, 0) for r in timing),
-          "refused for their time (%s): as many as sent" % ", ".join(timing))
+    # refused under another of these names; each is refused once (a forged
+    # sample on a second sender's seq numbers as contested)
+    timing = ("duplicate", "out_of_order", "jump", "time", "overload", "contested")
+    # while the forger sends, a loaded machine delivers its samples in the
+    # same bursts as the genuine ones, and it may hold the kept timeline
+    # for a while: then genuine samples are refused for their time (and
+    # evaluated by the second engines, the input contested), at most as
+    # many as the forger's stretch holds
+    forging = sum(int(e["arg"] * 1000) for e in events if e["kind"] == "forge")
+    taken = sum(by.get(r, 0) for r in timing) - sum(sent.get(r, 0) for r in timing)
+    check(0 <= taken <= forging,
+          "refused for their time (%s): as many as sent, and %d genuine ones while forged "
+          "samples competed (at most %d)" % (", ".join(timing), taken, forging))
     check(by.get("time", 0) >= sent["time"], "the INT64 utimes refused as time")
     # a machine that stalls over --max-backlog makes the monitor shed
-    # (overload, counted): the only good samples it may miss
-    check(0 <= sent["good"] - accepted <= by.get("overload", 0),
-          "accepted %d, good sent %d, shed %d" % (accepted, sent["good"], by.get("overload", 0)))
+    # (overload, counted): the only good samples it may miss, besides those
+    check(0 <= sent["good"] - accepted - taken <= by.get("overload", 0),
+          "accepted %d, good sent %d, shed %d, refused while contested %d"
+          % (accepted, sent["good"], by.get("overload", 0), taken))
 # the seq INT64_MIN sample is "no seq": the one after it shows a gap of one
 check(sent["skipped"] <= lost <= sent["skipped"] + 1 + drops + by.get("overload", 0),
       "lost by seq %d: the outage's %d samples (and drops)" % (lost, sent["skipped"]))
@@ -146,6 +156,17 @@ for key, ts in by_key.items():
             worst, worst_key = i - j + 1, key
 check(worst <= 8, "at most 8 alarms of a package and kind in a second (%d: %s)"
       % (worst, worst_key))
+# the forger: the input contested at once, at critical level
+for e in events:
+    if e["kind"] == "forge":
+        raised = [ts for ts, _, k in alarms if k[0] == alarm_t.KIND_INPUT_CONTESTED]
+        check(any(ts >= e["wall"] for ts in raised),
+              "the forger raised INPUT_CONTESTED (%d published)" % len(raised))
+    if e["kind"] == "fifo":
+        gaps = [ts for ts, _, k in alarms if k[0] == alarm_t.KIND_SENSOR_GAP
+                and e["wall"] <= ts <= e["wall"] + int(e["arg"] * 1e6) + 500000]
+        check(len(gaps) <= 1, "FIFO reads: %d SENSOR_GAP alarms (at most the first batch's)"
+              % len(gaps))
 # the second of free fall: a package flies for longer than the model can
 # follow, and says so (fail safe) in a critical alarm while in the air
 # (one that overturned before it lies still)

@@ -49,6 +49,14 @@
  *                                 (below -1 g: every sample a model fault)
  *                      pause:S    the sensor stops for S s (its samples
  *                                 are not sent: lost by seq)
+ *                      forge:S    for S s a forger: after every second
+ *                                 good sample one quiet sample stamped
+ *                                 2.5 ms ahead of it, with its seq
+ *                                 (refused as jump; the input contested)
+ *                      fifo:S     for S s the samples go out as an IMU's
+ *                                 FIFO is read: 32 at a time, when the
+ *                                 last of them is due, each stamped when
+ *                                 read (a few us apart)
  *                      Each prints "event K KIND ARG WALL_US UTIME_AFTER":
  *                      when it was applied (CLOCK_REALTIME, us) and the
  *                      utime of the first good sample after it.
@@ -104,11 +112,24 @@ static const char *const reasons[] = {"decode",    "trailing",     "nonfinite", 
 #define NREASON (sizeof reasons / sizeof reasons[0])
 
 #define OVERSIZE (64 * 1024)
+#define FIFO 32 /* samples a FIFO read takes */
 #define MAX_EVENTS 64
 
-enum { E_RESTART, E_STEP, E_FUTURE, E_UTIME, E_SEQ, E_FLOOD, E_FALL, E_PAUSE, NEVKIND };
-static const char *const event_name[NEVKIND] = {"restart", "step",  "future", "utime",
-                                                "seq",     "flood", "fall",   "pause"};
+enum {
+    E_RESTART,
+    E_STEP,
+    E_FUTURE,
+    E_UTIME,
+    E_SEQ,
+    E_FLOOD,
+    E_FALL,
+    E_PAUSE,
+    E_FORGE,
+    E_FIFO,
+    NEVKIND
+};
+static const char *const event_name[NEVKIND] = {"restart", "step", "future", "utime", "seq",
+                                                "flood",   "fall", "pause",  "forge", "fifo"};
 
 typedef struct {
     long k; /* before good sample k */
@@ -176,7 +197,7 @@ static int parse_event(const char *v, opts_t *o)
     while (e->kind < NEVKIND && strcmp(kind, event_name[e->kind])) e->kind++;
     if (e->kind == NEVKIND)
         return -1;
-    static const double def[NEVKIND] = {30, 3600, 365 * 86400.0, 0, 0, 1000, 1, 1};
+    static const double def[NEVKIND] = {30, 3600, 365 * 86400.0, 0, 0, 1000, 1, 1, 1, 1};
     e->arg = def[e->kind];
     e->extreme = 0;
     if (e->kind == E_UTIME || e->kind == E_SEQ) {
@@ -369,9 +390,11 @@ static swaywatch_accel_t sample(const opts_t *o, long k)
 
 /* The faults in force: what the events changed. */
 typedef struct {
-    int64_t ushift;   /* us added to every utime from now on */
-    int64_t seqshift; /* added to every seq from now on */
-    long fall_end;    /* samples before it fall (az -15 m/s^2) */
+    int64_t ushift;             /* us added to every utime from now on */
+    int64_t seqshift;           /* added to every seq from now on */
+    long fall_end;              /* samples before it fall (az -15 m/s^2) */
+    long forge_from, forge_end; /* a forger sends among these samples */
+    long fifo_from, fifo_end;   /* these go out in FIFO batches */
     int have_seq_once;
     int64_t seq_once; /* the seq of the next sample, once */
 } fault_t;
@@ -407,6 +430,14 @@ static long apply_event(const opts_t *o, sink_t *s, const event_t *e, long k, fa
             s->by_kind[K_DUPLICATE] += (long)e->arg;
             return 0;
         case E_FALL: f->fall_end = k + (long)llround(e->arg * o->rate); return 0;
+        case E_FORGE:
+            f->forge_from = k;
+            f->forge_end = k + (long)llround(e->arg * o->rate);
+            return 0;
+        case E_FIFO:
+            f->fifo_from = k;
+            f->fifo_end = k + (long)llround(e->arg * o->rate);
+            return 0;
         case E_PAUSE: {
             const long n = (long)llround(e->arg * o->rate);
             s->skipped += n;
@@ -522,10 +553,15 @@ int main(int argc, char **argv)
         emit(&s, s.buf, 0);
         s.by_kind[K_EMPTY]++;
     }
-    fault_t f = {.fall_end = -1};
+    fault_t f = {.fall_end = -1, .forge_end = -1, .fifo_end = -1};
     for (long k = 0; k < o.count && !s.failed; k++) {
+        /* a FIFO batch of 32 goes out when its last sample is due */
+        const int fifo = k >= f.fifo_from && k < f.fifo_end;
+        long due = fifo ? f.fifo_from + ((k - f.fifo_from) / FIFO + 1) * FIFO - 1 : k;
+        if (due >= f.fifo_end && fifo)
+            due = f.fifo_end - 1; /* the last read takes what is left */
         if (live && o.pace > 0)
-            sleep_until(&t0, (double)k / o.pace);
+            sleep_until(&t0, (double)due / o.pace);
         int applied[MAX_EVENTS], na = 0;
         int64_t when[MAX_EVENTS];
         long skip = 0;
@@ -551,6 +587,8 @@ int main(int argc, char **argv)
         }
         if (k < f.fall_end)
             last.az = -15.0;
+        if (fifo) /* stamped when read, the first of the batch at the read */
+            last.utime = sample(&o, due).utime + f.ushift + 4 * (k - due + FIFO - 1);
         for (int i = 0; i < na; i++)
             printf("event %ld %s %g %lld %lld\n", o.ev[applied[i]].k,
                    event_name[o.ev[applied[i]].kind], o.ev[applied[i]].arg, (long long)when[i],
@@ -558,6 +596,14 @@ int main(int argc, char **argv)
         s.stamp = last.utime + 200;
         emit(&s, s.buf, encode(&s, &last));
         s.good++;
+        if (k >= f.forge_from && k < f.forge_end && (k - f.forge_from) % 2 == 1) {
+            swaywatch_accel_t forged = last;
+            forged.utime += 2500;
+            forged.ax = forged.ay = forged.az = 0.0;
+            s.stamp = forged.utime; /* a log receives it ahead too */
+            emit(&s, s.buf, encode(&s, &forged));
+            s.jump++;
+        }
         if (nk && o.garbage && (long)(next_rand(&rnd) % 1000) < o.garbage)
             send_bad(&s, kinds[turn++ % nk], &last, &rnd);
     }
