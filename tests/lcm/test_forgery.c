@@ -224,7 +224,7 @@ static int64_t forged_seq(int sk, long k, long j)
         case S_COPY: return k;
         case S_NEXT: return k + 1;
         case S_RANDOM: return (int64_t)(rng_next() >> 1);
-        case S_HUGE: return INT64_MAX - 1000 + j;
+        case S_HUGE: return INT64_MAX - 1000 + j % 1000;
         default: return INT64_MIN;
     }
 }
