@@ -33,12 +33,16 @@
  * (an event, and a count in the facts).
  *
  * With receive times (live, lcm-logger files) time follows the stream, not
- * a sample that leaps: a sample further ahead of the last one than the time
- * that really passed allows (1.5 S; jump), or behind it, waits in a chain of
- * mutually consistent samples; the stream confirms the chain (confirm
- * samples in a row, spanning real time) or refutes it (a sample on the old
- * timeline), so one forged or corrupt time costs that sample, never the
- * rest.  A confirmed chain is
+ * a sample that leaps.  No genuine sample arrives sooner after it was
+ * stamped than the fastest of the last 64 (the envelope; it may arrive
+ * later: a stall, then a burst).  A sample stamped further ahead of that
+ * than 1.5 S (jump), or a little ahead of it and leading the last sample by
+ * more than the time that passed allows, or behind the last sample, waits
+ * in a chain of mutually consistent samples; the stream confirms the chain
+ * (confirm samples in a row, spanning real time) or refutes it (a sample
+ * on the old timeline; held samples stamped before that one were only
+ * early and are taken), so one forged or corrupt time costs that sample,
+ * never the rest.  A confirmed chain is
  *   - a gap (the stream resumed later), handled by the gap policy;
  *   - a clock step (the source's clock moved while little real time
  *     passed): re-timed, the motion goes on;
@@ -48,9 +52,12 @@
  * source's clock stepped: a receive time that leaps never moves it.
  *
  * Contested input (receive times known): samples refused for their time
- * that are consistent with each other (three in a row), or senders' seq
- * numbers that interleave, mean that two timelines compete on the channel
- * (a forged or duplicated sender).  The gate says so at once
+ * that form a timeline of their own (three in a row, each within 16
+ * intervals of the last), eight refused for their time within 64
+ * received, the timeline switching twice (clock steps, restarts) within
+ * 256, or two seq outliers within 256 from a sender that counts: two
+ * timelines compete on the channel (a forged or duplicated sender).  The
+ * gate says so at once
  * (SW_GATE_EV_CONTESTED), keeps the timeline the receive times support,
  * hands every sample of the other one to on_rival (for a second set of
  * engines to evaluate), and says when the other one has gone quiet
