@@ -63,6 +63,7 @@ static const char *kind_name(int k, char *buf, size_t size)
         case SWAYWATCH_ALARM_T_KIND_INPUT_REJECTED: return "INPUT_REJECTED";
         case SWAYWATCH_ALARM_T_KIND_RESERVE_WARN: return "RESERVE_WARN";
         case SWAYWATCH_ALARM_T_KIND_RESERVE_CRITICAL: return "RESERVE_CRITICAL";
+        case SWAYWATCH_ALARM_T_KIND_INPUT_CONTESTED: return "INPUT_CONTESTED";
         default: snprintf(buf, size, "KIND_%d", k); return buf;
     }
 }

@@ -103,9 +103,10 @@ const sw_cli_option_t sw_cli_gate_options[] = {
      .help = "refuse samples with any axis beyond A (a spike), in m/s^2 or with a g suffix, "
              "e.g. 30g (default 50g); at most the engine's own limit on samples, in m/s^2"},
     {SW_CLI_DOUBLE, 0, "gap", "SECONDS", GATE(gap), .rule = SW_NUM_NONNEGATIVE, .lo = 1e-4,
-     .hi = 86400, .what = "a number of seconds >= 0 (0: five sample intervals)",
-     .help = "samples further apart are a gap, an event counted in the summary (default: five "
-             "typical sample intervals); at most a day"},
+     .hi = 86400, .what = "a number of seconds >= 0 (0: ten times the logger's spacing)",
+     .help = "samples further apart are a gap, an event counted in the summary (default: ten "
+             "times the spacing the logger keeps over the whole log, and at least 10 ms; "
+             "docs/timing.md); at most a day"},
     {SW_CLI_CALL, 0, "gap-policy", "bridge|restart", GATE(gap_policy), .fn = parse_policy,
      .help = "across a gap: interpolate linearly (bridge, the default), or treat it as "
              "missing and restart every package from rest"},
@@ -115,8 +116,8 @@ const sw_cli_option_t sw_cli_gate_options[] = {
     {SW_CLI_DOUBLE, 0, "max-jump", "SECONDS", GATE(max_jump), .rule = SW_NUM_NONNEGATIVE, .def = -1,
      .lo = 1e-6, .hi = 86400, .what = "a number of seconds >= 0 (0: take any time at once)",
      .help = "a sample whose time leaps further than this beyond the time that passed (or goes "
-             "back) waits until the stream confirms it (default: the gap threshold; 0: never "
-             "wait)"},
+             "back) waits until the stream confirms it (default: 1.5 of the logger's sample "
+             "intervals; 0: never wait)"},
     {SW_CLI_LONG, 0, "confirm", "N", GATE(confirm), .min = 2, .max = SW_GATE_CONFIRM_MAX, .def = 3,
      .what = "a number of samples from 2 to " SW_CLI_STR(SW_GATE_CONFIRM_MAX),
      .help = "samples in a row that confirm a leap or a restart of the time (default %g)"},

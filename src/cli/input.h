@@ -17,7 +17,7 @@
  * given: the same options and defaults for CSV logs, lcm-logger files and
  * the live monitor. */
 typedef struct {
-    double gap;          /* s; 0 = 5 typical intervals */
+    double gap;          /* s; 0 = 10 times the logger's spacing, at least 10 ms (gate.h) */
     int gap_policy;      /* SW_GAP_BRIDGE, SW_GAP_RESTART */
     double max_bridge;   /* s */
     double max_accel;    /* m/s^2 */
