@@ -404,7 +404,7 @@ static void handle(sw_lcmlog_t *l, sw_mon_t *mon, const event_t *e)
     int64_t rx_us; /* when lcm-logger received it, relative to the first: exact in double */
     const double rx =
         __builtin_sub_overflow(e->timestamp, l->ts0, &rx_us) ? NAN : (double)rx_us / 1e6;
-    sw_mon_feed(mon, data, n, e->timestamp, rx, NULL);
+    sw_mon_feed_on(mon, e->channel, data, n, e->timestamp, rx, NULL); /* a MAC covers the channel */
 }
 
 /* The region that started at r->offset ends at end. */

@@ -7,6 +7,9 @@
  * time, whose alarms from WARN up are raised as well: the worse of the
  * two is never silent.
  *
+ * With keys, each message is authenticated (auth.c) where it is decoded,
+ * before anything else looks at it.
+ *
  * Nothing in here allocates after sw_mon_create(): messages are encoded
  * into a buffer made at create time and handed to lcm_publish(). */
 #include "monitor.h"
@@ -101,13 +104,21 @@ struct sw_mon {
     long rej_pending[SW_MON_NREJ];      /* refused since the last alarm for that reason */
     double rej_interval;
 
+    /* with keys: the verifier, and samples failing it (INPUT_CONTESTED) */
+    sw_auth_t *auth;
+    const char *accel_channel;
+    int auth_open;     /* samples failing authentication arrive */
+    double auth_last;  /* mono s of the last of them */
+    long auth_refused; /* refused since they began */
+
     int64_t state_seq, alarm_seq;
     sw_mon_counts_t c;
 };
 
 static const char *const reject_names[SW_MON_NREJ] = {
-    "decode",       "trailing", "nonfinite", "implausible", "skew",     "duplicate",
-    "out_of_order", "jump",     "engine",    "time",        "overload", "contested"};
+    "decode",          "trailing",    "nonfinite", "implausible", "skew",     "duplicate",
+    "out_of_order",    "jump",        "engine",    "time",        "overload", "contested",
+    "unauthenticated", "unknown_key", "bad_mac",   "replayed"};
 
 const char *sw_mon_reject_name(sw_mon_reject r)
 {
@@ -402,6 +413,7 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         return NULL;
     }
     m->state_channel = mo->state_channel ? mo->state_channel : SW_MON_STATE_CHANNEL;
+    m->accel_channel = mo->accel_channel ? mo->accel_channel : SW_MON_ACCEL_CHANNEL;
     m->alarm_channel = mo->alarm_channel ? mo->alarm_channel : SW_MON_ALARM_CHANNEL;
     m->out = out;
     m->n = n;
@@ -421,6 +433,8 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     m->fold = sw_fold_create(n, interval, emit_alarm, m);
     if (!m->watch || !m->watch_b || !m->watch_fresh || !m->names || !m->next_state_us || !m->buf ||
         !m->fold)
+        goto nomem;
+    if (mo->keys && !(m->auth = sw_auth_create(mo->keys)))
         goto nomem;
 
     sw_engine_opts_t e = *eo;
@@ -484,6 +498,7 @@ void sw_mon_destroy(sw_mon_t *m)
 {
     if (!m)
         return;
+    sw_auth_destroy(m->auth);
     sw_gate_destroy(m->gate);
     sw_gate_destroy(m->gate_b);
     sw_risk_destroy(m->risk);
@@ -553,7 +568,8 @@ static int refuse(sw_mon_t *m, sw_mon_reject r, double mono, int64_t utime, sw_m
 {
     static const int code[SW_MON_NREJ] = {SW_EPARSE,  SW_EPARSE,      SW_ENONFINITE, SW_ETOOBIG,
                                           SW_ETOOBIG, SW_EORDER,      SW_EORDER,     SW_EORDER,
-                                          SW_EINVAL,  SW_ERESOLUTION, SW_ETOOBIG,    SW_EORDER};
+                                          SW_EINVAL,  SW_ERESOLUTION, SW_ETOOBIG,    SW_EORDER,
+                                          SW_EAUTH,   SW_EAUTH,       SW_EAUTH,      SW_EAUTH};
     m->c.rejected[r]++;
     m->rej_pending[r]++;
     reject_alarm(m, r, mono, input_utime(m, utime));
@@ -630,20 +646,75 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
     input_alarm(m, SW_ALARM_SENSOR_GAP, level, utime_at(m, ev->t), text);
 }
 
+/* A message that failed authentication (r): refused, and INPUT_CONTESTED
+ * (critical) raised when such messages begin to arrive: something else
+ * than the keyed sensor publishes on the channel (or the sensor has
+ * another key), and what it sends is never integrated. */
+static int auth_refuse(sw_mon_t *m, sw_auth_result r, const char *channel, double mono,
+                       int64_t wall_us, sw_mon_reject *why)
+{
+    static const sw_mon_reject map[SW_AUTH_NRESULTS] = {
+        SW_MON_REJ_ENGINE, SW_MON_REJ_UNAUTHENTICATED, SW_MON_REJ_UNKNOWN_KEY, SW_MON_REJ_BAD_MAC,
+        SW_MON_REJ_REPLAYED};
+    m->auth_last = mono;
+    m->auth_refused++;
+    if (!m->auth_open) {
+        char text[SW_ALARM_TEXT_MAX];
+        m->auth_open = 1;
+        m->auth_refused = 1;
+        m->c.auth_contests++;
+        snprintf(text, sizeof text,
+                 "unauthentic accel samples on %.40s (%s): refused, the authenticated stream kept",
+                 channel, sw_auth_result_name(r));
+        input_alarm(m, SW_ALARM_INPUT_CONTESTED, SW_ALARM_LEVEL_CRITICAL, input_utime(m, wall_us),
+                    text);
+    }
+    return refuse(m, map[r], mono, wall_us, why);
+}
+
+/* The unauthentic samples stopped: said once (info). */
+static void auth_check_end(sw_mon_t *m, double mono)
+{
+    if (!m->auth_open || !(mono - m->auth_last > SW_MON_AUTH_QUIET))
+        return;
+    char text[SW_ALARM_TEXT_MAX];
+    m->auth_open = 0;
+    snprintf(text, sizeof text,
+             "accel channel no longer contested: no unauthentic sample for %.0f s (%ld refused)",
+             SW_MON_AUTH_QUIET, m->auth_refused);
+    input_alarm(m, SW_ALARM_INPUT_CONTESTED, SW_ALARM_LEVEL_INFO, m->last_us, text);
+}
+
 int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, double mono,
                 sw_mon_reject *why)
 {
+    return sw_mon_feed_on(m, NULL, data, len, wall_us, mono, why);
+}
+
+int sw_mon_feed_on(sw_mon_t *m, const char *channel, const void *data, size_t len, int64_t wall_us,
+                   double mono, sw_mon_reject *why)
+{
     swaywatch_accel_t s;
+    int layout = 0;
     m->c.received++;
     m->feed_mono = mono;
     m->now = mono;
-    int used = len <= INT32_MAX ? swaywatch_accel_t_decode(data, 0, (int)len, &s) : -1;
+    const int used = sw_accel_decode(data, len, &s, &layout);
     if (used < 0)
         return refuse(m, SW_MON_REJ_DECODE, mono, wall_us, why);
     /* The generated decoder accepts trailing bytes; a well-formed sender
      * never sends them. */
     if ((size_t)used != len)
         return refuse(m, SW_MON_REJ_TRAILING, mono, wall_us, why);
+    if (!channel)
+        channel = m->accel_channel;
+    if (m->auth) {
+        const sw_auth_result ar = sw_auth_check(m->auth, channel, data, &s, layout, m->c.received);
+        if (ar != SW_AUTH_OK)
+            return auth_refuse(m, ar, channel, mono, wall_us, why);
+    } else if (layout == 2 && s.key_id != 0) {
+        m->c.macs_unchecked++;
+    }
     /* every axis must be finite, the ones not used too: a NaN anywhere is
      * a broken sender */
     if (!isfinite(s.ax) || !isfinite(s.ay) || !isfinite(s.az))
@@ -698,6 +769,8 @@ double sw_mon_deadline(const sw_mon_t *m)
     for (int r = 0; r < SW_MON_NREJ; r++)
         if (m->rej_pending[r] > 0 && m->rej_last_alarm[r] + m->rej_interval < d)
             d = m->rej_last_alarm[r] + m->rej_interval;
+    if (m->auth_open && m->auth_last + SW_MON_AUTH_QUIET < d)
+        d = m->auth_last + SW_MON_AUTH_QUIET;
     const double f = sw_fold_deadline(m->fold);
     return f < d ? f : d;
 }
@@ -715,6 +788,7 @@ void sw_mon_tick(sw_mon_t *m, double mono)
                     m->last_us + (int64_t)llround(waited * 1e6), text);
     }
     for (int r = 0; r < SW_MON_NREJ; r++) reject_alarm(m, (sw_mon_reject)r, mono, m->last_us);
+    auth_check_end(m, mono);
     sw_fold_tick(m->fold, mono);
 }
 
@@ -806,4 +880,18 @@ int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, si
 sw_risk_t *sw_mon_risk(sw_mon_t *m)
 {
     return m ? m->risk : NULL;
+}
+
+int sw_mon_set_keys(sw_mon_t *m, const sw_keyring_t *keys)
+{
+    if (!m || !m->auth || !keys)
+        return SW_EINVAL;
+    sw_auth_set_keys(m->auth, keys);
+    m->o.keys = keys;
+    return SW_OK;
+}
+
+const sw_auth_facts_t *sw_mon_auth_facts(const sw_mon_t *m)
+{
+    return m && m->auth ? sw_auth_facts(m->auth) : NULL;
 }

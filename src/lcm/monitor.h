@@ -26,7 +26,14 @@
  * is raised at once (critical), the timeline the arrival times support is
  * kept, and the other is evaluated by a second set of engines made at
  * create time, whose alarms from WARN up are raised too ("second
- * timeline: ..."): no pattern of forged samples silences an overturn. */
+ * timeline: ..."): no pattern of forged samples silences an overturn.
+ *
+ * Authenticated sensors (auth.h, docs/security.md): with keys, every
+ * message must carry a MAC under one of them and a fresh freshness value;
+ * the others are refused before the gate sees them (unauthenticated,
+ * unknown_key, bad_mac, replayed), counted, and raise INPUT_CONTESTED
+ * (critical) when they begin to arrive: the authenticated stream alone is
+ * integrated, and keeps its verdict. */
 #ifndef SWAYWATCH_LCM_MONITOR_H
 #define SWAYWATCH_LCM_MONITOR_H
 
@@ -34,6 +41,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "auth.h"
 #include "swaywatch/alarm.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/gate.h"
@@ -70,6 +78,12 @@ typedef enum {
                                 (the caller sheds load with sw_mon_refuse) */
     SW_MON_REJ_CONTESTED,    /* from a second sender whose seq numbers interleave with
                                 the kept one's (evaluated apart: docs/timing.md) */
+    /* with keys (auth.h): */
+    SW_MON_REJ_UNAUTHENTICATED, /* no MAC: the old layout (accel_v1_t), or key id 0 */
+    SW_MON_REJ_UNKNOWN_KEY,     /* a key id that is not among the keys */
+    SW_MON_REJ_BAD_MAC,         /* a MAC that does not match (another key, altered bytes,
+                                   another channel) */
+    SW_MON_REJ_REPLAYED,        /* authentic but not fresh: a copy of an earlier message */
     SW_MON_NREJ
 } sw_mon_reject;
 
@@ -110,6 +124,11 @@ typedef struct {
     sw_alarm_fn on_alarm;      /* optional: every alarm raised (t relative, as on_state) */
     sw_gate_take_fn on_take;   /* optional: every sample pushed into the engine, as the
                                   gate reports it (gate.h): a log read once, replayed */
+    const sw_keyring_t *keys;  /* NULL: no authentication (either layout taken, MACs not
+                                  checked); else every message must be authentic under one
+                                  of these keys (auth.h); borrowed (sw_mon_set_keys) */
+    const char *accel_channel; /* the channel of messages fed by sw_mon_feed() (a MAC
+                                  covers it); NULL = SW_MON_ACCEL_CHANNEL */
     void *user;
 } sw_mon_opts_t;
 
@@ -133,6 +152,9 @@ typedef struct {
     long contests;              /* times two timelines competed (INPUT_CONTESTED) */
     long contested;             /* samples of the second timeline, evaluated apart (they
                                    are among the rejected) */
+    long auth_contests;         /* with keys: times samples failing authentication began to
+                                   arrive (INPUT_CONTESTED) */
+    long macs_unchecked;        /* without keys: samples that carried a MAC, not checked */
 } sw_mon_counts_t;
 
 typedef struct sw_mon sw_mon_t;
@@ -153,6 +175,22 @@ void sw_mon_destroy(sw_mon_t *m); /* NULL ok */
 #define SW_MON_HELD 100
 int sw_mon_feed(sw_mon_t *m, const void *data, size_t len, int64_t wall_us, double mono,
                 sw_mon_reject *why);
+/* The same, for a message that came on channel (NULL: opts.accel_channel):
+ * with keys, its MAC must cover that channel. */
+int sw_mon_feed_on(sw_mon_t *m, const char *channel, const void *data, size_t len, int64_t wall_us,
+                   double mono, sw_mon_reject *why);
+
+/* s: samples failing authentication are over (INPUT_CONTESTED, info) when
+ * none came for this long. */
+#define SW_MON_AUTH_QUIET 2.0
+
+/* New keys (a key file read again; borrowed): the freshness seen under each
+ * key id goes on.  SW_OK, or SW_EINVAL for a monitor made without keys or
+ * keys NULL (authentication is not turned on or off while it runs). */
+int sw_mon_set_keys(sw_mon_t *m, const sw_keyring_t *keys);
+/* With keys: what was checked and where refused messages came from (the
+ * message's count, its channel and key id); NULL without keys. */
+const sw_auth_facts_t *sw_mon_auth_facts(const sw_mon_t *m);
 
 /* A message the caller refuses without reading it, for reason r (e.g.
  * SW_MON_REJ_OVERLOAD: it waited in the receive queue for longer than a
@@ -196,7 +234,8 @@ int64_t sw_mon_last_utime(
     const sw_mon_t *m); /* utime of the last accepted sample (us), 0 if none */
 
 /* "decode", "trailing", "nonfinite", "implausible", "skew", "duplicate",
- * "out_of_order", "jump", "engine", "time", "overload", "contested". */
+ * "out_of_order", "jump", "engine", "time", "overload", "contested",
+ * "unauthenticated", "unknown_key", "bad_mac", "replayed". */
 const char *sw_mon_reject_name(sw_mon_reject r);
 
 /* Axis name "x" | "y" | "z" to 0..2; -1 if none of them. */

@@ -19,6 +19,7 @@ const char *sw_strerror(int code)
         case SW_ETOOBIG: return "input exceeds a limit";
         case SW_EAMBIGUOUS: return "the input does not say what it holds";
         case SW_ERESOLUTION: return "time too large for its resolution (a time unit mistake?)";
+        case SW_EAUTH: return "not authentic (no MAC, a wrong MAC, or a replayed message)";
         default: return code > 0 ? "event reported" : "unknown error";
     }
 }

@@ -167,9 +167,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             sw_mon_counts(m, &c);
             FZ_CHECK(c.held >= 1 && c.held <= 3 * SW_GATE_CONFIRM_MAX);
         } else if (rc >= 0) {
-            /* Accepted: it decoded exactly, and its values are sane. */
+            /* Accepted: it decoded exactly (in either layout: auth.h), and
+             * its values are sane. */
             swaywatch_accel_t d;
-            FZ_CHECK(swaywatch_accel_t_decode(buf, 0, len, &d) == len);
+            int layout = 0;
+            FZ_CHECK(sw_accel_decode(buf, (size_t)len, &d, &layout) == len);
             FZ_CHECK(isfinite(d.ax) && isfinite(d.ay) && isfinite(d.az));
             const double lim = SW_MON_MAX_ACCEL / mo.accel_scale;
             FZ_CHECK(fabs(d.ax) <= lim && fabs(d.ay) <= lim && fabs(d.az) <= lim);

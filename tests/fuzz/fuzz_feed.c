@@ -190,7 +190,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     swaywatch_accel_t a = {.utime = WALL0, .seq = 0};
     int64_t wall = WALL0;
     double mono = 100.0;
-    unsigned char buf[64];
+    unsigned char buf[128]; /* an accel_t is 73 bytes */
     int len = -1;
     long fed = 0;
     for (int r = 0; r < MAX_RECORDS && b.n > 0; r++) {

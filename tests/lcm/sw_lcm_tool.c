@@ -9,7 +9,11 @@
  * half-sine pulse of A m/s^2 (negative brakes) and W rad/s on the x axis,
  * starting S seconds into a recording of T seconds sampled at HZ; y gets a
  * small wobble that the monitor must ignore.  --bad N puts a wrong-type and
- * a truncated message on the channel after every N samples.
+ * a truncated message on the channel after every N samples.  --key FILE
+ * signs every sample with the last key of the key file (accel_t, freshness
+ * from --fresh N, default the wall clock in us, +1 per sample); without
+ * it the samples are in the layout of senders without a key
+ * (accel_v1_t).
  *
  * dump prints, for the swaywatch channels:
  *   accel COUNT
@@ -26,8 +30,11 @@
 #include <string.h>
 #include <time.h>
 
+#include "auth.h"
 #include "swaywatch/pulse.h"
+#include "swaywatch/status.h"
 #include "swaywatch_accel_t.h"
+#include "swaywatch_accel_v1_t.h"
 #include "swaywatch_alarm_t.h"
 #include "swaywatch_state_t.h"
 
@@ -37,7 +44,35 @@ typedef struct {
     double rate, amplitude, omega, duration, lead;
     long bad;
     const char *channel;
+    sw_keyring_t *keys; /* --key: sign with its last key */
+    int64_t fresh;      /* --fresh: the first sample's freshness; 0 = the wall clock in us */
 } pulse_opts_t;
+
+static int64_t wall_us(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+/* The key file at path, as the command reads it (without its permission
+ * check: the tests make their files). */
+static sw_keyring_t *load_keys(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        perror(path);
+        return NULL;
+    }
+    static char text[SW_AUTH_FILE_MAX + 1];
+    const size_t n = fread(text, 1, sizeof text, f);
+    fclose(f);
+    char msg[256];
+    sw_keyring_t *k = sw_keyring_parse(text, n, path, msg, sizeof msg);
+    if (!k)
+        fprintf(stderr, "sw_lcm_tool: %s\n", msg);
+    return k;
+}
 
 static int parse_pulse(int argc, char **argv, int i, pulse_opts_t *p)
 {
@@ -48,6 +83,8 @@ static int parse_pulse(int argc, char **argv, int i, pulse_opts_t *p)
     p->lead = 0.2;
     p->bad = 0;
     p->channel = "ACCEL";
+    p->keys = NULL;
+    p->fresh = 0;
     for (; i + 1 < argc; i += 2) {
         const char *k = argv[i], *v = argv[i + 1];
         if (!strcmp(k, "--rate"))
@@ -64,6 +101,12 @@ static int parse_pulse(int argc, char **argv, int i, pulse_opts_t *p)
             p->bad = atol(v);
         else if (!strcmp(k, "--channel"))
             p->channel = v;
+        else if (!strcmp(k, "--key")) {
+            sw_keyring_destroy(p->keys);
+            if (!(p->keys = load_keys(v)))
+                return -1;
+        } else if (!strcmp(k, "--fresh"))
+            p->fresh = atoll(v);
         else {
             fprintf(stderr, "sw_lcm_tool: unknown option %s\n", k);
             return -1;
@@ -94,6 +137,23 @@ static long n_samples(const pulse_opts_t *p)
     return (long)floor(p->duration * p->rate) + 1;
 }
 
+/* Sample s encoded as the sender sends it: signed (accel_t) with --key,
+ * else in the layout of senders without a key (accel_v1_t).  The
+ * encoded length, or -1. */
+static int encode(pulse_opts_t *p, swaywatch_accel_t *s, unsigned char *buf, int cap)
+{
+    if (!p->keys) {
+        const swaywatch_accel_v1_t v = {s->utime, s->seq, s->ax, s->ay, s->az};
+        return swaywatch_accel_v1_t_encode(buf, 0, cap, &v);
+    }
+    if (p->fresh == 0)
+        p->fresh = wall_us();
+    s->freshness = p->fresh++;
+    if (sw_auth_sign(p->keys, sw_keyring_signer(p->keys), p->channel, s) != SW_OK)
+        return -1;
+    return swaywatch_accel_t_encode(buf, 0, cap, s);
+}
+
 static int write_event(lcm_eventlog_t *log, const char *channel, int64_t ts, void *data, int len)
 {
     lcm_eventlog_event_t ev;
@@ -106,7 +166,7 @@ static int write_event(lcm_eventlog_t *log, const char *channel, int64_t ts, voi
     return lcm_eventlog_write_event(log, &ev);
 }
 
-static int cmd_mklog(const char *path, const pulse_opts_t *p)
+static int cmd_mklog(const char *path, pulse_opts_t *p)
 {
     lcm_eventlog_t *log = lcm_eventlog_create(path, "w");
     if (!log) {
@@ -117,7 +177,7 @@ static int cmd_mklog(const char *path, const pulse_opts_t *p)
     const int64_t utime0 = 1700000000000000LL; /* a fixed, realistic epoch time */
     for (long k = 0; k < n_samples(p); k++) {
         swaywatch_accel_t s = sample(p, k, utime0);
-        int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+        int len = encode(p, &s, buf, sizeof buf);
         if (len < 0 || write_event(log, p->channel, s.utime, buf, len) != 0) {
             fprintf(stderr, "sw_lcm_tool: cannot write %s\n", path);
             lcm_eventlog_destroy(log);
@@ -128,7 +188,7 @@ static int cmd_mklog(const char *path, const pulse_opts_t *p)
     return 0;
 }
 
-static int cmd_publish(const char *url, const pulse_opts_t *p)
+static int cmd_publish(const char *url, pulse_opts_t *p)
 {
     lcm_t *lcm = lcm_create(url);
     if (!lcm) {
@@ -152,7 +212,8 @@ static int cmd_publish(const char *url, const pulse_opts_t *p)
         }
         clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
         swaywatch_accel_t s = sample(p, k, utime0);
-        if (swaywatch_accel_t_publish(lcm, p->channel, &s) != 0)
+        const int slen = encode(p, &s, buf, sizeof buf);
+        if (slen < 0 || lcm_publish(lcm, p->channel, buf, (unsigned)slen) != 0)
             rc = 1;
         if (p->bad > 0 && k % p->bad == p->bad - 1) {
             /* a state_t on the accel channel, then a truncated accel_t */
@@ -161,7 +222,7 @@ static int cmd_publish(const char *url, const pulse_opts_t *p)
             int len = swaywatch_state_t_encode(buf, 0, sizeof buf, &st);
             if (len < 0 || lcm_publish(lcm, p->channel, buf, (unsigned)len) != 0)
                 rc = 1;
-            len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &s);
+            len = encode(p, &s, buf, sizeof buf);
             if (len < 0 || lcm_publish(lcm, p->channel, buf, (unsigned)len - 5) != 0)
                 rc = 1;
         }
@@ -261,10 +322,17 @@ int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
     pulse_opts_t p;
-    if (argc >= 3 && !strcmp(argv[1], "mklog"))
-        return parse_pulse(argc, argv, 3, &p) ? 2 : cmd_mklog(argv[2], &p);
-    if (argc >= 3 && !strcmp(argv[1], "publish"))
-        return parse_pulse(argc, argv, 3, &p) ? 2 : cmd_publish(argv[2], &p);
+    int rc;
+    if (argc >= 3 && !strcmp(argv[1], "mklog")) {
+        rc = parse_pulse(argc, argv, 3, &p) ? 2 : cmd_mklog(argv[2], &p);
+        sw_keyring_destroy(p.keys);
+        return rc;
+    }
+    if (argc >= 3 && !strcmp(argv[1], "publish")) {
+        rc = parse_pulse(argc, argv, 3, &p) ? 2 : cmd_publish(argv[2], &p);
+        sw_keyring_destroy(p.keys);
+        return rc;
+    }
     if (argc == 3 && !strcmp(argv[1], "dump"))
         return cmd_dump(argv[2]);
     fprintf(stderr, "usage: sw_lcm_tool mklog OUT [pulse] | publish URL [pulse] | dump LOG\n");

@@ -23,7 +23,7 @@
 #include "eventlog.h"
 #include "monitor.h"
 #include "swaywatch/swaywatch.h"
-#include "swaywatch_accel_t.h"
+#include "swaywatch_accel_v1_t.h"
 
 #define UTIME0 1700000000000000LL
 
@@ -44,13 +44,13 @@ static void put64(unsigned char *p, uint64_t v)
     put32(p + 4, (uint32_t)v);
 }
 
-/* One event: header, "ACCEL", an accel_t; datalen as given (the real
+/* One event: header, "ACCEL", an accel_t of a sender without a key; datalen as given (the real
  * length if < 0).  Returns its size. */
 static size_t event(unsigned char *p, long k, int64_t datalen)
 {
-    swaywatch_accel_t s = {.utime = UTIME0 + k * 1000, .seq = k, .ax = 0.0};
+    swaywatch_accel_v1_t s = {.utime = UTIME0 + k * 1000, .seq = k, .ax = 0.0};
     unsigned char data[64];
-    int len = swaywatch_accel_t_encode(data, 0, sizeof data, &s);
+    int len = swaywatch_accel_v1_t_encode(data, 0, sizeof data, &s);
     assert_true(len == 48);
     put32(p, SW_LCMLOG_SYNC);
     put64(p + 4, (uint64_t)k);

@@ -15,28 +15,66 @@
 // clang-format on
 
 #include "swaywatch_accel_t.h"
+#include "swaywatch_accel_v1_t.h"
 #include "swaywatch_alarm_t.h"
 #include "swaywatch_state_t.h"
 
 static void test_accel_round_trip(void **st)
 {
     (void)st;
-    swaywatch_accel_t a = {
-        .utime = 1700000000123456LL, .seq = 42, .ax = -3.25, .ay = 1e-300, .az = -0.0};
+    swaywatch_accel_t a = {.utime = 1700000000123456LL,
+                           .seq = 42,
+                           .ax = -3.25,
+                           .ay = 1e-300,
+                           .az = -0.0,
+                           .freshness = 0x0102030405060708LL,
+                           .key_id = 200,
+                           .mac = {-1, 2, -3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, -128}};
     unsigned char buf[256];
     int len = swaywatch_accel_t_encode(buf, 0, sizeof buf, &a);
-    /* 8-byte fingerprint + 2 int64 + 3 double, whatever the values. */
-    assert_int_equal(len, 8 + 16 + 24);
+    /* 8-byte fingerprint + 2 int64 + 3 double + freshness, key id and a
+     * 16-byte MAC, whatever the values. */
+    assert_int_equal(len, 8 + 16 + 24 + 8 + 1 + 16);
     assert_int_equal(swaywatch_accel_t_encoded_size(&a), len);
     swaywatch_accel_t b;
     memset(&b, 0xff, sizeof b);
     assert_int_equal(swaywatch_accel_t_decode(buf, 0, len, &b), len);
     assert_true(b.utime == a.utime && b.seq == a.seq);
     assert_true(b.ax == a.ax && b.ay == a.ay && b.az == a.az && signbit(b.az));
-    /* Big-endian on the wire: utime follows the fingerprint. */
+    assert_true(b.freshness == a.freshness && b.key_id == 200);
+    assert_memory_equal(b.mac, a.mac, sizeof a.mac);
+    /* Big-endian on the wire: utime follows the fingerprint; the fields
+     * the MAC covers are the first 57 bytes, the MAC the last 16. */
     assert_int_equal(buf[8], 0x00);
     assert_int_equal(buf[15], (unsigned char)(a.utime & 0xff));
+    assert_int_equal(buf[48], 0x01);
+    assert_int_equal(buf[55], 0x08);
+    assert_int_equal(buf[56], 200);
+    assert_int_equal(buf[57], 0xff);
+    assert_int_equal(buf[72], 0x80);
     swaywatch_accel_t_decode_cleanup(&b);
+}
+
+/* The layout of senders without a key: accel_t of 0.1.0, field for field;
+ * the two fingerprints differ, so neither decoder misreads the other's
+ * messages. */
+static void test_accel_v1(void **st)
+{
+    (void)st;
+    const swaywatch_accel_v1_t a = {.utime = 7, .seq = -1, .ax = 1.5, .ay = -2.5, .az = 0.25};
+    const swaywatch_accel_t b = {.utime = 7, .seq = -1, .ax = 1.5, .ay = -2.5, .az = 0.25};
+    unsigned char va[128], vb[128];
+    const int la = swaywatch_accel_v1_t_encode(va, 0, sizeof va, &a);
+    const int lb = swaywatch_accel_t_encode(vb, 0, sizeof vb, &b);
+    assert_int_equal(la, 48);
+    assert_int_equal(lb, 73);
+    assert_memory_not_equal(va, vb, 8);
+    assert_memory_equal(va + 8, vb + 8, 40); /* the same fields, in the same place */
+    swaywatch_accel_t d;
+    swaywatch_accel_v1_t e;
+    assert_true(swaywatch_accel_t_decode(va, 0, la, &d) < 0);
+    assert_true(swaywatch_accel_v1_t_decode(vb, 0, lb, &e) < 0);
+    assert_true(__swaywatch_accel_t_get_hash() != __swaywatch_accel_v1_t_get_hash());
 }
 
 static void test_state_round_trip(void **st)
@@ -124,7 +162,8 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_accel_round_trip), cmocka_unit_test(test_state_round_trip),
-        cmocka_unit_test(test_alarm_round_trip), cmocka_unit_test(test_bad_bytes)};
+        cmocka_unit_test(test_accel_round_trip), cmocka_unit_test(test_accel_v1),
+        cmocka_unit_test(test_state_round_trip), cmocka_unit_test(test_alarm_round_trip),
+        cmocka_unit_test(test_bad_bytes)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
