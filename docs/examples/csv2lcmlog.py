@@ -6,7 +6,8 @@ lcm-logplayer can then publish on an LCM bus as if a sensor sent them: a
 way to try `swaywatch monitor` and its consumers without a truck.
 
     PYTHONPATH=/usr/share/swaywatch/lcmtypes/python \\
-        python3 csv2lcmlog.py drive.csv drive.lcmlog [--g] [--start-utime US] &&
+        python3 csv2lcmlog.py drive.csv drive.lcmlog [--g] [--start-utime US] \\
+            [--key KEYFILE] &&
         lcm-logplayer drive.lcmlog
 
 The CSV is read as swaywatch reads it by default: column 1 time in s,
@@ -24,15 +25,28 @@ once, as above, shows the monitor's own delay as lag, as a live sensor
 with a synchronised clock would; a file played minutes later shows those
 minutes too (convert it again, or use --start-utime for fixed stamps).
 Only struct is needed: no LCM Python module.
+
+Without --key the samples are in the layout of senders without a key
+(accel_v1_t), which every reader decodes.  With --key KEYFILE (a key file
+of `swaywatch keygen`, which others must not be able to read) they are
+accel_t signed as an authenticated sensor signs (docs/security.md): the
+last key of the file, key_id its id, freshness from the wall clock in
+microseconds when the file is written, +1 a sample, and mac the first 16
+bytes of HMAC-SHA-256(key, channel || 0 || the 57 bytes before mac), with
+Python's hmac.  A monitor given the key file (--key) takes them.
 """
 import argparse
 import datetime
+import hashlib
+import hmac
+import os
 import re
+import stat
 import struct
 import sys
 import time
 
-from swaywatch import accel_t
+from swaywatch import accel_t, accel_v1_t
 
 G0 = 9.80665
 
@@ -52,6 +66,47 @@ def rows(path):
                     print("csv2lcmlog: %s:%d: skipped: %s" % (path, n, line), file=sys.stderr)
 
 
+def signing_key(path):
+    """(id, key) of the last key of a key file ('ID HMAC-SHA256 HEX:KEY'
+    lines), refused as swaywatch refuses it."""
+    mode = os.stat(path).st_mode
+    if mode & (stat.S_IRWXO | stat.S_IWGRP):
+        sys.exit("csv2lcmlog: %s: permissions %04o are too open: chmod 600 %s"
+                 % (path, stat.S_IMODE(mode), path))
+    key = None
+    with open(path) as f:
+        for n, line in enumerate(f, 1):
+            w = line.split()
+            if not w or w[0].startswith("#"):
+                continue
+            try:
+                if len(w) != 3 or w[1].upper() != "HMAC-SHA256" or w[2][:4].upper() != "HEX:":
+                    raise ValueError
+                kid, secret = int(w[0]), bytes.fromhex(w[2][4:])
+                if not 1 <= kid <= 255 or len(secret) != 32:
+                    raise ValueError
+            except ValueError:
+                sys.exit("csv2lcmlog: %s:%d: not a key line 'ID HMAC-SHA256 HEX:KEY'" % (path, n))
+            key = (kid, secret)
+    if not key:
+        sys.exit("csv2lcmlog: %s: no key in it" % path)
+    return key
+
+
+def encode(utime, seq, ax, key, fresh, channel):
+    """One sample as the sender sends it: signed with key, else the old layout."""
+    if not key:
+        m = accel_v1_t()
+        m.utime, m.seq, m.ax = utime, seq, ax
+        return m.encode()
+    m = accel_t()
+    m.utime, m.seq, m.ax, m.freshness, m.key_id = utime, seq, ax, fresh, key[0]
+    head = m.encode()[:57]
+    mac = hmac.new(key[1], channel + b"\0" + head, hashlib.sha256).digest()[:16]
+    m.mac = list(struct.unpack(">16b", mac))
+    return m.encode()
+
+
 def iso(utime):
     """utime (us since the epoch) as ISO 8601 UTC with milliseconds."""
     t = datetime.datetime.fromtimestamp(utime // 1000000, datetime.timezone.utc)
@@ -67,7 +122,11 @@ def main():
     ap.add_argument("--start-utime", type=int, default=None,
                     help="utime of the first sample in microseconds "
                          "(default: now, when the file is written)")
+    ap.add_argument("--key", metavar="KEYFILE",
+                    help="sign every sample with the last key of this key file "
+                         "(swaywatch keygen)")
     a = ap.parse_args()
+    key = signing_key(a.key) if a.key else None
 
     samples = [(t, acc) for _n, t, acc in rows(a.csv)]
     if not samples:
@@ -78,19 +137,17 @@ def main():
     channel = a.channel.encode()
     # Stamped as late as possible: encoding and writing take milliseconds.
     start = a.start_utime if a.start_utime is not None else int(time.time() * 1e6)
+    fresh = time.time_ns() // 1000  # never below what an earlier run of the key used
     out = []
     for seq, (t, acc) in enumerate(samples):
-        m = accel_t()
-        m.utime = start + int(round((t - t0) * 1e6))
-        m.seq = seq
-        m.ax = acc * scale
-        data = m.encode()
-        out.append(struct.pack(">IqqII", 0xEDA1DA01, seq, m.utime, len(channel), len(data)))
+        utime = start + int(round((t - t0) * 1e6))
+        data = encode(utime, seq, acc * scale, key, fresh + seq, channel)
+        out.append(struct.pack(">IqqII", 0xEDA1DA01, seq, utime, len(channel), len(data)))
         out.append(channel + data)
     with open(a.out, "wb") as f:
         f.write(b"".join(out))
-    print("csv2lcmlog: %d samples written to %s, the first stamped %s"
-          % (len(samples), a.out, iso(start)))
+    print("csv2lcmlog: %d samples written to %s, the first stamped %s%s"
+          % (len(samples), a.out, iso(start), ", signed with key %d" % key[0] if key else ""))
     return 0
 
 

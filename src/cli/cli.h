@@ -28,6 +28,7 @@ int cmd_watch(int argc, char **argv);   /* LCM and curses builds only (SW_HAVE_W
 int cmd_boundary(int argc, char **argv);
 int cmd_forensics(int argc, char **argv);
 int cmd_batch(int argc, char **argv);
+int cmd_keygen(int argc, char **argv); /* LCM builds only */
 
 /* "swaywatch: " + printf-style message + newline, on the calling thread's
  * message stream (sw_cli_msg()). */

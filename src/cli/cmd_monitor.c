@@ -17,6 +17,7 @@
 #include "clobber.h"
 #include "cost.h"
 #include "input.h"
+#include "keyfile.h"
 #include "lcmlog.h"
 #include "lcmopts.h"
 #include "monitor_cli.h"
@@ -37,6 +38,7 @@ typedef struct {
     sw_cli_gate_t gate;        /* the input gate's options, as every source has them */
     const char *url;           /* --lcm-url; NULL: LCM's default */
     const char *accel_channel; /* subscribed to */
+    const char *key_file;      /* --key: authenticated sensors */
     double status_every;       /* s, --status; 0: no status line */
     double max_backlog;        /* s, --max-backlog */
 } monitor_opts_t;
@@ -75,6 +77,19 @@ static const sw_cli_option_t monitor_lcm_options[] = {
     {SW_CLI_STRING, 0, "accel-channel", "REGEX", MO(accel_channel), .fn = check_accel_channel,
      .help = "accel channel: a name or an anchored regex, as LCM subscribes "
              "(default " SW_MON_ACCEL_CHANNEL ")"},
+    {SW_CLI_STRING, 0, "key", "FILE", MO(key_file),
+     .help = "authenticated sensors: refuse every sample that is not signed by a key of the key "
+             "file FILE (swaywatch keygen; re-read on SIGHUP); see below"},
+    {SW_CLI_TEXT,
+     .help = "\nAuthenticated sensors (--key): every accel_t must carry a MAC under one of the\n"
+             "keys of FILE and a freshness above the last one accepted under its key.  Samples\n"
+             "without a MAC (a sender without a key, the old layout), under an unknown key,\n"
+             "with a wrong MAC or replayed are refused and counted (unauthenticated,\n"
+             "unknown_key, bad_mac, replayed), and raise INPUT_CONTESTED (critical) when they\n"
+             "begin to arrive: only the authenticated stream is integrated.  FILE holds lines\n"
+             "'ID HMAC-SHA256 HEX:KEY'; it is refused if every user can read it or its group\n"
+             "can write it.  Without --key, samples in both layouts are taken and MACs are\n"
+             "not checked."},
     {.kind = SW_CLI_END},
 };
 
@@ -171,14 +186,17 @@ static const sw_cli_command_t monitor_cmd = {
         "SIGTERM, then prints a summary on stderr.  Samples are integrated by their own\n"
         "utime, never by arrival time.\n"
         "\n"
-        "SIGHUP (systemctl reload) re-reads the scene files once none has changed for 1 s:\n"
-        "a package whose scene values changed is rebuilt and starts from rest; the others\n"
-        "keep their state, alarms and message sequence.  If a file is unreadable, invalid,\n"
-        "changes while it is read or is still changing 10 s after the SIGHUP, nothing\n"
-        "changes.  Write a new scene to another file and rename it over the old one.\n",
+        "SIGHUP (systemctl reload) re-reads the scene files and the --key file once none\n"
+        "has changed for 1 s: a package whose scene values changed is rebuilt and starts\n"
+        "from rest; the others keep their state, alarms and message sequence; the keys\n"
+        "are replaced (the freshness seen under each key id is kept).  If a file is\n"
+        "unreadable, invalid, changes while it is read or is still changing 10 s after\n"
+        "the SIGHUP, nothing changes.  Write a new scene to another file and rename it\n"
+        "over the old one.\n",
     .exit_text =
-        "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage or bad scene,\n"
-        "3 LCM could not be set up (URL, network) or a scene file could not be read.\n",
+        "Exit codes: 0 stopped by SIGINT or SIGTERM, 2 bad usage, bad scene or key file,\n"
+        "3 LCM could not be set up (URL, network) or a scene or key file could not be\n"
+        "read.\n",
 };
 
 /* ---- the command --------------------------------------------------------------- */
@@ -294,6 +312,10 @@ int cmd_monitor(int argc, char **argv)
         goto out;
     if ((rc = check_args(&o, &m, &scenes, &n)) != SW_EXIT_OK)
         goto out;
+    if (m.key_file && !(ctx.keys = sw_cli_key_load("--key", m.key_file, &rc)))
+        goto out;
+    m.mo.keys = ctx.keys;
+    ctx.key_file = m.key_file;
     rc = SW_EXIT_IO;
     if (sw_cli_mon_signals_install() != 0) {
         sw_cli_error("monitor: cannot install signal handlers: %s", strerror(errno));
@@ -329,6 +351,7 @@ out:
     if (sub)
         lcm_unsubscribe(lcm, sub);
     sw_mon_destroy(ctx.mon);
+    sw_keyring_destroy(ctx.keys);
     sw_cli_mon_reload_free(&ctx);
     if (lcm)
         lcm_destroy(lcm);

@@ -6,6 +6,8 @@
 
 #include <string.h>
 
+#include "text.h"
+
 void sw_cli_mon_opts_init(sw_mon_opts_t *mo)
 {
     memset(mo, 0, sizeof *mo);
@@ -25,6 +27,31 @@ void sw_cli_print_rejected(FILE *f, const sw_mon_counts_t *k)
             fprintf(f, "%s%s %ld", sep, sw_mon_reject_name((sw_mon_reject)r), k->rejected[r]);
             sep = ", ";
         }
+    fputc(')', f);
+}
+
+static void print_place(FILE *f, const sw_auth_place_t *p)
+{
+    char chan[sizeof p->channel];
+    sw_cli_term_text(chan, sizeof chan, p->channel, sizeof p->channel); /* off the bus */
+    fprintf(f, "message %ld on %s, %s", p->where, chan, sw_auth_result_name(p->why));
+    if (p->key_id)
+        fprintf(f, " (key %d)", p->key_id);
+}
+
+void sw_cli_print_auth(FILE *f, const sw_auth_facts_t *a)
+{
+    const long refused = a->checked - a->refused[SW_AUTH_OK];
+    fprintf(f, "authentication: %ld checked, %ld authentic, %ld refused", a->checked,
+            a->refused[SW_AUTH_OK], refused);
+    if (!refused)
+        return;
+    fputs(" (the first: ", f);
+    print_place(f, &a->first);
+    if (refused > 1) {
+        fputs("; the last: ", f);
+        print_place(f, &a->last);
+    }
     fputc(')', f);
 }
 

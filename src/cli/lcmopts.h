@@ -21,6 +21,11 @@ extern const sw_cli_option_t sw_cli_lcm_input_options[];
  * replay print them. */
 void sw_cli_print_rejected(FILE *f, const sw_mon_counts_t *k);
 
+/* "authentication: N checked, A authentic, R refused (the first: message
+ * W on CHANNEL, REASON (key K); the last: ...)": what a monitor with keys
+ * checked and where the refused messages came from (a: its facts). */
+void sw_cli_print_auth(FILE *f, const sw_auth_facts_t *a);
+
 /* Set mo to the defaults these rows assume (vertical none, the library's
  * hysteresis) before sw_cli_parse(). */
 void sw_cli_mon_opts_init(sw_mon_opts_t *mo);

@@ -35,6 +35,9 @@ static const struct {
     {"forensics", cmd_forensics,
      "a log's outcome, safety factor, and what support would have saved it"},
     {"batch", cmd_batch, "many logs on every core (and MPI rank): JSON Lines records, a CSV table"},
+#ifdef SW_HAVE_LCM
+    {"keygen", cmd_keygen, "a key for authenticated sensors (monitor --key, the senders' --key)"},
+#endif
 };
 
 /* Per thread: the jobs of a batch run on several threads at once, each

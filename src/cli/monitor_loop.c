@@ -33,6 +33,7 @@
 #include "monitor_cli.h"
 #include "notify.h"
 #include "output.h"
+#include "text.h"
 
 /* Messages handled per wake-up before the timers get a look. */
 #define BATCH 256
@@ -146,7 +147,6 @@ static long socket_drops(void)
 
 void sw_cli_mon_on_accel(const lcm_recv_buf_t *rb, const char *channel, void *user)
 {
-    (void)channel;
     mon_ctx_t *c = user;
     double t0 = sw_mon_clock();
     double arrived = t0;
@@ -163,7 +163,7 @@ void sw_cli_mon_on_accel(const lcm_recv_buf_t *rb, const char *channel, void *us
     }
     sw_mon_counts_t k0, k1;
     sw_mon_counts(c->mon, &k0);
-    sw_mon_feed(c->mon, rb->data, rb->data_size, rb->recv_utime, arrived, NULL);
+    sw_mon_feed_on(c->mon, channel, rb->data, rb->data_size, rb->recv_utime, arrived, NULL);
     sw_mon_counts(c->mon, &k1);
     if (k1.accepted > k0.accepted) { /* none while a sample is held; two when it is confirmed */
         /* in double: utime may be anything an int64 holds (a forged one
@@ -217,6 +217,14 @@ static void status_text(mon_ctx_t *c, double elapsed, double interval, char *buf
         if (k.contests > 0)
             fprintf(f, ", contested %ld (%ld samples on a second timeline)", k.contests,
                     k.contested);
+        const sw_auth_facts_t *au = sw_mon_auth_facts(c->mon);
+        if (au && au->checked > au->refused[SW_AUTH_OK]) {
+            char chan[sizeof au->last.channel];
+            sw_cli_term_text(chan, sizeof chan, au->last.channel, sizeof au->last.channel);
+            fprintf(f, ", unauthentic %ld in %ld bursts (the last: message %ld on %s, %s)",
+                    au->checked - au->refused[SW_AUTH_OK], k.auth_contests, au->last.where, chan,
+                    sw_auth_result_name(au->last.why));
+        }
         const long drops = socket_drops();
         if (drops >= 0)
             fprintf(f, ", kernel drops %ld", drops);
@@ -244,6 +252,19 @@ static void print_final(sw_mon_t *mon, double elapsed)
     if (drops >= 0)
         fprintf(stderr, "; %ld datagrams dropped by the kernel before LCM read them", drops);
     fputc('\n', stderr);
+    const sw_auth_facts_t *au = sw_mon_auth_facts(mon);
+    if (au) {
+        fputs("swaywatch: monitor: ", stderr);
+        sw_cli_print_auth(stderr, au);
+        fprintf(stderr, "; %ld times unauthentic samples began to arrive (INPUT_CONTESTED)\n",
+                k.auth_contests);
+    } else if (k.macs_unchecked > 0) {
+        fprintf(stderr,
+                "swaywatch: monitor: %ld samples carried a MAC that was not checked: give the "
+                "monitor the senders' key file (--key FILE) to refuse forged and replayed "
+                "samples\n",
+                k.macs_unchecked);
+    }
     sw_cli_run_t run;
     memset(&run, 0, sizeof run);
     run.samples_read = k.received;

@@ -21,7 +21,12 @@
  * (sw_mon_replace).  All or nothing: if a file cannot be read or is not a
  * valid scene, or a changed scene cannot be built, nothing is changed and
  * the monitor goes on with the scenes it had.  The file list itself is the
- * one given at start. */
+ * one given at start.
+ *
+ * The --key file is one more file of the list: waited on and read with
+ * the scenes, all or nothing; its keys replace the monitor's (the
+ * freshness seen under each key id goes on), so a key is changed without
+ * a restart (docs/security.md). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,6 +34,7 @@
 #include <sys/stat.h>
 
 #include "cost.h"
+#include "keyfile.h"
 #include "monitor_cli.h"
 
 /* ---- what the files look like --------------------------------------------------- */
@@ -58,14 +64,26 @@ static int same_id(const sw_cli_file_id_t *a, const sw_cli_file_id_t *b)
            same_time(a->mtime, b->mtime) && same_time(a->ctime, b->ctime);
 }
 
-/* The first scene file (of n) whose id differs from ids[], or n; ids[]
- * updated. */
-static size_t look(const sw_cli_opts_t *o, sw_cli_file_id_t *ids, size_t n)
+/* The files a reload reads: the scene files, then the key file. */
+static size_t files(const mon_ctx_t *c)
 {
+    return c->n + (c->key_file != NULL);
+}
+
+static const char *file_path(const mon_ctx_t *c, size_t k)
+{
+    return k < c->n ? c->opts->scenes.v[k] : c->key_file;
+}
+
+/* The first file whose id differs from ids[], or files(c); ids[]
+ * updated. */
+static size_t look(const mon_ctx_t *c, sw_cli_file_id_t *ids)
+{
+    const size_t n = files(c);
     size_t first = n;
     for (size_t k = 0; k < n; k++) {
         sw_cli_file_id_t now;
-        file_id(o->scenes.v[k], &now);
+        file_id(file_path(c, k), &now);
         if (!same_id(&now, &ids[k]) && first == n)
             first = k;
         ids[k] = now;
@@ -77,13 +95,13 @@ int sw_cli_mon_reload_init(mon_ctx_t *c)
 {
     sw_cli_reload_t *r = &c->reload;
     memset(r, 0, sizeof *r);
-    r->seen = calloc(c->n ? c->n : 1, sizeof *r->seen);
-    r->loaded = calloc(c->n ? c->n : 1, sizeof *r->loaded);
+    r->seen = calloc(files(c) ? files(c) : 1, sizeof *r->seen);
+    r->loaded = calloc(files(c) ? files(c) : 1, sizeof *r->loaded);
     if (!r->seen || !r->loaded) {
         sw_cli_error("monitor: out of memory");
         return -1;
     }
-    look(c->opts, r->loaded, c->n);
+    look(c, r->loaded);
     return 0;
 }
 
@@ -101,11 +119,11 @@ void sw_cli_mon_reload_ask(mon_ctx_t *c, double now)
         return;
     r->pending = 1;
     r->asked = r->since = now;
-    look(c->opts, r->seen, c->n);
+    look(c, r->seen);
     fprintf(stderr,
-            "swaywatch: monitor: reload: SIGHUP; the scene files are read once none has "
+            "swaywatch: monitor: reload: SIGHUP; the scene files%s are read once none has "
             "changed for %g s\n",
-            SW_CLI_RELOAD_QUIET);
+            c->key_file ? " and the key file" : "", SW_CLI_RELOAD_QUIET);
 }
 
 double sw_cli_mon_reload_due(const mon_ctx_t *c)
@@ -127,6 +145,27 @@ static const char *how_changed(const sw_cli_reload_t *r, size_t k)
     return "";
 }
 
+/* The keys of a key file read again into the monitor; said when the file
+ * changed. */
+static void apply_keys(mon_ctx_t *c, sw_keyring_t *keys)
+{
+    sw_mon_set_keys(c->mon, keys);
+    sw_keyring_destroy(c->keys);
+    c->keys = keys;
+    const size_t k = c->n; /* the key file's place */
+    if (same_id(&c->reload.loaded[k], &c->reload.seen[k]))
+        return;
+    char ids[4 * SW_AUTH_ID_MAX + 1] = "";
+    size_t used = 0;
+    for (int i = 0; i < sw_keyring_size(keys) && used < sizeof ids; i++)
+        used += (size_t)snprintf(ids + used, sizeof ids - used, "%s%d", i ? ", " : "",
+                                 sw_keyring_id(keys, i));
+    fprintf(stderr,
+            "swaywatch: monitor: reload: %d key%s from %s (id %s); the freshness seen under "
+            "each id kept\n",
+            sw_keyring_size(keys), sw_keyring_size(keys) == 1 ? "" : "s", c->key_file, ids);
+}
+
 /* Read the files, now quiet, and apply what changed: SW_EXIT_OK (or the
  * code of the refusal, nothing changed); *again set when a file changed
  * while it was read (nothing changed, the wait starts over). */
@@ -138,22 +177,28 @@ static int reload(mon_ctx_t *c, int *again)
     const size_t n = c->n;
     size_t nf = 0, nchanged = 0;
     sw_engine_t *trial = NULL;
+    sw_keyring_t *keys = NULL;
     char msg[512] = "";
     *again = 0;
 
     int rc = sw_cli_load_scenes(o, &fresh, &nf);
+    int krc = SW_EXIT_OK;
+    if (c->key_file)
+        keys = sw_cli_key_load("--key", c->key_file, &krc);
     /* The files must still be what was waited on: else one was written
      * while it was read. */
-    const size_t moved = look(o, r->seen, n);
-    if (moved < n) {
+    const size_t moved = look(c, r->seen);
+    if (moved < files(c)) {
         fprintf(stderr,
                 "swaywatch: monitor: reload: %s changed while it was read; waiting until it "
                 "stays unchanged for %g s\n",
-                o->scenes.v[moved], SW_CLI_RELOAD_QUIET);
+                file_path(c, moved), SW_CLI_RELOAD_QUIET);
         r->changing = moved;
         *again = 1;
         goto done;
     }
+    if (rc == SW_EXIT_OK)
+        rc = krc;
     if (rc != SW_EXIT_OK)
         goto keep;
     if (nf != n) { /* the same files as at start: cannot happen */
@@ -204,12 +249,18 @@ static int reload(mon_ctx_t *c, int *again)
     sw_cli_warn_scene_cost(changed, nchanged, &eo);
     sw_cli_warn_reserve_cost(sw_mon_risk(c->mon), 0, n, scenes, c->reserve_rate);
 applied:
-    memcpy(r->loaded, r->seen, n * sizeof *r->loaded);
+    if (keys)
+        apply_keys(c, keys);
+    keys = NULL;
+    memcpy(r->loaded, r->seen, files(c) * sizeof *r->loaded);
     goto done;
 
 keep:
-    sw_cli_error("monitor: reload: scene files not applied; going on with the scenes of before");
+    sw_cli_error("monitor: reload: %s not applied; going on with the scenes%s of before",
+                 c->key_file ? "scene and key files" : "scene files",
+                 c->key_file ? " and keys" : "");
 done:
+    sw_keyring_destroy(keys);
     sw_engine_destroy(trial);
     free(changed);
     free(fresh);
@@ -221,8 +272,8 @@ int sw_cli_mon_reload_poll(mon_ctx_t *c, double now)
     sw_cli_reload_t *r = &c->reload;
     if (!r->pending || now < r->since + SW_CLI_RELOAD_QUIET)
         return 0;
-    const size_t moved = look(c->opts, r->seen, c->n);
-    int again = moved < c->n;
+    const size_t moved = look(c, r->seen);
+    int again = moved < files(c);
     if (again)
         r->changing = moved;
     else
@@ -236,10 +287,11 @@ int sw_cli_mon_reload_poll(mon_ctx_t *c, double now)
         return 0;
     }
     sw_cli_error(
-        "monitor: reload: %s is still changing %g s after the SIGHUP: scene files not "
-        "applied; going on with the scenes of before (write the new scene to another file "
-        "and rename it over the old one)",
-        c->opts->scenes.v[r->changing], now - r->asked);
+        "monitor: reload: %s is still changing %g s after the SIGHUP: %s not applied; going "
+        "on with the scenes%s of before (write the new file beside the old one and rename it "
+        "over it)",
+        file_path(c, r->changing), now - r->asked,
+        c->key_file ? "scene and key files" : "scene files", c->key_file ? " and keys" : "");
     r->pending = 0;
     return 1;
 }

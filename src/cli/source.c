@@ -34,6 +34,10 @@ const sw_cli_option_t sw_cli_channel_options[] = {
      .help = "accel channel: a name or an anchored regex, as LCM subscribes "
              "(default " SW_MON_ACCEL_CHANNEL ")"},
     {SW_CLI_STRING, 0, "channel", "REGEX", RD(channel), .flags = SW_CLI_HIDDEN},
+    {SW_CLI_STRING, 0, "key", "FILE", RD(key_file),
+     .help = "authenticated samples only: refuse and count every accel_t that is not signed by "
+             "a key of the key file FILE, or is a copy of an earlier one, as monitor --key does "
+             "(without --key, MACs are not checked)"},
     {.kind = SW_CLI_END},
 };
 #endif
@@ -95,6 +99,8 @@ int sw_cli_reader_prepare(sw_cli_reader_t *R)
     if (R->src->kind != SW_CLI_SRC_LCMLOG)
         return SW_EXIT_OK;
     int err = 0;
+    if (R->o->key_file && !(R->keys = sw_cli_key_load("--key", R->o->key_file, &err)))
+        return err;
     R->regions = (sw_cli_regions_t){.name = R->lf.name, .quiet = R->quiet};
     const sw_lcmlog_opts_t lo = {
         .channel = R->o->channel,
@@ -141,6 +147,7 @@ static int lcmlog_engine(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
     mo.on_event = eo->on_event;
     mo.on_take = R->take;
     mo.user = eo->user;
+    mo.keys = R->keys;
     char msg[512] = "";
     R->mon = sw_mon_create(scenes, n, eo, &mo, R->publish, msg, sizeof msg);
     if (!R->mon) {
@@ -266,6 +273,17 @@ static void lcmlog_dates(sw_cli_reader_t *R, const sw_gate_facts_t *f)
         run->abs_end = (double)lc.last_utime / 1e6; /* the sensor's clock went back or leapt */
 }
 
+/* Signed samples read without --key: said (always when the log is
+ * refused, rc not SW_EXIT_OK: forged samples among them may be why). */
+static void unchecked_note(const sw_cli_reader_t *R, const sw_mon_counts_t *k, int rc)
+{
+    if (k->macs_unchecked > 0 && (!R->quiet || rc != SW_EXIT_OK))
+        fprintf(sw_cli_msg(),
+                "swaywatch: %s: %ld samples carry a MAC that was not checked: give the sender's "
+                "key file (--key FILE) to refuse forged and replayed samples\n",
+                R->log, k->macs_unchecked);
+}
+
 static int feed_lcmlog(sw_cli_reader_t *R)
 {
     const int lr = sw_lcmlog_read(R->lcmlog, R->mon);
@@ -288,14 +306,23 @@ static int feed_lcmlog(sw_cli_reader_t *R)
     R->run.samples_rejected = k.received - k.accepted;
     R->accepted = k.accepted;
     R->interrupted = sw_cli_signal != 0;
-    if (k.accepted == 0 || R->interrupted)
+    if (k.accepted == 0 || R->interrupted) {
+        unchecked_note(R, &k, SW_EXIT_USAGE);
         return SW_EXIT_OK;
+    }
     sw_gate_facts_t f;
     sw_mon_facts(R->mon, &f);
-    f.upstream_rejected = k.received - f.received; /* not accel_t, NaN on an axis */
+    /* not accel_t, NaN on an axis; not what failed authentication: those
+     * samples are known not to be the sensor's, not a sign of a misread log */
+    const sw_auth_facts_t *au = sw_mon_auth_facts(R->mon);
+    f.upstream_rejected =
+        k.received - f.received - (au ? au->checked - au->refused[SW_AUTH_OK] : 0);
     lcmlog_unused(R, &k);
     lcmlog_dates(R, &f);
-    return sw_cli_feed_verdict(R->log, &f, &R->o->gate, R->o->mo.vertical >= 0, R->quiet, &R->run);
+    const int rc =
+        sw_cli_feed_verdict(R->log, &f, &R->o->gate, R->o->mo.vertical >= 0, R->quiet, &R->run);
+    unchecked_note(R, &k, rc);
+    return rc;
 }
 #endif
 
@@ -323,6 +350,24 @@ void sw_cli_reader_settle(sw_cli_reader_t *R, double settle)
 }
 
 /* ---- after the run ------------------------------------------------------------------- */
+
+#ifdef SW_HAVE_LCM
+/* Why no sample was usable, when authentication refused them all: what
+ * the refusals say of the log, and the option that reads it. */
+static const char *unusable_why(const sw_cli_reader_t *R)
+{
+    const sw_auth_facts_t *au = sw_mon_auth_facts(R->mon);
+    if (!au || au->checked == 0 || au->refused[SW_AUTH_OK] > 0)
+        return "";
+    if (au->refused[SW_AUTH_NONE] == au->checked)
+        return ": every sample is unauthenticated (no MAC: written by a sender without a key); "
+               "without --key they are read, unchecked";
+    if (au->refused[SW_AUTH_REPLAYED] == 0 && au->refused[SW_AUTH_NONE] == 0)
+        return ": every sample is signed by another key (unknown_key, bad_mac); give --key the "
+               "key file of the sender that wrote the log";
+    return ": every sample failed authentication (see the counts above)";
+}
+#endif
 
 int sw_cli_reader_report(sw_cli_reader_t *R)
 {
@@ -354,10 +399,17 @@ int sw_cli_reader_report(sw_cli_reader_t *R)
                     "replayed, the other's %ld samples evaluated beside it (INPUT_CONTESTED "
                     "alarms)\n",
                     R->log, k.contests, k.contests == 1 ? "" : "s", k.contested);
+        const sw_auth_facts_t *au = sw_mon_auth_facts(R->mon);
+        if (au) {
+            fprintf(m, "swaywatch: %s: ", R->log);
+            sw_cli_print_auth(m, au);
+            fputc('\n', m);
+        }
     }
     if (k.accepted > 0)
         return SW_EXIT_OK;
-    sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'", R->log, R->o->channel);
+    sw_cli_error("%s: no usable accel_t sample on a channel matching '%s'%s", R->log, R->o->channel,
+                 unusable_why(R));
     return SW_EXIT_USAGE;
 #else
     (void)R;
@@ -377,8 +429,10 @@ void sw_cli_reader_close(sw_cli_reader_t *R)
         R->e = NULL; /* the monitor's */
     sw_mon_destroy(R->mon);
     sw_lcmlog_close(R->lcmlog);
+    sw_keyring_destroy(R->keys);
     R->mon = NULL;
     R->lcmlog = NULL;
+    R->keys = NULL;
 #endif
     sw_engine_destroy(R->e);
     R->e = NULL;

@@ -23,6 +23,7 @@
 #include <lcm/lcm.h>
 
 #include "eventlog.h"
+#include "keyfile.h"
 #include "lcmlog.h"
 #include "lcmopts.h"
 #include "monitor.h"
@@ -34,7 +35,8 @@
 typedef struct {
     sw_cli_csv_opts_t copts;
     sw_cli_gate_t gate;
-    const char *channel; /* lcm-logger files: the accel channel regex */
+    const char *channel;  /* lcm-logger files: the accel channel regex */
+    const char *key_file; /* lcm-logger files: --key, authenticated samples only */
 #ifdef SW_HAVE_LCM
     sw_mon_opts_t mo; /* lcm-logger files: axes, --max-skew; publishing channels */
 #endif
@@ -85,6 +87,7 @@ typedef struct {
     sw_mon_t *mon;
     sw_lcmlog_t *lcmlog;
     sw_cli_regions_t regions;
+    sw_keyring_t *keys; /* --key's */
 #endif
 } sw_cli_reader_t;
 

@@ -43,14 +43,14 @@ before=$(python3 -c 'import time; print(int(time.time() * 1e6))')
 python3 "$SRC/docs/examples/csv2lcmlog.py" "$T/drive.csv" "$T/now.lcmlog" --g >/dev/null
 python3 - "$T/now.lcmlog" "$before" <<'PY' || fail "default stamps are not the time of writing"
 import struct, sys, time
-from swaywatch import accel_t
+from swaywatch import accel_v1_t  # without --key: the layout every reader decodes
 after = int(time.time() * 1e6)
 f = open(sys.argv[1], "rb")
 u = []
 while (h := f.read(28)) and len(h) == 28:
     _, _, ts, cl, dl = struct.unpack(">IqqII", h)
     f.read(cl)
-    m = accel_t.decode(f.read(dl))
+    m = accel_v1_t.decode(f.read(dl))
     assert m.utime == ts, (m.utime, ts)
     u.append(m.utime)
 print("default start: %.3f s after the converter started, %.3f s before it ended"
