@@ -6,8 +6,9 @@
 # refused (unauthenticated) and INPUT_CONTESTED raised at critical level;
 # the signed braking raises TIP and OVERTURNED.  Then a change of key
 # without a restart: keygen -o adds key 2, SIGHUP, the sensor signs with
-# key 2 (the last of its file) and is taken; key 1 deleted from the
-# monitor's file, SIGHUP, a sender still on key 1 is refused (unknown_key).
+# key 2 (the last of its file) and is taken; a key file others can read,
+# SIGHUP: not applied; key 1 deleted from the monitor's file, SIGHUP, a
+# sender still on key 1 is refused (unknown_key).
 # The stop line counts each reason and says where the refused came from.
 # usage: udpm_auth.sh SWAYWATCH SW_LCM_TOOL SCENE PORT
 set -eu
@@ -27,6 +28,7 @@ PIDS="$PIDS $FORGER"
 "$TOOL" publish "$URL" --rate 500 --duration 3 --amplitude -9 --omega 5 --key "$T/keys"
 wait "$FORGER" || fail "the forger"
 wait_for "$T/m.err" 'accepted 1501, rejected 1501 (unauthenticated 1501)'
+wait_for "$T/m.err" 'unauthentic 1501 in 1 bursts (the last: message '
 for kind in 'level=critical package=crate-A kind=tip' \
     'level=critical package=crate-A kind=overturned' \
     'level=critical package=- kind=input_contested'; do
@@ -41,6 +43,11 @@ kill -HUP "$MON"
 wait_for "$T/m.err" "reload: 2 keys from $T/keys (id 1, 2)"
 "$TOOL" publish "$URL" --rate 500 --duration 1 --amplitude 0 --key "$T/keys"
 wait_for "$T/m.err" 'accepted 2002, '
+# A key file others can read is not applied: the keys of before stay.
+chmod 644 "$T/keys"
+kill -HUP "$MON"
+wait_for "$T/m.err" 'scene and key files not applied; going on with the scenes and keys of before'
+chmod 600 "$T/keys"
 # The old key out of the monitor's file: a sender still on it is refused.
 sed -n 2p "$T/keys" >"$T/new"
 chmod 600 "$T/new"
