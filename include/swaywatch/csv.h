@@ -45,6 +45,7 @@
 #include <stddef.h>
 
 #include "export.h"
+#include "units.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -53,7 +54,6 @@ extern "C" {
 #define SW_CSV_MAX_LINE (1 << 20) /* bytes; longer lines are rejected, not buffered */
 #define SW_CSV_NAME_MAX 64        /* bytes kept of a header field's name */
 #define SW_CSV_MAX_FIELDS 64      /* header fields kept (inference, messages) */
-#define SW_G0 9.80665             /* m/s^2 per g: standard gravity, the logger's g */
 /* The look-ahead: the first lines of a log are held until its layout is
  * fixed (the preamble, the columns and the time format are decided on
  * them), at most this many data-like lines, lines, or bytes of text. */
@@ -92,7 +92,7 @@ typedef struct {
     const char *accel_col; /* NULL = "2" */
     const char *vert_col;  /* optional vertical acceleration column; NULL = none */
     double time_scale;     /* s per unit of the time column: 1, 1e-3, 1e-6; 0 = 1 */
-    double accel_scale;    /* m/s^2 per unit (9.80665 for g); 0 = 1 */
+    double accel_scale;    /* m/s^2 per unit (SW_G0 for g); 0 = 1 */
     int flip;              /* non-zero: negate the longitudinal axis */
     int header;            /* -1 detect: the first non-comment, non-blank line is the header
                               when its time field (column 1 if time is named) is empty or not
@@ -207,7 +207,7 @@ SW_API const char *sw_csv_header_field(const sw_csv_t *c, long i);
  * names get. */
 SW_API int sw_csv_unit_parse(const char *text, int time_role);
 
-/* s or m/s^2 per unit: 1e-3 for ms, 1e-9 for ns, 9.80665 for g; 1 for the
+/* s or m/s^2 per unit: 1e-3 for ms, 1e-9 for ns, SW_G0 for g; 1 for the
  * SI units, date-times and SW_CSV_UNIT_NONE. */
 SW_API double sw_csv_unit_scale(int unit);
 

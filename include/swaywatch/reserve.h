@@ -44,14 +44,11 @@
 #include "model.h"
 #include "scene.h"
 #include "sweep.h"
+#include "units.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* m/s^2: the unit g of every reserve (standard gravity; the scene's g is
- * the physics' gravity and may differ). */
-#define SW_G0 9.80665
 
 /* Direction of a design pulse: braking (a_g < 0, tips the top forward) or
  * speeding up (a_g > 0, tips it backward). */

@@ -68,7 +68,7 @@ typedef struct {
      * define the reserve (reserve.h); default one of SW_DESIGN_PULSE_DEFAULT */
     double design_pulse[SW_DESIGN_PULSES_MAX];
     int n_design_pulse;
-    double warn_reserve_g;     /* g (9.80665 m/s^2), default SW_WARN_RESERVE_G_DEFAULT */
+    double warn_reserve_g;     /* g (SW_G0), default SW_WARN_RESERVE_G_DEFAULT */
     double critical_reserve_g; /* g, default SW_CRITICAL_RESERVE_G_DEFAULT */
 
     /* where each section started, for messages (0 = not from a file) */

@@ -16,6 +16,7 @@
 #include "swaywatch/scheme.h"
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
+#include "swaywatch/units.h"
 
 #include "swaywatch/version.h"
 

@@ -67,7 +67,7 @@ static void csv_row(FILE *f, const sw_cli_forensics_t *F, size_t k, const sw_sum
     const int h = run->have_facts;
     sw_cli_csv_num(f, h ? run->facts.duration : NAN);
     sw_cli_csv_num(f, h ? run->facts.rate : NAN);
-    sw_cli_csv_num(f, h ? run->facts.peak_a / 9.80665 : NAN);
+    sw_cli_csv_num(f, h ? run->facts.peak_a / SW_G0 : NAN);
     if (h)
         fprintf(f, ",%ld", run->facts.gaps);
     else

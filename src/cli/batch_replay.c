@@ -85,7 +85,7 @@ static void csv_row(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t 
     sw_cli_csv_num(f, h ? F->duration : NAN);
     sw_cli_csv_num(f, h ? F->dt_median : NAN);
     sw_cli_csv_num(f, h ? F->rate : NAN);
-    sw_cli_csv_num(f, h ? F->peak_a / 9.80665 : NAN);
+    sw_cli_csv_num(f, h ? F->peak_a / SW_G0 : NAN);
     if (h)
         fprintf(f, ",%ld", F->gaps);
     else

@@ -11,8 +11,6 @@
 #include "output.h"
 #include "plot.h"
 
-#define G0 9.80665 /* m/s^2 per g (standard gravity, as accelerometers read) */
-
 /* ---- the quantities of the columns --------------------------------------------- */
 
 /* ms, the pulse duration of curve c at point i. */
@@ -50,7 +48,7 @@ static const char *other_name(const boundary_t *B)
 static double unit_scale(const boundary_t *B, size_t c)
 {
     switch (B->units) {
-        case UNITS_G: return B->cv[c].gtan / G0;
+        case UNITS_G: return B->cv[c].gtan / SW_G0;
         case UNITS_MPS2: return B->cv[c].gtan;
         default: return 1.0;
     }
@@ -159,7 +157,7 @@ static long write_detail(FILE *f, const boundary_t *B)
             }
             fprintf(f, ",%ld,%.6g,", P->th.trials, duration_ms(B, c, i));
             if (P->th.found)
-                csv_num(f, P->th.x * B->cv[c].gtan / G0);
+                csv_num(f, P->th.x * B->cv[c].gtan / SW_G0);
             fputc('\n', f);
         }
     return (long)(nc * nr);

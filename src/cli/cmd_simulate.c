@@ -19,9 +19,8 @@
 #include "opts.h"
 #include "output.h"
 
-#define STANDARD_GRAVITY 9.80665 /* m/s^2, for --amplitude-g */
-#define FREE_PERIODS 20          /* rocking periods 2 pi / p after the pulse */
-#define MAX_ROWS 1e8             /* --duration / --sample-interval */
+#define FREE_PERIODS 20 /* rocking periods 2 pi / p after the pulse */
+#define MAX_ROWS 1e8    /* --duration / --sample-interval */
 
 /* simulate's own options. */
 typedef struct {
@@ -80,7 +79,7 @@ static const sw_cli_option_t sim_options[] = {
      .help = "peak acceleration, sign included, with its unit: g or m/s2, e.g. -10g, -98.1m/s2 "
              "(a bare number is m/s^2; required, or --amplitude-g); |A| at most 1e5 m/s^2 "
              "(about 10,200 g), the most the engine takes from an accelerometer"},
-    {SW_CLI_CALL, 0, "amplitude-g", "A", .fn = parse_amplitude, .def = STANDARD_GRAVITY,
+    {SW_CLI_CALL, 0, "amplitude-g", "A", .fn = parse_amplitude, .def = SW_G0,
      .rule = SW_NUM_NONZERO, .what = "a non-zero acceleration in g",
      .help = "the same as a bare number in g (1 g = %g m/s^2)"},
     {SW_CLI_CALL, 0, "pulse-duration", "D", .fn = parse_pulse_duration, .rule = SW_NUM_POSITIVE,
@@ -218,7 +217,7 @@ static int check_pulse(sim_opts_t *so)
         sw_cli_error(
             "--%s: the pulse amplitude is beyond any accelerometer: expected at most %g "
             "m/s^2 (about %.0f g)",
-            so->amp_opt->long_name, SW_MAX_ACCEL, SW_MAX_ACCEL / STANDARD_GRAVITY);
+            so->amp_opt->long_name, SW_MAX_ACCEL, SW_MAX_ACCEL / SW_G0);
         return SW_EXIT_USAGE;
     }
     return SW_EXIT_OK;
@@ -334,7 +333,7 @@ static int conclude(const sw_cli_opts_t *o, const sw_engine_t *e, size_t n, sim_
         const sw_pulse_t *pulse = run->pulse;
         char title[256];
         snprintf(title, sizeof title, "swaywatch simulate: %s pulse, %.4g g, %.4g ms%s",
-                 sw_pulse_shape_name(pulse->shape), pulse->amplitude / STANDARD_GRAVITY,
+                 sw_pulse_shape_name(pulse->shape), pulse->amplitude / SW_G0,
                  sw_pulse_duration(pulse) * 1e3, run->interrupted ? " (interrupted)" : "");
         rc = sw_cli_figure_draw(ctx->fig, o->plot_path, title);
     }

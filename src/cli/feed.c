@@ -10,8 +10,6 @@
 
 #include "interrupt.h"
 
-#define G0 9.80665 /* m/s^2 per g */
-
 typedef struct {
     const char *name;
     sw_csv_t *csv;
@@ -328,12 +326,13 @@ int sw_cli_feed_verdict(const char *name, const sw_gate_facts_t *f, const sw_cli
     int r = sw_gate_check(f, &lim, why, sizeof why);
     /* gravity counted twice: a vertical channel reading +1 g on average
      * that nobody said includes it */
-    if (r != SW_GATE_REFUSE && vert && go->vert_gravity < 0 && fabs(f->mean_z - G0) < 0.15 * G0) {
+    if (r != SW_GATE_REFUSE && vert && go->vert_gravity < 0 &&
+        fabs(f->mean_z - SW_G0) < 0.15 * SW_G0) {
         snprintf(why, sizeof why,
                  "the vertical channel reads %.3g g on average: it includes gravity (an "
                  "accelerometer), which the model would count twice; say "
                  "--vert-includes-gravity (or --vert-excludes-gravity if it does not)",
-                 f->mean_z / G0);
+                 f->mean_z / SW_G0);
         r = SW_GATE_REFUSE;
     }
     run->facts = *f;

@@ -16,7 +16,6 @@
 #define MAX_EVENTS 100000   /* events kept */
 #define MAX_LINES 200       /* vertical event lines drawn (gnuplot arrows) */
 #define MAX_UPLIFT_LINES 50 /* of them uplifts: a long drive can have thousands */
-#define G0 9.80665          /* m/s^2 per g, for the legend */
 #define MARGIN_FLOOR (-1.0) /* the margin panel shows margins down to this */
 
 /* The quantities kept per package (the reserve only with a risk). */
@@ -382,7 +381,7 @@ static void threshold_plots(FILE *g, const sw_cli_figure_t *f)
         const trace_t *T = &f->tr[k];
         char title[160];
         snprintf(title, sizeof title, "± g tan α = %.3g m/s² (%.3g g): uplift%s%s", T->g_tan_alpha,
-                 T->g_tan_alpha / G0, same ? "" : ", ", same ? "" : T->name);
+                 T->g_tan_alpha / SW_G0, same ? "" : ", ", same ? "" : T->name);
         fprintf(g, ", %.9g with lines lc rgb '%s' dt 3 lw 1.2 title ", T->g_tan_alpha,
                 same ? "#777777" : colours[k % NCOLOURS]);
         sw_cli_plot_text(g, title);

@@ -28,8 +28,6 @@ void sw_cli_csv_opts_init(sw_cli_csv_opts_t *o)
 
 /* ---- the input gate ------------------------------------------------------------- */
 
-#define G0 9.80665 /* m/s^2 per g */
-
 void sw_cli_gate_init(sw_cli_gate_t *g)
 {
     memset(g, 0, sizeof *g);
@@ -68,7 +66,7 @@ int sw_cli_accel_limit(const sw_cli_option_t *o, const char *arg, void *dest)
         memcpy(buf, arg, len - 1);
         buf[len - 1] = '\0';
         arg = buf;
-        scale = G0;
+        scale = SW_G0;
     }
     /* the bounds (m/s^2) apply once the value is in m/s^2 */
     sw_cli_option_t unbounded = *o;
@@ -291,8 +289,8 @@ const sw_cli_option_t sw_cli_csv_options[] = {
 const sw_cli_option_t sw_cli_sample_options[] = {
     {SW_CLI_SECTION, .help = CSV_SECTION},
     {SW_CLI_CALL, 0, "accel-unit", "U", CSV(csv.accel_scale), .fn = sw_cli_accel_unit,
-     .help = "m/s2 (m/s^2, mps2), g (G, Gs) or mg, 1 g = 9.80665 m/s^2 (default: from the "
-             "header's name, else m/s2)"},
+     .help = "m/s2 (m/s^2, mps2), g (G, Gs) or mg, "
+             "1 g = " SW_CLI_STR(SW_G0) " m/s^2 (default: from the header's name, else m/s2)"},
     {SW_CLI_FLAG, 0, "flip", CSV(csv.flip), .value = 1,
      .help = "negate the longitudinal axis (logger mounted backwards)"},
     {SW_CLI_FLAG, 0, "strict", CSV(strict), .value = 1,

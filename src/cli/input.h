@@ -51,7 +51,7 @@ extern const sw_cli_option_t sw_cli_csv_options[];
 extern const sw_cli_option_t sw_cli_sample_options[];
 
 /* fn of an --accel-unit row: m/s2 or g into dest, a double of m/s^2 per
- * unit (1 g = 9.80665 m/s^2).  Shared by CSV and LCM input. */
+ * unit (1 g = SW_G0).  Shared by CSV and LCM input. */
 int sw_cli_accel_unit(const sw_cli_option_t *o, const char *arg, void *dest);
 /* fn of a --max-accel row: "30g" or m/s^2, at most SW_MAX_ACCEL. */
 int sw_cli_accel_limit(const sw_cli_option_t *o, const char *arg, void *dest);

@@ -20,8 +20,6 @@
 
 #include "forensics.h"
 
-#define G0 9.80665 /* m/s^2 per g */
-
 /* s with the characters HTML gives a meaning escaped. */
 static void html(FILE *f, const char *s)
 {
@@ -197,7 +195,7 @@ static void log_facts(FILE *f, const sw_cli_forensics_t *F)
             run->samples_read, F->L.n, run->samples_rejected);
     fprintf(f, "<tr><th>peak |bed acceleration|</th><td>");
     num(f, "%.3f m/s&sup2;", run->have_facts ? x->peak_a : NAN);
-    num(f, " (%.3f g)", run->have_facts ? x->peak_a / G0 : NAN);
+    num(f, " (%.3f g)", run->have_facts ? x->peak_a / SW_G0 : NAN);
     fprintf(f, "</td></tr>\n<tr><th>gaps</th><td>%ld", run->have_facts ? x->gaps : 0L);
     if (run->have_facts && x->gaps > 0)
         fprintf(f, " (%.3f s in all, the longest %.3f s)", x->gap_total, x->gap_max);

@@ -296,7 +296,7 @@ static void print_facts(FILE *f, const sw_cli_run_t *run)
     if (isfinite(F->dt_median))
         fprintf(f, "  sample interval %.6g ms median (%.6g to %.6g ms): %.6g Hz\n",
                 F->dt_median * 1e3, F->dt_min * 1e3, F->dt_max * 1e3, F->rate);
-    fprintf(f, "  peak |a|        %.4g m/s^2 = %.4g g\n", F->peak_a, F->peak_a / 9.80665);
+    fprintf(f, "  peak |a|        %.4g m/s^2 = %.4g g\n", F->peak_a, F->peak_a / SW_G0);
     if (F->gaps || F->restarts || F->clock_steps)
         fprintf(f,
                 "  gaps            %ld (%.4g s in all, the longest %.4g s); restarts %ld, "
@@ -436,7 +436,7 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
         fprintf(f,
                 "pulse %s: amplitude %g m/s^2 (%.4g g), omega %g rad/s, %.6g s long; %.6g s "
                 "simulated\n",
-                sw_pulse_shape_name(p->shape), p->amplitude, p->amplitude / 9.80665, p->omega,
+                sw_pulse_shape_name(p->shape), p->amplitude, p->amplitude / SW_G0, p->omega,
                 sw_pulse_duration(p), run->duration);
     }
     for (size_t i = 0; i < sw_engine_count(e); i++) {
@@ -530,7 +530,7 @@ void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
     json_kv(f, ", ", "rate", F->rate);
     json_sep(f, br);
     json_kv(f, "", "peak_accel", F->peak_a);
-    json_kv(f, ", ", "peak_accel_g", F->peak_a / 9.80665);
+    json_kv(f, ", ", "peak_accel_g", F->peak_a / SW_G0);
     fprintf(f, ", \"gaps\": %ld, \"gap_total\": ", F->gaps);
     sw_cli_json_num(f, F->gap_total);
     json_kv(f, ", ", "gap_max", F->gap_max);

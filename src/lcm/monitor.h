@@ -47,11 +47,11 @@
 #include "swaywatch/gate.h"
 #include "swaywatch/risk.h"
 #include "swaywatch/scene.h"
+#include "swaywatch/units.h"
 
 #define SW_MON_STATE_CHANNEL "SWAY_STATE"
 #define SW_MON_ALARM_CHANNEL "SWAY_ALARM"
 #define SW_MON_ACCEL_CHANNEL "ACCEL"
-#define SW_G0 9.80665                 /* m/s^2, standard gravity (unit "g") */
 #define SW_MON_GAP 0.1                /* s, default sensor gap threshold */
 #define SW_MON_MAX_ACCEL (50 * SW_G0) /* m/s^2, default plausibility limit */
 /* us: a utime is a time since 1970 (or since a sensor's boot) before

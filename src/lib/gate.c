@@ -108,7 +108,7 @@ sw_gate_t *sw_gate_create(sw_engine_t *e, const sw_gate_opts_t *o, char *msg, si
     if (g->o.max_bridge == 0.0)
         g->o.max_bridge = 10.0;
     if (g->o.max_accel == 0.0)
-        g->o.max_accel = 50.0 * G0;
+        g->o.max_accel = 50.0 * SW_G0;
     if (g->o.confirm == 0)
         g->o.confirm = 3;
     g->ahead = ahead;
@@ -156,7 +156,7 @@ int sw_gate_push(sw_gate_t *g, const sw_sample_t *s)
     const double amax = isnan(s->a_max) ? fmax(fabs(s->a_g), fabs(s->a_z)) : s->a_max;
     if (!(amax <= g->o.max_accel)) {
         snprintf(text, sizeof text, "|a| = %.6g m/s^2 (%.4g g) beyond the limit %.6g m/s^2", amax,
-                 amax / G0, g->o.max_accel);
+                 amax / SW_G0, g->o.max_accel);
         return gate_refuse(g, s, SW_GATE_REJ_IMPLAUSIBLE, text);
     }
     if (!(fabs(s->t) < TIME_MAX)) {
@@ -241,7 +241,7 @@ int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *w
     const double min_rate = lim->min_rate > 0.0 ? lim->min_rate : 2.0;
     const double warn_rate = lim->warn_rate > 0.0 ? lim->warn_rate : 20.0;
     const double max_dur = lim->max_duration > 0.0 ? lim->max_duration : 366.0 * 86400.0;
-    const double max_peak = lim->max_peak > 0.0 ? lim->max_peak : 25.0 * G0;
+    const double max_peak = lim->max_peak > 0.0 ? lim->max_peak : 25.0 * SW_G0;
     const double min_still = lim->min_still > 0.0 ? lim->min_still : 60.0;
     const long rej = sw_gate_rejected(f) + f->upstream_rejected;
     const long seen = f->received + f->upstream_rejected;
@@ -275,7 +275,7 @@ int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *w
                  "the largest acceleration is %.4g m/s^2 (%.3g g), beyond what a truck bed "
                  "sees (%.3g g): an acceleration in g read as m/s^2 the other way round, or "
                  "a wrong column?",
-                 f->peak_a, f->peak_a / G0, max_peak / G0);
+                 f->peak_a, f->peak_a / SW_G0, max_peak / SW_G0);
         return SW_GATE_REFUSE;
     }
     /* A truck brakes at 0.5 g for seconds, never for a minute: a channel
@@ -293,7 +293,7 @@ int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *w
                          "brakes or speeds up for that long; choose the acceleration column "
                          "with --accel-col NAME|N, or give --force",
                          100.0 * (double)f->above_half_g / (double)f->accepted, f->duration / 60.0,
-                         f->mean_abs_a / G0);
+                         f->mean_abs_a / SW_G0);
             else
                 snprintf(why, whylen,
                          "the longitudinal channel looks like gravity or not an acceleration: "

@@ -14,13 +14,13 @@
 
 #include "swaywatch/gate.h"
 #include "swaywatch/status.h"
+#include "swaywatch/units.h"
 
 #define CHAINS SW_GATE_CHAINS
 #define HIST_PER_DECADE 96 /* the facts' interval histogram: 2.4 % wide bins */
 #define HIST_DECADES 12    /* 1e-7 s .. 1e5 s */
 #define HIST_BINS (HIST_PER_DECADE * HIST_DECADES)
 #define HIST_LO 1e-7
-#define G0 9.80665            /* m/s^2 per g */
 #define EPOCH_LIKE 1e6        /* s: a first time this large is a clock, not elapsed time */
 #define TIME_MAX 8589934592.0 /* 2^33 s: the engine's limit (SW_ERESOLUTION) */
 

@@ -282,7 +282,7 @@ static void env_add(sw_gate_t *g, double off)
 /* Push an accepted sample at engine time te. */
 int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
 {
-    const double az = g->o.vert_gravity ? s->a_z - G0 : s->a_z;
+    const double az = g->o.vert_gravity ? s->a_z - SW_G0 : s->a_z;
     const int rc = sw_engine_push(g->e, te, s->a_g, az);
     if (rc < 0)
         return gate_refuse(g, s, SW_GATE_REJ_ENGINE, sw_strerror(rc));
@@ -314,7 +314,7 @@ int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
         g->f.peak_a = aa;
     if (fabs(s->a_z) > g->f.peak_z)
         g->f.peak_z = fabs(s->a_z);
-    if (aa > 0.5 * G0)
+    if (aa > 0.5 * SW_G0)
         g->f.above_half_g++;
     if (isnan(g->f.min_a) || s->a_g < g->f.min_a)
         g->f.min_a = s->a_g;
