@@ -103,6 +103,11 @@ def main():
         y = open(os.path.join(ao, n), "rb").read().replace(os.fsencode(a.after), b"OUTDIR")
         if x == y:
             continue
+        # refactor-check writes forensics' "modified" as a bare M: a string
+        # for the parser
+        x, y = (z.replace(b'"modified": M', b'"modified": "M"') for z in (x, y))
+        if x == y:
+            continue
         jx, jy = load(x), load(y)
         why = []
         if jx is not None and jy is not None and same(jx, jy, n, why):

@@ -6,8 +6,8 @@
 # is missing.
 set -eu
 PKGS="build-essential cmake pkg-config liblcm-dev liblcm-bin libcsv-dev libgsl-dev
-libcmocka-dev libinih-dev libsodium-dev libglib2.0-dev gnuplot-nox python3 iproute2 util-linux
-clang clang-format libclang-rt-14-dev valgrind help2man liblcm-java
+libcmocka-dev libinih-dev libsodium-dev libjansson-dev libglib2.0-dev gnuplot-nox python3
+iproute2 util-linux clang clang-format libclang-rt-14-dev valgrind help2man liblcm-java
 dpkg-dev file lintian libsystemd-dev libncurses-dev tmux openmpi-bin libopenmpi-dev
 chromium"
 missing=""

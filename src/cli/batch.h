@@ -75,7 +75,4 @@ typedef struct {
 extern const sw_cli_job_t sw_cli_job_replay;
 extern const sw_cli_job_t sw_cli_job_forensics;
 
-/* A CSV number field after a comma: %.9g, empty when not finite. */
-void sw_cli_csv_num(FILE *f, double v);
-
 #endif

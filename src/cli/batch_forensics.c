@@ -90,14 +90,15 @@ static void report(void *user, const sw_cli_forensics_t *F)
         sw_cli_record_t r;
         if (sw_cli_record_begin(&r) == 0) {
             r.status = sw_cli_record_status(&s, &F->R.run);
-            FILE *j = r.j;
-            sw_cli_forensics_json_package(j, F, k);
-            fprintf(j, ", \"samples_read\": %ld, \"samples_rejected\": %ld, \"samples_used\": %zu",
-                    F->R.run.samples_read, F->R.run.samples_rejected, F->L.n);
-            if (F->R.run.have_facts) {
-                fprintf(j, ", \"input\": ");
-                sw_cli_json_facts(j, &F->R.run, " ");
-            }
+            json_t *o = sw_cli_rec_new();
+            sw_cli_forensics_json_package(o, F, k);
+            sw_cli_rec_int(o, "samples_read", F->R.run.samples_read);
+            sw_cli_rec_int(o, "samples_rejected", F->R.run.samples_rejected);
+            sw_cli_rec_int(o, "samples_used", (long long)F->L.n);
+            if (F->R.run.have_facts)
+                sw_cli_json_facts(o, "input", &F->R.run);
+            if (sw_cli_rec_members(r.j, o) != 0)
+                R->oom = 1;
             csv_row(r.c, F, k, &s, C);
         }
         if (sw_cli_record_end(R->rec, &r) != 0)

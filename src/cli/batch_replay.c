@@ -11,13 +11,6 @@
 #include "output.h"
 #include "replay.h"
 
-void sw_cli_csv_num(FILE *f, double v)
-{
-    fputc(',', f);
-    if (isfinite(v))
-        fprintf(f, "%.9g", v);
-}
-
 static void *create(void)
 {
     return sw_cli_replay_new();
@@ -123,14 +116,13 @@ static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
         sw_cli_record_t r;
         if (sw_cli_record_begin(&r) == 0) {
             r.status = sw_cli_record_status(&s, run);
-            FILE *j = r.j;
-            sw_cli_json_package(j, e, i, run, " ");
-            fprintf(j, ", \"settle\": ");
-            sw_cli_json_num(j, run->settle);
-            if (run->have_facts) {
-                fprintf(j, ", \"input\": ");
-                sw_cli_json_facts(j, run, " ");
-            }
+            json_t *o = sw_cli_rec_new();
+            sw_cli_json_package(o, e, i, run);
+            sw_cli_rec_num(o, "settle", run->settle);
+            if (run->have_facts)
+                sw_cli_json_facts(o, "input", run);
+            if (sw_cli_rec_members(r.j, o) != 0)
+                R->oom = 1;
             csv_row(r.c, e, i, run, &s);
         }
         if (sw_cli_record_end(R->rec, &r) != 0)

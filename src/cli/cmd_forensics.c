@@ -531,9 +531,9 @@ int cmd_forensics(int argc, char **argv)
     FILE *ans = F->o.out_path && !strcmp(F->o.out_path, "-")         ? stderr
                 : F->o.events_path && !strcmp(F->o.events_path, "-") ? stderr
                                                                      : stdout;
-    if (F->o.json)
-        sw_cli_forensics_json(ans, F);
-    else
+    if (F->o.json && (rc = sw_cli_forensics_json(ans, F)) != SW_EXIT_OK)
+        goto out;
+    if (!F->o.json)
         sw_cli_forensics_text(ans, F);
     if (fflush(ans) != 0 || ferror(ans)) {
         sw_cli_error("standard output: write error");

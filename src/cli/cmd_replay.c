@@ -320,9 +320,9 @@ static void cleanup(replay_t *r)
 static int finish(replay_t *r, int rc)
 {
     const sw_cli_run_t *run = &r->R.run;
-    if (r->o.json)
-        sw_cli_print_json(stdout, r->R.e, run);
-    else if (!r->o.quiet)
+    if (r->o.json && sw_cli_print_json(stdout, r->R.e, run) != SW_EXIT_OK)
+        rc = SW_EXIT_IO;
+    else if (!r->o.json && !r->o.quiet)
         sw_cli_print_summary(stdout, r->R.e, run);
     if (rc == SW_EXIT_OK && r->fig) {
         char title[512];

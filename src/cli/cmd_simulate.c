@@ -325,9 +325,9 @@ static int conclude(const sw_cli_opts_t *o, const sw_engine_t *e, size_t n, sim_
     rc2 = sw_cli_wide_close(ctx->wide);
     if (rc == SW_EXIT_OK)
         rc = rc2;
-    if (o->json)
-        sw_cli_print_json(stdout, e, run);
-    else if (!o->quiet)
+    if (o->json && sw_cli_print_json(stdout, e, run) != SW_EXIT_OK)
+        rc = SW_EXIT_IO;
+    else if (!o->json && !o->quiet)
         sw_cli_print_summary(stdout, e, run);
     if (rc == SW_EXIT_OK && ctx->fig) {
         const sw_pulse_t *pulse = run->pulse;

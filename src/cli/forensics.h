@@ -86,8 +86,9 @@ int sw_cli_forensics_utc(const sw_cli_forensics_t *F, double t, char *buf, size_
 /* The answer first, then (without -q) the method: the replay summary and
  * how the safety factors were found. */
 void sw_cli_forensics_text(FILE *f, const sw_cli_forensics_t *F);
-/* The same as one JSON object (docs/forensics.md). */
-void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F);
+/* The same as one JSON object (docs/forensics.md): SW_EXIT_OK, or
+ * SW_EXIT_IO when memory ran out (reported). */
+int sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F);
 /* The same as one self-contained HTML page: SW_EXIT_OK or SW_EXIT_IO
  * (reported). */
 int sw_cli_forensics_report(const sw_cli_forensics_t *F, const char *path);
@@ -139,7 +140,7 @@ typedef void (*sw_cli_forensics_report_fn)(void *user, const sw_cli_forensics_t 
 int sw_cli_forensics_log(const sw_cli_forensics_t *opts, const char *log,
                          sw_cli_forensics_report_fn report, void *user);
 
-/* Package k's members of the JSON's "packages" (no braces). */
-void sw_cli_forensics_json_package(FILE *f, const sw_cli_forensics_t *F, size_t k);
+/* Package k's members of the JSON's "packages", into o. */
+void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_t k);
 
 #endif

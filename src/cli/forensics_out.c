@@ -228,38 +228,28 @@ void sw_cli_forensics_text(FILE *f, const sw_cli_forensics_t *F)
 
 /* ---- JSON -------------------------------------------------------------------------- */
 
-void sw_cli_forensics_json_package(FILE *f, const sw_cli_forensics_t *F, size_t k)
+void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_t k)
 {
     sw_summary_t s;
     const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
-    fprintf(f, "\"name\": ");
-    sw_cli_json_string(f, F->scenes[k].name);
+    sw_cli_rec_text(o, "name", F->scenes[k].name);
     if (!C || !sw_cli_forensics_summary(F, k, &s)) {
-        fprintf(f, ", \"verdict\": null");
+        sw_cli_rec_null(o, "verdict");
         return;
     }
-    fprintf(f, ", \"model\": ");
-    sw_cli_json_string(f, sw_model_name(s.model));
-    fprintf(f, ", \"verdict\": ");
-    sw_cli_json_string(f, sw_cli_verdict(&s, &F->R.run));
-    fprintf(f, ", \"seen\": ");
-    sw_cli_json_string(f, sw_cli_verdict_seen(&s));
-    fprintf(f, ", ");
-    sw_cli_json_incomplete(f, &s, &F->R.run);
-    fprintf(f, ", \"overturned\": %s, \"overturn_time\": ", s.overturned ? "true" : "false");
-    sw_cli_json_num(f, s.overturn_time);
-    fprintf(f, ", \"max_theta_ratio\": ");
-    sw_cli_json_num(f, s.max_theta_ratio);
-    fprintf(f, ", \"min_margin\": ");
-    sw_cli_json_num(f, s.min_margin);
+    sw_cli_rec_text(o, "model", sw_model_name(s.model));
+    sw_cli_rec_text(o, "verdict", sw_cli_verdict(&s, &F->R.run));
+    sw_cli_rec_text(o, "seen", sw_cli_verdict_seen(&s));
+    sw_cli_json_incomplete(o, &s, &F->R.run);
+    sw_cli_rec_bool(o, "overturned", s.overturned);
+    sw_cli_rec_num(o, "overturn_time", s.overturn_time);
+    sw_cli_rec_num(o, "max_theta_ratio", s.max_theta_ratio);
+    sw_cli_rec_num(o, "min_margin", s.min_margin);
     const sw_risk_pkg_t *rp = F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
     const int rv = rp && rp->evaluations > 0;
-    fprintf(f, ", \"min_reserve_g\": ");
-    sw_cli_json_num(f, rv ? rp->min_reserve_g : NAN);
-    fprintf(f, ", \"min_reserve_time\": ");
-    sw_cli_json_num(f, rv ? rp->min_reserve_time : NAN);
-    fprintf(f, ", \"rest_reserve_g\": ");
-    sw_cli_json_num(f, rv ? rp->rest_reserve_g : NAN);
+    sw_cli_rec_num(o, "min_reserve_g", rv ? rp->min_reserve_g : NAN);
+    sw_cli_rec_num(o, "min_reserve_time", rv ? rp->min_reserve_time : NAN);
+    sw_cli_rec_num(o, "rest_reserve_g", rv ? rp->rest_reserve_g : NAN);
     /* the decisive moments on the log's clock (null: no dates, or none) */
     const struct {
         const char *key;
@@ -268,167 +258,117 @@ void sw_cli_forensics_json_package(FILE *f, const sw_cli_forensics_t *F, size_t 
                 {"tip", s.tip_time},
                 {"overturn", s.overturn_time},
                 {"min_reserve", rv ? rp->min_reserve_time : NAN}};
-    fprintf(f, ",\n  \"utc\": {");
+    json_t *u = sw_cli_rec_obj(o, "utc");
     for (size_t i = 0; i < sizeof when / sizeof when[0]; i++) {
         char utc[64];
-        fprintf(f, "%s\"%s\": ", i ? ", " : "", when[i].key);
-        if (sw_cli_forensics_utc(F, when[i].t, utc, sizeof utc))
-            sw_cli_json_string(f, utc);
-        else
-            fputs("null", f);
+        const int have = sw_cli_forensics_utc(F, when[i].t, utc, sizeof utc);
+        sw_cli_rec_text(u, when[i].key, have ? utc : NULL);
     }
-    fputc('}', f);
-    fprintf(f, ",\n  \"safety_factor\": ");
-    sw_cli_whatif_json_safety(f, C);
-    fprintf(f, ",\n  \"saved_by\": [");
-    int first = 1;
+    sw_cli_whatif_json_safety(o, C);
+    json_t *saved = sw_cli_rec_arr(o, "saved_by");
     for (size_t i = 0; i < F->ncases && s.overturned; i++) {
         const sw_cli_case_t *W = &F->cases[i];
-        if (W->pkg != k || W->is_scene || !W->available || W->sf.overturned)
-            continue;
-        fprintf(f, "%s", first ? "" : ", ");
-        sw_cli_json_string(f, W->name);
-        first = 0;
+        if (W->pkg == k && !W->is_scene && W->available && !W->sf.overturned)
+            sw_cli_rec_text(saved, NULL, W->name);
     }
-    fprintf(f, "],\n  \"what_if\": [");
-    first = 1;
-    for (size_t i = 0; i < F->ncases; i++) {
-        if (F->cases[i].pkg != k)
-            continue;
-        fprintf(f, "%s\n   ", first ? "" : ",");
-        sw_cli_whatif_json_case(f, &F->cases[i]);
-        first = 0;
-    }
-    fprintf(f, "]");
+    json_t *cases = sw_cli_rec_arr(o, "what_if");
+    for (size_t i = 0; i < F->ncases; i++)
+        if (F->cases[i].pkg == k)
+            sw_cli_whatif_json_case(sw_cli_rec_obj(cases, NULL), &F->cases[i]);
 }
 
-/* A file's digest as JSON members (no braces). */
-static void json_digest(FILE *f, const sw_cli_digest_t *d)
+/* A file's digest as members of o. */
+static void json_digest(json_t *o, const sw_cli_digest_t *d)
 {
-    fputs("\"sha256\": ", f);
-    if (d->ok) {
-        sw_cli_json_string(f, d->sha256);
-        fprintf(f, ", \"size\": %lld, \"no_digest\": null", d->size);
-    } else {
-        fputs("null, \"size\": null, \"no_digest\": ", f);
-        sw_cli_json_string(f, d->why);
-    }
+    sw_cli_rec_text(o, "sha256", d && d->ok ? d->sha256 : NULL);
+    sw_cli_rec_put(o, "size", d && d->ok ? json_integer(d->size) : json_null());
+    sw_cli_rec_text(o, "no_digest", d && !d->ok ? d->why : NULL);
 }
 
 /* What the reading did not use: the refusals by reason, the gaps. */
-static void json_unused(FILE *f, const sw_cli_unused_t *u, double t_origin)
+static void json_unused(json_t *o, const sw_cli_unused_t *u, double t_origin)
 {
-    fprintf(f, "{\"rejected\": %ld, \"by_reason\": [", u->rejected);
+    json_t *j = sw_cli_rec_obj(o, "unused");
+    sw_cli_rec_int(j, "rejected", u->rejected);
+    json_t *by = sw_cli_rec_arr(j, "by_reason");
     for (size_t i = 0; i < u->nreason; i++) {
         const sw_cli_unused_reason_t *r = &u->reason[i];
-        fprintf(f, "%s{\"reason\": ", i ? ", " : "");
-        sw_cli_json_string(f, r->reason);
-        fprintf(f, ", \"count\": %ld, \"first_lines\": ", r->count);
+        json_t *w = sw_cli_rec_obj(by, NULL);
+        sw_cli_rec_text(w, "reason", r->reason);
+        sw_cli_rec_int(w, "count", r->count);
         if (u->places) {
-            fputc('[', f);
-            for (int k = 0; k < r->nwhere; k++) fprintf(f, "%s%ld", k ? ", " : "", r->where[k]);
-            fputs("], \"first_message\": ", f);
-            sw_cli_json_string(f, r->first);
+            json_t *lines = sw_cli_rec_arr(w, "first_lines");
+            for (int k = 0; k < r->nwhere; k++) sw_cli_rec_int(lines, NULL, r->where[k]);
         } else {
-            fputs("null, \"first_message\": null", f);
+            sw_cli_rec_null(w, "first_lines");
         }
-        fputc('}', f);
+        sw_cli_rec_text(w, "first_message", u->places ? r->first : NULL);
     }
-    fprintf(f, "], \"other_reasons\": %ld,\n   \"stream_events\": %ld, \"listed\": ", u->other,
-            u->events);
+    sw_cli_rec_int(j, "other_reasons", u->other);
+    sw_cli_rec_int(j, "stream_events", u->events);
     if (!u->listed) {
-        fputs("null}", f);
+        sw_cli_rec_null(j, "listed");
         return;
     }
-    fputc('[', f);
+    json_t *listed = sw_cli_rec_arr(j, "listed");
     for (size_t i = 0; i < u->ngap; i++) {
         const sw_cli_unused_gap_t *g = &u->gap[i];
-        fprintf(f, "%s{\"kind\": ", i ? ",\n    " : "\n    ");
-        sw_cli_json_string(f, sw_gate_event_name(g->kind));
-        fprintf(f, ", \"time\": ");
-        sw_cli_json_num(f, g->t - t_origin);
-        fprintf(f, ", \"span\": ");
-        sw_cli_json_num(f, g->span);
-        fprintf(f, ", \"line\": %ld, \"incomplete\": %s, \"restarted\": %s, \"bridged\": %s}",
-                g->where, g->incomplete ? "true" : "false", g->restarted ? "true" : "false",
-                g->bridged ? "true" : "false");
+        json_t *w = sw_cli_rec_obj(listed, NULL);
+        sw_cli_rec_text(w, "kind", sw_gate_event_name(g->kind));
+        sw_cli_rec_num(w, "time", g->t - t_origin);
+        sw_cli_rec_num(w, "span", g->span);
+        sw_cli_rec_int(w, "line", g->where);
+        sw_cli_rec_bool(w, "incomplete", g->incomplete);
+        sw_cli_rec_bool(w, "restarted", g->restarted);
+        sw_cli_rec_bool(w, "bridged", g->bridged);
     }
-    fputs("]}", f);
 }
 
-void sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
+int sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
 {
     const sw_cli_run_t *run = &F->R.run;
-    fprintf(f, "{\n\"swaywatch\": ");
-    sw_cli_json_string(f, SW_VERSION);
+    json_t *o = sw_cli_rec_new();
+    sw_cli_rec_text(o, "swaywatch", SW_VERSION);
     char v[160];
     sw_cli_version_text(v, sizeof v);
-    fprintf(f, ",\n\"build\": {\"version\": ");
-    sw_cli_json_string(f, SW_VERSION);
-    fprintf(f, ", \"commit\": ");
-    if (sw_cli_commit()[0])
-        sw_cli_json_string(f, sw_cli_commit());
-    else
-        fputs("null", f);
-    fprintf(f, ", \"modified\": %s, \"text\": ", sw_cli_commit_modified() ? "true" : "false");
-    sw_cli_json_string(f, v);
-    fprintf(f, "},\n\"command\": [\"swaywatch\"");
-    for (int i = 0; i < F->argc; i++) {
-        fprintf(f, ", ");
-        sw_cli_json_string(f, F->argv[i]);
-    }
-    fprintf(f, "],\n\"command_line\": ");
-    if (F->command_line)
-        sw_cli_json_string(f, F->command_line);
-    else
-        fputs("null", f);
-    fprintf(f, ",\n\"log\": {\"name\": ");
-    sw_cli_json_string(f, F->log);
-    fprintf(f, ", \"source\": ");
-    sw_cli_json_string(f, F->R.src ? F->R.src->name : "");
-    fprintf(f, ", ");
-    json_digest(f, &F->log_digest);
-    fprintf(f, ",\n  \"start_utc\": ");
+    json_t *b = sw_cli_rec_obj(o, "build");
+    sw_cli_rec_text(b, "version", SW_VERSION);
+    sw_cli_rec_text(b, "commit", sw_cli_commit()[0] ? sw_cli_commit() : NULL);
+    sw_cli_rec_bool(b, "modified", sw_cli_commit_modified());
+    sw_cli_rec_text(b, "text", v);
+    json_t *cmd = sw_cli_rec_arr(o, "command");
+    sw_cli_rec_text(cmd, NULL, "swaywatch");
+    for (int i = 0; i < F->argc; i++) sw_cli_rec_text(cmd, NULL, F->argv[i]);
+    sw_cli_rec_text(o, "command_line", F->command_line);
+    json_t *log = sw_cli_rec_obj(o, "log");
+    sw_cli_rec_text(log, "name", F->log);
+    sw_cli_rec_text(log, "source", F->R.src ? F->R.src->name : "");
+    json_digest(log, &F->log_digest);
     char iso[64];
-    if (run->absolute) {
-        sw_cli_iso_seconds(iso, sizeof iso, run->abs_start);
-        sw_cli_json_string(f, iso);
-        fprintf(f, ", \"end_utc\": ");
-        sw_cli_iso_seconds(iso, sizeof iso, run->abs_end);
-        sw_cli_json_string(f, iso);
-        fprintf(f, ", \"dates_from\": ");
-        sw_cli_json_string(f, run->abs_from);
-    } else {
-        fputs("null, \"end_utc\": null, \"dates_from\": null", f);
-    }
-    fprintf(f,
-            ",\n  \"samples_read\": %ld, \"samples_rejected\": %ld, \"samples_used\": %zu, "
-            "\"facts\": ",
-            run->samples_read, run->samples_rejected, F->L.n);
-    if (run->have_facts)
-        sw_cli_json_facts(f, run, " ");
+    sw_cli_iso_seconds(iso, sizeof iso, run->abs_start);
+    sw_cli_rec_text(log, "start_utc", run->absolute ? iso : NULL);
+    sw_cli_iso_seconds(iso, sizeof iso, run->abs_end);
+    sw_cli_rec_text(log, "end_utc", run->absolute ? iso : NULL);
+    sw_cli_rec_text(log, "dates_from", run->absolute ? run->abs_from : NULL);
+    sw_cli_rec_int(log, "samples_read", run->samples_read);
+    sw_cli_rec_int(log, "samples_rejected", run->samples_rejected);
+    sw_cli_rec_int(log, "samples_used", (long long)F->L.n);
+    if (run->have_facts) /* the summary's "input" */
+        sw_cli_json_facts(log, "facts", run);
     else
-        fputs("null", f);
-    fprintf(f, ",\n  \"unused\": ");
-    json_unused(f, &run->unused, run->have_facts ? run->facts.t_origin : 0.0);
-    fprintf(f, "},\n\"scenes\": [");
+        sw_cli_rec_null(log, "facts");
+    json_unused(log, &run->unused, run->have_facts ? run->facts.t_origin : 0.0);
+    json_t *sc = sw_cli_rec_arr(o, "scenes");
     for (size_t i = 0; i < F->o.scenes.n; i++) {
-        fprintf(f, "%s{\"path\": ", i ? ", " : "");
-        sw_cli_json_string(f, F->o.scenes.v[i]);
-        fprintf(f, ", ");
-        if (F->scene_digest)
-            json_digest(f, &F->scene_digest[i]);
-        else
-            fputs("\"sha256\": null, \"size\": null, \"no_digest\": null", f);
-        fputc('}', f);
+        json_t *w = sw_cli_rec_obj(sc, NULL);
+        sw_cli_rec_text(w, "path", F->o.scenes.v[i]);
+        json_digest(w, F->scene_digest ? &F->scene_digest[i] : NULL);
     }
-    fprintf(f, "],\n\"replay\": ");
-    sw_cli_print_json(f, F->R.e, run);
-    fprintf(f, ",\n\"packages\": [");
-    for (size_t k = 0; k < F->n; k++) {
-        fprintf(f, "%s\n {", k ? "," : "");
-        sw_cli_forensics_json_package(f, F, k);
-        fputc('}', f);
-    }
-    fprintf(f, "\n]\n}\n");
+    sw_cli_json_summary(sw_cli_rec_obj(o, "replay"), F->R.e, run);
+    json_t *pk = sw_cli_rec_arr(o, "packages");
+    for (size_t k = 0; k < F->n; k++) sw_cli_forensics_json_package(sw_cli_rec_obj(pk, NULL), F, k);
+    if (sw_cli_rec_write(f, o, SW_CLI_REC_DOC) == 0)
+        return SW_EXIT_OK;
+    sw_cli_error("the JSON report: out of memory");
+    return SW_EXIT_IO;
 }

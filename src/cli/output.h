@@ -6,6 +6,7 @@
 #include <stdio.h>
 
 #include "cli.h"
+#include "record.h"
 #include "text.h"
 #include "unused.h"
 
@@ -155,21 +156,20 @@ int sw_cli_run_utc(const sw_cli_run_t *run, double t, char *buf, size_t len);
  * with faults) as the human summary has it; nothing without a reserve. */
 void sw_cli_print_reserve(FILE *f, const sw_risk_pkg_t *p);
 
-/* The one-screen human summary / the JSON summary (DESIGN.md contract). */
+/* The one-screen human summary (DESIGN.md contract). */
 void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
-void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
+/* The JSON summary (DESIGN.md contract, docs/design.md): its members into
+ * o (record.h), or written on f: SW_EXIT_OK, or SW_EXIT_IO when memory ran
+ * out (reported). */
+void sw_cli_json_summary(json_t *o, const sw_engine_t *e, const sw_cli_run_t *run);
+int sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run);
 
-/* The parts of the JSON summary, for the JSON Lines records of a batch.
- * br is what follows the commas where the summary breaks its lines ("\n"
- * and the indent, or " " for a record on one line).  The log's facts (the
- * summary's "input"), an object; and the members of package i's object,
- * without the braces (-1 and nothing written if i has no summary). */
-void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br);
-int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
-                        const char *br);
-
-/* v as a JSON number, or null: JSON has no NaN or infinity. */
-void sw_cli_json_num(FILE *f, double v);
+/* The parts of the JSON summary, for the records of a batch and
+ * forensics: the log's facts (the summary's "input") as member key of o;
+ * the members of package i's object into o (-1 and nothing set if i has
+ * no summary). */
+void sw_cli_json_facts(json_t *o, const char *key, const sw_cli_run_t *run);
+int sw_cli_json_package(json_t *o, const sw_engine_t *e, size_t i, const sw_cli_run_t *run);
 
 /* An absolute time (s since 1970) as ISO-8601 UTC with milliseconds. */
 void sw_cli_iso_seconds(char *buf, size_t len, double t);
@@ -197,9 +197,9 @@ void sw_cli_incomplete_why(const sw_cli_run_t *run, char *buf, size_t len);
  * sw_cli_verdict_seen); else what it saw.  run may be NULL. */
 const char *sw_cli_verdict(const sw_summary_t *s, const sw_cli_run_t *run);
 
-/* "incomplete_because": null, or {count, first_time, first_kind,
- * first_span, text} of an incomplete verdict, as a JSON member. */
-void sw_cli_json_incomplete(FILE *f, const sw_summary_t *s, const sw_cli_run_t *run);
+/* Member "incomplete_because" of o: null, or {count, first_time,
+ * first_kind, first_span, text} of an incomplete verdict. */
+void sw_cli_json_incomplete(json_t *o, const sw_summary_t *s, const sw_cli_run_t *run);
 
 /* The exit code of a run that went well, from its verdicts: SW_EXIT_OK
  * without fail_on_overturn; with it SW_EXIT_OVERTURNED if a package

@@ -479,246 +479,185 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
     }
 }
 
-void sw_cli_json_num(FILE *f, double v)
+/* ---- JSON ---------------------------------------------------------------------------- */
+
+/* An ISO-8601 UTC time, or null. */
+static void json_utc(json_t *o, const char *key, int have, const char *iso)
 {
-    if (isfinite(v))
-        fprintf(f, "%.9g", v);
-    else
-        fputs("null", f);
+    sw_cli_rec_text(o, key, have ? iso : NULL);
 }
 
-/* ", " and a line break (br) between the members of an object. */
-static void json_sep(FILE *f, const char *br)
-{
-    fputc(',', f);
-    fputs(br, f);
-}
-
-/* PRE"KEY": NUMBER (null when not finite): PRE is "" or ", " */
-static void json_kv(FILE *f, const char *pre, const char *key, double v)
-{
-    fprintf(f, "%s\"%s\": ", pre, key);
-    sw_cli_json_num(f, v);
-}
-
-void sw_cli_json_facts(FILE *f, const sw_cli_run_t *run, const char *br)
+void sw_cli_json_facts(json_t *o, const char *key, const sw_cli_run_t *run)
 {
     const sw_gate_facts_t *F = &run->facts;
-    fprintf(f, "{\"rejected_share\": ");
-    sw_cli_json_num(
-        f, run->samples_read ? (double)run->samples_rejected / (double)run->samples_read : 0.0);
-    json_kv(f, ", ", "start", F->t_first - F->t_origin);
-    json_kv(f, ", ", "end", F->t_last - F->t_origin);
-    fprintf(f, ", \"start_absolute\": ");
+    json_t *in = sw_cli_rec_obj(o, key);
+    sw_cli_rec_num(
+        in, "rejected_share",
+        run->samples_read ? (double)run->samples_rejected / (double)run->samples_read : 0.0);
+    sw_cli_rec_num(in, "start", F->t_first - F->t_origin);
+    sw_cli_rec_num(in, "end", F->t_last - F->t_origin);
     char iso[64];
-    if (sw_cli_run_utc(run, 0.0, iso, sizeof iso))
-        sw_cli_json_string(f, iso);
-    else
-        fputs("null", f);
-    fprintf(f, ", \"end_absolute\": ");
-    if (run->absolute) {
+    json_utc(in, "start_absolute", sw_cli_run_utc(run, 0.0, iso, sizeof iso), iso);
+    if (run->absolute)
         sw_cli_iso_seconds(iso, sizeof iso, run->abs_end);
-        sw_cli_json_string(f, iso);
-    } else {
-        fputs("null", f);
-    }
-    json_sep(f, br);
-    json_kv(f, "", "duration", F->duration);
-    json_kv(f, ", ", "dt_median", F->dt_median);
-    json_kv(f, ", ", "dt_min", F->dt_min);
-    json_kv(f, ", ", "dt_max", F->dt_max);
-    json_kv(f, ", ", "rate", F->rate);
-    json_sep(f, br);
-    json_kv(f, "", "peak_accel", F->peak_a);
-    json_kv(f, ", ", "peak_accel_g", F->peak_a / SW_G0);
-    fprintf(f, ", \"gaps\": %ld, \"gap_total\": ", F->gaps);
-    sw_cli_json_num(f, F->gap_total);
-    json_kv(f, ", ", "gap_max", F->gap_max);
-    fprintf(f, ", \"restarts\": %ld, \"clock_steps\": %ld,", F->restarts, F->clock_steps);
-    fputs(br, f);
-    fprintf(f, "\"incomplete\": %s", F->incomplete ? "true" : "false");
-    fprintf(f, ", \"forced\": %s, \"check\": ", run->forced ? "true" : "false");
-    if (run->check[0])
-        sw_cli_json_string(f, run->check);
-    else
-        fputs("null", f);
-    fputc('}', f);
+    json_utc(in, "end_absolute", run->absolute, iso);
+    sw_cli_rec_num(in, "duration", F->duration);
+    sw_cli_rec_num(in, "dt_median", F->dt_median);
+    sw_cli_rec_num(in, "dt_min", F->dt_min);
+    sw_cli_rec_num(in, "dt_max", F->dt_max);
+    sw_cli_rec_num(in, "rate", F->rate);
+    sw_cli_rec_num(in, "peak_accel", F->peak_a);
+    sw_cli_rec_num(in, "peak_accel_g", F->peak_a / SW_G0);
+    sw_cli_rec_int(in, "gaps", F->gaps);
+    sw_cli_rec_num(in, "gap_total", F->gap_total);
+    sw_cli_rec_num(in, "gap_max", F->gap_max);
+    sw_cli_rec_int(in, "restarts", F->restarts);
+    sw_cli_rec_int(in, "clock_steps", F->clock_steps);
+    sw_cli_rec_bool(in, "incomplete", F->incomplete != 0);
+    sw_cli_rec_bool(in, "forced", run->forced);
+    sw_cli_rec_text(in, "check", run->check[0] ? run->check : NULL);
 }
 
-void sw_cli_json_incomplete(FILE *f, const sw_summary_t *s, const sw_cli_run_t *run)
+void sw_cli_json_incomplete(json_t *o, const sw_summary_t *s, const sw_cli_run_t *run)
 {
-    fputs("\"incomplete_because\": ", f);
     const long n = s->overturned ? 0 : sw_cli_run_incomplete(run);
-    if (n <= 0 && flight_open(s)) {
-        char why[160];
+    if (n <= 0 && !flight_open(s)) {
+        sw_cli_rec_null(o, "incomplete_because");
+        return;
+    }
+    json_t *w = sw_cli_rec_obj(o, "incomplete_because");
+    char why[256];
+    if (n <= 0) { /* a free flight too long for the model */
         snprintf(why, sizeof why,
                  "in the air over %g s from %.4f s: the landing is outside the model",
                  SW_FLIGHT_LONG, s->flight_long_time);
-        fputs("{\"count\": 1, \"first_time\": ", f);
-        sw_cli_json_num(f, s->flight_long_time);
-        fputs(", \"first_kind\": \"flight\", \"first_span\": null", f);
-        fputs(", \"text\": ", f);
-        sw_cli_json_string(f, why);
-        fputc('}', f);
-        return;
-    }
-    if (n <= 0) {
-        fputs("null", f);
+        sw_cli_rec_int(w, "count", 1);
+        sw_cli_rec_num(w, "first_time", s->flight_long_time);
+        sw_cli_rec_text(w, "first_kind", "flight");
+        sw_cli_rec_null(w, "first_span");
+        sw_cli_rec_text(w, "text", why);
         return;
     }
     const sw_gate_facts_t *F = &run->facts;
     const sw_cli_unused_t *u = &run->unused;
     const sw_cli_unused_gap_t *g = u->have_incomplete ? &u->first_incomplete : NULL;
-    fprintf(f, "{\"count\": %ld, \"first_time\": ", n);
-    sw_cli_json_num(f, (g ? g->t : F->first_incomplete) - F->t_origin);
-    fputs(", \"first_kind\": ", f);
-    if (g)
-        sw_cli_json_string(f, sw_gate_event_name(g->kind));
-    else
-        fputs("null", f);
-    fputs(", \"first_span\": ", f);
-    sw_cli_json_num(f, g ? g->span : NAN);
-    char why[256];
+    sw_cli_rec_int(w, "count", n);
+    sw_cli_rec_num(w, "first_time", (g ? g->t : F->first_incomplete) - F->t_origin);
+    sw_cli_rec_text(w, "first_kind", g ? sw_gate_event_name(g->kind) : NULL);
+    sw_cli_rec_num(w, "first_span", g ? g->span : NAN);
     sw_cli_incomplete_why(run, why, sizeof why);
-    fputs(", \"text\": ", f);
-    sw_cli_json_string(f, why);
-    fputc('}', f);
+    sw_cli_rec_text(w, "text", why);
 }
 
 /* The reserve and the impacts that matter (null without them). */
-static void json_risk(FILE *f, const sw_risk_pkg_t *p, const char *br)
+static void json_risk(json_t *o, const sw_risk_pkg_t *p)
 {
     const int rv = p && p->evaluations > 0;
-    json_sep(f, br);
-    json_kv(f, "", "min_reserve_g", rv ? p->min_reserve_g : NAN);
-    json_kv(f, ", ", "min_reserve_time", rv ? p->min_reserve_time : NAN);
-    fprintf(f, ", \"min_reserve_direction\": %s, \"min_reserve_pulse\": ",
-            !rv || !p->min_direction                 ? "null"
-            : p->min_direction == SW_RESERVE_BRAKING ? "\"braking\""
-                                                     : "\"accelerating\"");
-    sw_cli_json_num(f, rv && p->min_pulse > 0.0 ? p->min_pulse : NAN);
-    json_kv(f, ", ", "rest_reserve_g", p ? p->rest_reserve_g : NAN);
-    fprintf(f, ", \"reserve_evaluations\": %ld", p ? p->evaluations : 0L);
-    fprintf(f, ", \"no_reserve\": ");
-    if (p && p->no_reserve)
-        sw_cli_json_string(f, p->no_reserve);
-    else
-        fputs("null", f);
-    json_sep(f, br);
-    if (p && p->impact_min > 0.0)
-        fprintf(f, "\"significant_impacts\": %ld, \"micro_impacts\": %ld, \"settling_spans\": %ld",
-                p->impacts, p->micro_impacts, p->settling_spans);
-    else
-        fputs("\"significant_impacts\": null, \"micro_impacts\": null, \"settling_spans\": null",
-              f);
+    sw_cli_rec_num(o, "min_reserve_g", rv ? p->min_reserve_g : NAN);
+    sw_cli_rec_num(o, "min_reserve_time", rv ? p->min_reserve_time : NAN);
+    sw_cli_rec_text(o, "min_reserve_direction",
+                    !rv || !p->min_direction                 ? NULL
+                    : p->min_direction == SW_RESERVE_BRAKING ? "braking"
+                                                             : "accelerating");
+    sw_cli_rec_num(o, "min_reserve_pulse", rv && p->min_pulse > 0.0 ? p->min_pulse : NAN);
+    sw_cli_rec_num(o, "rest_reserve_g", p ? p->rest_reserve_g : NAN);
+    sw_cli_rec_int(o, "reserve_evaluations", p ? p->evaluations : 0L);
+    sw_cli_rec_text(o, "no_reserve", p && p->no_reserve ? p->no_reserve : NULL);
+    const int sig = p && p->impact_min > 0.0;
+    sw_cli_rec_put(o, "significant_impacts", sig ? json_integer(p->impacts) : json_null());
+    sw_cli_rec_put(o, "micro_impacts", sig ? json_integer(p->micro_impacts) : json_null());
+    sw_cli_rec_put(o, "settling_spans", sig ? json_integer(p->settling_spans) : json_null());
 }
 
-int sw_cli_json_package(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run,
-                        const char *br)
+int sw_cli_json_package(json_t *o, const sw_engine_t *e, size_t i, const sw_cli_run_t *run)
 {
     sw_summary_t s;
     if (sw_engine_summary(e, i, &s) != SW_OK)
         return -1;
-    fprintf(f, "\"name\": ");
-    sw_cli_json_string(f, s.name);
-    fprintf(f, ", \"model\": ");
-    sw_cli_json_string(f, sw_model_name(s.model));
-    fprintf(f, ", \"overturned\": %s, \"verdict\": \"%s\", \"seen\": \"%s\"",
-            s.overturned ? "true" : "false", sw_cli_verdict(&s, run), sw_cli_verdict_seen(&s));
-    json_sep(f, br);
-    sw_cli_json_incomplete(f, &s, run);
-    json_sep(f, br);
-    json_kv(f, "", "overturn_time", s.overturn_time);
-    json_kv(f, ", ", "tip_time", s.tip_time);
-    json_kv(f, ", ", "uplift_time", s.uplift_time);
-    json_sep(f, br);
-    json_kv(f, "", "max_abs_theta", s.max_abs_theta);
-    json_kv(f, ", ", "max_theta_ratio", s.max_theta_ratio);
-    json_kv(f, ", ", "alpha", alpha_of(e, i));
-    json_sep(f, br);
-    json_kv(f, "", "min_margin", s.min_margin);
-    json_kv(f, ", ", "min_margin_bound", s.min_margin_bound);
-    json_kv(f, ", ", "max_uplift_ratio", s.max_uplift_ratio);
-    json_sep(f, br);
-    fprintf(f, "\"impacts\": %ld, \"uplifts\": %ld, \"rests\": %ld, \"faults\": %ld", s.impacts,
-            s.uplifts, s.rests, s.faults);
+    sw_cli_rec_text(o, "name", s.name);
+    sw_cli_rec_text(o, "model", sw_model_name(s.model));
+    sw_cli_rec_bool(o, "overturned", s.overturned);
+    sw_cli_rec_text(o, "verdict", sw_cli_verdict(&s, run));
+    sw_cli_rec_text(o, "seen", sw_cli_verdict_seen(&s));
+    sw_cli_json_incomplete(o, &s, run);
+    sw_cli_rec_num(o, "overturn_time", s.overturn_time);
+    sw_cli_rec_num(o, "tip_time", s.tip_time);
+    sw_cli_rec_num(o, "uplift_time", s.uplift_time);
+    sw_cli_rec_num(o, "max_abs_theta", s.max_abs_theta);
+    sw_cli_rec_num(o, "max_theta_ratio", s.max_theta_ratio);
+    sw_cli_rec_num(o, "alpha", alpha_of(e, i));
+    sw_cli_rec_num(o, "min_margin", s.min_margin);
+    sw_cli_rec_num(o, "min_margin_bound", s.min_margin_bound);
+    sw_cli_rec_num(o, "max_uplift_ratio", s.max_uplift_ratio);
+    sw_cli_rec_int(o, "impacts", s.impacts);
+    sw_cli_rec_int(o, "uplifts", s.uplifts);
+    sw_cli_rec_int(o, "rests", s.rests);
+    sw_cli_rec_int(o, "faults", s.faults);
     if (s.flights) { /* free flights (physics.md): only where there were some */
-        fprintf(f, ", \"flights\": %ld", s.flights);
-        json_kv(f, ", ", "flight_max", s.flight_max);
-        json_kv(f, ", ", "flight_long_time", s.flight_long_time);
+        sw_cli_rec_int(o, "flights", s.flights);
+        sw_cli_rec_num(o, "flight_max", s.flight_max);
+        sw_cli_rec_num(o, "flight_long_time", s.flight_long_time);
     }
-    json_risk(f, sw_risk_pkg(run->risk, i), br);
-    json_sep(f, br);
-    fprintf(f, "\"samples_read\": %ld, \"samples_rejected\": %ld", run->samples_read,
-            run->samples_rejected);
-    json_sep(f, br);
-    fprintf(f, "\"scheme\": ");
-    sw_cli_json_string(f, sw_engine_scheme(e));
-    json_kv(f, ", ", "dt", sw_engine_dt_used(e, i));
+    json_risk(o, sw_risk_pkg(run->risk, i));
+    sw_cli_rec_int(o, "samples_read", run->samples_read);
+    sw_cli_rec_int(o, "samples_rejected", run->samples_rejected);
+    sw_cli_rec_text(o, "scheme", sw_engine_scheme(e));
+    sw_cli_rec_num(o, "dt", sw_engine_dt_used(e, i));
     if (dt_differs(e, i))
-        json_kv(f, ", ", "dt_requested", sw_engine_dt_requested(e));
-    fprintf(f, ", \"steps\": %ld", s.steps);
+        sw_cli_rec_num(o, "dt_requested", sw_engine_dt_requested(e));
+    sw_cli_rec_int(o, "steps", s.steps);
     const char *dw = NULL;
     const int agrees = check_agrees(e, i, &s, &dw);
     if (agrees >= 0) {
         const sw_engine_t *c = sw_engine_checker(e);
-        json_sep(f, br);
-        fprintf(f, "\"scheme_check\": {\"scheme\": ");
-        sw_cli_json_string(f, sw_engine_scheme(c));
-        json_kv(f, ", ", "dt", sw_engine_dt_used(c, i));
-        fprintf(f, ", \"verdict\": \"%s\", \"agrees\": %s}", dw, agrees ? "true" : "false");
+        json_t *k = sw_cli_rec_obj(o, "scheme_check");
+        sw_cli_rec_text(k, "scheme", sw_engine_scheme(c));
+        sw_cli_rec_num(k, "dt", sw_engine_dt_used(c, i));
+        sw_cli_rec_text(k, "verdict", dw);
+        sw_cli_rec_bool(k, "agrees", agrees);
     }
     return 0;
 }
 
-void sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+void sw_cli_json_summary(json_t *o, const sw_engine_t *e, const sw_cli_run_t *run)
 {
-    fprintf(f, "{\n  \"swaywatch\": ");
-    sw_cli_json_string(f, sw_version());
-    fprintf(f, ",\n  \"log\": ");
-    if (run->log)
-        sw_cli_json_string(f, run->log);
-    else
-        fputs("null", f);
+    sw_cli_rec_text(o, "swaywatch", sw_version());
+    sw_cli_rec_text(o, "log", run->log);
     if (run->pulse) {
-        fprintf(f, ",\n  \"pulse\": {\"shape\": ");
-        sw_cli_json_string(f, sw_pulse_shape_name(run->pulse->shape));
-        json_kv(f, ", ", "amplitude", run->pulse->amplitude);
-        json_kv(f, ", ", "omega", run->pulse->omega);
-        json_kv(f, ", ", "duration", sw_pulse_duration(run->pulse));
-        fprintf(f, "},\n  \"simulated\": ");
-        sw_cli_json_num(f, run->duration);
+        json_t *p = sw_cli_rec_obj(o, "pulse");
+        sw_cli_rec_text(p, "shape", sw_pulse_shape_name(run->pulse->shape));
+        sw_cli_rec_num(p, "amplitude", run->pulse->amplitude);
+        sw_cli_rec_num(p, "omega", run->pulse->omega);
+        sw_cli_rec_num(p, "duration", sw_pulse_duration(run->pulse));
+        sw_cli_rec_num(o, "simulated", run->duration);
     }
-    if (run->log) {
-        fprintf(f, ",\n  \"settle\": ");
-        sw_cli_json_num(f, run->settle);
-    }
-    fprintf(f, ",\n  \"interrupted\": ");
-    if (run->interrupted)
-        fprintf(f,
-                "{\"signal\": \"%s\", \"t\": ", run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+    if (run->log)
+        sw_cli_rec_num(o, "settle", run->settle);
     if (run->interrupted) {
-        sw_cli_json_num(f, sw_engine_time(e));
-        fputc('}', f);
+        json_t *k = sw_cli_rec_obj(o, "interrupted");
+        sw_cli_rec_text(k, "signal", run->interrupted == SIGINT ? "SIGINT" : "SIGTERM");
+        sw_cli_rec_num(k, "t", sw_engine_time(e));
     } else {
-        fputs("null", f);
+        sw_cli_rec_null(o, "interrupted");
     }
-    fprintf(f, ",\n  \"samples_read\": %ld,\n  \"samples_rejected\": %ld", run->samples_read,
-            run->samples_rejected);
-    if (run->have_facts) {
-        fprintf(f, ",\n  \"input\": ");
-        sw_cli_json_facts(f, run, "\n    ");
-    }
-    fprintf(f, ",\n  \"packages\": [");
-    const char *sep = "\n    {";
+    sw_cli_rec_int(o, "samples_read", run->samples_read);
+    sw_cli_rec_int(o, "samples_rejected", run->samples_rejected);
+    if (run->have_facts)
+        sw_cli_json_facts(o, "input", run);
+    json_t *pk = sw_cli_rec_arr(o, "packages");
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
-        if (sw_engine_summary(e, i, &s) != SW_OK)
-            continue;
-        fputs(sep, f);
-        sw_cli_json_package(f, e, i, run, "\n     ");
-        fputc('}', f);
-        sep = ",\n    {";
+        if (sw_engine_summary(e, i, &s) == SW_OK)
+            sw_cli_json_package(sw_cli_rec_obj(pk, NULL), e, i, run);
     }
-    fprintf(f, "\n  ]\n}\n");
+}
+
+int sw_cli_print_json(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run)
+{
+    json_t *o = sw_cli_rec_new();
+    sw_cli_json_summary(o, e, run);
+    if (sw_cli_rec_write(f, o, SW_CLI_REC_DOC) == 0)
+        return SW_EXIT_OK;
+    sw_cli_error("the JSON summary: out of memory");
+    return SW_EXIT_IO;
 }

@@ -69,24 +69,6 @@ void sw_cli_json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
-void sw_cli_csv_text(FILE *f, const char *s)
-{
-    const char *lead = s[0] && strchr("=+-@\t\r", s[0]) ? "'" : "";
-    if (!strpbrk(s, ",;\t\"\r\n")) {
-        fputs(lead, f);
-        fputs(s, f);
-        return;
-    }
-    fputc('"', f);
-    fputs(lead, f);
-    for (; *s; s++) {
-        if (*s == '"')
-            fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 size_t sw_cli_term_text(char *dst, size_t cap, const char *src, size_t n)
 {
     const unsigned char *p = (const unsigned char *)src;

@@ -28,12 +28,6 @@ int sw_cli_utf8_next(const unsigned char *s, size_t n, size_t *len, uint32_t *cp
  * the output is valid JSON and valid UTF-8 whatever s holds. */
 void sw_cli_json_string(FILE *f, const char *s);
 
-/* s as a CSV text cell (RFC 4180): quoted only when it has to be.  A cell
- * that begins with '=', '+', '-', '@', a tab or a carriage return gets a
- * leading "'", so that no spreadsheet reads it as a formula (OWASP, "CSV
- * injection").  For text only: numbers are written as numbers. */
-void sw_cli_csv_text(FILE *f, const char *s);
-
 /* n bytes of src (up to its first NUL) as a line for a terminal, into dst
  * (cap > 0 bytes, NUL-terminated, cut at a character): well-formed UTF-8
  * as it is, but each control character (C0, DEL, C1: U+0080 to U+009F,

@@ -484,106 +484,78 @@ void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_
             luck ? "\n  *: survived, but a weaker shock of the same shape overturns it" : "");
 }
 
-void sw_cli_whatif_json_safety(FILE *f, const sw_cli_case_t *C)
+void sw_cli_whatif_json_safety(json_t *o, const sw_cli_case_t *C)
 {
     const sw_safety_t *s = &C->sf;
-    fprintf(f, "{\"available\": %s", C->available ? "true" : "false");
+    json_t *j = sw_cli_rec_obj(o, "safety_factor");
+    sw_cli_rec_bool(j, "available", C->available);
     if (!C->available) {
-        fprintf(f, ", \"note\": ");
-        sw_cli_json_string(f, C->note);
-        fputc('}', f);
+        sw_cli_rec_text(j, "note", C->note);
         return;
     }
     char text[640];
     const int both = s->found && s->factor_safe > 0.0;
-    fprintf(f,
-            ", \"overturned\": %s, \"found\": %s, \"bracket\": ", s->overturned ? "true" : "false",
-            s->found ? "true" : "false");
+    sw_cli_rec_bool(j, "overturned", s->overturned);
+    sw_cli_rec_bool(j, "found", s->found);
     if (both) {
-        fprintf(f, "[");
-        sw_cli_json_num(f, s->factor_safe);
-        fprintf(f, ", ");
-        sw_cli_json_num(f, s->factor);
-        fprintf(f, "]");
+        json_t *b = sw_cli_rec_arr(j, "bracket");
+        sw_cli_rec_num(b, NULL, s->factor_safe);
+        sw_cli_rec_num(b, NULL, s->factor);
     } else {
-        fprintf(f, "null");
+        sw_cli_rec_null(j, "bracket");
     }
-    fprintf(f, ", \"factor\": ");
-    sw_cli_json_num(f, s->found ? s->factor : NAN);
-    fprintf(f, ", \"factor_safe\": ");
-    sw_cli_json_num(f, both ? s->factor_safe : NAN);
+    sw_cli_rec_num(j, "factor", s->found ? s->factor : NAN);
+    sw_cli_rec_num(j, "factor_safe", both ? s->factor_safe : NAN);
     sw_cli_safety_bracket(text, sizeof text, s);
-    fprintf(f, ", \"text\": ");
-    sw_cli_json_string(f, text);
+    sw_cli_rec_text(j, "text", text);
     sw_cli_safety_sentence(text, sizeof text, s);
-    fprintf(f, ", \"meaning\": ");
-    sw_cli_json_string(f, text);
-    fprintf(f, ", \"weaker_overturning_factor\": ");
-    sw_cli_json_num(f, !s->overturned && s->below.found ? s->below.x : NAN);
-    fprintf(f, ", \"lift_scale\": ");
-    sw_cli_json_num(f, s->lift_scale);
-    fprintf(f, ", \"max_scale\": ");
-    sw_cli_json_num(f, s->max_scale);
-    fprintf(f, ", \"trials\": %ld}", s->trials);
+    sw_cli_rec_text(j, "meaning", text);
+    sw_cli_rec_num(j, "weaker_overturning_factor",
+                   !s->overturned && s->below.found ? s->below.x : NAN);
+    sw_cli_rec_num(j, "lift_scale", s->lift_scale);
+    sw_cli_rec_num(j, "max_scale", s->max_scale);
+    sw_cli_rec_int(j, "trials", s->trials);
 }
 
 /* "min_reserve_g", its time, whether exact, its proven lower end, and
  * the states evaluated; nulls without a reserve (and why). */
-static void whatif_json_reserve(FILE *f, const sw_cli_case_t *C)
+static void whatif_json_reserve(json_t *o, const sw_cli_case_t *C)
 {
     const sw_reserve_log_t *r = &C->rl;
     const int has = C->has_reserve && !isnan(r->min_g);
-    fprintf(f, "\"min_reserve_g\": ");
-    sw_cli_json_num(f, has ? r->min_g : NAN);
-    fprintf(f, ", \"min_reserve_time\": ");
-    sw_cli_json_num(f, has ? r->min_time : NAN);
-    fprintf(f, ", \"min_reserve_exact\": %s, \"min_reserve_lower_g\": ",
-            has ? (r->exact ? "true" : "false") : "null");
-    sw_cli_json_num(f, has ? r->lower_g : NAN);
-    fprintf(f, ", \"reserve_states\": %zu, \"reserve_evaluations\": %ld", has ? r->states : 0,
-            has ? r->evaluated : 0L);
-    if (!C->has_reserve && C->reserve_note[0]) {
-        fprintf(f, ", \"no_reserve\": ");
-        sw_cli_json_string(f, C->reserve_note);
-    }
+    sw_cli_rec_num(o, "min_reserve_g", has ? r->min_g : NAN);
+    sw_cli_rec_num(o, "min_reserve_time", has ? r->min_time : NAN);
+    sw_cli_rec_put(o, "min_reserve_exact", has ? json_boolean(r->exact) : json_null());
+    sw_cli_rec_num(o, "min_reserve_lower_g", has ? r->lower_g : NAN);
+    sw_cli_rec_int(o, "reserve_states", has ? (long long)r->states : 0);
+    sw_cli_rec_int(o, "reserve_evaluations", has ? r->evaluated : 0L);
+    if (!C->has_reserve && C->reserve_note[0])
+        sw_cli_rec_text(o, "no_reserve", C->reserve_note);
 }
 
-void sw_cli_whatif_json_case(FILE *f, const sw_cli_case_t *C)
+void sw_cli_whatif_json_case(json_t *o, const sw_cli_case_t *C)
 {
-    fprintf(f, "{\"case\": ");
-    sw_cli_json_string(f, C->name);
-    fprintf(f, ", \"as_given\": %s, \"available\": %s", C->is_scene ? "true" : "false",
-            C->available ? "true" : "false");
-    if (C->stands_for) {
-        fprintf(f, ", \"stands_for\": ");
-        sw_cli_json_string(f, C->stands_for);
-    }
+    sw_cli_rec_text(o, "case", C->name);
+    sw_cli_rec_bool(o, "as_given", C->is_scene);
+    sw_cli_rec_bool(o, "available", C->available);
+    if (C->stands_for)
+        sw_cli_rec_text(o, "stands_for", C->stands_for);
     if (C->desc[0]) {
-        fprintf(f, ", \"model\": ");
-        sw_cli_json_string(f, sw_model_name(C->model));
-        fprintf(f, ", \"support\": ");
-        sw_cli_json_string(f, C->desc);
+        sw_cli_rec_text(o, "model", sw_model_name(C->model));
+        sw_cli_rec_text(o, "support", C->desc);
     }
     if (!C->available) {
-        fprintf(f, ", \"note\": ");
-        sw_cli_json_string(f, C->note);
-        fputc('}', f);
+        sw_cli_rec_text(o, "note", C->note);
         return;
     }
     const sw_run_result_t *r = &C->sf.at_one;
-    fprintf(f, ", \"overturned\": %s, \"overturn_time\": ", r->overturned ? "true" : "false");
-    sw_cli_json_num(f, r->overturn_time);
-    fprintf(f, ", \"tip_time\": ");
-    sw_cli_json_num(f, r->tip_time);
-    fprintf(f, ", \"uplift_time\": ");
-    sw_cli_json_num(f, r->uplift_time);
-    fprintf(f, ", \"max_theta_ratio\": ");
-    sw_cli_json_num(f, r->max_theta_ratio);
-    fprintf(f, ", \"min_margin\": ");
-    sw_cli_json_num(f, r->min_margin);
-    fprintf(f, ", \"impacts\": %ld, ", r->impacts);
-    whatif_json_reserve(f, C);
-    fprintf(f, ", \"safety_factor\": ");
-    sw_cli_whatif_json_safety(f, C);
-    fputc('}', f);
+    sw_cli_rec_bool(o, "overturned", r->overturned);
+    sw_cli_rec_num(o, "overturn_time", r->overturn_time);
+    sw_cli_rec_num(o, "tip_time", r->tip_time);
+    sw_cli_rec_num(o, "uplift_time", r->uplift_time);
+    sw_cli_rec_num(o, "max_theta_ratio", r->max_theta_ratio);
+    sw_cli_rec_num(o, "min_margin", r->min_margin);
+    sw_cli_rec_int(o, "impacts", r->impacts);
+    whatif_json_reserve(o, C);
+    sw_cli_whatif_json_safety(o, C);
 }

@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 #include "opts.h"
+#include "record.h"
 
 /* Damping ratios of a frame or a cushion the scene does not have (the
  * paper's Table I). */
@@ -106,8 +107,9 @@ void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_
 /* The cases of package pkg that stayed upright where the scene did not,
  * in words ("frame, soft bearings; cushion, firm"), or "" if none. */
 void sw_cli_whatif_savers(char *buf, size_t len, const sw_cli_case_t *cs, size_t n, size_t pkg);
-/* As JSON values. */
-void sw_cli_whatif_json_safety(FILE *f, const sw_cli_case_t *C);
-void sw_cli_whatif_json_case(FILE *f, const sw_cli_case_t *C);
+/* As JSON (record.h): the case's member "safety_factor" of o; the case's
+ * members into o. */
+void sw_cli_whatif_json_safety(json_t *o, const sw_cli_case_t *C);
+void sw_cli_whatif_json_case(json_t *o, const sw_cli_case_t *C);
 
 #endif

@@ -77,7 +77,7 @@ fi
 # Control fields: run-time dependencies found by dpkg-shlibdeps.
 depends=$(dpkg-deb -f "$main" Depends)
 echo "deb.sh: $(basename "$main"): Depends: $depends"
-for d in libc6 libgsl27 libcsv3 libinih1 libsodium23; do
+for d in libc6 libgsl27 libcsv3 libinih1 libsodium23 libjansson4; do
     echo "$depends" | grep -q "\b$d\b" || fail "swaywatch does not depend on $d"
 done
 if [ "${SW_LCM:-0}" = 1 ]; then
