@@ -5,8 +5,9 @@
  * less that command's own outputs), parsed once per distinct set of
  * options (the command line's, and each manifest line's on top of them),
  * and a function that runs one log with them and writes the log's part of
- * the records: for each package, the members of its JSON Lines record and
- * the fields of its CSV row.  The batch adds what every record has (the
+ * the records: for each package, the members of its JSON Lines record;
+ * its CSV row is read off that record by the job's columns (record.h), so
+ * the two cannot disagree.  The batch adds what every record has (the
  * log, its place in the batch, its status, its messages), writes the
  * error records of logs that failed, and keeps the order.  A job's run
  * may be called on any thread of any rank at once with the same options:
@@ -19,34 +20,17 @@
 #include "opts.h"
 #include "output.h"
 
-/* Where a job writes one log's records: for each package, one call of
- * package() with its status (a word: "ok", "incomplete"), the JSON members
- * (no braces; the batch puts its own before them) and the CSV fields (as
- * many as the job's header names). */
+/* Where a job writes one log's records: for each package, one call with
+ * its status (a word: "ok", "incomplete") and its members in o, made by
+ * sw_cli_rec_new() (the batch puts its own before them; o is released).
+ * 0, or -1 when memory ran out (then the log fails). */
 typedef struct sw_cli_records sw_cli_records_t;
-void sw_cli_records_package(sw_cli_records_t *rec, const char *status, const char *json,
-                            size_t jlen, const char *csv, size_t clen);
-
-/* One package's record while a job writes it: the JSON members to j and
- * the CSV fields to c, two memory streams; its status (NULL: "ok"). */
-typedef struct {
-    FILE *j, *c;
-    char *json, *csv;
-    size_t jlen, clen;
-    const char *status;
-} sw_cli_record_t;
+int sw_cli_records_package(sw_cli_records_t *rec, const char *status, json_t *o);
 
 /* A package's record status: "incomplete" when its verdict is (a gap may
  * have hidden an overturn: a script reading "ok" must not take it as
  * one), else "ok"; a log that fails has "error" records (batch_out.c). */
 const char *sw_cli_record_status(const sw_summary_t *s, const sw_cli_run_t *run);
-/* Open both streams: 0, or -1 when memory ran out (then write nothing,
- * but still call sw_cli_record_end). */
-int sw_cli_record_begin(sw_cli_record_t *r);
-/* Close the streams and, if nothing failed, hand the record to rec with
- * its JSON on one line (its own line breaks become spaces); free it.  0,
- * or -1 when memory ran out (nothing handed over). */
-int sw_cli_record_end(sw_cli_records_t *rec, sw_cli_record_t *r);
 
 typedef struct {
     const char *name;  /* --job NAME */
@@ -67,7 +51,9 @@ typedef struct {
      * failure, reported: the batch then writes an error record and drops
      * what was written) */
     int (*run)(const void *opts, const char *log, sw_cli_records_t *rec);
-    const char *csv_header; /* the CSV fields of run, names joined by commas */
+    /* the job's columns of the CSV table, read off each record */
+    const sw_cli_column_t *columns;
+    size_t ncolumns;
 } sw_cli_job_t;
 
 #define SW_CLI_JOB_GROUPS 20

@@ -37,42 +37,32 @@ static int ready(void *opts, const sw_cli_group_t *g, size_t ng)
     return sw_cli_forensics_ready(opts, g, ng);
 }
 
-#define CSV_HEADER                                                                             \
-    "package,model,verdict,overturned,overturn_time,max_theta_ratio,min_margin,min_reserve_g," \
-    "factor_safe,factor,weaker_overturning_factor,trials,saved_by,samples_read,"               \
-    "samples_rejected,samples_used,duration,rate,peak_accel_g,gaps"
-
-/* The CSV row of package k: the fields of CSV_HEADER. */
-static void csv_row(FILE *f, const sw_cli_forensics_t *F, size_t k, const sw_summary_t *s,
-                    const sw_cli_case_t *C)
-{
-    sw_cli_csv_text(f, s->name);
-    fprintf(f, ",%s,%s,%d", sw_model_name(s->model), sw_cli_verdict(s, &F->R.run), s->overturned);
-    sw_cli_csv_num(f, s->overturn_time);
-    sw_cli_csv_num(f, s->max_theta_ratio);
-    sw_cli_csv_num(f, s->min_margin);
-    const sw_risk_pkg_t *rp = F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
-    sw_cli_csv_num(f, rp && rp->evaluations > 0 ? rp->min_reserve_g : NAN);
-    const sw_safety_t *sf = &C->sf;
-    const int ok = C->available && sf->found;
-    sw_cli_csv_num(f, ok && sf->factor_safe > 0.0 ? sf->factor_safe : NAN);
-    sw_cli_csv_num(f, ok ? sf->factor : NAN);
-    sw_cli_csv_num(f, C->available && !sf->overturned && sf->below.found ? sf->below.x : NAN);
-    fprintf(f, ",%ld,", C->available ? sf->trials : 0L);
-    char save[512];
-    sw_cli_whatif_savers(save, sizeof save, F->cases, F->ncases, k);
-    sw_cli_csv_text(f, s->overturned ? save : "");
-    const sw_cli_run_t *run = &F->R.run;
-    fprintf(f, ",%ld,%ld,%zu", run->samples_read, run->samples_rejected, F->L.n);
-    const int h = run->have_facts;
-    sw_cli_csv_num(f, h ? run->facts.duration : NAN);
-    sw_cli_csv_num(f, h ? run->facts.rate : NAN);
-    sw_cli_csv_num(f, h ? run->facts.peak_a / SW_G0 : NAN);
-    if (h)
-        fprintf(f, ",%ld", run->facts.gaps);
-    else
-        fputc(',', f);
-}
+/* The CSV table: columns of the record (forensics' package, the counts,
+ * the input's facts). */
+static const sw_cli_column_t columns[] = {
+    {.name = "package", .path = "name"},
+    {.name = "model"},
+    {.name = "verdict"},
+    {.name = "overturned"},
+    {.name = "overturn_time"},
+    {.name = "max_theta_ratio"},
+    {.name = "min_margin"},
+    {.name = "min_reserve_g"},
+    {.name = "factor_safe", .path = "safety_factor.factor_safe"},
+    {.name = "factor", .path = "safety_factor.factor"},
+    {.name = "weaker_overturning_factor", .path = "safety_factor.weaker_overturning_factor"},
+    {.name = "trials",
+     .path = "safety_factor.trials",
+     .missing = "0"}, /* none where it was not searched */
+    {.name = "saved_by"},
+    {.name = "samples_read"},
+    {.name = "samples_rejected"},
+    {.name = "samples_used"},
+    {.name = "duration", .path = "input.duration"},
+    {.name = "rate", .path = "input.rate"},
+    {.name = "peak_accel_g", .path = "input.peak_accel_g"},
+    {.name = "gaps", .path = "input.gaps"},
+};
 
 typedef struct {
     sw_cli_records_t *rec;
@@ -87,21 +77,14 @@ static void report(void *user, const sw_cli_forensics_t *F)
         const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
         if (!C || !sw_cli_forensics_summary(F, k, &s))
             continue;
-        sw_cli_record_t r;
-        if (sw_cli_record_begin(&r) == 0) {
-            r.status = sw_cli_record_status(&s, &F->R.run);
-            json_t *o = sw_cli_rec_new();
-            sw_cli_forensics_json_package(o, F, k);
-            sw_cli_rec_int(o, "samples_read", F->R.run.samples_read);
-            sw_cli_rec_int(o, "samples_rejected", F->R.run.samples_rejected);
-            sw_cli_rec_int(o, "samples_used", (long long)F->L.n);
-            if (F->R.run.have_facts)
-                sw_cli_json_facts(o, "input", &F->R.run);
-            if (sw_cli_rec_members(r.j, o) != 0)
-                R->oom = 1;
-            csv_row(r.c, F, k, &s, C);
-        }
-        if (sw_cli_record_end(R->rec, &r) != 0)
+        json_t *o = sw_cli_rec_new();
+        sw_cli_forensics_json_package(o, F, k);
+        sw_cli_rec_int(o, "samples_read", F->R.run.samples_read);
+        sw_cli_rec_int(o, "samples_rejected", F->R.run.samples_rejected);
+        sw_cli_rec_int(o, "samples_used", (long long)F->L.n);
+        if (F->R.run.have_facts)
+            sw_cli_json_facts(o, "input", &F->R.run);
+        if (sw_cli_records_package(R->rec, sw_cli_record_status(&s, &F->R.run), o) != 0)
             R->oom = 1;
     }
 }
@@ -128,5 +111,6 @@ const sw_cli_job_t sw_cli_job_forensics = {
     .common = common,
     .ready = ready,
     .run = run,
-    .csv_header = CSV_HEADER,
+    .columns = columns,
+    .ncolumns = sizeof columns / sizeof columns[0],
 };

@@ -43,7 +43,6 @@ typedef struct {
     sw_cli_world_t world;
     batch_opts_t b;
     const sw_cli_job_t *job;
-    size_t csv_fields; /* of the job's CSV header */
     /* the command line */
     int argc;
     char **argv;

@@ -21,8 +21,8 @@
 
 /* ---- records -------------------------------------------------------------------- */
 
-/* What a job's run writes for a log: each package's JSON members and CSV
- * fields, with their lengths. */
+/* What a job's run writes for a log: each package's status and JSON
+ * record on a line, as text, for rank 0 (farm.h). */
 struct sw_cli_records {
     FILE *f;
     long n;
@@ -33,41 +33,16 @@ const char *sw_cli_record_status(const sw_summary_t *s, const sw_cli_run_t *run)
     return strcmp(sw_cli_verdict(s, run), "incomplete") ? "ok" : "incomplete";
 }
 
-void sw_cli_records_package(sw_cli_records_t *rec, const char *status, const char *json,
-                            size_t jlen, const char *csv, size_t clen)
+int sw_cli_records_package(sw_cli_records_t *rec, const char *status, json_t *o)
 {
+    char *line = sw_cli_rec_line(o); /* one line: JSON escapes every line break */
+    if (!line)
+        return -1;
     /* a status is one word of letters: nothing else can end it */
-    fprintf(rec->f, "%zu %zu %s\n", jlen, clen, status ? status : "ok");
-    fwrite(json, 1, jlen, rec->f);
-    fwrite(csv, 1, clen, rec->f);
+    fprintf(rec->f, "%s %s\n", status ? status : "ok", line);
+    free(line);
     rec->n++;
-}
-
-int sw_cli_record_begin(sw_cli_record_t *r)
-{
-    memset(r, 0, sizeof *r);
-    r->j = open_memstream(&r->json, &r->jlen);
-    r->c = open_memstream(&r->csv, &r->clen);
-    return r->j && r->c ? 0 : -1;
-}
-
-int sw_cli_record_end(sw_cli_records_t *rec, sw_cli_record_t *r)
-{
-    int bad = !r->j || !r->c;
-    if (r->j && fclose(r->j) != 0)
-        bad = 1;
-    if (r->c && fclose(r->c) != 0)
-        bad = 1;
-    if (!bad) {
-        for (size_t i = 0; i < r->jlen; i++)
-            if (r->json[i] == '\n')
-                r->json[i] = ' ';
-        sw_cli_records_package(rec, r->status, r->json, r->jlen, r->csv, r->clen);
-    }
-    free(r->json);
-    free(r->csv);
-    memset(r, 0, sizeof *r);
-    return bad ? -1 : 0;
+    return 0;
 }
 
 /* ---- outputs ---------------------------------------------------------------------- */
@@ -117,7 +92,9 @@ static int open_outputs(batch_t *B)
     B->csv = sw_cli_out_open(B->b.csv);
     if (!B->csv)
         return SW_EXIT_IO;
-    fprintf(B->csv, "index,line,log,job,status,%s,messages\n", B->job->csv_header);
+    fputs("index,line,log,job,status", B->csv);
+    sw_cli_csv_header(B->csv, B->job->columns, B->job->ncolumns);
+    fputs(",messages\n", B->csv);
     return SW_EXIT_OK;
 }
 
@@ -152,14 +129,14 @@ static void run_item(void *user, size_t i, FILE *out)
 
 /* ---- the records, on rank 0, in order ----------------------------------------------- */
 
-/* The messages as a JSON array and as one CSV field (joined by " | "),
- * each without the "swaywatch: " prefix. */
-static void messages(FILE *jf, FILE *cf, const char *msgs, size_t mlen)
+/* The messages as member "messages" of rec and as one CSV field
+ * (joined by " | "), each without the "swaywatch: " prefix. */
+static void messages(json_t *rec, FILE *cf, const char *msgs, size_t mlen)
 {
     char *joined = NULL;
     size_t jlen = 0;
     FILE *j = cf ? open_memstream(&joined, &jlen) : NULL;
-    fputc('[', jf);
+    json_t *arr = sw_cli_rec_arr(rec, "messages");
     const char *p = msgs, *end = msgs + mlen;
     for (int k = 0; p < end; k++) {
         const char *nl = memchr(p, '\n', (size_t)(end - p));
@@ -167,17 +144,15 @@ static void messages(FILE *jf, FILE *cf, const char *msgs, size_t mlen)
         if (le - p >= 11 && !strncmp(p, "swaywatch: ", 11))
             p += 11;
         char *line = strndup(p, (size_t)(le - p));
-        if (line) {
-            if (k)
-                fputs(", ", jf);
-            sw_cli_json_string(jf, line);
-            if (j)
-                fprintf(j, "%s%s", k ? " | " : "", line);
-            free(line);
-        }
+        if (line)
+            sw_cli_rec_text(arr, NULL, line);
+        else
+            sw_cli_rec_put(arr, NULL, NULL); /* no memory: the record fails */
+        if (line && j)
+            fprintf(j, "%s%s", k ? " | " : "", line);
+        free(line);
         p = nl ? nl + 1 : end;
     }
-    fputc(']', jf);
     if (j && fclose(j) == 0) {
         fputc(',', cf);
         sw_cli_csv_text(cf, joined);
@@ -187,28 +162,39 @@ static void messages(FILE *jf, FILE *cf, const char *msgs, size_t mlen)
     free(joined);
 }
 
-/* What every record of log i begins with. */
-static void head(const batch_t *B, size_t i, const char *status)
+/* What every record of log i begins with: a new record (NULL: out of
+ * memory) and the CSV row's first fields. */
+static json_t *head(const batch_t *B, size_t i, const char *status)
 {
     const item_t *it = &B->items[i];
-    fprintf(B->out, "{\"index\": %zu, \"line\": ", i + 1);
-    if (it->line)
-        fprintf(B->out, "%ld", it->line);
-    else
-        fputs("null", B->out);
-    fputs(", \"log\": ", B->out);
-    sw_cli_json_string(B->out, it->log);
-    fputs(", \"job\": ", B->out);
-    sw_cli_json_string(B->out, B->job->name);
-    fprintf(B->out, ", \"status\": \"%s\"", status);
-    if (!B->csv)
-        return;
-    fprintf(B->csv, "%zu,", i + 1);
-    if (it->line)
-        fprintf(B->csv, "%ld", it->line);
-    fputc(',', B->csv);
-    sw_cli_csv_text(B->csv, it->log);
-    fprintf(B->csv, ",%s,%s", B->job->name, status);
+    json_t *rec = sw_cli_rec_new();
+    sw_cli_rec_int(rec, "index", (long long)i + 1);
+    sw_cli_rec_put(rec, "line", it->line ? json_integer(it->line) : json_null());
+    sw_cli_rec_text(rec, "log", it->log);
+    sw_cli_rec_text(rec, "job", B->job->name);
+    sw_cli_rec_text(rec, "status", status);
+    if (B->csv) {
+        fprintf(B->csv, "%zu,", i + 1);
+        if (it->line)
+            fprintf(B->csv, "%ld", it->line);
+        fputc(',', B->csv);
+        sw_cli_csv_text(B->csv, it->log);
+        fprintf(B->csv, ",%s,%s", B->job->name, status);
+    }
+    return rec;
+}
+
+/* The record on its line; -1 when memory ran out (reported). */
+static int put_record(batch_t *B, size_t i, json_t *rec)
+{
+    if (sw_cli_rec_write(B->out, rec, SW_CLI_REC_LINE) != 0) {
+        sw_cli_error("%s: its record: out of memory", B->items[i].log);
+        return -1;
+    }
+    if (B->csv)
+        fputc('\n', B->csv);
+    B->records++;
+    return 0;
 }
 
 static int take_item(void *user, size_t i, const char *data, size_t len, const char *msgs,
@@ -229,50 +215,43 @@ static int take_item(void *user, size_t i, const char *data, size_t len, const c
     }
     if (!B->b.quiet && mlen)
         fwrite(msgs, 1, mlen, stderr);
+    int bad = 0;
     if (good) {
         B->ok++;
         B->overturned |= rc == SW_EXIT_OVERTURNED;
         for (long k = 0; k < npkg && p < end; k++) {
-            size_t jl = 0, cl = 0;
             char status[16];
-            if (sscanf(p, "%zu %zu %15[a-z]", &jl, &cl, status) != 3)
-                break;
+            int at = 0;
             const char *nl = memchr(p, '\n', (size_t)(end - p));
-            if (!nl || (size_t)(end - nl - 1) < jl + cl)
+            if (!nl || sscanf(p, "%15[a-z] %n", status, &at) != 1 || at <= 0)
                 break;
+            json_error_t jerr;
+            json_t *members = json_loadb(p + at, (size_t)(nl - p) - (size_t)at, 0, &jerr);
             p = nl + 1;
-            head(B, i, status);
-            fputs(", ", B->out);
-            fwrite(p, 1, jl, B->out);
-            fputs(", \"messages\": ", B->out);
-            if (B->csv) {
-                fputc(',', B->csv);
-                fwrite(p + jl, 1, cl, B->csv);
-            }
-            messages(B->out, B->csv, msgs, mlen);
-            fputs("}\n", B->out);
+            json_t *rec = head(B, i, status);
+            if (!members || json_object_update(rec, members) != 0)
+                sw_cli_rec_put(rec, "members", NULL); /* the record fails */
             if (B->csv)
-                fputc('\n', B->csv);
-            p += jl + cl;
-            B->records++;
+                sw_cli_csv_row(B->csv, members, B->job->columns, B->job->ncolumns);
+            json_decref(members);
+            messages(rec, B->csv, msgs, mlen);
+            bad |= put_record(B, i, rec);
         }
     } else {
         B->failed++;
-        head(B, i, "error");
-        fprintf(B->out, ", \"exit\": %d, \"messages\": ", rc);
+        json_t *rec = head(B, i, "error");
+        sw_cli_rec_int(rec, "exit", rc);
         if (B->csv)
-            for (size_t k = 0; k < B->csv_fields; k++) fputc(',', B->csv);
-        messages(B->out, B->csv, msgs, mlen);
-        fputs("}\n", B->out);
-        if (B->csv)
-            fputc('\n', B->csv);
-        B->records++;
+            for (size_t k = 0; k < B->job->ncolumns; k++) fputc(',', B->csv);
+        messages(rec, B->csv, msgs, mlen);
+        bad |= put_record(B, i, rec);
     }
-    if (ferror(B->out) || (B->csv && ferror(B->csv))) {
-        sw_cli_error(
-            "%s: write failed: %s",
-            ferror(B->out) ? sw_cli_out_name(B->b.out ? B->b.out : "-") : sw_cli_out_name(B->b.csv),
-            strerror(errno));
+    if (bad || ferror(B->out) || (B->csv && ferror(B->csv))) {
+        if (!bad)
+            sw_cli_error("%s: write failed: %s",
+                         ferror(B->out) ? sw_cli_out_name(B->b.out ? B->b.out : "-")
+                                        : sw_cli_out_name(B->b.csv),
+                         strerror(errno));
         B->write_failed = 1;
         return -1;
     }

@@ -185,8 +185,6 @@ int cmd_batch(int argc, char **argv)
     if (rc != SW_CLI_CONTINUE)
         goto setup_done;
     B.job = B.b.job;
-    B.csv_fields = 1;
-    for (const char *c = B.job->csv_header; *c; c++) B.csv_fields += *c == ',';
     rc = sw_batch_plan(&B);
 
 setup_done:

@@ -131,16 +131,6 @@ char *sw_cli_rec_line(json_t *o)
     return s;
 }
 
-int sw_cli_rec_members(FILE *f, json_t *o)
-{
-    char *s = sw_cli_rec_line(o);
-    const size_t n = s ? strlen(s) : 0;
-    if (n >= 2)
-        fwrite(s + 1, 1, n - 2, f);
-    free(s);
-    return n >= 2 ? 0 : -1;
-}
-
 /* ---- CSV ------------------------------------------------------------------------ */
 
 void sw_cli_csv_text(FILE *f, const char *s)

@@ -51,10 +51,6 @@ int sw_cli_rec_write(FILE *f, json_t *o, int layout);
  * o is released. */
 char *sw_cli_rec_line(json_t *o);
 
-/* The members of o on one line, without its braces (the part of a batch
- * record a job writes); o is released.  0, or -1 (nothing written). */
-int sw_cli_rec_members(FILE *f, json_t *o);
-
 /* CSV cells, each after a comma (the first of a line is the caller's). */
 /* s as a CSV text cell (RFC 4180), no comma: quoted only when it has to
  * be.  A cell that begins with '=', '+', '-', '@', a tab or a carriage

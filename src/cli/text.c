@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* text.c - JSON strings, CSV cells and terminal lines that stay valid
- * whatever bytes a name holds (text.h). */
+/* text.c - UTF-8 read as Unicode defines it, and terminal lines that stay
+ * valid whatever bytes a name holds (text.h). */
 #include "text.h"
 
 #include <string.h>
@@ -37,36 +37,6 @@ int sw_cli_utf8_next(const unsigned char *s, size_t n, size_t *len, uint32_t *cp
     *len = need + 1;
     *cp = v;
     return 1;
-}
-
-void sw_cli_json_string(FILE *f, const char *s)
-{
-    const unsigned char *p = (const unsigned char *)s;
-    size_t n = strlen(s);
-    fputc('"', f);
-    while (n > 0) {
-        size_t len;
-        uint32_t cp;
-        if (!sw_cli_utf8_next(p, n, &len, &cp)) {
-            fputs("\\ufffd", f);
-        } else if (cp == '"' || cp == '\\') {
-            fputc('\\', f);
-            fputc((int)cp, f);
-        } else if (cp == '\n') {
-            fputs("\\n", f);
-        } else if (cp == '\r') {
-            fputs("\\r", f);
-        } else if (cp == '\t') {
-            fputs("\\t", f);
-        } else if (cp < 0x20) {
-            fprintf(f, "\\u%04x", (unsigned)cp);
-        } else {
-            fwrite(p, 1, len, f);
-        }
-        p += len;
-        n -= len;
-    }
-    fputc('"', f);
 }
 
 size_t sw_cli_term_text(char *dst, size_t cap, const char *src, size_t n)

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* text.h - text the command writes for other programs to parse or for
- * people to read on a terminal: JSON strings, CSV cells, lines shown by
- * watch.  A name comes from anywhere (a file name, a scene, a message off
- * the bus) and may hold any byte; what is written stays valid whatever it
- * holds, and every writer of such text goes through here.
+/* text.h - text the command writes from names: UTF-8 checked (for the
+ * JSON strings of record.h) and lines shown on a terminal by watch.  A
+ * name comes from anywhere (a file name, a scene, a message off the bus)
+ * and may hold any byte; what is written stays valid whatever it holds,
+ * and every writer of such text goes through here.
  *
  * UTF-8 is checked as Unicode defines it (The Unicode Standard, table 3-7
  * "Well-Formed UTF-8 Byte Sequences": no overlong forms, no surrogates,
@@ -21,12 +21,6 @@
  * its code point in *cp; or 0 when s starts an ill-formed sequence, its
  * maximal subpart *len bytes long (at least 1). */
 int sw_cli_utf8_next(const unsigned char *s, size_t n, size_t *len, uint32_t *cp);
-
-/* s as a JSON string literal, quotes included (RFC 8259): '"' and '\'
- * escaped, control characters as \n, \r, \t or \u00XX, well-formed UTF-8
- * as it is, each ill-formed subpart as \ufffd (the replacement character):
- * the output is valid JSON and valid UTF-8 whatever s holds. */
-void sw_cli_json_string(FILE *f, const char *s);
 
 /* n bytes of src (up to its first NUL) as a line for a terminal, into dst
  * (cap > 0 bytes, NUL-terminated, cut at a character): well-formed UTF-8
