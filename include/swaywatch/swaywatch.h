@@ -17,6 +17,7 @@
 #include "swaywatch/status.h"
 #include "swaywatch/sweep.h"
 #include "swaywatch/units.h"
+#include "swaywatch/whatif.h"
 
 #include "swaywatch/version.h"
 

@@ -74,7 +74,7 @@ static void report(void *user, const sw_cli_forensics_t *F)
     report_t *R = user;
     for (size_t k = 0; k < F->n; k++) {
         sw_summary_t s;
-        const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
+        const sw_whatif_case_t *C = sw_cli_forensics_scene_case(F, k);
         if (!C || !sw_cli_forensics_summary(F, k, &s))
             continue;
         json_t *o = sw_cli_rec_new();

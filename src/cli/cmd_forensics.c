@@ -99,18 +99,18 @@ static const sw_cli_option_t forensics_options[] = {
      .help = "a frame on bearings of this natural frequency (2Hz, or 12.6 rad/s) instead of "
              "the catalogue's frames"},
     {SW_CLI_STRING, 0, "frame-zeta", "Z", FO(w.frame_zeta),
-     .help = "bearing damping ratio (default: the scene's, else " SW_CLI_FRAME_ZETA ")"},
+     .help = "bearing damping ratio (default: the scene's, else " SW_CLI_STR(SW_WHATIF_ZETA) ")"},
     {SW_CLI_CALL, 0, "cushion-omega", "F", FO(w.cushion_omega), .fn = sw_cli_opt_frequency,
      .help = "a cushion of this natural frequency (8Hz, or 50 rad/s), on the frame if the "
              "scene has one, instead of the catalogue's cushions"},
     {SW_CLI_STRING, 0, "cushion-zeta", "Z", FO(w.cushion_zeta),
-     .help = "cushion damping ratio (default: the scene's, else " SW_CLI_CUSHION_ZETA ")"},
+     .help = "cushion damping ratio (default: the scene's, else " SW_CLI_STR(SW_WHATIF_ZETA) ")"},
     {SW_CLI_LIST, 0, "size", "HxW", FO(w.sizes), .fn = check_size,
      .help = "the package with height H and width W (m), on the scene's support; repeatable"},
     {SW_CLI_FLAG, 0, "no-what-if", FO(w.no_what_if), .value = 1,
      .help = "only the replay and the safety factor"},
     {SW_CLI_LONG, 0, "reserve-evals", "N", FO(w.reserve_evals), .min = 0, .max = 1L << 30,
-     .def = SW_CLI_WHATIF_RESERVE_EVALS, .what = "a whole number >= 0",
+     .def = SW_WHATIF_RESERVE_EVALS, .what = "a whole number >= 0",
      .help = "a what-if case's smallest reserve: at most N evaluations, the most threatened "
              "moments first (default %g; 0: no limit); a case that needs more shows a bracket"},
     {.kind = SW_CLI_END},
@@ -321,7 +321,7 @@ static void progress(void *user, const sw_safety_progress_t *p)
 static void scene_reserves(sw_cli_forensics_t *F)
 {
     for (size_t i = 0; i < F->ncases; i++) {
-        sw_cli_case_t *C = &F->cases[i];
+        sw_whatif_case_t *C = &F->cases[i];
         const sw_risk_pkg_t *p = C->is_scene ? sw_risk_pkg(F->R.risk, C->pkg) : NULL;
         if (!p)
             continue;
@@ -366,8 +366,12 @@ static int run_cases(sw_cli_forensics_t *F)
         sw_cli_interrupt_now(
             "forensics: interrupted during the safety-factor search; --out and "
             "--events are complete, no report");
-    int rc = sw_cli_whatif_run(F->cases, F->ncases, &lg, &ro, &F->fo.so, (int)F->fo.threads,
-                               show ? progress : NULL, F);
+    const sw_safety_opts_t so = {.run = ro,
+                                 .search = F->fo.so,
+                                 .threads = (int)F->fo.threads,
+                                 .progress = show ? progress : NULL,
+                                 .user = F};
+    int rc = sw_whatif_safety(F->cases, F->ncases, &lg, &so);
     if (rc == SW_OK && F->R.risk && F->o.reserve_rate > 0.0) {
         if (show)
             fprintf(stderr,
@@ -376,8 +380,9 @@ static int run_cases(sw_cli_forensics_t *F)
                     now_s() - F->started);
         F->progress_shown |= show;
         scene_reserves(F);
-        rc = sw_cli_whatif_reserve(F->cases, F->ncases, &lg, &ro, F->o.reserve_rate,
-                                   F->fo.w.reserve_evals, (int)F->fo.threads);
+        const sw_reserve_log_opts_t rlo = {
+            .rate = F->o.reserve_rate, .max_evals = F->fo.w.reserve_evals, .run = ro};
+        rc = sw_whatif_reserve(F->cases, F->ncases, &lg, &rlo, (int)F->fo.threads);
     }
     if (!F->scenes_shared)
         sw_cli_interrupt_now(NULL);
@@ -419,7 +424,7 @@ static int report_interrupted(const sw_cli_forensics_t *F)
 static void check_agree(const sw_cli_forensics_t *F)
 {
     for (size_t i = 0; i < F->ncases; i++) {
-        const sw_cli_case_t *C = &F->cases[i];
+        const sw_whatif_case_t *C = &F->cases[i];
         sw_summary_t sum;
         if (!C->is_scene || sw_engine_summary(F->R.e, C->pkg, &sum) != SW_OK)
             continue;

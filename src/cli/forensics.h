@@ -45,9 +45,9 @@ typedef struct {
     sw_engine_opts_t eo; /* the integration options of the replay and of every search */
     sw_cli_states_t states;
     sw_cli_events_t events;
-    sw_cli_figure_t *fig; /* --plot or --report */
-    sw_cli_log_t L;       /* what the gate handed the engine */
-    sw_cli_case_t *cases; /* every package's cases, package by package */
+    sw_cli_figure_t *fig;    /* --plot or --report */
+    sw_cli_log_t L;          /* what the gate handed the engine */
+    sw_whatif_case_t *cases; /* every package's cases, package by package */
     size_t ncases;
     /* events kept for the report (impacts beyond the first few of a package
      * are counted only) */
@@ -119,7 +119,7 @@ int sw_cli_report_zooms(const sw_cli_forensics_t *F, const sw_cli_zoom_t *z, siz
 /* Shared by the text, JSON and HTML: package k's summary of the replay
  * (0 if there is none), and its case as given. */
 int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t *s);
-const sw_cli_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k);
+const sw_whatif_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k);
 
 /* forensics of many logs, for "swaywatch batch" (batch.h): the options
  * at their defaults (NULL: out of memory, reported), freed with

@@ -86,7 +86,7 @@ int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t
     return F->R.e && sw_engine_summary(F->R.e, k, s) == SW_OK;
 }
 
-const sw_cli_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k)
+const sw_whatif_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k)
 {
     for (size_t i = 0; i < F->ncases; i++)
         if (F->cases[i].pkg == k && F->cases[i].is_scene)
@@ -117,10 +117,11 @@ static void wrapped(FILE *f, const char *text)
 static void answer(FILE *f, const sw_cli_forensics_t *F, size_t k)
 {
     sw_summary_t s;
-    const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
+    const sw_whatif_case_t *C = sw_cli_forensics_scene_case(F, k);
     if (!C || !sw_cli_forensics_summary(F, k, &s))
         return;
-    fprintf(f, "%s (%s): ", F->scenes[k].name, C->desc);
+    char desc[224];
+    fprintf(f, "%s (%s): ", F->scenes[k].name, sw_cli_whatif_desc(desc, sizeof desc, C));
     const char *verdict = sw_cli_verdict(&s, &F->R.run);
     char utc[64];
     if (s.overturned) {
@@ -199,7 +200,7 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
         "overturned cut down to a relative width of %g; %ld runs for %zu cases.\n",
         F->L.n, so->step > 0 ? so->step : 0.02, so->tol > 0 ? so->tol : 1e-3, runs, F->ncases);
     for (size_t k = 0; k < F->n; k++) {
-        const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
+        const sw_whatif_case_t *C = sw_cli_forensics_scene_case(F, k);
         if (C && !isinf(C->sf.lift_scale))
             fprintf(f, "%s: starts to rock at %.4g times the recorded acceleration\n",
                     F->scenes[k].name, C->sf.lift_scale);
@@ -208,9 +209,11 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
         fprintf(f,
                 "catalogue supports (docs/forensics.md; frequencies with the package on "
                 "them):\n");
-        for (size_t i = 0; i < sw_cli_nsupports; i++)
-            fprintf(f, "  %-22s %5.3g Hz, zeta %.2g: %s\n", sw_cli_supports[i].name,
-                    sw_cli_supports[i].hz, sw_cli_supports[i].zeta, sw_cli_supports[i].stands_for);
+        size_t ns;
+        const sw_support_t *S = sw_whatif_supports(&ns);
+        for (size_t i = 0; i < ns; i++)
+            fprintf(f, "  %-22s %5.3g Hz, zeta %.2g: %s\n", S[i].name, S[i].hz, S[i].zeta,
+                    S[i].stands_for);
     }
     fingerprint_text(f, F);
 }
@@ -231,7 +234,7 @@ void sw_cli_forensics_text(FILE *f, const sw_cli_forensics_t *F)
 void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_t k)
 {
     sw_summary_t s;
-    const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
+    const sw_whatif_case_t *C = sw_cli_forensics_scene_case(F, k);
     sw_cli_rec_text(o, "name", F->scenes[k].name);
     if (!C || !sw_cli_forensics_summary(F, k, &s)) {
         sw_cli_rec_null(o, "verdict");
@@ -267,7 +270,7 @@ void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_
     sw_cli_whatif_json_safety(o, C);
     json_t *saved = sw_cli_rec_arr(o, "saved_by");
     for (size_t i = 0; i < F->ncases && s.overturned; i++) {
-        const sw_cli_case_t *W = &F->cases[i];
+        const sw_whatif_case_t *W = &F->cases[i];
         if (W->pkg == k && !W->is_scene && W->available && !W->sf.overturned)
             sw_cli_rec_text(saved, NULL, W->name);
     }

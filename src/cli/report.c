@@ -107,13 +107,14 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
 {
     for (size_t k = 0; k < F->n; k++) {
         sw_summary_t s;
-        const sw_cli_case_t *C = sw_cli_forensics_scene_case(F, k);
+        const sw_whatif_case_t *C = sw_cli_forensics_scene_case(F, k);
         if (!C || !sw_cli_forensics_summary(F, k, &s))
             continue;
         fprintf(f, "<div class=\"answer\" id=\"answer-%zu\"><p><b>", k);
         html(f, F->scenes[k].name);
         fprintf(f, "</b> (");
-        html(f, C->desc);
+        char desc[224];
+        html(f, sw_cli_whatif_desc(desc, sizeof desc, C));
         fprintf(f, "): ");
         const char *verdict = sw_cli_verdict(&s, &F->R.run);
         char utc[64];
@@ -494,7 +495,7 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
                 "<th>peak &theta;/&alpha;</th><th>smallest margin</th><th>smallest "
                 "reserve</th><th>safety factor</th><th>package and support</th></tr>\n");
         for (size_t i = 0; i < F->ncases; i++) {
-            const sw_cli_case_t *C = &F->cases[i];
+            const sw_whatif_case_t *C = &F->cases[i];
             if (C->pkg != k)
                 continue;
             fprintf(f, "<tr><td>");
@@ -522,7 +523,8 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
             if (!C->sf.overturned && C->sf.below.found)
                 fprintf(f, " (but %.4g overturns: luck of timing)", C->sf.below.x);
             fprintf(f, "</td><td>");
-            html(f, C->desc);
+            char desc[224];
+            html(f, sw_cli_whatif_desc(desc, sizeof desc, C));
             if (C->stands_for) {
                 fprintf(f, "<br><span class=\"note\">");
                 html(f, C->stands_for);

@@ -1,8 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* whatif.c - the what-if cases of forensics (whatif.h): each scene as
- * given, on the bed, on the catalogue's typical supports (or the user's
- * frame and cushion) and in other sizes, every case's safety factor for
- * the same log, and the table and JSON that report them. */
+/* whatif.c - forensics' what-if cases on the command line (whatif.h):
+ * their options into the library's (swaywatch/whatif.h), and the table,
+ * the words and the JSON that report them. */
 #include "whatif.h"
 
 #include <math.h>
@@ -13,21 +12,7 @@
 
 #include "output.h"
 
-#define FRAME_MASS_RATIO 0.25 /* m_b = m/4: gamma = 0.8, the paper's Table I */
 #define TWO_PI 6.283185307179586
-
-/* The catalogue (docs/forensics.md says where the numbers come from):
- * natural frequencies with the package on the support, as their makers
- * state them for a support loaded as intended. */
-const sw_cli_support_t sw_cli_supports[] = {
-    {"frame, soft bearings", 0, 1.0, 0.10,
-     "a transport skid on air springs or soft wire-rope isolators"},
-    {"frame, stiff bearings", 0, 5.0, 0.10,
-     "a frame or pallet on rubber (elastomer) mounts or stiff wire-rope isolators"},
-    {"cushion, soft", 1, 8.0, 0.10, "polyurethane or soft polyethylene foam pads, 50-100 mm"},
-    {"cushion, firm", 1, 25.0, 0.10, "dense polyethylene foam, rubber or cork-rubber pads"},
-};
-const size_t sw_cli_nsupports = sizeof sw_cli_supports / sizeof sw_cli_supports[0];
 
 int sw_cli_opt_frequency(const sw_cli_option_t *o, const char *arg, void *dest)
 {
@@ -67,277 +52,72 @@ int sw_cli_parse_size(const char *arg, double *h, double *w)
                : -1;
 }
 
-/* ---- building the cases ------------------------------------------------------- */
+/* ---- the cases -------------------------------------------------------------------- */
 
-typedef struct {
-    char *buf;
-    size_t len;
-} note_t;
-
-static void note_diag(void *user, const char *origin, int line, const char *msg)
+/* A case's note names the member of sw_whatif_opts_t that would make it;
+ * the user gives an option. */
+static void name_option(char *note, size_t len)
 {
-    note_t *n = user;
-    (void)line;
-    if (n->buf[0] == '\0')
-        snprintf(n->buf, n->len, "%s: %s", origin ? origin : "scene", msg);
-}
-
-static int case_set(sw_cli_case_t *C, const char *sec, const char *key, const char *val,
-                    const char *origin)
-{
-    note_t n = {C->note, sizeof C->note};
-    if (sw_scene_set(&C->scene, sec, key, val, 1, origin, 0, note_diag, &n) != SW_OK) {
-        C->available = 0;
-        if (!C->note[0])
-            snprintf(C->note, sizeof C->note, "%s: rejected", origin);
-        return -1;
-    }
-    return 0;
-}
-
-static void describe(sw_cli_case_t *C)
-{
-    sw_derived_t d;
-    note_t n = {C->note, sizeof C->note};
-    if (sw_scene_validate(&C->scene, &d, C->name, note_diag, &n) != SW_OK) {
-        C->available = 0;
-        if (!C->note[0])
-            snprintf(C->note, sizeof C->note, "invalid scene");
-        return;
-    }
-    C->model = d.model;
-    int k = snprintf(C->desc, sizeof C->desc, "%gx%g m, %g kg", C->scene.height, C->scene.width,
-                     C->scene.mass);
-    if (d.model == SW_MODEL_BARE) {
-        snprintf(C->desc + k, sizeof C->desc - (size_t)k, ", on the bed");
-        return;
-    }
-    if (C->scene.has_frame)
-        k += snprintf(C->desc + k, sizeof C->desc - (size_t)k,
-                      ", frame m_b %g kg, %.3g Hz (w_b %.4g rad/s), zeta_b %.3g",
-                      C->scene.frame_mass, d.omega_b / TWO_PI, d.omega_b, d.zeta_b);
-    if (C->scene.has_cushion && k < (int)sizeof C->desc)
-        snprintf(C->desc + k, sizeof C->desc - (size_t)k,
-                 ", cushion %.3g Hz (w_c %.4g rad/s), zeta_c %.3g", d.omega_c / TWO_PI, d.omega_c,
-                 d.zeta_c);
-}
-
-/* A number as a scene value. */
-static const char *num(char *buf, size_t len, double v)
-{
-    snprintf(buf, len, "%.17g", v);
-    return buf;
-}
-
-/* The package on a frame (no cushion): the scene's frame with the
- * options' values, or one made of them; omega rad/s, zeta as text. */
-static void frame_case(sw_cli_case_t *C, const sw_scene_t *sc, const sw_cli_whatif_t *w,
-                       double omega, const char *zeta)
-{
-    char mass[32], om[32];
-    C->scene = *sc;
-    C->scene.has_cushion = 0;
-    C->available = 1;
-    const char *fm = w->frame_mass   ? w->frame_mass
-                     : sc->has_frame ? NULL
-                                     : num(mass, sizeof mass, FRAME_MASS_RATIO * sc->mass);
-    const char *fz = zeta ? zeta : sc->has_frame ? NULL : SW_CLI_FRAME_ZETA;
-    if (fm)
-        case_set(C, "frame", "mass", fm, "--frame-mass");
-    if (C->available && omega > 0.0)
-        case_set(C, "frame", "omega", num(om, sizeof om, omega), "--frame-omega");
-    if (C->available && fz)
-        case_set(C, "frame", "zeta", fz, "--frame-zeta");
-    if (C->available)
-        describe(C);
-}
-
-/* The package on a cushion: on the bed (a catalogue cushion), or on the
- * scene's support (the user's). */
-static void cushion_case(sw_cli_case_t *C, const sw_scene_t *sc, int on_bed, double omega,
-                         const char *zeta)
-{
-    char om[32];
-    C->scene = *sc;
-    if (on_bed)
-        C->scene.has_frame = 0;
-    C->available = 1;
-    const char *cz = zeta ? zeta : sc->has_cushion ? NULL : SW_CLI_CUSHION_ZETA;
-    if (omega > 0.0)
-        case_set(C, "cushion", "omega", num(om, sizeof om, omega), "--cushion-omega");
-    if (C->available && cz)
-        case_set(C, "cushion", "zeta", cz, "--cushion-zeta");
-    if (C->available)
-        describe(C);
-}
-
-/* The cases of one scene into cs (room for 4 + nsupports + sizes). */
-static size_t scene_cases(sw_cli_case_t *cs, const sw_scene_t *sc, size_t pkg,
-                          const sw_cli_whatif_t *w)
-{
-    size_t m = 0;
-    sw_cli_case_t *C = &cs[m++];
-    snprintf(C->name, sizeof C->name, "as given");
-    C->scene = *sc;
-    C->is_scene = C->available = 1;
-    describe(C);
-    if (w->no_what_if)
-        goto done;
-
-    if (sc->has_frame || sc->has_cushion) { /* the package alone on the bed */
-        C = &cs[m++];
-        snprintf(C->name, sizeof C->name, "bed");
-        C->scene = *sc;
-        C->scene.has_frame = C->scene.has_cushion = 0;
-        C->available = 1;
-        describe(C);
-    }
-    /* The user's supports replace the catalogue's of their kind. */
-    const int user_frame = w->frame_omega > 0.0 || w->frame_mass || w->frame_zeta;
-    const int user_cushion = w->cushion_omega > 0.0 || w->cushion_zeta;
-    for (size_t k = 0; k < sw_cli_nsupports; k++) {
-        const sw_cli_support_t *S = &sw_cli_supports[k];
-        if (S->cushion ? user_cushion : user_frame)
+    static const char *const option[][2] = {
+        {"frame_mass", "--frame-mass"},     {"frame_omega", "--frame-omega"},
+        {"frame_zeta", "--frame-zeta"},     {"cushion_omega", "--cushion-omega"},
+        {"cushion_zeta", "--cushion-zeta"},
+    };
+    for (size_t i = 0; i < sizeof option / sizeof option[0]; i++) {
+        char *at = strstr(note, option[i][0]);
+        if (!at)
             continue;
-        C = &cs[m++];
-        snprintf(C->name, sizeof C->name, "%s", S->name);
-        C->stands_for = S->stands_for;
-        char z[32];
-        num(z, sizeof z, S->zeta);
-        if (S->cushion)
-            cushion_case(C, sc, 1, TWO_PI * S->hz, z);
-        else
-            frame_case(C, sc, w, TWO_PI * S->hz, z);
+        char tail[256];
+        snprintf(tail, sizeof tail, "%s", at + strlen(option[i][0]));
+        snprintf(at, len - (size_t)(at - note), "%s%s", option[i][1], tail);
+        return;
     }
-    if (user_frame) {
-        C = &cs[m++];
-        snprintf(C->name, sizeof C->name, "frame");
-        if (!sc->has_frame && !(w->frame_omega > 0.0)) {
-            snprintf(C->note, sizeof C->note, "no bearing frequency given (--frame-omega)");
-        } else {
-            frame_case(C, sc, w, w->frame_omega, w->frame_zeta);
-        }
-    }
-    if (user_cushion) {
-        C = &cs[m++];
-        snprintf(C->name, sizeof C->name, "cushion");
-        if (!sc->has_cushion && !(w->cushion_omega > 0.0))
-            snprintf(C->note, sizeof C->note, "no cushion frequency given (--cushion-omega)");
-        else
-            cushion_case(C, sc, 0, w->cushion_omega, w->cushion_zeta);
-    }
-    for (size_t i = 0; i < w->sizes.n; i++) {
-        C = &cs[m++];
-        double h = 0.0, wd = 0.0;
-        sw_cli_parse_size(w->sizes.v[i], &h, &wd); /* checked while parsing options */
-        snprintf(C->name, sizeof C->name, "size %.6gx%.6g m", h, wd);
-        C->scene = *sc;
-        C->scene.height = h;
-        C->scene.width = wd;
-        C->available = 1;
-        describe(C);
-    }
-done:
-    for (size_t i = 0; i < m; i++) cs[i].pkg = pkg;
-    return m;
 }
 
-sw_cli_case_t *sw_cli_whatif_build(const sw_scene_t *scenes, size_t nsc, const sw_cli_whatif_t *w,
-                                   size_t *n)
+sw_whatif_case_t *sw_cli_whatif_build(const sw_scene_t *scenes, size_t nsc,
+                                      const sw_cli_whatif_t *w, size_t *n)
 {
-    const size_t per = 4 + sw_cli_nsupports + w->sizes.n;
-    sw_cli_case_t *cs = calloc(nsc * per, sizeof *cs);
-    if (!cs)
-        return NULL;
-    size_t m = 0;
-    for (size_t i = 0; i < nsc; i++) m += scene_cases(cs + m, &scenes[i], i, w);
-    *n = m;
+    double *sizes = calloc(2 * w->sizes.n + 1, sizeof *sizes);
+    for (size_t i = 0; sizes && i < w->sizes.n; i++) /* checked while parsing options */
+        sw_cli_parse_size(w->sizes.v[i], &sizes[2 * i], &sizes[2 * i + 1]);
+    const sw_whatif_opts_t o = {.frame_mass = w->frame_mass,
+                                .frame_omega = w->frame_omega,
+                                .frame_zeta = w->frame_zeta,
+                                .cushion_omega = w->cushion_omega,
+                                .cushion_zeta = w->cushion_zeta,
+                                .sizes = sizes,
+                                .nsizes = w->sizes.n,
+                                .scenes_only = w->no_what_if};
+    sw_whatif_case_t *cs = sizes ? calloc(sw_whatif_max(nsc, &o), sizeof *cs) : NULL;
+    if (cs)
+        *n = sw_whatif_cases(scenes, nsc, &o, cs);
+    for (size_t i = 0; cs && i < *n; i++) name_option(cs[i].note, sizeof cs[i].note);
+    free(sizes);
     return cs;
 }
 
-int sw_cli_whatif_run(sw_cli_case_t *cases, size_t n, const sw_log_t *log, const sw_run_opts_t *ro,
-                      const sw_search_opts_t *so, int threads,
-                      void (*progress)(void *user, const sw_safety_progress_t *p), void *user)
+const char *sw_cli_whatif_desc(char *buf, size_t len, const sw_whatif_case_t *C)
 {
-    size_t m = 0;
-    for (size_t i = 0; i < n; i++) m += cases[i].available != 0;
-    if (m == 0)
-        return SW_OK;
-    sw_safety_case_t *sc = calloc(m, sizeof *sc);
-    size_t *of = calloc(m, sizeof *of);
-    if (!sc || !of) {
-        free(sc);
-        free(of);
-        return SW_ENOMEM;
+    const sw_derived_t *d = &C->derived;
+    buf[0] = '\0';
+    if (!C->built)
+        return buf;
+    int k = snprintf(buf, len, "%gx%g m, %g kg", C->scene.height, C->scene.width, C->scene.mass);
+    if (C->model == SW_MODEL_BARE) {
+        snprintf(buf + k, len - (size_t)k, ", on the bed");
+        return buf;
     }
-    m = 0;
-    for (size_t i = 0; i < n; i++)
-        if (cases[i].available) {
-            of[m] = i;
-            sc[m++].scene = cases[i].scene;
-        }
-    sw_safety_opts_t o = {.run = *ro, .threads = threads, .progress = progress, .user = user};
-    if (so)
-        o.search = *so;
-    const int rc = sw_safety_factors(sc, m, log, &o);
-    int any = 0; /* a case of its own failed: rc is its status */
-    for (size_t k = 0; k < m; k++) any |= sc[k].status != SW_OK;
-    for (size_t k = 0; k < m; k++) {
-        sw_cli_case_t *C = &cases[of[k]];
-        C->status = any ? sc[k].status : rc;
-        C->sf = sc[k].sf;
-        if (C->status == SW_OK)
-            continue;
-        C->available = 0;
-        snprintf(C->note, sizeof C->note, "%s", sc[k].msg[0] ? sc[k].msg : sw_strerror(C->status));
-    }
-    free(sc);
-    free(of);
-    return rc == SW_ENOMEM ? SW_ENOMEM : SW_OK;
+    if (C->scene.has_frame)
+        k += snprintf(buf + k, len - (size_t)k,
+                      ", frame m_b %g kg, %.3g Hz (w_b %.4g rad/s), zeta_b %.3g",
+                      C->scene.frame_mass, d->omega_b / TWO_PI, d->omega_b, d->zeta_b);
+    if (C->scene.has_cushion && k < (int)len)
+        snprintf(buf + k, len - (size_t)k, ", cushion %.3g Hz (w_c %.4g rad/s), zeta_c %.3g",
+                 d->omega_c / TWO_PI, d->omega_c, d->zeta_c);
+    return buf;
 }
 
-typedef struct {
-    sw_cli_case_t *cases;
-    size_t *of;
-    const sw_log_t *log;
-    sw_reserve_log_opts_t o;
-} reserve_job_t;
-
-static void reserve_job(void *user, size_t k)
-{
-    const reserve_job_t *J = user;
-    sw_cli_case_t *C = &J->cases[J->of[k]];
-    const int rc = sw_reserve_log_min(&C->scene, J->log, &J->o, &C->rl, C->reserve_note,
-                                      sizeof C->reserve_note);
-    C->reserve_status = rc;
-    C->has_reserve = rc == SW_OK;
-    if (rc != SW_OK && !C->reserve_note[0])
-        snprintf(C->reserve_note, sizeof C->reserve_note, "%s", sw_strerror(rc));
-}
-
-int sw_cli_whatif_reserve(sw_cli_case_t *cases, size_t n, const sw_log_t *log,
-                          const sw_run_opts_t *ro, double rate, long max_evals, int threads)
-{
-    size_t *of = calloc(n ? n : 1, sizeof *of), m = 0;
-    if (!of)
-        return SW_ENOMEM;
-    for (size_t i = 0; i < n; i++)
-        if (cases[i].available && !cases[i].is_scene)
-            of[m++] = i;
-    reserve_job_t J = {.cases = cases, .of = of, .log = log};
-    J.o.rate = rate;
-    J.o.max_evals = max_evals;
-    J.o.run = *ro;
-    sw_parallel_for(m, threads, reserve_job, &J);
-    int rc = SW_OK;
-    for (size_t k = 0; k < m; k++)
-        if (cases[of[k]].reserve_status == SW_ENOMEM)
-            rc = SW_ENOMEM;
-    free(of);
-    return rc;
-}
-
-void sw_cli_whatif_reserve_text(char *buf, size_t len, const sw_cli_case_t *C)
+void sw_cli_whatif_reserve_text(char *buf, size_t len, const sw_whatif_case_t *C)
 {
     const sw_reserve_log_t *r = &C->rl;
     if (!C->has_reserve)
@@ -426,12 +206,12 @@ void sw_cli_safety_sentence(char *buf, size_t len, const sw_safety_t *s)
                  s->below.x);
 }
 
-void sw_cli_whatif_savers(char *buf, size_t len, const sw_cli_case_t *cs, size_t n, size_t pkg)
+void sw_cli_whatif_savers(char *buf, size_t len, const sw_whatif_case_t *cs, size_t n, size_t pkg)
 {
     size_t k = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < n && k < len; i++) {
-        const sw_cli_case_t *C = &cs[i];
+        const sw_whatif_case_t *C = &cs[i];
         if (C->pkg != pkg || C->is_scene || !C->available || C->sf.overturned)
             continue;
         int w = snprintf(buf + k, len - k, "%s%s", k ? "; " : "", C->name);
@@ -443,14 +223,14 @@ void sw_cli_whatif_savers(char *buf, size_t len, const sw_cli_case_t *cs, size_t
         snprintf(buf + len - 4, 4, "...");
 }
 
-void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_t pkg)
+void sw_cli_whatif_print_table(FILE *f, const sw_whatif_case_t *cs, size_t n, size_t pkg)
 {
     fprintf(f, "  %-22s %-10s %7s %8s %8s  %-12s %-20s %s\n", "case", "outcome", "peak/a", "peak",
             "margin", "min reserve", "safety factor", "package and support");
     int bracket = 0;
     int luck = 0;
     for (size_t i = 0; i < n; i++) {
-        const sw_cli_case_t *C = &cs[i];
+        const sw_whatif_case_t *C = &cs[i];
         if (C->pkg != pkg)
             continue;
         fprintf(f, "  %-22s ", C->name);
@@ -465,14 +245,14 @@ void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_
             strncat(fac, " *", sizeof fac - strlen(fac) - 1);
             luck = 1;
         }
-        char rsv[192];
+        char rsv[192], desc[224];
         sw_cli_whatif_reserve_text(rsv, sizeof rsv, C);
         bracket |= C->has_reserve && !C->rl.exact;
         fprintf(f, "%-10s %7.3f %6.1f deg %8.3f  %-12s %-20s %s\n",
                 r->overturned ? "OVERTURNED" : "upright", r->max_theta_ratio,
                 fmin(r->max_theta_ratio * atan2(C->scene.width, C->scene.height), M_PI / 2) *
                     180.0 / M_PI,
-                r->min_margin, rsv, fac, C->desc);
+                r->min_margin, rsv, fac, sw_cli_whatif_desc(desc, sizeof desc, C));
     }
     fprintf(f,
             "  peak/a: largest |theta|/alpha; margin: smallest margin to overturn (1 at rest, "
@@ -484,7 +264,7 @@ void sw_cli_whatif_print_table(FILE *f, const sw_cli_case_t *cs, size_t n, size_
             luck ? "\n  *: survived, but a weaker shock of the same shape overturns it" : "");
 }
 
-void sw_cli_whatif_json_safety(json_t *o, const sw_cli_case_t *C)
+void sw_cli_whatif_json_safety(json_t *o, const sw_whatif_case_t *C)
 {
     const sw_safety_t *s = &C->sf;
     json_t *j = sw_cli_rec_obj(o, "safety_factor");
@@ -519,7 +299,7 @@ void sw_cli_whatif_json_safety(json_t *o, const sw_cli_case_t *C)
 
 /* "min_reserve_g", its time, whether exact, its proven lower end, and
  * the states evaluated; nulls without a reserve (and why). */
-static void whatif_json_reserve(json_t *o, const sw_cli_case_t *C)
+static void whatif_json_reserve(json_t *o, const sw_whatif_case_t *C)
 {
     const sw_reserve_log_t *r = &C->rl;
     const int has = C->has_reserve && !isnan(r->min_g);
@@ -533,16 +313,17 @@ static void whatif_json_reserve(json_t *o, const sw_cli_case_t *C)
         sw_cli_rec_text(o, "no_reserve", C->reserve_note);
 }
 
-void sw_cli_whatif_json_case(json_t *o, const sw_cli_case_t *C)
+void sw_cli_whatif_json_case(json_t *o, const sw_whatif_case_t *C)
 {
     sw_cli_rec_text(o, "case", C->name);
     sw_cli_rec_bool(o, "as_given", C->is_scene);
     sw_cli_rec_bool(o, "available", C->available);
     if (C->stands_for)
         sw_cli_rec_text(o, "stands_for", C->stands_for);
-    if (C->desc[0]) {
+    if (C->built) {
+        char desc[224];
         sw_cli_rec_text(o, "model", sw_model_name(C->model));
-        sw_cli_rec_text(o, "support", C->desc);
+        sw_cli_rec_text(o, "support", sw_cli_whatif_desc(desc, sizeof desc, C));
     }
     if (!C->available) {
         sw_cli_rec_text(o, "note", C->note);
