@@ -4,15 +4,15 @@
  * parses the options and runs the command, batch_plan.c builds the work
  * list (the logs of the operands and of the manifest, each with its set of
  * the job's options), batch_out.c runs it on the farm and writes the
- * records.  The jobs see only batch.h.  sw_batch_ names the command's
+ * records.  The jobs see only job.h.  sw_batch_ names the command's
  * own. */
 #ifndef SWAYWATCH_CLI_BATCH_INT_H
 #define SWAYWATCH_CLI_BATCH_INT_H
 
 #include <stdio.h>
 
-#include "batch.h"
 #include "farm.h"
+#include "job.h"
 #include "manifest.h"
 
 /* batch's own options. */

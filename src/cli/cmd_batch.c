@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* cmd_batch.c - "swaywatch batch": one job (replay, batch.h) over many
+/* cmd_batch.c - "swaywatch batch": one job (replay, job.h) over many
  * logs, given as operands and in a manifest (manifest.h) whose lines add
  * their own options; one JSON Lines record per log and package, and
  * optionally a CSV table of the same.

@@ -121,7 +121,7 @@ int sw_cli_report_zooms(const sw_cli_forensics_t *F, const sw_cli_zoom_t *z, siz
 int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t *s);
 const sw_whatif_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k);
 
-/* forensics of many logs, for "swaywatch batch" (batch.h): the options
+/* forensics of many logs, for its batch job (forensics_job.c): the options
  * at their defaults (NULL: out of memory, reported), freed with
  * sw_cli_forensics_destroy() (NULL ok); the groups a batch takes (the
  * log's reading, scenes, integration, the searches and the what-if, not

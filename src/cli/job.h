@@ -1,5 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* batch.h - the jobs of "swaywatch batch": what is done to each log.
+/* job.h - what a command offers "swaywatch batch": a job, done to each
+ * log.  A command that has one defines it in a file of its own
+ * (replay_job.c, forensics_job.c), the batch lists the jobs by name
+ * (cmd_batch.c) and sees nothing else of the command: the commands do
+ * not include each other, only this contract.
  *
  * A job is a table: its options (the same rows as the command of its name,
  * less that command's own outputs), parsed once per distinct set of
@@ -12,8 +16,8 @@
  * error records of logs that failed, and keeps the order.  A job's run
  * may be called on any thread of any rank at once with the same options:
  * it only reads them. */
-#ifndef SWAYWATCH_CLI_BATCH_H
-#define SWAYWATCH_CLI_BATCH_H
+#ifndef SWAYWATCH_CLI_JOB_H
+#define SWAYWATCH_CLI_JOB_H
 
 #include <stdio.h>
 

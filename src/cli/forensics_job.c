@@ -1,15 +1,15 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* batch_forensics.c - the forensics job of "swaywatch batch" (batch.h):
- * each log through "swaywatch forensics" (forensics.h), and for each
- * package the members of forensics' JSON for it (its verdict, smallest
- * reserve, safety factor, what would have saved it, the what-if rows) and
- * the log's facts, and a CSV row of the answer. */
+/* forensics_job.c - forensics' job for "swaywatch batch" (job.h): each
+ * log through "swaywatch forensics" (forensics.h), and for each package
+ * the members of forensics' JSON for it (its verdict, smallest reserve,
+ * safety factor, what would have saved it, the what-if rows) and the
+ * log's facts, with the columns of a CSV row of the answer. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "batch.h"
 #include "forensics.h"
+#include "job.h"
 #include "output.h"
 
 static void *create(void)

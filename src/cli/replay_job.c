@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* batch_replay.c - the replay job of "swaywatch batch" (batch.h): each log
+/* replay_job.c - replay's job for "swaywatch batch" (job.h): each log
  * replayed as "swaywatch replay" does it (replay.h), and for each package
  * the members of replay's JSON summary (the package's, then the log's:
- * settle, the input's facts) and a CSV row of the same. */
+ * settle, the input's facts), with the columns of its CSV row. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "batch.h"
+#include "job.h"
 #include "output.h"
 #include "replay.h"
 
