@@ -68,15 +68,12 @@ typedef struct {
     size_t nsc;
     curve_t *cv;
     size_t nc;
-    sw_boundary_point_t *pts; /* curve-major: pts[c * nr + i] */
-    int units;                /* UNITS_*: --units, or its default */
-    int physical;             /* the other of omega_e/p and the duration goes along */
-    int shared_p;             /* every curve's package has the same p: one duration per row */
+    sw_boundary_point_t *pts;       /* curve-major: pts[c * nr + i] */
+    int units;                      /* UNITS_*: --units, or its default */
+    int physical;                   /* the other of omega_e/p and the duration goes along */
+    int shared_p;                   /* every curve's package has the same p: one duration per row */
+    const sw_cli_option_t *options; /* boundary's own rows, for their bounds */
 } boundary_t;
-
-/* The option of boundary's table named long_name (NULL if none), for its
- * bounds. */
-const sw_cli_option_t *sw_bnd_option(const char *long_name);
 
 /* Every scene x every combination of the --vary values that apply to it x
  * every bearing ratio (scenes without a frame: as they are), into *out

@@ -127,10 +127,11 @@ double sw_bnd_ratio_at(const boundary_t *B, size_t c, size_t i)
 }
 
 /* Non-zero (reported) if v, what arg (given in physical units) is for
- * curve C, is outside the bounds of the option named opt. */
-static int in_range(const char *opt, const char *arg, const curve_t *C, double v)
+ * curve C, is outside the bounds of boundary's option named opt. */
+static int in_range(const boundary_t *B, const char *opt, const char *arg, const curve_t *C,
+                    double v)
 {
-    const sw_cli_option_t *o = sw_bnd_option(opt);
+    const sw_cli_option_t *o = sw_cli_option_named(B->options, opt);
     if (!o || !(o->hi > o->lo) || (v >= o->lo && v <= o->hi))
         return 0;
     sw_cli_error("curve '%s': %s is %g %s, out of range: expected %g to %g", C->label,
@@ -159,13 +160,13 @@ int sw_bnd_curve_units(boundary_t *B)
         C->x_max = B->b.max_si > 0.0 ? B->b.max_si / C->gtan : bo->search.x_max;
         /* what the options' bounds say in g tan alpha and omega_e/p, for
          * the values given in g, m/s^2 or ms */
-        if ((B->b.min_si > 0.0 && in_range("min-amplitude", B->b.min_arg, C, C->x_min)) ||
-            (B->b.max_si > 0.0 && in_range("max-amplitude", B->b.max_arg, C, C->x_max)))
+        if ((B->b.min_si > 0.0 && in_range(B, "min-amplitude", B->b.min_arg, C, C->x_min)) ||
+            (B->b.max_si > 0.0 && in_range(B, "max-amplitude", B->b.max_arg, C, C->x_max)))
             return SW_EXIT_USAGE;
         for (size_t i = 0; B->b.durations && i < B->b.nr; i++) {
             char dur[64];
             snprintf(dur, sizeof dur, "%gms", B->b.durations[i] * 1e3);
-            if (in_range("omega-ratio", dur, C, sw_bnd_ratio_at(B, c, i)))
+            if (in_range(B, "omega-ratio", dur, C, sw_bnd_ratio_at(B, c, i)))
                 return SW_EXIT_USAGE;
         }
         if (C->x_min > 0.0 && C->x_min >= C->x_max) {

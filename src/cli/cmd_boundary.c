@@ -368,13 +368,6 @@ static const sw_cli_command_t boundary_cmd = {
         "the boundary as the pulse's peak in g against its duration in ms.\n",
 };
 
-const sw_cli_option_t *sw_bnd_option(const char *long_name)
-{
-    const sw_cli_option_t *o = boundary_options;
-    while (o->kind != SW_CLI_END && !(o->long_name && !strcmp(o->long_name, long_name))) o++;
-    return o->kind == SW_CLI_END ? NULL : o;
-}
-
 /* ---- the command --------------------------------------------------------------- */
 
 /* What the options leave to check together; the search's defaults. */
@@ -460,6 +453,7 @@ int cmd_boundary(int argc, char **argv)
         sw_cli_msg_to(mf);
     B.b.progress = B.world.rank == 0 && isatty(fileno(stderr)) ? 1 : 0;
     B.b.units = -1;
+    B.options = boundary_options;
     sw_cli_group_t g[] = {
         SW_CLI_GROUP(sw_cli_scene_options, &B.o),
         SW_CLI_GROUP(boundary_options, &B.b),

@@ -384,6 +384,13 @@ static void store_defaults(const table_t *t)
     }
 }
 
+const sw_cli_option_t *sw_cli_option_named(const sw_cli_option_t *rows, const char *long_name)
+{
+    const sw_cli_option_t *o = rows;
+    while (o->kind != SW_CLI_END && !(o->long_name && !strcmp(o->long_name, long_name))) o++;
+    return o->kind == SW_CLI_END ? NULL : o;
+}
+
 int sw_cli_parse(const sw_cli_command_t *cmd, sw_cli_group_t *g, size_t n, int argc, char **argv,
                  int *operand)
 {

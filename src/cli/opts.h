@@ -134,6 +134,10 @@ int sw_cli_parse(const sw_cli_command_t *cmd, sw_cli_group_t *g, size_t n, int a
                  int *operand);
 void sw_cli_parse_free(const sw_cli_group_t *g, size_t n);
 
+/* The row of rows (a table ending with SW_CLI_END) named long_name, or
+ * NULL: for a value checked against its bounds after parsing. */
+const sw_cli_option_t *sw_cli_option_named(const sw_cli_option_t *rows, const char *long_name);
+
 /* The command's --help: usage, about, every visible section with its
  * options and paragraphs, the exit codes.  A section gathers every row
  * under its title, in the order of the groups, where the title first
