@@ -42,8 +42,8 @@
 
 #include "export.h"
 #include "model.h"
+#include "run.h"
 #include "scene.h"
-#include "sweep.h"
 #include "units.h"
 
 #ifdef __cplusplus

@@ -4,18 +4,22 @@
 #define SWAYWATCH_H
 
 #include "swaywatch/alarm.h"
+#include "swaywatch/boundary.h"
 #include "swaywatch/csv.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/export.h"
 #include "swaywatch/gate.h"
 #include "swaywatch/model.h"
+#include "swaywatch/pool.h"
 #include "swaywatch/pulse.h"
 #include "swaywatch/reserve.h"
 #include "swaywatch/risk.h"
+#include "swaywatch/run.h"
+#include "swaywatch/safety.h"
 #include "swaywatch/scene.h"
 #include "swaywatch/scheme.h"
+#include "swaywatch/search.h"
 #include "swaywatch/status.h"
-#include "swaywatch/sweep.h"
 #include "swaywatch/units.h"
 #include "swaywatch/whatif.h"
 

@@ -22,8 +22,9 @@
 
 #include "export.h"
 #include "reserve.h"
+#include "run.h"
+#include "safety.h"
 #include "scene.h"
-#include "sweep.h"
 
 #ifdef __cplusplus
 extern "C" {

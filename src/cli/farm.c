@@ -22,7 +22,7 @@
 
 #include "cli.h"
 #include "farm_int.h"
-#include "swaywatch/sweep.h"
+#include "swaywatch/pool.h"
 
 /* ---- without MPI, the world is one process ------------------------------------ */
 

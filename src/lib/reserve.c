@@ -55,12 +55,12 @@
 #include "swaywatch/model.h"
 #include "swaywatch/pulse.h"
 #include "swaywatch/reserve.h"
+#include "swaywatch/run.h"
 #include "swaywatch/status.h"
-#include "swaywatch/sweep.h"
 
 #include "internal.h"
 #include "reserve_lift.h"
-#include "run.h" /* sw_set_msg */
+#include "run_int.h" /* sw_set_msg */
 
 #define DEFAULT_STEP 0.02
 #define DEFAULT_TOL 0.01

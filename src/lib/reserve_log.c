@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "run.h"
+#include "run_int.h"
 #include "sched.h"
 #include "swaywatch/reserve.h"
 #include "swaywatch/status.h"

@@ -21,10 +21,10 @@
 #include <string.h>
 
 #include "internal.h"
-#include "run.h"
+#include "run_int.h"
 #include "swaywatch/model.h"
+#include "swaywatch/run.h"
 #include "swaywatch/status.h"
-#include "swaywatch/sweep.h"
 
 #define DEFAULT_FREE_PERIODS 20.0
 #define STEPS_PER_PERIOD 400.0 /* automatic dt: steps per shortest period */

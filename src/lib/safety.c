@@ -16,11 +16,12 @@
 #include <string.h>
 
 #include "internal.h"
-#include "run.h"
+#include "run_int.h"
 #include "safety_prep.h"
 #include "swaywatch/model.h"
+#include "swaywatch/safety.h"
+#include "swaywatch/search.h"
 #include "swaywatch/status.h"
-#include "swaywatch/sweep.h"
 
 #define DEFAULT_STEP 0.02
 #define DEFAULT_TOL 1e-3

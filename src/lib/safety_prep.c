@@ -38,7 +38,7 @@
 #include <string.h>
 
 #include "internal.h"
-#include "run.h"
+#include "run_int.h"
 #include "safety_prep.h"
 #include "swaywatch/status.h"
 

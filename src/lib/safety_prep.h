@@ -8,7 +8,7 @@
 
 #include "internal.h"
 #include "swaywatch/model.h"
-#include "swaywatch/sweep.h"
+#include "swaywatch/run.h"
 
 #define LIFT_MARGIN_LOG 0.9 /* probes are sampled only at the log's samples */
 

@@ -10,10 +10,12 @@
 #include <string.h>
 
 #include "internal.h"
-#include "run.h"
+#include "run_int.h"
+#include "swaywatch/boundary.h"
 #include "swaywatch/model.h"
+#include "swaywatch/pool.h"
+#include "swaywatch/search.h"
 #include "swaywatch/status.h"
-#include "swaywatch/sweep.h"
 
 #define DEFAULT_STEP 0.02
 #define DEFAULT_TOL 1e-3

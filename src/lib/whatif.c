@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "swaywatch/pool.h"
 #include "swaywatch/status.h"
 
 #define TWO_PI 6.283185307179586

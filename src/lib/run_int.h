@@ -1,15 +1,15 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* run.h - what the library's run-many-times modules share (run.c: one
- * run; sweep.c: boundaries; safety.c: the safety factors of a log): an engine made
+/* run_int.h - what the library's run-many-times modules share (run.c: one
+ * run; sweep.c: search, boundaries; safety.c: the safety factors of a log): an engine made
  * for runs, the free motion after the input until the outcome is certain,
  * and the probe of how far a package is from leaving its rest contact.
  * Internal: not part of the public API. */
-#ifndef SWAYWATCH_RUN_H
-#define SWAYWATCH_RUN_H
+#ifndef SWAYWATCH_RUN_INT_H
+#define SWAYWATCH_RUN_INT_H
 
 #include <stddef.h>
 
-#include "swaywatch/sweep.h"
+#include "swaywatch/run.h"
 
 #define SW_RUN_CHECKS_PER_PERIOD 16.0 /* stop checks per rocking period of free motion */
 
