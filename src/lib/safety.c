@@ -4,18 +4,19 @@
  * overturns the package, found by running the log many times ("trials",
  * each starting as late as its outcome allows: safety_prep.c).
  *
- * The searches of all scenes run at once on a pool of threads, in rounds
+ * The searches of all scenes run at once on the library's pool of threads
+ * (pool.c), in rounds
  * of SECTIONS trials: the scan takes SECTIONS points of its grid at a
  * time, and a bracket is cut into SECTIONS + 1 pieces, keeping the lowest
  * change from safe to overturning.  A round's points do not depend on the
  * number of threads, so neither does any result. */
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
+#include "pool_int.h"
 #include "run_int.h"
 #include "safety_prep.h"
 #include "swaywatch/model.h"
@@ -29,7 +30,6 @@
 #define SECTIONS 4     /* trials per round of a search */
 #define NEAR_PEAK 0.25 /* peak |theta| / alpha from which the scan takes its finest step */
 #define FAR_STEPS 5.0  /* the scan's step far from that, in --step */
-#define MAX_THREADS 256
 
 /* ---- the search, in rounds --------------------------------------------------- */
 
@@ -190,11 +190,11 @@ typedef struct {
 typedef struct {
     case_t *c;
     int track, slot; /* track T_PREP: the preparation */
+    int err;         /* the task's outcome, and why */
+    char msg[256];
 } task_t;
 
 typedef struct {
-    pthread_mutex_t mu;
-    pthread_cond_t cv;
     task_t *q; /* a ring: at most 2 SECTIONS + 1 tasks of each case wait at a time */
     size_t cap, head, len;
     size_t active;
@@ -204,7 +204,7 @@ typedef struct {
 
 static void push_task(pool_t *W, case_t *c, int track, int slot)
 {
-    W->q[(W->head + W->len++) % W->cap] = (task_t){c, track, slot};
+    W->q[(W->head + W->len++) % W->cap] = (task_t){.c = c, .track = track, .slot = slot};
     if (track != T_PREP)
         c->pending[track]++;
 }
@@ -365,46 +365,39 @@ static void task_done(pool_t *W, const task_t *t, int err, const char *msg)
         case_finish(W, c);
     if (W->o->progress)
         W->o->progress(W->o->user, &W->prog);
-    pthread_cond_broadcast(&W->cv);
 }
 
-static void *worker(void *arg)
+/* ---- the pool's job: the queue's tasks ---------------------------------------- */
+
+static int job_take(void *user, void *task)
 {
-    pool_t *W = arg;
-    char msg[256];
-    pthread_mutex_lock(&W->mu);
-    for (;;) {
-        if (W->len) {
-            const task_t t = W->q[W->head];
-            W->head = (W->head + 1) % W->cap;
-            W->len--;
-            pthread_mutex_unlock(&W->mu);
-            msg[0] = '\0';
-            const int err = task_run(&t, msg, sizeof msg);
-            pthread_mutex_lock(&W->mu);
-            task_done(W, &t, err, msg);
-            continue;
-        }
-        if (!W->active)
-            break;
-        pthread_cond_wait(&W->cv, &W->mu);
-    }
-    pthread_mutex_unlock(&W->mu);
-    return NULL;
+    pool_t *W = user;
+    if (!W->len)
+        return 0;
+    memcpy(task, &W->q[W->head], sizeof(task_t));
+    W->head = (W->head + 1) % W->cap;
+    W->len--;
+    return 1;
 }
 
-/* Run the pool's tasks on up to threads threads (the calling thread
- * works too). */
-static void pool_run(pool_t *W, int threads)
+static int job_ended(void *user)
 {
-    pthread_t tid[MAX_THREADS];
-    size_t started = 0;
-    const size_t want = threads > MAX_THREADS ? MAX_THREADS : threads > 1 ? (size_t)threads : 1;
-    for (; started + 1 < want; started++)
-        if (pthread_create(&tid[started], NULL, worker, W) != 0)
-            break;
-    worker(W);
-    for (size_t i = 0; i < started; i++) pthread_join(tid[i], NULL);
+    const pool_t *W = user;
+    return !W->active;
+}
+
+static void job_run(void *user, void *task)
+{
+    (void)user;
+    task_t *t = task;
+    t->msg[0] = '\0';
+    t->err = task_run(t, t->msg, sizeof t->msg);
+}
+
+static void job_done(void *user, void *task)
+{
+    const task_t *t = task;
+    task_done(user, t, t->err, t->msg);
 }
 
 int sw_safety_factors(sw_safety_case_t *cases, size_t n, const sw_log_t *log,
@@ -415,12 +408,11 @@ int sw_safety_factors(sw_safety_case_t *cases, size_t n, const sw_log_t *log,
     case_t *cs = calloc(n, sizeof *cs);
     pool_t W = {.cap = n * (2 * SECTIONS + 1) + 1, .o = o, .active = n};
     W.q = malloc(W.cap * sizeof *W.q);
-    if (!cs || !W.q || pthread_mutex_init(&W.mu, NULL) != 0) {
+    if (!cs || !W.q) {
         free(cs);
         free(W.q);
         return SW_ENOMEM;
     }
-    pthread_cond_init(&W.cv, NULL);
     W.prog.cases = n;
     for (size_t i = 0; i < n; i++) {
         sw_safety_case_t *out = &cases[i];
@@ -438,11 +430,10 @@ int sw_safety_factors(sw_safety_case_t *cases, size_t n, const sw_log_t *log,
         }
         push_task(&W, &cs[i], T_PREP, 0);
     }
-    pool_run(&W, o->threads);
+    const sw_pool_job_t J = {sizeof(task_t), job_take, job_ended, job_run, job_done, &W};
+    sw_pool_run(&J, o->threads);
     int rc = SW_OK;
     for (size_t i = 0; i < n && rc == SW_OK; i++) rc = cases[i].status;
-    pthread_cond_destroy(&W.cv);
-    pthread_mutex_destroy(&W.mu);
     free(W.q);
     free(cs);
     return rc;

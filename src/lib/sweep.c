@@ -1,19 +1,18 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* sweep.c - overturning boundaries: a scan-then-bisect threshold search
- * over runs (run.c), a small pthread work queue, and the boundary curves
- * of pulses.  The safety factors of a log, which use the same runs and
+ * over runs (run.c) and the boundary curves of pulses, their points on
+ * the library's pool (pool.c).  The safety factors of a log, which use the same runs and
  * search, are in safety.c. */
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "internal.h"
+#include "pool_int.h"
 #include "run_int.h"
 #include "swaywatch/boundary.h"
 #include "swaywatch/model.h"
-#include "swaywatch/pool.h"
 #include "swaywatch/search.h"
 #include "swaywatch/status.h"
 
@@ -22,7 +21,6 @@
 #define DEFAULT_X_MAX 20.0
 #define PROBE_SAMPLES 400.0     /* samples per period when probing the stuck frame */
 #define PROBE_MAX_SAMPLES 20000 /* cap on the samples of one probe run */
-#define MAX_THREADS 256
 
 /* ---- threshold search ----------------------------------------------------- */
 
@@ -154,58 +152,6 @@ int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw
             out->islands_truncated = 1;
     }
     return SW_OK;
-}
-
-/* ---- parallel jobs ---------------------------------------------------------- */
-
-typedef struct {
-    pthread_mutex_t mu;
-    size_t next, n;
-    void (*job)(void *user, size_t i);
-    void *user;
-} pool_t;
-
-static void *pool_worker(void *arg)
-{
-    pool_t *p = arg;
-    for (;;) {
-        pthread_mutex_lock(&p->mu);
-        const size_t i = p->next++;
-        pthread_mutex_unlock(&p->mu);
-        if (i >= p->n)
-            break;
-        p->job(p->user, i);
-    }
-    return NULL;
-}
-
-void sw_parallel_for(size_t n, int threads, void (*job)(void *user, size_t i), void *user)
-{
-    if (!job || n == 0)
-        return;
-    if (threads <= 1 || n == 1) {
-        for (size_t i = 0; i < n; i++) job(user, i);
-        return;
-    }
-    pool_t p = {.next = 0, .n = n, .job = job, .user = user};
-    if (pthread_mutex_init(&p.mu, NULL) != 0) {
-        for (size_t i = 0; i < n; i++) job(user, i);
-        return;
-    }
-    pthread_t tid[MAX_THREADS];
-    size_t want = (size_t)threads;
-    if (want > MAX_THREADS)
-        want = MAX_THREADS;
-    if (want > n)
-        want = n;
-    size_t started = 0;
-    for (; started < want; started++)
-        if (pthread_create(&tid[started], NULL, pool_worker, &p) != 0)
-            break;
-    if (started == 0)
-        pool_worker(&p); /* no thread at all: do it here */
-    for (size_t i = 0; i < started; i++) pthread_join(tid[i], NULL);
-    pthread_mutex_destroy(&p.mu);
 }
 
 /* ---- boundary curves -------------------------------------------------------- */
@@ -343,6 +289,7 @@ out:
     return err;
 }
 
+/* The sweep as the pool's job: each point a task, its index. */
 typedef struct {
     const sw_curve_t *curves;
     const double *ratios;
@@ -350,21 +297,41 @@ typedef struct {
     const sw_boundary_opts_t *o;
     sw_boundary_point_t *out;
     char (*msgs)[256];
-    pthread_mutex_t mu;
-    size_t done;
+    size_t next, done;
 } sweep_t;
 
-static void sweep_job(void *user, size_t i)
+static int sweep_take(void *user, void *task)
 {
     sweep_t *S = user;
+    if (S->next >= S->total)
+        return 0;
+    const size_t i = S->next++;
+    memcpy(task, &i, sizeof i);
+    return 1;
+}
+
+static int sweep_ended(void *user)
+{
+    (void)user;
+    return 1; /* every point is handed out at once */
+}
+
+static void sweep_run(void *user, void *task)
+{
+    sweep_t *S = user;
+    size_t i;
+    memcpy(&i, task, sizeof i);
     const size_t c = i / S->nratios, k = i % S->nratios;
     sw_boundary_point(&S->curves[c], S->ratios[k], S->o, &S->out[i], S->msgs[i], sizeof S->msgs[i]);
-    if (S->o->progress) {
-        pthread_mutex_lock(&S->mu);
-        S->done++;
+}
+
+static void sweep_done(void *user, void *task)
+{
+    sweep_t *S = user;
+    (void)task;
+    S->done++;
+    if (S->o->progress) /* under the pool's lock: one call at a time */
         S->o->progress(S->o->user, S->done, S->total);
-        pthread_mutex_unlock(&S->mu);
-    }
 }
 
 int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ratios,
@@ -374,14 +341,14 @@ int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ra
     sw_set_msg(msg, msglen, "%s", "");
     if (!curves || !ratios || !o || !out || ncurves == 0 || nratios == 0)
         return SW_EINVAL;
-    sweep_t S = {
-        curves, ratios, nratios, ncurves * nratios, o, out, NULL, PTHREAD_MUTEX_INITIALIZER, 0};
+    sweep_t S = {curves, ratios, nratios, ncurves * nratios, o, out, NULL, 0, 0};
     S.msgs = calloc(S.total, sizeof *S.msgs);
     if (!S.msgs) {
         sw_set_msg(msg, msglen, "out of memory");
         return SW_ENOMEM;
     }
-    sw_parallel_for(S.total, o->threads, sweep_job, &S);
+    const sw_pool_job_t J = {sizeof(size_t), sweep_take, sweep_ended, sweep_run, sweep_done, &S};
+    sw_pool_run(&J, o->threads);
     int rc = SW_OK;
     for (size_t i = 0; i < S.total; i++)
         if (out[i].status < 0) {
@@ -391,6 +358,5 @@ int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const double *ra
             break;
         }
     free(S.msgs);
-    pthread_mutex_destroy(&S.mu);
     return rc;
 }
