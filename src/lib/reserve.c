@@ -156,85 +156,57 @@ double sw_reserve_lower_bound(const sw_reserve_t *r, const sw_state_t *s, int di
 
 /* ---- one run ------------------------------------------------------------- */
 
+/* The reserve's certificate during a pulse (sw_run_until()): if even all
+ * the work the rest of the pulse could do (c |a| int_t^T sin, c the work
+ * rate) cannot lift sqrt(E) to the barrier's, the run is safe now. */
+typedef struct {
+    const sw_reserve_t *R;
+    double w;  /* rad/s, the pulse's omega */
+    double ca; /* sqrt(J/kg), c |a| / w */
+} cert_t;
+
+static int certify(void *user, double t, const sw_state_t *s)
+{
+    const cert_t *C = user;
+    const sw_reserve_t *R = C->R;
+    if (fabs(s->theta) >= R->d.alpha)
+        return 0;
+    const double E = fmax(sw_model_energy(&R->d, R->sc.g, s), 0.0); /* J/kg */
+    return sqrt(E) + C->ca * (1.0 + cos(C->w * t)) < CERT_SLACK * R->sqrt_eb;
+}
+
 /* Run state s under a pulse of amplitude a (m/s^2, signed; 0 = quiet) and
- * decide: fills r->overturned, r->end, r->t_end, r->faults. */
+ * decide: fills r->overturned, r->end, r->t_end, r->faults.  The pulse
+ * goes in whole steps between checks of the certificate; a model whose
+ * margin decides free rocking is decided at the pulse's end. */
 static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s, double a,
                sw_run_result_t *r)
 {
     sw_engine_t *e = P->e;
-    const int exact = R->ops->free_exact;
     sw_engine_reset(e);
     int rc = sw_engine_set_state(e, 0, s);
     if (rc < 0)
         return rc;
-    double t = 0.0;
+    sw_pulse_t pl = {SW_PULSE_HALF_SINE, a, M_PI / P->T};
+    const double w = M_PI / P->T;
+    cert_t C = {R, w, R->c_energy * fabs(a) / w};
+    const sw_run_until_t u = {.input = a != 0.0 ? sw_pulse_eval : NULL,
+                              .input_user = &pl,
+                              .t_input = P->T,
+                              .check = P->check,
+                              .certify = certify,
+                              .cert_user = &C,
+                              .t0 = 0.0,
+                              .free_time = R->t_free,
+                              .chunk = R->chunk,
+                              .decide_at_once = 1,
+                              .stop_on_fault = 1};
+    if ((rc = sw_run_until(e, &u, &r->end, &r->t_end)) < 0)
+        return rc;
     sw_summary_t sum;
-    sw_output_t o;
-    if (a != 0.0) {
-        /* The pulse, in whole steps between checks of the energy
-         * certificate: if even all the work the rest of the pulse could do
-         * (c |a| int_t^T sin, c the work rate) cannot lift sqrt(E) to the
-         * barrier's, the run is safe now. */
-        sw_pulse_t pl = {SW_PULSE_HALF_SINE, a, M_PI / P->T};
-        const double w = M_PI / P->T, ca = R->c_energy * fabs(a) / w; /* sqrt(J/kg) */
-        while (t < P->T) {
-            t = fmin(P->T, t + P->check);
-            rc = sw_engine_advance_fn(e, t, sw_pulse_eval, &pl);
-            if (rc < 0)
-                return rc;
-            if (!(t < P->T))
-                break;
-            sw_engine_summary(e, 0, &sum);
-            if (sum.overturned || sum.faults)
-                break;
-            sw_engine_get_state(e, 0, &o.state); /* the margins are not needed here */
-            if (fabs(o.state.theta) >= R->d.alpha)
-                continue;
-            const double E = fmax(sw_model_energy(&R->d, R->sc.g, &o.state), 0.0); /* J/kg */
-            if (sqrt(E) + ca * (1.0 + cos(w * t)) < CERT_SLACK * R->sqrt_eb) {
-                r->end = exact ? SW_END_REST : SW_END_BOUND;
-                r->overturned = 0;
-                r->t_end = t;
-                return SW_OK;
-            }
-        }
-    }
-    const double t_limit = t + R->t_free;
-    for (;;) {
-        sw_engine_summary(e, 0, &sum);
-        if (sum.faults) {
-            r->faults = sum.faults;
-            r->end = SW_END_TIMEOUT;
-            break;
-        }
-        if (sum.overturned) {
-            r->end = SW_END_OVERTURN;
-            break;
-        }
-        sw_engine_get_output(e, 0, &o);
-        if (exact) {
-            /* exact for free rocking (physics.md): decided now */
-            if (o.state.phase == SW_PHASE_STUCK)
-                r->end = SW_END_REST;
-            else
-                r->end = o.margin > 0.0 ? SW_END_REST : SW_END_FALLING;
-            break;
-        }
-        if (o.margin_bound > 0.0) {
-            r->end = SW_END_BOUND;
-            break;
-        }
-        if (!(t < t_limit)) {
-            r->end = SW_END_TIMEOUT;
-            break;
-        }
-        t = fmin(t_limit, t + R->chunk);
-        rc = sw_engine_advance_fn(e, t, sw_input_zero, NULL);
-        if (rc < 0)
-            return rc;
-    }
+    sw_engine_summary(e, 0, &sum);
+    r->faults = r->end == SW_END_TIMEOUT ? sum.faults : 0;
     r->overturned = r->end == SW_END_OVERTURN || r->end == SW_END_FALLING;
-    r->t_end = t;
     return r->faults ? SW_EFAULT : SW_OK;
 }
 

@@ -145,45 +145,109 @@ static void fill_result(const sw_runner_t *R, sw_run_end end, const sw_output_t 
     r->overturn_side = end == SW_END_FALLING ? (o->state.theta > 0.0 ? 1 : -1) : R->overturn_side;
 }
 
+/* The input in steps of u->check, the certificate between them: the run
+ * ends safe as soon as it holds.  Overturned or faulted, the free motion's
+ * checks decide at once.  Returns 1 if certified (*end set), 0 to go on,
+ * or the engine's error. */
+static int run_input(sw_engine_t *e, const sw_run_until_t *u, double *t, sw_run_end *end)
+{
+    const int exact = sw_model_ops_of(sw_engine_derived(e, 0)->model)->free_exact;
+    while (*t < u->t_input) {
+        *t = u->certify ? fmin(u->t_input, *t + u->check) : u->t_input;
+        const int rc = sw_engine_advance_fn(e, *t, u->input, u->input_user);
+        if (rc < 0)
+            return rc;
+        if (!(*t < u->t_input) || !u->certify)
+            break;
+        sw_summary_t sum;
+        sw_engine_summary(e, 0, &sum);
+        if (sum.overturned || sum.faults)
+            break;
+        sw_state_t st;
+        sw_engine_get_state(e, 0, &st); /* the margins are not needed here */
+        if (u->certify(u->cert_user, *t, &st)) {
+            *end = exact ? SW_END_REST : SW_END_BOUND;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int sw_run_until(sw_engine_t *e, const sw_run_until_t *u, sw_run_end *end, double *t_end)
+{
+    const sw_derived_t *d = sw_engine_derived(e, 0);
+    const int exact = sw_model_ops_of(d->model)->free_exact;
+    const double t_started = sw_engine_time(e);
+    double t = isnan(t_started) ? u->t0 : t_started; /* s */
+    if (u->input) {
+        const int rc = run_input(e, u, &t, end);
+        if (rc != 0) {
+            *t_end = t;
+            return rc < 0 ? rc : SW_OK;
+        }
+    }
+    const double t_limit = u->limit_set ? u->t_limit : t + u->free_time; /* s */
+    for (;;) {
+        sw_summary_t s;
+        sw_engine_summary(e, 0, &s);
+        if (u->stop_on_fault && s.faults) {
+            *end = SW_END_TIMEOUT;
+            break;
+        }
+        if (s.overturned) {
+            *end = SW_END_OVERTURN;
+            break;
+        }
+        sw_output_t o;
+        sw_engine_get_output(e, 0, &o);
+        if (exact && u->decide_at_once) {
+            /* exact for free rocking (physics.md): decided now */
+            if (o.state.phase == SW_PHASE_STUCK)
+                *end = SW_END_REST;
+            else
+                *end = o.margin > 0.0 ? SW_END_REST : SW_END_FALLING;
+            break;
+        }
+        if (exact) {
+            if (o.state.phase == SW_PHASE_STUCK) {
+                *end = SW_END_REST;
+                break;
+            }
+            if (fabs(o.state.theta) >= d->alpha && o.state.theta * o.state.theta_dot > 0.0) {
+                *end = SW_END_FALLING;
+                break;
+            }
+        } else if (o.margin_bound > 0.0) {
+            *end = SW_END_BOUND;
+            break;
+        }
+        if (!(t < t_limit)) {
+            *end = SW_END_TIMEOUT;
+            break;
+        }
+        const int rc = sw_engine_advance_fn(e, fmin(t_limit, t + u->chunk), sw_input_zero, NULL);
+        if (rc < 0)
+            return rc;
+        const double te = sw_engine_time(e);
+        t = isnan(te) ? fmin(t_limit, t + u->chunk) : te;
+    }
+    *t_end = t;
+    return SW_OK;
+}
+
 /* Free motion from the end of the input until the outcome is certain or
  * t_limit (s) passes; checks every chunk seconds. */
 int sw_run_free_motion(sw_runner_t *R, double t_limit, double chunk, sw_run_result_t *r)
 {
     sw_engine_t *e = R->e;
-    const sw_derived_t *d = sw_engine_derived(e, 0);
-    const int free_exact = sw_model_ops_of(d->model)->free_exact;
+    const sw_run_until_t u = {.limit_set = 1, .t_limit = t_limit, .chunk = chunk};
     sw_run_end end;
+    double t_end;
+    const int rc = sw_run_until(e, &u, &end, &t_end);
+    if (rc < 0)
+        return rc;
     sw_output_t o;
-    for (;;) {
-        sw_summary_t s;
-        sw_engine_summary(e, 0, &s);
-        sw_engine_get_output(e, 0, &o);
-        const double t = sw_engine_time(e);
-        if (s.overturned) {
-            end = SW_END_OVERTURN;
-            break;
-        }
-        if (free_exact) {
-            if (o.state.phase == SW_PHASE_STUCK) {
-                end = SW_END_REST;
-                break;
-            }
-            if (fabs(o.state.theta) >= d->alpha && o.state.theta * o.state.theta_dot > 0.0) {
-                end = SW_END_FALLING;
-                break;
-            }
-        } else if (o.margin_bound > 0.0) {
-            end = SW_END_BOUND;
-            break;
-        }
-        if (!(t < t_limit)) {
-            end = SW_END_TIMEOUT;
-            break;
-        }
-        const int rc = sw_engine_advance_fn(e, fmin(t_limit, t + chunk), sw_input_zero, NULL);
-        if (rc < 0)
-            return rc;
-    }
+    sw_engine_get_output(e, 0, &o);
     fill_result(R, end, &o, r);
     return r->faults ? SW_EFAULT : SW_OK;
 }

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* run_int.h - what the library's run-many-times modules share (run.c: one
- * run; sweep.c: search, boundaries; safety.c: the safety factors of a log): an engine made
- * for runs, the free motion after the input until the outcome is certain,
- * and the probe of how far a package is from leaving its rest contact.
+ * run; sweep.c: search, boundaries; safety.c: the safety factors of a log;
+ * reserve.c: the reserve): an engine made for runs, the one loop that runs
+ * until the outcome is certain (with the caller's certificate), and the
+ * probe of how far a package is from leaving its rest contact.
  * Internal: not part of the public API. */
 #ifndef SWAYWATCH_RUN_INT_H
 #define SWAYWATCH_RUN_INT_H
@@ -39,6 +40,37 @@ void sw_runner_reset(sw_runner_t *R);
 /* Free motion allowed after the input (s), for a package of rocking
  * frequency p (rad/s). */
 double sw_run_free_time(const sw_run_opts_t *o, double p);
+
+/* The certificate a caller may add to a run (sw_run_until()): at a check
+ * during the input, at t (s) in state s, 1 if the package is certainly
+ * safe whatever the rest of the input does (the reserve's energy check),
+ * else 0. */
+typedef int (*sw_run_cert_fn)(void *user, double t, const sw_state_t *s);
+
+/* How a run goes until its outcome is certain. */
+typedef struct {
+    sw_input_fn input; /* the input up to t_input, NULL = none (it was pushed before) */
+    void *input_user;
+    double t_input;         /* s, the end of the input */
+    double check;           /* s, between certificate checks during the input */
+    sw_run_cert_fn certify; /* may be NULL: no checks during the input */
+    void *cert_user;
+    double t0;          /* s, the run's time when the engine has not started yet */
+    double free_time;   /* s, free motion allowed after the input ends */
+    int limit_set;      /* non-zero: the free motion ends at t_limit instead */
+    double t_limit;     /* s */
+    double chunk;       /* s, between checks of the free motion */
+    int decide_at_once; /* a model whose margin decides free rocking exactly
+                           (ops->free_exact): decided by the margin at the end of the input,
+                           instead of by rest or falling seen as it rocks on */
+    int stop_on_fault;  /* a model fault ends the run (SW_END_TIMEOUT, counted) */
+} sw_run_until_t;
+
+/* The one run-until-certain loop: the input (if any) in steps of check
+ * with the certificate between them, then free motion until the outcome
+ * is certain or free_time passes.  Sets *end and *t_end (s); returns
+ * SW_OK, or the engine's error. */
+int sw_run_until(sw_engine_t *e, const sw_run_until_t *u, sw_run_end *end, double *t_end);
 
 /* Free motion from the end of the input until the outcome is certain or
  * t_limit (s) passes; checks every chunk seconds.  Fills r. */
