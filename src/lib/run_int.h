@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* run_int.h - what the library's run-many-times modules share (run.c: one
- * run; sweep.c: search, boundaries; safety.c: the safety factors of a log;
+ * run; search.c, boundary.c: searches, boundaries; safety.c: the safety factors of a log;
  * reserve.c: the reserve): an engine made for runs, the one loop that runs
  * until the outcome is certain (with the caller's certificate), and the
  * probe of how far a package is from leaving its rest contact.

@@ -1,14 +1,12 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* safety.c - the safety factors of a recorded log (sweep.h): for each
+/* safety.c - the safety factors of a recorded log (safety.h): for each
  * scene, the smallest scale of the log's longitudinal acceleration that
  * overturns the package, found by running the log many times ("trials",
  * each starting as late as its outcome allows: safety_prep.c).
  *
- * The searches of all scenes run at once on the library's pool of threads
- * (pool.c), in rounds
- * of SECTIONS trials: the scan takes SECTIONS points of its grid at a
- * time, and a bracket is cut into SECTIONS + 1 pieces, keeping the lowest
- * change from safe to overturning.  A round's points do not depend on the
+ * The searches of all scenes run at once on the library's pool of
+ * threads (pool.c), each a resumable search (search.c) in rounds of
+ * SW_SEARCH_SECTIONS trials.  A round's points do not depend on the
  * number of threads, so neither does any result. */
 #include <math.h>
 #include <stdio.h>
@@ -19,150 +17,13 @@
 #include "pool_int.h"
 #include "run_int.h"
 #include "safety_prep.h"
+#include "search_int.h"
 #include "swaywatch/model.h"
 #include "swaywatch/safety.h"
 #include "swaywatch/search.h"
 #include "swaywatch/status.h"
 
-#define DEFAULT_STEP 0.02
-#define DEFAULT_TOL 1e-3
 #define DEFAULT_X_MAX 20.0
-#define SECTIONS 4     /* trials per round of a search */
-#define NEAR_PEAK 0.25 /* peak |theta| / alpha from which the scan takes its finest step */
-#define FAR_STEPS 5.0  /* the scan's step far from that, in --step */
-
-/* ---- the search, in rounds --------------------------------------------------- */
-
-enum { SR_SCAN, SR_SECT, SR_DONE };
-
-/* One threshold search (sw_threshold_search()'s scan and bracket) as a
- * machine: points() gives a round's scales, feed() takes their results. */
-typedef struct {
-    sw_search_opts_t o; /* resolved: step, tol set */
-    int phase;
-    long k;           /* scan: points run so far */
-    double x_last;    /* scan: the last point run (safe) */
-    double peak_last; /* its largest |theta| / alpha */
-    double lo, hi;    /* bracket: lo safe, hi overturns */
-    sw_run_result_t r_hi;
-    double x[SECTIONS];
-    sw_run_result_t r[SECTIONS];
-    int n; /* points of the current round */
-    sw_threshold_t *out;
-} search_t;
-
-static int search_init(search_t *S, const sw_search_opts_t *o, sw_threshold_t *out)
-{
-    memset(S, 0, sizeof *S);
-    memset(out, 0, sizeof *out);
-    S->o = *o;
-    S->out = out;
-    if (!(S->o.step > 0.0))
-        S->o.step = DEFAULT_STEP;
-    if (!(S->o.tol > 0.0))
-        S->o.tol = DEFAULT_TOL;
-    if (!(o->x_min > 0.0) || !(o->x_max > o->x_min) || !isfinite(o->x_max) ||
-        !isfinite(S->o.step) || !isfinite(S->o.tol)) {
-        S->phase = SR_DONE;
-        return SW_EINVAL;
-    }
-    return SW_OK;
-}
-
-/* The bracket [lo, hi] is found: done if it is narrow enough. */
-static void search_bracket(search_t *S)
-{
-    S->phase = SR_SECT;
-    if (S->hi / S->lo - 1.0 > S->o.tol)
-        return;
-    S->phase = SR_DONE;
-    S->out->found = 1;
-    S->out->x = S->hi;
-    S->out->x_safe = S->lo;
-    S->out->at_x = S->r_hi;
-}
-
-/* The relative step of the scan's next round: --step wherever the
- * package came within a quarter of alpha of its corner (peak |theta| of
- * the last point run at least alpha / 4), growing to FAR_STEPS times it
- * as that peak falls to 0 (no lift at all): a package that stays far from
- * tipping at x does not overturn at a few per cent more, while near
- * tipping, where overturning is not monotonic in the scale, the scan is as
- * fine as asked. */
-static double scan_step(const search_t *S)
-{
-    const double near = fmin(1.0, fmax(0.0, S->peak_last / NEAR_PEAK));
-    return S->o.step * (FAR_STEPS - (FAR_STEPS - 1.0) * near);
-}
-
-/* The scales of the next round (S->n of them; 0 when done). */
-static int search_points(search_t *S)
-{
-    S->n = 0;
-    if (S->phase == SR_SCAN) {
-        const double f = 1.0 + scan_step(S);
-        for (int j = 0; j < SECTIONS; j++) {
-            const double x = S->k == 0 ? fmin(S->o.x_min * pow(f, j), S->o.x_max)
-                                       : fmin(S->x_last * pow(f, j + 1.0), S->o.x_max);
-            S->x[S->n++] = x;
-            if (x >= S->o.x_max)
-                break; /* the scan's last point is x_max itself */
-        }
-    } else if (S->phase == SR_SECT) {
-        const double ratio = S->hi / S->lo;
-        double prev = S->lo;
-        for (int j = 1; j <= SECTIONS; j++) {
-            const double x = S->lo * pow(ratio, (double)j / (SECTIONS + 1));
-            if (x > prev && x < S->hi)
-                S->x[S->n++] = prev = x;
-        }
-        if (!S->n) { /* no scale left between them: as narrow as it gets */
-            S->o.tol = INFINITY;
-            search_bracket(S);
-        }
-    }
-    return S->n;
-}
-
-/* The round's results: the lowest overturning scale wins, with the safe
- * one just below it. */
-static void search_feed(search_t *S)
-{
-    S->out->trials += S->n;
-    int j = 0;
-    while (j < S->n && !S->r[j].overturned) j++;
-    if (S->phase == SR_SCAN) {
-        if (j == S->n) { /* all safe */
-            S->lo = S->x_last = S->x[S->n - 1];
-            S->peak_last = S->r[S->n - 1].max_theta_ratio;
-            S->k += S->n;
-            if (S->x[S->n - 1] >= S->o.x_max)
-                S->phase = SR_DONE; /* nothing overturns */
-            return;
-        }
-        if (S->k + j == 0) { /* x_min itself overturns: the threshold may be lower */
-            S->phase = SR_DONE;
-            S->out->found = S->out->at_min = 1;
-            S->out->x = S->x[0];
-            S->out->x_safe = 0.0;
-            S->out->at_x = S->r[0];
-            return;
-        }
-        S->lo = j > 0 ? S->x[j - 1] : S->lo;
-        S->hi = S->x[j];
-        S->r_hi = S->r[j];
-        search_bracket(S);
-        return;
-    }
-    if (j < S->n) {
-        S->lo = j > 0 ? S->x[j - 1] : S->lo;
-        S->hi = S->x[j];
-        S->r_hi = S->r[j];
-    } else {
-        S->lo = S->x[S->n - 1];
-    }
-    search_bracket(S);
-}
 
 /* ---- the scenes' searches on a pool of threads -------------------------------- */
 
@@ -183,7 +44,7 @@ typedef struct {
     int pending[TR_N]; /* tasks of each track's current round not finished */
     int err[TR_N], err_at[TR_N];
     char msg[TR_N][256];
-    search_t below, above;
+    sw_search_t below, above;
     int done;
 } case_t;
 
@@ -195,7 +56,7 @@ typedef struct {
 } task_t;
 
 typedef struct {
-    task_t *q; /* a ring: at most 2 SECTIONS + 1 tasks of each case wait at a time */
+    task_t *q; /* a ring: at most 2 SW_SEARCH_SECTIONS + 1 tasks of each case wait at a time */
     size_t cap, head, len;
     size_t active;
     const sw_safety_opts_t *o;
@@ -245,12 +106,12 @@ static sw_search_opts_t case_search(const pool_t *W, const case_t *c)
 /* The next round of a search track, or none (done). */
 static void track_next(pool_t *W, case_t *c, int track)
 {
-    search_t *S = track == TR_BELOW ? &c->below : &c->above;
-    if (c->err[track] || S->phase == SR_DONE) {
+    sw_search_t *S = track == TR_BELOW ? &c->below : &c->above;
+    if (c->err[track] || S->phase == SW_SEARCH_DONE) {
         S->n = 0;
         return;
     }
-    const int n = search_points(S);
+    const int n = sw_search_points(S);
     for (int j = 0; j < n; j++) push_task(W, c, track, j);
 }
 
@@ -259,7 +120,7 @@ static void case_start(pool_t *W, case_t *c)
 {
     sw_safety_t *sf = &c->out->sf;
     c->prepared = 1;
-    c->below.phase = c->above.phase = SR_DONE;
+    c->below.phase = c->above.phase = SW_SEARCH_DONE;
     push_task(W, c, TR_ONE, 0);
     if (c->P.a_peak == 0.0)
         return; /* no longitudinal acceleration: no scale changes anything */
@@ -268,7 +129,7 @@ static void case_start(pool_t *W, case_t *c)
     sf->lift_scale = c->P.lift_scale;
     sw_search_opts_t sb = so;
     sb.x_max = 1.0;
-    if (sb.x_min < 1.0 && search_init(&c->below, &sb, &sf->below) != SW_OK) {
+    if (sb.x_min < 1.0 && sw_search_init(&c->below, &sb, &sf->below) != SW_OK) {
         c->err[TR_BELOW] = SW_EINVAL;
         snprintf(c->msg[TR_BELOW], sizeof c->msg[0],
                  "the log has no usable sample, or the search range is empty");
@@ -287,7 +148,7 @@ static void case_one_done(pool_t *W, case_t *c)
     sw_search_opts_t sa = so;
     sa.x_min = fmax(1.0, so.x_min);
     if (!sf->overturned && sa.x_min < sa.x_max) {
-        if (search_init(&c->above, &sa, &sf->above) != SW_OK) {
+        if (sw_search_init(&c->above, &sa, &sf->above) != SW_OK) {
             c->err[TR_ABOVE] = SW_EINVAL;
             snprintf(c->msg[TR_ABOVE], sizeof c->msg[0],
                      "the log has no usable sample, or the search range is empty");
@@ -354,9 +215,9 @@ static void task_done(pool_t *W, const task_t *t, int err, const char *msg)
             if (k == TR_ONE)
                 case_one_done(W, c);
             if (k == TR_BELOW && !c->err[k])
-                search_feed(&c->below);
+                sw_search_feed(&c->below);
             if (k == TR_ABOVE && !c->err[k])
-                search_feed(&c->above);
+                sw_search_feed(&c->above);
             if (k != TR_ONE)
                 track_next(W, c, k);
         }
@@ -406,7 +267,7 @@ int sw_safety_factors(sw_safety_case_t *cases, size_t n, const sw_log_t *log,
     if (!cases || !log || !log->t || !log->a_g || !o || n == 0)
         return SW_EINVAL;
     case_t *cs = calloc(n, sizeof *cs);
-    pool_t W = {.cap = n * (2 * SECTIONS + 1) + 1, .o = o, .active = n};
+    pool_t W = {.cap = n * (2 * SW_SEARCH_SECTIONS + 1) + 1, .o = o, .active = n};
     W.q = malloc(W.cap * sizeof *W.q);
     if (!cs || !W.q) {
         free(cs);

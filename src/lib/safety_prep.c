@@ -268,7 +268,7 @@ static int prep_rock(prep_t *P, const sw_rock_linear_t *rl)
 }
 
 /* Without checkpoints: the lifting scale from a run far too small to lift
- * anything (linear to first order), as sweep.c's pulses do. */
+ * anything (linear to first order), as boundary.c's pulses do. */
 static void prep_probe(prep_t *P, sw_runner_t *R)
 {
     const sw_log_t *L = P->log;

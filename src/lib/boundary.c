@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* sweep.c - overturning boundaries: a scan-then-bisect threshold search
- * over runs (run.c) and the boundary curves of pulses, their points on
- * the library's pool (pool.c).  The safety factors of a log, which use the same runs and
- * search, are in safety.c. */
+/* boundary.c - the overturning boundary curves of pulses (boundary.h):
+ * at each point a threshold search (search.c) over pulse runs (run.c),
+ * the points on the library's pool (pool.c).  The safety factors of a log, which use the same runs
+ * and search, are in safety.c. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,143 +16,9 @@
 #include "swaywatch/search.h"
 #include "swaywatch/status.h"
 
-#define DEFAULT_STEP 0.02
-#define DEFAULT_TOL 1e-3
 #define DEFAULT_X_MAX 20.0
 #define PROBE_SAMPLES 400.0     /* samples per period when probing the stuck frame */
 #define PROBE_MAX_SAMPLES 20000 /* cap on the samples of one probe run */
-
-/* ---- threshold search ----------------------------------------------------- */
-
-typedef struct {
-    sw_trial_fn f;
-    void *user;
-    double tol;
-    long *trials;
-} search_t;
-
-static int trial(const search_t *S, double x, sw_run_result_t *r)
-{
-    memset(r, 0, sizeof *r);
-    (*S->trials)++;
-    return S->f(S->user, x, r);
-}
-
-/* Bisect between xs (safe) and xo (overturning, run result *ro), in
- * either order, to the relative tolerance; *safe and *over get the final
- * ends and *r_over (may be NULL) the run at *over.  Geometric midpoints:
- * the scan is geometric too. */
-static int bisect(const search_t *S, double xs, double xo, const sw_run_result_t *ro, double *safe,
-                  double *over, sw_run_result_t *r_over)
-{
-    sw_run_result_t r, r_o = *ro;
-    for (;;) {
-        const double lo = fmin(xs, xo), hi = fmax(xs, xo);
-        if (hi / lo - 1.0 <= S->tol)
-            break;
-        const double m = sqrt(lo * hi);
-        if (!(m > lo && m < hi))
-            break;
-        const int rc = trial(S, m, &r);
-        if (rc < 0)
-            return rc;
-        if (r.overturned) {
-            xo = m;
-            r_o = r;
-        } else {
-            xs = m;
-        }
-    }
-    *safe = xs;
-    *over = xo;
-    if (r_over)
-        *r_over = r_o;
-    return SW_OK;
-}
-
-int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw_threshold_t *out)
-{
-    if (!f || !o || !out)
-        return SW_EINVAL;
-    memset(out, 0, sizeof *out);
-    const double step = o->step > 0.0 ? o->step : DEFAULT_STEP;
-    const double tol = o->tol > 0.0 ? o->tol : DEFAULT_TOL;
-    if (!(o->x_min > 0.0) || !(o->x_max > o->x_min) || !isfinite(o->x_max) || !isfinite(step) ||
-        !isfinite(tol))
-        return SW_EINVAL;
-    search_t S = {f, user, tol, &out->trials};
-    sw_run_result_t r;
-    double x = o->x_min, last = 0.0;
-    int k = 0, rc;
-
-    /* scan for the first overturn */
-    for (;; k++) {
-        x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
-        if ((rc = trial(&S, x, &r)) < 0)
-            return rc;
-        if (r.overturned)
-            break;
-        last = x;
-        if (x >= o->x_max)
-            return SW_OK; /* nothing overturns up to x_max */
-    }
-    out->found = 1;
-    if (k == 0) {
-        out->at_min = 1;
-        out->x = x;
-        out->x_safe = 0.0;
-        out->at_x = r;
-    } else {
-        rc = bisect(&S, last, x, &r, &out->x_safe, &out->x, &out->at_x);
-        if (rc < 0)
-            return rc;
-    }
-    if (!o->islands)
-        return SW_OK;
-
-    /* map the safe islands above: walk the same scan grid to x_max */
-    int over = 1;
-    double prev = x;
-    sw_run_result_t r_prev = r;
-    sw_island_t cur = {0.0, 0.0, 0};
-    while (prev < o->x_max) {
-        k++;
-        x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
-        if ((rc = trial(&S, x, &r)) < 0)
-            return rc;
-        if (over && !r.overturned) {
-            double safe, ov;
-            rc = bisect(&S, x, prev, &r_prev, &safe, &ov, NULL);
-            if (rc < 0)
-                return rc;
-            cur.lo = safe;
-            over = 0;
-        } else if (!over && r.overturned) {
-            double safe, ov;
-            rc = bisect(&S, prev, x, &r, &safe, &ov, NULL);
-            if (rc < 0)
-                return rc;
-            cur.hi = safe;
-            cur.open = 0;
-            if (out->n_islands < SW_MAX_ISLANDS)
-                out->islands[out->n_islands++] = cur;
-            else
-                out->islands_truncated = 1;
-            over = 1;
-        }
-        prev = x;
-        r_prev = r;
-    }
-    if (!over) {
-        cur.hi = o->x_max;
-        cur.open = 1;
-        if (out->n_islands < SW_MAX_ISLANDS)
-            out->islands[out->n_islands++] = cur;
-        else
-            out->islands_truncated = 1;
-    }
-    return SW_OK;
-}
 
 /* ---- boundary curves -------------------------------------------------------- */
 

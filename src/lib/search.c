@@ -1,0 +1,263 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* search.c - the lowest value that overturns a package (search.h): the
+ * blocking scan-then-bisect over a trial function, with the safe islands
+ * above it, and the resumable search in rounds (search_int.h) whose
+ * trials the caller runs where it likes. */
+#include <math.h>
+#include <string.h>
+
+#include "search_int.h"
+#include "swaywatch/search.h"
+#include "swaywatch/status.h"
+
+#define DEFAULT_STEP 0.02
+#define DEFAULT_TOL 1e-3
+#define NEAR_PEAK 0.25 /* peak |theta| / alpha from which the scan takes its finest step */
+#define FAR_STEPS 5.0  /* the scan's step far from that, in --step */
+
+/* ---- threshold search ----------------------------------------------------- */
+
+typedef struct {
+    sw_trial_fn f;
+    void *user;
+    double tol;
+    long *trials;
+} search_t;
+
+static int trial(const search_t *S, double x, sw_run_result_t *r)
+{
+    memset(r, 0, sizeof *r);
+    (*S->trials)++;
+    return S->f(S->user, x, r);
+}
+
+/* Bisect between xs (safe) and xo (overturning, run result *ro), in
+ * either order, to the relative tolerance; *safe and *over get the final
+ * ends and *r_over (may be NULL) the run at *over.  Geometric midpoints:
+ * the scan is geometric too. */
+static int bisect(const search_t *S, double xs, double xo, const sw_run_result_t *ro, double *safe,
+                  double *over, sw_run_result_t *r_over)
+{
+    sw_run_result_t r, r_o = *ro;
+    for (;;) {
+        const double lo = fmin(xs, xo), hi = fmax(xs, xo);
+        if (hi / lo - 1.0 <= S->tol)
+            break;
+        const double m = sqrt(lo * hi);
+        if (!(m > lo && m < hi))
+            break;
+        const int rc = trial(S, m, &r);
+        if (rc < 0)
+            return rc;
+        if (r.overturned) {
+            xo = m;
+            r_o = r;
+        } else {
+            xs = m;
+        }
+    }
+    *safe = xs;
+    *over = xo;
+    if (r_over)
+        *r_over = r_o;
+    return SW_OK;
+}
+
+int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw_threshold_t *out)
+{
+    if (!f || !o || !out)
+        return SW_EINVAL;
+    memset(out, 0, sizeof *out);
+    const double step = o->step > 0.0 ? o->step : DEFAULT_STEP;
+    const double tol = o->tol > 0.0 ? o->tol : DEFAULT_TOL;
+    if (!(o->x_min > 0.0) || !(o->x_max > o->x_min) || !isfinite(o->x_max) || !isfinite(step) ||
+        !isfinite(tol))
+        return SW_EINVAL;
+    search_t S = {f, user, tol, &out->trials};
+    sw_run_result_t r;
+    double x = o->x_min, last = 0.0;
+    int k = 0, rc;
+
+    /* scan for the first overturn */
+    for (;; k++) {
+        x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
+        if ((rc = trial(&S, x, &r)) < 0)
+            return rc;
+        if (r.overturned)
+            break;
+        last = x;
+        if (x >= o->x_max)
+            return SW_OK; /* nothing overturns up to x_max */
+    }
+    out->found = 1;
+    if (k == 0) {
+        out->at_min = 1;
+        out->x = x;
+        out->x_safe = 0.0;
+        out->at_x = r;
+    } else {
+        rc = bisect(&S, last, x, &r, &out->x_safe, &out->x, &out->at_x);
+        if (rc < 0)
+            return rc;
+    }
+    if (!o->islands)
+        return SW_OK;
+
+    /* map the safe islands above: walk the same scan grid to x_max */
+    int over = 1;
+    double prev = x;
+    sw_run_result_t r_prev = r;
+    sw_island_t cur = {0.0, 0.0, 0};
+    while (prev < o->x_max) {
+        k++;
+        x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
+        if ((rc = trial(&S, x, &r)) < 0)
+            return rc;
+        if (over && !r.overturned) {
+            double safe, ov;
+            rc = bisect(&S, x, prev, &r_prev, &safe, &ov, NULL);
+            if (rc < 0)
+                return rc;
+            cur.lo = safe;
+            over = 0;
+        } else if (!over && r.overturned) {
+            double safe, ov;
+            rc = bisect(&S, prev, x, &r, &safe, &ov, NULL);
+            if (rc < 0)
+                return rc;
+            cur.hi = safe;
+            cur.open = 0;
+            if (out->n_islands < SW_MAX_ISLANDS)
+                out->islands[out->n_islands++] = cur;
+            else
+                out->islands_truncated = 1;
+            over = 1;
+        }
+        prev = x;
+        r_prev = r;
+    }
+    if (!over) {
+        cur.hi = o->x_max;
+        cur.open = 1;
+        if (out->n_islands < SW_MAX_ISLANDS)
+            out->islands[out->n_islands++] = cur;
+        else
+            out->islands_truncated = 1;
+    }
+    return SW_OK;
+}
+
+/* ---- the resumable search, in rounds ----------------------------------------- */
+
+int sw_search_init(sw_search_t *S, const sw_search_opts_t *o, sw_threshold_t *out)
+{
+    memset(S, 0, sizeof *S);
+    memset(out, 0, sizeof *out);
+    S->o = *o;
+    S->out = out;
+    if (!(S->o.step > 0.0))
+        S->o.step = DEFAULT_STEP;
+    if (!(S->o.tol > 0.0))
+        S->o.tol = DEFAULT_TOL;
+    if (!(o->x_min > 0.0) || !(o->x_max > o->x_min) || !isfinite(o->x_max) ||
+        !isfinite(S->o.step) || !isfinite(S->o.tol)) {
+        S->phase = SW_SEARCH_DONE;
+        return SW_EINVAL;
+    }
+    return SW_OK;
+}
+
+/* The bracket [lo, hi] is found: done if it is narrow enough. */
+static void bracket(sw_search_t *S)
+{
+    S->phase = SW_SEARCH_SECT;
+    if (S->hi / S->lo - 1.0 > S->o.tol)
+        return;
+    S->phase = SW_SEARCH_DONE;
+    S->out->found = 1;
+    S->out->x = S->hi;
+    S->out->x_safe = S->lo;
+    S->out->at_x = S->r_hi;
+}
+
+/* The relative step of the scan's next round: --step wherever the
+ * package came within a quarter of alpha of its corner (peak |theta| of
+ * the last point run at least alpha / 4), growing to FAR_STEPS times it
+ * as that peak falls to 0 (no lift at all): a package that stays far from
+ * tipping at x does not overturn at a few per cent more, while near
+ * tipping, where overturning is not monotonic in the scale, the scan is as
+ * fine as asked. */
+static double scan_step(const sw_search_t *S)
+{
+    const double near = fmin(1.0, fmax(0.0, S->peak_last / NEAR_PEAK));
+    return S->o.step * (FAR_STEPS - (FAR_STEPS - 1.0) * near);
+}
+
+/* The scales of the next round (S->n of them; 0 when done). */
+int sw_search_points(sw_search_t *S)
+{
+    S->n = 0;
+    if (S->phase == SW_SEARCH_SCAN) {
+        const double f = 1.0 + scan_step(S);
+        for (int j = 0; j < SW_SEARCH_SECTIONS; j++) {
+            const double x = S->k == 0 ? fmin(S->o.x_min * pow(f, j), S->o.x_max)
+                                       : fmin(S->x_last * pow(f, j + 1.0), S->o.x_max);
+            S->x[S->n++] = x;
+            if (x >= S->o.x_max)
+                break; /* the scan's last point is x_max itself */
+        }
+    } else if (S->phase == SW_SEARCH_SECT) {
+        const double ratio = S->hi / S->lo;
+        double prev = S->lo;
+        for (int j = 1; j <= SW_SEARCH_SECTIONS; j++) {
+            const double x = S->lo * pow(ratio, (double)j / (SW_SEARCH_SECTIONS + 1));
+            if (x > prev && x < S->hi)
+                S->x[S->n++] = prev = x;
+        }
+        if (!S->n) { /* no scale left between them: as narrow as it gets */
+            S->o.tol = INFINITY;
+            bracket(S);
+        }
+    }
+    return S->n;
+}
+
+/* The round's results: the lowest overturning scale wins, with the safe
+ * one just below it. */
+void sw_search_feed(sw_search_t *S)
+{
+    S->out->trials += S->n;
+    int j = 0;
+    while (j < S->n && !S->r[j].overturned) j++;
+    if (S->phase == SW_SEARCH_SCAN) {
+        if (j == S->n) { /* all safe */
+            S->lo = S->x_last = S->x[S->n - 1];
+            S->peak_last = S->r[S->n - 1].max_theta_ratio;
+            S->k += S->n;
+            if (S->x[S->n - 1] >= S->o.x_max)
+                S->phase = SW_SEARCH_DONE; /* nothing overturns */
+            return;
+        }
+        if (S->k + j == 0) { /* x_min itself overturns: the threshold may be lower */
+            S->phase = SW_SEARCH_DONE;
+            S->out->found = S->out->at_min = 1;
+            S->out->x = S->x[0];
+            S->out->x_safe = 0.0;
+            S->out->at_x = S->r[0];
+            return;
+        }
+        S->lo = j > 0 ? S->x[j - 1] : S->lo;
+        S->hi = S->x[j];
+        S->r_hi = S->r[j];
+        bracket(S);
+        return;
+    }
+    if (j < S->n) {
+        S->lo = j > 0 ? S->x[j - 1] : S->lo;
+        S->hi = S->x[j];
+        S->r_hi = S->r[j];
+    } else {
+        S->lo = S->x[S->n - 1];
+    }
+    bracket(S);
+}
