@@ -55,6 +55,29 @@ static inline double fz_double(fz_bytes_t *b)
     return d;
 }
 
+/* The work an engine has done so far: the internal steps of all its
+ * packages (their summaries' steps; a stuck package's exact advance counts
+ * one).  The targets that stream samples stop taking records once it
+ * passes FZ_STEP_BUDGET (half a second of motion at the default 1 ms step
+ * for each of two packages: a 10 g braking pulse overturns the bare crate
+ * of the seeds in 0.42 s), and keep each record's span short (a bridged gap no longer than
+ * FZ_MAX_BRIDGE), so that no input costs more than a few milliseconds
+ * under the sanitizers.  The long stretches cut off repeat what the short
+ * ones do; the lines the targets reach grew with the rate (HACKING.md,
+ * "Fuzzing"). */
+#define FZ_STEP_BUDGET 1000
+#define FZ_MAX_BRIDGE 0.25 /* s, sw_mon_opts_t.max_bridge (the default is 10 s) */
+
+static inline long fz_steps(const sw_engine_t *e)
+{
+    long n = 0;
+    sw_summary_t s;
+    for (size_t k = 0; k < sw_engine_count(e); k++)
+        if (sw_engine_summary(e, k, &s) == SW_OK)
+            n += s.steps;
+    return n;
+}
+
 /* Every number an engine output carries must be finite: the engine never
  * hands out NaN or infinity (a package whose state leaves the model is
  * faulted and reset instead). */

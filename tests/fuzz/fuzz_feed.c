@@ -7,7 +7,11 @@
  * clocks of arrival moving on between them.  fuzz_accel covers the bytes of
  * a message; this one covers what a broken or hostile sender's clock and
  * counter do to the monitor.  A bare and a framed crate are watched: the
- * models whose cost does not grow with a gap's length.
+ * models whose cost does not grow with a gap's length.  The work per input
+ * is bounded (fuzz.h): at most MAX_RECORDS records and FZ_STEP_BUDGET
+ * engine steps, gaps bridged up to FZ_MAX_BRIDGE (longer ones restart the
+ * packages, as the gap policy does), and no reserve (risk.h: building it
+ * costs several times the rest of an input, and the timeline is the matter).
  *
  * Input: 1 byte of monitor options (skew check, max_jump: default, any,
  * 0.5 s; state rate), then records of a kind byte and its bytes:
@@ -27,45 +31,15 @@
  * values within the plausibility limit and is the last accepted utime;
  * every state_t and alarm_t published decodes and holds only finite
  * numbers.  At the end (after sw_mon_flush) nothing is held. */
-#include <lcm/lcm.h>
 #include <stdint.h>
 
 #include "../testutil.h"
 #include "fuzz.h"
+#include "fuzz_lcm.h"
 #include "monitor.h"
 #include "swaywatch_accel_t.h"
-#include "swaywatch_alarm_t.h"
-#include "swaywatch_state_t.h"
 
-#define MAX_RECORDS 400
-
-typedef struct {
-    long states, alarms;
-} seen_t;
-
-static void on_state_msg(const lcm_recv_buf_t *rb, const char *ch, void *user)
-{
-    (void)ch;
-    seen_t *s = user;
-    swaywatch_state_t m;
-    FZ_CHECK(swaywatch_state_t_decode(rb->data, 0, (int)rb->data_size, &m) == (int)rb->data_size);
-    const double v[] = {m.theta,        m.theta_dot,    m.u,  m.z_b, m.margin,
-                        m.margin_bound, m.uplift_ratio, m.a_g};
-    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) FZ_CHECK(isfinite(v[i]));
-    FZ_CHECK(fabs(m.theta) <= M_PI_2 + 1e-6);
-    s->states++;
-}
-
-static void on_alarm_msg(const lcm_recv_buf_t *rb, const char *ch, void *user)
-{
-    (void)ch;
-    seen_t *s = user;
-    swaywatch_alarm_t m;
-    FZ_CHECK(swaywatch_alarm_t_decode(rb->data, 0, (int)rb->data_size, &m) == (int)rb->data_size);
-    FZ_CHECK(isfinite(m.theta) && isfinite(m.margin));
-    FZ_CHECK(memchr(m.text, 0, sizeof m.text) != NULL);
-    s->alarms++;
-}
+#define MAX_RECORDS 48
 
 static uint64_t be(fz_bytes_t *b, int n)
 {
@@ -144,7 +118,8 @@ static void values(fz_bytes_t *b, swaywatch_accel_t *a)
     }
 }
 
-static void check_counts(sw_mon_t *m, long fed)
+/* Returns the samples held. */
+static long check_counts(sw_mon_t *m, long fed)
 {
     sw_mon_counts_t c;
     sw_mon_counts(m, &c);
@@ -153,6 +128,7 @@ static void check_counts(sw_mon_t *m, long fed)
     FZ_CHECK(c.accepted >= 0);
     for (int r = 0; r < SW_MON_NREJ; r++) FZ_CHECK(c.rejected[r] >= 0);
     FZ_CHECK(c.received == c.accepted + sw_mon_rejected(&c) + c.held);
+    return c.held;
 }
 
 static sw_mon_t *make(uint8_t o, lcm_t *lcm)
@@ -165,6 +141,8 @@ static sw_mon_t *make(uint8_t o, lcm_t *lcm)
     mo.max_jump = (o >> 2) % 3 == 0 ? 0.0 : (o >> 2) % 3 == 1 ? -1.0 : 0.5;
     mo.state_rate = (o >> 4) & 1 ? 100.0 : 0.0;
     mo.hysteresis = -1.0;
+    mo.reserve_rate = -1.0;
+    mo.max_bridge = FZ_MAX_BRIDGE;
     sw_scene_t sc[2] = {tu_bare(2.0, 0.728), tu_frame(2.0, 0.728, 250.0, 5.59, 0.1)};
     snprintf(sc[0].name, sizeof sc[0].name, "crate");
     snprintf(sc[1].name, sizeof sc[1].name, "crate-frame");
@@ -179,12 +157,7 @@ static sw_mon_t *make(uint8_t o, lcm_t *lcm)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fz_bytes_t b = {data, size};
-    lcm_t *lcm = lcm_create("memq://");
-    if (!lcm)
-        return 0;
-    seen_t seen = {0, 0};
-    lcm_subscription_t *s1 = lcm_subscribe(lcm, SW_MON_STATE_CHANNEL, on_state_msg, &seen);
-    lcm_subscription_t *s2 = lcm_subscribe(lcm, SW_MON_ALARM_CHANNEL, on_alarm_msg, &seen);
+    lcm_t *lcm = fz_lcm();
     sw_mon_t *m = make(fz_byte(&b), lcm);
 
     swaywatch_accel_t a = {.utime = WALL0, .seq = 0};
@@ -192,8 +165,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     double mono = 100.0;
     unsigned char buf[128]; /* an accel_t is 73 bytes */
     int len = -1;
-    long fed = 0;
-    for (int r = 0; r < MAX_RECORDS && b.n > 0; r++) {
+    long fed = 0, held = 0;
+    for (int r = 0; r < MAX_RECORDS && b.n > 0 && fz_steps(sw_mon_engine(m)) < FZ_STEP_BUDGET;
+         r++) {
         const uint8_t kind = fz_byte(&b);
         switch (kind % 8) {
             case 0:
@@ -258,29 +232,28 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         } else if (rc < 0) {
             FZ_CHECK(why < SW_MON_NREJ);
         }
-        check_counts(m, fed);
-        while (lcm_handle_timeout(lcm, 0) > 0) {
-        }
+        /* the counts after every message that was held or that found
+         * samples held (confirmed or refuted them), and every 8th: they
+         * cost as much as the message (the gate's facts) */
+        if (rc == SW_MON_HELD || held > 0 || fed % 8 == 0)
+            held = check_counts(m, fed);
+        fz_lcm_drain(lcm);
         if (mono >= sw_mon_deadline(m))
             sw_mon_tick(m, mono);
     }
     sw_mon_flush(m);
-    while (lcm_handle_timeout(lcm, 0) > 0) {
-    }
+    fz_lcm_drain(lcm);
     check_counts(m, fed);
     sw_mon_counts_t c;
     sw_mon_counts(m, &c);
     FZ_CHECK(c.held == 0); /* the flush refused what was held */
     FZ_CHECK(c.publish_errors == 0);
-    FZ_CHECK(c.states == seen.states && c.alarms == seen.alarms);
+    FZ_CHECK(c.states == fz_seen.states && c.alarms == fz_seen.alarms);
     for (size_t k = 0; k < 2; k++) {
         sw_summary_t s;
         FZ_CHECK(sw_engine_summary(sw_mon_engine(m), k, &s) == SW_OK);
         fz_check_summary(&s);
     }
     sw_mon_destroy(m);
-    lcm_unsubscribe(lcm, s1);
-    lcm_unsubscribe(lcm, s2);
-    lcm_destroy(lcm);
     return 0;
 }

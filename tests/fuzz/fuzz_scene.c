@@ -10,10 +10,17 @@
  * Checks: only documented status codes; a scene that validates derives
  * finite quantities and makes an engine (or a reasoned refusal); every
  * state, event and summary number the engine hands out is finite, however
- * odd the samples (NaN, 1e300, time going back, free fall). */
+ * odd the samples (NaN, 1e300, time going back, free fall).
+ *
+ * The work per input is bounded (fuzz.h): pushing stops at FZ_STEP_BUDGET
+ * engine steps, no sample interval is longer than MAX_STEPS_PER_SAMPLE of
+ * the package's own step (a stiff scene steps in microseconds: a 32 ms
+ * interval would be tens of thousands of steps), and the settle at the end
+ * is as short. */
 #include "fuzz.h"
 
 #define MAX_SAMPLES 48
+#define MAX_STEPS_PER_SAMPLE 64
 #define G 9.81
 
 typedef struct {
@@ -93,16 +100,19 @@ static void run_engine(const sw_scene_t *sc, fz_bytes_t *b, int have_samples)
         return;
     }
     double t = 0.0;
+    const double h = sw_engine_dt(e, 0); /* s, the package's step */
+    FZ_CHECK(h > 0.0 && isfinite(h));
+    const double longest = MAX_STEPS_PER_SAMPLE * h; /* s, of a sample interval */
     if (!have_samples) {
         /* A braking half-sine that lifts most packages. */
-        for (int i = 0; i <= 200; i++) {
+        for (int i = 0; i <= 200 && fz_steps(e) < FZ_STEP_BUDGET; i++) {
             const double ti = i * 1e-3;
             sw_engine_push(e, ti, -1.2 * G * sin(M_PI * ti / 0.2), 0.0);
         }
     }
-    for (int i = 0; i < MAX_SAMPLES && b->n > 0; i++) {
+    for (int i = 0; i < MAX_SAMPLES && b->n > 0 && fz_steps(e) < FZ_STEP_BUDGET; i++) {
         const uint8_t k = fz_byte(b), x = fz_byte(b), y = fz_byte(b), z = fz_byte(b);
-        double dt = (1 + (k & 0x3f)) * 5e-4; /* up to 32 ms */
+        double dt = fmin((1 + (k & 0x3f)) * 5e-4, longest); /* up to 32 ms */
         double ag = (int8_t)x * 0.25, az = (int8_t)y * 0.1;
         switch (k >> 6) {
             case 1: ag = specials[z % NSPECIAL]; break;
@@ -128,7 +138,7 @@ static void run_engine(const sw_scene_t *sc, fz_bytes_t *b, int have_samples)
         if (rc >= 0)
             t = tn;
     }
-    FZ_CHECK(sw_engine_finish(e, 0.05) >= 0);
+    FZ_CHECK(sw_engine_finish(e, fmin(0.05, longest)) >= 0);
     sw_summary_t s;
     FZ_CHECK(sw_engine_summary(e, 0, &s) == SW_OK);
     fz_check_summary(&s);
