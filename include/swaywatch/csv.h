@@ -51,15 +51,22 @@
 extern "C" {
 #endif
 
+/* SW_CSV_MAX_LINE and SW_CSV_AHEAD_BYTES may be lowered with -D for a
+ * whole build: the fuzz build does, so that its inputs reach them
+ * (CMakeLists.txt, SW_FUZZ). */
+#ifndef SW_CSV_MAX_LINE
 #define SW_CSV_MAX_LINE (1 << 20) /* bytes; longer lines are rejected, not buffered */
-#define SW_CSV_NAME_MAX 64        /* bytes kept of a header field's name */
-#define SW_CSV_MAX_FIELDS 64      /* header fields kept (inference, messages) */
+#endif
+#define SW_CSV_NAME_MAX 64   /* bytes kept of a header field's name */
+#define SW_CSV_MAX_FIELDS 64 /* header fields kept (inference, messages) */
 /* The look-ahead: the first lines of a log are held until its layout is
  * fixed (the preamble, the columns and the time format are decided on
  * them), at most this many data-like lines, lines, or bytes of text. */
 #define SW_CSV_AHEAD_ROWS 256
 #define SW_CSV_AHEAD_LINES 1024
+#ifndef SW_CSV_AHEAD_BYTES
 #define SW_CSV_AHEAD_BYTES (256 * 1024)
+#endif
 
 /* Units of the time and acceleration columns. */
 enum {
