@@ -237,8 +237,10 @@ int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1)
     }
     const double eps = 1e-12 * P->d.R; /* m: the clearance's rounding */
     const double tend = sw_min2(H, t_over);
-    int n = (int)ceil(tend / GRID_DT);
-    n = n < GRID_MIN ? GRID_MIN : n > GRID_MAX ? GRID_MAX : n;
+    /* clamped before the conversion: a flight between samples days apart
+     * is more grid points than an int holds */
+    const double q = ceil(tend / GRID_DT);
+    const int n = !(q > GRID_MIN) ? GRID_MIN : q > GRID_MAX ? GRID_MAX : (int)q;
     double lo = 0.0, land_at = -1.0;
     for (int k = 1; k <= n && land_at < 0.0; k++) {
         const double tau = tend * k / n, c = arc_clearance(P, &a, tau);
