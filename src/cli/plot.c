@@ -45,13 +45,16 @@ int sw_cli_plot_check(const sw_cli_option_t *o, const char *path, void *dest)
  * has no escapes at all): gnuplot turns the escape back into the same
  * byte, so a file name keeps every byte it has.  A backquote too: gnuplot
  * substitutes `...` with a shell command's output before it parses a
- * line, inside double-quoted strings as well. */
+ * line, inside double-quoted strings as well.  gnuplot reads up to four
+ * digits after "\0" and three after "\1" to "\3": a control byte goes
+ * with four ("\0001"), or a digit after it would be read into it ("\0015"
+ * is a carriage return, not byte 1 and a '5'). */
 static void put_byte(FILE *f, unsigned char c)
 {
     if (c == '"' || c == '\\')
         fprintf(f, "\\%c", c);
     else if (c < 0x20 || c > 0x7e || c == '`')
-        fprintf(f, "\\%03o", c);
+        fprintf(f, c < 0100 ? "\\%04o" : "\\%03o", c);
     else
         fputc(c, f);
 }

@@ -21,7 +21,8 @@ int sw_cli_plot_check(const sw_cli_option_t *o, const char *path, void *dest);
 sw_plot_t *sw_cli_plot_open(const char *path, int width, int height);
 FILE *sw_cli_plot_file(sw_plot_t *p);
 int sw_cli_plot_close(sw_plot_t *p); /* SW_EXIT_OK or SW_EXIT_IO */
-/* s as a gnuplot string literal (single quotes), as it is (file names). */
+/* s as a gnuplot string literal (double quotes, every byte that is not
+ * printable ASCII escaped), as it is (file names). */
 void sw_cli_plot_string(FILE *f, const char *s);
 /* s as a gnuplot string literal to be shown as text: the enhanced-text
  * markup characters (_ ^ { } @ & ~) escaped. */

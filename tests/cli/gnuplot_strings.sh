@@ -7,7 +7,8 @@
 # refuses control characters) and boundary's --title, and replay --plot,
 # simulate --plot, forensics --plot and --report and boundary --plot are
 # run.  No PWNED_ file may appear, gnuplot must not fail, and the figure
-# must be written under its exact name.
+# must be written under its exact name, also where a control byte in it is
+# followed by a digit.
 . "$(dirname "$0")/lib.sh"
 command -v gnuplot >/dev/null 2>&1 || exit 77
 LOGS=$SRC/sample_logs
@@ -60,6 +61,13 @@ for n, grp in enumerate(groups):
     run([b"forensics", path, b"-s", scene, b"--no-what-if", b"--report", rep, b"-q"],
         "forensics --report, group %d" % n, rep)
     os.unlink(path)
+
+# a control byte followed by an octal digit: gnuplot reads "\0015" as one
+# escape (a carriage return), so the figure went to another name
+for b in (1, 7, 10, 27, 31):
+    fig = os.path.join(work, b"fig" + bytes([b]) + b"5" + bytes([b]) + b"07.svg")
+    run([b"replay", log, b"-s", scene, b"--plot", fig, b"-q"],
+        "replay --plot, byte %d then digits in the name" % b, fig)
 
 # titles: every byte in one --title (it is not a file name)
 title = b"T" + b"".join(payload(b) for b in special)
