@@ -125,5 +125,16 @@ mixed += event(200, T0 + 400000, "ACCEL", st.encode()) + event(201, T0 + 401000,
 put("lcmlog", "mixed-channels", b"\x00" + mixed)
 put("lcmlog", "mixed-channels-regex", b"\x02" + mixed)
 put("lcmlog", "no-such-channel", b"\x04" + mixed)
+# hostile length fields (tests/lcm/lcmlog_hostile.sh): event 10 of 20 with
+# its channel or data length beyond the file, past LCM's 256 MB limit,
+# negative or zero; each one corrupted region, the events after it read
+short = log(20)
+e20 = len(short) // 20
+for name, off, value in [("data-7fffffff", 24, 0x7FFFFFFF), ("chan-7fffffff", 20, 0x7FFFFFFF),
+                         ("data-negative", 24, 0x80000000), ("chan-zero", 20, 0),
+                         ("data-256m", 24, 0x0FFFFFF0)]:
+    bad = bytearray(short)
+    struct.pack_into(">I", bad, 10 * e20 + off, value)
+    put("lcmlog", "hostile-" + name, b"\x00" + bytes(bad))
 put("lcmlog", "empty", b"\x00")
 put("lcmlog", "not-a-log", b"\x00" + b"t,a\n0,0\n0.001,-1\n")
