@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Writes the seed corpora of the text targets: csv (the logger and app
-exports of tests/data/exports/, cut to their first lines, and the bad CSV
-logs of tests/badinput/csv/) and scene (the hostile scenes of
+"""Writes the seed corpora of the text targets: csv and timecol (the logger
+and app exports of tests/data/exports/, cut to their first lines, and the
+bad CSV logs of tests/badinput/csv/) and scene (the hostile scenes of
 tests/badinput/scenes/).  The input formats are at the top of each
 fuzz_<target>.c.  The hand-written seeds already in the corpus folders are
 left as they are; files this script writes start with "x-" or "bad-".
@@ -33,6 +33,11 @@ def head(path, n=LINES):
 CSV_INFER = bytes([0x00, 0x00, 0x01, 0xC0])
 # ... and the defaults: columns 1 and 2, no infer
 CSV_PLAIN = bytes([0x00, 0x00, 0x00, 0x00])
+# timecol: o0 3 (date order detected, delimiter detected, header detected,
+# decimal comma detected, preamble found), o1 0 (nothing given)
+TIMECOL = bytes([0x03, 0x00])
+# ... the day first given (o0 1)
+TIMECOL_DMY = bytes([0x01, 0x00])
 
 exports = os.path.join(SRC, "tests", "data", "exports")
 for name in sorted(os.listdir(exports)):
@@ -41,6 +46,9 @@ for name in sorted(os.listdir(exports)):
     text = head(os.path.join(exports, name))
     stem = name[:-4]
     put("csv", "x-" + stem, CSV_INFER + text)
+    put("timecol", "x-" + stem, TIMECOL + text)
+    if "dayfirst" in stem or "monthfirst" in stem:
+        put("timecol", "x-" + stem + "-dmy", TIMECOL_DMY + text)
 
 # the reader's limits as the fuzz build sets them (CMakeLists.txt): a line
 # over 4 KiB, and a look-ahead ended by its 16 KiB before its 256 rows
