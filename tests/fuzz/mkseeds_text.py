@@ -2,10 +2,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Writes the seed corpora of the text targets: csv and timecol (the logger
 and app exports of tests/data/exports/, cut to their first lines, and the
-bad CSV logs of tests/badinput/csv/) and scene (the hostile scenes of
-tests/badinput/scenes/).  The input formats are at the top of each
+bad CSV logs of tests/badinput/csv/), scene (the hostile scenes of
+tests/badinput/scenes/) and gnuplot (names and titles that try to end a
+gnuplot string or command).  The input formats are at the top of each
 fuzz_<target>.c.  The hand-written seeds already in the corpus folders are
-left as they are; files this script writes start with "x-" or "bad-".
+left as they are; files this script writes start with "x-", "bad-" or
+"g-".
 
 usage: mkseeds_text.py SOURCE_DIR CORPUS_DIR
   (SOURCE_DIR: the top of the source tree)"""
@@ -66,3 +68,26 @@ scenes = os.path.join(SRC, "tests", "badinput", "scenes")
 for name in sorted(os.listdir(scenes)):
     with open(os.path.join(scenes, name), "rb") as f:
         put("scene", "bad-" + name[:-4], f.read())
+
+# gnuplot: options, then the file name, the title and three package names
+# (NUL between them); o 0x36: .svg, three packages, events, gaps
+GP = bytes([0x36])
+inject = [
+    b'\nsystem("touch PWNED")\n#',
+    b'"\nsystem("touch PWNED")\n"',
+    b"'\nsystem('touch PWNED')\n'",
+    b"`touch PWNED`",
+    b"\\\"; system(\"touch PWNED\"); \\\"",
+    b"\r!touch PWNED\r",
+    b"@GPVAL_VERSION $data {x}_^&~",
+    b"\x01" + b"5\x0107\x1b[31m",
+    b"\xc3\xa9t\xc3\xa9 \xff\xfe \xe2\x80\xae",
+]
+for i, s in enumerate(inject):
+    put("gnuplot", "g-name-%d" % i, GP + s + b"\0" + b"title\0" + b"crate\0pallet\0box")
+    put("gnuplot", "g-title-%d" % i, GP + b"fig\0" + s + b"\0crate\0pallet\0box")
+    put("gnuplot", "g-package-%d" % i, GP + b"fig\0title\0" + s[:60] + b"\0crate\0box")
+put("gnuplot", "g-png-one-package", bytes([0x01]) + b"figure\0Replay of drive.csv\0crate-A")
+put("gnuplot", "g-every-control-byte",
+    bytes([0x00]) + bytes(range(1, 32)) + b"\0" + bytes(range(1, 32)) + b"\x7f\0"
+    + bytes(range(1, 32)))
