@@ -8,14 +8,16 @@ usage: mkseeds.py LCMTYPES_PYTHON_DIR CORPUS_DIR
   (LCMTYPES_PYTHON_DIR: build/lcmtypes/python, the generated bindings)
 
 The seeds keep every utime and seq well inside int64: the targets
-themselves reach the extremes."""
+themselves reach the extremes.  The lcm-logger logs carry accel_v1_t, the
+layout a sender without a key sends; the "-signed" ones accel_t, with a
+freshness, a key id and a MAC (an unkeyed monitor reads both)."""
 import math
 import os
 import struct
 import sys
 
 sys.path.insert(0, sys.argv[1])
-from swaywatch import accel_t, state_t  # noqa: E402
+from swaywatch import accel_t, accel_v1_t, state_t  # noqa: E402
 
 OUT = sys.argv[2]
 T0 = 1700000000000000  # us, 2023
@@ -47,6 +49,7 @@ def pulse(n, amp=-9.0, w=10.0):
 
 
 put("feed", "pulse", b"\x00" + pulse(400))
+put("feed", "pulse-frame", b"\x20" + pulse(400))  # the second crate framed
 put("feed", "pulse-vertical-rate", b"\x11" + pulse(200) + b"".join(step(-4, -3) for _ in range(50)))
 # a jump of 30 min, confirmed by the next samples; a year ahead, refused
 put("feed", "jump-confirmed",
@@ -81,8 +84,12 @@ def event(num, ts, channel, data, sync=SYNC):
     return struct.pack(">IqqII", sync, num, ts, len(ch), len(data)) + ch + data
 
 
-def accel(k, rate=200.0, amp=-9.0, w=10.0):
-    a = accel_t()
+def accel(k, rate=200.0, amp=-9.0, w=10.0, signed=False):
+    a = accel_t() if signed else accel_v1_t()
+    if signed:
+        a.freshness = T0 + k
+        a.key_id = 1
+        a.mac = [(7 * k + i) % 256 - 128 for i in range(16)]
     a.utime = T0 + int(k * 1e6 / rate)
     a.seq = k
     t = k / rate - 0.05
@@ -91,10 +98,10 @@ def accel(k, rate=200.0, amp=-9.0, w=10.0):
     return a.utime, a.encode()
 
 
-def log(n, channel="ACCEL", start=0):
+def log(n, channel="ACCEL", start=0, signed=False):
     out = b""
     for k in range(start, start + n):
-        ts, d = accel(k)
+        ts, d = accel(k, signed=signed)
         out += event(k, ts + 150, channel, d)
     return out
 
@@ -136,5 +143,6 @@ for name, off, value in [("data-7fffffff", 24, 0x7FFFFFFF), ("chan-7fffffff", 20
     bad = bytearray(short)
     struct.pack_into(">I", bad, 10 * e20 + off, value)
     put("lcmlog", "hostile-" + name, b"\x00" + bytes(bad))
+put("lcmlog", "pulse-signed", b"\x00" + log(60, signed=True))
 put("lcmlog", "empty", b"\x00")
 put("lcmlog", "not-a-log", b"\x00" + b"t,a\n0,0\n0.001,-1\n")
