@@ -76,6 +76,7 @@ for t in $BUILT; do
     case $t in
         gnuplot) maxlen=1024 ;;
         timecol) maxlen=4098 ;;
+        lcmlog) maxlen=16385 ;;
         *) maxlen=65536 ;;
     esac
     echo "swaywatch fuzz: $t for $SECS s" >&2
