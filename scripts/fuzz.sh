@@ -59,7 +59,10 @@ report() {
     rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
     corpus=$(sed -n 's/.* corp: \([0-9]*\)\/.*/\1/p' "$log" | tail -1)
     load=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo '?')
-    echo "fuzz $name: ${n:-0} inputs in $SECS s (${rate:-0}/s), corpus ${corpus:-0}, load $load"
+    # the seconds it ran: fewer than asked when it stopped on a finding
+    secs=$SECS
+    [ "${rate:-0}" -gt 0 ] && [ $((${n:-0} / rate)) -lt "$SECS" ] && secs=$((${n:-0} / rate))
+    echo "fuzz $name: ${n:-0} inputs in $secs s (${rate:-0}/s), corpus ${corpus:-0}, load $load"
     if [ "${rate:-0}" -lt 1000 ] && [ "$name" != gnuplot ]; then
         echo "swaywatch fuzz: $name ran ${rate:-0} inputs/s, fewer than 1000 (load $load)" >&2
     fi
