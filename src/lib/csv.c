@@ -319,7 +319,15 @@ static int first_line(sw_csv_t *c, int ok)
         fail(c, SW_ENOTFOUND, c->reason);
         return 0;
     }
-    fix_layout(c, 0);
+    if (fix_layout(c, 0) != SW_OK) {
+        /* A first row the layout cannot be fixed from is counted and
+         * reported like any unusable row (rows == accepted + rejected),
+         * then the parse ends with the layout's message. */
+        c->n.rows++;
+        const char *m = strstr(c->msg, ": "); /* after "line N: " */
+        snprintf(c->reason, sizeof c->reason, "%.200s", m ? m + 2 : c->msg);
+        reject(c);
+    }
     return 0;
 }
 
@@ -369,7 +377,11 @@ static int parse_time(sw_csv_t *c, double *out)
         if (c->tkind == 0) {
             c->tkind = 2;
             c->tscale = 1.0;
+            /* the layout says what is read: a date-time, not the epoch
+             * numbers of the look-ahead rows after it */
             c->lay.unit[R_TIME] = SW_CSV_UNIT_DATETIME;
+            c->lay.scale[R_TIME] = 1.0;
+            c->lay.epoch = 0;
         }
         return NUM_OK;
     }
