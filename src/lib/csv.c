@@ -379,6 +379,8 @@ static int parse_time(sw_csv_t *c, double *out)
             c->tscale = 1.0;
             /* the layout says what is read: a date-time, not the epoch
              * numbers of the look-ahead rows after it */
+            if (c->lay.unit[R_TIME] != SW_CSV_UNIT_DATETIME)
+                c->lay.unit_from[R_TIME] = SW_CSV_FROM_VALUES; /* over a "(s)" header */
             c->lay.unit[R_TIME] = SW_CSV_UNIT_DATETIME;
             c->lay.scale[R_TIME] = 1.0;
             c->lay.epoch = 0;
