@@ -20,6 +20,7 @@
 #include "swaywatch/scheme.h"
 #include "swaywatch/search.h"
 #include "swaywatch/status.h"
+#include "swaywatch/stream.h"
 #include "swaywatch/units.h"
 #include "swaywatch/whatif.h"
 

@@ -1,0 +1,337 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* stream.c - one input path (stream.h): the gate in front of the engine,
+ * each output into the reserve and the alarm watches; while two
+ * timelines compete, a second gate and set of engines for the other one,
+ * whose alarms from WARN up are raised too.  Every part is made at
+ * create; a sample allocates nothing. */
+#include "swaywatch/stream.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "swaywatch/status.h"
+
+struct sw_stream {
+    size_t n;
+    sw_engine_t *engine;
+    sw_gate_t *gate;
+    sw_risk_t *risk;
+    sw_alarm_watch_t *watch; /* one per package */
+    char (*names)[SW_NAME_MAX];
+    int alarms; /* on_alarm given: the watches run */
+    /* the second timeline (opts.rival): its gate, engines and watches, no
+     * reserve; fresh: the watches as set up, for each new contest */
+    sw_gate_t *gate_b;
+    sw_engine_t *engine_b;
+    sw_alarm_watch_t *watch_b, *watch_fresh;
+    double hysteresis;
+    sw_stream_opts_t o;
+};
+
+/* ---- the kept timeline ------------------------------------------------------------ */
+
+static void on_alarm(void *user, const sw_alarm_t *a)
+{
+    const sw_stream_t *st = user;
+    st->o.on_alarm(st->o.user, a, sw_gate_source_time(st->gate, a->t));
+}
+
+static void on_event(void *user, const sw_event_t *ev)
+{
+    sw_stream_t *st = user;
+    if (st->o.on_event)
+        st->o.on_event(st->o.user, ev);
+    if (st->alarms && ev->pkg < st->n)
+        sw_alarm_on_event(&st->watch[ev->pkg], ev, on_alarm, st);
+}
+
+/* The reserve first, then the alarms: the caller's state carries both. */
+static void on_state(void *user, const sw_output_t *out)
+{
+    sw_stream_t *st = user;
+    const size_t k = out->pkg;
+    if (k >= st->n)
+        return;
+    if (sw_output_finite(out) && sw_risk_output(st->risk, out) == 1 && st->alarms) {
+        const sw_risk_pkg_t *p = sw_risk_pkg(st->risk, k);
+        sw_alarm_on_reserve(&st->watch[k], out->t, out->state.theta, out->margin, p->reserve_g,
+                            on_alarm, st);
+    }
+    if (st->alarms)
+        sw_alarm_on_output(&st->watch[k], out, on_alarm, st);
+    if (st->o.on_state)
+        st->o.on_state(st->o.user, out);
+}
+
+/* ---- the second timeline ----------------------------------------------------------- */
+
+/* An alarm of the second engines: from WARN up it is raised as the first's
+ * are, saying where it comes from, timed by the second gate. */
+static void on_alarm_b(void *user, const sw_alarm_t *a)
+{
+    const sw_stream_t *st = user;
+    if (a->level < SW_ALARM_LEVEL_WARN)
+        return;
+    sw_alarm_t b = *a;
+    static const char head[] = "second timeline: ";
+    size_t tl = strlen(a->text);
+    if (tl > sizeof b.text - sizeof head)
+        tl = sizeof b.text - sizeof head; /* cut to fit */
+    memcpy(b.text, head, sizeof head - 1);
+    memcpy(b.text + sizeof head - 1, a->text, tl);
+    b.text[sizeof head - 1 + tl] = '\0';
+    st->o.on_alarm(st->o.user, &b, sw_gate_source_time(st->gate_b, a->t));
+}
+
+static void on_event_b(void *user, const sw_event_t *ev)
+{
+    sw_stream_t *st = user;
+    if (st->alarms && ev->pkg < st->n)
+        sw_alarm_on_event(&st->watch_b[ev->pkg], ev, on_alarm_b, st);
+}
+
+static void on_state_b(void *user, const sw_output_t *out)
+{
+    sw_stream_t *st = user;
+    if (st->alarms && out->pkg < st->n && sw_output_finite(out))
+        sw_alarm_on_output(&st->watch_b[out->pkg], out, on_alarm_b, st);
+}
+
+/* A sample of the second timeline (the first gate counted it as refused). */
+static void on_rival(void *user, const sw_sample_t *s)
+{
+    const sw_stream_t *st = user;
+    sw_gate_push(st->gate_b, s);
+}
+
+/* ---- the gate's reports -------------------------------------------------------------- */
+
+static void on_gate_event(void *user, const sw_gate_event_t *ev)
+{
+    sw_stream_t *st = user;
+    if (ev->kind == SW_GATE_EV_CONTESTED && st->engine_b) {
+        /* a contest begins: the second engines start afresh, at rest */
+        sw_engine_reset(st->engine_b);
+        sw_gate_reset(st->gate_b);
+        memcpy(st->watch_b, st->watch_fresh, st->n * sizeof *st->watch_b);
+    }
+    if (st->o.on_input)
+        st->o.on_input(st->o.user, ev);
+}
+
+static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, const char *text)
+{
+    const sw_stream_t *st = user;
+    if (st->o.on_reject)
+        st->o.on_reject(st->o.user, s, r, text);
+}
+
+static void on_gate_take(void *user, double t, double a_g, double a_z, int restart)
+{
+    const sw_stream_t *st = user;
+    st->o.on_take(st->o.user, t, a_g, a_z, restart);
+}
+
+/* ---- create, destroy ------------------------------------------------------------- */
+
+static void fail(int code, int *err, char *msg, size_t msglen, const char *why)
+{
+    if (err)
+        *err = code;
+    if (msg && msglen && why)
+        snprintf(msg, msglen, "%s", why);
+}
+
+sw_stream_t *sw_stream_create(const sw_scene_t *scenes, size_t n, const sw_stream_opts_t *o,
+                              int *err, char *msg, size_t msglen)
+{
+    static const sw_stream_opts_t defaults = {.hysteresis = -1.0};
+    int e = SW_OK;
+    if (err)
+        *err = SW_OK;
+    if (msg && msglen)
+        msg[0] = '\0';
+    if (!o)
+        o = &defaults;
+    if (!scenes && n > 0) {
+        fail(SW_EINVAL, err, msg, msglen, "no scenes");
+        return NULL;
+    }
+    sw_stream_t *st = calloc(1, sizeof *st);
+    if (!st) {
+        fail(SW_ENOMEM, err, msg, msglen, sw_strerror(SW_ENOMEM));
+        return NULL;
+    }
+    st->o = *o;
+    st->n = n;
+    st->alarms = o->on_alarm != NULL;
+    st->hysteresis = o->hysteresis;
+    const size_t m = n ? n : 1;
+    st->watch = calloc(m, sizeof *st->watch);
+    st->names = calloc(m, sizeof *st->names);
+    if (!st->watch || !st->names)
+        goto nomem;
+    for (size_t k = 0; k < n; k++) {
+        if (sw_alarm_init_scene(&st->watch[k], k, &scenes[k], o->hysteresis) != SW_OK) {
+            char why[SW_NAME_MAX + 40];
+            snprintf(why, sizeof why, "%s: alarm thresholds not finite", scenes[k].name);
+            fail(SW_EINVAL, err, msg, msglen, why);
+            sw_stream_destroy(st);
+            return NULL;
+        }
+        snprintf(st->names[k], sizeof st->names[k], "%s", scenes[k].name);
+    }
+
+    /* The engine reports to the stream; outputs only when someone reads
+     * them (a caller's state, the reserve, the alarms): an engine without
+     * a state callback need not compute them after every sample. */
+    sw_engine_opts_t eo = o->engine;
+    eo.on_event = on_event;
+    eo.on_state = o->on_state || st->alarms || !(o->risk.reserve_rate < 0.0) ? on_state : NULL;
+    eo.user = st;
+    if (!(st->engine = sw_engine_create(scenes, n, &eo, &e, msg, msglen)))
+        goto failed;
+    sw_gate_opts_t go = o->gate;
+    go.on_event = on_gate_event;
+    go.on_reject = on_gate_reject;
+    go.on_take = o->on_take ? on_gate_take : NULL;
+    go.on_rival = o->rival ? on_rival : NULL;
+    go.user = st;
+    if (!(st->gate = sw_gate_create(st->engine, &go, msg, msglen))) {
+        e = SW_EINVAL;
+        goto failed;
+    }
+    if (o->rival) {
+        /* the second timeline: the same scenes and checks (not the wall
+         * clock's: its samples were checked by the first gate), nothing
+         * reported but its alarms */
+        st->watch_b = calloc(m, sizeof *st->watch_b);
+        st->watch_fresh = calloc(m, sizeof *st->watch_fresh);
+        if (!st->watch_b || !st->watch_fresh)
+            goto nomem;
+        memcpy(st->watch_fresh, st->watch, n * sizeof *st->watch);
+        memcpy(st->watch_b, st->watch, n * sizeof *st->watch);
+        sw_engine_opts_t eb = o->engine;
+        eb.on_event = on_event_b;
+        eb.on_state = on_state_b;
+        eb.user = st;
+        sw_gate_opts_t gb = o->gate;
+        gb.max_skew = 0.0;
+        gb.on_event = NULL;
+        gb.on_reject = NULL;
+        gb.on_take = NULL;
+        gb.on_rival = NULL;
+        gb.user = NULL;
+        if (!(st->engine_b = sw_engine_create(scenes, n, &eb, &e, msg, msglen)))
+            goto failed;
+        if (!(st->gate_b = sw_gate_create(st->engine_b, &gb, msg, msglen))) {
+            e = SW_EINVAL;
+            goto failed;
+        }
+    }
+    if (!(st->risk = sw_risk_create(scenes, n, &o->risk, &e, msg, msglen)))
+        goto failed;
+    return st;
+
+nomem:
+    e = SW_ENOMEM;
+    if (msg && msglen)
+        snprintf(msg, msglen, "%s", sw_strerror(SW_ENOMEM));
+failed:
+    if (err)
+        *err = e != SW_OK ? e : SW_ENOMEM;
+    sw_stream_destroy(st);
+    return NULL;
+}
+
+void sw_stream_destroy(sw_stream_t *st)
+{
+    if (!st)
+        return;
+    sw_gate_destroy(st->gate);
+    sw_gate_destroy(st->gate_b);
+    sw_risk_destroy(st->risk);
+    sw_engine_destroy(st->engine);
+    sw_engine_destroy(st->engine_b);
+    free(st->watch);
+    free(st->watch_b);
+    free(st->watch_fresh);
+    free(st->names);
+    free(st);
+}
+
+/* ---- the stream ------------------------------------------------------------------------ */
+
+int sw_stream_push(sw_stream_t *st, const sw_sample_t *s)
+{
+    return st ? sw_gate_push(st->gate, s) : SW_EINVAL;
+}
+
+int sw_stream_finish(sw_stream_t *st)
+{
+    return st ? sw_gate_flush(st->gate) : SW_EINVAL;
+}
+
+int sw_stream_settle(sw_stream_t *st, double settle)
+{
+    if (!st)
+        return SW_EINVAL;
+    return settle > 0.0 ? sw_engine_finish(st->engine, settle) : SW_OK;
+}
+
+int sw_stream_replace(sw_stream_t *st, size_t k, const sw_scene_t *scene, char *msg, size_t msglen)
+{
+    sw_alarm_watch_t w;
+    if (!st || !scene || k >= st->n) {
+        if (msg && msglen)
+            snprintf(msg, msglen, "no such package");
+        return SW_EINVAL;
+    }
+    if (sw_alarm_init_scene(&w, k, scene, st->hysteresis) != SW_OK) {
+        if (msg && msglen)
+            snprintf(msg, msglen, "%s: alarm thresholds not finite", scene->name);
+        return SW_EINVAL;
+    }
+    const int rc = sw_engine_replace(st->engine, k, scene, msg, msglen);
+    if (rc != SW_OK)
+        return rc;
+    /* the second timeline's package too; if it cannot be rebuilt (it was
+     * in the first engine), it goes on with the old scene until the next
+     * contest starts it afresh */
+    if (st->engine_b)
+        sw_engine_replace(st->engine_b, k, scene, NULL, 0);
+    st->watch[k] = w;
+    if (st->watch_b)
+        st->watch_b[k] = st->watch_fresh[k] = w;
+    snprintf(st->names[k], sizeof st->names[k], "%s", scene->name);
+    /* the reserve of the new scene; if it cannot be built the package goes
+     * on with the old one, and the caller hears why */
+    return sw_risk_replace(st->risk, k, scene, msg, msglen);
+}
+
+sw_engine_t *sw_stream_engine(const sw_stream_t *st)
+{
+    return st ? st->engine : NULL;
+}
+
+sw_risk_t *sw_stream_risk(const sw_stream_t *st)
+{
+    return st ? st->risk : NULL;
+}
+
+const sw_gate_t *sw_stream_gate(const sw_stream_t *st)
+{
+    return st ? st->gate : NULL;
+}
+
+size_t sw_stream_count(const sw_stream_t *st)
+{
+    return st ? st->n : 0;
+}
+
+const char *sw_stream_name(const sw_stream_t *st, size_t k)
+{
+    return st && k < st->n ? st->names[k] : "";
+}
