@@ -1,11 +1,11 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* monitor.c - the monitor core (monitor.h): checks accel_t messages, drives
- * the engine and the alarm logic, publishes state_t and alarm_t.  While
- * two timelines compete on the accel channel (gate.h: a forged or
- * duplicated sender), the one the receive times do not support goes
- * through a gate of its own into a second set of engines, made at create
- * time, whose alarms from WARN up are raised as well: the worse of the
- * two is never silent.
+/* monitor.c - the monitor core (monitor.h) around one input stream
+ * (stream.h): accel_t messages decoded and checked into it, its states
+ * and alarms encoded as state_t and alarm_t and published, the alarms
+ * through the rate limit (alarm_fold.h), the input alarms (gaps, refused
+ * and contested samples) on the monotonic clock the caller hands in.  The
+ * gate, the engines of both timelines, the reserve and the alarm watches
+ * are the stream's: a CSV log and an lcm-logger file go through the same.
  *
  * With keys, each message is authenticated (auth.c) where it is decoded,
  * before anything else looks at it.
@@ -62,11 +62,8 @@ _Static_assert(sizeof(((swaywatch_alarm_t *)0)->text) == SW_ALARM_TEXT_MAX,
 #define SW_MON_BUF 512
 
 struct sw_mon {
-    sw_engine_t *engine;
+    sw_stream_t *st; /* the gate, the engines, the reserve, the alarm watches */
     size_t n;
-    sw_alarm_watch_t *watch; /* one per package */
-    sw_risk_t *risk;         /* the reserve of every package */
-    char (*names)[SW_NAME_MAX];
     int64_t *next_state_us;  /* per package: sample utime of the next state due */
     int64_t state_period_us; /* 0: every sample */
 
@@ -75,15 +72,9 @@ struct sw_mon {
     lcm_t *out;
     unsigned char *buf;
 
-    /* input stream: the gate decides; these are what the monitor keeps of it */
-    sw_gate_t *gate;
-    /* the second timeline while the input is contested: its own gate, engines
-     * and alarm watches (no reserve, no states published) */
-    sw_gate_t *gate_b;
-    sw_engine_t *engine_b;
-    sw_alarm_watch_t *watch_b, *watch_fresh; /* fresh: as set up, for a new contest */
-    int have_last;                           /* a sample was accepted */
-    int64_t last_us;                         /* utime of the last accepted sample */
+    /* what the monitor keeps of the input stream (the gate decides) */
+    int have_last;    /* a sample was accepted */
+    int64_t last_us;  /* utime of the last accepted sample */
     double last_rx;   /* mono s, arrival of the last feed that took a sample */
     int gap_open;     /* the timer saw the input stop; it has not resumed */
     double timer_gap; /* s, no sample arriving for longer is a gap; 0: the gate's threshold */
@@ -186,13 +177,13 @@ static int64_t utime_at(const sw_mon_t *m, double t)
  * integer). */
 static int64_t utime_of(const sw_mon_t *m, double t)
 {
-    return utime_at(m, sw_gate_source_time(m->gate, t));
+    return utime_at(m, sw_gate_source_time(sw_stream_gate(m->st), t));
 }
 
 /* Package pkg's latest reserve for a message: -1 when there is none. */
 static double reserve_of(const sw_mon_t *m, size_t pkg)
 {
-    const sw_risk_pkg_t *p = sw_risk_pkg(m->risk, pkg);
+    const sw_risk_pkg_t *p = sw_risk_pkg(sw_stream_risk(m->st), pkg);
     return p && isfinite(p->reserve_g) ? p->reserve_g : -1.0;
 }
 
@@ -210,7 +201,7 @@ static void emit_alarm(void *user, const sw_alarm_t *a, int64_t utime)
     msg.utime = utime;
     msg.seq = m->alarm_seq++;
     if (a->pkg < m->n)
-        set_name(msg.name, sizeof msg.name, m->names[a->pkg]);
+        set_name(msg.name, sizeof msg.name, sw_stream_name(m->st, a->pkg));
     msg.kind = (int8_t)a->kind;
     msg.level = (int8_t)a->level;
     set_name(msg.text, sizeof msg.text, a->text);
@@ -228,36 +219,27 @@ static void send_alarm(sw_mon_t *m, const sw_alarm_t *a, int64_t utime)
     sw_fold_send(m->fold, a, utime, m->now);
 }
 
-static void on_alarm(void *user, const sw_alarm_t *a)
+/* A package's alarm (either timeline's), at its sample's utime. */
+static void on_alarm(void *user, const sw_alarm_t *a, double t_source)
 {
     sw_mon_t *m = user;
-    send_alarm(m, a, utime_of(m, a->t));
+    send_alarm(m, a, utime_at(m, t_source));
 }
 
 static void on_event(void *user, const sw_event_t *ev)
 {
-    sw_mon_t *m = user;
+    const sw_mon_t *m = user;
     if (m->o.on_event)
         m->o.on_event(m->o.user, ev);
-    if (ev->pkg < m->n)
-        sw_alarm_on_event(&m->watch[ev->pkg], ev, on_alarm, m);
 }
 
+/* A state, its reserve evaluated and its alarms raised by the stream. */
 static void on_state(void *user, const sw_output_t *out)
 {
     sw_mon_t *m = user;
     size_t k = out->pkg;
-    if (k >= m->n)
-        return;
-    /* the reserve first: the caller's callback and the state carry it */
-    if (sw_output_finite(out) && sw_risk_output(m->risk, out) == 1) {
-        const sw_risk_pkg_t *p = sw_risk_pkg(m->risk, k);
-        sw_alarm_on_reserve(&m->watch[k], out->t, out->state.theta, out->margin, p->reserve_g,
-                            on_alarm, m);
-    }
     if (m->o.on_state)
         m->o.on_state(m->o.user, out);
-    sw_alarm_on_output(&m->watch[k], out, on_alarm, m);
     /* Outputs come at sample times (and at the settling steps after the
      * end of a log): t = (utime - origin) / 1e6 maps back exactly. */
     int finite = sw_output_finite(out);
@@ -286,8 +268,8 @@ static void on_state(void *user, const sw_output_t *out)
     memset(&msg, 0, sizeof msg);
     msg.utime = utime;
     msg.seq = m->state_seq++;
-    set_name(msg.name, sizeof msg.name, m->names[k]);
-    msg.model = (int8_t)sw_engine_derived(m->engine, k)->model;
+    set_name(msg.name, sizeof msg.name, sw_stream_name(m->st, k));
+    msg.model = (int8_t)sw_engine_derived(sw_stream_engine(m->st), k)->model;
     msg.phase = (int8_t)out->state.phase;
     msg.side = (int8_t)out->state.side;
     msg.theta = out->state.theta;
@@ -305,56 +287,7 @@ static void on_state(void *user, const sw_output_t *out)
 static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, const char *text);
 static void on_gate_event(void *user, const sw_gate_event_t *ev);
 
-/* ---- the second timeline ---------------------------------------------------------- */
-
-/* An alarm of the second timeline's engines: from WARN up it is raised as
- * the first's are, saying where it comes from, at its sample's utime. */
-static void on_alarm_b(void *user, const sw_alarm_t *a)
-{
-    sw_mon_t *m = user;
-    if (a->level < SW_ALARM_LEVEL_WARN)
-        return;
-    sw_alarm_t b = *a;
-    static const char head[] = "second timeline: ";
-    size_t tl = strlen(a->text);
-    if (tl > sizeof b.text - sizeof head)
-        tl = sizeof b.text - sizeof head; /* cut to fit */
-    memcpy(b.text, head, sizeof head - 1);
-    memcpy(b.text + sizeof head - 1, a->text, tl);
-    b.text[sizeof head - 1 + tl] = '\0';
-    send_alarm(m, &b, utime_at(m, sw_gate_source_time(m->gate_b, a->t)));
-}
-
-static void on_event_b(void *user, const sw_event_t *ev)
-{
-    sw_mon_t *m = user;
-    if (ev->pkg < m->n)
-        sw_alarm_on_event(&m->watch_b[ev->pkg], ev, on_alarm_b, m);
-}
-
-static void on_state_b(void *user, const sw_output_t *out)
-{
-    sw_mon_t *m = user;
-    if (out->pkg < m->n && sw_output_finite(out))
-        sw_alarm_on_output(&m->watch_b[out->pkg], out, on_alarm_b, m);
-}
-
-/* A sample of the second timeline (the gate counted it as refused). */
-static void on_rival(void *user, const sw_sample_t *s)
-{
-    sw_mon_t *m = user;
-    sw_gate_push(m->gate_b, s);
-}
-
-/* A contest begins: the second engines start afresh, at rest. */
-static void second_reset(sw_mon_t *m)
-{
-    sw_engine_reset(m->engine_b);
-    sw_gate_reset(m->gate_b);
-    memcpy(m->watch_b, m->watch_fresh, m->n * sizeof *m->watch_b);
-}
-
-/* The gate's user is the monitor; the caller's recorder gets its own. */
+/* The stream's user is the monitor; the caller's recorder gets its own. */
 static void on_gate_take(void *user, double t, double a_g, double a_z, int restart)
 {
     const sw_mon_t *m = user;
@@ -373,25 +306,34 @@ static int opts_valid(const sw_mon_opts_t *o)
            o->gap <= 1e9 && !(o->state_rate > 0.0 && !(o->state_rate >= 1e-9));
 }
 
-/* The input gate of the monitor's engine, with the monitor's checks; its
- * user is the monitor. */
-static sw_gate_t *make_gate(sw_mon_t *m, char *msg, size_t msglen)
+/* The stream of the monitor: its gate with the monitor's checks, both
+ * timelines evaluated, every alarm to the monitor (its user). */
+static sw_stream_t *make_stream(sw_mon_t *m, const sw_scene_t *scenes, size_t n,
+                                const sw_engine_opts_t *eo, char *msg, size_t msglen)
 {
-    const sw_gate_opts_t go = {.gap = m->o.gap,
-                               .gap_policy = m->o.gap_policy,
-                               .max_bridge = m->o.max_bridge,
-                               .max_accel = m->o.max_accel,
-                               .jump = m->o.max_jump,
-                               .max_skew = m->o.max_skew,
-                               .confirm = m->o.confirm,
-                               .relative = 1,
-                               .vert_gravity = m->o.vert_gravity,
-                               .on_event = on_gate_event,
-                               .on_reject = on_gate_reject,
-                               .on_take = m->o.on_take ? on_gate_take : NULL,
-                               .user = m,
-                               .on_rival = on_rival};
-    return sw_gate_create(m->engine, &go, msg, msglen);
+    const sw_stream_opts_t so = {
+        .engine = *eo,
+        .gate = {.gap = m->o.gap,
+                 .gap_policy = m->o.gap_policy,
+                 .max_bridge = m->o.max_bridge,
+                 .max_accel = m->o.max_accel,
+                 .jump = m->o.max_jump,
+                 .max_skew = m->o.max_skew,
+                 .confirm = m->o.confirm,
+                 .relative = 1,
+                 .vert_gravity = m->o.vert_gravity},
+        .risk = {.reserve_rate = m->o.reserve_rate},
+        .hysteresis = m->o.hysteresis,
+        .rival = 1,
+        .on_state = on_state,
+        .on_event = on_event,
+        .on_alarm = on_alarm,
+        .on_input = on_gate_event,
+        .on_reject = on_gate_reject,
+        .on_take = m->o.on_take ? on_gate_take : NULL,
+        .user = m,
+    };
+    return sw_stream_create(scenes, n, &so, NULL, msg, msglen);
 }
 
 sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo,
@@ -424,66 +366,16 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     for (int r = 0; r < SW_MON_NREJ; r++) m->rej_last_alarm[r] = -INFINITY;
     const double interval = m->o.alarm_interval == 0.0 ? 1.0 : fmax(m->o.alarm_interval, 0.0);
 
-    m->watch = calloc(n ? n : 1, sizeof *m->watch);
-    m->watch_b = calloc(n ? n : 1, sizeof *m->watch_b);
-    m->watch_fresh = calloc(n ? n : 1, sizeof *m->watch_fresh);
-    m->names = calloc(n ? n : 1, sizeof *m->names);
     m->next_state_us = calloc(n ? n : 1, sizeof *m->next_state_us);
     m->buf = malloc(SW_MON_BUF);
     m->fold = sw_fold_create(n, interval, emit_alarm, m);
-    if (!m->watch || !m->watch_b || !m->watch_fresh || !m->names || !m->next_state_us || !m->buf ||
-        !m->fold)
+    if (!m->next_state_us || !m->buf || !m->fold)
         goto nomem;
     if (mo->keys && !(m->auth = sw_auth_create(mo->keys)))
         goto nomem;
-
-    sw_engine_opts_t e = *eo;
-    e.on_event = on_event;
-    e.on_state = on_state;
-    e.user = m;
-    int err = 0;
-    m->engine = sw_engine_create(scenes, n, &e, &err, msg, msglen);
-    if (!m->engine) {
+    if (!(m->st = make_stream(m, scenes, n, eo, msg, msglen))) {
         sw_mon_destroy(m);
         return NULL;
-    }
-    if (!(m->gate = make_gate(m, msg, msglen))) {
-        sw_mon_destroy(m);
-        return NULL;
-    }
-    /* the second timeline's engines and gate: the same scenes and checks,
-     * nothing reported but their alarms */
-    sw_engine_opts_t eb = *eo;
-    eb.on_event = on_event_b;
-    eb.on_state = on_state_b;
-    eb.user = m;
-    const sw_gate_opts_t gb = {.gap = m->o.gap,
-                               .gap_policy = m->o.gap_policy,
-                               .max_bridge = m->o.max_bridge,
-                               .max_accel = m->o.max_accel,
-                               .jump = m->o.max_jump,
-                               .confirm = m->o.confirm,
-                               .relative = 1,
-                               .vert_gravity = m->o.vert_gravity};
-    if (!(m->engine_b = sw_engine_create(scenes, n, &eb, &err, msg, msglen)) ||
-        !(m->gate_b = sw_gate_create(m->engine_b, &gb, msg, msglen))) {
-        sw_mon_destroy(m);
-        return NULL;
-    }
-    const sw_risk_opts_t ro = {.reserve_rate = m->o.reserve_rate};
-    if (!(m->risk = sw_risk_create(scenes, n, &ro, &err, msg, msglen))) {
-        sw_mon_destroy(m);
-        return NULL;
-    }
-    for (size_t k = 0; k < n; k++) {
-        if (sw_alarm_init_scene(&m->watch[k], k, &scenes[k], m->o.hysteresis) != SW_OK) {
-            if (msg)
-                snprintf(msg, msglen, "%s: alarm thresholds not finite", scenes[k].name);
-            sw_mon_destroy(m);
-            return NULL;
-        }
-        snprintf(m->names[k], sizeof m->names[k], "%s", scenes[k].name);
-        m->watch_fresh[k] = m->watch_b[k] = m->watch[k];
     }
     return m;
 
@@ -499,15 +391,7 @@ void sw_mon_destroy(sw_mon_t *m)
     if (!m)
         return;
     sw_auth_destroy(m->auth);
-    sw_gate_destroy(m->gate);
-    sw_gate_destroy(m->gate_b);
-    sw_risk_destroy(m->risk);
-    sw_engine_destroy(m->engine);
-    sw_engine_destroy(m->engine_b);
-    free(m->watch);
-    free(m->watch_b);
-    free(m->watch_fresh);
-    free(m->names);
+    sw_stream_destroy(m->st);
     free(m->next_state_us);
     free(m->buf);
     sw_fold_destroy(m->fold);
@@ -521,7 +405,7 @@ static double timer_gap(const sw_mon_t *m)
 {
     if (m->timer_gap > 0.0)
         return m->timer_gap;
-    const double thr = sw_gate_gap_threshold(m->gate);
+    const double thr = sw_gate_gap_threshold(sw_stream_gate(m->st));
     return isfinite(thr) && thr > SW_MON_GAP ? thr : SW_MON_GAP;
 }
 
@@ -536,7 +420,7 @@ static void input_alarm(sw_mon_t *m, sw_alarm_kind kind, sw_alarm_level level, i
 {
     sw_alarm_t a;
     sw_gate_facts_t f;
-    sw_gate_facts(m->gate, &f);
+    sw_gate_facts(sw_stream_gate(m->st), &f);
     double d = 0.0;
     if (m->have_last) {
         int64_t du;
@@ -627,7 +511,6 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
             level = SW_ALARM_LEVEL_INFO;
             break;
         case SW_GATE_EV_CONTESTED:
-            second_reset(m);
             snprintf(text, sizeof text,
                      "two timelines on the accel channel (a forged or duplicated sender): "
                      "the one the arrival times support kept, both evaluated");
@@ -736,8 +619,8 @@ int sw_mon_feed_on(sw_mon_t *m, const char *channel, const void *data, size_t le
     };
     const long before = m->c.accepted;
     m->feed_why = SW_MON_NREJ;
-    int rc = sw_gate_push(m->gate, &smp);
-    m->c.accepted = sw_gate_accepted(m->gate);
+    int rc = sw_stream_push(m->st, &smp);
+    m->c.accepted = sw_gate_accepted(sw_stream_gate(m->st));
     if (m->c.accepted > before) {
         /* this sample, or held ones it confirmed, went in */
         m->have_last = 1;
@@ -796,9 +679,9 @@ void sw_mon_flush(sw_mon_t *m)
 {
     m->feed_mono = INFINITY;
     m->now = INFINITY;
-    sw_gate_flush(m->gate);
+    sw_stream_finish(m->st);
     sw_gate_facts_t f;
-    sw_gate_facts(m->gate, &f);
+    sw_gate_facts(sw_stream_gate(m->st), &f);
     m->c.accepted = f.accepted;
     for (int r = 0; r < SW_MON_NREJ; r++) reject_alarm(m, (sw_mon_reject)r, INFINITY, m->last_us);
     sw_fold_tick(m->fold, INFINITY);
@@ -807,7 +690,7 @@ void sw_mon_flush(sw_mon_t *m)
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
 {
     sw_gate_facts_t f;
-    sw_gate_facts(m->gate, &f);
+    sw_gate_facts(sw_stream_gate(m->st), &f);
     *c = m->c;
     c->alarms_folded = sw_fold_folded(m->fold);
     c->accepted = f.accepted;
@@ -823,7 +706,7 @@ void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
 
 void sw_mon_facts(const sw_mon_t *m, sw_gate_facts_t *f)
 {
-    sw_gate_facts(m->gate, f);
+    sw_gate_facts(sw_stream_gate(m->st), f);
 }
 
 long sw_mon_rejected(const sw_mon_counts_t *c)
@@ -835,13 +718,13 @@ long sw_mon_rejected(const sw_mon_counts_t *c)
 
 sw_engine_t *sw_mon_engine(sw_mon_t *m)
 {
-    return m->engine;
+    return sw_stream_engine(m->st);
 }
 
 int64_t sw_mon_origin(const sw_mon_t *m)
 {
     sw_gate_facts_t f;
-    sw_gate_facts(m->gate, &f);
+    sw_gate_facts(sw_stream_gate(m->st), &f);
     return m->have_last ? utime_at(m, f.t_origin) : 0;
 }
 
@@ -852,34 +735,22 @@ int64_t sw_mon_last_utime(const sw_mon_t *m)
 
 int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, size_t msglen)
 {
-    sw_alarm_watch_t w;
-    if (!m || !scene || k >= m->n) {
+    if (!m) {
         if (msg)
             snprintf(msg, msglen, "no such package");
         return SW_EINVAL;
     }
-    if (sw_alarm_init_scene(&w, k, scene, m->o.hysteresis) != SW_OK) {
-        if (msg)
-            snprintf(msg, msglen, "%s: alarm thresholds not finite", scene->name);
-        return SW_EINVAL;
-    }
-    int rc = sw_engine_replace(m->engine, k, scene, msg, msglen);
-    if (rc != SW_OK)
-        return rc;
-    /* the second timeline's package too; if it cannot be rebuilt (it was
-     * in the first engine), it goes on with the old scene until the next
-     * contest starts it afresh */
-    sw_engine_replace(m->engine_b, k, scene, NULL, 0);
-    m->watch[k] = m->watch_b[k] = m->watch_fresh[k] = w;
-    snprintf(m->names[k], sizeof m->names[k], "%s", scene->name);
-    /* the reserve of the new scene; if it cannot be built the package goes
-     * on with the old one, and the caller hears why */
-    return sw_risk_replace(m->risk, k, scene, msg, msglen);
+    return sw_stream_replace(m->st, k, scene, msg, msglen);
 }
 
 sw_risk_t *sw_mon_risk(sw_mon_t *m)
 {
-    return m ? m->risk : NULL;
+    return m ? sw_stream_risk(m->st) : NULL;
+}
+
+sw_stream_t *sw_mon_stream(sw_mon_t *m)
+{
+    return m ? m->st : NULL;
 }
 
 int sw_mon_set_keys(sw_mon_t *m, const sw_keyring_t *keys)

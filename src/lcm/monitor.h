@@ -1,13 +1,15 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* monitor.h - the core of the LCM monitor (libswaywatch_lcm), shared by
- * `swaywatch monitor` (live), the lcm-logger reader (eventlog.h) behind
- * `swaywatch replay` of lcm-logger files, and the tests.
+ * `swaywatch monitor` (live), the replay of lcm-logger files (eventlog.h)
+ * and the tests.
  *
- * It takes raw accel_t messages (bytes, as LCM delivers them), checks each
- * one, pushes the good ones into the engine, runs the alarm logic, and
- * publishes state_t and alarm_t messages on an lcm_t (if one is given).  It
- * owns no thread, no socket and no timer: the caller delivers messages and
- * calls sw_mon_tick() when sw_mon_deadline() says so.  Nothing here blocks
+ * It takes raw accel_t messages (bytes, as LCM delivers them), checks and
+ * decodes each one into a sample of one input stream (stream.h: the gate,
+ * the engine, the reserve, the alarm logic, the same stream a CSV log
+ * goes through), rate-limits the alarms, and publishes state_t and
+ * alarm_t messages on an lcm_t (if one is given).  It owns no thread, no
+ * socket and no timer: the caller delivers messages and calls
+ * sw_mon_tick() when sw_mon_deadline() says so.  Nothing here blocks
  * (LCM publishing over udpm does not), prints or touches files.
  *
  * Every message received is accounted for exactly once:
@@ -24,8 +26,8 @@
  * Contested input (docs/timing.md): when refused samples form a second
  * timeline, or a second sender's seq numbers interleave, INPUT_CONTESTED
  * is raised at once (critical), the timeline the arrival times support is
- * kept, and the other is evaluated by a second set of engines made at
- * create time, whose alarms from WARN up are raised too ("second
+ * kept, and the other is evaluated by the stream's second set of engines,
+ * made at create time, whose alarms from WARN up are raised too ("second
  * timeline: ..."): no pattern of forged samples silences an overturn.
  *
  * Authenticated sensors (auth.h, docs/security.md): with keys, every
@@ -47,6 +49,7 @@
 #include "swaywatch/gate.h"
 #include "swaywatch/risk.h"
 #include "swaywatch/scene.h"
+#include "swaywatch/stream.h"
 #include "swaywatch/units.h"
 
 #define SW_MON_STATE_CHANNEL "SWAY_STATE"
@@ -223,6 +226,8 @@ int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, si
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c);
 long sw_mon_rejected(const sw_mon_counts_t *c); /* sum of rejected[] */
 sw_engine_t *sw_mon_engine(sw_mon_t *m);
+/* The input stream the monitor drives (its gate, engines, reserve). */
+sw_stream_t *sw_mon_stream(sw_mon_t *m);
 /* The packages' reserves (risk.h), fed every finite output by the monitor;
  * their events are the caller's to feed (settling spans are a report's
  * matter; the alarms count only significant impacts by themselves). */
