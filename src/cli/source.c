@@ -286,7 +286,7 @@ static void unchecked_note(const sw_cli_reader_t *R, const sw_mon_counts_t *k, i
 
 static int feed_lcmlog(sw_cli_reader_t *R)
 {
-    const int lr = sw_lcmlog_read(R->lcmlog, R->mon);
+    const int lr = sw_mon_feed_log(R->mon, R->lcmlog, R->o->copts.strict);
     if (lr == SW_ENOTFOUND) {
         sw_cli_error("%s: cannot read: %s", R->lf.name, strerror(errno));
         return SW_EXIT_IO;

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* eventlog.c - lcm-logger event logs into the monitor core (eventlog.h):
- * a reader of its own, which checks every header before it reads what the
+/* eventlog.c - lcm-logger event logs read event by event (eventlog.h): a
+ * reader of its own, which checks every header before it reads what the
  * header points at, resynchronises on the next sync word in one forward
- * scan, and counts.
+ * scan, counts, and yields the events of the accel channel.
  *
  * LCM's reader (lcm_eventlog_read_next_event) is not used: it allocates
  * and reads whatever a header's lengths say (a length of 0x7fffffff
@@ -13,7 +13,7 @@
  * position only goes forward, so each byte enters the window once; what
  * lies outside it is read directly, a bounded number of bytes per
  * candidate event (its sync word after the data, the part of an accel
- * sample handed to the monitor).  A log that cannot seek is copied to an
+ * event handed on).  A log that cannot seek is copied to an
  * unlinked temporary file first. */
 #include "eventlog.h"
 
@@ -28,7 +28,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "monitor.h"
 #include "swaywatch/status.h"
 
 #define WIN (64 * 1024) /* bytes of the read window; > header + longest channel */
@@ -47,6 +46,12 @@ struct sw_lcmlog {
     long long wbase;
     size_t wlen;
     int ioerr; /* errno of a failed read; 0: none */
+    /* where sw_lcmlog_next() is: the next event's offset, and the
+     * corrupted region it is in (in_bad) */
+    long long pos;
+    int in_bad;
+    sw_lcmlog_region_t region;
+    char chan[SW_LCMLOG_MAX_CHANNEL + 1]; /* the channel of the event handed out */
 };
 
 /* LCM anchors channel regexes at both ends. */
@@ -87,7 +92,7 @@ static sw_lcmlog_t *create(const sw_lcmlog_opts_t *o, int *err)
     if (l->o.spool_max <= 0)
         l->o.spool_max = SW_LCMLOG_SPOOL_MAX;
     l->c.first_corrupt = -1;
-    *err = compile_channel(l->o.channel ? l->o.channel : SW_MON_ACCEL_CHANNEL, &l->channel);
+    *err = compile_channel(l->o.channel ? l->o.channel : SW_LCMLOG_CHANNEL, &l->channel);
     if (*err != SW_OK) {
         free(l);
         return NULL;
@@ -309,8 +314,9 @@ static long long next_sync(sw_lcmlog_t *l, long long from)
 }
 
 typedef struct {
-    long long data; /* offset of its data */
-    long long end;  /* offset after it */
+    long long start; /* offset of its sync word */
+    long long data;  /* offset of its data */
+    long long end;   /* offset after it */
     int32_t datalen;
     int64_t timestamp;
     char channel[SW_LCMLOG_MAX_CHANNEL + 1];
@@ -364,6 +370,7 @@ static int check_event(sw_lcmlog_t *l, long long pos, event_t *e, char *why, siz
         snprintf(why, wlen, "the channel name holds a NUL byte");
         return 0;
     }
+    e->start = pos;
     e->data = pos + SW_LCMLOG_HEADER + clen;
     e->end = e->data + dlen;
     e->datalen = dlen;
@@ -379,22 +386,21 @@ static int check_event(sw_lcmlog_t *l, long long pos, event_t *e, char *why, siz
     return 1;
 }
 
-/* Feed event e to mon if it is on the accel channel. */
-static void handle(sw_lcmlog_t *l, sw_mon_t *mon, const event_t *e)
+/* Event e counted; if it is on the accel channel, *ev is filled with it
+ * (returns 1), else 0. */
+static int take(sw_lcmlog_t *l, const event_t *e, sw_lcmlog_event_t *ev)
 {
     l->c.events++;
     if (regexec(&l->channel, e->channel, 0, NULL, 0) != 0) {
         l->c.other_channels++;
-        return;
+        return 0;
     }
     l->c.on_channel++;
-    if (!mon)
-        return;
     size_t n = e->datalen < SW_LCMLOG_MAX_FEED ? (size_t)e->datalen : SW_LCMLOG_MAX_FEED;
     size_t avail = 0;
     const unsigned char *data = at(l, e->data, n, &avail);
     if (avail < n)
-        n = avail; /* a read error: refused as truncated */
+        n = avail; /* a read error: handed on as it is (truncated) */
     if (!l->have_ts0) {
         l->have_ts0 = 1;
         l->ts0 = e->timestamp;
@@ -402,9 +408,13 @@ static void handle(sw_lcmlog_t *l, sw_mon_t *mon, const event_t *e)
     }
     l->c.last_utime = e->timestamp; /* what lcm-logger wrote: its clock, not the sensor's */
     int64_t rx_us; /* when lcm-logger received it, relative to the first: exact in double */
-    const double rx =
-        __builtin_sub_overflow(e->timestamp, l->ts0, &rx_us) ? NAN : (double)rx_us / 1e6;
-    sw_mon_feed_on(mon, e->channel, data, n, e->timestamp, rx, NULL); /* a MAC covers the channel */
+    ev->timestamp = e->timestamp;
+    ev->rx = __builtin_sub_overflow(e->timestamp, l->ts0, &rx_us) ? NAN : (double)rx_us / 1e6;
+    ev->channel = e->channel;
+    ev->data = data;
+    ev->len = n;
+    ev->offset = e->start;
+    return 1;
 }
 
 /* The region that started at r->offset ends at end. */
@@ -416,33 +426,27 @@ static void end_region(sw_lcmlog_t *l, sw_lcmlog_region_t *r, long long end)
         l->o.on_region(l->o.user, r);
 }
 
-int sw_lcmlog_read(sw_lcmlog_t *l, sw_mon_t *mon)
+int sw_lcmlog_next(sw_lcmlog_t *l, sw_lcmlog_event_t *ev)
 {
-    long long pos = 0;
-    int in_bad = 0;
-    sw_lcmlog_region_t r;
-    memset(&r, 0, sizeof r);
-    while (pos < l->size) {
+    while (l->pos < l->size) {
         if (l->o.stop && *l->o.stop) {
             l->c.stopped = 1;
             break;
         }
         event_t e;
-        char why[sizeof r.why];
-        if (check_event(l, pos, &e, why, sizeof why)) {
-            if (in_bad) {
-                in_bad = 0;
-                end_region(l, &r, pos);
+        char why[sizeof l->region.why];
+        if (check_event(l, l->pos, &e, why, sizeof why)) {
+            if (l->in_bad) {
+                l->in_bad = 0;
+                end_region(l, &l->region, l->pos);
                 if (l->o.strict)
                     return SW_EPARSE;
             }
-            handle(l, mon, &e);
-            pos = e.end;
-            if (l->o.strict && mon) { /* a refusal, of this sample or of one held before it */
-                sw_mon_counts_t k;
-                sw_mon_counts(mon, &k);
-                if (sw_mon_rejected(&k) > 0)
-                    return SW_EINVAL;
+            l->pos = e.end;
+            memcpy(l->chan, e.channel, sizeof e.channel);
+            if (take(l, &e, ev)) {
+                ev->channel = l->chan;
+                return 1;
             }
             continue;
         }
@@ -450,25 +454,27 @@ int sw_lcmlog_read(sw_lcmlog_t *l, sw_mon_t *mon)
             errno = l->ioerr;
             return SW_ENOTFOUND;
         }
-        if (!in_bad) {
-            in_bad = 1;
+        if (!l->in_bad) {
+            l->in_bad = 1;
             l->c.corrupt++;
             if (l->c.first_corrupt < 0)
-                l->c.first_corrupt = pos;
-            r.offset = pos;
-            r.events = l->c.events;
-            memcpy(r.why, why, sizeof r.why);
+                l->c.first_corrupt = l->pos;
+            memset(&l->region, 0, sizeof l->region);
+            l->region.offset = l->pos;
+            l->region.events = l->c.events;
+            memcpy(l->region.why, why, sizeof l->region.why);
         }
-        pos = next_sync(l, pos + 1);
+        l->pos = next_sync(l, l->pos + 1);
     }
     if (l->ioerr) {
         errno = l->ioerr;
         return SW_ENOTFOUND;
     }
-    if (in_bad) {
-        end_region(l, &r, pos);
+    if (l->in_bad) {
+        l->in_bad = 0;
+        end_region(l, &l->region, l->pos);
         if (l->o.strict)
             return SW_EPARSE;
     }
-    return SW_OK;
+    return 0;
 }

@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* eventlog.h - lcm-logger event logs read in-process (libswaywatch_lcm):
- * the accel_t messages of one channel go to the monitor core (monitor.h)
- * by their own utime, never through the network.  No options are parsed
- * and nothing is printed here: what was read is told by the counts and,
- * region by region, by a callback.
+/* eventlog.h - lcm-logger event logs read in-process (libswaywatch_lcm),
+ * never through the network: the events of one channel are yielded one
+ * by one (sw_lcmlog_next(), as LCM's lcm_eventlog_read_next_event()), the
+ * others counted and skipped; the monitor core takes them
+ * (sw_mon_feed_log(), monitor.h).  No options are parsed and nothing is
+ * printed here: what was read is told by the counts and, region by
+ * region, by a callback.
  *
  * Event logs have no checksum, and their length fields are trusted by
  * LCM's own reader.  This reader trusts nothing: an event is taken only if
@@ -47,7 +49,8 @@ static inline int sw_lcmlog_sniff(const void *buf, size_t len)
 #define SW_LCMLOG_HEADER 28             /* sync, eventnum, timestamp, two lengths */
 #define SW_LCMLOG_MAX_CHANNEL 63        /* LCM's longest channel name */
 #define SW_LCMLOG_MAX_DATA (256L << 20) /* LCM's largest message, bytes */
-/* Bytes of an accel-channel event's data handed to the monitor: more than
+#define SW_LCMLOG_CHANNEL "ACCEL"       /* the accel channel unless told otherwise */
+/* Bytes of an accel-channel event's data handed on: more than
  * any accel_t (48 bytes), so a longer message is refused as what it is
  * (not an accel_t, or an accel_t with trailing bytes) without being read
  * whole. */
@@ -55,8 +58,6 @@ static inline int sw_lcmlog_sniff(const void *buf, size_t len)
 /* A log that cannot seek (a pipe) is first copied to an unlinked temporary
  * file, at most this many bytes (4 GiB) unless the options say otherwise. */
 #define SW_LCMLOG_SPOOL_MAX (4LL << 30)
-
-struct sw_mon; /* sw_mon_t of monitor.h */
 
 /* A corrupted region, as it is skipped. */
 typedef struct {
@@ -68,8 +69,8 @@ typedef struct {
 
 typedef struct {
     const char *channel; /* accel channel: an anchored regex, as LCM's subscriptions;
-                            NULL = SW_MON_ACCEL_CHANNEL */
-    int strict;          /* stop at the first corrupted region or refused sample */
+                            NULL = SW_LCMLOG_CHANNEL */
+    int strict;          /* stop at the first corrupted region */
     /* if not NULL: reading stops before the next event once *stop is
      * non-zero (a signal handler sets it); counts.stopped says so */
     const volatile sig_atomic_t *stop;
@@ -81,7 +82,7 @@ typedef struct {
 
 typedef struct {
     long events;             /* events read */
-    long on_channel;         /* events on the accel channel, fed to the monitor */
+    long on_channel;         /* events on the accel channel, yielded */
     long other_channels;     /* events on other channels, skipped */
     long corrupt;            /* corrupted regions skipped */
     long long corrupt_bytes; /* bytes in them */
@@ -116,17 +117,26 @@ sw_lcmlog_t *sw_lcmlog_open_stream(FILE *in, const void *head, size_t len,
                                    const sw_lcmlog_opts_t *o, int *err);
 void sw_lcmlog_close(sw_lcmlog_t *log); /* NULL ok */
 
-/* Read every event to the end of the log and feed those on the accel
- * channel to mon (NULL: only check and count, e.g. a log about to be
- * handed to LCM's own reader).  The logger's receive time of an event is
- * the wall clock of sw_mon_feed() (what max_skew compares a sample's utime
- * with: a sample stamped far from when it arrived would otherwise be
- * accepted and make every later one late) and its arrival time.  Returns
- * SW_OK at the end of the log (or when stopped); with strict, SW_EPARSE at
- * the first corrupted region (reported first) or SW_EINVAL at the first
- * sample mon refused (held ones included); SW_ENOTFOUND if the file cannot
- * be read (errno says why).  The caller calls sw_mon_flush() after. */
-int sw_lcmlog_read(sw_lcmlog_t *log, struct sw_mon *mon);
+/* One event of the accel channel, as sw_lcmlog_next() yields it. */
+typedef struct {
+    long long offset;    /* of the event in the log */
+    long long timestamp; /* us since 1970 on lcm-logger's clock: when it received it */
+    double rx;           /* s, timestamp after the first accel event's, exact: the arrival
+                            time a monitor is fed (NAN beyond 2^63 us) */
+    const char *channel; /* its channel, NUL-terminated */
+    const void *data;    /* the first len bytes of its data */
+    size_t len;          /* at most SW_LCMLOG_MAX_FEED: a longer message is no accel_t, and
+                            is refused as what it is without being read whole */
+} sw_lcmlog_event_t;
+
+/* The next event on the accel channel, in the order of the log: 1 with
+ * *ev filled (its channel and data valid until the next call), 0 at the
+ * end of the log or once *opts.stop is set (counts.stopped), or < 0:
+ * SW_EPARSE with strict at the end of a corrupted region (reported
+ * first; the next call goes on after it), SW_ENOTFOUND if the file cannot
+ * be read (errno says why).  Events on other channels are counted and
+ * skipped, corrupted regions reported and skipped. */
+int sw_lcmlog_next(sw_lcmlog_t *log, sw_lcmlog_event_t *ev);
 
 void sw_lcmlog_counts(const sw_lcmlog_t *log, sw_lcmlog_counts_t *c);
 

@@ -635,6 +635,20 @@ int sw_mon_feed_on(sw_mon_t *m, const char *channel, const void *data, size_t le
     return rc;
 }
 
+int sw_mon_feed_log(sw_mon_t *m, sw_lcmlog_t *log, int strict)
+{
+    sw_lcmlog_event_t ev;
+    int r;
+    while ((r = sw_lcmlog_next(log, &ev)) > 0) {
+        /* a MAC covers the channel */
+        sw_mon_feed_on(m, ev.channel, ev.data, ev.len, ev.timestamp, ev.rx, NULL);
+        /* a refusal, of this sample or of one held before it */
+        if (strict && sw_mon_rejected(&m->c) > 0)
+            return SW_EINVAL;
+    }
+    return r;
+}
+
 int sw_mon_refuse(sw_mon_t *m, sw_mon_reject r, double mono)
 {
     if ((unsigned)r >= SW_MON_NREJ)

@@ -44,6 +44,7 @@
 #include <stdint.h>
 
 #include "auth.h"
+#include "eventlog.h"
 #include "swaywatch/alarm.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/gate.h"
@@ -54,7 +55,7 @@
 
 #define SW_MON_STATE_CHANNEL "SWAY_STATE"
 #define SW_MON_ALARM_CHANNEL "SWAY_ALARM"
-#define SW_MON_ACCEL_CHANNEL "ACCEL"
+#define SW_MON_ACCEL_CHANNEL SW_LCMLOG_CHANNEL
 #define SW_MON_GAP 0.1                /* s, default sensor gap threshold */
 #define SW_MON_MAX_ACCEL (50 * SW_G0) /* m/s^2, default plausibility limit */
 /* us: a utime is a time since 1970 (or since a sensor's boot) before
@@ -194,6 +195,17 @@ int sw_mon_set_keys(sw_mon_t *m, const sw_keyring_t *keys);
 /* With keys: what was checked and where refused messages came from (the
  * message's count, its channel and key id); NULL without keys. */
 const sw_auth_facts_t *sw_mon_auth_facts(const sw_mon_t *m);
+
+/* Every accel event of an lcm-logger log (eventlog.h) to the end, fed as
+ * its messages: lcm-logger's receive time of each is the wall clock (what
+ * max_skew compares a sample's utime with: a sample stamped far from
+ * when it arrived would otherwise be accepted and make every later one
+ * late) and its arrival time.  Returns SW_OK at the end of the log (or
+ * when its stop flag ended it); SW_EPARSE (the log's strict: a corrupted
+ * region) or SW_ENOTFOUND (the file cannot be read) from
+ * sw_lcmlog_next(); with strict, SW_EINVAL at the first sample refused
+ * (held ones included).  The caller calls sw_mon_flush() after. */
+int sw_mon_feed_log(sw_mon_t *m, sw_lcmlog_t *log, int strict);
 
 /* A message the caller refuses without reading it, for reason r (e.g.
  * SW_MON_REJ_OVERLOAD: it waited in the receive queue for longer than a

@@ -119,7 +119,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FZ_CHECK(log != NULL);
     sw_mon_t *m = make(o, &bu);
 
-    const int rc = sw_lcmlog_read(log, m);
+    const int rc = sw_mon_feed_log(m, log, lo.strict);
     FZ_CHECK(rc == SW_OK || (lo.strict && (rc == SW_EPARSE || rc == SW_EINVAL)));
     sw_lcmlog_counts_t lc;
     sw_lcmlog_counts(log, &lc);

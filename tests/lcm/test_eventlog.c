@@ -1,10 +1,13 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_eventlog.c - the lcm-logger reader (eventlog.h) on crafted logs:
- * the work of resynchronising is linear in the size of the log however
- * many length fields are wrong, counted as the bytes the process reads
- * (/proc/self/io: what the reader really asked of the kernel, not what it
- * says it did); every good event is found.  Speed itself is measured in
- * bench/, not here. */
+ * the events it yields are the accel channel's, at the offsets and with
+ * the times and bytes written, the other channel's and a damaged one's
+ * counted and skipped, strict stopping at the damage and going on after
+ * it; the work of resynchronising is linear in the size of the log
+ * however many length fields are wrong, counted as the bytes the process
+ * reads (/proc/self/io: what the reader really asked of the kernel, not
+ * what it says it did); every good event is found.  Speed itself is
+ * measured in bench/, not here. */
 #include <lcm/lcm.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -86,6 +89,67 @@ static void write_log(const char *path, long n, long *good)
     assert_int_equal(fclose(f), 0);
 }
 
+/* ACCEL, OTHER, a damaged ACCEL, ACCEL: what sw_lcmlog_next() yields. */
+static void check_next(int strict)
+{
+    char path[] = "/tmp/sw-eventlog-XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    unsigned char buf[4][128];
+    size_t len[4];
+    len[0] = event(buf[0], 0, -1);
+    len[1] = event(buf[1], 1, -1);
+    memcpy(buf[1] + 28, "OTHER", 5);
+    len[2] = event(buf[2], 2, 48 + 7); /* ends inside the next event */
+    len[3] = event(buf[3], 3, -1);
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    for (int i = 0; i < 4; i++) assert_true(fwrite(buf[i], 1, len[i], f) == len[i]);
+    assert_int_equal(fclose(f), 0);
+
+    const sw_lcmlog_opts_t o = {.strict = strict};
+    int err = 0;
+    sw_lcmlog_t *log = sw_lcmlog_open(path, &o, &err);
+    assert_non_null(log);
+    sw_lcmlog_event_t ev;
+    assert_int_equal(sw_lcmlog_next(log, &ev), 1);
+    assert_int_equal(ev.offset, 0);
+    assert_int_equal(ev.timestamp, UTIME0);
+    assert_true(ev.rx == 0.0);
+    assert_string_equal(ev.channel, "ACCEL");
+    assert_int_equal(ev.len, 48);
+    assert_memory_equal(ev.data, buf[0] + 33, 48);
+    if (strict)
+        assert_int_equal(sw_lcmlog_next(log, &ev), SW_EPARSE);
+    assert_int_equal(sw_lcmlog_next(log, &ev), 1);
+    assert_int_equal(ev.offset, (long long)(len[0] + len[1] + len[2]));
+    assert_int_equal(ev.timestamp, UTIME0 + 3000);
+    assert_true(ev.rx == 0.003); /* 3000 us / 1e6, correctly rounded */
+    assert_memory_equal(ev.data, buf[3] + 33, 48);
+    assert_int_equal(sw_lcmlog_next(log, &ev), 0);
+    assert_int_equal(sw_lcmlog_next(log, &ev), 0); /* and stays at the end */
+    sw_lcmlog_counts_t c;
+    sw_lcmlog_counts(log, &c);
+    assert_int_equal(c.events, 3);
+    assert_int_equal(c.on_channel, 2);
+    assert_int_equal(c.other_channels, 1);
+    assert_int_equal(c.corrupt, 1);
+    assert_int_equal(c.first_corrupt, (long long)(len[0] + len[1]));
+    assert_int_equal(c.corrupt_bytes, (long long)len[2]);
+    assert_int_equal(c.first_utime, UTIME0);
+    assert_int_equal(c.last_utime, UTIME0 + 3000);
+    sw_lcmlog_close(log);
+    remove(path);
+}
+
+static void test_next(void **state)
+{
+    (void)state;
+    check_next(0);
+    check_next(1);
+}
+
 /* Bytes this process has read through read(2) and its kin. */
 static long long rchar(void)
 {
@@ -140,7 +204,7 @@ static double read_ratio(long n)
     assert_non_null(log);
     const long long before = rchar();
     assert_true(before >= 0);
-    assert_int_equal(sw_lcmlog_read(log, m), SW_OK);
+    assert_int_equal(sw_mon_feed_log(m, log, 0), SW_OK);
     const long long after = rchar();
     sw_lcmlog_counts_t c;
     sw_lcmlog_counts(log, &c);
@@ -178,6 +242,7 @@ static void test_resync_is_linear(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_next),
         cmocka_unit_test(test_resync_is_linear),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
