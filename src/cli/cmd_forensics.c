@@ -171,9 +171,7 @@ static const sw_cli_command_t forensics_cmd = {
 static void on_state(void *user, const sw_output_t *out)
 {
     sw_cli_forensics_t *F = user;
-    if (F->R.risk_owned)
-        sw_risk_output(F->R.risk, out); /* first: the rows carry it */
-    sw_cli_states_write(&F->states, out);
+    sw_cli_states_write(&F->states, out); /* the stream evaluated the reserve first */
     sw_cli_figure_state(F->fig, out);
 }
 
@@ -472,11 +470,7 @@ static size_t groups(sw_cli_forensics_t *F, sw_cli_group_t *g, int batch)
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_csv_options, &F->in.copts);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_sample_options, &F->in.copts);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(forensics_options, &F->fo);
-#ifdef SW_HAVE_LCM
-    g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_channel_options, &F->in, SW_CLI_LCM_SECTION);
-    g[n++] =
-        (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &F->in.mo, SW_CLI_LCM_SECTION);
-#endif
+    n += sw_cli_source_groups(&F->in, g + n, 0); /* lcm-logger files' */
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_gate_options, &F->in.gate);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_scene_options, &F->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &F->o);
@@ -522,7 +516,7 @@ int cmd_forensics(int argc, char **argv)
         goto out;
     if (check_options(F) != SW_EXIT_OK)
         goto out;
-    F->given = sw_cli_source_given(g, ng, NULL);
+    F->given = sw_cli_source_given(g, ng);
     if ((rc = open_log(F)) != SW_EXIT_OK || (rc = replay_log(F)) != SW_EXIT_OK)
         goto out;
     if (sw_cli_signal) {
@@ -603,7 +597,7 @@ size_t sw_cli_forensics_groups(sw_cli_forensics_t *F, sw_cli_group_t *g)
 int sw_cli_forensics_ready(sw_cli_forensics_t *F, const sw_cli_group_t *g, size_t ng)
 {
     int rc;
-    F->given = sw_cli_source_given(g, ng, NULL);
+    F->given = sw_cli_source_given(g, ng);
     if ((rc = check_options(F)) != SW_EXIT_OK || (rc = load(F)) != SW_EXIT_OK)
         return rc;
     sw_cli_warn_scene_cost(F->scenes, F->n, &F->eo);

@@ -4,14 +4,14 @@
  * package and report whether, when and how close each came to overturning.
  *
  * The options are parsed once; the log is then read as source.h reads
- * it for every command: its first bytes choose its source, a CSV log is
- * streamed in fixed chunks through the CSV reader and the input gate into
- * the engine, so memory does not grow with the length of the log, an
- * lcm-logger file is read in-process into the monitor core.  With
- * --publish, states and alarms also go out over LCM, paced in real time
- * (or faster) by the samples' utime.  --wide and --plot take the same states as --out (output.c,
- * figure.c): the figure from a fixed number of buckets per package, so a
- * replay of any length draws from fixed memory.
+ * it for every command: its first bytes choose its source, whose samples
+ * go into one input stream (a CSV log streamed in fixed chunks through
+ * the CSV reader, so memory does not grow with the length of the log; an
+ * lcm-logger file read in-process into the monitor core, which with
+ * --publish also publishes states and alarms over LCM).  --wide and --plot
+ * take the same states as --out (output.c, figure.c): the figure from a
+ * fixed number of buckets per package, so a replay of any length draws
+ * from fixed memory.
  *
  * The replay of one log is also a job of "swaywatch batch" (replay.h):
  * the options parsed once, then each log run with a copy of them on any
@@ -34,8 +34,6 @@
 typedef struct {
     double settle; /* s of zero input after the end of the log */
     int fail_on_overturn;
-    const char *publish_url; /* --publish; NULL: no publishing */
-    double speed;
 } replay_opts_t;
 
 #define RO(f) SW_CLI_AT(replay_opts_t, f)
@@ -52,26 +50,6 @@ static const sw_cli_option_t replay_options[] = {
              "restart over motion may hide an overturn)"},
     {.kind = SW_CLI_END},
 };
-
-#ifdef SW_HAVE_LCM
-static const sw_cli_option_t replay_publish_options[] = {
-    {SW_CLI_STRING, 0, "publish", "URL", RO(publish_url),
-     .help = "also publish states and alarms over LCM ('' = LCM's default URL; "
-             "file:///path?mode=w writes a log)"},
-    {SW_CLI_DOUBLE, 0, "speed", "X", RO(speed), .rule = SW_NUM_NONNEGATIVE, .def = 1, .lo = 1e-3,
-     .hi = 1e6, .what = "a factor >= 0 (0: as fast as possible)",
-     .help = "with --publish: X times real time by the samples' utime (default %g; 0 = as fast "
-             "as possible); below 1e-3 one second of log would take over a quarter of an hour"},
-    {SW_CLI_TEXT,
-     .help = "Samples are integrated by their own utime, not the log's timestamps.  Messages\n"
-             "on other channels are counted and skipped; corrupted regions of the log (a bad\n"
-             "header, a length field past the end of the file or beyond LCM's limits, junk)\n"
-             "are skipped, counted and reported with their byte offset (--strict: exit 2);\n"
-             "bad, duplicate and late samples are refused as by the monitor.  With --publish,\n"
-             "only accepted samples are paced on."},
-    {.kind = SW_CLI_END},
-};
-#endif
 
 static const sw_cli_command_t replay_cmd = {
     .name = "replay",
@@ -107,24 +85,13 @@ struct sw_cli_replay {
     sw_cli_events_t events;
     sw_cli_wide_t wide;
     sw_cli_figure_t *fig;
-#ifdef SW_HAVE_LCM
-    lcm_t *lcm;           /* --publish */
-    sw_cli_pacer_t pacer; /* --publish: states go out paced by their sample time */
-#endif
 };
 typedef struct sw_cli_replay replay_t;
 
+/* A state, its reserve evaluated by the stream (the rows carry it). */
 static void on_state(void *user, const sw_output_t *out)
 {
     replay_t *r = user;
-#ifdef SW_HAVE_LCM
-    /* Before the monitor publishes them: only accepted samples make
-     * states, so a refused sample never stalls the replay. */
-    sw_cli_pace(&r->pacer, out->t);
-#endif
-    /* first: the rows carry its reserve (the monitor core feeds its own) */
-    if (r->R.risk_owned)
-        sw_risk_output(r->R.risk, out);
     sw_cli_states_write(&r->states, out);
     sw_cli_wide_write(&r->wide, out);
     sw_cli_figure_state(r->fig, out);
@@ -159,51 +126,14 @@ static int load(replay_t *r)
     return sw_cli_resolve_accuracy(&r->o, r->scenes, r->n, &r->eo);
 }
 
-/* --publish (an lcm-logger file): LCM for the monitor core to publish on,
- * and the pacing. */
-static int publish(replay_t *r)
-{
-#ifdef SW_HAVE_LCM
-    if (r->R.src->kind != SW_CLI_SRC_LCMLOG)
-        return SW_EXIT_OK;
-    r->pacer.speed = r->ro.publish_url ? r->ro.speed : 0.0;
-    r->pacer.stop = &sw_cli_signal;
-    if (!r->ro.publish_url)
-        return SW_EXIT_OK;
-    /* LCM's file provider reads a log unless told to write one: nothing
-     * could be published, and a damaged log would crash its reader. */
-    if (sw_cli_lcm_url_file(sw_cli_lcm_url_effective(r->ro.publish_url), NULL, 0) ==
-        SW_CLI_URL_READS) {
-        sw_cli_error(
-            "--publish %s: LCM reads that file instead of writing it (as liblcm reads the "
-            "URL: its last mode= decides); add ?mode=w to write a log",
-            r->ro.publish_url);
-        return SW_EXIT_USAGE;
-    }
-    r->lcm = lcm_create(r->ro.publish_url);
-    if (!r->lcm) {
-        sw_cli_error("--publish: cannot set up LCM with '%s'", r->ro.publish_url);
-        return SW_EXIT_IO;
-    }
-    r->R.publish = r->lcm;
-#else
-    (void)r;
-#endif
-    return SW_EXIT_OK;
-}
-
-/* The engine: replay's own, or the monitor core's. */
+/* The stream of the log's source. */
 static int start(replay_t *r)
 {
     int rc;
-    if ((rc = load(r)) != SW_EXIT_OK || (rc = publish(r)) != SW_EXIT_OK)
+    if ((rc = load(r)) != SW_EXIT_OK)
         return rc;
-    int pace = 0;
-#ifdef SW_HAVE_LCM
-    pace = r->pacer.speed > 0.0;
-#endif
     r->eo.on_event = on_event;
-    r->eo.on_state = wants_states(r) || pace ? on_state : NULL;
+    r->eo.on_state = wants_states(r) ? on_state : NULL;
     r->eo.user = r;
     r->R.reserve_rate = r->o.reserve_rate;
     return sw_cli_reader_engine(&r->R, r->scenes, r->n, &r->eo, r->scenes_shared);
@@ -219,7 +149,7 @@ static int check_files(const replay_t *r)
         {"--events", r->o.events_path},
         {"--wide", r->o.wide_path},
         {"--plot", r->o.plot_path},
-        {"--publish", sw_cli_lcm_url_output(r->ro.publish_url, url_path, sizeof url_path)},
+        {"--publish", sw_cli_lcm_url_output(r->in.publish_url, url_path, sizeof url_path)},
     };
     return sw_cli_check_run_files(r->log, &r->o.scenes, out, sizeof out / sizeof out[0]);
 }
@@ -288,9 +218,6 @@ static int replay_one(replay_t *r)
     r->events.all_impacts = r->o.all_impacts;
     if ((rc = sw_cli_reader_feed(&r->R)) != SW_EXIT_OK)
         return rc;
-#ifdef SW_HAVE_LCM
-    r->pacer.speed = 0.0; /* the settling after the log is not paced */
-#endif
     sw_cli_reader_settle(&r->R, r->ro.settle);
     return conclude(r);
 }
@@ -304,11 +231,6 @@ static void cleanup(replay_t *r)
     sw_cli_figure_destroy(r->fig);
     r->fig = NULL;
     sw_cli_reader_close(&r->R);
-#ifdef SW_HAVE_LCM
-    if (r->lcm)
-        lcm_destroy(r->lcm);
-    r->lcm = NULL;
-#endif
     if (!r->scenes_shared) {
         free(r->scenes);
         r->scenes = NULL;
@@ -352,17 +274,7 @@ static size_t groups(replay_t *r, sw_cli_group_t *g, int batch)
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_csv_options, &r->in.copts);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_sample_options, &r->in.copts);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(replay_options, &r->ro);
-#ifdef SW_HAVE_LCM
-    g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_channel_options, &r->in, SW_CLI_LCM_SECTION);
-    g[n++] =
-        (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_lcm_input_options, &r->in.mo, SW_CLI_LCM_SECTION);
-    if (!batch) {
-        g[n++] =
-            (sw_cli_group_t)SW_CLI_GROUP_IN(replay_publish_options, &r->ro, SW_CLI_LCM_SECTION);
-        g[n++] = (sw_cli_group_t)SW_CLI_GROUP_IN(sw_cli_lcm_publish_options, &r->in.mo,
-                                                 SW_CLI_LCM_SECTION);
-    }
-#endif
+    n += sw_cli_source_groups(&r->in, g + n, !batch); /* lcm-logger files' */
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_gate_options, &r->in.gate);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_scene_options, &r->o);
     g[n++] = (sw_cli_group_t)SW_CLI_GROUP(sw_cli_integration_options, &r->o);
@@ -380,13 +292,7 @@ static size_t groups(replay_t *r, sw_cli_group_t *g, int batch)
  * first of each). */
 static void parsed(replay_t *r, const sw_cli_group_t *g, size_t ng)
 {
-#ifdef SW_HAVE_LCM
-    static const sw_cli_option_t *const extra[] = {replay_publish_options,
-                                                   sw_cli_lcm_publish_options, NULL};
-#else
-    static const sw_cli_option_t *const *const extra = NULL;
-#endif
-    r->given = sw_cli_source_given(g, ng, extra);
+    r->given = sw_cli_source_given(g, ng);
 }
 
 static void init(replay_t *r)

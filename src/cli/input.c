@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* input.c - CSV input options, log files read in chunks (the pump that
- * feeds the CSV reader, the source told by the first bytes), and reading a
+ * feeds the CSV reader; the first chunk tells the source), and reading a
  * whole CSV log into memory, for the commands that run one log many times
  * (forensics: one replay per trial of the safety-factor search).  replay
  * itself streams the log and never holds it.
@@ -13,8 +13,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include "eventlog.h"
 
 #define CHUNK (64 * 1024) /* bytes read and fed at a time */
 
@@ -383,23 +381,6 @@ void sw_cli_logfile_close(sw_cli_logfile_t *f)
     if (f->in && f->in != stdin)
         fclose(f->in);
     memset(f, 0, sizeof *f);
-}
-
-static const sw_cli_source_t sources[] = {
-#ifdef SW_HAVE_LCM
-    {SW_CLI_SRC_LCMLOG, "an lcm-logger file", sw_lcmlog_sniff, 1},
-#else
-    {SW_CLI_SRC_LCMLOG, "an lcm-logger file", sw_lcmlog_sniff, 0},
-#endif
-    {SW_CLI_SRC_CSV, "a CSV log", NULL, 1},
-};
-
-const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f)
-{
-    const size_t n = sizeof sources / sizeof sources[0];
-    size_t i = 0;
-    while (i + 1 < n && !sources[i].sniff(f->buf, f->len)) i++;
-    return &sources[i];
 }
 
 /* ---- a log held in memory ------------------------------------------------------- */

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* input.h - acceleration logs: CSV input options, rejected rows, log files
- * read in chunks and their source (CSV or lcm-logger) told by their first
- * bytes, and whole CSV logs held in memory. */
+ * read in chunks (their first bytes tell their source: source.h), and
+ * whole logs held in memory. */
 #ifndef SWAYWATCH_CLI_INPUT_H
 #define SWAYWATCH_CLI_INPUT_H
 
@@ -74,7 +74,8 @@ void sw_cli_rejects_add(sw_cli_rejects_t *r, long line, const char *reason);
 void sw_cli_rejects_summary(const sw_cli_rejects_t *r);
 
 /* A log read in chunks: path, or "-" for standard input.  Open reads the
- * first chunk, whose first bytes tell its source (sw_cli_logfile_source).
+ * first chunk, whose first bytes tell its source (sw_cli_source_of(),
+ * source.h).
  * Both return SW_EXIT_OK or SW_EXIT_IO (reported). */
 typedef struct {
     FILE *in;
@@ -90,19 +91,6 @@ int sw_cli_logfile_open(sw_cli_logfile_t *f, const char *path);
 int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop, void (*after)(void *),
                         void *user, int *fr);
 void sw_cli_logfile_close(sw_cli_logfile_t *f); /* zeroed or open; closes stdin never */
-
-/* What a log file holds, told by its first bytes: a row per kind, the
- * first whose sniff matches (the last row, CSV, has none: anything else
- * is read as CSV).  available: this build reads it (lcm-logger files need
- * LCM). */
-typedef enum { SW_CLI_SRC_LCMLOG, SW_CLI_SRC_CSV } sw_cli_source_kind;
-typedef struct {
-    sw_cli_source_kind kind;
-    const char *name; /* "an lcm-logger file", "a CSV log" */
-    int (*sniff)(const void *buf, size_t len);
-    int available;
-} sw_cli_source_t;
-const sw_cli_source_t *sw_cli_logfile_source(const sw_cli_logfile_t *f);
 
 /* A whole log held in memory as the input gate handed it to the engine
  * (SI units, bridged gaps and restarts included): for a command that runs

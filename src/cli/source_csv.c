@@ -1,31 +1,35 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* feed.c - a CSV log into an engine through the reader and the input gate
- * (feed.h), and the verdict's plausibility check: what replay does with a
- * CSV log, in one place, so that every command reads a log the same way. */
-#include "feed.h"
-
+/* source_csv.c - the CSV source (source.h): a log streamed in fixed
+ * chunks through the CSV reader (csv.h, choosing the columns and units
+ * and saying which) into the input stream, every refused row and every
+ * gap or restart reported with its line.  The stream judges time: a lone
+ * row off in time is that row's fault, not the log's. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "interrupt.h"
+#include "source.h"
 
+/* The source's own, from prepare to close. */
 typedef struct {
+    sw_cli_reader_t *R;
     const char *name;
     sw_csv_t *csv;
-    sw_gate_t *gate;
     sw_cli_rejects_t rej;
     int quiet;
     int layout_said;
-    sw_gate_take_fn take;
-    void *take_user;
-    const volatile sig_atomic_t *halt; /* may be NULL: the caller's stop (a cap reached) */
-    int halted;
+    /* the command's engine callbacks: the stream's user is this */
+    sw_state_fn on_state;
+    sw_event_fn on_event;
+    void *user;
+    int halted; /* R->halt was set: the caller has all it can take */
     /* SIGINT or SIGTERM: the rows after it (in the chunk being fed) are not
      * read; the pump stops after the chunk */
     int stopped;
     long unread, unread_rejected;
-    sw_cli_unused_t *unused; /* the caller's record of what was not used */
+    sw_cli_unused_t *unused; /* the run's record of what was not used */
 } feed_t;
 
 /* ---- what the reader chose ------------------------------------------------------- */
@@ -114,12 +118,12 @@ static void explain_columns(const feed_t *F)
         F->name);
 }
 
-/* ---- rows into the gate ------------------------------------------------------------ */
+/* ---- rows into the stream ---------------------------------------------------------- */
 
 static int on_row(void *user, long line, double t, double a_g, double a_z)
 {
     feed_t *F = user;
-    if (F->halted || (F->halt && *F->halt)) { /* the caller has all it can take */
+    if (F->halted || (F->R->halt && *F->R->halt)) { /* the caller has all it can take */
         F->halted = F->rej.stop = 1;
         return 0;
     }
@@ -139,7 +143,7 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
                            .rx = NAN,
                            .wall = NAN,
                            .where = line};
-    sw_gate_push(F->gate, &s); /* refused samples come back through on_gate_reject */
+    sw_stream_push(F->R->st, &s); /* refused samples come back through on_gate_reject */
     return 0;
 }
 
@@ -169,7 +173,19 @@ static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, c
 static void on_gate_take(void *user, double t, double a_g, double a_z, int restart)
 {
     const feed_t *F = user;
-    F->take(F->take_user, t, a_g, a_z, restart);
+    F->R->take(F->R->user, t, a_g, a_z, restart);
+}
+
+static void on_state(void *user, const sw_output_t *out)
+{
+    const feed_t *F = user;
+    F->on_state(F->user, out);
+}
+
+static void on_event(void *user, const sw_event_t *ev)
+{
+    const feed_t *F = user;
+    F->on_event(F->user, ev);
 }
 
 static void on_gate_event(void *user, const sw_gate_event_t *ev)
@@ -220,142 +236,172 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
     }
 }
 
-int sw_cli_feed_csv(sw_cli_logfile_t *lf, const sw_cli_csv_opts_t *co, const sw_cli_gate_t *go,
-                    sw_engine_t *e, int quiet, sw_gate_take_fn take, void *take_user,
-                    const volatile sig_atomic_t *halt, sw_cli_fed_t *out)
+/* ---- the source's calls ------------------------------------------------------------- */
+
+/* Dates: a date-time column (time_unit), or epoch times (the gate timed
+ * the log from its first sample) that fall in the years of recordings. */
+static void dates(sw_cli_reader_t *R, const sw_gate_facts_t *f, int time_unit)
 {
-    int rc = SW_EXIT_USAGE, err = 0;
-    char msg[256] = "";
-    feed_t F = {
-        .name = lf->name, .quiet = quiet, .take = take, .take_user = take_user, .halt = halt};
-    F.rej = (sw_cli_rejects_t){.name = lf->name, .quiet = quiet, .strict = co->strict};
-    memset(out, 0, sizeof *out);
-    sw_cli_unused_init(&out->unused, 1);
-    out->unused.listed = 1;
-    F.unused = &out->unused;
-    sw_gate_opts_t gopts;
-    sw_cli_gate_opts(go, &gopts);
-    gopts.on_event = on_gate_event;
-    gopts.on_reject = on_gate_reject;
-    gopts.on_take = take ? on_gate_take : NULL;
-    gopts.user = &F;
-    gopts.relative = -1;
-    F.gate = sw_gate_create(e, &gopts, msg, sizeof msg);
-    if (!F.gate) {
-        sw_cli_error("%s: %s", lf->name, msg);
-        return SW_EXIT_USAGE;
-    }
-    sw_csv_opts_t copts = co->csv;
-    copts.any_order = 1; /* the gate judges time: a lone row off in time is that row's fault */
-    F.csv = sw_csv_create(&copts, on_row, on_reject, &F, &err, msg, sizeof msg);
-    if (!F.csv) {
-        sw_cli_error("%s: %s", lf->name, msg[0] ? msg : sw_strerror(err));
-        goto out;
-    }
-    int fr;
-    rc = sw_cli_logfile_pump(lf, F.csv, &F.rej.stop, after_chunk, &F, &fr);
-    if (rc != SW_EXIT_OK)
-        goto out;
-    if (F.stopped) { /* what was read, without the rest */
-        sw_csv_counts_t k;
-        sw_csv_counts(F.csv, &k);
-        sw_gate_facts(F.gate, &out->facts);
-        out->interrupted = 1;
-        out->rows = k.rows - F.unread - F.unread_rejected;
-        out->rejected = k.rejected - F.unread_rejected + sw_gate_rejected(&out->facts);
-        sw_cli_rejects_summary(&F.rej);
-        goto out;
-    }
-    if (F.halted) { /* the caller says why */
-        out->halted = 1;
-        rc = SW_EXIT_OK;
-        goto out;
-    }
-    rc = SW_EXIT_USAGE;
-    if (fr == SW_EAMBIGUOUS || fr == SW_ENOTFOUND) {
-        explain_columns(&F); /* the reader's reason names the column, then the header */
-        goto out;
-    }
-    if (fr < 0) {
-        sw_cli_error("%s: %s", lf->name, sw_strerror(fr));
-        rc = fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
-        goto out;
-    }
-    if (!F.rej.stop)
-        sw_gate_flush(F.gate);
-    if (F.rej.stop) {
-        sw_cli_error("%s: stopped at the first rejected row (--strict)", lf->name);
-        goto out;
-    }
-    sw_csv_layout_t layout;
-    if (sw_csv_layout(F.csv, &layout) == SW_OK && layout.ready)
-        out->time_unit = layout.unit[0];
-    sw_csv_counts_t counts;
-    sw_csv_counts(F.csv, &counts);
-    sw_gate_facts(F.gate, &out->facts);
-    out->facts.upstream_rejected = counts.rejected; /* rows the reader could not use */
-    out->rows = counts.rows;
-    out->rejected = counts.rejected + sw_gate_rejected(&out->facts);
-    sw_cli_rejects_summary(&F.rej);
-    if (out->facts.reconstructed > 0 && !quiet)
-        sw_cli_error("%s: %ld of %ld times reconstructed (repeated stamps spread over their unit)",
-                     lf->name, out->facts.reconstructed, out->rows);
-    if (out->facts.accepted <= 0) {
-        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)%s", lf->name, out->rows,
-                     out->rejected,
-                     out->rows > 0 ? ": the lines above say why; check the columns and units "
-                                     "(--time-col, --time-unit, --accel-col, --accel-unit)"
-                                   : "");
-        goto out;
-    }
-    rc = SW_EXIT_OK;
-out:
-    sw_csv_destroy(F.csv);
-    sw_gate_destroy(F.gate);
-    return rc;
+    if (f->accepted <= 0 || !(time_unit == SW_CSV_UNIT_DATETIME ||
+                              (f->t_origin != 0.0 && sw_cli_epoch_plausible(f->t_origin))))
+        return;
+    R->run.absolute = 1;
+    R->run.abs_base = 0.0; /* the source's times are dates */
+    R->run.abs_start = f->t_first;
+    R->run.abs_end = f->t_last;
+    R->run.abs_from =
+        time_unit == SW_CSV_UNIT_DATETIME ? "the log's date-times" : "the log's epoch times";
 }
 
-/* ---- the verdict's check ----------------------------------------------------------- */
-
-int sw_cli_feed_verdict(const char *name, const sw_gate_facts_t *f, const sw_cli_gate_t *go,
-                        int vert, int quiet, sw_cli_run_t *run)
+static int csv_prepare(sw_cli_reader_t *R)
 {
-    sw_gate_limits_t lim;
-    sw_cli_gate_limits(go, &lim);
-    char why[320] = "";
-    int r = sw_gate_check(f, &lim, why, sizeof why);
-    /* gravity counted twice: a vertical channel reading +1 g on average
-     * that nobody said includes it */
-    if (r != SW_GATE_REFUSE && vert && go->vert_gravity < 0 &&
-        fabs(f->mean_z - SW_G0) < 0.15 * SW_G0) {
-        snprintf(why, sizeof why,
-                 "the vertical channel reads %.3g g on average: it includes gravity (an "
-                 "accelerometer), which the model would count twice; say "
-                 "--vert-includes-gravity (or --vert-excludes-gravity if it does not)",
-                 f->mean_z / SW_G0);
-        r = SW_GATE_REFUSE;
+    feed_t *F = calloc(1, sizeof *F);
+    if (!F) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
     }
-    run->facts = *f;
-    run->have_facts = 1;
-    if (r == SW_GATE_WARN) {
-        snprintf(run->check, sizeof run->check, "%s", why);
-        if (!quiet)
-            sw_cli_error("%s: warning: %s", name, why);
-        return SW_EXIT_OK;
-    }
-    if (r != SW_GATE_REFUSE)
-        return SW_EXIT_OK;
-    if (!go->force) {
-        sw_cli_error("%s: no verdict: %s", name, why);
-        sw_cli_error(
-            "%s: check the columns and units (see the lines above; --time-col, "
-            "--time-unit, --accel-col, --accel-unit), or give --force for a verdict "
-            "marked as forced",
-            name);
-        return SW_EXIT_USAGE;
-    }
-    run->forced = 1;
-    snprintf(run->check, sizeof run->check, "%s", why);
-    sw_cli_error("%s: verdict forced (--force) although %s", name, why);
+    F->R = R;
+    F->name = R->lf.name;
+    F->quiet = R->quiet;
+    R->priv = F;
     return SW_EXIT_OK;
 }
+
+/* The stream: the gate's options as given, times relative when they look
+ * like an epoch; the command's callbacks through F. */
+static int csv_start(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
+                     const sw_engine_opts_t *eo)
+{
+    feed_t *F = R->priv;
+    F->on_state = eo->on_state;
+    F->on_event = eo->on_event;
+    F->user = eo->user;
+    sw_stream_opts_t so = {
+        .engine = *eo,
+        .risk = {.reserve_rate = R->reserve_rate > 0.0 ? R->reserve_rate : -1.0},
+        .hysteresis = -1.0,
+        .on_state = eo->on_state ? on_state : NULL,
+        .on_event = eo->on_event ? on_event : NULL,
+        .on_input = on_gate_event,
+        .on_reject = on_gate_reject,
+        .on_take = R->take ? on_gate_take : NULL,
+        .user = F,
+    };
+    sw_cli_gate_opts(&R->o->gate, &so.gate);
+    so.gate.relative = -1;
+    int err = 0;
+    char msg[512] = "";
+    if (!(R->st = sw_stream_create(scenes, n, &so, &err, msg, sizeof msg))) {
+        sw_cli_error("cannot start the engine: %s", msg[0] ? msg : sw_strerror(err));
+        return err == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
+
+/* The log through the reader into the stream, then its end.  A SIGINT or
+ * SIGTERM stops it between rows (R->interrupted; the stream is not
+ * finished, the rest of the chunk read is not counted); so does R->halt
+ * (R->halted). */
+static int csv_feed(sw_cli_reader_t *R, sw_gate_facts_t *f, int *vert)
+{
+    feed_t *F = R->priv;
+    const sw_cli_csv_opts_t *co = &R->o->copts;
+    int rc = SW_EXIT_USAGE, err = 0;
+    char msg[256] = "";
+    F->rej = (sw_cli_rejects_t){.name = F->name, .quiet = F->quiet, .strict = co->strict};
+    sw_cli_unused_init(&R->run.unused, 1);
+    R->run.unused.listed = 1;
+    F->unused = &R->run.unused;
+    *vert = co->csv.vert_col != NULL;
+    sw_csv_opts_t copts = co->csv;
+    copts.any_order = 1; /* the gate judges time: a lone row off in time is that row's fault */
+    F->csv = sw_csv_create(&copts, on_row, on_reject, F, &err, msg, sizeof msg);
+    if (!F->csv) {
+        sw_cli_error("%s: %s", F->name, msg[0] ? msg : sw_strerror(err));
+        return SW_EXIT_USAGE;
+    }
+    int fr;
+    if ((rc = sw_cli_logfile_pump(&R->lf, F->csv, &F->rej.stop, after_chunk, F, &fr)) != SW_EXIT_OK)
+        return rc;
+    sw_csv_counts_t counts;
+    sw_csv_counts(F->csv, &counts);
+    if (F->stopped) { /* what was read, without the rest */
+        sw_gate_facts(sw_stream_gate(R->st), f);
+        R->interrupted = 1;
+        R->run.samples_read = counts.rows - F->unread - F->unread_rejected;
+        R->run.samples_rejected = counts.rejected - F->unread_rejected + sw_gate_rejected(f);
+        R->accepted = f->accepted;
+        sw_cli_rejects_summary(&F->rej);
+        dates(R, f, SW_CSV_UNIT_NONE); /* the layout is not asked after a signal */
+        return SW_EXIT_OK;
+    }
+    if (F->halted) { /* the caller says why */
+        R->halted = 1;
+        return SW_EXIT_OK;
+    }
+    if (fr == SW_EAMBIGUOUS || fr == SW_ENOTFOUND) {
+        explain_columns(F); /* the reader's reason names the column, then the header */
+        return SW_EXIT_USAGE;
+    }
+    if (fr < 0) {
+        sw_cli_error("%s: %s", F->name, sw_strerror(fr));
+        return fr == SW_ENOMEM ? SW_EXIT_IO : SW_EXIT_USAGE;
+    }
+    if (!F->rej.stop)
+        sw_stream_finish(R->st);
+    if (F->rej.stop) {
+        sw_cli_error("%s: stopped at the first rejected row (--strict)", F->name);
+        return SW_EXIT_USAGE;
+    }
+    sw_csv_counts(F->csv, &counts);
+    sw_gate_facts(sw_stream_gate(R->st), f);
+    f->upstream_rejected = counts.rejected; /* rows the reader could not use */
+    R->run.samples_read = counts.rows;
+    R->run.samples_rejected = counts.rejected + sw_gate_rejected(f);
+    R->accepted = f->accepted;
+    sw_cli_rejects_summary(&F->rej);
+    if (f->reconstructed > 0 && !F->quiet)
+        sw_cli_error("%s: %ld of %ld times reconstructed (repeated stamps spread over their unit)",
+                     F->name, f->reconstructed, R->run.samples_read);
+    if (f->accepted <= 0) {
+        sw_cli_error("%s: no usable samples (%ld data rows, %ld rejected)%s", F->name,
+                     R->run.samples_read, R->run.samples_rejected,
+                     R->run.samples_read > 0
+                         ? ": the lines above say why; check the columns and units "
+                           "(--time-col, --time-unit, --accel-col, --accel-unit)"
+                         : "");
+        return SW_EXIT_USAGE;
+    }
+    sw_csv_layout_t layout;
+    dates(R, f,
+          sw_csv_layout(F->csv, &layout) == SW_OK && layout.ready ? layout.unit[0]
+                                                                  : SW_CSV_UNIT_NONE);
+    return SW_EXIT_OK;
+}
+
+static void csv_close(sw_cli_reader_t *R)
+{
+    feed_t *F = R->priv;
+    if (F)
+        sw_csv_destroy(F->csv);
+    sw_stream_destroy(R->st);
+    free(F);
+}
+
+static void csv_init(sw_cli_read_opts_t *o)
+{
+    sw_cli_csv_opts_init(&o->copts);
+}
+
+static const sw_cli_option_t *const csv_own[] = {sw_cli_csv_options, NULL};
+
+const sw_cli_source_t sw_cli_source_csv = {
+    .name = "a CSV log",
+    .takes = "CSV logs",
+    .own = csv_own,
+    .init = csv_init,
+    .prepare = csv_prepare,
+    .start = csv_start,
+    .feed = csv_feed,
+    .close = csv_close,
+};
