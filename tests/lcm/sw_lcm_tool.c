@@ -4,6 +4,9 @@
  *   sw_lcm_tool mklog OUT.lcmlog PULSE...       accel_t log written with the event-log API
  *   sw_lcm_tool publish URL PULSE... [--bad N]  the same samples published live, paced
  *   sw_lcm_tool dump LOG                        what a log holds, one fact per line
+ *   sw_lcm_tool feed [--all-alarms] [--publish URL] LOG SCENE...
+ *                                               the log's accel_t messages pushed into the
+ *                                               monitor core, as the live loop does
  *
  * PULSE: --rate HZ --amplitude A --omega W --duration T [--lead S]: a
  * half-sine pulse of A m/s^2 (negative brakes) and W rad/s on the x axis,
@@ -20,7 +23,19 @@
  *   state NAME count N seq_gaps G max_abs_theta X min_margin M
  *   alarm UTIME NAME KIND LEVEL          (in order)
  *   nonfinite N                           (doubles that were not finite)
- * so that shell tests can compare two logs with grep and diff. */
+ * so that shell tests can compare two logs with grep and diff.
+ *
+ * feed reads LOG with LCM's own event-log reader and hands each message on
+ * the ACCEL channel to sw_mon_feed() (the monitor core's push API, no
+ * lcm_t: nothing published), with lcm-logger's timestamp as the wall
+ * clock and its time after the first as the arrival, the command's
+ * default options (reserve at 10 Hz), then flushes and settles 30 s as
+ * replay does.  It prints every state as a row of replay's --out
+ * ("state " then the row) and publishes what the monitor publishes on URL
+ * (--publish); with --all-alarms there is no rate limit and each alarm is
+ * printed, "alarm T NAME KIND", T the engine's time (%.9g, as the events
+ * file).
+ * A monitor that drives the same stream as replay writes the same rows. */
 #include <gsl/gsl_errno.h>
 #include <lcm/eventlog.h>
 #include <lcm/lcm.h>
@@ -31,8 +46,8 @@
 #include <time.h>
 
 #include "auth.h"
-#include "swaywatch/pulse.h"
-#include "swaywatch/status.h"
+#include "monitor.h"
+#include "swaywatch/swaywatch.h"
 #include "swaywatch_accel_t.h"
 #include "swaywatch_accel_v1_t.h"
 #include "swaywatch_alarm_t.h"
@@ -318,6 +333,131 @@ static int cmd_dump(const char *path)
     return 0;
 }
 
+typedef struct {
+    const sw_scene_t *scenes;
+    sw_mon_t *mon;
+    int all_alarms;
+} feed_t;
+
+static void num(double v)
+{
+    if (isfinite(v))
+        printf(",%.9g", v);
+    else
+        putchar(',');
+}
+
+static void feed_state(void *user, const sw_output_t *o)
+{
+    const feed_t *F = user;
+    const sw_state_t *s = &o->state;
+    printf("state %.9g,%s,%s", o->t, F->scenes[o->pkg].name, sw_phase_name(s->phase));
+    num(s->theta);
+    num(s->theta_dot);
+    num(s->u);
+    num(s->u_dot);
+    num(s->z);
+    num(s->z_dot);
+    num(o->margin);
+    num(o->margin_bound);
+    num(o->uplift_ratio);
+    num(o->a_g);
+    const sw_risk_pkg_t *p = sw_risk_pkg(sw_mon_risk(F->mon), o->pkg);
+    num(p ? p->reserve_g : NAN);
+    putchar('\n');
+}
+
+static void feed_alarm(void *user, const sw_alarm_t *a)
+{
+    const feed_t *F = user;
+    const char *name = a->pkg == SW_ALARM_ALL ? "-" : F->scenes[a->pkg].name;
+    if (F->all_alarms)
+        printf("alarm %.9g %s %s\n", a->t, name, sw_alarm_kind_name(a->kind));
+}
+
+static int cmd_feed(int argc, char **argv)
+{
+    feed_t F = {0};
+    int i = 2;
+    const char *url = NULL;
+    for (; i < argc && argv[i][0] == '-'; i++)
+        if (!strcmp(argv[i], "--all-alarms"))
+            F.all_alarms = 1;
+        else if (!strcmp(argv[i], "--publish") && i + 1 < argc)
+            url = argv[++i];
+        else
+            break;
+    if (argc - i < 2) {
+        fprintf(stderr, "usage: sw_lcm_tool feed [--all-alarms] [--publish URL] LOG SCENE...\n");
+        return 2;
+    }
+    const char *path = argv[i++];
+    const size_t n = (size_t)(argc - i);
+    sw_scene_t *sc = calloc(n, sizeof *sc);
+    if (!sc)
+        return 1;
+    for (size_t k = 0; k < n; k++) {
+        FILE *f = fopen(argv[i + (int)k], "rb");
+        char text[8192];
+        size_t len = f ? fread(text, 1, sizeof text - 1, f) : 0;
+        if (f)
+            fclose(f);
+        text[len] = '\0';
+        sw_scene_init(&sc[k]);
+        if (!f || sw_scene_parse(&sc[k], text, argv[i + (int)k], NULL, NULL) != SW_OK ||
+            sw_scene_validate(&sc[k], NULL, argv[i + (int)k], NULL, NULL) != SW_OK) {
+            fprintf(stderr, "sw_lcm_tool: %s: not a scene\n", argv[i + (int)k]);
+            free(sc);
+            return 2;
+        }
+    }
+    F.scenes = sc;
+    sw_engine_opts_t eo;
+    memset(&eo, 0, sizeof eo);
+    sw_mon_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.vertical = -1;
+    mo.hysteresis = -1.0;
+    mo.reserve_rate = SW_RISK_RATE;
+    mo.alarm_interval = F.all_alarms ? -1.0 : 0.0;
+    mo.on_state = feed_state;
+    mo.on_alarm = feed_alarm;
+    mo.user = &F;
+    char msg[256] = "";
+    lcm_t *lcm = url ? lcm_create(url) : NULL;
+    F.mon = !url || lcm ? sw_mon_create(sc, n, &eo, &mo, lcm, msg, sizeof msg) : NULL;
+    lcm_eventlog_t *log = F.mon ? lcm_eventlog_create(path, "r") : NULL;
+    if (!log) {
+        fprintf(stderr, "sw_lcm_tool: %s\n", F.mon ? path : msg[0] ? msg : url);
+        sw_mon_destroy(F.mon);
+        if (lcm)
+            lcm_destroy(lcm);
+        free(sc);
+        return 1;
+    }
+    int have0 = 0;
+    int64_t ts0 = 0;
+    for (lcm_eventlog_event_t *ev; (ev = lcm_eventlog_read_next_event(log));
+         lcm_eventlog_free_event(ev)) {
+        if (strcmp(ev->channel, "ACCEL") != 0)
+            continue;
+        if (!have0) {
+            have0 = 1;
+            ts0 = ev->timestamp;
+        }
+        sw_mon_feed(F.mon, ev->data, (size_t)ev->datalen, ev->timestamp,
+                    (double)(ev->timestamp - ts0) / 1e6, NULL);
+    }
+    lcm_eventlog_destroy(log);
+    sw_mon_flush(F.mon);
+    sw_stream_settle(sw_mon_stream(F.mon), 30.0);
+    sw_mon_destroy(F.mon);
+    if (lcm)
+        lcm_destroy(lcm);
+    free(sc);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
@@ -335,6 +475,10 @@ int main(int argc, char **argv)
     }
     if (argc == 3 && !strcmp(argv[1], "dump"))
         return cmd_dump(argv[2]);
-    fprintf(stderr, "usage: sw_lcm_tool mklog OUT [pulse] | publish URL [pulse] | dump LOG\n");
+    if (argc >= 2 && !strcmp(argv[1], "feed"))
+        return cmd_feed(argc, argv);
+    fprintf(stderr,
+            "usage: sw_lcm_tool mklog OUT [pulse] | publish URL [pulse] | dump LOG | feed "
+            "[--all-alarms] LOG SCENE...\n");
     return 2;
 }
