@@ -32,6 +32,15 @@
 
 #define WIN (64 * 1024) /* bytes of the read window; > header + longest channel */
 
+typedef struct {
+    long long start; /* offset of its sync word */
+    long long data;  /* offset of its data */
+    long long end;   /* offset after it */
+    int32_t datalen;
+    int64_t timestamp;
+    char channel[SW_LCMLOG_MAX_CHANNEL + 1];
+} event_t;
+
 struct sw_lcmlog {
     int fd;
     long long size;
@@ -51,7 +60,7 @@ struct sw_lcmlog {
     long long pos;
     int in_bad;
     sw_lcmlog_region_t region;
-    char chan[SW_LCMLOG_MAX_CHANNEL + 1]; /* the channel of the event handed out */
+    event_t cur; /* the event checked last: the channel of the one handed out */
 };
 
 /* LCM anchors channel regexes at both ends. */
@@ -313,15 +322,6 @@ static long long next_sync(sw_lcmlog_t *l, long long from)
     return l->size;
 }
 
-typedef struct {
-    long long start; /* offset of its sync word */
-    long long data;  /* offset of its data */
-    long long end;   /* offset after it */
-    int32_t datalen;
-    int64_t timestamp;
-    char channel[SW_LCMLOG_MAX_CHANNEL + 1];
-} event_t;
-
 /* Is there a whole event at pos?  1 with e filled, or 0 with why. */
 static int check_event(sw_lcmlog_t *l, long long pos, event_t *e, char *why, size_t wlen)
 {
@@ -433,21 +433,18 @@ int sw_lcmlog_next(sw_lcmlog_t *l, sw_lcmlog_event_t *ev)
             l->c.stopped = 1;
             break;
         }
-        event_t e;
+        event_t *e = &l->cur;
         char why[sizeof l->region.why];
-        if (check_event(l, l->pos, &e, why, sizeof why)) {
+        if (check_event(l, l->pos, e, why, sizeof why)) {
             if (l->in_bad) {
                 l->in_bad = 0;
                 end_region(l, &l->region, l->pos);
                 if (l->o.strict)
                     return SW_EPARSE;
             }
-            l->pos = e.end;
-            memcpy(l->chan, e.channel, sizeof e.channel);
-            if (take(l, &e, ev)) {
-                ev->channel = l->chan;
+            l->pos = e->end;
+            if (take(l, e, ev))
                 return 1;
-            }
             continue;
         }
         if (l->ioerr) {

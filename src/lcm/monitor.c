@@ -63,6 +63,10 @@ _Static_assert(sizeof(((swaywatch_alarm_t *)0)->text) == SW_ALARM_TEXT_MAX,
 
 struct sw_mon {
     sw_stream_t *st; /* the gate, the engines, the reserve, the alarm watches */
+    /* the stream's parts, read after every message */
+    const sw_gate_t *gate;
+    sw_engine_t *engine;
+    sw_risk_t *risk;
     size_t n;
     int64_t *next_state_us;  /* per package: sample utime of the next state due */
     int64_t state_period_us; /* 0: every sample */
@@ -177,13 +181,13 @@ static int64_t utime_at(const sw_mon_t *m, double t)
  * integer). */
 static int64_t utime_of(const sw_mon_t *m, double t)
 {
-    return utime_at(m, sw_gate_source_time(sw_stream_gate(m->st), t));
+    return utime_at(m, sw_gate_source_time(m->gate, t));
 }
 
 /* Package pkg's latest reserve for a message: -1 when there is none. */
 static double reserve_of(const sw_mon_t *m, size_t pkg)
 {
-    const sw_risk_pkg_t *p = sw_risk_pkg(sw_stream_risk(m->st), pkg);
+    const sw_risk_pkg_t *p = sw_risk_pkg(m->risk, pkg);
     return p && isfinite(p->reserve_g) ? p->reserve_g : -1.0;
 }
 
@@ -269,7 +273,7 @@ static void on_state(void *user, const sw_output_t *out)
     msg.utime = utime;
     msg.seq = m->state_seq++;
     set_name(msg.name, sizeof msg.name, sw_stream_name(m->st, k));
-    msg.model = (int8_t)sw_engine_derived(sw_stream_engine(m->st), k)->model;
+    msg.model = (int8_t)sw_engine_derived(m->engine, k)->model;
     msg.phase = (int8_t)out->state.phase;
     msg.side = (int8_t)out->state.side;
     msg.theta = out->state.theta;
@@ -377,6 +381,9 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
         sw_mon_destroy(m);
         return NULL;
     }
+    m->gate = sw_stream_gate(m->st);
+    m->engine = sw_stream_engine(m->st);
+    m->risk = sw_stream_risk(m->st);
     return m;
 
 nomem:
@@ -405,7 +412,7 @@ static double timer_gap(const sw_mon_t *m)
 {
     if (m->timer_gap > 0.0)
         return m->timer_gap;
-    const double thr = sw_gate_gap_threshold(sw_stream_gate(m->st));
+    const double thr = sw_gate_gap_threshold(m->gate);
     return isfinite(thr) && thr > SW_MON_GAP ? thr : SW_MON_GAP;
 }
 
@@ -420,7 +427,7 @@ static void input_alarm(sw_mon_t *m, sw_alarm_kind kind, sw_alarm_level level, i
 {
     sw_alarm_t a;
     sw_gate_facts_t f;
-    sw_gate_facts(sw_stream_gate(m->st), &f);
+    sw_gate_facts(m->gate, &f);
     double d = 0.0;
     if (m->have_last) {
         int64_t du;
@@ -620,7 +627,7 @@ int sw_mon_feed_on(sw_mon_t *m, const char *channel, const void *data, size_t le
     const long before = m->c.accepted;
     m->feed_why = SW_MON_NREJ;
     int rc = sw_stream_push(m->st, &smp);
-    m->c.accepted = sw_gate_accepted(sw_stream_gate(m->st));
+    m->c.accepted = sw_gate_accepted(m->gate);
     if (m->c.accepted > before) {
         /* this sample, or held ones it confirmed, went in */
         m->have_last = 1;
@@ -695,7 +702,7 @@ void sw_mon_flush(sw_mon_t *m)
     m->now = INFINITY;
     sw_stream_finish(m->st);
     sw_gate_facts_t f;
-    sw_gate_facts(sw_stream_gate(m->st), &f);
+    sw_gate_facts(m->gate, &f);
     m->c.accepted = f.accepted;
     for (int r = 0; r < SW_MON_NREJ; r++) reject_alarm(m, (sw_mon_reject)r, INFINITY, m->last_us);
     sw_fold_tick(m->fold, INFINITY);
@@ -704,7 +711,7 @@ void sw_mon_flush(sw_mon_t *m)
 void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
 {
     sw_gate_facts_t f;
-    sw_gate_facts(sw_stream_gate(m->st), &f);
+    sw_gate_facts(m->gate, &f);
     *c = m->c;
     c->alarms_folded = sw_fold_folded(m->fold);
     c->accepted = f.accepted;
@@ -720,7 +727,7 @@ void sw_mon_counts(const sw_mon_t *m, sw_mon_counts_t *c)
 
 void sw_mon_facts(const sw_mon_t *m, sw_gate_facts_t *f)
 {
-    sw_gate_facts(sw_stream_gate(m->st), f);
+    sw_gate_facts(m->gate, f);
 }
 
 long sw_mon_rejected(const sw_mon_counts_t *c)
@@ -732,13 +739,13 @@ long sw_mon_rejected(const sw_mon_counts_t *c)
 
 sw_engine_t *sw_mon_engine(sw_mon_t *m)
 {
-    return sw_stream_engine(m->st);
+    return m->engine;
 }
 
 int64_t sw_mon_origin(const sw_mon_t *m)
 {
     sw_gate_facts_t f;
-    sw_gate_facts(sw_stream_gate(m->st), &f);
+    sw_gate_facts(m->gate, &f);
     return m->have_last ? utime_at(m, f.t_origin) : 0;
 }
 
@@ -759,7 +766,7 @@ int sw_mon_replace(sw_mon_t *m, size_t k, const sw_scene_t *scene, char *msg, si
 
 sw_risk_t *sw_mon_risk(sw_mon_t *m)
 {
-    return m ? sw_stream_risk(m->st) : NULL;
+    return m ? m->risk : NULL;
 }
 
 sw_stream_t *sw_mon_stream(sw_mon_t *m)
