@@ -79,6 +79,24 @@ static void test_coarse_times_refused(void **state)
     sw_engine_destroy(e);
 }
 
+/* Two absolute times that differ by less than the resolution of the time
+ * relative to the first sample (here 1e-300 s after a sample 16.5 ms in)
+ * are the same time to the engine: the later is refused as not after the
+ * earlier, and the next distinct sample goes on. */
+static void test_same_relative_time(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    sw_engine_t *e = tu_engine(&sc, NULL, 0.0, NULL);
+    assert_non_null(e);
+    assert_int_equal(sw_engine_push(e, -0.0165, 0.0, 0.0), SW_OK);
+    assert_int_equal(sw_engine_push(e, 0.0, 0.0, 0.0), SW_OK);
+    assert_int_equal(sw_engine_push(e, 1e-300, 0.0, 3.6), SW_EORDER);
+    assert_int_equal(sw_engine_push(e, 1e-3, 0.0, 0.0), SW_OK);
+    assert_true(fabs(sw_engine_time(e) - 1e-3) < 1e-15);
+    sw_engine_destroy(e);
+}
+
 /* After a restart the packages stand at rest and the next sample is not
  * bridged from the last: a braking that would have lifted the crate when
  * interpolated over the pause does not. */
@@ -133,9 +151,8 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_epoch_times),
-        cmocka_unit_test(test_coarse_times_refused),
-        cmocka_unit_test(test_restart),
+        cmocka_unit_test(test_epoch_times),        cmocka_unit_test(test_coarse_times_refused),
+        cmocka_unit_test(test_same_relative_time), cmocka_unit_test(test_restart),
         cmocka_unit_test(test_progress),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -19,7 +19,8 @@ enum {
     SW_EVENT = 1,         /* the call completed and reported at least one event */
     SW_EINVAL = -1,       /* invalid argument or invalid value in a scene */
     SW_ENOMEM = -2,       /* allocation failed */
-    SW_EORDER = -3,       /* sample time not after the previous one */
+    SW_EORDER = -3,       /* sample time not after the previous one (at the resolution
+                             of the time relative to the first sample) */
     SW_ENONFINITE = -4,   /* non-finite input value */
     SW_EUNSTABLE = -5,    /* the forced step violates the scheme's stability bound */
     SW_EFAULT = -6,       /* model fault: state became non-finite or left the model */

@@ -569,8 +569,10 @@ static int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
     if (coarse_time(t_abs))
         return SW_ERESOLUTION;
     const double t = t_abs - e->C.origin; /* s, relative */
+    /* Rounding keeps the order but not the difference: two absolute times
+     * closer than the relative time's resolution are one time here. */
     if (!(t > e->t))
-        return SW_ERESOLUTION; /* cannot happen: rounding is monotonic */
+        return SW_EORDER;
     e->t_abs = t_abs;
     if (e->restart) {
         e->restart = 0;
