@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_safety.c - the safety factors of a log (sweep.h, safety.c): runs
  * that start part-way through the log against runs from its start (a
- * different path: sw_log_run, or an engine fed by hand), the log's
- * restarts, several scenes at once against one at a time, and results
- * that do not depend on the number of threads. */
+ * different path: sw_log_run, or an engine fed by hand), the search's
+ * trials that jump over what cannot change their answer (safety_prep.c)
+ * against the same, the log's restarts, several scenes at once against
+ * one at a time, and results that do not depend on the number of
+ * threads. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -13,6 +15,7 @@
 #include <cmocka.h>
 #include <gsl/gsl_errno.h>
 
+#include "../src/lib/safety_prep.h"
 #include "testutil.h"
 
 #define N 90000 /* 90 s at 1 kHz */
@@ -174,6 +177,59 @@ static void test_cushion_jumps(void **state)
     assert_true(lifted_twice >= 1); /* the early braking lifts an edge, and so does the last */
 }
 
+/* Quiet driving (vibration well below any lift), brakings of 3 m/s^2
+ * at the given times (s), and a restart of the log at 60 s. */
+static sw_log_t episodes(const double *at, size_t n, size_t *restart)
+{
+    sw_log_t L = drive(0.0);
+    for (size_t i = 0; i < N; i++)
+        for (size_t k = 0; k < n; k++) {
+            const double u = t_[i] - at[k];
+            if (u >= 0.0 && u < 0.6)
+                a_[i] += -3.0 * sin(M_PI * u / 0.6);
+        }
+    *restart = 60000;
+    L.restart = restart;
+    L.nrestart = 1;
+    return L;
+}
+
+/* On a frame: episodes 8 s and 40 s apart (and a restart between), the
+ * package standing on the frame in between, which a search trial jumps
+ * over in closed form: against the log scaled by x run from its start
+ * (sw_log_run), the same outcome and peak, and against the run at scale
+ * 1's way (the full trial, which runs through) the same peak but for
+ * rounding; 8 s after an episode the frame still rings with a few per
+ * cent of what it took, which the next episode feels. */
+static void test_trials_frame(void **state)
+{
+    (void)state;
+    const sw_scene_t fr = tu_frame(2.0, 0.728, 250.0, 5.59, 0.1);
+    const double at[] = {5.0, 13.0, 45.0, 85.0};
+    size_t restart;
+    const sw_log_t L = episodes(at, 4, &restart);
+    const sw_run_opts_t ro = {.settle = 10.0};
+    prep_t P = {.sc = &fr, .log = &L, .ro = &ro};
+    char msg[256];
+    assert_int_equal(sw_safety_prep_make(&P, msg, sizeof msg), SW_OK);
+    const double xs[] = {0.8, 1.0, 1.3, 1.6, 2.0};
+    int rocked_twice = 0;
+    for (size_t k = 0; k < 5; k++) {
+        sw_run_result_t ref, full, search;
+        assert_int_equal(sw_log_run(&fr, &L, xs[k], &ro, &ref, msg, sizeof msg), SW_OK);
+        assert_int_equal(sw_safety_trial(&P, xs[k], 1, &full, msg, sizeof msg), SW_OK);
+        assert_int_equal(sw_safety_trial(&P, xs[k], 0, &search, msg, sizeof msg), SW_OK);
+        assert_int_equal(search.overturned, ref.overturned);
+        assert_int_equal(full.overturned, ref.overturned);
+        tu_near(search.max_theta_ratio, ref.max_theta_ratio, 1e-9);
+        if (!ref.overturned)
+            tu_near(search.max_theta_ratio, full.max_theta_ratio, 1e-13);
+        rocked_twice += ref.uplifts >= 2 && !ref.overturned;
+    }
+    sw_safety_prep_free(&P);
+    assert_true(rocked_twice >= 1);
+}
+
 /* A restart in the log: the run equals one fed by hand to an engine that
  * restarts there (sw_engine_restart), and differs from the run without. */
 static void test_restarts(void **state)
@@ -299,6 +355,7 @@ int main(void)
         cmocka_unit_test(test_bed_exact),     cmocka_unit_test(test_linear_starts),
         cmocka_unit_test(test_cushion_jumps), cmocka_unit_test(test_restarts),
         cmocka_unit_test(test_many_threads),  cmocka_unit_test(test_origin),
+        cmocka_unit_test(test_trials_frame),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -19,7 +19,9 @@
  *     at a scale far too small to lift anything (the probe), stored every
  *     CHECK samples.  A trial starts from the stored state before the first
  *     sample at which the scaled support acceleration can reach the uplift
- *     threshold (the same as a run from the start but for rounding);
+ *     threshold (the same as a run from the start but for rounding).  A
+ *     search trial also jumps over every later stretch in which the
+ *     package stands on the frame and nothing can lift it (frame_jump);
  *   - on a cushion (on the bed, no cubic term, no vertical input) the
  *     rocking about rest is, to first order, a damped oscillator in closed
  *     form; the trial starts from its scaled state a lead-in before the
@@ -199,6 +201,8 @@ static int prep_stuck(prep_t *P, sw_runner_t *R)
     const double probe = 1e-4 * P->bare_lift;
     size_t next_restart = 0;
     double peak = 0.0;
+    if (blocks_alloc(P) != SW_OK)
+        return SW_ENOMEM;
     sw_runner_reset(R);
     for (size_t i = 0; i < L->n; i++) {
         if (sw_run_push(R->e, L, i, probe, &next_restart) < 0)
@@ -215,6 +219,7 @@ static int prep_stuck(prep_t *P, sw_runner_t *R)
         const double s = long_interval(P, i, P->d.omega_b) ? 0.0 : v > 0.0 ? 1.0 / v : INFINITY;
         if (add_record(P, i, s) != SW_OK)
             return SW_ENOMEM;
+        block_min(P, i, s);
         store_state(P, i, o.state.u / probe, o.state.u_dot / probe);
     }
     P->lift_scale = peak > 0.0 ? 1.0 / peak : INFINITY;
@@ -477,9 +482,67 @@ static int bare_jump(const prep_t *P, const sw_runner_t *R, size_t i, double X, 
     return *to >= i + 2 ? JUMP_GO : JUMP_KEEP;
 }
 
+/* After sample i (a checkpoint) of a search trial on a frame: the sample
+ * to jump to, or 0 for none, with the state there in *to_state.
+ *
+ * While the package stands on its frame the frame is a linear oscillator
+ * (physics.md), so the state at scale x is x times the stored unit-scale
+ * state plus the free ringing of the difference d = (u, u') - x q, which
+ * the oscillator carries in closed form (sw_nj_step without input).  The
+ * support acceleration of that ringing never exceeds
+ * w sqrt(1 + 4 zeta^2) sqrt(2 e), e = (d'^2 + w^2 d^2) / 2 the ringing's
+ * energy, which can only fall (the bound of reserve_lift.c); over the lift
+ * threshold g tan(alpha) it is D.  So no sample lifts the package before
+ * the first at which x |A_1| / (g tan(alpha)) reaches LIFT_MARGIN_LOG (1 -
+ * D), A_1 the stored unit-scale support acceleration: the run jumps to the
+ * checkpoint before it, in the state the stuck run would have had there
+ * (to rounding), and skips nothing that could lift the package. */
+#define FRAME_D_MAX 0.5 /* a larger ringing: no jump (the bound would allow little) */
+static size_t frame_jump(const prep_t *P, const sw_runner_t *R, double x, size_t i,
+                         sw_state_t *to_state)
+{
+    const sw_log_t *L = P->log;
+    if (i % CHECK || L->a_z || i + 2 * CHECK >= L->n)
+        return 0;
+    sw_output_t o;
+    sw_engine_get_output(R->e, 0, &o);
+    if (o.state.phase != SW_PHASE_STUCK)
+        return 0;
+    const double w = P->d.omega_b, zeta = P->d.zeta_b;
+    const double *q = &P->st[2 * (i / CHECK)];
+    double d[2] = {o.state.u - x * q[0], o.state.u_dot - x * q[1]};
+    const double e = 0.5 * (d[1] * d[1] + w * w * d[0] * d[0]);
+    const double D = w * sqrt(1.0 + 4.0 * zeta * zeta) * sqrt(2.0 * e) / (P->sc->g * P->tan_alpha);
+    if (!(D < FRAME_D_MAX))
+        return 0;
+    const double X = x / (LIFT_MARGIN_LOG * (1.0 - D));
+    if (P->blk[i / BLOCK] <= X) /* the rest of sample i's block may lift */
+        return 0;
+    const size_t k = next_block(P, i, X);
+    size_t to = k >= L->n ? L->n - 1 : k - 1;
+    to -= to % CHECK;
+    if (to < i + 2 * CHECK)
+        return 0;
+    /* a restart in between puts the run and the stored states at rest
+     * alike: nothing of the ringing is left */
+    for (size_t r = 0; r < L->nrestart; r++)
+        if (L->restart[r] > i && L->restart[r] <= to)
+            d[0] = d[1] = 0.0;
+    double d1[2];
+    sw_nj_step(w, zeta, L->t[to] - L->t[i], 0.0, 0.0, d, d1);
+    const double *q1 = &P->st[2 * (to / CHECK)];
+    *to_state = o.state;
+    to_state->u = x * q1[0] + d1[0];
+    to_state->u_dot = x * q1[1] + d1[1];
+    return to;
+}
+
 /* The trial's samples from i0 on, then the free motion (sw_run_log_on's
- * loop, with the bed's jumps). */
-static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_run_result_t *r)
+ * loop, with the jumps).  full: the run at scale 1, whose every figure is
+ * reported, takes only the jumps that leave its motion as it is (not the
+ * frame's). */
+static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, int full,
+                     sw_run_result_t *r)
 {
     const sw_log_t *L = P->log;
     sw_engine_t *e = R->e;
@@ -489,7 +552,7 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_ru
     int look = P->kind == CK_DIRECT; /* look for a jump: from the start, and after events */
     double last_lift = L->t[i0];     /* cushion: the start's error decays as a lift's does */
     for (size_t i = i0 + 1; i < L->n; i++) {
-        size_t to;
+        size_t to = 0;
         if (P->kind == CK_ROCK && (to = cushion_jump(P, i - 1, last_lift, x / LIFT_MARGIN_LOG))) {
             while (next_restart < L->nrestart && L->restart[next_restart] <= to) next_restart++;
             sw_engine_restart(e);
@@ -502,6 +565,18 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_ru
             last_lift = L->t[to];
             i = to;
             continue; /* the loop goes on at sample to + 1 */
+        }
+        sw_state_t st;
+        if (P->kind == CK_STUCK && !full && (to = frame_jump(P, R, x, i - 1, &st))) {
+            while (next_restart < L->nrestart && L->restart[next_restart] <= to) next_restart++;
+            sw_engine_restart(e);
+            int rc = sw_engine_push(e, L->t[to], x * L->a_g[to], 0.0);
+            if (rc >= 0)
+                rc = sw_engine_set_state(e, 0, &st);
+            if (rc < 0)
+                return rc;
+            i = to;
+            continue;
         }
         const int j = look ? bare_jump(P, R, i - 1, X, &to) : JUMP_STOP;
         if (j == JUMP_STOP)
@@ -550,7 +625,7 @@ int sw_safety_trial(const prep_t *P, double x, int full, sw_run_result_t *r, cha
     if (sw_runner_make(&R, P->sc, P->ro, 0.0, &err, msg, msglen) != SW_OK)
         return err;
     if ((err = trial_begin(P, &R, x, i0)) == SW_OK)
-        err = trial_run(P, &R, x, i0, r);
+        err = trial_run(P, &R, x, i0, full, r);
     sw_engine_destroy(R.e);
     if (err == SW_EFAULT)
         sw_set_msg(msg, msglen, "the model faulted during a trial");
