@@ -194,13 +194,50 @@ static sw_log_t episodes(const double *at, size_t n, size_t *restart)
     return L;
 }
 
+/* The trials of a search at scale x against the log scaled by x run from
+ * its start (sw_log_run): the same outcome; a trial whose peak sets the
+ * scan's step (SW_TRIAL_PEAK) has the peak of the trial that reports
+ * everything (SW_TRIAL_FULL, made as the run at scale 1 is) to peak_tol
+ * (0: to the last bit); one that needs its outcome alone the run's peak to
+ * tol (it is reached while the package rocks, which such a trial runs;
+ * what it jumps over cannot lift the package). */
+static int check_trials(const sw_scene_t *sc, const sw_log_t *L, const double *xs, size_t nx,
+                        double tol, double peak_tol)
+{
+    const sw_run_opts_t ro = {.settle = 10.0};
+    prep_t P = {.sc = sc, .log = L, .ro = &ro};
+    char msg[256];
+    assert_int_equal(sw_safety_prep_make(&P, msg, sizeof msg), SW_OK);
+    int rocked_twice = 0;
+    for (size_t k = 0; k < nx; k++) {
+        sw_run_result_t ref, full, peak, outcome;
+        assert_int_equal(sw_log_run(sc, L, xs[k], &ro, &ref, msg, sizeof msg), SW_OK);
+        assert_int_equal(sw_safety_trial(&P, xs[k], SW_TRIAL_FULL, &full, msg, sizeof msg), SW_OK);
+        assert_int_equal(sw_safety_trial(&P, xs[k], SW_TRIAL_PEAK, &peak, msg, sizeof msg), SW_OK);
+        assert_int_equal(sw_safety_trial(&P, xs[k], SW_TRIAL_OUTCOME, &outcome, msg, sizeof msg),
+                         SW_OK);
+        assert_int_equal(full.overturned, ref.overturned);
+        assert_int_equal(peak.overturned, ref.overturned);
+        assert_int_equal(outcome.overturned, ref.overturned);
+        tu_near(full.max_theta_ratio, ref.max_theta_ratio, tol);
+        if (!ref.overturned) {
+            if (peak_tol > 0.0)
+                tu_near(peak.max_theta_ratio, full.max_theta_ratio, peak_tol);
+            else
+                same_bits(peak.max_theta_ratio, full.max_theta_ratio);
+            tu_near(outcome.max_theta_ratio, ref.max_theta_ratio, tol);
+        }
+        rocked_twice += ref.uplifts >= 2 && !ref.overturned;
+    }
+    sw_safety_prep_free(&P);
+    return rocked_twice;
+}
+
 /* On a frame: episodes 8 s and 40 s apart (and a restart between), the
- * package standing on the frame in between, which a search trial jumps
- * over in closed form: against the log scaled by x run from its start
- * (sw_log_run), the same outcome and peak, and against the run at scale
- * 1's way (the full trial, which runs through) the same peak but for
- * rounding; 8 s after an episode the frame still rings with a few per
- * cent of what it took, which the next episode feels. */
+ * package standing on the frame in between, which the trials jump over in
+ * closed form (the same motion but for rounding); 8 s after an episode
+ * the frame still rings with a few per cent of what it took, which the
+ * next episode feels. */
 static void test_trials_frame(void **state)
 {
     (void)state;
@@ -208,26 +245,27 @@ static void test_trials_frame(void **state)
     const double at[] = {5.0, 13.0, 45.0, 85.0};
     size_t restart;
     const sw_log_t L = episodes(at, 4, &restart);
-    const sw_run_opts_t ro = {.settle = 10.0};
-    prep_t P = {.sc = &fr, .log = &L, .ro = &ro};
-    char msg[256];
-    assert_int_equal(sw_safety_prep_make(&P, msg, sizeof msg), SW_OK);
     const double xs[] = {0.8, 1.0, 1.3, 1.6, 2.0};
-    int rocked_twice = 0;
-    for (size_t k = 0; k < 5; k++) {
-        sw_run_result_t ref, full, search;
-        assert_int_equal(sw_log_run(&fr, &L, xs[k], &ro, &ref, msg, sizeof msg), SW_OK);
-        assert_int_equal(sw_safety_trial(&P, xs[k], 1, &full, msg, sizeof msg), SW_OK);
-        assert_int_equal(sw_safety_trial(&P, xs[k], 0, &search, msg, sizeof msg), SW_OK);
-        assert_int_equal(search.overturned, ref.overturned);
-        assert_int_equal(full.overturned, ref.overturned);
-        tu_near(search.max_theta_ratio, ref.max_theta_ratio, 1e-9);
-        if (!ref.overturned)
-            tu_near(search.max_theta_ratio, full.max_theta_ratio, 1e-13);
-        rocked_twice += ref.uplifts >= 2 && !ref.overturned;
-    }
-    sw_safety_prep_free(&P);
-    assert_true(rocked_twice >= 1);
+    assert_true(check_trials(&fr, &L, xs, 5, 1e-9, 1e-13) >= 1);
+}
+
+/* On a cushion on the bed (lead-in 24 s): episodes 55 s apart, a restart
+ * between them, a last one near the end; the trials start each episode
+ * from reference states and leave it when the ringing can no longer lift
+ * an edge. */
+static void test_trials_cushion(void **state)
+{
+    (void)state;
+    sw_scene_t cu = tu_bare(2.0, 0.728);
+    cu.has_cushion = 1;
+    cu.cushion_omega = 60.0;
+    cu.cushion_zeta = 0.3;
+    cu.cushion_k_given = cu.cushion_c_given = SW_GIVEN_RATIO;
+    const double at[] = {30.0, 85.0};
+    size_t restart;
+    const sw_log_t L = episodes(at, 2, &restart);
+    const double xs[] = {0.6, 0.9, 1.2, 1.5, 2.5};
+    assert_true(check_trials(&cu, &L, xs, 5, 1e-6, 0.0) >= 1);
 }
 
 /* A restart in the log: the run equals one fed by hand to an engine that
@@ -355,7 +393,7 @@ int main(void)
         cmocka_unit_test(test_bed_exact),     cmocka_unit_test(test_linear_starts),
         cmocka_unit_test(test_cushion_jumps), cmocka_unit_test(test_restarts),
         cmocka_unit_test(test_many_threads),  cmocka_unit_test(test_origin),
-        cmocka_unit_test(test_trials_frame),
+        cmocka_unit_test(test_trials_frame),  cmocka_unit_test(test_trials_cushion),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -53,12 +53,15 @@ typedef struct {
  * Every run starts as late as its outcome allows: at the sample before the
  * first that can lift the package at that scale, with the state the
  * package has there (exact on the bed, and across the stretches it stands
- * at rest; to rounding on a frame; to FORGET = 1e-9 of the second-order
- * error of the linear motion on a cushion on the bed): an hour-long log
- * costs what the stretches that can move the package cost.  at_one, the
- * run of the log as recorded, is made the same way (on a cushion that
- * never lifts, over its largest response).  Returns SW_OK (found or not),
- * or the first error of a trial with a reason in msg. */
+ * at rest; to rounding on a frame; to 1e-6 of the second-order error of
+ * the linear motion on a cushion on the bed): an hour-long log costs what
+ * the stretches that can move the package cost.  at_one, the run of the
+ * log as recorded, is made the same way (on a cushion that never lifts,
+ * over its largest response).  The search's runs also jump over the
+ * stretches in which a frame stands and a cushion cannot lift an edge,
+ * keeping each run's outcome, and its peak where the scan's step depends
+ * on it (docs/forensics.md).  Returns SW_OK (found or not), or the first
+ * error of a trial with a reason in msg. */
 SW_API int sw_safety_factor(const sw_scene_t *sc, const sw_log_t *log, const sw_run_opts_t *ro,
                             const sw_search_opts_t *so, sw_safety_t *out, char *msg, size_t msglen);
 

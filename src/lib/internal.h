@@ -252,10 +252,12 @@ enum {
  * u'' + 2 zeta w u' + w^2 u = -a (the input, m/s^2), theta = gain u: what
  * checkpoints step in closed form between samples (safety_prep.c). */
 typedef struct {
-    double w, zeta; /* rad/s, 1 */
-    double gain;    /* theta per u, rad/m */
-    double per;     /* the lift drive over its level per unit u, 1/m */
-    double lam;     /* 1/s: the decay rate of the slowest mode about rest */
+    double w, zeta;   /* rad/s, 1 */
+    double gain;      /* theta per u, rad/m */
+    double per;       /* the lift drive over its level per unit u, 1/m */
+    double lam;       /* 1/s: the decay rate of the slowest mode about rest */
+    double wz, zetaz; /* rad/s, 1: the vertical mode about rest (z, the state's z) */
+    double per_z;     /* the lift drive over its level per unit of z - z_s, 1/m */
 } sw_rock_linear_t;
 
 /* A model's behaviour: everything the layers above need to know of it.

@@ -615,7 +615,9 @@ static double decay_rate(double w, double zeta)
 
 /* A linear cushion on the bed: the rocking about rest to first order,
  *   (I_C + m h^2) theta'' + C b^2/3 theta' + (K b^2/3 - m g h) theta = -m h a_g,
- * theta = gain u; an edge lifts when b |theta| reaches z_s.  None on a
+ * theta = gain u, and apart from it the vertical mode m z'' = -K z - C z'
+ * (in full contact the force K z_B does not depend on theta); an edge
+ * lifts when b |theta| - (z - z_s) reaches z_s.  None on a
  * frame, with a cubic term, or without restoring stiffness and damping. */
 static int cushion_rock_linear(const sw_derived_t *d, double m, double g, sw_rock_linear_t *r)
 {
@@ -630,7 +632,12 @@ static int cushion_rock_linear(const sw_derived_t *d, double m, double g, sw_roc
     r->zeta = c / (2.0 * I * r->w);
     r->gain = m * d->h / I;
     r->lam = fmin(decay_rate(r->w, r->zeta), decay_rate(d->omega_c, d->zeta_c));
-    r->per = d->b * r->gain / sw_cushion_static_deflection(d, g);
+    const double zs = sw_cushion_static_deflection(d, g); /* m */
+    r->per = d->b * r->gain / zs;
+    /* without a frame or a cubic term the vertical mode is m z'' = -K z - C z' */
+    r->wz = d->omega_c;
+    r->zetaz = d->zeta_c;
+    r->per_z = 1.0 / zs; /* the drive b sin(theta) - (z - z_s) over z_s */
     return 1;
 }
 

@@ -70,18 +70,27 @@ static void push_task(pool_t *W, case_t *c, int track, int slot)
         c->pending[track]++;
 }
 
+/* What trial slot of the current round must get right: the scan's next
+ * step depends on the peak of the round's last trial (search.c), the
+ * rest only on whether each overturns. */
+static sw_trial_need search_need(const sw_search_t *S, int slot)
+{
+    return S->phase == SW_SEARCH_SCAN && slot == S->n - 1 ? SW_TRIAL_PEAK : SW_TRIAL_OUTCOME;
+}
+
 static int task_run(const task_t *t, char *msg, size_t msglen)
 {
     case_t *c = t->c;
     switch (t->track) {
         case T_PREP: return sw_safety_prep_make(&c->P, msg, msglen);
-        case TR_ONE: return sw_safety_trial(&c->P, 1.0, 1, &c->out->sf.at_one, msg, msglen);
+        case TR_ONE:
+            return sw_safety_trial(&c->P, 1.0, SW_TRIAL_FULL, &c->out->sf.at_one, msg, msglen);
         case TR_BELOW:
-            return sw_safety_trial(&c->P, c->below.x[t->slot], 0, &c->below.r[t->slot], msg,
-                                   msglen);
+            return sw_safety_trial(&c->P, c->below.x[t->slot], search_need(&c->below, t->slot),
+                                   &c->below.r[t->slot], msg, msglen);
         default:
-            return sw_safety_trial(&c->P, c->above.x[t->slot], 0, &c->above.r[t->slot], msg,
-                                   msglen);
+            return sw_safety_trial(&c->P, c->above.x[t->slot], search_need(&c->above, t->slot),
+                                   &c->above.r[t->slot], msg, msglen);
     }
 }
 

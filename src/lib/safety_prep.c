@@ -34,8 +34,21 @@
  *     now and then all through a long log).
  * Elsewhere (a cushion on a frame, vertical input, adaptive schemes on a
  * frame, sample intervals long against the support's period) trials run
- * from the start. */
+ * from the start.
+ *
+ * What a trial must get right (sw_trial_need) decides how much of that it
+ * may skip.  The run at scale 1 reports everything and is made as above.
+ * A search trial on a cushion needs only whether it overturns (and, for
+ * the scan's next step, its peak below SW_SAFETY_NEAR_PEAK): it starts
+ * each stretch that can lift an edge from reference states instead of a
+ * lead-in, and leaves each as soon as its ringing cannot lift an edge
+ * again (rock_trial, "the cushion: reference states" below).  Where its
+ * peak sets the scan's step, the trial is made as above but without the
+ * samples that cannot change its outcome or its peak (exact_jump): the
+ * peak of the run at scale 1 and of every trial the step depends on is
+ * the very number the lead-ins give. */
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -50,6 +63,7 @@
 #define BARE_EDGE (1.0 - 1e-9) /* rounding of the interpolated input, with room */
 #define LONG_STEP 0.25         /* omega dt beyond which a sample interval may hide a peak */
 #define FORGET 1e-6            /* cushion: share of the start state's error left after the lead */
+_Static_assert(BLOCK == CHECK, "a block starts at a checkpoint");
 
 /* ---- checkpoints ----------------------------------------------------------- */
 
@@ -231,10 +245,19 @@ static int prep_stuck(prep_t *P, sw_runner_t *R)
  * oscillator (ops->rock_linear: a linear cushion on the bed), stepped in
  * closed form between samples (sw_nj_step); an edge lifts when the drive
  * reaches its level. */
-static int prep_rock(prep_t *P, const sw_rock_linear_t *rl)
+static int refs_alloc(prep_t *P);
+static int prep_rock(prep_t *P, sw_runner_t *R, const sw_rock_linear_t *rl)
 {
     const sw_log_t *L = P->log;
     P->rock = *rl;
+    sw_runner_reset(R);
+    if (sw_engine_push(R->e, L->t[0], 0.0, 0.0) < 0)
+        return SW_OK; /* no checkpoints */
+    sw_output_t o;
+    sw_engine_get_output(R->e, 0, &o);
+    P->rest = o.state;
+    if (refs_alloc(P) != SW_OK)
+        return SW_ENOMEM;
     P->lead = log(1.0 / FORGET) / rl->lam;
     const double per = rl->per; /* lift drive over its level per unit u, 1/m */
     if (blocks_alloc(P) != SW_OK)
@@ -267,6 +290,8 @@ static int prep_rock(prep_t *P, const sw_rock_linear_t *rl)
         block_min(P, i, s);
         store_state(P, i, u[0], u[1]);
     }
+    P->st_end[0] = u[0];
+    P->st_end[1] = u[1];
     P->lift_scale = peak > 0.0 ? 1.0 / peak : INFINITY;
     P->kind = CK_ROCK;
     return SW_OK;
@@ -309,8 +334,10 @@ static int clean_log(const sw_log_t *L)
     return L->n > 0;
 }
 
+static void refs_free(prep_t *P);
 void sw_safety_prep_free(prep_t *P)
 {
+    refs_free(P);
     free(P->blk);
     free(P->sup);
     free(P->rec);
@@ -359,7 +386,7 @@ int sw_safety_prep_make(prep_t *P, char *msg, size_t msglen)
         err = prep_stuck(P, &R);
     else if (clean && !L->a_z && ops->rock_linear &&
              ops->rock_linear(&P->d, P->sc->mass, P->sc->g, &rl))
-        err = prep_rock(P, &rl);
+        err = prep_rock(P, &R, &rl);
     if (err == SW_OK && P->kind == CK_NONE)
         prep_probe(P, &R);
     sw_engine_destroy(R.e);
@@ -460,6 +487,310 @@ static int trial_begin(const prep_t *P, sw_runner_t *R, double x, size_t i)
     return linear_state(P, e, x, i);
 }
 
+/* ---- the cushion: reference states ------------------------------------------------ */
+
+/* A trial on a linear cushion on the bed starts each stretch that can lift
+ * an edge from the package's state a little before it, instead of from the
+ * linear state a lead-in before it.  That state is taken from reference
+ * runs: while no edge lifts the cushion is a smooth system symmetric under
+ * theta -> -theta, a_g -> -a_g, so at a checkpoint the state of the run at
+ * scale x is an odd function of x in theta and theta' and an even one in
+ * z - z_s and z', a power series whose terms fall as theta^2.  Three runs
+ * at scales 0.3, 0.6 and 0.9 of the highest that cannot lift an edge over
+ * the lead-in before the checkpoint give the series to x^5 (x^6): its
+ * remainder, and the engine's own round-off as a function of x, are a few
+ * 1e-12 rad where theta is 3e-3 rad (the 1 kHz drive of bench/drive_log.py,
+ * a 30 rad/s cushion), below the error the lead-in leaves (FORGET of the
+ * linear state's error, 1e-5 rad there).  A reference run is a lead-in
+ * itself, from the linear state; it is made once per checkpoint, by
+ * whichever trial needs it first, the same for any thread. */
+#define REF_N 3
+#define REF_ANCHOR 8    /* checkpoints between the places where references are made */
+#define ROCK_D_MAX 0.8  /* a larger ringing: no early jump */
+#define PEAK_TOL 1e-6   /* the fast trial's peak is right to far better than this */
+#define PEAK_SLACK 1.05 /* |theta| where no edge lifts, over its linear bound: O(theta^2) */
+enum { REF_NONE, REF_BUSY, REF_DONE, REF_FAIL };
+
+typedef struct {
+    int state;
+    double x[REF_N];    /* scales */
+    double y[REF_N][4]; /* theta, theta', z - z_s, z' at the checkpoint */
+} ref_t;
+
+struct sw_refs {
+    pthread_mutex_t mu;
+    pthread_cond_t cv;
+    size_t n; /* checkpoints */
+    ref_t *v; /* per checkpoint */
+};
+
+static int refs_alloc(prep_t *P)
+{
+    struct sw_refs *R = calloc(1, sizeof *R);
+    if (!R)
+        return SW_ENOMEM;
+    R->n = P->log->n / CHECK + 1;
+    R->v = calloc(R->n, sizeof *R->v); /* REF_NONE */
+    if (!R->v || pthread_mutex_init(&R->mu, NULL) != 0) {
+        free(R->v);
+        free(R);
+        return SW_ENOMEM;
+    }
+    pthread_cond_init(&R->cv, NULL);
+    P->refs = R;
+    return SW_OK;
+}
+
+static void refs_free(prep_t *P)
+{
+    struct sw_refs *R = P->refs;
+    if (!R)
+        return;
+    pthread_cond_destroy(&R->cv);
+    pthread_mutex_destroy(&R->mu);
+    free(R->v);
+    free(R);
+    P->refs = NULL;
+}
+
+/* The reference runs of checkpoint c into *f: from the linear state a
+ * lead-in before c (or from rest at the log's start), at scales below the
+ * lowest that can lift an edge over that stretch.  REF_FAIL if an edge
+ * lifted or a run faulted. */
+static int ref_make(const prep_t *P, size_t c, ref_t *f)
+{
+    const sw_log_t *L = P->log;
+    size_t c0 = lead_in(P, 0, c);
+    c0 -= c0 % CHECK;
+    double S = INFINITY; /* the lowest lifting scale before c */
+    for (size_t b = c0 / BLOCK; b < c / BLOCK; b++) S = fmin(S, P->blk[b]);
+    if (!(S > 0.0) || !isfinite(S) || c0 == c)
+        return REF_FAIL;
+    sw_runner_t R;
+    int err = SW_OK;
+    if (sw_runner_make(&R, P->sc, P->ro, 0.0, &err, NULL, 0) != SW_OK)
+        return REF_FAIL;
+    int st = REF_DONE;
+    for (int j = 0; j < REF_N && st == REF_DONE; j++) {
+        const double x = LIFT_MARGIN_LOG * S * (j + 1) / REF_N;
+        f->x[j] = x;
+        size_t next_restart = 0;
+        while (next_restart < L->nrestart && L->restart[next_restart] <= c0) next_restart++;
+        if (trial_begin(P, &R, x, c0) != SW_OK) {
+            st = REF_FAIL;
+            break;
+        }
+        for (size_t i = c0 + 1; i <= c; i++)
+            if (sw_run_push(R.e, L, i, x, &next_restart) < 0) {
+                st = REF_FAIL;
+                break;
+            }
+        sw_summary_t sum;
+        sw_engine_summary(R.e, 0, &sum);
+        if (sum.uplifts || sum.faults || sum.overturned)
+            st = REF_FAIL;
+        sw_state_t q;
+        sw_engine_get_state(R.e, 0, &q);
+        f->y[j][0] = q.theta;
+        f->y[j][1] = q.theta_dot;
+        f->y[j][2] = q.z - P->rest.z;
+        f->y[j][3] = q.z_dot;
+    }
+    sw_engine_destroy(R.e);
+    return st;
+}
+
+/* The reference runs of checkpoint c, made now if no trial made them yet
+ * (waiting for a trial making them); NULL if they cannot be had. */
+static const ref_t *ref_get(const prep_t *P, size_t c)
+{
+    struct sw_refs *R = P->refs;
+    if (!R || c % CHECK || c / CHECK >= R->n)
+        return NULL;
+    ref_t *f = &R->v[c / CHECK];
+    pthread_mutex_lock(&R->mu);
+    while (f->state == REF_BUSY) pthread_cond_wait(&R->cv, &R->mu);
+    if (f->state == REF_NONE) {
+        f->state = REF_BUSY;
+        pthread_mutex_unlock(&R->mu);
+        ref_t made;
+        memset(&made, 0, sizeof made);
+        const int st = ref_make(P, c, &made);
+        pthread_mutex_lock(&R->mu);
+        *f = made;
+        f->state = st;
+        pthread_cond_broadcast(&R->cv);
+    }
+    const int ok = f->state == REF_DONE;
+    pthread_mutex_unlock(&R->mu);
+    return ok ? f : NULL;
+}
+
+/* y(x) = x^p (a + b x^2 + c x^4) through the three references (Lagrange
+ * in x^2). */
+static double ref_fit(const ref_t *f, int k, int p, double x)
+{
+    const double X = x * x;
+    double r = 0.0;
+    for (int i = 0; i < REF_N; i++) {
+        double l = 1.0;
+        for (int j = 0; j < REF_N; j++)
+            if (j != i)
+                l *= (X - f->x[j] * f->x[j]) / (f->x[i] * f->x[i] - f->x[j] * f->x[j]);
+        r += l * f->y[i][k] / (p == 1 ? f->x[i] : f->x[i] * f->x[i]);
+    }
+    return r * (p == 1 ? x : X);
+}
+
+/* The engine at checkpoint c in the state of scale x the references give
+ * (sample c pushed). */
+static int ref_begin(const prep_t *P, sw_runner_t *R, const ref_t *f, double x, size_t c)
+{
+    const sw_log_t *L = P->log;
+    sw_state_t q = P->rest;
+    q.theta = ref_fit(f, 0, 1, x);
+    q.theta_dot = ref_fit(f, 1, 1, x);
+    q.z = P->rest.z + ref_fit(f, 2, 2, x);
+    q.z_dot = ref_fit(f, 3, 2, x);
+    const int rc = sw_engine_push(R->e, L->t[c], x * L->a_g[c], 0.0);
+    return rc < 0 ? rc : sw_engine_set_state(R->e, 0, &q);
+}
+
+/* The bound D, over the lift level, of the lift drive of the difference
+ * between the package's state at checkpoint i and the linear state at
+ * scale x: while no edge lifts, that difference rings freely in the
+ * rocking and the vertical modes, each a damped oscillator whose energy
+ * (q'^2 + w^2 q^2) / 2 can only fall, so |q| <= sqrt(q^2 + q'^2 / w^2)
+ * for ever; the drive b sin(theta) - (z - z_s) grows by at most per/gain
+ * times the first and per_z times the second. */
+static double rock_ringing(const prep_t *P, const sw_state_t *s, double x, size_t i)
+{
+    const sw_rock_linear_t *k = &P->rock;
+    const double *q = &P->st[2 * (i / CHECK)];
+    const double dt = s->theta - x * k->gain * q[0], dv = s->theta_dot - x * k->gain * q[1];
+    const double dz = s->z - P->rest.z, dzv = s->z_dot;
+    const double A = sqrt(dt * dt + dv * dv / (k->w * k->w));
+    const double Az = sqrt(dz * dz + dzv * dzv / (k->wz * k->wz));
+    return k->per / k->gain * A + k->per_z * Az;
+}
+
+/* The place where references are made for a trial that needs a state at
+ * checkpoint c: the last anchor at or before it, so that trials whose
+ * stretches begin a little apart share them. */
+static size_t ref_anchor(size_t c)
+{
+    return c - c % (REF_ANCHOR * CHECK);
+}
+
+enum { ROCK_STAY, ROCK_JUMP, ROCK_OVER };
+
+/* The stretch after checkpoint i of a trial at scale x in which no edge
+ * can lift, whatever the ringing left in the state: *b, the first block
+ * after it that can lift one (n: none up to the end), and *theta_max, a
+ * bound of |theta| over it (rad).  ROCK_STAY when the ringing is too large
+ * to say anything; ROCK_OVER when nothing can lift an edge up to the end
+ * of the log nor in the free motion after it. */
+static int rock_calm(const prep_t *P, const sw_runner_t *R, double x, size_t i, size_t *b,
+                     double *theta_max)
+{
+    const sw_log_t *L = P->log;
+    const sw_rock_linear_t *k = &P->rock;
+    if (i % CHECK || i + 2 * CHECK >= L->n)
+        return ROCK_STAY;
+    sw_state_t s;
+    sw_engine_get_state(R->e, 0, &s);
+    const double D = rock_ringing(P, &s, x, i);
+    if (!(D < ROCK_D_MAX))
+        return ROCK_STAY;
+    const double X = x / (LIFT_MARGIN_LOG * (1.0 - D));
+    if (P->blk[i / BLOCK] <= X) /* the rest of sample i's block may lift */
+        return ROCK_STAY;
+    *b = next_block(P, i, X);
+    const size_t nb = (L->n + BLOCK - 1) / BLOCK, end = *b < L->n ? *b / BLOCK : nb;
+    double S = P->blk[i / BLOCK]; /* the lowest lifting scale over the stretch */
+    for (size_t j = i / BLOCK + 1; j < end; j++) S = fmin(S, P->blk[j]);
+    /* b |theta| / z_s <= x v + D there, v the unit-scale drive over the level */
+    *theta_max = PEAK_SLACK * k->gain / k->per * (x / S + D);
+    if (*b < L->n)
+        return ROCK_JUMP;
+    const double *q = P->st_end; /* the linear state at the last sample, scale 1 */
+    const double A = x * sqrt(q[0] * q[0] + q[1] * q[1] / (k->w * k->w));
+    *theta_max = fmax(*theta_max, PEAK_SLACK * k->gain / k->per * (k->per * A + D));
+    return k->per * A + D < LIFT_MARGIN_LOG ? ROCK_OVER : ROCK_STAY;
+}
+
+/* After sample i (a checkpoint) of a fast trial on a cushion, with no edge
+ * lifted since `calm` (s; -INFINITY: the state holds nothing to forget):
+ * may the run jump to the next stretch that can lift an edge?  It may when
+ * the ringing left by what came before, bounded by rock_ringing, cannot
+ * lift an edge before it (the linear drive at scale x stays below
+ * LIFT_MARGIN_LOG (1 - D) of the level at every sample in between, so the
+ * drive stays below the level), and when that ringing will have decayed
+ * there to FORGET^2 of itself (two lead-ins after calm), which the
+ * reference state leaves out as the jumps after a lead-in leave out what
+ * is left of it then.  Nothing in between can overturn the package; its
+ * peak there is not known, so a fast trial's peak is a lower bound of the
+ * peak of a run from the start (to the references' error).  Returns
+ * ROCK_JUMP with *to (the reference anchor before that stretch), ROCK_OVER
+ * when no edge can lift again, up to the end of the log nor in the free
+ * motion after it (the linear motion at the last sample rings freely then,
+ * bounded as the difference is), ROCK_STAY otherwise. */
+static int rock_jump(const prep_t *P, const sw_runner_t *R, double x, size_t i, double calm,
+                     size_t *to)
+{
+    const sw_log_t *L = P->log;
+    size_t b;
+    double theta_max;
+    const int rc = rock_calm(P, R, x, i, &b, &theta_max);
+    if (rc != ROCK_JUMP)
+        return rc;
+    const size_t c = ref_anchor(b - CHECK); /* b starts a block */
+    if (c < i + 2 * CHECK || L->t[c] - calm < 2.0 * P->lead)
+        return ROCK_STAY;
+    *to = c;
+    return ROCK_JUMP;
+}
+
+/* After checkpoint i of a trial whose peak must be the one of a run from
+ * the start, made as before (the linear state a lead-in before each
+ * stretch that can lift an edge, cushion_jump), with no edge lifted since
+ * last_lift: the same run without the samples it computes for nothing.
+ * While no edge can lift (rock_calm), that run's state holds no lift to
+ * wait for, so where it would next jump (the first checkpoint at which
+ * cushion_jump moves it, before any edge can lift) can be known now, and
+ * the run jumps there at once, to the very state it would have had; and
+ * when no edge can lift any more up to the end, the run is over.  Both
+ * only when the package has already been further from upright than
+ * anything skipped can take it, so that the peak stands. */
+static int exact_jump(const prep_t *P, const sw_runner_t *R, double x, size_t i, double last_lift,
+                      size_t *to)
+{
+    const sw_log_t *L = P->log;
+    size_t b;
+    double theta_max;
+    const int rc = rock_calm(P, R, x, i, &b, &theta_max);
+    if (rc == ROCK_STAY)
+        return rc;
+    sw_summary_t sum;
+    sw_engine_summary(R->e, 0, &sum);
+    if (!(sum.max_abs_theta >= theta_max))
+        return ROCK_STAY;
+    if (rc == ROCK_OVER)
+        return rc;
+    /* cushion_jump at the checkpoints from i on: it first moves the run at
+     * the first one a lead-in after last_lift, j, if ever; the next block
+     * that can lift at x is the same from all of them (none before b) */
+    size_t j = i;
+    while (j < b && L->t[j] - last_lift < P->lead) j += CHECK;
+    if (j >= b)
+        return ROCK_STAY;
+    const size_t t = cushion_jump(P, j, last_lift, x / LIFT_MARGIN_LOG);
+    if (!t || t >= b) /* none, or past a block that can lift: keep running */
+        return ROCK_STAY;
+    *to = t;
+    return ROCK_JUMP;
+}
+
 /* After sample i, on the bed: may the run jump ahead?  JUMP_GO with *to,
  * the sample before the next that can lift the package, when it stands at
  * rest and the input at samples i - 1 and i cannot lift it (nor, then,
@@ -537,11 +868,17 @@ static size_t frame_jump(const prep_t *P, const sw_runner_t *R, double x, size_t
     return to;
 }
 
+/* How a trial runs: as a run of the log from its start reports it (the
+ * run at scale 1); with the jumps that keep whether it overturns and its
+ * peak exactly (a search trial whose peak sets the scan's step); or with
+ * every jump (fast: the cushion's references, a peak that is a lower
+ * bound). */
+enum { RUN_FULL, RUN_PEAK, RUN_FAST };
+
 /* The trial's samples from i0 on, then the free motion (sw_run_log_on's
- * loop, with the jumps).  full: the run at scale 1, whose every figure is
- * reported, takes only the jumps that leave its motion as it is (not the
- * frame's). */
-static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, int full,
+ * loop, with the jumps of its mode).  calm: s, when the cushion's state
+ * last held something to forget (-INFINITY: nothing). */
+static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, int mode, double calm,
                      sw_run_result_t *r)
 {
     const sw_log_t *L = P->log;
@@ -550,10 +887,35 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, int f
     size_t next_restart = 0;
     while (next_restart < L->nrestart && L->restart[next_restart] <= i0) next_restart++;
     int look = P->kind == CK_DIRECT; /* look for a jump: from the start, and after events */
-    double last_lift = L->t[i0];     /* cushion: the start's error decays as a lift's does */
+    double last_lift = calm;         /* cushion: the start's error decays as a lift's does */
+    int over = 0;                    /* the outcome and the peak are known: the run ends */
     for (size_t i = i0 + 1; i < L->n; i++) {
         size_t to = 0;
-        if (P->kind == CK_ROCK && (to = cushion_jump(P, i - 1, last_lift, x / LIFT_MARGIN_LOG))) {
+        const int calm_now = P->kind == CK_ROCK && !(last_lift > L->t[i - 1]);
+        const int rj = calm_now && mode == RUN_FAST   ? rock_jump(P, R, x, i - 1, calm, &to)
+                       : calm_now && mode == RUN_PEAK ? exact_jump(P, R, x, i - 1, last_lift, &to)
+                                                      : ROCK_STAY;
+        if (rj == ROCK_OVER) {
+            over = 1;
+            break;
+        }
+        const ref_t *f = rj == ROCK_JUMP && mode == RUN_FAST ? ref_get(P, to) : NULL;
+        if (f) {
+            while (next_restart < L->nrestart && L->restart[next_restart] <= to) next_restart++;
+            sw_engine_restart(e);
+            const int rc = ref_begin(P, R, f, x, to);
+            if (rc < 0)
+                return rc;
+            last_lift = calm = -INFINITY;
+            i = to;
+            continue;
+        }
+        /* a fast trial falls back on the lead-in only where it has no
+         * references, and only after a lift or from a linear state */
+        const int lead_in_ok = mode != RUN_FAST || (rj == ROCK_JUMP && isfinite(last_lift));
+        if (P->kind == CK_ROCK &&
+            ((rj == ROCK_JUMP && mode == RUN_PEAK) ||
+             (lead_in_ok && (to = cushion_jump(P, i - 1, last_lift, x / LIFT_MARGIN_LOG))))) {
             while (next_restart < L->nrestart && L->restart[next_restart] <= to) next_restart++;
             sw_engine_restart(e);
             const int rc = sw_engine_push(e, L->t[to], x * L->a_g[to], 0.0);
@@ -562,12 +924,12 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, int f
             const int sr = linear_state(P, e, x, to);
             if (sr != SW_OK)
                 return sr;
-            last_lift = L->t[to];
+            last_lift = calm = L->t[to];
             i = to;
             continue; /* the loop goes on at sample to + 1 */
         }
         sw_state_t st;
-        if (P->kind == CK_STUCK && !full && (to = frame_jump(P, R, x, i - 1, &st))) {
+        if (P->kind == CK_STUCK && mode != RUN_FULL && (to = frame_jump(P, R, x, i - 1, &st))) {
             while (next_restart < L->nrestart && L->restart[next_restart] <= to) next_restart++;
             sw_engine_restart(e);
             int rc = sw_engine_push(e, L->t[to], x * L->a_g[to], 0.0);
@@ -594,6 +956,7 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, int f
                 break;
             /* an edge lifts only between an uplift and the rest after it */
             last_lift = s.uplifts > s.rests ? INFINITY : L->t[i];
+            calm = fmax(calm, L->t[i]);
             look = P->kind == CK_DIRECT;
         }
     }
@@ -601,20 +964,43 @@ static int trial_run(const prep_t *P, sw_runner_t *R, double x, size_t i0, int f
     const double t = sw_engine_time(e);
     if (isnan(t))
         return SW_EINVAL;
-    return sw_run_free_motion(R, t + sw_run_free_time(P->ro, p),
+    return sw_run_free_motion(R, over ? t : t + sw_run_free_time(P->ro, p),
                               2.0 * M_PI / p / SW_RUN_CHECKS_PER_PERIOD, r);
+}
+
+/* A fast trial on a cushion: from the reference state at the anchor
+ * before its first stretch that can lift an edge, instead of the linear
+ * state a lead-in before it (i0; from rest when i0 is the log's start),
+ * then with the early jumps.  Returns the trial's status. */
+static int rock_trial(const prep_t *P, sw_runner_t *R, double x, size_t i0, sw_run_result_t *r)
+{
+    const size_t k = first_lift(P, x / LIFT_MARGIN_LOG);
+    size_t c = k ? k - 1 : 0;
+    c = ref_anchor(c - c % CHECK);
+    const ref_t *f = i0 > 0 && c > i0 ? ref_get(P, c) : NULL;
+    int err;
+    if (!f) {
+        if ((err = trial_begin(P, R, x, i0)) == SW_OK)
+            err = trial_run(P, R, x, i0, RUN_FAST, i0 > 0 ? P->log->t[i0] : -INFINITY, r);
+        return err;
+    }
+    sw_runner_reset(R);
+    if ((err = sw_engine_set_origin(R->e, P->log->t[0])) != SW_OK ||
+        (err = ref_begin(P, R, f, x, c)) < 0)
+        return err;
+    return trial_run(P, R, x, c, RUN_FAST, -INFINITY, r);
 }
 
 /* One trial at scale x into r.  A search trial (full 0) at which nothing
  * can lift the package is safe without a run; a full one runs anyway, over
  * its largest response. */
-int sw_safety_trial(const prep_t *P, double x, int full, sw_run_result_t *r, char *msg,
+int sw_safety_trial(const prep_t *P, double x, sw_trial_need need, sw_run_result_t *r, char *msg,
                     size_t msglen)
 {
     memset(r, 0, sizeof *r);
     int none, err = SW_OK;
     const size_t i0 = trial_start(P, x, &none);
-    if (none && !full) {
+    if (none && need != SW_TRIAL_FULL) {
         r->end = SW_END_REST;
         r->uplift_time = r->tip_time = r->overturn_time = NAN;
         r->min_margin = 1.0;
@@ -624,8 +1010,23 @@ int sw_safety_trial(const prep_t *P, double x, int full, sw_run_result_t *r, cha
     sw_runner_t R;
     if (sw_runner_make(&R, P->sc, P->ro, 0.0, &err, msg, msglen) != SW_OK)
         return err;
-    if ((err = trial_begin(P, &R, x, i0)) == SW_OK)
-        err = trial_run(P, &R, x, i0, full, r);
+    /* A cushion's fast trial gets a peak right to about 1e-9 of itself
+     * (the reference states), not as a run from the start would to the
+     * last digits: where the scan's step depends on it, the trial is made
+     * again as before, from the linear state a lead-in before each stretch
+     * (below SW_SAFETY_NEAR_PEAK, with room for that error). */
+    int done = 0;
+    if (P->kind == CK_ROCK && need != SW_TRIAL_FULL && !none) {
+        err = rock_trial(P, &R, x, i0, r);
+        done = err < 0 || r->overturned || need == SW_TRIAL_OUTCOME ||
+               r->max_theta_ratio >= SW_SAFETY_NEAR_PEAK * (1.0 + PEAK_TOL);
+    }
+    if (!done) {
+        memset(r, 0, sizeof *r);
+        if ((err = trial_begin(P, &R, x, i0)) == SW_OK)
+            err = trial_run(P, &R, x, i0, need == SW_TRIAL_FULL ? RUN_FULL : RUN_PEAK,
+                            P->log->t[i0], r);
+    }
     sw_engine_destroy(R.e);
     if (err == SW_EFAULT)
         sw_set_msg(msg, msglen, "the model faulted during a trial");

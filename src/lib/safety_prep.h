@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "internal.h"
+#include "search_int.h"
 #include "swaywatch/model.h"
 #include "swaywatch/run.h"
 
@@ -39,6 +40,9 @@ typedef struct {
                               the cushion's rocking oscillator (theta = gain u) */
     sw_rock_linear_t rock; /* CK_ROCK: the rocking oscillator (ops->rock_linear) */
     double lead;           /* s, cushion: lead-in before the first possible lift */
+    sw_state_t rest;       /* CK_ROCK: the engine's state of rest */
+    double st_end[2];      /* CK_ROCK: the unit-scale state at the last sample */
+    struct sw_refs *refs;  /* CK_ROCK: the reference states at checkpoints (safety_prep.c) */
     size_t i_peak;         /* sample of the largest drive (frame, cushion) */
     double a_peak, bare_lift, lift_scale;
 } prep_t;
@@ -49,10 +53,19 @@ typedef struct {
 int sw_safety_prep_make(prep_t *P, char *msg, size_t msglen);
 void sw_safety_prep_free(prep_t *P);
 
-/* One trial at scale x into r.  A search trial (full 0) at which nothing
- * can lift the package is safe without a run; a full one runs anyway, over
- * its largest response. */
-int sw_safety_trial(const prep_t *P, double x, int full, sw_run_result_t *r, char *msg,
+/* What a trial must get right, as a run of the log from its start would:
+ * everything it reports (the run at scale 1), or whether it overturns and
+ * its peak |theta| / alpha where that is below SW_SAFETY_NEAR_PEAK (the
+ * scan's step depends on it), or whether it overturns alone. */
+typedef enum { SW_TRIAL_FULL, SW_TRIAL_PEAK, SW_TRIAL_OUTCOME } sw_trial_need;
+
+/* peak |theta| / alpha from which the scan takes its finest step */
+#define SW_SAFETY_NEAR_PEAK SW_SEARCH_NEAR_PEAK
+
+/* One trial at scale x into r.  A search trial (not SW_TRIAL_FULL) at
+ * which nothing can lift the package is safe without a run; a full one
+ * runs anyway, over its largest response. */
+int sw_safety_trial(const prep_t *P, double x, sw_trial_need need, sw_run_result_t *r, char *msg,
                     size_t msglen);
 
 #endif

@@ -12,8 +12,7 @@
 
 #define DEFAULT_STEP 0.02
 #define DEFAULT_TOL 1e-3
-#define NEAR_PEAK 0.25 /* peak |theta| / alpha from which the scan takes its finest step */
-#define FAR_STEPS 5.0  /* the scan's step far from that, in --step */
+#define FAR_STEPS 5.0 /* the scan's step far from SW_SEARCH_NEAR_PEAK, in --step */
 
 /* ---- threshold search ----------------------------------------------------- */
 
@@ -189,7 +188,7 @@ static void bracket(sw_search_t *S)
  * fine as asked. */
 static double scan_step(const sw_search_t *S)
 {
-    const double near = fmin(1.0, fmax(0.0, S->peak_last / NEAR_PEAK));
+    const double near = fmin(1.0, fmax(0.0, S->peak_last / SW_SEARCH_NEAR_PEAK));
     return S->o.step * (FAR_STEPS - (FAR_STEPS - 1.0) * near);
 }
 

@@ -18,6 +18,9 @@
 #include "swaywatch/search.h"
 
 #define SW_SEARCH_SECTIONS 4 /* trials per round of a search */
+/* peak |theta| / alpha from which the scan takes its finest step (the safety
+ * factors' trials that set the step know it, safety_prep.h) */
+#define SW_SEARCH_NEAR_PEAK 0.25
 
 enum { SW_SEARCH_SCAN, SW_SEARCH_SECT, SW_SEARCH_DONE };
 
