@@ -4,7 +4,10 @@
  * through an engine of the same settings, every due state evaluated by
  * sw_risk, as replay does it.  On the bed, on a frame and on a cushion, a
  * log that rocks the package and one that overturns it; a budget too small
- * to finish gives a bracket that holds the exhaustive minimum. */
+ * to finish gives a bracket that holds the exhaustive minimum.  And the
+ * minimum-only reserve of sw_risk (risk.h, min_only), which an offline
+ * replay uses, against the same exhaustive answer on drives of a few
+ * minutes, with more states than it holds at once. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -150,6 +153,85 @@ static void test_cushion(void **state)
     check_scene(&sc, 0.50, 1);
 }
 
+/* A drive of `seconds` at 200 Hz: vibration near the crate's rocking
+ * and a frame's frequencies, and every 40 s a braking half-sine of 1 s
+ * whose peak grows from amp g by 0.03 g each time (the last stands out). */
+static sw_log_t drive_log(double *t, double *a, double seconds, double amp)
+{
+    const size_t n = (size_t)(seconds * RATE);
+    for (size_t i = 0; i < n; i++) {
+        t[i] = (double)i / RATE;
+        a[i] = 0.4 * sin(2.0 * M_PI * 1.3 * t[i]) + 0.3 * sin(2.0 * M_PI * 0.9 * t[i] + 1.0) +
+               0.2 * sin(2.0 * M_PI * 7.0 * t[i]);
+        for (int k = 0; 40.0 * k + 10.0 < seconds; k++)
+            a[i] -= SW_G0 * bump(t[i], 40.0 * k + 10.0, 1.0, amp + 0.03 * k);
+    }
+    return (sw_log_t){.t = t, .a_g = a, .n = n};
+}
+
+/* The log through an engine of default settings, its outputs into a risk
+ * at rate Hz, every due state evaluated or (min_only) held and resolved
+ * at the end. */
+static sw_risk_pkg_t risk_of(const sw_scene_t *sc, const sw_log_t *L, double rate, int min_only)
+{
+    int err;
+    char msg[256];
+    sw_risk_opts_t ro = {.reserve_rate = rate, .min_only = min_only};
+    ref_t R = {sw_risk_create(sc, 1, &ro, &err, msg, sizeof msg)};
+    assert_non_null(R.risk);
+    sw_engine_opts_t eo = {0};
+    eo.on_state = ref_state;
+    eo.user = &R;
+    sw_engine_t *e = sw_engine_create(sc, 1, &eo, &err, msg, sizeof msg);
+    assert_non_null(e);
+    for (size_t i = 0; i < L->n; i++) sw_engine_push(e, L->t[i], L->a_g[i], 0.0);
+    assert_int_equal(sw_risk_resolve(R.risk, 0), SW_OK);
+    const sw_risk_pkg_t out = *sw_risk_pkg(R.risk, 0);
+    sw_engine_destroy(e);
+    sw_risk_destroy(R.risk);
+    return out;
+}
+
+/* The minimum, its time, direction and pulse, the states taken: the same
+ * as the exhaustive evaluation's, for fewer reserve searches. */
+static void check_min_only(const sw_scene_t *sc, double seconds, double rate, double amp)
+{
+    const size_t n = (size_t)(seconds * RATE);
+    double *t = malloc(n * sizeof *t), *a = malloc(n * sizeof *a);
+    assert_non_null(t);
+    assert_non_null(a);
+    const sw_log_t L = drive_log(t, a, seconds, amp);
+    const sw_risk_pkg_t all = risk_of(sc, &L, rate, 0), min = risk_of(sc, &L, rate, 1);
+    print_message("%s, %.0f s at %.0f Hz: %.4f g at %.2f s; %ld states, %ld searches of %ld\n",
+                  sc->name, seconds, rate, min.min_reserve_g, min.min_reserve_time, min.evaluations,
+                  min.reserve_runs, all.reserve_runs);
+    assert_true(all.min_reserve_g > 0.0);
+    assert_true(min.min_reserve_g == all.min_reserve_g);
+    assert_true(min.min_reserve_time == all.min_reserve_time);
+    assert_int_equal(min.min_direction, all.min_direction);
+    assert_true(min.min_pulse == all.min_pulse);
+    assert_int_equal(min.evaluations, all.evaluations);
+    assert_true(isnan(min.reserve_g)); /* no value per state */
+    assert_true(min.reserve_runs < all.reserve_runs);
+    free(t);
+    free(a);
+}
+
+static void test_min_only(void **state)
+{
+    (void)state;
+    const double w = 2.0 * tan(A20);
+    /* 100 Hz for 3 min: more states than SW_RISK_MIN_STATES, in two
+     * searches */
+    const sw_scene_t bare = tu_bare(2.0, w);
+    check_min_only(&bare, 180.0, 100.0, 0.33); /* lifted by the last three */
+    assert_true(180.0 * 100.0 > SW_RISK_MIN_STATES);
+    const sw_scene_t frame = tu_frame(2.0, w, 250.0, 5.59, 0.1);
+    check_min_only(&frame, 180.0, SW_RISK_RATE, 0.12);
+    const sw_scene_t cushion = tu_cushion(tu_bare(2.0, w), 50.0, 0.1);
+    check_min_only(&cushion, 130.0, SW_RISK_RATE, 0.12);
+}
+
 static void test_bad_arguments(void **state)
 {
     (void)state;
@@ -169,9 +251,8 @@ static void test_bad_arguments(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_bare),
-        cmocka_unit_test(test_frame),
-        cmocka_unit_test(test_cushion),
+        cmocka_unit_test(test_bare),          cmocka_unit_test(test_frame),
+        cmocka_unit_test(test_cushion),       cmocka_unit_test(test_min_only),
         cmocka_unit_test(test_bad_arguments),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

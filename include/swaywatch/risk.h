@@ -14,9 +14,17 @@
  * depend on the log, never on the machine.  A state at rest costs no run
  * (the reserve's cached value).
  *
+ * An offline run that needs the minimum alone (min_only) keeps the states
+ * due at the rate instead, and evaluates them most threatened first
+ * (reserve_log.c, as sw_reserve_log_min) when its buffer is full and at
+ * sw_risk_resolve(): the same minimum, at the same state, as evaluating
+ * every one, for a fraction of the runs where the minimum stands out.
+ *
  * Memory: everything is allocated by sw_risk_create() and
- * sw_risk_replace(); feeding allocates nothing.  No I/O, no global state;
- * one thread at a time per object. */
+ * sw_risk_replace(); feeding allocates nothing, except in min_only mode a
+ * capped reserve each time the smallest value found so far changes (at a
+ * full buffer or the resolution).  No I/O, no global state; one thread at
+ * a time per object. */
 #ifndef SWAYWATCH_RISK_H
 #define SWAYWATCH_RISK_H
 
@@ -34,9 +42,13 @@ extern "C" {
 
 #define SW_RISK_RATE 10.0 /* Hz of engine time: the default reserve rate */
 
+#define SW_RISK_MIN_STATES 16384 /* states a min_only package holds before it evaluates them */
+
 typedef struct {
     double reserve_rate;       /* Hz of engine time; 0 = SW_RISK_RATE; < 0 = no reserve */
     sw_reserve_opts_t reserve; /* the reserve's options (reserve.h); zeros: its defaults */
+    int min_only;              /* non-zero: no value per state (reserve_g stays NAN), only the
+                                  minimum, found by sw_risk_resolve() (offline runs) */
 } sw_risk_opts_t;
 
 /* What is known of one package so far. */
@@ -50,8 +62,10 @@ typedef struct {
     int min_direction;       /* sw_reserve_dir of the smallest (0: none) */
     double min_pulse;        /* s, its design pulse (0: none) */
     double rest_reserve_g;   /* g, the reserve at rest (NAN without a reserve) */
-    long evaluations;        /* reserve evaluations (cached ones included) */
+    long evaluations;        /* states the reserve was taken at: evaluated (cached ones
+                                included) or, min_only, shown no smaller than the minimum */
     long reserve_faults;     /* evaluations in which a run faulted */
+    long reserve_runs;       /* reserve searches run (not cached; min_only: full or capped) */
     long impacts;            /* significant impacts (alarm.h) */
     long micro_impacts;      /* impacts below the significance, in settling spans */
     long settling_spans;
@@ -74,11 +88,18 @@ SW_API sw_risk_t *sw_risk_create(const sw_scene_t *scenes, size_t n, const sw_ri
 SW_API void sw_risk_destroy(sw_risk_t *r); /* NULL accepted */
 
 /* One engine output of package out->pkg.  Returns 1 when the reserve was
- * evaluated on it (sw_risk_pkg() has the new value), 0 when not, or a
- * negative status (SW_EINVAL: no such package).  A run that faulted
- * during the evaluation is counted in reserve_faults; the value is then
- * what the other runs found. */
+ * evaluated on it (sw_risk_pkg() has the new value), 0 when not (min_only:
+ * never), or a negative status (SW_EINVAL: no such package; min_only: an
+ * evaluation's error while the held states were evaluated).  A run that
+ * faulted during the evaluation is counted in reserve_faults; the value is
+ * then what the other runs found. */
 SW_API int sw_risk_output(sw_risk_t *r, const sw_output_t *out);
+
+/* min_only: evaluate package k's states still held, so that its figures
+ * hold the minimum (a no-op otherwise, and when nothing is held).  Call it
+ * at the end of the stream, before reading the minimum.  SW_OK, or an
+ * evaluation's error (SW_ENOMEM, ...). */
+SW_API int sw_risk_resolve(sw_risk_t *r, size_t k);
 
 /* One engine event.  Returns SW_SETTLE_REPORT and/or SW_SETTLE_CLOSED as
  * sw_settle_feed() does (alarm.h): a micro-impact is folded into a span

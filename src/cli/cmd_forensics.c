@@ -238,6 +238,9 @@ static int replay_log(sw_cli_forensics_t *F)
     F->R.take = on_take;
     F->R.halt = &F->L.halt;
     F->R.reserve_rate = F->o.reserve_rate;
+    /* the reserve of each state only where the figures or --out show it;
+     * the minimum is the same either way (risk.h) */
+    F->R.reserve_min_only = !F->o.out_path && !F->fo.plot && !F->fo.report;
     if ((rc = sw_cli_reader_engine(&F->R, F->scenes, F->n, &eo, F->scenes_shared)) != SW_EXIT_OK)
         return rc;
     sw_engine_t *e = F->R.e;
@@ -271,6 +274,7 @@ static int replay_log(sw_cli_forensics_t *F)
         return SW_EXIT_USAGE;
     }
     sw_cli_reader_settle(&F->R, F->fo.settle);
+    sw_cli_risk_resolve(F->R.risk, F->scenes, F->n);
     sw_cli_events_finish(&F->events, F->R.risk, F->n);
     sw_cli_forensics_end(F);
     rc = sw_cli_states_close(&F->states);

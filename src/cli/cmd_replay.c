@@ -136,6 +136,9 @@ static int start(replay_t *r)
     r->eo.on_state = wants_states(r) ? on_state : NULL;
     r->eo.user = r;
     r->R.reserve_rate = r->o.reserve_rate;
+    /* the reserve of each state only where a row shows it; the summary's
+     * minimum is the same either way (risk.h) */
+    r->R.reserve_min_only = !r->o.out_path && !r->o.wide_path;
     return sw_cli_reader_engine(&r->R, r->scenes, r->n, &r->eo, r->scenes_shared);
 }
 
@@ -219,6 +222,7 @@ static int replay_one(replay_t *r)
     if ((rc = sw_cli_reader_feed(&r->R)) != SW_EXIT_OK)
         return rc;
     sw_cli_reader_settle(&r->R, r->ro.settle);
+    sw_cli_risk_resolve(r->R.risk, r->scenes, r->n);
     return conclude(r);
 }
 

@@ -233,6 +233,10 @@ void sw_cli_print_diag(void *user, const char *origin, int line, const char *msg
 /* What the run means (risk.h) for the n scenes, with --reserve-rate: NULL
  * on failure, reported. */
 sw_risk_t *sw_cli_risk_create(const sw_cli_opts_t *o, const sw_scene_t *scenes, size_t n);
+/* At the end of the stream: the minimum of a risk made min_only (risk.h,
+ * sw_risk_resolve) for each of the n packages; a failure is said on
+ * stderr, and that package has no minimum. */
+void sw_cli_risk_resolve(sw_risk_t *r, const sw_scene_t *scenes, size_t n);
 
 /* With --accuracy, set eo's scheme and dt to the cheapest measured setting
  * (sw_scheme_for_accuracy) that reaches it for every scene's model.

@@ -104,7 +104,7 @@ const sw_cli_option_t sw_cli_output_options[] = {
      .help = "state time series ('-': standard output): "
              "t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,"
              "margin_bound,uplift_ratio,a_g,reserve_g (SI units, rad; the reserve in g, the "
-             "latest evaluation)"},
+             "latest evaluation, made at --reserve-rate)"},
     {SW_CLI_LONG, 0, "every", "N", OPTS(every), .min = 1, .def = 1,
      .what = "a whole number of rows >= 1",
      .help = "every Nth state row of each package (default %g)"},
@@ -126,8 +126,11 @@ const sw_cli_option_t sw_cli_reserve_options[] = {
      .def = SW_RISK_RATE, .lo = 0.01, .hi = 1000, .what = "a rate in Hz >= 0 (0: none)",
      .help = "evaluations per second of the log's time of each package's reserve: the smallest "
              "design braking pulse in g that would overturn it from its state then (the scene's "
-             "[alarm] design_pulse; docs/reserve.md); shown in --out (reserve_g) and as the "
-             "minimum in the summary (default %g; 0: none)"},
+             "[alarm] design_pulse; docs/reserve.md); shown in --out and --wide (reserve_g) and as "
+             "the minimum in the summary (default %g; 0: none).  A replay (and forensics) with "
+             "neither --out nor --wide nor a figure seeks only the minimum over the states at "
+             "this rate, most threatened first: the same value, far fewer evaluations where it "
+             "stands out"},
     {SW_CLI_FLAG, 0, "all-impacts", OPTS(all_impacts), .value = 1,
      .help = "write every impact in --events; without it the micro-impacts of settling (slower "
              "than a tenth of the tipping speed) are one 'settling' row per cascade"},
@@ -139,8 +142,8 @@ const sw_cli_option_t sw_cli_picture_options[] = {
     {SW_CLI_STRING, 0, "wide", "FILE.csv", OPTS(wide_path),
      .help = "the state series one row per instant ('-': standard output), for a plain plot or "
              "a spreadsheet: t,a_g, then for each package P: P.phase,P.theta,P.theta_dot,"
-             "P.ratio (theta/alpha),P.margin,P.margin_bound,P.uplift_ratio,P.reserve_g; --every "
-             "keeps every Nth row"},
+             "P.ratio (theta/alpha),P.margin,P.margin_bound,P.uplift_ratio,P.reserve_g (the "
+             "latest evaluation, made at --reserve-rate); --every keeps every Nth row"},
     {SW_CLI_STRING, 0, "plot", "FILE.png|.svg", OPTS(plot_path), .fn = sw_cli_plot_check,
      .help = "a figure drawn by gnuplot: the bed acceleration with the uplift thresholds "
              "+-g tan alpha, theta/alpha and the margin of every package, the events marked"},
@@ -378,6 +381,16 @@ sw_risk_t *sw_cli_risk_create(const sw_cli_opts_t *o, const sw_scene_t *scenes, 
         sw_cli_warn_reserve_cost(r, 0, n, scenes, o->reserve_rate);
     }
     return r;
+}
+
+void sw_cli_risk_resolve(sw_risk_t *r, const sw_scene_t *scenes, size_t n)
+{
+    for (size_t k = 0; r && k < n; k++) {
+        const int rc = sw_risk_resolve(r, k);
+        if (rc < 0)
+            sw_cli_error("%s: the smallest reserve could not be found: %s", scenes[k].name,
+                         sw_strerror(rc));
+    }
 }
 
 sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo)

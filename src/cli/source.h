@@ -117,6 +117,10 @@ struct sw_cli_reader {
     sw_gate_take_fn take;              /* may be NULL: each sample the engine got, with user */
     void *user;                        /* eo.user of the engine */
     double reserve_rate;               /* Hz of the log's time, --reserve-rate (0: no reserve) */
+    int reserve_min_only;              /* nothing shows the reserve of each state (no --out,
+                                          --wide or figure): a CSV log's stream seeks its
+                                          minimum alone (risk.h min_only); an lcm-logger
+                                          file's monitor core keeps its rate */
     const volatile sig_atomic_t *halt; /* may be NULL: once non-zero (take has all it can
                                           hold) a CSV log is read no further */
     int halted;                        /* halt stopped the reading */
@@ -136,7 +140,8 @@ int sw_cli_reader_open(sw_cli_reader_t *R, const char *log, const sw_cli_read_op
 int sw_cli_reader_prepare(sw_cli_reader_t *R);
 
 /* The stream for the n scenes with eo (its callbacks and user are the
- * command's, R->take and R->reserve_rate set before): R->st, R->e and
+ * command's, R->take, R->reserve_rate and R->reserve_min_only set
+ * before): R->st, R->e and
  * R->risk; shared: the scenes' cost was measured and warned about already
  * (a batch), else it is now.  SW_EXIT_OK, SW_EXIT_USAGE or SW_EXIT_IO
  * (reported). */

@@ -278,7 +278,8 @@ static int csv_start(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
     F->user = eo->user;
     sw_stream_opts_t so = {
         .engine = *eo,
-        .risk = {.reserve_rate = R->reserve_rate > 0.0 ? R->reserve_rate : -1.0},
+        .risk = {.reserve_rate = R->reserve_rate > 0.0 ? R->reserve_rate : -1.0,
+                 .min_only = R->reserve_min_only},
         .hysteresis = -1.0,
         .on_state = eo->on_state ? on_state : NULL,
         .on_event = eo->on_event ? on_event : NULL,

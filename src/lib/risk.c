@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* risk.c - the reserve at a rate, its minimum, significant impacts and
- * settling spans of every package beside an engine (risk.h). */
+ * settling spans of every package beside an engine (risk.h); in min_only
+ * mode the states due are held and their minimum found most threatened
+ * first (reserve_min.h). */
 #include "swaywatch/risk.h"
 
 #include <math.h>
@@ -8,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "reserve_min.h"
 #include "sched.h"
 #include "swaywatch/status.h"
 
@@ -18,6 +21,11 @@ typedef struct {
     sw_sched_t due; /* when the next evaluation is due */
     sw_risk_pkg_t f;
     char no_reserve[256]; /* why this package has no reserve; "" when it has one */
+    /* min_only */
+    sw_rmin_t rm;          /* the search (its capped reserve) */
+    sw_rmin_state_t *held; /* states due, not evaluated yet (SW_RISK_MIN_STATES) */
+    size_t nheld;
+    sw_reserve_log_t best; /* the smallest found among those evaluated */
 } pkg_t;
 
 struct sw_risk {
@@ -43,6 +51,11 @@ static void figures_init(pkg_t *p)
     sw_sched_reset(&p->due);
     if (p->settles)
         sw_settle_init(&p->settle, impact_min);
+    p->nheld = 0;
+    memset(&p->best, 0, sizeof p->best);
+    p->best.min_g = p->best.lower_g = INFINITY;
+    p->best.min_time = NAN;
+    p->best.exact = 1;
 }
 
 /* Package p for scene sc: its reserve and its significance. */
@@ -70,9 +83,26 @@ static int pkg_build(const sw_risk_t *r, const sw_scene_t *sc, pkg_t *p, char *m
         }
         if (p->reserve)
             p->no_reserve[0] = '\0';
+        if (p->reserve && r->o.min_only) {
+            sw_rmin_init(&p->rm, sc, &r->o.reserve, p->reserve);
+            if (!(p->held = malloc(SW_RISK_MIN_STATES * sizeof *p->held))) {
+                if (msg)
+                    snprintf(msg, msglen, "%s", sw_strerror(SW_ENOMEM));
+                return SW_ENOMEM;
+            }
+        }
     }
     figures_init(p);
     return SW_OK;
+}
+
+static void pkg_free(pkg_t *p)
+{
+    sw_rmin_free(&p->rm);
+    free(p->held);
+    p->held = NULL;
+    sw_reserve_destroy(p->reserve);
+    p->reserve = NULL;
 }
 
 sw_risk_t *sw_risk_create(const sw_scene_t *scenes, size_t n, const sw_risk_opts_t *o, int *err,
@@ -107,7 +137,7 @@ void sw_risk_destroy(sw_risk_t *r)
 {
     if (!r)
         return;
-    for (size_t k = 0; r->p && k < r->n; k++) sw_reserve_destroy(r->p[k].reserve);
+    for (size_t k = 0; r->p && k < r->n; k++) pkg_free(&r->p[k]);
     free(r->p);
     free(r);
 }
@@ -122,6 +152,7 @@ static void evaluate(pkg_t *p, const sw_output_t *out)
     if (rc != SW_OK)
         p->f.reserve_faults++;
     p->f.evaluations++;
+    p->f.reserve_runs += !res.cached;
     p->f.reserve_g = res.reserve_g;
     p->f.direction = res.direction;
     p->f.pulse = res.pulse;
@@ -134,6 +165,33 @@ static void evaluate(pkg_t *p, const sw_output_t *out)
     }
 }
 
+/* min_only: the held states evaluated, most threatened first; the
+ * figures take the smallest found so far. */
+static int resolve_held(pkg_t *p)
+{
+    const int rc = sw_rmin_search(&p->rm, p->held, p->nheld, 0, &p->best);
+    p->nheld = 0;
+    if (isfinite(p->best.min_g)) {
+        p->f.min_reserve_g = p->best.min_g;
+        p->f.min_reserve_time = p->best.min_time;
+        p->f.min_direction = p->best.direction;
+        p->f.min_pulse = p->best.pulse;
+    }
+    p->f.reserve_faults = p->best.faults;
+    p->f.reserve_runs = p->best.evaluated;
+    return rc;
+}
+
+/* A state the reserve would evaluate (reserve.h: finite, a phase of the
+ * enum); the others get no value and are not kept, in either mode. */
+static int state_usable(const sw_state_t *s)
+{
+    return isfinite(s->u) && isfinite(s->u_dot) && isfinite(s->theta) && isfinite(s->theta_dot) &&
+           isfinite(s->z) && isfinite(s->z_dot) &&
+           (s->phase == SW_PHASE_STUCK || s->phase == SW_PHASE_ROCKING ||
+            s->phase == SW_PHASE_OVERTURNED);
+}
+
 int sw_risk_output(sw_risk_t *r, const sw_output_t *out)
 {
     if (!r || !out || out->pkg >= r->n)
@@ -143,8 +201,31 @@ int sw_risk_output(sw_risk_t *r, const sw_output_t *out)
         return 0;
     if (!sw_sched_due(&p->due, out->t, r->period))
         return 0;
-    evaluate(p, out);
-    return 1;
+    if (!p->held) {
+        evaluate(p, out);
+        return 1;
+    }
+    if (!state_usable(&out->state))
+        return 0;
+    sw_rmin_state_t *x = &p->held[p->nheld++];
+    memset(x, 0, sizeof *x);
+    x->t = out->t;
+    x->s = out->state;
+    p->f.evaluations++;
+    if (p->nheld == SW_RISK_MIN_STATES) {
+        const int rc = resolve_held(p);
+        if (rc < 0)
+            return rc;
+    }
+    return 0;
+}
+
+int sw_risk_resolve(sw_risk_t *r, size_t k)
+{
+    if (!r || k >= r->n)
+        return SW_EINVAL;
+    pkg_t *p = &r->p[k];
+    return p->held && p->nheld ? resolve_held(p) : SW_OK;
 }
 
 int sw_risk_event(sw_risk_t *r, const sw_event_t *ev, sw_settle_span_t *closed)
@@ -188,10 +269,10 @@ int sw_risk_replace(sw_risk_t *r, size_t k, const sw_scene_t *scene, char *msg, 
     pkg_t fresh;
     const int rc = pkg_build(r, scene, &fresh, msg, msglen);
     if (rc != SW_OK) {
-        sw_reserve_destroy(fresh.reserve);
+        pkg_free(&fresh);
         return rc;
     }
-    sw_reserve_destroy(r->p[k].reserve);
+    pkg_free(&r->p[k]);
     r->p[k] = fresh;
     r->p[k].f.no_reserve = r->p[k].no_reserve[0] ? r->p[k].no_reserve : NULL; /* not fresh's */
     return SW_OK;

@@ -6,8 +6,10 @@
 # stronger does (the reserve is the safe end of a 1 % bracket); the impacts
 # written are exactly those above the documented significance,
 # 0.1 * 2 p sin(alpha/2) from the crate's geometry; every impact of the
-# engine is a row or counted in a settling row; a scene too stiff for the
-# reserve says so and still gets its verdict.
+# engine is a row or counted in a settling row; a replay that shows no
+# reserve per row (no --out, --wide) has the minimum of the one that does,
+# on the bed, a frame and a cushion; a scene too stiff for the reserve says
+# so and still gets its verdict.
 . "$(dirname "$0")/lib.sh"
 
 SCENE="$SRC/sample_logs/crate.ini" # bare, 2.0 m x 0.728 m; design pulse 1 s (default)
@@ -71,6 +73,28 @@ s = json.load(open(sys.argv[2]))["packages"][0]
 assert sum(1 for e in ev if e["event"] == "impact") == s["impacts"]
 assert not any(e["event"] == "settling" for e in ev)
 PY
+
+# Without --out or --wide only the minimum is sought: the same minimum, at
+# the same time, direction and pulse, over as many states, as every state
+# evaluated (--out), at two rates.
+for sc in crate crate-on-frame crate-on-cushion; do
+    for rate in 10 40; do
+        run "$SW" replay "$LOG" --scene "$SRC/sample_logs/$sc.ini" --json --reserve-rate "$rate"
+        expect_rc 0 "$sc at $rate Hz, the minimum alone"
+        cp "$TMP/out" "$TMP/min.json"
+        run "$SW" replay "$LOG" --scene "$SRC/sample_logs/$sc.ini" --json --reserve-rate "$rate" \
+            --out "$TMP/every.csv"
+        expect_rc 0 "$sc at $rate Hz, every state"
+        python3 - "$TMP/min.json" "$TMP/out" <<'PY' || fail "$sc at $rate Hz: the minimum alone differs"
+import json, sys
+a, b = (json.load(open(f))["packages"][0] for f in sys.argv[1:])
+keys = ("min_reserve_g", "min_reserve_time", "min_reserve_direction", "min_reserve_pulse",
+        "rest_reserve_g", "reserve_evaluations")
+assert a["min_reserve_g"] is not None and a["reserve_evaluations"] > 100
+assert all(a[k] == b[k] for k in keys), [(k, a[k], b[k]) for k in keys]
+PY
+    done
+done
 
 # --reserve-rate 0: no reserve anywhere, the same verdict.
 run "$SW" replay "$LOG" --scene "$SCENE" --json --reserve-rate 0 --out "$TMP/s0.csv"
