@@ -72,10 +72,14 @@ static void push_task(pool_t *W, case_t *c, int track, int slot)
 
 /* What trial slot of the current round must get right: the scan's next
  * step depends on the peak of the round's last trial (search.c), the
- * rest only on whether each overturns. */
+ * rest only on whether each overturns.  Where that peak is likely to be
+ * below SW_SAFETY_NEAR_PEAK again, the trial is made the exact way at
+ * once (SW_TRIAL_EXACT: the answer is the same, one fast run less). */
 static sw_trial_need search_need(const sw_search_t *S, int slot)
 {
-    return S->phase == SW_SEARCH_SCAN && slot == S->n - 1 ? SW_TRIAL_PEAK : SW_TRIAL_OUTCOME;
+    if (S->phase != SW_SEARCH_SCAN || slot != S->n - 1)
+        return SW_TRIAL_OUTCOME;
+    return S->peak_last < 0.8 * SW_SAFETY_NEAR_PEAK ? SW_TRIAL_EXACT : SW_TRIAL_PEAK;
 }
 
 static int task_run(const task_t *t, char *msg, size_t msglen)
@@ -121,7 +125,9 @@ static void track_next(pool_t *W, case_t *c, int track)
         return;
     }
     const int n = sw_search_points(S);
-    for (int j = 0; j < n; j++) push_task(W, c, track, j);
+    /* the trial that must get its peak right may take longest: first */
+    for (int j = 0; j < n; j++)
+        push_task(W, c, track, search_need(S, n - 1) != SW_TRIAL_OUTCOME ? (j + n - 1) % n : j);
 }
 
 /* Prepared: the run at 1 and the search below it start together. */

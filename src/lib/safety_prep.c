@@ -513,6 +513,8 @@ enum { REF_NONE, REF_BUSY, REF_DONE, REF_FAIL };
 
 typedef struct {
     int state;
+    size_t c0;          /* where the runs start (a lead-in before the checkpoint) */
+    int run[REF_N];     /* each run: REF_NONE, REF_BUSY, REF_DONE, REF_FAIL */
     double x[REF_N];    /* scales */
     double y[REF_N][4]; /* theta, theta', z - z_s, z' at the checkpoint */
 } ref_t;
@@ -553,55 +555,57 @@ static void refs_free(prep_t *P)
     P->refs = NULL;
 }
 
-/* The reference runs of checkpoint c into *f: from the linear state a
- * lead-in before c (or from rest at the log's start), at scales below the
- * lowest that can lift an edge over that stretch.  REF_FAIL if an edge
- * lifted or a run faulted. */
-static int ref_make(const prep_t *P, size_t c, ref_t *f)
+/* The reference runs of checkpoint c: from the linear state a lead-in
+ * before c (or from rest at the log's start), at scales below the lowest
+ * that can lift an edge over that stretch.  REF_FAIL if there is no such
+ * stretch. */
+static int ref_plan(const prep_t *P, size_t c, ref_t *f)
 {
-    const sw_log_t *L = P->log;
     size_t c0 = lead_in(P, 0, c);
     c0 -= c0 % CHECK;
     double S = INFINITY; /* the lowest lifting scale before c */
     for (size_t b = c0 / BLOCK; b < c / BLOCK; b++) S = fmin(S, P->blk[b]);
     if (!(S > 0.0) || !isfinite(S) || c0 == c)
         return REF_FAIL;
+    f->c0 = c0;
+    for (int j = 0; j < REF_N; j++) f->x[j] = LIFT_MARGIN_LOG * S * (j + 1) / REF_N;
+    return REF_BUSY;
+}
+
+/* Reference run j of checkpoint c into y: REF_DONE, or REF_FAIL if an
+ * edge lifted or the run faulted. */
+static int ref_run(const prep_t *P, size_t c, const ref_t *f, int j, double y[4])
+{
+    const sw_log_t *L = P->log;
     sw_runner_t R;
     int err = SW_OK;
     if (sw_runner_make(&R, P->sc, P->ro, 0.0, &err, NULL, 0) != SW_OK)
         return REF_FAIL;
-    int st = REF_DONE;
-    for (int j = 0; j < REF_N && st == REF_DONE; j++) {
-        const double x = LIFT_MARGIN_LOG * S * (j + 1) / REF_N;
-        f->x[j] = x;
-        size_t next_restart = 0;
-        while (next_restart < L->nrestart && L->restart[next_restart] <= c0) next_restart++;
-        if (trial_begin(P, &R, x, c0) != SW_OK) {
+    const double x = f->x[j];
+    size_t next_restart = 0;
+    while (next_restart < L->nrestart && L->restart[next_restart] <= f->c0) next_restart++;
+    int st = trial_begin(P, &R, x, f->c0) == SW_OK ? REF_DONE : REF_FAIL;
+    for (size_t i = f->c0 + 1; i <= c && st == REF_DONE; i++)
+        if (sw_run_push(R.e, L, i, x, &next_restart) < 0)
             st = REF_FAIL;
-            break;
-        }
-        for (size_t i = c0 + 1; i <= c; i++)
-            if (sw_run_push(R.e, L, i, x, &next_restart) < 0) {
-                st = REF_FAIL;
-                break;
-            }
-        sw_summary_t sum;
-        sw_engine_summary(R.e, 0, &sum);
-        if (sum.uplifts || sum.faults || sum.overturned)
-            st = REF_FAIL;
-        sw_state_t q;
-        sw_engine_get_state(R.e, 0, &q);
-        f->y[j][0] = q.theta;
-        f->y[j][1] = q.theta_dot;
-        f->y[j][2] = q.z - P->rest.z;
-        f->y[j][3] = q.z_dot;
-    }
+    sw_summary_t sum;
+    sw_engine_summary(R.e, 0, &sum);
+    if (sum.uplifts || sum.faults || sum.overturned)
+        st = REF_FAIL;
+    sw_state_t q;
+    sw_engine_get_state(R.e, 0, &q);
+    y[0] = q.theta;
+    y[1] = q.theta_dot;
+    y[2] = q.z - P->rest.z;
+    y[3] = q.z_dot;
     sw_engine_destroy(R.e);
     return st;
 }
 
-/* The reference runs of checkpoint c, made now if no trial made them yet
- * (waiting for a trial making them); NULL if they cannot be had. */
+/* The reference runs of checkpoint c, made now if no trial made them yet:
+ * a trial that needs them while others are making them makes the runs
+ * not yet begun, then waits for the rest.  NULL if they cannot be had.
+ * Every run depends on c alone, so they are the same whoever makes them. */
 static const ref_t *ref_get(const prep_t *P, size_t c)
 {
     struct sw_refs *R = P->refs;
@@ -609,17 +613,31 @@ static const ref_t *ref_get(const prep_t *P, size_t c)
         return NULL;
     ref_t *f = &R->v[c / CHECK];
     pthread_mutex_lock(&R->mu);
-    while (f->state == REF_BUSY) pthread_cond_wait(&R->cv, &R->mu);
-    if (f->state == REF_NONE) {
-        f->state = REF_BUSY;
+    if (f->state == REF_NONE)
+        f->state = ref_plan(P, c, f);
+    while (f->state == REF_BUSY) {
+        int j = 0;
+        while (j < REF_N && f->run[j] != REF_NONE) j++;
+        if (j == REF_N) { /* all begun: wait for them */
+            pthread_cond_wait(&R->cv, &R->mu);
+            continue;
+        }
+        f->run[j] = REF_BUSY;
         pthread_mutex_unlock(&R->mu);
-        ref_t made;
-        memset(&made, 0, sizeof made);
-        const int st = ref_make(P, c, &made);
+        double y[4];
+        const int st = ref_run(P, c, f, j, y);
         pthread_mutex_lock(&R->mu);
-        *f = made;
-        f->state = st;
-        pthread_cond_broadcast(&R->cv);
+        memcpy(f->y[j], y, sizeof y);
+        f->run[j] = st;
+        int done = 1, fail = 0;
+        for (int k = 0; k < REF_N; k++) {
+            done &= f->run[k] == REF_DONE || f->run[k] == REF_FAIL;
+            fail |= f->run[k] == REF_FAIL;
+        }
+        if (done) {
+            f->state = fail ? REF_FAIL : REF_DONE;
+            pthread_cond_broadcast(&R->cv);
+        }
     }
     const int ok = f->state == REF_DONE;
     pthread_mutex_unlock(&R->mu);
@@ -1016,7 +1034,7 @@ int sw_safety_trial(const prep_t *P, double x, sw_trial_need need, sw_run_result
      * again as before, from the linear state a lead-in before each stretch
      * (below SW_SAFETY_NEAR_PEAK, with room for that error). */
     int done = 0;
-    if (P->kind == CK_ROCK && need != SW_TRIAL_FULL && !none) {
+    if (P->kind == CK_ROCK && (need == SW_TRIAL_PEAK || need == SW_TRIAL_OUTCOME) && !none) {
         err = rock_trial(P, &R, x, i0, r);
         done = err < 0 || r->overturned || need == SW_TRIAL_OUTCOME ||
                r->max_theta_ratio >= SW_SAFETY_NEAR_PEAK * (1.0 + PEAK_TOL);

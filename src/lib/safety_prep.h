@@ -56,8 +56,9 @@ void sw_safety_prep_free(prep_t *P);
 /* What a trial must get right, as a run of the log from its start would:
  * everything it reports (the run at scale 1), or whether it overturns and
  * its peak |theta| / alpha where that is below SW_SAFETY_NEAR_PEAK (the
- * scan's step depends on it), or whether it overturns alone. */
-typedef enum { SW_TRIAL_FULL, SW_TRIAL_PEAK, SW_TRIAL_OUTCOME } sw_trial_need;
+ * scan's step depends on it; EXACT: the same, made the exact way without
+ * trying the fast one first), or whether it overturns alone. */
+typedef enum { SW_TRIAL_FULL, SW_TRIAL_PEAK, SW_TRIAL_EXACT, SW_TRIAL_OUTCOME } sw_trial_need;
 
 /* peak |theta| / alpha from which the scan takes its finest step */
 #define SW_SAFETY_NEAR_PEAK SW_SEARCH_NEAR_PEAK
