@@ -155,8 +155,9 @@ static void test_cushion(void **state)
 
 /* A drive of `seconds` at 200 Hz: vibration near the crate's rocking
  * and a frame's frequencies, and every 40 s a braking half-sine of 1 s
- * whose peak grows from amp g by 0.03 g each time (the last stands out). */
-static sw_log_t drive_log(double *t, double *a, double seconds, double amp)
+ * whose peak is amp g, then grows by step g each time (step > 0: the last
+ * stands out; < 0: the first). */
+static sw_log_t drive_log(double *t, double *a, double seconds, double amp, double step)
 {
     const size_t n = (size_t)(seconds * RATE);
     for (size_t i = 0; i < n; i++) {
@@ -164,7 +165,7 @@ static sw_log_t drive_log(double *t, double *a, double seconds, double amp)
         a[i] = 0.4 * sin(2.0 * M_PI * 1.3 * t[i]) + 0.3 * sin(2.0 * M_PI * 0.9 * t[i] + 1.0) +
                0.2 * sin(2.0 * M_PI * 7.0 * t[i]);
         for (int k = 0; 40.0 * k + 10.0 < seconds; k++)
-            a[i] -= SW_G0 * bump(t[i], 40.0 * k + 10.0, 1.0, amp + 0.03 * k);
+            a[i] -= SW_G0 * bump(t[i], 40.0 * k + 10.0, 1.0, amp + step * k);
     }
     return (sw_log_t){.t = t, .a_g = a, .n = n};
 }
@@ -194,13 +195,14 @@ static sw_risk_pkg_t risk_of(const sw_scene_t *sc, const sw_log_t *L, double rat
 
 /* The minimum, its time, direction and pulse, the states taken: the same
  * as the exhaustive evaluation's, for fewer reserve searches. */
-static void check_min_only(const sw_scene_t *sc, double seconds, double rate, double amp)
+static void check_min_only(const sw_scene_t *sc, double seconds, double rate, double amp,
+                           double step)
 {
     const size_t n = (size_t)(seconds * RATE);
     double *t = malloc(n * sizeof *t), *a = malloc(n * sizeof *a);
     assert_non_null(t);
     assert_non_null(a);
-    const sw_log_t L = drive_log(t, a, seconds, amp);
+    const sw_log_t L = drive_log(t, a, seconds, amp, step);
     const sw_risk_pkg_t all = risk_of(sc, &L, rate, 0), min = risk_of(sc, &L, rate, 1);
     print_message("%s, %.0f s at %.0f Hz: %.4f g at %.2f s; %ld states, %ld searches of %ld\n",
                   sc->name, seconds, rate, min.min_reserve_g, min.min_reserve_time, min.evaluations,
@@ -222,14 +224,17 @@ static void test_min_only(void **state)
     (void)state;
     const double w = 2.0 * tan(A20);
     /* 100 Hz for 3 min: more states than SW_RISK_MIN_STATES, in two
-     * searches */
+     * searches; the minimum in the second (the last shock the strongest),
+     * then in the first (the first strongest), which the second search
+     * must keep */
     const sw_scene_t bare = tu_bare(2.0, w);
-    check_min_only(&bare, 180.0, 100.0, 0.33); /* lifted by the last three */
     assert_true(180.0 * 100.0 > SW_RISK_MIN_STATES);
+    check_min_only(&bare, 180.0, 100.0, 0.33, 0.03);  /* lifted by the last three */
+    check_min_only(&bare, 180.0, 100.0, 0.45, -0.03); /* by the first three */
     const sw_scene_t frame = tu_frame(2.0, w, 250.0, 5.59, 0.1);
-    check_min_only(&frame, 180.0, SW_RISK_RATE, 0.12);
+    check_min_only(&frame, 180.0, SW_RISK_RATE, 0.12, 0.03);
     const sw_scene_t cushion = tu_cushion(tu_bare(2.0, w), 50.0, 0.1);
-    check_min_only(&cushion, 130.0, SW_RISK_RATE, 0.12);
+    check_min_only(&cushion, 130.0, SW_RISK_RATE, 0.12, 0.03);
 }
 
 static void test_bad_arguments(void **state)
