@@ -107,14 +107,6 @@ static SW_ALWAYS_INLINE void sw_rigid_rhs_of(sw_pkg_t *P, sw_model_kind model, d
     sw_rigid_rhs_trig(P, model, ag, ge, y, sn, c1, f);
 }
 
-static inline void sw_rigid_rhs(sw_pkg_t *P, double ag, double ge, const double y[], double f[])
-{
-    if (P->d.model == SW_MODEL_BARE)
-        sw_rigid_rhs_of(P, SW_MODEL_BARE, ag, ge, y, f);
-    else
-        sw_rigid_rhs_of(P, SW_MODEL_FRAME, ag, ge, y, f);
-}
-
 /* While stuck the support's acceleration A is a_g (bare) or a_g + u'' =
  * -(2 zeta_b w_b u' + w_b^2 u) (frame); it does not depend on theta.
  * +1 / -1 if A is beyond the uplift threshold tan(alpha) g_eff at t (the
