@@ -282,6 +282,51 @@ static void test_settled_frame(void **state)
     assert_false(sw_model_settled(&d, cu.g, &rock));
 }
 
+/* margin_bound (physics.md) is 1 - E_tot / (m g R (1 - cos alpha)): here
+ * E_tot is written from the motion of the package and the frame, not from
+ * the model's energy: the frame's and the package's shared translation
+ * (m + m_b) u'^2 / 2, the bearings' strain k_b u^2 / 2, the centre of mass
+ * raised to R cos(alpha - |theta|) over the corner, and the rotation about
+ * the corner (I_O = 4/3 m R^2), whose horizontal velocity theta' h at
+ * theta = 0 the frame's velocity adds to. */
+static void test_margin_bound_frame(void **state)
+{
+    (void)state;
+    const double m = 1000.0, mb = 250.0; /* kg */
+    const sw_scene_t sc = tu_frame(2.0, 0.728, mb, 5.0, 0.1);
+    sw_derived_t d;
+    assert_int_equal(sw_scene_validate(&sc, &d, NULL, NULL, NULL), SW_OK);
+    const double R = d.R, h = d.h, alpha = d.alpha;
+    const double kb = 25.0 * (m + mb); /* N/m: omega_b^2 (m + m_b) */
+    const double Eb = m * G * (R - h); /* J: the centre of mass over the corner */
+    sw_state_t s = {0};
+    s.phase = SW_PHASE_ROCKING;
+    s.side = 1;
+    tu_near(sw_margin_bound_frame(&d, G, &s), 1.0, 1e-15); /* at rest */
+
+    s.u_dot = 0.3; /* m/s: the frame and the package slide together */
+    tu_near(sw_margin_bound_frame(&d, G, &s), 1.0 - 0.5 * (m + mb) * 0.09 / Eb, 1e-12);
+
+    s.u_dot = 0.0;
+    s.u = 0.01; /* m: the bearings strained */
+    tu_near(sw_margin_bound_frame(&d, G, &s), 1.0 - 0.5 * kb * 1e-4 / Eb, 1e-12);
+
+    s.u = 0.0;
+    s.theta = 0.5 * alpha; /* tilted, at rest: only the centre of mass raised */
+    tu_near(sw_margin_bound_frame(&d, G, &s), 1.0 - m * G * (R * cos(0.5 * alpha) - h) / Eb, 1e-12);
+
+    s.theta = 0.0;
+    s.theta_dot = 0.2; /* rad/s, about the front corner, the frame moving forward */
+    s.u_dot = 0.1;
+    const double E =
+        0.5 * (m + mb) * 0.01 + 0.5 * (4.0 / 3.0) * m * R * R * 0.04 + m * 0.1 * 0.2 * h; /* J */
+    tu_near(sw_margin_bound_frame(&d, G, &s), 1.0 - E / Eb, 1e-12);
+
+    /* beyond alpha it guarantees nothing: never above 0, even at rest */
+    s = (sw_state_t){.theta = alpha + 0.01, .phase = SW_PHASE_ROCKING, .side = 1};
+    assert_true(sw_margin_bound_frame(&d, G, &s) <= 0.0);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -289,7 +334,7 @@ int main(void)
         cmocka_unit_test(test_stuck_frame_uplift),  cmocka_unit_test(test_impact_ratio),
         cmocka_unit_test(test_energy_conservation), cmocka_unit_test(test_stiff_limit_is_bare),
         cmocka_unit_test(test_forced_dt_refused),   cmocka_unit_test(test_rest_takes_momentum),
-        cmocka_unit_test(test_settled_frame),
+        cmocka_unit_test(test_settled_frame),       cmocka_unit_test(test_margin_bound_frame),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
