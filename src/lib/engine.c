@@ -104,8 +104,12 @@ static SW_ALWAYS_INLINE void advance_ground(sw_engine_t *e, sw_pkg_t *P, double 
         C->step_y1 = y1;
         C->step_h = h;
         double tau;
-        const int ev = sw_event_find(C, P, t0, h, P->y, y1, &tau);
+        sw_timed_t timed[SW_MAX_CANDS];
+        int nt;
+        const int ev = sw_event_find(C, P, t0, h, P->y, y1, &tau, timed, &nt);
         P->hold = 0;
+        if (nt)
+            sw_pkg_timed(C, P, timed, nt);
         if (ev == SW_EVF_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->n);
             P->t = (h == rem) ? t1 : t0 + h;

@@ -13,7 +13,10 @@
  * solution and the result does not depend on where the sample grid falls.
  * Events that change the dynamics (uplift, impact, overturn, a kink to cut
  * at) end the step; tipping, peaks of |theta| and a cushion's first lift
- * are only timed.  The maps themselves are the package's (pkg.c). */
+ * are only timed.  Like CVODE's rootsfound, both are handed back: the cut
+ * and its place, the timed events before it with their times and states;
+ * what follows from them (the maps, the reports) is the package's (pkg.c),
+ * which the engine hands them to. */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -59,17 +62,16 @@ static double root_of(const sw_pkg_t *P, const sw_evcand_t *c, double t0, double
 
 /* The peak of |theta| inside a step: where the turn function rises before
  * tau = lim, polished by re-stepping so that max |theta| is as accurate as
- * the scheme, even for long adaptive steps. */
-static void track_peak(const sw_ctx_t *C, sw_pkg_t *P, const sw_evcand_t *c, double t0, double h,
-                       const double y0[], const double f0[], const double y1[], const double f1[],
-                       double lim)
+ * the scheme, even for long adaptive steps.  1 with the peak in *out. */
+static int find_peak(const sw_ctx_t *C, sw_pkg_t *P, const sw_evcand_t *c, double t0, double h,
+                     const double y0[], const double f0[], const double y1[], const double f1[],
+                     double lim, sw_timed_t *out)
 {
-    double yt[SW_NMAX];
     const double tau = root_of(P, c, t0, h, y0, f0, y1, f1);
-    if (tau > 0.0 && tau <= lim) {
-        sw_event_polish(C, P, c->ev, t0, h, y0, tau, yt);
-        sw_pkg_track_theta(P, yt[P->ith]);
-    }
+    if (!(tau > 0.0 && tau <= lim))
+        return 0;
+    out->t = sw_event_polish(C, P, c->ev, t0, h, y0, tau, out->y);
+    return 1;
 }
 
 int sw_event_keep_outcome(sw_evcand_t c[], int nc)
@@ -81,11 +83,12 @@ int sw_event_keep_outcome(sw_evcand_t c[], int nc)
     return n;
 }
 
-int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
-                    const double y1[], const sw_evcand_t c[], int nc, double *tau_out)
+int sw_event_locate(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                    const double y1[], const sw_evcand_t c[], int nc, double *tau_out,
+                    sw_timed_t timed[], int *ntimed)
 {
     const double t1 = t0 + h;
-    double f0[SW_NMAX], f1[SW_NMAX], yt[SW_NMAX];
+    double f0[SW_NMAX], f1[SW_NMAX];
     sw_model_rhs(t0, y0, f0, P);
     sw_model_rhs(t1, y1, f1, P);
     /* the earliest cutting event ends the step */
@@ -101,24 +104,26 @@ int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double 
             best = c[i].ev;
         }
     }
-    /* what happens before it is timed */
+    /* what happens before it is timed, in the candidates' order */
     const double lim = best == SW_EVF_NONE ? 1.0 : best_tau;
+    int n = 0;
     for (int i = 0; i < nc; i++) {
         if (c[i].role == SW_ROLE_CUT)
             continue;
+        sw_timed_t *T = &timed[n];
+        T->role = c[i].role;
         if (c[i].role == SW_ROLE_PEAK) {
-            track_peak(C, P, &c[i], t0, h, y0, f0, y1, f1, lim);
+            n += find_peak(C, P, &c[i], t0, h, y0, f0, y1, f1, lim, T);
             continue;
         }
         const double tau = root_of(P, &c[i], t0, h, y0, f0, y1, f1);
         if (!(tau >= 0.0 && tau <= lim))
             continue;
-        sw_herm_state(P->n, h, y0, f0, y1, f1, tau, yt);
-        if (c[i].role == SW_ROLE_TIP)
-            sw_pkg_tip(C, P, t0 + tau * h, yt);
-        else
-            sw_pkg_lift(C, P, t0 + tau * h, yt);
+        sw_herm_state(P->n, h, y0, f0, y1, f1, tau, T->y);
+        T->t = t0 + tau * h;
+        n++;
     }
+    *ntimed = n;
     *tau_out = lim;
     return best;
 }

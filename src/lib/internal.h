@@ -509,24 +509,36 @@ static inline int sw_step_restep(const sw_ctx_t *C, sw_pkg_t *P, double t0, doub
 
 /* ---- event.c: events inside a step ------------------------------------------- */
 
+/* An event timed inside a step, handed back as CVODE's rootsfound are:
+ * the package's phase machine reports it (sw_pkg_timed). */
+typedef struct {
+    int role;          /* SW_ROLE_PEAK, SW_ROLE_TIP or SW_ROLE_LIFT */
+    double t;          /* s */
+    double y[SW_NMAX]; /* the state at t */
+} sw_timed_t;
+
 /* The earliest cutting event among the model's candidates c[0..nc) inside
  * the step (t0, y0) -> (t0 + h, y1) (SW_EVF_NONE if none; *tau its place
- * in [0, 1]); the timed events before it are reported on the way. */
-int sw_event_locate(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
-                    const double y1[], const sw_evcand_t c[], int nc, double *tau);
+ * in [0, 1]); the timed events before it in timed[0..*ntimed), in the
+ * order of the candidates (timed has room for nc). */
+int sw_event_locate(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+                    const double y1[], const sw_evcand_t c[], int nc, double *tau,
+                    sw_timed_t timed[], int *ntimed);
 /* Keep the candidates that end a step (the dynamics), drop those that only
  * time a peak, a tip or a cushion's lift (the report); the count left. */
 int sw_event_keep_outcome(sw_evcand_t c[], int nc);
 /* The same, asking the model for its candidates first: inline, because
  * most steps have none and the question is then all the work. */
-static inline int sw_event_find(sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
-                                const double y1[], double *tau)
+static inline int sw_event_find(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h,
+                                const double y0[], const double y1[], double *tau,
+                                sw_timed_t timed[SW_MAX_CANDS], int *ntimed)
 {
     sw_evcand_t c[SW_MAX_CANDS];
     int nc = P->ops->candidates(P, C->scheme->cut_kinks, h, y0, y1, c);
     if (nc && C->outcome_only)
         nc = sw_event_keep_outcome(c, nc);
-    return nc ? sw_event_locate(C, P, t0, h, y0, y1, c, nc, tau) : SW_EVF_NONE;
+    *ntimed = 0;
+    return nc ? sw_event_locate(C, P, t0, h, y0, y1, c, nc, tau, timed, ntimed) : SW_EVF_NONE;
 }
 /* Polish the event time by re-stepping; the state there in y; its time. */
 double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double h,
@@ -553,7 +565,9 @@ void sw_pkg_rest(sw_pkg_t *P);
 void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code);
 void sw_pkg_start_rocking(sw_ctx_t *C, sw_pkg_t *P, double t, int side);
 void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
-void sw_pkg_lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
+/* The events timed inside a step (sw_event_locate), in their order: a
+ * peak of |theta| kept in the summary, a tip or a first lift reported. */
+void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
 /* The map of a cutting event at t (the state is there). */
 void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t);
 

@@ -99,7 +99,7 @@ void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
 /* The first edge of a package that never impacts (a cushion's) left its
  * support at t: uplift; info +1 when the rear edge lifts (the top tips
  * forward), -1 the front, 0 when the level base leaves at once. */
-void sw_pkg_lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
+static void lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
 {
     const double th = y_at[P->ith];
     const double side = th == 0.0 ? 0.0 : th < 0.0 ? -1.0 : 1.0;
@@ -108,6 +108,18 @@ void sw_pkg_lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
     if (isnan(P->sum.uplift_time))
         P->sum.uplift_time = t;
     sw_pkg_emit_at(C, P, SW_EV_UPLIFT, t, side, y_at);
+}
+
+void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
+{
+    for (int i = 0; i < n; i++) {
+        if (ev[i].role == SW_ROLE_PEAK)
+            sw_pkg_track_theta(P, ev[i].y[P->ith]);
+        else if (ev[i].role == SW_ROLE_TIP)
+            sw_pkg_tip(C, P, ev[i].t, ev[i].y);
+        else
+            lift(C, P, ev[i].t, ev[i].y);
+    }
 }
 
 /* Kinetic energy of theta' below rest_eps of the energy barrier? */
