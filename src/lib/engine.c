@@ -115,8 +115,10 @@ static SW_ALWAYS_INLINE void advance_ground(sw_engine_t *e, sw_pkg_t *P, double 
             P->t = (h == rem) ? t1 : t0 + h;
             if (P->phase == SW_PHASE_ROCKING)
                 sw_pkg_track_theta(P, P->y[P->ith]);
-            if (P->ops->after_step)
-                P->ops->after_step(C, P, P->t);
+            if (P->ops->follow)
+                P->ops->follow(P);
+            if (P->ops->at_rest)
+                sw_pkg_after_step(C, P);
             continue;
         }
         const double te = sw_event_polish(C, P, ev, t0, h, P->y, tau, ys);
@@ -131,8 +133,8 @@ static SW_ALWAYS_INLINE void advance_ground(sw_engine_t *e, sw_pkg_t *P, double 
          * a step's worth of theta'); the overturn map records pi/2. */
         if (P->phase == SW_PHASE_ROCKING && ev != SW_EVF_OVERTURN)
             sw_pkg_track_theta(P, P->y[P->ith]);
-        if (P->ops->at_cut)
-            P->ops->at_cut(P);
+        if (P->ops->follow)
+            P->ops->follow(P);
         sw_pkg_on_cut(C, P, ev, te);
     }
     P->t = t1;

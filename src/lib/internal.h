@@ -291,10 +291,15 @@ struct sw_model_ops {
     int (*stuck_advance)(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
     /* the rest of the report after the common part (sw_model_output) */
     void (*output)(const sw_pkg_t *P, double t, sw_output_t *o);
-    /* after an accepted step with no cut (the rest test); NULL: none */
-    void (*after_step)(sw_ctx_t *C, sw_pkg_t *P, double t);
-    /* at a cut event, before its map; NULL: none */
-    void (*at_cut)(sw_pkg_t *P);
+    /* the side as the state decides it, after an accepted step and at a
+     * cut before its map (a cushion's is the sign of theta); NULL: the
+     * maps set it */
+    void (*follow)(sw_pkg_t *P);
+    /* a package that lifted since its last rest is back at rest (it can
+     * no longer lift without input): checked after every accepted step
+     * with no cut, and said by the phase machine (sw_pkg_after_step);
+     * NULL: rest only through the maps */
+    int (*at_rest)(const sw_pkg_t *P);
     /* still moving, for sw_engine_finish (settled packages end it early) */
     int (*moving)(const sw_pkg_t *P, double rest_eps);
     /* the right-hand side reports the fastest contact rate of its stages,
@@ -568,6 +573,9 @@ void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
 /* The events timed inside a step (sw_event_locate), in their order: a
  * peak of |theta| kept in the summary, a tip or a first lift reported. */
 void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
+/* After an accepted step with no cut, for a model with a rest test: a
+ * package lifted since its last rest that is back at rest says so. */
+void sw_pkg_after_step(sw_ctx_t *C, sw_pkg_t *P);
 /* The map of a cutting event at t (the state is there). */
 void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t);
 

@@ -524,27 +524,17 @@ static int cushion_uplift_side(const sw_pkg_t *P, double t)
     return 0; /* never stuck: its uplift is the first lift of an edge */
 }
 
-/* After an accepted step: side follows theta; "rest" once the package,
- * lifted before, is back in full contact with less energy than it takes
- * to lift an edge again (with no input it never will). */
-static void cushion_after_step(sw_ctx_t *C, sw_pkg_t *P, double t)
+/* On a cushion the side is the sign of theta. */
+static void cushion_follow(sw_pkg_t *P)
 {
     P->side = P->y[P->ith] < 0.0 ? -1 : 1;
-    if (P->phase != SW_PHASE_ROCKING || isnan(P->t_lift))
-        return;
-    if (cushion_lift(P, P->y, NULL) >= 0.0)
-        return;
-    if (motion_energy(P, P->y) >= P->e_lift)
-        return;
-    P->t_lift = NAN;
-    P->beyond_alpha = 0;
-    P->sum.rests++;
-    sw_pkg_emit_at(C, P, SW_EV_REST, t, 0.0, NULL);
 }
 
-static void cushion_at_cut(sw_pkg_t *P)
+/* Back at rest: in full contact with less energy than it takes to lift
+ * an edge again (with no input it never will). */
+static int cushion_at_rest(const sw_pkg_t *P)
 {
-    P->side = P->y[P->ith] < 0.0 ? -1 : 1;
+    return cushion_lift(P, P->y, NULL) < 0.0 && motion_energy(P, P->y) < P->e_lift;
 }
 
 /* Moving unless its energy of motion is below rest_eps of the barrier. */
@@ -650,8 +640,8 @@ const sw_model_ops_t sw_model_cushion = {
     .event_fn = cushion_event_fn,
     .uplift_side = cushion_uplift_side,
     .output = cushion_output,
-    .after_step = cushion_after_step,
-    .at_cut = cushion_at_cut,
+    .follow = cushion_follow,
+    .at_rest = cushion_at_rest,
     .moving = cushion_moving,
     .tracks_rate = 1,
     .energy = sw_energy_cushion,

@@ -122,6 +122,16 @@ void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
     }
 }
 
+void sw_pkg_after_step(sw_ctx_t *C, sw_pkg_t *P)
+{
+    if (P->phase != SW_PHASE_ROCKING || isnan(P->t_lift) || !P->ops->at_rest(P))
+        return;
+    P->t_lift = NAN;
+    P->beyond_alpha = 0;
+    P->sum.rests++;
+    emit(C, P, SW_EV_REST, P->t, 0.0);
+}
+
 /* Kinetic energy of theta' below rest_eps of the energy barrier? */
 static int below_rest(const sw_ctx_t *C, const sw_pkg_t *P, double theta_dot)
 {
