@@ -201,6 +201,39 @@ static void test_step_beyond_stability(void **state)
     free(r);
 }
 
+/* A fault does not end the sample interval: the package stands from
+ * there, and the bed falling away later in the same interval still lifts
+ * it off.  Rocking under a huge braking (RK4 unstable at dt = 20 ms, as
+ * above), the bed then drops at 3 g: g_eff = g - 3 g t / dt reaches 0 at
+ * dt / 3, where the faulted package, standing, takes off level. */
+static void test_fault_then_take_off(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    rec_t *r = calloc(1, sizeof *r);
+    assert_non_null(r);
+    const double dt = 0.02; /* s */
+    sw_engine_t *e = engine(&sc, 1, dt, r);
+    sw_engine_push(e, 0.0, -5e4, 0.0); /* lifts at once */
+    assert_int_equal(r->last[0].state.phase, SW_PHASE_ROCKING);
+    sw_engine_push(e, dt, -5e4, -3.0 * sc.g);
+    assert_int_equal(r->ev.n, 3);
+    assert_int_equal(r->ev.ev[0].kind, SW_EV_UPLIFT);
+    assert_int_equal(r->ev.ev[1].kind, SW_EV_FAULT);
+    assert_int_equal((int)r->ev.ev[1].info, SW_EUNSTABLE);
+    tu_near(r->ev.ev[1].t, 0.0, 0.0);
+    assert_int_equal(r->ev.ev[2].kind, SW_EV_UPLIFT);
+    assert_true(r->ev.ev[2].info == 0.0); /* level: a take-off */
+    tu_near(r->ev.ev[2].t, dt / 3.0, 1e-15);
+    sw_summary_t s;
+    sw_engine_summary(e, 0, &s);
+    assert_int_equal(s.faults, 1);
+    assert_int_equal(s.flights, 1);
+    assert_int_equal(r->nonfinite, 0);
+    sw_engine_destroy(e);
+    free(r);
+}
+
 /* 1e300, NaN and infinity are refused; the sample is ignored and the state
  * untouched, and the next good sample continues from the last good one. */
 static void test_absurd_samples_refused(void **state)
@@ -240,6 +273,7 @@ int main(void)
         cmocka_unit_test(test_free_fall),
         cmocka_unit_test(test_zero_gravity),
         cmocka_unit_test(test_step_beyond_stability),
+        cmocka_unit_test(test_fault_then_take_off),
         cmocka_unit_test(test_absurd_samples_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -47,22 +47,30 @@ static int finite_state(const sw_pkg_t *P, const double y[])
            !(P->phase == SW_PHASE_ROCKING && fabs(y[P->ith]) > M_PI);
 }
 
+/* An error ends the interval: the package is left at t1, and faults at
+ * t (the engine's one fault exit, advance_pkg). */
+static int failed(sw_pkg_t *P, double t1, double t, int code, double *tf)
+{
+    P->t = t1;
+    *tf = t;
+    return code;
+}
+
 /* Advance one package on its support from P->t to t1 under the input
  * e->in.  The loop guards against a map that keeps re-triggering without
  * progress and against a step count no finite number of events explains;
- * either is a fault, never a hang.  (Longer than 80 lines: the loop is the
- * engine's one control flow, and splitting it would hide the order of its
- * cases.) */
-static SW_ALWAYS_INLINE void advance_ground(sw_engine_t *e, sw_pkg_t *P, double t1)
+ * either is a fault, never a hang.  SW_OK, or the error at *tf that ends
+ * the interval (the package is then at t1, to fault).  (Longer than 80
+ * lines: the loop is the engine's one control flow, and splitting it
+ * would hide the order of its cases.) */
+static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
 {
     sw_ctx_t *C = &e->C;
     double y1[SW_NMAX], ys[SW_NMAX];
     int guard = 0, same_t = 0, checked = 0;
     while (P->t < t1) {
-        if (++guard > 100000000) { /* cannot happen with a finite event count */
-            sw_pkg_fault(C, P, P->t, SW_EFAULT);
-            break;
-        }
+        if (++guard > 100000000) /* cannot happen with a finite event count */
+            return failed(P, t1, P->t, SW_EFAULT, tf);
         if (P->phase == SW_PHASE_OVERTURNED)
             break;
         if (P->phase == SW_PHASE_STUCK && P->ops->stuck_advance) {
@@ -72,10 +80,8 @@ static SW_ALWAYS_INLINE void advance_ground(sw_engine_t *e, sw_pkg_t *P, double 
                 break;
             if (r == SW_STUCK_MOVED)
                 continue;
-            if (r == SW_STUCK_FAULT) {
-                sw_pkg_fault(C, P, P->t, SW_EFAULT);
-                break;
-            }
+            if (r == SW_STUCK_FAULT)
+                return failed(P, t1, P->t, SW_EFAULT, tf);
             if (r == SW_STUCK_LIFT) {
                 sw_pkg_start_rocking(C, P, P->t, side);
                 continue;
@@ -84,23 +90,17 @@ static SW_ALWAYS_INLINE void advance_ground(sw_engine_t *e, sw_pkg_t *P, double 
         const double t0 = P->t, rem = t1 - t0;
         double h;
         if (!checked) {
-            if (sw_step_input_unstable(C, P, t0, t1)) {
-                sw_pkg_fault(C, P, t0, SW_EUNSTABLE);
-                break;
-            }
+            if (sw_step_input_unstable(C, P, t0, t1))
+                return failed(P, t1, t0, SW_EUNSTABLE, tf);
             checked = 1;
         }
         const int st = sw_step_advance(C, P, t1, y1, &h);
-        if (st != SW_OK) {
-            sw_pkg_fault(C, P, t0, st);
-            break;
-        }
+        if (st != SW_OK)
+            return failed(P, t1, t0, st, tf);
         P->sum.steps++;
         P->h_used = sw_max2(P->h_used, h);
-        if (!finite_state(P, y1)) {
-            sw_pkg_fault(C, P, t0, SW_EFAULT);
-            break;
-        }
+        if (!finite_state(P, y1))
+            return failed(P, t1, t0, SW_EFAULT, tf);
         C->step_y1 = y1;
         C->step_h = h;
         double tau;
@@ -123,10 +123,8 @@ static SW_ALWAYS_INLINE void advance_ground(sw_engine_t *e, sw_pkg_t *P, double 
         }
         const double te = sw_event_polish(C, P, ev, t0, h, P->y, tau, ys);
         same_t = te - t0 <= 1e-12 * fmax(1.0, fabs(t0)) ? same_t + 1 : 0;
-        if (same_t > 64) { /* a map that keeps re-triggering without progress */
-            sw_pkg_fault(C, P, t0, SW_EFAULT);
-            break;
-        }
+        if (same_t > 64) /* a map that keeps re-triggering without progress */
+            return failed(P, t1, t0, SW_EFAULT, tf);
         memcpy(P->y, ys, sizeof(double) * (size_t)P->n);
         P->t = te;
         /* At an overturn the polished state lies just past pi/2 (by up to
@@ -136,8 +134,10 @@ static SW_ALWAYS_INLINE void advance_ground(sw_engine_t *e, sw_pkg_t *P, double 
         if (P->ops->follow)
             P->ops->follow(P);
         sw_pkg_on_cut(C, P, ev, te);
+        sw_step_reset(P); /* the map changed the state: the scheme's history is gone */
     }
     P->t = t1;
+    return SW_OK;
 }
 
 /* The first time in [t0, t1] at which g_eff = g + a_z falls to 0 (the bed
@@ -178,29 +178,21 @@ static void time_in_air(sw_ctx_t *C, sw_pkg_t *P, double t0, double t1)
     }
 }
 
-/* Advance one package from P->t to t1: on its support, and in free flight
- * while the bed falls away from it (flight.c), for a model that flies;
- * for one that does not, g_eff <= 0 is outside the model: a fault. */
-static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
+/* Advance one package from P->t toward t1 through take-offs and flights
+ * (flight.c), for a model that flies, or with its flights timed, for one
+ * whose equations hold in the air; for one that does neither, g_eff <= 0
+ * is outside the model: an error.  SW_OK with P at t1, or the error at
+ * *tf that stopped it: P is then at t1, or where the support segment
+ * before a take-off ended (it takes off from there once it has faulted). */
+static int advance_flying(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
 {
     sw_ctx_t *C = &e->C;
-    if (!P->flying && P->ops->flies != SW_FLIES_INTEGRATED && sw_input_geff(P, P->t) > 0.0 &&
-        sw_input_geff(P, t1) > 0.0) {
-        /* the bed does not fall away in [t, t1] (g_eff is linear between
-         * samples): on the support throughout, the common case */
-        advance_ground(e, P, t1);
-        P->t = t1;
-        return;
-    }
     for (int guard = 0; P->t < t1 && P->phase != SW_PHASE_OVERTURNED; guard++) {
-        if (guard > 1000000) { /* take-offs and landings without progress */
-            sw_pkg_fault(C, P, P->t, SW_EFAULT);
-            break;
-        }
+        if (guard > 1000000) /* take-offs and landings without progress */
+            return failed(P, t1, P->t, SW_EFAULT, tf);
         if (P->ops->flies == SW_FLIES_INTEGRATED) {
             time_in_air(C, P, P->t, t1);
-            advance_ground(e, P, t1);
-            break;
+            return advance_ground(e, P, t1, tf);
         }
         if (P->flying) {
             const int still = sw_flight_advance(C, P, t1) == SW_STUCK_STILL;
@@ -212,17 +204,47 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
         }
         const double toff = take_off_time(P, P->t, t1); /* s */
         if (toff <= P->t) {
-            if (!P->ops->flies) {
-                sw_pkg_fault(C, P, P->t, SW_EFAULT);
-                break;
-            }
+            if (!P->ops->flies)
+                return failed(P, t1, P->t, SW_EFAULT, tf);
             sw_flight_take_off(C, P, P->t);
             continue;
         }
-        advance_ground(e, P, sw_min2(toff, t1));
-        if (!(toff < t1))
-            break;
+        const double tg = sw_min2(toff, t1); /* s */
+        const int rc = advance_ground(e, P, tg, tf);
+        if (rc != SW_OK || !(toff < t1))
+            return rc;
         P->t = toff; /* g_eff is 0 here: it takes off next */
+    }
+    P->t = t1;
+    return SW_OK;
+}
+
+/* The one way a package faults: the phase machine puts it at rest and
+ * says so (SW_EV_FAULT), and its scheme's error control starts afresh. */
+static void fault(sw_engine_t *e, sw_pkg_t *P, double t, int code)
+{
+    sw_pkg_fault(&e->C, P, t, code);
+    sw_step_forget(P);
+}
+
+/* Advance one package from P->t to t1: on its support, and in free flight
+ * while the bed falls away from it.  Every error of the layers below comes
+ * back here and faults the package; the interval goes on from where the
+ * error left it (a segment on the support before a take-off). */
+static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
+{
+    for (;;) {
+        double tf = P->t; /* s */
+        /* the bed does not fall away in [t, t1] (g_eff is linear between
+         * samples): on the support throughout, the common case */
+        const int ground = !P->flying && P->ops->flies != SW_FLIES_INTEGRATED &&
+                           sw_input_geff(P, P->t) > 0.0 && sw_input_geff(P, t1) > 0.0;
+        const int rc = ground ? advance_ground(e, P, t1, &tf) : advance_flying(e, P, t1, &tf);
+        if (rc == SW_OK)
+            break;
+        fault(e, P, tf, rc);
+        if (!(P->t < t1))
+            break;
     }
     P->t = t1;
 }
@@ -258,14 +280,14 @@ static void report_states(sw_engine_t *e, double t)
              * only the last line of defence */
             sw_model_to_state(P, &o.state);
             if (!state_finite(&o.state))
-                sw_pkg_fault(&e->C, P, t, SW_EFAULT);
+                fault(e, P, t, SW_EFAULT);
             continue;
         }
         sw_model_output(P, t, &o);
         /* Last line of defence: a non-finite number is never reported; the
          * package faults and is reported at rest instead. */
         if (!output_finite(&o)) {
-            sw_pkg_fault(&e->C, P, t, SW_EFAULT);
+            fault(e, P, t, SW_EFAULT);
             sw_model_output(P, t, &o);
         }
         o.pkg = i;
@@ -501,7 +523,7 @@ static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
         if (P->ops->flies)
             sw_flight_take_off(&e->C, P, t);
         else
-            sw_pkg_fault(&e->C, P, t, SW_EFAULT);
+            fault(e, P, t, SW_EFAULT);
         return;
     }
     if (P->phase != SW_PHASE_STUCK)

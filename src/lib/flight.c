@@ -293,6 +293,7 @@ int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1)
         P->sum.flight_max = sw_max2(P->sum.flight_max, P->t - P->fl_t0);
         P->side = a.w > 0.0 ? 1 : -1;
         sw_pkg_on_cut(C, P, SW_EVF_OVERTURN, P->t);
+        sw_step_reset(P);
         return SW_STUCK_MOVED;
     }
     arc_move(P, &a, H);

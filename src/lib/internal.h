@@ -495,7 +495,8 @@ int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double 
  * after sw_step_init, and again after the package is moved in memory. */
 void sw_step_bind(sw_pkg_t *P);
 void sw_step_free(sw_pkg_t *P);
-void sw_step_reset(sw_pkg_t *P); /* forget the scheme's history (after a map) */
+void sw_step_reset(sw_pkg_t *P);  /* forget the scheme's history (after a map) */
+void sw_step_forget(sw_pkg_t *P); /* restart the error control's count (after a fault) */
 /* The input over [t0, t1] makes a fixed step unstable for P? */
 int sw_step_input_unstable(const sw_ctx_t *C, const sw_pkg_t *P, double t0, double t1);
 /* One step from (P->t, P->y) toward t1 (at most t1 - P->t) into y1; *h
@@ -567,6 +568,7 @@ void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, doub
                     const double *y_at);
 void sw_pkg_track_theta(sw_pkg_t *P, double theta);
 void sw_pkg_rest(sw_pkg_t *P);
+/* A fault at t (code: the error): at rest, counted and said. */
 void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code);
 void sw_pkg_start_rocking(sw_ctx_t *C, sw_pkg_t *P, double t, int side);
 void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
@@ -576,7 +578,8 @@ void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
 /* After an accepted step with no cut, for a model with a rest test: a
  * package lifted since its last rest that is back at rest says so. */
 void sw_pkg_after_step(sw_ctx_t *C, sw_pkg_t *P);
-/* The map of a cutting event at t (the state is there). */
+/* The map of a cutting event at t (the state is there); the caller resets
+ * the scheme's history after it (sw_step_reset). */
 void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t);
 
 #endif

@@ -70,8 +70,6 @@ void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code)
 {
     P->sum.faults++;
     sw_pkg_rest(P);
-    if (P->gevo)
-        gsl_odeiv2_evolve_reset(P->gevo);
     emit(C, P, SW_EV_FAULT, t, code);
 }
 
@@ -207,5 +205,4 @@ void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t)
             break;
         default: break; /* a kink: the step was cut there, nothing changes */
     }
-    sw_step_reset(P);
 }

@@ -157,6 +157,12 @@ void sw_step_reset(sw_pkg_t *P)
     gsl_odeiv2_step_reset(P->gstep);
 }
 
+void sw_step_forget(sw_pkg_t *P)
+{
+    if (P->gevo)
+        gsl_odeiv2_evolve_reset(P->gevo);
+}
+
 /* The input sets the stiffness of the rocking equation: theta'' is of the
  * order kR |a| theta for an acceleration a (bed or gravity), a rate of
  * sqrt(kR |a|).  A fixed step beyond the scheme's stability bound for that
