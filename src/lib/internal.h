@@ -375,6 +375,10 @@ int sw_modes_add(sw_mode_t m[SW_MODES_MAX], int n, double re, double im, const c
  * scheme is then SW_STIFF_SCHEME (engine.c). */
 int sw_model_stiff(const sw_derived_t *d, double dt);
 void sw_model_setup(sw_pkg_t *P); /* common constants, then ops->setup */
+/* Typical size of component i of the state (m or rad), for finite-
+ * difference Jacobians, and of its rate di at the scene's fastest
+ * frequency (ops->setup: every component). */
+void sw_model_scale(sw_pkg_t *P, int i, int di, double size);
 int sw_model_rhs(double t, const double y[], double f[], void *pkg); /* GSL signature */
 void sw_model_to_state(const sw_pkg_t *P, sw_state_t *s);
 void sw_model_from_state(sw_pkg_t *P, const sw_state_t *s);

@@ -114,24 +114,12 @@ void sw_model_setup(sw_pkg_t *P)
     P->kR = 0.75 / P->d.R;
     P->tan_alpha = tan(P->d.alpha);
     P->ops->setup(P);
+}
 
-    /* Typical sizes of the components, for finite-difference Jacobians:
-     * the angle at which an edge of a cushioned base lifts (z_s/b) or
-     * alpha, the static deflection, the bearings' deflection under 1 g;
-     * rates at the scene's fastest frequency. */
-    const double w = fmax(P->d.omega_max, P->d.p); /* rad/s */
-    const int cushion = P->iz >= 0;
-    const double zs = cushion ? sw_cushion_static_deflection(&P->d, P->g) : 0.0; /* m */
-    P->yscale[P->ith] = cushion ? zs / P->d.b : P->d.alpha;
-    P->yscale[P->idth] = w * P->yscale[P->ith];
-    if (P->iu >= 0) {
-        P->yscale[P->iu] = P->g / (P->d.omega_b * P->d.omega_b);
-        P->yscale[P->idu] = w * P->yscale[P->iu];
-    }
-    if (P->iz >= 0) {
-        P->yscale[P->iz] = zs;
-        P->yscale[P->idz] = w * zs;
-    }
+void sw_model_scale(sw_pkg_t *P, int i, int di, double size)
+{
+    P->yscale[i] = size;
+    P->yscale[di] = fmax(P->d.omega_max, P->d.p) * size;
 }
 
 int sw_model_rhs(double t, const double y[], double f[], void *pkg)

@@ -435,6 +435,13 @@ static void cushion_setup(sw_pkg_t *P)
         P->idth = 2;
         P->idz = 3;
     }
+    /* typical sizes: the angle at which an edge of the base lifts
+     * (z_s/b), the static deflection, the bearings' deflection under 1 g */
+    const double zs = sw_cushion_static_deflection(&P->d, P->g); /* m */
+    sw_model_scale(P, P->ith, P->idth, zs / P->d.b);
+    if (P->iu >= 0)
+        sw_model_scale(P, P->iu, P->idu, P->g / (P->d.omega_b * P->d.omega_b));
+    sw_model_scale(P, P->iz, P->idz, zs);
     /* contact_rate()'s bound at rest: full contact, theta = 0, where
      * M^-1 K and M^-1 C have the vertical mode's K_t/m and C/m as their
      * largest eigenvalues */

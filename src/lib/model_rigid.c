@@ -102,11 +102,13 @@ double sw_margin_bound_frame(const sw_derived_t *d, double g_eff, const sw_state
 
 /* ---- layout and right-hand sides -------------------------------------------- */
 
+/* Typical sizes: alpha, and the bearings' deflection under 1 g. */
 static void bare_setup(sw_pkg_t *P)
 {
     P->n = 2;
     P->ith = 0;
     P->idth = 1;
+    sw_model_scale(P, P->ith, P->idth, P->d.alpha);
 }
 
 static void frame_setup(sw_pkg_t *P)
@@ -116,6 +118,8 @@ static void frame_setup(sw_pkg_t *P)
     P->ith = 1;
     P->idu = 2;
     P->idth = 3;
+    sw_model_scale(P, P->ith, P->idth, P->d.alpha);
+    sw_model_scale(P, P->iu, P->idu, P->g / (P->d.omega_b * P->d.omega_b));
 }
 
 static int bare_rhs(sw_pkg_t *P, double t, const double y[], double f[])
