@@ -268,8 +268,8 @@ const char *sw_alarm_level_name(sw_alarm_level l)
 double sw_impact_tip_speed(const sw_derived_t *d, double g)
 {
     /* a model without an impact map (the cushion) lands without impacts */
-    const sw_model_ops_t *m = d ? sw_model_ops_of(d->model) : NULL;
-    if (!m || !m->impact || !(g > 0.0))
+    const sw_model_traits_t *m = d ? sw_model_traits_of(d->model) : NULL;
+    if (!m || !m->impacts || !(g > 0.0))
         return 0.0;
     /* 1/2 I_O w^2 = m g R (1 - cos a) with p^2 = m g R / I_O:
      * w = p sqrt(2 (1 - cos a)) = 2 p sin(a/2); p at this g */

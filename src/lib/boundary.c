@@ -51,7 +51,7 @@ static double pulse_lift(sw_engine_t *e, const sw_derived_t *d, double g, sw_pul
     const double probe = 1e-4;
     pulse.amplitude = probe * unit;
     sw_engine_reset(e);
-    const sw_model_ops_t *ops = sw_model_ops_of(d->model);
+    const sw_model_traits_t *ops = sw_model_traits_of(d->model);
     double wfast, wslow; /* rad/s */
     ops->probe_rates(d, g, &wfast, &wslow);
     const double wmax = fmax(pulse.omega, wfast);
@@ -127,7 +127,7 @@ int sw_boundary_point(const sw_curve_t *c, double omega_ratio, const sw_boundary
 
     pulse_trial_t T = {&R, &o->run, {o->shape, 0.0, omega_e}, sc.g * tan(d.alpha)};
     sw_search_opts_t so = o->search;
-    const sw_model_ops_t *ops = sw_model_ops_of(d.model);
+    const sw_model_traits_t *ops = sw_model_traits_of(d.model);
     if (ops->lift_direct)
         out->x_lift = 1.0; /* the bed acceleration itself must reach g tan(alpha) */
     else

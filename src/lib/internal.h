@@ -260,11 +260,14 @@ typedef struct {
     double per_z;     /* the lift drive over its level per unit of z - z_s, 1/m */
 } sw_rock_linear_t;
 
-/* A model's behaviour: everything the layers above need to know of it.
- * Adding a model is one model_X.c with one of these and a row in
- * sw_model_ops_of() (model.c). */
+typedef struct sw_model_traits sw_model_traits_t;
+
+/* A model's behaviour: what the engine's layers do with a package of it.
+ * Adding a model is one model_X.c with one of these (and its traits) and
+ * a row in sw_model_ops_of() (model.c). */
 struct sw_model_ops {
     const char *name;
+    const sw_model_traits_t *traits; /* what can be said from the scene alone */
     /* layout of y, typical sizes, constants (after the common set-up) */
     void (*setup)(sw_pkg_t *P);
     /* f = y' at (t, y); GSL_SUCCESS, or a GSL error that makes an adaptive
@@ -306,19 +309,36 @@ struct sw_model_ops {
      * and a fixed step is retaken shorter where that rate is too fast; a
      * model with such a contact can be stiff (sw_model_stiff) */
     int tracks_rate;
-    /* pure functions of the scene and a state (model.h's sw_model_energy,
-     * sw_model_barrier, sw_model_work_rate) */
+    /* g_eff <= 0, the bed falling away faster than gravity: SW_FLIES_CLOSED,
+     * a rigid package flies in closed form (flight.c); SW_FLIES_INTEGRATED,
+     * the model's equations hold with no contact (a cushion's free
+     * flight); 0: outside the model, a fault */
+    int flies;
+};
+
+enum { SW_FLIES_CLOSED = 1, SW_FLIES_INTEGRATED = 2 };
+
+extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
+const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind);
+
+/* What can be said of a model from its scene alone, with no package run:
+ * pure functions of the derived quantities, and the claims the analyses
+ * that run a package many times (run.c, sweep.c, safety*.c, reserve*.c)
+ * and the alarms rely on, so that they never ask which model it is. */
+struct sw_model_traits {
+    /* model.h's sw_model_energy, sw_model_barrier, sw_model_work_rate */
     double (*energy)(const sw_derived_t *d, double g, const sw_state_t *s);
     double (*barrier)(const sw_derived_t *d, double g);
     double (*work_rate)(const sw_derived_t *d);
-
     /* a package not rocking can no longer lift without input
      * (sw_model_settled); NULL: never proven */
     int (*settled)(const sw_derived_t *d, double g, const sw_state_t *s);
-
-    /* ---- what the analyses that run a package many times rely on
-     * (run.c, sweep.c, safety*.c, reserve*.c), so that they never ask which model
-     * it is ---- */
+    /* the modes about rest a fixed step must keep stable (model.h's
+     * sw_model_modes): how many into m */
+    int (*modes)(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX]);
+    /* a rocking package lands on its corners with an impact (the alarms'
+     * impact speed); 0: it lands without one (a cushion) */
+    int impacts;
     /* the package leaves its rest contact exactly when the input itself
      * reaches g tan(alpha) (the bare block): there is nothing to probe */
     int lift_direct;
@@ -345,20 +365,10 @@ struct sw_model_ops {
      * (sw_rock_linear_t) for a package of mass m (kg): 1 and *r filled, or
      * 0 when the model has none; NULL: never */
     int (*rock_linear)(const sw_derived_t *d, double m, double g, sw_rock_linear_t *r);
-    /* the modes about rest a fixed step must keep stable (model.h's
-     * sw_model_modes): how many into m */
-    int (*modes)(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX]);
-    /* g_eff <= 0, the bed falling away faster than gravity: SW_FLIES_CLOSED,
-     * a rigid package flies in closed form (flight.c); SW_FLIES_INTEGRATED,
-     * the model's equations hold with no contact (a cushion's free
-     * flight); 0: outside the model, a fault */
-    int flies;
 };
 
-enum { SW_FLIES_CLOSED = 1, SW_FLIES_INTEGRATED = 2 };
-
-extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
-const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind);
+/* The traits of a model kind, NULL for a kind outside the enum. */
+const sw_model_traits_t *sw_model_traits_of(sw_model_kind kind);
 
 /* The decaying roots of a lambda^2 + b lambda + c = 0 (a > 0, b >= 0) as
  * modes named name, appended to m[0..n) up to SW_MODES_MAX: one (with its

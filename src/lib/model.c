@@ -33,6 +33,12 @@ const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind)
     return (unsigned)kind < sizeof table / sizeof table[0] ? table[kind] : NULL;
 }
 
+const sw_model_traits_t *sw_model_traits_of(sw_model_kind kind)
+{
+    const sw_model_ops_t *m = sw_model_ops_of(kind);
+    return m ? m->traits : NULL;
+}
+
 const char *sw_model_name(sw_model_kind k)
 {
     const sw_model_ops_t *m = sw_model_ops_of(k);
@@ -73,36 +79,36 @@ int sw_modes_quadratic(sw_mode_t m[SW_MODES_MAX], int n, double a, double b, dou
 
 int sw_model_modes(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX])
 {
-    const sw_model_ops_t *ops = d && m ? sw_model_ops_of(d->model) : NULL;
-    return ops && ops->modes ? ops->modes(d, g, m) : 0;
+    const sw_model_traits_t *tr = d && m ? sw_model_traits_of(d->model) : NULL;
+    return tr && tr->modes ? tr->modes(d, g, m) : 0;
 }
 
 int sw_model_settled(const sw_derived_t *d, double g, const sw_state_t *s)
 {
-    const sw_model_ops_t *m = d && s ? sw_model_ops_of(d->model) : NULL;
-    if (!m)
+    const sw_model_traits_t *tr = d && s ? sw_model_traits_of(d->model) : NULL;
+    if (!tr)
         return 0;
     if (s->phase == SW_PHASE_OVERTURNED)
         return 1;
-    return s->phase != SW_PHASE_ROCKING && m->settled && m->settled(d, g, s);
+    return s->phase != SW_PHASE_ROCKING && tr->settled && tr->settled(d, g, s);
 }
 
 double sw_model_energy(const sw_derived_t *d, double g, const sw_state_t *s)
 {
-    const sw_model_ops_t *m = d && s ? sw_model_ops_of(d->model) : NULL;
-    return m ? m->energy(d, g, s) : NAN;
+    const sw_model_traits_t *tr = d && s ? sw_model_traits_of(d->model) : NULL;
+    return tr ? tr->energy(d, g, s) : NAN;
 }
 
 double sw_model_barrier(const sw_derived_t *d, double g)
 {
-    const sw_model_ops_t *m = d ? sw_model_ops_of(d->model) : NULL;
-    return m ? m->barrier(d, g) : NAN;
+    const sw_model_traits_t *tr = d ? sw_model_traits_of(d->model) : NULL;
+    return tr ? tr->barrier(d, g) : NAN;
 }
 
 double sw_model_work_rate(const sw_derived_t *d)
 {
-    const sw_model_ops_t *m = d ? sw_model_ops_of(d->model) : NULL;
-    return m ? m->work_rate(d) : NAN;
+    const sw_model_traits_t *tr = d ? sw_model_traits_of(d->model) : NULL;
+    return tr ? tr->work_rate(d) : NAN;
 }
 
 void sw_model_setup(sw_pkg_t *P)

@@ -638,8 +638,21 @@ static int cushion_rock_linear(const sw_derived_t *d, double m, double g, sw_roc
     return 1;
 }
 
+static const sw_model_traits_t cushion_traits = {
+    .energy = sw_energy_cushion,
+    .barrier = sw_cushion_barrier,
+    .work_rate = cushion_work_rate,
+    .modes = cushion_modes,
+    .lift_level = cushion_lift_level,
+    .lift_drive = cushion_lift_drive,
+    .probe_rates = cushion_probe_rates,
+    .probe_margin = 0.9, /* linear only to O(theta^2), and its probe's sampling is capped */
+    .rock_linear = cushion_rock_linear,
+};
+
 const sw_model_ops_t sw_model_cushion = {
     .name = "cushion",
+    .traits = &cushion_traits,
     .setup = cushion_setup,
     .rhs = cushion_rhs,
     .rest = cushion_rest,
@@ -651,14 +664,5 @@ const sw_model_ops_t sw_model_cushion = {
     .at_rest = cushion_at_rest,
     .moving = cushion_moving,
     .tracks_rate = 1,
-    .energy = sw_energy_cushion,
-    .barrier = sw_cushion_barrier,
-    .work_rate = cushion_work_rate,
-    .lift_level = cushion_lift_level,
-    .lift_drive = cushion_lift_drive,
-    .probe_rates = cushion_probe_rates,
-    .probe_margin = 0.9, /* linear only to O(theta^2), and its probe's sampling is capped */
-    .rock_linear = cushion_rock_linear,
-    .modes = cushion_modes,
     .flies = SW_FLIES_INTEGRATED,
 };

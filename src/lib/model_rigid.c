@@ -404,8 +404,22 @@ static int frame_modes(const sw_derived_t *d, double g, sw_mode_t m[SW_MODES_MAX
     return sw_modes_quadratic(m, n, D, c, w * w, "bearing mode while rocking");
 }
 
+static const sw_model_traits_t bare_traits = {
+    .energy = sw_energy_bare,
+    .barrier = rigid_barrier,
+    .work_rate = bare_work_rate,
+    .settled = bare_settled,
+    .modes = bare_modes,
+    .impacts = 1,
+    .lift_direct = 1,
+    .free_exact = 1,
+    .lift_level = rigid_lift_level,
+    .lift_drive = rigid_lift_drive,
+};
+
 const sw_model_ops_t sw_model_bare = {
     .name = "bare",
+    .traits = &bare_traits,
     .setup = bare_setup,
     .rhs = bare_rhs,
     .candidates = rigid_candidates,
@@ -416,20 +430,26 @@ const sw_model_ops_t sw_model_bare = {
     .stuck_advance = sw_stuck_bare,
     .output = bare_output,
     .moving = bare_moving,
-    .energy = sw_energy_bare,
+    .flies = SW_FLIES_CLOSED,
+};
+
+static const sw_model_traits_t frame_traits = {
+    .energy = sw_energy_frame,
     .barrier = rigid_barrier,
-    .work_rate = bare_work_rate,
-    .settled = bare_settled,
-    .lift_direct = 1,
-    .free_exact = 1,
+    .work_rate = frame_work_rate,
+    .settled = frame_settled,
+    .modes = frame_modes,
+    .impacts = 1,
+    .stuck_linear = 1,
     .lift_level = rigid_lift_level,
     .lift_drive = rigid_lift_drive,
-    .modes = bare_modes,
-    .flies = SW_FLIES_CLOSED,
+    .probe_rates = frame_probe_rates,
+    .probe_margin = 0.99, /* linear: sampled to 3e-5 of the peak (sweep.c's pulse_lift) */
 };
 
 const sw_model_ops_t sw_model_frame = {
     .name = "frame",
+    .traits = &frame_traits,
     .setup = frame_setup,
     .rhs = frame_rhs,
     .candidates = rigid_candidates,
@@ -440,15 +460,5 @@ const sw_model_ops_t sw_model_frame = {
     .stuck_advance = sw_stuck_frame,
     .output = frame_output,
     .moving = frame_moving,
-    .energy = sw_energy_frame,
-    .barrier = rigid_barrier,
-    .work_rate = frame_work_rate,
-    .settled = frame_settled,
-    .stuck_linear = 1,
-    .lift_level = rigid_lift_level,
-    .lift_drive = rigid_lift_drive,
-    .probe_rates = frame_probe_rates,
-    .probe_margin = 0.99, /* linear: sampled to 3e-5 of the peak (sweep.c's pulse_lift) */
-    .modes = frame_modes,
     .flies = SW_FLIES_CLOSED,
 };

@@ -90,13 +90,13 @@ struct sw_reserve {
     sw_reserve_opts_t o;
     double step, tol; /* relative */
     double max_g, floor_g;
-    double lift_g;             /* g: g tan(alpha) / SW_G0 */
-    const sw_model_ops_t *ops; /* the model's: its traits choose the bounds and the ends */
-    sw_state_t rest_state;     /* the engine's state of rest (side aside) */
-    double t_free;             /* s, free motion after a pulse */
-    double chunk;              /* s, between certificate checks after the pulse */
-    double sqrt_eb;            /* sqrt(J/kg): square root of the barrier energy */
-    double c_energy;           /* 1: sw_model_work_rate() */
+    double lift_g;                /* g: g tan(alpha) / SW_G0 */
+    const sw_model_traits_t *ops; /* the model's traits: they choose the bounds and the ends */
+    sw_state_t rest_state;        /* the engine's state of rest (side aside) */
+    double t_free;                /* s, free motion after a pulse */
+    double chunk;                 /* s, between certificate checks after the pulse */
+    double sqrt_eb;               /* sqrt(J/kg): square root of the barrier energy */
+    double c_energy;              /* 1: sw_model_work_rate() */
     size_t np;
     pulse_ctx_t p[SW_DESIGN_PULSES_MAX];
     sw_reserve_result_t rest;
@@ -630,7 +630,7 @@ sw_reserve_t *sw_reserve_create(const sw_scene_t *sc, const sw_reserve_opts_t *o
     R->step = R->o.step > 0.0 ? R->o.step : DEFAULT_STEP;
     R->tol = R->o.tol > 0.0 ? R->o.tol : DEFAULT_TOL;
     R->lift_g = R->sc.g * tan(d->alpha) / SW_G0;
-    R->ops = sw_model_ops_of(d->model);
+    R->ops = sw_model_traits_of(d->model);
     R->max_g = R->o.max_g > 0.0 ? R->o.max_g : DEFAULT_X_MAX * R->lift_g;
     R->floor_g = R->o.floor_g > 0.0 ? R->o.floor_g : SW_RESERVE_FLOOR_G;
     if (!isfinite(R->step) || !isfinite(R->tol) || !isfinite(R->max_g) || !isfinite(R->floor_g) ||

@@ -151,7 +151,7 @@ static void fill_result(const sw_runner_t *R, sw_run_end end, const sw_output_t 
  * or the engine's error. */
 static int run_input(sw_engine_t *e, const sw_run_until_t *u, double *t, sw_run_end *end)
 {
-    const int exact = sw_model_ops_of(sw_engine_derived(e, 0)->model)->free_exact;
+    const int exact = sw_model_traits_of(sw_engine_derived(e, 0)->model)->free_exact;
     while (*t < u->t_input) {
         *t = u->certify ? fmin(u->t_input, *t + u->check) : u->t_input;
         const int rc = sw_engine_advance_fn(e, *t, u->input, u->input_user);
@@ -176,7 +176,7 @@ static int run_input(sw_engine_t *e, const sw_run_until_t *u, double *t, sw_run_
 int sw_run_until(sw_engine_t *e, const sw_run_until_t *u, sw_run_end *end, double *t_end)
 {
     const sw_derived_t *d = sw_engine_derived(e, 0);
-    const int exact = sw_model_ops_of(d->model)->free_exact;
+    const int exact = sw_model_traits_of(d->model)->free_exact;
     const double t_started = sw_engine_time(e);
     double t = isnan(t_started) ? u->t0 : t_started; /* s */
     if (u->input) {

@@ -108,7 +108,7 @@ static sw_search_opts_t case_search(const pool_t *W, const case_t *c)
         so.x_max = DEFAULT_X_MAX * P->bare_lift;
     if (!(so.x_min > 0.0)) {
         so.x_min = P->lift_scale;
-        if (!sw_model_ops_of(P->d.model)->lift_direct || P->log->a_z)
+        if (!sw_model_traits_of(P->d.model)->lift_direct || P->log->a_z)
             so.x_min *= LIFT_MARGIN_LOG;
         if (P->log->a_z)
             so.x_min = fmin(so.x_min, LIFT_MARGIN_LOG * P->bare_lift);

@@ -303,7 +303,7 @@ static void prep_probe(prep_t *P, sw_runner_t *R)
 {
     const sw_log_t *L = P->log;
     const double probe = 1e-4 * P->bare_lift;
-    const sw_model_ops_t *ops = sw_model_ops_of(P->d.model);
+    const sw_model_traits_t *ops = sw_model_traits_of(P->d.model);
     const double level = ops->lift_level(&P->d, P->sc->g);
     double peak = 0.0;
     size_t next_restart = 0;
@@ -363,7 +363,7 @@ int sw_safety_prep_make(prep_t *P, char *msg, size_t msglen)
         return SW_OK;
     P->bare_lift = P->sc->g * P->tan_alpha / P->a_peak; /* scale lifting a package on the bed */
     const int clean = clean_log(L);
-    const sw_model_ops_t *ops = sw_model_ops_of(P->d.model);
+    const sw_model_traits_t *ops = sw_model_traits_of(P->d.model);
     if (ops->lift_direct && clean) { /* the lowest of every sample's */
         if ((err = prep_direct(P)) != SW_OK)
             return err;
