@@ -43,8 +43,8 @@ struct sw_engine {
  * numbers must not reach the summary). */
 static int finite_state(const sw_pkg_t *P, const double y[])
 {
-    return sw_all_finite(y, (size_t)P->n) &&
-           !(P->phase == SW_PHASE_ROCKING && fabs(y[P->ith]) > M_PI);
+    return sw_all_finite(y, (size_t)P->m.n) &&
+           !(P->m.phase == SW_PHASE_ROCKING && fabs(y[P->m.ith]) > M_PI);
 }
 
 /* An error ends the interval: the package is left at t1, and faults at
@@ -71,11 +71,11 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
     while (P->t < t1) {
         if (++guard > 100000000) /* cannot happen with a finite event count */
             return failed(P, t1, P->t, SW_EFAULT, tf);
-        if (P->phase == SW_PHASE_OVERTURNED)
+        if (P->m.phase == SW_PHASE_OVERTURNED)
             break;
-        if (P->phase == SW_PHASE_STUCK && P->ops->stuck_advance) {
+        if (P->m.phase == SW_PHASE_STUCK && P->m.ops->stands) {
             int side = 0;
-            const int r = P->ops->stuck_advance(C, P, t1, &side);
+            const int r = sw_stuck_advance(C, P, t1, &side);
             if (r == SW_STUCK_STILL)
                 break;
             if (r == SW_STUCK_MOVED)
@@ -111,13 +111,13 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
         if (nt)
             sw_pkg_timed(C, P, timed, nt);
         if (ev == SW_EVF_NONE) {
-            memcpy(P->y, y1, sizeof(double) * (size_t)P->n);
+            memcpy(P->y, y1, sizeof(double) * (size_t)P->m.n);
             P->t = (h == rem) ? t1 : t0 + h;
-            if (P->phase == SW_PHASE_ROCKING)
-                sw_pkg_track_theta(P, P->y[P->ith]);
-            if (P->ops->follow)
-                P->ops->follow(P);
-            if (P->ops->at_rest)
+            if (P->m.phase == SW_PHASE_ROCKING)
+                sw_pkg_track_theta(P, P->y[P->m.ith]);
+            if (P->m.ops->follow)
+                P->m.ops->follow(&P->m, P->y);
+            if (P->m.ops->at_rest)
                 sw_pkg_after_step(C, P);
             continue;
         }
@@ -125,14 +125,14 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
         same_t = te - t0 <= 1e-12 * fmax(1.0, fabs(t0)) ? same_t + 1 : 0;
         if (same_t > 64) /* a map that keeps re-triggering without progress */
             return failed(P, t1, t0, SW_EFAULT, tf);
-        memcpy(P->y, ys, sizeof(double) * (size_t)P->n);
+        memcpy(P->y, ys, sizeof(double) * (size_t)P->m.n);
         P->t = te;
         /* At an overturn the polished state lies just past pi/2 (by up to
          * a step's worth of theta'); the overturn map records pi/2. */
-        if (P->phase == SW_PHASE_ROCKING && ev != SW_EVF_OVERTURN)
-            sw_pkg_track_theta(P, P->y[P->ith]);
-        if (P->ops->follow)
-            P->ops->follow(P);
+        if (P->m.phase == SW_PHASE_ROCKING && ev != SW_EVF_OVERTURN)
+            sw_pkg_track_theta(P, P->y[P->m.ith]);
+        if (P->m.ops->follow)
+            P->m.ops->follow(&P->m, P->y);
         sw_pkg_on_cut(C, P, ev, te);
         sw_step_reset(P); /* the map changed the state: the scheme's history is gone */
     }
@@ -144,7 +144,8 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
  * falls away faster than gravity; linear between samples), or INFINITY. */
 static double take_off_time(const sw_pkg_t *P, double t0, double t1)
 {
-    const double g0 = sw_input_geff(P, t0), g1 = sw_input_geff(P, t1); /* m/s^2 */
+    const sw_input_t *in = P->m.in;
+    const double g0 = sw_input_geff(in, P->m.g, t0), g1 = sw_input_geff(in, P->m.g, t1); /* m/s^2 */
     if (!(g0 > 0.0))
         return t0;
     if (g1 > 0.0)
@@ -155,25 +156,26 @@ static double take_off_time(const sw_pkg_t *P, double t0, double t1)
 
 /* A model whose equations hold in the air (a cushion's): its flights
  * timed as the spans of g_eff <= 0 in [t0, t1] (the bed falling away
- * faster than gravity), for the summary; P->flying and P->fl_t0 say one
+ * faster than gravity), for the summary; P->m.flying and P->fl_t0 say one
  * is going on.  Its support holds it horizontally in the air too
  * (physics.md): a long flight is where that is doubtful. */
 static void time_in_air(sw_ctx_t *C, sw_pkg_t *P, double t0, double t1)
 {
-    const double g0 = sw_input_geff(P, t0), g1 = sw_input_geff(P, t1);         /* m/s^2 */
+    const sw_input_t *in = P->m.in;
+    const double g0 = sw_input_geff(in, P->m.g, t0), g1 = sw_input_geff(in, P->m.g, t1); /* m/s^2 */
     const double tz = g0 != g1 ? t0 + (t1 - t0) * (g0 / (g0 - g1)) : INFINITY; /* g_eff = 0 */
-    if (!P->flying && (!(g0 > 0.0) || !(g1 > 0.0))) {
-        P->flying = 1;
+    if (!P->m.flying && (!(g0 > 0.0) || !(g1 > 0.0))) {
+        P->m.flying = 1;
         P->fl_long = 0;
         P->fl_t0 = g0 > 0.0 ? tz : t0;
         P->sum.flights++;
     }
-    if (P->flying && g1 > 0.0) {
+    if (P->m.flying && g1 > 0.0) {
         const double end = g0 > 0.0 ? t0 : tz, dur = end - P->fl_t0; /* s */
         sw_flight_note(C, P, dur);
-        P->flying = 0;
+        P->m.flying = 0;
         P->sum.flight_max = sw_max2(P->sum.flight_max, dur);
-    } else if (P->flying) {
+    } else if (P->m.flying) {
         sw_flight_note(C, P, t1 - P->fl_t0);
     }
 }
@@ -187,16 +189,16 @@ static void time_in_air(sw_ctx_t *C, sw_pkg_t *P, double t0, double t1)
 static int advance_flying(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
 {
     sw_ctx_t *C = &e->C;
-    for (int guard = 0; P->t < t1 && P->phase != SW_PHASE_OVERTURNED; guard++) {
+    for (int guard = 0; P->t < t1 && P->m.phase != SW_PHASE_OVERTURNED; guard++) {
         if (guard > 1000000) /* take-offs and landings without progress */
             return failed(P, t1, P->t, SW_EFAULT, tf);
-        if (P->ops->flies == SW_FLIES_INTEGRATED) {
+        if (P->m.ops->flies == SW_FLIES_INTEGRATED) {
             time_in_air(C, P, P->t, t1);
             return advance_ground(e, P, t1, tf);
         }
-        if (P->flying) {
+        if (P->m.flying) {
             const int still = sw_flight_advance(C, P, t1) == SW_STUCK_STILL;
-            if (P->flying)
+            if (P->m.flying)
                 sw_flight_note(C, P, P->t - P->fl_t0);
             if (still)
                 break;
@@ -204,7 +206,7 @@ static int advance_flying(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
         }
         const double toff = take_off_time(P, P->t, t1); /* s */
         if (toff <= P->t) {
-            if (!P->ops->flies)
+            if (!P->m.ops->flies)
                 return failed(P, t1, P->t, SW_EFAULT, tf);
             sw_flight_take_off(C, P, P->t);
             continue;
@@ -237,8 +239,9 @@ static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
         double tf = P->t; /* s */
         /* the bed does not fall away in [t, t1] (g_eff is linear between
          * samples): on the support throughout, the common case */
-        const int ground = !P->flying && P->ops->flies != SW_FLIES_INTEGRATED &&
-                           sw_input_geff(P, P->t) > 0.0 && sw_input_geff(P, t1) > 0.0;
+        const int ground = !P->m.flying && P->m.ops->flies != SW_FLIES_INTEGRATED &&
+                           sw_input_geff(P->m.in, P->m.g, P->t) > 0.0 &&
+                           sw_input_geff(P->m.in, P->m.g, t1) > 0.0;
         const int rc = ground ? advance_ground(e, P, t1, &tf) : advance_flying(e, P, t1, &tf);
         if (rc == SW_OK)
             break;
@@ -278,17 +281,17 @@ static void report_states(sw_engine_t *e, double t)
         if (e->C.outcome_only && !e->o.on_state) {
             /* no one reads the report (its margins cost about a step):
              * only the last line of defence */
-            sw_model_to_state(P, &o.state);
+            sw_model_to_state(&P->m, P->y, &o.state);
             if (!state_finite(&o.state))
                 fault(e, P, t, SW_EFAULT);
             continue;
         }
-        sw_model_output(P, t, &o);
+        sw_model_output(&P->m, &P->scr, t, P->y, &o);
         /* Last line of defence: a non-finite number is never reported; the
          * package faults and is reported at rest instead. */
         if (!output_finite(&o)) {
             fault(e, P, t, SW_EFAULT);
-            sw_model_output(P, t, &o);
+            sw_model_output(&P->m, &P->scr, t, P->y, &o);
         }
         o.pkg = i;
         o.t = e->C.origin + t;
@@ -313,7 +316,7 @@ static void pkg_reset(sw_pkg_t *P)
     P->h_used = 0.0;
     memset(&P->sum, 0, sizeof P->sum);
     snprintf(P->sum.name, sizeof P->sum.name, "%s", P->scene.name);
-    P->sum.model = P->d.model;
+    P->sum.model = P->m.d.model;
     P->sum.overturn_time = P->sum.tip_time = P->sum.uplift_time = NAN;
     P->sum.flight_long_time = NAN;
     P->sum.min_margin = P->sum.min_margin_bound = 1.0;
@@ -331,14 +334,14 @@ static int pkg_init(sw_engine_t *e, sw_pkg_t *P, const sw_scene_t *scene, size_t
                     size_t msglen)
 {
     P->scene = *scene;
-    if (sw_scene_validate(&P->scene, &P->d, NULL, NULL, NULL) != SW_OK) {
+    if (sw_scene_validate(&P->scene, &P->m.d, NULL, NULL, NULL) != SW_OK) {
         if (msg && msglen)
             snprintf(msg, msglen, "scene '%s' is not valid", scene->name);
         return SW_EINVAL;
     }
-    sw_model_setup(P);
+    sw_model_setup(&P->m, &P->scr, &P->scene);
     P->index = index;
-    P->in = &e->in;
+    P->m.in = &e->in;
     const double dt = e->o.dt > 0.0 ? e->o.dt : e->C.scheme->default_dt; /* s */
     return sw_step_init(&e->C, P, dt, e->o.rtol, e->o.atol, msg, msglen);
 }
@@ -517,18 +520,18 @@ out_fail:
 static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
 {
     P->t = t;
-    if (!(sw_input_geff(P, t) > 0.0) && P->ops->flies != SW_FLIES_INTEGRATED) {
-        if (P->phase == SW_PHASE_OVERTURNED || P->flying)
+    if (!(sw_input_geff(P->m.in, P->m.g, t) > 0.0) && P->m.ops->flies != SW_FLIES_INTEGRATED) {
+        if (P->m.phase == SW_PHASE_OVERTURNED || P->m.flying)
             return;
-        if (P->ops->flies)
+        if (P->m.ops->flies)
             sw_flight_take_off(&e->C, P, t);
         else
             fault(e, P, t, SW_EFAULT);
         return;
     }
-    if (P->phase != SW_PHASE_STUCK)
+    if (P->m.phase != SW_PHASE_STUCK)
         return;
-    const int side = P->ops->uplift_side(P, t);
+    const int side = P->m.ops->uplift_side(&P->m, t, P->y);
     if (side)
         sw_pkg_start_rocking(&e->C, P, t, side);
 }
@@ -680,7 +683,7 @@ int sw_engine_restart(sw_engine_t *e)
         return SW_OK;
     for (size_t i = 0; i < e->n; i++) {
         sw_pkg_t *P = &e->pk[i];
-        if (P->phase != SW_PHASE_OVERTURNED) {
+        if (P->m.phase != SW_PHASE_OVERTURNED) {
             sw_pkg_rest(P);
             sw_step_reset(P);
         }
@@ -712,7 +715,7 @@ int sw_engine_finish(sw_engine_t *e, double settle)
     while (e->t < t_end && !(e->stop && *e->stop)) {
         int moving = 0;
         for (size_t i = 0; i < e->n; i++)
-            if (e->pk[i].ops->moving(&e->pk[i], e->C.rest_eps))
+            if (e->pk[i].m.ops->moving(&e->pk[i].m, e->pk[i].y, e->C.rest_eps))
                 moving = 1;
         if (!moving)
             break;
@@ -738,9 +741,9 @@ int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
     if (!e || pkg >= e->n || !s)
         return SW_EINVAL;
     sw_pkg_t *P = &e->pk[pkg];
-    P->flying = 0; /* a state given is on its support */
-    sw_model_from_state(P, s);
-    P->beyond_alpha = fabs(P->y[P->ith]) >= P->d.alpha;
+    P->m.flying = 0; /* a state given is on its support */
+    sw_model_from_state(&P->m, P->y, s);
+    P->beyond_alpha = fabs(P->y[P->m.ith]) >= P->m.d.alpha;
     sw_step_reset(P);
     if (e->check)
         sw_engine_set_state(e->check, pkg, s);
@@ -751,7 +754,7 @@ int sw_engine_get_state(const sw_engine_t *e, size_t pkg, sw_state_t *s)
 {
     if (!e || pkg >= e->n || !s)
         return SW_EINVAL;
-    sw_model_to_state(&e->pk[pkg], s);
+    sw_model_to_state(&e->pk[pkg].m, e->pk[pkg].y, s);
     return SW_OK;
 }
 
@@ -761,7 +764,7 @@ int sw_engine_get_output(const sw_engine_t *e, size_t pkg, sw_output_t *out)
         return SW_EINVAL;
     const sw_pkg_t *P = &e->pk[pkg];
     const double t = e->started ? e->t : 0.0;
-    sw_model_output(P, t, out);
+    sw_model_output(&P->m, &P->scr, t, P->y, out);
     out->t = e->C.origin + t;
     out->pkg = pkg;
     return SW_OK;
@@ -779,7 +782,7 @@ double sw_engine_time(const sw_engine_t *e)
 
 const sw_derived_t *sw_engine_derived(const sw_engine_t *e, size_t pkg)
 {
-    return e && pkg < e->n ? &e->pk[pkg].d : NULL;
+    return e && pkg < e->n ? &e->pk[pkg].m.d : NULL;
 }
 
 int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s)
@@ -788,7 +791,7 @@ int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s)
         return SW_EINVAL;
     const sw_pkg_t *P = &e->pk[pkg];
     *s = P->sum;
-    if (P->flying) { /* a flight not yet over counts as long as it has lasted */
+    if (P->m.flying) { /* a flight not yet over counts as long as it has lasted */
         s->flight_max = sw_max2(s->flight_max, P->t - P->fl_t0);
         if (P->t - P->fl_t0 > SW_FLIGHT_LONG && isnan(s->flight_long_time))
             s->flight_long_time = P->fl_t0;

@@ -30,8 +30,8 @@ static sw_herm_t interpolant(const sw_pkg_t *P, int ev, double t0, double h, con
                              const double f0[], const double y1[], const double f1[], double v[2],
                              double d[2])
 {
-    P->ops->event_fn(P, ev, t0, y0, f0, &v[0], &d[0]);
-    P->ops->event_fn(P, ev, t0 + h, y1, f1, &v[1], &d[1]);
+    P->m.ops->event_fn(&P->m, ev, t0, y0, f0, &v[0], &d[0]);
+    P->m.ops->event_fn(&P->m, ev, t0 + h, y1, f1, &v[1], &d[1]);
     return sw_herm_make(v[0], d[0], v[1], d[1], h);
 }
 
@@ -89,8 +89,8 @@ int sw_event_locate(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const d
 {
     const double t1 = t0 + h;
     double f0[SW_NMAX], f1[SW_NMAX];
-    sw_model_rhs(t0, y0, f0, P);
-    sw_model_rhs(t1, y1, f1, P);
+    sw_model_rhs(t0, y0, f0, &P->msys);
+    sw_model_rhs(t1, y1, f1, &P->msys);
     /* the earliest cutting event ends the step */
     int best = SW_EVF_NONE;
     double best_tau = 2.0;
@@ -119,7 +119,7 @@ int sw_event_locate(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const d
         const double tau = root_of(P, &c[i], t0, h, y0, f0, y1, f1);
         if (!(tau >= 0.0 && tau <= lim))
             continue;
-        sw_herm_state(P->n, h, y0, f0, y1, f1, tau, T->y);
+        sw_herm_state(P->m.n, h, y0, f0, y1, f1, tau, T->y);
         T->t = t0 + tau * h;
         n++;
     }
@@ -138,15 +138,15 @@ double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double
 {
     double ts = t0 + tau * h, f[SW_NMAX], v = 0.0, d = 0.0;
     if (tau == 0.0) {
-        memcpy(y, y0, sizeof(double) * (size_t)P->n);
+        memcpy(y, y0, sizeof(double) * (size_t)P->m.n);
         return t0;
     }
     const double t1 = t0 + h;
     for (int it = 0; it < 8; it++) {
         if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK)
             return ts;
-        sw_model_rhs(ts, y, f, P);
-        P->ops->event_fn(P, ev, ts, y, f, &v, &d);
+        sw_model_rhs(ts, y, f, &P->msys);
+        P->m.ops->event_fn(&P->m, ev, ts, y, f, &v, &d);
         if (v == 0.0 || d == 0.0)
             break;
         double tn = ts - v / d;
@@ -165,8 +165,8 @@ double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double
         ts = fmin(t1, ts + dt);
         if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK)
             break;
-        sw_model_rhs(ts, y, f, P);
-        P->ops->event_fn(P, ev, ts, y, f, &v, &d);
+        sw_model_rhs(ts, y, f, &P->msys);
+        P->m.ops->event_fn(&P->m, ev, ts, y, f, &v, &d);
     }
     return ts;
 }

@@ -33,8 +33,8 @@
 static void frame_alone(const sw_pkg_t *P, double *w, double *zeta)
 {
     const double mb = P->scene.frame_mass; /* kg */
-    *w = sqrt(P->d.k_b / mb);
-    *zeta = P->d.c_b / (2.0 * *w * mb);
+    *w = sqrt(P->m.d.k_b / mb);
+    *zeta = P->m.d.c_b / (2.0 * *w * mb);
 }
 
 /* The vector from the corner on side s to the centre of mass, tilted by
@@ -42,9 +42,9 @@ static void frame_alone(const sw_pkg_t *P, double *w, double *zeta)
  * theta)). */
 static void corner_to_cm(const sw_pkg_t *P, int s, double theta, double *rx, double *ry)
 {
-    const double A = P->d.alpha - s * theta;
-    *rx = -s * P->d.R * sin(A);
-    *ry = P->d.R * cos(A);
+    const double A = P->m.d.alpha - s * theta;
+    *rx = -s * P->m.d.R * sin(A);
+    *ry = P->m.d.R * cos(A);
 }
 
 void sw_flight_note(sw_ctx_t *C, sw_pkg_t *P, double dur)
@@ -59,29 +59,29 @@ void sw_flight_note(sw_ctx_t *C, sw_pkg_t *P, double dur)
 
 void sw_flight_take_off(sw_ctx_t *C, sw_pkg_t *P, double t)
 {
-    const double th = P->y[P->ith], w = P->y[P->idth]; /* rad, rad/s */
-    const double du = P->iu >= 0 ? P->y[P->idu] : 0.0; /* m/s, the support's */
-    const int standing = P->phase == SW_PHASE_STUCK;
+    const double th = P->y[P->m.ith], w = P->y[P->m.idth]; /* rad, rad/s */
+    const double du = P->m.iu >= 0 ? P->y[P->m.idu] : 0.0; /* m/s, the support's */
+    const int standing = P->m.phase == SW_PHASE_STUCK;
     P->fl_vx = du;
     P->fl_vy = 0.0;
-    P->fl_yc = P->d.h;
+    P->fl_yc = P->m.d.h;
     if (!standing) {
         /* rocking about the corner on side s: v_C = (th' r_y, -th' r_x)
          * relative to the support */
         double rx, ry;
-        corner_to_cm(P, P->side, th, &rx, &ry);
+        corner_to_cm(P, P->m.side, th, &rx, &ry);
         P->fl_vx += w * ry;
         P->fl_vy = -w * rx;
         P->fl_yc = ry;
     }
-    P->flying = 1;
+    P->m.flying = 1;
     P->fl_long = 0;
     P->fl_t0 = t;
     P->fl_up = 0;
     P->sum.flights++;
     if (standing) {
         /* the level base leaves at once: an uplift with no direction */
-        P->phase = SW_PHASE_ROCKING;
+        P->m.phase = SW_PHASE_ROCKING;
         P->t_lift = t;
         P->sum.uplifts++;
         if (isnan(P->sum.uplift_time))
@@ -108,7 +108,7 @@ double sw_landing_map(const sw_derived_t *d, int s, double theta, double w, doub
  * centre of mass at height yc. */
 static double clearance(const sw_pkg_t *P, double yc, double th)
 {
-    return yc - P->d.R * cos(P->d.alpha - fabs(th));
+    return yc - P->m.d.R * cos(P->m.d.alpha - fabs(th));
 }
 
 /* The flight's state tau (s) after (t0, state): the centre of mass's
@@ -140,14 +140,14 @@ static void arc_move(sw_pkg_t *P, const arc_t *a, double tau)
 {
     double th;
     arc_at(a, tau, &P->fl_yc, &P->fl_vx, &P->fl_vy, &th);
-    P->y[P->ith] = th;
-    if (P->iu >= 0 && tau > 0.0) {
+    P->y[P->m.ith] = th;
+    if (P->m.iu >= 0 && tau > 0.0) {
         double w, z, u1[2];
-        const double u0[2] = {P->y[P->iu], P->y[P->idu]};
+        const double u0[2] = {P->y[P->m.iu], P->y[P->m.idu]};
         frame_alone(P, &w, &z);
         sw_nj_step(w, z, tau, a->a0, a->as, u0, u1);
-        P->y[P->iu] = u1[0];
-        P->y[P->idu] = u1[1];
+        P->y[P->m.iu] = u1[0];
+        P->y[P->m.idu] = u1[1];
     }
     P->t = a->t0 + tau;
 }
@@ -155,24 +155,24 @@ static void arc_move(sw_pkg_t *P, const arc_t *a, double tau)
 /* Landed at P->t: the map, then rocking on the corner, or standing. */
 static void land(sw_ctx_t *C, sw_pkg_t *P)
 {
-    const double t = P->t, th = P->y[P->ith], w = P->y[P->idth];
-    const double du = P->iu >= 0 ? P->y[P->idu] : 0.0;
+    const double t = P->t, th = P->y[P->m.ith], w = P->y[P->m.idth];
+    const double du = P->m.iu >= 0 ? P->y[P->m.idu] : 0.0;
     const double dur = t - P->fl_t0; /* s */
     sw_flight_note(C, P, dur);
-    P->flying = 0;
+    P->m.flying = 0;
     P->sum.flight_max = sw_max2(P->sum.flight_max, dur);
     sw_step_reset(P);
     int s = th > 0.0 ? 1 : th < 0.0 ? -1 : 0;
     double wp = 0.0, du_after = du;
     if (s) {
-        wp = sw_landing_map(&P->d, s, th, w, P->fl_vx, P->fl_vy, du, &du_after);
+        wp = sw_landing_map(&P->m.d, s, th, w, P->fl_vx, P->fl_vy, du, &du_after);
     } else {
         /* level: it rocks on the corner whose rotation lifts the other,
          * or it stands */
         double up[2], uu[2];
         for (int k = 0; k < 2; k++) {
             const int sk = k ? -1 : 1;
-            up[k] = sw_landing_map(&P->d, sk, 0.0, w, P->fl_vx, P->fl_vy, du, &uu[k]);
+            up[k] = sw_landing_map(&P->m.d, sk, 0.0, w, P->fl_vx, P->fl_vy, du, &uu[k]);
             up[k] *= sk; /* > 0: lifts the other corner */
         }
         const int k = up[0] >= up[1] ? 0 : 1;
@@ -183,22 +183,22 @@ static void land(sw_ctx_t *C, sw_pkg_t *P)
         } else {
             /* both corners down: the package moves with its support, the
              * horizontal momentum shared with the frame */
-            const double g = P->d.gamma;
-            if (P->iu >= 0)
-                P->y[P->idu] = g * P->fl_vx + (1.0 - g) * du;
-            P->y[P->ith] = P->y[P->idth] = 0.0;
-            P->phase = SW_PHASE_STUCK;
+            const double g = P->m.d.gamma;
+            if (P->m.iu >= 0)
+                P->y[P->m.idu] = g * P->fl_vx + (1.0 - g) * du;
+            P->y[P->m.ith] = P->y[P->m.idth] = 0.0;
+            P->m.phase = SW_PHASE_STUCK;
             P->sum.rests++;
             sw_pkg_emit_at(C, P, SW_EV_REST, t, 0.0, NULL);
             return;
         }
     }
-    P->phase = SW_PHASE_ROCKING;
-    P->side = s;
-    P->y[P->idth] = wp;
-    if (P->iu >= 0)
-        P->y[P->idu] = du_after;
-    P->beyond_alpha = fabs(th) >= P->d.alpha;
+    P->m.phase = SW_PHASE_ROCKING;
+    P->m.side = s;
+    P->y[P->m.idth] = wp;
+    if (P->m.iu >= 0)
+        P->y[P->m.idu] = du_after;
+    P->beyond_alpha = fabs(th) >= P->m.d.alpha;
     P->sum.impacts++;
     sw_pkg_emit_at(C, P, SW_EV_IMPACT, t, w, NULL);
 }
@@ -209,17 +209,17 @@ static void land(sw_ctx_t *C, sw_pkg_t *P)
 
 int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1)
 {
-    const sw_input_t *in = P->in;
+    const sw_input_t *in = P->m.in;
     const double t0 = P->t, H = t1 - t0; /* s */
     if (!(H > 0.0))
         return SW_STUCK_STILL;
     /* the input over the piece: exact for samples (linear), the chord of
      * a function input */
     const double a0 = sw_input_ag(in, t0), a1 = sw_input_ag(in, t1);
-    const double g0 = sw_input_geff(P, t0), g1 = sw_input_geff(P, t1);
+    const double g0 = sw_input_geff(P->m.in, P->m.g, t0), g1 = sw_input_geff(P->m.in, P->m.g, t1);
     const arc_t a = {.t0 = t0,
-                     .th0 = P->y[P->ith],
-                     .w = P->y[P->idth],
+                     .th0 = P->y[P->m.ith],
+                     .w = P->y[P->m.idth],
                      .yc0 = P->fl_yc,
                      .vx0 = P->fl_vx,
                      .vy0 = P->fl_vy,
@@ -235,7 +235,7 @@ int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1)
         if (tau >= 0.0 && tau <= H)
             t_over = tau;
     }
-    const double eps = 1e-12 * P->d.R; /* m: the clearance's rounding */
+    const double eps = 1e-12 * P->m.d.R; /* m: the clearance's rounding */
     const double tend = sw_min2(H, t_over);
     /* clamped before the conversion: a flight between samples days apart
      * is more grid points than an int holds */
@@ -272,12 +272,12 @@ int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1)
     const double tau_end = land_at >= 0.0 ? land_at : tend;
     sw_pkg_track_theta(P, a.th0 + a.w * tau_end);
     if (!P->beyond_alpha && a.w != 0.0) {
-        const double edge = a.w > 0.0 ? P->d.alpha : -P->d.alpha;
+        const double edge = a.w > 0.0 ? P->m.d.alpha : -P->m.d.alpha;
         const double tau = (edge - a.th0) / a.w;
         if (tau >= 0.0 && tau <= tau_end) {
             double y_at[SW_NMAX];
             memcpy(y_at, P->y, sizeof y_at);
-            y_at[P->ith] = edge;
+            y_at[P->m.ith] = edge;
             sw_pkg_tip(C, P, t0 + tau, y_at);
         }
     }
@@ -289,9 +289,9 @@ int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1)
     if (t_over <= H) {
         arc_move(P, &a, t_over);
         sw_flight_note(C, P, P->t - P->fl_t0);
-        P->flying = 0;
+        P->m.flying = 0;
         P->sum.flight_max = sw_max2(P->sum.flight_max, P->t - P->fl_t0);
-        P->side = a.w > 0.0 ? 1 : -1;
+        P->m.side = a.w > 0.0 ? 1 : -1;
         sw_pkg_on_cut(C, P, SW_EVF_OVERTURN, P->t);
         sw_step_reset(P);
         return SW_STUCK_MOVED;

@@ -50,6 +50,48 @@ typedef struct sw_model_ops sw_model_ops_t;
  * models in model.c, the schemes' specialised bodies in scheme.c). */
 #define SW_MODEL_KINDS 3
 
+/* A package as its model sees it (GSL's params, CVODE's user data): the
+ * parameters, set once when the package is built, the input, and the mode
+ * the phase machine (pkg.c, flight.c) sets at its maps, which selects the
+ * equations (the hybrid system's discrete state). */
+typedef struct {
+    const sw_model_ops_t *ops; /* the model's behaviour table */
+    sw_derived_t d;
+    double g;               /* m/s^2, nominal gravity */
+    double kR;              /* 1/m, 3/(4R) = p^2/g */
+    double tan_alpha;       /* 1 */
+    double frame_mass;      /* kg, m_b (0 without a frame) */
+    int n;                  /* length of the state vector */
+    int ith, idth;          /* indices of theta and theta_dot in y */
+    int iu, idu;            /* u, u_dot (-1 without a frame) */
+    int iz, idz;            /* z, z_dot (-1 without a cushion) */
+    double yscale[SW_NMAX]; /* typical size of each component (finite-difference Jacobian) */
+    double e_lift;          /* J/kg, cushion: least energy above rest that lifts an edge */
+    double rate_rest;       /* 1/s, the contact's rate bound at rest (model_cushion.c) */
+    double e_barrier;       /* J/kg, cushion: sw_cushion_barrier() under nominal gravity */
+    double v_rest;          /* J/kg, cushion: potential at rest under nominal gravity */
+    const sw_input_t *in;   /* the engine's input over the interval being integrated */
+    /* the mode */
+    sw_phase phase;
+    int side;   /* s = +1 / -1 while rocking */
+    int flying; /* in the air (flight.c): no contact with the support */
+} sw_model_t;
+
+/* What a model's right-hand side writes as it goes: its scratch, one per
+ * package, passed beside the model. */
+typedef struct {
+    double trig[3];   /* model_rigid.h: an angle (NAN: none yet), its sin and cos */
+    int track_rate;   /* cushion: the right-hand side records rate_seen */
+    double rate_seen; /* rad/s, fastest contact rate met by the stages of a step */
+} sw_model_scratch_t;
+
+/* A model and its scratch: GSL's params for sw_model_rhs and
+ * sw_model_jacobian. */
+typedef struct {
+    const sw_model_t *m;
+    sw_model_scratch_t *s;
+} sw_model_sys_t;
+
 /* One fixed step of length h (s) from (t, y) into yout. */
 typedef void (*sw_fixed_step_fn)(sw_pkg_t *P, double t, double h, const double y[], double yout[]);
 
@@ -76,46 +118,24 @@ typedef struct {
 /* One step from (P->t, P->y) toward t1 into y1; *h gets its length. */
 typedef int (*sw_advance_fn)(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h);
 
-/* One package: parameters, state, summary, work space.  Everything is
+/* One package: its model, state, summary, work space.  Everything is
  * allocated once, when the package is built (pkg_init in engine.c). */
 struct sw_pkg {
-    /* the scene and what is derived from it: set once, read by all */
+    sw_model_t m;           /* the model: parameters, input, mode */
+    sw_model_scratch_t scr; /* its right-hand side's scratch */
     sw_scene_t scene;
-    sw_derived_t d;
-    const sw_model_ops_t *ops; /* the model's behaviour table */
-    size_t index;              /* its place in the engine (events and states say it) */
-    double g;                  /* m/s^2, nominal gravity */
-    double kR;                 /* 1/m, 3/(4R) = p^2/g */
-    double tan_alpha;
-    int n;                  /* length of the state vector */
-    int ith, idth;          /* indices of theta and theta_dot in y */
-    int iu, idu;            /* u, u_dot (-1 without a frame) */
-    int iz, idz;            /* z, z_dot (-1 without a cushion) */
-    double yscale[SW_NMAX]; /* typical size of each component (finite-difference Jacobian) */
-    double e_lift;          /* J/kg, cushion: least energy above rest that lifts an edge */
-    double rate_rest;       /* 1/s, the contact's rate bound at rest (model_cushion.c) */
-    double e_barrier;       /* J/kg, cushion: sw_cushion_barrier() under nominal gravity */
-    double v_rest;          /* J/kg, cushion: potential at rest under nominal gravity */
-
-    /* the model's scratch, written by its right-hand side */
-    int track_rate;   /* cushion: the right-hand side records rate_seen */
-    double rate_seen; /* rad/s, fastest contact rate met by the stages of a step */
-    double trig[3];   /* model_rigid.h: an angle (NAN: none yet), its sin and cos */
+    size_t index; /* its place in the engine (events and states say it) */
 
     /* integration state: the phase machine (pkg.c) and the loop (engine.c) */
     double t; /* s */
     double y[SW_NMAX];
-    sw_phase phase;
-    int side;             /* s = +1 / -1 while rocking */
-    const sw_input_t *in; /* the engine's input over the interval being integrated */
-    int beyond_alpha;     /* |theta| >= alpha at the last check */
-    double t_lift;        /* s, time of the last uplift */
-    int hold;             /* keep the package stuck for one step (see pkg_after_impact) */
+    int beyond_alpha; /* |theta| >= alpha at the last check */
+    double t_lift;    /* s, time of the last uplift */
+    int hold;         /* keep the package stuck for one step (pkg.c's after_impact) */
     /* free flight (flight.c): the centre of mass relative to the bed */
-    int flying;          /* in the air since fl_t0 (s) */
     int fl_long;         /* this flight has lasted SW_FLIGHT_LONG: said (SW_EV_FLIGHT) */
     int fl_up;           /* it has risen clear of its support */
-    double fl_t0;        /* s */
+    double fl_t0;        /* s, in the air since */
     double fl_yc;        /* m, height of the centre of mass over the support */
     double fl_vx, fl_vy; /* m/s, its velocity */
     sw_summary_t sum;
@@ -127,6 +147,7 @@ struct sw_pkg {
                               for the modes at rest (INFINITY: adaptive, or no mode) */
     sw_advance_fn advance; /* the scheme's advance for this model */
     sw_fixed_step_fn step; /* fixed-step schemes: the body for this model */
+    sw_model_sys_t msys;   /* the system GSL steps: m and scr */
     gsl_odeiv2_system sys;
     gsl_odeiv2_step *gstep; /* adaptive schemes only */
     gsl_odeiv2_control *gctl;
@@ -175,20 +196,19 @@ static inline double sw_min2(double a, double b)
     return a < b ? a : b;
 }
 
-/* The input at time t (s): a_g, and g_eff = g + a_z (m/s^2).  Inline: a
- * right-hand side evaluates them at every stage. */
+/* The input at time t (s): a_g, and g_eff = g + a_z (m/s^2) for nominal
+ * gravity g.  Inline: a right-hand side evaluates them at every stage. */
 static inline double sw_input_ag(const sw_input_t *in, double t)
 {
     if (in->fn)
         return in->fn(in->fn_user, in->fn_t0 + t);
     return in->ag0 + in->ag_slope * (t - in->t0);
 }
-static inline double sw_input_geff(const sw_pkg_t *P, double t)
+static inline double sw_input_geff(const sw_input_t *in, double g, double t)
 {
-    const sw_input_t *in = P->in;
     if (in->fn)
-        return P->g;
-    return P->g + in->az0 + in->az_slope * (t - in->t0);
+        return g;
+    return g + in->az0 + in->az_slope * (t - in->t0);
 }
 
 /* ---- models (model.c, model_rigid.c, model_cushion.c) ---------------------- */
@@ -239,7 +259,14 @@ typedef struct {
 
 #define SW_MAX_CANDS 8
 
-/* What a stuck package's exact advance did (ops->stuck_advance). */
+/* What the caller knows of the step that ops->candidates must honour. */
+enum {
+    SW_CAND_KINKS = 1, /* the scheme's steps must be cut at kinks of the right-hand side */
+    SW_CAND_HELD = 2,  /* the package is held on its support for this step: no uplift */
+    SW_CAND_LIFTED = 4 /* it lifted since its last rest: its first lift is timed already */
+};
+
+/* What a stuck package's exact advance did (stuck.c). */
 enum {
     SW_STUCK_STEP = -1, /* not handled: step the package with the scheme */
     SW_STUCK_STILL = 0, /* stuck up to the end of the interval */
@@ -269,42 +296,46 @@ struct sw_model_ops {
     const char *name;
     const sw_model_traits_t *traits; /* what can be said from the scene alone */
     /* layout of y, typical sizes, constants (after the common set-up) */
-    void (*setup)(sw_pkg_t *P);
+    void (*setup)(sw_model_t *M, const sw_scene_t *sc);
     /* f = y' at (t, y); GSL_SUCCESS, or a GSL error that makes an adaptive
-     * step retry shorter.  May write the package's scratch. */
-    int (*rhs)(sw_pkg_t *P, double t, const double y[], double f[]);
-    /* the state at rest (y is zeroed before) */
-    void (*rest)(sw_pkg_t *P);
+     * step retry shorter.  May write the scratch S. */
+    int (*rhs)(const sw_model_t *M, sw_model_scratch_t *S, double t, const double y[], double f[]);
+    /* the state at rest into y (zeroed before), and its mode; NULL: the
+     * zeroed state, standing */
+    void (*rest)(sw_model_t *M, double y[]);
     /* the events to look for over the step (t0, y0) -> (t0 + h, y1), in the
-     * order they are handled; cut_kinks: the scheme's steps must be cut at
-     * kinks of the right-hand side.  Returns how many (<= SW_MAX_CANDS). */
-    int (*candidates)(const sw_pkg_t *P, int cut_kinks, double h, const double y0[],
+     * order they are handled, given what the caller knows (SW_CAND_*).
+     * Returns how many (<= SW_MAX_CANDS). */
+    int (*candidates)(const sw_model_t *M, int flags, double h, const double y0[],
                       const double y1[], sw_evcand_t c[]);
     /* value and time derivative of event function ev at (t, y), f = y' */
-    void (*event_fn)(const sw_pkg_t *P, int ev, double t, const double y[], const double f[],
+    void (*event_fn)(const sw_model_t *M, int ev, double t, const double y[], const double f[],
                      double *val, double *der);
-    /* at theta = 0: the velocity map, the side flips; NULL: never impacts */
-    void (*impact)(sw_pkg_t *P);
+    /* at theta = 0: the velocity map on y, the side flips; NULL: never
+     * impacts */
+    void (*impact)(sw_model_t *M, double y[]);
     /* at theta = 0: theta' to 0 (a landing, the end of a cascade), whatever
      * the support takes of the package's momentum; NULL with impact */
-    void (*land)(sw_pkg_t *P);
+    void (*land)(const sw_model_t *M, double y[]);
     /* +1 / -1 if the support is beyond the uplift threshold at t, else 0 */
-    int (*uplift_side)(const sw_pkg_t *P, double t);
-    /* advance a stuck package toward t1 exactly (SW_STUCK_*); NULL: never stuck */
-    int (*stuck_advance)(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
+    int (*uplift_side)(const sw_model_t *M, double t, const double y[]);
+    /* how the package stands on its support, which stuck.c solves exactly
+     * (SW_STANDS_*); 0: it never stands still (a cushion) */
+    int stands;
     /* the rest of the report after the common part (sw_model_output) */
-    void (*output)(const sw_pkg_t *P, double t, sw_output_t *o);
+    void (*output)(const sw_model_t *M, const sw_model_scratch_t *S, double t, const double y[],
+                   sw_output_t *o);
     /* the side as the state decides it, after an accepted step and at a
      * cut before its map (a cushion's is the sign of theta); NULL: the
      * maps set it */
-    void (*follow)(sw_pkg_t *P);
+    void (*follow)(sw_model_t *M, const double y[]);
     /* a package that lifted since its last rest is back at rest (it can
      * no longer lift without input): checked after every accepted step
      * with no cut, and said by the phase machine (sw_pkg_after_step);
      * NULL: rest only through the maps */
-    int (*at_rest)(const sw_pkg_t *P);
+    int (*at_rest)(const sw_model_t *M, const double y[]);
     /* still moving, for sw_engine_finish (settled packages end it early) */
-    int (*moving)(const sw_pkg_t *P, double rest_eps);
+    int (*moving)(const sw_model_t *M, const double y[], double rest_eps);
     /* the right-hand side reports the fastest contact rate of its stages,
      * and a fixed step is retaken shorter where that rate is too fast; a
      * model with such a contact can be stiff (sw_model_stiff) */
@@ -317,6 +348,12 @@ struct sw_model_ops {
 };
 
 enum { SW_FLIES_CLOSED = 1, SW_FLIES_INTEGRATED = 2 };
+
+/* ops->stands: SW_STANDS_RIGID, on a rigid support that the input itself
+ * must accelerate beyond g_eff tan(alpha) to lift the package (the bare
+ * block); SW_STANDS_OSCILLATOR, on a linear oscillator (u, u') whose
+ * acceleration must (the frame). */
+enum { SW_STANDS_RIGID = 1, SW_STANDS_OSCILLATOR = 2 };
 
 extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
 const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind);
@@ -347,7 +384,7 @@ struct sw_model_traits {
      * falls */
     int free_exact;
     /* standing, the package rides a linear oscillator (u, u') driven by
-     * the input (the frame: sw_stuck_frame, reserve_lift.c's table) */
+     * the input (the frame: stuck.c, reserve_lift.c's table) */
     int stuck_linear;
     /* leaving the rest contact: the drive of a report, and the drive at
      * which the package leaves (the level); about rest the drive is linear
@@ -384,24 +421,31 @@ int sw_modes_add(sw_mode_t m[SW_MODES_MAX], int n, double re, double im, const c
 /* The model's contact is too fast for fixed steps of dt (s): the default
  * scheme is then SW_STIFF_SCHEME (engine.c). */
 int sw_model_stiff(const sw_derived_t *d, double dt);
-void sw_model_setup(sw_pkg_t *P); /* common constants, then ops->setup */
+/* The model of a package of scene sc (M->d filled, the rest zeroed):
+ * common constants, then ops->setup; S ready for the first step. */
+void sw_model_setup(sw_model_t *M, sw_model_scratch_t *S, const sw_scene_t *sc);
 /* Typical size of component i of the state (m or rad), for finite-
  * difference Jacobians, and of its rate di at the scene's fastest
  * frequency (ops->setup: every component). */
-void sw_model_scale(sw_pkg_t *P, int i, int di, double size);
-int sw_model_rhs(double t, const double y[], double f[], void *pkg); /* GSL signature */
-void sw_model_to_state(const sw_pkg_t *P, sw_state_t *s);
-void sw_model_from_state(sw_pkg_t *P, const sw_state_t *s);
-void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o);
+void sw_model_scale(sw_model_t *M, int i, int di, double size);
+/* The right-hand side and a finite-difference Jacobian (for the implicit
+ * schemes) in GSL's signature; params: a sw_model_sys_t. */
+int sw_model_rhs(double t, const double y[], double f[], void *params);
+int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *params);
+void sw_model_to_state(const sw_model_t *M, const double y[], sw_state_t *s);
+void sw_model_from_state(sw_model_t *M, double y[SW_NMAX], const sw_state_t *s);
+void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S, double t, const double y[],
+                     sw_output_t *o);
 
 /* ---- stuck.c: exact solutions of a package standing on its support ---------- */
 
-/* ops->stuck_advance of the bare block (its uplift time solved for on the
- * linear input, or the pulse scanned at the package's step and the
- * crossing bisected) and of the frame (the exact solution of its linear
- * oscillator under sampled input; SW_STUCK_STEP otherwise). */
-int sw_stuck_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
-int sw_stuck_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
+/* Advance a stuck package toward t1 exactly, as its model stands
+ * (ops->stands): the bare block's uplift time solved for on the linear
+ * input, or the pulse scanned at the package's step and the crossing
+ * bisected; the frame's linear oscillator in closed form under sampled
+ * input, where exact (the scheme allows it), else SW_STUCK_STEP.  On
+ * SW_STUCK_LIFT, *side is the direction. */
+int sw_stuck_advance(const sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
 /* The exact step of the damped oscillator u'' + 2 zeta w u' + w^2 u = -a(t),
  * a = a0 + s t, over H (s) from (u, u') = u0 into u1 (Nigam & Jennings, as
  * a stuck frame takes it): for the linear response of other models. */
@@ -409,9 +453,6 @@ void sw_nj_step(double w, double zeta, double H, double a0, double s, const doub
                 double u1[2]);
 
 /* ---- scheme.c ------------------------------------------------------------------ */
-
-/* Finite-difference Jacobian in GSL's signature, for the implicit schemes. */
-int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *pkg);
 
 /* A scheme's behaviour.  The engine reads its row, never its name. */
 struct sw_scheme {
@@ -470,18 +511,18 @@ static SW_ALWAYS_INLINE int sw_step_fixed_with(sw_ctx_t *C, sw_pkg_t *P, double 
             const double nst = ceil(rem / hmax - 1e-9);
             h = nst <= 1.0 ? rem : rem / nst;
         }
-        if (!track || !P->ops->tracks_rate) {
+        if (!track || !P->m.ops->tracks_rate) {
             body(P, t0, h, P->y, y1);
             break;
         }
         const double bound = sw_min2(C->dt_forced ? C->scheme->stab : 0.5, P->stab_rate);
-        P->rate_seen = 0.0;
-        P->track_rate = 1;
+        P->scr.rate_seen = 0.0;
+        P->scr.track_rate = 1;
         body(P, t0, h, P->y, y1);
-        P->track_rate = 0;
-        if (P->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
+        P->scr.track_rate = 0;
+        if (P->scr.rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
             break;
-        hmax = fmin(0.5 * h, bound / P->rate_seen);
+        hmax = fmin(0.5 * h, bound / P->scr.rate_seen);
     }
     *hout = h;
     return 0; /* SW_OK */
@@ -554,7 +595,9 @@ static inline int sw_event_find(const sw_ctx_t *C, sw_pkg_t *P, double t0, doubl
                                 sw_timed_t timed[SW_MAX_CANDS], int *ntimed)
 {
     sw_evcand_t c[SW_MAX_CANDS];
-    int nc = P->ops->candidates(P, C->scheme->cut_kinks, h, y0, y1, c);
+    const int flags = (C->scheme->cut_kinks ? SW_CAND_KINKS : 0) | (P->hold ? SW_CAND_HELD : 0) |
+                      (isnan(P->t_lift) ? 0 : SW_CAND_LIFTED);
+    int nc = P->m.ops->candidates(&P->m, flags, h, y0, y1, c);
     if (nc && C->outcome_only)
         nc = sw_event_keep_outcome(c, nc);
     *ntimed = 0;

@@ -111,78 +111,105 @@ double sw_model_work_rate(const sw_derived_t *d)
     return tr ? tr->work_rate(d) : NAN;
 }
 
-void sw_model_setup(sw_pkg_t *P)
+void sw_model_setup(sw_model_t *M, sw_model_scratch_t *S, const sw_scene_t *sc)
 {
-    P->ops = sw_model_ops_of(P->d.model);
-    P->iu = P->idu = P->iz = P->idz = -1;
-    P->trig[0] = NAN;
-    P->g = P->scene.g;
-    P->kR = 0.75 / P->d.R;
-    P->tan_alpha = tan(P->d.alpha);
-    P->ops->setup(P);
+    M->ops = sw_model_ops_of(M->d.model);
+    M->iu = M->idu = M->iz = M->idz = -1;
+    M->g = sc->g;
+    M->kR = 0.75 / M->d.R;
+    M->tan_alpha = tan(M->d.alpha);
+    M->frame_mass = sc->has_frame ? sc->frame_mass : 0.0;
+    S->trig[0] = NAN;
+    M->ops->setup(M, sc);
 }
 
-void sw_model_scale(sw_pkg_t *P, int i, int di, double size)
+void sw_model_scale(sw_model_t *M, int i, int di, double size)
 {
-    P->yscale[i] = size;
-    P->yscale[di] = fmax(P->d.omega_max, P->d.p) * size;
+    M->yscale[i] = size;
+    M->yscale[di] = fmax(M->d.omega_max, M->d.p) * size;
 }
 
-int sw_model_rhs(double t, const double y[], double f[], void *pkg)
+int sw_model_rhs(double t, const double y[], double f[], void *params)
 {
-    sw_pkg_t *P = pkg; /* not const: the sin/cos cache, the cushion's rate tracking */
-    return P->ops->rhs(P, t, y, f);
+    const sw_model_sys_t *sys = params;
+    return sys->m->ops->rhs(sys->m, sys->s, t, y, f);
 }
 
-void sw_model_to_state(const sw_pkg_t *P, sw_state_t *s)
+int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *params)
+{
+    /* Forward differences, step sqrt(eps) times the component's size or
+     * its typical size (the model's right-hand sides are only piecewise
+     * smooth: a contact end or a clamp may lie inside a step, which Newton
+     * iterations tolerate). */
+    const sw_model_t *M = ((const sw_model_sys_t *)params)->m;
+    const int n = M->n;
+    const double rt_eps = 1.4901161193847656e-08; /* sqrt(DBL_EPSILON) */
+    double f0[SW_NMAX], f1[SW_NMAX], yp[SW_NMAX];
+    sw_model_rhs(t, y, f0, params);
+    memcpy(yp, y, sizeof(double) * (size_t)n);
+    for (int j = 0; j < n; j++) {
+        yp[j] = y[j] + rt_eps * (fabs(y[j]) + M->yscale[j]);
+        const double dj = yp[j] - y[j]; /* the step as represented */
+        sw_model_rhs(t, yp, f1, params);
+        for (int i = 0; i < n; i++) dfdy[i * n + j] = (f1[i] - f0[i]) / dj;
+        yp[j] = y[j];
+    }
+    const double tp = t + rt_eps * fmax(fabs(t), 1e-3), dt = tp - t;
+    sw_model_rhs(tp, y, f1, params);
+    for (int i = 0; i < n; i++) dfdt[i] = (f1[i] - f0[i]) / dt;
+    return GSL_SUCCESS;
+}
+
+void sw_model_to_state(const sw_model_t *M, const double y[], sw_state_t *s)
 {
     memset(s, 0, sizeof *s);
-    s->theta = P->y[P->ith];
-    s->theta_dot = P->y[P->idth];
-    if (P->iu >= 0) {
-        s->u = P->y[P->iu];
-        s->u_dot = P->y[P->idu];
+    s->theta = y[M->ith];
+    s->theta_dot = y[M->idth];
+    if (M->iu >= 0) {
+        s->u = y[M->iu];
+        s->u_dot = y[M->idu];
     }
-    if (P->iz >= 0) {
-        s->z = P->y[P->iz];
-        s->z_dot = P->y[P->idz];
+    if (M->iz >= 0) {
+        s->z = y[M->iz];
+        s->z_dot = y[M->idz];
     }
-    s->phase = P->phase;
-    s->side = P->phase == SW_PHASE_STUCK ? 0 : P->side;
+    s->phase = M->phase;
+    s->side = M->phase == SW_PHASE_STUCK ? 0 : M->side;
 }
 
-void sw_model_from_state(sw_pkg_t *P, const sw_state_t *s)
+void sw_model_from_state(sw_model_t *M, double y[SW_NMAX], const sw_state_t *s)
 {
-    memset(P->y, 0, sizeof P->y);
-    P->y[P->ith] = s->theta;
-    P->y[P->idth] = s->theta_dot;
-    if (P->iu >= 0) {
-        P->y[P->iu] = s->u;
-        P->y[P->idu] = s->u_dot;
+    memset(y, 0, sizeof(double) * SW_NMAX);
+    y[M->ith] = s->theta;
+    y[M->idth] = s->theta_dot;
+    if (M->iu >= 0) {
+        y[M->iu] = s->u;
+        y[M->idu] = s->u_dot;
     }
-    if (P->iz >= 0) {
-        P->y[P->iz] = s->z;
-        P->y[P->idz] = s->z_dot;
+    if (M->iz >= 0) {
+        y[M->iz] = s->z;
+        y[M->idz] = s->z_dot;
     }
-    P->phase = s->phase;
-    P->side = s->side ? (s->side > 0 ? 1 : -1) : (s->theta < 0 ? -1 : 1);
-    if (!P->ops->stuck_advance) {
-        /* a model that is never stuck (a cushion): side follows theta */
-        if (P->phase == SW_PHASE_STUCK)
-            P->phase = SW_PHASE_ROCKING;
-        P->side = s->theta < 0.0 ? -1 : 1;
+    M->phase = s->phase;
+    M->side = s->side ? (s->side > 0 ? 1 : -1) : (s->theta < 0 ? -1 : 1);
+    if (!M->ops->stands) {
+        /* a model that never stands still (a cushion): side follows theta */
+        if (M->phase == SW_PHASE_STUCK)
+            M->phase = SW_PHASE_ROCKING;
+        M->side = s->theta < 0.0 ? -1 : 1;
         return;
     }
-    if (P->phase == SW_PHASE_STUCK) {
-        P->y[P->ith] = P->y[P->idth] = 0.0;
+    if (M->phase == SW_PHASE_STUCK) {
+        y[M->ith] = y[M->idth] = 0.0;
     }
 }
 
-void sw_model_output(const sw_pkg_t *P, double t, sw_output_t *o)
+void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S, double t, const double y[],
+                     sw_output_t *o)
 {
     memset(o, 0, sizeof *o);
     o->t = t;
-    sw_model_to_state(P, &o->state);
-    o->a_g = sw_input_ag(P->in, t);
-    P->ops->output(P, t, o);
+    sw_model_to_state(M, y, &o->state);
+    o->a_g = sw_input_ag(M->in, t);
+    M->ops->output(M, S, t, y, o);
 }

@@ -157,9 +157,9 @@ static double eig2(double a11, double a12, double a22, double m11, double m12, d
  * longer balanced by its stiffness, on a lighter effective mass) or a
  * cubic cushion compressed far beyond its static deflection is faster.
  * No contact: 0. */
-static double contact_rate(const sw_pkg_t *P, double th, const contact_t *k)
+static double contact_rate(const sw_model_t *M, double th, const contact_t *k)
 {
-    const sw_derived_t *d = &P->d;
+    const sw_derived_t *d = &M->d;
     if (!(k->L0 > 0.0))
         return 0.0;
     const double h = d->h, s = sin(th), co = cos(th), cp = cush_of(d).cp;
@@ -167,7 +167,7 @@ static double contact_rate(const sw_pkg_t *P, double th, const contact_t *k)
     const double m12 = h * s, m22 = 1.0;
     const double kK = eig2(co * co * k->S2, co * k->S1, k->S, m11, m12, m22);
     const double kC = cp * eig2(co * co * k->L2, co * k->L1, k->L0, m11, m12, m22);
-    return d->omega_max * fmax(1.0, fmax(sqrt(kK), kC) / P->rate_rest);
+    return d->omega_max * fmax(1.0, fmax(sqrt(kK), kC) / M->rate_rest);
 }
 
 /* ---- equations of motion ------------------------------------------------ */
@@ -177,71 +177,71 @@ static double contact_rate(const sw_pkg_t *P, double th, const contact_t *k)
  * non-finite error estimate for a small one (its comparisons with NaN are
  * false) and would accept the step; a failure status instead makes it
  * halve the step and try again. */
-static int finite_or_fail(const sw_pkg_t *P, const double f[])
+static int finite_or_fail(const sw_model_t *M, const double f[])
 {
-    for (int i = 0; i < P->n; i++)
+    for (int i = 0; i < M->n; i++)
         if (!isfinite(f[i]))
             return GSL_ERANGE;
     return GSL_SUCCESS;
 }
 
-static int cushion_rhs(sw_pkg_t *P, double t, const double y[], double f[])
+static int cushion_rhs(const sw_model_t *M, sw_model_scratch_t *S, double t, const double y[],
+                       double f[])
 {
-    const sw_derived_t *d = &P->d;
+    const sw_derived_t *d = &M->d;
     const cush_t c = cush_of(d);
-    const double ag = sw_input_ag(P->in, t), ge = sw_input_geff(P, t);
-    const double th = y[P->ith], z = y[P->iz], dth = y[P->idth], dz = y[P->idz];
+    const double ag = sw_input_ag(M->in, t), ge = sw_input_geff(M->in, M->g, t);
+    const double th = y[M->ith], z = y[M->iz], dth = y[M->idth], dz = y[M->idz];
     const double s = sin(th), co = cos(th), h = d->h;
     contact_t k;
-    sw_cushion_contact(&c, s, co, z, dth, dz, P->track_rate ? CT_PUSH | CT_MOMENTS : CT_PUSH, &k);
-    if (P->track_rate)
-        P->rate_seen = fmax(P->rate_seen, contact_rate(P, th, &k));
+    sw_cushion_contact(&c, s, co, z, dth, dz, S->track_rate ? CT_PUSH | CT_MOMENTS : CT_PUSH, &k);
+    if (S->track_rate)
+        S->rate_seen = fmax(S->rate_seen, contact_rate(M, th, &k));
     const double J = d->R * d->R / 3.0 + h * h; /* m^2, (I_C + m h^2)/m */
     const double hs = h * s, hc = h * co;
     /* right-hand sides of physics.md divided by m */
     const double r2 = -co * k.Ms + ge * hs - ag * hc;
     const double r3 = -k.F + ge - hc * dth * dth;
-    f[P->ith] = dth;
-    f[P->iz] = dz;
-    if (P->iu < 0) {
+    f[M->ith] = dth;
+    f[M->iz] = dz;
+    if (M->iu < 0) {
         /* on the bed: [J, h s; h s, 1] (theta'', z'') = (r2, r3) */
         const double det = J - hs * hs;
-        f[P->idth] = (r2 - hs * r3) / det;
-        f[P->idz] = (J * r3 - hs * r2) / det;
-        return finite_or_fail(P, f);
+        f[M->idth] = (r2 - hs * r3) / det;
+        f[M->idz] = (J * r3 - hs * r2) / det;
+        return finite_or_fail(M, f);
     }
     /* on a frame: M = [1/gam, h c, 0; h c, J, h s; 0, h s, 1] */
     const double gi = 1.0 / d->gamma, w = d->omega_b;
     const double r1 =
-        -(2.0 * d->zeta_b * w * y[P->idu] + w * w * y[P->iu]) * gi + hs * dth * dth - ag * gi;
+        -(2.0 * d->zeta_b * w * y[M->idu] + w * w * y[M->iu]) * gi + hs * dth * dth - ag * gi;
     const double A11 = J - hs * hs, A12 = -hc, A13 = hc * hs;
     const double A22 = gi, A23 = -gi * hs, A33 = gi * J - hc * hc;
     const double det = gi * A11 - hc * hc; /* = gi (J - h^2 s^2) - h^2 c^2 > 0 */
-    f[P->iu] = y[P->idu];
-    f[P->idu] = (A11 * r1 + A12 * r2 + A13 * r3) / det;
-    f[P->idth] = (A12 * r1 + A22 * r2 + A23 * r3) / det;
-    f[P->idz] = (A13 * r1 + A23 * r2 + A33 * r3) / det;
-    return finite_or_fail(P, f);
+    f[M->iu] = y[M->idu];
+    f[M->idu] = (A11 * r1 + A12 * r2 + A13 * r3) / det;
+    f[M->idth] = (A12 * r1 + A22 * r2 + A23 * r3) / det;
+    f[M->idz] = (A13 * r1 + A23 * r2 + A33 * r3) / det;
+    return finite_or_fail(M, f);
 }
 
-static void cushion_rest(sw_pkg_t *P)
+static void cushion_rest(sw_model_t *M, double y[])
 {
-    memset(P->y, 0, sizeof P->y);
-    P->y[P->iz] = sw_cushion_static_deflection(&P->d, P->g);
-    P->phase = SW_PHASE_ROCKING; /* no stuck stage on a compliant cushion */
-    P->side = 1;
+    y[M->iz] = sw_cushion_static_deflection(&M->d, M->g);
+    M->phase = SW_PHASE_ROCKING; /* no stuck stage on a compliant cushion */
+    M->side = 1;
 }
 
 /* b^2 sin^2(theta) - z |z| (m^2): > 0 while an edge of the base is off the
  * cushion; *der (may be NULL) gets its time derivative. */
-static double cushion_lift(const sw_pkg_t *P, const double y[], double *der)
+static double cushion_lift(const sw_model_t *M, const double y[], double *der)
 {
     /* b^2 sin^2(theta) - z |z|: > 0 when an edge is above the unloaded
      * surface (b |sin theta| > z), smooth through theta = 0 and z = 0 */
-    const double b = P->d.b, th = y[P->ith], z = y[P->iz];
+    const double b = M->d.b, th = y[M->ith], z = y[M->iz];
     const double s = sin(th);
     if (der)
-        *der = 2.0 * b * b * s * cos(th) * y[P->idth] - 2.0 * fabs(z) * y[P->idz];
+        *der = 2.0 * b * b * s * cos(th) * y[M->idth] - 2.0 * fabs(z) * y[M->idz];
     return b * b * s * s - z * fabs(z);
 }
 
@@ -401,57 +401,57 @@ void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s,
                 margin_bound);
 }
 
-static double motion_energy(const sw_pkg_t *P, const double y[])
+static double motion_energy(const sw_model_t *M, const double y[])
 {
     sw_state_t s;
     memset(&s, 0, sizeof s);
-    s.theta = y[P->ith];
-    s.theta_dot = y[P->idth];
-    s.z = y[P->iz];
-    s.z_dot = y[P->idz];
-    if (P->iu >= 0) {
-        s.u = y[P->iu];
-        s.u_dot = y[P->idu];
+    s.theta = y[M->ith];
+    s.theta_dot = y[M->idth];
+    s.z = y[M->iz];
+    s.z_dot = y[M->idz];
+    if (M->iu >= 0) {
+        s.u = y[M->iu];
+        s.u_dot = y[M->idu];
     }
-    return energy_with(&P->d, P->g, P->v_rest, &s);
+    return energy_with(&M->d, M->g, M->v_rest, &s);
 }
 
 /* ---- the engine's view: layout, events, rest -------------------------------- */
 
-static void cushion_setup(sw_pkg_t *P)
+static void cushion_setup(sw_model_t *M, const sw_scene_t *sc)
 {
-    if (P->scene.has_frame) {
-        P->n = 6;
-        P->iu = 0;
-        P->ith = 1;
-        P->iz = 2;
-        P->idu = 3;
-        P->idth = 4;
-        P->idz = 5;
+    if (sc->has_frame) {
+        M->n = 6;
+        M->iu = 0;
+        M->ith = 1;
+        M->iz = 2;
+        M->idu = 3;
+        M->idth = 4;
+        M->idz = 5;
     } else {
-        P->n = 4;
-        P->ith = 0;
-        P->iz = 1;
-        P->idth = 2;
-        P->idz = 3;
+        M->n = 4;
+        M->ith = 0;
+        M->iz = 1;
+        M->idth = 2;
+        M->idz = 3;
     }
     /* typical sizes: the angle at which an edge of the base lifts
      * (z_s/b), the static deflection, the bearings' deflection under 1 g */
-    const double zs = sw_cushion_static_deflection(&P->d, P->g); /* m */
-    sw_model_scale(P, P->ith, P->idth, zs / P->d.b);
-    if (P->iu >= 0)
-        sw_model_scale(P, P->iu, P->idu, P->g / (P->d.omega_b * P->d.omega_b));
-    sw_model_scale(P, P->iz, P->idz, zs);
+    const double zs = sw_cushion_static_deflection(&M->d, M->g); /* m */
+    sw_model_scale(M, M->ith, M->idth, zs / M->d.b);
+    if (M->iu >= 0)
+        sw_model_scale(M, M->iu, M->idu, M->g / (M->d.omega_b * M->d.omega_b));
+    sw_model_scale(M, M->iz, M->idz, zs);
     /* contact_rate()'s bound at rest: full contact, theta = 0, where
      * M^-1 K and M^-1 C have the vertical mode's K_t/m and C/m as their
      * largest eigenvalues */
-    P->rate_rest = fmax(sqrt(tangent_w2(&P->d, P->g)), 2.0 * P->d.zeta_c * P->d.omega_c);
-    P->e_lift = lift_energy(&P->d, P->g);
+    M->rate_rest = fmax(sqrt(tangent_w2(&M->d, M->g)), 2.0 * M->d.zeta_c * M->d.omega_c);
+    M->e_lift = lift_energy(&M->d, M->g);
     /* constants of every output and rest test under nominal gravity: the
      * barrier alone is a Newton solve, most of an output's cost */
-    const cush_t c = cush_of(&P->d);
-    P->e_barrier = sw_cushion_barrier(&P->d, P->g);
-    P->v_rest = potential_rest(&c, &P->d, P->g);
+    const cush_t c = cush_of(&M->d);
+    M->e_barrier = sw_cushion_barrier(&M->d, M->g);
+    M->v_rest = potential_rest(&c, &M->d, M->g);
 }
 
 /* A package on a cushion moves from the start: it is never stuck and never
@@ -460,12 +460,12 @@ static void cushion_setup(sw_pkg_t *P)
  * contact force); tipping, the first lift of an edge (uplift) and the
  * peaks of |theta| are timed inside a step, and "rest" is checked at the
  * end of each step. */
-static int cushion_candidates(const sw_pkg_t *P, int cut_kinks, double h, const double y0[],
+static int cushion_candidates(const sw_model_t *M, int flags, double h, const double y0[],
                               const double y1[], sw_evcand_t c[])
 {
-    const double al = P->d.alpha;
-    const double a0 = fabs(y0[P->ith]), a1 = fabs(y1[P->ith]);
-    const double v = h * fmax(fabs(y0[P->idth]), fabs(y1[P->idth]));
+    const double al = M->d.alpha;
+    const double a0 = fabs(y0[M->ith]), a1 = fabs(y1[M->ith]);
+    const double v = h * fmax(fabs(y0[M->idth]), fabs(y1[M->idth]));
     int n = 0;
     if (a1 >= M_PI_2 || M_PI_2 - fmax(a0, a1) < v)
         c[n++] = (sw_evcand_t){SW_EVF_OVERTURN, SW_ROLE_CUT, SW_RULE_RISE, 0};
@@ -475,102 +475,106 @@ static int cushion_candidates(const sw_pkg_t *P, int cut_kinks, double h, const 
      * adaptive schemes' error control shortens their steps instead (a cut
      * would also restart msbdf at order 1, and chatter where a loose
      * tolerance leaves the contact unresolved). */
-    if (cut_kinks)
+    if (flags & SW_CAND_KINKS)
         for (int ev = SW_EVF_LIFT; ev <= SW_EVF_FLY_IN; ev++)
             c[n++] = (sw_evcand_t){(unsigned char)ev, SW_ROLE_CUT, SW_RULE_KINK, 0};
-    if ((y0[P->ith] * y0[P->idth] > 0.0) != (y1[P->ith] * y1[P->idth] > 0.0))
+    if ((y0[M->ith] * y0[M->idth] > 0.0) != (y1[M->ith] * y1[M->idth] > 0.0))
         c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};
     if (a0 < al && (a1 >= al || al - fmax(a0, a1) < v))
         c[n++] = (sw_evcand_t){SW_EVF_TIP, SW_ROLE_TIP, SW_RULE_RISE, 0};
-    if (isnan(P->t_lift))
+    if (!(flags & SW_CAND_LIFTED))
         c[n++] = (sw_evcand_t){SW_EVF_LIFT, SW_ROLE_LIFT, SW_RULE_RISE, 0};
     return n;
 }
 
 /* Value and time derivative of event ev at (t, y) with f = y'; theta
  * changes sign smoothly on a cushion: events on theta^2. */
-static void cushion_event_fn(const sw_pkg_t *P, int ev, double t, const double y[],
+static void cushion_event_fn(const sw_model_t *M, int ev, double t, const double y[],
                              const double f[], double *val, double *der)
 {
     (void)t;
-    const double th = y[P->ith], w = y[P->idth];
+    const double th = y[M->ith], w = y[M->idth];
     switch (ev) {
         case SW_EVF_OVERTURN:
             *val = th * th - M_PI_2 * M_PI_2;
             *der = 2.0 * th * w;
             return;
         case SW_EVF_TIP:
-            *val = th * th - P->d.alpha * P->d.alpha;
+            *val = th * th - M->d.alpha * M->d.alpha;
             *der = 2.0 * th * w;
             return;
         case SW_EVF_TURN: /* |theta| stops growing */
             *val = -th * w;
-            *der = -(w * w + th * f[P->idth]);
+            *der = -(w * w + th * f[M->idth]);
             return;
         case SW_EVF_LIFT:
         case SW_EVF_LIFT_IN: {
-            const double v = cushion_lift(P, y, der), sg = ev == SW_EVF_LIFT ? 1.0 : -1.0;
+            const double v = cushion_lift(M, y, der), sg = ev == SW_EVF_LIFT ? 1.0 : -1.0;
             *val = sg * v;
             *der *= sg;
             return;
         }
         default: { /* b^2 sin^2(theta) + z |z| */
-            const double b = P->d.b, sn = sin(th), z = y[P->iz];
+            const double b = M->d.b, sn = sin(th), z = y[M->iz];
             const double sg = ev == SW_EVF_FLY_IN ? 1.0 : -1.0; /* rises when the base flies */
             *val = sg * (b * b * sn * sn + z * fabs(z));
-            *der = sg * (2.0 * b * b * sn * cos(th) * w + 2.0 * fabs(z) * y[P->idz]);
+            *der = sg * (2.0 * b * b * sn * cos(th) * w + 2.0 * fabs(z) * y[M->idz]);
             return;
         }
     }
 }
 
-static int cushion_uplift_side(const sw_pkg_t *P, double t)
+static int cushion_uplift_side(const sw_model_t *M, double t, const double y[])
 {
-    (void)P;
+    (void)M;
     (void)t;
+    (void)y;
     return 0; /* never stuck: its uplift is the first lift of an edge */
 }
 
 /* On a cushion the side is the sign of theta. */
-static void cushion_follow(sw_pkg_t *P)
+static void cushion_follow(sw_model_t *M, const double y[])
 {
-    P->side = P->y[P->ith] < 0.0 ? -1 : 1;
+    M->side = y[M->ith] < 0.0 ? -1 : 1;
 }
 
 /* Back at rest: in full contact with less energy than it takes to lift
  * an edge again (with no input it never will). */
-static int cushion_at_rest(const sw_pkg_t *P)
+static int cushion_at_rest(const sw_model_t *M, const double y[])
 {
-    return cushion_lift(P, P->y, NULL) < 0.0 && motion_energy(P, P->y) < P->e_lift;
+    return cushion_lift(M, y, NULL) < 0.0 && motion_energy(M, y) < M->e_lift;
 }
 
 /* Moving unless its energy of motion is below rest_eps of the barrier. */
-static int cushion_moving(const sw_pkg_t *P, double rest_eps)
+static int cushion_moving(const sw_model_t *M, const double y[], double rest_eps)
 {
-    return P->phase == SW_PHASE_ROCKING && !(motion_energy(P, P->y) < rest_eps * P->e_barrier);
+    return M->phase == SW_PHASE_ROCKING && !(motion_energy(M, y) < rest_eps * M->e_barrier);
 }
 
 /* After the common part: the support's acceleration (the bed, or a_g + u''
  * on a frame), the uplift ratio and the margins. */
-static void cushion_output(const sw_pkg_t *P, double t, sw_output_t *o)
+static void cushion_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
+                           const double y[], sw_output_t *o)
 {
-    double ge = sw_input_geff(P, t); /* m/s^2, as the right-hand side sees it */
+    (void)S;
+    double ge = sw_input_geff(M->in, M->g, t); /* m/s^2, as the right-hand side sees it */
     double f[SW_NMAX];
-    cushion_rhs((sw_pkg_t *)P, t, P->y, f); /* const but for its rate tracking, off here */
-    o->a_support = P->iu < 0 ? sw_input_ag(P->in, t) : sw_input_ag(P->in, t) + f[P->idu];
+    sw_model_scratch_t quiet = {.track_rate = 0}; /* the report tracks no rate */
+    cushion_rhs(M, &quiet, t, y, f);
+    o->a_support = M->iu < 0 ? sw_input_ag(M->in, t) : sw_input_ag(M->in, t) + f[M->idu];
     /* Airborne (g + a_z <= 0): the engine has faulted the package and
      * reset it; its energy is judged under nominal gravity. */
     if (!(ge > 0.0))
-        ge = P->g;
-    o->uplift_ratio = fabs(o->a_support) / (P->tan_alpha * P->g);
-    if (P->phase == SW_PHASE_OVERTURNED) {
+        ge = M->g;
+    o->uplift_ratio = fabs(o->a_support) / (M->tan_alpha * M->g);
+    if (M->phase == SW_PHASE_OVERTURNED) {
         o->margin = o->margin_bound = -1.0;
         return;
     }
-    if (ge == P->g)
-        margin_with(&P->d, ge, P->e_barrier, P->v_rest, &o->state, &o->margin, &o->margin_bound);
+    if (ge == M->g)
+        margin_with(&M->d, ge, M->e_barrier, M->v_rest, &o->state, &o->margin, &o->margin_bound);
     else
-        sw_margin_cushion(&P->d, ge, &o->state, &o->margin, &o->margin_bound);
+        sw_margin_cushion(&M->d, ge, &o->state, &o->margin, &o->margin_bound);
 }
 
 /* As the rigid models' (model_rigid.c); on the bed B holds still:

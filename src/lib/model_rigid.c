@@ -103,34 +103,40 @@ double sw_margin_bound_frame(const sw_derived_t *d, double g_eff, const sw_state
 /* ---- layout and right-hand sides -------------------------------------------- */
 
 /* Typical sizes: alpha, and the bearings' deflection under 1 g. */
-static void bare_setup(sw_pkg_t *P)
+static void bare_setup(sw_model_t *M, const sw_scene_t *sc)
 {
-    P->n = 2;
-    P->ith = 0;
-    P->idth = 1;
-    sw_model_scale(P, P->ith, P->idth, P->d.alpha);
+    (void)sc;
+    M->n = 2;
+    M->ith = 0;
+    M->idth = 1;
+    sw_model_scale(M, M->ith, M->idth, M->d.alpha);
 }
 
-static void frame_setup(sw_pkg_t *P)
+static void frame_setup(sw_model_t *M, const sw_scene_t *sc)
 {
-    P->n = 4;
-    P->iu = 0;
-    P->ith = 1;
-    P->idu = 2;
-    P->idth = 3;
-    sw_model_scale(P, P->ith, P->idth, P->d.alpha);
-    sw_model_scale(P, P->iu, P->idu, P->g / (P->d.omega_b * P->d.omega_b));
+    (void)sc;
+    M->n = 4;
+    M->iu = 0;
+    M->ith = 1;
+    M->idu = 2;
+    M->idth = 3;
+    sw_model_scale(M, M->ith, M->idth, M->d.alpha);
+    sw_model_scale(M, M->iu, M->idu, M->g / (M->d.omega_b * M->d.omega_b));
 }
 
-static int bare_rhs(sw_pkg_t *P, double t, const double y[], double f[])
+static int bare_rhs(const sw_model_t *M, sw_model_scratch_t *S, double t, const double y[],
+                    double f[])
 {
-    sw_rigid_rhs_of(P, SW_MODEL_BARE, sw_input_ag(P->in, t), sw_input_geff(P, t), y, f);
+    sw_rigid_rhs_of(M, S, SW_MODEL_BARE, sw_input_ag(M->in, t), sw_input_geff(M->in, M->g, t), y,
+                    f);
     return GSL_SUCCESS;
 }
 
-static int frame_rhs(sw_pkg_t *P, double t, const double y[], double f[])
+static int frame_rhs(const sw_model_t *M, sw_model_scratch_t *S, double t, const double y[],
+                     double f[])
 {
-    sw_rigid_rhs_of(P, SW_MODEL_FRAME, sw_input_ag(P->in, t), sw_input_geff(P, t), y, f);
+    sw_rigid_rhs_of(M, S, SW_MODEL_FRAME, sw_input_ag(M->in, t), sw_input_geff(M->in, M->g, t), y,
+                    f);
     return GSL_SUCCESS;
 }
 
@@ -139,25 +145,26 @@ static int frame_rhs(sw_pkg_t *P, double t, const double y[], double f[])
 /* Rocking: the impact (theta back to 0) and the overturn (pi/2) cut the
  * step when an endpoint is through or close enough that the step's motion
  * could reach it; the peak of |theta| where theta' changes sign; the tip
- * where s theta crosses alpha.  A stuck frame: uplift either way (the bare
- * block is never stepped while stuck: stuck.c solves for its uplift). */
-static int rigid_candidates(const sw_pkg_t *P, int cut_kinks, double h, const double y0[],
+ * where s theta crosses alpha.  A stuck frame not held: uplift either way
+ * (the bare block is never stepped while stuck: stuck.c solves for its
+ * uplift).  The rigid right-hand sides are smooth within a phase: no
+ * kinks to cut at. */
+static int rigid_candidates(const sw_model_t *M, int flags, double h, const double y0[],
                             const double y1[], sw_evcand_t c[])
 {
-    (void)cut_kinks; /* the rigid right-hand sides are smooth within a phase */
     int n = 0;
-    if (P->phase == SW_PHASE_ROCKING) {
-        const double s0 = P->side * y0[P->ith], s1 = P->side * y1[P->ith];
-        const double v = h * sw_max2(fabs(y0[P->idth]), fabs(y1[P->idth]));
+    if (M->phase == SW_PHASE_ROCKING) {
+        const double s0 = M->side * y0[M->ith], s1 = M->side * y1[M->ith];
+        const double v = h * sw_max2(fabs(y0[M->idth]), fabs(y1[M->idth]));
         if (s1 <= 0.0 || sw_min2(s0, s1) < v)
             c[n++] = (sw_evcand_t){SW_EVF_IMPACT, SW_ROLE_CUT, SW_RULE_RISE, 0};
         if (s1 >= M_PI_2 || M_PI_2 - sw_max2(s0, s1) < v)
             c[n++] = (sw_evcand_t){SW_EVF_OVERTURN, SW_ROLE_CUT, SW_RULE_RISE, 0};
-        if ((y0[P->idth] > 0.0) != (y1[P->idth] > 0.0))
+        if ((y0[M->idth] > 0.0) != (y1[M->idth] > 0.0))
             c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};
-        if ((s0 < P->d.alpha) != (s1 < P->d.alpha))
+        if ((s0 < M->d.alpha) != (s1 < M->d.alpha))
             c[n++] = (sw_evcand_t){SW_EVF_TIP, SW_ROLE_TIP, SW_RULE_PLAIN, 0};
-    } else if (P->phase == SW_PHASE_STUCK && P->iu >= 0 && !P->hold) {
+    } else if (M->phase == SW_PHASE_STUCK && M->iu >= 0 && !(flags & SW_CAND_HELD)) {
         c[n++] = (sw_evcand_t){SW_EVF_UPLIFT_FWD, SW_ROLE_CUT, SW_RULE_RISE, 1};
         c[n++] = (sw_evcand_t){SW_EVF_UPLIFT_BACK, SW_ROLE_CUT, SW_RULE_RISE, 1};
     }
@@ -166,35 +173,35 @@ static int rigid_candidates(const sw_pkg_t *P, int cut_kinks, double h, const do
 
 /* Value and time derivative of event ev at (t, y) with f = y'.  Every
  * event is "the function rises through 0". */
-static void rigid_event_fn(const sw_pkg_t *P, int ev, double t, const double y[], const double f[],
-                           double *val, double *der)
+static void rigid_event_fn(const sw_model_t *M, int ev, double t, const double y[],
+                           const double f[], double *val, double *der)
 {
-    const double s = P->side;
+    const double s = M->side;
     switch (ev) {
         case SW_EVF_IMPACT:
-            *val = -s * y[P->ith];
-            *der = -s * f[P->ith];
+            *val = -s * y[M->ith];
+            *der = -s * f[M->ith];
             return;
         case SW_EVF_OVERTURN:
-            *val = s * y[P->ith] - M_PI_2;
-            *der = s * f[P->ith];
+            *val = s * y[M->ith] - M_PI_2;
+            *der = s * f[M->ith];
             return;
         case SW_EVF_TIP:
-            *val = s * y[P->ith] - P->d.alpha;
-            *der = s * f[P->ith];
+            *val = s * y[M->ith] - M->d.alpha;
+            *der = s * f[M->ith];
             return;
         case SW_EVF_TURN: /* the package stops swinging outward: the peak of |theta| */
-            *val = -s * y[P->idth];
-            *der = -s * f[P->idth];
+            *val = -s * y[M->idth];
+            *der = -s * f[M->idth];
             return;
         default: {
             /* frame stuck: support acceleration W = -(2 z w u' + w^2 u) against
              * the uplift threshold T = tan(alpha) g_eff */
-            const double w = P->d.omega_b, c = 2.0 * P->d.zeta_b * w;
-            const double W = -(c * y[P->idu] + w * w * y[P->iu]);
-            const double Wd = -(c * f[P->idu] + w * w * f[P->iu]);
-            const double T = P->tan_alpha * sw_input_geff(P, t);
-            const double Td = P->in->fn ? 0.0 : P->tan_alpha * P->in->az_slope;
+            const double w = M->d.omega_b, c = 2.0 * M->d.zeta_b * w;
+            const double W = -(c * y[M->idu] + w * w * y[M->iu]);
+            const double Wd = -(c * f[M->idu] + w * w * f[M->iu]);
+            const double T = M->tan_alpha * sw_input_geff(M->in, M->g, t);
+            const double Td = M->in->fn ? 0.0 : M->tan_alpha * M->in->az_slope;
             const double sg =
                 ev == SW_EVF_UPLIFT_BACK ? 1.0 : -1.0; /* back: W >= T; fwd: W <= -T */
             *val = sg * W - T;
@@ -208,116 +215,121 @@ static void rigid_event_fn(const sw_pkg_t *P, int ev, double t, const double y[]
 
 /* At theta = 0 (physics.md): theta' times the impact ratio; on a frame the
  * frame takes the momentum the package loses. */
-static void bare_impact(sw_pkg_t *P)
+static void bare_impact(sw_model_t *M, double y[])
 {
-    P->y[P->idth] = P->d.eta * P->y[P->idth];
-    P->y[P->ith] = 0.0;
-    P->side = -P->side;
+    y[M->idth] = M->d.eta * y[M->idth];
+    y[M->ith] = 0.0;
+    M->side = -M->side;
 }
 
-static void frame_impact(sw_pkg_t *P)
+static void frame_impact(sw_model_t *M, double y[])
 {
-    const double before = P->y[P->idth];
-    const double after = P->d.r_frame * before;
-    P->y[P->idth] = after;
-    P->y[P->idu] += P->d.gamma * P->d.h * (before - after);
-    P->y[P->ith] = 0.0;
-    P->side = -P->side;
+    const double before = y[M->idth];
+    const double after = M->d.r_frame * before;
+    y[M->idth] = after;
+    y[M->idu] += M->d.gamma * M->d.h * (before - after);
+    y[M->ith] = 0.0;
+    M->side = -M->side;
 }
 
 /* The rest transition is an impact whose theta'^+ is 0 (physics.md): on
  * the bed the package just stops; on a frame the frame takes its last
  * momentum, u'^+ = u'^- + gamma h theta'^-. */
-static void bare_land(sw_pkg_t *P)
+static void bare_land(const sw_model_t *M, double y[])
 {
-    P->y[P->idth] = 0.0;
+    y[M->idth] = 0.0;
 }
 
-static void frame_land(sw_pkg_t *P)
+static void frame_land(const sw_model_t *M, double y[])
 {
-    P->y[P->idu] += P->d.gamma * P->d.h * P->y[P->idth];
-    P->y[P->idth] = 0.0;
+    y[M->idu] += M->d.gamma * M->d.h * y[M->idth];
+    y[M->idth] = 0.0;
 }
 
-static int bare_uplift_side(const sw_pkg_t *P, double t)
+static int bare_uplift_side(const sw_model_t *M, double t, const double y[])
 {
-    return sw_bare_uplift_side(P, t);
+    (void)y;
+    return sw_bare_uplift_side(M, t);
 }
 
-static int frame_uplift_side(const sw_pkg_t *P, double t)
+static int frame_uplift_side(const sw_model_t *M, double t, const double y[])
 {
-    return sw_frame_uplift_side(P, t);
+    return sw_frame_uplift_side(M, t, y);
 }
 
-static int bare_moving(const sw_pkg_t *P, double rest_eps)
+static int bare_moving(const sw_model_t *M, const double y[], double rest_eps)
+{
+    (void)y;
+    (void)rest_eps;
+    return M->phase == SW_PHASE_ROCKING;
+}
+
+static int frame_moving(const sw_model_t *M, const double y[], double rest_eps)
 {
     (void)rest_eps;
-    return P->phase == SW_PHASE_ROCKING;
-}
-
-static int frame_moving(const sw_pkg_t *P, double rest_eps)
-{
-    (void)rest_eps;
-    return P->phase == SW_PHASE_ROCKING ||
-           (P->phase == SW_PHASE_STUCK && (fabs(P->y[P->iu]) > 1e-9 || fabs(P->y[P->idu]) > 1e-9));
+    return M->phase == SW_PHASE_ROCKING ||
+           (M->phase == SW_PHASE_STUCK && (fabs(y[M->iu]) > 1e-9 || fabs(y[M->idu]) > 1e-9));
 }
 
 /* ---- the report ---------------------------------------------------------------- */
 
 /* After the common part (time, state, a_g): the support's acceleration, the
  * uplift ratio and the margins. */
-static inline void rigid_output(const sw_pkg_t *P, sw_model_kind model, double t, sw_output_t *o)
+static inline void rigid_output(const sw_model_t *M, const sw_model_scratch_t *S,
+                                sw_model_kind model, double t, const double y[], sw_output_t *o)
 {
-    const double ge_in = sw_input_geff(P, t); /* m/s^2, as the right-hand side sees it */
+    const double ge_in = sw_input_geff(M->in, M->g, t); /* m/s^2, as the right-hand side sees it */
     /* Airborne (g + a_z <= 0): the package flies (flight.c); its energy
      * bound is judged under nominal gravity, not divided by a zero or
      * negative barrier. */
-    const double ge = ge_in > 0.0 ? ge_in : P->g;
-    double cA = cos_alpha(&P->d); /* cos(alpha - |theta|) */
+    const double ge = ge_in > 0.0 ? ge_in : M->g;
+    double cA = cos_alpha(&M->d); /* cos(alpha - |theta|) */
     /* bare: the support is the bed; frame: a_g + u''.  sin and cos of
      * A1 = alpha - s theta (which is alpha - |theta| but in the instant of
      * a landing) near the right-hand side's last angle. */
     double sn = 0.0, c1 = 0.0;
-    if (P->phase == SW_PHASE_ROCKING) {
-        const double sth = P->side * P->y[P->ith];
-        sw_rigid_sincos_near(P->trig, P->d.alpha - sth, &sn, &c1);
-        cA = sth >= 0.0 ? c1 : cos(P->d.alpha + sth);
+    if (M->phase == SW_PHASE_ROCKING) {
+        const double sth = M->side * y[M->ith];
+        sw_rigid_sincos_near(S->trig, M->d.alpha - sth, &sn, &c1);
+        cA = sth >= 0.0 ? c1 : cos(M->d.alpha + sth);
     }
     o->a_support = o->a_g;
-    if (model == SW_MODEL_FRAME && P->flying) {
+    if (model == SW_MODEL_FRAME && M->flying) {
         /* the frame rings on its own: u'' = -(c_b u' + k_b u) / m_b - a_g */
-        const double mb = P->scene.frame_mass; /* kg */
-        o->a_support = -(P->d.c_b * P->y[P->idu] + P->d.k_b * P->y[P->iu]) / mb;
+        const double mb = M->frame_mass; /* kg */
+        o->a_support = -(M->d.c_b * y[M->idu] + M->d.k_b * y[M->iu]) / mb;
     } else if (model == SW_MODEL_FRAME) {
         double f[SW_NMAX];
-        sw_rigid_rhs_trig(P, SW_MODEL_FRAME, o->a_g, ge_in, P->y, sn, c1, f);
-        o->a_support += f[P->idu];
+        sw_rigid_rhs_trig(M, SW_MODEL_FRAME, o->a_g, ge_in, y, sn, c1, f);
+        o->a_support += f[M->idu];
     }
-    o->uplift_ratio = fabs(o->a_support) / (P->tan_alpha * P->g);
-    if (P->phase == SW_PHASE_OVERTURNED) {
+    o->uplift_ratio = fabs(o->a_support) / (M->tan_alpha * M->g);
+    if (M->phase == SW_PHASE_OVERTURNED) {
         o->margin = o->margin_bound = -1.0;
         return;
     }
-    if (P->phase == SW_PHASE_STUCK) {
+    if (M->phase == SW_PHASE_STUCK) {
         o->margin = 1.0;
     } else {
-        const double r = model == SW_MODEL_BARE ? P->d.eta : P->d.r_frame;
-        o->margin = margin_rocking_c(&P->d, r, o->state.theta, o->state.theta_dot, cA);
+        const double r = model == SW_MODEL_BARE ? M->d.eta : M->d.r_frame;
+        o->margin = margin_rocking_c(&M->d, r, o->state.theta, o->state.theta_dot, cA);
     }
     if (model == SW_MODEL_BARE)
         o->margin_bound = o->margin;
     else
-        o->margin_bound = margin_bound_frame_c(&P->d, ge, &o->state, cA);
+        o->margin_bound = margin_bound_frame_c(&M->d, ge, &o->state, cA);
 }
 
-static void bare_output(const sw_pkg_t *P, double t, sw_output_t *o)
+static void bare_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
+                        const double y[], sw_output_t *o)
 {
-    rigid_output(P, SW_MODEL_BARE, t, o);
+    rigid_output(M, S, SW_MODEL_BARE, t, y, o);
 }
 
-static void frame_output(const sw_pkg_t *P, double t, sw_output_t *o)
+static void frame_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
+                         const double y[], sw_output_t *o)
 {
-    rigid_output(P, SW_MODEL_FRAME, t, o);
+    rigid_output(M, S, SW_MODEL_FRAME, t, y, o);
 }
 
 /* g R (1 - cos alpha): the package's centre of mass raised over its
@@ -427,7 +439,7 @@ const sw_model_ops_t sw_model_bare = {
     .impact = bare_impact,
     .land = bare_land,
     .uplift_side = bare_uplift_side,
-    .stuck_advance = sw_stuck_bare,
+    .stands = SW_STANDS_RIGID,
     .output = bare_output,
     .moving = bare_moving,
     .flies = SW_FLIES_CLOSED,
@@ -457,7 +469,7 @@ const sw_model_ops_t sw_model_frame = {
     .impact = frame_impact,
     .land = frame_land,
     .uplift_side = frame_uplift_side,
-    .stuck_advance = sw_stuck_frame,
+    .stands = SW_STANDS_OSCILLATOR,
     .output = frame_output,
     .moving = frame_moving,
     .flies = SW_FLIES_CLOSED,

@@ -41,27 +41,27 @@ static inline int sw_rigid_sincos_near(const double trig[3], double A, double *s
     return 1;
 }
 
-/* The same, moving the cache to A when libm was called. */
-static inline void sw_rigid_sincos(sw_pkg_t *P, double A, double *sn, double *cs)
+/* The same, moving the scratch's cache to A when libm was called. */
+static inline void sw_rigid_sincos(sw_model_scratch_t *S, double A, double *sn, double *cs)
 {
-    if (sw_rigid_sincos_near(P->trig, A, sn, cs))
+    if (sw_rigid_sincos_near(S->trig, A, sn, cs))
         return;
-    P->trig[0] = A;
-    P->trig[1] = *sn;
-    P->trig[2] = *cs;
+    S->trig[0] = A;
+    S->trig[1] = *sn;
+    S->trig[2] = *cs;
 }
 
 /* Bearing force per unit total mass (m/s^2): 2 zeta_b w_b u' + w_b^2 u,
  * from u and u' (m, m/s). */
-static inline double sw_rigid_bearing_of(const sw_pkg_t *P, double u, double du)
+static inline double sw_rigid_bearing_of(const sw_model_t *M, double u, double du)
 {
-    const double w = P->d.omega_b;
-    return 2.0 * P->d.zeta_b * w * du + w * w * u;
+    const double w = M->d.omega_b;
+    return 2.0 * M->d.zeta_b * w * du + w * w * u;
 }
 
-static inline double sw_rigid_bearing(const sw_pkg_t *P, const double y[])
+static inline double sw_rigid_bearing(const sw_model_t *M, const double y[])
 {
-    return sw_rigid_bearing_of(P, y[P->iu], y[P->idu]);
+    return sw_rigid_bearing_of(M, y[M->iu], y[M->idu]);
 }
 
 /* f = y' of a bare or framed package under a_g = ag and g_eff = ge (m/s^2),
@@ -69,28 +69,28 @@ static inline double sw_rigid_bearing(const sw_pkg_t *P, const double y[])
  * layouts are fixed (model.c's sw_model_setup): bare (theta, theta'),
  * frame (u, theta, u', theta'); a caller that passes model as a constant
  * gets one of the two bodies. */
-static SW_ALWAYS_INLINE void sw_rigid_rhs_trig(const sw_pkg_t *P, sw_model_kind model, double ag,
+static SW_ALWAYS_INLINE void sw_rigid_rhs_trig(const sw_model_t *M, sw_model_kind model, double ag,
                                                double ge, const double y[], double sn, double c1,
                                                double f[])
 {
-    const double s = P->side;
+    const double s = M->side;
     /* A2 = s A1 exactly (s = +-1), so sin(A2) = s sin(A1): one angle. */
     const double s2 = s * sn;
     if (model == SW_MODEL_BARE) {
         f[0] = y[1];
-        f[1] = P->phase == SW_PHASE_ROCKING ? -P->kR * (ge * s2 + ag * c1) : 0.0;
+        f[1] = M->phase == SW_PHASE_ROCKING ? -M->kR * (ge * s2 + ag * c1) : 0.0;
         return;
     }
     const double dth = y[3];
-    const double F = sw_rigid_bearing_of(P, y[0], y[2]);
+    const double F = sw_rigid_bearing_of(M, y[0], y[2]);
     f[0] = y[2];
     f[1] = dth;
-    if (P->phase == SW_PHASE_ROCKING) {
-        const double gR = P->d.gamma * P->d.R;
-        const double iD = 1.0 / (1.0 - 0.75 * P->d.gamma * c1 * c1);
-        const double kg = P->kR * ge, gdd = gR * dth * dth;
+    if (M->phase == SW_PHASE_ROCKING) {
+        const double gR = M->d.gamma * M->d.R;
+        const double iD = 1.0 / (1.0 - 0.75 * M->d.gamma * c1 * c1);
+        const double kg = M->kR * ge, gdd = gR * dth * dth;
         f[2] = (-F + s2 * (gR * kg * c1 - gdd)) * iD - ag;
-        f[3] = P->kR * (c1 * (F + gdd * s2) - ge * s2) * iD;
+        f[3] = M->kR * (c1 * (F + gdd * s2) - ge * s2) * iD;
     } else {
         f[2] = -F - ag;
         f[3] = 0.0;
@@ -98,25 +98,26 @@ static SW_ALWAYS_INLINE void sw_rigid_rhs_trig(const sw_pkg_t *P, sw_model_kind 
 }
 
 /* The same, taking sin and cos of A1 = alpha - s theta from the cache. */
-static SW_ALWAYS_INLINE void sw_rigid_rhs_of(sw_pkg_t *P, sw_model_kind model, double ag, double ge,
+static SW_ALWAYS_INLINE void sw_rigid_rhs_of(const sw_model_t *M, sw_model_scratch_t *S,
+                                             sw_model_kind model, double ag, double ge,
                                              const double y[], double f[])
 {
     double sn = 0.0, c1 = 0.0;
-    if (P->phase == SW_PHASE_ROCKING)
-        sw_rigid_sincos(P, P->d.alpha - P->side * y[model == SW_MODEL_BARE ? 0 : 1], &sn, &c1);
-    sw_rigid_rhs_trig(P, model, ag, ge, y, sn, c1, f);
+    if (M->phase == SW_PHASE_ROCKING)
+        sw_rigid_sincos(S, M->d.alpha - M->side * y[model == SW_MODEL_BARE ? 0 : 1], &sn, &c1);
+    sw_rigid_rhs_trig(M, model, ag, ge, y, sn, c1, f);
 }
 
 /* While stuck the support's acceleration A is a_g (bare) or a_g + u'' =
  * -(2 zeta_b w_b u' + w_b^2 u) (frame); it does not depend on theta.
  * +1 / -1 if A is beyond the uplift threshold tan(alpha) g_eff at t (the
  * direction the top tips), else 0. */
-static inline int sw_rigid_side_of(const sw_pkg_t *P, double A, double t)
+static inline int sw_rigid_side_of(const sw_model_t *M, double A, double t)
 {
-    const double ge = sw_input_geff(P, t);
+    const double ge = sw_input_geff(M->in, M->g, t);
     if (!(ge > 0.0))
         return 0; /* airborne: outside the model (the engine faults) */
-    const double thr = P->tan_alpha * ge;
+    const double thr = M->tan_alpha * ge;
     if (A <= -thr)
         return +1; /* braking tips the top forward */
     if (A >= thr)
@@ -124,14 +125,14 @@ static inline int sw_rigid_side_of(const sw_pkg_t *P, double A, double t)
     return 0;
 }
 
-static inline int sw_bare_uplift_side(const sw_pkg_t *P, double t)
+static inline int sw_bare_uplift_side(const sw_model_t *M, double t)
 {
-    return sw_rigid_side_of(P, sw_input_ag(P->in, t), t);
+    return sw_rigid_side_of(M, sw_input_ag(M->in, t), t);
 }
 
-static inline int sw_frame_uplift_side(const sw_pkg_t *P, double t)
+static inline int sw_frame_uplift_side(const sw_model_t *M, double t, const double y[])
 {
-    return sw_rigid_side_of(P, -sw_rigid_bearing(P, P->y), t);
+    return sw_rigid_side_of(M, -sw_rigid_bearing(M, y), t);
 }
 
 #endif

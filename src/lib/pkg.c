@@ -17,14 +17,7 @@ void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, doub
 {
     sw_event_t ev;
     sw_output_t o;
-    double keep[SW_NMAX];
-    if (y_at) {
-        memcpy(keep, P->y, sizeof keep);
-        memcpy(P->y, y_at, sizeof(double) * (size_t)P->n);
-    }
-    sw_model_output(P, t, &o);
-    if (y_at)
-        memcpy(P->y, keep, sizeof keep);
+    sw_model_output(&P->m, &P->scr, t, y_at ? y_at : P->y, &o);
     ev.pkg = P->index;
     ev.kind = kind;
     ev.t = C->origin + t;
@@ -49,7 +42,7 @@ void sw_pkg_track_theta(sw_pkg_t *P, double th)
     const double a = fabs(th);
     if (a > P->sum.max_abs_theta) {
         P->sum.max_abs_theta = a;
-        P->sum.max_theta_ratio = a / P->d.alpha;
+        P->sum.max_theta_ratio = a / P->m.d.alpha;
     }
 }
 
@@ -57,13 +50,13 @@ void sw_pkg_rest(sw_pkg_t *P)
 {
     memset(P->y, 0, sizeof P->y);
     P->hold = 0;
-    P->flying = 0;
+    P->m.flying = 0;
     P->t_lift = NAN;
-    P->phase = SW_PHASE_STUCK;
-    P->side = 1;
+    P->m.phase = SW_PHASE_STUCK;
+    P->m.side = 1;
     P->beyond_alpha = 0;
-    if (P->ops->rest)
-        P->ops->rest(P);
+    if (P->m.ops->rest)
+        P->m.ops->rest(&P->m, P->y);
 }
 
 void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code)
@@ -75,10 +68,10 @@ void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code)
 
 void sw_pkg_start_rocking(sw_ctx_t *C, sw_pkg_t *P, double t, int side)
 {
-    P->phase = SW_PHASE_ROCKING;
-    P->side = side;
+    P->m.phase = SW_PHASE_ROCKING;
+    P->m.side = side;
     P->t_lift = t;
-    P->y[P->ith] = P->y[P->idth] = 0.0;
+    P->y[P->m.ith] = P->y[P->m.idth] = 0.0;
     P->sum.uplifts++;
     if (isnan(P->sum.uplift_time))
         P->sum.uplift_time = t;
@@ -91,7 +84,7 @@ void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
     if (isnan(P->sum.tip_time))
         P->sum.tip_time = t;
     P->beyond_alpha = 1;
-    sw_pkg_emit_at(C, P, SW_EV_TIP, t, (y_at[P->ith] < 0.0 ? -1.0 : 1.0) * P->d.alpha, y_at);
+    sw_pkg_emit_at(C, P, SW_EV_TIP, t, (y_at[P->m.ith] < 0.0 ? -1.0 : 1.0) * P->m.d.alpha, y_at);
 }
 
 /* The first edge of a package that never impacts (a cushion's) left its
@@ -99,7 +92,7 @@ void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
  * forward), -1 the front, 0 when the level base leaves at once. */
 static void lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
 {
-    const double th = y_at[P->ith];
+    const double th = y_at[P->m.ith];
     const double side = th == 0.0 ? 0.0 : th < 0.0 ? -1.0 : 1.0;
     P->t_lift = t;
     P->sum.uplifts++;
@@ -112,7 +105,7 @@ void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
 {
     for (int i = 0; i < n; i++) {
         if (ev[i].role == SW_ROLE_PEAK)
-            sw_pkg_track_theta(P, ev[i].y[P->ith]);
+            sw_pkg_track_theta(P, ev[i].y[P->m.ith]);
         else if (ev[i].role == SW_ROLE_TIP)
             sw_pkg_tip(C, P, ev[i].t, ev[i].y);
         else
@@ -122,7 +115,7 @@ void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
 
 void sw_pkg_after_step(sw_ctx_t *C, sw_pkg_t *P)
 {
-    if (P->phase != SW_PHASE_ROCKING || isnan(P->t_lift) || !P->ops->at_rest(P))
+    if (P->m.phase != SW_PHASE_ROCKING || isnan(P->t_lift) || !P->m.ops->at_rest(&P->m, P->y))
         return;
     P->t_lift = NAN;
     P->beyond_alpha = 0;
@@ -133,8 +126,8 @@ void sw_pkg_after_step(sw_ctx_t *C, sw_pkg_t *P)
 /* Kinetic energy of theta' below rest_eps of the energy barrier? */
 static int below_rest(const sw_ctx_t *C, const sw_pkg_t *P, double theta_dot)
 {
-    const double p = P->d.p;
-    return 0.5 * theta_dot * theta_dot / (p * p) < C->rest_eps * (1.0 - cos(P->d.alpha));
+    const double p = P->m.d.p;
+    return 0.5 * theta_dot * theta_dot / (p * p) < C->rest_eps * (1.0 - cos(P->m.d.alpha));
 }
 
 /* After an impact: the cascade ends (rest) when the rebound energy is below
@@ -142,25 +135,25 @@ static int below_rest(const sw_ctx_t *C, const sw_pkg_t *P, double theta_dot)
  * at once if its support is still beyond the uplift threshold. */
 static void after_impact(sw_ctx_t *C, sw_pkg_t *P, double t)
 {
-    if (!below_rest(C, P, P->y[P->idth]))
+    if (!below_rest(C, P, P->y[P->m.idth]))
         return;
-    P->ops->land(P);
-    const int side = P->ops->uplift_side(P, t);
+    P->m.ops->land(&P->m, P->y);
+    const int side = P->m.ops->uplift_side(&P->m, t, P->y);
     if (side != 0 && t == P->t_lift) {
         /* Lifted and landed at the same instant: the support is at the
          * threshold and the step's own error pushed the package the wrong
          * way.  Hold it for one step (the support keeps moving), then look
          * again, so that time always advances. */
-        P->phase = SW_PHASE_STUCK;
+        P->m.phase = SW_PHASE_STUCK;
         P->hold = 1;
         return;
     }
     if (side == 0) {
-        P->phase = SW_PHASE_STUCK;
+        P->m.phase = SW_PHASE_STUCK;
         P->sum.rests++;
         emit(C, P, SW_EV_REST, t, 0.0);
     } else {
-        P->side = side;
+        P->m.side = side;
     }
 }
 
@@ -168,18 +161,18 @@ void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t)
 {
     switch (ev) {
         case SW_EVF_IMPACT: {
-            const double before = P->y[P->idth];
+            const double before = P->y[P->m.idth];
             if (below_rest(C, P, before)) {
                 /* arriving with less than the rest energy: a landing, not an
                  * impact (the step's round-off after a lift, or the end of a
                  * cascade) */
-                P->y[P->ith] = 0.0;
-                P->ops->land(P);
+                P->y[P->m.ith] = 0.0;
+                P->m.ops->land(&P->m, P->y);
                 after_impact(C, P, t);
                 break;
             }
-            P->y[P->ith] = 0.0;
-            P->ops->impact(P);
+            P->y[P->m.ith] = 0.0;
+            P->m.ops->impact(&P->m, P->y);
             P->beyond_alpha = 0;
             P->sum.impacts++;
             emit(C, P, SW_EV_IMPACT, t, before);
@@ -187,15 +180,15 @@ void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t)
             break;
         }
         case SW_EVF_OVERTURN: {
-            const double rate = P->y[P->idth];
-            P->y[P->ith] = P->side * M_PI_2;
+            const double rate = P->y[P->m.idth];
+            P->y[P->m.ith] = P->m.side * M_PI_2;
             sw_pkg_track_theta(P, M_PI_2);
-            P->phase = SW_PHASE_OVERTURNED;
+            P->m.phase = SW_PHASE_OVERTURNED;
             P->sum.overturned = 1;
             P->sum.overturn_time = t;
             emit(C, P, SW_EV_OVERTURN, t, rate);
-            for (int i = 0; i < P->n; i++)
-                if (i != P->ith)
+            for (int i = 0; i < P->m.n; i++)
+                if (i != P->m.ith)
                     P->y[i] = 0.0;
             break;
         }

@@ -35,9 +35,9 @@ static SW_ALWAYS_INLINE void stage(sw_pkg_t *P, int model, double t, double ag, 
                                    const double y[], double f[])
 {
     if (model == GENERIC)
-        P->ops->rhs(P, t, y, f);
+        P->m.ops->rhs(&P->m, &P->scr, t, y, f);
     else
-        sw_rigid_rhs_of(P, (sw_model_kind)model, ag, ge, y, f);
+        sw_rigid_rhs_of(&P->m, &P->scr, (sw_model_kind)model, ag, ge, y, f);
 }
 
 static SW_ALWAYS_INLINE void stage_input(const sw_pkg_t *P, int model, double t, double *ag,
@@ -45,8 +45,8 @@ static SW_ALWAYS_INLINE void stage_input(const sw_pkg_t *P, int model, double t,
 {
     if (model == GENERIC)
         return;
-    *ag = sw_input_ag(P->in, t);
-    *ge = sw_input_geff(P, t);
+    *ag = sw_input_ag(P->m.in, t);
+    *ge = sw_input_geff(P->m.in, P->m.g, t);
 }
 
 static SW_ALWAYS_INLINE void euler_of(sw_pkg_t *P, int model, int n, double t, double h,
@@ -105,7 +105,7 @@ static SW_ALWAYS_INLINE void rk4_of(sw_pkg_t *P, int model, int n, double t, dou
     }                                                                                            \
     static void name##_generic(sw_pkg_t *P, double t, double h, const double y[], double yout[]) \
     {                                                                                            \
-        body(P, GENERIC, P->n, t, h, y, yout);                                                   \
+        body(P, GENERIC, P->m.n, t, h, y, yout);                                                 \
     }
 /* ... and the advance of each, the sub-step logic around the body. */
 #define SW_FIXED_ADVANCES(name)                                                              \
@@ -123,31 +123,6 @@ SW_FIXED_STEPS(rk4_step, rk4_of)
 SW_FIXED_ADVANCES(euler_step)
 SW_FIXED_ADVANCES(heun_step)
 SW_FIXED_ADVANCES(rk4_step)
-
-int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *pkg)
-{
-    /* Forward differences, step sqrt(eps) times the component's size or
-     * its typical size (the model's right-hand sides are only piecewise
-     * smooth: a contact end or a clamp may lie inside a step, which Newton
-     * iterations tolerate). */
-    sw_pkg_t *P = pkg;
-    const int n = P->n;
-    const double rt_eps = 1.4901161193847656e-08; /* sqrt(DBL_EPSILON) */
-    double f0[SW_NMAX], f1[SW_NMAX], yp[SW_NMAX];
-    sw_model_rhs(t, y, f0, P);
-    memcpy(yp, y, sizeof(double) * (size_t)n);
-    for (int j = 0; j < n; j++) {
-        yp[j] = y[j] + rt_eps * (fabs(y[j]) + P->yscale[j]);
-        const double dj = yp[j] - y[j]; /* the step as represented */
-        sw_model_rhs(t, yp, f1, P);
-        for (int i = 0; i < n; i++) dfdy[i * n + j] = (f1[i] - f0[i]) / dj;
-        yp[j] = y[j];
-    }
-    const double tp = t + rt_eps * fmax(fabs(t), 1e-3), dt = tp - t;
-    sw_model_rhs(tp, y, f1, P);
-    for (int i = 0; i < n; i++) dfdt[i] = (f1[i] - f0[i]) / dt;
-    return GSL_SUCCESS;
-}
 
 /* One row per scheme: adding a scheme is adding a row.  stab: see the top
  * of this file.  gsl_odeiv2_step_* are variables, not constants: the rows

@@ -31,12 +31,12 @@ static int stable_step(const sw_ctx_t *C, sw_pkg_t *P, double dt, char *msg, siz
 {
     const sw_scheme_t *S = C->scheme;
     sw_mode_t m[SW_MODES_MAX];
-    const int n = sw_model_modes(&P->d, P->g, m);
+    const int n = sw_model_modes(&P->m.d, P->m.g, m);
     int w = -1;
     const double hs = sw_scheme_stable_dt(S, m, n, &w); /* s */
     /* in the units of a tracked contact rate, omega_max at rest */
-    if (P->d.omega_max > 0.0 && hs < INFINITY)
-        P->stab_rate = hs * P->d.omega_max;
+    if (P->m.d.omega_max > 0.0 && hs < INFINITY)
+        P->stab_rate = hs * P->m.d.omega_max;
     if (w < 0 || !(C->dt_forced ? dt > hs : hs == 0.0))
         goto ok;
     if (msg && msglen && hs > 0.0) {
@@ -76,44 +76,45 @@ int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double 
         if (r != SW_OK)
             return r;
     }
-    if (S->stab > 0.0 && P->d.omega_max > 0.0) {
-        const double bound = S->stab / P->d.omega_max; /* s */
+    if (S->stab > 0.0 && P->m.d.omega_max > 0.0) {
+        const double bound = S->stab / P->m.d.omega_max; /* s */
         if (C->dt_forced && dt > bound) {
             if (msg && msglen)
                 snprintf(msg, msglen,
                          "scene '%s': dt = %g s gives omega*dt = %.3g, above the %s stability "
                          "bound %.3g for the scene's fastest frequency omega = %.4g rad/s "
                          "(use dt <= %.3g s)",
-                         P->scene.name, dt, P->d.omega_max * dt, S->name, S->stab, P->d.omega_max,
-                         bound);
+                         P->scene.name, dt, P->m.d.omega_max * dt, S->name, S->stab,
+                         P->m.d.omega_max, bound);
             return SW_EUNSTABLE;
         }
         /* Sub-step so that omega_max h <= 0.5: inside every explicit
          * scheme's stability bound, and accurate enough for the fast
          * bearing mode that decides uplift. */
-        if (!C->dt_forced && P->h > 0.5 / P->d.omega_max)
-            P->h = 0.5 / P->d.omega_max;
+        if (!C->dt_forced && P->h > 0.5 / P->m.d.omega_max)
+            P->h = 0.5 / P->m.d.omega_max;
     }
-    P->step = S->step_for[P->d.model] ? S->step_for[P->d.model] : S->step;
-    P->advance = S->advance_for[P->d.model] ? S->advance_for[P->d.model] : S->advance;
+    P->step = S->step_for[P->m.d.model] ? S->step_for[P->m.d.model] : S->step;
+    P->advance = S->advance_for[P->m.d.model] ? S->advance_for[P->m.d.model] : S->advance;
     P->sys.function = sw_model_rhs;
     P->sys.jacobian = S->implicit ? sw_model_jacobian : NULL;
-    P->sys.dimension = (size_t)P->n;
-    P->sys.params = P;
+    P->sys.dimension = (size_t)P->m.n;
+    P->msys = (sw_model_sys_t){&P->m, &P->scr};
+    P->sys.params = &P->msys;
     if (!S->gsl_type)
         return SW_OK;
     rtol = rtol > 0.0 ? rtol : 1e-10;
     atol = atol > 0.0 ? atol : 1e-12;
-    if (P->iz >= 0) {
+    if (P->m.iz >= 0) {
         /* resolve the contact: an absolute tolerance above the static
          * deflection (m) or the lift angle z_s/b (rad) of a very stiff
          * cushion would leave it to noise */
-        const double zs = P->yscale[P->iz];
-        atol = fmin(atol, 1e-3 * fmin(zs, zs / P->d.b));
+        const double zs = P->m.yscale[P->m.iz];
+        atol = fmin(atol, 1e-3 * fmin(zs, zs / P->m.d.b));
     }
-    P->gstep = gsl_odeiv2_step_alloc(*S->gsl_type, (size_t)P->n);
+    P->gstep = gsl_odeiv2_step_alloc(*S->gsl_type, (size_t)P->m.n);
     P->gctl = gsl_odeiv2_control_y_new(atol, rtol);
-    P->gevo = gsl_odeiv2_evolve_alloc((size_t)P->n);
+    P->gevo = gsl_odeiv2_evolve_alloc((size_t)P->m.n);
     if (!P->gstep || !P->gctl || !P->gevo) {
         if (msg && msglen)
             snprintf(msg, msglen, "out of memory");
@@ -125,7 +126,8 @@ int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double 
 
 void sw_step_bind(sw_pkg_t *P)
 {
-    P->sys.params = P;
+    P->msys = (sw_model_sys_t){&P->m, &P->scr};
+    P->sys.params = &P->msys;
     if (!P->gstep || !P->sys.jacobian)
         return;
     /* GSL's implicit steppers read their Newton tolerances from the
@@ -174,9 +176,11 @@ int sw_step_input_unstable(const sw_ctx_t *C, const sw_pkg_t *P, double t0, doub
     const double stab = C->scheme->stab;
     if (!(stab > 0.0))
         return 0; /* GSL shortens its steps itself */
-    const double a = sw_max2(sw_max2(fabs(sw_input_ag(P->in, t0)), fabs(sw_input_ag(P->in, t1))),
-                             sw_max2(fabs(sw_input_geff(P, t0)), fabs(sw_input_geff(P, t1))));
-    return !(P->kR * a * P->h * P->h <= stab * stab); /* NaN: unstable */
+    const double a =
+        sw_max2(sw_max2(fabs(sw_input_ag(P->m.in, t0)), fabs(sw_input_ag(P->m.in, t1))),
+                sw_max2(fabs(sw_input_geff(P->m.in, P->m.g, t0)),
+                        fabs(sw_input_geff(P->m.in, P->m.g, t1))));
+    return !(P->m.kR * a * P->h * P->h <= stab * stab); /* NaN: unstable */
 }
 
 int sw_step_fixed(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *hout)
@@ -189,7 +193,7 @@ int sw_step_evolve(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h)
 {
     const double t0 = P->t, rem = sw_min2(t1 - t0, C->hmax);
     double tt = t0;
-    memcpy(y1, P->y, sizeof(double) * (size_t)P->n);
+    memcpy(y1, P->y, sizeof(double) * (size_t)P->m.n);
     if (P->h_adapt > rem)
         P->h_adapt = rem;
     const int st =
@@ -213,7 +217,7 @@ int sw_restep_gsl(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const dou
 {
     (void)C;
     double yerr[SW_NMAX];
-    memcpy(y1, y0, sizeof(double) * (size_t)P->n);
+    memcpy(y1, y0, sizeof(double) * (size_t)P->m.n);
     return gsl_odeiv2_step_apply(P->gstep, t0, h, y1, yerr, NULL, NULL, &P->sys) == GSL_SUCCESS
                ? SW_OK
                : SW_EGSL;
@@ -226,8 +230,8 @@ int sw_restep_hermite(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const
                       double y1[])
 {
     double f0[SW_NMAX], f1[SW_NMAX];
-    sw_model_rhs(t0, y0, f0, P);
-    sw_model_rhs(t0 + C->step_h, C->step_y1, f1, P);
-    sw_herm_state(P->n, C->step_h, y0, f0, C->step_y1, f1, h / C->step_h, y1);
+    sw_model_rhs(t0, y0, f0, &P->msys);
+    sw_model_rhs(t0 + C->step_h, C->step_y1, f1, &P->msys);
+    sw_herm_state(P->m.n, C->step_h, y0, f0, C->step_y1, f1, h / C->step_h, y1);
     return SW_OK;
 }

@@ -1,11 +1,12 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* stuck.c - exact solutions of a package standing on its support, so that a
- * package at rest costs almost nothing: a stuck bare block has no dynamics
- * (the uplift time is solved for on the linear input), and with the
- * fixed-step schemes a stuck frame is advanced over a whole sample
- * interval, or a gap of any length, with the exact solution of its linear
- * oscillator, uplift located on that solution.  Needs only the package's
- * parameters and the input. */
+ * package at rest costs almost nothing, as its model stands (ops->stands):
+ * a block stuck on the bed has no dynamics (the uplift time is solved for
+ * on the linear input), and with the fixed-step schemes a package stuck on
+ * its frame is advanced over a whole sample interval, or a gap of any
+ * length, with the exact solution of the frame's linear oscillator, uplift
+ * located on that solution.  Needs only the package's parameters and the
+ * input; the phase machine does what follows an uplift. */
 #include <float.h>
 #include <math.h>
 
@@ -18,12 +19,12 @@
  * interval is scanned at the package's step and the crossing bisected. */
 static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
 {
-    if ((*side = sw_bare_uplift_side(P, t)) != 0)
+    if ((*side = sw_bare_uplift_side(&P->m, t)) != 0)
         return t;
-    const sw_input_t *in = P->in;
+    const sw_input_t *in = P->m.in;
     if (!in->fn) {
-        const double ta = P->tan_alpha;
-        const double a0 = sw_input_ag(in, t), z0 = sw_input_geff(P, t);
+        const double ta = P->m.tan_alpha;
+        const double a0 = sw_input_ag(in, t), z0 = sw_input_geff(P->m.in, P->m.g, t);
         const double best_fwd_q0 = a0 + ta * z0, best_fwd_q1 = in->ag_slope + ta * in->az_slope;
         const double back_q0 = a0 - ta * z0, back_q1 = in->ag_slope - ta * in->az_slope;
         double tu = INFINITY;
@@ -47,7 +48,7 @@ static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
         /* the threshold tan(alpha) g_eff reached with g_eff itself at 0:
          * the bed falls away, the package leaves level (a take-off, the
          * engine's), it does not tip to a side */
-        if (!(sw_input_geff(P, fmax(t, tu)) > 1e-9 * P->g))
+        if (!(sw_input_geff(P->m.in, P->m.g, fmax(t, tu)) > 1e-9 * P->m.g))
             return -1.0;
         return fmax(t, tu);
     }
@@ -58,17 +59,17 @@ static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
     double ta = t;
     for (int i = 1; i <= (nsub > 0 ? nsub : 1); i++) {
         const double tb = i == nsub ? t1 : t + (t1 - t) * i / nsub;
-        const int sb = sw_bare_uplift_side(P, tb);
+        const int sb = sw_bare_uplift_side(&P->m, tb);
         if (sb != 0) {
             double lo = ta, hi = tb;
             for (int it = 0; it < 60 && hi - lo > 1e-15 * fmax(1.0, fabs(hi)); it++) {
                 const double m = 0.5 * (lo + hi);
-                if (sw_bare_uplift_side(P, m) != 0)
+                if (sw_bare_uplift_side(&P->m, m) != 0)
                     hi = m;
                 else
                     lo = m;
             }
-            *side = sw_bare_uplift_side(P, hi);
+            *side = sw_bare_uplift_side(&P->m, hi);
             if (*side == 0)
                 *side = sb;
             return hi;
@@ -146,7 +147,7 @@ static void nj_coef_wz(double w, double z, double H, nj_t *c)
 
 static void nj_coef(const sw_pkg_t *P, double H, nj_t *c)
 {
-    nj_coef_wz(P->d.omega_b, P->d.zeta_b, H, c);
+    nj_coef_wz(P->m.d.omega_b, P->m.d.zeta_b, H, c);
 }
 
 /* nj_coef for the sample interval: sample times such as i / 1000 give
@@ -167,7 +168,7 @@ static void nj_coef_cached(sw_pkg_t *P, double H, nj_t *c)
         k[4] = c->i2;
         return;
     }
-    const double w = P->d.omega_b, zw = P->d.zeta_b * w;
+    const double w = P->m.d.omega_b, zw = P->m.d.zeta_b * w;
     c->g = k[1] + dH * k[2];
     c->gd = k[2] + dH * (-2.0 * zw * k[2] - w * w * k[1]);
     c->i1 = k[3] + dH * k[1];
@@ -189,7 +190,7 @@ static void nj_state_wz(double w, double z, const nj_t *c, double a0, double s, 
 static void nj_state(const sw_pkg_t *P, const nj_t *c, double a0, double s, const double u0[2],
                      double u1[2])
 {
-    nj_state_wz(P->d.omega_b, P->d.zeta_b, c, a0, s, u0, u1);
+    nj_state_wz(P->m.d.omega_b, P->m.d.zeta_b, c, a0, s, u0, u1);
 }
 
 void sw_nj_step(double w, double zeta, double H, double a0, double s, const double u0[2],
@@ -205,7 +206,7 @@ void sw_nj_step(double w, double zeta, double H, double a0, double s, const doub
  * particular solution).  D and D' after H from (D0, D0'). */
 static void nj_free(const sw_pkg_t *P, const nj_t *c, const double d0[2], double d1[2])
 {
-    const double w = P->d.omega_b, zw = P->d.zeta_b * w;
+    const double w = P->m.d.omega_b, zw = P->m.d.zeta_b * w;
     d1[0] = (c->gd + 2.0 * zw * c->g) * d0[0] + c->g * d0[1];
     d1[1] = -w * w * c->g * d0[0] + c->gd * d0[1];
 }
@@ -215,7 +216,7 @@ static void nj_free(const sw_pkg_t *P, const nj_t *c, const double d0[2], double
  * 1/wd, 1/(e (zw - wo))) in the three cases. */
 static double nj_bound(const sw_pkg_t *P, const double d[2], double L)
 {
-    const double w = P->d.omega_b, z = P->d.zeta_b, zw = z * w;
+    const double w = P->m.d.omega_b, z = P->m.d.zeta_b, zw = z * w;
     const double kap = w * w * (1.0 - z) * (1.0 + z), q = d[1] + zw * d[0];
     double smax = L;
     if (kap > 0.0) {
@@ -246,11 +247,11 @@ static void nj_G(const nj_piece_t *pc, double tau, double G[3])
     double d[2];
     nj_coef(P, tau, &c);
     nj_free(P, &c, pc->d0, d);
-    const double w = P->d.omega_b, zw = P->d.zeta_b * w;
-    const double t = pc->ta + tau, ta = P->tan_alpha;
+    const double w = P->m.d.omega_b, zw = P->m.d.zeta_b * w;
+    const double t = pc->ta + tau, ta = P->m.tan_alpha;
     const double dd = -2.0 * zw * d[1] - w * w * d[0];
-    G[0] = pc->sg * (sw_input_ag(P->in, t) + d[0]) - ta * sw_input_geff(P, t);
-    G[1] = pc->sg * (P->in->ag_slope + d[1]) - ta * P->in->az_slope;
+    G[0] = pc->sg * (sw_input_ag(P->m.in, t) + d[0]) - ta * sw_input_geff(P->m.in, P->m.g, t);
+    G[1] = pc->sg * (P->m.in->ag_slope + d[1]) - ta * P->m.in->az_slope;
     G[2] = pc->sg * dd;
 }
 
@@ -328,22 +329,22 @@ static double nj_rise(const nj_piece_t *pc, double L)
 static int confirm_uplift(sw_pkg_t *P, double tp, double tu, double L, const double y[2],
                           double a_tp, int *side)
 {
-    const double s = P->in->ag_slope;
+    const double s = P->m.in->ag_slope;
     for (int it = 0;; it++) {
         nj_t cu;
         double yu[2];
         nj_coef(P, tu, &cu);
         nj_state(P, &cu, a_tp, s, y, yu);
-        P->y[P->iu] = yu[0];
-        P->y[P->idu] = yu[1];
-        const int now = sw_frame_uplift_side(P, tp + tu);
+        P->y[P->m.iu] = yu[0];
+        P->y[P->m.idu] = yu[1];
+        const int now = sw_frame_uplift_side(&P->m, tp + tu, P->y);
         if (now != 0) {
             P->t = tp + tu;
             *side = now;
             return 1;
         }
-        P->y[P->iu] = y[0];
-        P->y[P->idu] = y[1];
+        P->y[P->m.iu] = y[0];
+        P->y[P->m.idu] = y[1];
         if (tu >= L || it >= 40)
             return 0;
         tu = fmin(L, tu + 4.0 * DBL_EPSILON * fmax(1.0, fabs(tp + tu)) * (double)(1L << it));
@@ -359,14 +360,14 @@ static int confirm_uplift(sw_pkg_t *P, double tp, double tu, double L, const dou
  * searched. */
 static double frame_advance(sw_pkg_t *P, double t1, int *side)
 {
-    const double w = P->d.omega_b, zw = P->d.zeta_b * w, ta = P->tan_alpha;
-    const double s = P->in->ag_slope, small = 0.5 / w;
-    if ((*side = sw_frame_uplift_side(P, P->t)) != 0)
+    const double w = P->m.d.omega_b, zw = P->m.d.zeta_b * w, ta = P->m.tan_alpha;
+    const double s = P->m.in->ag_slope, small = 0.5 / w;
+    if ((*side = sw_frame_uplift_side(&P->m, P->t, P->y)) != 0)
         return P->t;
-    double y[2] = {P->y[P->iu], P->y[P->idu]};
+    double y[2] = {P->y[P->m.iu], P->y[P->m.idu]};
     /* D = u'' and D' at the start */
     double d[2];
-    d[0] = -(2.0 * zw * y[1] + w * w * y[0]) - sw_input_ag(P->in, P->t);
+    d[0] = -(2.0 * zw * y[1] + w * w * y[0]) - sw_input_ag(P->m.in, P->t);
     d[1] = -2.0 * zw * d[0] - w * w * y[1] - s;
     double tp = P->t, L = t1 - tp;
     long pieces = 0;
@@ -385,7 +386,7 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
             return -2.0;
         nj_t c;
         double y1[2], d1[2];
-        const double a_tp = sw_input_ag(P->in, tp), a_tb = sw_input_ag(P->in, tb);
+        const double a_tp = sw_input_ag(P->m.in, tp), a_tb = sw_input_ag(P->m.in, tb);
         nj_coef_cached(P, L, &c);
         nj_state(P, &c, a_tp, s, y, y1);
         nj_free(P, &c, d, d1);
@@ -393,7 +394,8 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
          * (good over long pieces once D has decayed), and the chord of W
          * between its exact end values plus L^2/8 max|W''| with W'' = D''
          * (good over short pieces, where a_g and D nearly cancel). */
-        const double T0 = ta * sw_input_geff(P, tp), T1 = ta * sw_input_geff(P, tb);
+        const double T0 = ta * sw_input_geff(P->m.in, P->m.g, tp),
+                     T1 = ta * sw_input_geff(P->m.in, P->m.g, tb);
         const double dd = -2.0 * zw * d[1] - w * w * d[0]; /* D'' and its rate */
         const double ddd[2] = {dd, -2.0 * zw * dd - w * w * d[1]};
         const int clear = fmax(fabs(a_tp + d[0]), fabs(a_tb + d1[0])) - fmin(T0, T1) +
@@ -422,15 +424,15 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
         tp = tb;
         L *= 2.0;
     }
-    P->y[P->iu] = y[0];
-    P->y[P->idu] = y[1];
+    P->y[P->m.iu] = y[0];
+    P->y[P->m.idu] = y[1];
     P->t = t1;
     return -1.0;
 }
 
-int sw_stuck_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
+/* The bare block: stands until the input reaches the threshold. */
+static int stuck_bare(sw_pkg_t *P, double t1, int *side)
 {
-    (void)C;
     if (P->hold) { /* see pkg.c's after_impact: stand for one step, then look again */
         P->hold = 0;
         if (t1 - P->t <= P->h)
@@ -448,11 +450,20 @@ int sw_stuck_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
 /* The exact solution serves sampled input under the fixed-step schemes;
  * pulses (a function input), a package held for a step, the adaptive
  * schemes and comparisons (stuck_stepped) step the stuck frame. */
-int sw_stuck_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
+static int stuck_frame(const sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
 {
-    if (P->in->fn || P->hold || !C->scheme->exact_stuck || C->stuck_stepped)
+    if (P->m.in->fn || P->hold || !C->scheme->exact_stuck || C->stuck_stepped)
         return SW_STUCK_STEP;
     P->sum.steps++;
     const double tu = frame_advance(P, t1, side);
     return tu >= 0.0 ? SW_STUCK_LIFT : tu == -1.0 ? SW_STUCK_STILL : SW_STUCK_FAULT;
+}
+
+int sw_stuck_advance(const sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
+{
+    switch (P->m.ops->stands) {
+        case SW_STANDS_RIGID: return stuck_bare(P, t1, side);
+        case SW_STANDS_OSCILLATOR: return stuck_frame(C, P, t1, side);
+    }
+    return SW_STUCK_STEP;
 }
