@@ -22,11 +22,13 @@ struct sw_engine {
     size_t n;
     sw_pkg_t *pk;
     sw_engine_opts_t o;
-    sw_ctx_t C; /* what the layers share: scheme, options, event sink */
+    sw_step_ctx_t sc; /* what the step and event layers share: the scheme, its options */
+    sw_pkg_ctx_t pc;  /* what the packages share: where their events go */
+    int stuck_exact;  /* a stuck frame takes its exact solution (the scheme allows it) */
     int started;
     int restart;        /* the next sample starts afresh: packages at rest, no bridge */
-    int origin_set;     /* sw_engine_set_origin(): C.origin is not the first sample's time */
-    double t;           /* s, time of the last sample, relative to C.origin */
+    int origin_set;     /* sw_engine_set_origin(): pc.origin is not the first sample's time */
+    double t;           /* s, time of the last sample, relative to pc.origin */
     double t_abs;       /* s, the same as the caller gave it */
     double ag, az;      /* m/s^2, last sample */
     sw_input_t in;      /* input over the interval being integrated */
@@ -65,7 +67,9 @@ static int failed(sw_pkg_t *P, double t1, double t, int code, double *tf)
  * would hide the order of its cases.) */
 static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
 {
-    sw_ctx_t *C = &e->C;
+    sw_step_ctx_t *C = &e->sc;
+    sw_pkg_ctx_t *E = &e->pc;
+    sw_stepper_t *W = &P->st;
     double y1[SW_NMAX], ys[SW_NMAX];
     int guard = 0, same_t = 0, checked = 0;
     while (P->t < t1) {
@@ -75,7 +79,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             break;
         if (P->m.phase == SW_PHASE_STUCK && P->m.ops->stands) {
             int side = 0;
-            const int r = sw_stuck_advance(C, P, t1, &side);
+            const int r = sw_stuck_advance(P, t1, e->stuck_exact, &side);
             if (r == SW_STUCK_STILL)
                 break;
             if (r == SW_STUCK_MOVED)
@@ -83,18 +87,18 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             if (r == SW_STUCK_FAULT)
                 return failed(P, t1, P->t, SW_EFAULT, tf);
             if (r == SW_STUCK_LIFT) {
-                sw_pkg_start_rocking(C, P, P->t, side);
+                sw_pkg_start_rocking(E, P, P->t, side);
                 continue;
             }
         }
         const double t0 = P->t, rem = t1 - t0;
         double h;
         if (!checked) {
-            if (sw_step_input_unstable(C, P, t0, t1))
+            if (sw_step_input_unstable(C, W, t0, t1))
                 return failed(P, t1, t0, SW_EUNSTABLE, tf);
             checked = 1;
         }
-        const int st = sw_step_advance(C, P, t1, y1, &h);
+        const int st = sw_step_advance(C, W, t0, P->y, t1, y1, &h);
         if (st != SW_OK)
             return failed(P, t1, t0, st, tf);
         P->sum.steps++;
@@ -106,10 +110,12 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
         double tau;
         sw_timed_t timed[SW_MAX_CANDS];
         int nt;
-        const int ev = sw_event_find(C, P, t0, h, P->y, y1, &tau, timed, &nt);
+        /* what the phase machine knows that the model's candidates honour */
+        const int flags = (P->hold ? SW_CAND_HELD : 0) | (isnan(P->t_lift) ? 0 : SW_CAND_LIFTED);
+        const int ev = sw_event_find(C, W, flags, t0, h, P->y, y1, &tau, timed, &nt);
         P->hold = 0;
         if (nt)
-            sw_pkg_timed(C, P, timed, nt);
+            sw_pkg_timed(E, P, timed, nt);
         if (ev == SW_EVF_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->m.n);
             P->t = (h == rem) ? t1 : t0 + h;
@@ -118,10 +124,10 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             if (P->m.ops->follow)
                 P->m.ops->follow(&P->m, P->y);
             if (P->m.ops->at_rest)
-                sw_pkg_after_step(C, P);
+                sw_pkg_after_step(E, P);
             continue;
         }
-        const double te = sw_event_polish(C, P, ev, t0, h, P->y, tau, ys);
+        const double te = sw_event_polish(C, W, ev, t0, h, P->y, tau, ys);
         same_t = te - t0 <= 1e-12 * fmax(1.0, fabs(t0)) ? same_t + 1 : 0;
         if (same_t > 64) /* a map that keeps re-triggering without progress */
             return failed(P, t1, t0, SW_EFAULT, tf);
@@ -133,8 +139,8 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             sw_pkg_track_theta(P, P->y[P->m.ith]);
         if (P->m.ops->follow)
             P->m.ops->follow(&P->m, P->y);
-        sw_pkg_on_cut(C, P, ev, te);
-        sw_step_reset(P); /* the map changed the state: the scheme's history is gone */
+        sw_pkg_on_cut(E, P, ev, te);
+        sw_step_reset(W); /* the map changed the state: the scheme's history is gone */
     }
     P->t = t1;
     return SW_OK;
@@ -159,7 +165,7 @@ static double take_off_time(const sw_pkg_t *P, double t0, double t1)
  * faster than gravity), for the summary; P->m.flying and P->fl_t0 say one
  * is going on.  Its support holds it horizontally in the air too
  * (physics.md): a long flight is where that is doubtful. */
-static void time_in_air(sw_ctx_t *C, sw_pkg_t *P, double t0, double t1)
+static void time_in_air(sw_pkg_ctx_t *C, sw_pkg_t *P, double t0, double t1)
 {
     const sw_input_t *in = P->m.in;
     const double g0 = sw_input_geff(in, P->m.g, t0), g1 = sw_input_geff(in, P->m.g, t1); /* m/s^2 */
@@ -188,7 +194,7 @@ static void time_in_air(sw_ctx_t *C, sw_pkg_t *P, double t0, double t1)
  * before a take-off ended (it takes off from there once it has faulted). */
 static int advance_flying(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
 {
-    sw_ctx_t *C = &e->C;
+    sw_pkg_ctx_t *C = &e->pc;
     for (int guard = 0; P->t < t1 && P->m.phase != SW_PHASE_OVERTURNED; guard++) {
         if (guard > 1000000) /* take-offs and landings without progress */
             return failed(P, t1, P->t, SW_EFAULT, tf);
@@ -225,8 +231,8 @@ static int advance_flying(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
  * says so (SW_EV_FAULT), and its scheme's error control starts afresh. */
 static void fault(sw_engine_t *e, sw_pkg_t *P, double t, int code)
 {
-    sw_pkg_fault(&e->C, P, t, code);
-    sw_step_forget(P);
+    sw_pkg_fault(&e->pc, P, t, code);
+    sw_step_forget(&P->st);
 }
 
 /* Advance one package from P->t to t1: on its support, and in free flight
@@ -278,7 +284,7 @@ static void report_states(sw_engine_t *e, double t)
     for (size_t i = 0; i < e->n; i++) {
         sw_pkg_t *P = &e->pk[i];
         sw_output_t o;
-        if (e->C.outcome_only && !e->o.on_state) {
+        if (e->o.outcome_only && !e->o.on_state) {
             /* no one reads the report (its margins cost about a step):
              * only the last line of defence */
             sw_model_to_state(&P->m, P->y, &o.state);
@@ -294,7 +300,7 @@ static void report_states(sw_engine_t *e, double t)
             sw_model_output(&P->m, &P->scr, t, P->y, &o);
         }
         o.pkg = i;
-        o.t = e->C.origin + t;
+        o.t = e->pc.origin + t;
         if (o.margin < P->sum.min_margin)
             P->sum.min_margin = o.margin;
         if (o.margin_bound < P->sum.min_margin_bound)
@@ -312,7 +318,7 @@ static void pkg_reset(sw_pkg_t *P)
 {
     sw_pkg_rest(P);
     P->t = 0.0;
-    P->h_adapt = P->h;
+    P->st.h_adapt = P->st.h;
     P->h_used = 0.0;
     memset(&P->sum, 0, sizeof P->sum);
     snprintf(P->sum.name, sizeof P->sum.name, "%s", P->scene.name);
@@ -324,7 +330,7 @@ static void pkg_reset(sw_pkg_t *P)
      * stuck frame's coefficients of its last interval) changes a bit of
      * the next. */
     memset(P->nj_cache, 0, sizeof P->nj_cache);
-    sw_step_reset(P);
+    sw_step_reset(&P->st);
 }
 
 /* Build package number index of e from scene into P (zeroed), for the
@@ -342,8 +348,9 @@ static int pkg_init(sw_engine_t *e, sw_pkg_t *P, const sw_scene_t *scene, size_t
     sw_model_setup(&P->m, &P->scr, &P->scene);
     P->index = index;
     P->m.in = &e->in;
-    const double dt = e->o.dt > 0.0 ? e->o.dt : e->C.scheme->default_dt; /* s */
-    return sw_step_init(&e->C, P, dt, e->o.rtol, e->o.atol, msg, msglen);
+    const double dt = e->o.dt > 0.0 ? e->o.dt : e->sc.scheme->default_dt; /* s */
+    return sw_step_init(&e->sc, &P->st, &P->m, &P->scr, P->scene.name, dt, e->o.rtol, e->o.atol,
+                        msg, msglen);
 }
 
 /* ---- public API ------------------------------------------------------- */
@@ -356,7 +363,7 @@ void sw_engine_reset(sw_engine_t *e)
     e->restart = 0;
     e->origin_set = 0;
     e->t = e->t_abs = NAN;
-    e->C.origin = 0.0;
+    e->pc.origin = 0.0;
     e->ag = e->az = 0.0;
     memset(&e->in, 0, sizeof e->in);
     for (size_t i = 0; i < e->n; i++) pkg_reset(&e->pk[i]);
@@ -367,7 +374,7 @@ void sw_engine_destroy(sw_engine_t *e)
 {
     if (!e)
         return;
-    for (size_t i = 0; i < e->n; i++) sw_step_free(&e->pk[i]);
+    for (size_t i = 0; i < e->n; i++) sw_step_free(&e->pk[i].st);
     sw_engine_destroy(e->check);
     free(e->pk);
     free(e);
@@ -426,7 +433,7 @@ static int resolve_accuracy(sw_engine_t *e, const sw_scene_t *scenes, size_t n, 
     }
     e->o.dt_forced = 0;
     e->o.accuracy = 0.0; /* resolved: e->o now names the scheme */
-    e->C.hmax = SW_ACCURACY_HMAX;
+    e->sc.hmax = SW_ACCURACY_HMAX;
     return SW_OK;
 }
 
@@ -442,9 +449,9 @@ static void make_check(sw_engine_t *e, const sw_scene_t *scenes, size_t n)
     sw_engine_t *c = sw_engine_create(scenes, n, &d, NULL, NULL, 0);
     if (!c)
         return;
-    int same = c->C.scheme == e->C.scheme &&
-               (!e->C.scheme->adaptive || (!(e->o.rtol > 0.0) && !(e->o.atol > 0.0)));
-    for (size_t i = 0; same && i < n; i++) same = c->pk[i].h == e->pk[i].h;
+    int same = c->sc.scheme == e->sc.scheme &&
+               (!e->sc.scheme->adaptive || (!(e->o.rtol > 0.0) && !(e->o.atol > 0.0)));
+    for (size_t i = 0; same && i < n; i++) same = c->pk[i].st.h == e->pk[i].st.h;
     if (same)
         sw_engine_destroy(c);
     else
@@ -488,15 +495,13 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
         fail(err, SW_EINVAL, msg, msglen, "dt, rtol, atol and rest_eps must be >= 0");
         goto out_fail;
     }
-    const double hmax = e->C.hmax > 0.0 ? e->C.hmax : INFINITY; /* s */
-    e->C = (sw_ctx_t){.scheme = S,
-                      .hmax = hmax,
-                      .rest_eps = e->o.rest_eps > 0.0 ? e->o.rest_eps : 1e-9,
-                      .dt_forced = e->o.dt_forced,
-                      .stuck_stepped = e->o.stuck_stepped,
-                      .outcome_only = e->o.outcome_only,
-                      .on_event = e->o.on_event,
-                      .user = e->o.user};
+    const double hmax = e->sc.hmax > 0.0 ? e->sc.hmax : INFINITY; /* s */
+    e->sc = (sw_step_ctx_t){
+        .scheme = S, .hmax = hmax, .dt_forced = e->o.dt_forced, .outcome_only = e->o.outcome_only};
+    e->pc = (sw_pkg_ctx_t){.rest_eps = e->o.rest_eps > 0.0 ? e->o.rest_eps : 1e-9,
+                           .on_event = e->o.on_event,
+                           .user = e->o.user};
+    e->stuck_exact = S->exact_stuck && !e->o.stuck_stepped;
     e->dt_req = e->o.dt > 0.0 ? e->o.dt : S->default_dt;
     for (size_t i = 0; i < n; i++) {
         buf[0] = '\0';
@@ -524,7 +529,7 @@ static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
         if (P->m.phase == SW_PHASE_OVERTURNED || P->m.flying)
             return;
         if (P->m.ops->flies)
-            sw_flight_take_off(&e->C, P, t);
+            sw_flight_take_off(&e->pc, P, t);
         else
             fault(e, P, t, SW_EFAULT);
         return;
@@ -533,7 +538,7 @@ static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
         return;
     const int side = P->m.ops->uplift_side(&P->m, t, P->y);
     if (side)
-        sw_pkg_start_rocking(&e->C, P, t, side);
+        sw_pkg_start_rocking(&e->pc, P, t, side);
 }
 
 /* The stream starts (or starts again, after sw_engine_restart()) at t
@@ -576,30 +581,30 @@ static int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
         return SW_ENONFINITE;
     if (fabs(a_g) > SW_MAX_ACCEL || fabs(a_z) > SW_MAX_ACCEL)
         return SW_ETOOBIG;
-    e->C.events = 0;
+    e->pc.events = 0;
     if (!e->started) {
         if (coarse_time(t_abs))
             return SW_ERESOLUTION;
         if (e->origin_set) {
-            const double t = t_abs - e->C.origin;
+            const double t = t_abs - e->pc.origin;
             if (!(t >= 0.0))
                 return SW_EORDER;
             e->t_abs = t_abs;
             start_at(e, t, a_g, a_z);
             report_states(e, t);
-            return e->C.events ? SW_EVENT : SW_OK;
+            return e->pc.events ? SW_EVENT : SW_OK;
         }
-        e->C.origin = t_abs;
+        e->pc.origin = t_abs;
         e->t_abs = t_abs;
         start_at(e, 0.0, a_g, a_z);
         report_states(e, 0.0);
-        return e->C.events ? SW_EVENT : SW_OK;
+        return e->pc.events ? SW_EVENT : SW_OK;
     }
     if (!(t_abs > e->t_abs))
         return SW_EORDER;
     if (coarse_time(t_abs))
         return SW_ERESOLUTION;
-    const double t = t_abs - e->C.origin; /* s, relative */
+    const double t = t_abs - e->pc.origin; /* s, relative */
     /* Rounding keeps the order but not the difference: two absolute times
      * closer than the relative time's resolution are one time here. */
     if (!(t > e->t))
@@ -609,7 +614,7 @@ static int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
         e->restart = 0;
         start_at(e, t, a_g, a_z);
         report_states(e, t);
-        return e->C.events ? SW_EVENT : SW_OK;
+        return e->pc.events ? SW_EVENT : SW_OK;
     }
     const double span = t - e->t;
     e->in = (sw_input_t){.t0 = e->t,
@@ -623,18 +628,18 @@ static int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
     e->az = a_z;
     e->in = (sw_input_t){.t0 = t, .ag0 = a_g, .az0 = a_z};
     report_states(e, t);
-    return e->C.events ? SW_EVENT : SW_OK;
+    return e->pc.events ? SW_EVENT : SW_OK;
 }
 
 /* Advance to t1 (relative) with a_g = f(user, absolute time). */
 static int advance_to(sw_engine_t *e, double t1, sw_input_fn f, void *user)
 {
-    e->C.events = 0;
-    e->in = (sw_input_t){.fn = f, .fn_user = user, .fn_t0 = e->C.origin};
+    e->pc.events = 0;
+    e->in = (sw_input_t){.fn = f, .fn_user = user, .fn_t0 = e->pc.origin};
     if (!e->started) {
         e->started = 1;
         e->t = 0.0;
-        e->t_abs = e->C.origin;
+        e->t_abs = e->pc.origin;
         for (size_t i = 0; i < e->n; i++) initial_uplift(e, &e->pk[i], 0.0);
     }
     if (!(t1 > e->t))
@@ -642,12 +647,12 @@ static int advance_to(sw_engine_t *e, double t1, sw_input_fn f, void *user)
     e->restart = 0; /* a function input is defined everywhere: nothing to bridge */
     for (size_t i = 0; i < e->n; i++) advance_pkg(e, &e->pk[i], t1);
     e->t = t1;
-    e->t_abs = e->C.origin + t1;
+    e->t_abs = e->pc.origin + t1;
     e->ag = f(user, e->t_abs);
     e->az = 0.0;
     report_states(e, t1);
     e->in = (sw_input_t){.t0 = t1, .ag0 = e->ag};
-    return e->C.events ? SW_EVENT : SW_OK;
+    return e->pc.events ? SW_EVENT : SW_OK;
 }
 
 int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
@@ -656,9 +661,9 @@ int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
         return SW_EINVAL;
     if (coarse_time(t1))
         return SW_ERESOLUTION;
-    const int rc = advance_to(e, t1 - e->C.origin, f, user);
+    const int rc = advance_to(e, t1 - e->pc.origin, f, user);
     if (rc >= 0 && e->check)
-        advance_to(e->check, t1 - e->check->C.origin, f, user);
+        advance_to(e->check, t1 - e->check->pc.origin, f, user);
     return rc;
 }
 
@@ -668,7 +673,7 @@ int sw_engine_set_origin(sw_engine_t *e, double t0)
         return SW_EINVAL;
     if (coarse_time(t0))
         return SW_ERESOLUTION;
-    e->C.origin = t0;
+    e->pc.origin = t0;
     e->origin_set = 1;
     if (e->check)
         sw_engine_set_origin(e->check, t0);
@@ -685,7 +690,7 @@ int sw_engine_restart(sw_engine_t *e)
         sw_pkg_t *P = &e->pk[i];
         if (P->m.phase != SW_PHASE_OVERTURNED) {
             sw_pkg_rest(P);
-            sw_step_reset(P);
+            sw_step_reset(&P->st);
         }
     }
     e->restart = 1;
@@ -715,7 +720,7 @@ int sw_engine_finish(sw_engine_t *e, double settle)
     while (e->t < t_end && !(e->stop && *e->stop)) {
         int moving = 0;
         for (size_t i = 0; i < e->n; i++)
-            if (e->pk[i].m.ops->moving(&e->pk[i].m, e->pk[i].y, e->C.rest_eps))
+            if (e->pk[i].m.ops->moving(&e->pk[i].m, e->pk[i].y, e->pc.rest_eps))
                 moving = 1;
         if (!moving)
             break;
@@ -744,7 +749,7 @@ int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
     P->m.flying = 0; /* a state given is on its support */
     sw_model_from_state(&P->m, P->y, s);
     P->beyond_alpha = fabs(P->y[P->m.ith]) >= P->m.d.alpha;
-    sw_step_reset(P);
+    sw_step_reset(&P->st);
     if (e->check)
         sw_engine_set_state(e->check, pkg, s);
     return SW_OK;
@@ -765,7 +770,7 @@ int sw_engine_get_output(const sw_engine_t *e, size_t pkg, sw_output_t *out)
     const sw_pkg_t *P = &e->pk[pkg];
     const double t = e->started ? e->t : 0.0;
     sw_model_output(&P->m, &P->scr, t, P->y, out);
-    out->t = e->C.origin + t;
+    out->t = e->pc.origin + t;
     out->pkg = pkg;
     return SW_OK;
 }
@@ -797,21 +802,21 @@ int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s)
             s->flight_long_time = P->fl_t0;
     }
     /* kept relative, reported as the caller's times (NAN stays NAN) */
-    s->overturn_time += e->C.origin;
-    s->tip_time += e->C.origin;
-    s->uplift_time += e->C.origin;
-    s->flight_long_time += e->C.origin;
+    s->overturn_time += e->pc.origin;
+    s->tip_time += e->pc.origin;
+    s->uplift_time += e->pc.origin;
+    s->flight_long_time += e->pc.origin;
     return SW_OK;
 }
 
 const char *sw_engine_scheme(const sw_engine_t *e)
 {
-    return e ? e->C.scheme->name : NULL;
+    return e ? e->sc.scheme->name : NULL;
 }
 
 double sw_engine_dt(const sw_engine_t *e, size_t pkg)
 {
-    return e && pkg < e->n ? e->pk[pkg].h : NAN;
+    return e && pkg < e->n ? e->pk[pkg].st.h : NAN;
 }
 
 double sw_engine_dt_used(const sw_engine_t *e, size_t pkg)
@@ -819,7 +824,7 @@ double sw_engine_dt_used(const sw_engine_t *e, size_t pkg)
     if (!e || pkg >= e->n)
         return NAN;
     const sw_pkg_t *P = &e->pk[pkg];
-    return !e->C.scheme->adaptive && P->h_used > 0.0 ? P->h_used : P->h;
+    return !e->sc.scheme->adaptive && P->h_used > 0.0 ? P->h_used : P->st.h;
 }
 
 double sw_engine_dt_requested(const sw_engine_t *e)
@@ -868,13 +873,13 @@ int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char 
     memset(&fresh, 0, sizeof fresh);
     const int r = pkg_init(e, &fresh, scene, pkg, msg, msglen);
     if (r != SW_OK) {
-        sw_step_free(&fresh);
+        sw_step_free(&fresh.st);
         return r;
     }
     sw_pkg_t *P = &e->pk[pkg];
-    sw_step_free(P);
+    sw_step_free(&P->st);
     *P = fresh;
-    sw_step_bind(P);
+    sw_step_bind(&P->st, &P->m, &P->scr);
     pkg_reset(P);
     P->t = e->started ? e->t : 0.0;
     if (e->check && sw_engine_replace(e->check, pkg, scene, NULL, 0) != SW_OK) {

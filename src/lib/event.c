@@ -26,22 +26,22 @@
 #include "swaywatch/status.h"
 
 /* The event function's interpolant over the step. */
-static sw_herm_t interpolant(const sw_pkg_t *P, int ev, double t0, double h, const double y0[],
+static sw_herm_t interpolant(const sw_model_t *M, int ev, double t0, double h, const double y0[],
                              const double f0[], const double y1[], const double f1[], double v[2],
                              double d[2])
 {
-    P->m.ops->event_fn(&P->m, ev, t0, y0, f0, &v[0], &d[0]);
-    P->m.ops->event_fn(&P->m, ev, t0 + h, y1, f1, &v[1], &d[1]);
+    M->ops->event_fn(M, ev, t0, y0, f0, &v[0], &d[0]);
+    M->ops->event_fn(M, ev, t0 + h, y1, f1, &v[1], &d[1]);
     return sw_herm_make(v[0], d[0], v[1], d[1], h);
 }
 
 /* Where the candidate's function rises through 0 over the step, in [0, 1]
  * by its rule (SW_RULE_*), or -1. */
-static double root_of(const sw_pkg_t *P, const sw_evcand_t *c, double t0, double h,
+static double root_of(const sw_model_t *M, const sw_evcand_t *c, double t0, double h,
                       const double y0[], const double f0[], const double y1[], const double f1[])
 {
     double v[2], d[2];
-    const sw_herm_t H = interpolant(P, c->ev, t0, h, y0, f0, y1, f1, v, d);
+    const sw_herm_t H = interpolant(M, c->ev, t0, h, y0, f0, y1, f1, v, d);
     if (c->clear && v[1] < 0.0 && v[0] < 0.0 &&
         fmax(v[0], v[1]) < -0.5 * h * (fabs(d[0]) + fabs(d[1])))
         return -1.0; /* clearly below the threshold all step */
@@ -63,14 +63,14 @@ static double root_of(const sw_pkg_t *P, const sw_evcand_t *c, double t0, double
 /* The peak of |theta| inside a step: where the turn function rises before
  * tau = lim, polished by re-stepping so that max |theta| is as accurate as
  * the scheme, even for long adaptive steps.  1 with the peak in *out. */
-static int find_peak(const sw_ctx_t *C, sw_pkg_t *P, const sw_evcand_t *c, double t0, double h,
-                     const double y0[], const double f0[], const double y1[], const double f1[],
-                     double lim, sw_timed_t *out)
+static int find_peak(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_evcand_t *c, double t0,
+                     double h, const double y0[], const double f0[], const double y1[],
+                     const double f1[], double lim, sw_timed_t *out)
 {
-    const double tau = root_of(P, c, t0, h, y0, f0, y1, f1);
+    const double tau = root_of(W->ms.m, c, t0, h, y0, f0, y1, f1);
     if (!(tau > 0.0 && tau <= lim))
         return 0;
-    out->t = sw_event_polish(C, P, c->ev, t0, h, y0, tau, out->y);
+    out->t = sw_event_polish(C, W, c->ev, t0, h, y0, tau, out->y);
     return 1;
 }
 
@@ -83,21 +83,22 @@ int sw_event_keep_outcome(sw_evcand_t c[], int nc)
     return n;
 }
 
-int sw_event_locate(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
                     const double y1[], const sw_evcand_t c[], int nc, double *tau_out,
                     sw_timed_t timed[], int *ntimed)
 {
+    const sw_model_t *M = W->ms.m;
     const double t1 = t0 + h;
     double f0[SW_NMAX], f1[SW_NMAX];
-    sw_model_rhs(t0, y0, f0, &P->msys);
-    sw_model_rhs(t1, y1, f1, &P->msys);
+    sw_model_rhs(t0, y0, f0, &W->ms);
+    sw_model_rhs(t1, y1, f1, &W->ms);
     /* the earliest cutting event ends the step */
     int best = SW_EVF_NONE;
     double best_tau = 2.0;
     for (int i = 0; i < nc; i++) {
         if (c[i].role != SW_ROLE_CUT)
             continue;
-        const double tau = root_of(P, &c[i], t0, h, y0, f0, y1, f1);
+        const double tau = root_of(M, &c[i], t0, h, y0, f0, y1, f1);
         const int inside = c[i].rule == SW_RULE_KINK ? tau > 0.0 && tau < 1.0 : tau >= 0.0;
         if (inside && tau < best_tau) {
             best_tau = tau;
@@ -113,13 +114,13 @@ int sw_event_locate(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const d
         sw_timed_t *T = &timed[n];
         T->role = c[i].role;
         if (c[i].role == SW_ROLE_PEAK) {
-            n += find_peak(C, P, &c[i], t0, h, y0, f0, y1, f1, lim, T);
+            n += find_peak(C, W, &c[i], t0, h, y0, f0, y1, f1, lim, T);
             continue;
         }
-        const double tau = root_of(P, &c[i], t0, h, y0, f0, y1, f1);
+        const double tau = root_of(M, &c[i], t0, h, y0, f0, y1, f1);
         if (!(tau >= 0.0 && tau <= lim))
             continue;
-        sw_herm_state(P->m.n, h, y0, f0, y1, f1, tau, T->y);
+        sw_herm_state(M->n, h, y0, f0, y1, f1, tau, T->y);
         T->t = t0 + tau * h;
         n++;
     }
@@ -133,20 +134,21 @@ int sw_event_locate(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const d
  * past the crossing (value >= 0): an uplift placed a hair early would leave
  * the package pushed the wrong way and chatter.  Leaves the state at the
  * event in y and returns its time. */
-double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double h,
+double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0, double h,
                        const double y0[], double tau, double y[])
 {
+    const sw_model_t *M = W->ms.m;
     double ts = t0 + tau * h, f[SW_NMAX], v = 0.0, d = 0.0;
     if (tau == 0.0) {
-        memcpy(y, y0, sizeof(double) * (size_t)P->m.n);
+        memcpy(y, y0, sizeof(double) * (size_t)M->n);
         return t0;
     }
     const double t1 = t0 + h;
     for (int it = 0; it < 8; it++) {
-        if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK)
+        if (sw_step_restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             return ts;
-        sw_model_rhs(ts, y, f, &P->msys);
-        P->m.ops->event_fn(&P->m, ev, ts, y, f, &v, &d);
+        sw_model_rhs(ts, y, f, &W->ms);
+        M->ops->event_fn(M, ev, ts, y, f, &v, &d);
         if (v == 0.0 || d == 0.0)
             break;
         double tn = ts - v / d;
@@ -163,10 +165,10 @@ double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double
         double dt = d > 0.0 ? -2.0 * v / d : 0.0;
         dt = fmax(dt, 8.0 * DBL_EPSILON * fmax(1.0, fabs(ts)) * (1 << it));
         ts = fmin(t1, ts + dt);
-        if (sw_step_restep(C, P, t0, ts - t0, y0, y) != SW_OK)
+        if (sw_step_restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             break;
-        sw_model_rhs(ts, y, f, &P->msys);
-        P->m.ops->event_fn(&P->m, ev, ts, y, f, &v, &d);
+        sw_model_rhs(ts, y, f, &W->ms);
+        M->ops->event_fn(M, ev, ts, y, f, &v, &d);
     }
     return ts;
 }

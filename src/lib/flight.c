@@ -47,7 +47,7 @@ static void corner_to_cm(const sw_pkg_t *P, int s, double theta, double *rx, dou
     *ry = P->m.d.R * cos(A);
 }
 
-void sw_flight_note(sw_ctx_t *C, sw_pkg_t *P, double dur)
+void sw_flight_note(sw_pkg_ctx_t *C, sw_pkg_t *P, double dur)
 {
     if (P->fl_long || !(dur > SW_FLIGHT_LONG))
         return;
@@ -57,7 +57,7 @@ void sw_flight_note(sw_ctx_t *C, sw_pkg_t *P, double dur)
     sw_pkg_emit_at(C, P, SW_EV_FLIGHT, P->fl_t0 + SW_FLIGHT_LONG, C->origin + P->fl_t0, NULL);
 }
 
-void sw_flight_take_off(sw_ctx_t *C, sw_pkg_t *P, double t)
+void sw_flight_take_off(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
 {
     const double th = P->y[P->m.ith], w = P->y[P->m.idth]; /* rad, rad/s */
     const double du = P->m.iu >= 0 ? P->y[P->m.idu] : 0.0; /* m/s, the support's */
@@ -153,7 +153,7 @@ static void arc_move(sw_pkg_t *P, const arc_t *a, double tau)
 }
 
 /* Landed at P->t: the map, then rocking on the corner, or standing. */
-static void land(sw_ctx_t *C, sw_pkg_t *P)
+static void land(sw_pkg_ctx_t *C, sw_pkg_t *P)
 {
     const double t = P->t, th = P->y[P->m.ith], w = P->y[P->m.idth];
     const double du = P->m.iu >= 0 ? P->y[P->m.idu] : 0.0;
@@ -161,7 +161,7 @@ static void land(sw_ctx_t *C, sw_pkg_t *P)
     sw_flight_note(C, P, dur);
     P->m.flying = 0;
     P->sum.flight_max = sw_max2(P->sum.flight_max, dur);
-    sw_step_reset(P);
+    sw_step_reset(&P->st);
     int s = th > 0.0 ? 1 : th < 0.0 ? -1 : 0;
     double wp = 0.0, du_after = du;
     if (s) {
@@ -207,7 +207,7 @@ static void land(sw_ctx_t *C, sw_pkg_t *P)
 #define GRID_DT 1e-4  /* s, and at least one per this much of it */
 #define GRID_MAX 4096 /* and at most */
 
-int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1)
+int sw_flight_advance(sw_pkg_ctx_t *C, sw_pkg_t *P, double t1)
 {
     const sw_input_t *in = P->m.in;
     const double t0 = P->t, H = t1 - t0; /* s */
@@ -293,7 +293,7 @@ int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1)
         P->sum.flight_max = sw_max2(P->sum.flight_max, P->t - P->fl_t0);
         P->m.side = a.w > 0.0 ? 1 : -1;
         sw_pkg_on_cut(C, P, SW_EVF_OVERTURN, P->t);
-        sw_step_reset(P);
+        sw_step_reset(&P->st);
         return SW_STUCK_MOVED;
     }
     arc_move(P, &a, H);

@@ -92,37 +92,63 @@ typedef struct {
     sw_model_scratch_t *s;
 } sw_model_sys_t;
 
-/* One fixed step of length h (s) from (t, y) into yout. */
-typedef void (*sw_fixed_step_fn)(sw_pkg_t *P, double t, double h, const double y[], double yout[]);
+typedef struct sw_stepper sw_stepper_t;
 
-/* What the layers of one engine share: its scheme and options, where its
- * events go, and the step being examined (for a multistep re-step).
- * Owned by the engine, embedded in it. */
+/* What the step and event layers of one engine share: its scheme and the
+ * options they read, and the step being examined (for a multistep
+ * re-step).  Owned by the engine, embedded in it. */
 typedef struct {
     const sw_scheme_t *scheme;
-    double rest_eps;      /* rest threshold, a fraction of the energy barrier */
-    int dt_forced;        /* a forced dt is refused, never sub-stepped */
-    int stuck_stepped;    /* step a stuck frame instead of its exact solution */
-    int outcome_only;     /* peaks and tips are not timed (sw_engine_opts_t) */
-    double hmax;          /* s, longest step (SW_ACCURACY_HMAX under the accuracy option,
-                             else INFINITY) */
-    sw_event_fn on_event; /* may be NULL */
-    void *user;
-    double origin;         /* s: the absolute time of the engine's t = 0 (the first
-                              sample's); the layers run on time relative to it */
-    int events;            /* events reported during the current call */
+    int dt_forced;         /* a forced dt is refused, never sub-stepped */
+    int outcome_only;      /* peaks and tips are not timed (sw_engine_opts_t) */
+    double hmax;           /* s, longest step (SW_ACCURACY_HMAX under the accuracy option,
+                              else INFINITY) */
     const double *step_y1; /* end of the step being examined */
     double step_h;         /* s, its length */
-} sw_ctx_t;
+} sw_step_ctx_t;
 
-/* One step from (P->t, P->y) toward t1 into y1; *h gets its length. */
-typedef int (*sw_advance_fn)(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h);
+/* One fixed step of length h (s) from (t, y) into yout. */
+typedef void (*sw_fixed_step_fn)(const sw_model_t *M, sw_model_scratch_t *S, double t, double h,
+                                 const double y[], double yout[]);
+
+/* One step from (t0, y0) toward t1 into y1; *h gets its length. */
+typedef int (*sw_advance_fn)(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[],
+                             double t1, double y1[], double *h);
+
+/* The scheme's work space for one package (step.c), as GSL's step,
+ * control and evolve objects are theirs: bound to the package's model. */
+struct sw_stepper {
+    sw_model_sys_t ms;     /* the model it steps and its scratch (GSL's params) */
+    double h;              /* s, largest internal step for this package */
+    double stab_rate;      /* omega_max h at the edge of the scheme's stability region
+                              for the modes at rest (INFINITY: adaptive, or no mode) */
+    sw_advance_fn advance; /* the scheme's advance for this model */
+    sw_fixed_step_fn step; /* fixed-step schemes: the body for this model */
+    gsl_odeiv2_system sys;
+    gsl_odeiv2_step *gstep; /* adaptive schemes only */
+    gsl_odeiv2_control *gctl;
+    gsl_odeiv2_evolve *gevo;
+    double h_adapt;         /* s, GSL's proposed next step */
+    gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
+};
+
+/* What the packages of one engine share: where their events go and the
+ * rest threshold.  Owned by the engine, embedded in it. */
+typedef struct {
+    double rest_eps;      /* rest threshold, a fraction of the energy barrier */
+    sw_event_fn on_event; /* may be NULL */
+    void *user;
+    double origin; /* s: the absolute time of the engine's t = 0 (the first
+                      sample's); the layers run on time relative to it */
+    int events;    /* events reported during the current call */
+} sw_pkg_ctx_t;
 
 /* One package: its model, state, summary, work space.  Everything is
  * allocated once, when the package is built (pkg_init in engine.c). */
 struct sw_pkg {
     sw_model_t m;           /* the model: parameters, input, mode */
     sw_model_scratch_t scr; /* its right-hand side's scratch */
+    sw_stepper_t st;        /* the scheme's work space */
     sw_scene_t scene;
     size_t index; /* its place in the engine (events and states say it) */
 
@@ -139,22 +165,8 @@ struct sw_pkg {
     double fl_yc;        /* m, height of the centre of mass over the support */
     double fl_vx, fl_vy; /* m/s, its velocity */
     sw_summary_t sum;
-
-    /* stepping (step.c): the scheme's work space for this package */
-    double h;              /* s, largest internal step for this package */
-    double h_used;         /* s, the longest step taken (sw_engine_dt_used) */
-    double stab_rate;      /* omega_max h at the edge of the scheme's stability region
-                              for the modes at rest (INFINITY: adaptive, or no mode) */
-    sw_advance_fn advance; /* the scheme's advance for this model */
-    sw_fixed_step_fn step; /* fixed-step schemes: the body for this model */
-    sw_model_sys_t msys;   /* the system GSL steps: m and scr */
-    gsl_odeiv2_system sys;
-    gsl_odeiv2_step *gstep; /* adaptive schemes only */
-    gsl_odeiv2_control *gctl;
-    gsl_odeiv2_evolve *gevo;
-    double h_adapt;         /* s, GSL's proposed next step */
-    gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
-    double nj_cache[5];     /* stuck.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
+    double h_used;      /* s, the longest step taken (sw_engine_dt_used) */
+    double nj_cache[5]; /* stuck.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
 };
 
 /* ---- small numerical helpers ---------------------------------------------- */
@@ -443,9 +455,9 @@ void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
  * (ops->stands): the bare block's uplift time solved for on the linear
  * input, or the pulse scanned at the package's step and the crossing
  * bisected; the frame's linear oscillator in closed form under sampled
- * input, where exact (the scheme allows it), else SW_STUCK_STEP.  On
- * SW_STUCK_LIFT, *side is the direction. */
-int sw_stuck_advance(const sw_ctx_t *C, sw_pkg_t *P, double t1, int *side);
+ * input where exact is set (the scheme allows it), else SW_STUCK_STEP.
+ * On SW_STUCK_LIFT, *side is the direction. */
+int sw_stuck_advance(sw_pkg_t *P, double t1, int exact, int *side);
 /* The exact step of the damped oscillator u'' + 2 zeta w u' + w^2 u = -a(t),
  * a = a0 + s t, over H (s) from (u, u') = u0 into u1 (Nigam & Jennings, as
  * a stuck frame takes it): for the linear response of other models. */
@@ -474,7 +486,7 @@ struct sw_scheme {
     /* the solution at t0 + h inside the step being examined (step.c:
      * re-step from its start, or the Hermite interpolant of a multistep
      * scheme, which cannot restart without losing its history) */
-    int (*restep)(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+    int (*restep)(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
                   double y1[]);
     /* fixed steps: the body specialised for a model (the right-hand side
      * inlined per stage), or NULL for the generic body below */
@@ -499,11 +511,14 @@ struct sw_scheme {
  * within the bound the package's h keeps at rest (0.5, or the scheme's
  * stability bound for a forced dt).  A template: scheme.c instantiates it
  * per scheme and model with the body known, so that a step is one call. */
-static SW_ALWAYS_INLINE int sw_step_fixed_with(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[],
+static SW_ALWAYS_INLINE int sw_step_fixed_with(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,
+                                               const double y0[], double t1, double y1[],
                                                double *hout, sw_fixed_step_fn body, int track)
 {
-    const double t0 = P->t, rem = t1 - t0;
-    double hmax = P->h, h = rem; /* s */
+    const sw_model_t *M = W->ms.m;
+    sw_model_scratch_t *S = W->ms.s;
+    const double rem = t1 - t0;
+    double hmax = W->h, h = rem; /* s */
     for (int tries = 0;; tries++) {
         if (rem <= hmax) {
             h = rem; /* the common case: a step per sample */
@@ -511,18 +526,18 @@ static SW_ALWAYS_INLINE int sw_step_fixed_with(sw_ctx_t *C, sw_pkg_t *P, double 
             const double nst = ceil(rem / hmax - 1e-9);
             h = nst <= 1.0 ? rem : rem / nst;
         }
-        if (!track || !P->m.ops->tracks_rate) {
-            body(P, t0, h, P->y, y1);
+        if (!track || !M->ops->tracks_rate) {
+            body(M, S, t0, h, y0, y1);
             break;
         }
-        const double bound = sw_min2(C->dt_forced ? C->scheme->stab : 0.5, P->stab_rate);
-        P->scr.rate_seen = 0.0;
-        P->scr.track_rate = 1;
-        body(P, t0, h, P->y, y1);
-        P->scr.track_rate = 0;
-        if (P->scr.rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
+        const double bound = sw_min2(C->dt_forced ? C->scheme->stab : 0.5, W->stab_rate);
+        S->rate_seen = 0.0;
+        S->track_rate = 1;
+        body(M, S, t0, h, y0, y1);
+        S->track_rate = 0;
+        if (S->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
             break;
-        hmax = fmin(0.5 * h, bound / P->scr.rate_seen);
+        hmax = fmin(0.5 * h, bound / S->rate_seen);
     }
     *hout = h;
     return 0; /* SW_OK */
@@ -530,42 +545,46 @@ static SW_ALWAYS_INLINE int sw_step_fixed_with(sw_ctx_t *C, sw_pkg_t *P, double 
 
 /* step.c: the rows' behaviours (the generic fixed advance: the package's
  * body, its rate tracked if its model asks) */
-int sw_step_fixed(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h);
-int sw_step_evolve(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h);
-int sw_restep_fixed(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+int sw_step_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
+                  double y1[], double *h);
+int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
+                   double y1[], double *h);
+int sw_restep_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
                     double y1[]);
-int sw_restep_gsl(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+int sw_restep_gsl(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
                   double y1[]);
-int sw_restep_hermite(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
-                      double y1[]);
+int sw_restep_hermite(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
+                      const double y0[], double y1[]);
 
 /* ---- step.c: one step with the engine's scheme -------------------------------- */
 
 /* Set up the scheme's work space for P (after the model's set-up).
  * Returns SW_OK, SW_EUNSTABLE (forced dt above the stability bound; msg
  * says why) or SW_ENOMEM. */
-int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double atol, char *msg,
-                 size_t msglen);
+int sw_step_init(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
+                 sw_model_scratch_t *S, const char *name, double dt, double rtol, double atol,
+                 char *msg, size_t msglen);
 /* Point the package's GSL system (and an implicit stepper's driver) at P:
  * after sw_step_init, and again after the package is moved in memory. */
-void sw_step_bind(sw_pkg_t *P);
-void sw_step_free(sw_pkg_t *P);
-void sw_step_reset(sw_pkg_t *P);  /* forget the scheme's history (after a map) */
-void sw_step_forget(sw_pkg_t *P); /* restart the error control's count (after a fault) */
+void sw_step_bind(sw_stepper_t *W, const sw_model_t *M, sw_model_scratch_t *S);
+void sw_step_free(sw_stepper_t *W);
+void sw_step_reset(sw_stepper_t *W);  /* forget the scheme's history (after a map) */
+void sw_step_forget(sw_stepper_t *W); /* restart the error control's count (after a fault) */
 /* The input over [t0, t1] makes a fixed step unstable for P? */
-int sw_step_input_unstable(const sw_ctx_t *C, const sw_pkg_t *P, double t0, double t1);
+int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double t0, double t1);
 /* One step from (P->t, P->y) toward t1 (at most t1 - P->t) into y1; *h
  * gets its length.  SW_OK or an error (the package must fault). */
-static inline int sw_step_advance(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h)
+static inline int sw_step_advance(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,
+                                  const double y0[], double t1, double y1[], double *h)
 {
-    return P->advance(C, P, t1, y1, h);
+    return W->advance(C, W, t0, y0, t1, y1, h);
 }
 /* The scheme's solution at t0 + h from (t0, y0), h inside the step being
  * examined: events lie on the scheme's own solution. */
-static inline int sw_step_restep(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h,
+static inline int sw_step_restep(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
                                  const double y0[], double y1[])
 {
-    return C->scheme->restep(C, P, t0, h, y0, y1);
+    return C->scheme->restep(C, W, t0, h, y0, y1);
 }
 
 /* ---- event.c: events inside a step ------------------------------------------- */
@@ -582,7 +601,7 @@ typedef struct {
  * the step (t0, y0) -> (t0 + h, y1) (SW_EVF_NONE if none; *tau its place
  * in [0, 1]); the timed events before it in timed[0..*ntimed), in the
  * order of the candidates (timed has room for nc). */
-int sw_event_locate(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
                     const double y1[], const sw_evcand_t c[], int nc, double *tau,
                     sw_timed_t timed[], int *ntimed);
 /* Keep the candidates that end a step (the dynamics), drop those that only
@@ -590,53 +609,53 @@ int sw_event_locate(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const d
 int sw_event_keep_outcome(sw_evcand_t c[], int nc);
 /* The same, asking the model for its candidates first: inline, because
  * most steps have none and the question is then all the work. */
-static inline int sw_event_find(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h,
-                                const double y0[], const double y1[], double *tau,
+static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, int flags, double t0,
+                                double h, const double y0[], const double y1[], double *tau,
                                 sw_timed_t timed[SW_MAX_CANDS], int *ntimed)
 {
     sw_evcand_t c[SW_MAX_CANDS];
-    const int flags = (C->scheme->cut_kinks ? SW_CAND_KINKS : 0) | (P->hold ? SW_CAND_HELD : 0) |
-                      (isnan(P->t_lift) ? 0 : SW_CAND_LIFTED);
-    int nc = P->m.ops->candidates(&P->m, flags, h, y0, y1, c);
+    const sw_model_t *M = W->ms.m;
+    int nc =
+        M->ops->candidates(M, flags | (C->scheme->cut_kinks ? SW_CAND_KINKS : 0), h, y0, y1, c);
     if (nc && C->outcome_only)
         nc = sw_event_keep_outcome(c, nc);
     *ntimed = 0;
-    return nc ? sw_event_locate(C, P, t0, h, y0, y1, c, nc, tau, timed, ntimed) : SW_EVF_NONE;
+    return nc ? sw_event_locate(C, W, t0, h, y0, y1, c, nc, tau, timed, ntimed) : SW_EVF_NONE;
 }
 /* Polish the event time by re-stepping; the state there in y; its time. */
-double sw_event_polish(const sw_ctx_t *C, sw_pkg_t *P, int ev, double t0, double h,
+double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0, double h,
                        const double y0[], double tau, double y[]);
 
 /* ---- flight.c: a rigid package in free flight ----------------------------------- */
 
 /* P leaves its support at t (g_eff reached 0), with its momentum. */
-void sw_flight_take_off(sw_ctx_t *C, sw_pkg_t *P, double t);
+void sw_flight_take_off(sw_pkg_ctx_t *C, sw_pkg_t *P, double t);
 /* A flight of P (flying since P->fl_t0, or landed after dur s) that has
  * lasted SW_FLIGHT_LONG: said once, as SW_EV_FLIGHT at fl_t0 +
  * SW_FLIGHT_LONG, and kept in the summary.  dur: s in the air so far. */
-void sw_flight_note(sw_ctx_t *C, sw_pkg_t *P, double dur);
+void sw_flight_note(sw_pkg_ctx_t *C, sw_pkg_t *P, double dur);
 /* Advance a flying P toward t1 in closed form: SW_STUCK_STILL (in the
  * air at t1), SW_STUCK_MOVED (landed, or on its side, at P->t). */
-int sw_flight_advance(sw_ctx_t *C, sw_pkg_t *P, double t1);
+int sw_flight_advance(sw_pkg_ctx_t *C, sw_pkg_t *P, double t1);
 
 /* ---- pkg.c: one package's phase machine ---------------------------------------- */
 
-void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info,
+void sw_pkg_emit_at(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info,
                     const double *y_at);
 void sw_pkg_track_theta(sw_pkg_t *P, double theta);
 void sw_pkg_rest(sw_pkg_t *P);
 /* A fault at t (code: the error): at rest, counted and said. */
-void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code);
-void sw_pkg_start_rocking(sw_ctx_t *C, sw_pkg_t *P, double t, int side);
-void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
+void sw_pkg_fault(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int code);
+void sw_pkg_start_rocking(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int side);
+void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
 /* The events timed inside a step (sw_event_locate), in their order: a
  * peak of |theta| kept in the summary, a tip or a first lift reported. */
-void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
+void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
 /* After an accepted step with no cut, for a model with a rest test: a
  * package lifted since its last rest that is back at rest says so. */
-void sw_pkg_after_step(sw_ctx_t *C, sw_pkg_t *P);
+void sw_pkg_after_step(sw_pkg_ctx_t *C, sw_pkg_t *P);
 /* The map of a cutting event at t (the state is there); the caller resets
  * the scheme's history after it (sw_step_reset). */
-void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t);
+void sw_pkg_on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t);
 
 #endif

@@ -12,7 +12,7 @@
 
 /* Report an event at time t with the package's current state, or with the
  * state vector y_at when the event lies inside a step (tipping). */
-void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info,
+void sw_pkg_emit_at(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info,
                     const double *y_at)
 {
     sw_event_t ev;
@@ -32,7 +32,7 @@ void sw_pkg_emit_at(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, doub
         C->on_event(C->user, &ev);
 }
 
-static void emit(sw_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info)
+static void emit(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info)
 {
     sw_pkg_emit_at(C, P, kind, t, info, NULL);
 }
@@ -59,14 +59,14 @@ void sw_pkg_rest(sw_pkg_t *P)
         P->m.ops->rest(&P->m, P->y);
 }
 
-void sw_pkg_fault(sw_ctx_t *C, sw_pkg_t *P, double t, int code)
+void sw_pkg_fault(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int code)
 {
     P->sum.faults++;
     sw_pkg_rest(P);
     emit(C, P, SW_EV_FAULT, t, code);
 }
 
-void sw_pkg_start_rocking(sw_ctx_t *C, sw_pkg_t *P, double t, int side)
+void sw_pkg_start_rocking(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int side)
 {
     P->m.phase = SW_PHASE_ROCKING;
     P->m.side = side;
@@ -79,7 +79,7 @@ void sw_pkg_start_rocking(sw_ctx_t *C, sw_pkg_t *P, double t, int side)
 }
 
 /* |theta| reached alpha at t (the state there: y_at). */
-void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
+void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
 {
     if (isnan(P->sum.tip_time))
         P->sum.tip_time = t;
@@ -90,7 +90,7 @@ void sw_pkg_tip(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
 /* The first edge of a package that never impacts (a cushion's) left its
  * support at t: uplift; info +1 when the rear edge lifts (the top tips
  * forward), -1 the front, 0 when the level base leaves at once. */
-static void lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
+static void lift(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
 {
     const double th = y_at[P->m.ith];
     const double side = th == 0.0 ? 0.0 : th < 0.0 ? -1.0 : 1.0;
@@ -101,7 +101,7 @@ static void lift(sw_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
     sw_pkg_emit_at(C, P, SW_EV_UPLIFT, t, side, y_at);
 }
 
-void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
+void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
 {
     for (int i = 0; i < n; i++) {
         if (ev[i].role == SW_ROLE_PEAK)
@@ -113,7 +113,7 @@ void sw_pkg_timed(sw_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
     }
 }
 
-void sw_pkg_after_step(sw_ctx_t *C, sw_pkg_t *P)
+void sw_pkg_after_step(sw_pkg_ctx_t *C, sw_pkg_t *P)
 {
     if (P->m.phase != SW_PHASE_ROCKING || isnan(P->t_lift) || !P->m.ops->at_rest(&P->m, P->y))
         return;
@@ -124,7 +124,7 @@ void sw_pkg_after_step(sw_ctx_t *C, sw_pkg_t *P)
 }
 
 /* Kinetic energy of theta' below rest_eps of the energy barrier? */
-static int below_rest(const sw_ctx_t *C, const sw_pkg_t *P, double theta_dot)
+static int below_rest(const sw_pkg_ctx_t *C, const sw_pkg_t *P, double theta_dot)
 {
     const double p = P->m.d.p;
     return 0.5 * theta_dot * theta_dot / (p * p) < C->rest_eps * (1.0 - cos(P->m.d.alpha));
@@ -133,7 +133,7 @@ static int below_rest(const sw_ctx_t *C, const sw_pkg_t *P, double theta_dot)
 /* After an impact: the cascade ends (rest) when the rebound energy is below
  * rest_eps of the barrier; the package then stands, or starts to rock again
  * at once if its support is still beyond the uplift threshold. */
-static void after_impact(sw_ctx_t *C, sw_pkg_t *P, double t)
+static void after_impact(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
 {
     if (!below_rest(C, P, P->y[P->m.idth]))
         return;
@@ -157,7 +157,7 @@ static void after_impact(sw_ctx_t *C, sw_pkg_t *P, double t)
     }
 }
 
-void sw_pkg_on_cut(sw_ctx_t *C, sw_pkg_t *P, int ev, double t)
+void sw_pkg_on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
 {
     switch (ev) {
         case SW_EVF_IMPACT: {

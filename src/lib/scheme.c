@@ -31,61 +31,61 @@
 
 /* One stage: f = y'(t, y), with the input (ag, ge) already at t for a bare
  * or framed package (a generic body's right-hand side evaluates its own). */
-static SW_ALWAYS_INLINE void stage(sw_pkg_t *P, int model, double t, double ag, double ge,
-                                   const double y[], double f[])
+static SW_ALWAYS_INLINE void stage(const sw_model_t *M, sw_model_scratch_t *S, int model, double t,
+                                   double ag, double ge, const double y[], double f[])
 {
     if (model == GENERIC)
-        P->m.ops->rhs(&P->m, &P->scr, t, y, f);
+        M->ops->rhs(M, S, t, y, f);
     else
-        sw_rigid_rhs_of(&P->m, &P->scr, (sw_model_kind)model, ag, ge, y, f);
+        sw_rigid_rhs_of(M, S, (sw_model_kind)model, ag, ge, y, f);
 }
 
-static SW_ALWAYS_INLINE void stage_input(const sw_pkg_t *P, int model, double t, double *ag,
+static SW_ALWAYS_INLINE void stage_input(const sw_model_t *M, int model, double t, double *ag,
                                          double *ge)
 {
     if (model == GENERIC)
         return;
-    *ag = sw_input_ag(P->m.in, t);
-    *ge = sw_input_geff(P->m.in, P->m.g, t);
+    *ag = sw_input_ag(M->in, t);
+    *ge = sw_input_geff(M->in, M->g, t);
 }
 
-static SW_ALWAYS_INLINE void euler_of(sw_pkg_t *P, int model, int n, double t, double h,
-                                      const double y[], double yout[])
+static SW_ALWAYS_INLINE void euler_of(const sw_model_t *M, sw_model_scratch_t *S, int model, int n,
+                                      double t, double h, const double y[], double yout[])
 {
     double k1[SW_NMAX], ag = 0.0, ge = 0.0;
-    stage_input(P, model, t, &ag, &ge);
-    stage(P, model, t, ag, ge, y, k1);
+    stage_input(M, model, t, &ag, &ge);
+    stage(M, S, model, t, ag, ge, y, k1);
     for (int i = 0; i < n; i++) yout[i] = y[i] + h * k1[i];
 }
 
-static SW_ALWAYS_INLINE void heun_of(sw_pkg_t *P, int model, int n, double t, double h,
-                                     const double y[], double yout[])
+static SW_ALWAYS_INLINE void heun_of(const sw_model_t *M, sw_model_scratch_t *S, int model, int n,
+                                     double t, double h, const double y[], double yout[])
 {
     double k1[SW_NMAX], k2[SW_NMAX], yt[SW_NMAX], ag = 0.0, ge = 0.0;
-    stage_input(P, model, t, &ag, &ge);
-    stage(P, model, t, ag, ge, y, k1);
+    stage_input(M, model, t, &ag, &ge);
+    stage(M, S, model, t, ag, ge, y, k1);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h * k1[i];
-    stage_input(P, model, t + h, &ag, &ge);
-    stage(P, model, t + h, ag, ge, yt, k2);
+    stage_input(M, model, t + h, &ag, &ge);
+    stage(M, S, model, t + h, ag, ge, yt, k2);
     for (int i = 0; i < n; i++) yout[i] = y[i] + 0.5 * h * (k1[i] + k2[i]);
 }
 
-static SW_ALWAYS_INLINE void rk4_of(sw_pkg_t *P, int model, int n, double t, double h,
-                                    const double y[], double yout[])
+static SW_ALWAYS_INLINE void rk4_of(const sw_model_t *M, sw_model_scratch_t *S, int model, int n,
+                                    double t, double h, const double y[], double yout[])
 {
     double k1[SW_NMAX], k2[SW_NMAX], k3[SW_NMAX], k4[SW_NMAX], yt[SW_NMAX];
     double ag = 0.0, ge = 0.0;
     const double h2 = 0.5 * h;
-    stage_input(P, model, t, &ag, &ge);
-    stage(P, model, t, ag, ge, y, k1);
+    stage_input(M, model, t, &ag, &ge);
+    stage(M, S, model, t, ag, ge, y, k1);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h2 * k1[i];
-    stage_input(P, model, t + h2, &ag, &ge);
-    stage(P, model, t + h2, ag, ge, yt, k2);
+    stage_input(M, model, t + h2, &ag, &ge);
+    stage(M, S, model, t + h2, ag, ge, yt, k2);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h2 * k2[i];
-    stage(P, model, t + h2, ag, ge, yt, k3);
+    stage(M, S, model, t + h2, ag, ge, yt, k3);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h * k3[i];
-    stage_input(P, model, t + h, &ag, &ge);
-    stage(P, model, t + h, ag, ge, yt, k4);
+    stage_input(M, model, t + h, &ag, &ge);
+    stage(M, S, model, t + h, ag, ge, yt, k4);
     for (int i = 0; i < n; i++)
         yout[i] = y[i] + (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
 }
@@ -94,28 +94,33 @@ static SW_ALWAYS_INLINE void rk4_of(sw_pkg_t *P, int model, int n, double t, dou
  * side inlined per stage, and the generic one (the cushion; any model
  * added without a body of its own).  The package picks its body once, when
  * it is built: no dispatch per step or per stage. */
-#define SW_FIXED_STEPS(name, body)                                                               \
-    static void name##_bare(sw_pkg_t *P, double t, double h, const double y[], double yout[])    \
-    {                                                                                            \
-        body(P, SW_MODEL_BARE, 2, t, h, y, yout);                                                \
-    }                                                                                            \
-    static void name##_frame(sw_pkg_t *P, double t, double h, const double y[], double yout[])   \
-    {                                                                                            \
-        body(P, SW_MODEL_FRAME, 4, t, h, y, yout);                                               \
-    }                                                                                            \
-    static void name##_generic(sw_pkg_t *P, double t, double h, const double y[], double yout[]) \
-    {                                                                                            \
-        body(P, GENERIC, P->m.n, t, h, y, yout);                                                 \
+#define SW_FIXED_STEPS(name, body)                                                             \
+    static void name##_bare(const sw_model_t *M, sw_model_scratch_t *S, double t, double h,    \
+                            const double y[], double yout[])                                   \
+    {                                                                                          \
+        body(M, S, SW_MODEL_BARE, 2, t, h, y, yout);                                           \
+    }                                                                                          \
+    static void name##_frame(const sw_model_t *M, sw_model_scratch_t *S, double t, double h,   \
+                             const double y[], double yout[])                                  \
+    {                                                                                          \
+        body(M, S, SW_MODEL_FRAME, 4, t, h, y, yout);                                          \
+    }                                                                                          \
+    static void name##_generic(const sw_model_t *M, sw_model_scratch_t *S, double t, double h, \
+                               const double y[], double yout[])                                \
+    {                                                                                          \
+        body(M, S, GENERIC, M->n, t, h, y, yout);                                              \
     }
 /* ... and the advance of each, the sub-step logic around the body. */
-#define SW_FIXED_ADVANCES(name)                                                              \
-    static int name##_adv_bare(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h)  \
-    {                                                                                        \
-        return sw_step_fixed_with(C, P, t1, y1, h, name##_bare, 0);                          \
-    }                                                                                        \
-    static int name##_adv_frame(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h) \
-    {                                                                                        \
-        return sw_step_fixed_with(C, P, t1, y1, h, name##_frame, 0);                         \
+#define SW_FIXED_ADVANCES(name)                                                       \
+    static int name##_adv_bare(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,    \
+                               const double y0[], double t1, double y1[], double *h)  \
+    {                                                                                 \
+        return sw_step_fixed_with(C, W, t0, y0, t1, y1, h, name##_bare, 0);           \
+    }                                                                                 \
+    static int name##_adv_frame(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,   \
+                                const double y0[], double t1, double y1[], double *h) \
+    {                                                                                 \
+        return sw_step_fixed_with(C, W, t0, y0, t1, y1, h, name##_frame, 0);          \
     }
 SW_FIXED_STEPS(euler_step, euler_of)
 SW_FIXED_STEPS(heun_step, heun_of)

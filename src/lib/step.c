@@ -23,20 +23,21 @@
  * unforced one is shortened to 0.9 of the region's edge (the engine's
  * sw_engine_dt_requested and sw_engine_dt then differ, which the commands
  * say).  No stable step at all (an undamped mode under euler) is
- * refused either way.  P->stab_rate gets omega_max times the stable step,
+ * refused either way.  W->stab_rate gets omega_max times the stable step,
  * the bound of a tracked contact rate times h (sw_step_fixed_with): at
  * rest the two agree, and a stiffer contact shortens the step in
  * proportion. */
-static int stable_step(const sw_ctx_t *C, sw_pkg_t *P, double dt, char *msg, size_t msglen)
+static int stable_step(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
+                       const char *name, double dt, char *msg, size_t msglen)
 {
     const sw_scheme_t *S = C->scheme;
     sw_mode_t m[SW_MODES_MAX];
-    const int n = sw_model_modes(&P->m.d, P->m.g, m);
+    const int n = sw_model_modes(&M->d, M->g, m);
     int w = -1;
     const double hs = sw_scheme_stable_dt(S, m, n, &w); /* s */
     /* in the units of a tracked contact rate, omega_max at rest */
-    if (P->m.d.omega_max > 0.0 && hs < INFINITY)
-        P->stab_rate = hs * P->m.d.omega_max;
+    if (M->d.omega_max > 0.0 && hs < INFINITY)
+        W->stab_rate = hs * M->d.omega_max;
     if (w < 0 || !(C->dt_forced ? dt > hs : hs == 0.0))
         goto ok;
     if (msg && msglen && hs > 0.0) {
@@ -50,119 +51,118 @@ static int stable_step(const sw_ctx_t *C, sw_pkg_t *P, double dt, char *msg, siz
                  "scene '%s': dt = %g s is above the %s stability bound for its %s (omega = "
                  "%.4g rad/s, zeta = %.3g: |R(lambda dt)| = %s > 1): use dt <= %.3g s, or the "
                  "default scheme %s",
-                 P->scene.name, dt, S->name, m[w].name, m[w].omega, m[w].zeta, a, hs,
-                 SW_DEFAULT_SCHEME);
+                 name, dt, S->name, m[w].name, m[w].omega, m[w].zeta, a, hs, SW_DEFAULT_SCHEME);
     } else if (msg && msglen) {
         snprintf(msg, msglen,
                  "scene '%s': %s is unstable for its %s (omega = %.4g rad/s, zeta = %.3g) at "
                  "every step: use the default scheme %s or an adaptive one",
-                 P->scene.name, S->name, m[w].name, m[w].omega, m[w].zeta, SW_DEFAULT_SCHEME);
+                 name, S->name, m[w].name, m[w].omega, m[w].zeta, SW_DEFAULT_SCHEME);
     }
     return SW_EUNSTABLE;
 ok:
-    if (!C->dt_forced && P->h > 0.9 * hs)
-        P->h = 0.9 * hs;
+    if (!C->dt_forced && W->h > 0.9 * hs)
+        W->h = 0.9 * hs;
     return SW_OK;
 }
 
-int sw_step_init(const sw_ctx_t *C, sw_pkg_t *P, double dt, double rtol, double atol, char *msg,
-                 size_t msglen)
+int sw_step_init(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
+                 sw_model_scratch_t *S, const char *name, double dt, double rtol, double atol,
+                 char *msg, size_t msglen)
 {
-    const sw_scheme_t *S = C->scheme;
-    P->h = sw_min2(dt, C->hmax);
-    P->stab_rate = INFINITY;
-    if (S->region > 0) {
-        const int r = stable_step(C, P, dt, msg, msglen);
+    const sw_scheme_t *R = C->scheme;
+    W->h = sw_min2(dt, C->hmax);
+    W->stab_rate = INFINITY;
+    if (R->region > 0) {
+        const int r = stable_step(C, W, M, name, dt, msg, msglen);
         if (r != SW_OK)
             return r;
     }
-    if (S->stab > 0.0 && P->m.d.omega_max > 0.0) {
-        const double bound = S->stab / P->m.d.omega_max; /* s */
+    if (R->stab > 0.0 && M->d.omega_max > 0.0) {
+        const double bound = R->stab / M->d.omega_max; /* s */
         if (C->dt_forced && dt > bound) {
             if (msg && msglen)
                 snprintf(msg, msglen,
                          "scene '%s': dt = %g s gives omega*dt = %.3g, above the %s stability "
                          "bound %.3g for the scene's fastest frequency omega = %.4g rad/s "
                          "(use dt <= %.3g s)",
-                         P->scene.name, dt, P->m.d.omega_max * dt, S->name, S->stab,
-                         P->m.d.omega_max, bound);
+                         name, dt, M->d.omega_max * dt, R->name, R->stab, M->d.omega_max, bound);
             return SW_EUNSTABLE;
         }
         /* Sub-step so that omega_max h <= 0.5: inside every explicit
          * scheme's stability bound, and accurate enough for the fast
          * bearing mode that decides uplift. */
-        if (!C->dt_forced && P->h > 0.5 / P->m.d.omega_max)
-            P->h = 0.5 / P->m.d.omega_max;
+        if (!C->dt_forced && W->h > 0.5 / M->d.omega_max)
+            W->h = 0.5 / M->d.omega_max;
     }
-    P->step = S->step_for[P->m.d.model] ? S->step_for[P->m.d.model] : S->step;
-    P->advance = S->advance_for[P->m.d.model] ? S->advance_for[P->m.d.model] : S->advance;
-    P->sys.function = sw_model_rhs;
-    P->sys.jacobian = S->implicit ? sw_model_jacobian : NULL;
-    P->sys.dimension = (size_t)P->m.n;
-    P->msys = (sw_model_sys_t){&P->m, &P->scr};
-    P->sys.params = &P->msys;
-    if (!S->gsl_type)
+    W->step = R->step_for[M->d.model] ? R->step_for[M->d.model] : R->step;
+    W->advance = R->advance_for[M->d.model] ? R->advance_for[M->d.model] : R->advance;
+    W->sys.function = sw_model_rhs;
+    W->sys.jacobian = R->implicit ? sw_model_jacobian : NULL;
+    W->sys.dimension = (size_t)M->n;
+    W->ms = (sw_model_sys_t){M, S};
+    W->sys.params = &W->ms;
+    if (!R->gsl_type)
         return SW_OK;
     rtol = rtol > 0.0 ? rtol : 1e-10;
     atol = atol > 0.0 ? atol : 1e-12;
-    if (P->m.iz >= 0) {
+    if (M->iz >= 0) {
         /* resolve the contact: an absolute tolerance above the static
          * deflection (m) or the lift angle z_s/b (rad) of a very stiff
          * cushion would leave it to noise */
-        const double zs = P->m.yscale[P->m.iz];
-        atol = fmin(atol, 1e-3 * fmin(zs, zs / P->m.d.b));
+        const double zs = M->yscale[M->iz];
+        atol = fmin(atol, 1e-3 * fmin(zs, zs / M->d.b));
     }
-    P->gstep = gsl_odeiv2_step_alloc(*S->gsl_type, (size_t)P->m.n);
-    P->gctl = gsl_odeiv2_control_y_new(atol, rtol);
-    P->gevo = gsl_odeiv2_evolve_alloc((size_t)P->m.n);
-    if (!P->gstep || !P->gctl || !P->gevo) {
+    W->gstep = gsl_odeiv2_step_alloc(*R->gsl_type, (size_t)M->n);
+    W->gctl = gsl_odeiv2_control_y_new(atol, rtol);
+    W->gevo = gsl_odeiv2_evolve_alloc((size_t)M->n);
+    if (!W->gstep || !W->gctl || !W->gevo) {
         if (msg && msglen)
             snprintf(msg, msglen, "out of memory");
         return SW_ENOMEM;
     }
-    sw_step_bind(P);
+    sw_step_bind(W, M, S);
     return SW_OK;
 }
 
-void sw_step_bind(sw_pkg_t *P)
+void sw_step_bind(sw_stepper_t *W, const sw_model_t *M, sw_model_scratch_t *S)
 {
-    P->msys = (sw_model_sys_t){&P->m, &P->scr};
-    P->sys.params = &P->msys;
-    if (!P->gstep || !P->sys.jacobian)
+    W->ms = (sw_model_sys_t){M, S};
+    W->sys.params = &W->ms;
+    if (!W->gstep || !W->sys.jacobian)
         return;
     /* GSL's implicit steppers read their Newton tolerances from the
      * control through a driver (without one they fail with GSL_EFAULT):
      * hand them one that only points at ours */
-    P->gdrv = (gsl_odeiv2_driver){
-        .sys = &P->sys, .s = P->gstep, .c = P->gctl, .e = P->gevo, .h = P->h, .hmax = DBL_MAX};
-    gsl_odeiv2_step_set_driver(P->gstep, &P->gdrv);
+    W->gdrv = (gsl_odeiv2_driver){
+        .sys = &W->sys, .s = W->gstep, .c = W->gctl, .e = W->gevo, .h = W->h, .hmax = DBL_MAX};
+    gsl_odeiv2_step_set_driver(W->gstep, &W->gdrv);
 }
 
-void sw_step_free(sw_pkg_t *P)
+void sw_step_free(sw_stepper_t *W)
 {
-    if (P->gevo)
-        gsl_odeiv2_evolve_free(P->gevo);
-    if (P->gctl)
-        gsl_odeiv2_control_free(P->gctl);
-    if (P->gstep)
-        gsl_odeiv2_step_free(P->gstep);
-    P->gevo = NULL;
-    P->gctl = NULL;
-    P->gstep = NULL;
+    if (W->gevo)
+        gsl_odeiv2_evolve_free(W->gevo);
+    if (W->gctl)
+        gsl_odeiv2_control_free(W->gctl);
+    if (W->gstep)
+        gsl_odeiv2_step_free(W->gstep);
+    W->gevo = NULL;
+    W->gctl = NULL;
+    W->gstep = NULL;
 }
 
-void sw_step_reset(sw_pkg_t *P)
+void sw_step_reset(sw_stepper_t *W)
 {
-    if (!P->gevo)
+    if (!W->gevo)
         return;
-    gsl_odeiv2_evolve_reset(P->gevo);
-    gsl_odeiv2_step_reset(P->gstep);
+    gsl_odeiv2_evolve_reset(W->gevo);
+    gsl_odeiv2_step_reset(W->gstep);
 }
 
-void sw_step_forget(sw_pkg_t *P)
+void sw_step_forget(sw_stepper_t *W)
 {
-    if (P->gevo)
-        gsl_odeiv2_evolve_reset(P->gevo);
+    if (W->gevo)
+        gsl_odeiv2_evolve_reset(W->gevo);
 }
 
 /* The input sets the stiffness of the rocking equation: theta'' is of the
@@ -171,54 +171,56 @@ void sw_step_forget(sw_pkg_t *P)
  * rate computes garbage, not a motion (states of 1e260 that still look
  * finite): a fault, not an integration.  Checked at the ends of the
  * interval, where the sampled input is largest. */
-int sw_step_input_unstable(const sw_ctx_t *C, const sw_pkg_t *P, double t0, double t1)
+int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double t0, double t1)
 {
     const double stab = C->scheme->stab;
     if (!(stab > 0.0))
         return 0; /* GSL shortens its steps itself */
-    const double a =
-        sw_max2(sw_max2(fabs(sw_input_ag(P->m.in, t0)), fabs(sw_input_ag(P->m.in, t1))),
-                sw_max2(fabs(sw_input_geff(P->m.in, P->m.g, t0)),
-                        fabs(sw_input_geff(P->m.in, P->m.g, t1))));
-    return !(P->m.kR * a * P->h * P->h <= stab * stab); /* NaN: unstable */
+    const sw_model_t *M = W->ms.m;
+    const double a = sw_max2(
+        sw_max2(fabs(sw_input_ag(M->in, t0)), fabs(sw_input_ag(M->in, t1))),
+        sw_max2(fabs(sw_input_geff(M->in, M->g, t0)), fabs(sw_input_geff(M->in, M->g, t1))));
+    return !(M->kR * a * W->h * W->h <= stab * stab); /* NaN: unstable */
 }
 
-int sw_step_fixed(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *hout)
+int sw_step_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
+                  double y1[], double *hout)
 {
-    return sw_step_fixed_with(C, P, t1, y1, hout, P->step, 1);
+    return sw_step_fixed_with(C, W, t0, y0, t1, y1, hout, W->step, 1);
 }
 
 /* One step of GSL's evolve under its error control, toward t1. */
-int sw_step_evolve(sw_ctx_t *C, sw_pkg_t *P, double t1, double y1[], double *h)
+int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
+                   double y1[], double *h)
 {
-    const double t0 = P->t, rem = sw_min2(t1 - t0, C->hmax);
+    const double rem = sw_min2(t1 - t0, C->hmax);
     double tt = t0;
-    memcpy(y1, P->y, sizeof(double) * (size_t)P->m.n);
-    if (P->h_adapt > rem)
-        P->h_adapt = rem;
+    memcpy(y1, y0, sizeof(double) * (size_t)W->ms.m->n);
+    if (W->h_adapt > rem)
+        W->h_adapt = rem;
     const int st =
-        gsl_odeiv2_evolve_apply(P->gevo, P->gctl, P->gstep, &P->sys, &tt, t1, &P->h_adapt, y1);
+        gsl_odeiv2_evolve_apply(W->gevo, W->gctl, W->gstep, &W->sys, &tt, t1, &W->h_adapt, y1);
     if (st != GSL_SUCCESS || !(tt > t0))
         return SW_EGSL;
     *h = tt - t0;
     return SW_OK;
 }
 
-int sw_restep_fixed(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+int sw_restep_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
                     double y1[])
 {
     (void)C;
-    P->step(P, t0, h, y0, y1);
+    W->step(W->ms.m, W->ms.s, t0, h, y0, y1);
     return SW_OK;
 }
 
-int sw_restep_gsl(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
+int sw_restep_gsl(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
                   double y1[])
 {
     (void)C;
     double yerr[SW_NMAX];
-    memcpy(y1, y0, sizeof(double) * (size_t)P->m.n);
-    return gsl_odeiv2_step_apply(P->gstep, t0, h, y1, yerr, NULL, NULL, &P->sys) == GSL_SUCCESS
+    memcpy(y1, y0, sizeof(double) * (size_t)W->ms.m->n);
+    return gsl_odeiv2_step_apply(W->gstep, t0, h, y1, yerr, NULL, NULL, &W->sys) == GSL_SUCCESS
                ? SW_OK
                : SW_EGSL;
 }
@@ -226,12 +228,12 @@ int sw_restep_gsl(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const dou
 /* A multistep method cannot restart from the step's start without losing
  * its history: interpolate the step being examined (cubic Hermite, O(h^4))
  * instead of re-stepping. */
-int sw_restep_hermite(const sw_ctx_t *C, sw_pkg_t *P, double t0, double h, const double y0[],
-                      double y1[])
+int sw_restep_hermite(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
+                      const double y0[], double y1[])
 {
     double f0[SW_NMAX], f1[SW_NMAX];
-    sw_model_rhs(t0, y0, f0, &P->msys);
-    sw_model_rhs(t0 + C->step_h, C->step_y1, f1, &P->msys);
-    sw_herm_state(P->m.n, C->step_h, y0, f0, C->step_y1, f1, h / C->step_h, y1);
+    sw_model_rhs(t0, y0, f0, &W->ms);
+    sw_model_rhs(t0 + C->step_h, C->step_y1, f1, &W->ms);
+    sw_herm_state(W->ms.m->n, C->step_h, y0, f0, C->step_y1, f1, h / C->step_h, y1);
     return SW_OK;
 }

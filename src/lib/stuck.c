@@ -54,7 +54,7 @@ static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
     }
     /* (capped: a scan of more than 1e8 pieces is a caller's absurd
      * interval, and the count must stay an int) */
-    const double pieces = ceil((t1 - t) / P->h - 1e-9);
+    const double pieces = ceil((t1 - t) / P->st.h - 1e-9);
     const int nsub = pieces < 1e8 ? (int)pieces : 100000000;
     double ta = t;
     for (int i = 1; i <= (nsub > 0 ? nsub : 1); i++) {
@@ -435,9 +435,9 @@ static int stuck_bare(sw_pkg_t *P, double t1, int *side)
 {
     if (P->hold) { /* see pkg.c's after_impact: stand for one step, then look again */
         P->hold = 0;
-        if (t1 - P->t <= P->h)
+        if (t1 - P->t <= P->st.h)
             return SW_STUCK_STILL;
-        P->t += P->h;
+        P->t += P->st.h;
         return SW_STUCK_MOVED;
     }
     const double tu = bare_uplift(P, P->t, t1, side);
@@ -450,20 +450,20 @@ static int stuck_bare(sw_pkg_t *P, double t1, int *side)
 /* The exact solution serves sampled input under the fixed-step schemes;
  * pulses (a function input), a package held for a step, the adaptive
  * schemes and comparisons (stuck_stepped) step the stuck frame. */
-static int stuck_frame(const sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
+static int stuck_frame(sw_pkg_t *P, double t1, int exact, int *side)
 {
-    if (P->m.in->fn || P->hold || !C->scheme->exact_stuck || C->stuck_stepped)
+    if (P->m.in->fn || P->hold || !exact)
         return SW_STUCK_STEP;
     P->sum.steps++;
     const double tu = frame_advance(P, t1, side);
     return tu >= 0.0 ? SW_STUCK_LIFT : tu == -1.0 ? SW_STUCK_STILL : SW_STUCK_FAULT;
 }
 
-int sw_stuck_advance(const sw_ctx_t *C, sw_pkg_t *P, double t1, int *side)
+int sw_stuck_advance(sw_pkg_t *P, double t1, int exact, int *side)
 {
     switch (P->m.ops->stands) {
         case SW_STANDS_RIGID: return stuck_bare(P, t1, side);
-        case SW_STANDS_OSCILLATOR: return stuck_frame(C, P, t1, side);
+        case SW_STANDS_OSCILLATOR: return stuck_frame(P, t1, exact, side);
     }
     return SW_STUCK_STEP;
 }
