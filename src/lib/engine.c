@@ -7,14 +7,21 @@
  * solution instead of steps where its model has one (stuck.c).
  *
  * The layers below are reached through two tables, the scheme's row and
- * the package's model ops (internal.h): nothing here depends on which
+ * the package's model ops (model_ops.h): nothing here depends on which
  * scheme or which model runs. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "event.h"
+#include "flight.h"
+#include "input.h"
+#include "model_ops.h"
+#include "numeric.h"
+#include "pkg.h"
+#include "step.h"
+#include "stuck.h"
 #include "swaywatch/model.h"
 #include "swaywatch/status.h"
 

@@ -21,8 +21,10 @@
 #include <math.h>
 #include <string.h>
 
+#include "event.h"
 #include "hermite.h"
-#include "internal.h"
+#include "model_ops.h"
+#include "step.h"
 #include "swaywatch/status.h"
 
 /* The event function's interpolant over the step. */

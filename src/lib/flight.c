@@ -25,7 +25,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
+#include "flight.h"
+#include "pkg.h"
+#include "step.h"
+#include "stuck.h"
 #include "swaywatch/status.h"
 
 /* The frame's bearings with the package away: w (rad/s) and zeta of the

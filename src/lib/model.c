@@ -7,7 +7,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
+#include <gsl/gsl_errno.h>
+
+#include "model_ops.h"
+#include "model_traits.h"
 #include "swaywatch/model.h"
 
 const char *sw_phase_name(sw_phase p)

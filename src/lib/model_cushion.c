@@ -23,10 +23,12 @@
 #include <math.h>
 #include <string.h>
 
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_poly.h>
 
 #include "cushion_contact.h"
-#include "internal.h"
+#include "model_ops.h"
+#include "model_traits.h"
 #include "swaywatch/model.h"
 
 /* ---- rest --------------------------------------------------------------- */

@@ -13,8 +13,12 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
+#include <gsl/gsl_errno.h>
+
+#include "model_ops.h"
 #include "model_rigid.h"
+#include "model_traits.h"
+#include "numeric.h"
 #include "swaywatch/model.h"
 #include "swaywatch/status.h"
 

@@ -14,7 +14,9 @@
 
 #include <math.h>
 
-#include "internal.h"
+#include "input.h"
+#include "model_ops.h"
+#include "numeric.h"
 
 /* sin and cos of A1 for a right-hand side.  Successive evaluations (the
  * stages of a step, the next steps, the state report) see nearby angles,

@@ -7,7 +7,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
+#include "model_ops.h"
+#include "pkg.h"
 #include "swaywatch/status.h"
 
 /* Report an event at time t with the package's current state, or with the

@@ -58,7 +58,7 @@
 #include "swaywatch/run.h"
 #include "swaywatch/status.h"
 
-#include "internal.h"
+#include "model_traits.h"
 #include "reserve_lift.h"
 #include "run_int.h" /* sw_set_msg */
 

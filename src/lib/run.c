@@ -20,7 +20,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "internal.h"
+#include "model_traits.h"
 #include "run_int.h"
 #include "swaywatch/model.h"
 #include "swaywatch/run.h"

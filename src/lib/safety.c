@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "model_traits.h"
 #include "pool_int.h"
 #include "run_int.h"
 #include "safety_prep.h"

@@ -52,9 +52,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "model_traits.h"
 #include "run_int.h"
 #include "safety_prep.h"
+#include "stuck.h"
 #include "swaywatch/status.h"
 
 #define BLOCK 256              /* samples per block of the bed's lift index */

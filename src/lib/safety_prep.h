@@ -6,7 +6,7 @@
 
 #include <stddef.h>
 
-#include "internal.h"
+#include "model_traits.h"
 #include "search_int.h"
 #include "swaywatch/model.h"
 #include "swaywatch/run.h"

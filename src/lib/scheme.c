@@ -16,8 +16,9 @@
 #include <math.h>
 #include <string.h>
 
-#include "internal.h"
 #include "model_rigid.h"
+#include "scheme_ops.h"
+#include "step.h"
 
 /* The fixed-step schemes are written once, as inline bodies taking the
  * model and the state's length; the step functions in the table call them

@@ -12,7 +12,7 @@
  * (sw_model_modes). */
 #include <math.h>
 
-#include "internal.h"
+#include "scheme_ops.h"
 
 /* |R(z)|, R the Taylor polynomial of e^z of degree deg (Horner, complex). */
 static double amplification(int deg, double re, double im)

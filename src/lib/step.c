@@ -13,8 +13,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <gsl/gsl_errno.h>
+
 #include "hermite.h"
-#include "internal.h"
+#include "model_ops.h"
+#include "step.h"
 #include "swaywatch/status.h"
 
 /* A fixed step inside the scheme's stability region for every mode of the

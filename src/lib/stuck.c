@@ -10,8 +10,9 @@
 #include <float.h>
 #include <math.h>
 
-#include "internal.h"
 #include "model_rigid.h"
+#include "pkg.h"
+#include "stuck.h"
 
 /* Bare block, stuck: no dynamics.  Earliest time in [t, t1] at which the bed
  * acceleration reaches the uplift threshold, or -1; *side gets the

@@ -1,0 +1,72 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* pkg.h - one package and its phase machine (pkg.c): its model, state,
+ * stepper, summary and flight (struct sw_pkg), and what happens to it:
+ * uplift, impact, rest, overturn, fault, the events it reports through
+ * the engine's callback.  The engine, stuck.c and flight.c move packages;
+ * the layers below (step, event, model) never see one.  Internal. */
+#ifndef SWAYWATCH_PKG_H
+#define SWAYWATCH_PKG_H
+
+#include "event.h"
+#include "model_ops.h"
+#include "step.h"
+#include "swaywatch/engine.h"
+
+typedef struct sw_pkg sw_pkg_t;
+
+/* What the packages of one engine share: where their events go and the
+ * rest threshold.  Owned by the engine, embedded in it. */
+typedef struct {
+    double rest_eps;      /* rest threshold, a fraction of the energy barrier */
+    sw_event_fn on_event; /* may be NULL */
+    void *user;
+    double origin; /* s: the absolute time of the engine's t = 0 (the first
+                      sample's); the layers run on time relative to it */
+    int events;    /* events reported during the current call */
+} sw_pkg_ctx_t;
+
+/* One package: its model, state, summary, work space.  Everything is
+ * allocated once, when the package is built (pkg_init in engine.c). */
+struct sw_pkg {
+    sw_model_t m;           /* the model: parameters, input, mode */
+    sw_model_scratch_t scr; /* its right-hand side's scratch */
+    sw_stepper_t st;        /* the scheme's work space */
+    sw_scene_t scene;
+    size_t index; /* its place in the engine (events and states say it) */
+
+    /* integration state: the phase machine (pkg.c) and the loop (engine.c) */
+    double t; /* s */
+    double y[SW_NMAX];
+    int beyond_alpha; /* |theta| >= alpha at the last check */
+    double t_lift;    /* s, time of the last uplift */
+    int hold;         /* keep the package stuck for one step (pkg.c's after_impact) */
+    /* free flight (flight.c): the centre of mass relative to the bed */
+    int fl_long;         /* this flight has lasted SW_FLIGHT_LONG: said (SW_EV_FLIGHT) */
+    int fl_up;           /* it has risen clear of its support */
+    double fl_t0;        /* s, in the air since */
+    double fl_yc;        /* m, height of the centre of mass over the support */
+    double fl_vx, fl_vy; /* m/s, its velocity */
+    sw_summary_t sum;
+    double h_used;      /* s, the longest step taken (sw_engine_dt_used) */
+    double nj_cache[5]; /* stuck.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
+};
+
+void sw_pkg_emit_at(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info,
+                    const double *y_at);
+void sw_pkg_track_theta(sw_pkg_t *P, double theta);
+void sw_pkg_rest(sw_pkg_t *P);
+/* A fault at t (code: the error): at rest, counted and said. */
+void sw_pkg_fault(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int code);
+void sw_pkg_start_rocking(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int side);
+void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
+/* The events timed inside a step (sw_event_locate), in their order: a
+ * peak of |theta| kept in the summary, a tip or a first lift reported. */
+void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
+/* After an accepted step with no cut, for a model with a rest test: a
+ * package lifted since its last rest that is back at rest says so. */
+void sw_pkg_after_step(sw_pkg_ctx_t *C, sw_pkg_t *P);
+/* The map of a cutting event at t (the state is there); the caller resets
+ * the scheme's history after it (sw_step_reset). */
+void sw_pkg_on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t);
+
+#endif

@@ -1,0 +1,134 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* step.h - the step layer (GSL's step and evolve): a package's stepper,
+ * the scheme's work space bound to the package's model, and one step of
+ * it with the engine's scheme, or a re-step inside the step being
+ * examined for the event layer.  It knows the model only as a system to
+ * step (model_ops.h) and the scheme only by its row (scheme_ops.h).
+ * Internal. */
+#ifndef SWAYWATCH_STEP_H
+#define SWAYWATCH_STEP_H
+
+#include <math.h>
+
+#include <gsl/gsl_odeiv2.h>
+
+#include "model_ops.h"
+#include "numeric.h"
+#include "scheme_ops.h"
+
+/* What the step and event layers of one engine share: its scheme and the
+ * options they read, and the step being examined (for a multistep
+ * re-step).  Owned by the engine, embedded in it. */
+struct sw_step_ctx {
+    const sw_scheme_t *scheme;
+    int dt_forced;         /* a forced dt is refused, never sub-stepped */
+    int outcome_only;      /* peaks and tips are not timed (sw_engine_opts_t) */
+    double hmax;           /* s, longest step (SW_ACCURACY_HMAX under the accuracy option,
+                              else INFINITY) */
+    const double *step_y1; /* end of the step being examined */
+    double step_h;         /* s, its length */
+};
+
+/* The scheme's work space for one package (step.c), as GSL's step,
+ * control and evolve objects are theirs: bound to the package's model. */
+struct sw_stepper {
+    sw_model_sys_t ms;     /* the model it steps and its scratch (GSL's params) */
+    double h;              /* s, largest internal step for this package */
+    double stab_rate;      /* omega_max h at the edge of the scheme's stability region
+                              for the modes at rest (INFINITY: adaptive, or no mode) */
+    sw_advance_fn advance; /* the scheme's advance for this model */
+    sw_fixed_step_fn step; /* fixed-step schemes: the body for this model */
+    gsl_odeiv2_system sys;
+    gsl_odeiv2_step *gstep; /* adaptive schemes only */
+    gsl_odeiv2_control *gctl;
+    gsl_odeiv2_evolve *gevo;
+    double h_adapt;         /* s, GSL's proposed next step */
+    gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
+};
+
+/* One fixed step from (P->t, P->y) into y1, no longer than the package's
+ * step h nor than what is left of the interval, splitting that into equal
+ * steps; body is the scheme's step for the model.  A model that tracks its
+ * contact rate (track: it may) can pass through states far stiffer than
+ * rest (a cushion landing on a corner or flat, a cubic cushion compressed
+ * hard) where a step that is stable at rest blows up or skips the
+ * landing: its right-hand side reports the fastest contact rate its
+ * stages met, and the step is retaken shorter until that rate times h is
+ * within the bound the package's h keeps at rest (0.5, or the scheme's
+ * stability bound for a forced dt).  A template: scheme.c instantiates it
+ * per scheme and model with the body known, so that a step is one call. */
+static SW_ALWAYS_INLINE int sw_step_fixed_with(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,
+                                               const double y0[], double t1, double y1[],
+                                               double *hout, sw_fixed_step_fn body, int track)
+{
+    const sw_model_t *M = W->ms.m;
+    sw_model_scratch_t *S = W->ms.s;
+    const double rem = t1 - t0;
+    double hmax = W->h, h = rem; /* s */
+    for (int tries = 0;; tries++) {
+        if (rem <= hmax) {
+            h = rem; /* the common case: a step per sample */
+        } else {
+            const double nst = ceil(rem / hmax - 1e-9);
+            h = nst <= 1.0 ? rem : rem / nst;
+        }
+        if (!track || !M->ops->tracks_rate) {
+            body(M, S, t0, h, y0, y1);
+            break;
+        }
+        const double bound = sw_min2(C->dt_forced ? C->scheme->stab : 0.5, W->stab_rate);
+        S->rate_seen = 0.0;
+        S->track_rate = 1;
+        body(M, S, t0, h, y0, y1);
+        S->track_rate = 0;
+        if (S->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
+            break;
+        hmax = fmin(0.5 * h, bound / S->rate_seen);
+    }
+    *hout = h;
+    return 0; /* SW_OK */
+}
+
+/* step.c: the rows' behaviours (the generic fixed advance: the package's
+ * body, its rate tracked if its model asks) */
+int sw_step_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
+                  double y1[], double *h);
+int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
+                   double y1[], double *h);
+int sw_restep_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
+                    double y1[]);
+int sw_restep_gsl(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
+                  double y1[]);
+int sw_restep_hermite(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
+                      const double y0[], double y1[]);
+
+/* Set up the scheme's work space for P (after the model's set-up).
+ * Returns SW_OK, SW_EUNSTABLE (forced dt above the stability bound; msg
+ * says why) or SW_ENOMEM. */
+int sw_step_init(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
+                 sw_model_scratch_t *S, const char *name, double dt, double rtol, double atol,
+                 char *msg, size_t msglen);
+/* Point the package's GSL system (and an implicit stepper's driver) at P:
+ * after sw_step_init, and again after the package is moved in memory. */
+void sw_step_bind(sw_stepper_t *W, const sw_model_t *M, sw_model_scratch_t *S);
+void sw_step_free(sw_stepper_t *W);
+void sw_step_reset(sw_stepper_t *W);  /* forget the scheme's history (after a map) */
+void sw_step_forget(sw_stepper_t *W); /* restart the error control's count (after a fault) */
+/* The input over [t0, t1] makes a fixed step unstable for P? */
+int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double t0, double t1);
+/* One step from (P->t, P->y) toward t1 (at most t1 - P->t) into y1; *h
+ * gets its length.  SW_OK or an error (the package must fault). */
+static inline int sw_step_advance(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,
+                                  const double y0[], double t1, double y1[], double *h)
+{
+    return W->advance(C, W, t0, y0, t1, y1, h);
+}
+/* The scheme's solution at t0 + h from (t0, y0), h inside the step being
+ * examined: events lie on the scheme's own solution. */
+static inline int sw_step_restep(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
+                                 const double y0[], double y1[])
+{
+    return C->scheme->restep(C, W, t0, h, y0, y1);
+}
+
+#endif
