@@ -86,7 +86,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             break;
         if (P->m.phase == SW_PHASE_STUCK && P->m.ops->stands) {
             int side = 0;
-            const int r = sw_stuck_advance(P, t1, e->stuck_exact, &side);
+            const int r = sw_stuck_advance[P->m.ops->stands](P, t1, e->stuck_exact, &side);
             if (r == SW_STUCK_STILL)
                 break;
             if (r == SW_STUCK_MOVED)
@@ -117,10 +117,8 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
         double tau;
         sw_timed_t timed[SW_MAX_CANDS];
         int nt;
-        /* what the phase machine knows that the model's candidates honour */
-        const int flags = (P->hold ? SW_CAND_HELD : 0) | (isnan(P->t_lift) ? 0 : SW_CAND_LIFTED);
-        const int ev = sw_event_find(C, W, flags, t0, h, P->y, y1, &tau, timed, &nt);
-        P->hold = 0;
+        const int ev = sw_event_find(C, W, t0, h, P->y, y1, &tau, timed, &nt);
+        P->m.held = 0;
         if (nt)
             sw_pkg_timed(E, P, timed, nt);
         if (ev == SW_EVF_NONE) {
@@ -248,19 +246,22 @@ static void fault(sw_engine_t *e, sw_pkg_t *P, double t, int code)
  * error left it (a segment on the support before a take-off). */
 static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
 {
-    for (;;) {
-        double tf = P->t; /* s */
+    const sw_input_t *in = P->m.in;
+    double tf; /* s, where an error happened */
+    int rc;
+    if (!P->m.flying && P->m.ops->flies != SW_FLIES_INTEGRATED &&
+        sw_input_geff(in, P->m.g, P->t) > 0.0 && sw_input_geff(in, P->m.g, t1) > 0.0) {
         /* the bed does not fall away in [t, t1] (g_eff is linear between
          * samples): on the support throughout, the common case */
-        const int ground = !P->m.flying && P->m.ops->flies != SW_FLIES_INTEGRATED &&
-                           sw_input_geff(P->m.in, P->m.g, P->t) > 0.0 &&
-                           sw_input_geff(P->m.in, P->m.g, t1) > 0.0;
-        const int rc = ground ? advance_ground(e, P, t1, &tf) : advance_flying(e, P, t1, &tf);
-        if (rc == SW_OK)
-            break;
+        rc = advance_ground(e, P, t1, &tf);
+    } else {
+        rc = advance_flying(e, P, t1, &tf);
+    }
+    while (rc != SW_OK) {
         fault(e, P, tf, rc);
         if (!(P->t < t1))
             break;
+        rc = advance_flying(e, P, t1, &tf); /* from the end of a segment before a take-off */
     }
     P->t = t1;
 }

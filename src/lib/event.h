@@ -30,14 +30,13 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
 int sw_event_keep_outcome(sw_evcand_t c[], int nc);
 /* The same, asking the model for its candidates first: inline, because
  * most steps have none and the question is then all the work. */
-static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, int flags, double t0,
-                                double h, const double y0[], const double y1[], double *tau,
+static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
+                                const double y0[], const double y1[], double *tau,
                                 sw_timed_t timed[SW_MAX_CANDS], int *ntimed)
 {
     sw_evcand_t c[SW_MAX_CANDS];
     const sw_model_t *M = W->ms.m;
-    int nc =
-        M->ops->candidates(M, flags | (C->scheme->cut_kinks ? SW_CAND_KINKS : 0), h, y0, y1, c);
+    int nc = M->ops->candidates(M, C->scheme->cut_kinks, h, y0, y1, c);
     if (nc && C->outcome_only)
         nc = sw_event_keep_outcome(c, nc);
     *ntimed = 0;

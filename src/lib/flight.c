@@ -85,7 +85,7 @@ void sw_flight_take_off(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
     if (standing) {
         /* the level base leaves at once: an uplift with no direction */
         P->m.phase = SW_PHASE_ROCKING;
-        P->t_lift = t;
+        P->m.t_lift = t;
         P->sum.uplifts++;
         if (isnan(P->sum.uplift_time))
             P->sum.uplift_time = t;

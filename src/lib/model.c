@@ -163,23 +163,6 @@ int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], v
     return GSL_SUCCESS;
 }
 
-void sw_model_to_state(const sw_model_t *M, const double y[], sw_state_t *s)
-{
-    memset(s, 0, sizeof *s);
-    s->theta = y[M->ith];
-    s->theta_dot = y[M->idth];
-    if (M->iu >= 0) {
-        s->u = y[M->iu];
-        s->u_dot = y[M->idu];
-    }
-    if (M->iz >= 0) {
-        s->z = y[M->iz];
-        s->z_dot = y[M->idz];
-    }
-    s->phase = M->phase;
-    s->side = M->phase == SW_PHASE_STUCK ? 0 : M->side;
-}
-
 void sw_model_from_state(sw_model_t *M, double y[SW_NMAX], const sw_state_t *s)
 {
     memset(y, 0, sizeof(double) * SW_NMAX);
@@ -205,14 +188,4 @@ void sw_model_from_state(sw_model_t *M, double y[SW_NMAX], const sw_state_t *s)
     if (M->phase == SW_PHASE_STUCK) {
         y[M->ith] = y[M->idth] = 0.0;
     }
-}
-
-void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S, double t, const double y[],
-                     sw_output_t *o)
-{
-    memset(o, 0, sizeof *o);
-    o->t = t;
-    sw_model_to_state(M, y, &o->state);
-    o->a_g = sw_input_ag(M->in, t);
-    M->ops->output(M, S, t, y, o);
 }

@@ -462,7 +462,7 @@ static void cushion_setup(sw_model_t *M, const sw_scene_t *sc)
  * contact force); tipping, the first lift of an edge (uplift) and the
  * peaks of |theta| are timed inside a step, and "rest" is checked at the
  * end of each step. */
-static int cushion_candidates(const sw_model_t *M, int flags, double h, const double y0[],
+static int cushion_candidates(const sw_model_t *M, int cut_kinks, double h, const double y0[],
                               const double y1[], sw_evcand_t c[])
 {
     const double al = M->d.alpha;
@@ -477,14 +477,14 @@ static int cushion_candidates(const sw_model_t *M, int flags, double h, const do
      * adaptive schemes' error control shortens their steps instead (a cut
      * would also restart msbdf at order 1, and chatter where a loose
      * tolerance leaves the contact unresolved). */
-    if (flags & SW_CAND_KINKS)
+    if (cut_kinks)
         for (int ev = SW_EVF_LIFT; ev <= SW_EVF_FLY_IN; ev++)
             c[n++] = (sw_evcand_t){(unsigned char)ev, SW_ROLE_CUT, SW_RULE_KINK, 0};
     if ((y0[M->ith] * y0[M->idth] > 0.0) != (y1[M->ith] * y1[M->idth] > 0.0))
         c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};
     if (a0 < al && (a1 >= al || al - fmax(a0, a1) < v))
         c[n++] = (sw_evcand_t){SW_EVF_TIP, SW_ROLE_TIP, SW_RULE_RISE, 0};
-    if (!(flags & SW_CAND_LIFTED))
+    if (isnan(M->t_lift))
         c[n++] = (sw_evcand_t){SW_EVF_LIFT, SW_ROLE_LIFT, SW_RULE_RISE, 0};
     return n;
 }

@@ -10,6 +10,8 @@
 #ifndef SWAYWATCH_MODEL_OPS_H
 #define SWAYWATCH_MODEL_OPS_H
 
+#include <string.h>
+
 #include "input.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/model.h"
@@ -45,10 +47,12 @@ typedef struct {
     double e_barrier;       /* J/kg, cushion: sw_cushion_barrier() under nominal gravity */
     double v_rest;          /* J/kg, cushion: potential at rest under nominal gravity */
     const sw_input_t *in;   /* the engine's input over the interval being integrated */
-    /* the mode */
+    /* the mode, and which events it arms */
     sw_phase phase;
-    int side;   /* s = +1 / -1 while rocking */
-    int flying; /* in the air (flight.c): no contact with the support */
+    int side;      /* s = +1 / -1 while rocking */
+    int flying;    /* in the air (flight.c): no contact with the support */
+    int held;      /* kept standing for one step (pkg.c's after_impact): no uplift */
+    double t_lift; /* s, the last uplift, NAN since the last rest: a first lift is timed */
 } sw_model_t;
 
 /* What a model's right-hand side writes as it goes: its scratch, one per
@@ -112,13 +116,6 @@ typedef struct {
 
 #define SW_MAX_CANDS 8
 
-/* What the caller knows of the step that ops->candidates must honour. */
-enum {
-    SW_CAND_KINKS = 1, /* the scheme's steps must be cut at kinks of the right-hand side */
-    SW_CAND_HELD = 2,  /* the package is held on its support for this step: no uplift */
-    SW_CAND_LIFTED = 4 /* it lifted since its last rest: its first lift is timed already */
-};
-
 /* A model's behaviour: what the engine's layers do with a package of it.
  * Adding a model is one model_X.c with one of these (and its traits) and
  * a row in sw_model_ops_of() (model.c). */
@@ -134,9 +131,10 @@ struct sw_model_ops {
      * zeroed state, standing */
     void (*rest)(sw_model_t *M, double y[]);
     /* the events to look for over the step (t0, y0) -> (t0 + h, y1), in the
-     * order they are handled, given what the caller knows (SW_CAND_*).
-     * Returns how many (<= SW_MAX_CANDS). */
-    int (*candidates)(const sw_model_t *M, int flags, double h, const double y0[],
+     * order they are handled, as the mode arms them; cut_kinks: the
+     * scheme's steps must be cut at kinks of the right-hand side.  Returns
+     * how many (<= SW_MAX_CANDS). */
+    int (*candidates)(const sw_model_t *M, int cut_kinks, double h, const double y0[],
                       const double y1[], sw_evcand_t c[]);
     /* value and time derivative of event function ev at (t, y), f = y' */
     void (*event_fn)(const sw_model_t *M, int ev, double t, const double y[], const double f[],
@@ -183,7 +181,7 @@ enum { SW_FLIES_CLOSED = 1, SW_FLIES_INTEGRATED = 2 };
  * must accelerate beyond g_eff tan(alpha) to lift the package (the bare
  * block); SW_STANDS_OSCILLATOR, on a linear oscillator (u, u') whose
  * acceleration must (the frame). */
-enum { SW_STANDS_RIGID = 1, SW_STANDS_OSCILLATOR = 2 };
+enum { SW_STANDS_RIGID = 1, SW_STANDS_OSCILLATOR = 2, SW_STANDS_KINDS };
 
 extern const sw_model_ops_t sw_model_bare, sw_model_frame, sw_model_cushion;
 const sw_model_ops_t *sw_model_ops_of(sw_model_kind kind);
@@ -202,9 +200,37 @@ void sw_model_scale(sw_model_t *M, int i, int di, double size);
  * schemes) in GSL's signature; params: a sw_model_sys_t. */
 int sw_model_rhs(double t, const double y[], double f[], void *params);
 int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *params);
-void sw_model_to_state(const sw_model_t *M, const double y[], sw_state_t *s);
+
 void sw_model_from_state(sw_model_t *M, double y[SW_NMAX], const sw_state_t *s);
-void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S, double t, const double y[],
-                     sw_output_t *o);
+
+/* The state as the API gives it, and the report at t (s) of state y: the
+ * common part, then the model's (ops->output).  Inline: every sample
+ * reports every package. */
+static inline void sw_model_to_state(const sw_model_t *M, const double y[], sw_state_t *s)
+{
+    memset(s, 0, sizeof *s);
+    s->theta = y[M->ith];
+    s->theta_dot = y[M->idth];
+    if (M->iu >= 0) {
+        s->u = y[M->iu];
+        s->u_dot = y[M->idu];
+    }
+    if (M->iz >= 0) {
+        s->z = y[M->iz];
+        s->z_dot = y[M->idz];
+    }
+    s->phase = M->phase;
+    s->side = M->phase == SW_PHASE_STUCK ? 0 : M->side;
+}
+
+static inline void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
+                                   const double y[], sw_output_t *o)
+{
+    memset(o, 0, sizeof *o);
+    o->t = t;
+    sw_model_to_state(M, y, &o->state);
+    o->a_g = sw_input_ag(M->in, t);
+    M->ops->output(M, S, t, y, o);
+}
 
 #endif

@@ -153,9 +153,10 @@ static int frame_rhs(const sw_model_t *M, sw_model_scratch_t *S, double t, const
  * (the bare block is never stepped while stuck: stuck.c solves for its
  * uplift).  The rigid right-hand sides are smooth within a phase: no
  * kinks to cut at. */
-static int rigid_candidates(const sw_model_t *M, int flags, double h, const double y0[],
+static int rigid_candidates(const sw_model_t *M, int cut_kinks, double h, const double y0[],
                             const double y1[], sw_evcand_t c[])
 {
+    (void)cut_kinks;
     int n = 0;
     if (M->phase == SW_PHASE_ROCKING) {
         const double s0 = M->side * y0[M->ith], s1 = M->side * y1[M->ith];
@@ -168,7 +169,7 @@ static int rigid_candidates(const sw_model_t *M, int flags, double h, const doub
             c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};
         if ((s0 < M->d.alpha) != (s1 < M->d.alpha))
             c[n++] = (sw_evcand_t){SW_EVF_TIP, SW_ROLE_TIP, SW_RULE_PLAIN, 0};
-    } else if (M->phase == SW_PHASE_STUCK && M->iu >= 0 && !(flags & SW_CAND_HELD)) {
+    } else if (M->phase == SW_PHASE_STUCK && M->iu >= 0 && !M->held) {
         c[n++] = (sw_evcand_t){SW_EVF_UPLIFT_FWD, SW_ROLE_CUT, SW_RULE_RISE, 1};
         c[n++] = (sw_evcand_t){SW_EVF_UPLIFT_BACK, SW_ROLE_CUT, SW_RULE_RISE, 1};
     }

@@ -50,9 +50,9 @@ void sw_pkg_track_theta(sw_pkg_t *P, double th)
 void sw_pkg_rest(sw_pkg_t *P)
 {
     memset(P->y, 0, sizeof P->y);
-    P->hold = 0;
+    P->m.held = 0;
     P->m.flying = 0;
-    P->t_lift = NAN;
+    P->m.t_lift = NAN;
     P->m.phase = SW_PHASE_STUCK;
     P->m.side = 1;
     P->beyond_alpha = 0;
@@ -71,7 +71,7 @@ void sw_pkg_start_rocking(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int side)
 {
     P->m.phase = SW_PHASE_ROCKING;
     P->m.side = side;
-    P->t_lift = t;
+    P->m.t_lift = t;
     P->y[P->m.ith] = P->y[P->m.idth] = 0.0;
     P->sum.uplifts++;
     if (isnan(P->sum.uplift_time))
@@ -95,7 +95,7 @@ static void lift(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
 {
     const double th = y_at[P->m.ith];
     const double side = th == 0.0 ? 0.0 : th < 0.0 ? -1.0 : 1.0;
-    P->t_lift = t;
+    P->m.t_lift = t;
     P->sum.uplifts++;
     if (isnan(P->sum.uplift_time))
         P->sum.uplift_time = t;
@@ -116,9 +116,9 @@ void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
 
 void sw_pkg_after_step(sw_pkg_ctx_t *C, sw_pkg_t *P)
 {
-    if (P->m.phase != SW_PHASE_ROCKING || isnan(P->t_lift) || !P->m.ops->at_rest(&P->m, P->y))
+    if (P->m.phase != SW_PHASE_ROCKING || isnan(P->m.t_lift) || !P->m.ops->at_rest(&P->m, P->y))
         return;
-    P->t_lift = NAN;
+    P->m.t_lift = NAN;
     P->beyond_alpha = 0;
     P->sum.rests++;
     emit(C, P, SW_EV_REST, P->t, 0.0);
@@ -140,13 +140,13 @@ static void after_impact(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
         return;
     P->m.ops->land(&P->m, P->y);
     const int side = P->m.ops->uplift_side(&P->m, t, P->y);
-    if (side != 0 && t == P->t_lift) {
+    if (side != 0 && t == P->m.t_lift) {
         /* Lifted and landed at the same instant: the support is at the
          * threshold and the step's own error pushed the package the wrong
          * way.  Hold it for one step (the support keeps moving), then look
          * again, so that time always advances. */
         P->m.phase = SW_PHASE_STUCK;
-        P->hold = 1;
+        P->m.held = 1;
         return;
     }
     if (side == 0) {

@@ -38,8 +38,6 @@ struct sw_pkg {
     double t; /* s */
     double y[SW_NMAX];
     int beyond_alpha; /* |theta| >= alpha at the last check */
-    double t_lift;    /* s, time of the last uplift */
-    int hold;         /* keep the package stuck for one step (pkg.c's after_impact) */
     /* free flight (flight.c): the centre of mass relative to the bed */
     int fl_long;         /* this flight has lasted SW_FLIGHT_LONG: said (SW_EV_FLIGHT) */
     int fl_up;           /* it has risen clear of its support */

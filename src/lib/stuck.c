@@ -432,10 +432,11 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
 }
 
 /* The bare block: stands until the input reaches the threshold. */
-static int stuck_bare(sw_pkg_t *P, double t1, int *side)
+static int stuck_bare(sw_pkg_t *P, double t1, int exact, int *side)
 {
-    if (P->hold) { /* see pkg.c's after_impact: stand for one step, then look again */
-        P->hold = 0;
+    (void)exact;
+    if (P->m.held) { /* see pkg.c's after_impact: stand for one step, then look again */
+        P->m.held = 0;
         if (t1 - P->t <= P->st.h)
             return SW_STUCK_STILL;
         P->t += P->st.h;
@@ -453,18 +454,14 @@ static int stuck_bare(sw_pkg_t *P, double t1, int *side)
  * schemes and comparisons (stuck_stepped) step the stuck frame. */
 static int stuck_frame(sw_pkg_t *P, double t1, int exact, int *side)
 {
-    if (P->m.in->fn || P->hold || !exact)
+    if (P->m.in->fn || P->m.held || !exact)
         return SW_STUCK_STEP;
     P->sum.steps++;
     const double tu = frame_advance(P, t1, side);
     return tu >= 0.0 ? SW_STUCK_LIFT : tu == -1.0 ? SW_STUCK_STILL : SW_STUCK_FAULT;
 }
 
-int sw_stuck_advance(sw_pkg_t *P, double t1, int exact, int *side)
-{
-    switch (P->m.ops->stands) {
-        case SW_STANDS_RIGID: return stuck_bare(P, t1, side);
-        case SW_STANDS_OSCILLATOR: return stuck_frame(P, t1, exact, side);
-    }
-    return SW_STUCK_STEP;
-}
+const sw_stuck_fn sw_stuck_advance[SW_STANDS_KINDS] = {
+    [SW_STANDS_RIGID] = stuck_bare,
+    [SW_STANDS_OSCILLATOR] = stuck_frame,
+};

@@ -5,6 +5,8 @@
 #ifndef SWAYWATCH_STUCK_H
 #define SWAYWATCH_STUCK_H
 
+#include "model_ops.h"
+
 typedef struct sw_pkg sw_pkg_t;
 
 /* What a stuck package's exact advance did (stuck.c). */
@@ -22,7 +24,8 @@ enum {
  * bisected; the frame's linear oscillator in closed form under sampled
  * input where exact is set (the scheme allows it), else SW_STUCK_STEP.
  * On SW_STUCK_LIFT, *side is the direction. */
-int sw_stuck_advance(sw_pkg_t *P, double t1, int exact, int *side);
+typedef int (*sw_stuck_fn)(sw_pkg_t *P, double t1, int exact, int *side);
+extern const sw_stuck_fn sw_stuck_advance[SW_STANDS_KINDS];
 /* The exact step of the damped oscillator u'' + 2 zeta w u' + w^2 u = -a(t),
  * a = a0 + s t, over H (s) from (u, u') = u0 into u1 (Nigam & Jennings, as
  * a stuck frame takes it): for the linear response of other models. */
