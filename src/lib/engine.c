@@ -105,7 +105,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
                 return failed(P, t1, t0, SW_EUNSTABLE, tf);
             checked = 1;
         }
-        const int st = sw_step_advance(C, W, t0, P->y, t1, y1, &h);
+        const int st = W->advance(C, W, t0, P->y, t1, y1, &h);
         if (st != SW_OK)
             return failed(P, t1, t0, st, tf);
         P->sum.steps++;
@@ -126,9 +126,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             P->t = (h == rem) ? t1 : t0 + h;
             if (P->m.phase == SW_PHASE_ROCKING)
                 sw_pkg_track_theta(P, P->y[P->m.ith]);
-            if (P->m.ops->follow)
-                P->m.ops->follow(&P->m, P->y);
-            if (P->m.ops->at_rest)
+            if (P->m.ops->follow || P->m.ops->at_rest)
                 sw_pkg_after_step(E, P);
             continue;
         }
@@ -138,12 +136,6 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             return failed(P, t1, t0, SW_EFAULT, tf);
         memcpy(P->y, ys, sizeof(double) * (size_t)P->m.n);
         P->t = te;
-        /* At an overturn the polished state lies just past pi/2 (by up to
-         * a step's worth of theta'); the overturn map records pi/2. */
-        if (P->m.phase == SW_PHASE_ROCKING && ev != SW_EVF_OVERTURN)
-            sw_pkg_track_theta(P, P->y[P->m.ith]);
-        if (P->m.ops->follow)
-            P->m.ops->follow(&P->m, P->y);
         sw_pkg_on_cut(E, P, ev, te);
         sw_step_reset(W); /* the map changed the state: the scheme's history is gone */
     }

@@ -92,8 +92,8 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
     const sw_model_t *M = W->ms.m;
     const double t1 = t0 + h;
     double f0[SW_NMAX], f1[SW_NMAX];
-    sw_model_rhs(t0, y0, f0, &W->ms);
-    sw_model_rhs(t1, y1, f1, &W->ms);
+    M->ops->rhs(M, W->ms.s, t0, y0, f0);
+    M->ops->rhs(M, W->ms.s, t1, y1, f1);
     /* the earliest cutting event ends the step */
     int best = SW_EVF_NONE;
     double best_tau = 2.0;
@@ -147,9 +147,9 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
     }
     const double t1 = t0 + h;
     for (int it = 0; it < 8; it++) {
-        if (sw_step_restep(C, W, t0, ts - t0, y0, y) != SW_OK)
+        if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             return ts;
-        sw_model_rhs(ts, y, f, &W->ms);
+        M->ops->rhs(M, W->ms.s, ts, y, f);
         M->ops->event_fn(M, ev, ts, y, f, &v, &d);
         if (v == 0.0 || d == 0.0)
             break;
@@ -167,9 +167,9 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
         double dt = d > 0.0 ? -2.0 * v / d : 0.0;
         dt = fmax(dt, 8.0 * DBL_EPSILON * fmax(1.0, fabs(ts)) * (1 << it));
         ts = fmin(t1, ts + dt);
-        if (sw_step_restep(C, W, t0, ts - t0, y0, y) != SW_OK)
+        if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             break;
-        sw_model_rhs(ts, y, f, &W->ms);
+        M->ops->rhs(M, W->ms.s, ts, y, f);
         M->ops->event_fn(M, ev, ts, y, f, &v, &d);
     }
     return ts;

@@ -26,6 +26,8 @@
 #include <string.h>
 
 #include "flight.h"
+#include "input.h"
+#include "numeric.h"
 #include "pkg.h"
 #include "step.h"
 #include "stuck.h"

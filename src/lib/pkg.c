@@ -116,7 +116,11 @@ void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
 
 void sw_pkg_after_step(sw_pkg_ctx_t *C, sw_pkg_t *P)
 {
-    if (P->m.phase != SW_PHASE_ROCKING || isnan(P->m.t_lift) || !P->m.ops->at_rest(&P->m, P->y))
+    const sw_model_ops_t *ops = P->m.ops;
+    if (ops->follow)
+        ops->follow(&P->m, P->y);
+    if (!ops->at_rest || P->m.phase != SW_PHASE_ROCKING || isnan(P->m.t_lift) ||
+        !ops->at_rest(&P->m, P->y))
         return;
     P->m.t_lift = NAN;
     P->beyond_alpha = 0;
@@ -160,6 +164,12 @@ static void after_impact(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
 
 void sw_pkg_on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
 {
+    /* At an overturn the polished state lies just past pi/2 (by up to a
+     * step's worth of theta'); the overturn map records pi/2. */
+    if (P->m.phase == SW_PHASE_ROCKING && ev != SW_EVF_OVERTURN)
+        sw_pkg_track_theta(P, P->y[P->m.ith]);
+    if (P->m.ops->follow)
+        P->m.ops->follow(&P->m, P->y);
     switch (ev) {
         case SW_EVF_IMPACT: {
             const double before = P->y[P->m.idth];

@@ -5,8 +5,10 @@
  * schemes are GSL odeiv2 steppers driven by the engine with error control.
  * The implicit ones (rk4imp, bsimp, msbdf) are offered for stiff cushions
  * (docs/cushion.md measures them against rkck, the default there); they
- * need the Jacobian (GSL does not check: without one they crash), which is
- * taken here by forward differences.
+ * need the Jacobian (GSL does not check: without one they crash), which
+ * the model takes by forward differences (sw_model_jacobian).  The fixed
+ * steps' advance (sub-steps aligned to samples) and re-step are here with
+ * their bodies; GSL's are the step layer's (step.c).
  *
  * stab is the scheme's stability bound |lambda h| on the negative real axis
  * (Euler and Heun 2, RK4 2.785), the bound of the input's stiffness of the
@@ -17,8 +19,10 @@
 #include <string.h>
 
 #include "model_rigid.h"
+#include "numeric.h"
 #include "scheme_ops.h"
 #include "step.h"
+#include "swaywatch/status.h"
 
 /* The fixed-step schemes are written once, as inline bodies taking the
  * model and the state's length; the step functions in the table call them
@@ -111,17 +115,60 @@ static SW_ALWAYS_INLINE void rk4_of(const sw_model_t *M, sw_model_scratch_t *S, 
     {                                                                                          \
         body(M, S, GENERIC, M->n, t, h, y, yout);                                              \
     }
+/* One fixed step from (t0, y0) into y1, no longer than the package's
+ * step h nor than what is left of the interval, splitting that into equal
+ * steps; body is the scheme's step for the model.  A model that tracks its
+ * contact rate (track: it may) can pass through states far stiffer than
+ * rest (a cushion landing on a corner or flat, a cubic cushion compressed
+ * hard) where a step that is stable at rest blows up or skips the
+ * landing: its right-hand side reports the fastest contact rate its
+ * stages met, and the step is retaken shorter until that rate times h is
+ * within the bound the package's h keeps at rest (0.5, or the scheme's
+ * stability bound for a forced dt).  A template, instantiated per scheme
+ * and model with the body known, so that a step is one call. */
+static SW_ALWAYS_INLINE int fixed_with(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,
+                                       const double y0[], double t1, double y1[], double *hout,
+                                       sw_fixed_step_fn body, int track)
+{
+    const sw_model_t *M = W->ms.m;
+    sw_model_scratch_t *S = W->ms.s;
+    const double rem = t1 - t0;
+    double hmax = W->h, h = rem; /* s */
+    for (int tries = 0;; tries++) {
+        if (rem <= hmax) {
+            h = rem; /* the common case: a step per sample */
+        } else {
+            const double nst = ceil(rem / hmax - 1e-9);
+            h = nst <= 1.0 ? rem : rem / nst;
+        }
+        if (!track || !M->ops->tracks_rate) {
+            body(M, S, t0, h, y0, y1);
+            break;
+        }
+        const double bound = sw_min2(C->dt_forced ? C->scheme->stab : 0.5, W->stab_rate);
+        S->rate_seen = 0.0;
+        S->track_rate = 1;
+        body(M, S, t0, h, y0, y1);
+        S->track_rate = 0;
+        if (S->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
+            break;
+        hmax = fmin(0.5 * h, bound / S->rate_seen);
+    }
+    *hout = h;
+    return SW_OK;
+}
+
 /* ... and the advance of each, the sub-step logic around the body. */
 #define SW_FIXED_ADVANCES(name)                                                       \
     static int name##_adv_bare(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,    \
                                const double y0[], double t1, double y1[], double *h)  \
     {                                                                                 \
-        return sw_step_fixed_with(C, W, t0, y0, t1, y1, h, name##_bare, 0);           \
+        return fixed_with(C, W, t0, y0, t1, y1, h, name##_bare, 0);                   \
     }                                                                                 \
     static int name##_adv_frame(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,   \
                                 const double y0[], double t1, double y1[], double *h) \
     {                                                                                 \
-        return sw_step_fixed_with(C, W, t0, y0, t1, y1, h, name##_frame, 0);          \
+        return fixed_with(C, W, t0, y0, t1, y1, h, name##_frame, 0);                  \
     }
 SW_FIXED_STEPS(euler_step, euler_of)
 SW_FIXED_STEPS(heun_step, heun_of)
@@ -130,11 +177,27 @@ SW_FIXED_ADVANCES(euler_step)
 SW_FIXED_ADVANCES(heun_step)
 SW_FIXED_ADVANCES(rk4_step)
 
+/* The generic fixed advance (the package's body, its rate tracked if its
+ * model asks), and the fixed schemes' re-step: the body from (t0, y0). */
+static int fixed_step(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[],
+                      double t1, double y1[], double *hout)
+{
+    return fixed_with(C, W, t0, y0, t1, y1, hout, W->step, 1);
+}
+
+static int fixed_restep(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
+                        const double y0[], double y1[])
+{
+    (void)C;
+    W->step(W->ms.m, W->ms.s, t0, h, y0, y1);
+    return SW_OK;
+}
+
 /* One row per scheme: adding a scheme is adding a row.  stab: see the top
  * of this file.  gsl_odeiv2_step_* are variables, not constants: the rows
  * store their addresses. */
 #define FIXED(body)                                                                          \
-    .advance = sw_step_fixed, .restep = sw_restep_fixed,                                     \
+    .advance = fixed_step, .restep = fixed_restep,                                           \
     .advance_for = {[SW_MODEL_BARE] = body##_adv_bare, [SW_MODEL_FRAME] = body##_adv_frame}, \
     .step_for = {[SW_MODEL_BARE] = body##_bare, [SW_MODEL_FRAME] = body##_frame},            \
     .step = body##_generic, .cut_kinks = 1, .exact_stuck = 1

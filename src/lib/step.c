@@ -16,7 +16,9 @@
 #include <gsl/gsl_errno.h>
 
 #include "hermite.h"
+#include "input.h"
 #include "model_ops.h"
+#include "numeric.h"
 #include "step.h"
 #include "swaywatch/status.h"
 
@@ -27,7 +29,7 @@
  * sw_engine_dt_requested and sw_engine_dt then differ, which the commands
  * say).  No stable step at all (an undamped mode under euler) is
  * refused either way.  W->stab_rate gets omega_max times the stable step,
- * the bound of a tracked contact rate times h (sw_step_fixed_with): at
+ * the bound of a tracked contact rate times h (scheme.c's fixed steps): at
  * rest the two agree, and a stiffer contact shortens the step in
  * proportion. */
 static int stable_step(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
@@ -186,12 +188,6 @@ int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double
     return !(M->kR * a * W->h * W->h <= stab * stab); /* NaN: unstable */
 }
 
-int sw_step_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
-                  double y1[], double *hout)
-{
-    return sw_step_fixed_with(C, W, t0, y0, t1, y1, hout, W->step, 1);
-}
-
 /* One step of GSL's evolve under its error control, toward t1. */
 int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
                    double y1[], double *h)
@@ -206,14 +202,6 @@ int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const dou
     if (st != GSL_SUCCESS || !(tt > t0))
         return SW_EGSL;
     *h = tt - t0;
-    return SW_OK;
-}
-
-int sw_restep_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                    double y1[])
-{
-    (void)C;
-    W->step(W->ms.m, W->ms.s, t0, h, y0, y1);
     return SW_OK;
 }
 
@@ -235,8 +223,9 @@ int sw_restep_hermite(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double
                       const double y0[], double y1[])
 {
     double f0[SW_NMAX], f1[SW_NMAX];
-    sw_model_rhs(t0, y0, f0, &W->ms);
-    sw_model_rhs(t0 + C->step_h, C->step_y1, f1, &W->ms);
+    const sw_model_t *M = W->ms.m;
+    M->ops->rhs(M, W->ms.s, t0, y0, f0);
+    M->ops->rhs(M, W->ms.s, t0 + C->step_h, C->step_y1, f1);
     sw_herm_state(W->ms.m->n, C->step_h, y0, f0, C->step_y1, f1, h / C->step_h, y1);
     return SW_OK;
 }

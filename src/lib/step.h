@@ -8,12 +8,9 @@
 #ifndef SWAYWATCH_STEP_H
 #define SWAYWATCH_STEP_H
 
-#include <math.h>
-
 #include <gsl/gsl_odeiv2.h>
 
 #include "model_ops.h"
-#include "numeric.h"
 #include "scheme_ops.h"
 
 /* What the step and event layers of one engine share: its scheme and the
@@ -46,57 +43,10 @@ struct sw_stepper {
     gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
 };
 
-/* One fixed step from (P->t, P->y) into y1, no longer than the package's
- * step h nor than what is left of the interval, splitting that into equal
- * steps; body is the scheme's step for the model.  A model that tracks its
- * contact rate (track: it may) can pass through states far stiffer than
- * rest (a cushion landing on a corner or flat, a cubic cushion compressed
- * hard) where a step that is stable at rest blows up or skips the
- * landing: its right-hand side reports the fastest contact rate its
- * stages met, and the step is retaken shorter until that rate times h is
- * within the bound the package's h keeps at rest (0.5, or the scheme's
- * stability bound for a forced dt).  A template: scheme.c instantiates it
- * per scheme and model with the body known, so that a step is one call. */
-static SW_ALWAYS_INLINE int sw_step_fixed_with(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,
-                                               const double y0[], double t1, double y1[],
-                                               double *hout, sw_fixed_step_fn body, int track)
-{
-    const sw_model_t *M = W->ms.m;
-    sw_model_scratch_t *S = W->ms.s;
-    const double rem = t1 - t0;
-    double hmax = W->h, h = rem; /* s */
-    for (int tries = 0;; tries++) {
-        if (rem <= hmax) {
-            h = rem; /* the common case: a step per sample */
-        } else {
-            const double nst = ceil(rem / hmax - 1e-9);
-            h = nst <= 1.0 ? rem : rem / nst;
-        }
-        if (!track || !M->ops->tracks_rate) {
-            body(M, S, t0, h, y0, y1);
-            break;
-        }
-        const double bound = sw_min2(C->dt_forced ? C->scheme->stab : 0.5, W->stab_rate);
-        S->rate_seen = 0.0;
-        S->track_rate = 1;
-        body(M, S, t0, h, y0, y1);
-        S->track_rate = 0;
-        if (S->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
-            break;
-        hmax = fmin(0.5 * h, bound / S->rate_seen);
-    }
-    *hout = h;
-    return 0; /* SW_OK */
-}
-
-/* step.c: the rows' behaviours (the generic fixed advance: the package's
- * body, its rate tracked if its model asks) */
-int sw_step_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
-                  double y1[], double *h);
+/* The adaptive schemes' rows (GSL's evolve and step), and the re-step of
+ * a multistep scheme on the interpolant of the step being examined */
 int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
                    double y1[], double *h);
-int sw_restep_fixed(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                    double y1[]);
 int sw_restep_gsl(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
                   double y1[]);
 int sw_restep_hermite(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
@@ -116,19 +66,4 @@ void sw_step_reset(sw_stepper_t *W);  /* forget the scheme's history (after a ma
 void sw_step_forget(sw_stepper_t *W); /* restart the error control's count (after a fault) */
 /* The input over [t0, t1] makes a fixed step unstable for P? */
 int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double t0, double t1);
-/* One step from (P->t, P->y) toward t1 (at most t1 - P->t) into y1; *h
- * gets its length.  SW_OK or an error (the package must fault). */
-static inline int sw_step_advance(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,
-                                  const double y0[], double t1, double y1[], double *h)
-{
-    return W->advance(C, W, t0, y0, t1, y1, h);
-}
-/* The scheme's solution at t0 + h from (t0, y0), h inside the step being
- * examined: events lie on the scheme's own solution. */
-static inline int sw_step_restep(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
-                                 const double y0[], double y1[])
-{
-    return C->scheme->restep(C, W, t0, h, y0, y1);
-}
-
 #endif
