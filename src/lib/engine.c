@@ -1,14 +1,17 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* engine.c - the streaming integrator's API and its sample loop: advances
  * every package to each pushed sample, one step at a time with the
- * engine's scheme (step.c), looks for events inside each step (event.c),
- * cuts the step at the earliest one and applies its map (pkg.c), and
- * reports the state once per sample.  A package at rest takes its exact
- * solution instead of steps where its model has one (stuck.c).
+ * package's stepper (step.h), asks the event layer for the events inside
+ * each step (event.h), hands the timed ones and the cut to the phase
+ * machine (pkg.h), and reports the state once per sample.  A package at
+ * rest takes its exact solution instead of steps where its model has one
+ * (stuck.h), and a rigid one flies in closed form (flight.h).  Every error
+ * of the layers below comes back here and faults the package in one
+ * place.
  *
- * The layers below are reached through two tables, the scheme's row and
- * the package's model ops (model_ops.h): nothing here depends on which
- * scheme or which model runs. */
+ * The layers below are reached through two tables, the scheme's row
+ * (scheme_ops.h) and the package's model ops (model_ops.h): nothing here
+ * depends on which scheme or which model runs. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

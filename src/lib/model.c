@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* model.c - what every model shares: the table of models, the common
- * set-up of a package (constants, typical sizes), the right-hand side in
- * GSL's signature, the state as the API gives it, and the common part of
- * the report.  Each model's physics is in its own file (model_rigid.c,
- * model_cushion.c) behind its ops table (internal.h). */
+/* model.c - what every model shares: the table of models and their
+ * traits, the common set-up of a package's model (constants, typical
+ * sizes), the right-hand side and Jacobian in GSL's signature, the state
+ * set from the API's, and the public functions of model.h that read the
+ * traits.  Each model's physics is in its own file (model_rigid.c,
+ * model_cushion.c) behind its ops table (model_ops.h) and its traits
+ * (model_traits.h). */
 #include <math.h>
 #include <string.h>
 

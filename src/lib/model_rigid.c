@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* model_rigid.c - the bare block and the package on a frame (physics.md,
  * scenes 1 and 2) as the engine sees them: their ops tables (layout,
- * events, impact map, uplift test, exact stuck advance, report), and the
- * margins and energies of model.h.  The right-hand sides are inline in
+ * events, impact map, uplift test, how they stand, report), their traits,
+ * and the margins and energies of model.h.  The right-hand sides are inline in
  * model_rigid.h, where the fixed-step schemes inline them per stage.
  *
  * State vectors:  bare   y = (theta, theta')

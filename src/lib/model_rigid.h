@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* model_rigid.h - the right-hand sides of the bare and frame models
- * (physics.md, scenes 1 and 2), inline.  sw_model_rhs() calls them for GSL
- * and the event code; the fixed-step schemes call them per stage directly,
+ * (physics.md, scenes 1 and 2), inline.  The models' ops call them for GSL
+ * and the event layer; the fixed-step schemes call them per stage directly,
  * with the input evaluated once per distinct stage time, because at one
  * step per 1 kHz sample a function pointer, a model switch and two input
  * evaluations per stage were a third of the cost of a rocking step.

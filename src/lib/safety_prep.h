@@ -13,7 +13,7 @@
 
 #define LIFT_MARGIN_LOG 0.9 /* probes are sampled only at the log's samples */
 
-/* How trials start late, chosen by the model's ops (internal.h): none;
+/* How trials start late, chosen by the model's traits (model_traits.h): none;
  * the input itself lifts the package (lift_direct: the bed); it stands on
  * a linear support (stuck_linear: the frame); its rocking about rest is
  * one linear oscillator (rock_linear: a linear cushion on the bed). */

@@ -1,13 +1,11 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* step.c - the step layer (GSL's step/evolve): one step of a package with
- * the engine's scheme, and the re-steps the event layer takes inside it.
- * The scheme's row (scheme.c) points at one advance and one re-step below;
- * nothing here knows which model it steps.
- *
- * Fixed steps are aligned to samples: each sample interval (or what is left
- * of it after an event) is split into equal steps no longer than the
- * package's step h, because the input has a kink at every sample.  The
- * adaptive schemes are GSL odeiv2 steppers under its error control. */
+/* step.c - the step layer (GSL's step/evolve): a package's stepper, set up
+ * for the engine's scheme (its step inside the scheme's stability region,
+ * GSL's work space), and the adaptive schemes' step and re-steps: GSL
+ * odeiv2 steppers under its error control, and a multistep scheme's
+ * re-step on the interpolant.  The fixed-step schemes' advance and
+ * re-step are scheme.c's, beside their bodies; a scheme's row points at
+ * one of each.  Nothing here knows which model it steps. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>

@@ -10,6 +10,7 @@
 #include <float.h>
 #include <math.h>
 
+#include "model_ops.h"
 #include "model_rigid.h"
 #include "pkg.h"
 #include "stuck.h"
