@@ -127,10 +127,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
         if (ev == SW_EVF_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->m.n);
             P->t = (h == rem) ? t1 : t0 + h;
-            if (P->m.phase == SW_PHASE_ROCKING)
-                sw_pkg_track_theta(P, P->y[P->m.ith]);
-            if (P->m.ops->follow || P->m.ops->at_rest)
-                sw_pkg_after_step(E, P);
+            sw_pkg_stepped(E, P, SW_EVF_NONE);
             continue;
         }
         const double te = sw_event_polish(C, W, ev, t0, h, P->y, tau, ys);
@@ -139,7 +136,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             return failed(P, t1, t0, SW_EFAULT, tf);
         memcpy(P->y, ys, sizeof(double) * (size_t)P->m.n);
         P->t = te;
-        sw_pkg_on_cut(E, P, ev, te);
+        sw_pkg_stepped(E, P, ev);
         sw_step_reset(W); /* the map changed the state: the scheme's history is gone */
     }
     P->t = t1;

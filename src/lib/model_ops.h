@@ -159,7 +159,7 @@ struct sw_model_ops {
     void (*follow)(sw_model_t *M, const double y[]);
     /* a package that lifted since its last rest is back at rest (it can
      * no longer lift without input): checked after every accepted step
-     * with no cut, and said by the phase machine (sw_pkg_after_step);
+     * with no cut, and said by the phase machine (sw_pkg_stepped);
      * NULL: rest only through the maps */
     int (*at_rest)(const sw_model_t *M, const double y[]);
     /* still moving, for sw_engine_finish (settled packages end it early) */

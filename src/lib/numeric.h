@@ -15,6 +15,15 @@
 #define SW_ALWAYS_INLINE inline
 #endif
 
+/* ... and out of line where the rare path, inlined, would make the common
+ * one save registers on every call (a step's hand-over to the phase
+ * machine). */
+#if defined(__GNUC__)
+#define SW_NOINLINE __attribute__((noinline))
+#else
+#define SW_NOINLINE
+#endif
+
 /* Every v[i] finite?  0 v is 0 for a finite v and NaN for an infinite or
  * NaN one, so the sum of them is 0 exactly when all are finite: two
  * multiply-adds a number and no branch, in two chains that overlap (the

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "model_ops.h"
+#include "numeric.h"
 #include "pkg.h"
 #include "swaywatch/status.h"
 
@@ -114,7 +115,9 @@ void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
     }
 }
 
-void sw_pkg_after_step(sw_pkg_ctx_t *C, sw_pkg_t *P)
+/* After an accepted step with no cut, for a model that follows its side
+ * or tests for rest. */
+static SW_NOINLINE void after_step(sw_pkg_ctx_t *C, sw_pkg_t *P)
 {
     const sw_model_ops_t *ops = P->m.ops;
     if (ops->follow)
@@ -162,7 +165,7 @@ static void after_impact(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
     }
 }
 
-void sw_pkg_on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
+static SW_NOINLINE void on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
 {
     /* At an overturn the polished state lies just past pi/2 (by up to a
      * step's worth of theta'); the overturn map records pi/2. */
@@ -209,4 +212,24 @@ void sw_pkg_on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
             break;
         default: break; /* a kink: the step was cut there, nothing changes */
     }
+}
+
+/* Called after every step: what most steps need (|theta| kept) inline,
+ * the rest out of line, so that a step costs what it did when the engine
+ * kept |theta| itself. */
+void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev)
+{
+    if (ev != SW_EVF_NONE) {
+        on_cut(C, P, ev, P->t);
+        return;
+    }
+    if (P->m.phase == SW_PHASE_ROCKING)
+        sw_pkg_track_theta(P, P->y[P->m.ith]);
+    if (P->m.ops->follow || P->m.ops->at_rest)
+        after_step(C, P);
+}
+
+void sw_pkg_on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
+{
+    on_cut(C, P, ev, t);
 }

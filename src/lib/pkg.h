@@ -60,15 +60,16 @@ void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
 /* The events timed inside a step (sw_event_locate), in their order: a
  * peak of |theta| kept in the summary, a tip or a first lift reported. */
 void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
-/* After an accepted step with no cut (P->t, P->y at its end), for a model
- * that follows its side or tests for rest: the side as the model says,
- * and a package lifted since its last rest that its model finds back at
- * rest says so.  (|theta| is the engine's to keep, sw_pkg_track_theta:
- * most steps need nothing more.) */
-void sw_pkg_after_step(sw_pkg_ctx_t *C, sw_pkg_t *P);
+/* Where a step ended, P->t and P->y (the engine moved them there), after
+ * the events it timed (sw_pkg_timed): with no cut (ev SW_EVF_NONE),
+ * |theta| kept while rocking, the side as the model follows it, and a
+ * package lifted since its last rest that its model finds back at rest
+ * says so; at a cut ev, its map (sw_pkg_on_cut).  The caller resets the
+ * scheme's history after a cut (sw_step_reset). */
+void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev);
 /* A cutting event ev at t (P->t, P->y there): |theta| kept, the side as
- * the model says, then the event's map; the caller resets the scheme's
- * history after it (sw_step_reset). */
+ * the model says, then the event's map (a step's cut, and a flight's
+ * overturn, flight.c). */
 void sw_pkg_on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t);
 
 #endif
