@@ -179,7 +179,6 @@ static void job_rank0(void *user, size_t unused)
     pthread_mutex_unlock(&st->mu);
 }
 
-#ifdef SW_HAVE_MPI
 /* A worker thread's job on another rank: the next job rank 0 sent, once
  * it came, or none when rank 0 has no more. */
 static void job_remote(void *user, size_t unused)
@@ -216,7 +215,6 @@ static void job_remote(void *user, size_t unused)
     }
     pthread_mutex_unlock(&st->mu);
 }
-#endif
 
 /* ---- the worker threads ------------------------------------------------------------ */
 
@@ -336,13 +334,11 @@ static int gather(sw_farm_t *st, pool_arg_t *pa)
             shown = st->arrived;
             progress_line(st, shown);
         }
-#ifdef SW_HAVE_MPI
-        if (f->world->size > 1) {
+        if (f->world->ranks && f->world->size > 1) {
             pthread_mutex_unlock(&st->mu);
-            moved |= sw_farm_mpi_serve(st, &open);
+            moved |= f->world->ranks->serve(st, &open);
             pthread_mutex_lock(&st->mu);
         }
-#endif
         if (moved)
             continue;
         if (pa->done && emitted < f->n && !st->res[emitted].ready && f->world->size == 1) {
@@ -400,10 +396,8 @@ int sw_cli_farm_run(const sw_cli_farm_t *f)
         memset(f->by_rank, 0, (size_t)f->world->size * sizeof *f->by_rank);
 
     *pa = (pool_arg_t){.st = st, .job = job_rank0};
-#ifdef SW_HAVE_MPI
     if (!root)
         pa->job = job_remote;
-#endif
     pthread_t helper;
     const int threaded = pthread_create(&helper, NULL, pool, pa) == 0;
     if (!threaded) {
@@ -416,17 +410,14 @@ int sw_cli_farm_run(const sw_cli_farm_t *f)
     }
     if (root)
         rc = gather(st, pa);
-#ifdef SW_HAVE_MPI
     else
-        sw_farm_mpi_worker(st);
-#endif
+        f->world->ranks->worker(st);
     if (rc == SW_CLI_FARM_INTERRUPTED)
         return rc; /* st and pa stay: jobs may be running */
-#ifdef SW_HAVE_MPI
     /* The other ranks wait for work or answers that will not come. */
-    if (f->world->size > 1 && (rc != SW_EXIT_OK || st->oom))
-        sw_farm_mpi_abort(st->oom ? "out of memory" : "the results cannot be written", SW_EXIT_IO);
-#endif
+    if (f->world->ranks && f->world->size > 1 && (rc != SW_EXIT_OK || st->oom))
+        f->world->ranks->abort(st->oom ? "out of memory" : "the results cannot be written",
+                               SW_EXIT_IO);
     if (threaded) {
         pthread_mutex_lock(&st->mu);
         st->stop = 1; /* jobs not started stay so */

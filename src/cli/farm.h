@@ -27,6 +27,9 @@ typedef struct {
     int rank, size; /* 0 of 1 without MPI */
     int mpi;        /* MPI was started (and must be finalised) */
     int local;      /* ranks on this machine */
+    /* the farm's messages between ranks (farm_int.h), given by the world
+     * MPI started; NULL in one process */
+    const struct sw_farm_ranks *ranks;
 } sw_cli_world_t;
 
 /* Start MPI if this process was started by an MPI launcher (mpirun,

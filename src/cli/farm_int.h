@@ -50,17 +50,22 @@ int sw_farm_next(sw_farm_t *st, size_t *i);
  * taken). */
 void sw_farm_store(sw_farm_t *st, size_t i, sw_farm_result_t *r, int from);
 
-#ifdef SW_HAVE_MPI
-/* Rank 0: answer what the other ranks sent (requests for work, results);
- * mu not held.  Returns non-zero if anything came.  *open is the number of
- * ranks not yet told there is no more work. */
-int sw_farm_mpi_serve(sw_farm_t *st, int *open);
-/* Any other rank: ask rank 0 for work, run it on the threads, send the
- * results back, until rank 0 has no more and all is sent.  The worker
- * threads run already. */
-void sw_farm_mpi_worker(sw_farm_t *st);
-/* A failure every rank must stop for: why on stderr, then MPI_Abort. */
-void sw_farm_mpi_abort(const char *why, int code) __attribute__((noreturn));
-#endif
+/* The messages between ranks (farm_mpi.c, in a build with MPI), which the
+ * world gives the farm (sw_cli_world_t.ranks) once MPI has started: the
+ * farm's threads (farm.c) reach them through it, as a lower layer reaches
+ * what it is handed, while the messages call the farm's queue above. */
+struct sw_farm_ranks {
+    /* Rank 0: answer what the other ranks sent (requests for work,
+     * results); mu not held.  Returns non-zero if anything came.  *open
+     * is the number of ranks not yet told there is no more work. */
+    int (*serve)(sw_farm_t *st, int *open);
+    /* Any other rank: ask rank 0 for work, run it on the threads, send
+     * the results back, until rank 0 has no more and all is sent.  The
+     * worker threads run already. */
+    void (*worker)(sw_farm_t *st);
+    /* A failure every rank must stop for: why on stderr, then MPI_Abort;
+     * does not return. */
+    void (*abort)(const char *why, int code);
+};
 
 #endif

@@ -38,7 +38,7 @@ static int world_rank(void)
     return r;
 }
 
-void sw_farm_mpi_abort(const char *why, int code)
+static _Noreturn void sw_farm_mpi_abort(const char *why, int code)
 {
     fprintf(stderr, "swaywatch: rank %d: %s; stopping every rank\n", world_rank(), why);
     fflush(stderr);
@@ -81,6 +81,12 @@ static int launched(void)
     return 0;
 }
 
+/* The farm's messages, handed to the farm by the world (farm_int.h). */
+static int sw_farm_mpi_serve(sw_farm_t *st, int *open);
+static void sw_farm_mpi_worker(sw_farm_t *st);
+static const struct sw_farm_ranks mpi_ranks = {
+    .serve = sw_farm_mpi_serve, .worker = sw_farm_mpi_worker, .abort = sw_farm_mpi_abort};
+
 int sw_cli_world_start(sw_cli_world_t *w)
 {
     *w = (sw_cli_world_t){.rank = 0, .size = 1, .mpi = 0, .local = 1};
@@ -101,6 +107,7 @@ int sw_cli_world_start(sw_cli_world_t *w)
         return SW_EXIT_IO;
     }
     w->mpi = 1;
+    w->ranks = &mpi_ranks;
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
     check(MPI_Comm_rank(MPI_COMM_WORLD, &w->rank), "MPI_Comm_rank");
     check(MPI_Comm_size(MPI_COMM_WORLD, &w->size), "MPI_Comm_size");
@@ -234,7 +241,7 @@ static void take_result(sw_farm_t *st, const MPI_Status *s)
     pthread_mutex_unlock(&st->mu);
 }
 
-int sw_farm_mpi_serve(sw_farm_t *st, int *open)
+static int sw_farm_mpi_serve(sw_farm_t *st, int *open)
 {
     int any = 0;
     for (;;) {
@@ -283,7 +290,7 @@ static void nap(sw_farm_t *st)
     pthread_cond_timedwait(&st->cv, &st->mu, &ts);
 }
 
-void sw_farm_mpi_worker(sw_farm_t *st)
+static void sw_farm_mpi_worker(sw_farm_t *st)
 {
     uint64_t *got = alloc_or_abort(st->qcap * sizeof *got);
     MPI_Request req = MPI_REQUEST_NULL;
