@@ -2,7 +2,8 @@
 /* gate_int.h - what the files of the input gate share (gate.h is the
  * contract): the gate's state, its constants, and the calls between
  *   gate.c          the API: create, push, flush, facts, the plausibility check;
- *   gate_timing.c   the timing model (the logger's pace, gaps) and taking a sample;
+ *   gate_pace.c     the logger's pace and the thresholds it gives (a leaf);
+ *   gate_timing.c   taking a sample, across gaps, steps and restarts;
  *   gate_ahead.c    a log without receive times, read through the look-ahead;
  *   gate_live.c     a stream with receive times: chains, confirmed or refuted;
  *   gate_contest.c  events, refusals, the sender's seq, a second timeline.
@@ -10,6 +11,7 @@
 #ifndef SW_GATE_INT_H
 #define SW_GATE_INT_H
 
+#include <math.h>
 #include <stdint.h>
 
 #include "swaywatch/gate.h"
@@ -152,15 +154,26 @@ struct sw_gate {
  * clock step, a restart). */
 enum { IV_NORMAL, IV_TAINT, IV_GAP, IV_WARM, IV_BREAK };
 
-/* gate_timing.c: the pace, gaps, taking a sample */
+/* The larger of a and b, either of which may be NAN (unknown). */
+static inline double gate_fmax_nan(double a, double b)
+{
+    return isnan(a) ? b : isnan(b) ? a : fmax(a, b);
+}
+
+/* gate_pace.c: the logger's pace, and the thresholds it gives */
+void gate_tm_add(timing_t *tm, double dt, double x, int long_run, int ok);
 double gate_time_quantile(double *v, int n, double q);
 double gate_spacing(const sw_gate_t *g);
 double gate_spacing_full(const sw_gate_t *g, int ok_only);
 double gate_threshold_of(const sw_gate_t *g, double s);
 int gate_looks_long(const sw_gate_t *g, double dt);
 double gate_recent_max(const sw_gate_t *g);
+int gate_warming(const sw_gate_t *g);
+double gate_gap_threshold_of(const sw_gate_t *g, double after);
 double gate_gap_threshold(const sw_gate_t *g, double after);
 double gate_jump_tol(const sw_gate_t *g);
+
+/* gate_timing.c: taking a sample, across gaps */
 int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv);
 int gate_take_first(sw_gate_t *g, const sw_sample_t *s);
 double gate_resume(sw_gate_t *g, const sw_sample_t *s, double thr, int *iv);
