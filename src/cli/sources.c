@@ -1,11 +1,12 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* sources.c - the sources of samples this build reads (source.h), as
+/* sources.c - the sources of samples this build reads (sources.h), as
  * LCM's table of providers: a row per source built, the first whose
  * sniff matches a log's first bytes reads it, CSV (the last) anything.
  * An lcm-logger file is recognised in every build (eventlog.h needs no
  * LCM), to be refused with the reason where no row reads it. */
+#include "sources.h"
+
 #include "eventlog.h"
-#include "source.h"
 
 static const sw_cli_source_t *const sources[] = {
 #ifdef SW_HAVE_LCM
