@@ -44,6 +44,12 @@ run() { # name, then the command's arguments; keeps stdout, stderr and the exit 
     rc=0
     "$SW" "$@" >"$O/$name.stdout" 2>"$O/$name.stderr" || rc=$?
     echo "$rc" >"$O/$name.rc"
+    # A misspelt or retired option would compare equal before and after
+    # (the same usage error twice) and guard nothing: stop instead.
+    if grep -q "unknown option" "$O/$name.stderr"; then
+        echo "refactor-check: $name: $(cat "$O/$name.stderr")" >&2
+        exit 2
+    fi
 }
 logopts() {
     case $1 in
@@ -91,13 +97,13 @@ run boundary-rigid boundary --scene "$S/crate.ini" --scene "$S/crate-on-frame.in
 run boundary-cushion boundary --scene "$S/cushion-bed.ini" --pulse full-sine \
     --omega-ratio 2:6:2 --out "$O/boundary-cushion.csv"
 run forensics-hard-stop forensics sample_logs/hard-stop-overturn.csv --scene "$S/crate.ini" \
-    --bearing-omega 3,8 --cushion-omega 30 --threads 1
+    --frame-omega 8 --cushion-omega 30 --threads 1
 run forensics-frame forensics sample_logs/braking-pothole.csv --scene "$S/crate-on-frame.ini" \
     --threads 1 --json
 # The build's commit (forensics names the program that wrote it) differs
 # at every commit by design: written as COMMIT, so that the rest compares.
 for f in "$O"/*; do
-    sed -i -E 's/(commit |"commit": ")[0-9a-f]{40}/\1COMMIT/g; s/"modified": (true|false)/"modified": M/g; s/ with local changes//g' "$f"
+    sed -i -E 's/(commit |"commit": ")[0-9a-f]{40}/\1COMMIT/g; s/"modified": (true|false)/"modified": "M"/g; s/,? with local changes//g' "$f"
 done
 echo "refactor-check: $(ls "$O" | wc -l) files in $O" >&2
 
