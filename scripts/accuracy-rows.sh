@@ -1,7 +1,7 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The "Accuracy option rows" of docs/accuracy-speed.md, from the code: the
-# rows[] table of src/lib/accuracy.c, one block per model, written between
+# rows[] table of src/lib/core/accuracy.c, one block per model, written between
 # the document's accuracy-rows markers, so that the document shows the
 # rows the program uses and cannot disagree with them.  (The benchmark
 # prints the rows its own run would choose, under another title.)
@@ -10,7 +10,7 @@
 #   scripts/accuracy-rows.sh --check  change nothing; exit 1 if they differ
 set -eu
 cd "$(dirname "$0")/.."
-SRC=src/lib/accuracy.c
+SRC=src/lib/core/accuracy.c
 DOC=docs/accuracy-speed.md
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
@@ -23,7 +23,7 @@ awk '/^static const acc_row_t rows\[\] = \{/ {on = 1; next}
 {
     for m in $(sed 's/^{SW_MODEL_\([A-Z]*\),.*/\1/' "$TMP/rows" | awk '!seen[$0]++'); do
         name=$(echo "$m" | tr 'A-Z' 'a-z')
-        echo "Accuracy option rows for \`$name\` (in use: src/lib/accuracy.c, written here by"
+        echo "Accuracy option rows for \`$name\` (in use: src/lib/core/accuracy.c, written here by"
         echo "scripts/accuracy-rows.sh; a row serves the tolerances from the one before it down"
         echo "to its own, tol in rad, dt in s, 0 the scheme's default):"
         echo

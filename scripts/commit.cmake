@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The commit the program is built from, for the fingerprint forensics puts
-# in its reports (src/cli/fingerprint.c): run at every build by the target
+# in its reports (src/cli/output/fingerprint.c): run at every build by the target
 # swaywatch_commit (src/cli/CMakeLists.txt) as
 #   cmake -DSRC=SOURCE_DIR -DOUT=HEADER -P commit.cmake
 # From git when SRC is the top of a git checkout (a tarball unpacked inside

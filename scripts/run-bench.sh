@@ -151,5 +151,5 @@ awk -v res="$OUT" '
     /<!-- results:begin -->/ {print; while ((getline l < res) > 0) print l; skip=1; next}
     /<!-- results:end -->/ {skip=0}
     !skip {print}' "$DOC" >"$TMP/doc" && cp "$TMP/doc" "$DOC"
-scripts/accuracy-rows.sh # the rows in use, from src/lib/accuracy.c
+scripts/accuracy-rows.sh # the rows in use, from src/lib/core/accuracy.c
 echo "run-bench: updated $DOC and docs/img/pareto.png" >&2

@@ -15,7 +15,7 @@
 #include <cmocka.h>
 #include <gsl/gsl_errno.h>
 
-#include "../src/lib/safety_prep.h"
+#include "safety_prep.h"
 #include "testutil.h"
 
 #define N 90000 /* 90 s at 1 kHz */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* test_keyset.c - batch's manifest lines grouped by their options
- * (src/cli/keyset.c) in n log n comparisons, counted: a million lines
+ * (src/cli/commands/keyset.c) in n log n comparisons, counted: a million lines
  * with 50,000 distinct sets (what did not start in two minutes when each
  * line searched the sets found so far) take at most 2 n log2 n, where
  * that search took about n x sets / 2 = 2.5e10.  The groups are checked

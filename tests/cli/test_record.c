@@ -1,5 +1,5 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* test_record.c - the record writer (src/cli/record.c) alone: JSON
+/* test_record.c - the record writer (src/cli/output/record.c) alone: JSON
  * numbers with the 9 digits %.9g printed and null where a value is not
  * finite, members in the order they were set, strings made valid UTF-8
  * (one U+FFFD per maximal subpart, Unicode 3.9, as Python's

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* fuzz_gnuplot.c - libFuzzer target for the strings that reach gnuplot: a
  * figure's file name, its title and the packages' names, through the
- * quoting of src/cli/plot.c and the script src/cli/figure.c builds
+ * quoting of src/cli/output/plot.c and the script src/cli/output/figure.c builds
  * (replay, simulate and forensics draw with it).
  *
  * Input: 1 byte of options (.svg or .png, 1 to 3 packages, events, gaps),
