@@ -12,7 +12,13 @@
 
 #include "plot.h"
 
-#define NBUCKETS 2000       /* buckets per package after a merge; at most twice as many */
+/* buckets per package after a merge; at most twice as many (the gnuplot
+ * fuzz target, whose figures hold a few samples, lowers it with -D: the
+ * buckets of three packages are 1.5 MiB to allocate and clear) */
+#ifndef SW_FIG_BUCKETS
+#define SW_FIG_BUCKETS 2000
+#endif
+#define NBUCKETS ((size_t)SW_FIG_BUCKETS)
 #define MAX_EVENTS 100000   /* events kept */
 #define MAX_LINES 200       /* vertical event lines drawn (gnuplot arrows) */
 #define MAX_UPLIFT_LINES 50 /* of them uplifts: a long drive can have thousands */
