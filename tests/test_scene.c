@@ -448,6 +448,84 @@ static void test_cushion_too_soft(void **state)
     assert_near(d.omega_max, sqrt(222.13), 1e-12);
 }
 
+/* ---- the lateral plane ---------------------------------------------------- */
+
+static void test_depth_and_lateral_keys(void **state)
+{
+    (void)state;
+    sw_scene_t sc, lat;
+    sw_derived_t d, dl;
+    diags_t dg = {0};
+    /* No depth: one plane, and no lateral scene. */
+    assert_int_equal(load(PKG, &sc, &d, &dg), SW_OK);
+    assert_false(sw_scene_has_depth(&sc));
+    assert_int_equal(sw_scene_lateral(&sc, &lat), SW_ENOTFOUND);
+
+    /* A depth of 0.5 m and bearings softer across (omega 3 rad/s instead of
+     * 5.59): the lateral scene is the package over its depth, h = 1 and
+     * b = 0.25, alpha = atan(0.25); its frame keeps the mass, takes the
+     * lateral omega and, with no lateral damping given, the damping along. */
+    dg.n = 0;
+    const char *text = PKG     /* lines 1-5 */
+        "depth = 0.5\n"        /* 6 */
+        "[frame]\n"            /* 7 */
+        "mass = 250\n"         /* 8 */
+        "omega = 5.59\n"       /* 9 */
+        "zeta = 0.1\n"         /* 10 */
+        "lateral_omega = 3\n"; /* 11 */
+    assert_int_equal(load(text, &sc, &d, &dg), SW_OK);
+    assert_true(sw_scene_has_depth(&sc));
+    assert_near(d.b, 0.364, 1e-15); /* the plane along the truck is unchanged */
+    assert_int_equal(sw_scene_lateral(&sc, &lat), SW_OK);
+    assert_false(sw_scene_has_depth(&lat));
+    assert_int_equal(sw_scene_validate(&lat, &dl, "lat", collect, &dg), SW_OK);
+    assert_near(dl.b, 0.25, 1e-15);
+    assert_near(dl.alpha, atan(0.25), 1e-15);
+    assert_near(dl.omega_b, 3.0, 1e-15);
+    assert_near(dl.zeta_b, 0.1, 1e-15);
+    assert_near(dl.gamma, 1000.0 / 1250.0, 1e-15);
+
+    /* Lateral keys without a depth are refused: nothing would use them. */
+    dg.n = 0;
+    assert_int_equal(load(PKG "[frame]\nmass = 250\nomega = 5.59\nzeta = 0.1\n"
+                              "lateral_zeta = 0.2\n",
+                          &sc, &d, &dg),
+                     SW_EINVAL);
+    ASSERT_DIAG(&dg, 6, "frame.lateral_ keys given without package.depth");
+
+    /* A bad depth names its key; both forms of a lateral pair are refused. */
+    dg.n = 0;
+    assert_int_equal(load(PKG "depth = 0\n", &sc, &d, &dg), SW_EINVAL);
+    ASSERT_DIAG(&dg, 1, "package.depth = 0 m", "positive");
+    dg.n = 0;
+    sw_scene_init(&sc);
+    assert_int_equal(sw_scene_parse(&sc,
+                                    PKG "depth = 0.5\n[frame]\nlateral_omega = 3\n"
+                                        "lateral_stiffness = 1e4\n",
+                                    "crate.ini", collect, &dg),
+                     SW_EINVAL);
+    ASSERT_DIAG(&dg, 9, "both given");
+
+    /* A cushion stiff enough along the truck can be too soft across a
+     * narrower depth: K b^2/3 > m g h needs K > 3 * 9810 / 0.25^2 =
+     * 470880 N/m over b = 0.25 m. */
+    dg.n = 0;
+    assert_int_equal(load(PKG "depth = 0.5\n[cushion]\nstiffness = 3e5\n", &sc, &d, &dg),
+                     SW_EINVAL);
+    ASSERT_DIAG(&dg, 7, "across the truck", "cushion too soft", "470880");
+    dg.n = 0;
+    assert_int_equal(load(PKG "depth = 0.5\n[cushion]\nstiffness = 3e5\n"
+                              "lateral_stiffness = 5e5\n",
+                          &sc, &d, &dg),
+                     SW_OK);
+
+    /* --set reaches the new keys; a changed depth is a changed scene. */
+    sw_scene_t other = sc;
+    assert_true(sw_scene_equal(&sc, &other));
+    assert_int_equal(sw_scene_set_arg(&other, "package.depth=0.6", collect, &dg), SW_OK);
+    assert_false(sw_scene_equal(&sc, &other));
+}
+
 /* ---- file syntax --------------------------------------------------------- */
 
 static void test_pair_given_twice(void **state)
@@ -750,7 +828,7 @@ static void test_all_errors_at_once(void **state)
         "name = crate-Z\n"                                 /* 3 */
         "height = two\n"                                   /* 4 */
         "width = 0.5\n"                                    /* 5 */
-        "depth = 0.5\n"                                    /* 6 */
+        "length = 0.5\n"                                   /* 6 */
         "mass = 100\n"                                     /* 7 */
         "mass = 200\n"                                     /* 8 */
         "[frame]\n"                                        /* 9 */
@@ -766,7 +844,7 @@ static void test_all_errors_at_once(void **state)
     dump(&dg);
     assert_int_equal(dg.n, 7);
     ASSERT_DIAG(&dg, 4, "package.height", "\"two\"");
-    ASSERT_DIAG(&dg, 6, "unknown key package.depth");
+    ASSERT_DIAG(&dg, 6, "unknown key package.length");
     ASSERT_DIAG(&dg, 8, "package.mass given twice", "line 7");
     ASSERT_DIAG(&dg, 12, "frame.omega (line 11)", "frame.stiffness (line 12)");
     ASSERT_DIAG(&dg, 13, "frame.zeta", "not a finite number");
@@ -814,6 +892,7 @@ int main(void)
         cmocka_unit_test(test_missing_required),
         cmocka_unit_test(test_bad_sizes_and_absurd_values),
         cmocka_unit_test(test_cushion_too_soft),
+        cmocka_unit_test(test_depth_and_lateral_keys),
         cmocka_unit_test(test_pair_given_twice),
         cmocka_unit_test(test_unknown_section_and_key),
         cmocka_unit_test(test_duplicates),

@@ -42,6 +42,8 @@ typedef struct {
     double width;           /* m, 2b, along the axis of travel */
     double mass;            /* kg, m */
     double g;               /* m/s^2, gravity (default 9.81) */
+    double depth;           /* m, 2d, across the truck (the lateral plane rocks over it);
+                               NAN: not given, one plane (along the truck) */
 
     /* [frame] (optional) */
     int has_frame;
@@ -51,6 +53,11 @@ typedef struct {
     double frame_damping;   /* N s/m, c_b (if given as such) */
     double frame_zeta;      /* 1, zeta_b  (if given as such) */
     sw_given frame_k_given, frame_c_given;
+    /* the bearings across the truck (lateral_*): NAN and SW_GIVEN_NONE where
+     * not given, and then the ones along it apply (sw_scene_lateral) */
+    double frame_lat_stiffness, frame_lat_omega; /* N/m, rad/s */
+    double frame_lat_damping, frame_lat_zeta;    /* N s/m, 1 */
+    sw_given frame_lat_k_given, frame_lat_c_given;
 
     /* [cushion] (optional) */
     int has_cushion;
@@ -60,6 +67,11 @@ typedef struct {
     double cushion_zeta;      /* 1, zeta_c = C/(2 m w_c) */
     double cushion_cubic;     /* N/m^3, total B3 */
     sw_given cushion_k_given, cushion_c_given;
+    /* the cushion across the truck (lateral_*), as the frame's */
+    double cushion_lat_stiffness, cushion_lat_omega; /* N/m, rad/s */
+    double cushion_lat_damping, cushion_lat_zeta;    /* N s/m, 1 */
+    double cushion_lat_cubic;                        /* N/m^3; NAN: cushion_cubic */
+    sw_given cushion_lat_k_given, cushion_lat_c_given;
 
     /* [alarm] */
     double warn_margin;     /* 1, default 0.5 */
@@ -141,6 +153,17 @@ SW_API int sw_scene_parse(sw_scene_t *sc, const char *text, const char *origin, 
  * SW_OK or SW_EINVAL.  d is filled only on SW_OK (zeroed otherwise). */
 SW_API int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
                              sw_diag_fn diag, void *user);
+
+/* The scene of the lateral plane (physics.md, "The lateral plane"): the
+ * same package rocking over its depth, with width = depth and the frame's
+ * and the cushion's lateral_* values where given (their values along the
+ * truck where not); it has no depth of its own.  Returns SW_OK, or
+ * SW_ENOTFOUND (lat untouched) when sc gives no depth. */
+SW_API int sw_scene_lateral(const sw_scene_t *sc, sw_scene_t *lat);
+
+/* Non-zero if the scene gives a depth: it rocks in a lateral plane too
+ * when the input has a lateral acceleration. */
+SW_API int sw_scene_has_depth(const sw_scene_t *sc);
 
 /* "bare", "frame" or "cushion" ("unknown" for any other value). */
 SW_API const char *sw_model_name(sw_model_kind k);

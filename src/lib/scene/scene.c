@@ -25,9 +25,11 @@
 
 const char *const sw_scene_section_names[SEC_COUNT] = {"package", "frame", "cushion", "alarm"};
 static const char *const section_keys[SEC_COUNT] = {
-    "name, height, width, mass, g",
-    "mass, stiffness or omega, damping or zeta",
-    "stiffness or omega, damping or zeta, cubic",
+    "name, height, width, mass, g, depth",
+    "mass, stiffness or omega, damping or zeta, lateral_stiffness or lateral_omega, "
+    "lateral_damping or lateral_zeta",
+    "stiffness or omega, damping or zeta, cubic, lateral_stiffness or lateral_omega, "
+    "lateral_damping or lateral_zeta, lateral_cubic",
     "warn_margin, critical_margin, design_pulse, warn_reserve_g, critical_reserve_g",
 };
 
@@ -37,16 +39,26 @@ const key_info sw_scene_keys[K_COUNT] = {
     [K_WIDTH] = {SEC_PACKAGE, "width", -1, "m"},
     [K_MASS] = {SEC_PACKAGE, "mass", -1, "kg"},
     [K_G] = {SEC_PACKAGE, "g", -1, "m/s^2"},
+    [K_DEPTH] = {SEC_PACKAGE, "depth", -1, "m"},
     [K_FRAME_MASS] = {SEC_FRAME, "mass", -1, "kg"},
     [K_FRAME_STIFFNESS] = {SEC_FRAME, "stiffness", K_FRAME_OMEGA, "N/m"},
     [K_FRAME_OMEGA] = {SEC_FRAME, "omega", K_FRAME_STIFFNESS, "rad/s"},
     [K_FRAME_DAMPING] = {SEC_FRAME, "damping", K_FRAME_ZETA, "N*s/m"},
     [K_FRAME_ZETA] = {SEC_FRAME, "zeta", K_FRAME_DAMPING, ""},
+    [K_FRAME_LAT_STIFFNESS] = {SEC_FRAME, "lateral_stiffness", K_FRAME_LAT_OMEGA, "N/m"},
+    [K_FRAME_LAT_OMEGA] = {SEC_FRAME, "lateral_omega", K_FRAME_LAT_STIFFNESS, "rad/s"},
+    [K_FRAME_LAT_DAMPING] = {SEC_FRAME, "lateral_damping", K_FRAME_LAT_ZETA, "N*s/m"},
+    [K_FRAME_LAT_ZETA] = {SEC_FRAME, "lateral_zeta", K_FRAME_LAT_DAMPING, ""},
     [K_CUSHION_STIFFNESS] = {SEC_CUSHION, "stiffness", K_CUSHION_OMEGA, "N/m"},
     [K_CUSHION_OMEGA] = {SEC_CUSHION, "omega", K_CUSHION_STIFFNESS, "rad/s"},
     [K_CUSHION_DAMPING] = {SEC_CUSHION, "damping", K_CUSHION_ZETA, "N*s/m"},
     [K_CUSHION_ZETA] = {SEC_CUSHION, "zeta", K_CUSHION_DAMPING, ""},
     [K_CUSHION_CUBIC] = {SEC_CUSHION, "cubic", -1, "N/m^3"},
+    [K_CUSHION_LAT_STIFFNESS] = {SEC_CUSHION, "lateral_stiffness", K_CUSHION_LAT_OMEGA, "N/m"},
+    [K_CUSHION_LAT_OMEGA] = {SEC_CUSHION, "lateral_omega", K_CUSHION_LAT_STIFFNESS, "rad/s"},
+    [K_CUSHION_LAT_DAMPING] = {SEC_CUSHION, "lateral_damping", K_CUSHION_LAT_ZETA, "N*s/m"},
+    [K_CUSHION_LAT_ZETA] = {SEC_CUSHION, "lateral_zeta", K_CUSHION_LAT_DAMPING, ""},
+    [K_CUSHION_LAT_CUBIC] = {SEC_CUSHION, "lateral_cubic", -1, "N/m^3"},
     [K_WARN] = {SEC_ALARM, "warn_margin", -1, ""},
     [K_CRITICAL] = {SEC_ALARM, "critical_margin", -1, ""},
     [K_DESIGN_PULSE] = {SEC_ALARM, "design_pulse", -1, "s"},
@@ -78,16 +90,26 @@ static double *key_value(sw_scene_t *sc, int k)
         case K_WIDTH: return &sc->width;
         case K_MASS: return &sc->mass;
         case K_G: return &sc->g;
+        case K_DEPTH: return &sc->depth;
         case K_FRAME_MASS: return &sc->frame_mass;
         case K_FRAME_STIFFNESS: return &sc->frame_stiffness;
         case K_FRAME_OMEGA: return &sc->frame_omega;
         case K_FRAME_DAMPING: return &sc->frame_damping;
         case K_FRAME_ZETA: return &sc->frame_zeta;
+        case K_FRAME_LAT_STIFFNESS: return &sc->frame_lat_stiffness;
+        case K_FRAME_LAT_OMEGA: return &sc->frame_lat_omega;
+        case K_FRAME_LAT_DAMPING: return &sc->frame_lat_damping;
+        case K_FRAME_LAT_ZETA: return &sc->frame_lat_zeta;
         case K_CUSHION_STIFFNESS: return &sc->cushion_stiffness;
         case K_CUSHION_OMEGA: return &sc->cushion_omega;
         case K_CUSHION_DAMPING: return &sc->cushion_damping;
         case K_CUSHION_ZETA: return &sc->cushion_zeta;
         case K_CUSHION_CUBIC: return &sc->cushion_cubic;
+        case K_CUSHION_LAT_STIFFNESS: return &sc->cushion_lat_stiffness;
+        case K_CUSHION_LAT_OMEGA: return &sc->cushion_lat_omega;
+        case K_CUSHION_LAT_DAMPING: return &sc->cushion_lat_damping;
+        case K_CUSHION_LAT_ZETA: return &sc->cushion_lat_zeta;
+        case K_CUSHION_LAT_CUBIC: return &sc->cushion_lat_cubic;
         case K_WARN: return &sc->warn_margin;
         case K_CRITICAL: return &sc->critical_margin;
         case K_WARN_RESERVE: return &sc->warn_reserve_g;
@@ -108,15 +130,31 @@ static sw_given *key_given(sw_scene_t *sc, int k)
         case K_CUSHION_OMEGA: return &sc->cushion_k_given;
         case K_CUSHION_DAMPING:
         case K_CUSHION_ZETA: return &sc->cushion_c_given;
+        case K_FRAME_LAT_STIFFNESS:
+        case K_FRAME_LAT_OMEGA: return &sc->frame_lat_k_given;
+        case K_FRAME_LAT_DAMPING:
+        case K_FRAME_LAT_ZETA: return &sc->frame_lat_c_given;
+        case K_CUSHION_LAT_STIFFNESS:
+        case K_CUSHION_LAT_OMEGA: return &sc->cushion_lat_k_given;
+        case K_CUSHION_LAT_DAMPING:
+        case K_CUSHION_LAT_ZETA: return &sc->cushion_lat_c_given;
         default: return NULL;
     }
 }
 
 static sw_given key_form(int k)
 {
-    return (k == K_FRAME_OMEGA || k == K_FRAME_ZETA || k == K_CUSHION_OMEGA || k == K_CUSHION_ZETA)
-               ? SW_GIVEN_RATIO
-               : SW_GIVEN_DIMENSIONAL;
+    switch (k) {
+        case K_FRAME_OMEGA:
+        case K_FRAME_ZETA:
+        case K_CUSHION_OMEGA:
+        case K_CUSHION_ZETA:
+        case K_FRAME_LAT_OMEGA:
+        case K_FRAME_LAT_ZETA:
+        case K_CUSHION_LAT_OMEGA:
+        case K_CUSHION_LAT_ZETA: return SW_GIVEN_RATIO;
+        default: return SW_GIVEN_DIMENSIONAL;
+    }
 }
 
 /* ---- diagnostics --------------------------------------------------------- */
@@ -255,6 +293,13 @@ void sw_scene_init(sw_scene_t *sc)
     sc->cushion_stiffness = sc->cushion_omega = NAN;
     sc->cushion_damping = sc->cushion_zeta = NAN;
     sc->cushion_cubic = 0.0;
+    sc->depth = NAN;
+    sc->frame_lat_stiffness = sc->frame_lat_omega = NAN;
+    sc->frame_lat_damping = sc->frame_lat_zeta = NAN;
+    sc->cushion_lat_stiffness = sc->cushion_lat_omega = NAN;
+    sc->cushion_lat_damping = sc->cushion_lat_zeta = sc->cushion_lat_cubic = NAN;
+    sc->frame_lat_k_given = sc->frame_lat_c_given = SW_GIVEN_NONE;
+    sc->cushion_lat_k_given = sc->cushion_lat_c_given = SW_GIVEN_NONE;
     sc->frame_k_given = sc->frame_c_given = SW_GIVEN_NONE;
     sc->cushion_k_given = sc->cushion_c_given = SW_GIVEN_NONE;
     sc->warn_margin = 0.5;
@@ -383,6 +428,25 @@ static int same_pulses(const sw_scene_t *a, const sw_scene_t *b)
     return 1;
 }
 
+/* The depth and the lateral_* values. */
+static int same_lateral(const sw_scene_t *a, const sw_scene_t *b)
+{
+    return same_number(a->depth, b->depth) &&
+           same_number(a->frame_lat_stiffness, b->frame_lat_stiffness) &&
+           same_number(a->frame_lat_omega, b->frame_lat_omega) &&
+           same_number(a->frame_lat_damping, b->frame_lat_damping) &&
+           same_number(a->frame_lat_zeta, b->frame_lat_zeta) &&
+           a->frame_lat_k_given == b->frame_lat_k_given &&
+           a->frame_lat_c_given == b->frame_lat_c_given &&
+           same_number(a->cushion_lat_stiffness, b->cushion_lat_stiffness) &&
+           same_number(a->cushion_lat_omega, b->cushion_lat_omega) &&
+           same_number(a->cushion_lat_damping, b->cushion_lat_damping) &&
+           same_number(a->cushion_lat_zeta, b->cushion_lat_zeta) &&
+           same_number(a->cushion_lat_cubic, b->cushion_lat_cubic) &&
+           a->cushion_lat_k_given == b->cushion_lat_k_given &&
+           a->cushion_lat_c_given == b->cushion_lat_c_given;
+}
+
 /* Every field but the line numbers; a new field of sw_scene_t must be
  * added here. */
 int sw_scene_equal(const sw_scene_t *a, const sw_scene_t *b)
@@ -405,5 +469,48 @@ int sw_scene_equal(const sw_scene_t *a, const sw_scene_t *b)
            same_number(a->warn_margin, b->warn_margin) &&
            same_number(a->critical_margin, b->critical_margin) && same_pulses(a, b) &&
            same_number(a->warn_reserve_g, b->warn_reserve_g) &&
-           same_number(a->critical_reserve_g, b->critical_reserve_g);
+           same_number(a->critical_reserve_g, b->critical_reserve_g) && same_lateral(a, b);
+}
+
+int sw_scene_has_depth(const sw_scene_t *sc)
+{
+    return sc && !isnan(sc->depth);
+}
+
+/* One (stiffness|omega) or (damping|zeta) pair across the truck: its own
+ * where given, else the one along the truck. */
+static void lateral_pair(sw_given lat_given, double lat_dim, double lat_ratio, sw_given *given,
+                         double *dim, double *ratio)
+{
+    if (lat_given == SW_GIVEN_NONE)
+        return;
+    *given = lat_given;
+    *dim = lat_dim;
+    *ratio = lat_ratio;
+}
+
+int sw_scene_lateral(const sw_scene_t *sc, sw_scene_t *lat)
+{
+    if (!sw_scene_has_depth(sc) || !lat)
+        return SW_ENOTFOUND;
+    sw_scene_t l = *sc;
+    l.width = sc->depth;
+    l.depth = NAN;
+    lateral_pair(sc->frame_lat_k_given, sc->frame_lat_stiffness, sc->frame_lat_omega,
+                 &l.frame_k_given, &l.frame_stiffness, &l.frame_omega);
+    lateral_pair(sc->frame_lat_c_given, sc->frame_lat_damping, sc->frame_lat_zeta, &l.frame_c_given,
+                 &l.frame_damping, &l.frame_zeta);
+    lateral_pair(sc->cushion_lat_k_given, sc->cushion_lat_stiffness, sc->cushion_lat_omega,
+                 &l.cushion_k_given, &l.cushion_stiffness, &l.cushion_omega);
+    lateral_pair(sc->cushion_lat_c_given, sc->cushion_lat_damping, sc->cushion_lat_zeta,
+                 &l.cushion_c_given, &l.cushion_damping, &l.cushion_zeta);
+    if (!isnan(sc->cushion_lat_cubic))
+        l.cushion_cubic = sc->cushion_lat_cubic;
+    l.frame_lat_stiffness = l.frame_lat_omega = l.frame_lat_damping = l.frame_lat_zeta = NAN;
+    l.cushion_lat_stiffness = l.cushion_lat_omega = NAN;
+    l.cushion_lat_damping = l.cushion_lat_zeta = l.cushion_lat_cubic = NAN;
+    l.frame_lat_k_given = l.frame_lat_c_given = SW_GIVEN_NONE;
+    l.cushion_lat_k_given = l.cushion_lat_c_given = SW_GIVEN_NONE;
+    *lat = l;
+    return SW_OK;
 }

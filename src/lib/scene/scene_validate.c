@@ -361,6 +361,75 @@ static void check_reserve(vctx *v, const sw_scene_t *sc)
     }
 }
 
+/* The lateral plane's scene validated on its own reports its problems
+ * with this said first: its width is the depth, its springs the
+ * lateral_* ones where given. */
+typedef struct {
+    vctx *v;
+} lat_diag_t;
+
+static void lat_diag(void *user, const char *origin, int line, const char *msg)
+{
+    vctx *v = ((lat_diag_t *)user)->v;
+    VREPORT(v, line,
+            "across the truck (package.depth as the width, the lateral_ keys where given): %s",
+            msg);
+    (void)origin;
+}
+
+/* package.depth and the lateral_* keys (physics.md, "The lateral plane"):
+ * without a depth none may be given (nothing rocks across the truck to
+ * use them); with one, each in its range, and then the lateral plane's
+ * scene valid as a scene of its own. */
+static void check_lateral(vctx *v, const sw_scene_t *sc, int pkg_ok)
+{
+    const int lat_frame = sc->frame_lat_k_given || sc->frame_lat_c_given;
+    const int lat_cushion =
+        sc->cushion_lat_k_given || sc->cushion_lat_c_given || !isnan(sc->cushion_lat_cubic);
+    if (isnan(sc->depth)) {
+        if (lat_frame || lat_cushion)
+            VREPORT(v, lat_frame ? sc->line_frame : sc->line_cushion,
+                    "%s.lateral_ keys given without package.depth: expected package.depth in m "
+                    "(the size across the truck, over which the lateral plane rocks), or no "
+                    "lateral_ keys",
+                    lat_frame ? "frame" : "cushion");
+        return;
+    }
+    int ok = check_value(v, sc->line_package, "package.depth", sc->depth, "m",
+                         "the package depth 2d across the truck", 0, SIZE_MIN, SIZE_MAX_);
+    const int lf = sc->line_frame, lc = sc->line_cushion;
+    ok &= check_pair(v, lf, "frame", sc->frame_lat_k_given, sc->frame_lat_stiffness,
+                     sc->frame_lat_omega, K_FRAME_LAT_STIFFNESS, K_FRAME_LAT_OMEGA, 0, 0, OMEGA_MIN,
+                     OMEGA_MAX, "the bearing stiffness across the truck",
+                     "the bearing frequency across the truck");
+    ok &= check_pair(v, lf, "frame", sc->frame_lat_c_given, sc->frame_lat_damping,
+                     sc->frame_lat_zeta, K_FRAME_LAT_DAMPING, K_FRAME_LAT_ZETA, 0, 1, ZETA_MIN,
+                     ZETA_MAX, "the bearing damping across the truck",
+                     "the bearing damping ratio across the truck");
+    ok &= check_pair(v, lc, "cushion", sc->cushion_lat_k_given, sc->cushion_lat_stiffness,
+                     sc->cushion_lat_omega, K_CUSHION_LAT_STIFFNESS, K_CUSHION_LAT_OMEGA, 0, 0,
+                     OMEGA_MIN, OMEGA_MAX, "the total cushion stiffness across the truck",
+                     "the cushion frequency across the truck");
+    ok &= check_pair(v, lc, "cushion", sc->cushion_lat_c_given, sc->cushion_lat_damping,
+                     sc->cushion_lat_zeta, K_CUSHION_LAT_DAMPING, K_CUSHION_LAT_ZETA, 0, 1,
+                     ZETA_MIN, ZETA_MAX, "the total cushion damping across the truck",
+                     "the cushion damping ratio across the truck");
+    if (!isnan(sc->cushion_lat_cubic))
+        ok &= check_value(v, lc, "cushion.lateral_cubic", sc->cushion_lat_cubic, "N/m^3",
+                          "the total cubic cushion stiffness across the truck", 1, CUBIC_MIN,
+                          INFINITY);
+    if (!ok || !pkg_ok || v->errors)
+        return; /* its problems said once, along the truck */
+    /* the rest, as any scene's (the springs against the masses, a cushion
+     * stiff enough to hold the package upright over its depth) */
+    sw_scene_t lat;
+    sw_scene_lateral(sc, &lat);
+    lat_diag_t ld = {v};
+    vctx lv = {v->origin, lat_diag, &ld, 0};
+    (void)check_frame(&lv, &lat, 1);
+    (void)check_cushion(&lv, &lat, 1);
+}
+
 /* The derived quantities of a valid scene: physics.md, "Package, vehicle,
  * conventions" and the scene sections. */
 static void derive(const sw_scene_t *sc, const frame_t *f, const cushion_t *cu, sw_derived_t *d)
@@ -425,6 +494,7 @@ int sw_scene_validate(const sw_scene_t *sc, sw_derived_t *d, const char *origin,
     const cushion_t cu = check_cushion(&v, sc, pkg_ok);
     check_margins(&v, sc);
     check_reserve(&v, sc);
+    check_lateral(&v, sc, pkg_ok);
     if (v.errors)
         return SW_EINVAL;
     if (!d)
