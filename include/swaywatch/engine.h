@@ -48,6 +48,16 @@ typedef enum {
  * event column); "unknown" for a value outside the enum. */
 SW_API const char *sw_event_name(sw_event_kind k);
 
+/* The vertical plane a package rocks in: along the truck (its width, the
+ * longitudinal acceleration), or across it (its depth, the lateral
+ * acceleration), for a scene with a depth in an engine made with
+ * opts.lateral (physics.md, "The lateral plane"). */
+typedef enum { SW_PLANE_LONG = 0, SW_PLANE_LAT = 1 } sw_plane;
+#define SW_PLANES 2
+
+/* "longitudinal", "lateral" ("unknown" for a value outside the enum). */
+SW_API const char *sw_plane_name(sw_plane p);
+
 typedef struct {
     size_t pkg; /* index of the package (scene) */
     sw_event_kind kind;
@@ -56,6 +66,7 @@ typedef struct {
     double theta_dot; /* rad/s, after the event's map */
     double margin;    /* 1, after the event */
     double info;      /* see sw_event_kind */
+    sw_plane plane;   /* where it happened: SW_PLANE_LONG, unless opts.lateral */
 } sw_event_t;
 
 typedef struct {
@@ -67,6 +78,8 @@ typedef struct {
     double uplift_ratio; /* |A| / (g tan alpha), A = acceleration of the support */
     double a_g;          /* m/s^2, bed acceleration used at t */
     double a_support;    /* m/s^2, absolute acceleration of the package's support */
+    sw_plane plane;      /* the plane reported: SW_PLANE_LONG, unless opts.lateral (a_g is
+                            then the lateral acceleration, a_support across the truck) */
 } sw_output_t;
 
 /* Non-zero if every number of o is finite (the engine never reports one
@@ -105,6 +118,14 @@ typedef struct {
     sw_event_fn on_event;
     sw_state_fn on_state; /* called once per pushed sample and package; may be NULL */
     void *user;
+    int lateral; /* non-zero: the caller pushes a lateral acceleration too
+                    (sw_engine_push_lat), and each package whose scene has a depth
+                    rocks in a lateral plane as well (sw_scene_lateral: its own
+                    scheme and step, as an engine of that scene alone would take
+                    them); its events and states come through the same callbacks
+                    with plane SW_PLANE_LAT, each sample's lateral states before
+                    the longitudinal ones.  0: one plane, a depth is not read, and
+                    nothing of a second plane is allocated or computed */
 } sw_engine_opts_t;
 
 typedef struct {
@@ -174,6 +195,18 @@ SW_API int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene
  * Outputs and events never carry a non-finite number. */
 SW_API int sw_engine_push(sw_engine_t *e, double t, double a_g, double a_z);
 
+/* Push one sample with its lateral acceleration a_y (m/s^2, across the
+ * truck; which side is positive is the caller's choice, the planes being
+ * symmetric: the states' theta then tips toward +y): as sw_engine_push,
+ * the lateral planes driven by a_y and a_z, the longitudinal ones by a_g
+ * and a_z.  A sample one plane would refuse is refused whole (a_y is
+ * checked as a_g is), the state untouched.  On an engine without lateral
+ * planes a_y is checked and then not used.  An engine with lateral planes
+ * takes its samples here only: sw_engine_push() on it returns SW_EINVAL
+ * (a sample without its lateral value cannot drive the lateral planes,
+ * and is not guessed). */
+SW_API int sw_engine_push_lat(sw_engine_t *e, double t, double a_g, double a_y, double a_z);
+
 /* Before the first sample: integrate on time relative to t0 (s) instead
  * of the first sample's time, which may then be any time >= t0.  A run
  * that starts part-way through a log with the log's first time as t0
@@ -191,7 +224,7 @@ SW_API int sw_engine_restart(sw_engine_t *e);
 
 /* Input given as a function of time instead of samples (pulses, tests):
  * advance from the current time to t1 with a_g = f(t), a_z = 0.  The start
- * time is 0 if nothing was pushed. */
+ * time is 0 if nothing was pushed.  Lateral planes move freely (a_y = 0). */
 typedef double (*sw_input_fn)(void *user, double t);
 SW_API int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user);
 /* The quiet input, 0 m/s^2 at every t (user ignored): free motion. */
@@ -220,6 +253,37 @@ SW_API double sw_engine_time(const sw_engine_t *e); /* s, NAN before the first s
 SW_API const sw_derived_t *sw_engine_derived(const sw_engine_t *e, size_t pkg);
 SW_API int sw_engine_summary(const sw_engine_t *e, size_t pkg, sw_summary_t *s);
 SW_API const char *sw_engine_scheme(const sw_engine_t *e);
+
+/* The planes of package pkg: 2 when it rocks in a lateral plane too
+ * (opts.lateral and a depth), 1 when not, 0 for no such package. */
+SW_API int sw_engine_planes(const sw_engine_t *e, size_t pkg);
+/* One plane's summary (sw_engine_summary is the longitudinal one) and
+ * its current output; SW_ENOTFOUND for a plane the package does not
+ * have. */
+SW_API int sw_engine_summary_plane(const sw_engine_t *e, size_t pkg, sw_plane plane,
+                                   sw_summary_t *s);
+SW_API int sw_engine_get_output_plane(const sw_engine_t *e, size_t pkg, sw_plane plane,
+                                      sw_output_t *out);
+
+/* What the planes of a package say together. */
+typedef struct {
+    int planes;       /* 1 or 2 */
+    sw_plane worse;   /* the plane of the verdict (sw_summary_worse): SW_PLANE_LONG with one */
+    int both_rocking; /* both planes were lifted at once (at a sample): the package may
+                         have rocked on a corner, which the planar models do not describe,
+                         and the verdict after it is their decoupled approximation
+                         (physics.md, "The lateral plane") */
+    double both_from; /* s, the first sample time at which both were lifted (NAN: never) */
+    double both_to;   /* s, the last one (NAN: never) */
+    double both_time; /* s, how long both were lifted, summed over sample intervals */
+} sw_planes_t;
+SW_API int sw_engine_planes_summary(const sw_engine_t *e, size_t pkg, sw_planes_t *p);
+
+/* Which of two planes' summaries is the worse: 1 for b, 0 for a.  An
+ * overturned plane is worse than one that is not, of two overturned
+ * the earlier; else the smaller min_margin, then the larger
+ * max_theta_ratio; a tie goes to a. */
+SW_API int sw_summary_worse(const sw_summary_t *a, const sw_summary_t *b);
 SW_API double sw_engine_dt(const sw_engine_t *e, size_t pkg); /* s, internal step in use */
 /* The step a package's fixed-step scheme actually took: the longest so
  * far (s; a sample interval shorter than sw_engine_dt cuts the steps to

@@ -28,6 +28,14 @@
 #include "swaywatch/model.h"
 #include "swaywatch/status.h"
 
+#define NO_LAT ((size_t)-1)
+
+/* Both planes of a package lifted at once (sw_planes_t), absolute times. */
+typedef struct {
+    double from, to; /* s, NAN: never */
+    double time;     /* s */
+} sw_both_t;
+
 struct sw_engine {
     size_t n;
     sw_pkg_t *pk;
@@ -45,6 +53,13 @@ struct sw_engine {
     double dt_req;      /* s, the step asked for (sw_engine_dt_requested) */
     sw_engine_t *check; /* the default scheme and step beside it (opts.check_default) */
     const volatile sig_atomic_t *stop; /* the caller's: ends sw_engine_finish() early */
+    /* the lateral planes (opts.lateral, the scenes with a depth): an engine
+     * of their own, whose package j is package lat_pkg[j] here */
+    sw_engine_t *lat;
+    size_t *lat_of;  /* n: a package's index in lat, or NO_LAT */
+    size_t *lat_pkg; /* lat->n */
+    sw_both_t *both; /* lat->n: both planes lifted at once */
+    double t_both;   /* s, absolute: the last sample the planes were compared at */
 };
 
 /* ---- the sample loop ----------------------------------------------------- */
@@ -368,6 +383,11 @@ void sw_engine_reset(sw_engine_t *e)
     memset(&e->in, 0, sizeof e->in);
     for (size_t i = 0; i < e->n; i++) pkg_reset(&e->pk[i]);
     sw_engine_reset(e->check);
+    sw_engine_reset(e->lat);
+    e->t_both = NAN;
+    if (e->lat)
+        for (size_t j = 0; j < e->lat->n; j++)
+            e->both[j] = (sw_both_t){.from = NAN, .to = NAN, .time = 0.0};
 }
 
 void sw_engine_destroy(sw_engine_t *e)
@@ -376,6 +396,10 @@ void sw_engine_destroy(sw_engine_t *e)
         return;
     for (size_t i = 0; i < e->n; i++) sw_step_free(&e->pk[i].st);
     sw_engine_destroy(e->check);
+    sw_engine_destroy(e->lat);
+    free(e->lat_of);
+    free(e->lat_pkg);
+    free(e->both);
     free(e->pk);
     free(e);
 }
@@ -458,6 +482,103 @@ static void make_check(sw_engine_t *e, const sw_scene_t *scenes, size_t n)
         e->check = c;
 }
 
+/* ---- the lateral planes --------------------------------------------------- */
+
+/* The lateral engine's callbacks: its package and plane said as the
+ * engine it serves knows them, to the caller's callbacks. */
+static void lat_event(void *user, const sw_event_t *ev)
+{
+    const sw_engine_t *e = user;
+    sw_event_t v = *ev;
+    v.pkg = e->lat_pkg[ev->pkg];
+    v.plane = SW_PLANE_LAT;
+    if (e->o.on_event)
+        e->o.on_event(e->o.user, &v);
+}
+
+static void lat_state(void *user, const sw_output_t *out)
+{
+    const sw_engine_t *e = user;
+    sw_output_t o = *out;
+    o.pkg = e->lat_pkg[out->pkg];
+    o.plane = SW_PLANE_LAT;
+    e->o.on_state(e->o.user, &o);
+}
+
+/* The lateral planes of the scenes with a depth: an engine of the
+ * lateral scenes (sw_scene_lateral) with the caller's options, so that
+ * each plane integrates exactly as an engine of its scene alone would.
+ * Allocates here, once; nothing when no scene has a depth. */
+static int make_lateral(sw_engine_t *e, const sw_scene_t *scenes, size_t n,
+                        const sw_engine_opts_t *opts, int *err, char *msg, size_t msglen)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) m += sw_scene_has_depth(&scenes[i]) != 0;
+    if (m == 0)
+        return SW_OK;
+    sw_scene_t *lat = calloc(m, sizeof *lat);
+    e->lat_of = calloc(n, sizeof *e->lat_of);
+    e->lat_pkg = calloc(m, sizeof *e->lat_pkg);
+    e->both = calloc(m, sizeof *e->both);
+    if (!lat || !e->lat_of || !e->lat_pkg || !e->both) {
+        free(lat);
+        return fail(err, SW_ENOMEM, msg, msglen, "out of memory");
+    }
+    for (size_t i = 0, j = 0; i < n; i++) {
+        e->lat_of[i] = NO_LAT;
+        if (sw_scene_lateral(&scenes[i], &lat[j]) != SW_OK)
+            continue;
+        e->lat_of[i] = j;
+        e->lat_pkg[j++] = i;
+    }
+    sw_engine_opts_t o = *opts;
+    o.lateral = 0;
+    o.user = e;
+    o.on_event = lat_event;
+    o.on_state = opts->on_state ? lat_state : NULL;
+    int r = SW_OK;
+    char buf[512];
+    e->lat = sw_engine_create(lat, m, &o, &r, buf, sizeof buf);
+    free(lat);
+    if (!e->lat) {
+        char text[600];
+        snprintf(text, sizeof text, "across the truck: %s", buf);
+        return fail(err, r, msg, msglen, text);
+    }
+    return SW_OK;
+}
+
+/* Off its support since a lift: rocking (a rigid package's phase), and
+ * not back at rest since its last lift (a cushion's t_lift, which a
+ * rigid package keeps after its rest). */
+static inline int lifted(const sw_pkg_t *P)
+{
+    return P->m.phase == SW_PHASE_ROCKING && !isnan(P->m.t_lift);
+}
+
+/* Compare the planes at the sample just taken (absolute time t): a
+ * package lifted in both (lifted(): not at rest, not overturned)
+ * extends its span.  Each plane's lift time is exact; the end of an
+ * overlap is seen at the samples. */
+static void track_both(sw_engine_t *e, double t)
+{
+    const sw_engine_t *L = e->lat;
+    for (size_t j = 0; j < L->n; j++) {
+        const sw_pkg_t *A = &e->pk[e->lat_pkg[j]], *B = &L->pk[j];
+        if (!lifted(A) || !lifted(B))
+            continue;
+        double from = fmax(e->pc.origin + A->m.t_lift, L->pc.origin + B->m.t_lift); /* s */
+        if (!isnan(e->t_both))
+            from = fmax(from, e->t_both);
+        sw_both_t *b = &e->both[j];
+        if (isnan(b->from))
+            b->from = from;
+        b->to = t;
+        b->time += t > from ? t - from : 0.0;
+    }
+    e->t_both = t;
+}
+
 sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *opts,
                               int *err, char *msg, size_t msglen)
 {
@@ -513,6 +634,8 @@ sw_engine_t *sw_engine_create(const sw_scene_t *scenes, size_t n, const sw_engin
     }
     if (check)
         make_check(e, scenes, n);
+    if (e->o.lateral && make_lateral(e, scenes, n, opts, err, msg, msglen) != SW_OK)
+        goto out_fail;
     sw_engine_reset(e);
     return e;
 out_fail:
@@ -567,7 +690,7 @@ static int push(sw_engine_t *e, double t_abs, double a_g, double a_z);
 
 int sw_engine_push(sw_engine_t *e, double t_abs, double a_g, double a_z)
 {
-    if (!e)
+    if (!e || e->lat) /* the lateral planes need their input: sw_engine_push_lat */
         return SW_EINVAL;
     const int rc = push(e, t_abs, a_g, a_z);
     if (rc >= 0 && e->check) /* through the API: push() stays inlined here */
@@ -631,6 +754,37 @@ static int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
     return e->pc.events ? SW_EVENT : SW_OK;
 }
 
+/* An acceleration a sample may hold (what push() checks of a_g). */
+static int accel_ok(double a)
+{
+    return isfinite(a) ? fabs(a) > SW_MAX_ACCEL ? SW_ETOOBIG : SW_OK : SW_ENONFINITE;
+}
+
+int sw_engine_push_lat(sw_engine_t *e, double t_abs, double a_g, double a_y, double a_z)
+{
+    if (!e)
+        return SW_EINVAL;
+    int rc = accel_ok(a_y);
+    if (rc == SW_OK && e->lat)
+        rc = accel_ok(a_g); /* refused before either plane takes the sample */
+    if (rc != SW_OK)
+        return !isfinite(t_abs) || !isfinite(a_g) || !isfinite(a_z) ? SW_ENONFINITE : rc;
+    if (!e->lat)
+        return sw_engine_push(e, t_abs, a_g, a_z);
+    /* the lateral planes first: the caller's on_state sees them before the
+     * longitudinal ones of the same sample */
+    const int rl = push(e->lat, t_abs, a_y, a_z);
+    if (rl < 0)
+        return rl; /* the time or a_z refused: by the other plane as well */
+    if (e->lat->check)
+        sw_engine_push(e->lat->check, t_abs, a_y, a_z);
+    rc = push(e, t_abs, a_g, a_z);
+    if (rc >= 0 && e->check)
+        sw_engine_push(e->check, t_abs, a_g, a_z);
+    track_both(e, t_abs);
+    return rc == SW_EVENT || rl == SW_EVENT ? SW_EVENT : rc;
+}
+
 /* Advance to t1 (relative) with a_g = f(user, absolute time). */
 static int advance_to(sw_engine_t *e, double t1, sw_input_fn f, void *user)
 {
@@ -664,7 +818,11 @@ int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
     const int rc = advance_to(e, t1 - e->pc.origin, f, user);
     if (rc >= 0 && e->check)
         advance_to(e->check, t1 - e->check->pc.origin, f, user);
-    return rc;
+    if (rc < 0 || !e->lat)
+        return rc;
+    const int rl = sw_engine_advance_fn(e->lat, t1, sw_input_zero, NULL);
+    track_both(e, t1);
+    return rl == SW_EVENT ? SW_EVENT : rc;
 }
 
 int sw_engine_set_origin(sw_engine_t *e, double t0)
@@ -677,6 +835,8 @@ int sw_engine_set_origin(sw_engine_t *e, double t0)
     e->origin_set = 1;
     if (e->check)
         sw_engine_set_origin(e->check, t0);
+    if (e->lat)
+        sw_engine_set_origin(e->lat, t0);
     return SW_OK;
 }
 
@@ -696,6 +856,8 @@ int sw_engine_restart(sw_engine_t *e)
     e->restart = 1;
     if (e->check)
         sw_engine_restart(e->check);
+    if (e->lat)
+        sw_engine_restart(e->lat);
     return SW_OK;
 }
 
@@ -706,29 +868,47 @@ double sw_input_zero(void *user, double t)
     return 0.0;
 }
 
+/* Any package of e still moving (finish goes on while one is). */
+static int any_moving(const sw_engine_t *e)
+{
+    for (size_t i = 0; i < e->n; i++)
+        if (e->pk[i].m.ops->moving(&e->pk[i].m, e->pk[i].y, e->pc.rest_eps))
+            return 1;
+    return 0;
+}
+
+/* The lateral planes settle beside the longitudinal ones on the same
+ * clock, each engine only while one of its packages moves: the chunks
+ * each takes are those it would take alone. */
 int sw_engine_finish(sw_engine_t *e, double settle)
 {
     if (!e)
         return SW_EINVAL;
     if (e->check)
         sw_engine_finish(e->check, settle);
+    if (e->lat && e->lat->check)
+        sw_engine_finish(e->lat->check, settle);
     int any = 0;
     if (!(settle > 0.0) || !e->started)
         return SW_OK;
+    sw_engine_t *L = e->lat;
     const double t_end = e->t + settle;
     const double chunk = 1e-3; /* s, state reports while settling */
-    while (e->t < t_end && !(e->stop && *e->stop)) {
-        int moving = 0;
-        for (size_t i = 0; i < e->n; i++)
-            if (e->pk[i].m.ops->moving(&e->pk[i].m, e->pk[i].y, e->pc.rest_eps))
-                moving = 1;
-        if (!moving)
+    for (double t = e->t; t < t_end && !(e->stop && *e->stop);) {
+        const int moving = any_moving(e), lat_moving = L && any_moving(L);
+        if (!moving && !lat_moving)
             break;
-        const double tn = fmin(t_end, e->t + chunk);
-        if (!(tn > e->t))
+        const double tn = fmin(t_end, t + chunk);
+        if (!(tn > t))
             break; /* beyond the clock's resolution: no progress */
-        if (advance_to(e, tn, sw_input_zero, NULL) == SW_EVENT)
+        if (moving && advance_to(e, tn, sw_input_zero, NULL) == SW_EVENT)
             any = 1;
+        if (lat_moving &&
+            advance_to(L, tn + (e->pc.origin - L->pc.origin), sw_input_zero, NULL) == SW_EVENT)
+            any = 1;
+        if (L)
+            track_both(e, e->pc.origin + tn);
+        t = tn;
     }
     return any ? SW_EVENT : SW_OK;
 }
@@ -739,6 +919,7 @@ void sw_engine_set_stop(sw_engine_t *e, const volatile sig_atomic_t *stop)
         return;
     e->stop = stop;
     sw_engine_set_stop(e->check, stop); /* the default beside it settles too */
+    sw_engine_set_stop(e->lat, stop);
 }
 
 int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
@@ -837,6 +1018,95 @@ const sw_engine_t *sw_engine_checker(const sw_engine_t *e)
     return e ? e->check : NULL;
 }
 
+const char *sw_plane_name(sw_plane p)
+{
+    switch (p) {
+        case SW_PLANE_LONG: return "longitudinal";
+        case SW_PLANE_LAT: return "lateral";
+    }
+    return "unknown";
+}
+
+/* The engine holding plane p of package pkg, and the package's index
+ * there; NULL when the package has no such plane. */
+static const sw_engine_t *plane_of(const sw_engine_t *e, size_t pkg, sw_plane p, size_t *k)
+{
+    if (!e || pkg >= e->n)
+        return NULL;
+    if (p == SW_PLANE_LONG) {
+        *k = pkg;
+        return e;
+    }
+    if (p != SW_PLANE_LAT || !e->lat || e->lat_of[pkg] == NO_LAT)
+        return NULL;
+    *k = e->lat_of[pkg];
+    return e->lat;
+}
+
+int sw_engine_planes(const sw_engine_t *e, size_t pkg)
+{
+    size_t k;
+    if (!e || pkg >= e->n)
+        return 0;
+    return plane_of(e, pkg, SW_PLANE_LAT, &k) ? 2 : 1;
+}
+
+int sw_engine_summary_plane(const sw_engine_t *e, size_t pkg, sw_plane plane, sw_summary_t *s)
+{
+    size_t k;
+    const sw_engine_t *E = plane_of(e, pkg, plane, &k);
+    if (!s || !e || pkg >= e->n)
+        return SW_EINVAL;
+    return E ? sw_engine_summary(E, k, s) : SW_ENOTFOUND;
+}
+
+int sw_engine_get_output_plane(const sw_engine_t *e, size_t pkg, sw_plane plane, sw_output_t *out)
+{
+    size_t k;
+    const sw_engine_t *E = plane_of(e, pkg, plane, &k);
+    if (!out || !e || pkg >= e->n)
+        return SW_EINVAL;
+    if (!E)
+        return SW_ENOTFOUND;
+    const int r = sw_engine_get_output(E, k, out);
+    out->pkg = pkg;
+    out->plane = plane;
+    return r;
+}
+
+int sw_summary_worse(const sw_summary_t *a, const sw_summary_t *b)
+{
+    if (a->overturned != b->overturned)
+        return b->overturned;
+    if (a->overturned)
+        return b->overturn_time < a->overturn_time;
+    if (a->min_margin != b->min_margin)
+        return b->min_margin < a->min_margin;
+    return b->max_theta_ratio > a->max_theta_ratio;
+}
+
+int sw_engine_planes_summary(const sw_engine_t *e, size_t pkg, sw_planes_t *p)
+{
+    if (!e || pkg >= e->n || !p)
+        return SW_EINVAL;
+    *p = (sw_planes_t){.planes = sw_engine_planes(e, pkg),
+                       .worse = SW_PLANE_LONG,
+                       .both_from = NAN,
+                       .both_to = NAN};
+    if (p->planes < 2)
+        return SW_OK;
+    sw_summary_t a, b;
+    sw_engine_summary_plane(e, pkg, SW_PLANE_LONG, &a);
+    sw_engine_summary_plane(e, pkg, SW_PLANE_LAT, &b);
+    p->worse = sw_summary_worse(&a, &b) ? SW_PLANE_LAT : SW_PLANE_LONG;
+    const sw_both_t *w = &e->both[e->lat_of[pkg]];
+    p->both_rocking = !isnan(w->from);
+    p->both_from = w->from;
+    p->both_to = w->to;
+    p->both_time = w->time;
+    return SW_OK;
+}
+
 const char *sw_event_name(sw_event_kind k)
 {
     switch (k) {
@@ -869,9 +1139,28 @@ int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char 
             snprintf(msg, msglen, "no such package");
         return SW_EINVAL;
     }
+    /* a new scene that cannot have the planes the package has leaves the
+     * engine unchanged */
+    const size_t j = e->lat ? e->lat_of[pkg] : NO_LAT;
+    if (e->o.lateral && (j != NO_LAT) != (sw_scene_has_depth(scene) != 0)) {
+        if (msg && msglen)
+            snprintf(msg, msglen,
+                     "package.depth %s: a package cannot gain or lose its lateral plane while "
+                     "the stream runs",
+                     j != NO_LAT ? "removed" : "added");
+        return SW_EINVAL;
+    }
     sw_pkg_t fresh;
     memset(&fresh, 0, sizeof fresh);
-    const int r = pkg_init(e, &fresh, scene, pkg, msg, msglen);
+    int r = pkg_init(e, &fresh, scene, pkg, msg, msglen);
+    if (r == SW_OK && j != NO_LAT) {
+        sw_scene_t lat;
+        sw_scene_lateral(scene, &lat);
+        char buf[400];
+        r = sw_engine_replace(e->lat, j, &lat, buf, sizeof buf);
+        if (r != SW_OK && msg && msglen)
+            snprintf(msg, msglen, "across the truck: %s", buf);
+    }
     if (r != SW_OK) {
         sw_step_free(&fresh.st);
         return r;
@@ -882,6 +1171,8 @@ int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char 
     sw_step_bind(&P->st, &P->m, &P->scr);
     pkg_reset(P);
     P->t = e->started ? e->t : 0.0;
+    if (j != NO_LAT)
+        e->both[j] = (sw_both_t){.from = NAN, .to = NAN, .time = 0.0};
     if (e->check && sw_engine_replace(e->check, pkg, scene, NULL, 0) != SW_OK) {
         /* the check can no longer follow: drop it rather than check wrongly */
         sw_engine_destroy(e->check);

@@ -27,6 +27,7 @@ void sw_pkg_emit_at(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, 
     ev.theta_dot = o.state.theta_dot;
     ev.margin = o.margin;
     ev.info = info;
+    ev.plane = SW_PLANE_LONG;
     if (o.margin < P->sum.min_margin)
         P->sum.min_margin = o.margin;
     C->events++;
