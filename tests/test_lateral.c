@@ -391,6 +391,73 @@ static void test_api_edges(void **state)
     free(ev);
 }
 
+/* The gate checks the lateral axis as the longitudinal one: a value not
+ * finite or a spike refuses the sample, and a lateral channel that reads
+ * gravity for minutes (a vertical axis taken for it) refuses the log,
+ * naming --lat-col.  A gate without lateral never reads a_y. */
+typedef struct {
+    long refused[SW_GATE_NREJ];
+} gate_rec_t;
+
+static void on_gate_reject(void *user, const sw_sample_t *s, sw_gate_reject r, const char *text)
+{
+    (void)s;
+    (void)text;
+    ((gate_rec_t *)user)->refused[r]++;
+}
+
+static void test_gate_lateral_axis(void **state)
+{
+    (void)state;
+    sw_scene_t sc = tu_bare(2.0, 0.728);
+    sc.depth = 0.5;
+    for (int lateral = 0; lateral <= 1; lateral++) {
+        sw_engine_t *e = make(&sc, 1, lateral, NULL);
+        gate_rec_t rec = {{0}};
+        sw_gate_opts_t go = {.on_reject = on_gate_reject, .user = &rec, .lateral = lateral};
+        char msg[200];
+        sw_gate_t *g = sw_gate_create(e, &go, msg, sizeof msg);
+        assert_non_null(g);
+        for (int i = 0; i < 100 * 70; i++) { /* 70 s at 100 Hz */
+            sw_sample_t s = {.t = i / 100.0,
+                             .a_g = 0.3 * sin(i / 10.0),
+                             .a_y = G, /* gravity on the axis read as lateral */
+                             .a_max = NAN,
+                             .seq = SW_GATE_NO_SEQ,
+                             .rx = NAN,
+                             .wall = NAN,
+                             .where = i};
+            if (i == 500)
+                s.a_y = NAN;
+            if (i == 600)
+                s.a_y = 60 * G; /* beyond the default 50 g */
+            sw_gate_push(g, &s);
+        }
+        sw_gate_flush(g);
+        sw_gate_facts_t f;
+        sw_gate_facts(g, &f);
+        char why[320];
+        const int r = sw_gate_check(&f, NULL, why, sizeof why);
+        if (lateral) {
+            assert_int_equal(rec.refused[SW_GATE_REJ_NONFINITE], 1);
+            assert_int_equal(rec.refused[SW_GATE_REJ_IMPLAUSIBLE], 1);
+            assert_true(f.lateral);
+            assert_int_equal(f.lat.above_half_g, f.accepted);
+            tu_near(f.lat.peak, G, 0);
+            assert_int_equal(r, SW_GATE_REFUSE);
+            assert_non_null(strstr(why, "the lateral channel looks like gravity"));
+            assert_non_null(strstr(why, "--lat-col"));
+        } else {
+            assert_int_equal(rec.refused[SW_GATE_REJ_NONFINITE], 0);
+            assert_int_equal(rec.refused[SW_GATE_REJ_IMPLAUSIBLE], 0);
+            assert_false(f.lateral);
+            assert_true(r != SW_GATE_REFUSE);
+        }
+        sw_gate_destroy(g);
+        sw_engine_destroy(e);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -400,6 +467,7 @@ int main(void)
         cmocka_unit_test(test_which_plane_overturns),
         cmocka_unit_test(test_both_planes_rocking),
         cmocka_unit_test(test_api_edges),
+        cmocka_unit_test(test_gate_lateral_axis),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -126,21 +126,32 @@ typedef struct {
                               by the look-ahead's rows (a number above 12 is the day), and
                               refused (SW_EAMBIGUOUS) when they cannot be; SW_CSV_DATE_DMY,
                               SW_CSV_DATE_MDY: as given */
+    /* added with the lateral plane */
+    int lateral;         /* non-zero: read a lateral acceleration (sw_csv_lateral() in
+                            on_row): lat_col, else with infer the header's lateral column
+                            ("Lateral Gs", "Y (g)", "ay"; several: SW_EAMBIGUOUS), else none
+                            (layout col[3] = -1); 0: none is read, and lat_col must be NULL
+                            (one the header names is said in the layout's lat_unread) */
+    const char *lat_col; /* lateral acceleration column, name or 1-based index; NULL: as
+                            lateral says.  In the unit of accel_scale where given, else its
+                            header's, else the longitudinal column's */
+    int flip_lat;        /* non-zero: negate the lateral axis */
 } sw_csv_opts_t;
 
 /* The layout in use, once the header (or the first data row) has fixed it.
- * Roles: 0 time, 1 longitudinal acceleration, 2 vertical acceleration. */
+ * Roles: 0 time, 1 longitudinal acceleration, 2 vertical acceleration, 3
+ * lateral acceleration. */
 typedef struct {
     int ready;  /* 0 until the layout is fixed */
     char delim; /* 0 while not detected */
     int has_header;
     int decimal_comma;             /* -1 not decided yet, 0, 1 */
-    long col[3];                   /* 0-based; -1: the role is not read */
-    char name[3][SW_CSV_NAME_MAX]; /* the header's name of the column ("" without one) */
-    int unit[3];                   /* SW_CSV_UNIT_* in use */
-    double scale[3];               /* s or m/s^2 per unit of the column */
-    int col_from[3], unit_from[3]; /* SW_CSV_FROM_* */
-    int header_unit[3];            /* the unit the column's name says (NONE: none); when it
+    long col[4];                   /* 0-based; -1: the role is not read */
+    char name[4][SW_CSV_NAME_MAX]; /* the header's name of the column ("" without one) */
+    int unit[4];                   /* SW_CSV_UNIT_* in use */
+    double scale[4];               /* s or m/s^2 per unit of the column */
+    int col_from[4], unit_from[4]; /* SW_CSV_FROM_* */
+    int header_unit[4];            /* the unit the column's name says (NONE: none); when it
                                       differs from unit, the option given overrode it */
     long preamble;                 /* lines skipped before the table */
     long first_line;               /* the table's first line (its header, or its first row) */
@@ -149,6 +160,8 @@ typedef struct {
     int epoch;                     /* the time column's values are a time since 1970 */
     int preamble_from;             /* SW_CSV_FROM_OPTION (skip_lines), SW_CSV_FROM_VALUES
                                       (found), SW_CSV_FROM_DEFAULT (none) */
+    long lat_unread;               /* without opts.lateral: the header's lateral column (its
+                                      name in name[3]), which is not read; -1: none */
 } sw_csv_layout_t;
 
 typedef struct {
@@ -174,6 +187,11 @@ SW_API sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row,
                                sw_csv_reject_fn on_reject, void *user, int *err, char *msg,
                                size_t msglen);
 SW_API void sw_csv_destroy(sw_csv_t *c);
+
+/* Inside on_row: the row's lateral acceleration (m/s^2, after its unit and
+ * flip_lat), read when the layout has a lateral column (col[3] >= 0);
+ * NAN when it has none. */
+SW_API double sw_csv_lateral(const sw_csv_t *c);
 
 /* Feed bytes; returns SW_OK or a negative code that ends the parse and is
  * returned again by every later call: SW_ENOTFOUND when a named column is

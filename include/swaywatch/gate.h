@@ -100,11 +100,13 @@ typedef struct {
     double a_g;   /* m/s^2, longitudinal (x forward), in SI after units and flip */
     double a_z;   /* m/s^2, vertical up, as read (see vert_gravity); 0 if none */
     double a_max; /* m/s^2, largest |value| of all the sample's axes for the spike
-                     check; NAN: max(|a_g|, |a_z|) */
+                     check; NAN: max(|a_g|, |a_z|), and |a_y| in a lateral gate */
     int64_t seq;  /* the sender's sequence number, or SW_GATE_NO_SEQ */
     double rx;    /* s, receive time on a monotonic clock; NAN if none (a CSV log) */
     double wall;  /* s since 1970 at receipt, for the skew check; NAN if none */
     long where;   /* the source's place of it (line, event number), for messages */
+    double a_y;   /* m/s^2, lateral, in SI after units and flip: read only by a gate
+                     made with lateral (sw_gate_opts_t), checked there as a_g is */
 } sw_sample_t;
 
 typedef enum {
@@ -191,7 +193,19 @@ typedef struct {
     sw_gate_rival_fn on_rival; /* may be NULL: the second timeline is only counted */
     int lookahead;             /* samples a log without receive times is read ahead, 2 ..
                                   SW_GATE_LOOKAHEAD; 0 = SW_GATE_LOOKAHEAD */
+    int lateral;               /* the samples carry a_y: checked as a_g is (finite, the
+                                  spike limit, the facts' lat and the plausibility check)
+                                  and pushed with sw_engine_push_lat (the engine made with
+                                  opts.lateral); on_take still gets the longitudinal value */
 } sw_gate_opts_t;
+
+/* One acceleration axis as the accepted samples showed it. */
+typedef struct {
+    double peak;       /* m/s^2, largest |a| */
+    long above_half_g; /* samples with |a| > 0.5 g */
+    double mean_abs;   /* m/s^2, mean |a| */
+    double min, max;   /* m/s^2, smallest and largest a (NAN: none) */
+} sw_gate_axis_t;
 
 /* What the stream was: for the summaries, and for the plausibility check. */
 typedef struct {
@@ -226,6 +240,9 @@ typedef struct {
     long above_half_g;    /* accepted samples with |a_g| > 0.5 g */
     double mean_abs_a;    /* m/s^2, mean |a_g| accepted */
     double min_a, max_a;  /* m/s^2, smallest and largest a_g accepted (NAN: none) */
+    /* added with the lateral plane */
+    int lateral;        /* the samples carried a lateral acceleration (opts.lateral) */
+    sw_gate_axis_t lat; /* its axis (zeros and NAN without) */
 } sw_gate_facts_t;
 
 typedef struct sw_gate sw_gate_t;

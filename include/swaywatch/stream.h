@@ -57,7 +57,12 @@ typedef void (*sw_stream_alarm_fn)(void *user, const sw_alarm_t *a, double t_sou
 
 typedef struct {
     sw_engine_opts_t engine; /* scheme, dt, tolerances, accuracy, check_default; its
-                                callbacks and user are not used (the stream's are) */
+                                callbacks and user are not used (the stream's are).  With
+                                lateral, the samples carry a_y (the gate is made lateral),
+                                the packages with a depth rock across the truck too: their
+                                states and events come with plane SW_PLANE_LAT, their
+                                reserve is sw_stream_risk_plane's; the alarm watches follow
+                                the plane along the truck only */
     sw_gate_opts_t gate;     /* the gate's checks and policies; its callbacks and user
                                 are not used (the stream's are) */
     sw_risk_opts_t risk;     /* the reserve's rate (< 0: none) and options */
@@ -115,6 +120,11 @@ SW_API int sw_stream_replace(sw_stream_t *st, size_t k, const sw_scene_t *scene,
  * sw_stream_push() alone. */
 SW_API sw_engine_t *sw_stream_engine(const sw_stream_t *st);
 SW_API sw_risk_t *sw_stream_risk(const sw_stream_t *st);
+/* The reserve of one plane of package k (sw_risk_pkg of the stream's
+ * risk for SW_PLANE_LONG; for SW_PLANE_LAT that of the package's lateral
+ * plane, the design pulses applied across the truck); NULL when the
+ * package has no such plane, or the lateral plane no reserve. */
+SW_API const sw_risk_pkg_t *sw_stream_risk_plane(const sw_stream_t *st, size_t k, sw_plane plane);
 SW_API const sw_gate_t *sw_stream_gate(const sw_stream_t *st);
 SW_API size_t sw_stream_count(const sw_stream_t *st); /* packages */
 /* Package k's name, as its scene says (the replaced one's after

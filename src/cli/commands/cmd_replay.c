@@ -139,6 +139,7 @@ static int start(replay_t *r)
     /* the reserve of each state only where a row shows it; the summary's
      * minimum is the same either way (risk.h) */
     r->R.reserve_min_only = !r->o.out_path && !r->o.wide_path;
+    r->R.lateral = 1; /* a CSV log's lateral column drives the scenes with a depth */
     return sw_cli_reader_engine(&r->R, r->scenes, r->n, &r->eo, r->scenes_shared);
 }
 

@@ -234,6 +234,13 @@ const sw_cli_option_t sw_cli_csv_options[] = {
      .help = "vertical acceleration column, up positive, same unit as --accel-unit; say "
              "whether it includes gravity (--vert-includes-gravity: an accelerometer reads +1 g "
              "at rest) (default: none, gravity only)"},
+    {SW_CLI_STRING, 0, "lat-col", "NAME|N", CSV(csv.lat_col), .fn = check_col,
+     .help = "lateral acceleration column, across the truck (y to the left), same unit "
+             "handling as --accel-col; it drives the lateral plane of the scenes that give "
+             "package.depth (default: the header's lateral column: Lateral Gs, Y (g), ay; none: "
+             "one plane, along the truck)"},
+    {SW_CLI_FLAG, 0, "flip-lat", CSV(csv.flip_lat), .value = 1,
+     .help = "negate the lateral axis (a logger whose y axis points to the right)"},
     {SW_CLI_CALL, 0, "delimiter", "D", CSV(csv.delim), .fn = parse_delim,
      .help = "',', ';' or tab (default: detected from the first line)"},
     {SW_CLI_FLAG, 0, "header", CSV(csv.header), .value = 1,
@@ -274,6 +281,9 @@ const sw_cli_option_t sw_cli_csv_options[] = {
              "            unit is anything else (deg, m, km/h, rpm, %, uT, rad/s, degC, raw)\n"
              "            nor a magnitude; of several the x axis, else the one with no axis;\n"
              "            still several or none: refused, --accel-col.\n"
+             "  lateral   for scenes with package.depth: an acceleration along y (Lateral Gs,\n"
+             "            Y (g), ay, accelerometerAccelerationY); several: refused,\n"
+             "            --lat-col; none: the packages are judged along the truck only.\n"
              "  units     as given, else the name's (in brackets in any language, or a last\n"
              "            word: _ms, Gs, Nanos), else for time an epoch's told by its size\n"
              "            (s, ms, us or ns since 1970: \"from the values\"), else s and m/s^2.\n"

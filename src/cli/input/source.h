@@ -70,6 +70,8 @@ struct sw_cli_reader {
                                           hold) a CSV log is read no further */
     int halted;                        /* halt stopped the reading */
     void *priv;                        /* the source's own (made by prepare, freed by close) */
+    int lateral; /* the command reports a lateral plane: a CSV log's lateral column drives
+                    the packages whose scene gives a depth (engine opts.lateral) */
 };
 
 /* Open LOG ("-" for standard input): a missing file is an I/O error (3)

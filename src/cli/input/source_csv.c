@@ -30,6 +30,8 @@ typedef struct {
     int stopped;
     long unread, unread_rejected;
     sw_cli_unused_t *unused; /* the run's record of what was not used */
+    int any_depth;           /* a scene gives package.depth */
+    int lateral;             /* the log's lateral column drives their lateral planes */
 } feed_t;
 
 /* ---- what the reader chose ------------------------------------------------------- */
@@ -40,6 +42,14 @@ static const char *from_name(int from)
            : from == SW_CSV_FROM_OPTION ? "as given"
            : from == SW_CSV_FROM_VALUES ? "from the values"
                                         : "default";
+}
+
+/* Why a lateral column is not read. */
+static const char *unused_why(const feed_t *F)
+{
+    return !F->any_depth ? "no scene gives package.depth, the size across the truck the "
+                           "lateral plane rocks over"
+                         : "this command judges the plane along the truck only";
 }
 
 /* "time: column 2 "Time (ms)", ms (from the header); accel: ..." once the
@@ -81,7 +91,21 @@ static void say_layout(feed_t *F)
             fprintf(m, ", x %g", L.scale[r]);
         fprintf(m, " (%s)", from_name(L.unit_from[r]));
     }
+    if (L.col[3] >= 0) {
+        fprintf(m, "; lateral: column %ld", L.col[3] + 1);
+        if (L.name[3][0])
+            fprintf(m, " \"%s\"", L.name[3]);
+        const char *u = sw_csv_unit_name(L.unit[3]);
+        if (u[0])
+            fprintf(m, ", %s", u);
+        else
+            fprintf(m, ", x %g", L.scale[3]);
+        fprintf(m, " (%s)", from_name(L.unit_from[3]));
+    }
     fputc('\n', m);
+    if (L.lat_unread >= 0)
+        sw_cli_error("%s: the lateral column %ld \"%s\" is not used: %s", F->name, L.lat_unread + 1,
+                     L.name[3], unused_why(F));
     for (int r = 0; r < 2; r++)
         if (L.unit_from[r] == SW_CSV_FROM_OPTION && L.header_unit[r] != SW_CSV_UNIT_NONE &&
             L.header_unit[r] != L.unit[r])
@@ -142,7 +166,8 @@ static int on_row(void *user, long line, double t, double a_g, double a_z)
                            .seq = SW_GATE_NO_SEQ,
                            .rx = NAN,
                            .wall = NAN,
-                           .where = line};
+                           .where = line,
+                           .a_y = sw_csv_lateral(F->csv)};
     sw_stream_push(F->R->st, &s); /* refused samples come back through on_gate_reject */
     return 0;
 }
@@ -267,8 +292,37 @@ static int csv_prepare(sw_cli_reader_t *R)
     return SW_EXIT_OK;
 }
 
+/* Whether the log has a lateral column to read, decided before the
+ * stream is made (its engine has lateral planes or not): --lat-col, or
+ * the header's, read by a reader of its own from the first chunk of the
+ * file (the header is in it); a header that does not say it without
+ * doubt leaves it to the reader of the run, which refuses the log. */
+static int peek_lateral(const sw_cli_reader_t *R)
+{
+    const sw_csv_opts_t *o = &R->o->copts.csv;
+    if (o->lat_col)
+        return 1;
+    if (!o->infer || !R->lf.buf || R->lf.len == 0)
+        return 0;
+    sw_csv_opts_t po = *o;
+    po.lateral = 1;
+    po.any_order = 1;
+    sw_csv_t *c = sw_csv_create(&po, NULL, NULL, NULL, NULL, NULL, 0);
+    if (!c)
+        return 0;
+    int rc = sw_csv_feed(c, R->lf.buf, R->lf.len);
+    sw_csv_layout_t L;
+    if (rc >= 0 && (sw_csv_layout(c, &L) != SW_OK || !L.ready))
+        rc = sw_csv_finish(c);
+    const int lat = rc >= 0 && sw_csv_layout(c, &L) == SW_OK && L.ready && L.col[3] >= 0;
+    sw_csv_destroy(c);
+    return lat || rc == SW_EAMBIGUOUS; /* several: the run's reader refuses, naming them */
+}
+
 /* The stream: the gate's options as given, times relative when they look
- * like an epoch; the command's callbacks through F. */
+ * like an epoch; the command's callbacks through F.  The engine has
+ * lateral planes when the command reports them, a scene gives a depth and
+ * the log has a lateral column. */
 static int csv_start(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
                      const sw_engine_opts_t *eo)
 {
@@ -276,6 +330,13 @@ static int csv_start(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
     F->on_state = eo->on_state;
     F->on_event = eo->on_event;
     F->user = eo->user;
+    for (size_t k = 0; k < n; k++) F->any_depth |= sw_scene_has_depth(&scenes[k]);
+    F->lateral = R->lateral && F->any_depth && peek_lateral(R);
+    if (R->lateral && F->any_depth && !F->lateral && !F->quiet)
+        sw_cli_error(
+            "%s: note: no lateral column (--lat-col NAME|N names one): the packages "
+            "with a depth are judged along the truck only",
+            F->name);
     sw_stream_opts_t so = {
         .engine = *eo,
         .risk = {.reserve_rate = R->reserve_rate > 0.0 ? R->reserve_rate : -1.0,
@@ -288,6 +349,7 @@ static int csv_start(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
         .on_take = R->take ? on_gate_take : NULL,
         .user = F,
     };
+    so.engine.lateral = F->lateral;
     sw_cli_gate_opts(&R->o->gate, &so.gate);
     so.gate.relative = -1;
     int err = 0;
@@ -316,6 +378,12 @@ static int csv_feed(sw_cli_reader_t *R, sw_gate_facts_t *f, int *vert)
     *vert = co->csv.vert_col != NULL;
     sw_csv_opts_t copts = co->csv;
     copts.any_order = 1; /* the gate judges time: a lone row off in time is that row's fault */
+    copts.lateral = F->lateral;
+    if (!F->lateral && copts.lat_col) {
+        if (!F->quiet)
+            sw_cli_error("%s: --lat-col %s is not used: %s", F->name, copts.lat_col, unused_why(F));
+        copts.lat_col = NULL;
+    }
     F->csv = sw_csv_create(&copts, on_row, on_reject, F, &err, msg, sizeof msg);
     if (!F->csv) {
         sw_cli_error("%s: %s", F->name, msg[0] ? msg : sw_strerror(err));

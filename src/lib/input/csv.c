@@ -54,6 +54,11 @@ struct sw_csv {
     long col[N_ROLES];   /* 0-based column index; -1 unknown (named) or unused */
     long probe;          /* column tested by header detection */
     int have_vert;
+    int lateral;  /* the options': read a lateral column (given or inferred) */
+    int have_lat; /* the layout has one */
+    int flip_lat;
+    double lat_scale;       /* m/s^2 per unit of the lateral column */
+    double row_lat;         /* m/s^2, the lateral value of the row being delivered (NAN: none) */
     int col_given[N_ROLES]; /* the caller named or numbered the column */
     sw_csv_row_fn on_row;
     sw_csv_reject_fn on_reject;
@@ -182,13 +187,15 @@ static void no_header(sw_csv_t *c)
 static int fix_layout(sw_csv_t *c, int has_header)
 {
     const sw_csv_infer_in_t in = {
-        .col = {c->col[R_TIME], c->col[R_ACCEL], c->col[R_VERT]},
+        .col = {c->col[R_TIME], c->col[R_ACCEL], c->col[R_VERT], c->col[R_LAT]},
         .name = (const char *const *)c->name,
         .match = c->f.match,
-        .col_given = {c->col_given[R_TIME], c->col_given[R_ACCEL], c->col_given[R_VERT]},
+        .col_given = {c->col_given[R_TIME], c->col_given[R_ACCEL], c->col_given[R_VERT],
+                      c->col_given[R_LAT]},
         .scale = {c->tscale, c->ascale},
         .scale_given = {c->tscale_given, c->ascale_given},
         .infer = c->infer,
+        .lateral = c->lateral,
         .has_header = has_header,
         .names = (const char(*)[SW_CSV_NAME_MAX])c->hdr,
         .nnames = c->nhdr,
@@ -215,6 +222,8 @@ static int fix_layout(sw_csv_t *c, int has_header)
     if (c->lay.date_order != SW_CSV_DATE_AUTO)
         c->dorder = c->lay.date_order;
     c->ascale = c->lay.scale[R_ACCEL];
+    c->have_lat = c->lay.col[R_LAT] >= 0;
+    c->lat_scale = c->lay.scale[R_LAT];
     return SW_OK;
 }
 
@@ -429,10 +438,10 @@ static void data_row(sw_csv_t *c, int ok)
         return;
     }
     decide_comma(c);
-    double v[N_ROLES] = {0.0, 0.0, 0.0};
+    double v[N_ROLES] = {0.0, 0.0, 0.0, 0.0};
     for (int r = 0; r < N_ROLES; r++) {
-        if (r == R_VERT && !c->have_vert)
-            break;
+        if ((r == R_VERT && !c->have_vert) || (r == R_LAT && !c->have_lat))
+            continue;
         if (!c->f.fs[r]) {
             char label[120];
             column_label(c, r, label, sizeof label);
@@ -453,8 +462,9 @@ static void data_row(sw_csv_t *c, int ok)
     double t = v[R_TIME] * c->tscale;
     double a = v[R_ACCEL] * c->ascale;
     double z = v[R_VERT] * c->ascale;
-    if (!isfinite(t) || !isfinite(a) || !isfinite(z)) {
-        int r = !isfinite(t) ? R_TIME : !isfinite(a) ? R_ACCEL : R_VERT;
+    double y = v[R_LAT] * c->lat_scale;
+    if (!isfinite(t) || !isfinite(a) || !isfinite(z) || !isfinite(y)) {
+        int r = !isfinite(t) ? R_TIME : !isfinite(a) ? R_ACCEL : !isfinite(z) ? R_VERT : R_LAT;
         char label[120], ex[EXCERPT_MAX + 8];
         column_label(c, r, label, sizeof label);
         sw_csv_excerpt(ex, sizeof ex, c->f.fs[r], c->f.fl[r]);
@@ -465,6 +475,9 @@ static void data_row(sw_csv_t *c, int ok)
     }
     if (c->flip)
         a = -a;
+    if (c->flip_lat)
+        y = -y;
+    c->row_lat = c->have_lat ? y : NAN;
     if (!c->any_order && c->have_last && t <= c->last_t) {
         if (t == c->last_t)
             snprintf(c->reason, sizeof c->reason,
@@ -569,7 +582,8 @@ static void profile(sw_csv_t *c)
         c->delim ? c->delim : sw_csv_detect_delim(c->abuf + c->ahead[i].off, c->ahead[i].len);
     if (!d)
         return;
-    sw_csv_split_opts_t so = {.delim = d, .want = {-1, -1, -1, -1}, .capture = c->pcap};
+    sw_csv_split_opts_t so = {.delim = d, .capture = c->pcap};
+    for (int r = 0; r < N_SLOTS; r++) so.want[r] = -1; /* no field is taken, all captured */
     sw_csv_fields_t f;
     for (i++; i < c->nahead; i++) {
         const ahead_t *e = &c->ahead[i];
@@ -718,6 +732,15 @@ sw_csv_t *sw_csv_create(const sw_csv_opts_t *opts, sw_csv_row_fn on_row, sw_csv_
         c->name[r][cs.len[r]] = '\0';
     }
     c->have_vert = o->vert_col != NULL;
+    c->lateral = o->lateral != 0;
+    c->flip_lat = o->flip_lat != 0;
+    c->lat_scale = as;
+    c->row_lat = NAN;
+    if (o->lat_col && !o->lateral) {
+        bad_opts(err, msg, msglen, SW_EINVAL, "lat_col is given, but lateral is 0");
+        sw_csv_destroy(c);
+        return NULL;
+    }
     if (o->date_order < SW_CSV_DATE_AUTO || o->date_order > SW_CSV_DATE_MDY) {
         bad_opts(err, msg, msglen, SW_EINVAL, "date_order must be SW_CSV_DATE_AUTO, _DMY or _MDY");
         sw_csv_destroy(c);
@@ -855,6 +878,11 @@ void sw_csv_counts(const sw_csv_t *c, sw_csv_counts_t *out)
 const char *sw_csv_error_message(const sw_csv_t *c)
 {
     return c ? c->msg : "";
+}
+
+double sw_csv_lateral(const sw_csv_t *c)
+{
+    return c ? c->row_lat : NAN;
 }
 
 int sw_csv_layout(const sw_csv_t *c, sw_csv_layout_t *out)

@@ -333,6 +333,33 @@ int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_
     return 0;
 }
 
+int sw_csv_guess_lat(const char names[][SW_CSV_NAME_MAX], long n, const long *taken, int ntaken,
+                     long *col, char *why, size_t whylen)
+{
+    set_t named = {0}, bare = {0};
+    char list[200];
+    *col = -1;
+    for (long i = 0; i < n && i < SW_CSV_MAX_FIELDS; i++) {
+        int skip = 0;
+        for (int k = 0; k < ntaken; k++) skip |= taken[k] == i;
+        kind_t k;
+        if (skip)
+            continue;
+        classify(names[i], &k);
+        if (k.accel && k.axis == 'y')
+            put(k.named ? &named : &bare, i);
+    }
+    const set_t *tier = named.n ? &named : &bare;
+    if (tier->n > 1) {
+        list_names(names, tier->c, tier->n, list, sizeof list);
+        snprintf(why, whylen, "several columns could be the lateral acceleration: %s", list);
+        return -1;
+    }
+    if (tier->n == 1)
+        *col = tier->c[0];
+    return 0;
+}
+
 /* ---- the columns the caller names ------------------------------------------ */
 
 /* Column spec: 1-based index ("3") or a name.  Sets *col (0-based), or
@@ -384,13 +411,14 @@ static int same_name(const char *a, size_t an, const char *b, size_t bn)
 int sw_csv_colspec_parse(const sw_csv_opts_t *o, sw_csv_colspec_t *cs, char *t, size_t tlen)
 {
     memset(cs, 0, sizeof *cs);
-    cs->col[R_VERT] = -1;
+    cs->col[R_VERT] = cs->col[R_LAT] = -1;
     const char *spec[N_ROLES] = {o->time_col ? o->time_col : "1", o->accel_col ? o->accel_col : "2",
-                                 o->vert_col};
+                                 o->vert_col, o->lat_col};
     for (int r = 0; r < N_ROLES; r++) {
         cs->given[r] = (r == R_TIME    ? o->time_col
                         : r == R_ACCEL ? o->accel_col
-                                       : o->vert_col) != NULL;
+                        : r == R_VERT  ? o->vert_col
+                                       : o->lat_col) != NULL;
         if (!spec[r])
             continue;
         int rc =
@@ -508,6 +536,52 @@ static int time_values(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *ms
 
 static int infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen);
 
+/* The header's lateral column, when the caller gave none: read
+ * (in->lateral: col[R_LAT], or the parse refused when several fit), or
+ * only said (*unread). */
+static int lateral_of(const sw_csv_infer_in_t *in, long col[N_ROLES], long *unread, char *msg,
+                      size_t msglen)
+{
+    const long taken[] = {col[R_TIME], col[R_ACCEL], col[R_VERT]};
+    char why[200];
+    long c = -1;
+    if (sw_csv_guess_lat(in->names, in->nnames, taken, 3, &c, why, sizeof why) != 0) {
+        if (!in->lateral)
+            return SW_OK; /* not read: nothing to decide */
+        snprintf(msg, msglen,
+                 "cannot tell the columns from the header: %s; say which with "
+                 "--lat-col",
+                 why);
+        return SW_EAMBIGUOUS;
+    }
+    if (in->lateral)
+        col[R_LAT] = c;
+    else
+        *unread = c;
+    return SW_OK;
+}
+
+/* The lateral column's unit: the acceleration unit given, else its own
+ * name's, else the longitudinal column's (a log writes its axes in one
+ * unit); and the name of a lateral column not read. */
+static void lateral_unit(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, long unread)
+{
+    L->lat_unread = unread;
+    if (unread >= 0 && unread < in->nnames)
+        snprintf(L->name[R_LAT], sizeof L->name[R_LAT], "%s", in->names[unread]);
+    if (L->col[R_LAT] < 0)
+        return;
+    const int hu = L->header_unit[R_LAT];
+    L->unit_from[R_LAT] = L->unit_from[R_ACCEL];
+    if (!in->scale_given[1] && in->infer && hu != SW_CSV_UNIT_NONE) {
+        L->scale[R_LAT] = sw_csv_unit_scale(hu);
+        L->unit[R_LAT] = hu;
+        L->unit_from[R_LAT] = SW_CSV_FROM_HEADER;
+    }
+    if (L->col_from[R_LAT] == SW_CSV_FROM_DEFAULT)
+        L->col_from[R_LAT] = SW_CSV_FROM_HEADER; /* inferred */
+}
+
 int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *out, char *msg, size_t msglen)
 {
     sw_csv_layout_t L;
@@ -519,7 +593,7 @@ int sw_csv_infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *out, char *msg, s
 
 static int infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, size_t msglen)
 {
-    long col[N_ROLES];
+    long col[N_ROLES], lat_unread = -1;
     double tscale = in->scale[0], ascale = in->scale[1];
     memset(L, 0, sizeof *L);
     msg[0] = '\0';
@@ -558,6 +632,11 @@ static int infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, siz
                 tscale = sw_csv_unit_scale(tu);
             if (!in->scale_given[1] && au != SW_CSV_UNIT_NONE)
                 ascale = sw_csv_unit_scale(au);
+            if (col[R_LAT] < 0 && !in->col_given[R_LAT]) {
+                const int rc = lateral_of(in, col, &lat_unread, msg, msglen);
+                if (rc != SW_OK)
+                    return rc;
+            }
         }
         for (int r = 0; r < N_ROLES; r++)
             for (int q = r + 1; q < N_ROLES; q++)
@@ -599,5 +678,6 @@ static int infer(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *msg, siz
         if (!in->scale_given[1] && au != SW_CSV_UNIT_NONE)
             L->unit_from[R_ACCEL] = L->unit_from[R_VERT] = SW_CSV_FROM_HEADER;
     }
+    lateral_unit(in, L, lat_unread);
     return time_values(in, L, msg, msglen);
 }

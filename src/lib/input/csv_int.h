@@ -18,10 +18,10 @@
 
 /* Field slots filled while splitting a line.  PROBE is the field looked at to
  * decide whether the first line is a header. */
-enum { R_TIME, R_ACCEL, R_VERT, R_PROBE, N_SLOTS };
-#define N_ROLES 3 /* time, accel, vertical: the columns chosen by the caller */
+enum { R_TIME, R_ACCEL, R_VERT, R_LAT, R_PROBE, N_SLOTS };
+#define N_ROLES 4 /* time, accel, vertical, lateral: the columns chosen by the caller */
 
-static const char *const role_name[N_ROLES] = {"time", "accel", "vertical"};
+static const char *const role_name[N_ROLES] = {"time", "accel", "vertical", "lateral"};
 
 /* The line buffer holds SW_CSV_MAX_LINE bytes of content plus a '\r' (CRLF
  * ends are stripped only once the line is complete) plus a NUL. */
@@ -225,11 +225,19 @@ typedef struct {
 int sw_csv_guess(const char names[][SW_CSV_NAME_MAX], long n, const int want[SW_CSV_NROLES],
                  long skip, const sw_csv_profile_t *prof, long nprof, sw_csv_guess_t *g);
 
+/* The lateral acceleration among the n header fields, other than the
+ * columns taken (ntaken of them, -1 entries ignored): a name that says
+ * acceleration along y ("Lateral Gs", "Y (g)", "accelerometerAccelerationY")
+ * beats a bare y axis ("ay", "Y").  0 with *col (-1: none), or -1 with why
+ * set when several fit equally. */
+int sw_csv_guess_lat(const char names[][SW_CSV_NAME_MAX], long n, const long *taken, int ntaken,
+                     long *col, char *why, size_t whylen);
+
 /* The columns the caller gave (sw_csv_opts_t's time_col, accel_col,
- * vert_col): a 0-based index, or a name (trimmed; it points into the
+ * vert_col, lat_col): a 0-based index, or a name (trimmed; it points into the
  * option's text and is not NUL-terminated). */
 typedef struct {
-    long col[N_ROLES];         /* -1: named, or the vertical column not given */
+    long col[N_ROLES];         /* -1: named, or the vertical or lateral column not given */
     const char *name[N_ROLES]; /* NULL: by index */
     size_t len[N_ROLES];
     int given[N_ROLES]; /* the caller named or numbered it (else time is 1, accel 2) */
@@ -249,6 +257,8 @@ typedef struct {
     double scale[2];         /* s per unit of time, m/s^2 per unit of acceleration */
     int scale_given[2];      /* ... given by the caller (else 1, the default) */
     int infer;               /* read the columns and units nobody gave from the names */
+    int lateral;             /* read a lateral column: the one given, or the header's; 0:
+                                one the header names is only said (lat_unread) */
     int has_header;
     const char (*names)[SW_CSV_NAME_MAX]; /* the header's fields, trimmed */
     long nnames;

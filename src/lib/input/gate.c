@@ -60,6 +60,8 @@ static void clear(sw_gate_t *g)
     g->f.spacing = NAN;
     g->f.gap_threshold = INFINITY;
     g->f.min_a = g->f.max_a = NAN;
+    g->f.lateral = g->o.lateral != 0;
+    g->f.lat.min = g->f.lat.max = NAN;
 }
 
 sw_gate_t *sw_gate_create(sw_engine_t *e, const sw_gate_opts_t *o, char *msg, size_t msglen)
@@ -151,9 +153,12 @@ int sw_gate_push(sw_gate_t *g, const sw_sample_t *s)
         return SW_EINVAL;
     g->f.received++;
     char text[160];
-    if (!isfinite(s->t) || !isfinite(s->a_g) || !isfinite(s->a_z))
+    if (!isfinite(s->t) || !isfinite(s->a_g) || !isfinite(s->a_z) ||
+        (g->o.lateral && !isfinite(s->a_y)))
         return gate_refuse(g, s, SW_GATE_REJ_NONFINITE, "a value is not finite");
-    const double amax = isnan(s->a_max) ? fmax(fabs(s->a_g), fabs(s->a_z)) : s->a_max;
+    double amax = s->a_max; /* m/s^2 */
+    if (isnan(amax))
+        amax = fmax(fmax(fabs(s->a_g), fabs(s->a_z)), g->o.lateral ? fabs(s->a_y) : 0.0);
     if (!(amax <= g->o.max_accel)) {
         snprintf(text, sizeof text, "|a| = %.6g m/s^2 (%.4g g) beyond the limit %.6g m/s^2", amax,
                  amax / SW_G0, g->o.max_accel);
@@ -203,6 +208,7 @@ void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f)
     for (int k = 0; k < g->nchain; k++) f->held += g->chain[k].n;
     f->mean_z = f->accepted ? g->sum_z / (double)f->accepted : 0.0;
     f->mean_abs_a = f->accepted ? g->sum_abs_a / (double)f->accepted : 0.0;
+    f->lat.mean_abs = f->accepted && f->lateral ? g->sum_abs_y / (double)f->accepted : 0.0;
     long n = 0, half = 0;
     for (int b = 0; b < HIST_BINS; b++) n += g->hist[b];
     for (int b = 0; b < HIST_BINS && n; b++) {
@@ -230,6 +236,48 @@ long sw_gate_accepted(const sw_gate_t *g)
 double sw_gate_source_time(const sw_gate_t *g, double t_engine)
 {
     return t_engine - g->offset;
+}
+
+/* One horizontal axis of a log (lateral: 0 the longitudinal, 1 the
+ * lateral): no larger than a truck bed sees, and, over a long log, not
+ * beyond 0.5 g most of the time nor never varying.  1 with why filled
+ * when it is implausible. */
+static int check_axis(const sw_gate_facts_t *f, const sw_gate_axis_t *x, int lateral,
+                      double max_peak, double min_still, char *why, size_t whylen)
+{
+    const char *const name = lateral ? "lateral" : "longitudinal";
+    const char *const col = lateral ? "the lateral column with --lat-col NAME|N"
+                                    : "the acceleration column with --accel-col NAME|N";
+    if (x->peak > max_peak) {
+        snprintf(why, whylen,
+                 "the largest %sacceleration is %.4g m/s^2 (%.3g g), beyond what a truck bed "
+                 "sees (%.3g g): an acceleration in g read as m/s^2 the other way round, or "
+                 "a wrong column?",
+                 lateral ? "lateral " : "", x->peak, x->peak / SW_G0, max_peak / SW_G0);
+        return 1;
+    }
+    /* A truck brakes at 0.5 g for seconds, never for a minute, nor takes a
+     * curve that long: a channel beyond it most of a long log, or one that
+     * never moves, is no horizontal acceleration (gravity on a vertical
+     * axis, a GPS, speed or angle column). */
+    if (!(f->duration >= min_still && f->accepted >= 100))
+        return 0;
+    const int high = 2 * x->above_half_g > f->accepted;
+    const int still = x->min == x->max;
+    if (high)
+        snprintf(why, whylen,
+                 "the %s channel looks like gravity or not an acceleration: "
+                 "%.0f %% of %.3g min beyond 0.5 g (mean |a| %.3g g), which no truck "
+                 "%s for that long; choose %s, or give --force",
+                 name, 100.0 * (double)x->above_half_g / (double)f->accepted, f->duration / 60.0,
+                 x->mean_abs / SW_G0, lateral ? "takes a curve" : "brakes or speeds up", col);
+    else if (still)
+        snprintf(why, whylen,
+                 "the %s channel looks like gravity or not an acceleration: "
+                 "it reads %.6g m/s^2 for all %.3g min and never varies; choose %s, or give "
+                 "--force",
+                 name, x->min, f->duration / 60.0, col);
+    return high || still;
 }
 
 int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *why, size_t whylen)
@@ -270,39 +318,14 @@ int sw_gate_check(const sw_gate_facts_t *f, const sw_gate_limits_t *lim, char *w
                  f->duration / 86400.0);
         return SW_GATE_REFUSE;
     }
-    if (f->peak_a > max_peak) {
-        snprintf(why, whylen,
-                 "the largest acceleration is %.4g m/s^2 (%.3g g), beyond what a truck bed "
-                 "sees (%.3g g): an acceleration in g read as m/s^2 the other way round, or "
-                 "a wrong column?",
-                 f->peak_a, f->peak_a / SW_G0, max_peak / SW_G0);
+    const sw_gate_axis_t lon = {.peak = f->peak_a,
+                                .above_half_g = f->above_half_g,
+                                .mean_abs = f->mean_abs_a,
+                                .min = f->min_a,
+                                .max = f->max_a};
+    if (check_axis(f, &lon, 0, max_peak, min_still, why, whylen) ||
+        (f->lateral && check_axis(f, &f->lat, 1, max_peak, min_still, why, whylen)))
         return SW_GATE_REFUSE;
-    }
-    /* A truck brakes at 0.5 g for seconds, never for a minute: a channel
-     * beyond it most of a long log, or one that never moves, is no
-     * longitudinal acceleration (gravity on a vertical axis, a GPS, speed or
-     * angle column). */
-    if (f->duration >= min_still && f->accepted >= 100) {
-        const int high = 2 * f->above_half_g > f->accepted;
-        const int still = f->min_a == f->max_a;
-        if (high || still) {
-            if (high)
-                snprintf(why, whylen,
-                         "the longitudinal channel looks like gravity or not an acceleration: "
-                         "%.0f %% of %.3g min beyond 0.5 g (mean |a| %.3g g), which no truck "
-                         "brakes or speeds up for that long; choose the acceleration column "
-                         "with --accel-col NAME|N, or give --force",
-                         100.0 * (double)f->above_half_g / (double)f->accepted, f->duration / 60.0,
-                         f->mean_abs_a / SW_G0);
-            else
-                snprintf(why, whylen,
-                         "the longitudinal channel looks like gravity or not an acceleration: "
-                         "it reads %.6g m/s^2 for all %.3g min and never varies; choose the "
-                         "acceleration column with --accel-col NAME|N, or give --force",
-                         f->min_a, f->duration / 60.0);
-            return SW_GATE_REFUSE;
-        }
-    }
     if (f->rate < warn_rate) {
         snprintf(why, whylen,
                  "%.3g Hz: shocks shorter than a few sample intervals (about %.2g s) are not "

@@ -145,6 +145,7 @@ struct sw_gate {
     long hist[HIST_BINS];
     double hist_sum[HIST_BINS];
     double sum_z, sum_abs_a;
+    double sum_abs_y; /* m/s^2, of the lateral axis (opts.lateral) */
 };
 
 /* What the interval before an accepted sample teaches the timing model:

@@ -194,7 +194,8 @@ static void take_early(sw_gate_t *g, const sw_sample_t *s)
  * with other values or another seq is. */
 static int same_sample(const sw_sample_t *a, const sw_sample_t *b)
 {
-    return a->t == b->t && a->seq == b->seq && a->a_g == b->a_g && a->a_z == b->a_z;
+    return a->t == b->t && a->seq == b->seq && a->a_g == b->a_g && a->a_z == b->a_z &&
+           a->a_y == b->a_y;
 }
 
 int gate_live_push(sw_gate_t *g, const sw_sample_t *s)

@@ -79,11 +79,29 @@ static void env_add(sw_gate_t *g, double off)
     }
 }
 
+/* One horizontal axis's facts (the longitudinal's, the lateral's) with
+ * an accepted value a (m/s^2): the plausibility check reads them. */
+static inline void axis_add(double a, double *peak, long *above_half_g, double *min, double *max,
+                            double *sum_abs)
+{
+    const double aa = fabs(a);
+    if (aa > *peak)
+        *peak = aa;
+    if (aa > 0.5 * SW_G0)
+        ++*above_half_g;
+    if (isnan(*min) || a < *min)
+        *min = a;
+    if (isnan(*max) || a > *max)
+        *max = a;
+    *sum_abs += aa;
+}
+
 /* Push an accepted sample at engine time te. */
 int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
 {
     const double az = g->o.vert_gravity ? s->a_z - SW_G0 : s->a_z;
-    const int rc = sw_engine_push(g->e, te, s->a_g, az);
+    const int rc = g->o.lateral ? sw_engine_push_lat(g->e, te, s->a_g, s->a_y, az)
+                                : sw_engine_push(g->e, te, s->a_g, az);
     if (rc < 0)
         return gate_refuse(g, s, SW_GATE_REJ_ENGINE, sw_strerror(rc));
     if (g->o.on_take)
@@ -109,18 +127,12 @@ int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
         gate_judge_deferred(g);
     g->f.t_last = s->t;
     g->f.accepted++;
-    const double aa = fabs(s->a_g);
-    if (aa > g->f.peak_a)
-        g->f.peak_a = aa;
+    axis_add(s->a_g, &g->f.peak_a, &g->f.above_half_g, &g->f.min_a, &g->f.max_a, &g->sum_abs_a);
+    if (g->o.lateral)
+        axis_add(s->a_y, &g->f.lat.peak, &g->f.lat.above_half_g, &g->f.lat.min, &g->f.lat.max,
+                 &g->sum_abs_y);
     if (fabs(s->a_z) > g->f.peak_z)
         g->f.peak_z = fabs(s->a_z);
-    if (aa > 0.5 * SW_G0)
-        g->f.above_half_g++;
-    if (isnan(g->f.min_a) || s->a_g < g->f.min_a)
-        g->f.min_a = s->a_g;
-    if (isnan(g->f.max_a) || s->a_g > g->f.max_a)
-        g->f.max_a = s->a_g;
-    g->sum_abs_a += aa;
     g->sum_z += s->a_z;
     if (!isnan(s->rx)) {
         const double off = s->t - s->rx;

@@ -28,7 +28,13 @@ struct sw_stream {
     sw_alarm_watch_t *watch_b, *watch_fresh;
     double hysteresis;
     sw_stream_opts_t o;
+    /* the lateral planes (o.engine.lateral): the reserve of each, on the
+     * packages with a depth, whose index there lat_of says */
+    sw_risk_t *risk_lat;
+    size_t *lat_of;
 };
+
+#define NO_LAT ((size_t)-1)
 
 /* ---- the kept timeline ------------------------------------------------------------ */
 
@@ -38,13 +44,29 @@ static void on_alarm(void *user, const sw_alarm_t *a)
     st->o.on_alarm(st->o.user, a, sw_gate_source_time(st->gate, a->t));
 }
 
+/* The alarm watches follow the plane along the truck: a lateral plane's
+ * events and states reach the caller and its reserve, not the watches
+ * (whose state is one plane's). */
 static void on_event(void *user, const sw_event_t *ev)
 {
     sw_stream_t *st = user;
     if (st->o.on_event)
         st->o.on_event(st->o.user, ev);
-    if (st->alarms && ev->pkg < st->n)
+    if (st->alarms && ev->pkg < st->n && ev->plane == SW_PLANE_LONG)
         sw_alarm_on_event(&st->watch[ev->pkg], ev, on_alarm, st);
+}
+
+/* A lateral plane's state: its reserve, then the caller. */
+static void on_state_lat(sw_stream_t *st, const sw_output_t *out)
+{
+    const size_t j = st->lat_of ? st->lat_of[out->pkg] : NO_LAT;
+    if (st->risk_lat && j != NO_LAT && sw_output_finite(out)) {
+        sw_output_t o = *out;
+        o.pkg = j;
+        sw_risk_output(st->risk_lat, &o);
+    }
+    if (st->o.on_state)
+        st->o.on_state(st->o.user, out);
 }
 
 /* The reserve first, then the alarms: the caller's state carries both. */
@@ -54,6 +76,10 @@ static void on_state(void *user, const sw_output_t *out)
     const size_t k = out->pkg;
     if (k >= st->n)
         return;
+    if (out->plane == SW_PLANE_LAT) {
+        on_state_lat(st, out);
+        return;
+    }
     if (sw_output_finite(out) && sw_risk_output(st->risk, out) == 1 && st->alarms) {
         const sw_risk_pkg_t *p = sw_risk_pkg(st->risk, k);
         sw_alarm_on_reserve(&st->watch[k], out->t, out->state.theta, out->margin, p->reserve_g,
@@ -88,14 +114,14 @@ static void on_alarm_b(void *user, const sw_alarm_t *a)
 static void on_event_b(void *user, const sw_event_t *ev)
 {
     sw_stream_t *st = user;
-    if (st->alarms && ev->pkg < st->n)
+    if (st->alarms && ev->pkg < st->n && ev->plane == SW_PLANE_LONG)
         sw_alarm_on_event(&st->watch_b[ev->pkg], ev, on_alarm_b, st);
 }
 
 static void on_state_b(void *user, const sw_output_t *out)
 {
     sw_stream_t *st = user;
-    if (st->alarms && out->pkg < st->n && sw_output_finite(out))
+    if (st->alarms && out->pkg < st->n && out->plane == SW_PLANE_LONG && sw_output_finite(out))
         sw_alarm_on_output(&st->watch_b[out->pkg], out, on_alarm_b, st);
 }
 
@@ -142,6 +168,35 @@ static void fail(int code, int *err, char *msg, size_t msglen, const char *why)
         *err = code;
     if (msg && msglen && why)
         snprintf(msg, msglen, "%s", why);
+}
+
+/* The reserve of the lateral planes: a risk over the lateral scenes
+ * (sw_scene_lateral) of the packages with a depth, the design pulses
+ * applied across the truck.  Nothing without a depth or a reserve. */
+static int make_risk_lat(sw_stream_t *st, const sw_scene_t *scenes, size_t n,
+                         const sw_risk_opts_t *ro, char *msg, size_t msglen)
+{
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++) m += sw_scene_has_depth(&scenes[k]) != 0;
+    if (m == 0 || ro->reserve_rate < 0.0)
+        return SW_OK;
+    sw_scene_t *lat = calloc(m, sizeof *lat);
+    st->lat_of = calloc(n, sizeof *st->lat_of);
+    if (!lat || !st->lat_of) {
+        free(lat);
+        if (msg && msglen)
+            snprintf(msg, msglen, "%s", sw_strerror(SW_ENOMEM));
+        return SW_ENOMEM;
+    }
+    for (size_t k = 0, j = 0; k < n; k++) {
+        st->lat_of[k] = NO_LAT;
+        if (sw_scene_lateral(&scenes[k], &lat[j]) == SW_OK)
+            st->lat_of[k] = j++;
+    }
+    int e = SW_OK;
+    st->risk_lat = sw_risk_create(lat, m, ro, &e, msg, msglen);
+    free(lat);
+    return st->risk_lat ? SW_OK : e != SW_OK ? e : SW_ENOMEM;
 }
 
 sw_stream_t *sw_stream_create(const sw_scene_t *scenes, size_t n, const sw_stream_opts_t *o,
@@ -194,6 +249,7 @@ sw_stream_t *sw_stream_create(const sw_scene_t *scenes, size_t n, const sw_strea
     if (!(st->engine = sw_engine_create(scenes, n, &eo, &e, msg, msglen)))
         goto failed;
     sw_gate_opts_t go = o->gate;
+    go.lateral = eo.lateral; /* an engine with lateral planes takes samples with a_y */
     go.on_event = on_gate_event;
     go.on_reject = on_gate_reject;
     go.on_take = o->on_take ? on_gate_take : NULL;
@@ -224,6 +280,7 @@ sw_stream_t *sw_stream_create(const sw_scene_t *scenes, size_t n, const sw_strea
         gb.on_take = NULL;
         gb.on_rival = NULL;
         gb.user = NULL;
+        gb.lateral = eb.lateral;
         if (!(st->engine_b = sw_engine_create(scenes, n, &eb, &e, msg, msglen)))
             goto failed;
         if (!(st->gate_b = sw_gate_create(st->engine_b, &gb, msg, msglen))) {
@@ -232,6 +289,8 @@ sw_stream_t *sw_stream_create(const sw_scene_t *scenes, size_t n, const sw_strea
         }
     }
     if (!(st->risk = sw_risk_create(scenes, n, &o->risk, &e, msg, msglen)))
+        goto failed;
+    if (eo.lateral && (e = make_risk_lat(st, scenes, n, &o->risk, msg, msglen)) != SW_OK)
         goto failed;
     return st;
 
@@ -253,6 +312,8 @@ void sw_stream_destroy(sw_stream_t *st)
     sw_gate_destroy(st->gate);
     sw_gate_destroy(st->gate_b);
     sw_risk_destroy(st->risk);
+    sw_risk_destroy(st->risk_lat);
+    free(st->lat_of);
     sw_engine_destroy(st->engine);
     sw_engine_destroy(st->engine_b);
     free(st->watch);
@@ -308,7 +369,24 @@ int sw_stream_replace(sw_stream_t *st, size_t k, const sw_scene_t *scene, char *
     snprintf(st->names[k], sizeof st->names[k], "%s", scene->name);
     /* the reserve of the new scene; if it cannot be built the package goes
      * on with the old one, and the caller hears why */
+    const size_t j = st->lat_of ? st->lat_of[k] : NO_LAT;
+    sw_scene_t lat;
+    if (j != NO_LAT && sw_scene_lateral(scene, &lat) == SW_OK) {
+        const int rl = sw_risk_replace(st->risk_lat, j, &lat, msg, msglen);
+        if (rl != SW_OK)
+            return rl;
+    }
     return sw_risk_replace(st->risk, k, scene, msg, msglen);
+}
+
+const sw_risk_pkg_t *sw_stream_risk_plane(const sw_stream_t *st, size_t k, sw_plane plane)
+{
+    if (!st || k >= st->n)
+        return NULL;
+    if (plane == SW_PLANE_LONG)
+        return sw_risk_pkg(st->risk, k);
+    const size_t j = st->lat_of ? st->lat_of[k] : NO_LAT;
+    return plane == SW_PLANE_LAT && j != NO_LAT ? sw_risk_pkg(st->risk_lat, j) : NULL;
 }
 
 sw_engine_t *sw_stream_engine(const sw_stream_t *st)
