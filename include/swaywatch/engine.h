@@ -265,6 +265,13 @@ SW_API int sw_engine_summary_plane(const sw_engine_t *e, size_t pkg, sw_plane pl
 SW_API int sw_engine_get_output_plane(const sw_engine_t *e, size_t pkg, sw_plane plane,
                                       sw_output_t *out);
 
+/* The engine that holds plane p of package pkg (e itself for
+ * SW_PLANE_LONG; the lateral planes' engine, owned by e, for
+ * SW_PLANE_LAT), with the package's index there in *k: read it with
+ * sw_engine_summary, sw_engine_derived, sw_engine_scheme, sw_engine_dt_used
+ * (as sw_engine_checker's).  NULL when the package has no such plane. */
+SW_API const sw_engine_t *sw_engine_plane(const sw_engine_t *e, size_t pkg, sw_plane p, size_t *k);
+
 /* What the planes of a package say together. */
 typedef struct {
     int planes;       /* 1 or 2 */

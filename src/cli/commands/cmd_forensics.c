@@ -246,9 +246,10 @@ static int replay_log(sw_cli_forensics_t *F)
     sw_engine_t *e = F->R.e;
     if (F->o.verbose)
         sw_cli_print_derived(stderr, e, F->scenes, F->n);
-    if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, F->scenes, F->n)) !=
+    if ((rc = sw_cli_states_open(&F->states, F->o.out_path, F->o.every, NULL, F->scenes, F->n)) !=
             SW_EXIT_OK ||
-        (rc = sw_cli_events_open(&F->events, F->o.events_path, F->scenes, F->n)) != SW_EXIT_OK)
+        (rc = sw_cli_events_open(&F->events, F->o.events_path, NULL, F->scenes, F->n)) !=
+            SW_EXIT_OK)
         return rc;
     if ((F->fo.plot || F->fo.report) && !(F->fig = sw_cli_figure_create(e, F->scenes, F->n)))
         return SW_EXIT_IO;

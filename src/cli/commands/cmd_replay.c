@@ -94,13 +94,15 @@ static void on_state(void *user, const sw_output_t *out)
     replay_t *r = user;
     sw_cli_states_write(&r->states, out);
     sw_cli_wide_write(&r->wide, out);
-    sw_cli_figure_state(r->fig, out);
+    if (out->plane == SW_PLANE_LONG) /* the figure shows the plane along the truck */
+        sw_cli_figure_state(r->fig, out);
 }
 
 static void on_event(void *user, const sw_event_t *ev)
 {
     replay_t *r = user;
-    if (sw_cli_events_feed(&r->events, r->R.risk, ev) & SW_SETTLE_REPORT)
+    if ((sw_cli_events_feed(&r->events, r->R.risk, ev) & SW_SETTLE_REPORT) &&
+        ev->plane == SW_PLANE_LONG)
         sw_cli_figure_event(r->fig, ev);
 }
 
@@ -208,9 +210,9 @@ static int replay_one(replay_t *r)
     sw_engine_t *e = r->R.e;
     if (r->o.verbose)
         sw_cli_print_derived(stderr, e, r->scenes, r->n);
-    if ((rc = sw_cli_states_open(&r->states, r->o.out_path, r->o.every, r->scenes, r->n)) !=
+    if ((rc = sw_cli_states_open(&r->states, r->o.out_path, r->o.every, e, r->scenes, r->n)) !=
             SW_EXIT_OK ||
-        (rc = sw_cli_events_open(&r->events, r->o.events_path, r->scenes, r->n)) != SW_EXIT_OK ||
+        (rc = sw_cli_events_open(&r->events, r->o.events_path, e, r->scenes, r->n)) != SW_EXIT_OK ||
         (rc = sw_cli_wide_open(&r->wide, r->o.wide_path, r->o.every, e, r->scenes, r->n)) !=
             SW_EXIT_OK)
         return rc;
@@ -219,6 +221,7 @@ static int replay_one(replay_t *r)
     if ((rc = sw_cli_reader_risk(&r->R, &r->o, r->scenes, r->n)) != SW_EXIT_OK)
         return rc;
     r->states.risk = r->wide.risk = r->R.risk; /* after open, which clears the writers */
+    r->states.stream = r->wide.stream = r->R.st;
     r->events.all_impacts = r->o.all_impacts;
     if ((rc = sw_cli_reader_feed(&r->R)) != SW_EXIT_OK)
         return rc;

@@ -296,10 +296,10 @@ static int check_files(const sw_cli_opts_t *o)
 static int open_outputs(const sw_cli_opts_t *o, const sw_engine_t *e, const sw_scene_t *scenes,
                         size_t n, sim_ctx_t *ctx)
 {
-    int rc = sw_cli_states_open(ctx->states, o->out_path, o->every, scenes, n);
+    int rc = sw_cli_states_open(ctx->states, o->out_path, o->every, NULL, scenes, n);
     if (rc != SW_EXIT_OK)
         return rc;
-    if ((rc = sw_cli_events_open(ctx->events, o->events_path, scenes, n)) != SW_EXIT_OK)
+    if ((rc = sw_cli_events_open(ctx->events, o->events_path, NULL, scenes, n)) != SW_EXIT_OK)
         return rc;
     rc = sw_cli_wide_open(ctx->wide, o->wide_path, o->every, e, scenes, n);
     if (rc != SW_EXIT_OK)

@@ -118,6 +118,7 @@ int sw_cli_reader_risk(sw_cli_reader_t *R, const sw_cli_opts_t *o, const sw_scen
                        size_t n)
 {
     R->run.risk = R->risk;
+    R->run.stream = R->st;
     sw_cli_warn_no_reserve(R->risk, 0, n, scenes);
     sw_cli_warn_reserve_cost(R->risk, 0, n, scenes, o->reserve_rate);
     return SW_EXIT_OK;
@@ -214,6 +215,7 @@ void sw_cli_reader_close(sw_cli_reader_t *R)
     R->e = NULL;
     R->risk = NULL;
     R->run.risk = NULL;
+    R->run.stream = NULL;
     R->priv = NULL;
     sw_cli_logfile_close(&R->lf);
 }

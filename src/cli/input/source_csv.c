@@ -32,6 +32,7 @@ typedef struct {
     sw_cli_unused_t *unused; /* the run's record of what was not used */
     int any_depth;           /* a scene gives package.depth */
     int lateral;             /* the log's lateral column drives their lateral planes */
+    int lat_col_unused;      /* --lat-col was given, and said not to be used */
 } feed_t;
 
 /* ---- what the reader chose ------------------------------------------------------- */
@@ -103,7 +104,7 @@ static void say_layout(feed_t *F)
         fprintf(m, " (%s)", from_name(L.unit_from[3]));
     }
     fputc('\n', m);
-    if (L.lat_unread >= 0)
+    if (L.lat_unread >= 0 && !F->lat_col_unused)
         sw_cli_error("%s: the lateral column %ld \"%s\" is not used: %s", F->name, L.lat_unread + 1,
                      L.name[3], unused_why(F));
     for (int r = 0; r < 2; r++)
@@ -383,6 +384,7 @@ static int csv_feed(sw_cli_reader_t *R, sw_gate_facts_t *f, int *vert)
         if (!F->quiet)
             sw_cli_error("%s: --lat-col %s is not used: %s", F->name, copts.lat_col, unused_why(F));
         copts.lat_col = NULL;
+        F->lat_col_unused = 1;
     }
     F->csv = sw_csv_create(&copts, on_row, on_reject, F, &err, msg, sizeof msg);
     if (!F->csv) {

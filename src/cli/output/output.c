@@ -93,6 +93,25 @@ static void csv_reserve(FILE *f, const sw_risk_t *risk, size_t pkg)
         fputc(',', f);
 }
 
+/* Package pkg's lateral plane's latest reserve, as csv_reserve. */
+static void csv_reserve_lat(FILE *f, const sw_stream_t *st, size_t pkg)
+{
+    const sw_risk_pkg_t *p = sw_stream_risk_plane(st, pkg, SW_PLANE_LAT);
+    if (p && isfinite(p->reserve_g))
+        fprintf(f, ",%.9g", p->reserve_g);
+    else
+        fputc(',', f);
+}
+
+/* Some package of e rocks in a lateral plane too. */
+static int any_lateral(const sw_engine_t *e, size_t n)
+{
+    for (size_t i = 0; e && i < n; i++)
+        if (sw_engine_planes(e, i) == 2)
+            return 1;
+    return 0;
+}
+
 static const char *pkg_name(const sw_scene_t *scenes, size_t n, size_t pkg)
 {
     return pkg < n ? scenes[pkg].name : "?";
@@ -131,8 +150,8 @@ int sw_cli_out_close(FILE *f, const char *path)
     return SW_EXIT_OK;
 }
 
-int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const sw_scene_t *scenes,
-                       size_t n)
+int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const sw_engine_t *e,
+                       const sw_scene_t *scenes, size_t n)
 {
     memset(w, 0, sizeof *w);
     w->path = path;
@@ -142,7 +161,12 @@ int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const s
     if (!path)
         return SW_EXIT_OK;
     w->seen = calloc(n ? n : 1, sizeof *w->seen);
-    if (!w->seen) {
+    w->lat = any_lateral(e, n);
+    if (w->lat) {
+        w->lat_out = calloc(n, sizeof *w->lat_out);
+        w->lat_have = calloc(n, 1);
+    }
+    if (!w->seen || (w->lat && (!w->lat_out || !w->lat_have))) {
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
     }
@@ -154,8 +178,9 @@ int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const s
     }
     fputs(
         "t,package,phase,theta,theta_dot,u,u_dot,z,z_dot,margin,margin_bound,uplift_ratio,a_g,"
-        "reserve_g\n",
+        "reserve_g",
         w->f);
+    fputs(w->lat ? ",theta_lat,margin_lat,reserve_g_lat\n" : "\n", w->f);
     return SW_EXIT_OK;
 }
 
@@ -163,6 +188,13 @@ void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *o)
 {
     if (!w->f)
         return;
+    if (o->plane == SW_PLANE_LAT) { /* written with the longitudinal one, which follows */
+        if (w->lat && o->pkg < w->n) {
+            w->lat_out[o->pkg] = *o;
+            w->lat_have[o->pkg] = 1;
+        }
+        return;
+    }
     if (o->pkg < w->n && w->seen[o->pkg]++ % w->every != 0)
         return;
     const sw_state_t *s = &o->state;
@@ -186,6 +218,16 @@ void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *o)
     csv_num(w->f, o->uplift_ratio, nf);
     csv_num(w->f, o->a_g, nf);
     csv_reserve(w->f, w->risk, o->pkg);
+    if (w->lat) {
+        const sw_output_t *l = o->pkg < w->n ? &w->lat_out[o->pkg] : NULL;
+        if (l && w->lat_have[o->pkg] && l->t == o->t) {
+            csv_num(w->f, l->state.theta, nf);
+            csv_num(w->f, l->margin, nf);
+            csv_reserve_lat(w->f, w->stream, o->pkg);
+        } else {
+            fputs(",,,", w->f);
+        }
+    }
     fputc('\n', w->f);
     w->rows++;
 }
@@ -197,7 +239,11 @@ int sw_cli_states_close(sw_cli_states_t *w)
         sw_cli_error("%s: %ld non-finite values written as empty fields", sw_cli_out_name(w->path),
                      w->nonfinite);
     free(w->seen);
+    free(w->lat_out);
+    free(w->lat_have);
     w->seen = NULL;
+    w->lat_out = NULL;
+    w->lat_have = NULL;
     w->f = NULL;
     return rc;
 }
@@ -214,18 +260,22 @@ int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_en
     w->alpha = calloc(n ? n : 1, sizeof *w->alpha);
     w->row = calloc(n ? n : 1, sizeof *w->row);
     w->have = calloc(n ? n : 1, 1);
-    if (!w->alpha || !w->row || !w->have) {
+    w->planes = calloc(n ? n : 1, 1);
+    w->lat_row = calloc(n ? n : 1, sizeof *w->lat_row);
+    if (!w->alpha || !w->row || !w->have || !w->planes || !w->lat_row) {
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
     }
     for (size_t i = 0; i < n; i++) {
         const sw_derived_t *d = sw_engine_derived(e, i);
         w->alpha[i] = d ? d->alpha : NAN;
+        w->planes[i] = (unsigned char)(sw_engine_planes(e, i) == 2 ? 2 : 1);
     }
     if (!(w->f = sw_cli_out_open(path)))
         return SW_EXIT_IO;
-    static const char *const cols[] = {"phase",  "theta",        "theta_dot",    "ratio",
-                                       "margin", "margin_bound", "uplift_ratio", "reserve_g"};
+    static const char *const cols[] = {"phase",     "theta",        "theta_dot",    "ratio",
+                                       "margin",    "margin_bound", "uplift_ratio", "reserve_g",
+                                       "theta_lat", "margin_lat",   "reserve_g_lat"};
     fputs("t,a_g", w->f);
     for (size_t i = 0; i < n; i++) {
         long same = 0; /* earlier packages of the same name */
@@ -235,7 +285,8 @@ int sw_cli_wide_open(sw_cli_wide_t *w, const char *path, long every, const sw_en
             snprintf(name, sizeof name, "%s#%ld", scenes[i].name, same + 1);
         else
             snprintf(name, sizeof name, "%s", scenes[i].name);
-        for (size_t c = 0; c < sizeof cols / sizeof cols[0]; c++) {
+        const size_t ncols = w->planes[i] == 2 ? 11 : 8; /* the _lat ones with a lateral plane */
+        for (size_t c = 0; c < ncols; c++) {
             char col[128];
             snprintf(col, sizeof col, "%s.%s", name, cols[c]);
             fputc(',', w->f);
@@ -269,7 +320,7 @@ static void wide_flush(sw_cli_wide_t *w)
         for (size_t i = 0; i < w->n; i++) {
             const sw_output_t *o = &w->row[i];
             if (!w->have[i]) {
-                fputs(",,,,,,,,", w->f);
+                fputs(w->planes[i] == 2 ? ",,,,,,,,,,," : ",,,,,,,,", w->f);
                 continue;
             }
             fprintf(w->f, ",%s", sw_phase_name(o->state.phase));
@@ -280,6 +331,16 @@ static void wide_flush(sw_cli_wide_t *w)
             csv_num(w->f, o->margin_bound, nf);
             csv_num(w->f, o->uplift_ratio, nf);
             csv_reserve(w->f, w->risk, i);
+            if (w->planes[i] != 2)
+                continue;
+            const sw_output_t *l = &w->lat_row[i];
+            if (l->t == o->t && l->plane == SW_PLANE_LAT) {
+                csv_num(w->f, l->state.theta, nf);
+                csv_num(w->f, l->margin, nf);
+                csv_reserve_lat(w->f, w->stream, i);
+            } else {
+                fputs(",,,", w->f);
+            }
         }
         fputc('\n', w->f);
         w->rows++;
@@ -292,6 +353,10 @@ void sw_cli_wide_write(sw_cli_wide_t *w, const sw_output_t *o)
 {
     if (!w->f || o->pkg >= w->n)
         return;
+    if (o->plane == SW_PLANE_LAT) { /* written with the longitudinal one, which follows */
+        w->lat_row[o->pkg] = *o;
+        return;
+    }
     /* a new instant, or this package again: the row so far is complete */
     if (w->open) {
         size_t k = 0;
@@ -320,6 +385,10 @@ int sw_cli_wide_close(sw_cli_wide_t *w)
     free(w->alpha);
     free(w->row);
     free(w->have);
+    free(w->planes);
+    free(w->lat_row);
+    w->planes = NULL;
+    w->lat_row = NULL;
     w->alpha = NULL;
     w->row = NULL;
     w->have = NULL;
@@ -348,7 +417,8 @@ int sw_cli_check_stdout(const char *const names[], const char *const paths[], si
     return SW_EXIT_OK;
 }
 
-int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *scenes, size_t n)
+int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_engine_t *e,
+                       const sw_scene_t *scenes, size_t n)
 {
     memset(w, 0, sizeof *w);
     w->path = path;
@@ -359,7 +429,10 @@ int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *s
     w->f = sw_cli_out_open(path);
     if (!w->f)
         return SW_EXIT_IO;
-    fputs("t,package,event,theta,theta_dot,margin,info\n", w->f);
+    w->lat = any_lateral(e, n);
+    fputs(w->lat ? "t,package,event,theta,theta_dot,margin,info,plane\n"
+                 : "t,package,event,theta,theta_dot,margin,info\n",
+          w->f);
     return SW_EXIT_OK;
 }
 
@@ -369,13 +442,18 @@ void sw_cli_events_span(sw_cli_events_t *w, size_t pkg, const sw_settle_span_t *
         return; /* its impacts are rows of their own */
     fprintf(w->f, "%.9g,", span->t_start);
     sw_cli_csv_text(w->f, pkg_name(w->scenes, w->n, pkg));
-    fprintf(w->f, ",settling,,%.9g,,%ld\n", span->max_speed, span->impacts);
+    fprintf(w->f, ",settling,,%.9g,,%ld%s\n", span->max_speed, span->impacts,
+            w->lat ? ",longitudinal" : "");
     w->rows++;
 }
 
 int sw_cli_events_feed(sw_cli_events_t *w, sw_risk_t *risk, const sw_event_t *ev)
 {
     sw_settle_span_t span;
+    if (ev->plane == SW_PLANE_LAT) { /* the settling spans are the longitudinal plane's */
+        sw_cli_events_write(w, ev);
+        return SW_SETTLE_REPORT;
+    }
     const int f = risk ? sw_risk_event(risk, ev, &span) : SW_SETTLE_REPORT;
     if (f < 0)
         return SW_SETTLE_REPORT; /* a package risk does not know: as it is */
@@ -411,6 +489,8 @@ void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev)
     csv_num(w->f, ev->theta_dot, nf);
     csv_num(w->f, ev->margin, nf);
     csv_num(w->f, ev->info, nf);
+    if (w->lat)
+        fprintf(w->f, ",%s", sw_plane_name(ev->plane));
     fputc('\n', w->f);
     w->rows++;
 }

@@ -34,7 +34,10 @@ const char *sw_cli_out_name(const char *path);
  * uplift_ratio,a_g,reserve_g.  Numbers as %.9g; a non-finite value is
  * written as an empty field and counted.  reserve_g: the package's latest
  * reserve (risk, when set: the caller feeds it before each write; empty
- * before its first evaluation or without one). */
+ * before its first evaluation or without one).  When a package of the
+ * engine rocks in a lateral plane too, three columns follow:
+ * theta_lat,margin_lat,reserve_g_lat, its lateral plane's at the same
+ * instant (the engine reports it first), empty for a package without. */
 typedef struct {
     FILE *f;
     const char *path;
@@ -45,11 +48,18 @@ typedef struct {
     long rows;             /* rows written */
     long nonfinite;        /* fields left empty because the value was not finite */
     const sw_risk_t *risk; /* the reserve column's source; NULL: empty */
+    /* the lateral planes (none: the columns are those above, and nothing
+     * below is used) */
+    int lat;                   /* some package has one: the _lat columns */
+    sw_output_t *lat_out;      /* per package, its lateral plane's latest output */
+    unsigned char *lat_have;   /* ... received */
+    const sw_stream_t *stream; /* their reserve (sw_stream_risk_plane); NULL: empty */
 } sw_cli_states_t;
 
-/* Open (path NULL: a disabled writer whose write does nothing). */
-int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const sw_scene_t *scenes,
-                       size_t n);
+/* Open (path NULL: a disabled writer whose write does nothing); e (may be
+ * NULL) says which packages rock in a lateral plane. */
+int sw_cli_states_open(sw_cli_states_t *w, const char *path, long every, const sw_engine_t *e,
+                       const sw_scene_t *scenes, size_t n);
 void sw_cli_states_write(sw_cli_states_t *w, const sw_output_t *out);
 /* Flush and close; returns SW_EXIT_OK or SW_EXIT_IO (reported). */
 int sw_cli_states_close(sw_cli_states_t *w);
@@ -60,7 +70,8 @@ int sw_cli_states_close(sw_cli_states_t *w);
  * P.uplift_ratio,P.reserve_g (ratio = theta/alpha; reserve_g as --out's).  The engine reports every
  * package at each instant, in order: a row is written when the last package's state arrives, or
  * when the time moves on before it (the missing fields left empty and counted).  Packages of the
- * same name are told apart as NAME#2, NAME#3, ... --every keeps every Nth row. */
+ * same name are told apart as NAME#2, NAME#3, ... --every keeps every Nth row.  A package that
+ * rocks in a lateral plane too has three more: P.theta_lat,P.margin_lat,P.reserve_g_lat. */
 typedef struct {
     FILE *f;
     const char *path;
@@ -71,7 +82,10 @@ typedef struct {
     unsigned char *have; /* which packages it has */
     int open;            /* a row is being gathered */
     long rows, nonfinite, incomplete;
-    const sw_risk_t *risk; /* the reserve columns' source; NULL: empty */
+    const sw_risk_t *risk;     /* the reserve columns' source; NULL: empty */
+    unsigned char *planes;     /* per package: 2 with a lateral plane (its columns), else 1 */
+    sw_output_t *lat_row;      /* per package, its lateral plane's latest output */
+    const sw_stream_t *stream; /* the lateral reserve's source; NULL: empty */
 } sw_cli_wide_t;
 
 /* Open (path NULL: a disabled writer) for the n packages of engine e. */
@@ -91,7 +105,10 @@ int sw_cli_check_stdout(const char *const names[], const char *const paths[], si
 /* --events: t,package,event,theta,theta_dot,margin,info, one row per
  * event, except the micro-impacts of settling (risk.h): one "settling" row
  * per span instead, at its first micro-impact, with theta_dot the fastest
- * of them (rad/s) and info how many (all_impacts: every impact instead). */
+ * of them (rad/s) and info how many (all_impacts: every impact instead).
+ * When a package of the engine rocks in a lateral plane too, a last
+ * column, plane, says longitudinal or lateral; the lateral plane's
+ * impacts are each written (no settling spans). */
 typedef struct {
     FILE *f;
     const char *path;
@@ -99,9 +116,11 @@ typedef struct {
     size_t n;
     long rows, nonfinite;
     int all_impacts; /* --all-impacts */
+    int lat;         /* the plane column */
 } sw_cli_events_t;
 
-int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_scene_t *scenes, size_t n);
+int sw_cli_events_open(sw_cli_events_t *w, const char *path, const sw_engine_t *e,
+                       const sw_scene_t *scenes, size_t n);
 void sw_cli_events_write(sw_cli_events_t *w, const sw_event_t *ev);
 /* A settling span of package pkg, as one row. */
 void sw_cli_events_span(sw_cli_events_t *w, size_t pkg, const sw_settle_span_t *span);
@@ -125,12 +144,13 @@ typedef struct {
     /* a log's facts (the input gate's), and its verdict's check */
     int have_facts;
     sw_gate_facts_t facts;
-    int forced;             /* the plausibility check refused; --force gave the verdict */
-    char check[320];        /* its reason, or a warning (a low rate); "" none */
-    int interrupted;        /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
-                               the summaries say so, and up to which time they cover */
-    const sw_risk_t *risk;  /* reserves and impacts that matter (NULL: none) */
-    sw_cli_unused_t unused; /* a log's: what its reading did not use (rows, gaps) */
+    int forced;                /* the plausibility check refused; --force gave the verdict */
+    char check[320];           /* its reason, or a warning (a low rate); "" none */
+    int interrupted;           /* the signal that stopped the run early (SIGINT, SIGTERM), or 0:
+                                  the summaries say so, and up to which time they cover */
+    const sw_risk_t *risk;     /* reserves and impacts that matter (NULL: none) */
+    const sw_stream_t *stream; /* the lateral planes' reserves (sw_stream_risk_plane); NULL */
+    sw_cli_unused_t unused;    /* a log's: what its reading did not use (rows, gaps) */
     /* a log whose times are dates (a date-time column, epoch times, an
      * lcm-logger file): a source time plus abs_base is UTC (s since 1970);
      * abs_start and abs_end are its first and last samples'; abs_from says

@@ -66,12 +66,38 @@ void sw_cli_print_derived(FILE *f, const sw_engine_t *e, const sw_scene_t *scene
 
 /* ---- summaries --------------------------------------------------------------- */
 
+/* The summaries of package i's planes into s[0] (along the truck) and
+ * s[1] (across it, with a lateral plane): how many (0: no package i). */
+static int plane_summaries(const sw_engine_t *e, size_t i, sw_summary_t s[SW_PLANES])
+{
+    if (sw_engine_summary(e, i, &s[0]) != SW_OK)
+        return 0;
+    return sw_engine_summary_plane(e, i, SW_PLANE_LAT, &s[1]) == SW_OK ? 2 : 1;
+}
+
+/* Package i's verdict: its plane's summary, or its worse plane's (which
+ * in *plane). */
+static int verdict_summary(const sw_engine_t *e, size_t i, sw_summary_t *v, sw_plane *plane)
+{
+    sw_summary_t s[SW_PLANES];
+    const int n = plane_summaries(e, i, s);
+    if (!n)
+        return -1;
+    const int worse = n == 2 && sw_summary_worse(&s[0], &s[1]);
+    *v = s[worse];
+    if (plane)
+        *plane = worse ? SW_PLANE_LAT : SW_PLANE_LONG;
+    return 0;
+}
+
 int sw_cli_any_overturned(const sw_engine_t *e)
 {
     for (size_t i = 0; i < sw_engine_count(e); i++) {
-        sw_summary_t s;
-        if (sw_engine_summary(e, i, &s) == SW_OK && s.overturned)
-            return 1;
+        sw_summary_t s[SW_PLANES];
+        const int n = plane_summaries(e, i, s);
+        for (int p = 0; p < n; p++)
+            if (s[p].overturned)
+                return 1;
     }
     return 0;
 }
@@ -188,14 +214,16 @@ int sw_cli_verdict_exit(const sw_engine_t *e, const sw_cli_run_t *run, int fail_
     if (sw_cli_any_overturned(e))
         return SW_EXIT_OVERTURNED;
     for (size_t i = 0; i < sw_engine_count(e); i++) {
-        sw_summary_t s;
-        if (sw_engine_summary(e, i, &s) == SW_OK && flight_open(&s)) {
-            sw_cli_error(
-                "%s: the verdict is incomplete: in the air over %g s from %.4f s, the landing "
-                "is outside the model; --fail-on-overturn exits 1",
-                s.name, SW_FLIGHT_LONG, s.flight_long_time);
-            return SW_EXIT_OVERTURNED;
-        }
+        sw_summary_t s[SW_PLANES];
+        const int n = plane_summaries(e, i, s);
+        for (int p = 0; p < n; p++)
+            if (flight_open(&s[p])) {
+                sw_cli_error(
+                    "%s: the verdict is incomplete: in the air over %g s from %.4f s, the "
+                    "landing is outside the model; --fail-on-overturn exits 1",
+                    s[p].name, SW_FLIGHT_LONG, s[p].flight_long_time);
+                return SW_EXIT_OVERTURNED;
+            }
     }
     if (sw_cli_run_incomplete(run) > 0) {
         char why[256];
@@ -207,14 +235,16 @@ int sw_cli_verdict_exit(const sw_engine_t *e, const sw_cli_run_t *run, int fail_
         return SW_EXIT_OVERTURNED;
     }
     for (size_t i = 0; i < sw_engine_count(e); i++) {
-        sw_summary_t s;
-        if (sw_engine_summary(e, i, &s) == SW_OK && s.faults) {
-            sw_cli_error(
-                "%s: the model faulted %ld times: no verdict, and --fail-on-overturn "
-                "needs one (exit 2)",
-                s.name, s.faults);
-            return SW_EXIT_USAGE;
-        }
+        sw_summary_t s[SW_PLANES];
+        const int n = plane_summaries(e, i, s);
+        for (int p = 0; p < n; p++)
+            if (s[p].faults) {
+                sw_cli_error(
+                    "%s: the model faulted %ld times%s: no verdict, and --fail-on-overturn "
+                    "needs one (exit 2)",
+                    s[p].name, s[p].faults, p ? " in the lateral plane" : "");
+                return SW_EXIT_USAGE;
+            }
     }
     return SW_EXIT_OK;
 }
@@ -379,8 +409,9 @@ static void print_margin(FILE *f, const sw_summary_t *s)
     fputs(")\n", f);
 }
 
-/* The reserve: the smallest evaluated, in g, and what it means. */
-void sw_cli_print_reserve(FILE *f, const sw_risk_pkg_t *p)
+/* The reserve: the smallest evaluated, in g, and what it means; across
+ * the truck (lateral) its pulse is sideways. */
+static void print_reserve(FILE *f, const sw_risk_pkg_t *p, int lateral)
 {
     if (p && p->no_reserve) {
         fprintf(f, "  reserve         none: the scene is too stiff for it to be computed\n");
@@ -398,11 +429,67 @@ void sw_cli_print_reserve(FILE *f, const sw_risk_pkg_t *p)
                 "  minimum reserve %.3g g at %.4f s: a %s half-sine of %.3g s that strong "
                 "would have overturned it then (at rest %.3g g)\n",
                 p->min_reserve_g, p->min_reserve_time,
-                p->min_direction == SW_RESERVE_ACCELERATING ? "speeding-up" : "braking",
+                lateral                                       ? "sideways"
+                : p->min_direction == SW_RESERVE_ACCELERATING ? "speeding-up"
+                                                              : "braking",
                 p->min_pulse, p->rest_reserve_g);
     if (p->reserve_faults)
         fprintf(f, "                  (%ld evaluations had a run fault: the value may be high)\n",
                 p->reserve_faults);
+}
+
+/* One plane's lines, from its first uplift to its outcome. */
+static void print_plane(FILE *f, const sw_summary_t *s, double alpha, const sw_risk_pkg_t *p,
+                        int lateral, const sw_cli_run_t *run)
+{
+    fputs("  first uplift    ", f);
+    print_time(f, s->uplift_time, "none (never left the upright position)");
+    if (s->uplifts > 1)
+        fprintf(f, " (%ld uplifts in all)", s->uplifts);
+    print_impacts(f, s, lateral ? NULL : p); /* the lateral impacts are not sorted */
+    fprintf(f, "  peak |theta|    %.3f deg = %.3f alpha (alpha = %.2f deg)\n",
+            s->max_abs_theta * 180.0 / M_PI, s->max_theta_ratio, alpha * 180.0 / M_PI);
+    fputs("  tipped (alpha)  ", f);
+    print_time(f, s->tip_time, "no (|theta| stayed below alpha)");
+    print_margin(f, s);
+    print_reserve(f, p, lateral);
+    fputs("  outcome         ", f);
+    print_outcome(f, s, run);
+    fputc('\n', f);
+}
+
+/* A package with a lateral plane: its lines, which plane the verdict is,
+ * and both planes lifted at once. */
+static void print_lateral(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run)
+{
+    sw_planes_t P;
+    size_t k;
+    sw_summary_t s;
+    const sw_engine_t *L = sw_engine_plane(e, i, SW_PLANE_LAT, &k);
+    if (sw_engine_planes_summary(e, i, &P) != SW_OK || P.planes < 2 || !L ||
+        sw_engine_summary(L, k, &s) != SW_OK)
+        return;
+    const sw_derived_t *d = sw_engine_derived(L, k);
+    fprintf(f, "  lateral plane   across the truck, depth %.4g m: scheme %s, dt %.6g ms\n",
+            d ? 2.0 * d->b : NAN, sw_engine_scheme(L), sw_engine_dt_used(L, k) * 1e3);
+    print_plane(f, &s, d ? d->alpha : NAN, sw_stream_risk_plane(run->stream, i, SW_PLANE_LAT), 1,
+                run);
+    sw_summary_t v;
+    verdict_summary(e, i, &v, NULL);
+    fprintf(f, "  verdict         %s, decided by the %s plane%s\n", sw_cli_verdict(&v, run),
+            sw_plane_name(P.worse),
+            P.worse == SW_PLANE_LAT && v.overturned ? " (tipped sideways)" : "");
+    if (P.both_rocking)
+        fprintf(f,
+                "  both planes     lifted at once from %.4f s to %.4f s (%.4g s in all): the "
+                "package may have rocked on a corner, which the planar models approximate "
+                "(docs/physics.md, \"The lateral plane\")\n",
+                P.both_from, P.both_to, P.both_time);
+}
+
+void sw_cli_print_reserve(FILE *f, const sw_risk_pkg_t *p)
+{
+    print_reserve(f, p, 0);
 }
 
 /* The words a summary of an interrupted run starts with. */
@@ -454,20 +541,7 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
             fprintf(f, "  samples         %ld read, %ld accepted, %ld rejected\n",
                     run->samples_read, run->samples_read - run->samples_rejected,
                     run->samples_rejected);
-        fputs("  first uplift    ", f);
-        print_time(f, s.uplift_time, "none (never left the upright position)");
-        if (s.uplifts > 1)
-            fprintf(f, " (%ld uplifts in all)", s.uplifts);
-        print_impacts(f, &s, sw_risk_pkg(run->risk, i));
-        fprintf(f, "  peak |theta|    %.3f deg = %.3f alpha (alpha = %.2f deg)\n",
-                s.max_abs_theta * 180.0 / M_PI, s.max_theta_ratio, alpha * 180.0 / M_PI);
-        fputs("  tipped (alpha)  ", f);
-        print_time(f, s.tip_time, "no (|theta| stayed below alpha)");
-        print_margin(f, &s);
-        sw_cli_print_reserve(f, sw_risk_pkg(run->risk, i));
-        fputs("  outcome         ", f);
-        print_outcome(f, &s, run);
-        fputc('\n', f);
+        print_plane(f, &s, alpha, sw_risk_pkg(run->risk, i), 0, run);
         const char *dw = NULL;
         const int agrees = check_agrees(e, i, &s, &dw);
         if (agrees >= 0)
@@ -476,6 +550,7 @@ void sw_cli_print_summary(FILE *f, const sw_engine_t *e, const sw_cli_run_t *run
                 sw_engine_scheme(sw_engine_checker(e)),
                 sw_engine_dt_used(sw_engine_checker(e), i) * 1e3, dw,
                 agrees ? " (agrees)" : " -- DIFFERS: this verdict depends on the scheme or step");
+        print_lateral(f, e, i, run);
     }
 }
 
@@ -549,56 +624,110 @@ void sw_cli_json_incomplete(json_t *o, const sw_summary_t *s, const sw_cli_run_t
     sw_cli_rec_text(w, "text", why);
 }
 
-/* The reserve and the impacts that matter (null without them). */
-static void json_risk(json_t *o, const sw_risk_pkg_t *p)
+/* The reserve and the impacts that matter (null without them); across
+ * the truck (lateral) the pulse's direction is a side: a negative pulse
+ * (the one that brakes along the truck) points to the right, y being to
+ * the left. */
+static void json_risk(json_t *o, const sw_risk_pkg_t *p, int lateral)
 {
     const int rv = p && p->evaluations > 0;
     sw_cli_rec_num(o, "min_reserve_g", rv ? p->min_reserve_g : NAN);
     sw_cli_rec_num(o, "min_reserve_time", rv ? p->min_reserve_time : NAN);
     sw_cli_rec_text(o, "min_reserve_direction",
                     !rv || !p->min_direction                 ? NULL
-                    : p->min_direction == SW_RESERVE_BRAKING ? "braking"
-                                                             : "accelerating");
+                    : p->min_direction == SW_RESERVE_BRAKING ? (lateral ? "right" : "braking")
+                                                             : (lateral ? "left" : "accelerating"));
     sw_cli_rec_num(o, "min_reserve_pulse", rv && p->min_pulse > 0.0 ? p->min_pulse : NAN);
     sw_cli_rec_num(o, "rest_reserve_g", p ? p->rest_reserve_g : NAN);
     sw_cli_rec_int(o, "reserve_evaluations", p ? p->evaluations : 0L);
     sw_cli_rec_text(o, "no_reserve", p && p->no_reserve ? p->no_reserve : NULL);
-    const int sig = p && p->impact_min > 0.0;
+    const int sig = p && p->impact_min > 0.0 && !lateral; /* lateral impacts: not sorted */
     sw_cli_rec_put(o, "significant_impacts", sig ? json_integer(p->impacts) : json_null());
     sw_cli_rec_put(o, "micro_impacts", sig ? json_integer(p->micro_impacts) : json_null());
     sw_cli_rec_put(o, "settling_spans", sig ? json_integer(p->settling_spans) : json_null());
 }
 
+/* One plane's fields (the longitudinal ones at the package's level, the
+ * lateral ones in its "lateral" object): e holds it as package i. */
+static void json_plane(json_t *o, const sw_engine_t *e, size_t i, const sw_summary_t *s,
+                       const sw_risk_pkg_t *risk, int lateral)
+{
+    sw_cli_rec_num(o, "overturn_time", s->overturn_time);
+    sw_cli_rec_num(o, "tip_time", s->tip_time);
+    sw_cli_rec_num(o, "uplift_time", s->uplift_time);
+    sw_cli_rec_num(o, "max_abs_theta", s->max_abs_theta);
+    sw_cli_rec_num(o, "max_theta_ratio", s->max_theta_ratio);
+    sw_cli_rec_num(o, "alpha", alpha_of(e, i));
+    sw_cli_rec_num(o, "min_margin", s->min_margin);
+    sw_cli_rec_num(o, "min_margin_bound", s->min_margin_bound);
+    sw_cli_rec_num(o, "max_uplift_ratio", s->max_uplift_ratio);
+    sw_cli_rec_int(o, "impacts", s->impacts);
+    sw_cli_rec_int(o, "uplifts", s->uplifts);
+    sw_cli_rec_int(o, "rests", s->rests);
+    sw_cli_rec_int(o, "faults", s->faults);
+    if (s->flights) { /* free flights (physics.md): only where there were some */
+        sw_cli_rec_int(o, "flights", s->flights);
+        sw_cli_rec_num(o, "flight_max", s->flight_max);
+        sw_cli_rec_num(o, "flight_long_time", s->flight_long_time);
+    }
+    json_risk(o, risk, lateral);
+}
+
+/* A scheme or step chosen, checked by the default beside it. */
+static void json_check(json_t *o, const sw_engine_t *e, size_t i, const sw_summary_t *s)
+{
+    const char *dw = NULL;
+    const int agrees = check_agrees(e, i, s, &dw);
+    if (agrees < 0)
+        return;
+    const sw_engine_t *c = sw_engine_checker(e);
+    json_t *k = sw_cli_rec_obj(o, "scheme_check");
+    sw_cli_rec_text(k, "scheme", sw_engine_scheme(c));
+    sw_cli_rec_num(k, "dt", sw_engine_dt_used(c, i));
+    sw_cli_rec_text(k, "verdict", dw);
+    sw_cli_rec_bool(k, "agrees", agrees);
+}
+
+/* A package with a lateral plane: which plane the verdict is, both
+ * planes lifted at once, and the lateral plane's fields. */
+static void json_lateral(json_t *o, const sw_engine_t *e, size_t i, const sw_cli_run_t *run)
+{
+    sw_planes_t P;
+    size_t k;
+    sw_summary_t s;
+    const sw_engine_t *L = sw_engine_plane(e, i, SW_PLANE_LAT, &k);
+    if (sw_engine_planes_summary(e, i, &P) != SW_OK || P.planes < 2 || !L ||
+        sw_engine_summary(L, k, &s) != SW_OK)
+        return;
+    sw_cli_rec_text(o, "plane", sw_plane_name(P.worse));
+    sw_cli_rec_bool(o, "both_planes_rocking", P.both_rocking);
+    sw_cli_rec_num(o, "both_planes_from", P.both_from);
+    sw_cli_rec_num(o, "both_planes_to", P.both_to);
+    sw_cli_rec_num(o, "both_planes_time", P.both_rocking ? P.both_time : NAN);
+    json_t *l = sw_cli_rec_obj(o, "lateral");
+    sw_cli_rec_bool(l, "overturned", s.overturned);
+    sw_cli_rec_text(l, "verdict", sw_cli_verdict(&s, run));
+    sw_cli_rec_text(l, "seen", sw_cli_verdict_seen(&s));
+    json_plane(l, L, k, &s, sw_stream_risk_plane(run->stream, i, SW_PLANE_LAT), 1);
+    sw_cli_rec_text(l, "scheme", sw_engine_scheme(L));
+    sw_cli_rec_num(l, "dt", sw_engine_dt_used(L, k));
+    sw_cli_rec_int(l, "steps", s.steps);
+    json_check(l, L, k, &s);
+}
+
 int sw_cli_json_package(json_t *o, const sw_engine_t *e, size_t i, const sw_cli_run_t *run)
 {
-    sw_summary_t s;
-    if (sw_engine_summary(e, i, &s) != SW_OK)
+    sw_summary_t s, v;
+    if (sw_engine_summary(e, i, &s) != SW_OK || verdict_summary(e, i, &v, NULL) != 0)
         return -1;
     sw_cli_rec_text(o, "name", s.name);
     sw_cli_rec_text(o, "model", sw_model_name(s.model));
-    sw_cli_rec_bool(o, "overturned", s.overturned);
-    sw_cli_rec_text(o, "verdict", sw_cli_verdict(&s, run));
-    sw_cli_rec_text(o, "seen", sw_cli_verdict_seen(&s));
-    sw_cli_json_incomplete(o, &s, run);
-    sw_cli_rec_num(o, "overturn_time", s.overturn_time);
-    sw_cli_rec_num(o, "tip_time", s.tip_time);
-    sw_cli_rec_num(o, "uplift_time", s.uplift_time);
-    sw_cli_rec_num(o, "max_abs_theta", s.max_abs_theta);
-    sw_cli_rec_num(o, "max_theta_ratio", s.max_theta_ratio);
-    sw_cli_rec_num(o, "alpha", alpha_of(e, i));
-    sw_cli_rec_num(o, "min_margin", s.min_margin);
-    sw_cli_rec_num(o, "min_margin_bound", s.min_margin_bound);
-    sw_cli_rec_num(o, "max_uplift_ratio", s.max_uplift_ratio);
-    sw_cli_rec_int(o, "impacts", s.impacts);
-    sw_cli_rec_int(o, "uplifts", s.uplifts);
-    sw_cli_rec_int(o, "rests", s.rests);
-    sw_cli_rec_int(o, "faults", s.faults);
-    if (s.flights) { /* free flights (physics.md): only where there were some */
-        sw_cli_rec_int(o, "flights", s.flights);
-        sw_cli_rec_num(o, "flight_max", s.flight_max);
-        sw_cli_rec_num(o, "flight_long_time", s.flight_long_time);
-    }
-    json_risk(o, sw_risk_pkg(run->risk, i));
+    /* the package's verdict: with a lateral plane, the worse plane's ("plane") */
+    sw_cli_rec_bool(o, "overturned", v.overturned);
+    sw_cli_rec_text(o, "verdict", sw_cli_verdict(&v, run));
+    sw_cli_rec_text(o, "seen", sw_cli_verdict_seen(&v));
+    sw_cli_json_incomplete(o, &v, run);
+    json_plane(o, e, i, &s, sw_risk_pkg(run->risk, i), 0);
     sw_cli_rec_int(o, "samples_read", run->samples_read);
     sw_cli_rec_int(o, "samples_rejected", run->samples_rejected);
     sw_cli_rec_text(o, "scheme", sw_engine_scheme(e));
@@ -606,16 +735,8 @@ int sw_cli_json_package(json_t *o, const sw_engine_t *e, size_t i, const sw_cli_
     if (dt_differs(e, i))
         sw_cli_rec_num(o, "dt_requested", sw_engine_dt_requested(e));
     sw_cli_rec_int(o, "steps", s.steps);
-    const char *dw = NULL;
-    const int agrees = check_agrees(e, i, &s, &dw);
-    if (agrees >= 0) {
-        const sw_engine_t *c = sw_engine_checker(e);
-        json_t *k = sw_cli_rec_obj(o, "scheme_check");
-        sw_cli_rec_text(k, "scheme", sw_engine_scheme(c));
-        sw_cli_rec_num(k, "dt", sw_engine_dt_used(c, i));
-        sw_cli_rec_text(k, "verdict", dw);
-        sw_cli_rec_bool(k, "agrees", agrees);
-    }
+    json_check(o, e, i, &s);
+    json_lateral(o, e, i, run);
     return 0;
 }
 

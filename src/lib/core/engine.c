@@ -1027,9 +1027,7 @@ const char *sw_plane_name(sw_plane p)
     return "unknown";
 }
 
-/* The engine holding plane p of package pkg, and the package's index
- * there; NULL when the package has no such plane. */
-static const sw_engine_t *plane_of(const sw_engine_t *e, size_t pkg, sw_plane p, size_t *k)
+const sw_engine_t *sw_engine_plane(const sw_engine_t *e, size_t pkg, sw_plane p, size_t *k)
 {
     if (!e || pkg >= e->n)
         return NULL;
@@ -1048,13 +1046,13 @@ int sw_engine_planes(const sw_engine_t *e, size_t pkg)
     size_t k;
     if (!e || pkg >= e->n)
         return 0;
-    return plane_of(e, pkg, SW_PLANE_LAT, &k) ? 2 : 1;
+    return sw_engine_plane(e, pkg, SW_PLANE_LAT, &k) ? 2 : 1;
 }
 
 int sw_engine_summary_plane(const sw_engine_t *e, size_t pkg, sw_plane plane, sw_summary_t *s)
 {
     size_t k;
-    const sw_engine_t *E = plane_of(e, pkg, plane, &k);
+    const sw_engine_t *E = sw_engine_plane(e, pkg, plane, &k);
     if (!s || !e || pkg >= e->n)
         return SW_EINVAL;
     return E ? sw_engine_summary(E, k, s) : SW_ENOTFOUND;
@@ -1063,7 +1061,7 @@ int sw_engine_summary_plane(const sw_engine_t *e, size_t pkg, sw_plane plane, sw
 int sw_engine_get_output_plane(const sw_engine_t *e, size_t pkg, sw_plane plane, sw_output_t *out)
 {
     size_t k;
-    const sw_engine_t *E = plane_of(e, pkg, plane, &k);
+    const sw_engine_t *E = sw_engine_plane(e, pkg, plane, &k);
     if (!out || !e || pkg >= e->n)
         return SW_EINVAL;
     if (!E)

@@ -1,0 +1,115 @@
+#!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The lateral plane through the command: a log whose lateral column drives
+# a crate of depth 0.728 m gives, in the lateral object of the JSON and
+# the _lat columns of --out, to the last digit printed, what the
+# longitudinal run of the crate of width 0.728 m gives on the same column
+# (tests/test_lateral.c shows the engine's planes equal bit for bit); the
+# verdict is the worse plane's, named, and --fail-on-overturn sees it; a
+# scene with a depth on a log without a lateral column, and a lateral
+# column with no depth in any scene, are said on stderr, and the run is
+# that of one plane.
+. "$(dirname "$0")/lib.sh"
+
+LOG=$SRC/sample_logs/hard-stop-overturn.csv
+# the sample drive's acceleration across the truck, nothing along it
+awk -F, 'NR == 1 { print "t_s,ax,ay"; next } { print $1 ",0," $2 }' "$LOG" >"$TMP/side.csv"
+cat >"$TMP/deep.ini" <<'INI'
+[package]
+name   = crate-A
+height = 2.0
+width  = 1.2
+depth  = 0.728
+mass   = 1000
+INI
+
+run "$SW" replay "$LOG" --scene "$SRC/sample_logs/crate.ini" --json --out "$TMP/long.csv"
+expect_rc 0 "the planar run"
+cp "$TMP/out" "$TMP/long.json"
+run "$SW" replay "$TMP/side.csv" --scene "$TMP/deep.ini" --json --out "$TMP/side_states.csv"
+expect_rc 0 "the lateral run"
+expect_err 'lateral: column 3 "ay"' "the lateral column said"
+cp "$TMP/out" "$TMP/side.json"
+python3 - "$TMP/long.json" "$TMP/side.json" <<'PY' || fail "the lateral plane differs from the planar run"
+import json, sys
+a = json.load(open(sys.argv[1]))["packages"][0]
+p = json.load(open(sys.argv[2]))["packages"][0]
+b = p["lateral"]
+keys = ["overturned", "verdict", "overturn_time", "tip_time", "uplift_time", "max_abs_theta",
+        "max_theta_ratio", "alpha", "min_margin", "min_margin_bound", "max_uplift_ratio",
+        "impacts", "uplifts", "rests", "faults", "min_reserve_g", "min_reserve_time",
+        "rest_reserve_g", "scheme", "dt", "steps"]
+bad = [k for k in keys if a[k] != b[k]]
+assert not bad, [(k, a[k], b[k]) for k in bad]
+assert a["overturned"] and p["overturned"] and p["plane"] == "lateral", p
+assert p["uplifts"] == 0 and p["overturn_time"] is None  # nothing along the truck
+assert p["both_planes_rocking"] is False and p["both_planes_from"] is None
+PY
+# the states: theta and margin of the planar run are theta_lat and margin_lat
+python3 - "$TMP/long.csv" "$TMP/side_states.csv" <<'PY' || fail "the lateral states differ"
+import csv, sys
+a = list(csv.DictReader(open(sys.argv[1])))
+b = list(csv.DictReader(open(sys.argv[2])))
+assert len(a) == len(b) > 8000, (len(a), len(b))
+for x, y in zip(a, b):
+    assert (x["t"], x["theta"], x["margin"], x["reserve_g"]) == \
+        (y["t"], y["theta_lat"], y["margin_lat"], y["reserve_g_lat"]), (x, y)
+PY
+run "$SW" replay "$TMP/side.csv" --scene "$TMP/deep.ini" --fail-on-overturn
+expect_rc 1 "--fail-on-overturn with a lateral overturn"
+grep -q "verdict         overturned, decided by the lateral plane (tipped sideways)" "$TMP/out" || {
+    show
+    fail "the summary does not name the lateral plane"
+}
+
+# the drive along and across at once: both planes lifted together, flagged
+# from the later of their first lifts
+awk -F, 'NR == 1 { print "t_s,ax,ay"; next } { print $1 "," $2 "," $2 }' "$LOG" >"$TMP/both.csv"
+run "$SW" replay "$TMP/both.csv" --scene "$TMP/deep.ini" --json
+expect_rc 0 "both planes"
+json_check "$TMP/out" 'j["packages"][0]["both_planes_rocking"] and j["packages"][0]["both_planes_from"] == max(j["packages"][0]["uplift_time"], j["packages"][0]["lateral"]["uplift_time"]) and j["packages"][0]["both_planes_to"] >= j["packages"][0]["both_planes_from"]'
+run "$SW" replay "$TMP/both.csv" --scene "$TMP/deep.ini"
+grep -q "both planes     lifted at once from" "$TMP/out" || {
+    show
+    fail "the summary does not say both planes were lifted at once"
+}
+
+# --flip-lat: the same overturn, tipped to the other side (theta > 0:
+# the top toward +y, to the left, as a bed pushed to the right tips it)
+run "$SW" replay "$TMP/side.csv" --scene "$TMP/deep.ini" --events - -q
+grep -q ",overturn,1.5707963[0-9]*,.*,lateral$" "$TMP/out" || {
+    show
+    fail "no overturn to +y in the lateral plane"
+}
+run "$SW" replay "$TMP/side.csv" --scene "$TMP/deep.ini" --flip-lat --events - -q
+grep -q ",overturn,-1.5707963[0-9]*,.*,lateral$" "$TMP/out" || {
+    show
+    fail "--flip-lat: no overturn to -y in the lateral plane"
+}
+
+# a depth and no lateral column: one plane, said
+run "$SW" replay "$LOG" --scene "$TMP/deep.ini" --json
+expect_rc 0 "a depth without a lateral column"
+expect_err "no lateral column (--lat-col NAME|N names one)" "a depth without a lateral column"
+json_check "$TMP/out" '"lateral" not in j["packages"][0] and "plane" not in j["packages"][0]'
+
+# a lateral column and no depth: not used, said, and the run is the planar one
+run "$SW" replay "$TMP/side.csv" --scene "$SRC/sample_logs/crate.ini" --json
+expect_rc 0 "a lateral column without a depth"
+expect_err 'the lateral column 3 "ay" is not used: no scene gives package.depth' \
+    "a lateral column without a depth"
+json_check "$TMP/out" 'j["packages"][0]["uplifts"] == 0 and "lateral" not in j["packages"][0]'
+run "$SW" replay "$TMP/side.csv" --scene "$SRC/sample_logs/crate.ini" --lat-col ay
+expect_rc 0 "--lat-col without a depth"
+expect_err "--lat-col ay is not used: no scene gives package.depth" "--lat-col without a depth"
+
+# two lateral columns: refused, naming them and --lat-col
+awk -F, 'NR == 1 { print "t_s,X (m/s^2),Y (m/s^2),Lateral (m/s^2)"; next } { print $1 ",0," $2 "," $2 }' \
+    "$LOG" >"$TMP/two.csv"
+run "$SW" replay "$TMP/two.csv" --scene "$TMP/deep.ini"
+expect_rc 2 "two lateral columns"
+expect_err "several columns could be the lateral acceleration" "two lateral columns"
+expect_err "--lat-col" "two lateral columns"
+run "$SW" replay "$TMP/two.csv" --scene "$TMP/deep.ini" --lat-col 4 -q
+expect_rc 0 "two lateral columns, one chosen"
+echo "ok lateral"
