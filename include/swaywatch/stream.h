@@ -125,6 +125,10 @@ SW_API sw_risk_t *sw_stream_risk(const sw_stream_t *st);
  * plane, the design pulses applied across the truck); NULL when the
  * package has no such plane, or the lateral plane no reserve. */
 SW_API const sw_risk_pkg_t *sw_stream_risk_plane(const sw_stream_t *st, size_t k, sw_plane plane);
+/* sw_risk_resolve() of that plane's reserve (risk.h min_only: at the end
+ * of the stream, before its minimum is read).  SW_OK also when the
+ * package has no such plane or it no reserve. */
+SW_API int sw_stream_risk_resolve(sw_stream_t *st, size_t k, sw_plane plane);
 SW_API const sw_gate_t *sw_stream_gate(const sw_stream_t *st);
 SW_API size_t sw_stream_count(const sw_stream_t *st); /* packages */
 /* Package k's name, as its scene says (the replaced one's after

@@ -227,6 +227,12 @@ static int replay_one(replay_t *r)
         return rc;
     sw_cli_reader_settle(&r->R, r->ro.settle);
     sw_cli_risk_resolve(r->R.risk, r->scenes, r->n);
+    for (size_t k = 0; k < r->n; k++) { /* the lateral planes' reserves too */
+        const int rl = sw_stream_risk_resolve(r->R.st, k, SW_PLANE_LAT);
+        if (rl < 0)
+            sw_cli_error("%s: the smallest reserve across the truck could not be found: %s",
+                         r->scenes[k].name, sw_strerror(rl));
+    }
     return conclude(r);
 }
 

@@ -379,6 +379,16 @@ int sw_stream_replace(sw_stream_t *st, size_t k, const sw_scene_t *scene, char *
     return sw_risk_replace(st->risk, k, scene, msg, msglen);
 }
 
+int sw_stream_risk_resolve(sw_stream_t *st, size_t k, sw_plane plane)
+{
+    if (!st || k >= st->n)
+        return SW_EINVAL;
+    if (plane == SW_PLANE_LONG)
+        return sw_risk_resolve(st->risk, k);
+    const size_t j = st->lat_of ? st->lat_of[k] : NO_LAT;
+    return plane == SW_PLANE_LAT && j != NO_LAT ? sw_risk_resolve(st->risk_lat, j) : SW_OK;
+}
+
 const sw_risk_pkg_t *sw_stream_risk_plane(const sw_stream_t *st, size_t k, sw_plane plane)
 {
     if (!st || k >= st->n)
