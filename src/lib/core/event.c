@@ -27,23 +27,18 @@
 #include "step.h"
 #include "swaywatch/status.h"
 
-/* The event function's interpolant over the step. */
-static sw_herm_t interpolant(const sw_model_t *M, int ev, double t0, double h, const double y0[],
-                             const double f0[], const double y1[], const double f1[], double v[2],
-                             double d[2])
-{
-    M->ops->event_fn(M, ev, t0, y0, f0, &v[0], &d[0]);
-    M->ops->event_fn(M, ev, t0 + h, y1, f1, &v[1], &d[1]);
-    return sw_herm_make(v[0], d[0], v[1], d[1], h);
-}
-
 /* Where the candidate's function rises through 0 over the step, in [0, 1]
  * by its rule (SW_RULE_*), or -1. */
 static double root_of(const sw_model_t *M, const sw_evcand_t *c, double t0, double h,
                       const double y0[], const double f0[], const double y1[], const double f1[])
 {
     double v[2], d[2];
-    const sw_herm_t H = interpolant(M, c->ev, t0, h, y0, f0, y1, f1, v, d);
+    M->ops->event_fn(M, c->ev, t0, y0, f0, &v[0], &d[0]);
+    if (c->rule == SW_RULE_KINK && !c->clear && v[0] > 0.0)
+        return -1.0; /* crossed already: we are past this kink (the end need not be looked at) */
+    M->ops->event_fn(M, c->ev, t0 + h, y1, f1, &v[1], &d[1]);
+    /* the event function's interpolant over the step */
+    const sw_herm_t H = sw_herm_make(v[0], d[0], v[1], d[1], h);
     if (c->clear && v[1] < 0.0 && v[0] < 0.0 &&
         fmax(v[0], v[1]) < -0.5 * h * (fabs(d[0]) + fabs(d[1])))
         return -1.0; /* clearly below the threshold all step */
