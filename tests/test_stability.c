@@ -120,6 +120,80 @@ static void test_stable_dt_closed_forms(void **state)
     assert_true(isinf(sw_scheme_stable_dt(scheme("rk8pd"), two, 2, NULL)));
 }
 
+/* The edge the way stability.c found it before it tried the 1 % grid in
+ * blocks: every grid point r_k = r_{k-1} * 1.01 from 1e-4 in turn until
+ * the first unstable one, then 60 bisections.  Its answer in units of
+ * omega. */
+static int grid_unstable(const sw_scheme_t *s, double r, double ure, double uim)
+{
+    return sw_scheme_amplification(s, r * ure, r * uim) > exp(1e-6 * r / (2.0 * M_PI));
+}
+
+static double every_point_edge(const sw_scheme_t *s, double ure, double uim)
+{
+    double lo = 0.0, hi = 0.0;
+    for (double r = 1e-4; r < 8.0; r *= 1.01) {
+        if (grid_unstable(s, r, ure, uim)) {
+            hi = r;
+            break;
+        }
+        lo = r;
+    }
+    if (!(hi > 0.0))
+        return INFINITY;
+    if (!(lo > 0.0))
+        return 0.0;
+    for (int k = 0; k < 60; k++) {
+        const double mid = 0.5 * (lo + hi);
+        if (grid_unstable(s, mid, ure, uim))
+            hi = mid;
+        else
+            lo = mid;
+    }
+    return lo;
+}
+
+/* Trying the grid in blocks finds what trying every point finds, to the
+ * bit: on modes of every damping ratio from 0 to 1 in steps of 0.001, at
+ * frequencies from 0.37 to 3.3e5 rad/s (whose rounding moves the mode's
+ * direction), made the way sw_model_modes makes them and with omega
+ * given, under each scheme with a region.  A ray that left a region and
+ * came back, or a block walked wrong at either end of the grid, would
+ * differ. */
+static void test_stable_dt_every_point(void **state)
+{
+    (void)state;
+    const char *names[3] = {"euler", "heun", "rk4"};
+    const double ws[] = {0.37, 5.59, 44.72, 3.3e5}; /* rad/s */
+    long n = 0, zero = 0;
+    for (int k = 0; k < 3; k++) {
+        const sw_scheme_t *s = scheme(names[k]);
+        for (int j = 0; j <= 1000; j++) {
+            const double z = j / 1000.0;
+            for (size_t i = 0; i < sizeof ws / sizeof ws[0]; i++) {
+                const double w = ws[i], re = -z * w, im = w * sqrt(1.0 - z * z);
+                const sw_mode_t m[2] = {
+                    {.re = re, .im = im, .omega = hypot(re, im), .zeta = z},
+                    mode(w, z),
+                };
+                for (int v = 0; v < 2; v++) {
+                    const double want =
+                        every_point_edge(s, m[v].re / m[v].omega, m[v].im / m[v].omega) /
+                        m[v].omega;
+                    const double got = sw_scheme_stable_dt(s, &m[v], 1, NULL);
+                    if (got != want)
+                        fail_msg("%s, zeta %g, omega %g: %.17g s, every point %.17g s", names[k], z,
+                                 m[v].omega, got, want);
+                    n++;
+                    zero += want == 0.0;
+                }
+            }
+        }
+    }
+    assert_int_equal(n, 3 * 1001 * 4 * 2);
+    assert_int_equal(zero, 4 * 2); /* Euler undamped: the first grid point is unstable */
+}
+
 static sw_derived_t derived(const sw_scene_t *sc)
 {
     sw_derived_t d;
@@ -303,6 +377,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_amplification_closed_forms),
         cmocka_unit_test(test_stable_dt_closed_forms),
+        cmocka_unit_test(test_stable_dt_every_point),
         cmocka_unit_test(test_modes),
         cmocka_unit_test(test_engine_refuses_or_shortens),
         cmocka_unit_test(test_checker),
