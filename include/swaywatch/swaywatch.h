@@ -5,6 +5,7 @@
 
 #include "swaywatch/alarm.h"
 #include "swaywatch/boundary.h"
+#include "swaywatch/cost.h"
 #include "swaywatch/csv.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/export.h"

@@ -249,7 +249,7 @@ int sw_cli_resolve_accuracy(const sw_cli_opts_t *o, const sw_scene_t *scenes, si
 void sw_cli_engine_opts(const sw_cli_opts_t *o, sw_engine_opts_t *eo);
 
 /* Create the engine; on failure print the reason, return NULL.  Warns
- * about scenes estimated to run slower than SW_CLI_MIN_RT_FACTOR times
+ * about scenes estimated to run slower than SW_COST_MIN_RT_FACTOR times
  * real time (cost.h). */
 sw_engine_t *sw_cli_engine_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts_t *eo);
 
