@@ -77,6 +77,60 @@ SW_API int sw_boundary_sweep(const sw_curve_t *curves, size_t ncurves, const dou
                              size_t nratios, const sw_boundary_opts_t *o, sw_boundary_point_t *out,
                              char *msg, size_t msglen);
 
+/* ---- a family of curves: scenes x values of scene keys x bearing ratios ---- */
+
+/* One scene key and the values it takes, one curve each ("frame.zeta",
+ * "0.05", "0.1": keys and values as sw_scene_set_arg() reads them). */
+typedef struct {
+    const char *key;
+    const char *const *values;
+    size_t n;
+} sw_vary_t;
+
+/* Does v apply to scene s?  A [frame] or [cushion] key leaves a scene
+ * without that section as it is (a bare reference curve stays one curve). */
+SW_API int sw_vary_applies(const sw_vary_t *v, const sw_scene_t *s);
+
+#define SW_FAMILY_MAX 1000 /* curves of one family, at most */
+#define SW_FAMILY_LABEL 256
+
+/* One curve of a family and its units. */
+typedef struct {
+    sw_curve_t c;
+    char label[SW_FAMILY_LABEL]; /* the scene's name, then " KEY=VALUE" for each value applied
+                                    and " wb/we=RATIO" (the ratio as written) */
+    double p;                    /* rad/s, the package's rocking frequency */
+    double gtan;                 /* m/s^2, g tan alpha of the package: the amplitudes' unit */
+} sw_family_curve_t;
+
+/* How many curves the family has: every scene times every combination of
+ * the values of the keys that apply to it times every bearing ratio (nbear
+ * of them; a scene without a frame: as it is).  *framed (may be NULL): how
+ * many scenes have a frame.  The count stops once above SW_FAMILY_MAX. */
+SW_API size_t sw_family_count(const sw_scene_t *scenes, size_t nsc, const sw_vary_t *vary,
+                              size_t nvary, size_t nbear, size_t *framed);
+
+/* Where a family could not be built: the curve, and the key and the
+ * index of its value that was refused (vary SIZE_MAX: the curve's scene
+ * did not validate). */
+typedef struct {
+    size_t curve;
+    size_t vary, value;
+} sw_family_fail_t;
+
+/* The family's curves into out (sw_family_count() slots), scene-major,
+ * then the combinations (the first key's values fastest), then the
+ * ratios; each curve's scene checked (at omega_e <= 0, sw_curve_scene())
+ * and its units.  bearing_text[i] is ratio i as written, for the labels.
+ * Errors go to diag (may be NULL; a scene's origin is the curve's label).
+ * Returns SW_OK, or the status of the first value sw_scene_set_arg()
+ * refused or SW_EINVAL for a scene that does not validate, with *fail
+ * (may be NULL) saying where. */
+SW_API int sw_family_build(const sw_scene_t *scenes, size_t nsc, const sw_vary_t *vary,
+                           size_t nvary, const double *bearing, const char *const *bearing_text,
+                           size_t nbear, sw_family_curve_t *out, sw_diag_fn diag, void *user,
+                           sw_family_fail_t *fail);
+
 #ifdef __cplusplus
 }
 #endif

@@ -81,8 +81,8 @@ typedef struct {
 int sw_bnd_build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary, size_t nvary,
                         const double *bearing, size_t nbear, const char *bear_text[], curve_t **out,
                         size_t *nout);
-/* Each curve's p, g tan alpha and scan range, checked against the
- * options' bounds; SW_EXIT_* (reported). */
+/* Each curve's scan range, checked against the options' bounds;
+ * SW_EXIT_* (reported). */
 int sw_bnd_curve_units(boundary_t *B);
 /* --verbose: what each curve's scene is, on stderr. */
 void sw_bnd_print_curves(const boundary_t *B);

@@ -1,115 +1,79 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* boundary_curves.c - the curves of "swaywatch boundary": every scene
- * times the --vary values that apply to it times the bearing ratios, each
- * checked as a scene; then each curve's units (its p and g tan alpha,
- * amplitudes given in g or m/s^2 as its own scan range) and, with
- * --verbose, what it is. */
+/* boundary_curves.c - the curves of "swaywatch boundary": the library's
+ * family of curves (every scene times the --vary values that apply to it
+ * times the bearing ratios, boundary.h) from the options, each curve's
+ * scan range (amplitudes given in g or m/s^2 are its own) checked against
+ * the options' bounds and, with --verbose, what it is. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "boundary.h"
 
-#define MAX_CURVES 1000
-
-static void append(char *buf, size_t len, const char *fmt, const char *a, const char *b)
-{
-    size_t used = strlen(buf);
-    if (used < len)
-        snprintf(buf + used, len - used, fmt, a, b);
-}
-
-/* Does --vary v apply to scene s?  A [frame] or [cushion] key leaves a
- * scene without that section as it is (a bare reference curve stays one
- * curve). */
-static int vary_applies(const vary_t *v, const sw_scene_t *s)
-{
-    if (!strncmp(v->key, "frame.", 6))
-        return s->has_frame;
-    if (!strncmp(v->key, "cushion.", 8))
-        return s->has_cushion;
-    return 1;
-}
-
 /* Every scene x every combination of the --vary values that apply to it x
- * every bearing ratio (scenes without a frame: as they are). */
+ * every bearing ratio (scenes without a frame: as they are): the
+ * library's family of curves (boundary.h), its refusals in the options'
+ * words. */
 int sw_bnd_build_curves(const sw_scene_t *scenes, size_t nsc, const vary_t *vary, size_t nvary,
                         const double *bearing, size_t nbear, const char *bear_text[], curve_t **out,
                         size_t *nout)
 {
-    size_t total = 0, framed = 0;
-    for (size_t s = 0; s < nsc; s++) {
-        size_t combos = 1;
-        for (size_t k = 0; k < nvary; k++)
-            if (vary_applies(&vary[k], &scenes[s]))
-                combos *= vary[k].n;
-        total += combos * (scenes[s].has_frame && nbear ? nbear : 1);
-        framed += scenes[s].has_frame != 0;
-        if (total > MAX_CURVES)
-            break;
-    }
-    if (nbear && !framed) {
-        sw_cli_error("--bearing-ratio: no scene has a [frame]");
-        return SW_EXIT_USAGE;
-    }
-    if (total > MAX_CURVES) {
-        sw_cli_error("boundary: more than %d curves", MAX_CURVES);
-        return SW_EXIT_USAGE;
-    }
-    curve_t *cv = calloc(total, sizeof *cv);
-    if (!cv) {
+    sw_vary_t *sv = calloc(nvary + 1, sizeof *sv);
+    if (!sv) {
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
     }
-    size_t m = 0;
+    for (size_t k = 0; k < nvary; k++)
+        sv[k] = (sw_vary_t){vary[k].key, (const char *const *)vary[k].values, vary[k].n};
+    size_t framed = 0;
+    const size_t total = sw_family_count(scenes, nsc, sv, nvary, nbear, &framed);
+    int rc = SW_EXIT_USAGE;
+    sw_family_curve_t *fc = NULL;
+    curve_t *cv = NULL;
+    if (nbear && !framed) {
+        sw_cli_error("--bearing-ratio: no scene has a [frame]");
+        goto out;
+    }
+    if (total > SW_FAMILY_MAX) {
+        sw_cli_error("boundary: more than %d curves", SW_FAMILY_MAX);
+        goto out;
+    }
+    fc = calloc(total + 1, sizeof *fc);
+    cv = calloc(total + 1, sizeof *cv);
+    if (!fc || !cv) {
+        sw_cli_error("out of memory");
+        rc = SW_EXIT_IO;
+        goto out;
+    }
     sw_cli_diag_t diag = {0};
-    for (size_t s = 0; s < nsc; s++) {
-        size_t combos = 1;
-        for (size_t k = 0; k < nvary; k++)
-            if (vary_applies(&vary[k], &scenes[s]))
-                combos *= vary[k].n;
-        const size_t nb = scenes[s].has_frame && nbear ? nbear : 1;
-        for (size_t c = 0; c < combos; c++)
-            for (size_t b = 0; b < nb; b++) {
-                curve_t *C = &cv[m++];
-                C->c.scene = scenes[s]; /* a copy: --vary edits only this curve */
-                snprintf(C->label, sizeof C->label, "%s", scenes[s].name);
-                size_t idx = c;
-                for (size_t k = 0; k < nvary; k++) {
-                    if (!vary_applies(&vary[k], &scenes[s]))
-                        continue;
-                    const char *val = vary[k].values[idx % vary[k].n];
-                    idx /= vary[k].n;
-                    char assign[512];
-                    snprintf(assign, sizeof assign, "%s=%s", vary[k].key, val);
-                    const long before = diag.errors;
-                    if (sw_scene_set_arg(&C->c.scene, assign, sw_cli_print_diag, &diag) != SW_OK) {
-                        if (diag.errors == before)
-                            sw_cli_error("--vary %s: rejected", assign);
-                        free(cv);
-                        return SW_EXIT_USAGE;
-                    }
-                    append(C->label, sizeof C->label, " %s=%s", vary[k].key, val);
-                }
-                if (scenes[s].has_frame && nbear) {
-                    C->c.bearing_ratio = bearing[b];
-                    append(C->label, sizeof C->label, " wb/we=%s%s", bear_text[b], "");
-                }
-                sw_scene_t check; /* omega_b is set at each point */
-                sw_curve_scene(&C->c, 0.0, &check);
-                const long before = diag.errors;
-                if (sw_scene_validate(&check, NULL, C->label, sw_cli_print_diag, &diag) != SW_OK) {
-                    if (diag.errors == before)
-                        sw_cli_error("%s: invalid scene", C->label);
-                    free(cv);
-                    return SW_EXIT_USAGE;
-                }
-            }
+    sw_family_fail_t fail;
+    if (sw_family_build(scenes, nsc, sv, nvary, bearing, bear_text, nbear, fc, sw_cli_print_diag,
+                        &diag, &fail) != SW_OK) {
+        /* the library said why, unless the scene's parser had no words */
+        if (diag.errors == 0 && fail.vary == SIZE_MAX)
+            sw_cli_error("%s: invalid scene", fc[fail.curve].label);
+        else if (diag.errors == 0)
+            sw_cli_error("--vary %s=%s: rejected", sv[fail.vary].key,
+                         sv[fail.vary].values[fail.value]);
+        goto out;
+    }
+    for (size_t c = 0; c < total; c++) {
+        cv[c].c = fc[c].c;
+        memcpy(cv[c].label, fc[c].label, sizeof cv[c].label);
+        cv[c].p = fc[c].p;
+        cv[c].gtan = fc[c].gtan;
     }
     *out = cv;
     *nout = total;
-    return SW_EXIT_OK;
+    cv = NULL;
+    rc = SW_EXIT_OK;
+out:
+    free(cv);
+    free(fc);
+    free(sv);
+    return rc;
 }
 
 /* pulse.h: a half-sine of omega_e lasts pi/omega_e, a full-sine 2 pi/omega_e. */
@@ -140,22 +104,13 @@ static int in_range(const boundary_t *B, const char *opt, const char *arg, const
     return 1;
 }
 
-/* Each curve's p, g tan alpha and scan range (amplitudes given in g or
- * m/s^2 are a different g tan alpha for each package). */
+/* Each curve's scan range (amplitudes given in g or m/s^2 are a
+ * different g tan alpha for each package). */
 int sw_bnd_curve_units(boundary_t *B)
 {
     const sw_boundary_opts_t *bo = &B->b.bo;
     for (size_t c = 0; c < B->nc; c++) {
         curve_t *C = &B->cv[c];
-        sw_scene_t s;
-        sw_derived_t d;
-        sw_curve_scene(&C->c, 0.0, &s);
-        if (sw_scene_validate(&s, &d, NULL, NULL, NULL) != SW_OK) {
-            sw_cli_error("%s: invalid scene", C->label);
-            return SW_EXIT_USAGE;
-        }
-        C->p = d.p;
-        C->gtan = s.g * tan(d.alpha);
         C->x_min = B->b.min_si > 0.0 ? B->b.min_si / C->gtan : bo->search.x_min;
         C->x_max = B->b.max_si > 0.0 ? B->b.max_si / C->gtan : bo->search.x_max;
         /* what the options' bounds say in g tan alpha and omega_e/p, for
