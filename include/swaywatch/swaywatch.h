@@ -9,6 +9,7 @@
 #include "swaywatch/csv.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/export.h"
+#include "swaywatch/forensics.h"
 #include "swaywatch/gate.h"
 #include "swaywatch/model.h"
 #include "swaywatch/pool.h"

@@ -187,7 +187,8 @@ static void on_event(void *user, const sw_event_t *ev)
 static void on_take(void *user, double t, double a_g, double a_z, int restart)
 {
     sw_cli_forensics_t *F = user;
-    sw_cli_log_take(&F->L, t, a_g, a_z, restart);
+    if (sw_forensics_push(F->fx, t, a_g, a_z, restart) != SW_OK)
+        F->halt = 1; /* the log is held whole or not at all: the reading may stop */
 }
 
 /* Open LOG as replay does; refuse what its source does not take and
@@ -224,6 +225,57 @@ static int load(sw_cli_forensics_t *F)
     return sw_cli_resolve_accuracy(&F->o, F->scenes, F->n, &F->eo);
 }
 
+/* ---- the library's forensics: its progress line, the object ------------------------ */
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The progress line: on a terminal only, at most five times a second. */
+static void progress(void *user, const sw_safety_progress_t *p)
+{
+    sw_cli_forensics_t *F = user;
+    const double t = now_s();
+    if (t - F->progress_at < 0.2 && p->cases_done < p->cases)
+        return;
+    F->progress_at = t;
+    fprintf(stderr, "\rswaywatch: forensics: searching: %zu of %zu cases done, %ld runs, %.0f s ",
+            p->cases_done, p->cases, p->trials, t - F->started);
+    F->progress_shown = 1;
+}
+
+/* The library's forensics for the scenes: their what-if cases, and the
+ * log held as the engine gets it, for the searches. */
+static int make_forensics(sw_cli_forensics_t *F)
+{
+    sw_forensics_opts_t fo;
+    double *sizes = sw_cli_whatif_opts(&F->fo.w, &fo.whatif);
+    if (!sizes) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    memset(&fo.run, 0, sizeof fo.run);
+    fo.run.engine = F->eo; /* the replay's integration options, --accuracy included */
+    fo.run.settle = F->fo.settle > 0.0 ? F->fo.settle : -1.0; /* negative: no free motion */
+    fo.search = F->fo.so;
+    fo.threads = (int)F->fo.threads;
+    fo.max_samples = (size_t)F->fo.max_samples;
+    fo.reserve_rate = F->o.reserve_rate;
+    fo.reserve_evals = F->fo.w.reserve_evals;
+    fo.progress = !F->o.quiet && isatty(STDERR_FILENO) ? progress : NULL;
+    fo.user = F;
+    F->fx = sw_forensics_create(F->scenes, F->n, &fo, NULL);
+    free(sizes);
+    if (!F->fx) {
+        sw_cli_error("out of memory");
+        return SW_EXIT_IO;
+    }
+    return SW_EXIT_OK;
+}
+
 /* 1. The replay, exactly as replay runs it, keeping what the engine got. */
 static int replay_log(sw_cli_forensics_t *F)
 {
@@ -234,9 +286,10 @@ static int replay_log(sw_cli_forensics_t *F)
     eo.on_event = on_event;
     eo.on_state = on_state;
     eo.user = F;
-    F->L.max = (size_t)F->fo.max_samples;
+    if ((rc = make_forensics(F)) != SW_EXIT_OK)
+        return rc;
     F->R.take = on_take;
-    F->R.halt = &F->L.halt;
+    F->R.halt = &F->halt;
     F->R.reserve_rate = F->o.reserve_rate;
     /* the reserve of each state only where the figures or --out show it;
      * the minimum is the same either way (risk.h) */
@@ -263,11 +316,13 @@ static int replay_log(sw_cli_forensics_t *F)
         return rc;
     if ((rc = sw_cli_reader_feed(&F->R)) != SW_EXIT_OK)
         return rc;
-    if (F->L.oom) {
-        sw_cli_error("%s: out of memory holding the log (%zu samples)", F->R.lf.name, F->L.n);
+    const int held = sw_forensics_status(F->fx);
+    if (held == SW_ENOMEM) {
+        sw_cli_error("%s: out of memory holding the log (%zu samples)", F->R.lf.name,
+                     sw_forensics_log(F->fx)->n);
         return SW_EXIT_IO;
     }
-    if (F->L.capped) {
+    if (held == SW_ETOOBIG) {
         sw_cli_error(
             "%s: more than %ld samples: %ld is the cap (--max-samples) of the log held "
             "in memory; give a larger --max-samples, or cut the log to the incident",
@@ -299,68 +354,9 @@ static int replay_log(sw_cli_forensics_t *F)
 
 /* ---- 2. the searches --------------------------------------------------------------- */
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* The progress line: on a terminal only, at most five times a second. */
-static void progress(void *user, const sw_safety_progress_t *p)
-{
-    sw_cli_forensics_t *F = user;
-    const double t = now_s();
-    if (t - F->progress_at < 0.2 && p->cases_done < p->cases)
-        return;
-    F->progress_at = t;
-    fprintf(stderr, "\rswaywatch: forensics: searching: %zu of %zu cases done, %ld runs, %.0f s ",
-            p->cases_done, p->cases, p->trials, t - F->started);
-    F->progress_shown = 1;
-}
-
-/* The rows of the scenes as given: the replay's smallest reserve, every
- * due state evaluated. */
-static void scene_reserves(sw_cli_forensics_t *F)
-{
-    for (size_t i = 0; i < F->ncases; i++) {
-        sw_whatif_case_t *C = &F->cases[i];
-        const sw_risk_pkg_t *p = C->is_scene ? sw_risk_pkg(F->R.risk, C->pkg) : NULL;
-        if (!p)
-            continue;
-        if (p->no_reserve) {
-            snprintf(C->reserve_note, sizeof C->reserve_note, "%s", p->no_reserve);
-            continue;
-        }
-        C->has_reserve = 1;
-        C->rl.min_g = C->rl.lower_g = p->min_reserve_g;
-        C->rl.min_time = p->min_reserve_time;
-        C->rl.direction = p->min_direction;
-        C->rl.pulse = p->min_pulse;
-        C->rl.exact = 1;
-        C->rl.states = C->rl.evaluated = p->evaluations;
-        C->rl.faults = p->reserve_faults;
-    }
-}
-
+/* The searches on the held log. */
 static int run_cases(sw_cli_forensics_t *F)
 {
-    F->cases = sw_cli_whatif_build(F->scenes, F->n, &F->fo.w, &F->ncases);
-    if (!F->cases) {
-        sw_cli_error("out of memory");
-        return SW_EXIT_IO;
-    }
-    sw_run_opts_t ro;
-    memset(&ro, 0, sizeof ro);
-    ro.engine = F->eo; /* the replay's integration options, --accuracy included */
-    ro.settle = F->fo.settle > 0.0 ? F->fo.settle : -1.0; /* negative: no free motion at all */
-    const sw_cli_log_t *L = &F->L;
-    const sw_log_t lg = {.t = L->t,
-                         .a_g = L->a_g,
-                         .a_z = L->has_z ? L->a_z : NULL,
-                         .n = L->n,
-                         .restart = L->restart,
-                         .nrestart = L->nrestart};
     const int show = !F->o.quiet && isatty(STDERR_FILENO);
     F->started = now_s();
     /* The search cannot stop between trials and writes nothing: a signal
@@ -369,12 +365,7 @@ static int run_cases(sw_cli_forensics_t *F)
         sw_cli_interrupt_now(
             "forensics: interrupted during the safety-factor search; --out and "
             "--events are complete, no report");
-    const sw_safety_opts_t so = {.run = ro,
-                                 .search = F->fo.so,
-                                 .threads = (int)F->fo.threads,
-                                 .progress = show ? progress : NULL,
-                                 .user = F};
-    int rc = sw_whatif_safety(F->cases, F->ncases, &lg, &so);
+    int rc = sw_forensics_safety(F->fx);
     if (rc == SW_OK && F->R.risk && F->o.reserve_rate > 0.0) {
         if (show)
             fprintf(stderr,
@@ -382,10 +373,7 @@ static int run_cases(sw_cli_forensics_t *F)
                     "%.0f s \033[K",
                     now_s() - F->started);
         F->progress_shown |= show;
-        scene_reserves(F);
-        const sw_reserve_log_opts_t rlo = {
-            .rate = F->o.reserve_rate, .max_evals = F->fo.w.reserve_evals, .run = ro};
-        rc = sw_whatif_reserve(F->cases, F->ncases, &lg, &rlo, (int)F->fo.threads);
+        rc = sw_forensics_reserve(F->fx, F->R.risk);
     }
     if (!F->scenes_shared)
         sw_cli_interrupt_now(NULL);
@@ -396,6 +384,8 @@ static int run_cases(sw_cli_forensics_t *F)
         sw_cli_error("out of memory");
         return SW_EXIT_IO;
     }
+    F->cases = sw_forensics_cases(F->fx, &F->ncases);
+    sw_cli_whatif_name_options(F->cases, F->ncases);
     for (size_t i = 0; i < F->ncases; i++)
         if (F->cases[i].is_scene && !F->cases[i].available) {
             sw_cli_error("forensics: %s: safety factor: %s", F->scenes[F->cases[i].pkg].name,
@@ -449,15 +439,17 @@ static void cleanup(sw_cli_forensics_t *F)
     sw_cli_events_close(&F->events);
     sw_cli_forensics_free(F);
     sw_cli_reader_close(&F->R);
-    free(F->cases);
+    sw_forensics_destroy(F->fx);
+    F->fx = NULL;
     F->cases = NULL;
+    F->ncases = 0;
     sw_cli_figure_destroy(F->fig);
     F->fig = NULL;
     if (!F->scenes_shared) {
         free(F->scenes);
         F->scenes = NULL;
     }
-    sw_cli_log_free(&F->L);
+    F->halt = 0;
 }
 
 static int check_options(const sw_cli_forensics_t *F)

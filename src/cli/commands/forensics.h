@@ -45,9 +45,12 @@ typedef struct {
     sw_engine_opts_t eo; /* the integration options of the replay and of every search */
     sw_cli_states_t states;
     sw_cli_events_t events;
-    sw_cli_figure_t *fig;    /* --plot or --report */
-    sw_cli_log_t L;          /* what the gate handed the engine */
-    sw_whatif_case_t *cases; /* every package's cases, package by package */
+    sw_cli_figure_t *fig;       /* --plot or --report */
+    sw_forensics_t *fx;         /* the library's: the log the gate handed the engine, the
+                                   cases and their searches */
+    volatile sig_atomic_t halt; /* the log could not be held whole: the reading may stop */
+    sw_whatif_case_t *cases;    /* every package's cases, package by package (fx's, once
+                                  searched) */
     size_t ncases;
     /* events kept for the report (impacts beyond the first few of a package
      * are counted only) */

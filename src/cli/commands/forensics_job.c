@@ -81,7 +81,7 @@ static void report(void *user, const sw_cli_forensics_t *F)
         sw_cli_forensics_json_package(o, F, k);
         sw_cli_rec_int(o, "samples_read", F->R.run.samples_read);
         sw_cli_rec_int(o, "samples_rejected", F->R.run.samples_rejected);
-        sw_cli_rec_int(o, "samples_used", (long long)F->L.n);
+        sw_cli_rec_int(o, "samples_used", (long long)sw_forensics_log(F->fx)->n);
         if (F->R.run.have_facts)
             sw_cli_json_facts(o, "input", &F->R.run);
         if (sw_cli_records_package(R->rec, sw_cli_record_status(&s, &F->R.run), o) != 0)

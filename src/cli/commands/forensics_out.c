@@ -88,10 +88,7 @@ int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t
 
 const sw_whatif_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k)
 {
-    for (size_t i = 0; i < F->ncases; i++)
-        if (F->cases[i].pkg == k && F->cases[i].is_scene)
-            return &F->cases[i];
-    return NULL;
+    return F->cases ? sw_forensics_scene_case(F->fx, k) : NULL;
 }
 
 /* ---- in words ---------------------------------------------------------------------- */
@@ -198,7 +195,8 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
         "package has where that factor can first lift it; scanned upward in steps of %g\n"
         "(wider while the package stays far from tipping), then the change from upright to\n"
         "overturned cut down to a relative width of %g; %ld runs for %zu cases.\n",
-        F->L.n, so->step > 0 ? so->step : 0.02, so->tol > 0 ? so->tol : 1e-3, runs, F->ncases);
+        sw_forensics_log(F->fx)->n, so->step > 0 ? so->step : 0.02, so->tol > 0 ? so->tol : 1e-3,
+        runs, F->ncases);
     for (size_t k = 0; k < F->n; k++) {
         const sw_whatif_case_t *C = sw_cli_forensics_scene_case(F, k);
         if (C && !isinf(C->sf.lift_scale))
@@ -355,7 +353,7 @@ int sw_cli_forensics_json(FILE *f, const sw_cli_forensics_t *F)
     sw_cli_rec_text(log, "dates_from", run->absolute ? run->abs_from : NULL);
     sw_cli_rec_int(log, "samples_read", run->samples_read);
     sw_cli_rec_int(log, "samples_rejected", run->samples_rejected);
-    sw_cli_rec_int(log, "samples_used", (long long)F->L.n);
+    sw_cli_rec_int(log, "samples_used", (long long)sw_forensics_log(F->fx)->n);
     if (run->have_facts) /* the summary's "input" */
         sw_cli_json_facts(log, "facts", run);
     else

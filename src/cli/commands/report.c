@@ -193,7 +193,7 @@ static void log_facts(FILE *f, const sw_cli_forensics_t *F)
     fprintf(f, "</td></tr>\n<tr><th>sample rate</th><td>");
     num(f, "%.6g Hz", run->have_facts ? x->rate : NAN);
     fprintf(f, "</td></tr>\n<tr><th>samples</th><td>%ld read, %zu used, %ld rejected</td></tr>\n",
-            run->samples_read, F->L.n, run->samples_rejected);
+            run->samples_read, sw_forensics_log(F->fx)->n, run->samples_rejected);
     fprintf(f, "<tr><th>peak |bed acceleration|</th><td>");
     num(f, "%.3f m/s&sup2;", run->have_facts ? x->peak_a : NAN);
     num(f, " (%.3f g)", run->have_facts ? x->peak_a / SW_G0 : NAN);

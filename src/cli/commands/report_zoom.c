@@ -160,20 +160,9 @@ int sw_cli_report_zooms(const sw_cli_forensics_t *F, const sw_cli_zoom_t *z, siz
     }
     double end = -INFINITY;
     for (size_t i = 0; i < nz; i++) end = fmax(end, z[i].t1);
-    /* the samples exactly as the replay's engine had them, its restarts
-     * from rest before the same samples */
-    const sw_cli_log_t *L = &F->L;
-    size_t i = 0, r = 0;
-    for (; i < L->n; i++) {
-        while (r < L->nrestart && L->restart[r] <= i)
-            if (L->restart[r++] == i)
-                sw_engine_restart(e);
-        sw_engine_push(e, L->t[i], L->a_g[i], L->has_z ? L->a_z[i] : 0.0);
-        if (L->t[i] > end)
-            break;
-    }
-    if (i == L->n && L->n > 0 && F->fo.settle > 0.0) /* a moment in the settling after the log */
-        sw_engine_finish(e, F->fo.settle);
+    /* the samples exactly as the replay's engine had them, then the
+     * settling if a moment is in it */
+    sw_forensics_rerun(F->fx, e, end, F->fo.settle);
     rc = SW_EXIT_OK;
 out:
     sw_engine_destroy(e);

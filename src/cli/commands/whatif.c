@@ -74,26 +74,25 @@ static void name_option(char *note, size_t len)
     }
 }
 
-sw_whatif_case_t *sw_cli_whatif_build(const sw_scene_t *scenes, size_t nsc,
-                                      const sw_cli_whatif_t *w, size_t *n)
+double *sw_cli_whatif_opts(const sw_cli_whatif_t *w, sw_whatif_opts_t *o)
 {
     double *sizes = calloc(2 * w->sizes.n + 1, sizeof *sizes);
     for (size_t i = 0; sizes && i < w->sizes.n; i++) /* checked while parsing options */
         sw_cli_parse_size(w->sizes.v[i], &sizes[2 * i], &sizes[2 * i + 1]);
-    const sw_whatif_opts_t o = {.frame_mass = w->frame_mass,
-                                .frame_omega = w->frame_omega,
-                                .frame_zeta = w->frame_zeta,
-                                .cushion_omega = w->cushion_omega,
-                                .cushion_zeta = w->cushion_zeta,
-                                .sizes = sizes,
-                                .nsizes = w->sizes.n,
-                                .scenes_only = w->no_what_if};
-    sw_whatif_case_t *cs = sizes ? calloc(sw_whatif_max(nsc, &o), sizeof *cs) : NULL;
-    if (cs)
-        *n = sw_whatif_cases(scenes, nsc, &o, cs);
-    for (size_t i = 0; cs && i < *n; i++) name_option(cs[i].note, sizeof cs[i].note);
-    free(sizes);
-    return cs;
+    *o = (sw_whatif_opts_t){.frame_mass = w->frame_mass,
+                            .frame_omega = w->frame_omega,
+                            .frame_zeta = w->frame_zeta,
+                            .cushion_omega = w->cushion_omega,
+                            .cushion_zeta = w->cushion_zeta,
+                            .sizes = sizes,
+                            .nsizes = w->sizes.n,
+                            .scenes_only = w->no_what_if};
+    return sizes;
+}
+
+void sw_cli_whatif_name_options(sw_whatif_case_t *cs, size_t n)
+{
+    for (size_t i = 0; i < n; i++) name_option(cs[i].note, sizeof cs[i].note);
 }
 
 const char *sw_cli_whatif_desc(char *buf, size_t len, const sw_whatif_case_t *C)

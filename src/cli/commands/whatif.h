@@ -27,10 +27,13 @@ int sw_cli_opt_frequency(const sw_cli_option_t *o, const char *arg, void *dest);
 /* "HEIGHTxWIDTH" (m, both > 0) into *h, *w: 0, or -1 if it is not one. */
 int sw_cli_parse_size(const char *arg, double *h, double *w);
 
-/* The cases of the n scenes with the options w (free()), as
- * sw_whatif_cases() makes them; NULL: out of memory. */
-sw_whatif_case_t *sw_cli_whatif_build(const sw_scene_t *scenes, size_t nsc,
-                                      const sw_cli_whatif_t *w, size_t *n);
+/* The options w as the library's (swaywatch/whatif.h) into *o; returns
+ * the sizes o points to (free() them after the cases are made), NULL when
+ * out of memory. */
+double *sw_cli_whatif_opts(const sw_cli_whatif_t *w, sw_whatif_opts_t *o);
+/* The cases' notes name the command's options rather than the library's
+ * members ("--frame-omega", not "frame_omega"). */
+void sw_cli_whatif_name_options(sw_whatif_case_t *cs, size_t n);
 
 /* The package and its support, in numbers ("2x0.728 m, 1000 kg, frame
  * m_b 250 kg, 1 Hz (w_b 6.283 rad/s), zeta_b 0.1"), into buf; "" for a

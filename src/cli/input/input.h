@@ -92,29 +92,8 @@ int sw_cli_logfile_pump(sw_cli_logfile_t *f, sw_csv_t *csv, const int *stop, voi
                         void *user, int *fr);
 void sw_cli_logfile_close(sw_cli_logfile_t *f); /* zeroed or open; closes stdin never */
 
-/* A whole log held in memory as the input gate handed it to the engine
- * (SI units, bridged gaps and restarts included): for a command that runs
- * one recording many times (forensics), read once as replay reads it. */
-typedef struct {
-    double *t, *a_g, *a_z; /* a_z: 0 where there is no vertical channel */
-    size_t n, cap;
-    int has_z;       /* some a_z is not 0 */
-    size_t *restart; /* indices of the samples before which the gate restarted the
-                        packages from rest (sw_log_t) */
-    size_t nrestart, restart_cap;
-    size_t max;                 /* samples kept at most (set before reading) */
-    int capped;                 /* one more was offered: the log is longer than max */
-    int oom;                    /* out of memory */
-    volatile sig_atomic_t halt; /* capped or oom: the reading may stop */
-} sw_cli_log_t;
-
 /* The cap of forensics' --max-samples: 2^25 samples, 9.3 h at 1 kHz. */
 #define SW_CLI_LOG_MAX_SAMPLES_N 33554432
 #define SW_CLI_LOG_MAX_SAMPLES ((long)SW_CLI_LOG_MAX_SAMPLES_N)
-
-/* A take callback (gate.h) with user a sw_cli_log_t: the sample kept, up
- * to max (then capped, halt). */
-void sw_cli_log_take(void *user, double t, double a_g, double a_z, int restart);
-void sw_cli_log_free(sw_cli_log_t *L);
 
 #endif

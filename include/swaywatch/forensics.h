@@ -1,0 +1,99 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* forensics.h - after an incident, what a recorded log did to each
+ * package and what would have saved it (docs/forensics.md).
+ *
+ * A forensics object holds the log as the input gate handed it to the
+ * engine (push each sample from the gate's take callback, gate.h:
+ * SI units, bridged gaps and restarts included), because its searches
+ * run the recording many times and reading and parsing it for each trial
+ * would cost more than the physics.  From the held log it computes, for
+ * every package, the what-if cases (whatif.h: the scene as given, on the
+ * bed, on the typical supports of a catalogue or the caller's, in other
+ * sizes), the safety factor of each (safety.h) and their smallest
+ * reserves (reserve.h), all searches at once on the caller's number of
+ * threads, with results that do not depend on it.  It does no I/O.
+ *
+ * Allocation: the cases in sw_forensics_create(); the held log grows
+ * geometrically (doubling) up to max_samples as samples are pushed, so
+ * a log of n samples costs about log2(n) allocations, never one per
+ * sample; the searches allocate while they run (sw_whatif_safety). */
+#ifndef SWAYWATCH_FORENSICS_H
+#define SWAYWATCH_FORENSICS_H
+
+#include <stddef.h>
+
+#include "engine.h"
+#include "export.h"
+#include "risk.h"
+#include "run.h"
+#include "safety.h"
+#include "scene.h"
+#include "search.h"
+#include "whatif.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sw_forensics sw_forensics_t;
+
+typedef struct {
+    sw_run_opts_t run;       /* every trial's run: the replay's engine options, and settle
+                                (s; < 0: no free motion after the log) */
+    sw_search_opts_t search; /* the safety factor's scan and bisection */
+    sw_whatif_opts_t whatif; /* which cases (read in create only) */
+    int threads;             /* worker threads; 0 or 1 = the calling thread alone */
+    size_t max_samples;      /* samples held at most; 0 = no limit */
+    double reserve_rate;     /* Hz of log time: the cases' smallest reserves' states */
+    long reserve_evals;      /* a case's smallest reserve: evaluations at most (0: no limit) */
+    void (*progress)(void *user, const sw_safety_progress_t *p); /* may be NULL: as
+                                sw_safety_opts_t's, during sw_forensics_safety() */
+    void *user;
+} sw_forensics_opts_t;
+
+/* A forensics object for the n scenes (validated) with options o: the
+ * cases built, no sample held.  NULL on failure, with *err (may be NULL):
+ * SW_EINVAL or SW_ENOMEM. */
+SW_API sw_forensics_t *sw_forensics_create(const sw_scene_t *scenes, size_t n,
+                                           const sw_forensics_opts_t *o, int *err);
+/* Free everything; NULL is accepted. */
+SW_API void sw_forensics_destroy(sw_forensics_t *F);
+
+/* One sample as the gate handed it to the engine (restart: the packages
+ * restarted from rest before it).  SW_OK; SW_ETOOBIG once one more than
+ * max_samples is offered, SW_ENOMEM when the log could not grow: the
+ * sample is not kept, nor any after it (the same status again). */
+SW_API int sw_forensics_push(sw_forensics_t *F, double t, double a_g, double a_z, int restart);
+/* SW_OK, or what stopped the holding (SW_ETOOBIG, SW_ENOMEM). */
+SW_API int sw_forensics_status(const sw_forensics_t *F);
+/* The log held so far (a_z NULL when every sample's was 0); valid until
+ * the next push or destroy. */
+SW_API const sw_log_t *sw_forensics_log(const sw_forensics_t *F);
+
+/* The held log into engine e (made for the same scenes), exactly as the
+ * replay's engine had it (its restarts from rest before the same
+ * samples), up to the first sample after t_end (s); when that is the end
+ * of the log, the settling after it (sw_engine_finish(e, settle), when
+ * settle > 0). */
+SW_API void sw_forensics_rerun(const sw_forensics_t *F, sw_engine_t *e, double t_end,
+                               double settle);
+
+/* The safety factor of every available case on the held log
+ * (sw_whatif_safety()).  SW_OK, or SW_ENOMEM. */
+SW_API int sw_forensics_safety(sw_forensics_t *F);
+/* The smallest reserve of every case: the scenes as given from the
+ * replay's risk (made with reserve_rate; NULL: not theirs), the other
+ * cases by sw_whatif_reserve() on the held log.  SW_OK, or SW_ENOMEM. */
+SW_API int sw_forensics_reserve(sw_forensics_t *F, const sw_risk_t *replay);
+
+/* Every package's cases, package by package, each package's first the
+ * scene as given (*n of them); owned by F.  A caller may rewrite a
+ * case's notes for its users (naming its own options). */
+SW_API sw_whatif_case_t *sw_forensics_cases(sw_forensics_t *F, size_t *n);
+/* The case of package k as given, or NULL. */
+SW_API const sw_whatif_case_t *sw_forensics_scene_case(const sw_forensics_t *F, size_t k);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
