@@ -1,0 +1,205 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later */
+/* test_forensics_object.c - the library's forensics object (forensics.h),
+ * its family of boundary curves (boundary.h) and its cost estimates
+ * (cost.h): the held log against the samples pushed (its cap, its
+ * restarts, its vertical channel), the log run again against the same
+ * samples pushed by hand, the cases against sw_whatif_cases(); the
+ * family's size as the product the header promises and its labels; the
+ * estimate of a fixed step from the documented cost per step. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+
+#include "testutil.h"
+
+static sw_forensics_opts_t opts(size_t max)
+{
+    sw_forensics_opts_t o;
+    memset(&o, 0, sizeof o);
+    o.max_samples = max;
+    o.whatif.scenes_only = 1;
+    return o;
+}
+
+/* Three samples held, the fourth refused, and every one after it. */
+static void test_cap(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    const sw_forensics_opts_t o = opts(3);
+    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
+    assert_non_null(F);
+    for (int i = 0; i < 3; i++)
+        assert_int_equal(sw_forensics_push(F, 0.01 * i, 1.0, 0.0, 0), SW_OK);
+    assert_int_equal(sw_forensics_push(F, 0.03, 1.0, 0.0, 0), SW_ETOOBIG);
+    assert_int_equal(sw_forensics_push(F, 0.04, 1.0, 0.0, 0), SW_ETOOBIG);
+    assert_int_equal(sw_forensics_status(F), SW_ETOOBIG);
+    const sw_log_t *L = sw_forensics_log(F);
+    assert_int_equal(L->n, 3);
+    assert_null(L->a_z); /* no vertical channel */
+    assert_true(L->t[2] == 0.02);
+    sw_forensics_destroy(F);
+}
+
+/* A restart before the first sample is none; one later is the index of
+ * the sample it comes before; a vertical value makes the channel. */
+static void test_restarts(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    const sw_forensics_opts_t o = opts(0);
+    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
+    assert_non_null(F);
+    for (int i = 0; i < 10000; i++) /* past the first growth */
+        assert_int_equal(sw_forensics_push(F, 0.001 * i, 0.0, i == 7 ? 0.5 : 0.0, i == 0 || i == 5),
+                         SW_OK);
+    const sw_log_t *L = sw_forensics_log(F);
+    assert_int_equal(L->n, 10000);
+    assert_int_equal(L->nrestart, 1);
+    assert_int_equal(L->restart[0], 5);
+    assert_non_null(L->a_z);
+    assert_true(L->a_z[7] == 0.5 && L->a_z[8] == 0.0);
+    assert_true(L->t[9999] == 0.001 * 9999);
+    sw_forensics_destroy(F);
+}
+
+/* The held log run again ends where the same samples pushed by hand end,
+ * the restart at the same sample. */
+static void test_rerun(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    const sw_forensics_opts_t o = opts(0);
+    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
+    sw_engine_t *a = tu_engine(&sc, "rk4", 1e-3, NULL), *b = tu_engine(&sc, "rk4", 1e-3, NULL);
+    assert_true(F && a && b);
+    for (int i = 0; i < 2000; i++) {
+        const double t = 0.002 * i, ag = 6.0 * sin(6.0 * t); /* lifts the block */
+        assert_int_equal(sw_forensics_push(F, t, ag, 0.0, i == 900), SW_OK);
+        if (i == 900)
+            sw_engine_restart(b);
+        sw_engine_push(b, t, ag, 0.0);
+    }
+    sw_forensics_rerun(F, a, INFINITY, 0.0);
+    sw_output_t oa, ob;
+    assert_int_equal(sw_engine_get_output(a, 0, &oa), SW_OK);
+    assert_int_equal(sw_engine_get_output(b, 0, &ob), SW_OK);
+    assert_true(oa.t == ob.t);
+    assert_memory_equal(&oa.state, &ob.state, sizeof oa.state);
+    /* up to a time: the first sample after it is the last pushed */
+    sw_engine_t *c = tu_engine(&sc, "rk4", 1e-3, NULL);
+    sw_forensics_rerun(F, c, 1.0, 0.0);
+    assert_int_equal(sw_engine_get_output(c, 0, &oa), SW_OK);
+    tu_near(oa.t, 1.002, 1e-12);
+    sw_engine_destroy(a);
+    sw_engine_destroy(b);
+    sw_engine_destroy(c);
+    sw_forensics_destroy(F);
+}
+
+/* The cases are sw_whatif_cases()'s; each package's as given is found. */
+static void test_cases(void **state)
+{
+    (void)state;
+    const sw_scene_t sc[2] = {tu_bare(2.0, 0.728), tu_frame(2.0, 0.728, 250.0, 6.0, 0.1)};
+    sw_forensics_opts_t o = opts(0);
+    o.whatif.scenes_only = 0;
+    sw_forensics_t *F = sw_forensics_create(sc, 2, &o, NULL);
+    assert_non_null(F);
+    static sw_whatif_case_t ref[64];
+    assert_true(sw_whatif_max(2, &o.whatif) <= 64);
+    const size_t m = sw_whatif_cases(sc, 2, &o.whatif, ref);
+    size_t n;
+    const sw_whatif_case_t *cs = sw_forensics_cases(F, &n);
+    assert_int_equal(n, m);
+    for (size_t i = 0; i < n; i++) {
+        assert_string_equal(cs[i].name, ref[i].name);
+        assert_int_equal(cs[i].pkg, ref[i].pkg);
+    }
+    for (size_t k = 0; k < 2; k++) {
+        const sw_whatif_case_t *C = sw_forensics_scene_case(F, k);
+        assert_non_null(C);
+        assert_true(C->is_scene && C->pkg == k);
+    }
+    assert_null(sw_forensics_scene_case(F, 2));
+    sw_forensics_destroy(F);
+}
+
+/* A framed scene x 3 x 2 values x 2 ratios, and a bare one the frame's
+ * key and the ratios do not apply to (x 2): 12 + 2 curves, labelled in
+ * that order, the first key fastest. */
+static void test_family(void **state)
+{
+    (void)state;
+    sw_scene_t sc[2] = {tu_frame(2.0, 0.728, 250.0, 6.0, 0.1), tu_bare(2.0, 0.728)};
+    snprintf(sc[0].name, sizeof sc[0].name, "framed");
+    const char *const zeta[] = {"0.05", "0.1", "0.2"}, *const height[] = {"2", "3"};
+    const sw_vary_t v[2] = {{"frame.zeta", zeta, 3}, {"package.height", height, 2}};
+    const double bear[2] = {0.5, 2.0};
+    const char *const bear_text[2] = {"1/2", "2"};
+    size_t framed = 0;
+    assert_int_equal(sw_family_count(sc, 2, v, 2, 2, &framed), 14);
+    assert_int_equal(framed, 1);
+    sw_family_curve_t fc[14];
+    sw_family_fail_t fail;
+    assert_int_equal(sw_family_build(sc, 2, v, 2, bear, bear_text, 2, fc, NULL, NULL, &fail),
+                     SW_OK);
+    assert_string_equal(fc[0].label, "framed frame.zeta=0.05 package.height=2 wb/we=1/2");
+    assert_string_equal(fc[1].label, "framed frame.zeta=0.05 package.height=2 wb/we=2");
+    assert_string_equal(fc[2].label, "framed frame.zeta=0.1 package.height=2 wb/we=1/2");
+    assert_string_equal(fc[11].label, "framed frame.zeta=0.2 package.height=3 wb/we=2");
+    assert_string_equal(fc[13].label, "block package.height=3");
+    tu_near(fc[11].c.scene.frame_zeta, 0.2, 0);
+    tu_near(fc[11].c.scene.height, 3.0, 0);
+    tu_near(fc[1].c.bearing_ratio, 2.0, 0);
+    assert_true(fc[13].c.bearing_ratio == 0.0);
+    /* the units: p = sqrt(3 g / (4 R)) of a block of half-diagonal R on the bed */
+    const double R = 0.5 * sqrt(3.0 * 3.0 + 0.728 * 0.728);
+    tu_near(fc[13].p, sqrt(3.0 * sc[1].g / (4.0 * R)), 1e-12);
+    tu_near(fc[13].gtan, sc[1].g * 0.728 / 3.0, 1e-12);
+    /* a refused value: where */
+    const char *const bad[] = {"0.1", "x"};
+    const sw_vary_t w = {"frame.zeta", bad, 2};
+    assert_int_not_equal(sw_family_build(sc, 1, &w, 1, NULL, NULL, 0, fc, NULL, NULL, &fail),
+                         SW_OK);
+    assert_int_equal(fail.curve, 1);
+    assert_int_equal(fail.vary, 0);
+    assert_int_equal(fail.value, 1);
+}
+
+/* A fixed explicit step: 1/dt steps a second at SW_COST_STEP_S each. */
+static void test_cost(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    sw_engine_opts_t eo = {0};
+    eo.scheme = "rk4";
+    eo.dt = 1e-3;
+    sw_scene_cost_t c;
+    assert_int_equal(sw_scene_cost(&sc, &eo, &c), SW_OK);
+    assert_string_equal(c.scheme, "rk4");
+    tu_near(c.h, 1e-3, 1e-15);
+    tu_near(c.steps, 1e3, 1e-9);
+    tu_near(c.rt_factor, 1.0 / (1e3 * SW_COST_STEP_S), 1e-9);
+    sw_scene_t bad = sc;
+    bad.height = -1.0;
+    assert_int_equal(sw_scene_cost(&bad, &eo, &c), SW_EINVAL);
+    assert_true(sw_reserve_eval_cost(&bad) == 0.0);
+    assert_true(sw_reserve_eval_cost(&sc) > 0.0);
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cap),   cmocka_unit_test(test_restarts), cmocka_unit_test(test_rerun),
+        cmocka_unit_test(test_cases), cmocka_unit_test(test_family),   cmocka_unit_test(test_cost),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
