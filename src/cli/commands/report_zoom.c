@@ -6,9 +6,10 @@
  *
  * The full figure keeps a long log as the extremes of stretches, so the
  * close-ups cannot come from it: the log as the gate handed it to the
- * engine (held in memory for the searches) is run again, from its start,
- * through a fresh engine of the same scenes and options, which repeats the
- * replay exactly (gate.h), up to the end of the last window.  Each window
+ * engine (held in memory for the searches, sw_forensics_t) is run again
+ * (sw_forensics_rerun), from its start, through a fresh engine of the
+ * same scenes and options, which repeats the replay exactly (gate.h), up
+ * to the end of the last window.  Each window
  * has its own reserve, evaluated at the reserve rate from the window's
  * start: only there does it cost. */
 #include <math.h>

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* input.h - acceleration logs: CSV input options, rejected rows, log files
- * read in chunks (their first bytes tell their source: source.h), and
- * whole logs held in memory. */
+ * read in chunks (their first bytes tell their source: source.h); a
+ * whole log held in memory is the library's (swaywatch/forensics.h). */
 #ifndef SWAYWATCH_CLI_INPUT_H
 #define SWAYWATCH_CLI_INPUT_H
 
