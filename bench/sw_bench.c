@@ -9,6 +9,9 @@
  *   sw_bench replay-csv FILE|- [--model bare|frame]  CSV parse + engine
  *   sw_bench rock|road|baseline|gen [--model M] [--scheme S] [--dt DT]
  *            [--rtol R] [--stepped] [--seconds N]   one workload (profiling)
+ *   sw_bench planes [--runs N] [--seconds N]        one plane against two
+ *   sw_bench shocks [--model M] [--planes 0|1|2] [--seconds N]  its workload
+ *                                                   (0: the input alone)
  *
  * What "run" measures, per model (table below) and scheme setting:
  * - cost while rocking: the package is kept rocking (free rocking from
@@ -332,6 +335,100 @@ static double run_road(const sw_scene_t *sc, const bcfg_t *c, int stepped, const
     sw_engine_summary(e, 0, s);
     sw_engine_destroy(e);
     return el;
+}
+
+/* ---- one plane against two (issue 29: two cost at most twice one) ----- */
+
+/* The shocks workload: a half-sine of amp * g tan(alpha) at omega_e = 3 p
+ * every 4 s, braking and speeding up in turn, so that the package rocks
+ * (lifts, impacts, comes to rest) for much of the time: amp = 1.6 on the
+ * bed and the frame (0.70 and 0.83 of their boundaries at omega_e/p = 3).
+ * On a cushion one shock of 0.8 (0.65 of the soft one's boundary) and
+ * the free motion after it, which never rests (one step per sample):
+ * repeated every 4 s, even shocks of 0.3 overturned the soft cushion's
+ * package within 200 s.  With planes = 2 the scene gets a depth equal to
+ * its width and the engine the same input across the truck
+ * (sw_engine_push_lat): the second plane is the first's twin, so the
+ * ratio is the second plane's cost, not a different motion's.  planes =
+ * 0 makes the input alone (its cost, to subtract).  Returns the CPU time;
+ * the longitudinal plane's summary and the samples through the pointers. */
+static double run_shocks(const sw_scene_t *sc0, int planes, double seconds, sw_summary_t *s,
+                         long *samples)
+{
+    sw_scene_t sc = *sc0;
+    if (planes == 2)
+        sc.depth = sc.width; /* m */
+    sw_engine_opts_t o = {0};
+    o.lateral = planes == 2;
+    int err = 0;
+    char msg[256];
+    sw_engine_t *e = sw_engine_create(&sc, 1, &o, &err, msg, sizeof msg);
+    if (!e) {
+        fprintf(stderr, "sw_bench: engine: %s\n", msg);
+        return NAN;
+    }
+    const sw_derived_t *d = sw_engine_derived(e, 0);
+    const double amp = d->model == SW_MODEL_CUSHION ? 0.8 : 1.6;
+    sw_pulse_t pu = {SW_PULSE_HALF_SINE, amp * sc.g * tan(d->alpha), 3.0 * d->p};
+    const double every = d->model == SW_MODEL_CUSHION ? INFINITY : 4.0; /* s */
+    const long n = (long)(seconds * RATE);
+    volatile double sink = 0.0; /* planes = 0: the input alone, its cost to subtract */
+    const double t0 = cpu_now();
+    for (long i = 0; i <= n; i++) {
+        const double t = i / RATE, tp = isinf(every) ? t : fmod(t, every);
+        const double a = (fmod(t, 8.0) < 4.0 ? -1.0 : 1.0) * sw_pulse_eval(&pu, tp); /* m/s^2 */
+        if (planes == 2)
+            sw_engine_push_lat(e, t, a, a, 0.0);
+        else if (planes == 1)
+            sw_engine_push(e, t, a, 0.0);
+        else
+            sink += a;
+    }
+    const double el = cpu_now() - t0;
+    (void)sink;
+    sw_engine_summary(e, 0, s);
+    *samples = n + 1;
+    sw_engine_destroy(e);
+    return el;
+}
+
+/* The models of the planes table: the bed, the frame and the soft cushion. */
+static const char *const plane_models[] = {"bare", "frame", "cushion-soft"};
+#define NPLANE_MODELS (sizeof plane_models / sizeof plane_models[0])
+
+/* One plane against two on the shocks workload, per model: CPU ns per
+ * sample of the engine (the input's own cost, measured alone in the same
+ * run, subtracted), median of runs, the three interleaved run by run so
+ * that they see the same load, and the ratio of the medians and its range
+ * over the runs, as a markdown table. */
+static int cmd_planes(int runs, double seconds)
+{
+    printf(
+        "| model | uplifts (per plane) | steps per sample (per plane) | input alone (ns per "
+        "sample) | one plane (ns per sample) | two planes (ns per sample) | ratio two / one "
+        "(medians) | ratio, range over the runs |\n|---|---|---|---|---|---|---|---|\n");
+    for (size_t m = 0; m < NPLANE_MODELS; m++) {
+        const sw_scene_t sc = find_model(plane_models[m])->scene();
+        double t0[64], t1[64], t2[64], r[64];
+        sw_summary_t s0, s1 = {0}, s2 = {0};
+        long n = 1;
+        for (int k = 0; k < runs; k++) {
+            t0[k] = run_shocks(&sc, 0, seconds, &s0, &n);
+            t1[k] = run_shocks(&sc, 1, seconds, &s1, &n) - t0[k];
+            t2[k] = run_shocks(&sc, 2, seconds, &s2, &n) - t0[k];
+            r[k] = t2[k] / t1[k];
+        }
+        if (s1.uplifts != s2.uplifts || s1.steps != s2.steps || s1.overturned || s2.overturned)
+            fprintf(stderr, "sw_bench: %s: the planes' runs differ or overturned\n",
+                    plane_models[m]);
+        const double m0 = median(t0, runs), m1 = median(t1, runs), m2 = median(t2, runs);
+        qsort(r, (size_t)runs, sizeof *r, cmp_dbl);
+        printf("| %s | %ld | %.2f | %.0f | %.0f | %.0f | %.2f | %.2f to %.2f |\n", plane_models[m],
+               s1.uplifts, (double)s1.steps / n, 1e9 * m0 / n, 1e9 * m1 / n, 1e9 * m2 / n, m2 / m1,
+               r[0], r[runs - 1]);
+        fflush(stdout);
+    }
+    return 0;
 }
 
 /* ---- the boundary and the pulse sets ---------------------------------- */
@@ -740,12 +837,21 @@ static const bmodel_t *find_model(const char *name)
 
 /* One workload, one setting: for profiling and quick checks. */
 static int cmd_one(const char *what, const char *model, const bcfg_t *C, int stepped,
-                   double seconds)
+                   double seconds, int planes)
 {
     const bmodel_t *bm = find_model(model);
     if (!bm)
         return 2;
     const sw_scene_t sc = bm->scene();
+    if (!strcmp(what, "shocks")) {
+        sw_summary_t s;
+        long n = 1;
+        const double el = run_shocks(&sc, planes, seconds, &s, &n);
+        printf("shocks %s, %d plane%s: %.1f ns/sample, uplifts %ld steps/sample %.2f%s\n", model,
+               planes, planes == 1 ? "" : "s", 1e9 * el / n, s.uplifts, (double)s.steps / n,
+               s.overturned ? " OVERTURNED" : "");
+        return 0;
+    }
     if (!strcmp(what, "rock")) {
         long st = 0, sa = 1;
         const double el = run_rocking(&sc, C, seconds, &st, &sa);
@@ -782,7 +888,9 @@ static void usage(FILE *f)
             "       sw_bench gen-csv [--hours H] [--seed S] [--incident]\n"
             "       sw_bench replay-csv FILE|- [--model bare|frame]\n"
             "       sw_bench rock|road|baseline|gen [--model M] [--scheme S] [--dt DT] "
-            "[--rtol R] [--stepped] [--seconds N]\n");
+            "[--rtol R] [--stepped] [--seconds N]\n"
+            "       sw_bench planes [--runs N] [--seconds N]\n"
+            "       sw_bench shocks [--model M] [--planes 0|1|2] [--seconds N]\n");
 }
 
 int main(int argc, char **argv)
@@ -798,16 +906,24 @@ int main(int argc, char **argv)
     unsigned long long seed = 20240611ULL;
     const char *data = NULL, *model = "bare";
     bcfg_t one = {SW_DEFAULT_SCHEME, 0, 0, 0};
-    int stepped = 0, incident = 0;
+    int stepped = 0, incident = 0, planes = 1;
     double seconds = 200.0;
     static const struct option lo[] = {
-        {"quick", no_argument, NULL, 'q'},         {"runs", required_argument, NULL, 'r'},
-        {"data", required_argument, NULL, 'd'},    {"hours", required_argument, NULL, 'H'},
-        {"seed", required_argument, NULL, 's'},    {"model", required_argument, NULL, 'm'},
-        {"scheme", required_argument, NULL, 'S'},  {"dt", required_argument, NULL, 't'},
-        {"rtol", required_argument, NULL, 'T'},    {"stepped", no_argument, NULL, 'x'},
-        {"seconds", required_argument, NULL, 'n'}, {"incident", no_argument, NULL, 'i'},
-        {"help", no_argument, NULL, 'h'},          {NULL, 0, NULL, 0},
+        {"quick", no_argument, NULL, 'q'},
+        {"runs", required_argument, NULL, 'r'},
+        {"data", required_argument, NULL, 'd'},
+        {"hours", required_argument, NULL, 'H'},
+        {"seed", required_argument, NULL, 's'},
+        {"model", required_argument, NULL, 'm'},
+        {"scheme", required_argument, NULL, 'S'},
+        {"dt", required_argument, NULL, 't'},
+        {"rtol", required_argument, NULL, 'T'},
+        {"stepped", no_argument, NULL, 'x'},
+        {"seconds", required_argument, NULL, 'n'},
+        {"incident", no_argument, NULL, 'i'},
+        {"planes", required_argument, NULL, 'p'},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
     };
     optind = 2;
     int ch;
@@ -825,6 +941,7 @@ int main(int argc, char **argv)
             case 'x': stepped = 1; break;
             case 'n': seconds = atof(optarg); break;
             case 'i': incident = 1; break;
+            case 'p': planes = atoi(optarg) == 2 ? 2 : atoi(optarg) == 0 ? 0 : 1; break;
             case 'h': usage(stdout); return 0;
             default: usage(stderr); return 2;
         }
@@ -836,8 +953,10 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "gen-csv"))
         return cmd_gen_csv(hours, seed, incident);
     if (!strcmp(cmd, "rock") || !strcmp(cmd, "road") || !strcmp(cmd, "baseline") ||
-        !strcmp(cmd, "gen"))
-        return cmd_one(cmd, model, &one, stepped, seconds);
+        !strcmp(cmd, "gen") || !strcmp(cmd, "shocks"))
+        return cmd_one(cmd, model, &one, stepped, seconds, planes);
+    if (!strcmp(cmd, "planes"))
+        return cmd_planes(runs, seconds);
     if (!strcmp(cmd, "replay-csv") && optind < argc)
         return cmd_replay_csv(argv[optind], model);
     usage(stderr);

@@ -1,9 +1,10 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerate docs/accuracy-speed.md's measured part, docs/img/pareto.png and
-# its data in bench/results/: build with the benchmarks, run sw_bench, time
-# CSV replay of an hour-long 1 kHz log (and ten hours, for peak memory),
-# count instructions with callgrind, record the machine.
+# its data in bench/results/: build with the benchmarks, run sw_bench (one
+# plane against two included), time CSV replay of an hour-long 1 kHz log
+# (and ten hours, for peak memory), count instructions with callgrind,
+# record the machine.
 #   scripts/run-bench.sh           full run (about half an hour on 2 vCPU)
 #   QUICK=1 scripts/run-bench.sh   a smoke run (shorter workloads, 1 run)
 # Uses gnuplot; times the swaywatch replay command as well when it exists.
@@ -36,6 +37,17 @@ else
     "$B" run --runs "$RUNS" --data "$DATA" >>"$OUT"
     HOURS=1
 fi
+
+# ---- one plane against two (issue 29) ----------------------------------------
+{
+    echo "### One plane against two (shocks workload, sw_bench planes)"
+    echo
+    echo "CPU ns per sample of the engine (the input's own cost subtracted), median"
+    echo "of $RUNS runs, the three interleaved; the second plane is the first's twin."
+    echo
+    if [ -n "${QUICK:-}" ]; then "$B" planes --runs 1 --seconds 20; else "$B" planes --runs "$RUNS"; fi
+    echo
+} >>"$OUT"
 
 # ---- CSV replay: parse + engine, end to end --------------------------------
 median() { sort -g | awk '{v[NR]=$1} END {print (NR%2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2)}'; }
@@ -128,6 +140,13 @@ if command -v valgrind >/dev/null 2>&1; then
             [ "$m" = frame ] &&
                 echo "| road, rk4 dt 1e-3, stuck frame stepped | $m | $(($(ipc road --model $m --stepped) - gen)) |"
             echo "| road, GSL driver baseline | $m | $(($(ipc baseline --model $m) - gen)) |"
+        done
+        # one plane against two: the input's own cost subtracted
+        for m in bare frame cushion-soft; do
+            in=$(ipc shocks --model $m --planes 0)
+            one=$(($(ipc shocks --model $m --planes 1) - in))
+            two=$(($(ipc shocks --model $m --planes 2) - in))
+            echo "| shocks (input subtracted), one plane / two planes (ratio) | $m | $one / $two ($(awk -v a="$one" -v b="$two" 'BEGIN{printf "%.3f", b/a}')) |"
         done
         echo
     } >>"$OUT"
