@@ -4,7 +4,7 @@
 # drive of issue 26 (bench/drive_log.py: a 1.3 Hz sway of 0.8 m/s^2 with
 # noise, a 6 m/s^2 braking shock of 0.2 s every 10 minutes; 1 kHz): the
 # crate with a frame (5.59 rad/s) and a cushion (30 rad/s) what-if, on 2
-# threads, and with --no-what-if (the baseline of the same session); wall
+# threads, and with --no-what-if (the baseline, made alongside); wall
 # and CPU time, medians of RUNS runs.  With BEFORE=BUILD_DIR also the
 # what-if case by that build (BEFORE_RUNS runs, default 3), for the ratio.
 # Prints the machine, the load and a Markdown table for docs/forensics.md.

@@ -5,7 +5,7 @@
 # and the soft cushion of sample_logs: replay as it is (no row shows the
 # reserve: the minimum alone, risk.h min_only) and with --reserve-rate 0,
 # wall and CPU time, medians of RUNS runs, and the ratio to the
-# --reserve-rate 0 run of the same session; then one run with every state
+# --reserve-rate 0 run made alongside; then one run with every state
 # evaluated (--out, every 3,600,000th row written), whose minimum the
 # first must equal (EVERY=0 leaves it out); with BEFORE=BUILD_DIR also one
 # default replay by that build.  CALM=1: the same drive without its shocks
