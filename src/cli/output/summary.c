@@ -458,6 +458,18 @@ static void print_plane(FILE *f, const sw_summary_t *s, double alpha, const sw_r
     fputc('\n', f);
 }
 
+/* Package i's lateral plane: its engine (k its package there), the
+ * planes' summary and the lateral one's; NULL for a package in one plane. */
+static const sw_engine_t *lateral_of(const sw_engine_t *e, size_t i, sw_planes_t *P, size_t *k,
+                                     sw_summary_t *s)
+{
+    const sw_engine_t *L = sw_engine_plane(e, i, SW_PLANE_LAT, k);
+    if (sw_engine_planes_summary(e, i, P) != SW_OK || P->planes < 2 || !L ||
+        sw_engine_summary(L, *k, s) != SW_OK)
+        return NULL;
+    return L;
+}
+
 /* A package with a lateral plane: its lines, which plane the verdict is,
  * and both planes lifted at once. */
 static void print_lateral(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_run_t *run)
@@ -465,9 +477,8 @@ static void print_lateral(FILE *f, const sw_engine_t *e, size_t i, const sw_cli_
     sw_planes_t P;
     size_t k;
     sw_summary_t s;
-    const sw_engine_t *L = sw_engine_plane(e, i, SW_PLANE_LAT, &k);
-    if (sw_engine_planes_summary(e, i, &P) != SW_OK || P.planes < 2 || !L ||
-        sw_engine_summary(L, k, &s) != SW_OK)
+    const sw_engine_t *L = lateral_of(e, i, &P, &k, &s);
+    if (!L)
         return;
     const sw_derived_t *d = sw_engine_derived(L, k);
     fprintf(f, "  lateral plane   across the truck, depth %.4g m: scheme %s, dt %.6g ms\n",
@@ -695,9 +706,8 @@ static void json_lateral(json_t *o, const sw_engine_t *e, size_t i, const sw_cli
     sw_planes_t P;
     size_t k;
     sw_summary_t s;
-    const sw_engine_t *L = sw_engine_plane(e, i, SW_PLANE_LAT, &k);
-    if (sw_engine_planes_summary(e, i, &P) != SW_OK || P.planes < 2 || !L ||
-        sw_engine_summary(L, k, &s) != SW_OK)
+    const sw_engine_t *L = lateral_of(e, i, &P, &k, &s);
+    if (!L)
         return;
     sw_cli_rec_text(o, "plane", sw_plane_name(P.worse));
     sw_cli_rec_bool(o, "both_planes_rocking", P.both_rocking);
