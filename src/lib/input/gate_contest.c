@@ -118,13 +118,38 @@ void gate_note_switch(sw_gate_t *g, const sw_sample_t *s)
         contest_begin(g, s, 0);
 }
 
+/* A refused sample ahead of the kept seq numbers arrived: remember its
+ * seq (once) so that a leap over it does not count it lost. */
+static void seq_note_refused(seqs_t *q, int64_t v)
+{
+    for (int i = 0; i < q->nrefused; i++)
+        if (q->refused[i] == v)
+            return;
+    q->refused[q->refused_head] = v;
+    q->refused_head = (q->refused_head + 1) % SEQ_REFUSED;
+    if (q->nrefused < SEQ_REFUSED)
+        q->nrefused++;
+}
+
+/* How many refused seqs lie strictly between lo and hi. */
+static long seq_refused_between(const seqs_t *q, int64_t lo, int64_t hi)
+{
+    long n = 0;
+    for (int i = 0; i < q->nrefused; i++) n += q->refused[i] > lo && q->refused[i] < hi;
+    return n;
+}
+
 int gate_refuse(sw_gate_t *g, const sw_sample_t *s, sw_gate_reject r, const char *text)
 {
-    /* a sample refused for its values did arrive: its seq is no loss */
-    if ((r == SW_GATE_REJ_NONFINITE || r == SW_GATE_REJ_IMPLAUSIBLE) && g->seq.have &&
-        s->seq != SW_GATE_NO_SEQ && s->seq > g->seq.last &&
-        (uint64_t)s->seq - (uint64_t)g->seq.last < SEQ_FAR)
-        gate_note_seq(g, s);
+    /* a refused sample did arrive: its seq is no loss (one refused for
+     * its values continues the numbers as an accepted one would) */
+    if (g->seq.have && s->seq != SW_GATE_NO_SEQ && s->seq > g->seq.last &&
+        (uint64_t)s->seq - (uint64_t)g->seq.last < SEQ_FAR) {
+        if (r == SW_GATE_REJ_NONFINITE || r == SW_GATE_REJ_IMPLAUSIBLE)
+            gate_note_seq(g, s);
+        else
+            seq_note_refused(&g->seq, s->seq);
+    }
     static const int code[SW_GATE_NREJ] = {SW_ENONFINITE, SW_ETOOBIG, SW_ERESOLUTION,
                                            SW_ETOOBIG,    SW_EORDER,  SW_EORDER,
                                            SW_EORDER,     SW_EINVAL,  SW_EORDER};
@@ -178,8 +203,10 @@ void gate_note_seq(sw_gate_t *g, const sw_sample_t *s)
                 const uint64_t d = (uint64_t)p - (uint64_t)q->last;
                 /* while two timelines compete, the numbers between may
                  * have come on the other one: no evidence of a loss */
-                if (d <= SEQ_FAR && !g->rv.contested)
-                    g->f.lost += (long)(d - 1);
+                if (d <= SEQ_FAR && !g->rv.contested) {
+                    const long gone = (long)(d - 1) - seq_refused_between(q, q->last, p);
+                    g->f.lost += gone > 0 ? gone : 0;
+                }
                 q->last = p;
                 if (v == p)
                     return; /* the same seq again: confirmed, nothing more */
@@ -195,6 +222,7 @@ void gate_note_seq(sw_gate_t *g, const sw_sample_t *s)
                 refuted = 1;
             } else if (v > p) {
                 g->f.seq_restarts++;
+                q->nrefused = 0; /* numbers of the old run */
                 sw_gate_event_t ev = {
                     .kind = SW_GATE_EV_SEQ_RESTART, .t = g->last.t, .where = s->where};
                 gate_emit(g, &ev);

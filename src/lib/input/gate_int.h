@@ -52,6 +52,7 @@
 #define SEQ_WINDOW 256        /* accepted samples: two seq outliers within are a second sender */
 #define SEQ_LIVE 3            /* +1 steps before seq numbers count as evidence */
 #define SEQ_FAR 1000000000ULL /* seq steps beyond: corrupt, never a loss */
+#define SEQ_REFUSED 16        /* seqs ahead of the last kept, of samples refused */
 
 typedef struct {
     sw_sample_t s[SW_GATE_CONFIRM_MAX];
@@ -92,6 +93,10 @@ typedef struct {
     int pend;
     int64_t pend_seq;
     long outlier_at; /* accepted count at the last outlier; < 0 none */
+    /* refused samples ahead of last: they arrived, so a leap over them
+     * is no loss of theirs (distinct seqs, a ring) */
+    int64_t refused[SEQ_REFUSED];
+    int nrefused, refused_head;
 } seqs_t;
 
 /* The second timeline: refused samples consistent with each other. */
