@@ -204,6 +204,65 @@ static void test_input_and_names(void **st)
     assert_int_equal(sw_alarm_init(NULL, 0, 0.5, 0.2, 0.05), SW_EINVAL);
 }
 
+/* A lateral plane's watch: every alarm it raises carries SW_PLANE_LAT and
+ * says "sideways" (the uplift also to which side: theta > 0 is the top to
+ * the left); the same events on a watch along the truck say neither. */
+static void test_lateral_plane(void **st)
+{
+    (void)st;
+    static const struct {
+        sw_event_kind ev;
+        double info;
+        const char *lat, *lon;
+    } cases[] = {
+        {SW_EV_UPLIFT, +1, "corner lifted: rocking sideways, to the left", "rocking forward"},
+        {SW_EV_UPLIFT, -1, "corner lifted: rocking sideways, to the right", "rocking backward"},
+        {SW_EV_IMPACT, -0.25, "impact sideways at", "impact at"},
+        {SW_EV_REST, 0, "back to rest after rocking sideways", "back to rest"},
+        {SW_EV_TIP, 0, "tipping sideways: centre of mass over the corner", "centre of mass"},
+        {SW_EV_OVERTURN, 0, "overturned sideways (|theta| = pi/2)", "overturned (|theta|"},
+        {SW_EV_FAULT, SW_EFAULT, "model fault sideways: ", "model fault: "},
+        {SW_EV_FLIGHT, 1.0, "s sideways: the landing", "s: the landing"},
+    };
+    sw_alarm_watch_t lat, lon;
+    assert_int_equal(sw_alarm_init(&lat, 3, 0.5, 0.2, 0.05), SW_OK);
+    assert_int_equal(sw_alarm_init(&lon, 3, 0.5, 0.2, 0.05), SW_OK);
+    assert_int_equal(lon.plane, SW_PLANE_LONG);
+    assert_int_equal(sw_alarm_set_plane(&lat, SW_PLANE_LAT), SW_OK);
+    assert_int_equal(sw_alarm_set_plane(&lat, (sw_plane)7), SW_EINVAL);
+    assert_int_equal(sw_alarm_set_plane(NULL, SW_PLANE_LAT), SW_EINVAL);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sink_t a = {.n = 0}, b = {.n = 0};
+        const sw_event_t ev = {.kind = cases[i].ev, .pkg = 3, .t = 1.0, .info = cases[i].info};
+        assert_int_equal(sw_alarm_on_event(&lat, &ev, collect, &a), 1);
+        assert_int_equal(sw_alarm_on_event(&lon, &ev, collect, &b), 1);
+        assert_int_equal(a.a[0].plane, SW_PLANE_LAT);
+        assert_int_equal(b.a[0].plane, SW_PLANE_LONG);
+        assert_int_equal(a.a[0].kind, b.a[0].kind); /* the same kind, level and package */
+        assert_int_equal(a.a[0].level, b.a[0].level);
+        assert_int_equal(a.a[0].pkg, 3);
+        assert_non_null(strstr(a.a[0].text, cases[i].lat));
+        assert_non_null(strstr(b.a[0].text, cases[i].lon));
+        assert_null(strstr(b.a[0].text, "sideways"));
+    }
+    /* margins and reserves: the plane and the word, the numbers as along */
+    sink_t a = {.n = 0};
+    assert_int_equal(feed(&lat, &a, 1.0, 0.1), 2);
+    assert_int_equal(sw_alarm_set_reserve(&lat, 0.3, 0.1, -1.0), SW_OK);
+    assert_int_equal(sw_alarm_on_reserve(&lat, 1.0, 0.0, 0.1, 0.05, collect, &a), 2);
+    assert_int_equal(a.n, 4);
+    assert_string_equal(a.a[0].text, "margin sideways 0.100 < warn 0.500");
+    assert_string_equal(a.a[1].text, "margin sideways 0.100 < critical 0.200");
+    assert_string_equal(a.a[2].text, "reserve sideways 0.050 g < warn 0.300 g");
+    assert_string_equal(a.a[3].text, "reserve sideways 0.050 g < critical 0.100 g");
+    for (int i = 0; i < a.n; i++) assert_int_equal(a.a[i].plane, SW_PLANE_LAT);
+    /* input alarms belong to no package's plane */
+    sw_alarm_t in;
+    in.plane = SW_PLANE_LAT;
+    sw_alarm_input(&in, SW_ALARM_SENSOR_GAP, SW_ALARM_LEVEL_WARN, 1.0, "gap");
+    assert_int_equal(in.plane, SW_PLANE_LONG);
+}
+
 /* The two numbers of "margin X < critical Y" (or "reserve X g < warn
  * Y g"), read back. */
 static void numbers(const char *text, double *x, double *y)
@@ -257,6 +316,7 @@ int main(void)
         cmocka_unit_test(test_warn_hysteresis), cmocka_unit_test(test_warn_and_critical),
         cmocka_unit_test(test_events),          cmocka_unit_test(test_nonfinite_output),
         cmocka_unit_test(test_input_and_names), cmocka_unit_test(test_text_compares_as_printed),
+        cmocka_unit_test(test_lateral_plane),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

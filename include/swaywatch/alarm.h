@@ -75,6 +75,8 @@ typedef struct {
     double theta;                 /* rad; always finite (0 when unknown) */
     double margin;                /* 1; always finite (0 when unknown) */
     char text[SW_ALARM_TEXT_MAX]; /* one line, NUL-terminated */
+    sw_plane plane;               /* the package's plane it concerns (its watch's,
+                                     sw_alarm_set_plane); SW_PLANE_LONG for input alarms */
 } sw_alarm_t;
 
 typedef void (*sw_alarm_fn)(void *user, const sw_alarm_t *a);
@@ -93,6 +95,7 @@ typedef struct {
     double warn_reserve_g, critical_reserve_g, reserve_hysteresis_g;
     int reserve_warn_armed, reserve_critical_armed;
     double impact_min; /* rad/s: slower impacts raise no IMPACT alarm; 0 = every impact */
+    sw_plane plane;    /* the plane watched: SW_PLANE_LONG, unless sw_alarm_set_plane */
 } sw_alarm_watch_t;
 
 /* Set up w for package pkg with the scene's thresholds (1) and a hysteresis
@@ -115,6 +118,13 @@ SW_API int sw_alarm_init_scene(sw_alarm_watch_t *w, size_t pkg, const sw_scene_t
  * both.  Returns SW_OK or SW_EINVAL. */
 SW_API int sw_alarm_set_reserve(sw_alarm_watch_t *w, double warn_g, double critical_g,
                                 double hysteresis_g);
+
+/* The plane w watches (sw_alarm_init: SW_PLANE_LONG).  A lateral plane's
+ * alarms carry it and say so in their text ("overturned sideways",
+ * "margin sideways 0.430 < warn 0.500"), so that no reader takes them for
+ * the plane along the truck.  Set it up from the lateral scene
+ * (sw_scene_lateral) with sw_alarm_init_scene first.  SW_OK or SW_EINVAL. */
+SW_API int sw_alarm_set_plane(sw_alarm_watch_t *w, sw_plane plane);
 
 /* Impacts slower than min_speed (rad/s, |theta_dot| before the impact)
  * raise no IMPACT alarm; 0 restores one per impact.  SW_OK or SW_EINVAL. */

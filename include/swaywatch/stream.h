@@ -61,8 +61,9 @@ typedef struct {
                                 lateral, the samples carry a_y (the gate is made lateral),
                                 the packages with a depth rock across the truck too: their
                                 states and events come with plane SW_PLANE_LAT, their
-                                reserve is sw_stream_risk_plane's; the alarm watches follow
-                                the plane along the truck only */
+                                reserve is sw_stream_risk_plane's; with on_alarm, each
+                                plane has its alarm watch, the lateral one's alarms with
+                                plane SW_PLANE_LAT and named so (alarm.h) */
     sw_gate_opts_t gate;     /* the gate's checks and policies; its callbacks and user
                                 are not used (the stream's are) */
     sw_risk_opts_t risk;     /* the reserve's rate (< 0: none) and options */

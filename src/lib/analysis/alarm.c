@@ -48,6 +48,14 @@ int sw_alarm_set_impact_min(sw_alarm_watch_t *w, double min_speed)
     return SW_OK;
 }
 
+int sw_alarm_set_plane(sw_alarm_watch_t *w, sw_plane plane)
+{
+    if (!w || (plane != SW_PLANE_LONG && plane != SW_PLANE_LAT))
+        return SW_EINVAL;
+    w->plane = plane;
+    return SW_OK;
+}
+
 int sw_alarm_init_scene(sw_alarm_watch_t *w, size_t pkg, const sw_scene_t *sc, double hysteresis)
 {
     sw_derived_t d;
@@ -77,6 +85,7 @@ static int emit_alarm(sw_alarm_watch_t *w, sw_alarm_kind kind, sw_alarm_level le
     a.t = finite_or_zero(t);
     a.theta = finite_or_zero(theta);
     a.margin = finite_or_zero(margin);
+    a.plane = w->plane;
     snprintf(a.text, sizeof a.text, "%s", text);
     w->raised++;
     if (emit)
@@ -89,37 +98,43 @@ int sw_alarm_on_event(sw_alarm_watch_t *w, const sw_event_t *ev, sw_alarm_fn emi
     char text[SW_ALARM_TEXT_MAX];
     sw_alarm_kind kind;
     sw_alarm_level level = SW_ALARM_LEVEL_INFO;
+    /* across the truck, every text says so: theta > 0 is the top to the
+     * left (physics.md, "The lateral plane") */
+    const int lat = w->plane == SW_PLANE_LAT;
+    const char *const side = lat ? " sideways" : "";
 
     switch (ev->kind) {
         case SW_EV_UPLIFT:
             kind = SW_ALARM_UPLIFT;
             snprintf(text, sizeof text, "corner lifted: rocking %s",
-                     ev->info >= 0.0 ? "forward" : "backward");
+                     lat ? (ev->info >= 0.0 ? "sideways, to the left" : "sideways, to the right")
+                         : (ev->info >= 0.0 ? "forward" : "backward"));
             break;
         case SW_EV_IMPACT:
             if (w->impact_min > 0.0 && !(fabs(ev->info) >= w->impact_min))
                 return 0; /* a micro-impact: below the significance */
             kind = SW_ALARM_IMPACT;
-            snprintf(text, sizeof text, "impact at %.4g rad/s", finite_or_zero(ev->info));
+            snprintf(text, sizeof text, "impact%s at %.4g rad/s", side, finite_or_zero(ev->info));
             break;
         case SW_EV_REST:
             kind = SW_ALARM_REST;
-            snprintf(text, sizeof text, "back to rest");
+            snprintf(text, sizeof text, "back to rest%s", lat ? " after rocking sideways" : "");
             break;
         case SW_EV_TIP:
             kind = SW_ALARM_TIP;
             level = SW_ALARM_LEVEL_CRITICAL;
-            snprintf(text, sizeof text, "centre of mass over the corner (|theta| = alpha)");
+            snprintf(text, sizeof text, "%scentre of mass over the corner (|theta| = alpha)",
+                     lat ? "tipping sideways: " : "");
             break;
         case SW_EV_OVERTURN:
             kind = SW_ALARM_OVERTURNED;
             level = SW_ALARM_LEVEL_CRITICAL;
-            snprintf(text, sizeof text, "overturned (|theta| = pi/2)");
+            snprintf(text, sizeof text, "overturned%s (|theta| = pi/2)", side);
             break;
         case SW_EV_FAULT:
             kind = SW_ALARM_MODEL_FAULT;
             level = SW_ALARM_LEVEL_CRITICAL;
-            snprintf(text, sizeof text, "model fault: %s; package reset to rest",
+            snprintf(text, sizeof text, "model fault%s: %s; package reset to rest", side,
                      sw_strerror(isfinite(ev->info) ? (int)ev->info : SW_EFAULT));
             break;
         case SW_EV_FLIGHT:
@@ -127,8 +142,8 @@ int sw_alarm_on_event(sw_alarm_watch_t *w, const sw_event_t *ev, sw_alarm_fn emi
             kind = SW_ALARM_MODEL_FAULT;
             level = SW_ALARM_LEVEL_CRITICAL;
             snprintf(text, sizeof text,
-                     "in free flight for over %g s: the landing is outside the model",
-                     SW_FLIGHT_LONG);
+                     "in free flight for over %g s%s: the landing is outside the model",
+                     SW_FLIGHT_LONG, side);
             break;
         default: return 0;
     }
@@ -172,6 +187,17 @@ static void below_text(char *text, size_t len, const char *what, double x, const
     snprintf(text, len, "%s %.*f%s < %s %.*f%s", what, d, x, unit, level, d, y, unit);
 }
 
+/* What a margin or reserve alarm measures, in the watch's plane. */
+static const char *margin_word(const sw_alarm_watch_t *w)
+{
+    return w->plane == SW_PLANE_LAT ? "margin sideways" : "margin";
+}
+
+static const char *reserve_word(const sw_alarm_watch_t *w)
+{
+    return w->plane == SW_PLANE_LAT ? "reserve sideways" : "reserve";
+}
+
 int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *o, sw_alarm_fn emit, void *user)
 {
     char text[SW_ALARM_TEXT_MAX];
@@ -181,18 +207,22 @@ int sw_alarm_on_output(sw_alarm_watch_t *w, const sw_output_t *o, sw_alarm_fn em
         if (!w->fault_armed)
             return 0;
         w->fault_armed = 0;
-        return emit_alarm(w, SW_ALARM_MODEL_FAULT, SW_ALARM_LEVEL_CRITICAL, o->t, o->state.theta,
-                          o->margin, "model output not finite; state withheld", emit, user);
+        return emit_alarm(
+            w, SW_ALARM_MODEL_FAULT, SW_ALARM_LEVEL_CRITICAL, o->t, o->state.theta, o->margin,
+            w->plane == SW_PLANE_LAT ? "model output not finite sideways; state withheld"
+                                     : "model output not finite; state withheld",
+            emit, user);
     }
     w->fault_armed = 1;
 
     if (crossed(&w->warn_armed, o->margin, w->warn_margin, w->hysteresis)) {
-        below_text(text, sizeof text, "margin", o->margin, "warn", w->warn_margin, "");
+        below_text(text, sizeof text, margin_word(w), o->margin, "warn", w->warn_margin, "");
         n += emit_alarm(w, SW_ALARM_WARN, SW_ALARM_LEVEL_WARN, o->t, o->state.theta, o->margin,
                         text, emit, user);
     }
     if (crossed(&w->critical_armed, o->margin, w->critical_margin, w->hysteresis)) {
-        below_text(text, sizeof text, "margin", o->margin, "critical", w->critical_margin, "");
+        below_text(text, sizeof text, margin_word(w), o->margin, "critical", w->critical_margin,
+                   "");
         n += emit_alarm(w, SW_ALARM_CRITICAL, SW_ALARM_LEVEL_CRITICAL, o->t, o->state.theta,
                         o->margin, text, emit, user);
     }
@@ -207,13 +237,13 @@ int sw_alarm_on_reserve(sw_alarm_watch_t *w, double t, double theta, double marg
     if (!w || !(w->warn_reserve_g > 0.0))
         return 0;
     if (crossed(&w->reserve_warn_armed, reserve_g, w->warn_reserve_g, w->reserve_hysteresis_g)) {
-        below_text(text, sizeof text, "reserve", reserve_g, "warn", w->warn_reserve_g, " g");
+        below_text(text, sizeof text, reserve_word(w), reserve_g, "warn", w->warn_reserve_g, " g");
         n += emit_alarm(w, SW_ALARM_RESERVE_WARN, SW_ALARM_LEVEL_WARN, t, theta, margin, text, emit,
                         user);
     }
     if (crossed(&w->reserve_critical_armed, reserve_g, w->critical_reserve_g,
                 w->reserve_hysteresis_g)) {
-        below_text(text, sizeof text, "reserve", reserve_g, "critical", w->critical_reserve_g,
+        below_text(text, sizeof text, reserve_word(w), reserve_g, "critical", w->critical_reserve_g,
                    " g");
         n += emit_alarm(w, SW_ALARM_RESERVE_CRITICAL, SW_ALARM_LEVEL_CRITICAL, t, theta, margin,
                         text, emit, user);
@@ -230,6 +260,7 @@ void sw_alarm_input(sw_alarm_t *a, sw_alarm_kind kind, sw_alarm_level level, dou
     a->t = finite_or_zero(t);
     a->theta = 0.0;
     a->margin = 0.0;
+    a->plane = SW_PLANE_LONG;
     snprintf(a->text, sizeof a->text, "%s", text ? text : "");
 }
 

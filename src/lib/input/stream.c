@@ -32,6 +32,11 @@ struct sw_stream {
      * packages with a depth, whose index there lat_of says */
     sw_risk_t *risk_lat;
     size_t *lat_of;
+    /* their alarm watches (on_alarm given), per package (used for those
+     * with a lateral plane), set up from the lateral scenes: the lateral
+     * plane's alarms are raised apart and named so (alarm.h); the second
+     * timeline's and its fresh copies too */
+    sw_alarm_watch_t *watch_lat, *watch_lat_b, *watch_lat_fresh;
 };
 
 #define NO_LAT ((size_t)-1)
@@ -44,27 +49,43 @@ static void on_alarm(void *user, const sw_alarm_t *a)
     st->o.on_alarm(st->o.user, a, sw_gate_source_time(st->gate, a->t));
 }
 
-/* The alarm watches follow the plane along the truck: a lateral plane's
- * events and states reach the caller and its reserve, not the watches
- * (whose state is one plane's). */
+/* The watch of a package's plane: each plane has its own (a lateral
+ * plane's alarms are never the other's, nor silenced by it); NULL when
+ * alarms are off. */
+static sw_alarm_watch_t *watch_of(sw_alarm_watch_t *lon, sw_alarm_watch_t *lat, size_t k,
+                                  sw_plane plane)
+{
+    if (plane == SW_PLANE_LONG)
+        return lon ? &lon[k] : NULL;
+    return plane == SW_PLANE_LAT && lat ? &lat[k] : NULL;
+}
+
 static void on_event(void *user, const sw_event_t *ev)
 {
     sw_stream_t *st = user;
     if (st->o.on_event)
         st->o.on_event(st->o.user, ev);
-    if (st->alarms && ev->pkg < st->n && ev->plane == SW_PLANE_LONG)
-        sw_alarm_on_event(&st->watch[ev->pkg], ev, on_alarm, st);
+    sw_alarm_watch_t *w = st->alarms && ev->pkg < st->n
+                              ? watch_of(st->watch, st->watch_lat, ev->pkg, ev->plane)
+                              : NULL;
+    if (w)
+        sw_alarm_on_event(w, ev, on_alarm, st);
 }
 
-/* A lateral plane's state: its reserve, then the caller. */
+/* A lateral plane's state: its reserve and its alarms, then the caller. */
 static void on_state_lat(sw_stream_t *st, const sw_output_t *out)
 {
     const size_t j = st->lat_of ? st->lat_of[out->pkg] : NO_LAT;
+    sw_alarm_watch_t *w = st->alarms && st->watch_lat ? &st->watch_lat[out->pkg] : NULL;
     if (st->risk_lat && j != NO_LAT && sw_output_finite(out)) {
         sw_output_t o = *out;
         o.pkg = j;
-        sw_risk_output(st->risk_lat, &o);
+        if (sw_risk_output(st->risk_lat, &o) == 1 && w)
+            sw_alarm_on_reserve(w, out->t, out->state.theta, out->margin,
+                                sw_risk_pkg(st->risk_lat, j)->reserve_g, on_alarm, st);
     }
+    if (w)
+        sw_alarm_on_output(w, out, on_alarm, st);
     if (st->o.on_state)
         st->o.on_state(st->o.user, out);
 }
@@ -114,15 +135,21 @@ static void on_alarm_b(void *user, const sw_alarm_t *a)
 static void on_event_b(void *user, const sw_event_t *ev)
 {
     sw_stream_t *st = user;
-    if (st->alarms && ev->pkg < st->n && ev->plane == SW_PLANE_LONG)
-        sw_alarm_on_event(&st->watch_b[ev->pkg], ev, on_alarm_b, st);
+    sw_alarm_watch_t *w = st->alarms && ev->pkg < st->n
+                              ? watch_of(st->watch_b, st->watch_lat_b, ev->pkg, ev->plane)
+                              : NULL;
+    if (w)
+        sw_alarm_on_event(w, ev, on_alarm_b, st);
 }
 
 static void on_state_b(void *user, const sw_output_t *out)
 {
     sw_stream_t *st = user;
-    if (st->alarms && out->pkg < st->n && out->plane == SW_PLANE_LONG && sw_output_finite(out))
-        sw_alarm_on_output(&st->watch_b[out->pkg], out, on_alarm_b, st);
+    sw_alarm_watch_t *w = st->alarms && out->pkg < st->n
+                              ? watch_of(st->watch_b, st->watch_lat_b, out->pkg, out->plane)
+                              : NULL;
+    if (w && sw_output_finite(out))
+        sw_alarm_on_output(w, out, on_alarm_b, st);
 }
 
 /* A sample of the second timeline (the first gate counted it as refused). */
@@ -142,6 +169,8 @@ static void on_gate_event(void *user, const sw_gate_event_t *ev)
         sw_engine_reset(st->engine_b);
         sw_gate_reset(st->gate_b);
         memcpy(st->watch_b, st->watch_fresh, st->n * sizeof *st->watch_b);
+        if (st->watch_lat_b)
+            memcpy(st->watch_lat_b, st->watch_lat_fresh, st->n * sizeof *st->watch_lat_b);
     }
     if (st->o.on_input)
         st->o.on_input(st->o.user, ev);
@@ -173,6 +202,40 @@ static void fail(int code, int *err, char *msg, size_t msglen, const char *why)
 /* The reserve of the lateral planes: a risk over the lateral scenes
  * (sw_scene_lateral) of the packages with a depth, the design pulses
  * applied across the truck.  Nothing without a depth or a reserve. */
+/* The alarm watch of package k's lateral plane, from its lateral scene
+ * (its own alpha, impact significance; the scene's levels), into w.
+ * SW_OK (nothing for a package without a depth) or SW_EINVAL. */
+static int watch_lat_init(sw_alarm_watch_t *w, size_t k, const sw_scene_t *sc, double hysteresis)
+{
+    sw_scene_t lat;
+    memset(w, 0, sizeof *w);
+    if (!sw_scene_has_depth(sc))
+        return SW_OK;
+    if (sw_scene_lateral(sc, &lat) != SW_OK || sw_alarm_init_scene(w, k, &lat, hysteresis) != SW_OK)
+        return SW_EINVAL;
+    return sw_alarm_set_plane(w, SW_PLANE_LAT);
+}
+
+/* The lateral planes' watches (alarms on and lateral planes made). */
+static int make_watch_lat(sw_stream_t *st, const sw_scene_t *scenes, size_t n)
+{
+    const size_t m = n ? n : 1;
+    if (!(st->watch_lat = calloc(m, sizeof *st->watch_lat)))
+        return SW_ENOMEM;
+    for (size_t k = 0; k < n; k++)
+        if (watch_lat_init(&st->watch_lat[k], k, &scenes[k], st->hysteresis) != SW_OK)
+            return SW_EINVAL;
+    if (!st->o.rival)
+        return SW_OK;
+    st->watch_lat_b = calloc(m, sizeof *st->watch_lat_b);
+    st->watch_lat_fresh = calloc(m, sizeof *st->watch_lat_fresh);
+    if (!st->watch_lat_b || !st->watch_lat_fresh)
+        return SW_ENOMEM;
+    memcpy(st->watch_lat_b, st->watch_lat, n * sizeof *st->watch_lat);
+    memcpy(st->watch_lat_fresh, st->watch_lat, n * sizeof *st->watch_lat);
+    return SW_OK;
+}
+
 static int make_risk_lat(sw_stream_t *st, const sw_scene_t *scenes, size_t n,
                          const sw_risk_opts_t *ro, char *msg, size_t msglen)
 {
@@ -292,6 +355,13 @@ sw_stream_t *sw_stream_create(const sw_scene_t *scenes, size_t n, const sw_strea
         goto failed;
     if (eo.lateral && (e = make_risk_lat(st, scenes, n, &o->risk, msg, msglen)) != SW_OK)
         goto failed;
+    if (eo.lateral && st->alarms && (e = make_watch_lat(st, scenes, n)) != SW_OK) {
+        if (e == SW_ENOMEM)
+            goto nomem;
+        fail(e, err, msg, msglen, "a lateral plane's alarm thresholds are not valid");
+        sw_stream_destroy(st);
+        return NULL;
+    }
     return st;
 
 nomem:
@@ -319,6 +389,9 @@ void sw_stream_destroy(sw_stream_t *st)
     free(st->watch);
     free(st->watch_b);
     free(st->watch_fresh);
+    free(st->watch_lat);
+    free(st->watch_lat_b);
+    free(st->watch_lat_fresh);
     free(st->names);
     free(st);
 }
@@ -344,7 +417,7 @@ int sw_stream_settle(sw_stream_t *st, double settle)
 
 int sw_stream_replace(sw_stream_t *st, size_t k, const sw_scene_t *scene, char *msg, size_t msglen)
 {
-    sw_alarm_watch_t w;
+    sw_alarm_watch_t w, wl;
     if (!st || !scene || k >= st->n) {
         if (msg && msglen)
             snprintf(msg, msglen, "no such package");
@@ -353,6 +426,12 @@ int sw_stream_replace(sw_stream_t *st, size_t k, const sw_scene_t *scene, char *
     if (sw_alarm_init_scene(&w, k, scene, st->hysteresis) != SW_OK) {
         if (msg && msglen)
             snprintf(msg, msglen, "%s: alarm thresholds not finite", scene->name);
+        return SW_EINVAL;
+    }
+    if (st->watch_lat && watch_lat_init(&wl, k, scene, st->hysteresis) != SW_OK) {
+        if (msg && msglen)
+            snprintf(msg, msglen, "%s: the lateral plane's alarm thresholds are not valid",
+                     scene->name);
         return SW_EINVAL;
     }
     const int rc = sw_engine_replace(st->engine, k, scene, msg, msglen);
@@ -366,6 +445,10 @@ int sw_stream_replace(sw_stream_t *st, size_t k, const sw_scene_t *scene, char *
     st->watch[k] = w;
     if (st->watch_b)
         st->watch_b[k] = st->watch_fresh[k] = w;
+    if (st->watch_lat)
+        st->watch_lat[k] = wl;
+    if (st->watch_lat_b)
+        st->watch_lat_b[k] = st->watch_lat_fresh[k] = wl;
     snprintf(st->names[k], sizeof st->names[k], "%s", scene->name);
     /* the reserve of the new scene; if it cannot be built the package goes
      * on with the old one, and the caller hears why */
