@@ -7,12 +7,14 @@ way to try `swaywatch monitor` and its consumers without a truck.
 
     PYTHONPATH=/usr/share/swaywatch/lcmtypes/python \\
         python3 csv2lcmlog.py drive.csv drive.lcmlog [--g] [--start-utime US] \\
-            [--key KEYFILE] &&
+            [--lat-col N] [--key KEYFILE] &&
         lcm-logplayer drive.lcmlog
 
 The CSV is read as swaywatch reads it by default: column 1 time in s,
 column 2 acceleration along x (forward) in m/s^2 (in g with --g), '#'
-comments and a header row skipped, ',' ';' or tab delimited.  Samples get
+comments and a header row skipped, ',' ';' or tab delimited.  With
+--lat-col N, column N (1-based, the same unit) is the acceleration across
+the truck, y to the left, written to ay (else ay is 0).  Samples get
 utime = start + (t - t0), t0 the first row's time, and seq 0, 1, 2, ...;
 the event timestamps are the same utimes, so lcm-logplayer paces them as
 they were recorded.
@@ -51,8 +53,9 @@ from swaywatch import accel_t, accel_v1_t
 G0 = 9.80665
 
 
-def rows(path):
-    """Yield (line number, t, a) for every numeric row."""
+def rows(path, lat):
+    """Yield (line number, t, a, a_y) for every numeric row (a_y 0 without
+    a lateral column: lat None, else its 0-based index)."""
     with open(path, encoding="utf-8-sig") as f:
         for n, line in enumerate(f, 1):
             line = line.strip()
@@ -60,7 +63,8 @@ def rows(path):
                 continue
             fields = re.split(r"[,;\t]", line)
             try:
-                yield n, float(fields[0]), float(fields[1])
+                yield n, float(fields[0]), float(fields[1]), (
+                    float(fields[lat]) if lat is not None else 0.0)
             except (ValueError, IndexError):
                 if n > 1 and not line[0].isalpha():
                     print("csv2lcmlog: %s:%d: skipped: %s" % (path, n, line), file=sys.stderr)
@@ -93,14 +97,14 @@ def signing_key(path):
     return key
 
 
-def encode(utime, seq, ax, key, fresh, channel):
+def encode(utime, seq, ax, ay, key, fresh, channel):
     """One sample as the sender sends it: signed with key, else the old layout."""
     if not key:
         m = accel_v1_t()
-        m.utime, m.seq, m.ax = utime, seq, ax
+        m.utime, m.seq, m.ax, m.ay = utime, seq, ax, ay
         return m.encode()
     m = accel_t()
-    m.utime, m.seq, m.ax, m.freshness, m.key_id = utime, seq, ax, fresh, key[0]
+    m.utime, m.seq, m.ax, m.ay, m.freshness, m.key_id = utime, seq, ax, ay, fresh, key[0]
     head = m.encode()[:57]
     mac = hmac.new(key[1], channel + b"\0" + head, hashlib.sha256).digest()[:16]
     m.mac = list(struct.unpack(">16b", mac))
@@ -122,13 +126,19 @@ def main():
     ap.add_argument("--start-utime", type=int, default=None,
                     help="utime of the first sample in microseconds "
                          "(default: now, when the file is written)")
+    ap.add_argument("--lat-col", type=int, metavar="N",
+                    help="1-based column of the lateral acceleration (y, to the left) "
+                         "(default: none, ay = 0)")
     ap.add_argument("--key", metavar="KEYFILE",
                     help="sign every sample with the last key of this key file "
                          "(swaywatch keygen)")
     a = ap.parse_args()
     key = signing_key(a.key) if a.key else None
 
-    samples = [(t, acc) for _n, t, acc in rows(a.csv)]
+    if a.lat_col is not None and a.lat_col < 2:
+        ap.error("--lat-col: a column after the time, 2 or more")
+    lat = a.lat_col - 1 if a.lat_col is not None else None
+    samples = [(t, acc, acc_y) for _n, t, acc, acc_y in rows(a.csv, lat)]
     if not samples:
         print("csv2lcmlog: no samples in %s" % a.csv, file=sys.stderr)
         return 1
@@ -139,9 +149,9 @@ def main():
     start = a.start_utime if a.start_utime is not None else int(time.time() * 1e6)
     fresh = time.time_ns() // 1000  # never below what an earlier run of the key used
     out = []
-    for seq, (t, acc) in enumerate(samples):
+    for seq, (t, acc, acc_y) in enumerate(samples):
         utime = start + int(round((t - t0) * 1e6))
-        data = encode(utime, seq, acc * scale, key, fresh + seq, channel)
+        data = encode(utime, seq, acc * scale, acc_y * scale, key, fresh + seq, channel)
         out.append(struct.pack(">IqqII", 0xEDA1DA01, seq, utime, len(channel), len(data)))
         out.append(channel + data)
     with open(a.out, "wb") as f:

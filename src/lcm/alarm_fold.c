@@ -1,10 +1,11 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* alarm_fold.c - the monitor's alarm rate limit (alarm_fold.h): one slot
- * per package and alarm kind, a window, a burst, and a summary of what
+ * per package, plane and alarm kind, a window, a burst, and a summary of what
  * the window held back.  Allocates only in sw_fold_create(). */
 #include "alarm_fold.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,7 +25,8 @@ typedef struct {
 
 struct sw_fold {
     size_t n;
-    slot_t *slot;    /* (n + 1) * FOLD_KINDS: package k at k, input alarms at n */
+    slot_t *slot;    /* (2 n + 1) * FOLD_KINDS: package k's plane p at row 2 k + p,
+                        input alarms at row 2 n */
     double next;     /* mono s of the earliest pending summary; INFINITY: none */
     double interval; /* s; 0: no limit */
     long folded;     /* held back and sent in summaries */
@@ -35,7 +37,8 @@ struct sw_fold {
 sw_fold_t *sw_fold_create(size_t n, double interval, sw_fold_emit_fn emit, void *user)
 {
     sw_fold_t *f = calloc(1, sizeof *f);
-    if (!f || !(f->slot = calloc((n + 1) * FOLD_KINDS, sizeof *f->slot))) {
+    if (!f || n > SIZE_MAX / (2 * FOLD_KINDS * sizeof *f->slot) - 1 ||
+        !(f->slot = calloc((2 * n + 1) * FOLD_KINDS, sizeof *f->slot))) {
         free(f);
         return NULL;
     }
@@ -44,7 +47,7 @@ sw_fold_t *sw_fold_create(size_t n, double interval, sw_fold_emit_fn emit, void 
     f->next = INFINITY;
     f->emit = emit;
     f->user = user;
-    for (size_t i = 0; i < (n + 1) * FOLD_KINDS; i++) f->slot[i].win = -INFINITY;
+    for (size_t i = 0; i < (2 * n + 1) * FOLD_KINDS; i++) f->slot[i].win = -INFINITY;
     return f;
 }
 
@@ -62,7 +65,9 @@ static slot_t *slot_of(sw_fold_t *f, const sw_alarm_t *a)
 {
     if (a->kind == SW_ALARM_INPUT_REJECTED || f->interval <= 0.0)
         return NULL;
-    const size_t row = a->pkg < f->n ? a->pkg : f->n;
+    /* each plane of a package apart: a storm across the truck never holds
+     * back an alarm along it, nor the other way round */
+    const size_t row = a->pkg < f->n ? 2 * a->pkg + (a->plane == SW_PLANE_LAT) : 2 * f->n;
     const unsigned k = (unsigned)a->kind < FOLD_KINDS ? (unsigned)a->kind : FOLD_KINDS - 1;
     return &f->slot[row * FOLD_KINDS + k];
 }
@@ -132,7 +137,7 @@ void sw_fold_tick(sw_fold_t *f, double mono)
     if (!(mono >= f->next))
         return;
     f->next = INFINITY;
-    for (size_t i = 0; i < (f->n + 1) * FOLD_KINDS; i++) {
+    for (size_t i = 0; i < (2 * f->n + 1) * FOLD_KINDS; i++) {
         slot_t *s = &f->slot[i];
         if (s->folded == 0)
             continue;

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* alarm_fold.h - the monitor's alarm rate limit (journald's
- * RateLimitIntervalSec/RateLimitBurst, per package and kind): within a
+ * RateLimitIntervalSec/RateLimitBurst, per package, plane and kind): within a
  * window of the interval from its first alarm, SW_FOLD_BURST alarms go out
  * and the rest are held back, counted, and go out as one summary when the
  * window ends; an alarm of a higher level than any sent in the window
@@ -15,7 +15,7 @@
 
 #include "swaywatch/alarm.h"
 
-#define SW_FOLD_BURST 3 /* alarms of a package and kind let through per window */
+#define SW_FOLD_BURST 3 /* alarms of a package's plane and kind let through per window */
 
 /* Send alarm a, stamped utime, now. */
 typedef void (*sw_fold_emit_fn)(void *user, const sw_alarm_t *a, int64_t utime);

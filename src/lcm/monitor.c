@@ -53,6 +53,11 @@ _Static_assert(SWAYWATCH_STATE_T_MODEL_BARE == SW_MODEL_BARE &&
                    SWAYWATCH_STATE_T_MODEL_FRAME == SW_MODEL_FRAME &&
                    SWAYWATCH_STATE_T_MODEL_CUSHION == SW_MODEL_CUSHION,
                "state_t.MODEL_* == sw_model_kind");
+_Static_assert(SWAYWATCH_STATE_T_PLANE_LONGITUDINAL == SW_PLANE_LONG &&
+                   SWAYWATCH_STATE_T_PLANE_LATERAL == SW_PLANE_LAT &&
+                   SWAYWATCH_ALARM_T_PLANE_LONGITUDINAL == SW_PLANE_LONG &&
+                   SWAYWATCH_ALARM_T_PLANE_LATERAL == SW_PLANE_LAT,
+               "state_t.PLANE_* == alarm_t.PLANE_* == sw_plane");
 _Static_assert(sizeof(((swaywatch_state_t *)0)->name) == SW_NAME_MAX,
                "state_t.name holds a scene name");
 _Static_assert(sizeof(((swaywatch_alarm_t *)0)->text) == SW_ALARM_TEXT_MAX,
@@ -68,7 +73,9 @@ struct sw_mon {
     sw_engine_t *engine;
     sw_risk_t *risk;
     size_t n;
-    int64_t *next_state_us;  /* per package: sample utime of the next state due */
+    int lateral;             /* the stream has lateral planes (o.lateral and a depth) */
+    int64_t *next_state_us;  /* per package and plane (2 k + plane): sample utime of the
+                                next state due */
     int64_t state_period_us; /* 0: every sample */
 
     sw_mon_opts_t o;
@@ -184,10 +191,12 @@ static int64_t utime_of(const sw_mon_t *m, double t)
     return utime_at(m, sw_gate_source_time(m->gate, t));
 }
 
-/* Package pkg's latest reserve for a message: -1 when there is none. */
-static double reserve_of(const sw_mon_t *m, size_t pkg)
+/* The latest reserve of package pkg's plane for a message: -1 when there
+ * is none. */
+static double reserve_of(const sw_mon_t *m, size_t pkg, sw_plane plane)
 {
-    const sw_risk_pkg_t *p = sw_risk_pkg(m->risk, pkg);
+    const sw_risk_pkg_t *p = plane == SW_PLANE_LONG ? sw_risk_pkg(m->risk, pkg)
+                                                    : sw_stream_risk_plane(m->st, pkg, plane);
     return p && isfinite(p->reserve_g) ? p->reserve_g : -1.0;
 }
 
@@ -213,7 +222,9 @@ static void emit_alarm(void *user, const sw_alarm_t *a, int64_t utime)
      * must never be published. */
     msg.theta = isfinite(a->theta) ? a->theta : 0.0;
     msg.margin = isfinite(a->margin) ? a->margin : 0.0;
-    msg.reserve_g = reserve_of(m, a->pkg);
+    msg.reserve_g = reserve_of(m, a->pkg, a->plane);
+    msg.plane = a->pkg < m->n && a->plane == SW_PLANE_LAT ? SWAYWATCH_ALARM_T_PLANE_LATERAL
+                                                          : SWAYWATCH_ALARM_T_PLANE_LONGITUDINAL;
     publish(m, m->alarm_channel, swaywatch_alarm_t_encode(m->buf, 0, SW_MON_BUF, &msg));
 }
 
@@ -241,7 +252,9 @@ static void on_event(void *user, const sw_event_t *ev)
 static void on_state(void *user, const sw_output_t *out)
 {
     sw_mon_t *m = user;
-    size_t k = out->pkg;
+    const size_t k = out->pkg;
+    const int lat = out->plane == SW_PLANE_LAT;
+    int64_t *const next = &m->next_state_us[2 * k + (lat ? 1 : 0)]; /* each plane its grid */
     if (m->o.on_state)
         m->o.on_state(m->o.user, out);
     /* Outputs come at sample times (and at the settling steps after the
@@ -252,14 +265,14 @@ static void on_state(void *user, const sw_output_t *out)
         /* The sensor's clock went back (a restart, a log played twice):
          * the grid follows it, or no state would go out until the new
          * clock caught up with the old grid. */
-        if (utime < m->next_state_us[k] - m->state_period_us)
-            m->next_state_us[k] = utime;
-        if (utime < m->next_state_us[k])
+        if (utime < *next - m->state_period_us)
+            *next = utime;
+        if (utime < *next)
             return;
-        m->next_state_us[k] += m->state_period_us;
+        *next += m->state_period_us;
         /* After a gap, restart the grid instead of publishing a burst. */
-        if (m->next_state_us[k] <= utime)
-            m->next_state_us[k] = utime + m->state_period_us;
+        if (*next <= utime)
+            *next = utime + m->state_period_us;
     }
     if (!finite) {
         m->c.states_withheld++; /* the alarm module raised MODEL_FAULT */
@@ -284,7 +297,8 @@ static void on_state(void *user, const sw_output_t *out)
     msg.margin_bound = out->margin_bound;
     msg.uplift_ratio = out->uplift_ratio;
     msg.a_g = out->a_g;
-    msg.reserve_g = reserve_of(m, k);
+    msg.reserve_g = reserve_of(m, k, out->plane);
+    msg.plane = lat ? SWAYWATCH_STATE_T_PLANE_LATERAL : SWAYWATCH_STATE_T_PLANE_LONGITUDINAL;
     publish(m, m->state_channel, swaywatch_state_t_encode(m->buf, 0, SW_MON_BUF, &msg));
 }
 
@@ -307,7 +321,8 @@ static int opts_valid(const sw_mon_opts_t *o)
            isfinite(o->gap) && isfinite(o->state_rate) && o->max_jump < 1e9 &&
            /* in microseconds of int64: a gap beyond 1e9 s or a rate below
             * 1e-9 Hz would overflow */
-           o->gap <= 1e9 && !(o->state_rate > 0.0 && !(o->state_rate >= 1e-9));
+           o->gap <= 1e9 && !(o->state_rate > 0.0 && !(o->state_rate >= 1e-9)) &&
+           (!o->lateral || (o->lat_axis >= 0 && o->lat_axis <= 2));
 }
 
 /* The stream of the monitor: its gate with the monitor's checks, both
@@ -315,7 +330,7 @@ static int opts_valid(const sw_mon_opts_t *o)
 static sw_stream_t *make_stream(sw_mon_t *m, const sw_scene_t *scenes, size_t n,
                                 const sw_engine_opts_t *eo, char *msg, size_t msglen)
 {
-    const sw_stream_opts_t so = {
+    sw_stream_opts_t so = {
         .engine = *eo,
         .gate = {.gap = m->o.gap,
                  .gap_policy = m->o.gap_policy,
@@ -337,6 +352,7 @@ static sw_stream_t *make_stream(sw_mon_t *m, const sw_scene_t *scenes, size_t n,
         .on_take = m->o.on_take ? on_gate_take : NULL,
         .user = m,
     };
+    so.engine.lateral = m->lateral;
     return sw_stream_create(scenes, n, &so, NULL, msg, msglen);
 }
 
@@ -370,7 +386,10 @@ sw_mon_t *sw_mon_create(const sw_scene_t *scenes, size_t n, const sw_engine_opts
     for (int r = 0; r < SW_MON_NREJ; r++) m->rej_last_alarm[r] = -INFINITY;
     const double interval = m->o.alarm_interval == 0.0 ? 1.0 : fmax(m->o.alarm_interval, 0.0);
 
-    m->next_state_us = calloc(n ? n : 1, sizeof *m->next_state_us);
+    /* a lateral plane only where a scene asks for it: without a depth,
+     * nothing of it is made or computed */
+    for (size_t k = 0; k < n && m->o.lateral; k++) m->lateral |= sw_scene_has_depth(&scenes[k]);
+    m->next_state_us = calloc(n ? 2 * n : 1, sizeof *m->next_state_us);
     m->buf = malloc(SW_MON_BUF);
     m->fold = sw_fold_create(n, interval, emit_alarm, m);
     if (!m->next_state_us || !m->buf || !m->fold)
@@ -618,6 +637,9 @@ int sw_mon_feed_on(sw_mon_t *m, const char *channel, const void *data, size_t le
         .a_g = m->o.flip ? -v[m->o.axis] : v[m->o.axis],
         .a_z = m->o.vertical >= 0 ? v[m->o.vertical] : 0.0,
         .a_max = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))),
+        .a_y = !m->lateral     ? 0.0
+               : m->o.flip_lat ? -v[m->o.lat_axis]
+                               : v[m->o.lat_axis],
         /* INT64_MIN is a seq like any other, never "none" */
         .seq = s.seq == SW_GATE_NO_SEQ ? s.seq + 1 : s.seq,
         .rx = mono,

@@ -63,6 +63,15 @@ typedef struct {
     const char *accel_channel; /* the channel of messages fed by sw_mon_feed() (a MAC
                                   covers it); NULL = SW_MON_ACCEL_CHANNEL */
     void *user;
+    /* the lateral plane (docs/lcm.md): with lateral, the packages whose
+     * scene gives a depth rock across the truck too, driven by the
+     * message's lat_axis (0 x, 1 y, 2 z; y left positive), negated with
+     * flip_lat; their states and alarms carry plane LATERAL.  No depth in
+     * any scene: nothing of it is made (one plane, as without).  0: one
+     * plane, whatever the scenes say. */
+    int lateral;
+    int lat_axis;
+    int flip_lat;
 } sw_mon_opts_t;
 
 #endif

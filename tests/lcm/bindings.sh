@@ -19,6 +19,18 @@ if [ -n "${LCM_GEN:-}" ]; then
     OLD_TYPES=$T/old
 fi
 OLD_TYPES=$OLD_TYPES PYTHONPATH="$PYDIR" python3 "$HERE/decode_log.py" "$T/accel.lcmlog" 301
+# docs/lcm.md's table of fingerprints: the rows marked "(now)" (and the
+# frozen accel_v1_t) are those of the types generated here
+PYTHONPATH="$PYDIR" python3 - "$HERE/../../docs/lcm.md" <<'PY'
+import re, sys
+import swaywatch
+rows = re.findall(r"^\| `(\w+)`[^|]* \| ([^|]*) \| `([0-9a-f]{16})` \|$", open(sys.argv[1]).read(), re.M)
+now = {t: fp for t, v, fp in rows if "(now)" in v or v.strip() == "frozen"}
+assert set(now) == {"state_t", "alarm_t", "accel_t", "accel_v1_t"}, rows
+for t, fp in now.items():
+    got = getattr(__import__("swaywatch." + t, fromlist=[t]), t)._get_packed_fingerprint().hex()
+    assert got == fp, "docs/lcm.md: %s's fingerprint is %s, the table says %s" % (t, got, fp)
+PY
 # Two keys, the signer is the last; the key is no secret here.
 cat >"$T/keys" <<'KEYS'
 # test keys

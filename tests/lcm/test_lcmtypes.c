@@ -97,10 +97,11 @@ static void test_state_round_trip(void **st)
     s.uplift_ratio = 1.2;
     s.a_g = -4.0;
     s.reserve_g = 0.35;
+    s.plane = SWAYWATCH_STATE_T_PLANE_LATERAL;
     unsigned char buf[512];
     int len = swaywatch_state_t_encode(buf, 0, sizeof buf, &s);
-    /* fingerprint, utime + seq, name, model + phase + side, nine doubles */
-    assert_int_equal(len, 8 + 16 + 64 + 3 + 9 * 8);
+    /* fingerprint, utime + seq, name, model + phase + side, nine doubles, plane */
+    assert_int_equal(len, 8 + 16 + 64 + 3 + 9 * 8 + 1);
     swaywatch_state_t t;
     assert_int_equal(swaywatch_state_t_decode(buf, 0, len, &t), len);
     assert_memory_equal(&s.name, &t.name, sizeof s.name);
@@ -109,6 +110,7 @@ static void test_state_round_trip(void **st)
     assert_true(t.z_b == s.z_b && t.margin == s.margin && t.margin_bound == s.margin_bound);
     assert_true(t.uplift_ratio == s.uplift_ratio && t.a_g == s.a_g);
     assert_true(t.reserve_g == s.reserve_g);
+    assert_int_equal(t.plane, 1);
 }
 
 static void test_alarm_round_trip(void **st)
@@ -125,10 +127,11 @@ static void test_alarm_round_trip(void **st)
     a.theta = 0.3;
     a.margin = 0.15;
     a.reserve_g = 0.2;
+    a.plane = SWAYWATCH_ALARM_T_PLANE_LATERAL;
     unsigned char buf[512];
     int len = swaywatch_alarm_t_encode(buf, 0, sizeof buf, &a);
-    /* fingerprint, utime + seq, name, kind + level, text, three doubles */
-    assert_int_equal(len, 8 + 16 + 64 + 2 + 128 + 24);
+    /* fingerprint, utime + seq, name, kind + level, text, three doubles, plane */
+    assert_int_equal(len, 8 + 16 + 64 + 2 + 128 + 24 + 1);
     swaywatch_alarm_t b;
     memset(&b, 0, sizeof b); /* padding compares too */
     assert_int_equal(swaywatch_alarm_t_decode(buf, 0, len, &b), len);

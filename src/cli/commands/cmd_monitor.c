@@ -97,6 +97,8 @@ static const sw_cli_option_t monitor_input_options[] = {
     {SW_CLI_SECTION, .help = "Input:"},
     {SW_CLI_FLAG, 0, "flip", MO(mo.flip), .value = 1,
      .help = "negate the longitudinal axis (sensor mounted backwards)"},
+    {SW_CLI_FLAG, 0, "flip-lat", MO(mo.flip_lat), .value = 1,
+     .help = "negate the lateral axis (a sensor whose y axis points to the right)"},
     {SW_CLI_CALL, 0, "accel-unit", "m/s2|g", MO(mo.accel_scale), .fn = sw_cli_accel_unit,
      .help = "unit of the message's values (default m/s2)"},
     {SW_CLI_DOUBLE, 0, "reserve-rate", "HZ", MO(mo.reserve_rate), .rule = SW_NUM_NONNEGATIVE,
@@ -269,7 +271,8 @@ static int check_args(const sw_cli_opts_t *o, monitor_opts_t *m, sw_scene_t **sc
     const sw_cli_file_t url_out = {"--lcm-url",
                                    sw_cli_lcm_url_output(m->url, url_path, sizeof url_path)};
     if ((rc = sw_cli_check_run_files(NULL, &o->scenes, &url_out, 1)) != SW_EXIT_OK ||
-        (rc = sw_cli_load_scenes(o, scenes, n)) != SW_EXIT_OK)
+        (rc = sw_cli_load_scenes(o, scenes, n)) != SW_EXIT_OK ||
+        (rc = sw_cli_mon_lateral(&m->mo, *scenes, *n)) != SW_EXIT_OK)
         return rc;
     /* A file:// URL: LCM's reader trusts the log, ours checks it first. */
     return sw_cli_check_lcm_url("monitor", m->url);

@@ -239,8 +239,6 @@ const sw_cli_option_t sw_cli_csv_options[] = {
              "handling as --accel-col; it drives the lateral plane of the scenes that give "
              "package.depth (default: the header's lateral column: Lateral Gs, Y (g), ay; none: "
              "one plane, along the truck)"},
-    {SW_CLI_FLAG, 0, "flip-lat", CSV(csv.flip_lat), .value = 1,
-     .help = "negate the lateral axis (a logger whose y axis points to the right)"},
     {SW_CLI_CALL, 0, "delimiter", "D", CSV(csv.delim), .fn = parse_delim,
      .help = "',', ';' or tab (default: detected from the first line)"},
     {SW_CLI_FLAG, 0, "header", CSV(csv.header), .value = 1,
@@ -301,6 +299,8 @@ const sw_cli_option_t sw_cli_sample_options[] = {
              "1 g = " SW_CLI_STR(SW_G0) " m/s^2 (default: from the header's name, else m/s2)"},
     {SW_CLI_FLAG, 0, "flip", CSV(csv.flip), .value = 1,
      .help = "negate the longitudinal axis (logger mounted backwards)"},
+    {SW_CLI_FLAG, 0, "flip-lat", CSV(csv.flip_lat), .value = 1,
+     .help = "negate the lateral axis (a logger whose y axis points to the right)"},
     {SW_CLI_FLAG, 0, "strict", CSV(strict), .value = 1,
      .help = "stop at the first rejected row, exit 2"},
     {SW_CLI_TEXT,

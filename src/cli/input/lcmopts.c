@@ -13,6 +13,7 @@ void sw_cli_mon_opts_init(sw_mon_opts_t *mo)
     memset(mo, 0, sizeof *mo);
     mo->vertical = -1;
     mo->hysteresis = -1.0;
+    mo->lat_axis = 1; /* y, left: accel_t's */
 }
 
 void sw_cli_print_rejected(FILE *f, const sw_mon_counts_t *k)
@@ -100,6 +101,9 @@ const sw_cli_option_t sw_cli_lcm_publish_options[] = {
 const sw_cli_option_t sw_cli_lcm_input_options[] = {
     {SW_CLI_CALL, 0, "axis", "x|y|z", MON(axis), .fn = parse_axis,
      .help = "message axis along the truck's travel (default x)"},
+    {SW_CLI_CALL, 0, "lat-axis", "x|y|z|none", MON(lat_axis), .fn = parse_axis, .value = 1,
+     .help = "message axis across the truck, to the left: it drives the lateral plane of the "
+             "scenes that give package.depth (default y; none: one plane, along the truck)"},
     {SW_CLI_CALL, 0, "vertical", "x|y|z|none", MON(vertical), .fn = parse_axis, .value = 1,
      .help = "message axis used as vertical acceleration, up (say whether it includes gravity: "
              "--vert-includes-gravity or --vert-excludes-gravity; default none: gravity only)"},
@@ -109,6 +113,26 @@ const sw_cli_option_t sw_cli_lcm_input_options[] = {
              "the wall clock; a log: when lcm-logger received them; default: not checked)"},
     {.kind = SW_CLI_END},
 };
+
+int sw_cli_mon_lateral(sw_mon_opts_t *mo, const sw_scene_t *scenes, size_t n)
+{
+    int depth = 0;
+    for (size_t k = 0; k < n; k++) depth |= sw_scene_has_depth(&scenes[k]);
+    mo->lateral = depth && mo->lat_axis >= 0;
+    if (!mo->lateral)
+        return SW_EXIT_OK;
+    static const char axes[] = "xyz";
+    if (mo->lat_axis == mo->axis || mo->lat_axis == mo->vertical) {
+        sw_cli_error(
+            "--lat-axis %c is also the %s axis (--%s %c), and a scene gives package.depth: "
+            "say which message axis is across the truck (--lat-axis x|y|z), or --lat-axis "
+            "none for one plane along the truck",
+            axes[mo->lat_axis], mo->lat_axis == mo->axis ? "longitudinal" : "vertical",
+            mo->lat_axis == mo->axis ? "axis" : "vertical", axes[mo->lat_axis]);
+        return SW_EXIT_USAGE;
+    }
+    return SW_EXIT_OK;
+}
 
 int sw_cli_mon_gate(sw_mon_opts_t *mo, const sw_cli_gate_t *g)
 {

@@ -23,9 +23,9 @@
 #define RD(f) SW_CLI_AT(sw_cli_read_opts_t, f)
 
 /* The section of the options of lcm-logger files. */
-#define SECTION                                                                       \
-    "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit, --flip\n" \
-    "and --strict apply):"
+#define SECTION                                                                        \
+    "lcm-logger files (swaywatch.accel_t; of the CSV options, --accel-unit, --flip,\n" \
+    "--flip-lat and --strict apply):"
 
 /* --accel-channel, as monitor calls it; --channel, its name before, still
  * works. */
@@ -201,6 +201,9 @@ static int lcmlog_start(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
     mo.reserve_rate = R->reserve_rate > 0.0 ? R->reserve_rate : -1.0;
     mo.accel_scale = R->o->copts.csv.accel_scale;
     mo.flip = R->o->copts.csv.flip;
+    mo.flip_lat = R->o->copts.csv.flip_lat;
+    if (sw_cli_mon_lateral(&mo, scenes, R->lateral ? n : 0) != SW_EXIT_OK)
+        return SW_EXIT_USAGE;
     mo.on_state = eo->on_state || P->pacer.speed > 0.0 ? on_state : NULL;
     mo.on_event = eo->on_event ? on_event : NULL;
     mo.on_take = R->take ? on_take : NULL;
@@ -286,6 +289,19 @@ static int lcmlog_feed(sw_cli_reader_t *R, sw_gate_facts_t *f, int *vert)
     f->upstream_rejected =
         k.received - f->received - (au ? au->checked - au->refused[SW_AUTH_OK] : 0);
     *vert = R->o->mo.vertical >= 0;
+    /* A sender without a lateral axis writes one value (0) throughout: an
+     * honest log, read along the truck, its lateral plane held still.  Said
+     * so, not refused as a channel that never varies (the CSV path's
+     * reason: a wrong column; an accel_t's ay is no column chosen). */
+    if (f->lateral && f->accepted > 1 && f->lat.min == f->lat.max) {
+        if (!R->quiet)
+            sw_cli_error(
+                "%s: note: the lateral acceleration (--lat-axis) reads %.6g m/s^2 throughout: "
+                "the sender has no lateral axis, or the truck never turned; the lateral "
+                "planes saw no more than that",
+                R->log, f->lat.min);
+        f->lateral = 0;
+    }
     unused(R, &k);
     dates(R, P, f);
     return SW_EXIT_OK;
