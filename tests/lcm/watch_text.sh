@@ -7,7 +7,8 @@
 # sequence.  'watch --once' (plain text) must print valid UTF-8 without a
 # single control character but the line ends, each one shown as '?', and
 # the printable text around them kept; a name cut to the table's width is
-# cut between characters.  The messages reach watch from an
+# cut between characters.  A package with two planes (state_t.plane) has
+# two rows, the lateral one under it.  The messages reach watch from an
 # lcm-logger file (-l file://...), no network needed.
 # usage: watch_text.sh SWAYWATCH PYTHON_TYPES_DIR
 set -eu
@@ -54,6 +55,14 @@ for k, text in enumerate([b"x" + c0 + b"y", b"x" + b"".join(c1) + b"y", b"x" + r
     a.kind, a.level, a.text = 9, 2, i8(text, 128)
     a.theta, a.margin, a.reserve_g = 0.0, 1.0, -1.0
     events.append((t0 + 10 + k, "SWAY_ALARM", a.encode()))
+# a package that rocks in two planes (the lateral state first, as the
+# monitor sends them): two rows, the lateral one under it, overturned
+for k, (plane, phase, theta) in enumerate([(1, 2, -1.5708), (0, 0, 0.0)]):
+    s = state_t()
+    s.utime, s.seq, s.name = t0 + 20, 7 + k, i8(b"P2", 64)
+    s.model, s.phase, s.theta, s.margin, s.reserve_g = 0, phase, theta, 0.5, -1.0
+    s.plane = plane
+    events.append((t0 + 20 + k, "SWAY_STATE", s.encode()))
 # a last event much later: the log does not end while watch listens
 events.append((t0 + 60_000_000, "OTHER", b"x"))
 with open(sys.argv[1], "wb") as f:
@@ -84,6 +93,15 @@ for want in ("A" + "?" * 12 + "Z", "B" + "?" * 12 + "Z", "C" + "?" * 12 + "Z", "
              "E" + "?" * 9 + "[2J", "H" + "\u00e9" * 7 + " "):
     if want not in text:
         bad.append("missing %r" % want)
+# the package with two planes: its row, then its lateral plane's; one
+# plane only for the others
+lines = text.split("\n")
+rows = [i for i, l in enumerate(lines) if l.startswith("P2 ")]
+if len(rows) != 1 or not lines[rows[0] + 1].startswith("  sideways ") or \
+        "OVERTURNED" not in lines[rows[0] + 1] or "OVERTURNED" in lines[rows[0]]:
+    bad.append("the two planes of P2 are not shown as such: %r" % lines)
+if sum("sideways" in l for l in lines) != 1:
+    bad.append("a package with one plane shown with a lateral row")
 for b in bad[:20]:
     print("FAIL:", b, file=sys.stderr)
 sys.exit(1 if bad else 0)

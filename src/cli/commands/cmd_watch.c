@@ -227,7 +227,8 @@ static SCREEN *screen_open(void)
 
 /* ---- the command ------------------------------------------------------------------ */
 
-/* alpha of every --scene (validated as the monitor does). */
+/* alpha of every --scene (validated as the monitor does): along the truck
+ * at k, across it at n + k (NaN without a depth). */
 static int scene_alphas(const sw_cli_opts_t *so, sw_scene_t **scenes, size_t *n, double **alpha)
 {
     *scenes = NULL;
@@ -238,7 +239,7 @@ static int scene_alphas(const sw_cli_opts_t *so, sw_scene_t **scenes, size_t *n,
     int rc = sw_cli_load_scenes(so, scenes, n);
     if (rc != SW_EXIT_OK)
         return rc;
-    if (!(*alpha = calloc(*n, sizeof **alpha))) {
+    if (!(*alpha = calloc(2 * *n, sizeof **alpha))) {
         sw_cli_error("watch: out of memory");
         return SW_EXIT_IO;
     }
@@ -246,6 +247,11 @@ static int scene_alphas(const sw_cli_opts_t *so, sw_scene_t **scenes, size_t *n,
         sw_derived_t d;
         sw_scene_validate(&(*scenes)[k], &d, NULL, NULL, NULL);
         (*alpha)[k] = d.alpha;
+        sw_scene_t lat;
+        (*alpha)[*n + k] = NAN;
+        if (sw_scene_has_depth(&(*scenes)[k]) && sw_scene_lateral(&(*scenes)[k], &lat) == SW_OK &&
+            sw_scene_validate(&lat, &d, NULL, NULL, NULL) == SW_OK)
+            (*alpha)[*n + k] = d.alpha;
     }
     return SW_EXIT_OK;
 }
@@ -281,6 +287,7 @@ int cmd_watch(int argc, char **argv)
     w->o = &o;
     w->scenes = scenes;
     w->scene_alpha = alpha;
+    w->scene_alpha_lat = alpha ? alpha + n : NULL;
     w->nscenes = n;
     w->start = w->win_start = sw_watch_mono_now();
     w->rate = w->lag = NAN;

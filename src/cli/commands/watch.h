@@ -44,8 +44,11 @@ typedef struct {
     long alarms;  /* last alarms shown */
 } watch_opts_t;
 
+/* One plane of a package (state_t.name and plane): a package that rocks
+ * across the truck too has two rows. */
 typedef struct {
     char name[SW_NAME_MAX];
+    int plane; /* state_t.PLANE_* */
     swaywatch_state_t last;
     double rx;      /* monotonic s at the arrival of the last state */
     double alpha;   /* rad; NaN: not known */
@@ -69,6 +72,7 @@ typedef struct {
     const watch_opts_t *o;
     const sw_scene_t *scenes; /* --scene, for alpha */
     const double *scene_alpha;
+    const double *scene_alpha_lat; /* across the truck; NaN: no depth */
     size_t nscenes;
 
     pkg_view_t pkg[MAX_PKG];

@@ -54,22 +54,28 @@ static void count_seq(int64_t seq, int64_t *last, int *have, long *lost, long *r
     *have = 1;
 }
 
-static pkg_view_t *find_pkg(watch_t *w, const char *name)
+/* The row of a package's plane (a plane that is neither is shown as the
+ * lateral one's: it is not the plane along the truck). */
+static pkg_view_t *find_pkg(watch_t *w, const char *name, int plane)
 {
+    plane = plane == SWAYWATCH_STATE_T_PLANE_LONGITUDINAL ? plane : SWAYWATCH_STATE_T_PLANE_LATERAL;
     for (size_t i = 0; i < w->npkg; i++)
-        if (!strcmp(w->pkg[i].name, name))
+        if (w->pkg[i].plane == plane && !strcmp(w->pkg[i].name, name))
             return &w->pkg[i];
     if (w->npkg == MAX_PKG)
         return NULL;
     pkg_view_t *p = &w->pkg[w->npkg++];
     memset(p, 0, sizeof *p);
     snprintf(p->name, sizeof p->name, "%s", name);
+    p->plane = plane;
     p->alpha = NAN;
     p->rate = NAN;
     for (size_t k = 0; k < w->nscenes; k++)
         if (!strcmp(w->scenes[k].name, name)) {
-            p->alpha = w->scene_alpha[k];
-            p->alpha_from = 1;
+            p->alpha = plane == SWAYWATCH_STATE_T_PLANE_LATERAL && w->scene_alpha_lat
+                           ? w->scene_alpha_lat[k]
+                           : w->scene_alpha[k];
+            p->alpha_from = isfinite(p->alpha) ? 1 : 0;
         }
     return p;
 }
@@ -104,7 +110,7 @@ static void on_state(const lcm_recv_buf_t *rb, const char *channel, void *user)
     count_seq(s.seq, &w->state_seq, &w->have_state_seq, &w->lost_states, &w->seq_restarts);
     char name[SW_NAME_MAX];
     sw_watch_msg_text(name, s.name, sizeof s.name);
-    pkg_view_t *p = find_pkg(w, name);
+    pkg_view_t *p = find_pkg(w, name, s.plane);
     if (!p) {
         w->pkg_overflow++;
         return;

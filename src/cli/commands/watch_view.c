@@ -192,7 +192,10 @@ static void table_row(view_t *v, int attr, const layout_t *l, const char *name, 
     add(v, attr, "%s", row);
 }
 
-static void view_package(view_t *v, const layout_t *l, const pkg_view_t *p, double now)
+/* name: what the row's first column says (a lateral row under its
+ * package's: "  sideways"). */
+static void view_package(view_t *v, const layout_t *l, const pkg_view_t *p, const char *name,
+                         double now)
 {
     const swaywatch_state_t *s = &p->last;
     char b[MAX_BAR + 1], ratio[16] = "", theta[16], margin[16], reserve[16], rate[32];
@@ -216,8 +219,8 @@ static void view_package(view_t *v, const layout_t *l, const pkg_view_t *p, doub
     int attr = s->phase == SWAYWATCH_STATE_T_PHASE_OVERTURNED || r >= 1.0 ? ATTR_CRIT
                : s->phase == SWAYWATCH_STATE_T_PHASE_ROCKING              ? ATTR_WARN
                                                                           : ATTR_NONE;
-    table_row(v, attr, l, p->name, model_name(s->model), phase_name(s->phase), b, ratio, theta,
-              margin, reserve, rate);
+    table_row(v, attr, l, name, model_name(s->model), phase_name(s->phase), b, ratio, theta, margin,
+              reserve, rate);
 }
 
 static void view_packages(view_t *v, const watch_t *w, double now)
@@ -225,7 +228,30 @@ static void view_packages(view_t *v, const watch_t *w, double now)
     const layout_t l = layout(v->layout);
     table_row(v, ATTR_HEAD, &l, "PACKAGE", "MODEL", "PHASE", "|THETA|/ALPHA", "", "THETA", "MARGIN",
               "RESERVE", "STATES/S");
-    for (size_t i = 0; i < w->npkg; i++) view_package(v, &l, &w->pkg[i], now);
+    /* each package's plane along the truck, its lateral plane under it;
+     * a lateral plane seen without the other on its own row */
+    for (size_t i = 0; i < w->npkg; i++) {
+        const pkg_view_t *p = &w->pkg[i];
+        if (p->plane != SWAYWATCH_STATE_T_PLANE_LONGITUDINAL)
+            continue;
+        view_package(v, &l, p, p->name, now);
+        for (size_t j = 0; j < w->npkg; j++)
+            if (w->pkg[j].plane != SWAYWATCH_STATE_T_PLANE_LONGITUDINAL &&
+                !strcmp(w->pkg[j].name, p->name))
+                view_package(v, &l, &w->pkg[j], "  sideways", now);
+    }
+    for (size_t i = 0; i < w->npkg; i++) {
+        const pkg_view_t *p = &w->pkg[i];
+        int alone = p->plane != SWAYWATCH_STATE_T_PLANE_LONGITUDINAL;
+        for (size_t j = 0; j < w->npkg && alone; j++)
+            alone = !(w->pkg[j].plane == SWAYWATCH_STATE_T_PLANE_LONGITUDINAL &&
+                      !strcmp(w->pkg[j].name, p->name));
+        if (alone) {
+            char name[SW_NAME_MAX + 16];
+            snprintf(name, sizeof name, "%s sideways", p->name);
+            view_package(v, &l, p, name, now);
+        }
+    }
     if (!w->npkg)
         add(v, ATTR_NONE, "(no package yet)");
 }
