@@ -14,7 +14,7 @@ Usage, as installed (/usr/local for a build installed with cmake --install):
 
 Each message on the channel (a regular expression, anchored as LCM's;
 default SWAY_STATE; SWAY_ALARM for the alarms) is decoded as the type its
-fingerprint names.  Prints one line per package (states: messages, max
+fingerprint names.  Prints one line per package and plane (states: messages, max
 |theta|, min margin, phases seen; alarms: messages by kind) and the numbers
 decoded.  Exit status 0; 1 if a message on the channel did not decode, a
 seq number is missing, or --expect N was given and N messages were not
@@ -104,14 +104,22 @@ def main():
                     missing += max(0, m.seq - last_seq[key] - 1)
                 last_seq[key] = m.seq
                 if kind is state_t:
-                    p = states.setdefault(text(m.name), {
+                    # a package that rocks across the truck too has a state
+                    # per plane: each plane its line
+                    name = text(m.name)
+                    if m.plane == state_t.PLANE_LATERAL:
+                        name += " (sideways)"
+                    p = states.setdefault(name, {
                         "count": 0, "max_theta": 0.0, "min_margin": math.inf, "phases": set()})
                     p["count"] += 1
                     p["max_theta"] = max(p["max_theta"], abs(m.theta))
                     p["min_margin"] = min(p["min_margin"], m.margin)
                     p["phases"].add(PHASES.get(m.phase, "?"))
                 else:
-                    k = alarms.setdefault(text(m.name) or "(input)", {})
+                    name = text(m.name) or "(input)"
+                    if m.plane == alarm_t.PLANE_LATERAL:
+                        name += " (sideways)"
+                    k = alarms.setdefault(name, {})
                     name = KINDS.get(m.kind, "KIND_%d" % m.kind)
                     k[name] = k.get(name, 0) + 1
     except (OSError, ValueError) as e:
