@@ -250,6 +250,7 @@ static int start(mon_ctx_t *c, const sw_mon_opts_t *mo, lcm_t *lcm)
     sw_cli_warn_scene_cost(c->scenes, c->n, &eo);
     sw_cli_warn_no_reserve(sw_mon_risk(c->mon), 0, c->n, c->scenes);
     c->reserve_rate = mo->reserve_rate;
+    c->lat_axis = mo->lat_axis;
     sw_cli_warn_reserve_cost(sw_mon_risk(c->mon), 0, c->n, c->scenes, c->reserve_rate);
     return SW_EXIT_OK;
 }

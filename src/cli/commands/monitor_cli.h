@@ -58,6 +58,7 @@ typedef struct {
     double busy;             /* s spent handling samples */
     double max_backlog;      /* s; 0: no shedding (a log, memq: the receive time is not now) */
     double reserve_rate;     /* Hz of sample time; < 0: no reserve */
+    int lat_axis;            /* --lat-axis: 0..2, -1 none (a depth then rocks no plane) */
     const char *key_file;    /* --key, or NULL */
     sw_keyring_t *keys;      /* its keys, the monitor core's (a reload replaces them) */
     sw_cli_reload_t reload;

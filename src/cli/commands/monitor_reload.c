@@ -219,6 +219,20 @@ static int reload(mon_ctx_t *c, int *again)
         fprintf(stderr, "swaywatch: monitor: reload: no scene changed; %zu packages kept\n", n);
         goto applied;
     }
+    /* A package cannot gain or lose its lateral plane while the monitor
+     * runs (its input and engines are made with or without one): refused
+     * whole, with the reason, never a depth judged along the truck only. */
+    for (size_t k = 0; k < n && c->lat_axis >= 0; k++) {
+        const int had = sw_engine_planes(sw_mon_engine(c->mon), k) == 2;
+        if (!sw_scene_equal(&scenes[k], &fresh[k]) && had != (sw_scene_has_depth(&fresh[k]) != 0)) {
+            sw_cli_error(
+                "monitor: reload: %s: package.depth %s: a package cannot gain or lose its "
+                "lateral plane while the monitor runs; restart the monitor",
+                fresh[k].name, had ? "removed" : "added");
+            rc = SW_EXIT_USAGE;
+            goto keep;
+        }
+    }
     /* Build the changed packages once on the side with the monitor's
      * options: what passes here cannot fail in sw_mon_replace() but for
      * memory, so a reload does not stop half-way. */
