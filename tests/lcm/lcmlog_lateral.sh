@@ -8,7 +8,8 @@
 # states carry the plane, two per sample, and its OVERTURNED alarm says
 # "sideways" with plane LATERAL.  Without a depth (or with --lat-axis
 # none) one state per sample is published, plane 0, exactly as the same
-# run makes them with the lateral input ignored; --lat-axis equal to
+# run makes them with the lateral input ignored; forensics, which judges
+# one plane, says the lateral input is not used; --lat-axis equal to
 # --axis is refused with a depth, and --flip-lat tips the crate the
 # other way.
 # usage: lcmlog_lateral.sh SWAYWATCH SOURCE_DIR PYTHONPATH
@@ -109,6 +110,10 @@ assert all(a[3] == 0 for a in p["alarms"]) and all(s[1] == 0.0 for s in p["state
 done
 head -1 "$T/one.states" | grep -q '_lat' && fail "lateral columns without a depth"
 
+# a command that reads one plane says the lateral acceleration is not used
+"$SW" forensics "$T/side.lcmlog" --scene "$T/deep.ini" >/dev/null 2>"$T/for.err" || true
+grep -q 'the lateral acceleration (--lat-axis) is not used' "$T/for.err" ||
+    fail "forensics did not say the lateral plane is not judged: $(cat "$T/for.err")"
 # an axis that is also the longitudinal one: refused, naming --lat-axis
 rc=0
 "$SW" replay "$T/side.lcmlog" --scene "$T/deep.ini" --axis y >/dev/null 2>"$T/axis.err" || rc=$?

@@ -204,6 +204,13 @@ static int lcmlog_start(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
     mo.flip_lat = R->o->copts.csv.flip_lat;
     if (sw_cli_mon_lateral(&mo, scenes, R->lateral ? n : 0) != SW_EXIT_OK)
         return SW_EXIT_USAGE;
+    int depth = 0;
+    for (size_t k = 0; k < n; k++) depth |= sw_scene_has_depth(&scenes[k]);
+    if (!R->lateral && depth && mo.lat_axis >= 0 && !R->quiet)
+        sw_cli_error(
+            "%s: note: the lateral acceleration (--lat-axis) is not used: this command judges "
+            "the plane along the truck only",
+            R->lf.name);
     mo.on_state = eo->on_state || P->pacer.speed > 0.0 ? on_state : NULL;
     mo.on_event = eo->on_event ? on_event : NULL;
     mo.on_take = R->take ? on_take : NULL;
