@@ -21,6 +21,7 @@
  * dump prints, for the swaywatch channels:
  *   accel COUNT
  *   state NAME count N seq_gaps G max_abs_theta X min_margin M
+ *                                         (NAME:lateral for a lateral plane)
  *   alarm UTIME NAME KIND LEVEL          (in order)
  *   nonfinite N                           (doubles that were not finite)
  * so that shell tests can compare two logs with grep and diff.
@@ -252,11 +253,14 @@ typedef struct {
     double max_abs_theta, min_margin;
 } pkg_t;
 
-static pkg_t *find_pkg(pkg_t *pk, int *n, const int8_t *name)
+/* A package's plane: its name, and ":lateral" after it across the truck. */
+static pkg_t *find_pkg(pkg_t *pk, int *n, const int8_t *name, int plane)
 {
     char s[64];
     memcpy(s, name, 63);
     s[63] = '\0';
+    if (plane == SWAYWATCH_STATE_T_PLANE_LATERAL && strlen(s) < sizeof s - 9)
+        strcat(s, ":lateral");
     for (int i = 0; i < *n; i++)
         if (!strcmp(pk[i].name, s))
             return &pk[i];
@@ -296,7 +300,7 @@ static int cmd_dump(const char *path)
             const double v[] = {s.theta,        s.theta_dot,    s.u,  s.z_b, s.margin,
                                 s.margin_bound, s.uplift_ratio, s.a_g};
             for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) nonfinite += !isfinite(v[i]);
-            pkg_t *p = find_pkg(pk, &npk, s.name);
+            pkg_t *p = find_pkg(pk, &npk, s.name, s.plane);
             if (!p)
                 continue;
             p->count++;

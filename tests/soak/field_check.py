@@ -101,11 +101,14 @@ with open(work + "/output.lcmlog", "rb") as f:
         ch, data = f.read(cl).decode(), f.read(dl)
         if ch == "SWAY_STATE":
             s = state_t.decode(data)
-            name = bytes(b & 0xFF for b in s.name).split(b"\0")[0].decode()
+            # a package's planes apart: each has its states and its alarm limit
+            name = bytes(b & 0xFF for b in s.name).split(b"\0")[0].decode() + \
+                (":lateral" if s.plane == state_t.PLANE_LATERAL else "")
             states.setdefault(name, []).append((ts, s.utime))
         elif ch == "SWAY_ALARM":
             a = alarm_t.decode(data)
-            name = bytes(b & 0xFF for b in a.name).split(b"\0")[0].decode()
+            name = bytes(b & 0xFF for b in a.name).split(b"\0")[0].decode() + \
+                (":lateral" if a.plane == alarm_t.PLANE_LATERAL else "")
             text = bytes(b & 0xFF for b in a.text).split(b"\0")[0].decode()
             # INPUT_REJECTED is limited per reason: the reason is part of its key
             why = re.search(r"rejected: (\w+)", text) if a.kind == alarm_t.KIND_INPUT_REJECTED \
