@@ -24,8 +24,10 @@
  * first 64 intervals teach it the pace; its gap, pace and ring code runs
  * after them); the seeds' pulse has 120.  A refused sample does not count
  * (it costs the gate less than a take, and the file holds at most some
- * 200 events).  Gaps are bridged up to FZ_MAX_BRIDGE, and no reserve is
- * kept (fuzz.h).
+ * 200 events).  The engine steps STEP at most, one step per sample of
+ * the seeds' 200 Hz where the default 1 ms made five (the crate's motion
+ * is fuzz_scene's matter, not this target's).  Gaps are bridged up to
+ * FZ_MAX_BRIDGE, and no reserve is kept (fuzz.h).
  *
  * Checks: the log opens (it is a readable file); the monitor's read ends
  * with SW_OK, or with strict SW_EPARSE / SW_EINVAL; a read stopped early
@@ -51,6 +53,7 @@
 #define MAX_FILE (16 * 1024) /* bytes of the log; the rest of an input is not read */
 #define MAX_TAKES 96         /* samples the engine takes before the read is stopped */
 #define MAX_SPAN 1.0         /* s of sample time after the first sample taken */
+#define STEP 0.005           /* s, the engine's largest step: one per sample at 200 Hz */
 
 /* The file the reader opens: one per process, rewritten for each input,
  * opened again through /proc/self/fd.  In memory (memfd_create): a file
@@ -117,6 +120,7 @@ static sw_mon_t *make(uint8_t o, budget_t *bu)
     snprintf(sc.name, sizeof sc.name, "crate");
     sw_engine_opts_t eo;
     memset(&eo, 0, sizeof eo);
+    eo.dt = STEP;
     char msg[256];
     sw_mon_t *m = sw_mon_create(&sc, 1, &eo, &mo, NULL, msg, sizeof msg);
     FZ_CHECK(m != NULL);
