@@ -166,6 +166,27 @@ run "$SW" forensics "$LOGS/hard-stop-overturn.csv" --scene "$BED" --no-what-if -
 expect_rc 0 "forensics --plot"
 svg_has "$TMP/f.svg" 'hard-stop-overturn.csv: crate-A' 'θ/α, crate-A' 'margin, crate-A' '>overturn<'
 
+# A log with a lateral column and a package with a depth: the lateral
+# plane's tilt in a panel of its own, the lateral acceleration and the
+# lateral margin drawn and named, the events named by their plane (the
+# crate of depth 0.728 m overturns across the truck on the full shock, the
+# one without a depth along it on half of it).
+awk -F, 'NR == 1 { print "t_s,ax,ay"; next } { print $1 "," 0.5 * $2 "," $2 }' \
+    "$LOGS/hard-stop-overturn.csv" >"$TMP/both.csv"
+printf '[package]\nname = deep_crate\nheight = 2.0\nwidth = 1.2\ndepth = 0.728\nmass = 1000\n' \
+    >"$TMP/deep.ini"
+run "$SW" replay "$TMP/both.csv" --scene "$TMP/deep.ini" --scene "$BED" --plot "$TMP/lat.svg" -q
+expect_rc 0 "replay --plot with a lateral plane"
+svg_has "$TMP/lat.svg" 'tilt along the truck θ / α' 'tilt across the truck θ / α' \
+    'across the truck a' 'θ/α across, deep_crate' 'θ/α, deep_crate' 'θ/α, crate-A' \
+    'margin across, deep_crate' 'uplift, deep_crate (lateral)' \
+    'overturn across the truck, deep_crate' 'overturn along the truck, crate-A' \
+    'tip across the truck, deep_crate'
+grep -qF 'overturn along the truck, deep_crate' "$TMP/lat.svg" &&
+    fail "the lateral overturn named along the truck"
+# the one-plane figure keeps its single tilt panel
+grep -qF 'tilt along the truck' "$TMP/r.svg" && fail "a one-plane figure names planes"
+
 # A long log (10 minutes at 1 kHz, quiet but for one sample of -40 m/s^2):
 # drawn from fixed memory, and the one-sample peak survives the thinning,
 # so the acceleration axis reaches -40.

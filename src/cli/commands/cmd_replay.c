@@ -94,15 +94,13 @@ static void on_state(void *user, const sw_output_t *out)
     replay_t *r = user;
     sw_cli_states_write(&r->states, out);
     sw_cli_wide_write(&r->wide, out);
-    if (out->plane == SW_PLANE_LONG) /* the figure shows the plane along the truck */
-        sw_cli_figure_state(r->fig, out);
+    sw_cli_figure_state(r->fig, out); /* both planes */
 }
 
 static void on_event(void *user, const sw_event_t *ev)
 {
     replay_t *r = user;
-    if ((sw_cli_events_feed(&r->events, r->R.risk, ev) & SW_SETTLE_REPORT) &&
-        ev->plane == SW_PLANE_LONG)
+    if (sw_cli_events_feed(&r->events, r->R.risk, ev) & SW_SETTLE_REPORT)
         sw_cli_figure_event(r->fig, ev);
 }
 

@@ -27,8 +27,8 @@
 /* The quantities kept per package (the reserve only with a risk). */
 enum { Q_AG, Q_RATIO, Q_MARGIN, Q_RESERVE, NQ };
 
-/* The panels, top to bottom. */
-enum { P_ACCEL, P_TILT, P_MARGIN, P_RESERVE, NPANELS };
+/* The panels, top to bottom (the lateral tilt only with a lateral plane). */
+enum { P_ACCEL, P_TILT, P_TILT_LAT, P_MARGIN, P_RESERVE, NPANELS };
 
 #define MAX_GAPS 50 /* gaps shaded */
 #define MAX_MARKS 8 /* decisive moments marked */
@@ -39,9 +39,13 @@ typedef struct {
     double tmin[NQ], vmin[NQ], tmax[NQ], vmax[NQ];
 } bucket_t;
 
+/* One plane of one package: a package with a lateral plane has two
+ * traces, the lateral one after every longitudinal one. */
 typedef struct {
     char name[64];
-    double alpha;       /* rad */
+    size_t pkg;         /* the package */
+    int lat;            /* the lateral plane (across the truck, over the depth) */
+    double alpha;       /* rad, of this plane */
     double g_tan_alpha; /* m/s^2, the uplift threshold on a rigid support */
     bucket_t *b;        /* 2 NBUCKETS */
     size_t nb;          /* full buckets */
@@ -51,7 +55,11 @@ typedef struct {
 
 struct sw_cli_figure {
     trace_t *tr;
-    size_t n;
+    size_t n;              /* traces: the packages', then their lateral planes' */
+    size_t npkg;           /* packages */
+    size_t *lat_of;        /* package -> its lateral trace, or NO_LAT */
+    size_t nlat;           /* lateral traces */
+    const sw_stream_t *st; /* the lateral planes' reserve; NULL: none drawn */
     sw_event_t *ev;
     size_t nev, cap;
     long dropped;            /* events beyond MAX_EVENTS, or lost to a failed allocation */
@@ -69,24 +77,49 @@ struct sw_cli_figure {
 static const char *const colours[] = {"#1d3557", "#e76f51", "#2a9d8f", "#8338ec",
                                       "#f4a261", "#6a994e", "#b5179e", "#457b9d"};
 #define NCOLOURS (sizeof colours / sizeof colours[0])
+#define NO_LAT ((size_t)-1)
+
+/* A trace's colour: its package's, in both planes. */
+static const char *colour(const trace_t *T)
+{
+    return colours[T->pkg % NCOLOURS];
+}
 
 sw_cli_figure_t *sw_cli_figure_create(const sw_engine_t *e, const sw_scene_t *scenes, size_t n)
 {
     sw_cli_figure_t *f = calloc(1, sizeof *f);
-    if (f)
-        f->tr = calloc(n ? n : 1, sizeof *f->tr);
-    if (!f || !f->tr)
+    size_t nlat = 0;
+    for (size_t i = 0; i < n; i++) nlat += sw_engine_planes(e, i) == 2;
+    if (f) {
+        f->tr = calloc(n + nlat ? n + nlat : 1, sizeof *f->tr);
+        f->lat_of = calloc(n ? n : 1, sizeof *f->lat_of);
+    }
+    if (!f || !f->tr || !f->lat_of)
         goto oom;
-    f->n = n;
-    for (size_t i = 0; i < n; i++) {
-        trace_t *T = &f->tr[i];
-        const sw_derived_t *d = sw_engine_derived(e, i);
-        snprintf(T->name, sizeof T->name, "%s", scenes[i].name);
-        T->alpha = d ? d->alpha : NAN;
-        T->g_tan_alpha = d ? scenes[i].g * tan(d->alpha) : NAN;
-        T->width = 1;
-        if (!(T->b = calloc(2 * NBUCKETS, sizeof *T->b)))
-            goto oom;
+    f->npkg = n;
+    f->nlat = nlat;
+    f->n = n + nlat;
+    for (size_t i = 0, j = n; i < n; i++) {
+        f->lat_of[i] = NO_LAT;
+        for (int plane = 0; plane < 2; plane++) {
+            size_t k = i;
+            const sw_engine_t *pe =
+                plane ? sw_engine_plane(e, i, SW_PLANE_LAT, &k) : e; /* its plane's engine */
+            if (!pe)
+                continue;
+            if (plane)
+                f->lat_of[i] = j;
+            trace_t *T = &f->tr[plane ? j++ : i];
+            const sw_derived_t *d = sw_engine_derived(pe, k);
+            snprintf(T->name, sizeof T->name, "%s", scenes[i].name);
+            T->pkg = i;
+            T->lat = plane;
+            T->alpha = d ? d->alpha : NAN;
+            T->g_tan_alpha = d ? scenes[i].g * tan(d->alpha) : NAN;
+            T->width = 1;
+            if (!(T->b = calloc(2 * NBUCKETS, sizeof *T->b)))
+                goto oom;
+        }
     }
     return f;
 oom:
@@ -101,6 +134,7 @@ void sw_cli_figure_destroy(sw_cli_figure_t *f)
         return;
     for (size_t i = 0; f->tr && i < f->n; i++) free(f->tr[i].b);
     free(f->tr);
+    free(f->lat_of);
     free(f->ev);
     free(f);
 }
@@ -156,14 +190,34 @@ static int outside(const sw_cli_figure_t *f, double t)
     return f->windowed && !(t >= f->w0 && t <= f->w1);
 }
 
+/* The trace of plane p of package k, or NULL. */
+static trace_t *trace_of(const sw_cli_figure_t *f, size_t k, sw_plane p)
+{
+    if (k >= f->npkg)
+        return NULL;
+    if (p == SW_PLANE_LONG)
+        return &f->tr[k];
+    return f->lat_of[k] == NO_LAT ? NULL : &f->tr[f->lat_of[k]];
+}
+
+/* The reserve of trace T's plane, or NULL. */
+static const sw_risk_pkg_t *reserve_of(const sw_cli_figure_t *f, const trace_t *T)
+{
+    if (!f->risk)
+        return NULL;
+    if (!T->lat)
+        return sw_risk_pkg(f->risk, T->pkg);
+    return f->st ? sw_stream_risk_plane(f->st, T->pkg, SW_PLANE_LAT) : NULL;
+}
+
 void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out)
 {
-    if (!f || out->pkg >= f->n || outside(f, out->t))
+    trace_t *T = f ? trace_of(f, out->pkg, out->plane) : NULL;
+    if (!T || outside(f, out->t))
         return;
-    trace_t *T = &f->tr[out->pkg];
     /* the margin as presented (alarm.h): in [-1, 1], -1 at overturn, so a
      * falling package does not read as a recovery */
-    const sw_risk_pkg_t *rp = f->risk ? sw_risk_pkg(f->risk, out->pkg) : NULL;
+    const sw_risk_pkg_t *rp = reserve_of(f, T);
     const double v[NQ] = {out->a_g, out->state.theta / T->alpha,
                           sw_margin_presented(out->margin, out->state.phase),
                           rp ? rp->reserve_g : NAN};
@@ -177,6 +231,12 @@ void sw_cli_figure_risk(sw_cli_figure_t *f, const sw_risk_t *risk)
 {
     if (f)
         f->risk = risk;
+}
+
+void sw_cli_figure_stream(sw_cli_figure_t *f, const sw_stream_t *st)
+{
+    if (f)
+        f->st = st;
 }
 
 void sw_cli_figure_window(sw_cli_figure_t *f, double t0, double t1)
@@ -211,7 +271,7 @@ void sw_cli_figure_mark(sw_cli_figure_t *f, double t)
 
 void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev)
 {
-    if (!f || ev->pkg >= f->n || outside(f, ev->t))
+    if (!f || !trace_of(f, ev->pkg, ev->plane) || outside(f, ev->t))
         return;
     if (f->nev == f->cap) {
         size_t cap = f->cap ? 2 * f->cap : 256;
@@ -298,8 +358,10 @@ static void event_block(FILE *g, const sw_cli_figure_t *f, size_t k, sw_event_ki
     for (size_t i = 0; i < f->nev; i++) {
         const sw_event_t *ev = &f->ev[i];
         const int same = ev->kind == kind || (kind == SW_EV_IMPACT && ev->kind == SW_EV_REST);
-        const double r = ev->theta / f->tr[k].alpha;
-        if (ev->pkg != k || !same || !isfinite(ev->t) || !isfinite(r))
+        const trace_t *T = &f->tr[k];
+        const double r = ev->theta / T->alpha;
+        if (ev->pkg != T->pkg || (ev->plane == SW_PLANE_LAT) != T->lat || !same ||
+            !isfinite(ev->t) || !isfinite(r))
             continue;
         fprintf(g, "%.9g %.9g\n", ev->t, r);
         n++;
@@ -346,8 +408,35 @@ static void event_lines(FILE *g, const sw_cli_figure_t *f)
             continue;
         fprintf(g,
                 "set arrow %d from first %.9g, graph 0 to first %.9g, graph 1 nohead lc rgb '%s' "
-                "lw 1.5 dt 2 back\n",
-                ++arrows, ev->t, ev->t, col);
+                "lw 1.5 dt %d back\n",
+                ++arrows, ev->t, ev->t, col, ev->plane == SW_PLANE_LAT ? 4 : 2);
+    }
+}
+
+/* The tips, overturns and faults of one plane named beside their line in
+ * that plane's tilt panel ("overturn across the truck, crate-A"), so that
+ * a figure of two planes says which one gave out; set before the panel,
+ * unset after it.  Tips and overturns of a one-plane figure are named by
+ * the legend alone, as before. */
+static void event_labels(FILE *g, const sw_cli_figure_t *f, int lat)
+{
+    int n = 0;
+    for (size_t i = 0; f->nlat && i < f->nev && n < MAX_MARKS * 4; i++) {
+        const sw_event_t *ev = &f->ev[i];
+        const char *what = ev->kind == SW_EV_OVERTURN ? "overturn"
+                           : ev->kind == SW_EV_TIP    ? "tip"
+                           : ev->kind == SW_EV_FAULT  ? "model fault"
+                                                      : NULL;
+        if (!what || (ev->plane == SW_PLANE_LAT) != lat || !isfinite(ev->t) || ev->pkg >= f->npkg)
+            continue;
+        char text[160];
+        snprintf(text, sizeof text, "%s %s, %s", what, lat ? "across the truck" : "along the truck",
+                 f->tr[ev->pkg].name);
+        fputs("set label ", g);
+        sw_cli_plot_text(g, text);
+        fprintf(g, " at first %.9g, graph 0.97 right rotate by 90 offset -0.6,0 font ',9' front\n",
+                ev->t);
+        n++;
     }
 }
 
@@ -386,35 +475,43 @@ static void threshold_plots(FILE *g, const sw_cli_figure_t *f)
     for (size_t k = 0; k < (same ? 1 : f->n); k++) {
         const trace_t *T = &f->tr[k];
         char title[160];
-        snprintf(title, sizeof title, "± g tan α = %.3g m/s² (%.3g g): uplift%s%s", T->g_tan_alpha,
-                 T->g_tan_alpha / SW_G0, same ? "" : ", ", same ? "" : T->name);
-        fprintf(g, ", %.9g with lines lc rgb '%s' dt 3 lw 1.2 title ", T->g_tan_alpha,
-                same ? "#777777" : colours[k % NCOLOURS]);
+        snprintf(title, sizeof title, "± g tan α = %.3g m/s² (%.3g g): uplift%s%s%s",
+                 T->g_tan_alpha, T->g_tan_alpha / SW_G0, same ? "" : ", ", same ? "" : T->name,
+                 same || !T->lat ? "" : " (lateral)");
+        fprintf(g, ", %.9g with lines lc rgb '%s' dt %d lw 1.2 title ", T->g_tan_alpha,
+                same ? "#777777" : colour(T), T->lat ? 5 : 3);
         sw_cli_plot_text(g, title);
-        fprintf(g, ", %.9g with lines lc rgb '%s' dt 3 lw 1.2 notitle", -T->g_tan_alpha,
-                same ? "#777777" : colours[k % NCOLOURS]);
+        fprintf(g, ", %.9g with lines lc rgb '%s' dt %d lw 1.2 notitle", -T->g_tan_alpha,
+                same ? "#777777" : colour(T), T->lat ? 5 : 3);
     }
 }
 
-/* "<what>, <package>" as an enhanced-text title. */
-static void series_title(FILE *g, const char *what, const char *name)
+/* "<what>, <package>" as an enhanced-text title; "<what> across, <package>"
+ * for a lateral plane. */
+static void series_title(FILE *g, const char *what, const trace_t *T)
 {
     char t[160];
-    snprintf(t, sizeof t, "%s, %s", what, name);
+    snprintf(t, sizeof t, "%s%s, %s", what, T->lat ? " across" : "", T->name);
     sw_cli_plot_text(g, t);
 }
 
-/* Panel 2: theta / alpha, the events on it. */
-static void panel_tilt(FILE *g, const sw_cli_figure_t *f)
+/* Panel 2: theta / alpha along the truck (lat 0) or across it (lat 1),
+ * the events of that plane on it. */
+static void panel_tilt(FILE *g, const sw_cli_figure_t *f, int lat)
 {
-    fputs(
-        "set ylabel 'tilt θ / α'\nplot 1 with lines lc rgb '#d62828' dt 3 "
-        "title 'tipping: |θ| = α (±1)', -1 with lines lc rgb '#d62828' dt 3 notitle",
-        g);
+    event_labels(g, f, lat);
+    fprintf(g,
+            "set ylabel '%s'\nplot 1 with lines lc rgb '#d62828' dt 3 "
+            "title 'tipping: |θ| = α (±1)', -1 with lines lc rgb '#d62828' dt 3 notitle",
+            lat       ? "tilt across the truck θ / α"
+            : f->nlat ? "tilt along the truck θ / α"
+                      : "tilt θ / α");
     for (size_t k = 0; k < f->n; k++) {
-        const char *c = colours[k % NCOLOURS];
+        if (f->tr[k].lat != lat)
+            continue;
+        const char *c = colour(&f->tr[k]);
         fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RATIO, c);
-        series_title(g, "θ/α", f->tr[k].name);
+        series_title(g, "θ/α", &f->tr[k]);
         fprintf(g,
                 ", $e%zu_%d using 1:2 with points pt 6 ps 0.5 lc rgb '%s' notitle"
                 ", $e%zu_%d using 1:2 with points pt 9 ps 1.2 lc rgb '%s' notitle"
@@ -426,6 +523,8 @@ static void panel_tilt(FILE *g, const sw_cli_figure_t *f)
     }
     event_legend(g, f);
     fputc('\n', g);
+    if (f->nlat)
+        fputs("unset label\n", g);
 }
 
 /* Panel 3: the margin to overturn, as presented: below 0 the package is
@@ -440,9 +539,9 @@ static void panel_margin(FILE *g, const sw_cli_figure_t *f, double mmin)
             "below 0'",
             mmin < 0.0 ? " (-1: overturned)" : "", lo);
     for (size_t k = 0; k < f->n; k++) {
-        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_MARGIN,
-                colours[k % NCOLOURS]);
-        series_title(g, "margin", f->tr[k].name);
+        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5%s title ", k, Q_MARGIN,
+                colour(&f->tr[k]), f->tr[k].lat ? " dt 2" : "");
+        series_title(g, "margin", &f->tr[k]);
     }
     fputc('\n', g);
 }
@@ -457,20 +556,32 @@ static void panel_reserve(FILE *g, const sw_cli_figure_t *f)
         "title 'no reserve: overturns with no more input'",
         g);
     for (size_t k = 0; k < f->n; k++) {
-        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5 title ", k, Q_RESERVE,
-                colours[k % NCOLOURS]);
-        series_title(g, "reserve", f->tr[k].name);
+        if (!reserve_of(f, &f->tr[k]))
+            continue;
+        fprintf(g, ", $s%zu_%d using 1:2 with lines lc rgb '%s' lw 1.5%s title ", k, Q_RESERVE,
+                colour(&f->tr[k]), f->tr[k].lat ? " dt 2" : "");
+        series_title(g, "reserve", &f->tr[k]);
     }
     fputc('\n', g);
 }
 
-/* Panel 1: the bed's acceleration and the uplift thresholds. */
+/* Panel 1: the bed's acceleration and the uplift thresholds; with a
+ * lateral plane, the lateral acceleration too (the first lateral trace's:
+ * every plane is driven by the same log). */
 static void panel_accel(FILE *g, const sw_cli_figure_t *f)
 {
-    fputs(
-        "set ylabel 'bed acceleration a_g (m/s^2)'\n"
-        "plot $s0_0 using 1:2 with lines lc rgb '#264653' lw 1.2 title 'bed acceleration a_g'",
-        g);
+    if (!f->nlat)
+        fputs(
+            "set ylabel 'bed acceleration a_g (m/s^2)'\n"
+            "plot $s0_0 using 1:2 with lines lc rgb '#264653' lw 1.2 title 'bed acceleration a_g'",
+            g);
+    else
+        fprintf(g,
+                "set ylabel 'bed acceleration a_g, a_y (m/s^2)'\n"
+                "plot $s0_0 using 1:2 with lines lc rgb '#264653' lw 1.2 title 'along the truck "
+                "a_g (forward +)', $s%zu_0 using 1:2 with lines lc rgb '#9d4edd' lw 1.2 title "
+                "'across the truck a_y (lateral)'",
+                f->npkg);
     threshold_plots(g, f);
     fputc('\n', g);
 }
@@ -481,6 +592,8 @@ static int panel_list(const sw_cli_figure_t *f, int p[NPANELS])
     int n = 0;
     p[n++] = P_ACCEL;
     p[n++] = P_TILT;
+    if (f->nlat)
+        p[n++] = P_TILT_LAT;
     if (!f->no_margin)
         p[n++] = P_MARGIN;
     if (f->risk)
@@ -497,6 +610,10 @@ static const char *const panel_words[NPANELS] = {
         "the tilt θ of each package as a fraction of its tipping angle α (at 1 its "
         "centre of mass is over the edge: past it, it falls unless the truck pushes it "
         "back), with the events marked",
+    [P_TILT_LAT] =
+        "the tilt across the truck of each package with a depth, its lateral plane (rocking "
+        "over its depth, driven by the lateral acceleration), as a fraction of its tipping "
+        "angle across, with that plane's events marked and its tips and overturns named",
     [P_MARGIN] =
         "the margin to overturn of each package (1 at rest, 0: it overturns with no "
         "more input, -1: overturned)",
@@ -509,19 +626,34 @@ static const char *const panel_words[NPANELS] = {
 size_t sw_cli_figure_caption(const sw_cli_figure_t *f, char *buf, size_t len)
 {
     static const char *const places[][NPANELS] = {
-        {"", "", "", ""},
-        {"", "", "", ""},
-        {"Top", "bottom", "", ""},
-        {"Top", "middle", "bottom", ""},
-        {"Top", "second", "third", "bottom"},
+        {"", "", "", "", ""},
+        {"", "", "", "", ""},
+        {"Top", "bottom", "", "", ""},
+        {"Top", "middle", "bottom", "", ""},
+        {"Top", "second", "third", "bottom", ""},
+        {"Top", "second", "third", "fourth", "bottom"},
     };
     int p[NPANELS];
     const int n = panel_list(f, p);
     FILE *m = fmemopen(buf, len, "w");
     if (!m || !len)
         return 0;
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n; i++) {
         fprintf(m, "%s%s: %s", i ? "; " : "", places[n][i], panel_words[p[i]]);
+        if (f->nlat && p[i] == P_ACCEL)
+            fputs(
+                ", and the acceleration across the truck a_y (left positive) with the "
+                "thresholds of the lateral planes",
+                m);
+        if (f->nlat && p[i] == P_TILT)
+            fputs(" (along the truck)", m);
+        if (f->nlat && (p[i] == P_MARGIN || p[i] == P_RESERVE)) {
+            int lat_drawn = p[i] == P_MARGIN;
+            for (size_t k = f->npkg; k < f->n && !lat_drawn; k++)
+                lat_drawn = reserve_of(f, &f->tr[k]) != NULL;
+            fputs(lat_drawn ? " (dashed: across the truck)" : " (along the truck only)", m);
+        }
+    }
     fputs(". ", m);
     static const struct {
         sw_event_kind kind;
@@ -538,7 +670,7 @@ size_t sw_cli_figure_caption(const sw_cli_figure_t *f, char *buf, size_t len)
                 break;
             }
     if (said)
-        fputs(". ", m);
+        fputs(f->nlat ? " (dash-dot: an event of a lateral plane). " : ". ", m);
     if (f->nmark)
         fputs("The solid black line is the moment this view is centred on. ", m);
     if (f->ngap)
@@ -591,7 +723,8 @@ int sw_cli_figure_draw(const sw_cli_figure_t *f, const char *path, const char *t
             fputs("set format x '%g'\nset xlabel 'time t (s)'\n", g);
         switch (list[i]) {
             case P_ACCEL: panel_accel(g, f); break;
-            case P_TILT: panel_tilt(g, f); break;
+            case P_TILT: panel_tilt(g, f, 0); break;
+            case P_TILT_LAT: panel_tilt(g, f, 1); break;
             case P_MARGIN: panel_margin(g, f, mmin); break;
             case P_RESERVE: panel_reserve(g, f); break;
         }

@@ -2,7 +2,8 @@
 /* figure.h - the state figure of replay, simulate and forensics: the bed
  * acceleration with the uplift thresholds +-g tan(alpha), theta/alpha of
  * every package, its margin to overturn, and the events, drawn by gnuplot
- * (plot.h).
+ * (plot.h); with a lateral plane (a depth and a lateral column), the
+ * lateral acceleration and each plane's tilt, the events of each named.
  *
  * The series are kept as the engine reports them, in a fixed number of
  * buckets per package: each bucket keeps the minimum and the maximum of
@@ -26,7 +27,16 @@ void sw_cli_figure_destroy(sw_cli_figure_t *f); /* NULL accepted */
  * comes, so risk is fed first) in a fourth panel; NULL: none. */
 void sw_cli_figure_risk(sw_cli_figure_t *f, const sw_risk_t *risk);
 
-/* Keep a state and an event (f may be NULL: nothing kept). */
+/* The lateral planes' reserve (sw_stream_risk_plane of st, fed by the
+ * stream before their states come), drawn beside the longitudinal ones'
+ * when a risk is set; without it the reserve panel is along the truck
+ * only, and its caption says so. */
+void sw_cli_figure_stream(sw_cli_figure_t *f, const sw_stream_t *st);
+
+/* Keep a state and an event (either plane: a package with a lateral
+ * plane has its lateral tilt drawn in a panel of its own, its margin and
+ * reserve dashed beside the others, the lateral acceleration under the
+ * longitudinal one; f may be NULL: nothing kept). */
 void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out);
 void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev);
 
