@@ -6,6 +6,7 @@
  * samples pushed by hand, the cases against sw_whatif_cases(); the
  * family's size as the product the header promises and its labels; the
  * estimate of a fixed step from the documented cost per step. */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -100,6 +101,82 @@ static void test_rerun(void **state)
     sw_engine_destroy(a);
     sw_engine_destroy(b);
     sw_engine_destroy(c);
+    sw_forensics_destroy(F);
+}
+
+/* Both axes scaled together, closed form: a bare block of width w, depth
+ * d and height H under a constant acceleration (a_x, a_y) from t = 0
+ * overturns exactly when the scaled acceleration of one plane reaches
+ * g tan(alpha) of that plane (beyond it the block only ever rocks further:
+ * physics.md, scene 1), so the package's factor is the smaller of
+ * (g w/H)/|a_x| and (g d/H)/|a_y|, and the plane that gives out first is
+ * the one with the smaller.  The bracket must hold that value, within the
+ * search's tolerance. */
+static void factor_case(double ax, double ay, double want, sw_plane plane, int overturned)
+{
+    sw_scene_t sc = tu_bare(2.0, 1.0);
+    sc.depth = 0.6;
+    sw_forensics_opts_t o = opts(0);
+    o.run.engine.scheme = "rk4";
+    o.run.engine.dt = 1e-3;
+    o.run.settle = 10.0;
+    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
+    assert_non_null(F);
+    for (int i = 0; i <= 500; i++) /* 5 s at 100 Hz */
+        assert_int_equal(sw_forensics_push_lat(F, 0.01 * i, ax, ay, 0.0, 0), SW_OK);
+    assert_non_null(sw_forensics_log_lat(F));
+    assert_int_equal(sw_forensics_safety(F), SW_OK);
+    sw_forensics_factor_t fx;
+    assert_int_equal(sw_forensics_factor(F, 0, &fx), SW_OK);
+    assert_int_equal(fx.planes, 2);
+    assert_non_null(fx.lateral);
+    assert_int_equal(fx.first, plane);
+    assert_int_equal(fx.sf.overturned, overturned);
+    assert_true(fx.sf.found);
+    /* the bracket holds the closed form and is no wider than the tolerance */
+    assert_true(fx.sf.factor_safe <= want * (1.0 + 1e-9));
+    assert_true(fx.sf.factor >= want * (1.0 - 1e-9));
+    assert_true(fx.sf.factor <= fx.sf.factor_safe * (1.0 + 2.5e-3));
+    /* each plane's own search found its own closed form */
+    const double g = sc.g;
+    const double lx = g * (1.0 / 2.0) / fabs(ax), ly = g * (0.6 / 2.0) / fabs(ay);
+    const sw_safety_t *L = &sw_forensics_scene_case(F, 0)->sf, *T = &fx.lateral->sf;
+    assert_true(L->factor_safe <= lx * (1.0 + 1e-9) && L->factor >= lx * (1.0 - 1e-9));
+    assert_true(T->factor_safe <= ly * (1.0 + 1e-9) && T->factor >= ly * (1.0 - 1e-9));
+    assert_int_equal(fx.sf.trials, L->trials + T->trials);
+    sw_forensics_destroy(F);
+}
+
+static void test_factor_both_axes(void **state)
+{
+    (void)state;
+    const double g = tu_bare(2.0, 1.0).g;
+    /* w/H = 0.5, d/H = 0.3 */
+    factor_case(-3.0, -4.0, g * 0.3 / 4.0, SW_PLANE_LAT, 1); /* overturned, sideways */
+    factor_case(-1.0, -1.2, g * 0.3 / 1.2, SW_PLANE_LAT, 0); /* survived; sideways first */
+    factor_case(-2.0, 0.5, g * 0.5 / 2.0, SW_PLANE_LONG, 0); /* survived; forward first */
+    factor_case(-6.0, 1.0, g * 0.5 / 6.0, SW_PLANE_LONG, 1); /* overturned forward */
+}
+
+/* Without a lateral acceleration the factor is the scene case's, one
+ * plane; a log cannot mix samples with and without a lateral value. */
+static void test_factor_one_plane(void **state)
+{
+    (void)state;
+    sw_scene_t sc = tu_bare(2.0, 1.0);
+    sc.depth = 0.6;
+    const sw_forensics_opts_t o = opts(0);
+    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
+    assert_int_equal(sw_forensics_push(F, 0.0, -1.0, 0.0, 0), SW_OK);
+    assert_int_equal(sw_forensics_push_lat(F, 0.01, -1.0, -1.0, 0.0, 0), SW_EINVAL);
+    assert_int_equal(sw_forensics_log(F)->n, 1);
+    assert_null(sw_forensics_log_lat(F));
+    assert_null(sw_forensics_lateral_case(F, 0));
+    sw_forensics_destroy(F);
+    F = sw_forensics_create(&sc, 1, &o, NULL);
+    assert_int_equal(sw_forensics_push_lat(F, 0.0, -1.0, -1.0, 0.0, 0), SW_OK);
+    assert_int_equal(sw_forensics_push(F, 0.01, -1.0, 0.0, 0), SW_EINVAL);
+    assert_non_null(sw_forensics_lateral_case(F, 0));
     sw_forensics_destroy(F);
 }
 
@@ -198,8 +275,14 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cap),   cmocka_unit_test(test_restarts), cmocka_unit_test(test_rerun),
-        cmocka_unit_test(test_cases), cmocka_unit_test(test_family),   cmocka_unit_test(test_cost),
+        cmocka_unit_test(test_cap),
+        cmocka_unit_test(test_restarts),
+        cmocka_unit_test(test_rerun),
+        cmocka_unit_test(test_cases),
+        cmocka_unit_test(test_family),
+        cmocka_unit_test(test_cost),
+        cmocka_unit_test(test_factor_both_axes),
+        cmocka_unit_test(test_factor_one_plane),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

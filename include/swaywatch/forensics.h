@@ -64,13 +64,24 @@ SW_API void sw_forensics_destroy(sw_forensics_t *F);
  * max_samples is offered, SW_ENOMEM when the log could not grow: the
  * sample is not kept, nor any after it (the same status again). */
 SW_API int sw_forensics_push(sw_forensics_t *F, double t, double a_g, double a_z, int restart);
+/* The same with the lateral acceleration a_y (m/s^2, across the truck, as
+ * sw_engine_push_lat takes it): each package with a depth is then searched
+ * in its lateral plane too (sw_forensics_factor).  A log is held with a_y
+ * from its first sample or not at all: mixing the two calls is refused
+ * (SW_EINVAL, the sample not kept). */
+SW_API int sw_forensics_push_lat(sw_forensics_t *F, double t, double a_g, double a_y, double a_z,
+                                 int restart);
 /* SW_OK, or what stopped the holding (SW_ETOOBIG, SW_ENOMEM). */
 SW_API int sw_forensics_status(const sw_forensics_t *F);
 /* The log held so far (a_z NULL when every sample's was 0); valid until
  * the next push or destroy. */
 SW_API const sw_log_t *sw_forensics_log(const sw_forensics_t *F);
+/* The held log with the lateral acceleration in a_g (the same t, a_z and
+ * restarts), or NULL when it has none. */
+SW_API const sw_log_t *sw_forensics_log_lat(const sw_forensics_t *F);
 
-/* The held log into engine e (made for the same scenes), exactly as the
+/* The held log into engine e (made for the same scenes, with opts.lateral
+ * when the log has a lateral acceleration), exactly as the
  * replay's engine had it (its restarts from rest before the same
  * samples), up to the first sample after t_end (s); when that is the end
  * of the log, the settling after it (sw_engine_finish(e, settle), when
@@ -79,12 +90,37 @@ SW_API void sw_forensics_rerun(const sw_forensics_t *F, sw_engine_t *e, double t
                                double settle);
 
 /* The safety factor of every available case on the held log
- * (sw_whatif_safety()).  SW_OK, or SW_ENOMEM. */
+ * (sw_whatif_safety()), and with a lateral acceleration held, that of the
+ * lateral plane of every package with a depth on it.  SW_OK, or
+ * SW_ENOMEM. */
 SW_API int sw_forensics_safety(sw_forensics_t *F);
 /* The smallest reserve of every case: the scenes as given from the
  * replay's risk (made with reserve_rate; NULL: not theirs), the other
  * cases by sw_whatif_reserve() on the held log.  SW_OK, or SW_ENOMEM. */
 SW_API int sw_forensics_reserve(sw_forensics_t *F, const sw_risk_t *replay);
+
+/* The safety factor of package k with both horizontal axes scaled
+ * together.  The planes are driven each by its own axis (physics.md, "The
+ * lateral plane"), so the package overturns at a scale when either plane
+ * does: its factor is the smaller plane's, the plane that gives out first
+ * (for a log it survived, a weaker overturning shock of either plane
+ * counts, the smaller; the search range is the smaller of the two).
+ * With one plane (no depth, no lateral acceleration, or the lateral
+ * search not available), sf is the scene case's and planes 1. */
+typedef struct {
+    int planes;                      /* 1 or 2 */
+    sw_plane first;                  /* the plane that gives out first (SW_PLANE_LONG with
+                                        one; on a tie, along the truck) */
+    sw_safety_t sf;                  /* the package's: factor, its safe end, overturned... */
+    const sw_whatif_case_t *lateral; /* the lateral plane's own case (its scene over the
+                                        depth, its search), or NULL */
+} sw_forensics_factor_t;
+/* SW_OK, or SW_EINVAL for no such package.  After sw_forensics_safety(). */
+SW_API int sw_forensics_factor(const sw_forensics_t *F, size_t k, sw_forensics_factor_t *out);
+/* Package k's lateral plane as a case (its scene, its search once
+ * sw_forensics_safety() ran; available says whether it was searched), or
+ * NULL when the scene has no depth or the log no lateral acceleration. */
+SW_API const sw_whatif_case_t *sw_forensics_lateral_case(const sw_forensics_t *F, size_t k);
 
 /* Every package's cases, package by package, each package's first the
  * scene as given (*n of them); owned by F.  A caller may rewrite a

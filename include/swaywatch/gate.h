@@ -158,6 +158,11 @@ typedef void (*sw_gate_reject_fn)(void *user, const sw_sample_t *s, sw_gate_reje
  * sw_engine_restart() where restart is set, repeats the run: a log read
  * once can be replayed many times exactly as the gate fed it. */
 typedef void (*sw_gate_take_fn)(void *user, double t, double a_g, double a_z, int restart);
+/* The same with the lateral acceleration a_y (m/s^2, as the engine got it:
+ * sw_engine_push_lat) of a lateral gate, for a caller that runs the
+ * lateral planes again. */
+typedef void (*sw_gate_take_lat_fn)(void *user, double t, double a_g, double a_y, double a_z,
+                                    int restart);
 /* One sample of the second timeline while two compete (already counted as
  * refused): its time is the source's, as pushed.  A caller that evaluates
  * both timelines pushes it into a gate of its own in front of a second set
@@ -197,6 +202,9 @@ typedef struct {
                                   spike limit, the facts' lat and the plausibility check)
                                   and pushed with sw_engine_push_lat (the engine made with
                                   opts.lateral); on_take still gets the longitudinal value */
+    /* may be NULL: in a lateral gate, called instead of on_take, with the
+     * lateral value too */
+    sw_gate_take_lat_fn on_take_lat;
 } sw_gate_opts_t;
 
 /* One acceleration axis as the accepted samples showed it. */

@@ -77,6 +77,9 @@ typedef struct {
     sw_gate_reject_fn on_reject;
     sw_gate_take_fn on_take;
     void *user; /* of every callback */
+    /* may be NULL: with lateral, called instead of on_take, with the
+     * lateral value too */
+    sw_gate_take_lat_fn on_take_lat;
 } sw_stream_opts_t;
 
 typedef struct sw_stream sw_stream_t;

@@ -2,9 +2,12 @@
 /* forensics.c - the forensics of a recorded log (forensics.h): the log
  * held as the gate handed it to the engine, and from it every package's
  * what-if cases with their safety factors and smallest reserves
- * (whatif.c does each case's work). */
+ * (whatif.c does each case's work); with a lateral acceleration held,
+ * each package's lateral plane searched as a case of its own and the two
+ * planes' factors joined into the package's. */
 #include "swaywatch/forensics.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,14 +19,19 @@ struct sw_forensics {
     size_t npkg;
     sw_whatif_case_t *cases;
     size_t ncases;
+    sw_whatif_case_t *lat; /* per package: its lateral plane (available: a depth, and a
+                              lateral acceleration held) */
     /* the held log */
     double *t, *a_g, *a_z; /* a_z: 0 where there is no vertical channel */
+    double *a_y;           /* lateral, once a sample came with one (push_lat) */
+    int has_y;             /* every sample came with a lateral value */
     size_t n, cap;
     int has_z; /* some a_z is not 0 */
     size_t *restart;
     size_t nrestart, restart_cap;
     int status; /* SW_OK, or what stopped the holding */
     sw_log_t log;
+    sw_log_t log_lat; /* the same log driven by a_y */
 };
 
 sw_forensics_t *sw_forensics_create(const sw_scene_t *scenes, size_t n,
@@ -44,6 +52,19 @@ sw_forensics_t *sw_forensics_create(const sw_scene_t *scenes, size_t n,
     if (!F->cases)
         goto fail;
     F->ncases = sw_whatif_cases(scenes, n, &o->whatif, F->cases);
+    if (!(F->lat = calloc(n, sizeof *F->lat)))
+        goto fail;
+    for (size_t k = 0; k < n; k++) { /* available once a lateral log is held */
+        sw_whatif_case_t *C = &F->lat[k];
+        C->pkg = k;
+        snprintf(C->name, sizeof C->name, "across the truck");
+        C->built =
+            sw_scene_lateral(&scenes[k], &C->scene) == SW_OK &&
+            sw_scene_validate(&C->scene, &C->derived, "across the truck", NULL, NULL) == SW_OK;
+        C->model = C->derived.model;
+        snprintf(C->note, sizeof C->note, "%s",
+                 C->built ? "the log has no lateral acceleration" : "the scene gives no depth");
+    }
     return F;
 fail:
     sw_forensics_destroy(F);
@@ -57,6 +78,8 @@ void sw_forensics_destroy(sw_forensics_t *F)
     if (!F)
         return;
     free(F->cases);
+    free(F->lat);
+    free(F->a_y);
     free(F->t);
     free(F->a_g);
     free(F->a_z);
@@ -83,6 +106,12 @@ static int grow(sw_forensics_t *F)
     if (!z)
         return -1;
     F->a_z = z;
+    if (F->has_y) {
+        double *y = realloc(F->a_y, cap * sizeof *y);
+        if (!y)
+            return -1;
+        F->a_y = y;
+    }
     F->cap = cap;
     return 0;
 }
@@ -101,10 +130,22 @@ static int add_restart(sw_forensics_t *F)
     return 0;
 }
 
-int sw_forensics_push(sw_forensics_t *F, double t, double a_g, double a_z, int restart)
+/* One sample; lat: it carries a_y.  A log is lateral from its first
+ * sample or not at all: a lateral value after samples without one, or a
+ * sample without one in a lateral log, is refused (SW_EINVAL), since the
+ * lateral plane would be driven by values that were never read. */
+static int push(sw_forensics_t *F, double t, double a_g, double a_y, int lat, double a_z,
+                int restart)
 {
     if (F->status != SW_OK)
         return F->status;
+    if (F->n == 0 && lat && !F->a_y) { /* the first sample decides */
+        F->has_y = 1;
+        if (F->cap && !(F->a_y = malloc(F->cap * sizeof *F->a_y)))
+            return F->status = SW_ENOMEM;
+    }
+    if (lat != F->has_y)
+        return SW_EINVAL;
     if (F->o.max_samples && F->n == F->o.max_samples)
         return F->status = SW_ETOOBIG;
     if ((F->n == F->cap && grow(F) != 0) || (restart && F->n > 0 && add_restart(F) != 0))
@@ -112,6 +153,8 @@ int sw_forensics_push(sw_forensics_t *F, double t, double a_g, double a_z, int r
     F->t[F->n] = t;
     F->a_g[F->n] = a_g;
     F->a_z[F->n] = a_z;
+    if (F->has_y)
+        F->a_y[F->n] = a_y;
     F->has_z |= a_z != 0.0;
     F->n++;
     F->log = (sw_log_t){.t = F->t,
@@ -120,7 +163,20 @@ int sw_forensics_push(sw_forensics_t *F, double t, double a_g, double a_z, int r
                         .n = F->n,
                         .restart = F->restart,
                         .nrestart = F->nrestart};
+    F->log_lat = F->log;
+    F->log_lat.a_g = F->a_y;
     return SW_OK;
+}
+
+int sw_forensics_push(sw_forensics_t *F, double t, double a_g, double a_z, int restart)
+{
+    return push(F, t, a_g, 0.0, 0, a_z, restart);
+}
+
+int sw_forensics_push_lat(sw_forensics_t *F, double t, double a_g, double a_y, double a_z,
+                          int restart)
+{
+    return push(F, t, a_g, a_y, 1, a_z, restart);
 }
 
 int sw_forensics_status(const sw_forensics_t *F)
@@ -133,6 +189,11 @@ const sw_log_t *sw_forensics_log(const sw_forensics_t *F)
     return &F->log;
 }
 
+const sw_log_t *sw_forensics_log_lat(const sw_forensics_t *F)
+{
+    return F->has_y ? &F->log_lat : NULL;
+}
+
 void sw_forensics_rerun(const sw_forensics_t *F, sw_engine_t *e, double t_end, double settle)
 {
     size_t i = 0, r = 0;
@@ -140,7 +201,11 @@ void sw_forensics_rerun(const sw_forensics_t *F, sw_engine_t *e, double t_end, d
         while (r < F->nrestart && F->restart[r] <= i)
             if (F->restart[r++] == i)
                 sw_engine_restart(e);
-        sw_engine_push(e, F->t[i], F->a_g[i], F->has_z ? F->a_z[i] : 0.0);
+        const double az = F->has_z ? F->a_z[i] : 0.0;
+        if (F->has_y)
+            sw_engine_push_lat(e, F->t[i], F->a_g[i], F->a_y[i], az);
+        else
+            sw_engine_push(e, F->t[i], F->a_g[i], az);
         if (F->t[i] > t_end)
             break;
     }
@@ -157,7 +222,91 @@ int sw_forensics_safety(sw_forensics_t *F)
                                  .threads = F->o.threads,
                                  .progress = F->o.progress,
                                  .user = F->o.user};
-    return sw_whatif_safety(F->cases, F->ncases, sw_forensics_log(F), &so);
+    int rc = sw_whatif_safety(F->cases, F->ncases, sw_forensics_log(F), &so);
+    if (rc != SW_OK || !F->has_y)
+        return rc;
+    /* the lateral planes: the same searches on the lateral acceleration
+     * (the planes are driven each by its own axis, so scaling both axes
+     * together overturns the package at the smaller of the two factors) */
+    for (size_t k = 0; k < F->npkg; k++) {
+        sw_whatif_case_t *C = &F->lat[k];
+        C->available = C->built;
+        C->note[0] = '\0';
+    }
+    return sw_whatif_safety(F->lat, F->npkg, &F->log_lat, &so);
+}
+
+/* The scale at which plane sf first overturns the package: for a log it
+ * survived, a weaker overturning scale found below 1 comes first. */
+static double first_over(const sw_safety_t *sf)
+{
+    if (sf->overturned)
+        return sf->found ? sf->factor : INFINITY;
+    if (sf->below.found)
+        return sf->below.x;
+    return INFINITY;
+}
+
+int sw_forensics_factor(const sw_forensics_t *F, size_t k, sw_forensics_factor_t *out)
+{
+    const sw_whatif_case_t *L = k < F->npkg ? sw_forensics_scene_case(F, k) : NULL;
+    if (!L || !out)
+        return SW_EINVAL;
+    memset(out, 0, sizeof *out);
+    out->first = SW_PLANE_LONG;
+    out->sf = L->sf;
+    out->planes = 1;
+    const sw_whatif_case_t *T = &F->lat[k];
+    if (!L->available || !F->has_y || !T->available)
+        return SW_OK;
+    out->planes = 2;
+    out->lateral = T;
+    const sw_safety_t *a = &L->sf, *b = &T->sf;
+    sw_safety_t *s = &out->sf;
+    s->overturned = a->overturned || b->overturned;
+    int lat; /* the plane that gives out first */
+    if (s->overturned) {
+        /* the smallest scale that overturns either plane, no larger than 1 */
+        const double xa = first_over(a), xb = first_over(b);
+        lat = xb < xa || (xb == xa && b->overturned && !a->overturned);
+    } else {
+        const double fa = a->found ? a->factor : INFINITY, fb = b->found ? b->factor : INFINITY;
+        lat = fb < fa || (fb == fa && !a->found && b->max_scale < a->max_scale);
+    }
+    const sw_safety_t *w = lat ? b : a, *o = lat ? a : b;
+    out->first = lat ? SW_PLANE_LAT : SW_PLANE_LONG;
+    s->at_one = w->overturned || !o->overturned ? w->at_one : o->at_one;
+    if (s->overturned && !w->overturned) {
+        /* the plane that gives out first survived the log: it overturns
+         * below 1, on the scale its own search found */
+        s->found = 1;
+        s->factor = w->below.x;
+        s->factor_safe = w->below.x_safe;
+    } else {
+        s->found = w->found;
+        s->factor = w->factor;
+        s->factor_safe = w->factor_safe;
+    }
+    /* survived: the weaker overturning shock is the smaller of the planes' */
+    s->below = a->below;
+    if (b->below.found && (!a->below.found || b->below.x < a->below.x))
+        s->below = b->below;
+    if (s->overturned)
+        s->below.found = 0;
+    s->above = w->above;
+    s->lift_scale = fmin(a->lift_scale, b->lift_scale);
+    s->max_scale = fmin(a->max_scale, b->max_scale); /* searched this far in both */
+    s->trials = a->trials + b->trials;
+    if (!s->overturned && s->found && s->factor > s->max_scale) {
+        s->found = 0; /* the other plane's search did not reach it */
+        s->factor = INFINITY;
+    }
+    return SW_OK;
+}
+
+const sw_whatif_case_t *sw_forensics_lateral_case(const sw_forensics_t *F, size_t k)
+{
+    return k < F->npkg && F->has_y && F->lat[k].built ? &F->lat[k] : NULL;
 }
 
 int sw_forensics_reserve(sw_forensics_t *F, const sw_risk_t *replay)

@@ -104,7 +104,9 @@ int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
                                 : sw_engine_push(g->e, te, s->a_g, az);
     if (rc < 0)
         return gate_refuse(g, s, SW_GATE_REJ_ENGINE, sw_strerror(rc));
-    if (g->o.on_take)
+    if (g->o.lateral && g->o.on_take_lat)
+        g->o.on_take_lat(g->o.user, te, s->a_g, s->a_y, az, g->restarted);
+    else if (g->o.on_take)
         g->o.on_take(g->o.user, te, s->a_g, az, g->restarted);
     g->restarted = 0;
     if (g->have_last) {

@@ -189,6 +189,12 @@ static void on_gate_take(void *user, double t, double a_g, double a_z, int resta
     st->o.on_take(st->o.user, t, a_g, a_z, restart);
 }
 
+static void on_gate_take_lat(void *user, double t, double a_g, double a_y, double a_z, int restart)
+{
+    const sw_stream_t *st = user;
+    st->o.on_take_lat(st->o.user, t, a_g, a_y, a_z, restart);
+}
+
 /* ---- create, destroy ------------------------------------------------------------- */
 
 static void fail(int code, int *err, char *msg, size_t msglen, const char *why)
@@ -316,6 +322,7 @@ sw_stream_t *sw_stream_create(const sw_scene_t *scenes, size_t n, const sw_strea
     go.on_event = on_gate_event;
     go.on_reject = on_gate_reject;
     go.on_take = o->on_take ? on_gate_take : NULL;
+    go.on_take_lat = o->on_take_lat ? on_gate_take_lat : NULL;
     go.on_rival = o->rival ? on_rival : NULL;
     go.user = st;
     if (!(st->gate = sw_gate_create(st->engine, &go, msg, msglen))) {
@@ -341,6 +348,7 @@ sw_stream_t *sw_stream_create(const sw_scene_t *scenes, size_t n, const sw_strea
         gb.on_event = NULL;
         gb.on_reject = NULL;
         gb.on_take = NULL;
+        gb.on_take_lat = NULL;
         gb.on_rival = NULL;
         gb.user = NULL;
         gb.lateral = eb.lateral;
