@@ -144,6 +144,8 @@ static void factor_case(double ax, double ay, double want, sw_plane plane, int o
     assert_true(L->factor_safe <= lx * (1.0 + 1e-9) && L->factor >= lx * (1.0 - 1e-9));
     assert_true(T->factor_safe <= ly * (1.0 + 1e-9) && T->factor >= ly * (1.0 - 1e-9));
     assert_int_equal(fx.sf.trials, L->trials + T->trials);
+    if (ax == 0.0) /* an axis that never moves it does not bound the search */
+        assert_true(fx.sf.max_scale == T->max_scale && fx.sf.max_scale > 1.0);
     sw_forensics_destroy(F);
 }
 
@@ -156,6 +158,7 @@ static void test_factor_both_axes(void **state)
     factor_case(-1.0, -1.2, g * 0.3 / 1.2, SW_PLANE_LAT, 0); /* survived; sideways first */
     factor_case(-2.0, 0.5, g * 0.5 / 2.0, SW_PLANE_LONG, 0); /* survived; forward first */
     factor_case(-6.0, 1.0, g * 0.5 / 6.0, SW_PLANE_LONG, 1); /* overturned forward */
+    factor_case(0.0, -1.2, g * 0.3 / 1.2, SW_PLANE_LAT, 0);  /* nothing along the truck */
 }
 
 /* Without a lateral acceleration the factor is the scene case's, one

@@ -247,6 +247,13 @@ static double first_over(const sw_safety_t *sf)
     return INFINITY;
 }
 
+/* How far plane sf was searched: no limit for a plane whose axis never
+ * lifts the package (no acceleration on it: no scale can move it). */
+static double searched(const sw_safety_t *sf)
+{
+    return isinf(sf->lift_scale) ? INFINITY : sf->max_scale;
+}
+
 int sw_forensics_factor(const sw_forensics_t *F, size_t k, sw_forensics_factor_t *out)
 {
     const sw_whatif_case_t *L = k < F->npkg ? sw_forensics_scene_case(F, k) : NULL;
@@ -271,7 +278,7 @@ int sw_forensics_factor(const sw_forensics_t *F, size_t k, sw_forensics_factor_t
         lat = xb < xa || (xb == xa && b->overturned && !a->overturned);
     } else {
         const double fa = a->found ? a->factor : INFINITY, fb = b->found ? b->factor : INFINITY;
-        lat = fb < fa || (fb == fa && !a->found && b->max_scale < a->max_scale);
+        lat = fb < fa || (fb == fa && searched(b) < searched(a));
     }
     const sw_safety_t *w = lat ? b : a, *o = lat ? a : b;
     out->first = lat ? SW_PLANE_LAT : SW_PLANE_LONG;
@@ -295,7 +302,9 @@ int sw_forensics_factor(const sw_forensics_t *F, size_t k, sw_forensics_factor_t
         s->below.found = 0;
     s->above = w->above;
     s->lift_scale = fmin(a->lift_scale, b->lift_scale);
-    s->max_scale = fmin(a->max_scale, b->max_scale); /* searched this far in both */
+    s->max_scale = fmin(searched(a), searched(b)); /* searched this far in both */
+    if (isinf(s->max_scale))
+        s->max_scale = a->max_scale; /* neither axis moves it */
     s->trials = a->trials + b->trials;
     if (!s->overturned && s->found && s->factor > s->max_scale) {
         s->found = 0; /* the other plane's search did not reach it */
