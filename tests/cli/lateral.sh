@@ -130,4 +130,38 @@ expect_err "several columns could be the lateral acceleration" "two lateral colu
 expect_err "--lat-col" "two lateral columns"
 run "$SW" replay "$TMP/two.csv" --scene "$TMP/deep.ini" --lat-col 4 -q
 expect_rc 0 "two lateral columns, one chosen"
+# forensics reads the lateral column: the crate overturned across the
+# truck by the drive across it is said to, its safety factor is the
+# lateral plane's (the planar run's of the crate of width 0.728 m, whose
+# factor is the lateral one's to the digit), and no what-if case along the
+# truck is said to have saved it; --fail-on-overturn sees it.
+run "$SW" forensics "$LOG" --scene "$SRC/sample_logs/crate.ini" --json --size 2x0.5 \
+    --frame-omega 1Hz --cushion-omega 8Hz
+expect_rc 0 "forensics, the planar run"
+cp "$TMP/out" "$TMP/f_long.json"
+run "$SW" forensics "$TMP/side.csv" --scene "$TMP/deep.ini" --json --size 2x0.5 \
+    --frame-omega 1Hz --cushion-omega 8Hz --fail-on-overturn
+expect_rc 1 "forensics across the truck, --fail-on-overturn"
+grep -q 'is not used' "$TMP/err" && fail "forensics: the lateral column not used"
+cp "$TMP/out" "$TMP/f_side.json"
+python3 - "$TMP/f_long.json" "$TMP/f_side.json" <<'PY' || fail "forensics across the truck"
+import json, sys
+a = json.load(open(sys.argv[1]))["packages"][0]
+p = json.load(open(sys.argv[2]))["packages"][0]
+assert p["plane"] == "lateral" and p["overturned"], p
+assert p["overturn_time"] == a["overturn_time"], (p["overturn_time"], a["overturn_time"])
+sf = p["safety_factor"]
+assert sf["plane"] == "lateral", sf
+for k in ("bracket", "factor", "factor_safe", "lift_scale", "max_scale"):
+    assert sf["planes"]["lateral"][k] == a["safety_factor"][k], k
+    assert sf[k] == a["safety_factor"][k], k
+# nothing along the truck: that plane never lifts, no scale moves it
+assert sf["planes"]["longitudinal"]["lift_scale"] is None, sf["planes"]["longitudinal"]
+assert p["saved_by"] is None and "across the truck" in p["saved_by_note"], p
+PY
+run "$SW" forensics "$TMP/side.csv" --scene "$TMP/deep.ini" --no-what-if -q
+expect_rc 0 "forensics across the truck, in words"
+grep -q "OVERTURNED across the truck at" "$TMP/out" || fail "forensics: the plane not named"
+grep -q "both horizontal axes scaled together: gives out first across the truck" "$TMP/out" ||
+    fail "forensics: the plane that gives out first not named"
 echo "ok lateral"

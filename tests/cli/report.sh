@@ -331,4 +331,45 @@ PY
     grep -q "lcm-logger's receive times" "$TMP/boot-dom.html" ||
         fail "lcm-logger's clock: where the dates come from"
 fi
+
+# A log with a lateral column and a crate with a depth that overturns
+# across the truck (the shock along the truck, half as strong, leaves it
+# upright): the answer, the moments and the close-up name the lateral
+# plane, the figures draw its panel and say so in their captions, and the
+# safety factor is the lateral plane's, named.
+awk -F, 'NR == 1 { print "t_s,ax,ay"; next } { print $1 "," 0.5 * $2 "," $2 }' \
+    "$LOGS/hard-stop-overturn.csv" >"$TMP/both.csv"
+printf '[package]\nname = deep-crate\nheight = 2.0\nwidth = 1.2\ndepth = 0.728\nmass = 1000\n' \
+    >"$TMP/deep.ini"
+run "$SW" forensics "$TMP/both.csv" --scene "$TMP/deep.ini" --no-what-if \
+    --report "$TMP/lat.html" --json
+expect_rc 0 "--report with a lateral plane"
+grep -q 'is not used' "$TMP/err" && fail "forensics did not use the lateral column"
+cp "$TMP/out" "$TMP/lat.json"
+render "$TMP/lat.html" "$TMP/lat-dom.html"
+python3 - "$TMP/lat-dom.html" "$TMP/lat.json" <<'PY' || fail "the report of a lateral overturn"
+import json, sys
+sys.path.insert(0, sys.argv[1].rsplit("/", 1)[0])
+from page import Page
+p = Page(open(sys.argv[1]).read())
+pk = json.load(open(sys.argv[2]))["packages"][0]
+text = p.text
+assert pk["plane"] == "lateral" and pk["overturned"], pk
+sf = pk["safety_factor"]
+assert sf["plane"] == "lateral" and sf["factor"] == sf["planes"]["lateral"]["factor"], sf
+assert sf["planes"]["longitudinal"]["factor"] > 1 > sf["factor"], sf
+assert "OVERTURNED across the truck at %.3f s" % pk["overturn_time"] in text, text[:600]
+assert "it gave out across the truck" in text
+assert "it gives out first across the truck" in text
+assert sf["text"] in text
+assert "overturned across the truck" in text  # the moments
+figs = {f["id"]: f for f in p.figures}
+for fid in ("figure", "zoom-0"):
+    f = figs[fid]
+    assert "tilt across the truck θ / α" in f["svg"], fid
+    assert "θ/α across, deep-crate" in f["svg"], fid
+    assert "the tilt across the truck of each package" in f["caption"], (fid, f["caption"][:300])
+assert "the overturn of deep-crate across the truck at %.3f s" % pk["overturn_time"] in \
+    figs["zoom-0"]["caption"], figs["zoom-0"]["caption"][:300]
+PY
 echo "ok"

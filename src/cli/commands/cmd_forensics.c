@@ -73,11 +73,16 @@ static const sw_cli_option_t forensics_options[] = {
              "or restart over motion may hide an overturn)"},
     {SW_CLI_LONG, 0, "max-samples", "N", FO(max_samples), .min = 1, .max = 1L << 28,
      .def = SW_CLI_LOG_MAX_SAMPLES, .what = "a whole number of samples >= 1",
-     .help = "hold at most N samples of the log in memory (24 bytes each; default " SW_CLI_STR(
-         SW_CLI_LOG_MAX_SAMPLES_N) ", 9.3 h at 1 kHz; at most 268435456); a longer log, or an "
-                                   "endless pipe, is refused with exit 2 instead of filling the "
-                                   "memory"},
-    {SW_CLI_SECTION, .help = "Safety factor (scale of the whole longitudinal acceleration):"},
+     .help =
+         "hold at most N samples of the log in memory (24 bytes each, 32 with a lateral "
+         "column; default " SW_CLI_STR(
+             SW_CLI_LOG_MAX_SAMPLES_N) ", 9.3 h at 1 kHz; at most 268435456); a longer log, or an "
+                                       "endless pipe, is refused with exit 2 instead of filling "
+                                       "the "
+                                       "memory"},
+    {SW_CLI_SECTION,
+     .help = "Safety factor (scale of the whole longitudinal acceleration, and of the lateral "
+             "one with it for a package with a depth):"},
     {SW_CLI_DOUBLE, 0, "step", "X", FO(so.step), .rule = SW_NUM_POSITIVE, .lo = 1e-4, .hi = 1,
      .what = "a positive relative step",
      .help = "relative scan step (default 0.02); smaller steps take tens of thousands of "
@@ -157,7 +162,9 @@ static const sw_cli_command_t forensics_cmd = {
         "for each:\n"
         "  - whether it overturned and how close it came;\n"
         "  - its safety factor: the scales of the recorded longitudinal acceleration that\n"
-        "    still leave it upright and that overturn it, as a bracket [upright, overturns];\n"
+        "    still leave it upright and that overturn it, as a bracket [upright, overturns]\n"
+        "    (with a lateral column and a package with a depth, both axes scaled together,\n"
+        "    and the plane that gives out first named);\n"
         "  - what would have saved it: the same log with the package on the bed, on typical\n"
         "    frames and cushions (a catalogue; or --frame-omega, --cushion-omega) and in other\n"
         "    sizes (--size), each with its outcome, peak and safety factor.\n"
@@ -189,6 +196,15 @@ static void on_take(void *user, double t, double a_g, double a_z, int restart)
     sw_cli_forensics_t *F = user;
     if (sw_forensics_push(F->fx, t, a_g, a_z, restart) != SW_OK)
         F->halt = 1; /* the log is held whole or not at all: the reading may stop */
+}
+
+/* The same with the lateral acceleration: the lateral planes are searched
+ * on it too (the log read with a lateral plane). */
+static void on_take_lat(void *user, double t, double a_g, double a_y, double a_z, int restart)
+{
+    sw_cli_forensics_t *F = user;
+    if (sw_forensics_push_lat(F->fx, t, a_g, a_y, a_z, restart) != SW_OK)
+        F->halt = 1;
 }
 
 /* Open LOG as replay does; refuse what its source does not take and
@@ -289,6 +305,8 @@ static int replay_log(sw_cli_forensics_t *F)
     if ((rc = make_forensics(F)) != SW_EXIT_OK)
         return rc;
     F->R.take = on_take;
+    F->R.take_lat = on_take_lat;
+    F->R.lateral = 1; /* a CSV log's lateral column drives the scenes with a depth */
     F->R.halt = &F->halt;
     F->R.reserve_rate = F->o.reserve_rate;
     /* the reserve of each state only where the figures or --out show it;
@@ -308,8 +326,10 @@ static int replay_log(sw_cli_forensics_t *F)
         return SW_EXIT_IO;
     if ((rc = sw_cli_reader_risk(&F->R, &F->o, F->scenes, F->n)) != SW_EXIT_OK)
         return rc;
-    if (F->o.reserve_rate > 0.0)
+    if (F->o.reserve_rate > 0.0) {
         sw_cli_figure_risk(F->fig, F->R.risk);
+        sw_cli_figure_stream(F->fig, F->R.st); /* the lateral planes' */
+    }
     F->states.risk = F->R.risk; /* after open, which clears the writer */
     F->events.all_impacts = F->o.all_impacts;
     if ((rc = sw_cli_forensics_begin(F)) != SW_EXIT_OK)
@@ -331,6 +351,12 @@ static int replay_log(sw_cli_forensics_t *F)
     }
     sw_cli_reader_settle(&F->R, F->fo.settle);
     sw_cli_risk_resolve(F->R.risk, F->scenes, F->n);
+    for (size_t k = 0; F->R.st && k < F->n; k++) { /* the lateral planes' reserves too */
+        const int rl = sw_stream_risk_resolve(F->R.st, k, SW_PLANE_LAT);
+        if (rl < 0)
+            sw_cli_error("%s: the smallest reserve across the truck could not be found: %s",
+                         F->scenes[k].name, sw_strerror(rl));
+    }
     sw_cli_events_finish(&F->events, F->R.risk, F->n);
     sw_cli_forensics_end(F);
     rc = sw_cli_states_close(&F->states);

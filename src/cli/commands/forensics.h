@@ -120,8 +120,27 @@ int sw_cli_report_zooms(const sw_cli_forensics_t *F, const sw_cli_zoom_t *z, siz
                         sw_cli_figure_t **fig, sw_risk_t **risk);
 
 /* Shared by the text, JSON and HTML: package k's summary of the replay
- * (0 if there is none), and its case as given. */
+ * (0 if there is none): that of its worse plane, the one that decides its
+ * verdict (sw_cli_forensics_plane); and its case as given. */
 int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t *s);
+/* The plane of package k's verdict (SW_PLANE_LONG with one plane), and
+ * how many planes it rocked in (1 or 2). */
+sw_plane sw_cli_forensics_plane(const sw_cli_forensics_t *F, size_t k, int *planes);
+/* The reserve of package k's plane p (NULL: none). */
+const sw_risk_pkg_t *sw_cli_forensics_reserve(const sw_cli_forensics_t *F, size_t k, sw_plane p);
+/* Package k's safety factor with both horizontal axes scaled together
+ * (sw_forensics_factor; one plane: the case as given's): 1, or 0 when
+ * there is none. */
+int sw_cli_forensics_factor(const sw_cli_forensics_t *F, size_t k, sw_forensics_factor_t *fx);
+/* " across the truck" or " along the truck" for plane p of a package
+ * that rocks in two planes, "" for one that rocks in one. */
+const char *sw_cli_forensics_where(int planes, sw_plane p);
+/* The what-if cases of package k that stayed upright where it did not
+ * (sw_cli_whatif_savers) into buf: 1; or 0 with the reason in buf when
+ * that cannot be said: the cases vary the plane along the truck only, so
+ * for a package that overturned across the truck none is known to save
+ * it. */
+int sw_cli_forensics_savers(const sw_cli_forensics_t *F, size_t k, char *buf, size_t len);
 const sw_whatif_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k);
 
 /* forensics of many logs, for its batch job (forensics_job.c): the options

@@ -81,9 +81,52 @@ int sw_cli_forensics_utc(const sw_cli_forensics_t *F, double t, char *buf, size_
     return sw_cli_run_utc(&F->R.run, t, buf, len);
 }
 
+sw_plane sw_cli_forensics_plane(const sw_cli_forensics_t *F, size_t k, int *planes)
+{
+    sw_planes_t p;
+    const int ok = F->R.e && sw_engine_planes_summary(F->R.e, k, &p) == SW_OK;
+    if (planes)
+        *planes = ok ? p.planes : 1;
+    return ok ? p.worse : SW_PLANE_LONG;
+}
+
 int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t *s)
 {
-    return F->R.e && sw_engine_summary(F->R.e, k, s) == SW_OK;
+    return F->R.e &&
+           sw_engine_summary_plane(F->R.e, k, sw_cli_forensics_plane(F, k, NULL), s) == SW_OK;
+}
+
+const sw_risk_pkg_t *sw_cli_forensics_reserve(const sw_cli_forensics_t *F, size_t k, sw_plane p)
+{
+    if (p == SW_PLANE_LONG)
+        return F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
+    return F->R.st ? sw_stream_risk_plane(F->R.st, k, p) : NULL;
+}
+
+int sw_cli_forensics_factor(const sw_cli_forensics_t *F, size_t k, sw_forensics_factor_t *fx)
+{
+    return F->cases && sw_forensics_factor(F->fx, k, fx) == SW_OK;
+}
+
+int sw_cli_forensics_savers(const sw_cli_forensics_t *F, size_t k, char *buf, size_t len)
+{
+    sw_summary_t lat;
+    if (F->R.e && sw_engine_summary_plane(F->R.e, k, SW_PLANE_LAT, &lat) == SW_OK &&
+        lat.overturned) {
+        snprintf(buf, len,
+                 "not known: the what-if cases change the plane along the truck only, and it "
+                 "overturned across the truck");
+        return 0;
+    }
+    sw_cli_whatif_savers(buf, len, F->cases, F->ncases, k);
+    return 1;
+}
+
+const char *sw_cli_forensics_where(int planes, sw_plane p)
+{
+    if (planes < 2)
+        return "";
+    return p == SW_PLANE_LAT ? " across the truck" : " along the truck";
 }
 
 const sw_whatif_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k)
@@ -120,9 +163,12 @@ static void answer(FILE *f, const sw_cli_forensics_t *F, size_t k)
     char desc[224];
     fprintf(f, "%s (%s): ", F->scenes[k].name, sw_cli_whatif_desc(desc, sizeof desc, C));
     const char *verdict = sw_cli_verdict(&s, &F->R.run);
+    int planes;
+    const sw_plane plane = sw_cli_forensics_plane(F, k, &planes);
+    const char *where = sw_cli_forensics_where(planes, plane);
     char utc[64];
     if (s.overturned) {
-        fprintf(f, "OVERTURNED at %.3f s", s.overturn_time);
+        fprintf(f, "OVERTURNED%s at %.3f s", where, s.overturn_time);
         if (sw_cli_forensics_utc(F, s.overturn_time, utc, sizeof utc))
             fprintf(f, " (%s)", utc);
         fputc('\n', f);
@@ -135,25 +181,36 @@ static void answer(FILE *f, const sw_cli_forensics_t *F, size_t k)
                 s.min_margin);
         fprintf(f, "  but %s: an overturn may be hidden there\n", why);
     } else {
-        fprintf(f, "%s; peak %.3f alpha, minimum margin %.3f\n",
+        fprintf(f, "%s; peak %.3f alpha%s, minimum margin %.3f\n",
                 strcmp(verdict, "upright") ? "NO VERDICT (the model faulted)" : "stayed upright",
-                s.max_theta_ratio, s.min_margin);
+                s.max_theta_ratio, where, s.min_margin);
     }
     if (F->R.risk)
-        sw_cli_print_reserve(f, sw_risk_pkg(F->R.risk, k));
+        sw_cli_print_reserve(f, sw_cli_forensics_reserve(F, k, plane));
     char b[64], sentence[640];
-    sw_cli_safety_bracket(b, sizeof b, &C->sf);
-    sw_cli_safety_sentence(sentence, sizeof sentence, &C->sf);
+    sw_forensics_factor_t fx;
+    const sw_safety_t *sf = sw_cli_forensics_factor(F, k, &fx) ? &fx.sf : &C->sf;
+    sw_cli_safety_bracket(b, sizeof b, sf);
+    sw_cli_safety_sentence(sentence, sizeof sentence, sf);
     fprintf(f, "  safety factor %s\n", b);
+    if (fx.planes == 2) {
+        char lb[64], tb[64];
+        sw_cli_safety_bracket(lb, sizeof lb, &C->sf);
+        sw_cli_safety_bracket(tb, sizeof tb, &fx.lateral->sf);
+        fprintf(f,
+                "  both horizontal axes scaled together: gives out first%s (along the truck %s, "
+                "across %s)\n",
+                sw_cli_forensics_where(2, fx.first), lb, tb);
+    }
     wrapped(f, sentence);
     if (F->fo.w.no_what_if)
         return;
     if (s.overturned) {
         char save[512];
-        sw_cli_whatif_savers(save, sizeof save, F->cases, F->ncases, k);
+        sw_cli_forensics_savers(F, k, save, sizeof save);
         fprintf(f, "  would have stayed upright: %s\n", save[0] ? save : "none of the cases below");
     }
-    fprintf(f, "  what if (the same log):\n");
+    fprintf(f, "  what if (the same log%s):\n", planes == 2 ? ", the plane along the truck" : "");
     sw_cli_whatif_print_table(f, F->cases, F->ncases, k);
 }
 
@@ -197,6 +254,12 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
         "overturned cut down to a relative width of %g; %ld runs for %zu cases.\n",
         sw_forensics_log(F->fx)->n, so->step > 0 ? so->step : 0.02, so->tol > 0 ? so->tol : 1e-3,
         runs, F->ncases);
+    if (sw_forensics_log_lat(F->fx))
+        fprintf(f,
+                "with a lateral acceleration, each package with a depth is searched across the\n"
+                "truck too (the lateral acceleration scaled by the same factor, the plane over\n"
+                "its depth): the package's factor is the smaller plane's, both axes scaled\n"
+                "together.\n");
     for (size_t k = 0; k < F->n; k++) {
         const sw_whatif_case_t *C = sw_cli_forensics_scene_case(F, k);
         if (C && !isinf(C->sf.lift_scale))
@@ -238,7 +301,11 @@ void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_
         sw_cli_rec_null(o, "verdict");
         return;
     }
+    int planes;
+    const sw_plane plane = sw_cli_forensics_plane(F, k, &planes);
     sw_cli_rec_text(o, "model", sw_model_name(s.model));
+    if (planes == 2) /* the verdict's plane, whose are the fields that follow */
+        sw_cli_rec_text(o, "plane", sw_plane_name(plane));
     sw_cli_rec_text(o, "verdict", sw_cli_verdict(&s, &F->R.run));
     sw_cli_rec_text(o, "seen", sw_cli_verdict_seen(&s));
     sw_cli_json_incomplete(o, &s, &F->R.run);
@@ -246,7 +313,7 @@ void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_
     sw_cli_rec_num(o, "overturn_time", s.overturn_time);
     sw_cli_rec_num(o, "max_theta_ratio", s.max_theta_ratio);
     sw_cli_rec_num(o, "min_margin", s.min_margin);
-    const sw_risk_pkg_t *rp = F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
+    const sw_risk_pkg_t *rp = sw_cli_forensics_reserve(F, k, plane);
     const int rv = rp && rp->evaluations > 0;
     sw_cli_rec_num(o, "min_reserve_g", rv ? rp->min_reserve_g : NAN);
     sw_cli_rec_num(o, "min_reserve_time", rv ? rp->min_reserve_time : NAN);
@@ -265,9 +332,25 @@ void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_
         const int have = sw_cli_forensics_utc(F, when[i].t, utc, sizeof utc);
         sw_cli_rec_text(u, when[i].key, have ? utc : NULL);
     }
-    sw_cli_whatif_json_safety(o, C);
-    json_t *saved = sw_cli_rec_arr(o, "saved_by");
-    for (size_t i = 0; i < F->ncases && s.overturned; i++) {
+    sw_forensics_factor_t fx;
+    if (sw_cli_forensics_factor(F, k, &fx) && fx.planes == 2) {
+        /* both axes scaled together: the package's factor, the plane that
+         * gives out first, and each plane's own search */
+        json_t *j = sw_cli_json_safety(o, "safety_factor", C, &fx.sf);
+        sw_cli_rec_text(j, "plane", sw_plane_name(fx.first));
+        json_t *by = sw_cli_rec_obj(j, "planes");
+        sw_cli_json_safety(by, "longitudinal", C, &C->sf);
+        sw_cli_json_safety(by, "lateral", fx.lateral, &fx.lateral->sf);
+    } else {
+        sw_cli_whatif_json_safety(o, C);
+    }
+    char why[256];
+    if (s.overturned && !sw_cli_forensics_savers(F, k, why, sizeof why)) {
+        sw_cli_rec_null(o, "saved_by"); /* not known: why */
+        sw_cli_rec_text(o, "saved_by_note", why);
+    }
+    json_t *saved = json_object_get(o, "saved_by") ? NULL : sw_cli_rec_arr(o, "saved_by");
+    for (size_t i = 0; saved && i < F->ncases && s.overturned; i++) {
         const sw_whatif_case_t *W = &F->cases[i];
         if (W->pkg == k && !W->is_scene && W->available && !W->sf.overturned)
             sw_cli_rec_text(saved, NULL, W->name);

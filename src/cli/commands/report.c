@@ -117,9 +117,13 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
         html(f, sw_cli_whatif_desc(desc, sizeof desc, C));
         fprintf(f, "): ");
         const char *verdict = sw_cli_verdict(&s, &F->R.run);
+        int planes;
+        const sw_plane plane = sw_cli_forensics_plane(F, k, &planes);
+        const char *where = sw_cli_forensics_where(planes, plane);
         char utc[64];
         if (s.overturned) {
-            fprintf(f, "<span class=\"over\">OVERTURNED</span> at %.3f s", s.overturn_time);
+            fprintf(f, "<span class=\"over\">OVERTURNED%s</span> at %.3f s", where,
+                    s.overturn_time);
             if (sw_cli_forensics_utc(F, s.overturn_time, utc, sizeof utc))
                 fprintf(f, " (%s)", utc);
             fputc('.', f);
@@ -137,23 +141,37 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
                     "it.)");
         } else if (!strcmp(verdict, "upright")) {
             fprintf(f,
-                    "<span class=\"up\">stayed upright</span>; its tilt reached %.3f of the "
+                    "<span class=\"up\">stayed upright</span>; its tilt%s reached %.3f of the "
                     "tipping angle, its smallest margin to overturn was %.3f.",
-                    s.max_theta_ratio, s.min_margin);
+                    where, s.max_theta_ratio, s.min_margin);
         } else {
             fprintf(f, "<span class=\"over\">no verdict</span>: the model faulted.");
         }
         fprintf(f, "</p>");
-        reserve(f, F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL);
+        if (planes == 2)
+            fprintf(f, "<p class=\"plane\">The verdict is the %s plane's: it gave out%s.</p>",
+                    sw_plane_name(plane), where);
+        reserve(f, F->R.risk ? sw_cli_forensics_reserve(F, k, plane) : NULL);
         char b[64], sentence[640];
-        sw_cli_safety_bracket(b, sizeof b, &C->sf);
-        sw_cli_safety_sentence(sentence, sizeof sentence, &C->sf);
+        sw_forensics_factor_t fx;
+        const sw_safety_t *sf = sw_cli_forensics_factor(F, k, &fx) ? &fx.sf : &C->sf;
+        sw_cli_safety_bracket(b, sizeof b, sf);
+        sw_cli_safety_sentence(sentence, sizeof sentence, sf);
         fprintf(f, "<p><b>Safety factor %s.</b> ", b);
         html(f, sentence);
+        if (fx.planes == 2) {
+            char lb[64], tb[64];
+            sw_cli_safety_bracket(lb, sizeof lb, &C->sf);
+            sw_cli_safety_bracket(tb, sizeof tb, &fx.lateral->sf);
+            fprintf(f,
+                    " Both horizontal axes scaled together: it gives out first%s (along the "
+                    "truck %s, across %s).",
+                    sw_cli_forensics_where(2, fx.first), lb, tb);
+        }
         fprintf(f, "</p>");
         if (s.overturned && !F->fo.w.no_what_if) {
             char save[512];
-            sw_cli_whatif_savers(save, sizeof save, F->cases, F->ncases, k);
+            sw_cli_forensics_savers(F, k, save, sizeof save);
             fprintf(f, "<p><b>Would have stayed upright:</b> ");
             html(f, save[0] ? save : "none of the supports and sizes tried (see below)");
             fprintf(f, ".</p>");
@@ -239,30 +257,36 @@ static void moments(FILE *f, const sw_cli_forensics_t *F)
             "<h2>When</h2>\n<table id=\"times\"><tr><th>package</th><th>moment</th>"
             "<th>t (s)</th>%s</tr>\n",
             utc ? "<th>UTC</th>" : "");
-    for (size_t k = 0; k < F->n; k++) {
-        sw_summary_t s;
-        if (!sw_cli_forensics_summary(F, k, &s))
-            continue;
-        const sw_risk_pkg_t *rp = F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
-        const struct {
-            const char *what;
-            double t;
-        } when[] = {
-            {"first uplift", s.uplift_time},
-            {"tipped (|θ| = α)", s.tip_time},
-            {"overturned", s.overturn_time},
-            {"smallest reserve", rp && rp->evaluations > 0 ? rp->min_reserve_time : NAN},
-        };
-        for (size_t i = 0; i < sizeof when / sizeof when[0]; i++) {
-            if (!isfinite(when[i].t))
+    for (size_t k = 0; k < F->n; k++)
+        for (int p = 0; p < 2; p++) { /* each plane's moments, named by plane with two */
+            sw_summary_t s;
+            int planes;
+            sw_cli_forensics_plane(F, k, &planes);
+            if (p >= planes || !F->R.e ||
+                sw_engine_summary_plane(F->R.e, k, (sw_plane)p, &s) != SW_OK)
                 continue;
-            fprintf(f, "<tr><td>");
-            html(f, F->scenes[k].name);
-            fprintf(f, "</td><td>%s</td>", when[i].what);
-            time_cells(f, F, when[i].t);
-            fprintf(f, "</tr>\n");
+            const char *where = sw_cli_forensics_where(planes, (sw_plane)p);
+            const sw_risk_pkg_t *rp =
+                F->R.risk ? sw_cli_forensics_reserve(F, k, (sw_plane)p) : NULL;
+            const struct {
+                const char *what;
+                double t;
+            } when[] = {
+                {"first uplift", s.uplift_time},
+                {"tipped (|θ| = α)", s.tip_time},
+                {"overturned", s.overturn_time},
+                {"smallest reserve", rp && rp->evaluations > 0 ? rp->min_reserve_time : NAN},
+            };
+            for (size_t i = 0; i < sizeof when / sizeof when[0]; i++) {
+                if (!isfinite(when[i].t))
+                    continue;
+                fprintf(f, "<tr><td>");
+                html(f, F->scenes[k].name);
+                fprintf(f, "</td><td>%s%s</td>", when[i].what, where);
+                time_cells(f, F, when[i].t);
+                fprintf(f, "</tr>\n");
+            }
         }
-    }
     fprintf(f, "</table>\n");
     if (!utc)
         fprintf(f,
@@ -487,6 +511,18 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
             "most threatened moment (&le; x (&ge; y): between y and x, the search stopped at "
             "its budget). Safety factor: the recording scaled by the first number leaves it "
             "upright, by the second it overturns.</p>\n");
+    int planes = 1;
+    for (size_t k = 0; k < F->n; k++) {
+        int p;
+        sw_cli_forensics_plane(F, k, &p);
+        planes = p > planes ? p : planes;
+    }
+    if (planes == 2)
+        fprintf(f,
+                "<p class=\"note\">The cases change the plane along the truck (its width and "
+                "its support along the truck): the lateral planes are those of the packages as "
+                "given, and a package that overturned across the truck is not known to be "
+                "saved by any of them.</p>\n");
     for (size_t k = 0; k < F->n; k++) {
         fprintf(f, "<h3>");
         html(f, F->scenes[k].name);

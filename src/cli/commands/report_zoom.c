@@ -33,23 +33,26 @@ size_t sw_cli_report_moments(const sw_cli_forensics_t *F, sw_cli_zoom_t *z, size
         return 0;
     size_t nm = 0;
     for (size_t k = 0; k < F->n; k++) {
-        sw_summary_t s;
+        sw_summary_t s; /* the plane that decides the verdict, named with two */
         if (!sw_cli_forensics_summary(F, k, &s))
             continue;
-        const sw_risk_pkg_t *rp = F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
+        int planes;
+        const sw_plane plane = sw_cli_forensics_plane(F, k, &planes);
+        const char *where = sw_cli_forensics_where(planes, plane);
+        const sw_risk_pkg_t *rp = F->R.risk ? sw_cli_forensics_reserve(F, k, plane) : NULL;
         sw_cli_zoom_t *o = &m[nm];
         if (s.overturned && isfinite(s.overturn_time)) {
             o->t = s.overturn_time;
-            snprintf(o->what, sizeof o->what, "the overturn of %s at %.3f s", F->scenes[k].name,
-                     o->t);
+            snprintf(o->what, sizeof o->what, "the overturn of %s%s at %.3f s", F->scenes[k].name,
+                     where, o->t);
         } else if (rp && rp->evaluations > 0 && isfinite(rp->min_reserve_time)) {
             o->t = rp->min_reserve_time;
-            snprintf(o->what, sizeof o->what, "the smallest reserve of %s (%.3g g) at %.3f s",
-                     F->scenes[k].name, rp->min_reserve_g, o->t);
+            snprintf(o->what, sizeof o->what, "the smallest reserve of %s%s (%.3g g) at %.3f s",
+                     F->scenes[k].name, where, rp->min_reserve_g, o->t);
         } else if (isfinite(s.uplift_time)) {
             o->t = s.uplift_time;
-            snprintf(o->what, sizeof o->what, "the first uplift of %s at %.3f s", F->scenes[k].name,
-                     o->t);
+            snprintf(o->what, sizeof o->what, "the first uplift of %s%s at %.3f s",
+                     F->scenes[k].name, where, o->t);
         } else {
             continue; /* it never moved: nothing to look at closer */
         }
@@ -150,6 +153,7 @@ int sw_cli_report_zooms(const sw_cli_forensics_t *F, const sw_cli_zoom_t *z, siz
         }
     }
     sw_engine_opts_t eo = F->eo;
+    eo.lateral = sw_forensics_log_lat(F->fx) != NULL; /* the lateral planes as replayed */
     eo.on_state = on_state;
     eo.on_event = on_event;
     eo.user = &Z;

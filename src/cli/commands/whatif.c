@@ -265,12 +265,17 @@ void sw_cli_whatif_print_table(FILE *f, const sw_whatif_case_t *cs, size_t n, si
 
 void sw_cli_whatif_json_safety(json_t *o, const sw_whatif_case_t *C)
 {
-    const sw_safety_t *s = &C->sf;
-    json_t *j = sw_cli_rec_obj(o, "safety_factor");
+    sw_cli_json_safety(o, "safety_factor", C, &C->sf);
+}
+
+json_t *sw_cli_json_safety(json_t *o, const char *key, const sw_whatif_case_t *C,
+                           const sw_safety_t *s)
+{
+    json_t *j = sw_cli_rec_obj(o, key);
     sw_cli_rec_bool(j, "available", C->available);
     if (!C->available) {
         sw_cli_rec_text(j, "note", C->note);
-        return;
+        return j;
     }
     char text[640];
     const int both = s->found && s->factor_safe > 0.0;
@@ -294,6 +299,7 @@ void sw_cli_whatif_json_safety(json_t *o, const sw_whatif_case_t *C)
     sw_cli_rec_num(j, "lift_scale", s->lift_scale);
     sw_cli_rec_num(j, "max_scale", s->max_scale);
     sw_cli_rec_int(j, "trials", s->trials);
+    return j;
 }
 
 /* "min_reserve_g", its time, whether exact, its proven lower end, and

@@ -58,6 +58,10 @@ void sw_cli_whatif_savers(char *buf, size_t len, const sw_whatif_case_t *cs, siz
 /* As JSON (record.h): the case's member "safety_factor" of o; the case's
  * members into o. */
 void sw_cli_whatif_json_safety(json_t *o, const sw_whatif_case_t *C);
+/* A safety factor s of case C (its availability and note) as the member
+ * key of o; the member made. */
+json_t *sw_cli_json_safety(json_t *o, const char *key, const sw_whatif_case_t *C,
+                           const sw_safety_t *s);
 void sw_cli_whatif_json_case(json_t *o, const sw_whatif_case_t *C);
 
 #endif

@@ -72,6 +72,8 @@ struct sw_cli_reader {
     void *priv;                        /* the source's own (made by prepare, freed by close) */
     int lateral; /* the command reports a lateral plane: a CSV log's lateral column drives
                     the packages whose scene gives a depth (engine opts.lateral) */
+    sw_gate_take_lat_fn take_lat; /* may be NULL: with a lateral plane read, called instead
+                                     of take, with the lateral value too */
 };
 
 /* Open LOG ("-" for standard input): a missing file is an I/O error (3)

@@ -202,6 +202,12 @@ static void on_gate_take(void *user, double t, double a_g, double a_z, int resta
     F->R->take(F->R->user, t, a_g, a_z, restart);
 }
 
+static void on_gate_take_lat(void *user, double t, double a_g, double a_y, double a_z, int restart)
+{
+    const feed_t *F = user;
+    F->R->take_lat(F->R->user, t, a_g, a_y, a_z, restart);
+}
+
 static void on_state(void *user, const sw_output_t *out)
 {
     const feed_t *F = user;
@@ -349,6 +355,7 @@ static int csv_start(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
         .on_reject = on_gate_reject,
         .on_take = R->take ? on_gate_take : NULL,
         .user = F,
+        .on_take_lat = R->take_lat ? on_gate_take_lat : NULL,
     };
     so.engine.lateral = F->lateral;
     sw_cli_gate_opts(&R->o->gate, &so.gate);
