@@ -134,4 +134,49 @@ fi
 run "$SW" boundary --scene "$BLOCK" --pulse half-sine --omega-ratio 1:2:1 --progress
 expect_rc 0 "--progress"
 expect_err "100% (2/2 points)" "--progress"
+
+# --plane lateral: the curve of the lateral plane is the planar one over
+# the depth on the lateral support values, so a crate of depth 0.728 m
+# gives, to the last digit, the curves and the detail of the crate of
+# width 0.728 m: bare, and on a frame whose lateral bearings (omega 3)
+# are softer than those along (omega 5.59); --vary package.depth varies
+# the size it rocks over.  Without a depth it is refused with the reason.
+printf '[package]\nname = c\nheight = 2.0\nwidth = 1.3\ndepth = 0.728\nmass = 1000\n' >"$TMP/bd.ini"
+printf '[package]\nname = c\nheight = 2.0\nwidth = 0.728\nmass = 1000\n' >"$TMP/bw.ini"
+cp "$TMP/bd.ini" "$TMP/fd.ini"
+printf '[frame]\nmass = 250\nomega = 5.59\nzeta = 0.1\nlateral_omega = 3\n' >>"$TMP/fd.ini"
+cp "$TMP/bw.ini" "$TMP/fw.ini"
+printf '[frame]\nmass = 250\nomega = 3\nzeta = 0.1\n' >>"$TMP/fw.ini"
+for kind in b f; do
+    for pulse in half-sine full-sine; do
+        run "$SW" boundary --scene "$TMP/${kind}d.ini" --pulse $pulse --omega-ratio 0.5:6:0.5 \
+            --plane lateral -o "$TMP/lat.csv" --detail "$TMP/lat_d.csv" -q
+        expect_rc 0 "--plane lateral ($kind, $pulse)"
+        run "$SW" boundary --scene "$TMP/${kind}w.ini" --pulse $pulse --omega-ratio 0.5:6:0.5 \
+            -o "$TMP/long.csv" --detail "$TMP/long_d.csv" -q
+        expect_rc 0 "the planar run ($kind, $pulse)"
+        cmp -s "$TMP/lat.csv" "$TMP/long.csv" || fail "--plane lateral ($kind, $pulse): curves differ"
+        cmp -s "$TMP/lat_d.csv" "$TMP/long_d.csv" || fail "--plane lateral ($kind, $pulse): detail differs"
+    done
+done
+# the lateral plane of the 1.3 m wide crate is not its longitudinal one
+run "$SW" boundary --scene "$TMP/bd.ini" --pulse half-sine --omega-ratio 0.5:6:0.5 -o "$TMP/along.csv" -q
+cmp -s "$TMP/along.csv" "$TMP/lat.csv" && fail "--plane lateral: the curve along the truck"
+run "$SW" boundary --scene "$TMP/bd.ini" --pulse half-sine --omega-ratio 1:3:1 --plane lateral \
+    --vary package.depth=0.728,0.6 -o "$TMP/lat.csv" -q
+expect_rc 0 "--plane lateral --vary package.depth"
+run "$SW" boundary --scene "$TMP/bw.ini" --pulse half-sine --omega-ratio 1:3:1 \
+    --vary package.width=0.728,0.6 -o "$TMP/long.csv" -q
+cmp -s "$TMP/lat.csv" "$TMP/long.csv" || fail "--plane lateral --vary package.depth"
+run "$SW" boundary --scene "$TMP/bw.ini" --pulse half-sine --omega-ratio 1 --plane lateral
+expect_rc 2 "--plane lateral without a depth"
+expect_err "--plane lateral: $TMP/bw.ini gives no [package] depth" "--plane lateral without a depth"
+run "$SW" boundary --scene "$TMP/bd.ini" --pulse half-sine --omega-ratio 1 --plane lateral \
+    --vary package.width=1,2
+expect_rc 2 "--plane lateral --vary package.width"
+expect_err "vary package.depth" "--plane lateral --vary package.width"
+run "$SW" boundary --scene "$TMP/bd.ini" --pulse half-sine --omega-ratio 1 --plane sideways
+expect_rc 2 "--plane sideways"
+expect_err "expected longitudinal or lateral" "--plane sideways"
+
 echo "ok"

@@ -46,6 +46,7 @@ typedef struct {
     const char *out; /* the curves; NULL: standard output */
     const char *plot, *islands, *detail, *title;
     int quiet;
+    int lateral; /* --plane lateral: the curves of the scenes' lateral planes */
 } boundary_opts_t;
 
 /* One curve: a scene (a copy, --vary applied) and its bearing ratio. */

@@ -344,8 +344,8 @@ static void plot_axes(FILE *g, const boundary_t *B, const extent_t *E)
 {
     const double lo = E->lo, hi = E->hi, pad = E->pad;
     char deftitle[128];
-    snprintf(deftitle, sizeof deftitle, "Overturning boundary, %s pulse",
-             sw_pulse_shape_name(B->b.bo.shape));
+    snprintf(deftitle, sizeof deftitle, "Overturning boundary, %s pulse%s",
+             sw_pulse_shape_name(B->b.bo.shape), B->b.lateral ? ", across the truck" : "");
     fputs("set title ", g);
     sw_cli_plot_text(g, B->b.title ? B->b.title : deftitle);
     fprintf(g, "\nset xlabel '%s'\nset ylabel '%s'\n",

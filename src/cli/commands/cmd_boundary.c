@@ -248,6 +248,18 @@ static int parse_bearing(const sw_cli_option_t *o, const char *arg, void *dest)
     return rc == SW_EXIT_OK ? check_values(o, b->bearing, b->nbear) : rc;
 }
 
+/* --plane longitudinal|lateral. */
+static int parse_plane(const sw_cli_option_t *o, const char *arg, void *dest)
+{
+    boundary_opts_t *b = dest;
+    if (!strcmp(arg, "longitudinal") || !strcmp(arg, "lateral")) {
+        b->lateral = !strcmp(arg, "lateral");
+        return SW_EXIT_OK;
+    }
+    sw_cli_error("--%s: expected longitudinal or lateral, got '%s'", o->long_name, arg);
+    return SW_EXIT_USAGE;
+}
+
 static int add_vary(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     (void)o;
@@ -283,6 +295,11 @@ static const sw_cli_option_t boundary_options[] = {
      .help = "one curve per value of a scene key, e.g. --vary frame.zeta=0.05,0.1,0.2; "
              "repeatable (all combinations); a frame or cushion key leaves scenes without that "
              "section as they are"},
+    {SW_CLI_CALL, 0, "plane", "PLANE", .fn = parse_plane,
+     .help = "longitudinal (default): the package rocking along the truck, over its width; "
+             "lateral: across it, over its [package] depth (every scene must give one), on the "
+             "frame's and cushion's lateral_ values where given; --vary package.depth then "
+             "varies the size it rocks over"},
     {SW_CLI_CALL, 0, "bearing-ratio", "B1,B2", .fn = parse_bearing, .lo = 1e-3, .hi = 1e3,
      .help = "omega_b = B * omega_e at every point (the paper's omega_b/omega_e); values may be "
              "fractions such as 1/3; scenes without a [frame] are drawn once, as they are"},
@@ -437,6 +454,40 @@ static int check_options(boundary_t *B, int argc, char **argv, int first)
     return SW_EXIT_OK;
 }
 
+/* --plane lateral: each scene replaced by the scene of its lateral plane
+ * (sw_scene_lateral: the package over its depth, the lateral support
+ * values), and --vary package.depth turned into the width of that scene;
+ * a scene without a depth, or a --vary of the width (not the size this
+ * plane rocks over), is refused. */
+static int to_plane(boundary_t *B)
+{
+    if (!B->b.lateral)
+        return SW_EXIT_OK;
+    for (size_t k = 0; k < B->nsc; k++) {
+        sw_scene_t lat;
+        if (sw_scene_lateral(&B->scenes[k], &lat) != SW_OK) {
+            sw_cli_error(
+                "--plane lateral: %s gives no [package] depth (m, the size across the truck "
+                "the lateral plane rocks over): add one to the scene or --set package.depth=D",
+                k < B->o.scenes.n ? B->o.scenes.v[k] : B->scenes[k].name);
+            return SW_EXIT_USAGE;
+        }
+        B->scenes[k] = lat;
+    }
+    for (size_t i = 0; i < B->b.nvary; i++) {
+        char *key = B->b.vary[i].key;
+        if (!strcmp(key, "package.width")) {
+            sw_cli_error(
+                "--vary package.width: with --plane lateral the package rocks over its "
+                "depth; vary package.depth");
+            return SW_EXIT_USAGE;
+        }
+        if (!strcmp(key, "package.depth")) /* the same length: rewritten in place */
+            memcpy(key, "package.width", sizeof "package.width");
+    }
+    return SW_EXIT_OK;
+}
+
 int cmd_boundary(int argc, char **argv)
 {
     int rc = SW_EXIT_USAGE;
@@ -474,6 +525,7 @@ int cmd_boundary(int argc, char **argv)
             (rc = check_options(&B, argc, argv, first)) == SW_EXIT_OK &&
             (rc = sw_cli_check_run_files(NULL, &B.o.scenes, outputs, 4)) == SW_EXIT_OK &&
             (rc = sw_cli_load_scenes(&B.o, &B.scenes, &B.nsc)) == SW_EXIT_OK &&
+            (rc = to_plane(&B)) == SW_EXIT_OK &&
             (rc = sw_bnd_build_curves(B.scenes, B.nsc, B.b.vary, B.b.nvary, B.b.bearing, B.b.nbear,
                                       B.bear_text, &B.cv, &B.nc)) == SW_EXIT_OK)
             rc = sw_bnd_curve_units(&B);
