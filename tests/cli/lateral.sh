@@ -164,4 +164,54 @@ expect_rc 0 "forensics across the truck, in words"
 grep -q "OVERTURNED across the truck at" "$TMP/out" || fail "forensics: the plane not named"
 grep -q "both horizontal axes scaled together: gives out first across the truck" "$TMP/out" ||
     fail "forensics: the plane that gives out first not named"
+# batch --csv: the lateral columns hold the lateral object's fields and
+# the verdict's plane for a package with a lateral plane, and are empty
+# for one without (the crate without a depth on the same log; the same
+# crate on a log without a lateral column); the forensics job's hold the
+# plane that gives out first and each plane's bracket.
+run "$SW" batch "$TMP/side.csv" "$LOG" --scene "$TMP/deep.ini" --scene "$SRC/sample_logs/crate.ini" \
+    -o "$TMP/b.jsonl" --csv "$TMP/b.csv" -q
+expect_rc 0 "batch with a lateral column"
+python3 - "$TMP/b.jsonl" "$TMP/b.csv" <<'PY' || fail "batch --csv: the lateral columns"
+import csv, json, sys
+recs = [json.loads(l) for l in open(sys.argv[1])]
+rows = list(csv.DictReader(open(sys.argv[2])))
+assert len(recs) == len(rows) == 4, (len(recs), len(rows))
+cols = ["overturned", "verdict", "overturn_time", "tip_time", "uplift_time", "max_abs_theta",
+        "max_theta_ratio", "alpha", "min_margin", "impacts", "uplifts", "min_reserve_g",
+        "min_reserve_time"]
+def cell(v):
+    if v is None:
+        return ""
+    if v is True or v is False:
+        return "1" if v else "0"
+    if isinstance(v, float):
+        return "%.9g" % v
+    return str(v)
+lateral = 0
+for rec, row in zip(recs, rows):
+    if "lateral" in rec:
+        lateral += 1
+        assert row["plane"] == rec["plane"], (row["plane"], rec["plane"])
+        assert row["both_planes_rocking"] == cell(rec["both_planes_rocking"])
+        for c in cols:
+            assert row["lateral_" + c] == cell(rec["lateral"][c]), (c, row["lateral_" + c])
+    else:
+        assert all(row[k] == "" for k in row if k.startswith("lateral_") or k == "plane"), row
+assert lateral == 1, lateral
+side = [r for r in rows if r["package"] == "crate-A" and r["lateral_verdict"]][0]
+assert side["plane"] == "lateral" and side["lateral_overturned"] == "1", side
+PY
+run "$SW" batch --job forensics "$TMP/side.csv" --scene "$TMP/deep.ini" --no-what-if \
+    -o "$TMP/bf.jsonl" --csv "$TMP/bf.csv" -q
+expect_rc 0 "batch --job forensics with a lateral column"
+python3 - "$TMP/bf.jsonl" "$TMP/bf.csv" <<'PY' || fail "batch --job forensics --csv: the planes"
+import csv, json, sys
+rec = json.loads(open(sys.argv[1]).readline())
+row = list(csv.DictReader(open(sys.argv[2])))[0]
+sf = rec["safety_factor"]
+assert row["plane"] == "lateral" and row["factor_plane"] == "lateral", row
+assert row["factor"] == "%.9g" % sf["factor"] == row["lateral_factor"], row
+assert row["longitudinal_factor"] == "", row  # nothing along the truck: none found
+PY
 echo "ok lateral"

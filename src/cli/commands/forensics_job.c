@@ -62,6 +62,16 @@ static const sw_cli_column_t columns[] = {
     {.name = "rate", .path = "input.rate"},
     {.name = "peak_accel_g", .path = "input.peak_accel_g"},
     {.name = "gaps", .path = "input.gaps"},
+    /* a package with a lateral plane (empty for one without): the plane of
+     * the verdict (whose are the peak, margin and reserve above), the plane
+     * that gives out first with both axes scaled (the factor above), and
+     * each plane's own bracket */
+    {.name = "plane"},
+    {.name = "factor_plane", .path = "safety_factor.plane"},
+    {.name = "longitudinal_factor_safe", .path = "safety_factor.planes.longitudinal.factor_safe"},
+    {.name = "longitudinal_factor", .path = "safety_factor.planes.longitudinal.factor"},
+    {.name = "lateral_factor_safe", .path = "safety_factor.planes.lateral.factor_safe"},
+    {.name = "lateral_factor", .path = "safety_factor.planes.lateral.factor"},
 };
 
 typedef struct {

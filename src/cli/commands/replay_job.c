@@ -80,6 +80,25 @@ static const sw_cli_column_t columns[] = {
     {.name = "min_reserve_g"},
     {.name = "min_reserve_time"},
     {.name = "rest_reserve_g"},
+    /* a package with a lateral plane (empty for one without): the plane of
+     * the verdict (overturned and verdict above are the package's, the
+     * rest the plane along the truck's), both planes lifted at once, and
+     * the lateral plane's main fields */
+    {.name = "plane"},
+    {.name = "both_planes_rocking"},
+    {.name = "lateral_overturned", .path = "lateral.overturned"},
+    {.name = "lateral_verdict", .path = "lateral.verdict"},
+    {.name = "lateral_overturn_time", .path = "lateral.overturn_time"},
+    {.name = "lateral_tip_time", .path = "lateral.tip_time"},
+    {.name = "lateral_uplift_time", .path = "lateral.uplift_time"},
+    {.name = "lateral_max_abs_theta", .path = "lateral.max_abs_theta"},
+    {.name = "lateral_max_theta_ratio", .path = "lateral.max_theta_ratio"},
+    {.name = "lateral_alpha", .path = "lateral.alpha"},
+    {.name = "lateral_min_margin", .path = "lateral.min_margin"},
+    {.name = "lateral_impacts", .path = "lateral.impacts"},
+    {.name = "lateral_uplifts", .path = "lateral.uplifts"},
+    {.name = "lateral_min_reserve_g", .path = "lateral.min_reserve_g"},
+    {.name = "lateral_min_reserve_time", .path = "lateral.min_reserve_time"},
 };
 
 typedef struct {
