@@ -102,8 +102,8 @@ static void on_state(void *user, const sw_output_t *out)
     for (size_t i = 0; i < Z->nz; i++) {
         if (!inside(&Z->z[i], out->t))
             continue;
-        if (Z->risk[i])
-            sw_risk_output(Z->risk[i], out); /* first: the figure reads it */
+        if (Z->risk[i] && out->plane == SW_PLANE_LONG) /* the reserve is along the truck */
+            sw_risk_output(Z->risk[i], out);           /* first: the figure reads it */
         sw_cli_figure_state(Z->fig[i], out);
     }
 }
@@ -116,7 +116,8 @@ static void on_event(void *user, const sw_event_t *ev)
             continue;
         sw_settle_span_t closed;
         /* the micro-impacts of settling folded as in the full figure */
-        if (!Z->risk[i] || (sw_risk_event(Z->risk[i], ev, &closed) & SW_SETTLE_REPORT))
+        if (!Z->risk[i] || ev->plane == SW_PLANE_LAT ||
+            (sw_risk_event(Z->risk[i], ev, &closed) & SW_SETTLE_REPORT))
             sw_cli_figure_event(Z->fig[i], ev);
     }
 }
