@@ -312,6 +312,12 @@ static void on_gate_take(void *user, double t, double a_g, double a_z, int resta
     m->o.on_take(m->o.user, t, a_g, a_z, restart);
 }
 
+static void on_gate_take_lat(void *user, double t, double a_g, double a_y, double a_z, int restart)
+{
+    const sw_mon_t *m = user;
+    m->o.on_take_lat(m->o.user, t, a_g, a_y, a_z, restart);
+}
+
 /* The options, their defaults filled in, are in range. */
 static int opts_valid(const sw_mon_opts_t *o)
 {
@@ -351,6 +357,7 @@ static sw_stream_t *make_stream(sw_mon_t *m, const sw_scene_t *scenes, size_t n,
         .on_reject = on_gate_reject,
         .on_take = m->o.on_take ? on_gate_take : NULL,
         .user = m,
+        .on_take_lat = m->o.on_take_lat ? on_gate_take_lat : NULL,
     };
     so.engine.lateral = m->lateral;
     return sw_stream_create(scenes, n, &so, NULL, msg, msglen);

@@ -72,6 +72,9 @@ typedef struct {
     int lateral;
     int lat_axis;
     int flip_lat;
+    /* optional: with lateral planes, called instead of on_take, with the
+     * lateral value the engine got too (a caller that runs them again) */
+    sw_gate_take_lat_fn on_take_lat;
 } sw_mon_opts_t;
 
 #endif

@@ -8,8 +8,8 @@
 # states carry the plane, two per sample, and its OVERTURNED alarm says
 # "sideways" with plane LATERAL.  Without a depth (or with --lat-axis
 # none) one state per sample is published, plane 0, exactly as the same
-# run makes them with the lateral input ignored; forensics, which judges
-# one plane, says the lateral input is not used; --lat-axis equal to
+# run makes them with the lateral input ignored; forensics gives the CSV
+# log's verdict, plane and safety factor of both axes; --lat-axis equal to
 # --axis is refused with a depth, and --flip-lat tips the crate the
 # other way.
 # usage: lcmlog_lateral.sh SWAYWATCH SOURCE_DIR PYTHONPATH
@@ -110,10 +110,24 @@ assert all(a[3] == 0 for a in p["alarms"]) and all(s[1] == 0.0 for s in p["state
 done
 head -1 "$T/one.states" | grep -q '_lat' && fail "lateral columns without a depth"
 
-# a command that reads one plane says the lateral acceleration is not used
-"$SW" forensics "$T/side.lcmlog" --scene "$T/deep.ini" >/dev/null 2>"$T/for.err" || true
-grep -q 'the lateral acceleration (--lat-axis) is not used' "$T/for.err" ||
-    fail "forensics did not say the lateral plane is not judged: $(cat "$T/for.err")"
+# forensics reads the lateral acceleration of an lcm-logger file as of a
+# CSV log: the same verdict, its plane, and the same safety factor of
+# both axes (the lateral plane gives out first)
+"$SW" forensics "$T/side.lcmlog" --scene "$T/deep.ini" --no-what-if --json >"$T/for_lcm.json" \
+    2>"$T/for.err" || fail "forensics of the lcm-logger file: $(cat "$T/for.err")"
+"$SW" forensics "$T/side.csv" --scene "$T/deep.ini" --no-what-if --json >"$T/for_csv.json" \
+    2>"$T/for.err" || fail "forensics of the CSV log: $(cat "$T/for.err")"
+python3 - "$T/for_lcm.json" "$T/for_csv.json" <<'PY' || fail "forensics: lcm-logger and CSV differ"
+import json, sys
+a, b = (json.load(open(f))["packages"][0] for f in sys.argv[1:])
+assert a["plane"] == b["plane"] == "lateral" and a["verdict"] == b["verdict"] == "overturned", a
+for k in ("overturn_time", "max_theta_ratio", "min_margin", "min_reserve_g"):
+    assert a[k] == b[k], (k, a[k], b[k])
+sa, sb = a["safety_factor"], b["safety_factor"]
+assert sa["plane"] == sb["plane"] == "lateral", (sa, sb)
+for k in ("bracket", "factor", "factor_safe", "trials"):
+    assert sa[k] == sb[k], (k, sa[k], sb[k])
+PY
 # an axis that is also the longitudinal one: refused, naming --lat-axis
 rc=0
 "$SW" replay "$T/side.lcmlog" --scene "$T/deep.ini" --axis y >/dev/null 2>"$T/axis.err" || rc=$?

@@ -118,6 +118,12 @@ static void on_take(void *user, double t, double a_g, double a_z, int restart)
     P->R->take(P->R->user, t, a_g, a_z, restart);
 }
 
+static void on_take_lat(void *user, double t, double a_g, double a_y, double a_z, int restart)
+{
+    const lcmlog_t *P = user;
+    P->R->take_lat(P->R->user, t, a_g, a_y, a_z, restart);
+}
+
 /* ---- the source's calls ------------------------------------------------------------- */
 
 /* The log's reader (the channel regex checked first; a pipe spooled). */
@@ -214,6 +220,7 @@ static int lcmlog_start(sw_cli_reader_t *R, const sw_scene_t *scenes, size_t n,
     mo.on_state = eo->on_state || P->pacer.speed > 0.0 ? on_state : NULL;
     mo.on_event = eo->on_event ? on_event : NULL;
     mo.on_take = R->take ? on_take : NULL;
+    mo.on_take_lat = R->take_lat ? on_take_lat : NULL;
     mo.keys = P->keys;
     mo.user = P;
     char msg[512] = "";
