@@ -509,6 +509,179 @@ static void test_hostile_far_rows(void **state)
     }
 }
 
+/* ---- a monitor the OS stalls (live) ---------------------------------------------- */
+
+/* A 1 kHz sensor (stamps with jitter) received by a monitor that the OS
+ * stops now and then: for 50 ms, 200 ms, 1 s or 3 s, at random points,
+ * some again soon after (while it drains the last backlog, or just
+ * after).  What arrived meanwhile waits in the socket and is read in one
+ * burst when the monitor runs again: each sample a few microseconds after
+ * the one before, their stamps still 1 ms apart.  With the soak's garbage
+ * after some good samples: an out-of-order copy (1 ms before the last
+ * good sample) or a duplicate (the same sample again). */
+enum { G_NONE, G_LATE, G_DUP };
+
+typedef struct {
+    double t[NMAX], rx[NMAX];
+    int garbage[NMAX]; /* G_*: the message is garbage of that kind */
+    long good[NMAX];   /* its good sample's index (garbage: the one it copies) */
+    int n;
+    int events; /* the sensor pauses and its clock leaps, while the monitor is stopped */
+    long pauses, leaps;
+} stalled_t;
+
+static double stall_end(const double *from, const double *to, int n, double x)
+{
+    for (int k = 0; k < n; k++)
+        if (x >= from[k] && x < to[k])
+            return to[k];
+    return x;
+}
+
+static void gen_stalled(stalled_t *S, int garbage)
+{
+    static const double lens[] = {0.05, 0.2, 1.0, 3.0};
+    double from[24], to[24];
+    int ns = 0;
+    const double jit = uni_in(0.0, 0.5), dur = 30.0;
+    for (double at = uni_in(1.5, 3.0); at < dur - 4.0 && ns < 22; at += uni_in(0.5, 4.0)) {
+        from[ns] = 100.0 + at;
+        to[ns] = from[ns] + lens[(int)(uni() * 4.0)];
+        ns++;
+        if (uni() < 0.4) { /* again soon: during the drain or just after it */
+            from[ns] = to[ns - 1] + uni_in(1e-4, 0.05);
+            to[ns] = from[ns] + lens[(int)(uni() * 4.0)];
+            at = to[ns] - 100.0;
+            ns++;
+        }
+    }
+    /* the sensor's own events, while the monitor is stopped (their
+     * samples after come in the burst): a pause (an honest gap: stamps
+     * and real time both leap), or its clock leaping 0.2 s ahead of real
+     * time (a clock step, as a sender restarted on a later time does) */
+    S->n = S->pauses = S->leaps = 0;
+    double t = 0.0, last_rx = -INFINITY, shift = 0.0;
+    int next_stall = 0;
+    for (long i = 0; S->n < NMAX - 2 && t < dur; i++) {
+        const double lat = 1e-4 + expo(2e-4);
+        const double rx =
+            fmax(stall_end(from, to, ns, 100.0 + t + lat + shift), last_rx + uni_in(1e-6, 5e-6));
+        S->t[S->n] = t;
+        S->rx[S->n] = last_rx = rx;
+        S->garbage[S->n] = G_NONE;
+        S->good[S->n++] = i;
+        if (garbage && i > 100 && uni() < 0.03) {
+            const int kind = uni() < 0.5 ? G_LATE : G_DUP;
+            S->t[S->n] = kind == G_LATE ? t - 1e-3 : t;
+            S->rx[S->n] = last_rx = fmax(stall_end(from, to, ns, rx + uni_in(1e-6, 3e-5)),
+                                         last_rx + uni_in(1e-6, 5e-6));
+            S->garbage[S->n] = kind;
+            S->good[S->n++] = i;
+        }
+        t += 1e-3 * (1.0 + uni_in(-jit, jit));
+        if (S->events && next_stall < ns && 100.0 + t + shift >= from[next_stall]) {
+            const double u = uni();
+            if (u < 0.25) {
+                t += uni_in(0.2, 1.0); /* real time passes as much */
+                S->pauses++;
+            } else if (u < 0.5) {
+                t += 0.2;
+                shift -= 0.2; /* the stamps leap, real time does not */
+                S->leaps++;
+            }
+            next_stall++;
+        }
+        while (next_stall < ns && 100.0 + t + shift >= from[next_stall]) next_stall++;
+    }
+}
+
+typedef struct {
+    long genuine, late_ok, dup_ok, wrong;
+    long first_wrong;
+    sw_gate_reject first_reason;
+    const stalled_t *S;
+} stall_seen_t;
+
+static void on_reject_stall(void *user, const sw_sample_t *smp, sw_gate_reject r, const char *text)
+{
+    stall_seen_t *s = user;
+    (void)text;
+    const int g = smp->where < 0 ? s->S->garbage[-smp->where - 1] : G_NONE;
+    if (g == G_LATE && r == SW_GATE_REJ_LATE)
+        s->late_ok++;
+    else if (g == G_DUP && r == SW_GATE_REJ_DUPLICATE)
+        s->dup_ok++;
+    else {
+        if (s->wrong++ == 0) {
+            s->first_wrong = smp->where;
+            s->first_reason = r;
+        }
+        if (g == G_NONE)
+            s->genuine++;
+    }
+}
+
+static void test_honest_stalls(void **state)
+{
+    (void)state;
+    static stalled_t S;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    for (int variant = 0; variant < 8; variant++)
+        for (uint64_t seed = 1; seed <= SEEDS; seed++) {
+            const int with_seq = variant & 1, garbage = (variant >> 1) & 1;
+            rng_state = seed * 104729 + (uint64_t)variant;
+            S.events = variant >> 2;
+            gen_stalled(&S, garbage);
+            sw_engine_t *e = tu_engine(&sc, NULL, 0.0, NULL);
+            stall_seen_t s = {.S = &S};
+            seen_t ev;
+            memset(&ev, 0, sizeof ev);
+            sw_gate_opts_t o = {.on_reject = on_reject_stall, .user = &s};
+            sw_gate_t *g = sw_gate_create(e, &o, NULL, 0);
+            long nlate = 0, ndup = 0;
+            for (int i = 0; i < S.n; i++) {
+                sw_sample_t x = sample_at(S.t[i], S.rx[i], S.good[i]);
+                x.seq = with_seq ? S.good[i] : SW_GATE_NO_SEQ;
+                if (S.garbage[i] != G_NONE) {
+                    x = sample_at(S.t[i - 1], S.rx[i], S.good[i]); /* the same values */
+                    x.t = S.t[i];
+                    x.seq = with_seq ? S.good[i] : SW_GATE_NO_SEQ;
+                    x.where = -(i + 1);
+                    nlate += S.garbage[i] == G_LATE;
+                    ndup += S.garbage[i] == G_DUP;
+                }
+                sw_gate_push(g, &x);
+            }
+            sw_gate_flush(g);
+            sw_gate_facts_t f;
+            sw_gate_facts(g, &f);
+            if (s.wrong || s.late_ok != nlate || s.dup_ok != ndup)
+                fail_msg(
+                    "stalls (seq %d, garbage %d, events %d, seed %llu): %ld honest "
+                    "samples refused, %ld refusals under a wrong reason (first: %ld, "
+                    "%s); late %ld of %ld, duplicate %ld of %ld",
+                    with_seq, garbage, S.events, (unsigned long long)seed, s.genuine, s.wrong,
+                    s.first_wrong, sw_gate_reject_name(s.first_reason), s.late_ok, nlate, s.dup_ok,
+                    ndup);
+            assert_int_equal(f.accepted, S.n - nlate - ndup);
+            /* no stall alone is a gap or a step; every pause is said.
+             * A leap hidden in a stall longer than itself cannot be
+             * told from a backlog by receive times (docs/timing.md):
+             * said as a gap, a step, or not at all */
+            if (S.events ? f.gaps + f.clock_steps < S.pauses ||
+                               f.gaps + f.clock_steps > 2 * (S.pauses + S.leaps)
+                         : f.gaps + f.clock_steps > 0)
+                fail_msg(
+                    "stalls (seq %d, garbage %d, events %d, seed %llu): %ld gaps of "
+                    "%ld pauses, %ld clock steps of %ld leaps",
+                    with_seq, garbage, S.events, (unsigned long long)seed, f.gaps, S.pauses,
+                    f.clock_steps, S.leaps);
+            assert_int_equal(f.restarts, 0);
+            sw_gate_destroy(g);
+            sw_engine_destroy(e);
+        }
+}
+
 /* ---- forged samples among genuine ones (live) ------------------------------------- */
 
 enum { F_AHEAD, F_AHEAD_SMALL, F_BEHIND, F_ON_GENUINE, F_YEAR, F_KINDS };
@@ -611,7 +784,7 @@ int main(void)
         cmocka_unit_test(test_honest_rate_changes), cmocka_unit_test(test_honest_fifo),
         cmocka_unit_test(test_honest_whole_ms),     cmocka_unit_test(test_whole_ms_spread),
         cmocka_unit_test(test_hostile_geometric),   cmocka_unit_test(test_hostile_far_rows),
-        cmocka_unit_test(test_forged_interleaved),
+        cmocka_unit_test(test_forged_interleaved),  cmocka_unit_test(test_honest_stalls),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -137,6 +137,10 @@ struct sw_gate {
     /* receive times known: chains */
     chain_t chain[CHAINS];
     int nchain;
+    double rx_prev;    /* s, arrival of the last sample that reached the live path; NAN */
+    double burst_from; /* s, arrival of the first sample of a drained backlog: it came after
+                          a silence longer than a gap, and each since within half a spacing
+                          of the one before; NAN: none going on */
     /* no receive times: the look-ahead (a ring of window samples) */
     sw_sample_t *ahead;
     int window, head, nahead;

@@ -32,7 +32,10 @@ static int continues(const sw_gate_t *g, const sw_sample_t *s)
      * genuine one before it was): stamped after it by no more than the
      * time that passed and an interval the stream has shown lately */
     const double lead = s->t - g->last.t - fmax(s->rx - g->last.rx, 0.0);
-    return lead <= gate_jump_tol(g) || lead <= gate_recent_max(g);
+    /* or it is read in a backlog drained after a silence: no genuine
+     * sample came meanwhile that a forged one could be stamped beside, and
+     * the last one may have been read late, at the end of the stall */
+    return lead <= gate_jump_tol(g) || lead <= gate_recent_max(g) || s->rx >= g->burst_from;
 }
 
 /* Does b continue a (later, and not ahead of the time that really passed
@@ -73,13 +76,15 @@ void gate_drop_chains(sw_gate_t *g)
 }
 
 /* A chain confirmed: it is the timeline now; each of its intervals gets
- * the treatment of any interval. */
+ * the treatment of any interval.  The other chains are refuted after it
+ * is taken, so that each of their samples is refused as behind or ahead
+ * of the timeline as it now is (an out-of-order copy of a sample of the
+ * confirmed chain is late, not a leap). */
 int gate_confirm(sw_gate_t *g, int k)
 {
     chain_t c = g->chain[k];
     g->chain[k] = g->chain[g->nchain - 1];
     g->nchain--;
-    gate_drop_chains(g); /* the others are refuted */
     int rc = SW_OK;
     for (int i = 0; i < c.n; i++) {
         int r;
@@ -95,12 +100,21 @@ int gate_confirm(sw_gate_t *g, int k)
         if (r != SW_OK && (rc == SW_OK || r < 0))
             rc = r;
     }
+    gate_drop_chains(g); /* the others are refuted */
     return rc;
 }
 
 /* Has a chain waited long enough?  confirm samples, spanning at least half
  * the real time in which the timeline's own samples arrive: a burst of
- * forged samples cannot confirm itself while the genuine stream goes on. */
+ * forged samples cannot confirm itself while the genuine stream goes on.
+ * Or confirm samples all read in one drained backlog: after a silence
+ * longer than a gap (the monitor or the stream stopped), read together,
+ * each within half a spacing of the one before, and stamped at the
+ * stream's pace (the chain's samples follow each other by no more than
+ * the jump tolerance).  There the receive times say nothing of the time
+ * that passed between them, and no genuine sample of the old timeline
+ * came meanwhile; waiting for real time to pass would refuse the
+ * backlog as leaps, sample after sample. */
 static int confirmable(const sw_gate_t *g, const chain_t *c)
 {
     if (c->n < g->o.confirm)
@@ -111,11 +125,34 @@ static int confirmable(const sw_gate_t *g, const chain_t *c)
                rx_span >= 0.5 * (c->s[c->n - 1].t - c->s[0].t);
     if (g->tm.nrx == 0)
         return 1;
+    if (c->s[0].rx >= g->burst_from) /* false while none goes on (NAN) */
+        return 1;
+    /* full, and arriving at least half as fast as it is stamped: no sample
+     * of the timeline came to refute it while it did (the real time in
+     * which the timeline's samples arrive, below, is frozen while nothing
+     * is taken: one late arrival before must not hold it for good) */
+    if (c->n == SW_GATE_CONFIRM_MAX && rx_span >= 0.5 * (c->s[c->n - 1].t - c->s[0].t))
+        return 1;
     double v[RECENT];
     const int n = g->tm.nrx < RECENT ? (int)g->tm.nrx : RECENT;
     memcpy(v, g->tm.rx_recent, sizeof v[0] * (size_t)n);
     const double rx_sp = gate_time_quantile(v, n, TM_QUANTILE); /* bursts do not shrink it */
     return rx_span >= 0.5 * (g->o.confirm - 1) * rx_sp;
+}
+
+/* The drained backlog, if one goes on: s arrived after a silence longer
+ * than a gap (the monitor was stopped, or the stream), or within half a
+ * spacing of the sample before, in one that goes on. */
+static void note_arrival(sw_gate_t *g, const sw_sample_t *s)
+{
+    const double drx = s->rx - g->rx_prev, sp = gate_spacing(g);
+    g->rx_prev = s->rx;
+    if (isnan(sp) || !(drx >= 0.0))
+        g->burst_from = NAN;
+    else if (drx > gate_threshold_of(g, sp))
+        g->burst_from = s->rx; /* a silence: what comes now may be a backlog */
+    else if (!(drx < 0.5 * sp))
+        g->burst_from = NAN; /* read at the stream's pace: no backlog (now) */
 }
 
 /* A sample that does not continue the timeline: into a chain. */
@@ -201,6 +238,7 @@ static int same_sample(const sw_sample_t *a, const sw_sample_t *b)
 int gate_live_push(sw_gate_t *g, const sw_sample_t *s)
 {
     gate_contest_check_end(g, s->rx);
+    note_arrival(g, s);
     char text[160];
     if (g->rv.contested && g->rv.by_seq && !gate_seq_kept(g, s)) {
         g->rv.active = s->rx;
