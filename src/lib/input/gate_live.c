@@ -149,8 +149,10 @@ static void note_arrival(sw_gate_t *g, const sw_sample_t *s)
     g->rx_prev = s->rx;
     if (isnan(sp) || !(drx >= 0.0))
         g->burst_from = NAN;
-    else if (drx > gate_threshold_of(g, sp))
-        g->burst_from = s->rx; /* a silence: what comes now may be a backlog */
+    else if (drx > gate_threshold_of(g, sp) && !gate_warming(g) &&
+             drx > gate_threshold_of(g, gate_spacing_full(g, 1)))
+        g->burst_from = s->rx; /* a silence: what comes now may be a backlog (beyond the
+                                  pace of the recent intervals too: a FIFO's reads are none) */
     else if (!(drx < 0.5 * sp))
         g->burst_from = NAN; /* read at the stream's pace: no backlog (now) */
 }
