@@ -333,6 +333,139 @@ static void test_both_planes_rocking(void **state)
     free(ev);
 }
 
+/* Both planes' states of package 0, and the uplift events, as reported. */
+typedef struct {
+    states_t st[SW_PLANES];
+    tu_events_t ev;
+} both_rec_t;
+
+static void on_both_state(void *user, const sw_output_t *o)
+{
+    both_rec_t *r = user;
+    states_t *s = &r->st[o->plane];
+    if (o->pkg == 0 && s->n < MAX_OUT)
+        s->o[s->n++] = *o;
+}
+
+static void on_both_event(void *user, const sw_event_t *ev)
+{
+    tu_on_event(&((both_rec_t *)user)->ev, ev);
+}
+
+/* Shocks along every 2.3 s and across every 1.7 s (half-sines above each
+ * plane's threshold, alternating in sign), so that the planes lift, land
+ * and rest over and over, sometimes together and sometimes apart. */
+static double shocks(double t, double every, double T, double a)
+{
+    const double s = fmod(t, every);
+    return (fmod(t, 2.0 * every) < every ? 1.0 : -1.0) * half_sine(s, 0.0, T, a);
+}
+
+/* (c) The span of both planes lifted, over many overlaps: the same as
+ * the definition applied to what the engine reports, sample by sample
+ * (both planes' phase rocking at a sample: the time since the later of
+ * the previous sample and the two planes' last uplifts counts; the span
+ * runs from the first such time to the last such sample).  The engine
+ * skips the comparison where no plane had an event; this checks that it
+ * loses nothing by it. */
+static void test_both_span_over_many_overlaps(void **state)
+{
+    (void)state;
+    both_rec_t *r = calloc(1, sizeof *r);
+    assert_non_null(r);
+    r->st[SW_PLANE_LONG].plane = SW_PLANE_LONG;
+    r->st[SW_PLANE_LAT].plane = SW_PLANE_LAT;
+    sw_scene_t sc = tu_bare(2.0, 0.728);
+    sc.depth = 0.5; /* thresholds 0.364 g along, 0.25 g across */
+    sw_engine_opts_t o = {0};
+    o.lateral = 1;
+    o.on_state = on_both_state;
+    o.on_event = on_both_event;
+    o.user = r;
+    int err;
+    char msg[256];
+    sw_engine_t *e = sw_engine_create(&sc, 1, &o, &err, msg, sizeof msg);
+    assert_non_null(e);
+    const states_t *A = &r->st[SW_PLANE_LONG], *B = &r->st[SW_PLANE_LAT];
+    double lift[SW_PLANES] = {NAN, NAN}, from = NAN, to = NAN, time = 0.0, t_prev = NAN;
+    int k = 0, samples_both = 0, entered = 0, was_both = 0;
+    const int n = 30 * (int)RATE;
+    for (int i = 0; i <= n; i++) {
+        assert_true(sw_engine_push_lat(e, i / RATE, shocks(i / RATE, 2.3, 0.3, 0.42 * G),
+                                       shocks(i / RATE, 1.7, 0.2, 0.30 * G), 0.0) >= 0);
+        assert_int_equal(A->n, i + 1);
+        assert_int_equal(B->n, i + 1);
+        const double t = A->o[i].t; /* s */
+        assert_memory_equal(&t, &B->o[i].t, sizeof t);
+        for (; k < r->ev.n; k++)
+            if (r->ev.ev[k].kind == SW_EV_UPLIFT)
+                lift[r->ev.ev[k].plane] = r->ev.ev[k].t;
+        const int both =
+            A->o[i].state.phase == SW_PHASE_ROCKING && B->o[i].state.phase == SW_PHASE_ROCKING;
+        if (both) {
+            double f = fmax(lift[SW_PLANE_LONG], lift[SW_PLANE_LAT]); /* s */
+            if (!isnan(t_prev))
+                f = fmax(f, t_prev);
+            if (isnan(from))
+                from = f;
+            to = t;
+            time += t > f ? t - f : 0.0;
+            samples_both++;
+            entered += !was_both;
+        }
+        was_both = both;
+        t_prev = t;
+        /* the span as it stands after every sample */
+        sw_planes_t p;
+        assert_int_equal(sw_engine_planes_summary(e, 0, &p), SW_OK);
+        assert_int_equal(p.both_rocking, !isnan(from));
+        const double got[] = {p.both_from, p.both_to, p.both_time}, want[] = {from, to, time};
+        assert_memory_equal(got, want, sizeof got);
+    }
+    assert_true(r->ev.n < TU_MAX_EV);
+    assert_true(entered >= 10);                         /* many overlaps, */
+    assert_true(samples_both < (to - from) * RATE / 2); /* with long gaps between them */
+    sw_engine_destroy(e);
+    free(r);
+}
+
+/* After sw_engine_finish() the two planes' clocks may differ: each
+ * settles only while it moves.  A sample one plane's clock refuses is
+ * refused whole; neither plane takes it. */
+static void test_finish_then_sample(void **state)
+{
+    (void)state;
+    static states_t s_lat;
+    s_lat = (states_t){.plane = SW_PLANE_LAT};
+    rec_t r = {&s_lat, NULL};
+    sw_scene_t sc = tu_bare(2.0, 0.728);
+    sc.depth = 0.5;
+    sw_engine_t *e = make(&sc, 1, 1, &r);
+    /* the plane along rocks at the end (0.5 g against 0.364 g), the
+     * plane across stands */
+    for (int i = 0; i <= (int)RATE; i++) {
+        const double t = i / RATE;
+        assert_true(sw_engine_push_lat(e, t, half_sine(t, 0.5, 0.6, 0.5 * G), 0.0, 0.0) >= 0);
+    }
+    sw_output_t o;
+    assert_int_equal(sw_engine_get_output_plane(e, 0, SW_PLANE_LONG, &o), SW_OK);
+    assert_int_equal(o.state.phase, SW_PHASE_ROCKING);
+    sw_engine_finish(e, 0.5); /* the plane along alone settles, to 1.5 s */
+    assert_int_equal(sw_engine_get_output_plane(e, 0, SW_PLANE_LAT, &o), SW_OK);
+    tu_near(o.t, 1.0, 0.0);
+    const int n = s_lat.n;
+    assert_int_equal(sw_engine_push_lat(e, 1.2, 0.0, 0.0, 0.0), SW_EORDER);
+    assert_int_equal(s_lat.n, n);
+    assert_int_equal(sw_engine_get_output_plane(e, 0, SW_PLANE_LAT, &o), SW_OK);
+    tu_near(o.t, 1.0, 0.0);
+    /* after both clocks, both take it */
+    assert_true(sw_engine_push_lat(e, 1.6, 0.0, 0.0, 0.0) >= 0);
+    assert_int_equal(s_lat.n, n + 1);
+    assert_int_equal(sw_engine_get_output_plane(e, 0, SW_PLANE_LAT, &o), SW_OK);
+    tu_near(o.t, 1.6, 0.0);
+    sw_engine_destroy(e);
+}
+
 /* The API's edges: no lateral plane without the option or without a
  * depth; a sample without its lateral value is refused by an engine with
  * lateral planes; a bad lateral value refuses the sample whole; the
@@ -466,6 +599,8 @@ int main(void)
         cmocka_unit_test(test_static_uplift_per_plane),
         cmocka_unit_test(test_which_plane_overturns),
         cmocka_unit_test(test_both_planes_rocking),
+        cmocka_unit_test(test_both_span_over_many_overlaps),
+        cmocka_unit_test(test_finish_then_sample),
         cmocka_unit_test(test_api_edges),
         cmocka_unit_test(test_gate_lateral_axis),
     };

@@ -34,6 +34,7 @@
 typedef struct {
     double from, to; /* s, NAN: never */
     double time;     /* s */
+    double lift;     /* s, while both are lifted: the later plane's lift */
 } sw_both_t;
 
 struct sw_engine {
@@ -60,6 +61,10 @@ struct sw_engine {
     size_t *lat_pkg; /* lat->n */
     sw_both_t *both; /* lat->n: both planes lifted at once */
     double t_both;   /* s, absolute: the last sample the planes were compared at */
+    size_t *open;    /* lat->n: the packages lifted in both at t_both, n_open of them */
+    size_t n_open;
+    int both_stale; /* a phase may have changed with no event: compare every package */
+    int apart;      /* the two engines' clocks may differ (finish, a refused advance) */
 };
 
 /* ---- the sample loop ----------------------------------------------------- */
@@ -385,6 +390,9 @@ void sw_engine_reset(sw_engine_t *e)
     sw_engine_reset(e->check);
     sw_engine_reset(e->lat);
     e->t_both = NAN;
+    e->n_open = 0;
+    e->both_stale = 1;
+    e->apart = 0;
     if (e->lat)
         for (size_t j = 0; j < e->lat->n; j++)
             e->both[j] = (sw_both_t){.from = NAN, .to = NAN, .time = 0.0};
@@ -400,6 +408,7 @@ void sw_engine_destroy(sw_engine_t *e)
     free(e->lat_of);
     free(e->lat_pkg);
     free(e->both);
+    free(e->open);
     free(e->pk);
     free(e);
 }
@@ -520,7 +529,8 @@ static int make_lateral(sw_engine_t *e, const sw_scene_t *scenes, size_t n,
     e->lat_of = calloc(n, sizeof *e->lat_of);
     e->lat_pkg = calloc(m, sizeof *e->lat_pkg);
     e->both = calloc(m, sizeof *e->both);
-    if (!lat || !e->lat_of || !e->lat_pkg || !e->both) {
+    e->open = calloc(m, sizeof *e->open);
+    if (!lat || !e->lat_of || !e->lat_pkg || !e->both || !e->open) {
         free(lat);
         return fail(err, SW_ENOMEM, msg, msglen, "out of memory");
     }
@@ -559,20 +569,52 @@ static inline int lifted(const sw_pkg_t *P)
 /* Compare the planes at the sample just taken (absolute time t): a
  * package lifted in both (lifted(): not at rest, not overturned)
  * extends its span.  Each plane's lift time is exact; the end of an
- * overlap is seen at the samples. */
+ * overlap is seen at the samples.  Every package compared; those lifted
+ * in both kept in e->open for track_sample(). */
 static void track_both(sw_engine_t *e, double t)
 {
     const sw_engine_t *L = e->lat;
+    e->n_open = 0;
     for (size_t j = 0; j < L->n; j++) {
         const sw_pkg_t *A = &e->pk[e->lat_pkg[j]], *B = &L->pk[j];
         if (!lifted(A) || !lifted(B))
             continue;
-        double from = fmax(e->pc.origin + A->m.t_lift, L->pc.origin + B->m.t_lift); /* s */
-        if (!isnan(e->t_both))
-            from = fmax(from, e->t_both);
         sw_both_t *b = &e->both[j];
+        b->lift = fmax(e->pc.origin + A->m.t_lift, L->pc.origin + B->m.t_lift);    /* s */
+        const double from = isnan(e->t_both) ? b->lift : fmax(b->lift, e->t_both); /* s */
         if (isnan(b->from))
             b->from = from;
+        b->to = t;
+        b->time += t > from ? t - from : 0.0;
+        e->open[e->n_open++] = j;
+    }
+    e->t_both = t;
+    e->both_stale = 0;
+}
+
+/* track_both() after a sample, cheaply where it can be: a package starts
+ * to rock, or rocks again after a landing, only with an event (its
+ * uplift), so after a sample with no event in either plane only the
+ * packages lifted in both at the last sample can be, with the same lift
+ * times.  They are looked at (a landing held for a step stops rocking
+ * with no event) and their spans extended as track_both() would. */
+static SW_ALWAYS_INLINE void track_sample(sw_engine_t *e, double t)
+{
+    const sw_engine_t *L = e->lat;
+    if (e->pc.events || L->pc.events || e->both_stale) {
+        track_both(e, t);
+        return;
+    }
+    for (size_t k = 0; k < e->n_open; k++) {
+        const size_t j = e->open[k];
+        if (!lifted(&e->pk[e->lat_pkg[j]]) || !lifted(&L->pk[j])) {
+            track_both(e, t);
+            return;
+        }
+    }
+    for (size_t k = 0; k < e->n_open; k++) {
+        sw_both_t *b = &e->both[e->open[k]];
+        const double from = fmax(b->lift, e->t_both); /* s */
         b->to = t;
         b->time += t > from ? t - from : 0.0;
     }
@@ -686,52 +728,51 @@ static inline int coarse_time(double t_abs)
     return !(fabs(t_abs) < 8589934592.0);
 }
 
-static int push(sw_engine_t *e, double t_abs, double a_g, double a_z);
-
-int sw_engine_push(sw_engine_t *e, double t_abs, double a_g, double a_z)
-{
-    if (!e || e->lat) /* the lateral planes need their input: sw_engine_push_lat */
-        return SW_EINVAL;
-    const int rc = push(e, t_abs, a_g, a_z);
-    if (rc >= 0 && e->check) /* through the API: push() stays inlined here */
-        sw_engine_push(e->check, t_abs, a_g, a_z);
-    return rc;
-}
-
-static int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
+/* The numbers of a sample: finite, and accelerations (m/s^2) within what
+ * a sample may hold.  Not finite comes first, whichever value it is. */
+static SW_ALWAYS_INLINE int sample_ok(double t_abs, double a_g, double a_z)
 {
     if (!isfinite(t_abs) || !isfinite(a_g) || !isfinite(a_z))
         return SW_ENONFINITE;
     if (fabs(a_g) > SW_MAX_ACCEL || fabs(a_z) > SW_MAX_ACCEL)
         return SW_ETOOBIG;
-    e->pc.events = 0;
+    return SW_OK;
+}
+
+/* May e take a sample at t_abs (s, finite)?  The first one, any time the
+ * clock resolves (after the origin, if one was set); a later one, after
+ * the last, also once made relative. */
+static SW_ALWAYS_INLINE int time_ok(const sw_engine_t *e, double t_abs)
+{
     if (!e->started) {
         if (coarse_time(t_abs))
             return SW_ERESOLUTION;
-        if (e->origin_set) {
-            const double t = t_abs - e->pc.origin;
-            if (!(t >= 0.0))
-                return SW_EORDER;
-            e->t_abs = t_abs;
-            start_at(e, t, a_g, a_z);
-            report_states(e, t);
-            return e->pc.events ? SW_EVENT : SW_OK;
-        }
-        e->pc.origin = t_abs;
-        e->t_abs = t_abs;
-        start_at(e, 0.0, a_g, a_z);
-        report_states(e, 0.0);
-        return e->pc.events ? SW_EVENT : SW_OK;
+        return e->origin_set && !(t_abs - e->pc.origin >= 0.0) ? SW_EORDER : SW_OK;
     }
     if (!(t_abs > e->t_abs))
         return SW_EORDER;
     if (coarse_time(t_abs))
         return SW_ERESOLUTION;
-    const double t = t_abs - e->pc.origin; /* s, relative */
     /* Rounding keeps the order but not the difference: two absolute times
      * closer than the relative time's resolution are one time here. */
-    if (!(t > e->t))
-        return SW_EORDER;
+    return t_abs - e->pc.origin > e->t ? SW_OK : SW_EORDER;
+}
+
+/* Take a sample sample_ok() and time_ok() accepted: every package
+ * advanced to it, the states reported. */
+static SW_ALWAYS_INLINE int take(sw_engine_t *e, double t_abs, double a_g, double a_z)
+{
+    e->pc.events = 0;
+    if (!e->started) {
+        if (!e->origin_set)
+            e->pc.origin = t_abs;
+        const double t = e->origin_set ? t_abs - e->pc.origin : 0.0; /* s, relative */
+        e->t_abs = t_abs;
+        start_at(e, t, a_g, a_z);
+        report_states(e, t);
+        return e->pc.events ? SW_EVENT : SW_OK;
+    }
+    const double t = t_abs - e->pc.origin; /* s, relative */
     e->t_abs = t_abs;
     if (e->restart) {
         e->restart = 0;
@@ -754,34 +795,58 @@ static int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
     return e->pc.events ? SW_EVENT : SW_OK;
 }
 
-/* An acceleration a sample may hold (what push() checks of a_g). */
-static int accel_ok(double a)
+static SW_ALWAYS_INLINE int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
 {
-    return isfinite(a) ? fabs(a) > SW_MAX_ACCEL ? SW_ETOOBIG : SW_OK : SW_ENONFINITE;
+    int rc = sample_ok(t_abs, a_g, a_z);
+    if (rc == SW_OK)
+        rc = time_ok(e, t_abs);
+    return rc == SW_OK ? take(e, t_abs, a_g, a_z) : rc;
 }
 
+int sw_engine_push(sw_engine_t *e, double t_abs, double a_g, double a_z)
+{
+    if (!e || e->lat) /* the lateral planes need their input: sw_engine_push_lat */
+        return SW_EINVAL;
+    const int rc = push(e, t_abs, a_g, a_z);
+    if (rc >= 0 && e->check) /* through the API: push() stays inlined here */
+        sw_engine_push(e->check, t_abs, a_g, a_z);
+    return rc;
+}
+
+/* The sample is checked once for both planes (its numbers, and its time
+ * against the longitudinal engine's clock, which the lateral one keeps
+ * in step with), so that neither plane takes a sample the other would
+ * refuse; then each plane takes it unchecked.  Only after
+ * sw_engine_finish() or a refused sw_engine_advance_fn(), which may
+ * leave the two clocks apart, is the time checked against both. */
 int sw_engine_push_lat(sw_engine_t *e, double t_abs, double a_g, double a_y, double a_z)
 {
     if (!e)
         return SW_EINVAL;
-    int rc = accel_ok(a_y);
-    if (rc == SW_OK && e->lat)
-        rc = accel_ok(a_g); /* refused before either plane takes the sample */
+    int rc = sample_ok(t_abs, a_g, a_z);
+    if (!isfinite(a_y))
+        return SW_ENONFINITE;
+    if (rc == SW_OK && fabs(a_y) > SW_MAX_ACCEL)
+        rc = SW_ETOOBIG;
     if (rc != SW_OK)
-        return !isfinite(t_abs) || !isfinite(a_g) || !isfinite(a_z) ? SW_ENONFINITE : rc;
-    if (!e->lat)
+        return rc;
+    sw_engine_t *L = e->lat;
+    if (!L)
         return sw_engine_push(e, t_abs, a_g, a_z);
+    rc = time_ok(e, t_abs);
+    if (rc == SW_OK && e->apart)
+        rc = time_ok(L, t_abs);
+    if (rc != SW_OK)
+        return rc;
     /* the lateral planes first: the caller's on_state sees them before the
      * longitudinal ones of the same sample */
-    const int rl = push(e->lat, t_abs, a_y, a_z);
-    if (rl < 0)
-        return rl; /* the time or a_z refused: by the other plane as well */
-    if (e->lat->check)
-        sw_engine_push(e->lat->check, t_abs, a_y, a_z);
-    rc = push(e, t_abs, a_g, a_z);
-    if (rc >= 0 && e->check)
+    const int rl = take(L, t_abs, a_y, a_z);
+    if (L->check)
+        sw_engine_push(L->check, t_abs, a_y, a_z);
+    rc = take(e, t_abs, a_g, a_z);
+    if (e->check)
         sw_engine_push(e->check, t_abs, a_g, a_z);
-    track_both(e, t_abs);
+    track_sample(e, t_abs);
     return rc == SW_EVENT || rl == SW_EVENT ? SW_EVENT : rc;
 }
 
@@ -818,9 +883,13 @@ int sw_engine_advance_fn(sw_engine_t *e, double t1, sw_input_fn f, void *user)
     const int rc = advance_to(e, t1 - e->pc.origin, f, user);
     if (rc >= 0 && e->check)
         advance_to(e->check, t1 - e->check->pc.origin, f, user);
+    if (rc < 0 && e->lat)
+        e->apart = 1; /* the first call starts the longitudinal clock alone */
     if (rc < 0 || !e->lat)
         return rc;
     const int rl = sw_engine_advance_fn(e->lat, t1, sw_input_zero, NULL);
+    if (rl < 0)
+        e->apart = 1;
     track_both(e, t1);
     return rl == SW_EVENT ? SW_EVENT : rc;
 }
@@ -854,6 +923,7 @@ int sw_engine_restart(sw_engine_t *e)
         }
     }
     e->restart = 1;
+    e->both_stale = 1; /* the packages put at rest with no event */
     if (e->check)
         sw_engine_restart(e->check);
     if (e->lat)
@@ -910,6 +980,8 @@ int sw_engine_finish(sw_engine_t *e, double settle)
             track_both(e, e->pc.origin + tn);
         t = tn;
     }
+    if (L)
+        e->apart = 1; /* each engine advanced only while one of its packages moved */
     return any ? SW_EVENT : SW_OK;
 }
 
@@ -931,6 +1003,7 @@ int sw_engine_set_state(sw_engine_t *e, size_t pkg, const sw_state_t *s)
     sw_model_from_state(&P->m, P->y, s);
     P->beyond_alpha = fabs(P->y[P->m.ith]) >= P->m.d.alpha;
     sw_step_reset(&P->st);
+    e->both_stale = 1; /* a phase given, with no event */
     if (e->check)
         sw_engine_set_state(e->check, pkg, s);
     return SW_OK;
@@ -1169,8 +1242,10 @@ int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char 
     sw_step_bind(&P->st, &P->m, &P->scr);
     pkg_reset(P);
     P->t = e->started ? e->t : 0.0;
-    if (j != NO_LAT)
+    if (j != NO_LAT) {
         e->both[j] = (sw_both_t){.from = NAN, .to = NAN, .time = 0.0};
+        e->both_stale = 1;
+    }
     if (e->check && sw_engine_replace(e->check, pkg, scene, NULL, 0) != SW_OK) {
         /* the check can no longer follow: drop it rather than check wrongly */
         sw_engine_destroy(e->check);
