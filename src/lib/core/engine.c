@@ -32,9 +32,10 @@
 
 /* Both planes of a package lifted at once (sw_planes_t), absolute times. */
 typedef struct {
-    double from, to; /* s, NAN: never */
-    double time;     /* s */
-    double lift;     /* s, while both are lifted: the later plane's lift */
+    double from, to;                /* s, NAN: never */
+    double time;                    /* s */
+    double lift;                    /* s, while both are lifted: the later plane's lift */
+    const sw_pkg_t *along, *across; /* the package's two planes */
 } sw_both_t;
 
 struct sw_engine {
@@ -57,15 +58,22 @@ struct sw_engine {
     /* the lateral planes (opts.lateral, the scenes with a depth): an engine
      * of their own, whose package j is package lat_pkg[j] here */
     sw_engine_t *lat;
-    size_t *lat_of;  /* n: a package's index in lat, or NO_LAT */
-    size_t *lat_pkg; /* lat->n */
-    sw_both_t *both; /* lat->n: both planes lifted at once */
-    double t_both;   /* s, absolute: the last sample the planes were compared at */
-    size_t *open;    /* lat->n: the packages lifted in both at t_both, n_open of them */
+    size_t *lat_of;   /* n: a package's index in lat, or NO_LAT */
+    size_t *lat_pkg;  /* lat->n */
+    sw_both_t *both;  /* lat->n: both planes lifted at once */
+    double t_both;    /* s, absolute: the last sample the planes were compared at */
+    sw_both_t **open; /* lat->n: the packages lifted in both at t_both, n_open of them */
     size_t n_open;
     int both_stale; /* a phase may have changed with no event: compare every package */
     int apart;      /* the two engines' clocks may differ (finish, a refused advance) */
 };
+
+/* No span of both planes lifted yet. */
+static void both_clear(sw_both_t *b)
+{
+    b->from = b->to = NAN;
+    b->time = 0.0;
+}
 
 /* ---- the sample loop ----------------------------------------------------- */
 
@@ -394,8 +402,7 @@ void sw_engine_reset(sw_engine_t *e)
     e->both_stale = 1;
     e->apart = 0;
     if (e->lat)
-        for (size_t j = 0; j < e->lat->n; j++)
-            e->both[j] = (sw_both_t){.from = NAN, .to = NAN, .time = 0.0};
+        for (size_t j = 0; j < e->lat->n; j++) both_clear(&e->both[j]);
 }
 
 void sw_engine_destroy(sw_engine_t *e)
@@ -555,6 +562,10 @@ static int make_lateral(sw_engine_t *e, const sw_scene_t *scenes, size_t n,
         snprintf(text, sizeof text, "across the truck: %s", buf);
         return fail(err, r, msg, msglen, text);
     }
+    for (size_t j = 0; j < m; j++) {
+        e->both[j].along = &e->pk[e->lat_pkg[j]];
+        e->both[j].across = &e->lat->pk[j];
+    }
     return SW_OK;
 }
 
@@ -576,17 +587,16 @@ static void track_both(sw_engine_t *e, double t)
     const sw_engine_t *L = e->lat;
     e->n_open = 0;
     for (size_t j = 0; j < L->n; j++) {
-        const sw_pkg_t *A = &e->pk[e->lat_pkg[j]], *B = &L->pk[j];
-        if (!lifted(A) || !lifted(B))
-            continue;
         sw_both_t *b = &e->both[j];
-        b->lift = fmax(e->pc.origin + A->m.t_lift, L->pc.origin + B->m.t_lift);    /* s */
+        if (!lifted(b->along) || !lifted(b->across))
+            continue;
+        b->lift = fmax(e->pc.origin + b->along->m.t_lift, L->pc.origin + b->across->m.t_lift);
         const double from = isnan(e->t_both) ? b->lift : fmax(b->lift, e->t_both); /* s */
         if (isnan(b->from))
             b->from = from;
         b->to = t;
         b->time += t > from ? t - from : 0.0;
-        e->open[e->n_open++] = j;
+        e->open[e->n_open++] = b;
     }
     e->t_both = t;
     e->both_stale = 0;
@@ -597,24 +607,23 @@ static void track_both(sw_engine_t *e, double t)
  * uplift), so after a sample with no event in either plane only the
  * packages lifted in both at the last sample can be, with the same lift
  * times.  They are looked at (a landing held for a step stops rocking
- * with no event) and their spans extended as track_both() would. */
+ * with no event) and their spans extended as track_both() would (b->lift
+ * and t_both are not NAN there, so fmax() is a comparison). */
 static SW_ALWAYS_INLINE void track_sample(sw_engine_t *e, double t)
 {
-    const sw_engine_t *L = e->lat;
-    if (e->pc.events || L->pc.events || e->both_stale) {
+    if (e->pc.events | e->lat->pc.events | e->both_stale) {
         track_both(e, t);
         return;
     }
-    for (size_t k = 0; k < e->n_open; k++) {
-        const size_t j = e->open[k];
-        if (!lifted(&e->pk[e->lat_pkg[j]]) || !lifted(&L->pk[j])) {
+    for (size_t k = 0; k < e->n_open; k++)
+        if (!lifted(e->open[k]->along) || !lifted(e->open[k]->across)) {
             track_both(e, t);
             return;
         }
-    }
+    const double t_last = e->t_both; /* s */
     for (size_t k = 0; k < e->n_open; k++) {
-        sw_both_t *b = &e->both[e->open[k]];
-        const double from = fmax(b->lift, e->t_both); /* s */
+        sw_both_t *b = e->open[k];
+        const double from = b->lift > t_last ? b->lift : t_last; /* s */
         b->to = t;
         b->time += t > from ? t - from : 0.0;
     }
@@ -758,12 +767,36 @@ static SW_ALWAYS_INLINE int time_ok(const sw_engine_t *e, double t_abs)
     return t_abs - e->pc.origin > e->t ? SW_OK : SW_EORDER;
 }
 
-/* Take a sample sample_ok() and time_ok() accepted: every package
- * advanced to it, the states reported. */
-static SW_ALWAYS_INLINE int take(sw_engine_t *e, double t_abs, double a_g, double a_z)
+/* Take an accepted sample that follows the last one: every package
+ * advanced over the interval (relative time t, span since the last
+ * sample, both s) with the input linear between the two samples (the
+ * vertical one's slope az_slope, m/s^3, given: two planes share it),
+ * the states reported. */
+static SW_ALWAYS_INLINE int take_next(sw_engine_t *e, double t_abs, double t, double span,
+                                      double a_g, double a_z, double az_slope)
 {
     e->pc.events = 0;
+    e->t_abs = t_abs;
+    e->in = (sw_input_t){.t0 = e->t,
+                         .ag0 = e->ag,
+                         .ag_slope = (a_g - e->ag) / span,
+                         .az0 = e->az,
+                         .az_slope = az_slope};
+    for (size_t i = 0; i < e->n; i++) advance_pkg(e, &e->pk[i], t);
+    e->t = t;
+    e->ag = a_g;
+    e->az = a_z;
+    e->in = (sw_input_t){.t0 = t, .ag0 = a_g, .az0 = a_z};
+    report_states(e, t);
+    return e->pc.events ? SW_EVENT : SW_OK;
+}
+
+/* Take a sample sample_ok() and time_ok() accepted: the stream starts
+ * (or starts again) there, or goes on to it. */
+static SW_ALWAYS_INLINE int take(sw_engine_t *e, double t_abs, double a_g, double a_z)
+{
     if (!e->started) {
+        e->pc.events = 0;
         if (!e->origin_set)
             e->pc.origin = t_abs;
         const double t = e->origin_set ? t_abs - e->pc.origin : 0.0; /* s, relative */
@@ -773,26 +806,16 @@ static SW_ALWAYS_INLINE int take(sw_engine_t *e, double t_abs, double a_g, doubl
         return e->pc.events ? SW_EVENT : SW_OK;
     }
     const double t = t_abs - e->pc.origin; /* s, relative */
-    e->t_abs = t_abs;
     if (e->restart) {
+        e->pc.events = 0;
+        e->t_abs = t_abs;
         e->restart = 0;
         start_at(e, t, a_g, a_z);
         report_states(e, t);
         return e->pc.events ? SW_EVENT : SW_OK;
     }
-    const double span = t - e->t;
-    e->in = (sw_input_t){.t0 = e->t,
-                         .ag0 = e->ag,
-                         .ag_slope = (a_g - e->ag) / span,
-                         .az0 = e->az,
-                         .az_slope = (a_z - e->az) / span};
-    for (size_t i = 0; i < e->n; i++) advance_pkg(e, &e->pk[i], t);
-    e->t = t;
-    e->ag = a_g;
-    e->az = a_z;
-    e->in = (sw_input_t){.t0 = t, .ag0 = a_g, .az0 = a_z};
-    report_states(e, t);
-    return e->pc.events ? SW_EVENT : SW_OK;
+    const double span = t - e->t; /* s */
+    return take_next(e, t_abs, t, span, a_g, a_z, (a_z - e->az) / span);
 }
 
 static SW_ALWAYS_INLINE int push(sw_engine_t *e, double t_abs, double a_g, double a_z)
@@ -840,10 +863,22 @@ int sw_engine_push_lat(sw_engine_t *e, double t_abs, double a_g, double a_y, dou
         return rc;
     /* the lateral planes first: the caller's on_state sees them before the
      * longitudinal ones of the same sample */
-    const int rl = take(L, t_abs, a_y, a_z);
-    if (L->check)
-        sw_engine_push(L->check, t_abs, a_y, a_z);
-    rc = take(e, t_abs, a_g, a_z);
+    int rl;
+    if (e->started && !e->restart && !e->apart) {
+        /* the common case: the clocks in step, so the interval and the
+         * vertical input over it are the same in both planes */
+        const double t = t_abs - e->pc.origin, span = t - e->t; /* s */
+        const double az_slope = (a_z - e->az) / span;           /* m/s^3 */
+        rl = take_next(L, t_abs, t, span, a_y, a_z, az_slope);
+        if (L->check)
+            sw_engine_push(L->check, t_abs, a_y, a_z);
+        rc = take_next(e, t_abs, t, span, a_g, a_z, az_slope);
+    } else {
+        rl = take(L, t_abs, a_y, a_z);
+        if (L->check)
+            sw_engine_push(L->check, t_abs, a_y, a_z);
+        rc = take(e, t_abs, a_g, a_z);
+    }
     if (e->check)
         sw_engine_push(e->check, t_abs, a_g, a_z);
     track_sample(e, t_abs);
@@ -1243,7 +1278,7 @@ int sw_engine_replace(sw_engine_t *e, size_t pkg, const sw_scene_t *scene, char 
     pkg_reset(P);
     P->t = e->started ? e->t : 0.0;
     if (j != NO_LAT) {
-        e->both[j] = (sw_both_t){.from = NAN, .to = NAN, .time = 0.0};
+        both_clear(&e->both[j]);
         e->both_stale = 1;
     }
     if (e->check && sw_engine_replace(e->check, pkg, scene, NULL, 0) != SW_OK) {
