@@ -114,9 +114,21 @@ typedef struct {
     sw_safety_t sf;                  /* the package's: factor, its safe end, overturned... */
     const sw_whatif_case_t *lateral; /* the lateral plane's own case (its scene over the
                                         depth, its search), or NULL */
+    sw_plane worse; /* the plane of the verdict at scale 1 (sw_summary_worse's order on
+                       sf.at_one of each plane); SW_PLANE_LONG with one */
 } sw_forensics_factor_t;
 /* SW_OK, or SW_EINVAL for no such package.  After sw_forensics_safety(). */
 SW_API int sw_forensics_factor(const sw_forensics_t *F, size_t k, sw_forensics_factor_t *out);
+/* The same for what-if case i (sw_forensics_cases()): the case in both
+ * planes, its lateral plane over the case's depth with the case's
+ * support.  SW_OK, or SW_EINVAL for no such case. */
+SW_API int sw_forensics_case_factor(const sw_forensics_t *F, size_t i, sw_forensics_factor_t *out);
+/* Every case's lateral plane, parallel to sw_forensics_cases() (*n of
+ * them; available says whether it was searched, note why not), or NULL
+ * (*n 0) when the log has no lateral acceleration.  Their smallest
+ * reserves are computed by sw_forensics_reserve() on the lateral
+ * acceleration, the scenes as given's included. */
+SW_API const sw_whatif_case_t *sw_forensics_lateral_cases(const sw_forensics_t *F, size_t *n);
 /* Package k's lateral plane as a case (its scene, its search once
  * sw_forensics_safety() ran; available says whether it was searched), or
  * NULL when the scene has no depth or the log no lateral acceleration. */

@@ -9,6 +9,11 @@
  * acceleration that overturns it) and its smallest reserve along the log
  * (reserve.h) answer the question for it.
  *
+ * A case that puts the package on a support of the catalogue or the
+ * caller's has that support in both planes (the scene's lateral_* values
+ * of that support are dropped); the bed and the sizes keep the scene's
+ * supports as they are, across the truck too.
+ *
  * The catalogue stands for real products by the natural frequency they
  * have with the package on them, as their makers state it for a support
  * loaded as intended (docs/forensics.md says where each number comes
@@ -65,11 +70,14 @@ typedef struct {
     const char *cushion_zeta;
     const double *sizes; /* m: height, width of each other size (2 nsizes values, > 0) */
     size_t nsizes;
-    int scenes_only; /* only the scenes as given */
+    const double *depths; /* m: the depth of each size (nsizes values; 0, or NULL for
+                             all: the scene's) */
+    int scenes_only;      /* only the scenes as given */
 } sw_whatif_opts_t;
 
 typedef struct {
-    char name[64];          /* "as given", "bed", "frame, soft bearings", "size 2.4x0.8 m" */
+    char name[64]; /* "as given", "bed", "frame, soft bearings", "size 2.4x0.8 m", "size 2.4x0.8x0.6
+                      m" */
     const char *stands_for; /* a catalogue row: what real supports it stands for; else NULL */
     size_t pkg;             /* the scene it belongs to (0-based) */
     int is_scene;           /* the scene as given */

@@ -133,8 +133,9 @@ expect_rc 0 "two lateral columns, one chosen"
 # forensics reads the lateral column: the crate overturned across the
 # truck by the drive across it is said to, its safety factor is the
 # lateral plane's (the planar run's of the crate of width 0.728 m, whose
-# factor is the lateral one's to the digit), and no what-if case along the
-# truck is said to have saved it; --fail-on-overturn sees it.
+# factor is the lateral one's to the digit), every what-if case is judged
+# across the truck too (none keeps the depth-0.728 m crate upright, so none
+# saved it); --fail-on-overturn sees it.
 run "$SW" forensics "$LOG" --scene "$SRC/sample_logs/crate.ini" --json --size 2x0.5 \
     --frame-omega 1Hz --cushion-omega 8Hz
 expect_rc 0 "forensics, the planar run"
@@ -157,7 +158,10 @@ for k in ("bracket", "factor", "factor_safe", "lift_scale", "max_scale"):
     assert sf[k] == a["safety_factor"][k], k
 # nothing along the truck: that plane never lifts, no scale moves it
 assert sf["planes"]["longitudinal"]["lift_scale"] is None, sf["planes"]["longitudinal"]
-assert p["saved_by"] is None and "across the truck" in p["saved_by_note"], p
+assert p["saved_by"] == [] and "saved_by_note" not in p, p
+for c in p["what_if"]:
+    assert c["plane"] == "lateral" and c["overturned"], c
+    assert c["lateral"]["overturned"] and c["safety_factor"]["plane"] == "lateral", c
 PY
 run "$SW" forensics "$TMP/side.csv" --scene "$TMP/deep.ini" --no-what-if -q
 expect_rc 0 "forensics across the truck, in words"
@@ -214,4 +218,86 @@ assert row["plane"] == "lateral" and row["factor_plane"] == "lateral", row
 assert row["factor"] == "%.9g" % sf["factor"] == row["lateral_factor"], row
 assert row["longitudinal_factor"] == "", row  # nothing along the truck: none found
 PY
+# what-if sizes across the truck, against the closed form of static
+# uplift: a bare block of height H and depth d under a lateral step a_y
+# (0.3 g from 0.5 s, held 6.5 s) lifts iff a_y > g d / H (physics.md), and
+# held this long it then overturns.  The crate of depth 0.4 m (threshold
+# 0.2 g) overturns across the truck; as 2x1.2x0.8 (0.4 g) it stays upright
+# and is said to have saved it; as 2x1.2x0.5 (0.25 g) and as 2x0.3 (the
+# scene's depth kept) it does not.  Each case's safety factor, the step
+# scaled, is the threshold over 0.3 g: no scale below it can lift the
+# block, and one just above it overturns it within the hold (1 %).
+python3 - >"$TMP/step_y.csv" <<'PY'
+g = 9.80665
+print("t_s,ax,ay")
+for i in range(1401):
+    t = i * 0.005
+    print("%.3f,0,%.6f" % (t, 0.3 * g if t >= 0.5 else 0.0))
+PY
+awk -F, 'NR == 1 { print "t_s,ax"; next } { print $1 "," $3 }' "$TMP/step_y.csv" >"$TMP/step_x.csv"
+cat >"$TMP/tall.ini" <<'INI'
+[package]
+name   = tall
+height = 2.0
+width  = 1.2
+depth  = 0.4
+mass   = 500
+INI
+run "$SW" forensics "$TMP/step_y.csv" --scene "$TMP/tall.ini" --json --size 2x1.2x0.8 \
+    --size 2x1.2x0.5 --size 2x0.3
+expect_rc 0 "forensics: what-if sizes across the truck"
+cp "$TMP/out" "$TMP/step_y.json"
+# the planar identity: the same step along the truck, the block's width
+# the depths above, gives the lateral planes' factors to the last digit
+sed -e 's/^width .*/width = 0.4/' -e '/^depth/d' "$TMP/tall.ini" >"$TMP/flat.ini"
+run "$SW" forensics "$TMP/step_x.csv" --scene "$TMP/flat.ini" --json --size 2x0.8 --size 2x0.5 \
+    --no-what-if
+expect_rc 0 "forensics: the step along the truck"
+cp "$TMP/out" "$TMP/step_x_scene.json"
+run "$SW" forensics "$TMP/step_x.csv" --scene "$TMP/flat.ini" --json --size 2x0.8 --size 2x0.5
+expect_rc 0 "forensics: the sizes along the truck"
+python3 - "$TMP/step_y.json" "$TMP/out" <<'PY' || fail "forensics: what-if sizes across the truck"
+import json, sys
+p = json.load(open(sys.argv[1]))["packages"][0]
+x = json.load(open(sys.argv[2]))["packages"][0]
+cases = {c["case"]: c for c in p["what_if"]}
+along = {c["case"]: c for c in x["what_if"]}
+a_y = 0.3  # g
+expect = {  # case: (depth m, saved, the planar case along the truck)
+    "as given": (0.4, False, "as given"),
+    "size 2x1.2x0.8 m": (0.8, True, "size 2x0.8 m"),
+    "size 2x1.2x0.5 m": (0.5, False, "size 2x0.5 m"),
+    "size 2x0.3 m": (0.4, False, "as given"),
+}
+for name, (d, saved, twin) in expect.items():
+    c = cases[name]
+    thr = (d / 2.0) / a_y  # the scale of the step that reaches g d / H
+    assert c["overturned"] == (a_y >= d / 2.0) == (not saved), (name, c)
+    if not saved:
+        assert c["plane"] == "lateral" and c["lateral"]["overturned"], (name, c)
+    sf = c["safety_factor"]
+    assert sf["plane"] == "lateral", (name, sf)
+    lo, hi = sf["bracket"]
+    assert thr <= lo < hi <= 1.01 * thr, (name, thr, sf["bracket"])
+    # the lateral plane of the case is the planar case of width d
+    lat = sf["planes"]["lateral"]
+    assert lat["bracket"] == along[twin]["safety_factor"]["bracket"], (name, lat, along[twin])
+    assert c["lateral"]["min_margin"] == along[twin]["min_margin"], (name, c, along[twin])
+    assert (name in p["saved_by"]) == saved, (name, p["saved_by"])
+assert p["overturned"] and p["plane"] == "lateral", p
+assert "saved_by_note" not in p, p
+# one plane: a package without a depth has no plane named in its cases
+assert all("plane" not in c and "lateral" not in c for c in x["what_if"]), x["what_if"]
+PY
+run "$SW" forensics "$TMP/step_y.csv" --scene "$TMP/tall.ini" -q --size 2x1.2x0.8
+expect_rc 0 "forensics: what-if sizes across the truck, in words"
+grep -q "would have stayed upright: size 2x1.2x0.8 m" "$TMP/out" ||
+    fail "forensics: the size across the truck not said to have saved it"
+grep -q "what if (the same log, both planes)" "$TMP/out" || fail "forensics: the planes not said"
+grep -Eq "^  as given +OVERTURNED across" "$TMP/out" || fail "forensics: the case's plane not named"
+for bad in 2x1x0 2x1x 2x1xa 2x1x1x1 0x1x1 2x1x-1; do
+    run "$SW" forensics "$TMP/step_y.csv" --scene "$TMP/tall.ini" --size "$bad"
+    expect_rc 2 "--size $bad"
+    expect_err "HEIGHTxWIDTHxDEPTH" "--size $bad"
+done
 echo "ok lateral"

@@ -43,10 +43,13 @@
 static int check_size(const sw_cli_option_t *o, const char *arg, void *dest)
 {
     (void)dest;
-    double h, w;
-    if (sw_cli_parse_size(arg, &h, &w) == 0)
+    double h, w, d;
+    if (sw_cli_parse_size(arg, &h, &w, &d) == 0)
         return SW_EXIT_OK;
-    sw_cli_error("--%s: expected HEIGHTxWIDTH in m, e.g. 2.4x0.8, got '%s'", o->long_name, arg);
+    sw_cli_error(
+        "--%s: expected HEIGHTxWIDTH or HEIGHTxWIDTHxDEPTH in m, e.g. 2.4x0.8 or 2.4x0.8x0.6, "
+        "got '%s'",
+        o->long_name, arg);
     return SW_EXIT_USAGE;
 }
 
@@ -110,8 +113,9 @@ static const sw_cli_option_t forensics_options[] = {
              "scene has one, instead of the catalogue's cushions"},
     {SW_CLI_STRING, 0, "cushion-zeta", "Z", FO(w.cushion_zeta),
      .help = "cushion damping ratio (default: the scene's, else " SW_CLI_STR(SW_WHATIF_ZETA) ")"},
-    {SW_CLI_LIST, 0, "size", "HxW", FO(w.sizes), .fn = check_size,
-     .help = "the package with height H and width W (m), on the scene's support; repeatable"},
+    {SW_CLI_LIST, 0, "size", "HxW[xD]", FO(w.sizes), .fn = check_size,
+     .help = "the package with height H, width W along the truck and depth D across it (m; "
+             "without D, the scene's depth), on the scene's support; repeatable"},
     {SW_CLI_FLAG, 0, "no-what-if", FO(w.no_what_if), .value = 1,
      .help = "only the replay and the safety factor"},
     {SW_CLI_LONG, 0, "reserve-evals", "N", FO(w.reserve_evals), .min = 0, .max = 1L << 30,

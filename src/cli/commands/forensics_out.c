@@ -110,15 +110,18 @@ int sw_cli_forensics_factor(const sw_cli_forensics_t *F, size_t k, sw_forensics_
 
 int sw_cli_forensics_savers(const sw_cli_forensics_t *F, size_t k, char *buf, size_t len)
 {
+    /* every case is judged across the truck too when the replay was: a
+     * package that overturned across the truck without its cases judged
+     * there has no savers known */
     sw_summary_t lat;
     if (F->R.e && sw_engine_summary_plane(F->R.e, k, SW_PLANE_LAT, &lat) == SW_OK &&
-        lat.overturned) {
+        lat.overturned && !(F->fx && sw_forensics_lateral_case(F->fx, k))) {
         snprintf(buf, len,
                  "not known: the what-if cases change the plane along the truck only, and it "
                  "overturned across the truck");
         return 0;
     }
-    sw_cli_whatif_savers(buf, len, F->cases, F->ncases, k);
+    sw_cli_whatif_savers(buf, len, F->fx, F->cases, F->ncases, k);
     return 1;
 }
 
@@ -210,8 +213,8 @@ static void answer(FILE *f, const sw_cli_forensics_t *F, size_t k)
         sw_cli_forensics_savers(F, k, save, sizeof save);
         fprintf(f, "  would have stayed upright: %s\n", save[0] ? save : "none of the cases below");
     }
-    fprintf(f, "  what if (the same log%s):\n", planes == 2 ? ", the plane along the truck" : "");
-    sw_cli_whatif_print_table(f, F->cases, F->ncases, k);
+    fprintf(f, "  what if (the same log%s):\n", planes == 2 ? ", both planes" : "");
+    sw_cli_whatif_print_table(f, F->fx, F->cases, F->ncases, k);
 }
 
 /* What ties the answer to its inputs and to the program. */
@@ -244,6 +247,9 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
     long runs = 0;
     for (size_t i = 0; i < F->ncases; i++)
         runs += F->cases[i].available ? F->cases[i].sf.trials : 0;
+    size_t nlat = 0; /* and the cases' lateral planes */
+    const sw_whatif_case_t *lat = F->fx ? sw_forensics_lateral_cases(F->fx, &nlat) : NULL;
+    for (size_t i = 0; lat && i < nlat; i++) runs += lat[i].available ? lat[i].sf.trials : 0;
     const sw_search_opts_t *so = &F->fo.so;
     fprintf(
         f,
@@ -256,10 +262,10 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
         runs, F->ncases);
     if (sw_forensics_log_lat(F->fx))
         fprintf(f,
-                "with a lateral acceleration, each package with a depth is searched across the\n"
-                "truck too (the lateral acceleration scaled by the same factor, the plane over\n"
-                "its depth): the package's factor is the smaller plane's, both axes scaled\n"
-                "together.\n");
+                "with a lateral acceleration, every case of a package with a depth is searched\n"
+                "across the truck too (the lateral acceleration scaled by the same factor, the\n"
+                "plane over the case's depth, on its support): the factor is the smaller\n"
+                "plane's, both axes scaled together.\n");
     for (size_t k = 0; k < F->n; k++) {
         const sw_whatif_case_t *C = sw_cli_forensics_scene_case(F, k);
         if (C && !isinf(C->sf.lift_scale))
@@ -352,13 +358,13 @@ void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_
     json_t *saved = json_object_get(o, "saved_by") ? NULL : sw_cli_rec_arr(o, "saved_by");
     for (size_t i = 0; saved && i < F->ncases && s.overturned; i++) {
         const sw_whatif_case_t *W = &F->cases[i];
-        if (W->pkg == k && !W->is_scene && W->available && !W->sf.overturned)
+        if (W->pkg == k && !W->is_scene && sw_cli_whatif_upright(F->fx, F->cases, i))
             sw_cli_rec_text(saved, NULL, W->name);
     }
     json_t *cases = sw_cli_rec_arr(o, "what_if");
     for (size_t i = 0; i < F->ncases; i++)
         if (F->cases[i].pkg == k)
-            sw_cli_whatif_json_case(sw_cli_rec_obj(cases, NULL), &F->cases[i]);
+            sw_cli_whatif_json_case(sw_cli_rec_obj(cases, NULL), F->fx, F->cases, i);
 }
 
 /* A file's digest as members of o. */

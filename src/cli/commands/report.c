@@ -519,10 +519,10 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
     }
     if (planes == 2)
         fprintf(f,
-                "<p class=\"note\">The cases change the plane along the truck (its width and "
-                "its support along the truck): the lateral planes are those of the packages as "
-                "given, and a package that overturned across the truck is not known to be "
-                "saved by any of them.</p>\n");
+                "<p class=\"note\">A package with a depth is judged in both planes in every "
+                "case (across the truck over the case's depth, on the case's support): the "
+                "outcome, peak and margin are the worse plane's, named; the reserve the "
+                "smaller; the safety factor both axes scaled together.</p>\n");
     for (size_t k = 0; k < F->n; k++) {
         fprintf(f, "<h3>");
         html(f, F->scenes[k].name);
@@ -542,22 +542,42 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
                 fprintf(f, "</td></tr>\n");
                 continue;
             }
-            const sw_run_result_t *r = &C->sf.at_one;
+            size_t nl;
+            const sw_whatif_case_t *lat = F->fx ? sw_forensics_lateral_cases(F->fx, &nl) : NULL;
+            if (lat && i < nl && lat[i].built && !lat[i].available) {
+                fprintf(f, "</td><td colspan=\"6\">not computed across the truck: ");
+                html(f, lat[i].note);
+                fprintf(f, "</td></tr>\n");
+                continue;
+            }
+            sw_forensics_factor_t x;
+            const int both =
+                F->fx && sw_forensics_case_factor(F->fx, i, &x) == SW_OK && x.planes == 2;
+            const sw_safety_t *sf = both ? &x.sf : &C->sf;
+            const sw_whatif_case_t *W = both && x.worse == SW_PLANE_LAT ? x.lateral : C;
+            const sw_run_result_t *r = &W->sf.at_one;
             char b[64];
-            sw_cli_safety_bracket(b, sizeof b, &C->sf);
-            fprintf(f, "</td><td class=\"%s\">%s</td><td class=\"n\">",
-                    r->overturned ? "over" : "up", r->overturned ? "overturned" : "upright");
+            sw_cli_safety_bracket(b, sizeof b, sf);
+            fprintf(f, "</td><td class=\"%s\">%s%s</td><td class=\"n\">",
+                    r->overturned ? "over" : "up", r->overturned ? "overturned" : "upright",
+                    both ? (W == C ? " along" : " across") : "");
             num(f, "%.3f", r->max_theta_ratio);
             fprintf(f, "</td><td class=\"n\">");
             num(f, "%.3f", r->min_margin);
             char rsv[192];
-            sw_cli_whatif_reserve_text(rsv, sizeof rsv, C);
+            const sw_whatif_case_t *T = both ? x.lateral : NULL;
+            sw_cli_whatif_reserve_text(
+                rsv, sizeof rsv,
+                T && ((T->has_reserve && (!C->has_reserve || T->rl.min_g < C->rl.min_g)) ||
+                      (!T->has_reserve && C->has_reserve))
+                    ? T
+                    : C);
             fprintf(f, "</td><td class=\"n\">");
             html(f, rsv);
             fprintf(f, "</td><td class=\"n\">");
             html(f, b);
-            if (!C->sf.overturned && C->sf.below.found)
-                fprintf(f, " (but %.4g overturns: luck of timing)", C->sf.below.x);
+            if (!sf->overturned && sf->below.found)
+                fprintf(f, " (but %.4g overturns: luck of timing)", sf->below.x);
             fprintf(f, "</td><td>");
             char desc[224];
             html(f, sw_cli_whatif_desc(desc, sizeof desc, C));
@@ -577,6 +597,9 @@ static void limits(FILE *f, const sw_cli_forensics_t *F)
     long runs = 0;
     for (size_t i = 0; i < F->ncases; i++)
         runs += F->cases[i].available ? F->cases[i].sf.trials : 0;
+    size_t nlat = 0; /* and the cases' lateral planes */
+    const sw_whatif_case_t *lat = F->fx ? sw_forensics_lateral_cases(F->fx, &nlat) : NULL;
+    for (size_t i = 0; lat && i < nlat; i++) runs += lat[i].available ? lat[i].sf.trials : 0;
     fprintf(f,
             "<h2>How this was found</h2>\n"
             "<p>The recording was read as <code>swaywatch replay</code> reads it (the same "

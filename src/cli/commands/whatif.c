@@ -11,6 +11,7 @@
 #include <strings.h>
 
 #include "output.h"
+#include "swaywatch/status.h"
 
 #define TWO_PI 6.283185307179586
 
@@ -43,13 +44,35 @@ int sw_cli_opt_frequency(const sw_cli_option_t *o, const char *arg, void *dest)
     return SW_EXIT_OK;
 }
 
-int sw_cli_parse_size(const char *arg, double *h, double *w)
+int sw_cli_parse_size(const char *arg, double *h, double *w, double *d)
 {
-    char tail;
-    return sscanf(arg, "%lfx%lf%c", h, w, &tail) == 2 && isfinite(*h) && isfinite(*w) && *h > 0.0 &&
-                   *w > 0.0
-               ? 0
-               : -1;
+    /* split at each 'x' before reading the numbers: strtod alone would
+     * read "0x1" as hexadecimal */
+    double v[3] = {0.0, 0.0, 0.0};
+    size_t n = 0;
+    const char *p = arg;
+    for (;;) {
+        const size_t len = strcspn(p, "x");
+        char part[64];
+        char *end = NULL;
+        if (n == 3 || len == 0 || len >= sizeof part)
+            return -1;
+        memcpy(part, p, len);
+        part[len] = '\0';
+        v[n] = strtod(part, &end);
+        if (*end || !isfinite(v[n]) || !(v[n] > 0.0))
+            return -1;
+        n++;
+        if (!p[len])
+            break;
+        p += len + 1;
+    }
+    if (n < 2)
+        return -1;
+    *h = v[0];
+    *w = v[1];
+    *d = v[2]; /* 0: not given */
+    return 0;
 }
 
 /* ---- the cases -------------------------------------------------------------------- */
@@ -76,9 +99,11 @@ static void name_option(char *note, size_t len)
 
 double *sw_cli_whatif_opts(const sw_cli_whatif_t *w, sw_whatif_opts_t *o)
 {
-    double *sizes = calloc(2 * w->sizes.n + 1, sizeof *sizes);
+    /* height, width of each size, then their depths (0: the scene's) */
+    double *sizes = calloc(3 * w->sizes.n + 1, sizeof *sizes);
     for (size_t i = 0; sizes && i < w->sizes.n; i++) /* checked while parsing options */
-        sw_cli_parse_size(w->sizes.v[i], &sizes[2 * i], &sizes[2 * i + 1]);
+        sw_cli_parse_size(w->sizes.v[i], &sizes[2 * i], &sizes[2 * i + 1],
+                          &sizes[2 * w->sizes.n + i]);
     *o = (sw_whatif_opts_t){.frame_mass = w->frame_mass,
                             .frame_omega = w->frame_omega,
                             .frame_zeta = w->frame_zeta,
@@ -86,6 +111,7 @@ double *sw_cli_whatif_opts(const sw_cli_whatif_t *w, sw_whatif_opts_t *o)
                             .cushion_zeta = w->cushion_zeta,
                             .sizes = sizes,
                             .nsizes = w->sizes.n,
+                            .depths = sizes ? sizes + 2 * w->sizes.n : NULL,
                             .scenes_only = w->no_what_if};
     return sizes;
 }
@@ -205,13 +231,37 @@ void sw_cli_safety_sentence(char *buf, size_t len, const sw_safety_t *s)
                  s->below.x);
 }
 
-void sw_cli_whatif_savers(char *buf, size_t len, const sw_whatif_case_t *cs, size_t n, size_t pkg)
+/* Case i in both planes when fx judges it so: 1 with *x filled. */
+static int two_planes(const sw_forensics_t *fx, size_t i, sw_forensics_factor_t *x)
+{
+    return fx && sw_forensics_case_factor(fx, i, x) == SW_OK && x->planes == 2;
+}
+
+/* Case i's lateral plane, built but not searched: its verdict is not known. */
+static int lateral_unknown(const sw_forensics_t *fx, size_t i)
+{
+    size_t n;
+    const sw_whatif_case_t *lat = fx ? sw_forensics_lateral_cases(fx, &n) : NULL;
+    return lat && i < n && lat[i].built && !lat[i].available;
+}
+
+int sw_cli_whatif_upright(const sw_forensics_t *fx, const sw_whatif_case_t *cs, size_t i)
+{
+    sw_forensics_factor_t x;
+    const sw_whatif_case_t *C = &cs[i];
+    if (!C->available || C->sf.overturned || lateral_unknown(fx, i))
+        return 0;
+    return !two_planes(fx, i, &x) || !x.lateral->sf.overturned;
+}
+
+void sw_cli_whatif_savers(char *buf, size_t len, const sw_forensics_t *fx,
+                          const sw_whatif_case_t *cs, size_t n, size_t pkg)
 {
     size_t k = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < n && k < len; i++) {
         const sw_whatif_case_t *C = &cs[i];
-        if (C->pkg != pkg || C->is_scene || !C->available || C->sf.overturned)
+        if (C->pkg != pkg || C->is_scene || !sw_cli_whatif_upright(fx, cs, i))
             continue;
         int w = snprintf(buf + k, len - k, "%s%s", k ? "; " : "", C->name);
         if (w < 0)
@@ -222,10 +272,29 @@ void sw_cli_whatif_savers(char *buf, size_t len, const sw_whatif_case_t *cs, siz
         snprintf(buf + len - 4, 4, "...");
 }
 
-void sw_cli_whatif_print_table(FILE *f, const sw_whatif_case_t *cs, size_t n, size_t pkg)
+/* The smallest reserve of case C and its lateral plane T (NULL: one
+ * plane) as text: the smaller of the two, or the missing one's reason. */
+static void reserve_text(char *buf, size_t len, const sw_whatif_case_t *C,
+                         const sw_whatif_case_t *T)
 {
-    fprintf(f, "  %-22s %-10s %7s %8s %8s  %-12s %-20s %s\n", "case", "outcome", "peak/a", "peak",
-            "margin", "min reserve", "safety factor", "package and support");
+    if (!T || (C->has_reserve && T->has_reserve && !(T->rl.min_g < C->rl.min_g)) ||
+        (!C->has_reserve && C->reserve_note[0]))
+        sw_cli_whatif_reserve_text(buf, len, C);
+    else
+        sw_cli_whatif_reserve_text(buf, len, T);
+}
+
+void sw_cli_whatif_print_table(FILE *f, const sw_forensics_t *fx, const sw_whatif_case_t *cs,
+                               size_t n, size_t pkg)
+{
+    int two = 0; /* a case of the package judged in both planes: a column names the plane */
+    for (size_t i = 0; i < n; i++) {
+        sw_forensics_factor_t x;
+        two |= cs[i].pkg == pkg && (two_planes(fx, i, &x) || lateral_unknown(fx, i));
+    }
+    fprintf(f, "  %-22s %-10s %s%7s %8s %8s  %-12s %-20s %s\n", "case", "outcome",
+            two ? "plane   " : "", "peak/a", "peak", "margin", "min reserve", "safety factor",
+            "package and support");
     int bracket = 0;
     int luck = 0;
     for (size_t i = 0; i < n; i++) {
@@ -237,19 +306,31 @@ void sw_cli_whatif_print_table(FILE *f, const sw_whatif_case_t *cs, size_t n, si
             fprintf(f, "n/a: %s\n", C->note);
             continue;
         }
-        const sw_run_result_t *r = &C->sf.at_one;
+        if (lateral_unknown(fx, i)) {
+            size_t nl;
+            fprintf(f, "n/a: across the truck: %s\n", sw_forensics_lateral_cases(fx, &nl)[i].note);
+            continue;
+        }
+        sw_forensics_factor_t x;
+        const int both = two_planes(fx, i, &x);
+        const sw_safety_t *sf = both ? &x.sf : &C->sf;
+        const sw_whatif_case_t *W = both && x.worse == SW_PLANE_LAT ? x.lateral : C;
+        const sw_run_result_t *r = &W->sf.at_one;
         char fac[64];
-        sw_cli_safety_bracket(fac, sizeof fac, &C->sf);
-        if (!C->sf.overturned && C->sf.below.found) {
+        sw_cli_safety_bracket(fac, sizeof fac, sf);
+        if (!sf->overturned && sf->below.found) {
             strncat(fac, " *", sizeof fac - strlen(fac) - 1);
             luck = 1;
         }
         char rsv[192], desc[224];
-        sw_cli_whatif_reserve_text(rsv, sizeof rsv, C);
+        reserve_text(rsv, sizeof rsv, C, both ? x.lateral : NULL);
         bracket |= C->has_reserve && !C->rl.exact;
-        fprintf(f, "%-10s %7.3f %6.1f deg %8.3f  %-12s %-20s %s\n",
-                r->overturned ? "OVERTURNED" : "upright", r->max_theta_ratio,
-                fmin(r->max_theta_ratio * atan2(C->scene.width, C->scene.height), M_PI / 2) *
+        bracket |= both && x.lateral->has_reserve && !x.lateral->rl.exact;
+        fprintf(f, "%-10s ", r->overturned ? "OVERTURNED" : "upright");
+        if (two)
+            fprintf(f, "%-7s ", !both ? "along" : W == C ? "along" : "across");
+        fprintf(f, "%7.3f %6.1f deg %8.3f  %-12s %-20s %s\n", r->max_theta_ratio,
+                fmin(r->max_theta_ratio * atan2(W->scene.width, W->scene.height), M_PI / 2) *
                     180.0 / M_PI,
                 r->min_margin, rsv, fac, sw_cli_whatif_desc(desc, sizeof desc, C));
     }
@@ -258,8 +339,12 @@ void sw_cli_whatif_print_table(FILE *f, const sw_whatif_case_t *cs, size_t n, si
             "0 at the edge);\n"
             "  min reserve: the smallest reserve along the recording (the design pulse, in g, "
             "that would\n  have overturned it at that moment; docs/reserve.md)%s;\n"
-            "  safety factor: scales of the recording that leave it upright / overturn it%s\n",
+            "  safety factor: scales of the recording that leave it upright / overturn it%s%s\n",
             bracket ? ", '<= x (>= y)': between y and x, the search stopped at its budget" : "",
+            two ? "\n  plane: the worse plane, along or across the truck (with a depth, each case "
+                  "in both;\n  its reserve the smaller, its safety factor both axes scaled "
+                  "together)"
+                : "",
             luck ? "\n  *: survived, but a weaker shock of the same shape overturns it" : "");
 }
 
@@ -318,8 +403,23 @@ static void whatif_json_reserve(json_t *o, const sw_whatif_case_t *C)
         sw_cli_rec_text(o, "no_reserve", C->reserve_note);
 }
 
-void sw_cli_whatif_json_case(json_t *o, const sw_whatif_case_t *C)
+/* The case's run at scale 1 and its reserve as members of o. */
+static void json_run(json_t *o, const sw_whatif_case_t *C, const sw_run_result_t *r)
 {
+    sw_cli_rec_bool(o, "overturned", r->overturned);
+    sw_cli_rec_num(o, "overturn_time", r->overturn_time);
+    sw_cli_rec_num(o, "tip_time", r->tip_time);
+    sw_cli_rec_num(o, "uplift_time", r->uplift_time);
+    sw_cli_rec_num(o, "max_theta_ratio", r->max_theta_ratio);
+    sw_cli_rec_num(o, "min_margin", r->min_margin);
+    sw_cli_rec_int(o, "impacts", r->impacts);
+    whatif_json_reserve(o, C);
+}
+
+void sw_cli_whatif_json_case(json_t *o, const sw_forensics_t *fx, const sw_whatif_case_t *cs,
+                             size_t i)
+{
+    const sw_whatif_case_t *C = &cs[i];
     sw_cli_rec_text(o, "case", C->name);
     sw_cli_rec_bool(o, "as_given", C->is_scene);
     sw_cli_rec_bool(o, "available", C->available);
@@ -334,7 +434,25 @@ void sw_cli_whatif_json_case(json_t *o, const sw_whatif_case_t *C)
         sw_cli_rec_text(o, "note", C->note);
         return;
     }
-    const sw_run_result_t *r = &C->sf.at_one;
+    sw_forensics_factor_t x;
+    if (!two_planes(fx, i, &x)) {
+        json_run(o, C, &C->sf.at_one);
+        sw_cli_whatif_json_safety(o, C);
+        if (lateral_unknown(fx, i)) { /* a depth, but no verdict across: not upright */
+            size_t nl;
+            const sw_whatif_case_t *T = &sw_forensics_lateral_cases(fx, &nl)[i];
+            json_t *l = sw_cli_rec_obj(o, "lateral");
+            sw_cli_rec_bool(l, "available", 0);
+            sw_cli_rec_text(l, "note", T->note);
+        }
+        return;
+    }
+    /* both planes: the worse plane's verdict, named; the smaller reserve;
+     * the factor with both axes scaled; each plane's own below */
+    const sw_whatif_case_t *T = x.lateral, *W = x.worse == SW_PLANE_LAT ? T : C;
+    const int lat_reserve = T->has_reserve && (!C->has_reserve || T->rl.min_g < C->rl.min_g);
+    sw_cli_rec_text(o, "plane", sw_plane_name(x.worse));
+    const sw_run_result_t *r = &W->sf.at_one;
     sw_cli_rec_bool(o, "overturned", r->overturned);
     sw_cli_rec_num(o, "overturn_time", r->overturn_time);
     sw_cli_rec_num(o, "tip_time", r->tip_time);
@@ -342,6 +460,12 @@ void sw_cli_whatif_json_case(json_t *o, const sw_whatif_case_t *C)
     sw_cli_rec_num(o, "max_theta_ratio", r->max_theta_ratio);
     sw_cli_rec_num(o, "min_margin", r->min_margin);
     sw_cli_rec_int(o, "impacts", r->impacts);
-    whatif_json_reserve(o, C);
-    sw_cli_whatif_json_safety(o, C);
+    whatif_json_reserve(o, lat_reserve ? T : C);
+    json_t *j = sw_cli_json_safety(o, "safety_factor", C, &x.sf);
+    sw_cli_rec_text(j, "plane", sw_plane_name(x.first));
+    json_t *by = sw_cli_rec_obj(j, "planes");
+    sw_cli_json_safety(by, "longitudinal", C, &C->sf);
+    sw_cli_json_safety(by, "lateral", T, &T->sf);
+    json_t *l = sw_cli_rec_obj(o, "lateral");
+    json_run(l, T, &T->sf.at_one);
 }

@@ -15,7 +15,7 @@
 typedef struct {
     const char *frame_mass, *frame_zeta, *cushion_zeta;
     double frame_omega, cushion_omega;
-    sw_cli_list_t sizes; /* --size HxW */
+    sw_cli_list_t sizes; /* --size HxW or HxWxD */
     int no_what_if;      /* only the scenes as given */
     long reserve_evals;  /* --reserve-evals: per case, at most (0: no limit) */
 } sw_cli_whatif_t;
@@ -24,8 +24,9 @@ typedef struct {
  * "2 Hz", "12.6rad/s", or a bare number in rad/s. */
 int sw_cli_opt_frequency(const sw_cli_option_t *o, const char *arg, void *dest);
 
-/* "HEIGHTxWIDTH" (m, both > 0) into *h, *w: 0, or -1 if it is not one. */
-int sw_cli_parse_size(const char *arg, double *h, double *w);
+/* "HEIGHTxWIDTH" or "HEIGHTxWIDTHxDEPTH" (m, each > 0) into *h, *w, *d
+ * (0 when the depth is not given): 0, or -1 if it is not one. */
+int sw_cli_parse_size(const char *arg, double *h, double *w, double *d);
 
 /* The options w as the library's (swaywatch/whatif.h) into *o; returns
  * the sizes o points to (free() them after the cases are made), NULL when
@@ -50,11 +51,23 @@ void sw_cli_safety_bracket(char *buf, size_t len, const sw_safety_t *s);
 /* What the safety factor means for this package, in one sentence. */
 void sw_cli_safety_sentence(char *buf, size_t len, const sw_safety_t *s);
 
+/* The cases cs are fx's (sw_forensics_cases), or fx is NULL: one plane.
+ * With a lateral acceleration held, a case of a package with a depth is
+ * judged in both planes (sw_forensics_case_factor): its outcome, peak,
+ * margin the worse plane's, named; its reserve the smaller; its safety
+ * factor the package's with both axes scaled. */
+
 /* The what-if table of package pkg's cases (a row each), on f. */
-void sw_cli_whatif_print_table(FILE *f, const sw_whatif_case_t *cs, size_t n, size_t pkg);
-/* The cases of package pkg that stayed upright where the scene did not,
- * in words ("frame, soft bearings; cushion, firm"), or "" if none. */
-void sw_cli_whatif_savers(char *buf, size_t len, const sw_whatif_case_t *cs, size_t n, size_t pkg);
+void sw_cli_whatif_print_table(FILE *f, const sw_forensics_t *fx, const sw_whatif_case_t *cs,
+                               size_t n, size_t pkg);
+/* The cases of package pkg that stayed upright (in every plane judged)
+ * where the scene did not, in words ("frame, soft bearings; cushion,
+ * firm"), or "" if none. */
+void sw_cli_whatif_savers(char *buf, size_t len, const sw_forensics_t *fx,
+                          const sw_whatif_case_t *cs, size_t n, size_t pkg);
+/* Whether case i stayed upright in every plane judged (a plane whose
+ * search failed does not count as upright). */
+int sw_cli_whatif_upright(const sw_forensics_t *fx, const sw_whatif_case_t *cs, size_t i);
 /* As JSON (record.h): the case's member "safety_factor" of o; the case's
  * members into o. */
 void sw_cli_whatif_json_safety(json_t *o, const sw_whatif_case_t *C);
@@ -62,6 +75,7 @@ void sw_cli_whatif_json_safety(json_t *o, const sw_whatif_case_t *C);
  * key of o; the member made. */
 json_t *sw_cli_json_safety(json_t *o, const char *key, const sw_whatif_case_t *C,
                            const sw_safety_t *s);
-void sw_cli_whatif_json_case(json_t *o, const sw_whatif_case_t *C);
+void sw_cli_whatif_json_case(json_t *o, const sw_forensics_t *fx, const sw_whatif_case_t *cs,
+                             size_t i);
 
 #endif

@@ -19,8 +19,8 @@ struct sw_forensics {
     size_t npkg;
     sw_whatif_case_t *cases;
     size_t ncases;
-    sw_whatif_case_t *lat; /* per package: its lateral plane (available: a depth, and a
-                              lateral acceleration held) */
+    sw_whatif_case_t *lat; /* per case (ncases): its lateral plane (available: a depth,
+                              and a lateral acceleration held) */
     /* the held log */
     double *t, *a_g, *a_z; /* a_z: 0 where there is no vertical channel */
     double *a_y;           /* lateral, once a sample came with one (push_lat) */
@@ -46,24 +46,30 @@ sw_forensics_t *sw_forensics_create(const sw_scene_t *scenes, size_t n,
     if (!(F = calloc(1, sizeof *F)))
         goto fail;
     F->o = *o;
-    F->o.whatif.sizes = NULL; /* read here only */
+    F->o.whatif.sizes = F->o.whatif.depths = NULL; /* read here only */
     F->npkg = n;
     F->cases = calloc(sw_whatif_max(n, &o->whatif), sizeof *F->cases);
     if (!F->cases)
         goto fail;
     F->ncases = sw_whatif_cases(scenes, n, &o->whatif, F->cases);
-    if (!(F->lat = calloc(n, sizeof *F->lat)))
+    if (!(F->lat = calloc(F->ncases ? F->ncases : 1, sizeof *F->lat)))
         goto fail;
-    for (size_t k = 0; k < n; k++) { /* available once a lateral log is held */
-        sw_whatif_case_t *C = &F->lat[k];
-        C->pkg = k;
-        snprintf(C->name, sizeof C->name, "across the truck");
+    for (size_t i = 0; i < F->ncases; i++) { /* available once a lateral log is held */
+        const sw_whatif_case_t *L = &F->cases[i];
+        sw_whatif_case_t *C = &F->lat[i];
+        C->pkg = L->pkg;
+        C->is_scene = 0; /* its reserve computed here: the replay holds the longitudinal one */
+        C->stands_for = L->stands_for;
+        snprintf(C->name, sizeof C->name, "%s", L->name);
         C->built =
-            sw_scene_lateral(&scenes[k], &C->scene) == SW_OK &&
+            L->built && sw_scene_lateral(&L->scene, &C->scene) == SW_OK &&
             sw_scene_validate(&C->scene, &C->derived, "across the truck", NULL, NULL) == SW_OK;
         C->model = C->derived.model;
         snprintf(C->note, sizeof C->note, "%s",
-                 C->built ? "the log has no lateral acceleration" : "the scene gives no depth");
+                 C->built ? "the log has no lateral acceleration"
+                 : L->built && !sw_scene_has_depth(&L->scene) ? "the scene gives no depth"
+                 : L->built ? "its lateral plane is not a valid scene"
+                            : "not built");
     }
     return F;
 fail:
@@ -225,15 +231,19 @@ int sw_forensics_safety(sw_forensics_t *F)
     int rc = sw_whatif_safety(F->cases, F->ncases, sw_forensics_log(F), &so);
     if (rc != SW_OK || !F->has_y)
         return rc;
-    /* the lateral planes: the same searches on the lateral acceleration
-     * (the planes are driven each by its own axis, so scaling both axes
-     * together overturns the package at the smaller of the two factors) */
-    for (size_t k = 0; k < F->npkg; k++) {
-        sw_whatif_case_t *C = &F->lat[k];
-        C->available = C->built;
-        C->note[0] = '\0';
+    /* the lateral planes of every case: the same searches on the lateral
+     * acceleration (the planes are driven each by its own axis, so scaling
+     * both axes together overturns the package at the smaller of the two
+     * factors) */
+    for (size_t i = 0; i < F->ncases; i++) {
+        sw_whatif_case_t *C = &F->lat[i];
+        C->available = C->built && F->cases[i].available;
+        if (C->available)
+            C->note[0] = '\0';
+        else if (C->built)
+            snprintf(C->note, sizeof C->note, "%s", F->cases[i].note);
     }
-    return sw_whatif_safety(F->lat, F->npkg, &F->log_lat, &so);
+    return sw_whatif_safety(F->lat, F->ncases, &F->log_lat, &so);
 }
 
 /* The scale at which plane sf first overturns the package: for a log it
@@ -254,20 +264,46 @@ static double searched(const sw_safety_t *sf)
     return isinf(sf->lift_scale) ? INFINITY : sf->max_scale;
 }
 
+/* Which of two planes' runs at scale 1 is the worse (sw_summary_worse's
+ * order): 1 for b.  An overturn without a time (it fell after the log)
+ * comes after one with a time. */
+static int run_worse(const sw_run_result_t *a, const sw_run_result_t *b)
+{
+    if (a->overturned != b->overturned)
+        return b->overturned;
+    if (a->overturned) {
+        const double ta = isnan(a->overturn_time) ? INFINITY : a->overturn_time;
+        const double tb = isnan(b->overturn_time) ? INFINITY : b->overturn_time;
+        return tb < ta;
+    }
+    if (a->min_margin != b->min_margin)
+        return b->min_margin < a->min_margin;
+    return b->max_theta_ratio > a->max_theta_ratio;
+}
+
 int sw_forensics_factor(const sw_forensics_t *F, size_t k, sw_forensics_factor_t *out)
 {
-    const sw_whatif_case_t *L = k < F->npkg ? sw_forensics_scene_case(F, k) : NULL;
+    for (size_t i = 0; k < F->npkg && i < F->ncases; i++)
+        if (F->cases[i].pkg == k && F->cases[i].is_scene)
+            return sw_forensics_case_factor(F, i, out);
+    return SW_EINVAL;
+}
+
+int sw_forensics_case_factor(const sw_forensics_t *F, size_t i, sw_forensics_factor_t *out)
+{
+    const sw_whatif_case_t *L = i < F->ncases ? &F->cases[i] : NULL;
     if (!L || !out)
         return SW_EINVAL;
     memset(out, 0, sizeof *out);
-    out->first = SW_PLANE_LONG;
+    out->first = out->worse = SW_PLANE_LONG;
     out->sf = L->sf;
     out->planes = 1;
-    const sw_whatif_case_t *T = &F->lat[k];
+    const sw_whatif_case_t *T = &F->lat[i];
     if (!L->available || !F->has_y || !T->available)
         return SW_OK;
     out->planes = 2;
     out->lateral = T;
+    out->worse = run_worse(&L->sf.at_one, &T->sf.at_one) ? SW_PLANE_LAT : SW_PLANE_LONG;
     const sw_safety_t *a = &L->sf, *b = &T->sf;
     sw_safety_t *s = &out->sf;
     s->overturned = a->overturned || b->overturned;
@@ -315,7 +351,16 @@ int sw_forensics_factor(const sw_forensics_t *F, size_t k, sw_forensics_factor_t
 
 const sw_whatif_case_t *sw_forensics_lateral_case(const sw_forensics_t *F, size_t k)
 {
-    return k < F->npkg && F->has_y && F->lat[k].built ? &F->lat[k] : NULL;
+    for (size_t i = 0; k < F->npkg && F->has_y && i < F->ncases; i++)
+        if (F->cases[i].pkg == k && F->cases[i].is_scene)
+            return F->lat[i].built ? &F->lat[i] : NULL;
+    return NULL;
+}
+
+const sw_whatif_case_t *sw_forensics_lateral_cases(const sw_forensics_t *F, size_t *n)
+{
+    *n = F->has_y ? F->ncases : 0;
+    return F->has_y ? F->lat : NULL;
 }
 
 int sw_forensics_reserve(sw_forensics_t *F, const sw_risk_t *replay)
@@ -340,7 +385,10 @@ int sw_forensics_reserve(sw_forensics_t *F, const sw_risk_t *replay)
     }
     const sw_reserve_log_opts_t rlo = {
         .rate = F->o.reserve_rate, .max_evals = F->o.reserve_evals, .run = F->o.run};
-    return sw_whatif_reserve(F->cases, F->ncases, sw_forensics_log(F), &rlo, F->o.threads);
+    int rc = sw_whatif_reserve(F->cases, F->ncases, sw_forensics_log(F), &rlo, F->o.threads);
+    if (rc == SW_OK && F->has_y) /* the lateral planes' (the scenes': the replay's) */
+        rc = sw_whatif_reserve(F->lat, F->ncases, &F->log_lat, &rlo, F->o.threads);
+    return rc;
 }
 
 sw_whatif_case_t *sw_forensics_cases(sw_forensics_t *F, size_t *n)

@@ -105,6 +105,14 @@ static void frame_case(sw_whatif_case_t *C, const sw_scene_t *sc, const sw_whati
                          ? NULL
                          : num(mass, sizeof mass, SW_WHATIF_FRAME_MASS_RATIO * sc->mass);
     const char *fz = zeta ? zeta : sc->has_frame ? NULL : num(z, sizeof z, SW_WHATIF_ZETA);
+    if (omega > 0.0) { /* the case's bearings across the truck too */
+        C->scene.frame_lat_stiffness = C->scene.frame_lat_omega = NAN;
+        C->scene.frame_lat_k_given = SW_GIVEN_NONE;
+    }
+    if (zeta) {
+        C->scene.frame_lat_damping = C->scene.frame_lat_zeta = NAN;
+        C->scene.frame_lat_c_given = SW_GIVEN_NONE;
+    }
     if (fm)
         set(C, "frame", "mass", fm, "frame_mass");
     if (omega > 0.0)
@@ -125,6 +133,14 @@ static void cushion_case(sw_whatif_case_t *C, const sw_scene_t *sc, int on_bed, 
         C->scene.has_frame = 0;
     C->available = 1;
     const char *cz = zeta ? zeta : sc->has_cushion ? NULL : num(z, sizeof z, SW_WHATIF_ZETA);
+    if (omega > 0.0) { /* the case's cushion across the truck too */
+        C->scene.cushion_lat_stiffness = C->scene.cushion_lat_omega = NAN;
+        C->scene.cushion_lat_k_given = SW_GIVEN_NONE;
+    }
+    if (zeta) {
+        C->scene.cushion_lat_damping = C->scene.cushion_lat_zeta = NAN;
+        C->scene.cushion_lat_c_given = SW_GIVEN_NONE;
+    }
     if (omega > 0.0)
         set(C, "cushion", "omega", num(om, sizeof om, omega), "cushion_omega");
     if (cz)
@@ -189,10 +205,16 @@ static size_t scene_cases(sw_whatif_case_t *cs, const sw_scene_t *sc, size_t pkg
     for (size_t i = 0; i < o->nsizes; i++) {
         C = &cs[m++];
         const double h = o->sizes[2 * i], w = o->sizes[2 * i + 1];
-        snprintf(C->name, sizeof C->name, "size %.6gx%.6g m", h, w);
+        const double d = o->depths ? o->depths[i] : 0.0; /* m; 0: the scene's */
+        if (d > 0.0)
+            snprintf(C->name, sizeof C->name, "size %.6gx%.6gx%.6g m", h, w, d);
+        else
+            snprintf(C->name, sizeof C->name, "size %.6gx%.6g m", h, w);
         C->scene = *sc;
         C->scene.height = h;
         C->scene.width = w;
+        if (d > 0.0)
+            C->scene.depth = d;
         C->available = 1;
         check(C);
     }
