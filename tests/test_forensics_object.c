@@ -183,6 +183,97 @@ static void test_factor_one_plane(void **state)
     sw_forensics_destroy(F);
 }
 
+/* What-if cases across the truck, closed form: a bare block of height H
+ * and depth d under a constant lateral acceleration a_y overturns exactly
+ * when a scale of it reaches g d / H (as above).  The scene (d = 0.3 m,
+ * H = 2 m) overturns across the truck; a size of depth 0.8 m does not,
+ * and its factor is (g 0.4)/|a_y|; a size that gives no depth keeps the
+ * scene's.  Each case's lateral plane has its reserve computed. */
+static void test_cases_across(void **state)
+{
+    (void)state;
+    sw_scene_t sc = tu_bare(2.0, 1.0);
+    sc.depth = 0.3;
+    const double ay = -0.25 * sc.g;
+    const double sizes[] = {2.0, 1.0, 2.0, 0.5}, depths[] = {0.8, 0.0};
+    sw_forensics_opts_t o = opts(0);
+    o.whatif.scenes_only = 0;
+    o.whatif.sizes = sizes;
+    o.whatif.depths = depths;
+    o.whatif.nsizes = 2;
+    o.run.engine.scheme = "rk4";
+    o.run.engine.dt = 1e-3;
+    o.run.settle = 10.0;
+    o.reserve_rate = 10.0;
+    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
+    assert_non_null(F);
+    for (int i = 0; i <= 500; i++) /* 5 s at 100 Hz */
+        assert_int_equal(sw_forensics_push_lat(F, 0.01 * i, 0.0, ay, 0.0, 0), SW_OK);
+    assert_int_equal(sw_forensics_safety(F), SW_OK);
+    assert_int_equal(sw_forensics_reserve(F, NULL), SW_OK);
+    size_t n, nl;
+    const sw_whatif_case_t *cs = sw_forensics_cases(F, &n);
+    const sw_whatif_case_t *lat = sw_forensics_lateral_cases(F, &nl);
+    assert_int_equal(nl, n);
+    assert_true(n >= 3);
+    const size_t at[] = {0, n - 2, n - 1}; /* as given first, the sizes last */
+    assert_true(cs[0].is_scene);
+    assert_string_equal(cs[n - 2].name, "size 2x1x0.8 m");
+    assert_string_equal(cs[n - 1].name, "size 2x0.5 m");
+    const double dd[] = {0.3, 0.8, 0.3};
+    for (size_t j = 0; j < 3; j++) {
+        const size_t i = at[j];
+        const double depth = dd[j]; /* m, the case's */
+        sw_forensics_factor_t x;
+        assert_int_equal(sw_forensics_case_factor(F, i, &x), SW_OK);
+        assert_int_equal(x.planes, 2);
+        assert_ptr_equal(x.lateral, &lat[i]);
+        assert_true(lat[i].scene.width == depth);         /* the plane over the case's depth */
+        const double f = (depth / 2.0) * sc.g / fabs(ay); /* the closed form */
+        assert_int_equal(x.first, SW_PLANE_LAT);
+        assert_int_equal(x.sf.overturned, f < 1.0);
+        assert_int_equal(x.worse, f < 1.0 ? SW_PLANE_LAT : SW_PLANE_LONG);
+        assert_true(x.sf.found);
+        assert_true(x.sf.factor_safe <= f * (1.0 + 1e-9) && x.sf.factor >= f * (1.0 - 1e-9));
+        assert_false(cs[i].sf.overturned); /* nothing along the truck */
+        assert_true(lat[i].has_reserve);
+    }
+    assert_int_equal(sw_forensics_case_factor(F, n, &(sw_forensics_factor_t){0}), SW_EINVAL);
+    sw_forensics_destroy(F);
+}
+
+/* A support of the catalogue applies across the truck too (the scene's
+ * lateral bearings dropped); the scene as given keeps its own. */
+static void test_cases_support_across(void **state)
+{
+    (void)state;
+    sw_scene_t sc = tu_frame(2.0, 1.0, 250.0, 6.0, 0.1);
+    sc.depth = 0.6;
+    sc.frame_lat_omega = 3.0; /* rad/s */
+    sc.frame_lat_k_given = SW_GIVEN_RATIO;
+    sw_forensics_opts_t o = opts(0);
+    o.whatif.scenes_only = 0;
+    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
+    assert_non_null(F);
+    assert_int_equal(sw_forensics_push_lat(F, 0.0, 0.0, 0.0, 0.0, 0), SW_OK);
+    size_t n, nl;
+    const sw_whatif_case_t *cs = sw_forensics_cases(F, &n);
+    const sw_whatif_case_t *lat = sw_forensics_lateral_cases(F, &nl);
+    int seen = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (cs[i].is_scene) {
+            assert_true(fabs(lat[i].derived.omega_b - 3.0) < 1e-12);
+            seen |= 1;
+        } else if (!strcmp(cs[i].name, "frame, soft bearings")) {
+            assert_true(fabs(lat[i].derived.omega_b - 2.0 * M_PI * 1.0) < 1e-12);
+            assert_true(fabs(cs[i].derived.omega_b - lat[i].derived.omega_b) < 1e-12);
+            seen |= 2;
+        }
+    }
+    assert_int_equal(seen, 3);
+    sw_forensics_destroy(F);
+}
+
 /* The cases are sw_whatif_cases()'s; each package's as given is found. */
 static void test_cases(void **state)
 {
@@ -286,6 +377,8 @@ int main(void)
         cmocka_unit_test(test_cost),
         cmocka_unit_test(test_factor_both_axes),
         cmocka_unit_test(test_factor_one_plane),
+        cmocka_unit_test(test_cases_across),
+        cmocka_unit_test(test_cases_support_across),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
