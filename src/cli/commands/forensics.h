@@ -135,6 +135,10 @@ int sw_cli_forensics_factor(const sw_cli_forensics_t *F, size_t k, sw_forensics_
 /* " across the truck" or " along the truck" for plane p of a package
  * that rocks in two planes, "" for one that rocks in one. */
 const char *sw_cli_forensics_where(int planes, sw_plane p);
+/* "gives out first across the truck (along the truck [..], across [..])":
+ * both planes' safety factors, along the one given, across fx's. */
+void sw_cli_forensics_planes(char *buf, size_t len, const sw_forensics_factor_t *fx,
+                             const sw_safety_t *along);
 /* The what-if cases of package k that stayed upright where it did not
  * (sw_cli_whatif_savers) into buf: 1; or 0 with the reason in buf when
  * that cannot be said: the cases vary the plane along the truck only, so

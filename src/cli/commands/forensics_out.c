@@ -132,6 +132,16 @@ const char *sw_cli_forensics_where(int planes, sw_plane p)
     return p == SW_PLANE_LAT ? " across the truck" : " along the truck";
 }
 
+void sw_cli_forensics_planes(char *buf, size_t len, const sw_forensics_factor_t *fx,
+                             const sw_safety_t *along)
+{
+    char lb[64], tb[64];
+    sw_cli_safety_bracket(lb, sizeof lb, along);
+    sw_cli_safety_bracket(tb, sizeof tb, &fx->lateral->sf);
+    snprintf(buf, len, "gives out first%s (along the truck %s, across %s)",
+             sw_cli_forensics_where(2, fx->first), lb, tb);
+}
+
 const sw_whatif_case_t *sw_cli_forensics_scene_case(const sw_cli_forensics_t *F, size_t k)
 {
     return F->cases ? sw_forensics_scene_case(F->fx, k) : NULL;
@@ -197,13 +207,9 @@ static void answer(FILE *f, const sw_cli_forensics_t *F, size_t k)
     sw_cli_safety_sentence(sentence, sizeof sentence, sf);
     fprintf(f, "  safety factor %s\n", b);
     if (fx.planes == 2) {
-        char lb[64], tb[64];
-        sw_cli_safety_bracket(lb, sizeof lb, &C->sf);
-        sw_cli_safety_bracket(tb, sizeof tb, &fx.lateral->sf);
-        fprintf(f,
-                "  both horizontal axes scaled together: gives out first%s (along the truck %s, "
-                "across %s)\n",
-                sw_cli_forensics_where(2, fx.first), lb, tb);
+        char both[256];
+        sw_cli_forensics_planes(both, sizeof both, &fx, &C->sf);
+        fprintf(f, "  both horizontal axes scaled together: %s\n", both);
     }
     wrapped(f, sentence);
     if (F->fo.w.no_what_if)

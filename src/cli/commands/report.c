@@ -160,13 +160,11 @@ static void answers(FILE *f, const sw_cli_forensics_t *F)
         fprintf(f, "<p><b>Safety factor %s.</b> ", b);
         html(f, sentence);
         if (fx.planes == 2) {
-            char lb[64], tb[64];
-            sw_cli_safety_bracket(lb, sizeof lb, &C->sf);
-            sw_cli_safety_bracket(tb, sizeof tb, &fx.lateral->sf);
-            fprintf(f,
-                    " Both horizontal axes scaled together: it gives out first%s (along the "
-                    "truck %s, across %s).",
-                    sw_cli_forensics_where(2, fx.first), lb, tb);
+            char both[256];
+            sw_cli_forensics_planes(both, sizeof both, &fx, &C->sf);
+            fprintf(f, " Both horizontal axes scaled together: it ");
+            html(f, both);
+            fprintf(f, ".");
         }
         fprintf(f, "</p>");
         if (s.overturned && !F->fo.w.no_what_if) {
