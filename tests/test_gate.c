@@ -456,7 +456,7 @@ static void test_plausibility_still(void **state)
     char why[400];
     assert_int_equal(still_verdict(120.0, gravity, why, sizeof why), SW_GATE_REFUSE);
     assert_non_null(strstr(why, "looks like gravity or not an acceleration"));
-    assert_non_null(strstr(why, "--accel-col"));
+    assert_non_null(strstr(why, "the column or axis of the longitudinal acceleration"));
     assert_non_null(strstr(why, "--force"));
     assert_int_equal(still_verdict(120.0, gps_as_g, why, sizeof why), SW_GATE_REFUSE);
     assert_non_null(strstr(why, "looks like gravity or not an acceleration"));

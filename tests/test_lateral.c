@@ -579,7 +579,7 @@ static void test_gate_lateral_axis(void **state)
             tu_near(f.lat.peak, G, 0);
             assert_int_equal(r, SW_GATE_REFUSE);
             assert_non_null(strstr(why, "the lateral channel looks like gravity"));
-            assert_non_null(strstr(why, "--lat-col"));
+            assert_non_null(strstr(why, "the column or axis of the lateral acceleration"));
         } else {
             assert_int_equal(rec.refused[SW_GATE_REJ_NONFINITE], 0);
             assert_int_equal(rec.refused[SW_GATE_REJ_IMPLAUSIBLE], 0);

@@ -133,4 +133,17 @@ rc=0
 "$SW" replay "$T/side.lcmlog" --scene "$T/deep.ini" --axis y >/dev/null 2>"$T/axis.err" || rc=$?
 [ "$rc" -eq 2 ] || fail "--axis y with a depth: exit $rc, not 2"
 grep -q -- '--lat-axis y is also the longitudinal axis' "$T/axis.err" || fail "$(cat "$T/axis.err")"
+# a lateral channel beyond 0.5 g for minutes (gravity on the y axis): no
+# verdict, and the refusal names the options of an lcm-logger file, not
+# a CSV log's columns
+awk 'BEGIN { print "t_s,ax,ay"; for (i = 0; i < 12000; i++) printf "%.3f,%.3f,%.3f\n", i / 100, (i % 5) / 100, 9.7 + (i % 7) / 100 }' \
+    >"$T/gravity.csv"
+PYTHONPATH=$PYDIR python3 "$SRC/docs/examples/csv2lcmlog.py" "$T/gravity.csv" "$T/gravity.lcmlog" \
+    --lat-col 3 --start-utime 1700000000000000 >/dev/null
+rc=0
+"$SW" replay "$T/gravity.lcmlog" --scene "$T/deep.ini" >/dev/null 2>"$T/gravity.err" || rc=$?
+[ "$rc" -eq 2 ] || fail "a lateral channel of gravity: exit $rc, not 2"
+grep -q 'the lateral channel looks like gravity' "$T/gravity.err" || fail "$(cat "$T/gravity.err")"
+grep -q -- '--lat-axis' "$T/gravity.err" || fail "no --lat-axis in: $(cat "$T/gravity.err")"
+! grep -q -- '--lat-col\|--accel-col' "$T/gravity.err" || fail "CSV options named: $(cat "$T/gravity.err")"
 echo "ok"

@@ -130,8 +130,8 @@ int sw_cli_reader_risk(sw_cli_reader_t *R, const sw_cli_opts_t *o, const sw_scen
  * gravity: SW_EXIT_OK with run's check and forced set (a warning or a
  * forced verdict, printed), or SW_EXIT_USAGE with the reason and what to
  * do printed (no verdict).  vert: the source has a vertical channel. */
-static int verdict(const char *name, const sw_gate_facts_t *f, const sw_cli_gate_t *go, int vert,
-                   int quiet, sw_cli_run_t *run)
+static int verdict(const char *name, const char *picks, const sw_gate_facts_t *f,
+                   const sw_cli_gate_t *go, int vert, int quiet, sw_cli_run_t *run)
 {
     sw_gate_limits_t lim;
     sw_cli_gate_limits(go, &lim);
@@ -161,10 +161,9 @@ static int verdict(const char *name, const sw_gate_facts_t *f, const sw_cli_gate
     if (!go->force) {
         sw_cli_error("%s: no verdict: %s", name, why);
         sw_cli_error(
-            "%s: check the columns and units (see the lines above; --time-col, "
-            "--time-unit, --accel-col, --accel-unit), or give --force for a verdict "
-            "marked as forced",
-            name);
+            "%s: check the channels and units (see the lines above; %s), or give "
+            "--force for a verdict marked as forced",
+            name, picks);
         return SW_EXIT_USAGE;
     }
     run->forced = 1;
@@ -184,7 +183,7 @@ int sw_cli_reader_feed(sw_cli_reader_t *R)
     /* a stopped or empty log: no check; the command, or the report, says why */
     const int checked = !R->interrupted && R->accepted > 0;
     if (checked)
-        rc = verdict(R->lf.name, &f, &R->o->gate, vert, R->quiet, &R->run);
+        rc = verdict(R->lf.name, R->src->picks, &f, &R->o->gate, vert, R->quiet, &R->run);
     if (R->src->checked)
         R->src->checked(R, checked ? rc : SW_EXIT_USAGE);
     return rc;

@@ -475,6 +475,7 @@ static const sw_cli_option_t *const csv_own[] = {sw_cli_csv_options, NULL};
 
 const sw_cli_source_t sw_cli_source_csv = {
     .name = "a CSV log",
+    .picks = "--time-col, --time-unit, --accel-col, --accel-unit, --lat-col",
     .takes = "CSV logs",
     .own = csv_own,
     .init = csv_init,

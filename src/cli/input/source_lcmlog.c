@@ -409,6 +409,7 @@ static void lcmlog_close(sw_cli_reader_t *R)
 
 const sw_cli_source_t sw_cli_source_lcmlog = {
     .name = "an lcm-logger file",
+    .picks = "--axis, --lat-axis, --vertical, --flip, --flip-lat",
     .takes = "lcm-logger files",
     .sniff = sw_lcmlog_sniff,
     .own = lcmlog_own,

@@ -35,6 +35,7 @@ typedef struct sw_cli_reader sw_cli_reader_t;
 typedef struct sw_cli_source {
     const char *name;  /* what such a log is, in messages and reports: "a CSV log" */
     const char *takes; /* what its own options are for: "CSV logs" */
+    const char *picks; /* the options that choose its channels and units, for a refusal */
     int (*sniff)(const void *buf, size_t len); /* its first bytes; NULL: anything (the last row) */
     const sw_cli_option_t *const *own;         /* option tables only it takes (NULL-ended) */
     void (*init)(sw_cli_read_opts_t *o);       /* its options' defaults */

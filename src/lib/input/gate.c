@@ -247,8 +247,9 @@ static int check_axis(const sw_gate_facts_t *f, const sw_gate_axis_t *x, int lat
                       double max_peak, double min_still, char *why, size_t whylen)
 {
     const char *const name = lateral ? "lateral" : "longitudinal";
-    const char *const col = lateral ? "the lateral column with --lat-col NAME|N"
-                                    : "the acceleration column with --accel-col NAME|N";
+    /* the options that choose a channel are the source's: the caller names them */
+    const char *const col = lateral ? "the column or axis of the lateral acceleration"
+                                    : "the column or axis of the longitudinal acceleration";
     if (x->peak > max_peak) {
         snprintf(why, whylen,
                  "the largest %sacceleration is %.4g m/s^2 (%.3g g), beyond what a truck bed "
