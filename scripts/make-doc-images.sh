@@ -48,7 +48,15 @@ monitor() {
     python3 docs/examples/csv2lcmlog.py sample_logs/hard-stop-overturn.csv "$T/drive.lcmlog" \
         >"$T/convert.txt" &&
         lcm-logplayer "$T/drive.lcmlog" >/dev/null
-    sleep 0.5
+    # The sensor's silence after the drive is an alarm; stop once the
+    # monitor has said it (a loaded machine may lag the drive), not after
+    # a fixed time, so that the picture does not depend on the load.
+    i=0
+    while [ $i -lt 100 ] && ! grep -q 'kind=sensor_gap' "$T/monitor.txt"; do
+        sleep 0.1
+        i=$((i + 1))
+    done
+    sleep 0.2
     kill -INT "$mon"
     wait "$mon" || true
     kill -INT "$lis"
