@@ -91,6 +91,19 @@ grep -q "both planes     lifted at once from" "$TMP/out" || {
     show
     fail "the summary does not say both planes were lifted at once"
 }
+# forensics marks its verdict the same way, with the replay's span
+cp "$TMP/out" "$TMP/both-replay.txt"
+run "$SW" replay "$TMP/both.csv" --scene "$TMP/deep.ini" --json
+cp "$TMP/out" "$TMP/both-replay.json"
+run "$SW" forensics "$TMP/both.csv" --scene "$TMP/deep.ini" --json --no-what-if
+expect_rc 0 "forensics, both planes"
+python3 - "$TMP/both-replay.json" "$TMP/out" <<'PY' || fail "forensics does not mark both planes rocking as replay does"
+import json, sys
+r, f = (json.load(open(p))["packages"][0] for p in sys.argv[1:])
+assert f["both_planes_rocking"] is True, f
+for k in ("both_planes_from", "both_planes_to", "both_planes_time"):
+    assert f[k] == r[k], (k, f[k], r[k])
+PY
 
 # --flip-lat: the same overturn, tipped to the other side (theta > 0:
 # the top toward +y, to the left, as a bed pushed to the right tips it)

@@ -316,8 +316,16 @@ void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_
     int planes;
     const sw_plane plane = sw_cli_forensics_plane(F, k, &planes);
     sw_cli_rec_text(o, "model", sw_model_name(s.model));
-    if (planes == 2) /* the verdict's plane, whose are the fields that follow */
+    sw_planes_t P;
+    if (planes == 2 && sw_engine_planes_summary(F->R.e, k, &P) == SW_OK) {
+        /* the verdict's plane, whose are the fields that follow; both
+         * planes lifted at once marked as replay marks them */
         sw_cli_rec_text(o, "plane", sw_plane_name(plane));
+        sw_cli_rec_bool(o, "both_planes_rocking", P.both_rocking);
+        sw_cli_rec_num(o, "both_planes_from", P.both_from);
+        sw_cli_rec_num(o, "both_planes_to", P.both_to);
+        sw_cli_rec_num(o, "both_planes_time", P.both_rocking ? P.both_time : NAN);
+    }
     sw_cli_rec_text(o, "verdict", sw_cli_verdict(&s, &F->R.run));
     sw_cli_rec_text(o, "seen", sw_cli_verdict_seen(&s));
     sw_cli_json_incomplete(o, &s, &F->R.run);
