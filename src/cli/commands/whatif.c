@@ -403,7 +403,8 @@ static void whatif_json_reserve(json_t *o, const sw_whatif_case_t *C)
         sw_cli_rec_text(o, "no_reserve", C->reserve_note);
 }
 
-/* The case's run at scale 1 and its reserve as members of o. */
+/* A run at scale 1 (a case's, or its worse plane's) and the reserve of
+ * case C as members of o. */
 static void json_run(json_t *o, const sw_whatif_case_t *C, const sw_run_result_t *r)
 {
     sw_cli_rec_bool(o, "overturned", r->overturned);
@@ -452,15 +453,7 @@ void sw_cli_whatif_json_case(json_t *o, const sw_forensics_t *fx, const sw_whati
     const sw_whatif_case_t *T = x.lateral, *W = x.worse == SW_PLANE_LAT ? T : C;
     const int lat_reserve = T->has_reserve && (!C->has_reserve || T->rl.min_g < C->rl.min_g);
     sw_cli_rec_text(o, "plane", sw_plane_name(x.worse));
-    const sw_run_result_t *r = &W->sf.at_one;
-    sw_cli_rec_bool(o, "overturned", r->overturned);
-    sw_cli_rec_num(o, "overturn_time", r->overturn_time);
-    sw_cli_rec_num(o, "tip_time", r->tip_time);
-    sw_cli_rec_num(o, "uplift_time", r->uplift_time);
-    sw_cli_rec_num(o, "max_theta_ratio", r->max_theta_ratio);
-    sw_cli_rec_num(o, "min_margin", r->min_margin);
-    sw_cli_rec_int(o, "impacts", r->impacts);
-    whatif_json_reserve(o, lat_reserve ? T : C);
+    json_run(o, lat_reserve ? T : C, &W->sf.at_one);
     json_t *j = sw_cli_json_safety(o, "safety_factor", C, &x.sf);
     sw_cli_rec_text(j, "plane", sw_plane_name(x.first));
     json_t *by = sw_cli_rec_obj(j, "planes");
