@@ -205,9 +205,6 @@ static void fail(int code, int *err, char *msg, size_t msglen, const char *why)
         snprintf(msg, msglen, "%s", why);
 }
 
-/* The reserve of the lateral planes: a risk over the lateral scenes
- * (sw_scene_lateral) of the packages with a depth, the design pulses
- * applied across the truck.  Nothing without a depth or a reserve. */
 /* The alarm watch of package k's lateral plane, from its lateral scene
  * (its own alpha, impact significance; the scene's levels), into w.
  * SW_OK (nothing for a package without a depth) or SW_EINVAL. */
@@ -242,6 +239,9 @@ static int make_watch_lat(sw_stream_t *st, const sw_scene_t *scenes, size_t n)
     return SW_OK;
 }
 
+/* The reserve of the lateral planes: a risk over the lateral scenes
+ * (sw_scene_lateral) of the packages with a depth, the design pulses
+ * applied across the truck.  Nothing without a depth or a reserve. */
 static int make_risk_lat(sw_stream_t *st, const sw_scene_t *scenes, size_t n,
                          const sw_risk_opts_t *ro, char *msg, size_t msglen)
 {
