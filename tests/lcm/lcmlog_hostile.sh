@@ -88,7 +88,7 @@ done
 # A clean log passes the check (what the monitor does at its end is not
 # tested here).
 rc=0
-timeout -s INT 5 "$SW" monitor --lcm-url "file://$T/clean.lcmlog?speed=0" --scene "$SCENE" \
+timeout --foreground -k 20 -s INT 5 "$SW" monitor --lcm-url "file://$T/clean.lcmlog?speed=0" --scene "$SCENE" \
     2>"$T/err" || rc=$?
 [ "$rc" -lt 128 ] || fail "monitor on a clean file:// log: exit $rc"
 ! grep -q 'corrupted' "$T/err" || fail "monitor refused a clean file:// log"

@@ -7,7 +7,10 @@
 # --fail-on-overturn) and write the files it names with --out, --events,
 # --report, --wide or --plot.  The monitor and watch run until SIGINT: each is given 2 s in a
 # private network namespace (only loopback, with LCM's multicast route), and
-# is skipped, saying so, where no namespace can be made.
+# is skipped, saying so, where no namespace can be made.  timeout signals
+# the command alone (--foreground): without it, it signals its whole process
+# group too, and a second SIGINT that reaches LeakSanitizer's tracer while
+# the sanitized program checks for leaks at its exit can hang both.
 # usage: man_examples.sh SWAYWATCH SOURCE_DIR
 set -eu
 SW=$1 SRC=$2
@@ -63,7 +66,7 @@ while IFS='	' read -r page cmd; do
         fi
         rc=0
         (cd "$T/run" && unshare -n sh -c 'ip link set lo up && ip route add 224.0.0.0/4 dev lo &&
-            exec timeout --preserve-status -s INT 2 sh -c "exec $1"' sh "$cmd") \
+            exec timeout --foreground --preserve-status -k 20 -s INT 2 sh -c "exec $1"' sh "$cmd") \
             >"$T/out" 2>&1 </dev/null || rc=$?
         [ "$rc" -eq 0 ] || { cat "$T/out" >&2; fail "$page: exit $rc: $cmd"; }
         case "$cmd" in "swaywatch monitor "*)
