@@ -2,7 +2,8 @@
 /* alarm_listener.c - a downstream consumer of `swaywatch monitor`: it
  * subscribes to the alarm channel and prints every alarm, one line each,
  * stamped with the time of the sample it refers to (ISO 8601, UTC, to the
- * millisecond), and tells when alarms were lost on the way (by the
+ * millisecond) and marked "sideways" for the lateral plane of a package
+ * with a depth, and tells when alarms were lost on the way (by the
  * publisher's seq).
  *
  * Build with the generated C types, installed beside the LCM definitions
@@ -126,9 +127,10 @@ static void on_alarm(const lcm_recv_buf_t *rbuf, const char *channel, const sway
     L->last_seq = a->seq;
     L->received++;
     char when[48];
-    printf("%s seq %" PRId64 " %-8s %-16s %-12s theta %+.4f margin %+.3f  %s\n",
+    printf("%s seq %" PRId64 " %-8s %-16s %-12s%s theta %+.4f margin %+.3f  %s\n",
            iso_time(a->utime, when, sizeof when), a->seq, level_name(a->level),
-           kind_name(a->kind, kind, sizeof kind), name[0] ? name : "(input)", a->theta, a->margin,
+           kind_name(a->kind, kind, sizeof kind), name[0] ? name : "(input)",
+           a->plane == SWAYWATCH_ALARM_T_PLANE_LATERAL ? " sideways" : "", a->theta, a->margin,
            text);
     fflush(stdout);
 }

@@ -23,13 +23,16 @@ URL="udpm://239.255.76.67:7667?ttl=0"
 
 # The pulse starts after a second of still bed: LCM has no handshake, and a
 # busy machine may take a moment to start the listener's receive thread.
+# The pulse is across the truck (accel_t.ay) and the crate has a depth: its
+# lateral plane's alarms are marked sideways, its longitudinal plane's not.
 python3 "$SRC/tests/package/mkaccel.py" "$T/accel.lcmlog" --amplitude -5 --omega 10 \
-    --duration 3 --lead 1
+    --duration 3 --lead 1 --lateral
 cat >"$T/crate.ini" <<INI
 [package]
 name = crate-A
 height = 2.0
 width = 0.728
+depth = 0.728
 mass = 1000
 [alarm]
 warn_reserve_g = 2.0
@@ -50,7 +53,8 @@ while (h := f.read(28)) and len(h) == 28:
         a = alarm_t.decode(data)
         t = datetime.datetime.fromtimestamp(a.utime // 1000000, datetime.timezone.utc)
         kinds = {v: k[5:] for k, v in vars(alarm_t).items() if k.startswith("KIND_")}
-        print(a.seq, kinds[a.kind], "%s.%03dZ" % (t.strftime("%Y-%m-%dT%H:%M:%S"), a.utime % 1000000 // 1000))
+        print(a.seq, kinds[a.kind], "%s.%03dZ" % (t.strftime("%Y-%m-%dT%H:%M:%S"), a.utime % 1000000 // 1000),
+              "sideways" if a.plane == alarm_t.PLANE_LATERAL else "-")
 PY
 n=$(wc -l <"$T/expected")
 [ "$n" -ge 3 ] || fail "the replay raised only $n alarms"
@@ -85,5 +89,11 @@ awk '{print $2}' "$T/expected" | diff - "$T/kinds" >/dev/null ||
 grep -q 'UPLIFT' "$T/printed" || fail "no UPLIFT alarm printed"
 grep -q 'RESERVE_WARN' "$T/printed" || fail "no RESERVE_WARN alarm printed"
 grep -q 'crate-A' "$T/printed" || fail "no package name printed"
+# The plane: "sideways" after the name exactly where the alarm is lateral.
+awk '{print $7 == "sideways" ? "sideways" : "-"}' "$T/printed" >"$T/planes"
+awk '{print $4}' "$T/expected" | diff - "$T/planes" >/dev/null ||
+    fail "planes differ: $(paste "$T/planes" "$T/expected" | head -n 5 | tr '\n' ';')"
+grep -q 'sideways' "$T/planes" || fail "no lateral alarm printed"
+grep -q -- '^-$' "$T/planes" || fail "no longitudinal (or input) alarm printed"
 grep -q '0 lost' "$T/listener.err" || fail "the listener lost alarms: $(cat "$T/listener.err")"
 echo "alarm_listener.sh: ok ($n alarms)"
