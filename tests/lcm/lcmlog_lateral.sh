@@ -146,4 +146,6 @@ rc=0
 grep -q 'the lateral channel looks like gravity' "$T/gravity.err" || fail "$(cat "$T/gravity.err")"
 grep -q -- '--lat-axis' "$T/gravity.err" || fail "no --lat-axis in: $(cat "$T/gravity.err")"
 ! grep -q -- '--lat-col\|--accel-col' "$T/gravity.err" || fail "CSV options named: $(cat "$T/gravity.err")"
+[ "$(grep -o -- '--force' "$T/gravity.err" | wc -l)" -eq 1 ] ||
+    fail "--force not named once: $(cat "$T/gravity.err")"
 echo "ok"

@@ -270,14 +270,13 @@ static int check_axis(const sw_gate_facts_t *f, const sw_gate_axis_t *x, int lat
         snprintf(why, whylen,
                  "the %s channel looks like gravity or not an acceleration: "
                  "%.0f %% of %.3g min beyond 0.5 g (mean |a| %.3g g), which no truck "
-                 "%s for that long; choose %s, or give --force",
+                 "%s for that long; choose %s",
                  name, 100.0 * (double)x->above_half_g / (double)f->accepted, f->duration / 60.0,
                  x->mean_abs / SW_G0, lateral ? "takes a curve" : "brakes or speeds up", col);
     else if (still)
         snprintf(why, whylen,
                  "the %s channel looks like gravity or not an acceleration: "
-                 "it reads %.6g m/s^2 for all %.3g min and never varies; choose %s, or give "
-                 "--force",
+                 "it reads %.6g m/s^2 for all %.3g min and never varies; choose %s",
                  name, x->min, f->duration / 60.0, col);
     return high || still;
 }
