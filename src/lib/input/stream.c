@@ -72,42 +72,43 @@ static void on_event(void *user, const sw_event_t *ev)
         sw_alarm_on_event(w, ev, on_alarm, st);
 }
 
-/* A lateral plane's state: its reserve and its alarms, then the caller. */
-static void on_state_lat(sw_stream_t *st, const sw_output_t *out)
+/* The reserve of a package's plane, and the package's index in it (the
+ * lateral planes' reserve holds only the packages with a depth); NULL
+ * where the plane has none. */
+static sw_risk_t *risk_of(const sw_stream_t *st, size_t k, sw_plane plane, size_t *j)
 {
-    const size_t j = st->lat_of ? st->lat_of[out->pkg] : NO_LAT;
-    sw_alarm_watch_t *w = st->alarms && st->watch_lat ? &st->watch_lat[out->pkg] : NULL;
-    if (st->risk_lat && j != NO_LAT && sw_output_finite(out)) {
-        sw_output_t o = *out;
-        o.pkg = j;
-        if (sw_risk_output(st->risk_lat, &o) == 1 && w)
-            sw_alarm_on_reserve(w, out->t, out->state.theta, out->margin,
-                                sw_risk_pkg(st->risk_lat, j)->reserve_g, on_alarm, st);
-    }
-    if (w)
-        sw_alarm_on_output(w, out, on_alarm, st);
-    if (st->o.on_state)
-        st->o.on_state(st->o.user, out);
+    *j = k;
+    if (plane == SW_PLANE_LONG)
+        return st->risk;
+    *j = st->lat_of ? st->lat_of[k] : NO_LAT;
+    return plane == SW_PLANE_LAT && *j != NO_LAT ? st->risk_lat : NULL;
 }
 
-/* The reserve first, then the alarms: the caller's state carries both. */
+/* The reserve first, then the alarms: the caller's state carries both.
+ * Each plane has its own reserve and its own watch. */
 static void on_state(void *user, const sw_output_t *out)
 {
     sw_stream_t *st = user;
     const size_t k = out->pkg;
     if (k >= st->n)
         return;
-    if (out->plane == SW_PLANE_LAT) {
-        on_state_lat(st, out);
-        return;
+    size_t j = k;
+    sw_risk_t *risk = risk_of(st, k, out->plane, &j);
+    sw_alarm_watch_t *w = st->alarms ? watch_of(st->watch, st->watch_lat, k, out->plane) : NULL;
+    if (risk && sw_output_finite(out)) {
+        sw_output_t in_risk;
+        const sw_output_t *q = out;
+        if (j != k) { /* the package as the reserve numbers it */
+            in_risk = *out;
+            in_risk.pkg = j;
+            q = &in_risk;
+        }
+        if (sw_risk_output(risk, q) == 1 && w)
+            sw_alarm_on_reserve(w, out->t, out->state.theta, out->margin,
+                                sw_risk_pkg(risk, j)->reserve_g, on_alarm, st);
     }
-    if (sw_output_finite(out) && sw_risk_output(st->risk, out) == 1 && st->alarms) {
-        const sw_risk_pkg_t *p = sw_risk_pkg(st->risk, k);
-        sw_alarm_on_reserve(&st->watch[k], out->t, out->state.theta, out->margin, p->reserve_g,
-                            on_alarm, st);
-    }
-    if (st->alarms)
-        sw_alarm_on_output(&st->watch[k], out, on_alarm, st);
+    if (w)
+        sw_alarm_on_output(w, out, on_alarm, st);
     if (st->o.on_state)
         st->o.on_state(st->o.user, out);
 }
@@ -474,20 +475,17 @@ int sw_stream_risk_resolve(sw_stream_t *st, size_t k, sw_plane plane)
 {
     if (!st || k >= st->n)
         return SW_EINVAL;
-    if (plane == SW_PLANE_LONG)
-        return sw_risk_resolve(st->risk, k);
-    const size_t j = st->lat_of ? st->lat_of[k] : NO_LAT;
-    return plane == SW_PLANE_LAT && j != NO_LAT ? sw_risk_resolve(st->risk_lat, j) : SW_OK;
+    size_t j = k;
+    sw_risk_t *r = risk_of(st, k, plane, &j);
+    return r ? sw_risk_resolve(r, j) : SW_OK;
 }
 
 const sw_risk_pkg_t *sw_stream_risk_plane(const sw_stream_t *st, size_t k, sw_plane plane)
 {
     if (!st || k >= st->n)
         return NULL;
-    if (plane == SW_PLANE_LONG)
-        return sw_risk_pkg(st->risk, k);
-    const size_t j = st->lat_of ? st->lat_of[k] : NO_LAT;
-    return plane == SW_PLANE_LAT && j != NO_LAT ? sw_risk_pkg(st->risk_lat, j) : NULL;
+    size_t j = k;
+    return sw_risk_pkg(risk_of(st, k, plane, &j), j);
 }
 
 sw_engine_t *sw_stream_engine(const sw_stream_t *st)
