@@ -210,9 +210,9 @@ void sw_gate_facts(const sw_gate_t *g, sw_gate_facts_t *f)
     f->mean_z = f->accepted ? g->sum_z / (double)f->accepted : 0.0;
     f->mean_abs_a = f->accepted ? g->sum_abs_a / (double)f->accepted : 0.0;
     f->lat.mean_abs = f->accepted && f->lateral ? g->sum_abs_y / (double)f->accepted : 0.0;
-    long n = 0, half = 0;
-    for (int b = 0; b < HIST_BINS; b++) n += g->hist[b];
-    for (int b = 0; b < HIST_BINS && n; b++) {
+    const long n = g->hist_n;
+    long half = 0;
+    for (int b = g->hist_lo; b <= g->hist_hi && n; b++) {
         half += g->hist[b];
         if (2 * half >= n) {
             f->dt_median = g->hist_sum[b] / (double)g->hist[b]; /* the bin's mean */

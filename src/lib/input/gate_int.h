@@ -153,6 +153,11 @@ struct sw_gate {
     sw_gate_facts_t f;
     long hist[HIST_BINS];
     double hist_sum[HIST_BINS];
+    /* its count and the bins in use, [hist_lo, hist_hi] (none while
+     * hist_n is 0): the facts' median looks at those alone, as a monitor
+     * reads the facts often */
+    long hist_n;
+    int hist_lo, hist_hi;
     double sum_z, sum_abs_a;
     double sum_abs_y; /* m/s^2, of the lateral axis (opts.lateral) */
 };

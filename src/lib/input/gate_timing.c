@@ -24,6 +24,12 @@ static void note_interval(sw_gate_t *g, double dt, double x)
         b = HIST_BINS - 1;
     g->hist[b]++;
     g->hist_sum[b] += dt;
+    if (g->hist_n++ == 0)
+        g->hist_lo = g->hist_hi = b;
+    else if (b < g->hist_lo)
+        g->hist_lo = b;
+    else if (b > g->hist_hi)
+        g->hist_hi = b;
 }
 
 /* Could the motion across a gap have mattered?  A package rocking, or the
