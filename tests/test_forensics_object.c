@@ -242,6 +242,57 @@ static void test_cases_across(void **state)
     sw_forensics_destroy(F);
 }
 
+/* The what-if cases' smallest reserves, made while the searches run, are
+ * what sw_reserve_log_min() gives each case's scene on the held log after
+ * them; the scene as given is left to the replay (none here), on one
+ * thread and on three. */
+static void test_reserves_alongside(void **state)
+{
+    (void)state;
+    const sw_scene_t sc = tu_bare(2.0, 0.728);
+    for (int threads = 1; threads <= 3; threads += 2) {
+        sw_forensics_opts_t o = opts(0);
+        o.whatif.scenes_only = 0;
+        o.threads = threads;
+        o.run.settle = 5.0;
+        o.reserve_rate = 2.0;
+        o.reserve_evals = 0; /* exact: every state */
+        sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
+        assert_non_null(F);
+        for (int i = 0; i <= 800; i++) { /* 8 s at 100 Hz: a sway and a braking shock */
+            const double t = 0.01 * i;
+            const double a = 0.8 * sin(2.0 * M_PI * 1.3 * t) - (t >= 4.0 && t < 4.2 ? 5.0 : 0.0);
+            assert_int_equal(sw_forensics_push(F, t, a, 0.0, 0), SW_OK);
+        }
+        assert_int_equal(sw_forensics_safety(F), SW_OK);
+        assert_int_equal(sw_forensics_reserve(F, NULL), SW_OK);
+        size_t n;
+        const sw_whatif_case_t *cs = sw_forensics_cases(F, &n);
+        assert_true(n >= 3);
+        const sw_reserve_log_opts_t rlo = {.rate = 2.0, .max_evals = 0, .run = o.run};
+        int seen = 0;
+        for (size_t i = 0; i < n; i++) {
+            if (cs[i].is_scene || !cs[i].available) {
+                assert_false(cs[i].has_reserve);
+                continue;
+            }
+            sw_reserve_log_t rl;
+            char note[160] = "";
+            assert_int_equal(
+                sw_reserve_log_min(&cs[i].scene, sw_forensics_log(F), &rlo, &rl, note, sizeof note),
+                SW_OK);
+            assert_true(cs[i].has_reserve);
+            assert_int_equal(cs[i].reserve_status, SW_OK);
+            assert_memory_equal(&cs[i].rl.min_g, &rl.min_g, sizeof rl.min_g);
+            assert_memory_equal(&cs[i].rl.min_time, &rl.min_time, sizeof rl.min_time);
+            assert_int_equal(cs[i].rl.evaluated, rl.evaluated);
+            seen++;
+        }
+        assert_true(seen >= 2);
+        sw_forensics_destroy(F);
+    }
+}
+
 /* A support of the catalogue applies across the truck too (the scene's
  * lateral bearings dropped); the scene as given keeps its own. */
 static void test_cases_support_across(void **state)
@@ -378,6 +429,7 @@ int main(void)
         cmocka_unit_test(test_factor_both_axes),
         cmocka_unit_test(test_factor_one_plane),
         cmocka_unit_test(test_cases_across),
+        cmocka_unit_test(test_reserves_alongside),
         cmocka_unit_test(test_cases_support_across),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

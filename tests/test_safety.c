@@ -357,6 +357,45 @@ static void test_many_threads(void **state)
     free(c);
 }
 
+/* The caller's side work shares the searches' threads: every task runs
+ * exactly once, on 1, 2 and 3 threads, and the searches answer to the
+ * last bit what they answer without it. */
+typedef struct {
+    int runs[8];
+} side_count_t;
+
+static void count_side(void *user, size_t k)
+{
+    side_count_t *S = user;
+    S->runs[k]++; /* each k is one task: no other thread writes it */
+}
+
+static void test_side_work(void **state)
+{
+    (void)state;
+    const sw_log_t L = drive(3.0);
+    const sw_scene_t sc[2] = {tu_bare(2.0, 0.728), tu_frame(2.0, 0.728, 250.0, 8.0, 0.1)};
+    sw_safety_case_t plain[2], side[2];
+    sw_safety_opts_t o = {.threads = 2, .run = {.settle = 5.0}};
+    for (int i = 0; i < 2; i++) plain[i].scene = sc[i];
+    assert_int_equal(sw_safety_factors(plain, 2, &L, &o), SW_OK);
+    for (int threads = 1; threads <= 3; threads++) {
+        side_count_t S = {{0}};
+        o.threads = threads;
+        o.sides = 7; /* more than the threads, fewer than the slots */
+        o.side = count_side;
+        o.side_user = &S;
+        for (int i = 0; i < 2; i++) side[i].scene = sc[i];
+        assert_int_equal(sw_safety_factors(side, 2, &L, &o), SW_OK);
+        for (int k = 0; k < 8; k++) assert_int_equal(S.runs[k], k < 7);
+        for (int i = 0; i < 2; i++) {
+            same_bits(side[i].sf.factor, plain[i].sf.factor);
+            same_bits(side[i].sf.factor_safe, plain[i].sf.factor_safe);
+            assert_int_equal(side[i].sf.trials, plain[i].sf.trials);
+        }
+    }
+}
+
 /* An engine told the log's origin and started at sample k gives, for a
  * package that stood still until then, the run from the start to the
  * last bit; a first sample before the origin is refused. */
@@ -390,10 +429,11 @@ int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_bed_exact),     cmocka_unit_test(test_linear_starts),
-        cmocka_unit_test(test_cushion_jumps), cmocka_unit_test(test_restarts),
-        cmocka_unit_test(test_many_threads),  cmocka_unit_test(test_origin),
-        cmocka_unit_test(test_trials_frame),  cmocka_unit_test(test_trials_cushion),
+        cmocka_unit_test(test_bed_exact),      cmocka_unit_test(test_linear_starts),
+        cmocka_unit_test(test_cushion_jumps),  cmocka_unit_test(test_restarts),
+        cmocka_unit_test(test_many_threads),   cmocka_unit_test(test_side_work),
+        cmocka_unit_test(test_origin),         cmocka_unit_test(test_trials_frame),
+        cmocka_unit_test(test_trials_cushion),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -86,6 +86,15 @@ typedef struct {
     void (*progress)(void *user, const sw_safety_progress_t *p); /* may be NULL; after
                                 each trial, from any thread, one call at a time */
     void *user;
+    /* Work of the caller's own that needs none of the searches' results
+     * (may be none): side(side_user, k) for every k below sides, once
+     * each, on any of the threads, whenever no trial is waiting for one
+     * (a round's last long trial leaves the others idle), so that it
+     * costs no time of its own on free cores.  Done when the call
+     * returns. */
+    size_t sides;
+    void (*side)(void *side_user, size_t k);
+    void *side_user;
 } sw_safety_opts_t;
 
 /* The safety factors of n scenes for one log, all searches at once on

@@ -119,6 +119,11 @@ SW_API int sw_whatif_safety(sw_whatif_case_t *cs, size_t n, const sw_log_t *log,
  * SW_ENOMEM. */
 SW_API int sw_whatif_reserve(sw_whatif_case_t *cs, size_t n, const sw_log_t *log,
                              const sw_reserve_log_opts_t *o, int threads);
+/* The same for case C alone, whatever its availability: has_reserve,
+ * reserve_status, rl and reserve_note filled (reserve_status SW_ENOMEM:
+ * out of memory). */
+SW_API void sw_whatif_reserve_case(sw_whatif_case_t *C, const sw_log_t *log,
+                                   const sw_reserve_log_opts_t *o);
 
 #ifdef __cplusplus
 }

@@ -4,7 +4,9 @@
  * what-if cases with their safety factors and smallest reserves
  * (whatif.c does each case's work); with a lateral acceleration held,
  * each package's lateral plane searched as a case of its own and the two
- * planes' factors joined into the package's. */
+ * planes' factors joined into the package's.  The what-if cases' smallest
+ * reserves are made on the searches' threads while they run (side work),
+ * since they need only the held log. */
 #include "swaywatch/forensics.h"
 
 #include <math.h>
@@ -32,6 +34,11 @@ struct sw_forensics {
     int status; /* SW_OK, or what stopped the holding */
     sw_log_t log;
     sw_log_t log_lat; /* the same log driven by a_y */
+    /* per plane (0 along the truck, 1 across it): copies of the cases
+     * taken before its search, in which the side work made the smallest
+     * reserves, and which of them it made */
+    sw_whatif_case_t *staged[2];
+    unsigned char *side_done[2];
 };
 
 sw_forensics_t *sw_forensics_create(const sw_scene_t *scenes, size_t n,
@@ -54,6 +61,10 @@ sw_forensics_t *sw_forensics_create(const sw_scene_t *scenes, size_t n,
     F->ncases = sw_whatif_cases(scenes, n, &o->whatif, F->cases);
     if (!(F->lat = calloc(F->ncases ? F->ncases : 1, sizeof *F->lat)))
         goto fail;
+    for (int p = 0; p < 2; p++)
+        if (!(F->staged[p] = calloc(F->ncases ? F->ncases : 1, sizeof *F->staged[p])) ||
+            !(F->side_done[p] = calloc(F->ncases ? F->ncases : 1, 1)))
+            goto fail;
     for (size_t i = 0; i < F->ncases; i++) { /* available once a lateral log is held */
         const sw_whatif_case_t *L = &F->cases[i];
         sw_whatif_case_t *C = &F->lat[i];
@@ -85,6 +96,10 @@ void sw_forensics_destroy(sw_forensics_t *F)
         return;
     free(F->cases);
     free(F->lat);
+    for (int p = 0; p < 2; p++) {
+        free(F->staged[p]);
+        free(F->side_done[p]);
+    }
     free(F->a_y);
     free(F->t);
     free(F->a_g);
@@ -221,14 +236,58 @@ void sw_forensics_rerun(const sw_forensics_t *F, sw_engine_t *e, double t_end, d
 
 /* ---- the searches -------------------------------------------------------------- */
 
+static sw_reserve_log_opts_t reserve_opts(const sw_forensics_t *F)
+{
+    return (sw_reserve_log_opts_t){
+        .rate = F->o.reserve_rate, .max_evals = F->o.reserve_evals, .run = F->o.run};
+}
+
+/* The side work of one plane's search: case i's smallest reserve, if
+ * sw_whatif_reserve() would make it (an available case, not a scene as
+ * given), into its copy. */
+typedef struct {
+    sw_forensics_t *F;
+    int plane;
+    const sw_log_t *log;
+    sw_reserve_log_opts_t o;
+} side_t;
+
+static void reserve_side(void *user, size_t i)
+{
+    const side_t *S = user;
+    sw_whatif_case_t *C = &S->F->staged[S->plane][i];
+    if (!C->available || C->is_scene)
+        return;
+    sw_whatif_reserve_case(C, S->log, &S->o);
+    S->F->side_done[S->plane][i] = 1; /* each i is one task: no other thread writes it */
+}
+
+/* The searches of plane's cases on log, the cases' smallest reserves
+ * made alongside when they are asked for (reserve_rate > 0): on a long
+ * log they are a serial second or more after the searches otherwise (the
+ * hour-long drive of docs/forensics.md), now done while a thread would
+ * wait for a round's last trial. */
+static int plane_safety(sw_forensics_t *F, int plane, sw_whatif_case_t *cs, const sw_log_t *log)
+{
+    side_t S = {F, plane, log, reserve_opts(F)};
+    sw_safety_opts_t so = {.run = F->o.run,
+                           .search = F->o.search,
+                           .threads = F->o.threads,
+                           .progress = F->o.progress,
+                           .user = F->o.user};
+    memset(F->side_done[plane], 0, F->ncases ? F->ncases : 1);
+    if (F->o.reserve_rate > 0.0 && F->ncases) {
+        memcpy(F->staged[plane], cs, F->ncases * sizeof *cs);
+        so.sides = F->ncases;
+        so.side = reserve_side;
+        so.side_user = &S;
+    }
+    return sw_whatif_safety(cs, F->ncases, log, &so);
+}
+
 int sw_forensics_safety(sw_forensics_t *F)
 {
-    const sw_safety_opts_t so = {.run = F->o.run,
-                                 .search = F->o.search,
-                                 .threads = F->o.threads,
-                                 .progress = F->o.progress,
-                                 .user = F->o.user};
-    int rc = sw_whatif_safety(F->cases, F->ncases, sw_forensics_log(F), &so);
+    int rc = plane_safety(F, 0, F->cases, sw_forensics_log(F));
     if (rc != SW_OK || !F->has_y)
         return rc;
     /* the lateral planes of every case: the same searches on the lateral
@@ -243,7 +302,7 @@ int sw_forensics_safety(sw_forensics_t *F)
         else if (C->built)
             snprintf(C->note, sizeof C->note, "%s", F->cases[i].note);
     }
-    return sw_whatif_safety(F->lat, F->ncases, &F->log_lat, &so);
+    return plane_safety(F, 1, F->lat, &F->log_lat);
 }
 
 /* The scale at which plane sf first overturns the package: for a log it
@@ -363,6 +422,35 @@ const sw_whatif_case_t *sw_forensics_lateral_cases(const sw_forensics_t *F, size
     return F->has_y ? F->lat : NULL;
 }
 
+/* The smallest reserve of plane's cases as sw_whatif_reserve() makes it:
+ * the side work's, for the cases still available after their search,
+ * when it made every one of them (the same rate and budget: the options
+ * do not change); otherwise sw_whatif_reserve() now. */
+static int plane_reserve(sw_forensics_t *F, int plane, sw_whatif_case_t *cs, const sw_log_t *log)
+{
+    int all = 1;
+    for (size_t i = 0; i < F->ncases; i++)
+        if (cs[i].available && !cs[i].is_scene)
+            all &= F->side_done[plane][i];
+    if (!all) {
+        const sw_reserve_log_opts_t rlo = reserve_opts(F);
+        return sw_whatif_reserve(cs, F->ncases, log, &rlo, F->o.threads);
+    }
+    int rc = SW_OK;
+    for (size_t i = 0; i < F->ncases; i++) {
+        if (!cs[i].available || cs[i].is_scene)
+            continue;
+        const sw_whatif_case_t *S = &F->staged[plane][i];
+        cs[i].has_reserve = S->has_reserve;
+        cs[i].reserve_status = S->reserve_status;
+        cs[i].rl = S->rl;
+        memcpy(cs[i].reserve_note, S->reserve_note, sizeof cs[i].reserve_note);
+        if (S->reserve_status == SW_ENOMEM)
+            rc = SW_ENOMEM;
+    }
+    return rc;
+}
+
 int sw_forensics_reserve(sw_forensics_t *F, const sw_risk_t *replay)
 {
     for (size_t i = 0; replay && i < F->ncases; i++) {
@@ -383,11 +471,9 @@ int sw_forensics_reserve(sw_forensics_t *F, const sw_risk_t *replay)
         C->rl.states = C->rl.evaluated = p->evaluations;
         C->rl.faults = p->reserve_faults;
     }
-    const sw_reserve_log_opts_t rlo = {
-        .rate = F->o.reserve_rate, .max_evals = F->o.reserve_evals, .run = F->o.run};
-    int rc = sw_whatif_reserve(F->cases, F->ncases, sw_forensics_log(F), &rlo, F->o.threads);
+    int rc = plane_reserve(F, 0, F->cases, sw_forensics_log(F));
     if (rc == SW_OK && F->has_y) /* the lateral planes' (the scenes': the replay's) */
-        rc = sw_whatif_reserve(F->lat, F->ncases, &F->log_lat, &rlo, F->o.threads);
+        rc = plane_reserve(F, 1, F->lat, &F->log_lat);
     return rc;
 }
 

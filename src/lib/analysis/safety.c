@@ -35,7 +35,7 @@
  * A failing track stops; the scene reports the first failing track's
  * first error, so that the error too is the same for any threads. */
 enum { TR_ONE, TR_BELOW, TR_ABOVE, TR_N };
-enum { T_PREP = -1 };
+enum { T_PREP = -1, T_SIDE = -2 };
 
 typedef struct {
     sw_safety_case_t *out;
@@ -50,8 +50,9 @@ typedef struct {
 } case_t;
 
 typedef struct {
-    case_t *c;
+    case_t *c;       /* NULL for the caller's side work */
     int track, slot; /* track T_PREP: the preparation */
+    size_t side;     /* track T_SIDE: which of the caller's side tasks */
     int err;         /* the task's outcome, and why */
     char msg[256];
 } task_t;
@@ -61,6 +62,7 @@ typedef struct {
                   at a time */
     size_t cap, len;
     size_t active;
+    size_t side_next; /* the caller's side tasks handed out so far */
     const sw_safety_opts_t *o;
     sw_safety_progress_t prog;
 } pool_t;
@@ -264,8 +266,13 @@ static int case_weight(const sw_scene_t *sc)
 static int job_take(void *user, void *task)
 {
     pool_t *W = user;
-    if (!W->len)
-        return 0;
+    if (!W->len) { /* no trial waits: the caller's side work, if any is left */
+        if (!W->o->side || W->side_next >= W->o->sides)
+            return 0;
+        const task_t t = {.track = T_SIDE, .side = W->side_next++};
+        memcpy(task, &t, sizeof t);
+        return 1;
+    }
     size_t best = 0; /* the first task of the heaviest scene waiting */
     for (size_t k = 1; k < W->len; k++)
         if (W->q[k].c->weight > W->q[best].c->weight)
@@ -279,13 +286,17 @@ static int job_take(void *user, void *task)
 static int job_ended(void *user)
 {
     const pool_t *W = user;
-    return !W->active;
+    return !W->active && (!W->o->side || W->side_next >= W->o->sides);
 }
 
 static void job_run(void *user, void *task)
 {
-    (void)user;
+    const pool_t *W = user;
     task_t *t = task;
+    if (t->track == T_SIDE) {
+        W->o->side(W->o->side_user, t->side);
+        return;
+    }
     t->msg[0] = '\0';
     t->err = task_run(t, t->msg, sizeof t->msg);
 }
@@ -293,7 +304,8 @@ static void job_run(void *user, void *task)
 static void job_done(void *user, void *task)
 {
     const task_t *t = task;
-    task_done(user, t, t->err, t->msg);
+    if (t->track != T_SIDE)
+        task_done(user, t, t->err, t->msg);
 }
 
 int sw_safety_factors(sw_safety_case_t *cases, size_t n, const sw_log_t *log,

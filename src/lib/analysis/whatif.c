@@ -277,16 +277,21 @@ typedef struct {
     const sw_reserve_log_opts_t *o;
 } reserve_job_t;
 
-static void reserve_job(void *user, size_t k)
+void sw_whatif_reserve_case(sw_whatif_case_t *C, const sw_log_t *log,
+                            const sw_reserve_log_opts_t *o)
 {
-    const reserve_job_t *J = user;
-    sw_whatif_case_t *C = &J->cs[J->of[k]];
-    const int rc = sw_reserve_log_min(&C->scene, J->log, J->o, &C->rl, C->reserve_note,
-                                      sizeof C->reserve_note);
+    const int rc =
+        sw_reserve_log_min(&C->scene, log, o, &C->rl, C->reserve_note, sizeof C->reserve_note);
     C->reserve_status = rc;
     C->has_reserve = rc == SW_OK;
     if (rc != SW_OK && !C->reserve_note[0])
         snprintf(C->reserve_note, sizeof C->reserve_note, "%s", sw_strerror(rc));
+}
+
+static void reserve_job(void *user, size_t k)
+{
+    const reserve_job_t *J = user;
+    sw_whatif_reserve_case(&J->cs[J->of[k]], J->log, J->o);
 }
 
 int sw_whatif_reserve(sw_whatif_case_t *cs, size_t n, const sw_log_t *log,
