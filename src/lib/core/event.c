@@ -27,16 +27,23 @@
 #include "step.h"
 #include "swaywatch/status.h"
 
+/* The ends of the step being examined: the states, the input there and
+ * the derivatives under it, each evaluated once for every candidate. */
+typedef struct {
+    const double *y0, *y1;
+    sw_input_at_t u0, u1;
+    double f0[SW_NMAX], f1[SW_NMAX];
+} sw_ends_t;
+
 /* Where the candidate's function rises through 0 over the step, in [0, 1]
  * by its rule (SW_RULE_*), or -1. */
-static double root_of(const sw_model_t *M, const sw_evcand_t *c, double t0, double h,
-                      const double y0[], const double f0[], const double y1[], const double f1[])
+static double root_of(const sw_model_t *M, const sw_evcand_t *c, double h, const sw_ends_t *E)
 {
     double v[2], d[2];
-    M->ops->event_fn(M, c->ev, t0, y0, f0, &v[0], &d[0]);
+    M->ops->event_fn(M, c->ev, &E->u0, E->y0, E->f0, &v[0], &d[0]);
     if (c->rule == SW_RULE_KINK && !c->clear && v[0] > 0.0)
         return -1.0; /* crossed already: we are past this kink (the end need not be looked at) */
-    M->ops->event_fn(M, c->ev, t0 + h, y1, f1, &v[1], &d[1]);
+    M->ops->event_fn(M, c->ev, &E->u1, E->y1, E->f1, &v[1], &d[1]);
     /* the event function's interpolant over the step */
     const sw_herm_t H = sw_herm_make(v[0], d[0], v[1], d[1], h);
     if (c->clear && v[1] < 0.0 && v[0] < 0.0 &&
@@ -61,13 +68,12 @@ static double root_of(const sw_model_t *M, const sw_evcand_t *c, double t0, doub
  * tau = lim, polished by re-stepping so that max |theta| is as accurate as
  * the scheme, even for long adaptive steps.  1 with the peak in *out. */
 static int find_peak(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_evcand_t *c, double t0,
-                     double h, const double y0[], const double f0[], const double y1[],
-                     const double f1[], double lim, sw_timed_t *out)
+                     double h, const sw_ends_t *E, double lim, sw_timed_t *out)
 {
-    const double tau = root_of(W->ms.m, c, t0, h, y0, f0, y1, f1);
+    const double tau = root_of(W->ms.m, c, h, E);
     if (!(tau > 0.0 && tau <= lim))
         return 0;
-    out->t = sw_event_polish(C, W, c->ev, t0, h, y0, tau, out->y);
+    out->t = sw_event_polish(C, W, c->ev, t0, h, E->y0, tau, out->y);
     return 1;
 }
 
@@ -86,16 +92,17 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
 {
     const sw_model_t *M = W->ms.m;
     const double t1 = t0 + h;
-    double f0[SW_NMAX], f1[SW_NMAX];
-    M->ops->rhs(M, W->ms.s, t0, y0, f0);
-    M->ops->rhs(M, W->ms.s, t1, y1, f1);
+    sw_ends_t E = {
+        .y0 = y0, .y1 = y1, .u0 = sw_input_at(M->in, M->g, t0), .u1 = sw_input_at(M->in, M->g, t1)};
+    M->ops->rhs(M, W->ms.s, &E.u0, y0, E.f0);
+    M->ops->rhs(M, W->ms.s, &E.u1, y1, E.f1);
     /* the earliest cutting event ends the step */
     int best = SW_EVF_NONE;
     double best_tau = 2.0;
     for (int i = 0; i < nc; i++) {
         if (c[i].role != SW_ROLE_CUT)
             continue;
-        const double tau = root_of(M, &c[i], t0, h, y0, f0, y1, f1);
+        const double tau = root_of(M, &c[i], h, &E);
         const int inside = c[i].rule == SW_RULE_KINK ? tau > 0.0 && tau < 1.0 : tau >= 0.0;
         if (inside && tau < best_tau) {
             best_tau = tau;
@@ -111,13 +118,13 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
         sw_timed_t *T = &timed[n];
         T->role = c[i].role;
         if (c[i].role == SW_ROLE_PEAK) {
-            n += find_peak(C, W, &c[i], t0, h, y0, f0, y1, f1, lim, T);
+            n += find_peak(C, W, &c[i], t0, h, &E, lim, T);
             continue;
         }
-        const double tau = root_of(M, &c[i], t0, h, y0, f0, y1, f1);
+        const double tau = root_of(M, &c[i], h, &E);
         if (!(tau >= 0.0 && tau <= lim))
             continue;
-        sw_herm_state(M->n, h, y0, f0, y1, f1, tau, T->y);
+        sw_herm_state(M->n, h, y0, E.f0, y1, E.f1, tau, T->y);
         T->t = t0 + tau * h;
         n++;
     }
@@ -144,8 +151,9 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
     for (int it = 0; it < 8; it++) {
         if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             return ts;
-        M->ops->rhs(M, W->ms.s, ts, y, f);
-        M->ops->event_fn(M, ev, ts, y, f, &v, &d);
+        const sw_input_at_t u = sw_input_at(M->in, M->g, ts);
+        M->ops->rhs(M, W->ms.s, &u, y, f);
+        M->ops->event_fn(M, ev, &u, y, f, &v, &d);
         if (v == 0.0 || d == 0.0)
             break;
         double tn = ts - v / d;
@@ -164,8 +172,9 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
         ts = fmin(t1, ts + dt);
         if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             break;
-        M->ops->rhs(M, W->ms.s, ts, y, f);
-        M->ops->event_fn(M, ev, ts, y, f, &v, &d);
+        const sw_input_at_t u = sw_input_at(M->in, M->g, ts);
+        M->ops->rhs(M, W->ms.s, &u, y, f);
+        M->ops->event_fn(M, ev, &u, y, f, &v, &d);
     }
     return ts;
 }

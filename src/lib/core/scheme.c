@@ -28,50 +28,43 @@
  * model and the state's length; the step functions in the table call them
  * with constants, so that the bare and frame models each get a body with
  * their right-hand side inlined into every stage (the cushion's is a
- * call).  The input is evaluated once per distinct stage time. */
+ * call).  The input is evaluated once per distinct stage time and handed
+ * to the right-hand side (input.h). */
 
 /* The bodies below are specialised for a model kind, or generic: the
  * model's right-hand side through its ops table, once per stage. */
 #define GENERIC (-1)
 
-/* One stage: f = y'(t, y), with the input (ag, ge) already at t for a bare
- * or framed package (a generic body's right-hand side evaluates its own). */
-static SW_ALWAYS_INLINE void stage(const sw_model_t *M, sw_model_scratch_t *S, int model, double t,
-                                   double ag, double ge, const double y[], double f[])
+/* One stage: f = y'(y) under the input u at the stage's time (evaluated
+ * once per distinct stage time): the bare and framed packages'
+ * right-hand side inlined, a generic body's through the ops. */
+static SW_ALWAYS_INLINE void stage(const sw_model_t *M, sw_model_scratch_t *S, int model,
+                                   const sw_input_at_t *u, const double y[], double f[])
 {
     if (model == GENERIC)
-        M->ops->rhs(M, S, t, y, f);
+        M->ops->rhs(M, S, u, y, f);
     else
-        sw_rigid_rhs_of(M, S, (sw_model_kind)model, ag, ge, y, f);
-}
-
-static SW_ALWAYS_INLINE void stage_input(const sw_model_t *M, int model, double t, double *ag,
-                                         double *ge)
-{
-    if (model == GENERIC)
-        return;
-    *ag = sw_input_ag(M->in, t);
-    *ge = sw_input_geff(M->in, M->g, t);
+        sw_rigid_rhs_of(M, S, (sw_model_kind)model, u->ag, u->ge, y, f);
 }
 
 static SW_ALWAYS_INLINE void euler_of(const sw_model_t *M, sw_model_scratch_t *S, int model, int n,
                                       double t, double h, const double y[], double yout[])
 {
-    double k1[SW_NMAX], ag = 0.0, ge = 0.0;
-    stage_input(M, model, t, &ag, &ge);
-    stage(M, S, model, t, ag, ge, y, k1);
+    double k1[SW_NMAX];
+    const sw_input_at_t u = sw_input_at(M->in, M->g, t);
+    stage(M, S, model, &u, y, k1);
     for (int i = 0; i < n; i++) yout[i] = y[i] + h * k1[i];
 }
 
 static SW_ALWAYS_INLINE void heun_of(const sw_model_t *M, sw_model_scratch_t *S, int model, int n,
                                      double t, double h, const double y[], double yout[])
 {
-    double k1[SW_NMAX], k2[SW_NMAX], yt[SW_NMAX], ag = 0.0, ge = 0.0;
-    stage_input(M, model, t, &ag, &ge);
-    stage(M, S, model, t, ag, ge, y, k1);
+    double k1[SW_NMAX], k2[SW_NMAX], yt[SW_NMAX];
+    sw_input_at_t u = sw_input_at(M->in, M->g, t);
+    stage(M, S, model, &u, y, k1);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h * k1[i];
-    stage_input(M, model, t + h, &ag, &ge);
-    stage(M, S, model, t + h, ag, ge, yt, k2);
+    u = sw_input_at(M->in, M->g, t + h);
+    stage(M, S, model, &u, yt, k2);
     for (int i = 0; i < n; i++) yout[i] = y[i] + 0.5 * h * (k1[i] + k2[i]);
 }
 
@@ -79,18 +72,17 @@ static SW_ALWAYS_INLINE void rk4_of(const sw_model_t *M, sw_model_scratch_t *S, 
                                     double t, double h, const double y[], double yout[])
 {
     double k1[SW_NMAX], k2[SW_NMAX], k3[SW_NMAX], k4[SW_NMAX], yt[SW_NMAX];
-    double ag = 0.0, ge = 0.0;
     const double h2 = 0.5 * h;
-    stage_input(M, model, t, &ag, &ge);
-    stage(M, S, model, t, ag, ge, y, k1);
+    sw_input_at_t u = sw_input_at(M->in, M->g, t);
+    stage(M, S, model, &u, y, k1);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h2 * k1[i];
-    stage_input(M, model, t + h2, &ag, &ge);
-    stage(M, S, model, t + h2, ag, ge, yt, k2);
+    u = sw_input_at(M->in, M->g, t + h2);
+    stage(M, S, model, &u, yt, k2);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h2 * k2[i];
-    stage(M, S, model, t + h2, ag, ge, yt, k3);
+    stage(M, S, model, &u, yt, k3);
     for (int i = 0; i < n; i++) yt[i] = y[i] + h * k3[i];
-    stage_input(M, model, t + h, &ag, &ge);
-    stage(M, S, model, t + h, ag, ge, yt, k4);
+    u = sw_input_at(M->in, M->g, t + h);
+    stage(M, S, model, &u, yt, k4);
     for (int i = 0; i < n; i++)
         yout[i] = y[i] + (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
 }

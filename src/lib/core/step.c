@@ -180,9 +180,8 @@ int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double
     if (!(stab > 0.0))
         return 0; /* GSL shortens its steps itself */
     const sw_model_t *M = W->ms.m;
-    const double a = sw_max2(
-        sw_max2(fabs(sw_input_ag(M->in, t0)), fabs(sw_input_ag(M->in, t1))),
-        sw_max2(fabs(sw_input_geff(M->in, M->g, t0)), fabs(sw_input_geff(M->in, M->g, t1))));
+    const sw_input_at_t u0 = sw_input_at(M->in, M->g, t0), u1 = sw_input_at(M->in, M->g, t1);
+    const double a = sw_max2(sw_max2(fabs(u0.ag), fabs(u1.ag)), sw_max2(fabs(u0.ge), fabs(u1.ge)));
     return !(M->kR * a * W->h * W->h <= stab * stab); /* NaN: unstable */
 }
 
@@ -222,8 +221,10 @@ int sw_restep_hermite(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double
 {
     double f0[SW_NMAX], f1[SW_NMAX];
     const sw_model_t *M = W->ms.m;
-    M->ops->rhs(M, W->ms.s, t0, y0, f0);
-    M->ops->rhs(M, W->ms.s, t0 + C->step_h, C->step_y1, f1);
+    const sw_input_at_t u0 = sw_input_at(M->in, M->g, t0),
+                        u1 = sw_input_at(M->in, M->g, t0 + C->step_h);
+    M->ops->rhs(M, W->ms.s, &u0, y0, f0);
+    M->ops->rhs(M, W->ms.s, &u1, C->step_y1, f1);
     sw_herm_state(W->ms.m->n, C->step_h, y0, f0, C->step_y1, f1, h / C->step_h, y1);
     return SW_OK;
 }

@@ -1,8 +1,10 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* input.h - the input over the interval being integrated, as every layer
- * that evaluates it sees it: the bed's acceleration linear between two
- * samples, or a function of time (pulses).  The engine owns it; the
- * models read it through their sw_model_t.  Internal. */
+/* input.h - the input over the interval being integrated: the bed's
+ * acceleration linear between two samples, or a function of time
+ * (pulses).  The engine owns it.  The layers that own a time (the engine,
+ * the step layer and its schemes, the event layer) evaluate it there and
+ * hand the value down: a model is autonomous given the input's value
+ * (sw_input_at_t) and never reads the input itself.  A leaf.  Internal. */
 #ifndef SWAYWATCH_INPUT_H
 #define SWAYWATCH_INPUT_H
 
@@ -32,6 +34,24 @@ static inline double sw_input_geff(const sw_input_t *in, double g, double t)
     if (in->fn)
         return g;
     return g + in->az0 + in->az_slope * (t - in->t0);
+}
+
+/* The input at one time, as a model's right-hand side, event functions
+ * and report read it: evaluated once by the layer that owns the time and
+ * handed down. */
+typedef struct {
+    double ag;      /* m/s^2, the bed's acceleration a_g */
+    double ge;      /* m/s^2, g_eff = g + a_z */
+    double ge_rate; /* m/s^3, d g_eff / dt (0 for a function input) */
+} sw_input_at_t;
+
+static inline sw_input_at_t sw_input_at(const sw_input_t *in, double g, double t)
+{
+    sw_input_at_t u;
+    u.ag = sw_input_ag(in, t);
+    u.ge = sw_input_geff(in, g, t);
+    u.ge_rate = in->fn ? 0.0 : in->az_slope;
+    return u;
 }
 
 #endif

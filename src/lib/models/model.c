@@ -137,7 +137,8 @@ void sw_model_scale(sw_model_t *M, int i, int di, double size)
 int sw_model_rhs(double t, const double y[], double f[], void *params)
 {
     const sw_model_sys_t *sys = params;
-    return sys->m->ops->rhs(sys->m, sys->s, t, y, f);
+    const sw_input_at_t u = sw_input_at(sys->m->in, sys->m->g, t);
+    return sys->m->ops->rhs(sys->m, sys->s, &u, y, f);
 }
 
 int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *params)

@@ -187,12 +187,12 @@ static int finite_or_fail(const sw_model_t *M, const double f[])
     return GSL_SUCCESS;
 }
 
-static int cushion_rhs(const sw_model_t *M, sw_model_scratch_t *S, double t, const double y[],
-                       double f[])
+static int cushion_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                       const double y[], double f[])
 {
     const sw_derived_t *d = &M->d;
     const cush_t c = cush_of(d);
-    const double ag = sw_input_ag(M->in, t), ge = sw_input_geff(M->in, M->g, t);
+    const double ag = u->ag, ge = u->ge; /* m/s^2 */
     const double th = y[M->ith], z = y[M->iz], dth = y[M->idth], dz = y[M->idz];
     const double s = sin(th), co = cos(th), h = d->h;
     contact_t k;
@@ -489,12 +489,13 @@ static int cushion_candidates(const sw_model_t *M, int cut_kinks, double h, cons
     return n;
 }
 
-/* Value and time derivative of event ev at (t, y) with f = y'; theta
- * changes sign smoothly on a cushion: events on theta^2. */
-static void cushion_event_fn(const sw_model_t *M, int ev, double t, const double y[],
+/* Value and time derivative of event ev at y with f = y' (none depends
+ * on the input); theta changes sign smoothly on a cushion: events on
+ * theta^2. */
+static void cushion_event_fn(const sw_model_t *M, int ev, const sw_input_at_t *u, const double y[],
                              const double f[], double *val, double *der)
 {
-    (void)t;
+    (void)u;
     const double th = y[M->ith], w = y[M->idth];
     switch (ev) {
         case SW_EVF_OVERTURN:
@@ -555,15 +556,15 @@ static int cushion_moving(const sw_model_t *M, const double y[], double rest_eps
 
 /* After the common part: the support's acceleration (the bed, or a_g + u''
  * on a frame), the uplift ratio and the margins. */
-static void cushion_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
+static void cushion_output(const sw_model_t *M, const sw_model_scratch_t *S, const sw_input_at_t *u,
                            const double y[], sw_output_t *o)
 {
     (void)S;
-    double ge = sw_input_geff(M->in, M->g, t); /* m/s^2, as the right-hand side sees it */
+    double ge = u->ge; /* m/s^2, as the right-hand side sees it */
     double f[SW_NMAX];
     sw_model_scratch_t quiet = {.track_rate = 0}; /* the report tracks no rate */
-    cushion_rhs(M, &quiet, t, y, f);
-    o->a_support = M->iu < 0 ? sw_input_ag(M->in, t) : sw_input_ag(M->in, t) + f[M->idu];
+    cushion_rhs(M, &quiet, u, y, f);
+    o->a_support = M->iu < 0 ? u->ag : u->ag + f[M->idu];
     /* Airborne (g + a_z <= 0): the engine has faulted the package and
      * reset it; its energy is judged under nominal gravity. */
     if (!(ge > 0.0))

@@ -124,9 +124,12 @@ struct sw_model_ops {
     const sw_model_traits_t *traits; /* what can be said from the scene alone */
     /* layout of y, typical sizes, constants (after the common set-up) */
     void (*setup)(sw_model_t *M, const sw_scene_t *sc);
-    /* f = y' at (t, y); GSL_SUCCESS, or a GSL error that makes an adaptive
-     * step retry shorter.  May write the scratch S. */
-    int (*rhs)(const sw_model_t *M, sw_model_scratch_t *S, double t, const double y[], double f[]);
+    /* f = y' at y under the input's value u there (the caller evaluates
+     * it at the stage's time: the model is autonomous given it);
+     * GSL_SUCCESS, or a GSL error that makes an adaptive step retry
+     * shorter.  May write the scratch S. */
+    int (*rhs)(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u, const double y[],
+               double f[]);
     /* the state at rest into y (zeroed before), and its mode; NULL: the
      * zeroed state, standing */
     void (*rest)(sw_model_t *M, double y[]);
@@ -136,9 +139,10 @@ struct sw_model_ops {
      * how many (<= SW_MAX_CANDS). */
     int (*candidates)(const sw_model_t *M, int cut_kinks, double h, const double y0[],
                       const double y1[], sw_evcand_t c[]);
-    /* value and time derivative of event function ev at (t, y), f = y' */
-    void (*event_fn)(const sw_model_t *M, int ev, double t, const double y[], const double f[],
-                     double *val, double *der);
+    /* value and time derivative of event function ev at y, f = y', under
+     * the input's value u there (the one f was computed with) */
+    void (*event_fn)(const sw_model_t *M, int ev, const sw_input_at_t *u, const double y[],
+                     const double f[], double *val, double *der);
     /* at theta = 0: the velocity map on y, the side flips; NULL: never
      * impacts */
     void (*impact)(sw_model_t *M, double y[]);
@@ -150,9 +154,10 @@ struct sw_model_ops {
     /* how the package stands on its support, which stuck.c solves exactly
      * (SW_STANDS_*); 0: it never stands still (a cushion) */
     int stands;
-    /* the rest of the report after the common part (sw_model_output) */
-    void (*output)(const sw_model_t *M, const sw_model_scratch_t *S, double t, const double y[],
-                   sw_output_t *o);
+    /* the rest of the report after the common part (sw_model_output),
+     * under the input's value u at the report's time */
+    void (*output)(const sw_model_t *M, const sw_model_scratch_t *S, const sw_input_at_t *u,
+                   const double y[], sw_output_t *o);
     /* the side as the state decides it, after an accepted step and at a
      * cut before its map (a cushion's is the sign of theta); NULL: the
      * maps set it */
@@ -226,11 +231,12 @@ static inline void sw_model_to_state(const sw_model_t *M, const double y[], sw_s
 static inline void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
                                    const double y[], sw_output_t *o)
 {
+    const sw_input_at_t u = sw_input_at(M->in, M->g, t);
     memset(o, 0, sizeof *o);
     o->t = t;
     sw_model_to_state(M, y, &o->state);
-    o->a_g = sw_input_ag(M->in, t);
-    M->ops->output(M, S, t, y, o);
+    o->a_g = u.ag;
+    M->ops->output(M, S, &u, y, o);
 }
 
 #endif

@@ -128,19 +128,17 @@ static void frame_setup(sw_model_t *M, const sw_scene_t *sc)
     sw_model_scale(M, M->iu, M->idu, M->g / (M->d.omega_b * M->d.omega_b));
 }
 
-static int bare_rhs(const sw_model_t *M, sw_model_scratch_t *S, double t, const double y[],
-                    double f[])
+static int bare_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                    const double y[], double f[])
 {
-    sw_rigid_rhs_of(M, S, SW_MODEL_BARE, sw_input_ag(M->in, t), sw_input_geff(M->in, M->g, t), y,
-                    f);
+    sw_rigid_rhs_of(M, S, SW_MODEL_BARE, u->ag, u->ge, y, f);
     return GSL_SUCCESS;
 }
 
-static int frame_rhs(const sw_model_t *M, sw_model_scratch_t *S, double t, const double y[],
-                     double f[])
+static int frame_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                     const double y[], double f[])
 {
-    sw_rigid_rhs_of(M, S, SW_MODEL_FRAME, sw_input_ag(M->in, t), sw_input_geff(M->in, M->g, t), y,
-                    f);
+    sw_rigid_rhs_of(M, S, SW_MODEL_FRAME, u->ag, u->ge, y, f);
     return GSL_SUCCESS;
 }
 
@@ -176,9 +174,9 @@ static int rigid_candidates(const sw_model_t *M, int cut_kinks, double h, const 
     return n;
 }
 
-/* Value and time derivative of event ev at (t, y) with f = y'.  Every
- * event is "the function rises through 0". */
-static void rigid_event_fn(const sw_model_t *M, int ev, double t, const double y[],
+/* Value and time derivative of event ev at y with f = y' under the input
+ * u.  Every event is "the function rises through 0". */
+static void rigid_event_fn(const sw_model_t *M, int ev, const sw_input_at_t *u, const double y[],
                            const double f[], double *val, double *der)
 {
     const double s = M->side;
@@ -205,8 +203,8 @@ static void rigid_event_fn(const sw_model_t *M, int ev, double t, const double y
             const double w = M->d.omega_b, c = 2.0 * M->d.zeta_b * w;
             const double W = -(c * y[M->idu] + w * w * y[M->iu]);
             const double Wd = -(c * f[M->idu] + w * w * f[M->iu]);
-            const double T = M->tan_alpha * sw_input_geff(M->in, M->g, t);
-            const double Td = M->in->fn ? 0.0 : M->tan_alpha * M->in->az_slope;
+            const double T = M->tan_alpha * u->ge;
+            const double Td = M->tan_alpha * u->ge_rate;
             const double sg =
                 ev == SW_EVF_UPLIFT_BACK ? 1.0 : -1.0; /* back: W >= T; fwd: W <= -T */
             *val = sg * W - T;
@@ -281,9 +279,10 @@ static int frame_moving(const sw_model_t *M, const double y[], double rest_eps)
 /* After the common part (time, state, a_g): the support's acceleration, the
  * uplift ratio and the margins. */
 static inline void rigid_output(const sw_model_t *M, const sw_model_scratch_t *S,
-                                sw_model_kind model, double t, const double y[], sw_output_t *o)
+                                sw_model_kind model, const sw_input_at_t *u, const double y[],
+                                sw_output_t *o)
 {
-    const double ge_in = sw_input_geff(M->in, M->g, t); /* m/s^2, as the right-hand side sees it */
+    const double ge_in = u->ge; /* m/s^2, as the right-hand side sees it */
     /* Airborne (g + a_z <= 0): the package flies (flight.c); its energy
      * bound is judged under nominal gravity, not divided by a zero or
      * negative barrier. */
@@ -325,16 +324,16 @@ static inline void rigid_output(const sw_model_t *M, const sw_model_scratch_t *S
         o->margin_bound = margin_bound_frame_c(&M->d, ge, &o->state, cA);
 }
 
-static void bare_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
+static void bare_output(const sw_model_t *M, const sw_model_scratch_t *S, const sw_input_at_t *u,
                         const double y[], sw_output_t *o)
 {
-    rigid_output(M, S, SW_MODEL_BARE, t, y, o);
+    rigid_output(M, S, SW_MODEL_BARE, u, y, o);
 }
 
-static void frame_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
+static void frame_output(const sw_model_t *M, const sw_model_scratch_t *S, const sw_input_at_t *u,
                          const double y[], sw_output_t *o)
 {
-    rigid_output(M, S, SW_MODEL_FRAME, t, y, o);
+    rigid_output(M, S, SW_MODEL_FRAME, u, y, o);
 }
 
 /* g R (1 - cos alpha): the package's centre of mass raised over its
