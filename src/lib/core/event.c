@@ -44,21 +44,20 @@ static double root_of(const sw_model_t *M, const sw_evcand_t *c, double h, const
     if (c->rule == SW_RULE_KINK && !c->clear && v[0] > 0.0)
         return -1.0; /* crossed already: we are past this kink (the end need not be looked at) */
     M->ops->event_fn(M, c->ev, &E->u1, E->y1, E->f1, &v[1], &d[1]);
-    /* the event function's interpolant over the step */
-    const sw_herm_t H = sw_herm_make(v[0], d[0], v[1], d[1], h);
     if (c->clear && v[1] < 0.0 && v[0] < 0.0 &&
         fmax(v[0], v[1]) < -0.5 * h * (fabs(d[0]) + fabs(d[1])))
         return -1.0; /* clearly below the threshold all step */
+    /* on the event function's interpolant over the step */
     if (c->rule == SW_RULE_PLAIN)
-        return sw_herm_first_rise(&H, 0.0);
+        return sw_herm_rise(v[0], d[0], v[1], d[1], h, NULL);
     if (c->rule == SW_RULE_KINK) {
         if (v[0] > 0.0)
             return -1.0; /* crossed already: we are past this kink */
     } else if (v[0] > 0.0 || (v[0] == 0.0 && d[0] > 0.0)) {
         return 0.0; /* already through at the start of the step */
     }
-    const double tol = sw_herm_tol(&H);
-    double tau = sw_herm_first_rise(&H, tol);
+    double tol;
+    double tau = sw_herm_rise(v[0], d[0], v[1], d[1], h, &tol);
     if (tau < 0.0 && v[0] < 0.0 && v[1] > tol)
         tau = 1.0; /* round-off in the pieces */
     return tau;

@@ -109,6 +109,20 @@ static inline double sw_herm_first_rise(const sw_herm_t *H, double tol)
     return -1.0;
 }
 
+/* The first rise through 0 of the interpolant of a function with values
+ * v0, v1 and time derivatives d0, d1 at the ends of a step of length h
+ * (s), by sw_herm_first_rise: above its round-off floor (sw_herm_tol,
+ * which *tol then gets) unless tol is NULL.  The event layer's one call
+ * per candidate. */
+static inline double sw_herm_rise(double v0, double d0, double v1, double d1, double h, double *tol)
+{
+    const sw_herm_t H = sw_herm_make(v0, d0, v1, d1, h);
+    if (!tol)
+        return sw_herm_first_rise(&H, 0.0);
+    *tol = sw_herm_tol(&H);
+    return sw_herm_first_rise(&H, *tol);
+}
+
 /* The state at x in [0, 1] of a step of length h (s) from (y0, f0) to
  * (y1, f1), n components, each on its own interpolant. */
 static inline void sw_herm_state(int n, double h, const double y0[], const double f0[],
