@@ -137,7 +137,8 @@ static SW_ALWAYS_INLINE int fixed_with(const sw_step_ctx_t *C, sw_stepper_t *W, 
             body(M, S, t0, h, y0, y1);
             break;
         }
-        const double bound = sw_min2(C->dt_forced ? C->scheme->stab : 0.5, W->stab_rate);
+        const double lim = C->dt_forced ? C->scheme->stab : 0.5;
+        const double bound = lim < W->stab_rate ? lim : W->stab_rate;
         S->rate_seen = 0.0;
         S->track_rate = 1;
         body(M, S, t0, h, y0, y1);

@@ -16,7 +16,6 @@
 #include "hermite.h"
 #include "input.h"
 #include "model_ops.h"
-#include "numeric.h"
 #include "step.h"
 #include "swaywatch/status.h"
 
@@ -73,7 +72,7 @@ int sw_step_init(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
                  char *msg, size_t msglen)
 {
     const sw_scheme_t *R = C->scheme;
-    W->h = sw_min2(dt, C->hmax);
+    W->h = fmin(dt, C->hmax);
     W->stab_rate = INFINITY;
     if (R->region > 0) {
         const int r = stable_step(C, W, M, name, dt, msg, msglen);
@@ -181,7 +180,9 @@ int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double
         return 0; /* GSL shortens its steps itself */
     const sw_model_t *M = W->ms.m;
     const sw_input_at_t u0 = sw_input_at(M->in, M->g, t0), u1 = sw_input_at(M->in, M->g, t1);
-    const double a = sw_max2(sw_max2(fabs(u0.ag), fabs(u1.ag)), sw_max2(fabs(u0.ge), fabs(u1.ge)));
+    const double ag0 = fabs(u0.ag), ag1 = fabs(u1.ag), ge0 = fabs(u0.ge), ge1 = fabs(u1.ge);
+    const double ag = ag0 > ag1 ? ag0 : ag1, ge = ge0 > ge1 ? ge0 : ge1; /* m/s^2 */
+    const double a = ag > ge ? ag : ge;
     return !(M->kR * a * W->h * W->h <= stab * stab); /* NaN: unstable */
 }
 
@@ -189,7 +190,7 @@ int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double
 int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
                    double y1[], double *h)
 {
-    const double rem = sw_min2(t1 - t0, C->hmax);
+    const double span = t1 - t0, rem = span < C->hmax ? span : C->hmax; /* s */
     double tt = t0;
     memcpy(y1, y0, sizeof(double) * (size_t)W->ms.m->n);
     if (W->h_adapt > rem)

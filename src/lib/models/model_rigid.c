@@ -18,7 +18,6 @@
 #include "model_ops.h"
 #include "model_rigid.h"
 #include "model_traits.h"
-#include "numeric.h"
 #include "swaywatch/model.h"
 #include "swaywatch/status.h"
 
@@ -158,10 +157,13 @@ static int rigid_candidates(const sw_model_t *M, int cut_kinks, double h, const 
     int n = 0;
     if (M->phase == SW_PHASE_ROCKING) {
         const double s0 = M->side * y0[M->ith], s1 = M->side * y1[M->ith];
-        const double v = h * sw_max2(fabs(y0[M->idth]), fabs(y1[M->idth]));
-        if (s1 <= 0.0 || sw_min2(s0, s1) < v)
+        /* the comparisons themselves, not libm's fmax and fmin (calls, for
+         * NaN), on every rocking step */
+        const double w0 = fabs(y0[M->idth]), w1 = fabs(y1[M->idth]);
+        const double v = h * (w0 > w1 ? w0 : w1);
+        if (s1 <= 0.0 || (s0 < s1 ? s0 : s1) < v)
             c[n++] = (sw_evcand_t){SW_EVF_IMPACT, SW_ROLE_CUT, SW_RULE_RISE, 0};
-        if (s1 >= M_PI_2 || M_PI_2 - sw_max2(s0, s1) < v)
+        if (s1 >= M_PI_2 || M_PI_2 - (s0 > s1 ? s0 : s1) < v)
             c[n++] = (sw_evcand_t){SW_EVF_OVERTURN, SW_ROLE_CUT, SW_RULE_RISE, 0};
         if ((y0[M->idth] > 0.0) != (y1[M->idth] > 0.0))
             c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};

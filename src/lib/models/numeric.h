@@ -1,11 +1,12 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
-/* numeric.h - small numerical helpers of the engine's hot paths: inline
- * where libm's are calls or branch (checked on every step and sample).  A
- * leaf: it knows nothing of packages or engines.  Internal. */
+/* numeric.h - what the hot paths ask of the compiler (inline, out of
+ * line), and the engine's max and min of finite numbers, inline where
+ * libm's are calls.  A leaf: it knows nothing of packages or engines.
+ * The step layer, the schemes and the models write their few comparisons
+ * in place: on a sample's path only the engine's files call into this
+ * header (scripts/arch/sample-path.sh).  Internal. */
 #ifndef SWAYWATCH_NUMERIC_H
 #define SWAYWATCH_NUMERIC_H
-
-#include <stddef.h>
 
 /* GCC and clang: inline even where the size heuristics would not (each
  * scheme's stages are where the time goes). */
@@ -24,25 +25,9 @@
 #define SW_NOINLINE
 #endif
 
-/* Every v[i] finite?  0 v is 0 for a finite v and NaN for an infinite or
- * NaN one, so the sum of them is 0 exactly when all are finite: two
- * multiply-adds a number and no branch, in two chains that overlap (the
- * state and the report are checked on every step and sample). */
-static inline int sw_all_finite(const double v[], size_t n)
-{
-    double s0 = 0.0, s1 = 0.0;
-    size_t i = 0;
-    for (; i + 1 < n; i += 2) {
-        s0 += 0.0 * v[i];
-        s1 += 0.0 * v[i + 1];
-    }
-    if (i < n)
-        s0 += 0.0 * v[i];
-    return s0 + s1 == 0.0;
-}
-
 /* max and min of numbers known to be finite: inline where libm's fmax and
- * fmin are calls (they must handle NaN), for the per-step checks. */
+ * fmin are calls (they must handle NaN), for the engine's per-step
+ * checks (engine.c, flight.c). */
 static inline double sw_max2(double a, double b)
 {
     return a > b ? a : b;
