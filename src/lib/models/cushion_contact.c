@@ -24,6 +24,26 @@
 #include <math.h>
 #include <string.h>
 
+/* Cushion constants per unit package mass and base length, from the
+ * scene's derived quantities at every call (the same numbers each time). */
+typedef struct {
+    double b;  /* m, half width */
+    double kp; /* 1/(s^2 m): k'/m */
+    double bp; /* 1/(s^2 m^3): beta'/m */
+    double cp; /* 1/(s m): c'/m */
+} cush_t;
+
+static cush_t cush_of(const sw_derived_t *d)
+{
+    cush_t c;
+    const double w2 = d->omega_c * d->omega_c, len = 2.0 * d->b;
+    c.b = d->b;
+    c.kp = w2 / len;
+    c.bp = d->K > 0.0 ? d->B3 / d->K * w2 / len : 0.0;
+    c.cp = 2.0 * d->zeta_c * d->omega_c / len;
+    return c;
+}
+
 /* Base kinematics: z(sigma) = z0 + s1 sigma, z'(sigma) = v0 + v1 sigma. */
 typedef struct {
     double z0, s1, v0, v1;
@@ -94,9 +114,10 @@ static void add_piece(const cush_t *c, const kin_t *k, double p, double q, int w
 /* Forces, tangent stiffness and strain energy of the cushion at (theta, z)
  * moving at (theta', z'), given s = sin(theta) and co = cos(theta): the
  * right-hand side needs them too, and they are a fifth of its cost. */
-void sw_cushion_contact(const cush_t *c, double s, double co, double z, double dth, double dz,
+void sw_cushion_contact(const sw_derived_t *d, double s, double co, double z, double dth, double dz,
                         int what, contact_t *o)
 {
+    const cush_t cd = cush_of(d), *c = &cd;
     memset(o, 0, sizeof *o);
     const double b = c->b;
     const double zr = z - b * s, zf = z + b * s; /* m, compression of the rear / front edge */

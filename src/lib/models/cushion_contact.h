@@ -7,25 +7,6 @@
 
 #include "swaywatch/scene.h"
 
-/* Cushion constants per unit package mass and base length. */
-typedef struct {
-    double b;  /* m, half width */
-    double kp; /* 1/(s^2 m): k'/m */
-    double bp; /* 1/(s^2 m^3): beta'/m */
-    double cp; /* 1/(s m): c'/m */
-} cush_t;
-
-static inline cush_t cush_of(const sw_derived_t *d)
-{
-    cush_t c;
-    const double w2 = d->omega_c * d->omega_c, len = 2.0 * d->b;
-    c.b = d->b;
-    c.kp = w2 / len;
-    c.bp = d->K > 0.0 ? d->B3 / d->K * w2 / len : 0.0;
-    c.cp = 2.0 * d->zeta_c * d->omega_c / len;
-    return c;
-}
-
 /* What the cushion does to the package at one state, per unit mass. */
 typedef struct {
     double F;  /* m/s^2: F_B / m, upward */
@@ -45,10 +26,12 @@ typedef struct {
  * else is computed. */
 enum { CT_PUSH = 1, CT_MOMENTS = 2, CT_STRAIN = 4 };
 
-/* Forces, tangent stiffness and strain energy of the cushion at (theta, z)
- * moving at (theta', z'), given s = sin(theta) and co = cos(theta), as
- * much of it as what asks for (CT_*). */
-void sw_cushion_contact(const cush_t *c, double s, double co, double z, double dth, double dz,
+/* Forces, tangent stiffness and strain energy of the cushion of a scene's
+ * derived quantities d at (theta, z) moving at (theta', z'), given
+ * s = sin(theta) and co = cos(theta), as much of it as what asks for
+ * (CT_*).  The cushion's constants per unit mass are its own: the model
+ * hands over the scene, not them. */
+void sw_cushion_contact(const sw_derived_t *d, double s, double co, double z, double dth, double dz,
                         int what, contact_t *o);
 
 #endif

@@ -164,7 +164,8 @@ static double contact_rate(const sw_model_t *M, double th, const contact_t *k)
     const sw_derived_t *d = &M->d;
     if (!(k->L0 > 0.0))
         return 0.0;
-    const double h = d->h, s = sin(th), co = cos(th), cp = cush_of(d).cp;
+    const double h = d->h, s = sin(th), co = cos(th);
+    const double cp = 2.0 * d->zeta_c * d->omega_c / (2.0 * d->b); /* 1/(s m), c'/m */
     const double m11 = d->R * d->R / 3.0 + h * h - d->gamma * h * h * co * co;
     const double m12 = h * s, m22 = 1.0;
     const double kK = eig2(co * co * k->S2, co * k->S1, k->S, m11, m12, m22);
@@ -191,12 +192,11 @@ static int cushion_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_inpu
                        const double y[], double f[])
 {
     const sw_derived_t *d = &M->d;
-    const cush_t c = cush_of(d);
     const double ag = u->ag, ge = u->ge; /* m/s^2 */
     const double th = y[M->ith], z = y[M->iz], dth = y[M->idth], dz = y[M->idz];
     const double s = sin(th), co = cos(th), h = d->h;
     contact_t k;
-    sw_cushion_contact(&c, s, co, z, dth, dz, S->track_rate ? CT_PUSH | CT_MOMENTS : CT_PUSH, &k);
+    sw_cushion_contact(d, s, co, z, dth, dz, S->track_rate ? CT_PUSH | CT_MOMENTS : CT_PUSH, &k);
     if (S->track_rate)
         S->rate_seen = fmax(S->rate_seen, contact_rate(M, th, &k));
     const double J = d->R * d->R / 3.0 + h * h; /* m^2, (I_C + m h^2)/m */
@@ -251,17 +251,17 @@ static double cushion_lift(const sw_model_t *M, const double y[], double *der)
 
 /* Potential energy per unit mass (J/kg) at (theta, z) relative to the
  * package upright at z = 0: cushion strain + gravity. */
-static double potential(const cush_t *c, const sw_derived_t *d, double g, double th, double z)
+static double potential(const sw_derived_t *d, double g, double th, double z)
 {
     contact_t k;
-    sw_cushion_contact(c, sin(th), cos(th), z, 0.0, 0.0, CT_STRAIN, &k);
+    sw_cushion_contact(d, sin(th), cos(th), z, 0.0, 0.0, CT_STRAIN, &k);
     return k.U - g * z + g * d->h * (cos(th) - 1.0);
 }
 
 /* Potential at rest (theta = 0, z = z_s), J/kg. */
-static double potential_rest(const cush_t *c, const sw_derived_t *d, double g)
+static double potential_rest(const sw_derived_t *d, double g)
 {
-    return potential(c, d, g, 0.0, sw_cushion_static_deflection(d, g));
+    return potential(d, g, 0.0, sw_cushion_static_deflection(d, g));
 }
 
 double sw_cushion_barrier(const sw_derived_t *d, double g)
@@ -271,12 +271,11 @@ double sw_cushion_barrier(const sw_derived_t *d, double g)
      * increasing and convex in z, so Newton from above converges
      * monotonically; z_s + b sin(alpha) is above (every point of the base
      * is then compressed by at least z_s). */
-    const cush_t c = cush_of(d);
     const double zs = sw_cushion_static_deflection(d, g);
     double z = zs + d->b * sin(d->alpha);
     for (int it = 0; it < 200; it++) {
         contact_t k;
-        sw_cushion_contact(&c, sin(d->alpha), cos(d->alpha), z, 0.0, 0.0, CT_PUSH | CT_MOMENTS, &k);
+        sw_cushion_contact(d, sin(d->alpha), cos(d->alpha), z, 0.0, 0.0, CT_PUSH | CT_MOMENTS, &k);
         if (!(k.S > 0.0))
             break;
         const double dz = (k.F - g) / k.S;
@@ -284,7 +283,7 @@ double sw_cushion_barrier(const sw_derived_t *d, double g)
         if (fabs(dz) <= 1e-14 * (fabs(z) + zs))
             break;
     }
-    return potential(&c, d, g, d->alpha, z) - potential_rest(&c, d, g);
+    return potential(d, g, d->alpha, z) - potential_rest(d, g);
 }
 
 /* Least energy above rest (J/kg) that lifts an edge off the cushion. */
@@ -294,14 +293,13 @@ static double lift_energy(const sw_derived_t *d, double g)
      * theta in [0, alpha] (symmetric for theta < 0): a log-spaced scan
      * (the minimum sits near theta ~ z_s/b, tiny for a stiff cushion), then
      * golden-section search between the best point's neighbours */
-    const cush_t c = cush_of(d);
-    const double V0 = potential_rest(&c, d, g);
-    double best_th = 0.0, best = potential(&c, d, g, 0.0, 0.0) - V0;
+    const double V0 = potential_rest(d, g);
+    double best_th = 0.0, best = potential(d, g, 0.0, 0.0) - V0;
     double lo = 0.0, hi = d->alpha, prev = 0.0;
     const int nk = 96;
     for (int k = nk; k >= 0; k--) { /* theta from alpha 1e-12 up to alpha */
         const double th = d->alpha * pow(10.0, -12.0 * k / nk);
-        const double v = potential(&c, d, g, th, d->b * sin(th)) - V0;
+        const double v = potential(d, g, th, d->b * sin(th)) - V0;
         if (v < best) {
             best = v;
             best_th = th;
@@ -314,21 +312,21 @@ static double lift_energy(const sw_derived_t *d, double g)
         return best;
     const double gr = 0.5 * (sqrt(5.0) - 1.0);
     double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-    double v1 = potential(&c, d, g, x1, d->b * sin(x1)) - V0;
-    double v2 = potential(&c, d, g, x2, d->b * sin(x2)) - V0;
+    double v1 = potential(d, g, x1, d->b * sin(x1)) - V0;
+    double v2 = potential(d, g, x2, d->b * sin(x2)) - V0;
     for (int it = 0; it < 120 && hi - lo > 1e-15 * d->alpha; it++) {
         if (v1 < v2) {
             hi = x2;
             x2 = x1;
             v2 = v1;
             x1 = hi - gr * (hi - lo);
-            v1 = potential(&c, d, g, x1, d->b * sin(x1)) - V0;
+            v1 = potential(d, g, x1, d->b * sin(x1)) - V0;
         } else {
             lo = x1;
             x1 = x2;
             v1 = v2;
             x2 = lo + gr * (hi - lo);
-            v2 = potential(&c, d, g, x2, d->b * sin(x2)) - V0;
+            v2 = potential(d, g, x2, d->b * sin(x2)) - V0;
         }
     }
     return fmin(best, fmin(v1, v2));
@@ -349,10 +347,9 @@ static void kinetic(const sw_derived_t *d, const sw_state_t *s, double *rel, dou
 /* The energy of s given the potential at rest V0 (J/kg) under g_eff. */
 static double energy_with(const sw_derived_t *d, double g_eff, double V0, const sw_state_t *s)
 {
-    const cush_t c = cush_of(d);
     double rel, tot;
     kinetic(d, s, &rel, &tot);
-    double E = tot + potential(&c, d, g_eff, s->theta, s->z) - V0;
+    double E = tot + potential(d, g_eff, s->theta, s->z) - V0;
     if (d->gamma > 0.0)
         E += 0.5 * d->omega_b * d->omega_b * s->u * s->u / d->gamma;
     return E;
@@ -360,8 +357,7 @@ static double energy_with(const sw_derived_t *d, double g_eff, double V0, const 
 
 double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s)
 {
-    const cush_t c = cush_of(d);
-    return energy_with(d, g_eff, potential_rest(&c, d, g_eff), s);
+    return energy_with(d, g_eff, potential_rest(d, g_eff), s);
 }
 
 /* The margins given the barrier Eb and the potential at rest V0 (J/kg)
@@ -370,10 +366,9 @@ double sw_energy_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *
 static void margin_with(const sw_derived_t *d, double g_eff, double Eb, double V0,
                         const sw_state_t *s, double *margin, double *margin_bound)
 {
-    const cush_t c = cush_of(d);
     double rel, tot;
     kinetic(d, s, &rel, &tot);
-    const double V = potential(&c, d, g_eff, s->theta, s->z) - V0;
+    const double V = potential(d, g_eff, s->theta, s->z) - V0;
     const double PE = V / Eb, KE = rel / Eb, E = PE + KE;
     const int inside = fabs(s->theta) < d->alpha;
     if (margin) {
@@ -398,8 +393,7 @@ static void margin_with(const sw_derived_t *d, double g_eff, double Eb, double V
 void sw_margin_cushion(const sw_derived_t *d, double g_eff, const sw_state_t *s, double *margin,
                        double *margin_bound)
 {
-    const cush_t c = cush_of(d);
-    margin_with(d, g_eff, sw_cushion_barrier(d, g_eff), potential_rest(&c, d, g_eff), s, margin,
+    margin_with(d, g_eff, sw_cushion_barrier(d, g_eff), potential_rest(d, g_eff), s, margin,
                 margin_bound);
 }
 
@@ -451,9 +445,8 @@ static void cushion_setup(sw_model_t *M, const sw_scene_t *sc)
     M->e_lift = lift_energy(&M->d, M->g);
     /* constants of every output and rest test under nominal gravity: the
      * barrier alone is a Newton solve, most of an output's cost */
-    const cush_t c = cush_of(&M->d);
     M->e_barrier = sw_cushion_barrier(&M->d, M->g);
-    M->v_rest = potential_rest(&c, &M->d, M->g);
+    M->v_rest = potential_rest(&M->d, M->g);
 }
 
 /* A package on a cushion moves from the start: it is never stuck and never
