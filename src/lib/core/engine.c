@@ -728,7 +728,8 @@ static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
     }
     if (P->m.phase != SW_PHASE_STUCK)
         return;
-    const int side = P->m.ops->uplift_side(&P->m, t, P->y);
+    const sw_input_at_t u = sw_input_at(P->m.in, P->m.g, t);
+    const int side = P->m.ops->uplift_side(&P->m, &u, P->y);
     if (side)
         sw_pkg_start_rocking(&e->pc, P, t, side);
 }

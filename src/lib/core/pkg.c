@@ -7,6 +7,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "input.h"
 #include "model_ops.h"
 #include "numeric.h"
 #include "pkg.h"
@@ -147,7 +148,8 @@ static void after_impact(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
     if (!below_rest(C, P, P->y[P->m.idth]))
         return;
     P->m.ops->land(&P->m, P->y);
-    const int side = P->m.ops->uplift_side(&P->m, t, P->y);
+    const sw_input_at_t u = sw_input_at(P->m.in, P->m.g, t);
+    const int side = P->m.ops->uplift_side(&P->m, &u, P->y);
     if (side != 0 && t == P->m.t_lift) {
         /* Lifted and landed at the same instant: the support is at the
          * threshold and the step's own error pushed the package the wrong

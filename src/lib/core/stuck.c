@@ -10,10 +10,17 @@
 #include <float.h>
 #include <math.h>
 
+#include "input.h"
 #include "model_ops.h"
 #include "model_rigid.h"
 #include "pkg.h"
 #include "stuck.h"
+
+/* The bare block's uplift side at t (s), under the input there. */
+static inline int bare_side(const sw_pkg_t *P, double t)
+{
+    return sw_bare_uplift_side(&P->m, sw_input_ag(P->m.in, t), sw_input_geff(P->m.in, P->m.g, t));
+}
 
 /* Bare block, stuck: no dynamics.  Earliest time in [t, t1] at which the bed
  * acceleration reaches the uplift threshold, or -1; *side gets the
@@ -21,7 +28,7 @@
  * interval is scanned at the package's step and the crossing bisected. */
 static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
 {
-    if ((*side = sw_bare_uplift_side(&P->m, t)) != 0)
+    if ((*side = bare_side(P, t)) != 0)
         return t;
     const sw_input_t *in = P->m.in;
     if (!in->fn) {
@@ -61,17 +68,17 @@ static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
     double ta = t;
     for (int i = 1; i <= (nsub > 0 ? nsub : 1); i++) {
         const double tb = i == nsub ? t1 : t + (t1 - t) * i / nsub;
-        const int sb = sw_bare_uplift_side(&P->m, tb);
+        const int sb = bare_side(P, tb);
         if (sb != 0) {
             double lo = ta, hi = tb;
             for (int it = 0; it < 60 && hi - lo > 1e-15 * fmax(1.0, fabs(hi)); it++) {
                 const double m = 0.5 * (lo + hi);
-                if (sw_bare_uplift_side(&P->m, m) != 0)
+                if (bare_side(P, m) != 0)
                     hi = m;
                 else
                     lo = m;
             }
-            *side = sw_bare_uplift_side(&P->m, hi);
+            *side = bare_side(P, hi);
             if (*side == 0)
                 *side = sb;
             return hi;
@@ -339,7 +346,7 @@ static int confirm_uplift(sw_pkg_t *P, double tp, double tu, double L, const dou
         nj_state(P, &cu, a_tp, s, y, yu);
         P->y[P->m.iu] = yu[0];
         P->y[P->m.idu] = yu[1];
-        const int now = sw_frame_uplift_side(&P->m, tp + tu, P->y);
+        const int now = sw_frame_uplift_side(&P->m, sw_input_geff(P->m.in, P->m.g, tp + tu), P->y);
         if (now != 0) {
             P->t = tp + tu;
             *side = now;
@@ -364,7 +371,7 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
 {
     const double w = P->m.d.omega_b, zw = P->m.d.zeta_b * w, ta = P->m.tan_alpha;
     const double s = P->m.in->ag_slope, small = 0.5 / w;
-    if ((*side = sw_frame_uplift_side(&P->m, P->t, P->y)) != 0)
+    if ((*side = sw_frame_uplift_side(&P->m, sw_input_geff(P->m.in, P->m.g, P->t), P->y)) != 0)
         return P->t;
     double y[2] = {P->y[P->m.iu], P->y[P->m.idu]};
     /* D = u'' and D' at the start */

@@ -520,10 +520,10 @@ static void cushion_event_fn(const sw_model_t *M, int ev, const sw_input_at_t *u
     }
 }
 
-static int cushion_uplift_side(const sw_model_t *M, double t, const double y[])
+static int cushion_uplift_side(const sw_model_t *M, const sw_input_at_t *u, const double y[])
 {
     (void)M;
-    (void)t;
+    (void)u;
     (void)y;
     return 0; /* never stuck: its uplift is the first lift of an edge */
 }

@@ -46,7 +46,8 @@ typedef struct {
     double rate_rest;       /* 1/s, the contact's rate bound at rest (model_cushion.c) */
     double e_barrier;       /* J/kg, cushion: sw_cushion_barrier() under nominal gravity */
     double v_rest;          /* J/kg, cushion: potential at rest under nominal gravity */
-    const sw_input_t *in;   /* the engine's input over the interval being integrated */
+    const sw_input_t *in;   /* the engine's input over the interval being integrated: the
+                               layers that evaluate the model read it, the ops get its value */
     /* the mode, and which events it arms */
     sw_phase phase;
     int side;      /* s = +1 / -1 while rocking */
@@ -149,8 +150,9 @@ struct sw_model_ops {
     /* at theta = 0: theta' to 0 (a landing, the end of a cascade), whatever
      * the support takes of the package's momentum; NULL with impact */
     void (*land)(const sw_model_t *M, double y[]);
-    /* +1 / -1 if the support is beyond the uplift threshold at t, else 0 */
-    int (*uplift_side)(const sw_model_t *M, double t, const double y[]);
+    /* +1 / -1 if the support is beyond the uplift threshold under the
+     * input's value u, else 0 */
+    int (*uplift_side)(const sw_model_t *M, const sw_input_at_t *u, const double y[]);
     /* how the package stands on its support, which stuck.c solves exactly
      * (SW_STANDS_*); 0: it never stands still (a cushion) */
     int stands;

@@ -251,15 +251,15 @@ static void frame_land(const sw_model_t *M, double y[])
     y[M->idth] = 0.0;
 }
 
-static int bare_uplift_side(const sw_model_t *M, double t, const double y[])
+static int bare_uplift_side(const sw_model_t *M, const sw_input_at_t *u, const double y[])
 {
     (void)y;
-    return sw_bare_uplift_side(M, t);
+    return sw_bare_uplift_side(M, u->ag, u->ge);
 }
 
-static int frame_uplift_side(const sw_model_t *M, double t, const double y[])
+static int frame_uplift_side(const sw_model_t *M, const sw_input_at_t *u, const double y[])
 {
-    return sw_frame_uplift_side(M, t, y);
+    return sw_frame_uplift_side(M, u->ge, y);
 }
 
 static int bare_moving(const sw_model_t *M, const double y[], double rest_eps)

@@ -14,7 +14,6 @@
 
 #include <math.h>
 
-#include "input.h"
 #include "model_ops.h"
 #include "numeric.h"
 
@@ -112,11 +111,11 @@ static SW_ALWAYS_INLINE void sw_rigid_rhs_of(const sw_model_t *M, sw_model_scrat
 
 /* While stuck the support's acceleration A is a_g (bare) or a_g + u'' =
  * -(2 zeta_b w_b u' + w_b^2 u) (frame); it does not depend on theta.
- * +1 / -1 if A is beyond the uplift threshold tan(alpha) g_eff at t (the
- * direction the top tips), else 0. */
-static inline int sw_rigid_side_of(const sw_model_t *M, double A, double t)
+ * +1 / -1 if A is beyond the uplift threshold tan(alpha) g_eff, for the
+ * input's g_eff = ge (m/s^2) there (the direction the top tips), else 0.
+ * The caller evaluates the input (stuck.c, the ops' uplift_side). */
+static inline int sw_rigid_side_of(const sw_model_t *M, double A, double ge)
 {
-    const double ge = sw_input_geff(M->in, M->g, t);
     if (!(ge > 0.0))
         return 0; /* airborne: outside the model (the engine faults) */
     const double thr = M->tan_alpha * ge;
@@ -127,14 +126,16 @@ static inline int sw_rigid_side_of(const sw_model_t *M, double A, double t)
     return 0;
 }
 
-static inline int sw_bare_uplift_side(const sw_model_t *M, double t)
+/* ... the bare block's under a_g = ag, the frame's at state y, g_eff = ge
+ * (m/s^2). */
+static inline int sw_bare_uplift_side(const sw_model_t *M, double ag, double ge)
 {
-    return sw_rigid_side_of(M, sw_input_ag(M->in, t), t);
+    return sw_rigid_side_of(M, ag, ge);
 }
 
-static inline int sw_frame_uplift_side(const sw_model_t *M, double t, const double y[])
+static inline int sw_frame_uplift_side(const sw_model_t *M, double ge, const double y[])
 {
-    return sw_rigid_side_of(M, -sw_rigid_bearing(M, y), t);
+    return sw_rigid_side_of(M, -sw_rigid_bearing(M, y), ge);
 }
 
 #endif
