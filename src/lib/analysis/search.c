@@ -150,9 +150,20 @@ int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw
 
 int sw_search_init(sw_search_t *S, const sw_search_opts_t *o, sw_threshold_t *out)
 {
+    return sw_search_init_how(S, o, NULL, out);
+}
+
+int sw_search_init_how(sw_search_t *S, const sw_search_opts_t *o, const sw_search_how_t *how,
+                       sw_threshold_t *out)
+{
     memset(S, 0, sizeof *S);
     memset(out, 0, sizeof *out);
     S->o = *o;
+    if (how)
+        S->how = *how;
+    if (!(S->how.per_round >= 1 && S->how.per_round <= SW_SEARCH_SECTIONS))
+        S->how.per_round = SW_SEARCH_SECTIONS;
+    S->lo = S->how.safe;
     S->out = out;
     if (!(S->o.step > 0.0))
         S->o.step = DEFAULT_STEP;
@@ -185,9 +196,11 @@ static void bracket(sw_search_t *S)
  * as that peak falls to 0 (no lift at all): a package that stays far from
  * tipping at x does not overturn at a few per cent more, while near
  * tipping, where overturning is not monotonic in the scale, the scan is as
- * fine as asked. */
+ * fine as asked.  A fixed step does not grow. */
 static double scan_step(const sw_search_t *S)
 {
+    if (S->how.fixed_step)
+        return S->o.step;
     const double near = fmin(1.0, fmax(0.0, S->peak_last / SW_SEARCH_NEAR_PEAK));
     return S->o.step * (FAR_STEPS - (FAR_STEPS - 1.0) * near);
 }
@@ -195,12 +208,17 @@ static double scan_step(const sw_search_t *S)
 /* The scales of the next round (S->n of them; 0 when done). */
 int sw_search_points(sw_search_t *S)
 {
+    const int per = S->how.per_round;
     S->n = 0;
-    if (S->phase == SW_SEARCH_SCAN) {
+    if (S->phase == SW_SEARCH_PROBE) {
+        S->x[S->n++] = S->hi;
+    } else if (S->phase == SW_SEARCH_SCAN) {
         const double f = 1.0 + scan_step(S);
-        for (int j = 0; j < SW_SEARCH_SECTIONS; j++) {
-            const double x = S->k == 0 ? fmin(S->o.x_min * pow(f, j), S->o.x_max)
-                                       : fmin(S->x_last * pow(f, j + 1.0), S->o.x_max);
+        for (int j = 0; j < per; j++) {
+            const double x = S->how.fixed_step
+                                 ? fmin(S->o.x_min * pow(f, (double)(S->k + j)), S->o.x_max)
+                             : S->k == 0 ? fmin(S->o.x_min * pow(f, j), S->o.x_max)
+                                         : fmin(S->x_last * pow(f, j + 1.0), S->o.x_max);
             S->x[S->n++] = x;
             if (x >= S->o.x_max)
                 break; /* the scan's last point is x_max itself */
@@ -208,8 +226,10 @@ int sw_search_points(sw_search_t *S)
     } else if (S->phase == SW_SEARCH_SECT) {
         const double ratio = S->hi / S->lo;
         double prev = S->lo;
-        for (int j = 1; j <= SW_SEARCH_SECTIONS; j++) {
-            const double x = S->lo * pow(ratio, (double)j / (SW_SEARCH_SECTIONS + 1));
+        for (int j = 1; j <= per; j++) {
+            /* one point: the geometric midpoint, rounded once */
+            const double x =
+                per == 1 ? sqrt(S->lo * S->hi) : S->lo * pow(ratio, (double)j / (per + 1));
             if (x > prev && x < S->hi)
                 S->x[S->n++] = prev = x;
         }
@@ -221,6 +241,12 @@ int sw_search_points(sw_search_t *S)
     return S->n;
 }
 
+void sw_search_probe(sw_search_t *S, double x)
+{
+    S->phase = SW_SEARCH_PROBE;
+    S->hi = x;
+}
+
 /* The round's results: the lowest overturning scale wins, with the safe
  * one just below it. */
 void sw_search_feed(sw_search_t *S)
@@ -228,35 +254,33 @@ void sw_search_feed(sw_search_t *S)
     S->out->trials += S->n;
     int j = 0;
     while (j < S->n && !S->r[j].overturned) j++;
-    if (S->phase == SW_SEARCH_SCAN) {
-        if (j == S->n) { /* all safe */
-            S->lo = S->x_last = S->x[S->n - 1];
+    if (j == S->n) { /* all safe */
+        S->lo = S->x[S->n - 1];
+        if (S->phase == SW_SEARCH_SECT) {
+            bracket(S);
+        } else if (S->phase == SW_SEARCH_PROBE) {
+            S->phase = SW_SEARCH_DONE;
+        } else {
+            S->x_last = S->lo;
             S->peak_last = S->r[S->n - 1].max_theta_ratio;
             S->k += S->n;
             if (S->x[S->n - 1] >= S->o.x_max)
                 S->phase = SW_SEARCH_DONE; /* nothing overturns */
-            return;
         }
-        if (S->k + j == 0) { /* x_min itself overturns: the threshold may be lower */
-            S->phase = SW_SEARCH_DONE;
-            S->out->found = S->out->at_min = 1;
-            S->out->x = S->x[0];
-            S->out->x_safe = 0.0;
-            S->out->at_x = S->r[0];
-            return;
-        }
-        S->lo = j > 0 ? S->x[j - 1] : S->lo;
-        S->hi = S->x[j];
-        S->r_hi = S->r[j];
-        bracket(S);
         return;
     }
-    if (j < S->n) {
-        S->lo = j > 0 ? S->x[j - 1] : S->lo;
-        S->hi = S->x[j];
-        S->r_hi = S->r[j];
-    } else {
-        S->lo = S->x[S->n - 1];
+    if (S->phase != SW_SEARCH_SECT && S->k + j == 0) {
+        /* the first point run overturns: the threshold may be lower, down
+         * to how.safe */
+        S->phase = SW_SEARCH_DONE;
+        S->out->found = S->out->at_min = 1;
+        S->out->x = S->x[0];
+        S->out->x_safe = S->lo;
+        S->out->at_x = S->r[0];
+        return;
     }
+    S->lo = j > 0 ? S->x[j - 1] : S->lo;
+    S->hi = S->x[j];
+    S->r_hi = S->r[j];
     bracket(S);
 }
