@@ -3,8 +3,9 @@
  * would overturn a package from its current state, found by runs of
  * private engines through the public engine API only.
  *
- * One evaluation is a scan-then-bisect search, as sw_threshold_search
- * does it, over every design pulse and direction at once.  What keeps it
+ * One evaluation is a scan-then-bisect search over every design pulse
+ * and direction at once: a resumable search (search_int.h) of one
+ * amplitude a round per pulse and direction, merged here.  What keeps it
  * cheap without hiding a lower overturning amplitude (docs/reserve.md
  * gives the arguments in full):
  *   - every scan starts at a proven lower bound, not at a guess:
@@ -61,6 +62,7 @@
 #include "model_traits.h"
 #include "reserve_lift.h"
 #include "run_int.h" /* sw_set_msg */
+#include "search_int.h"
 
 #define DEFAULT_STEP 0.02
 #define DEFAULT_TOL 0.01
@@ -210,23 +212,6 @@ static int run(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s,
     return r->faults ? SW_EFAULT : SW_OK;
 }
 
-/* One trial: does amplitude x (g) of pulse P in direction dir overturn
- * the package from s?  1 yes, 0 no, < 0 an error.  A faulted run counts as
- * safe (and is reported by the caller). */
-static int trial(const sw_reserve_t *R, const pulse_ctx_t *P, const sw_state_t *s, int dir,
-                 double x, int *faulted, long *trials)
-{
-    sw_run_result_t r;
-    memset(&r, 0, sizeof r);
-    (*trials)++;
-    const int rc = run(R, P, s, dir * x * SW_G0, &r);
-    if (rc == SW_EFAULT) {
-        *faulted = 1;
-        return 0;
-    }
-    return rc < 0 ? rc : r.overturned;
-}
-
 /* ---- evaluation ---------------------------------------------------------- */
 
 /* The state of rest as the engine makes it (a reset engine's), whatever
@@ -268,50 +253,47 @@ static void result_zero(sw_reserve_result_t *out)
     out->dir_exact[0] = out->dir_exact[1] = 1;
 }
 
-/* One scan: a design pulse in one direction, from its lower bound up. */
+/* One scan: a design pulse in one direction, from its lower bound up, a
+ * search in rounds of one amplitude (search_int.h) on the fixed grid
+ * lo (1 + step)^k.  Its S.lo is the safe end: the proven bound (0 if
+ * none), then each amplitude run and found safe, in increasing order; no
+ * amplitude of this scan below it overturns (up to a window narrower
+ * than a scan step). */
 typedef struct {
     const pulse_ctx_t *P;
     int dir;
-    double lo;   /* g, the first amplitude tried */
-    int bounded; /* lo is the proven bound (else the floor, above it) */
-    int k;       /* next scan point: lo (1 + step)^k, clipped to max_g */
-    double safe; /* g, no amplitude of this scan below it overturns (up to a window
-                    narrower than a scan step): the proven bound (0 if none), then
-                    each amplitude run and found safe, in increasing order */
-    int done;    /* scanned up to max_g */
-    int over;    /* an amplitude overturned: (safe, top] holds the scan's threshold */
-    double top;  /* g, the lowest amplitude run that overturned */
+    int bounded; /* the scan starts at the proven bound (else at the floor, above it) */
+    sw_search_t S;
+    sw_threshold_t th; /* found: (S.lo, th.x] holds the scan's threshold */
 } scan_t;
 
-static double scan_next(const sw_reserve_t *R, const scan_t *c)
+/* Run scan c's round (one amplitude) from s and feed it to its search.  A
+ * faulted run counts as safe (and is reported by the caller); a failed
+ * one is counted too. */
+static int scan_run(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, long *trials,
+                    int *faulted)
 {
-    return fmin(c->lo * pow(1.0 + R->step, c->k), R->max_g);
+    sw_run_result_t *r = &c->S.r[0];
+    memset(r, 0, sizeof *r);
+    (*trials)++;
+    const int rc = run(R, c->P, s, c->dir * c->S.x[0] * SW_G0, r);
+    if (rc == SW_EFAULT) {
+        *faulted = 1;
+        r->overturned = 0;
+    } else if (rc < 0) {
+        return rc;
+    }
+    sw_search_feed(&c->S);
+    return SW_OK;
 }
 
-/* Scan c overturned at x: bisect between its safe amplitude and x to tol
- * (geometric midpoints, as sw_threshold_search).  Not at the scan's first
- * point: below a proven bound nothing overturns, and below the floor
- * nothing is searched. */
-static int bisect(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, double x, long *trials,
-                  int *faulted)
+/* Run scan c's search to its end: its bracket bisected to tol. */
+static int scan_finish(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, long *trials,
+                       int *faulted)
 {
-    double lo = c->safe, hi = x;
-    while (c->k > 0 && hi / lo - 1.0 > R->tol) {
-        const double m = sqrt(lo * hi);
-        if (!(m > lo && m < hi))
-            break;
-        const int o = trial(R, c->P, s, c->dir, m, faulted, trials);
-        if (o < 0)
-            return o;
-        if (o)
-            hi = m;
-        else
-            lo = m;
-    }
-    c->over = 1;
-    c->safe = lo;
-    c->top = hi;
-    return SW_OK;
+    int rc = SW_OK;
+    while (rc == SW_OK && sw_search_points(&c->S)) rc = scan_run(R, s, c, trials, faulted);
+    return rc;
 }
 
 /* The merged scan over the n scans (pulses x directions): always try the
@@ -326,52 +308,35 @@ static int bisect(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, double 
 static int merged_scan(const sw_reserve_t *R, const sw_state_t *s, scan_t *c, int n, long *trials,
                        int *faulted)
 {
-    int b;
-    double x;
-    for (;;) {
-        b = -1;
-        x = INFINITY;
-        for (int i = 0; i < n; i++) {
-            if (c[i].done)
-                continue;
-            const double xi = scan_next(R, &c[i]);
-            if (xi < x) {
-                x = xi;
-                b = i;
+    scan_t *b;
+    int rc;
+    do {
+        b = NULL;
+        double x = INFINITY;
+        for (int i = 0; i < n; i++)
+            if (c[i].S.phase == SW_SEARCH_SCAN && sw_search_points(&c[i].S) && c[i].S.x[0] < x) {
+                x = c[i].S.x[0];
+                b = &c[i];
             }
-        }
-        if (b < 0)
+        if (!b)
             return SW_OK; /* nothing overturns up to max_g */
-        const int over = trial(R, c[b].P, s, c[b].dir, x, faulted, trials);
-        if (over < 0)
-            return over;
-        if (over)
-            break;
-        c[b].safe = x;
-        c[b].k++;
-        if (x >= R->max_g)
-            c[b].done = 1;
-    }
-    int rc = bisect(R, s, &c[b], x, trials, faulted);
-    if (rc < 0)
+        if ((rc = scan_run(R, s, b, trials, faulted)) < 0)
+            return rc;
+    } while (!b->S.r[0].overturned);
+    if ((rc = scan_finish(R, s, b, trials, faulted)) < 0)
         return rc;
-    double top = c[b].top;
+    double top = b->th.x;
     for (int i = 0; i < n; i++) {
         scan_t *ci = &c[i];
-        /* every grid point of ci below x was run and survived; its next
-         * is at or above x */
-        if (i == b || ci->done || !(ci->safe < top))
+        /* every grid point of ci below b's overturn was run and survived;
+         * its next is at or above it */
+        if (ci == b || ci->S.phase != SW_SEARCH_SCAN || !(ci->S.lo < top))
             continue;
-        const int o = trial(R, ci->P, s, ci->dir, top, faulted, trials);
-        if (o < 0)
-            return o;
-        if (!o) {
-            ci->safe = top;
-            continue;
-        }
-        if ((rc = bisect(R, s, ci, top, trials, faulted)) < 0)
+        sw_search_probe(&ci->S, top);
+        if ((rc = scan_finish(R, s, ci, trials, faulted)) < 0)
             return rc;
-        top = ci->top;
+        if (ci->th.found)
+            top = ci->th.x;
     }
     return SW_OK;
 }
@@ -388,18 +353,18 @@ static int scans_of(const sw_reserve_t *R, const sw_state_t *s, int ndir, int on
             continue;
         for (size_t j = 0; j < R->np; j++) {
             scan_t *ci = &c[n++];
-            memset(ci, 0, sizeof *ci);
             ci->P = &R->p[j];
             ci->dir = dir;
-            ci->safe = lower_bound_g(R, ci->P, s, dir);
-            ci->lo = ci->safe;
-            ci->bounded = ci->lo >= R->floor_g;
-            if (!ci->bounded)
-                ci->lo = R->floor_g;
-            if (!(ci->lo < R->max_g)) {
-                ci->done = 1;
-                ci->safe = R->max_g;
-            }
+            const sw_search_how_t how = {
+                .per_round = 1, .fixed_step = 1, .safe = lower_bound_g(R, ci->P, s, dir)};
+            ci->bounded = how.safe >= R->floor_g;
+            const sw_search_opts_t so = {.x_min = ci->bounded ? how.safe : R->floor_g,
+                                         .x_max = R->max_g,
+                                         .step = R->step,
+                                         .tol = R->tol};
+            /* a bound at or above max_g: safe up to max_g, nothing to scan */
+            if (sw_search_init_how(&ci->S, &so, &how, &ci->th) != SW_OK)
+                ci->S.lo = R->max_g;
         }
     }
     return n;
@@ -417,12 +382,12 @@ static void conclude(const sw_reserve_t *R, const scan_t *c, int n, int mirror,
     int best = -1;
     for (int i = 0; i < n; i++) {
         const int di = c[i].dir == SW_RESERVE_BRAKING ? 0 : 1;
-        lo[di] = fmin(lo[di], c[i].safe);
-        if (!c[i].over)
+        lo[di] = fmin(lo[di], c[i].S.lo);
+        if (!c[i].th.found)
             continue;
-        top[di] = fmin(top[di], c[i].top);
-        if (best < 0 || c[i].safe < c[best].safe ||
-            (c[i].safe == c[best].safe && c[i].top < c[best].top))
+        top[di] = fmin(top[di], c[i].th.x);
+        if (best < 0 || c[i].S.lo < c[best].S.lo ||
+            (c[i].S.lo == c[best].S.lo && c[i].th.x < c[best].th.x))
             best = i;
     }
     if (mirror) {
@@ -448,7 +413,7 @@ static void conclude(const sw_reserve_t *R, const scan_t *c, int n, int mirror,
     out->pulse = c[best].P->T;
     /* overturned at the floor, the first amplitude tried: nothing below it
      * was searched */
-    out->at_floor = c[best].k == 0 && !c[best].bounded;
+    out->at_floor = c[best].th.at_min && !c[best].bounded;
 }
 
 static int compute(sw_reserve_t *R, const sw_state_t *s, sw_reserve_result_t *out)
