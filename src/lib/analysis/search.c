@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later */
 /* search.c - the lowest value that overturns a package (search.h): the
- * blocking scan-then-bisect over a trial function, with the safe islands
- * above it, and the resumable search in rounds (search_int.h) whose
- * trials the caller runs where it likes. */
+ * resumable scan-then-bisect search in rounds (search_int.h) whose trials
+ * the caller runs where it likes, and the blocking search over a trial
+ * function that drives it, with the safe islands above it. */
 #include <math.h>
 #include <string.h>
 
@@ -30,14 +30,12 @@ static int trial(const search_t *S, double x, sw_run_result_t *r)
     return S->f(S->user, x, r);
 }
 
-/* Bisect between xs (safe) and xo (overturning, run result *ro), in
- * either order, to the relative tolerance; *safe and *over get the final
- * ends and *r_over (may be NULL) the run at *over.  Geometric midpoints:
- * the scan is geometric too. */
-static int bisect(const search_t *S, double xs, double xo, const sw_run_result_t *ro, double *safe,
-                  double *over, sw_run_result_t *r_over)
+/* Bisect between xs (safe) and xo (overturning), in either order, to the
+ * relative tolerance; *safe gets the final safe end.  Geometric
+ * midpoints, as the search's. */
+static int bisect(const search_t *S, double xs, double xo, double *safe)
 {
-    sw_run_result_t r, r_o = *ro;
+    sw_run_result_t r;
     for (;;) {
         const double lo = fmin(xs, xo), hi = fmax(xs, xo);
         if (hi / lo - 1.0 <= S->tol)
@@ -48,17 +46,12 @@ static int bisect(const search_t *S, double xs, double xo, const sw_run_result_t
         const int rc = trial(S, m, &r);
         if (rc < 0)
             return rc;
-        if (r.overturned) {
+        if (r.overturned)
             xo = m;
-            r_o = r;
-        } else {
+        else
             xs = m;
-        }
     }
     *safe = xs;
-    *over = xo;
-    if (r_over)
-        *r_over = r_o;
     return SW_OK;
 }
 
@@ -66,65 +59,45 @@ int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw
 {
     if (!f || !o || !out)
         return SW_EINVAL;
-    memset(out, 0, sizeof *out);
-    const double step = o->step > 0.0 ? o->step : DEFAULT_STEP;
-    const double tol = o->tol > 0.0 ? o->tol : DEFAULT_TOL;
-    if (!(o->x_min > 0.0) || !(o->x_max > o->x_min) || !isfinite(o->x_max) || !isfinite(step) ||
-        !isfinite(tol))
-        return SW_EINVAL;
-    search_t S = {f, user, tol, &out->trials};
-    sw_run_result_t r;
-    double x = o->x_min, last = 0.0;
-    int k = 0, rc;
-
-    /* scan for the first overturn */
-    for (;; k++) {
-        x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
-        if ((rc = trial(&S, x, &r)) < 0)
+    /* the lowest overturn: the resumable search, one point a round on the
+     * grid x_min (1 + step)^k */
+    const sw_search_how_t how = {.per_round = 1, .fixed_step = 1};
+    sw_search_t T;
+    int rc = sw_search_init_how(&T, o, &how, out);
+    if (rc != SW_OK)
+        return rc;
+    const double tol = T.o.tol; /* resolved (the search widens its own at its end) */
+    while (sw_search_points(&T)) {
+        memset(&T.r[0], 0, sizeof T.r[0]);
+        if ((rc = f(user, T.x[0], &T.r[0])) < 0) {
+            out->trials++; /* a run made, as any */
             return rc;
-        if (r.overturned)
-            break;
-        last = x;
-        if (x >= o->x_max)
-            return SW_OK; /* nothing overturns up to x_max */
+        }
+        sw_search_feed(&T);
     }
-    out->found = 1;
-    if (k == 0) {
-        out->at_min = 1;
-        out->x = x;
-        out->x_safe = 0.0;
-        out->at_x = r;
-    } else {
-        rc = bisect(&S, last, x, &r, &out->x_safe, &out->x, &out->at_x);
-        if (rc < 0)
-            return rc;
-    }
-    if (!o->islands)
+    if (!out->found || !o->islands)
         return SW_OK;
 
-    /* map the safe islands above: walk the same scan grid to x_max */
+    /* map the safe islands above: walk the same scan grid to x_max from
+     * its first overturning point */
+    search_t S = {f, user, tol, &out->trials};
+    sw_run_result_t r;
+    long k = T.k;
+    double x, prev = fmin(o->x_min * pow(1.0 + T.o.step, (double)k), o->x_max);
     int over = 1;
-    double prev = x;
-    sw_run_result_t r_prev = r;
     sw_island_t cur = {0.0, 0.0, 0};
     while (prev < o->x_max) {
         k++;
-        x = fmin(o->x_min * pow(1.0 + step, k), o->x_max);
+        x = fmin(o->x_min * pow(1.0 + T.o.step, (double)k), o->x_max);
         if ((rc = trial(&S, x, &r)) < 0)
             return rc;
         if (over && !r.overturned) {
-            double safe, ov;
-            rc = bisect(&S, x, prev, &r_prev, &safe, &ov, NULL);
-            if (rc < 0)
+            if ((rc = bisect(&S, x, prev, &cur.lo)) < 0)
                 return rc;
-            cur.lo = safe;
             over = 0;
         } else if (!over && r.overturned) {
-            double safe, ov;
-            rc = bisect(&S, prev, x, &r, &safe, &ov, NULL);
-            if (rc < 0)
+            if ((rc = bisect(&S, prev, x, &cur.hi)) < 0)
                 return rc;
-            cur.hi = safe;
             cur.open = 0;
             if (out->n_islands < SW_MAX_ISLANDS)
                 out->islands[out->n_islands++] = cur;
@@ -133,7 +106,6 @@ int sw_threshold_search(sw_trial_fn f, void *user, const sw_search_opts_t *o, sw
             over = 1;
         }
         prev = x;
-        r_prev = r;
     }
     if (!over) {
         cur.hi = o->x_max;
