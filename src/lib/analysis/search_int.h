@@ -4,8 +4,9 @@
  * caller runs them (on any threads, in any order) and sw_search_feed()
  * takes their results.  A round's points do not depend on who ran them,
  * so neither does any result.  Internal: the safety factors (safety.c)
- * and the reserve (reserve.c) run their searches this way;
- * sw_threshold_search() (search.h) is the blocking search.
+ * and the reserve (reserve.c) run their searches this way, and
+ * sw_threshold_search() (search.h, the boundary curves) drives one to
+ * its threshold before it maps the safe islands above.
  *
  * One algorithm: a scan upward from x_min in relative steps until a point
  * overturns, then the bracket from the last safe point to it cut into
@@ -16,7 +17,8 @@
  * above the scan's points (the reserve's other scans at the bracket
  * another one found).  The zero options are the safety factors' search:
  * SW_SEARCH_SECTIONS points a round, the step growing where the package
- * stays far from tipping. */
+ * stays far from tipping; the reserve and sw_threshold_search() take one
+ * point a round on a fixed grid, a bisection. */
 #ifndef SWAYWATCH_SEARCH_INT_H
 #define SWAYWATCH_SEARCH_INT_H
 
