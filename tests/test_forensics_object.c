@@ -293,6 +293,87 @@ static void test_reserves_alongside(void **state)
     }
 }
 
+/* A case's verdict in both planes, against the same closed form: a bare
+ * block of height H = 2 m and depth d under a constant lateral
+ * acceleration of 0.25 g overturns across the truck when d / H < 0.25,
+ * and nothing happens along it.  The scene (d = 0.3 m) and the size that
+ * keeps its depth overturn across, which decides their verdict; the size
+ * of depth 0.8 m stays upright and would have saved it.  Its smallest
+ * reserve is the lateral plane's: both planes stand at rest, and a block
+ * standing on a narrower base (0.8 m across, 1 m along) tips at a smaller
+ * pulse.  Before the search across, no case has a verdict. */
+static void test_case_verdict(void **state)
+{
+    (void)state;
+    sw_scene_t sc = tu_bare(2.0, 1.0);
+    sc.depth = 0.3;
+    const double sizes[] = {2.0, 1.0, 2.0, 0.5}, depths[] = {0.8, 0.0};
+    sw_forensics_opts_t o = opts(0);
+    o.whatif.scenes_only = 0;
+    o.whatif.sizes = sizes;
+    o.whatif.depths = depths;
+    o.whatif.nsizes = 2;
+    o.run.engine.scheme = "rk4";
+    o.run.engine.dt = 1e-3;
+    o.run.settle = 10.0;
+    o.reserve_rate = 10.0;
+    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
+    assert_non_null(F);
+    for (int i = 0; i <= 500; i++) /* 5 s at 100 Hz */
+        assert_int_equal(sw_forensics_push_lat(F, 0.01 * i, 0.0, -0.25 * sc.g, 0.0, 0), SW_OK);
+    size_t n, nl;
+    sw_whatif_case_t *cs = sw_forensics_cases(F, &n);
+    const sw_whatif_case_t *lat = sw_forensics_lateral_cases(F, &nl);
+    assert_true(n >= 3);
+    const size_t at[] = {0, n - 2, n - 1}; /* as given first, the sizes last */
+    assert_string_equal(cs[n - 2].name, "size 2x1x0.8 m");
+    sw_forensics_verdict_t v;
+    for (size_t j = 0; j < 3; j++) { /* searched along, not yet across: no verdict */
+        const size_t i = at[j];
+        assert_int_equal(sw_forensics_case_verdict(F, i, &v), SW_OK);
+        assert_int_equal(v.planes, 2);
+        assert_false(v.judged || v.upright || v.saves);
+        assert_int_equal(v.unjudged, SW_PLANE_LAT);
+        assert_string_equal(v.note, lat[i].note);
+        assert_null(v.run);
+    }
+    assert_int_equal(sw_forensics_safety(F), SW_OK);
+    assert_int_equal(sw_forensics_reserve(F, NULL), SW_OK);
+    const int upright[] = {0, 1, 0}; /* as given, 2x1x0.8, 2x0.5 (d = 0.3) */
+    for (size_t j = 0; j < 3; j++) {
+        const size_t i = at[j];
+        assert_int_equal(sw_forensics_case_verdict(F, i, &v), SW_OK);
+        assert_true(v.judged);
+        assert_int_equal(v.factor.planes, 2);
+        assert_int_equal(v.upright, upright[j]);
+        assert_int_equal(v.saves, upright[j] && j > 0);
+        assert_ptr_equal(v.run, upright[j] ? &cs[i] : &lat[i]);
+        assert_int_equal(v.run->sf.at_one.overturned, !upright[j]);
+    }
+    long trials = 0; /* every search's, as each case's factor counts its planes' */
+    for (size_t i = 0; i < n; i++) {
+        assert_int_equal(sw_forensics_case_verdict(F, i, &v), SW_OK);
+        trials += cs[i].available ? v.factor.sf.trials : 0;
+        trials += v.factor.planes < 2 && lat[i].available ? lat[i].sf.trials : 0;
+    }
+    assert_true(trials > 0);
+    assert_int_equal(sw_forensics_trials(F), trials);
+    /* the reserve: the narrower base's; a plane without one leaves none */
+    const size_t k = n - 2;
+    assert_true(cs[k].has_reserve && lat[k].has_reserve);
+    assert_true(lat[k].rl.min_g < cs[k].rl.min_g);
+    sw_forensics_case_verdict(F, k, &v);
+    assert_ptr_equal(v.reserve, &lat[k]);
+    cs[k].has_reserve = 0; /* none, without a reason: the other plane's */
+    sw_forensics_case_verdict(F, k, &v);
+    assert_ptr_equal(v.reserve, &lat[k]);
+    snprintf(cs[k].reserve_note, sizeof cs[k].reserve_note, "too stiff");
+    sw_forensics_case_verdict(F, k, &v);
+    assert_ptr_equal(v.reserve, &cs[k]);
+    assert_int_equal(sw_forensics_case_verdict(F, n, &v), SW_EINVAL);
+    sw_forensics_destroy(F);
+}
+
 /* A support of the catalogue applies across the truck too (the scene's
  * lateral bearings dropped); the scene as given keeps its own. */
 static void test_cases_support_across(void **state)
@@ -431,6 +512,7 @@ int main(void)
         cmocka_unit_test(test_cases_across),
         cmocka_unit_test(test_reserves_alongside),
         cmocka_unit_test(test_cases_support_across),
+        cmocka_unit_test(test_case_verdict),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

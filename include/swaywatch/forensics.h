@@ -123,6 +123,40 @@ SW_API int sw_forensics_factor(const sw_forensics_t *F, size_t k, sw_forensics_f
  * planes, its lateral plane over the case's depth with the case's
  * support.  SW_OK, or SW_EINVAL for no such case. */
 SW_API int sw_forensics_case_factor(const sw_forensics_t *F, size_t i, sw_forensics_factor_t *out);
+/* What-if case i's verdict on the held log, one for every form that says
+ * it (after sw_forensics_safety(); its reserve after
+ * sw_forensics_reserve()).  A case is judged when its search ran in each
+ * plane it has: a package with a depth on a log with a lateral
+ * acceleration has two, and a case whose plane across was not searched
+ * has no verdict (it may have tipped sideways), not the verdict along.
+ * Judged in two planes, its run at scale 1 is the worse plane's
+ * (factor.worse) and its smallest reserve the smaller of the two planes';
+ * where a plane has none, the case has none known: the plane along the
+ * truck when it says why it has none (reserve_note), else the one
+ * across. */
+typedef struct {
+    int planes;        /* the planes it has: 2 with a depth and a lateral acceleration held */
+    int judged;        /* searched in each plane it has; 0: note says why not */
+    sw_plane unjudged; /* not judged: the plane that was not (SW_PLANE_LAT: the
+                          plane across, the one along being searched or not) */
+    const char *note;  /* not judged: why (that plane's case's note); else "" */
+    int upright;       /* judged, and upright at scale 1 in each plane */
+    int saves;         /* upright, and not the scene as given: a support or a size that
+                          would have saved its package where the scene did not */
+    sw_forensics_factor_t factor;    /* sw_forensics_case_factor()'s: one plane or both */
+    const sw_whatif_case_t *run;     /* judged: the case (or its lateral plane) whose
+                                        sf.at_one is its run at scale 1; else NULL */
+    const sw_whatif_case_t *reserve; /* judged: the one whose smallest reserve is the
+                                        case's (has_reserve 0: none known, reserve_note
+                                        says why); else NULL */
+} sw_forensics_verdict_t;
+/* SW_OK, or SW_EINVAL for no such case. */
+SW_API int sw_forensics_case_verdict(const sw_forensics_t *F, size_t i,
+                                     sw_forensics_verdict_t *out);
+/* The runs every search took (the trials of the safety factors of each
+ * available case and of each lateral plane searched). */
+SW_API long sw_forensics_trials(const sw_forensics_t *F);
+
 /* Every case's lateral plane, parallel to sw_forensics_cases() (*n of
  * them; available says whether it was searched, note why not), or NULL
  * (*n 0) when the log has no lateral acceleration.  Their smallest

@@ -408,6 +408,56 @@ int sw_forensics_case_factor(const sw_forensics_t *F, size_t i, sw_forensics_fac
     return SW_OK;
 }
 
+/* Whose smallest reserve is the case's, of case L and its lateral plane
+ * T (NULL: one plane): the smaller; a plane without one leaves the case
+ * none known, L's when it says why, else T's. */
+static const sw_whatif_case_t *reserve_plane(const sw_whatif_case_t *L, const sw_whatif_case_t *T)
+{
+    if (!T)
+        return L;
+    if (!L->has_reserve)
+        return L->reserve_note[0] ? L : T;
+    return T->has_reserve && !(T->rl.min_g < L->rl.min_g) ? L : T;
+}
+
+int sw_forensics_case_verdict(const sw_forensics_t *F, size_t i, sw_forensics_verdict_t *out)
+{
+    if (!F || !out || i >= F->ncases)
+        return SW_EINVAL;
+    const sw_whatif_case_t *L = &F->cases[i], *T = &F->lat[i];
+    memset(out, 0, sizeof *out);
+    sw_forensics_case_factor(F, i, &out->factor);
+    out->planes = F->has_y && T->built ? 2 : 1;
+    out->unjudged = SW_PLANE_LONG;
+    out->note = "";
+    if (!L->available) {
+        out->note = L->note;
+        return SW_OK;
+    }
+    if (out->planes == 2 && !T->available) { /* a depth, but no verdict across */
+        out->unjudged = SW_PLANE_LAT;
+        out->note = T->note;
+        return SW_OK;
+    }
+    const int two = out->factor.planes == 2;
+    out->judged = 1;
+    out->run = two && out->factor.worse == SW_PLANE_LAT ? T : L;
+    out->reserve = reserve_plane(L, two ? T : NULL);
+    out->upright = !L->sf.overturned && !(two && T->sf.overturned);
+    out->saves = out->upright && !L->is_scene;
+    return SW_OK;
+}
+
+long sw_forensics_trials(const sw_forensics_t *F)
+{
+    long n = 0;
+    for (size_t i = 0; i < F->ncases; i++) {
+        n += F->cases[i].available ? F->cases[i].sf.trials : 0;
+        n += F->has_y && F->lat[i].available ? F->lat[i].sf.trials : 0;
+    }
+    return n;
+}
+
 const sw_whatif_case_t *sw_forensics_lateral_case(const sw_forensics_t *F, size_t k)
 {
     for (size_t i = 0; k < F->npkg && F->has_y && i < F->ncases; i++)
