@@ -250,12 +250,7 @@ static void method(FILE *f, const sw_cli_forensics_t *F)
 {
     fprintf(f, "\nHow this was found\n\n");
     sw_cli_print_summary(f, F->R.e, &F->R.run);
-    long runs = 0;
-    for (size_t i = 0; i < F->ncases; i++)
-        runs += F->cases[i].available ? F->cases[i].sf.trials : 0;
-    size_t nlat = 0; /* and the cases' lateral planes */
-    const sw_whatif_case_t *lat = F->fx ? sw_forensics_lateral_cases(F->fx, &nlat) : NULL;
-    for (size_t i = 0; lat && i < nlat; i++) runs += lat[i].available ? lat[i].sf.trials : 0;
+    const long runs = sw_forensics_trials(F->fx);
     const sw_search_opts_t *so = &F->fo.so;
     fprintf(
         f,
@@ -352,18 +347,9 @@ void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_
         const int have = sw_cli_forensics_utc(F, when[i].t, utc, sizeof utc);
         sw_cli_rec_text(u, when[i].key, have ? utc : NULL);
     }
-    sw_forensics_factor_t fx;
-    if (sw_cli_forensics_factor(F, k, &fx) && fx.planes == 2) {
-        /* both axes scaled together: the package's factor, the plane that
-         * gives out first, and each plane's own search */
-        json_t *j = sw_cli_json_safety(o, "safety_factor", C, &fx.sf);
-        sw_cli_rec_text(j, "plane", sw_plane_name(fx.first));
-        json_t *by = sw_cli_rec_obj(j, "planes");
-        sw_cli_json_safety(by, "longitudinal", C, &C->sf);
-        sw_cli_json_safety(by, "lateral", fx.lateral, &fx.lateral->sf);
-    } else {
-        sw_cli_whatif_json_safety(o, C);
-    }
+    sw_forensics_factor_t fx = {.planes = 1, .sf = C->sf}; /* the scene case's, if none */
+    sw_cli_forensics_factor(F, k, &fx);
+    sw_cli_json_factor(o, C, &fx); /* with two planes, both axes scaled together */
     char why[256];
     if (s.overturned && !sw_cli_forensics_savers(F, k, why, sizeof why)) {
         sw_cli_rec_null(o, "saved_by"); /* not known: why */
@@ -371,9 +357,9 @@ void sw_cli_forensics_json_package(json_t *o, const sw_cli_forensics_t *F, size_
     }
     json_t *saved = json_object_get(o, "saved_by") ? NULL : sw_cli_rec_arr(o, "saved_by");
     for (size_t i = 0; saved && i < F->ncases && s.overturned; i++) {
-        const sw_whatif_case_t *W = &F->cases[i];
-        if (W->pkg == k && !W->is_scene && sw_cli_whatif_upright(F->fx, F->cases, i))
-            sw_cli_rec_text(saved, NULL, W->name);
+        sw_forensics_verdict_t v;
+        if (F->cases[i].pkg == k && sw_forensics_case_verdict(F->fx, i, &v) == SW_OK && v.saves)
+            sw_cli_rec_text(saved, NULL, F->cases[i].name);
     }
     json_t *cases = sw_cli_rec_arr(o, "what_if");
     for (size_t i = 0; i < F->ncases; i++)

@@ -534,42 +534,29 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
                 continue;
             fprintf(f, "<tr><td>");
             html(f, C->name);
-            if (!C->available) {
-                fprintf(f, "</td><td colspan=\"6\">not computed: ");
-                html(f, C->note);
+            sw_forensics_verdict_t v;
+            sw_forensics_case_verdict(F->fx, i, &v);
+            if (!v.judged) {
+                fprintf(f, "</td><td colspan=\"6\">not computed%s: ",
+                        v.unjudged == SW_PLANE_LAT ? " across the truck" : "");
+                html(f, v.note);
                 fprintf(f, "</td></tr>\n");
                 continue;
             }
-            size_t nl;
-            const sw_whatif_case_t *lat = F->fx ? sw_forensics_lateral_cases(F->fx, &nl) : NULL;
-            if (lat && i < nl && lat[i].built && !lat[i].available) {
-                fprintf(f, "</td><td colspan=\"6\">not computed across the truck: ");
-                html(f, lat[i].note);
-                fprintf(f, "</td></tr>\n");
-                continue;
-            }
-            sw_forensics_factor_t x;
-            const int both =
-                F->fx && sw_forensics_case_factor(F->fx, i, &x) == SW_OK && x.planes == 2;
-            const sw_safety_t *sf = both ? &x.sf : &C->sf;
-            const sw_whatif_case_t *W = both && x.worse == SW_PLANE_LAT ? x.lateral : C;
-            const sw_run_result_t *r = &W->sf.at_one;
+            const sw_safety_t *sf = &v.factor.sf;
+            const sw_run_result_t *r = &v.run->sf.at_one;
             char b[64];
             sw_cli_safety_bracket(b, sizeof b, sf);
             fprintf(f, "</td><td class=\"%s\">%s%s</td><td class=\"n\">",
                     r->overturned ? "over" : "up", r->overturned ? "overturned" : "upright",
-                    both ? (W == C ? " along" : " across") : "");
+                    v.factor.planes < 2 ? ""
+                    : v.run == C        ? " along"
+                                        : " across");
             num(f, "%.3f", r->max_theta_ratio);
             fprintf(f, "</td><td class=\"n\">");
             num(f, "%.3f", r->min_margin);
             char rsv[192];
-            const sw_whatif_case_t *T = both ? x.lateral : NULL;
-            sw_cli_whatif_reserve_text(
-                rsv, sizeof rsv,
-                T && ((T->has_reserve && (!C->has_reserve || T->rl.min_g < C->rl.min_g)) ||
-                      (!T->has_reserve && C->has_reserve))
-                    ? T
-                    : C);
+            sw_cli_whatif_reserve_text(rsv, sizeof rsv, v.reserve);
             fprintf(f, "</td><td class=\"n\">");
             html(f, rsv);
             fprintf(f, "</td><td class=\"n\">");
@@ -592,12 +579,7 @@ static void whatif(FILE *f, const sw_cli_forensics_t *F)
 
 static void limits(FILE *f, const sw_cli_forensics_t *F)
 {
-    long runs = 0;
-    for (size_t i = 0; i < F->ncases; i++)
-        runs += F->cases[i].available ? F->cases[i].sf.trials : 0;
-    size_t nlat = 0; /* and the cases' lateral planes */
-    const sw_whatif_case_t *lat = F->fx ? sw_forensics_lateral_cases(F->fx, &nlat) : NULL;
-    for (size_t i = 0; lat && i < nlat; i++) runs += lat[i].available ? lat[i].sf.trials : 0;
+    const long runs = sw_forensics_trials(F->fx);
     fprintf(f,
             "<h2>How this was found</h2>\n"
             "<p>The recording was read as <code>swaywatch replay</code> reads it (the same "

@@ -231,39 +231,16 @@ void sw_cli_safety_sentence(char *buf, size_t len, const sw_safety_t *s)
                  s->below.x);
 }
 
-/* Case i in both planes when fx judges it so: 1 with *x filled. */
-static int two_planes(const sw_forensics_t *fx, size_t i, sw_forensics_factor_t *x)
-{
-    return fx && sw_forensics_case_factor(fx, i, x) == SW_OK && x->planes == 2;
-}
-
-/* Case i's lateral plane, built but not searched: its verdict is not known. */
-static int lateral_unknown(const sw_forensics_t *fx, size_t i)
-{
-    size_t n;
-    const sw_whatif_case_t *lat = fx ? sw_forensics_lateral_cases(fx, &n) : NULL;
-    return lat && i < n && lat[i].built && !lat[i].available;
-}
-
-int sw_cli_whatif_upright(const sw_forensics_t *fx, const sw_whatif_case_t *cs, size_t i)
-{
-    sw_forensics_factor_t x;
-    const sw_whatif_case_t *C = &cs[i];
-    if (!C->available || C->sf.overturned || lateral_unknown(fx, i))
-        return 0;
-    return !two_planes(fx, i, &x) || !x.lateral->sf.overturned;
-}
-
 void sw_cli_whatif_savers(char *buf, size_t len, const sw_forensics_t *fx,
                           const sw_whatif_case_t *cs, size_t n, size_t pkg)
 {
     size_t k = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < n && k < len; i++) {
-        const sw_whatif_case_t *C = &cs[i];
-        if (C->pkg != pkg || C->is_scene || !sw_cli_whatif_upright(fx, cs, i))
+        sw_forensics_verdict_t v;
+        if (cs[i].pkg != pkg || sw_forensics_case_verdict(fx, i, &v) != SW_OK || !v.saves)
             continue;
-        int w = snprintf(buf + k, len - k, "%s%s", k ? "; " : "", C->name);
+        int w = snprintf(buf + k, len - k, "%s%s", k ? "; " : "", cs[i].name);
         if (w < 0)
             break;
         k += (size_t)w;
@@ -272,25 +249,13 @@ void sw_cli_whatif_savers(char *buf, size_t len, const sw_forensics_t *fx,
         snprintf(buf + len - 4, 4, "...");
 }
 
-/* The smallest reserve of case C and its lateral plane T (NULL: one
- * plane) as text: the smaller of the two, or the missing one's reason. */
-static void reserve_text(char *buf, size_t len, const sw_whatif_case_t *C,
-                         const sw_whatif_case_t *T)
-{
-    if (!T || (C->has_reserve && T->has_reserve && !(T->rl.min_g < C->rl.min_g)) ||
-        (!C->has_reserve && C->reserve_note[0]))
-        sw_cli_whatif_reserve_text(buf, len, C);
-    else
-        sw_cli_whatif_reserve_text(buf, len, T);
-}
-
 void sw_cli_whatif_print_table(FILE *f, const sw_forensics_t *fx, const sw_whatif_case_t *cs,
                                size_t n, size_t pkg)
 {
-    int two = 0; /* a case of the package judged in both planes: a column names the plane */
+    int two = 0; /* a case of the package in both planes: a column names the plane */
     for (size_t i = 0; i < n; i++) {
-        sw_forensics_factor_t x;
-        two |= cs[i].pkg == pkg && (two_planes(fx, i, &x) || lateral_unknown(fx, i));
+        sw_forensics_verdict_t v;
+        two |= cs[i].pkg == pkg && sw_forensics_case_verdict(fx, i, &v) == SW_OK && v.planes == 2;
     }
     fprintf(f, "  %-22s %-10s %s%7s %8s %8s  %-12s %-20s %s\n", "case", "outcome",
             two ? "plane   " : "", "peak/a", "peak", "margin", "min reserve", "safety factor",
@@ -302,19 +267,15 @@ void sw_cli_whatif_print_table(FILE *f, const sw_forensics_t *fx, const sw_whati
         if (C->pkg != pkg)
             continue;
         fprintf(f, "  %-22s ", C->name);
-        if (!C->available) {
-            fprintf(f, "n/a: %s\n", C->note);
+        sw_forensics_verdict_t v;
+        sw_forensics_case_verdict(fx, i, &v);
+        if (!v.judged) {
+            fprintf(f, "n/a: %s%s\n", v.unjudged == SW_PLANE_LAT ? "across the truck: " : "",
+                    v.note);
             continue;
         }
-        if (lateral_unknown(fx, i)) {
-            size_t nl;
-            fprintf(f, "n/a: across the truck: %s\n", sw_forensics_lateral_cases(fx, &nl)[i].note);
-            continue;
-        }
-        sw_forensics_factor_t x;
-        const int both = two_planes(fx, i, &x);
-        const sw_safety_t *sf = both ? &x.sf : &C->sf;
-        const sw_whatif_case_t *W = both && x.worse == SW_PLANE_LAT ? x.lateral : C;
+        const sw_safety_t *sf = &v.factor.sf;
+        const sw_whatif_case_t *W = v.run, *T = v.factor.lateral;
         const sw_run_result_t *r = &W->sf.at_one;
         char fac[64];
         sw_cli_safety_bracket(fac, sizeof fac, sf);
@@ -323,12 +284,12 @@ void sw_cli_whatif_print_table(FILE *f, const sw_forensics_t *fx, const sw_whati
             luck = 1;
         }
         char rsv[192], desc[224];
-        reserve_text(rsv, sizeof rsv, C, both ? x.lateral : NULL);
+        sw_cli_whatif_reserve_text(rsv, sizeof rsv, v.reserve);
         bracket |= C->has_reserve && !C->rl.exact;
-        bracket |= both && x.lateral->has_reserve && !x.lateral->rl.exact;
+        bracket |= T && T->has_reserve && !T->rl.exact;
         fprintf(f, "%-10s ", r->overturned ? "OVERTURNED" : "upright");
         if (two)
-            fprintf(f, "%-7s ", !both ? "along" : W == C ? "along" : "across");
+            fprintf(f, "%-7s ", W == C ? "along" : "across");
         fprintf(f, "%7.3f %6.1f deg %8.3f  %-12s %-20s %s\n", r->max_theta_ratio,
                 fmin(r->max_theta_ratio * atan2(W->scene.width, W->scene.height), M_PI / 2) *
                     180.0 / M_PI,
@@ -346,11 +307,6 @@ void sw_cli_whatif_print_table(FILE *f, const sw_forensics_t *fx, const sw_whati
                   "together)"
                 : "",
             luck ? "\n  *: survived, but a weaker shock of the same shape overturns it" : "");
-}
-
-void sw_cli_whatif_json_safety(json_t *o, const sw_whatif_case_t *C)
-{
-    sw_cli_json_safety(o, "safety_factor", C, &C->sf);
 }
 
 json_t *sw_cli_json_safety(json_t *o, const char *key, const sw_whatif_case_t *C,
@@ -384,6 +340,20 @@ json_t *sw_cli_json_safety(json_t *o, const char *key, const sw_whatif_case_t *C
     sw_cli_rec_num(j, "lift_scale", s->lift_scale);
     sw_cli_rec_num(j, "max_scale", s->max_scale);
     sw_cli_rec_int(j, "trials", s->trials);
+    return j;
+}
+
+json_t *sw_cli_json_factor(json_t *o, const sw_whatif_case_t *C, const sw_forensics_factor_t *x)
+{
+    json_t *j = sw_cli_json_safety(o, "safety_factor", C, &x->sf);
+    if (x->planes < 2)
+        return j;
+    /* both axes scaled together: the plane that gives out first, and each
+     * plane's own search */
+    sw_cli_rec_text(j, "plane", sw_plane_name(x->first));
+    json_t *by = sw_cli_rec_obj(j, "planes");
+    sw_cli_json_safety(by, "longitudinal", C, &C->sf);
+    sw_cli_json_safety(by, "lateral", x->lateral, &x->lateral->sf);
     return j;
 }
 
@@ -435,30 +405,19 @@ void sw_cli_whatif_json_case(json_t *o, const sw_forensics_t *fx, const sw_whati
         sw_cli_rec_text(o, "note", C->note);
         return;
     }
-    sw_forensics_factor_t x;
-    if (!two_planes(fx, i, &x)) {
-        json_run(o, C, &C->sf.at_one);
-        sw_cli_whatif_json_safety(o, C);
-        if (lateral_unknown(fx, i)) { /* a depth, but no verdict across: not upright */
-            size_t nl;
-            const sw_whatif_case_t *T = &sw_forensics_lateral_cases(fx, &nl)[i];
-            json_t *l = sw_cli_rec_obj(o, "lateral");
-            sw_cli_rec_bool(l, "available", 0);
-            sw_cli_rec_text(l, "note", T->note);
-        }
-        return;
+    sw_forensics_verdict_t v;
+    sw_forensics_case_verdict(fx, i, &v);
+    const sw_whatif_case_t *T = v.factor.lateral;
+    if (v.factor.planes == 2) /* the worse plane's verdict, named */
+        sw_cli_rec_text(o, "plane", sw_plane_name(v.factor.worse));
+    /* the smaller reserve; the factor with both axes scaled */
+    json_run(o, v.judged ? v.reserve : C, v.judged ? &v.run->sf.at_one : &C->sf.at_one);
+    sw_cli_json_factor(o, C, &v.factor);
+    if (T) {
+        json_run(sw_cli_rec_obj(o, "lateral"), T, &T->sf.at_one);
+    } else if (v.unjudged == SW_PLANE_LAT) { /* a depth, but no verdict across: not upright */
+        json_t *l = sw_cli_rec_obj(o, "lateral");
+        sw_cli_rec_bool(l, "available", 0);
+        sw_cli_rec_text(l, "note", v.note);
     }
-    /* both planes: the worse plane's verdict, named; the smaller reserve;
-     * the factor with both axes scaled; each plane's own below */
-    const sw_whatif_case_t *T = x.lateral, *W = x.worse == SW_PLANE_LAT ? T : C;
-    const int lat_reserve = T->has_reserve && (!C->has_reserve || T->rl.min_g < C->rl.min_g);
-    sw_cli_rec_text(o, "plane", sw_plane_name(x.worse));
-    json_run(o, lat_reserve ? T : C, &W->sf.at_one);
-    json_t *j = sw_cli_json_safety(o, "safety_factor", C, &x.sf);
-    sw_cli_rec_text(j, "plane", sw_plane_name(x.first));
-    json_t *by = sw_cli_rec_obj(j, "planes");
-    sw_cli_json_safety(by, "longitudinal", C, &C->sf);
-    sw_cli_json_safety(by, "lateral", T, &T->sf);
-    json_t *l = sw_cli_rec_obj(o, "lateral");
-    json_run(l, T, &T->sf.at_one);
 }

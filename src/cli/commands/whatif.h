@@ -51,11 +51,11 @@ void sw_cli_safety_bracket(char *buf, size_t len, const sw_safety_t *s);
 /* What the safety factor means for this package, in one sentence. */
 void sw_cli_safety_sentence(char *buf, size_t len, const sw_safety_t *s);
 
-/* The cases cs are fx's (sw_forensics_cases), or fx is NULL: one plane.
- * With a lateral acceleration held, a case of a package with a depth is
- * judged in both planes (sw_forensics_case_factor): its outcome, peak,
- * margin the worse plane's, named; its reserve the smaller; its safety
- * factor the package's with both axes scaled. */
+/* The cases cs are fx's (sw_forensics_cases), each said as the library
+ * judges it (sw_forensics_case_verdict): with a lateral acceleration
+ * held, a case of a package with a depth is judged in both planes, its
+ * outcome, peak and margin the worse plane's, named; its reserve the
+ * smaller; its safety factor the package's with both axes scaled. */
 
 /* The what-if table of package pkg's cases (a row each), on f. */
 void sw_cli_whatif_print_table(FILE *f, const sw_forensics_t *fx, const sw_whatif_case_t *cs,
@@ -65,16 +65,14 @@ void sw_cli_whatif_print_table(FILE *f, const sw_forensics_t *fx, const sw_whati
  * firm"), or "" if none. */
 void sw_cli_whatif_savers(char *buf, size_t len, const sw_forensics_t *fx,
                           const sw_whatif_case_t *cs, size_t n, size_t pkg);
-/* Whether case i stayed upright in every plane judged (a plane whose
- * search failed does not count as upright). */
-int sw_cli_whatif_upright(const sw_forensics_t *fx, const sw_whatif_case_t *cs, size_t i);
-/* As JSON (record.h): the case's member "safety_factor" of o; the case's
- * members into o. */
-void sw_cli_whatif_json_safety(json_t *o, const sw_whatif_case_t *C);
-/* A safety factor s of case C (its availability and note) as the member
- * key of o; the member made. */
+/* As JSON (record.h): a safety factor s of case C (its availability and
+ * note) as the member key of o; the member made. */
 json_t *sw_cli_json_safety(json_t *o, const char *key, const sw_whatif_case_t *C,
                            const sw_safety_t *s);
+/* Case C's safety factor x (one plane, or both with each plane's own) as
+ * the member "safety_factor" of o; the member made. */
+json_t *sw_cli_json_factor(json_t *o, const sw_whatif_case_t *C, const sw_forensics_factor_t *x);
+/* The case's members into o. */
 void sw_cli_whatif_json_case(json_t *o, const sw_forensics_t *fx, const sw_whatif_case_t *cs,
                              size_t i);
 
