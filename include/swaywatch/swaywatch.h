@@ -21,6 +21,7 @@
 #include "swaywatch/scene.h"
 #include "swaywatch/scheme.h"
 #include "swaywatch/search.h"
+#include "swaywatch/series.h"
 #include "swaywatch/status.h"
 #include "swaywatch/stream.h"
 #include "swaywatch/units.h"
