@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "plot.h"
+#include "swaywatch/series.h"
 
 /* buckets per package after a merge; at most twice as many (the gnuplot
  * fuzz target, whose figures hold a few samples, lowers it with -D: the
@@ -33,12 +34,6 @@ enum { P_ACCEL, P_TILT, P_TILT_LAT, P_MARGIN, P_RESERVE, NPANELS };
 #define MAX_GAPS 50 /* gaps shaded */
 #define MAX_MARKS 8 /* decisive moments marked */
 
-/* The samples of one bucket: per quantity, its minimum and maximum and
- * when they were reached (the first of equal values). */
-typedef struct {
-    double tmin[NQ], vmin[NQ], tmax[NQ], vmax[NQ];
-} bucket_t;
-
 /* One plane of one package: a package with a lateral plane has two
  * traces, the lateral one after every longitudinal one. */
 typedef struct {
@@ -47,10 +42,7 @@ typedef struct {
     int lat;            /* the lateral plane (across the truck, over the depth) */
     double alpha;       /* rad, of this plane */
     double g_tan_alpha; /* m/s^2, the uplift threshold on a rigid support */
-    bucket_t *b;        /* 2 NBUCKETS */
-    size_t nb;          /* full buckets */
-    bucket_t cur;       /* the bucket being filled */
-    long in_cur, width; /* samples in cur, samples per bucket */
+    sw_series_t *s;     /* the NQ quantities, as the extremes of NBUCKETS stretches */
 } trace_t;
 
 struct sw_cli_figure {
@@ -116,8 +108,7 @@ sw_cli_figure_t *sw_cli_figure_create(const sw_engine_t *e, const sw_scene_t *sc
             T->lat = plane;
             T->alpha = d ? d->alpha : NAN;
             T->g_tan_alpha = d ? scenes[i].g * tan(d->alpha) : NAN;
-            T->width = 1;
-            if (!(T->b = calloc(2 * NBUCKETS, sizeof *T->b)))
+            if (!(T->s = sw_series_create(NQ, NBUCKETS)))
                 goto oom;
         }
     }
@@ -132,7 +123,7 @@ void sw_cli_figure_destroy(sw_cli_figure_t *f)
 {
     if (!f)
         return;
-    for (size_t i = 0; f->tr && i < f->n; i++) free(f->tr[i].b);
+    for (size_t i = 0; f->tr && i < f->n; i++) sw_series_destroy(f->tr[i].s);
     free(f->tr);
     free(f->lat_of);
     free(f->ev);
@@ -140,49 +131,6 @@ void sw_cli_figure_destroy(sw_cli_figure_t *f)
 }
 
 /* ---- keeping ----------------------------------------------------------------- */
-
-/* a takes in b's extremes (b is later: a tie keeps a's time); a value
- * that is none yet (NaN: the reserve before its first evaluation) takes
- * b's. */
-static void merge(bucket_t *a, const bucket_t *b)
-{
-    for (int q = 0; q < NQ; q++) {
-        if (b->vmin[q] < a->vmin[q] || (isnan(a->vmin[q]) && !isnan(b->vmin[q]))) {
-            a->vmin[q] = b->vmin[q];
-            a->tmin[q] = b->tmin[q];
-        }
-        if (b->vmax[q] > a->vmax[q] || (isnan(a->vmax[q]) && !isnan(b->vmax[q]))) {
-            a->vmax[q] = b->vmax[q];
-            a->tmax[q] = b->tmax[q];
-        }
-    }
-}
-
-static void trace_add(trace_t *T, double t, const double v[NQ])
-{
-    bucket_t one;
-    for (int q = 0; q < NQ; q++) {
-        one.tmin[q] = one.tmax[q] = t;
-        one.vmin[q] = one.vmax[q] = v[q];
-    }
-    if (T->in_cur == 0)
-        T->cur = one;
-    else
-        merge(&T->cur, &one);
-    if (++T->in_cur < T->width)
-        return;
-    T->b[T->nb++] = T->cur;
-    T->in_cur = 0;
-    if (T->nb < 2 * NBUCKETS)
-        return;
-    /* full: pairs merge, and each bucket covers twice as many samples */
-    for (size_t i = 0; i < NBUCKETS; i++) {
-        T->b[i] = T->b[2 * i];
-        merge(&T->b[i], &T->b[2 * i + 1]);
-    }
-    T->nb = NBUCKETS;
-    T->width *= 2;
-}
 
 /* Outside the window of a zoom? */
 static int outside(const sw_cli_figure_t *f, double t)
@@ -224,7 +172,7 @@ void sw_cli_figure_state(sw_cli_figure_t *f, const sw_output_t *out)
     for (int q = 0; q < Q_RESERVE; q++)
         if (!isfinite(v[q]))
             return; /* the engine reports none; a gap in the line if it did */
-    trace_add(T, out->t, v);
+    sw_series_add(T->s, out->t, v);
 }
 
 void sw_cli_figure_risk(sw_cli_figure_t *f, const sw_risk_t *risk)
@@ -290,19 +238,11 @@ void sw_cli_figure_event(sw_cli_figure_t *f, const sw_event_t *ev)
 
 /* ---- drawing ----------------------------------------------------------------- */
 
-/* The buckets of T in time order, the one being filled last; *n of them. */
-static size_t buckets(const trace_t *T, const bucket_t **b, const bucket_t **last)
+static void emit_bucket(FILE *g, const sw_extreme_t *B)
 {
-    *b = T->b;
-    *last = T->in_cur > 0 ? &T->cur : NULL;
-    return T->nb;
-}
-
-static void emit_bucket(FILE *g, const bucket_t *B, int q)
-{
-    const int min_first = B->tmin[q] <= B->tmax[q];
-    const double t1 = min_first ? B->tmin[q] : B->tmax[q], v1 = min_first ? B->vmin[q] : B->vmax[q];
-    const double t2 = min_first ? B->tmax[q] : B->tmin[q], v2 = min_first ? B->vmax[q] : B->vmin[q];
+    const int min_first = B->tmin <= B->tmax;
+    const double t1 = min_first ? B->tmin : B->tmax, v1 = min_first ? B->vmin : B->vmax;
+    const double t2 = min_first ? B->tmax : B->tmin, v2 = min_first ? B->vmax : B->vmin;
     if (isnan(v1)) /* the reserve before its first evaluation */
         return;
     fprintf(g, "%.9g %.9g\n", t1, v1);
@@ -313,13 +253,14 @@ static void emit_bucket(FILE *g, const bucket_t *B, int q)
 /* Package k's quantity q as the datablock $s<k>_<q>. */
 static void series_block(FILE *g, const trace_t *T, size_t k, int q)
 {
-    const bucket_t *b, *last;
-    const size_t nb = buckets(T, &b, &last);
+    const size_t nb = sw_series_count(T->s);
     fprintf(g, "$s%zu_%d << EOD\n", k, q);
-    for (size_t i = 0; i < nb; i++) emit_bucket(g, &b[i], q);
-    if (last)
-        emit_bucket(g, last, q);
-    if (!nb && !last)
+    for (size_t i = 0; i < nb; i++) {
+        sw_extreme_t B;
+        sw_series_get(T->s, i, (size_t)q, &B);
+        emit_bucket(g, &B);
+    }
+    if (!nb)
         fputs("NaN NaN\n", g);
     fputs("EOD\n", g);
 }
@@ -331,21 +272,18 @@ static int extent(const sw_cli_figure_t *f, double *t0, double *t1, double *min_
     *t0 = INFINITY;
     *t1 = -INFINITY;
     *min_margin = INFINITY;
-    for (size_t k = 0; k < f->n; k++) {
-        const bucket_t *b, *last;
-        const size_t nb = buckets(&f->tr[k], &b, &last);
-        for (size_t i = 0; i <= nb; i++) {
-            const bucket_t *B = i < nb ? &b[i] : last;
-            if (!B)
-                continue;
+    for (size_t k = 0; k < f->n; k++)
+        for (size_t i = 0; i < sw_series_count(f->tr[k].s); i++) {
+            sw_extreme_t B;
             any = 1;
             for (int q = 0; q < Q_RESERVE; q++) {
-                *t0 = fmin(*t0, fmin(B->tmin[q], B->tmax[q]));
-                *t1 = fmax(*t1, fmax(B->tmin[q], B->tmax[q]));
+                sw_series_get(f->tr[k].s, i, (size_t)q, &B);
+                *t0 = fmin(*t0, fmin(B.tmin, B.tmax));
+                *t1 = fmax(*t1, fmax(B.tmin, B.tmax));
+                if (q == Q_MARGIN)
+                    *min_margin = fmin(*min_margin, B.vmin);
             }
-            *min_margin = fmin(*min_margin, B->vmin[Q_MARGIN]);
         }
-    }
     return any;
 }
 
