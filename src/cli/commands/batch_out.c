@@ -26,23 +26,24 @@
 struct sw_cli_records {
     FILE *f;
     long n;
+    int oom; /* a record could not be made: the log fails */
 };
 
-const char *sw_cli_record_status(const sw_summary_t *s, const sw_cli_run_t *run)
+void sw_cli_records_package(sw_cli_records_t *rec, const sw_summary_t *s, const sw_cli_run_t *run,
+                            json_t *o)
 {
-    return strcmp(sw_cli_verdict(s, run), "incomplete") ? "ok" : "incomplete";
-}
-
-int sw_cli_records_package(sw_cli_records_t *rec, const char *status, json_t *o)
-{
+    if (run->have_facts)
+        sw_cli_json_facts(o, "input", run);
     char *line = sw_cli_rec_line(o); /* one line: JSON escapes every line break */
-    if (!line)
-        return -1;
+    if (!line) {
+        rec->oom = 1;
+        return;
+    }
     /* a status is one word of letters: nothing else can end it */
-    fprintf(rec->f, "%s %s\n", status ? status : "ok", line);
+    fprintf(rec->f, "%s %s\n", strcmp(sw_cli_verdict(s, run), "incomplete") ? "ok" : "incomplete",
+            line);
     free(line);
     rec->n++;
-    return 0;
 }
 
 /* ---- outputs ---------------------------------------------------------------------- */
@@ -112,7 +113,8 @@ static void run_item(void *user, size_t i, FILE *out)
         sw_cli_error("%s: out of memory", it->log);
     else
         rc = B->job->run(B->sets[it->set].opts, it->log, &rec);
-    if (rec.f && fclose(rec.f) != 0 && (rc == SW_EXIT_OK || rc == SW_EXIT_OVERTURNED)) {
+    if (rec.f && (fclose(rec.f) != 0 || rec.oom) &&
+        (rc == SW_EXIT_OK || rc == SW_EXIT_OVERTURNED)) {
         sw_cli_error("%s: out of memory", it->log);
         rc = SW_EXIT_IO;
     }

@@ -74,14 +74,8 @@ static const sw_cli_column_t columns[] = {
     {.name = "lateral_factor", .path = "safety_factor.planes.lateral.factor"},
 };
 
-typedef struct {
-    sw_cli_records_t *rec;
-    int oom;
-} report_t;
-
 static void report(void *user, const sw_cli_forensics_t *F)
 {
-    report_t *R = user;
     for (size_t k = 0; k < F->n; k++) {
         sw_summary_t s;
         const sw_whatif_case_t *C = sw_cli_forensics_scene_case(F, k);
@@ -92,22 +86,13 @@ static void report(void *user, const sw_cli_forensics_t *F)
         sw_cli_rec_int(o, "samples_read", F->R.run.samples_read);
         sw_cli_rec_int(o, "samples_rejected", F->R.run.samples_rejected);
         sw_cli_rec_int(o, "samples_used", (long long)sw_forensics_log(F->fx)->n);
-        if (F->R.run.have_facts)
-            sw_cli_json_facts(o, "input", &F->R.run);
-        if (sw_cli_records_package(R->rec, sw_cli_record_status(&s, &F->R.run), o) != 0)
-            R->oom = 1;
+        sw_cli_records_package(user, &s, &F->R.run, o);
     }
 }
 
 static int run(const void *opts, const char *log, sw_cli_records_t *rec)
 {
-    report_t R = {.rec = rec};
-    const int rc = sw_cli_forensics_log(opts, log, report, &R);
-    if (R.oom) {
-        sw_cli_error("%s: out of memory", log);
-        return SW_EXIT_IO;
-    }
-    return rc;
+    return sw_cli_forensics_log(opts, log, report, rec);
 }
 
 const sw_cli_job_t sw_cli_job_forensics = {

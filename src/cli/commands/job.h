@@ -25,16 +25,16 @@
 #include "output.h"
 
 /* Where a job writes one log's records: for each package, one call with
- * its status (a word: "ok", "incomplete") and its members in o, made by
- * sw_cli_rec_new() (the batch puts its own before them; o is released).
- * 0, or -1 when memory ran out (then the log fails). */
+ * its summary s, the log's run and its members in o, made by
+ * sw_cli_rec_new() (the batch puts its own before them, the input's
+ * facts after them as "input"; o is released).  Its status is
+ * "incomplete" when its verdict is (a gap may have hidden an overturn: a
+ * script reading "ok" must not take it as one), else "ok"; a log that
+ * fails has "error" records (batch_out.c), as one whose record ran out of
+ * memory. */
 typedef struct sw_cli_records sw_cli_records_t;
-int sw_cli_records_package(sw_cli_records_t *rec, const char *status, json_t *o);
-
-/* A package's record status: "incomplete" when its verdict is (a gap may
- * have hidden an overturn: a script reading "ok" must not take it as
- * one), else "ok"; a log that fails has "error" records (batch_out.c). */
-const char *sw_cli_record_status(const sw_summary_t *s, const sw_cli_run_t *run);
+void sw_cli_records_package(sw_cli_records_t *rec, const sw_summary_t *s, const sw_cli_run_t *run,
+                            json_t *o);
 
 typedef struct {
     const char *name;  /* --job NAME */

@@ -101,15 +101,9 @@ static const sw_cli_column_t columns[] = {
     {.name = "lateral_min_reserve_time", .path = "lateral.min_reserve_time"},
 };
 
-typedef struct {
-    sw_cli_records_t *rec;
-    int oom;
-} report_t;
-
 /* What sw_cli_replay_log() hands over: the records of every package. */
 static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
 {
-    report_t *R = user;
     for (size_t i = 0; i < sw_engine_count(e); i++) {
         sw_summary_t s;
         if (sw_engine_summary(e, i, &s) != SW_OK)
@@ -117,22 +111,13 @@ static void report(void *user, const sw_engine_t *e, const sw_cli_run_t *run)
         json_t *o = sw_cli_rec_new();
         sw_cli_json_package(o, e, i, run);
         sw_cli_rec_num(o, "settle", run->settle);
-        if (run->have_facts)
-            sw_cli_json_facts(o, "input", run);
-        if (sw_cli_records_package(R->rec, sw_cli_record_status(&s, run), o) != 0)
-            R->oom = 1;
+        sw_cli_records_package(user, &s, run, o);
     }
 }
 
 static int run(const void *opts, const char *log, sw_cli_records_t *rec)
 {
-    report_t R = {.rec = rec};
-    const int rc = sw_cli_replay_log(opts, log, report, &R);
-    if (R.oom) {
-        sw_cli_error("%s: out of memory", log);
-        return SW_EXIT_IO;
-    }
-    return rc;
+    return sw_cli_replay_log(opts, log, report, rec);
 }
 
 const sw_cli_job_t sw_cli_job_replay = {
