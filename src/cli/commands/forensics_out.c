@@ -98,9 +98,7 @@ int sw_cli_forensics_summary(const sw_cli_forensics_t *F, size_t k, sw_summary_t
 
 const sw_risk_pkg_t *sw_cli_forensics_reserve(const sw_cli_forensics_t *F, size_t k, sw_plane p)
 {
-    if (p == SW_PLANE_LONG)
-        return F->R.risk ? sw_risk_pkg(F->R.risk, k) : NULL;
-    return F->R.st ? sw_stream_risk_plane(F->R.st, k, p) : NULL;
+    return sw_stream_risk_plane(F->R.st, k, p); /* NULL without a stream */
 }
 
 int sw_cli_forensics_factor(const sw_cli_forensics_t *F, size_t k, sw_forensics_factor_t *fx)
