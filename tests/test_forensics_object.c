@@ -183,6 +183,31 @@ static void test_factor_one_plane(void **state)
     sw_forensics_destroy(F);
 }
 
+/* The crate of the tests across: 2 m high, 1 m long, 0.3 m deep, with
+ * the sizes 2 x 1 x 0.8 m and 2 x 0.5 m (the scene's depth) as what-ifs,
+ * and 5 s of a steady a_y = -0.25 g at 100 Hz pushed. */
+static const double across_sizes[] = {2.0, 1.0, 2.0, 0.5}, across_depths[] = {0.8, 0.0};
+
+static sw_forensics_t *across_pushed(sw_scene_t *sc)
+{
+    *sc = tu_bare(2.0, 1.0);
+    sc->depth = 0.3;
+    sw_forensics_opts_t o = opts(0);
+    o.whatif.scenes_only = 0;
+    o.whatif.sizes = across_sizes;
+    o.whatif.depths = across_depths;
+    o.whatif.nsizes = 2;
+    o.run.engine.scheme = "rk4";
+    o.run.engine.dt = 1e-3;
+    o.run.settle = 10.0;
+    o.reserve_rate = 10.0;
+    sw_forensics_t *F = sw_forensics_create(sc, 1, &o, NULL);
+    assert_non_null(F);
+    for (int i = 0; i <= 500; i++) /* 5 s at 100 Hz */
+        assert_int_equal(sw_forensics_push_lat(F, 0.01 * i, 0.0, -0.25 * sc->g, 0.0, 0), SW_OK);
+    return F;
+}
+
 /* What-if cases across the truck, closed form: a bare block of height H
  * and depth d under a constant lateral acceleration a_y overturns exactly
  * when a scale of it reaches g d / H (as above).  The scene (d = 0.3 m,
@@ -192,23 +217,9 @@ static void test_factor_one_plane(void **state)
 static void test_cases_across(void **state)
 {
     (void)state;
-    sw_scene_t sc = tu_bare(2.0, 1.0);
-    sc.depth = 0.3;
+    sw_scene_t sc;
+    sw_forensics_t *F = across_pushed(&sc);
     const double ay = -0.25 * sc.g;
-    const double sizes[] = {2.0, 1.0, 2.0, 0.5}, depths[] = {0.8, 0.0};
-    sw_forensics_opts_t o = opts(0);
-    o.whatif.scenes_only = 0;
-    o.whatif.sizes = sizes;
-    o.whatif.depths = depths;
-    o.whatif.nsizes = 2;
-    o.run.engine.scheme = "rk4";
-    o.run.engine.dt = 1e-3;
-    o.run.settle = 10.0;
-    o.reserve_rate = 10.0;
-    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
-    assert_non_null(F);
-    for (int i = 0; i <= 500; i++) /* 5 s at 100 Hz */
-        assert_int_equal(sw_forensics_push_lat(F, 0.01 * i, 0.0, ay, 0.0, 0), SW_OK);
     assert_int_equal(sw_forensics_safety(F), SW_OK);
     assert_int_equal(sw_forensics_reserve(F, NULL), SW_OK);
     size_t n, nl;
@@ -305,22 +316,8 @@ static void test_reserves_alongside(void **state)
 static void test_case_verdict(void **state)
 {
     (void)state;
-    sw_scene_t sc = tu_bare(2.0, 1.0);
-    sc.depth = 0.3;
-    const double sizes[] = {2.0, 1.0, 2.0, 0.5}, depths[] = {0.8, 0.0};
-    sw_forensics_opts_t o = opts(0);
-    o.whatif.scenes_only = 0;
-    o.whatif.sizes = sizes;
-    o.whatif.depths = depths;
-    o.whatif.nsizes = 2;
-    o.run.engine.scheme = "rk4";
-    o.run.engine.dt = 1e-3;
-    o.run.settle = 10.0;
-    o.reserve_rate = 10.0;
-    sw_forensics_t *F = sw_forensics_create(&sc, 1, &o, NULL);
-    assert_non_null(F);
-    for (int i = 0; i <= 500; i++) /* 5 s at 100 Hz */
-        assert_int_equal(sw_forensics_push_lat(F, 0.01 * i, 0.0, -0.25 * sc.g, 0.0, 0), SW_OK);
+    sw_scene_t sc;
+    sw_forensics_t *F = across_pushed(&sc);
     size_t n, nl;
     sw_whatif_case_t *cs = sw_forensics_cases(F, &n);
     const sw_whatif_case_t *lat = sw_forensics_lateral_cases(F, &nl);
