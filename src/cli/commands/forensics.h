@@ -130,7 +130,7 @@ sw_plane sw_cli_forensics_plane(const sw_cli_forensics_t *F, size_t k, int *plan
 const sw_risk_pkg_t *sw_cli_forensics_reserve(const sw_cli_forensics_t *F, size_t k, sw_plane p);
 /* Package k's safety factor with both horizontal axes scaled together
  * (sw_forensics_factor; one plane: the case as given's): 1, or 0 when
- * there is none. */
+ * there is none (fx zeroed). */
 int sw_cli_forensics_factor(const sw_cli_forensics_t *F, size_t k, sw_forensics_factor_t *fx);
 /* " across the truck" or " along the truck" for plane p of a package
  * that rocks in two planes, "" for one that rocks in one. */

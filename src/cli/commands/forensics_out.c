@@ -103,7 +103,10 @@ const sw_risk_pkg_t *sw_cli_forensics_reserve(const sw_cli_forensics_t *F, size_
 
 int sw_cli_forensics_factor(const sw_cli_forensics_t *F, size_t k, sw_forensics_factor_t *fx)
 {
-    return F->cases && sw_forensics_factor(F->fx, k, fx) == SW_OK;
+    if (F->cases && sw_forensics_factor(F->fx, k, fx) == SW_OK)
+        return 1;
+    memset(fx, 0, sizeof *fx); /* no factor: no plane of it either */
+    return 0;
 }
 
 int sw_cli_forensics_savers(const sw_cli_forensics_t *F, size_t k, char *buf, size_t len)
