@@ -26,7 +26,9 @@
 #   - no half-written scene file is ever applied;
 #   - after each fault, states of the samples after it are published within
 #     RESUME samples (default 50: three to confirm, ten to the next state on
-#     the 100 Hz grid, and room for the scheduler);
+#     the 100 Hz grid, and room for the scheduler), plus as many as the
+#     kernel dropped (the flood can overflow the socket: those samples
+#     never reach the monitor);
 #   - no state stops for longer than 2.5 s of wall time outside the outage
 #     and the second of free fall (a blinded monitor is silent for good);
 #   - every message is accounted for: received = accepted + rejected by

@@ -123,14 +123,17 @@ check(out["nonfinite"] == 0 and out["undecodable"] == 0,
       % (out["states"], out["alarms"]))
 check(set(states) >= {"crate-A-bare", "crate-A-stiff-cushion"}, "states of both packages")
 
-# every package resumes after every fault within RESUME samples
+# every package resumes after every fault within RESUME samples; samples
+# the kernel dropped (a flood overflows the socket) never reached the
+# monitor, so a fault may be followed by up to that many more
 for e in events:
     target = e["u_after"] + (int(e["arg"] * 1e6) if e["kind"] == "fall" else 0)
     for name, st in sorted(states.items()):
         after = [u for ts, u in st if ts >= e["wall"] and target <= u <= target + 5000000]
         delay = (min(after) - target) / 1000.0 if after else float("inf")
-        check(delay <= resume, "%s after %s at sample %d: states again within %g samples"
-              % (name, e["kind"], e["k"], delay))
+        check(delay <= resume + drops,
+              "%s after %s at sample %d: states again within %g samples (limit %d + %d dropped "
+              "by the kernel)" % (name, e["kind"], e["k"], delay, resume, drops))
 
 # no silence outside the outage and the second of free fall
 quiet = [(e["wall"] - 500000, e["wall"] + int(e["arg"] * 1e6) + 1500000)
