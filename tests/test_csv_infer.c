@@ -413,6 +413,60 @@ static void test_times(void **state)
     assert_int_equal(r.n, 3);
 }
 
+/* A time column whose name writes a unit of time not read here (minutes,
+ * hours) was read in seconds by default, 60 or 3600 times too fast: a
+ * confident wrong verdict.  Refused, --time-unit named; read as the
+ * option says once it is given.  A bracket that is no unit of time
+ * ("Time (UTC)") leaves the time read as before (an epoch by its
+ * magnitude). */
+static void test_time_unit_not_read(void **state)
+{
+    (void)state;
+    res_t r;
+    sw_csv_opts_t o = infer_opts();
+    static const char *const minutes[] = {
+        "Time (min),Accel (g)\n0.00,0.1\n0.01,0.2\n",
+        "Zeit [h];Beschl. [g]\n0,000;0,1\n0,001;0,2\n",
+        "elapsed_minutes,ax\n0.00,0.1\n0.01,0.2\n",
+        "Temps (heures),Acceleration X (g)\n0.00,0.1\n0.01,0.2\n",
+    };
+    for (size_t i = 0; i < sizeof minutes / sizeof minutes[0]; i++) {
+        run(minutes[i], &o, &r);
+        if (r.rc == SW_OK)
+            fail_msg("%s: read, its time in %s", minutes[i],
+                     r.lay.unit_from[0] == SW_CSV_FROM_DEFAULT ? "s by default" : "some unit");
+        assert_non_null(strstr(r.msg, "--time-unit"));
+        assert_int_equal(r.n, 0);
+        assert_int_equal(r.lay.ready, 0);
+    }
+    /* seconds of the day: "day" is no unit here */
+    run("time_of_day,ax\n43200.00,0.1\n43200.01,0.2\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.n, 2);
+    /* the option says what the values are */
+    o.time_scale = 1.0;
+    run(minutes[0], &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.n, 2);
+    assert_int_equal(r.lay.unit_from[0], SW_CSV_FROM_OPTION);
+    o = infer_opts();
+    /* "(UTC)" is no unit of time: an epoch in s by its magnitude */
+    run("Time (UTC),ax\n1716206400.00,0.1\n1716206400.01,0.2\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.epoch, 1);
+    assert_true(r.t[0] == 1716206400.0);
+    /* nor is a minimum among the acceleration's columns a time: it is an
+     * acceleration in g beside another (refused as such, as before) */
+    run("Time (s),Accel X (g),Accel X [g] (min)\n0.00,0.1,0.0\n0.01,0.2,0.1\n", &o, &r);
+    assert_int_equal(r.rc, SW_EAMBIGUOUS);
+    assert_non_null(strstr(r.msg, "several columns could be the longitudinal acceleration"));
+    o.accel_col = "2";
+    run("Time (s),Accel X (g),Accel X [g] (min)\n0.00,0.1,0.0\n0.01,0.2,0.1\n", &o, &r);
+    assert_int_equal(r.rc, SW_OK);
+    assert_int_equal(r.lay.col[0], 0);
+    assert_int_equal(r.lay.unit[0], SW_CSV_UNIT_S);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -425,6 +479,7 @@ int main(void)
         cmocka_unit_test(test_option_against_header),
         cmocka_unit_test(test_units_not_accelerations),
         cmocka_unit_test(test_times),
+        cmocka_unit_test(test_time_unit_not_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -521,6 +521,17 @@ static int time_values(const sw_csv_infer_in_t *in, sw_csv_layout_t *L, char *ms
     }
     if (p->nnum == 0)
         return SW_OK;
+    /* numbers in a unit no option reads: in s by default they would be 60
+     * or 3600 times too fast, a confident wrong verdict */
+    char unread[SW_CSV_WORD_MAX * 2];
+    if (in->infer && !in->scale_given[0] && L->header_unit[R_TIME] == SW_CSV_UNIT_NONE &&
+        sw_csv_time_unit_unread(L->name[R_TIME], unread, sizeof unread)) {
+        snprintf(msg, msglen,
+                 "time %s: its name gives the unit \"%s\", which is not read (s, ms, us or "
+                 "ns): write the times in one of those and say which with --time-unit",
+                 what, unread);
+        return SW_EAMBIGUOUS;
+    }
     const int eu = sw_csv_epoch_unit(p->first);
     if (in->infer && !in->scale_given[0] && L->header_unit[R_TIME] == SW_CSV_UNIT_NONE &&
         eu != SW_CSV_UNIT_NONE) {

@@ -194,6 +194,9 @@ char sw_csv_lower(char c); /* ASCII */
 /* Split a header name into words and its unit (csv_unit.c says where a
  * unit is written). */
 void sw_csv_words(const char *name, sw_csv_words_t *w);
+/* The unit of time that the name of a time column writes and that no
+ * option reads (minutes, hours, days), into dst; NULL if none. */
+const char *sw_csv_time_unit_unread(const char *name, char *dst, size_t cap);
 /* w is one of the NULL-terminated set. */
 int sw_csv_word_in(const char *w, const char *const *set);
 /* The class (SW_CSV_UC_*) of a unit's text, with its SW_CSV_UNIT_* in

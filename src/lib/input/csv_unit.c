@@ -350,6 +350,29 @@ void sw_csv_words(const char *name, sw_csv_words_t *o)
     drop_word(o, at);
 }
 
+/* Units of time no option reads (--time-unit is s, ms, us or ns), as a
+ * name writes them: "Time (min)", "Zeit [h]", "elapsed_minutes".  Read as
+ * a unit they would make the name's unit one of time, and "(min)" is as
+ * often a minimum ("Accel X [g] (min)"); so they are only looked for in
+ * the name of the column already chosen as time.  Days are left out:
+ * "time_of_day" holds seconds of the day as often as not. */
+static const char *const u_time_unread[] = {"min",    "mins",   "minute",  "minutes", "minuten",
+                                            "h",      "hr",     "hrs",     "hour",    "hours",
+                                            "heures", "stunde", "stunden", NULL};
+
+const char *sw_csv_time_unit_unread(const char *name, char *dst, size_t cap)
+{
+    sw_csv_words_t w;
+    sw_csv_words(name, &w);
+    const char *u = w.uclass == SW_CSV_UC_UNKNOWN             ? w.unit
+                    : w.uclass == SW_CSV_UC_NONE && w.nw >= 2 ? w.w[w.nw - 1]
+                                                              : NULL;
+    if (!u || !sw_csv_word_in(u, u_time_unread))
+        return NULL;
+    snprintf(dst, cap, "%s", u);
+    return dst;
+}
+
 int sw_csv_name_unit(const char *name, int time_role)
 {
     sw_csv_words_t w;
