@@ -297,6 +297,9 @@ for name, (d, saved, twin) in expect.items():
     assert lat["bracket"] == along[twin]["safety_factor"]["bracket"], (name, lat, along[twin])
     assert c["lateral"]["min_margin"] == along[twin]["min_margin"], (name, c, along[twin])
     assert (name in p["saved_by"]) == saved, (name, p["saved_by"])
+    # the case's package says its depth: the one varied, or the scene's kept
+    h, w = 2.0, (0.3 if name == "size 2x0.3 m" else 1.2)
+    assert c["support"].startswith("%gx%gx%g m, 500 kg" % (h, w, d)), (name, c["support"])
 assert p["overturned"] and p["plane"] == "lateral", p
 assert "saved_by_note" not in p, p
 # one plane: a package without a depth has no plane named in its cases
@@ -308,6 +311,7 @@ grep -q "would have stayed upright: size 2x1.2x0.8 m" "$TMP/out" ||
     fail "forensics: the size across the truck not said to have saved it"
 grep -q "what if (the same log, both planes)" "$TMP/out" || fail "forensics: the planes not said"
 grep -Eq "^  as given +OVERTURNED across" "$TMP/out" || fail "forensics: the case's plane not named"
+grep -q "^tall (2x1.2x0.4 m, 500 kg, on the bed)" "$TMP/out" || fail "forensics: the depth not said"
 for bad in 2x1x0 2x1x 2x1xa 2x1x1x1 0x1x1 2x1x-1; do
     run "$SW" forensics "$TMP/step_y.csv" --scene "$TMP/tall.ini" --size "$bad"
     expect_rc 2 "--size $bad"

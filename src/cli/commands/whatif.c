@@ -127,7 +127,12 @@ const char *sw_cli_whatif_desc(char *buf, size_t len, const sw_whatif_case_t *C)
     buf[0] = '\0';
     if (!C->built)
         return buf;
-    int k = snprintf(buf, len, "%gx%g m, %g kg", C->scene.height, C->scene.width, C->scene.mass);
+    /* with a depth, HxWxD as --size writes it: the depth is what a size
+     * across the truck varies, or the scene's that a size kept */
+    int k = sw_scene_has_depth(&C->scene) ? snprintf(buf, len, "%gx%gx%g m, %g kg", C->scene.height,
+                                                     C->scene.width, C->scene.depth, C->scene.mass)
+                                          : snprintf(buf, len, "%gx%g m, %g kg", C->scene.height,
+                                                     C->scene.width, C->scene.mass);
     if (C->model == SW_MODEL_BARE) {
         snprintf(buf + k, len - (size_t)k, ", on the bed");
         return buf;
