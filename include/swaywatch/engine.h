@@ -118,14 +118,20 @@ typedef struct {
     sw_event_fn on_event;
     sw_state_fn on_state; /* called once per pushed sample and package; may be NULL */
     void *user;
-    int lateral; /* non-zero: the caller pushes a lateral acceleration too
-                    (sw_engine_push_lat), and each package whose scene has a depth
-                    rocks in a lateral plane as well (sw_scene_lateral: its own
-                    scheme and step, as an engine of that scene alone would take
-                    them); its events and states come through the same callbacks
-                    with plane SW_PLANE_LAT, each sample's lateral states before
-                    the longitudinal ones.  0: one plane, a depth is not read, and
-                    nothing of a second plane is allocated or computed */
+    int lateral;     /* non-zero: the caller pushes a lateral acceleration too
+                        (sw_engine_push_lat), and each package whose scene has a depth
+                        rocks in a lateral plane as well (sw_scene_lateral: its own
+                        scheme and step, as an engine of that scene alone would take
+                        them); its events and states come through the same callbacks
+                        with plane SW_PLANE_LAT, each sample's lateral states before
+                        the longitudinal ones.  0: one plane, a depth is not read, and
+                        nothing of a second plane is allocated or computed */
+    int margins_off; /* non-zero, without on_state: no margins after each call, as with
+                        outcome_only, while peaks, tips and lifts are still timed (the
+                        summary's minimum margins and largest uplift ratio then stay at
+                        1 and 0; sw_engine_get_output computes them on demand); for
+                        runs that need whether a package overturns and its peak, such
+                        as the safety factor's search trials */
 } sw_engine_opts_t;
 
 typedef struct {

@@ -66,6 +66,21 @@
 #define FORGET 1e-6            /* cushion: share of the start state's error left after the lead */
 _Static_assert(BLOCK == CHECK, "a block starts at a checkpoint");
 
+/* The run options of a trial that needs need: the search's, and but for
+ * the run at scale 1 (which reports everything) no margins after each
+ * sample, which no search trial reads (its outcome and peak come from the
+ * events; the margins a trial's end needs are computed on demand). */
+static sw_run_opts_t trial_opts(const prep_t *P, sw_trial_need need)
+{
+    sw_run_opts_t ro;
+    if (P->ro)
+        ro = *P->ro;
+    else
+        memset(&ro, 0, sizeof ro);
+    ro.engine.margins_off = need != SW_TRIAL_FULL;
+    return ro;
+}
+
 /* ---- checkpoints ----------------------------------------------------------- */
 
 /* The scale at which sample i lifts a package standing on the bed: 0 if
@@ -580,7 +595,8 @@ static int ref_run(const prep_t *P, size_t c, const ref_t *f, int j, double y[4]
     const sw_log_t *L = P->log;
     sw_runner_t R;
     int err = SW_OK;
-    if (sw_runner_make(&R, P->sc, P->ro, 0.0, &err, NULL, 0) != SW_OK)
+    const sw_run_opts_t ro = trial_opts(P, SW_TRIAL_OUTCOME);
+    if (sw_runner_make(&R, P->sc, &ro, 0.0, &err, NULL, 0) != SW_OK)
         return REF_FAIL;
     const double x = f->x[j];
     size_t next_restart = 0;
@@ -1035,7 +1051,8 @@ int sw_safety_trial(const prep_t *P, double x, sw_trial_need need, sw_run_result
         return SW_OK;
     }
     sw_runner_t R;
-    if (sw_runner_make(&R, P->sc, P->ro, 0.0, &err, msg, msglen) != SW_OK)
+    const sw_run_opts_t ro = trial_opts(P, need);
+    if (sw_runner_make(&R, P->sc, &ro, 0.0, &err, msg, msglen) != SW_OK)
         return err;
     /* A cushion's fast trial gets a peak right to about 1e-9 of itself
      * (the reference states), not as a run from the start would to the

@@ -330,7 +330,7 @@ static void report_states(sw_engine_t *e, double t)
     for (size_t i = 0; i < e->n; i++) {
         sw_pkg_t *P = &e->pk[i];
         sw_output_t o;
-        if (e->o.outcome_only && !e->o.on_state) {
+        if ((e->o.outcome_only || e->o.margins_off) && !e->o.on_state) {
             /* no one reads the report (its margins cost about a step):
              * only the last line of defence */
             sw_model_to_state(&P->m, P->y, &o.state);
