@@ -139,6 +139,12 @@ static SW_ALWAYS_INLINE int fixed_with(const sw_step_ctx_t *C, sw_stepper_t *W, 
         }
         const double lim = C->dt_forced ? C->scheme->stab : 0.5;
         const double bound = lim < W->stab_rate ? lim : W->stab_rate;
+        if (M->rate_cap * h <= bound) {
+            /* every rate the model can meet is stable at h: the step
+             * that tracking would accept, without tracking */
+            body(M, S, t0, h, y0, y1);
+            break;
+        }
         S->rate_seen = 0.0;
         S->track_rate = 1;
         body(M, S, t0, h, y0, y1);

@@ -96,6 +96,10 @@ int sw_step_init(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
         if (!C->dt_forced && W->h > 0.5 / M->d.omega_max)
             W->h = 0.5 / M->d.omega_max;
     }
+    /* a fixed step's event layer asks again for the states the step
+     * evaluated (its first stage); an adaptive GSL step's stages are
+     * never asked twice */
+    S->memo_on = !R->adaptive;
     W->step = R->step_for[M->d.model] ? R->step_for[M->d.model] : R->step;
     W->advance = R->advance_for[M->d.model] ? R->advance_for[M->d.model] : R->advance;
     W->sys.function = sw_model_rhs;

@@ -125,6 +125,8 @@ void sw_model_setup(sw_model_t *M, sw_model_scratch_t *S, const sw_scene_t *sc)
     M->tan_alpha = tan(M->d.alpha);
     M->frame_mass = sc->has_frame ? sc->frame_mass : 0.0;
     S->trig[0] = NAN;
+    S->memo_n = S->memo_next = 0; /* nothing remembered of another model */
+    M->rate_cap = INFINITY;       /* a model that tracks a rate and can bound it says so */
     M->ops->setup(M, sc);
 }
 

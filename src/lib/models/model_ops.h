@@ -44,6 +44,8 @@ typedef struct {
     double yscale[SW_NMAX]; /* typical size of each component (finite-difference Jacobian) */
     double e_lift;          /* J/kg, cushion: least energy above rest that lifts an edge */
     double rate_rest;       /* 1/s, the contact's rate bound at rest (model_cushion.c) */
+    double rate_cap;        /* 1/s, a proven bound of the tracked contact rate over every
+                               state (INFINITY: none known; model_cushion.c) */
     double e_barrier;       /* J/kg, cushion: sw_cushion_barrier() under nominal gravity */
     double v_rest;          /* J/kg, cushion: potential at rest under nominal gravity */
     const sw_input_t *in;   /* the engine's input over the interval being integrated: the
@@ -58,10 +60,19 @@ typedef struct {
 
 /* What a model's right-hand side writes as it goes: its scratch, one per
  * package, passed beside the model. */
+#define SW_RHS_MEMO 6 /* right-hand sides remembered: a step's stages and its ends */
 typedef struct {
     double trig[3];   /* model_rigid.h: an angle (NAN: none yet), its sin and cos */
     int track_rate;   /* cushion: the right-hand side records rate_seen */
     double rate_seen; /* rad/s, fastest contact rate met by the stages of a step */
+    /* cushion: the last right-hand sides, keyed by (a_g, g_eff, y) */
+    struct {
+        double key[2 + SW_NMAX];
+        double f[SW_NMAX];
+        int rc;
+    } memo[SW_RHS_MEMO];
+    int memo_on;           /* remember (the step layer says: fixed steps) */
+    int memo_n, memo_next; /* entries in use, the one written next */
 } sw_model_scratch_t;
 
 /* A model and its scratch: GSL's params for sw_model_rhs and
