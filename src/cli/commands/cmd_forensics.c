@@ -544,7 +544,10 @@ int cmd_forensics(int argc, char **argv)
     if (check_options(F) != SW_EXIT_OK)
         goto out;
     F->given = sw_cli_source_given(g, ng);
-    if ((rc = open_log(F)) != SW_EXIT_OK || (rc = replay_log(F)) != SW_EXIT_OK)
+    if ((rc = open_log(F)) != SW_EXIT_OK)
+        goto out;
+    sw_cli_forensics_digest_start(F);
+    if ((rc = replay_log(F)) != SW_EXIT_OK)
         goto out;
     if (sw_cli_signal) {
         rc = report_interrupted(F);

@@ -5,6 +5,7 @@
 #ifndef SWAYWATCH_CLI_FORENSICS_H
 #define SWAYWATCH_CLI_FORENSICS_H
 
+#include <pthread.h>
 #include <stdio.h>
 
 #include "figure.h"
@@ -63,6 +64,8 @@ typedef struct {
     int progress_shown;
     /* what ties the answer to its inputs (sw_cli_forensics_fingerprint) */
     int fingerprinted;
+    pthread_t digest_thread; /* the log's digest, made beside the replay */
+    int digest_running, digest_made;
     sw_cli_digest_t log_digest;
     sw_cli_digest_t *scene_digest; /* one per --scene file, in order */
     char *command_line;            /* the command, quoted for a POSIX shell */
@@ -74,6 +77,12 @@ int sw_cli_forensics_begin(sw_cli_forensics_t *F);
 void sw_cli_forensics_event(sw_cli_forensics_t *F, const sw_event_t *ev);
 void sw_cli_forensics_end(sw_cli_forensics_t *F);
 void sw_cli_forensics_free(sw_cli_forensics_t *F); /* what begin allocated */
+
+/* Before the replay: the log's SHA-256 and size begin on a thread of
+ * their own (the replay reads on one core; the digest reads the same
+ * descriptor with pread(), which leaves its offset alone).  No thread, no
+ * harm: the fingerprint then makes them itself. */
+void sw_cli_forensics_digest_start(sw_cli_forensics_t *F);
 
 /* After the replay: the SHA-256 and size of the log (the file being read,
  * through its open descriptor) and of each scene file, and the command

@@ -45,8 +45,33 @@ void sw_cli_forensics_end(sw_cli_forensics_t *F)
     (void)F;
 }
 
+static void *digest_main(void *arg)
+{
+    sw_cli_forensics_t *F = arg;
+    sw_cli_digest_fd(fileno(F->R.lf.in), &F->log_digest);
+    return NULL;
+}
+
+void sw_cli_forensics_digest_start(sw_cli_forensics_t *F)
+{
+    if (F->R.lf.in && !F->digest_running && !F->digest_made)
+        F->digest_running = pthread_create(&F->digest_thread, NULL, digest_main, F) == 0;
+}
+
+/* The digest thread's answer, once it has one. */
+static void digest_join(sw_cli_forensics_t *F)
+{
+    if (!F->digest_running)
+        return;
+    pthread_join(F->digest_thread, NULL);
+    F->digest_running = 0;
+    F->digest_made = 1;
+}
+
 void sw_cli_forensics_free(sw_cli_forensics_t *F)
 {
+    digest_join(F); /* before the log's descriptor is closed */
+    F->digest_made = 0;
     free(F->ev);
     free(F->impacts_seen);
     free(F->scene_digest);
@@ -61,10 +86,13 @@ void sw_cli_forensics_free(sw_cli_forensics_t *F)
 int sw_cli_forensics_fingerprint(sw_cli_forensics_t *F)
 {
     const sw_cli_list_t *sc = &F->o.scenes;
-    if (F->R.lf.in)
-        sw_cli_digest_fd(fileno(F->R.lf.in), &F->log_digest);
-    else
-        snprintf(F->log_digest.why, sizeof F->log_digest.why, "not open");
+    digest_join(F);
+    if (!F->digest_made) { /* not made beside the replay */
+        if (F->R.lf.in)
+            sw_cli_digest_fd(fileno(F->R.lf.in), &F->log_digest);
+        else
+            snprintf(F->log_digest.why, sizeof F->log_digest.why, "not open");
+    }
     F->scene_digest = calloc(sc->n ? sc->n : 1, sizeof *F->scene_digest);
     F->command_line = sw_cli_shell_line("swaywatch", F->argc, F->argv);
     if (!F->scene_digest || !F->command_line) {

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "interrupt.h"
 #include "sw_commit.h"
 
 #define CHUNK (1 << 16) /* bytes read at a time */
@@ -58,6 +59,11 @@ int sw_cli_digest_fd(int fd, sw_cli_digest_t *d)
         }
         if (n == 0)
             break;
+        if (sw_cli_signal) { /* stopping: a digest is no reason to wait */
+            snprintf(d->why, sizeof d->why, "interrupted by %s", sw_cli_signal_name(sw_cli_signal));
+            free(buf);
+            return 0;
+        }
         crypto_hash_sha256_update(&st, buf, (unsigned long long)n);
         off += n;
     }
