@@ -53,7 +53,7 @@ static void clear(sw_gate_t *g)
     g->ahead = ahead;
     g->window = window;
     g->tm.spacing = NAN;
-    g->rx_prev = g->burst_from = NAN;
+    g->rx_prev = g->burst_from = g->burst_until = g->burst_env = NAN;
     g->seq.outlier_at = -1;
     g->rv.switched = -1;
     g->f.t_first = g->f.t_last = g->f.first_incomplete = NAN;

@@ -137,10 +137,16 @@ struct sw_gate {
     /* receive times known: chains */
     chain_t chain[CHAINS];
     int nchain;
-    double rx_prev;    /* s, arrival of the last sample that reached the live path; NAN */
-    double burst_from; /* s, arrival of the first sample of a drained backlog: it came after
-                          a silence longer than a gap, and each since within half a spacing
-                          of the one before; NAN: none going on */
+    double rx_prev; /* s, arrival of the last sample that reached the live path; NAN */
+    /* A backlog read after a silence (docs/timing.md, "A drained backlog"):
+     * no sample at all arrived for longer than a gap (the monitor or the
+     * stream stopped), and what comes since was stamped before it was
+     * read, later than the stream's own delivery by more than a gap */
+    double burst_from;  /* s, arrival of the first sample after the silence; NAN: none goes
+                           on (a sample taken on time ends it) */
+    double burst_until; /* s, arrival by which it is over whatever comes: twice the silence */
+    double burst_env;   /* s, the envelope before the silence (the stream's delivery on time;
+                           NAN unknown) */
     /* no receive times: the look-ahead (a ring of window samples) */
     sw_sample_t *ahead;
     int window, head, nahead;

@@ -141,20 +141,48 @@ static int confirmable(const sw_gate_t *g, const chain_t *c)
 }
 
 /* The drained backlog, if one goes on: s arrived after a silence longer
- * than a gap (the monitor was stopped, or the stream), or within half a
- * spacing of the sample before, in one that goes on. */
+ * than a gap (the monitor was stopped, or the stream).  It goes on however
+ * the reader reads it (in one burst, in chunks, slowly as it wakes, with a
+ * busy core now and then: no receive interval ends it) until a sample is
+ * taken on time (backlog_done) or twice the silence has passed. */
 static void note_arrival(sw_gate_t *g, const sw_sample_t *s)
 {
     const double drx = s->rx - g->rx_prev, sp = gate_spacing(g);
     g->rx_prev = s->rx;
-    if (isnan(sp) || !(drx >= 0.0))
+    if (isnan(sp) || !(drx >= 0.0)) {
         g->burst_from = NAN;
-    else if (drx > gate_threshold_of(g, sp) && !gate_warming(g) &&
-             drx > gate_threshold_of(g, gate_spacing_full(g, 1)))
-        g->burst_from = s->rx; /* a silence: what comes now may be a backlog (beyond the
-                                  pace of the recent intervals too: a FIFO's reads are none) */
-    else if (!(drx < 0.5 * sp))
-        g->burst_from = NAN; /* read at the stream's pace: no backlog (now) */
+    } else if (drx > gate_threshold_of(g, sp) && !gate_warming(g) &&
+               drx > gate_threshold_of(g, gate_spacing_full(g, 1))) {
+        /* a silence: what comes now may be a backlog (beyond the pace of
+         * the recent intervals too: a FIFO's reads are none).  A second
+         * one while a backlog is read keeps what was known before the
+         * first (the envelope then is the backlog's, late) */
+        if (isnan(g->burst_from))
+            g->burst_env = g->have_env ? g->env : NAN;
+        g->burst_until =
+            gate_fmax_nan(isnan(g->burst_from) ? NAN : g->burst_until, s->rx + 2.0 * drx);
+        g->burst_from = s->rx;
+    } else if (!isnan(g->burst_from) && s->rx > g->burst_until) {
+        g->burst_from = NAN; /* a reader this slow is no backlog's */
+    }
+}
+
+/* A sample taken after the silence on time (read no later after it was
+ * stamped than the stream delivered before the silence, within the jump
+ * tolerance): the reader has caught up and the backlog is read.  A stream
+ * that merely paused on time ends it with its first sample.  Once a
+ * sample was taken across a gap, a clock step or a restart since the
+ * silence (a sender restarted on a later clock, a clock that leapt while
+ * the monitor was stopped and passes for a pause), the envelope before it
+ * says nothing of the stamps now: the backlog is then over when twice the
+ * silence has passed (note_arrival). */
+static void backlog_done(sw_gate_t *g)
+{
+    if (isnan(g->burst_from) || !g->have_last || !(g->last.rx >= g->burst_from))
+        return;
+    const double late = g->burst_env - (g->last.t - g->last.rx); /* s; NAN unknown */
+    if (late <= gate_jump_tol(g))
+        g->burst_from = NAN;
 }
 
 /* A sample that does not continue the timeline: into a chain. */
@@ -237,10 +265,8 @@ static int same_sample(const sw_sample_t *a, const sw_sample_t *b)
            a->a_y == b->a_y;
 }
 
-int gate_live_push(sw_gate_t *g, const sw_sample_t *s)
+static int live_push(sw_gate_t *g, const sw_sample_t *s)
 {
-    gate_contest_check_end(g, s->rx);
-    note_arrival(g, s);
     char text[160];
     if (g->rv.contested && g->rv.by_seq && !gate_seq_kept(g, s)) {
         g->rv.active = s->rx;
@@ -267,4 +293,13 @@ int gate_live_push(sw_gate_t *g, const sw_sample_t *s)
         return gate_advance(g, s, NAN);
     }
     return hold(g, s);
+}
+
+int gate_live_push(sw_gate_t *g, const sw_sample_t *s)
+{
+    gate_contest_check_end(g, s->rx);
+    note_arrival(g, s);
+    const int rc = live_push(g, s);
+    backlog_done(g);
+    return rc;
 }

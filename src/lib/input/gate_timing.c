@@ -217,6 +217,10 @@ double gate_resume(sw_gate_t *g, const sw_sample_t *s, double thr, int *iv)
     const double te = g->last_engine + elapsed;
     g->offset = te - s->t;
     g->have_env = 0; /* a new stretch: its own relation to real time */
+    /* a backlog read now (gate_live.c) ends with its time: across a gap, a
+     * step or a restart the stamps no longer say how late it is read (a
+     * clock that leapt while the monitor was stopped passes for a pause) */
+    g->burst_env = NAN;
     ev.t_engine = te;
     /* A bridged gap in the first seconds of a log may be the logger's pace
      * (the first pause between 1 kHz bursts): judged again once the pace
