@@ -292,6 +292,59 @@ static void test_vertical_acceleration(void **state)
     }
 }
 
+/* margins_off (sw_engine_opts_t): the same motion, events, peak and
+ * outcome as a run with its margins, no per-sample margins (the summary's
+ * minimum sees the events only), and the margins computed on demand the
+ * same.  On the
+ * bare block and on a cushion, rocking under a half-sine that lifts
+ * them, one that does not overturn them and one that does. */
+static void test_margins_off(void **state)
+{
+    (void)state;
+    const sw_scene_t bare = tu_bare(2.0, 0.728);
+    const sw_scene_t cush = tu_cushion(tu_bare(2.0, 0.728), 30.0, 0.1);
+    const sw_scene_t *scenes[] = {&bare, &cush};
+    const double amps[] = {-0.5 * 9.81, -1.2 * 9.81}; /* m/s^2 */
+    for (int k = 0; k < 2; k++)
+        for (int a = 0; a < 2; a++) {
+            sw_pulse_t p = {SW_PULSE_HALF_SINE, amps[a], 2.0 * M_PI};
+            sw_summary_t s[2];
+            sw_output_t o[2];
+            tu_events_t rec[2];
+            for (int off = 0; off < 2; off++) {
+                memset(&rec[off], 0, sizeof rec[off]);
+                sw_engine_opts_t eo = {0};
+                eo.on_event = tu_on_event;
+                eo.user = &rec[off];
+                eo.margins_off = off;
+                int err;
+                sw_engine_t *e = sw_engine_create(scenes[k], 1, &eo, &err, NULL, 0);
+                assert_non_null(e);
+                for (int i = 1; i <= 3000; i++) { /* 1 kHz, 3 s */
+                    const double t = 1e-3 * i;
+                    assert_true(sw_engine_push(e, t, sw_pulse_eval(&p, t), 0.0) >= 0);
+                }
+                sw_engine_summary(e, 0, &s[off]);
+                sw_engine_get_output(e, 0, &o[off]);
+                sw_engine_destroy(e);
+            }
+            assert_true(s[0].uplifts > 0);
+            assert_int_equal(s[0].overturned, s[1].overturned);
+            assert_memory_equal(&s[0].max_abs_theta, &s[1].max_abs_theta, sizeof(double));
+            assert_int_equal(rec[0].n, rec[1].n);
+            for (int i = 0; i < rec[0].n; i++) {
+                assert_int_equal(rec[0].ev[i].kind, rec[1].ev[i].kind);
+                assert_memory_equal(&rec[0].ev[i].t, &rec[1].ev[i].t, sizeof(double));
+            }
+            assert_memory_equal(&o[0].state, &o[1].state, sizeof o[0].state);
+            assert_memory_equal(&o[0].margin, &o[1].margin, sizeof(double));
+            /* the margins of the events alone: a minimum over fewer */
+            assert_true(s[0].min_margin < 1.0);
+            assert_true(s[1].min_margin >= s[0].min_margin);
+            assert_true(s[1].max_uplift_ratio <= s[0].max_uplift_ratio);
+        }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -299,7 +352,7 @@ int main(void)
         cmocka_unit_test(test_uplift_threshold),      cmocka_unit_test(test_uplift_between_samples),
         cmocka_unit_test(test_free_rocking),          cmocka_unit_test(test_grid_independence),
         cmocka_unit_test(test_overturn_and_tip),      cmocka_unit_test(test_bad_samples),
-        cmocka_unit_test(test_vertical_acceleration),
+        cmocka_unit_test(test_vertical_acceleration), cmocka_unit_test(test_margins_off),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -128,8 +128,9 @@ typedef struct {
                         nothing of a second plane is allocated or computed */
     int margins_off; /* non-zero, without on_state: no margins after each call, as with
                         outcome_only, while peaks, tips and lifts are still timed (the
-                        summary's minimum margins and largest uplift ratio then stay at
-                        1 and 0; sw_engine_get_output computes them on demand); for
+                        summary's minimum margins and largest uplift ratio then see
+                        only the events; sw_engine_get_output computes them on
+                        demand); for
                         runs that need whether a package overturns and its peak, such
                         as the safety factor's search trials */
 } sw_engine_opts_t;
