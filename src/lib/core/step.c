@@ -100,8 +100,8 @@ int sw_step_init(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
      * evaluated (its first stage); an adaptive GSL step's stages are
      * never asked twice */
     S->memo_on = !R->adaptive;
-    W->step = R->step_for[M->d.model] ? R->step_for[M->d.model] : R->step;
-    W->advance = R->advance_for[M->d.model] ? R->advance_for[M->d.model] : R->advance;
+    W->step = R->rk && M->ops->fixed[R->rk] ? M->ops->fixed[R->rk] : R->step;
+    W->advance = R->advance;
     W->sys.function = sw_model_rhs;
     W->sys.jacobian = R->implicit ? sw_model_jacobian : NULL;
     W->sys.dimension = (size_t)M->n;

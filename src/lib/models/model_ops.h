@@ -62,7 +62,7 @@ typedef struct {
  * package, passed beside the model. */
 #define SW_RHS_MEMO 6 /* right-hand sides remembered: a step's stages and its ends */
 typedef struct {
-    double trig[3];   /* model_rigid.h: an angle (NAN: none yet), its sin and cos */
+    double trig[3];   /* model_rigid.c: an angle (NAN: none yet), its sin and cos */
     int track_rate;   /* cushion: the right-hand side records rate_seen */
     double rate_seen; /* rad/s, fastest contact rate met by the stages of a step */
     /* cushion: the last right-hand sides, keyed by (a_g, g_eff, y) */
@@ -81,6 +81,17 @@ typedef struct {
     const sw_model_t *m;
     sw_model_scratch_t *s;
 } sw_model_sys_t;
+
+/* One fixed step of length h (s) from (t, y) into yout: a fixed-step
+ * scheme's body for one model (fixed_rk.h); SW_OK (an int, so that the
+ * scheme's advance reaches it by a jump). */
+typedef int (*sw_fixed_step_fn)(const sw_model_t *M, sw_model_scratch_t *S, double t, double h,
+                                const double y[], double yout[]);
+
+/* The fixed-step schemes' bodies (fixed_rk.h): a scheme's row names its
+ * body (struct sw_scheme's rk), a model may instantiate each with its
+ * right-hand side inlined (ops->fixed). */
+enum { SW_RK_NONE = 0, SW_RK_EULER, SW_RK_HEUN, SW_RK_RK4, SW_RK_KINDS };
 
 /* Event functions: each "rises through 0" at its event.  The cutting ones
  * end the step there and apply their map (pkg.c); the others are timed
@@ -142,6 +153,10 @@ struct sw_model_ops {
      * shorter.  May write the scratch S. */
     int (*rhs)(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u, const double y[],
                double f[]);
+    /* the fixed-step schemes' bodies with the right-hand side inlined per
+     * stage, instantiated by the model (SW_FIXED_RK_ROW); NULL: the
+     * generic body (scheme.c: rhs per stage) */
+    sw_fixed_step_fn fixed[SW_RK_KINDS];
     /* the state at rest into y (zeroed before), and its mode; NULL: the
      * zeroed state, standing */
     void (*rest)(sw_model_t *M, double y[]);

@@ -2,8 +2,9 @@
 /* model_rigid.c - the bare block and the package on a frame (physics.md,
  * scenes 1 and 2) as the engine sees them: their ops tables (layout,
  * events, impact map, uplift test, how they stand, report), their traits,
- * and the margins and energies of model.h.  The right-hand sides are inline in
- * model_rigid.h, where the fixed-step schemes inline them per stage.
+ * and the margins and energies of model.h.  The right-hand sides and their
+ * sin and cos cache are this file's own: the fixed-step schemes' bodies
+ * are instantiated here with them inlined per stage (fixed_rk.h).
  *
  * State vectors:  bare   y = (theta, theta')
  *                 frame  y = (u, theta, u', theta')
@@ -15,11 +16,50 @@
 
 #include <gsl/gsl_errno.h>
 
+#include "fixed_rk.h"
 #include "model_ops.h"
 #include "model_rigid.h"
 #include "model_traits.h"
+#include "numeric.h"
 #include "swaywatch/model.h"
 #include "swaywatch/status.h"
+
+/* ---- the sin and cos cache -------------------------------------------------- */
+
+/* sin and cos of A1 for a right-hand side.  Successive evaluations (the
+ * stages of a step, the next steps, the state report) see nearby angles,
+ * so they come from the last angle computed by libm, trig = (angle, sin,
+ * cos), through the addition formulas with the series of sin and cos of
+ * the small difference d (|d| <= 1/64 rad: the first term left out is below
+ * 1e-21); libm only when the angle has moved further.  This halves the cost
+ * of an RK4 step; the result differs from libm's by an ulp or two.
+ * Returns 1 if the cached angle served (trig[0] = NAN: never). */
+static inline int sincos_near(const double trig[3], double A, double *sn, double *cs)
+{
+    const double d = A - trig[0];
+    if (!(fabs(d) <= 0.015625)) {
+        *sn = sin(A);
+        *cs = cos(A);
+        return 0;
+    }
+    const double d2 = d * d;
+    const double sd = d * (1.0 + d2 * (-1.0 / 6.0 + d2 * (1.0 / 120.0 + d2 * (-1.0 / 5040.0))));
+    const double cd =
+        1.0 + d2 * (-0.5 + d2 * (1.0 / 24.0 + d2 * (-1.0 / 720.0 + d2 * (1.0 / 40320.0))));
+    *sn = trig[1] * cd + trig[2] * sd;
+    *cs = trig[2] * cd - trig[1] * sd;
+    return 1;
+}
+
+/* The same, moving the scratch's cache to A when libm was called. */
+static inline void rigid_sincos(sw_model_scratch_t *S, double A, double *sn, double *cs)
+{
+    if (sincos_near(S->trig, A, sn, cs))
+        return;
+    S->trig[0] = A;
+    S->trig[1] = *sn;
+    S->trig[2] = *cs;
+}
 
 /* ---- margins and energies (model.h) ----------------------------------------- */
 
@@ -127,19 +167,81 @@ static void frame_setup(sw_model_t *M, const sw_scene_t *sc)
     sw_model_scale(M, M->iu, M->idu, M->g / (M->d.omega_b * M->d.omega_b));
 }
 
+/* f = y' of a bare or framed package under a_g = ag and g_eff = ge (m/s^2),
+ * given sn = sin(A1) and c1 = cos(A1) (not read unless rocking).  The
+ * layouts are fixed (model.c's sw_model_setup): bare (theta, theta'),
+ * frame (u, theta, u', theta'); a caller that passes model as a constant
+ * gets one of the two bodies. */
+static SW_ALWAYS_INLINE void rigid_rhs_trig(const sw_model_t *M, sw_model_kind model, double ag,
+                                            double ge, const double y[], double sn, double c1,
+                                            double f[])
+{
+    const double s = M->side;
+    /* A2 = s A1 exactly (s = +-1), so sin(A2) = s sin(A1): one angle. */
+    const double s2 = s * sn;
+    if (model == SW_MODEL_BARE) {
+        f[0] = y[1];
+        f[1] = M->phase == SW_PHASE_ROCKING ? -M->kR * (ge * s2 + ag * c1) : 0.0;
+        return;
+    }
+    const double dth = y[3];
+    const double F = sw_rigid_bearing_of(M, y[0], y[2]);
+    f[0] = y[2];
+    f[1] = dth;
+    if (M->phase == SW_PHASE_ROCKING) {
+        const double gR = M->d.gamma * M->d.R;
+        const double iD = 1.0 / (1.0 - 0.75 * M->d.gamma * c1 * c1);
+        const double kg = M->kR * ge, gdd = gR * dth * dth;
+        f[2] = (-F + s2 * (gR * kg * c1 - gdd)) * iD - ag;
+        f[3] = M->kR * (c1 * (F + gdd * s2) - ge * s2) * iD;
+    } else {
+        f[2] = -F - ag;
+        f[3] = 0.0;
+    }
+}
+
+/* The same, taking sin and cos of A1 = alpha - s theta from the cache. */
+static SW_ALWAYS_INLINE void rigid_rhs_of(const sw_model_t *M, sw_model_scratch_t *S,
+                                          sw_model_kind model, double ag, double ge,
+                                          const double y[], double f[])
+{
+    double sn = 0.0, c1 = 0.0;
+    if (M->phase == SW_PHASE_ROCKING)
+        rigid_sincos(S, M->d.alpha - M->side * y[model == SW_MODEL_BARE ? 0 : 1], &sn, &c1);
+    rigid_rhs_trig(M, model, ag, ge, y, sn, c1, f);
+}
+
 static int bare_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
                     const double y[], double f[])
 {
-    sw_rigid_rhs_of(M, S, SW_MODEL_BARE, u->ag, u->ge, y, f);
+    rigid_rhs_of(M, S, SW_MODEL_BARE, u->ag, u->ge, y, f);
     return GSL_SUCCESS;
 }
 
 static int frame_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
                      const double y[], double f[])
 {
-    sw_rigid_rhs_of(M, S, SW_MODEL_FRAME, u->ag, u->ge, y, f);
+    rigid_rhs_of(M, S, SW_MODEL_FRAME, u->ag, u->ge, y, f);
     return GSL_SUCCESS;
 }
+
+/* The fixed-step schemes' bodies with the right-hand side inlined into
+ * every stage (fixed_rk.h): at one step per 1 kHz sample a function
+ * pointer, a model switch and two input evaluations per stage were a
+ * third of the cost of a rocking step. */
+static SW_ALWAYS_INLINE void bare_stage(const sw_model_t *M, sw_model_scratch_t *S,
+                                        const sw_input_at_t *u, const double y[], double f[])
+{
+    rigid_rhs_of(M, S, SW_MODEL_BARE, u->ag, u->ge, y, f);
+}
+
+static SW_ALWAYS_INLINE void frame_stage(const sw_model_t *M, sw_model_scratch_t *S,
+                                         const sw_input_at_t *u, const double y[], double f[])
+{
+    rigid_rhs_of(M, S, SW_MODEL_FRAME, u->ag, u->ge, y, f);
+}
+SW_FIXED_RK(bare, 2, bare_stage)
+SW_FIXED_RK(frame, 4, frame_stage)
 
 /* ---- events ----------------------------------------------------------------- */
 
@@ -296,7 +398,7 @@ static inline void rigid_output(const sw_model_t *M, const sw_model_scratch_t *S
     double sn = 0.0, c1 = 0.0;
     if (M->phase == SW_PHASE_ROCKING) {
         const double sth = M->side * y[M->ith];
-        sw_rigid_sincos_near(S->trig, M->d.alpha - sth, &sn, &c1);
+        sincos_near(S->trig, M->d.alpha - sth, &sn, &c1);
         cA = sth >= 0.0 ? c1 : cos(M->d.alpha + sth);
     }
     o->a_support = o->a_g;
@@ -306,7 +408,7 @@ static inline void rigid_output(const sw_model_t *M, const sw_model_scratch_t *S
         o->a_support = -(M->d.c_b * y[M->idu] + M->d.k_b * y[M->iu]) / mb;
     } else if (model == SW_MODEL_FRAME) {
         double f[SW_NMAX];
-        sw_rigid_rhs_trig(M, SW_MODEL_FRAME, o->a_g, ge_in, y, sn, c1, f);
+        rigid_rhs_trig(M, SW_MODEL_FRAME, o->a_g, ge_in, y, sn, c1, f);
         o->a_support += f[M->idu];
     }
     o->uplift_ratio = fabs(o->a_support) / (M->tan_alpha * M->g);
@@ -440,6 +542,7 @@ const sw_model_ops_t sw_model_bare = {
     .traits = &bare_traits,
     .setup = bare_setup,
     .rhs = bare_rhs,
+    .fixed = SW_FIXED_RK_ROW(bare),
     .candidates = rigid_candidates,
     .event_fn = rigid_event_fn,
     .impact = bare_impact,
@@ -470,6 +573,7 @@ const sw_model_ops_t sw_model_frame = {
     .traits = &frame_traits,
     .setup = frame_setup,
     .rhs = frame_rhs,
+    .fixed = SW_FIXED_RK_ROW(frame),
     .candidates = rigid_candidates,
     .event_fn = rigid_event_fn,
     .impact = frame_impact,
