@@ -168,22 +168,22 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
         int nt;
         const int ev = sw_event_find(C, W, t0, h, P->y, y1, &tau, timed, &nt);
         P->m.held = 0;
-        if (nt)
-            sw_pkg_timed(E, P, timed, nt);
         if (ev == SW_EVF_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->m.n);
             P->t = (h == rem) ? t1 : t0 + h;
-            sw_pkg_stepped(E, P, SW_EVF_NONE);
+            sw_pkg_stepped(E, P, timed, nt, SW_EVF_NONE);
             continue;
         }
+        if (nt) /* before the polish's re-steps move the model's scratch */
+            sw_pkg_timed(E, P, timed, nt);
         const double te = sw_event_polish(C, W, ev, t0, h, P->y, tau, ys);
         same_t = te - t0 <= 1e-12 * fmax(1.0, fabs(t0)) ? same_t + 1 : 0;
         if (same_t > 64) /* a map that keeps re-triggering without progress */
             return failed(P, t1, t0, SW_EFAULT, tf);
         memcpy(P->y, ys, sizeof(double) * (size_t)P->m.n);
         P->t = te;
-        sw_pkg_stepped(E, P, ev);
-        sw_step_reset(W); /* the map changed the state: the scheme's history is gone */
+        sw_pkg_stepped(E, P, NULL, 0, ev);
+        sw_step_restart(W); /* the map changed the state: the scheme's history is gone */
     }
     P->t = t1;
     return SW_OK;

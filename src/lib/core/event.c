@@ -133,7 +133,8 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
 }
 
 /* Polish the event time: re-step from (t0, y0) with Newton iterations on
- * the event function, then make sure the returned instant is at or just
+ * the event function (the model's one call per iterate, its value and
+ * derivative there), then make sure the returned instant is at or just
  * past the crossing (value >= 0): an uplift placed a hair early would leave
  * the package pushed the wrong way and chatter.  Leaves the state at the
  * event in y and returns its time. */
@@ -141,7 +142,7 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
                        const double y0[], double tau, double y[])
 {
     const sw_model_t *M = W->ms.m;
-    double ts = t0 + tau * h, f[SW_NMAX], v = 0.0, d = 0.0;
+    double ts = t0 + tau * h, v = 0.0, d = 0.0;
     if (tau == 0.0) {
         memcpy(y, y0, sizeof(double) * (size_t)M->n);
         return t0;
@@ -151,8 +152,7 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
         if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             return ts;
         const sw_input_at_t u = sw_input_at(M->in, M->g, ts);
-        M->ops->rhs(M, W->ms.s, &u, y, f);
-        M->ops->event_fn(M, ev, &u, y, f, &v, &d);
+        M->ops->event_at(M, W->ms.s, ev, &u, y, &v, &d);
         if (v == 0.0 || d == 0.0)
             break;
         double tn = ts - v / d;
@@ -172,8 +172,7 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
         if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             break;
         const sw_input_at_t u = sw_input_at(M->in, M->g, ts);
-        M->ops->rhs(M, W->ms.s, &u, y, f);
-        M->ops->event_fn(M, ev, &u, y, f, &v, &d);
+        M->ops->event_at(M, W->ms.s, ev, &u, y, &v, &d);
     }
     return ts;
 }

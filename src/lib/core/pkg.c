@@ -118,14 +118,15 @@ void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
 }
 
 /* After an accepted step with no cut, for a model that follows its side
- * or tests for rest. */
+ * or tests for rest: one call into the model says both. */
 static SW_NOINLINE void after_step(sw_pkg_ctx_t *C, sw_pkg_t *P)
 {
     const sw_model_ops_t *ops = P->m.ops;
-    if (ops->follow)
+    if (!ops->stepped) {
         ops->follow(&P->m, P->y);
-    if (!ops->at_rest || P->m.phase != SW_PHASE_ROCKING || isnan(P->m.t_lift) ||
-        !ops->at_rest(&P->m, P->y))
+        return;
+    }
+    if (!ops->stepped(&P->m, P->y, P->m.phase == SW_PHASE_ROCKING && !isnan(P->m.t_lift)))
         return;
     P->m.t_lift = NAN;
     P->beyond_alpha = 0;
@@ -220,15 +221,17 @@ static SW_NOINLINE void on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
 /* Called after every step: what most steps need (|theta| kept) inline,
  * the rest out of line, so that a step costs what it did when the engine
  * kept |theta| itself. */
-void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev)
+void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t timed[], int nt, int ev)
 {
+    if (nt)
+        sw_pkg_timed(C, P, timed, nt);
     if (ev != SW_EVF_NONE) {
         on_cut(C, P, ev, P->t);
         return;
     }
     if (P->m.phase == SW_PHASE_ROCKING)
         sw_pkg_track_theta(P, P->y[P->m.ith]);
-    if (P->m.ops->follow || P->m.ops->at_rest)
+    if (P->m.ops->follow || P->m.ops->stepped)
         after_step(C, P);
 }
 

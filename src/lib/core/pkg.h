@@ -60,13 +60,16 @@ void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
 /* The events timed inside a step (sw_event_locate), in their order: a
  * peak of |theta| kept in the summary, a tip or a first lift reported. */
 void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
-/* Where a step ended, P->t and P->y (the engine moved them there), after
- * the events it timed (sw_pkg_timed): with no cut (ev SW_EVF_NONE),
- * |theta| kept while rocking, the side as the model follows it, and a
- * package lifted since its last rest that its model finds back at rest
- * says so; at a cut ev, its map (sw_pkg_on_cut).  The caller resets the
- * scheme's history after a cut (sw_step_reset). */
-void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev);
+/* A step taken, in one call: the events it timed (timed[0..nt), as
+ * sw_pkg_timed), then where it ended, P->t and P->y (the engine moved
+ * them there): with no cut (ev SW_EVF_NONE), |theta| kept while rocking,
+ * the side as the model follows it, and a package lifted since its last
+ * rest that its model finds back at rest says so; at a cut ev, its map
+ * (sw_pkg_on_cut).  A cut step's timed events are handed first, before
+ * the cut is polished (its re-steps move the model's scratch, which
+ * their reports read): nt is then 0.  The caller restarts the scheme
+ * after a cut (sw_step_restart). */
+void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t timed[], int nt, int ev);
 /* A cutting event ev at t (P->t, P->y there): |theta| kept, the side as
  * the model says, then the event's map (a step's cut, and a flight's
  * overturn, flight.c). */

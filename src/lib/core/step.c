@@ -159,6 +159,7 @@ void sw_step_free(sw_stepper_t *W)
 
 void sw_step_reset(sw_stepper_t *W)
 {
+    W->restart = 0;
     if (!W->gevo)
         return;
     gsl_odeiv2_evolve_reset(W->gevo);
@@ -196,6 +197,8 @@ int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const dou
 {
     const double span = t1 - t0, rem = span < C->hmax ? span : C->hmax; /* s */
     double tt = t0;
+    if (W->restart)
+        sw_step_reset(W);
     memcpy(y1, y0, sizeof(double) * (size_t)W->ms.m->n);
     if (W->h_adapt > rem)
         W->h_adapt = rem;

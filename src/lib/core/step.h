@@ -40,6 +40,8 @@ struct sw_stepper {
     gsl_odeiv2_control *gctl;
     gsl_odeiv2_evolve *gevo;
     double h_adapt;         /* s, GSL's proposed next step */
+    int restart;            /* the state was mapped: GSL's history is forgotten before
+                               its next step (sw_step_restart) */
     gsl_odeiv2_driver gdrv; /* not allocated: hands gctl to GSL's implicit steppers */
 };
 
@@ -62,7 +64,14 @@ int sw_step_init(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
  * after sw_step_init, and again after the package is moved in memory. */
 void sw_step_bind(sw_stepper_t *W, const sw_model_t *M, sw_model_scratch_t *S);
 void sw_step_free(sw_stepper_t *W);
-void sw_step_reset(sw_stepper_t *W);  /* forget the scheme's history (after a map) */
+void sw_step_reset(sw_stepper_t *W); /* forget the scheme's history (after a map) */
+/* The same, done when the scheme next steps (sw_step_evolve): the engine
+ * marks its stepper after a cut's map, and the step layer, which owns
+ * the history, forgets it before it uses it again. */
+static inline void sw_step_restart(sw_stepper_t *W)
+{
+    W->restart = 1;
+}
 void sw_step_forget(sw_stepper_t *W); /* restart the error control's count (after a fault) */
 /* The input over [t0, t1] makes a fixed step unstable for P? */
 int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double t0, double t1);

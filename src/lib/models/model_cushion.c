@@ -600,6 +600,15 @@ static void cushion_event_fn(const sw_model_t *M, int ev, const sw_input_at_t *u
     }
 }
 
+/* ... with y' the model's own: the polish's one call per iterate. */
+static void cushion_event_at(const sw_model_t *M, sw_model_scratch_t *S, int ev,
+                             const sw_input_at_t *u, const double y[], double *val, double *der)
+{
+    double f[SW_NMAX];
+    cushion_rhs(M, S, u, y, f);
+    cushion_event_fn(M, ev, u, y, f, val, der);
+}
+
 static int cushion_uplift_side(const sw_model_t *M, const sw_input_at_t *u, const double y[])
 {
     (void)M;
@@ -614,11 +623,13 @@ static void cushion_follow(sw_model_t *M, const double y[])
     M->side = y[M->ith] < 0.0 ? -1 : 1;
 }
 
-/* Back at rest: in full contact with less energy than it takes to lift
- * an edge again (with no input it never will). */
-static int cushion_at_rest(const sw_model_t *M, const double y[])
+/* After a step: the side, and, lifted, back at rest: in full contact
+ * with less energy than it takes to lift an edge again (with no input it
+ * never will). */
+static int cushion_stepped(sw_model_t *M, const double y[], int lifted)
 {
-    return cushion_lift(M, y, NULL) < 0.0 && motion_energy(M, y) < M->e_lift;
+    cushion_follow(M, y);
+    return lifted && cushion_lift(M, y, NULL) < 0.0 && motion_energy(M, y) < M->e_lift;
 }
 
 /* Moving unless its energy of motion is below rest_eps of the barrier. */
@@ -742,10 +753,11 @@ const sw_model_ops_t sw_model_cushion = {
     .rest = cushion_rest,
     .candidates = cushion_candidates,
     .event_fn = cushion_event_fn,
+    .event_at = cushion_event_at,
     .uplift_side = cushion_uplift_side,
     .output = cushion_output,
     .follow = cushion_follow,
-    .at_rest = cushion_at_rest,
+    .stepped = cushion_stepped,
     .moving = cushion_moving,
     .tracks_rate = 1,
     .flies = SW_FLIES_INTEGRATED,

@@ -170,6 +170,11 @@ struct sw_model_ops {
      * the input's value u there (the one f was computed with) */
     void (*event_fn)(const sw_model_t *M, int ev, const sw_input_at_t *u, const double y[],
                      const double f[], double *val, double *der);
+    /* the same at y under u, the model evaluating f = y' itself (its
+     * right-hand side, then event_fn): the polish's one call per iterate.
+     * May write the scratch S, as rhs. */
+    void (*event_at)(const sw_model_t *M, sw_model_scratch_t *S, int ev, const sw_input_at_t *u,
+                     const double y[], double *val, double *der);
     /* at theta = 0: the velocity map on y, the side flips; NULL: never
      * impacts */
     void (*impact)(sw_model_t *M, double y[]);
@@ -186,15 +191,16 @@ struct sw_model_ops {
      * under the input's value u at the report's time */
     void (*output)(const sw_model_t *M, const sw_model_scratch_t *S, const sw_input_at_t *u,
                    const double y[], sw_output_t *o);
-    /* the side as the state decides it, after an accepted step and at a
-     * cut before its map (a cushion's is the sign of theta); NULL: the
-     * maps set it */
+    /* the side as the state decides it, at a cut before its map (a
+     * cushion's is the sign of theta); NULL: the maps set it */
     void (*follow)(sw_model_t *M, const double y[]);
-    /* a package that lifted since its last rest is back at rest (it can
-     * no longer lift without input): checked after every accepted step
-     * with no cut, and said by the phase machine (sw_pkg_stepped);
-     * NULL: rest only through the maps */
-    int (*at_rest)(const sw_model_t *M, const double y[]);
+    /* after every accepted step with no cut, one call: the side as the
+     * state decides it (as follow), and for a package rocking since a
+     * lift that has not come back to rest (lifted), whether it now is (it
+     * can no longer lift without input), which the phase machine says
+     * (sw_pkg_stepped); 0 when not lifted.  NULL: the side as follow
+     * says, rest only through the maps */
+    int (*stepped)(sw_model_t *M, const double y[], int lifted);
     /* still moving, for sw_engine_finish (settled packages end it early) */
     int (*moving)(const sw_model_t *M, const double y[], double rest_eps);
     /* the right-hand side reports the fastest contact rate of its stages,

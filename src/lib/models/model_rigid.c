@@ -318,6 +318,23 @@ static void rigid_event_fn(const sw_model_t *M, int ev, const sw_input_at_t *u, 
     }
 }
 
+/* ... with y' the model's own: the polish's one call per iterate. */
+static void bare_event_at(const sw_model_t *M, sw_model_scratch_t *S, int ev,
+                          const sw_input_at_t *u, const double y[], double *val, double *der)
+{
+    double f[SW_NMAX];
+    rigid_rhs_of(M, S, SW_MODEL_BARE, u->ag, u->ge, y, f);
+    rigid_event_fn(M, ev, u, y, f, val, der);
+}
+
+static void frame_event_at(const sw_model_t *M, sw_model_scratch_t *S, int ev,
+                           const sw_input_at_t *u, const double y[], double *val, double *der)
+{
+    double f[SW_NMAX];
+    rigid_rhs_of(M, S, SW_MODEL_FRAME, u->ag, u->ge, y, f);
+    rigid_event_fn(M, ev, u, y, f, val, der);
+}
+
 /* ---- maps and tests ------------------------------------------------------------ */
 
 /* At theta = 0 (physics.md): theta' times the impact ratio; on a frame the
@@ -545,6 +562,7 @@ const sw_model_ops_t sw_model_bare = {
     .fixed = SW_FIXED_RK_ROW(bare),
     .candidates = rigid_candidates,
     .event_fn = rigid_event_fn,
+    .event_at = bare_event_at,
     .impact = bare_impact,
     .land = bare_land,
     .uplift_side = bare_uplift_side,
@@ -576,6 +594,7 @@ const sw_model_ops_t sw_model_frame = {
     .fixed = SW_FIXED_RK_ROW(frame),
     .candidates = rigid_candidates,
     .event_fn = rigid_event_fn,
+    .event_at = frame_event_at,
     .impact = frame_impact,
     .land = frame_land,
     .uplift_side = frame_uplift_side,
