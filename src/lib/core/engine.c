@@ -163,10 +163,10 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             return failed(P, t1, t0, SW_EFAULT, tf);
         C->step_y1 = y1;
         C->step_h = h;
-        double tau;
+        double te; /* s, a cut's time (ys: the state there) */
         sw_timed_t timed[SW_MAX_CANDS];
         int nt;
-        const int ev = sw_event_find(C, W, t0, h, P->y, y1, &tau, timed, &nt);
+        const int ev = sw_event_find(C, W, t0, h, P->y, y1, &te, ys, timed, &nt);
         P->m.held = 0;
         if (ev == SW_EVF_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->m.n);
@@ -174,15 +174,14 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             sw_pkg_stepped(E, P, timed, nt, SW_EVF_NONE);
             continue;
         }
-        if (nt) /* before the polish's re-steps move the model's scratch */
-            sw_pkg_timed(E, P, timed, nt);
-        const double te = sw_event_polish(C, W, ev, t0, h, P->y, tau, ys);
         same_t = te - t0 <= 1e-12 * fmax(1.0, fabs(t0)) ? same_t + 1 : 0;
-        if (same_t > 64) /* a map that keeps re-triggering without progress */
+        if (same_t > 64) { /* a map that keeps re-triggering without progress */
+            sw_pkg_timed(E, P, timed, nt);
             return failed(P, t1, t0, SW_EFAULT, tf);
+        }
         memcpy(P->y, ys, sizeof(double) * (size_t)P->m.n);
         P->t = te;
-        sw_pkg_stepped(E, P, NULL, 0, ev);
+        sw_pkg_stepped(E, P, timed, nt, ev);
         sw_step_restart(W); /* the map changed the state: the scheme's history is gone */
     }
     P->t = t1;

@@ -14,7 +14,8 @@
  * Events that change the dynamics (uplift, impact, overturn, a kink to cut
  * at) end the step; tipping, peaks of |theta| and a cushion's first lift
  * are only timed.  Like CVODE's rootsfound, both are handed back: the cut
- * and its place, the timed events before it with their times and states;
+ * with its time and state, polished, and the timed events before it with
+ * their times and states;
  * what follows from them (the maps, the reports) is the package's (pkg.c),
  * which the engine hands them to. */
 #include <float.h>
@@ -86,7 +87,7 @@ int sw_event_keep_outcome(sw_evcand_t c[], int nc)
 }
 
 int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                    const double y1[], const sw_evcand_t c[], int nc, double *tau_out,
+                    const double y1[], const sw_evcand_t c[], int nc, double *te, double ys[],
                     sw_timed_t timed[], int *ntimed)
 {
     const sw_model_t *M = W->ms.m;
@@ -128,7 +129,8 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
         n++;
     }
     *ntimed = n;
-    *tau_out = lim;
+    if (best != SW_EVF_NONE) /* the cut itself, on the scheme's own solution */
+        *te = sw_event_polish(C, W, best, t0, h, y0, lim, ys);
     return best;
 }
 

@@ -2,7 +2,7 @@
 /* event.h - the event layer (CVODE's root finding; GSL has none): the
  * events inside a step, from the model's candidates, found on the step's
  * interpolant and polished by re-stepping (event.c).  It hands back the
- * earliest cut and its place and the timed events before it; the phase
+ * earliest cut, polished, and the timed events before it; the phase
  * machine (pkg.h) does what follows from them.  Internal. */
 #ifndef SWAYWATCH_EVENT_H
 #define SWAYWATCH_EVENT_H
@@ -19,11 +19,12 @@ typedef struct {
 } sw_timed_t;
 
 /* The earliest cutting event among the model's candidates c[0..nc) inside
- * the step (t0, y0) -> (t0 + h, y1) (SW_EVF_NONE if none; *tau its place
- * in [0, 1]); the timed events before it in timed[0..*ntimed), in the
- * order of the candidates (timed has room for nc). */
+ * the step (t0, y0) -> (t0 + h, y1) (SW_EVF_NONE if none), polished by
+ * re-stepping: *te its time (s), ys the state there; the timed events
+ * before it in timed[0..*ntimed), in the order of the candidates (timed
+ * has room for nc), as CVODE hands back its root and rootsfound. */
 int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                    const double y1[], const sw_evcand_t c[], int nc, double *tau,
+                    const double y1[], const sw_evcand_t c[], int nc, double *te, double ys[],
                     sw_timed_t timed[], int *ntimed);
 /* Keep the candidates that end a step (the dynamics), drop those that only
  * time a peak, a tip or a cushion's lift (the report); the count left. */
@@ -31,7 +32,7 @@ int sw_event_keep_outcome(sw_evcand_t c[], int nc);
 /* The same, asking the model for its candidates first: inline, because
  * most steps have none and the question is then all the work. */
 static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
-                                const double y0[], const double y1[], double *tau,
+                                const double y0[], const double y1[], double *te, double ys[],
                                 sw_timed_t timed[SW_MAX_CANDS], int *ntimed)
 {
     sw_evcand_t c[SW_MAX_CANDS];
@@ -40,7 +41,7 @@ static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, double 
     if (nc && C->outcome_only)
         nc = sw_event_keep_outcome(c, nc);
     *ntimed = 0;
-    return nc ? sw_event_locate(C, W, t0, h, y0, y1, c, nc, tau, timed, ntimed) : SW_EVF_NONE;
+    return nc ? sw_event_locate(C, W, t0, h, y0, y1, c, nc, te, ys, timed, ntimed) : SW_EVF_NONE;
 }
 /* Polish the event time by re-stepping; the state there in y; its time. */
 double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0, double h,

@@ -62,13 +62,11 @@ void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
 void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
 /* A step taken, in one call: the events it timed (timed[0..nt), as
  * sw_pkg_timed), then where it ended, P->t and P->y (the engine moved
- * them there): with no cut (ev SW_EVF_NONE), |theta| kept while rocking,
- * the side as the model follows it, and a package lifted since its last
- * rest that its model finds back at rest says so; at a cut ev, its map
- * (sw_pkg_on_cut).  A cut step's timed events are handed first, before
- * the cut is polished (its re-steps move the model's scratch, which
- * their reports read): nt is then 0.  The caller restarts the scheme
- * after a cut (sw_step_restart). */
+ * them there: the step's end, or its cut, polished): with no cut (ev
+ * SW_EVF_NONE), |theta| kept while rocking, the side as the model
+ * follows it, and a package lifted since its last rest that its model
+ * finds back at rest says so; at a cut ev, its map (sw_pkg_on_cut).  The
+ * caller restarts the scheme after a cut (sw_step_restart). */
 void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t timed[], int nt, int ev);
 /* A cutting event ev at t (P->t, P->y there): |theta| kept, the side as
  * the model says, then the event's map (a step's cut, and a flight's
