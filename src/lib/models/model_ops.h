@@ -22,8 +22,8 @@
 typedef struct sw_model_ops sw_model_ops_t;
 typedef struct sw_model_traits sw_model_traits_t;
 
-/* The values of sw_model_kind: the rows of every table indexed by it (the
- * models in model.c, the schemes' specialised bodies in scheme.c). */
+/* The values of sw_model_kind: the rows of the table indexed by it (the
+ * models in model.c). */
 #define SW_MODEL_KINDS 3
 
 /* A package as its model sees it (GSL's params, CVODE's user data): the
