@@ -327,6 +327,32 @@ static void test_honest_bursts(void **state)
 {
     (void)state;
     honest(gen_bursts, "bursts", 0, 0);
+    honest(gen_bursts, "bursts", 1, 0);
+}
+
+/* A storm of outages live: a 1 kHz sensor whose link drops 0.3 s after
+ * every 20 samples, 60 times, from 0.5 s into the stream.  The outages
+ * recur, but each lies among fast samples: no stretch of the stream runs
+ * at their pace, so none becomes the pace, and every one is a gap (the
+ * first ones said two seconds in, when a live stream's pace is known). */
+static void test_outage_storm_live(void **state)
+{
+    (void)state;
+    static timing_t T;
+    memset(&T, 0, sizeof T);
+    rng_state = 4242;
+    double t = 0.0;
+    for (int i = 0; i < 500; i++, t += 1e-3) add(&T, t);
+    for (int k = 0; k < 60; k++) {
+        t += 0.3 - 1e-3;
+        for (int i = 0; i < 100; i++, t += 1e-3) add(&T, t);
+    }
+    arrivals(&T, 0);
+    sw_gate_facts_t f;
+    const seen_t s = run(&T, 1, &f);
+    assert_int_equal(s.refused, 0);
+    assert_int_equal(s.gaps, 60);
+    assert_int_equal(f.gaps, 60);
 }
 
 static void test_honest_can(void **state)
@@ -965,6 +991,7 @@ int main(void)
         cmocka_unit_test(test_honest_stalls),
         cmocka_unit_test(test_honest_stalls_slow_drain),
         cmocka_unit_test(test_honest_sender_restarts),
+        cmocka_unit_test(test_outage_storm_live),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -41,8 +41,10 @@
                                  the logger writes 90 % of the time */
 #define JUMP_FACTOR 1.5       /* s per spacing: how far a sample may run ahead of real time */
 #define JUMP_FLOOR 1e-4       /* s */
+#define PACED_RATIO 1.5       /* live: two intervals within this ratio are a pace (gate_timing.c) */
 #define WARM_N 64             /* live: the first intervals teach the pace; none is a gap */
 #define WARM_TIME 10.0        /* s of a log: gaps before are judged again once the pace is known */
+#define WARM_LIVE 2.0         /* s of a live stream: the same */
 #define DEFER 16              /* gap events that wait for that */
 #define RECON_MIN 4           /* repeated stamps in the look-ahead that reveal a coarse clock */
 #define RIVAL_MIN 3           /* refused samples in a row on one timeline: contested */

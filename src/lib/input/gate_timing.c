@@ -102,6 +102,33 @@ static inline void axis_add(double a, double *peak, long *above_half_g, double *
     *sum_abs += aa;
 }
 
+/* Live, is an interval dt (s) that was not normal (a gap, normal only
+ * beside one, the warm-up's) the logger's pace all the same?  It is when
+ * the interval before it was as long (within PACED_RATIO: the logger wrote
+ * at that pace for a stretch, as a 10 Hz logger does between its 1 kHz
+ * bursts) and the receive times say that the time passed (at least half
+ * of it: samples read at once in a backlog, or forged, teach nothing).  A
+ * lone outage among fast samples, however often it recurs, stays out of
+ * the long run, so a storm of outages is never learned as the pace; one
+ * at most max_bridge, so a chain of samples far apart is neither. */
+static int paced(const sw_gate_t *g, const sw_sample_t *s, double dt)
+{
+    const timing_t *tm = &g->tm;
+    if (isnan(s->rx) || tm->nring == 0 || dt > g->o.max_bridge)
+        return 0;
+    const double prev = tm->ring[(tm->nring - 1) % RING];
+    const double drx = s->rx - g->last.rx;
+    return prev * PACED_RATIO >= dt && dt * PACED_RATIO >= prev && drx >= 0.5 * dt;
+}
+
+/* s of covered time in which a bridged gap waits to be judged once the
+ * pace is known: a log's first seconds; a live stream's first two, so
+ * that its word comes soon (the monitor's timer says a silence at once) */
+static double warm_time(const sw_sample_t *s)
+{
+    return isnan(s->rx) ? WARM_TIME : WARM_LIVE;
+}
+
 /* Push an accepted sample at engine time te. */
 int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
 {
@@ -122,7 +149,8 @@ int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
             note_interval(g, dt, x);
             g->f.duration += te - g->last_engine;
             if (iv != IV_BREAK)
-                gate_tm_add(&g->tm, dt, x, iv == IV_NORMAL, iv == IV_NORMAL || iv == IV_WARM);
+                gate_tm_add(&g->tm, dt, x, iv == IV_NORMAL || paced(g, s, dt),
+                            iv == IV_NORMAL || iv == IV_WARM);
         }
         const double drx = s->rx - g->last.rx;
         if (drx >= 0.0)
@@ -131,7 +159,7 @@ int gate_take(sw_gate_t *g, const sw_sample_t *s, double te, int iv)
         g->f.t_first = s->t;
     }
     gate_note_seq(g, s);
-    if (g->ndeferred && g->tm.covered >= WARM_TIME)
+    if (g->ndeferred && g->tm.covered >= warm_time(s))
         gate_judge_deferred(g);
     g->f.t_last = s->t;
     g->f.accepted++;
@@ -222,12 +250,14 @@ double gate_resume(sw_gate_t *g, const sw_sample_t *s, double thr, int *iv)
      * clock that leapt while the monitor was stopped passes for a pause) */
     g->burst_env = NAN;
     ev.t_engine = te;
-    /* A bridged gap in the first seconds of a log may be the logger's pace
-     * (the first pause between 1 kHz bursts): judged again once the pace
-     * is known.  Bridging is what the engine does between any samples, so
-     * nothing but the word waits. */
-    if (gap && ev.bridged && ev.kind == SW_GATE_EV_GAP && isnan(s->rx) && g->o.gap == 0.0 &&
-        g->tm.covered < WARM_TIME && g->ndeferred < DEFER) {
+    /* A bridged gap in the first seconds of a stream may be the logger's
+     * pace (the first pause between 1 kHz bursts): judged again once the
+     * pace is known.  Bridging is what the engine does between any
+     * samples, so nothing but the word waits; live, only the word of a gap
+     * that left the verdict complete: one that may have changed it is said
+     * at once (under doubt, alarm). */
+    if (gap && ev.bridged && ev.kind == SW_GATE_EV_GAP && g->o.gap == 0.0 &&
+        g->tm.covered < warm_time(s) && g->ndeferred < DEFER && (isnan(s->rx) || !ev.incomplete)) {
         g->deferred[g->ndeferred++] = (deferred_t){.ev = ev, .dt = elapsed};
         return te;
     }
@@ -238,16 +268,20 @@ double gate_resume(sw_gate_t *g, const sw_sample_t *s, double thr, int *iv)
     return te;
 }
 
-/* The deferred gaps of a log's first seconds, judged by the pace learned
- * since: the ones still far beyond it are said (late, with where they
- * were); the others were the logger's pace, and are learned as such. */
+/* The deferred gaps of a stream's first seconds, judged by the pace
+ * learned since: the ones still far beyond it are said (late, with where
+ * they were); the others were the logger's pace, and are learned as such.
+ * Live, they are judged two seconds in, when the recent intervals may
+ * still hold them: those intervals count only where learnable, so that a
+ * gap is not its own pace. */
 void gate_judge_deferred(sw_gate_t *g)
 {
     const int n = g->ndeferred;
     if (n == 0)
         return;
     g->ndeferred = 0;
-    const double thr = gate_gap_threshold(g, NAN);
+    const double thr = isnan(g->last.rx) ? gate_gap_threshold(g, NAN)
+                                         : gate_threshold_of(g, gate_spacing_full(g, 1));
     for (int i = 0; i < n; i++) {
         deferred_t *d = &g->deferred[i];
         if (d->dt > thr) {
