@@ -57,7 +57,9 @@ static inline double fixed_h(double rem, double hmax)
  * or skips the landing: its right-hand side reports the fastest contact
  * rate its stages met, and the step is retaken shorter until that rate
  * times h is within the bound the package's h keeps at rest (0.5, or the
- * scheme's stability bound for a forced dt). */
+ * scheme's stability bound for a forced dt).  Where the model's proven
+ * bound of every rate it can meet (M->rate_cap) is within it already,
+ * the step is taken untracked: tracking would accept it. */
 static SW_NOINLINE int fixed_tracked(const sw_step_ctx_t *C, sw_stepper_t *W, double t0,
                                      const double y0[], double t1, double y1[], double *hout)
 {
@@ -71,14 +73,12 @@ static SW_NOINLINE int fixed_tracked(const sw_step_ctx_t *C, sw_stepper_t *W, do
         const double bound = lim < W->stab_rate ? lim : W->stab_rate;
         *hout = h;
         if (M->rate_cap * h <= bound) {
-            /* every rate the model can meet is stable at h: the step
-             * that tracking would accept, without tracking */
             W->step(M, S, t0, h, y0, y1);
             return SW_OK;
         }
         S->rate_seen = 0.0;
         S->track_rate = 1;
-        W->step(W->ms.m, S, t0, h, y0, y1);
+        W->step(M, S, t0, h, y0, y1);
         S->track_rate = 0;
         if (S->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
             return SW_OK;
