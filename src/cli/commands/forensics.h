@@ -65,7 +65,8 @@ typedef struct {
     /* what ties the answer to its inputs (sw_cli_forensics_fingerprint) */
     int fingerprinted;
     pthread_t digest_thread; /* the log's digest, made beside the replay */
-    int digest_running, digest_made;
+    int digest_fd;           /* the log's descriptor it reads */
+    int digest_running;      /* started and not yet joined */
     sw_cli_digest_t log_digest;
     sw_cli_digest_t *scene_digest; /* one per --scene file, in order */
     char *command_line;            /* the command, quoted for a POSIX shell */

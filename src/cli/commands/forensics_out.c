@@ -45,33 +45,36 @@ void sw_cli_forensics_end(sw_cli_forensics_t *F)
     (void)F;
 }
 
+/* The thread reads only its descriptor and writes only the digest: the
+ * replay's reader is the main thread's alone. */
 static void *digest_main(void *arg)
 {
     sw_cli_forensics_t *F = arg;
-    sw_cli_digest_fd(fileno(F->R.lf.in), &F->log_digest);
+    sw_cli_digest_fd(F->digest_fd, &F->log_digest);
     return NULL;
 }
 
 void sw_cli_forensics_digest_start(sw_cli_forensics_t *F)
 {
-    if (F->R.lf.in && !F->digest_running && !F->digest_made)
-        F->digest_running = pthread_create(&F->digest_thread, NULL, digest_main, F) == 0;
+    if (!F->R.lf.in || F->digest_running)
+        return;
+    F->digest_fd = fileno(F->R.lf.in);
+    F->digest_running = pthread_create(&F->digest_thread, NULL, digest_main, F) == 0;
 }
 
-/* The digest thread's answer, once it has one. */
-static void digest_join(sw_cli_forensics_t *F)
+/* The digest made beside the replay, if one was started: 1 once joined. */
+static int digest_join(sw_cli_forensics_t *F)
 {
     if (!F->digest_running)
-        return;
+        return 0;
     pthread_join(F->digest_thread, NULL);
     F->digest_running = 0;
-    F->digest_made = 1;
+    return 1;
 }
 
 void sw_cli_forensics_free(sw_cli_forensics_t *F)
 {
     digest_join(F); /* before the log's descriptor is closed */
-    F->digest_made = 0;
     free(F->ev);
     free(F->impacts_seen);
     free(F->scene_digest);
@@ -86,8 +89,7 @@ void sw_cli_forensics_free(sw_cli_forensics_t *F)
 int sw_cli_forensics_fingerprint(sw_cli_forensics_t *F)
 {
     const sw_cli_list_t *sc = &F->o.scenes;
-    digest_join(F);
-    if (!F->digest_made) { /* not made beside the replay */
+    if (!digest_join(F)) { /* not made beside the replay */
         if (F->R.lf.in)
             sw_cli_digest_fd(fileno(F->R.lf.in), &F->log_digest);
         else
