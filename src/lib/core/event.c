@@ -28,38 +28,35 @@
 #include "step.h"
 #include "swaywatch/status.h"
 
-/* The ends of the step being examined: the states, the input there and
- * the derivatives under it, each evaluated once for every candidate. */
+/* The ends of the step being examined: the states, the input there, the
+ * derivatives under it and each candidate's event function (value v,
+ * time derivative d), from one model call per end. */
 typedef struct {
     const double *y0, *y1;
-    sw_input_at_t u0, u1;
     double f0[SW_NMAX], f1[SW_NMAX];
+    double v0[SW_MAX_CANDS], d0[SW_MAX_CANDS], v1[SW_MAX_CANDS], d1[SW_MAX_CANDS];
 } sw_ends_t;
 
-/* Where the candidate's function rises through 0 over the step, in [0, 1]
+/* Where candidate i's function rises through 0 over the step, in [0, 1]
  * by its rule (SW_RULE_*), or -1. */
-static double root_of(const sw_model_t *M, const sw_evcand_t *c, double h, const sw_ends_t *E)
+static double root_of(const sw_evcand_t *c, int i, double h, const sw_ends_t *E)
 {
-    double v[2], d[2];
-    M->ops->event_fn(M, c->ev, &E->u0, E->y0, E->f0, &v[0], &d[0]);
-    if (c->rule == SW_RULE_KINK && !c->clear && v[0] > 0.0)
-        return -1.0; /* crossed already: we are past this kink (the end need not be looked at) */
-    M->ops->event_fn(M, c->ev, &E->u1, E->y1, E->f1, &v[1], &d[1]);
-    if (c->clear && v[1] < 0.0 && v[0] < 0.0 &&
-        fmax(v[0], v[1]) < -0.5 * h * (fabs(d[0]) + fabs(d[1])))
-        return -1.0; /* clearly below the threshold all step */
+    const double v0 = E->v0[i], d0 = E->d0[i], v1 = E->v1[i], d1 = E->d1[i];
+    if (c->rule == SW_RULE_KINK && v0 > 0.0)
+        return -1.0; /* crossed already: we are past this kink */
+    /* Clearly below the threshold all step: the interpolant exceeds
+     * max(v0, v1) by at most 4/27 h (|d0| + |d1|) (its two derivative
+     * terms), so it has no rise, and the search would find none. */
+    if (c->clear && v1 < 0.0 && v0 < 0.0 && fmax(v0, v1) < -0.5 * h * (fabs(d0) + fabs(d1)))
+        return -1.0;
     /* on the event function's interpolant over the step */
     if (c->rule == SW_RULE_PLAIN)
-        return sw_herm_rise(v[0], d[0], v[1], d[1], h, NULL);
-    if (c->rule == SW_RULE_KINK) {
-        if (v[0] > 0.0)
-            return -1.0; /* crossed already: we are past this kink */
-    } else if (v[0] > 0.0 || (v[0] == 0.0 && d[0] > 0.0)) {
+        return sw_herm_rise(v0, d0, v1, d1, h, NULL);
+    if (c->rule != SW_RULE_KINK && (v0 > 0.0 || (v0 == 0.0 && d0 > 0.0)))
         return 0.0; /* already through at the start of the step */
-    }
     double tol;
-    double tau = sw_herm_rise(v[0], d[0], v[1], d[1], h, &tol);
-    if (tau < 0.0 && v[0] < 0.0 && v[1] > tol)
+    double tau = sw_herm_rise(v0, d0, v1, d1, h, &tol);
+    if (tau < 0.0 && v0 < 0.0 && v1 > tol)
         tau = 1.0; /* round-off in the pieces */
     return tau;
 }
@@ -68,9 +65,9 @@ static double root_of(const sw_model_t *M, const sw_evcand_t *c, double h, const
  * tau = lim, polished by re-stepping so that max |theta| is as accurate as
  * the scheme, even for long adaptive steps.  1 with the peak in *out. */
 static int find_peak(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_evcand_t *c, double t0,
-                     double h, const sw_ends_t *E, double lim, sw_timed_t *out)
+                     int i, double h, const sw_ends_t *E, double lim, sw_timed_t *out)
 {
-    const double tau = root_of(W->ms.m, c, h, E);
+    const double tau = root_of(c, i, h, E);
     if (!(tau > 0.0 && tau <= lim))
         return 0;
     out->t = sw_event_polish(C, W, c->ev, t0, h, E->y0, tau, out->y);
@@ -92,17 +89,17 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
 {
     const sw_model_t *M = W->ms.m;
     const double t1 = t0 + h;
-    sw_ends_t E = {
-        .y0 = y0, .y1 = y1, .u0 = sw_input_at(M->in, M->g, t0), .u1 = sw_input_at(M->in, M->g, t1)};
-    M->ops->rhs(M, W->ms.s, &E.u0, y0, E.f0);
-    M->ops->rhs(M, W->ms.s, &E.u1, y1, E.f1);
+    const sw_input_at_t u0 = sw_input_at(M->in, M->g, t0), u1 = sw_input_at(M->in, M->g, t1);
+    sw_ends_t E = {.y0 = y0, .y1 = y1};
+    M->ops->events(M, W->ms.s, &u0, y0, c, nc, E.f0, E.v0, E.d0);
+    M->ops->events(M, W->ms.s, &u1, y1, c, nc, E.f1, E.v1, E.d1);
     /* the earliest cutting event ends the step */
     int best = SW_EVF_NONE;
     double best_tau = 2.0;
     for (int i = 0; i < nc; i++) {
         if (c[i].role != SW_ROLE_CUT)
             continue;
-        const double tau = root_of(M, &c[i], h, &E);
+        const double tau = root_of(&c[i], i, h, &E);
         const int inside = c[i].rule == SW_RULE_KINK ? tau > 0.0 && tau < 1.0 : tau >= 0.0;
         if (inside && tau < best_tau) {
             best_tau = tau;
@@ -118,10 +115,10 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
         sw_timed_t *T = &timed[n];
         T->role = c[i].role;
         if (c[i].role == SW_ROLE_PEAK) {
-            n += find_peak(C, W, &c[i], t0, h, &E, lim, T);
+            n += find_peak(C, W, &c[i], t0, i, h, &E, lim, T);
             continue;
         }
-        const double tau = root_of(M, &c[i], h, &E);
+        const double tau = root_of(&c[i], i, h, &E);
         if (!(tau >= 0.0 && tau <= lim))
             continue;
         sw_herm_state(M->n, h, y0, E.f0, y1, E.f1, tau, T->y);
@@ -144,7 +141,8 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
                        const double y0[], double tau, double y[])
 {
     const sw_model_t *M = W->ms.m;
-    double ts = t0 + tau * h, v = 0.0, d = 0.0;
+    const sw_evcand_t c = {.ev = (unsigned char)ev};
+    double ts = t0 + tau * h, v = 0.0, d = 0.0, f[SW_NMAX];
     if (tau == 0.0) {
         memcpy(y, y0, sizeof(double) * (size_t)M->n);
         return t0;
@@ -154,7 +152,7 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
         if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             return ts;
         const sw_input_at_t u = sw_input_at(M->in, M->g, ts);
-        M->ops->event_at(M, W->ms.s, ev, &u, y, &v, &d);
+        M->ops->events(M, W->ms.s, &u, y, &c, 1, f, &v, &d);
         if (v == 0.0 || d == 0.0)
             break;
         double tn = ts - v / d;
@@ -174,7 +172,7 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
         if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             break;
         const sw_input_at_t u = sw_input_at(M->in, M->g, ts);
-        M->ops->event_at(M, W->ms.s, ev, &u, y, &v, &d);
+        M->ops->events(M, W->ms.s, &u, y, &c, 1, f, &v, &d);
     }
     return ts;
 }

@@ -215,8 +215,8 @@ static int finite_or_fail(const sw_model_t *M, const double f[])
     return GSL_SUCCESS;
 }
 
-static int cushion_rhs_eval(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
-                            const double y[], double f[]);
+static int cushion_rhs_trig(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                            const double y[], double s, double co, double f[]);
 
 /* The right-hand side is a function of (a_g, g_eff, y) alone (the mode
  * selects nothing on a cushion), and it is asked again for states it has
@@ -237,43 +237,58 @@ static inline int same_bits(const double *a, const double *b, int n)
     return 1;
 }
 
+/* f from the memory into f (1), or 0 with the key made in key. */
+static int memo_get(const sw_model_t *M, const sw_model_scratch_t *S, const sw_input_at_t *u,
+                    const double y[], double key[], double f[], int *rc)
+{
+    const int nk = 2 + M->n;
+    key[0] = u->ag;
+    key[1] = u->ge;
+    memcpy(key + 2, y, (size_t)M->n * sizeof(double));
+    if (!S->track_rate)
+        for (int i = 0; i < S->memo_n; i++)
+            if (same_bits(S->memo[i].key, key, nk)) {
+                memcpy(f, S->memo[i].f, (size_t)M->n * sizeof(double));
+                *rc = S->memo[i].rc;
+                return 1;
+            }
+    return 0;
+}
+
+static void memo_put(const sw_model_t *M, sw_model_scratch_t *S, const double key[],
+                     const double f[], int rc)
+{
+    const int j = S->memo_next;
+    memcpy(S->memo[j].key, key, (size_t)(2 + M->n) * sizeof(double));
+    memcpy(S->memo[j].f, f, (size_t)M->n * sizeof(double));
+    S->memo[j].rc = rc;
+    S->memo_next = (j + 1) % SW_RHS_MEMO;
+    if (S->memo_n < SW_RHS_MEMO)
+        S->memo_n++;
+}
+
 static int cushion_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
                        const double y[], double f[])
 {
     double key[2 + SW_NMAX];
-    const int nk = 2 + M->n;
-    const size_t fb = (size_t)M->n * sizeof(double);
-    if (S->memo_on) {
-        key[0] = u->ag;
-        key[1] = u->ge;
-        memcpy(key + 2, y, fb);
-        if (!S->track_rate)
-            for (int i = 0; i < S->memo_n; i++)
-                if (same_bits(S->memo[i].key, key, nk)) {
-                    memcpy(f, S->memo[i].f, fb);
-                    return S->memo[i].rc;
-                }
-    }
-    const int rc = cushion_rhs_eval(M, S, u, y, f);
-    if (S->memo_on) {
-        const int j = S->memo_next;
-        memcpy(S->memo[j].key, key, (size_t)nk * sizeof(double));
-        memcpy(S->memo[j].f, f, fb);
-        S->memo[j].rc = rc;
-        S->memo_next = (j + 1) % SW_RHS_MEMO;
-        if (S->memo_n < SW_RHS_MEMO)
-            S->memo_n++;
-    }
+    int rc;
+    if (S->memo_on && memo_get(M, S, u, y, key, f, &rc))
+        return rc;
+    const double th = y[M->ith];
+    rc = cushion_rhs_trig(M, S, u, y, sin(th), cos(th), f);
+    if (S->memo_on)
+        memo_put(M, S, key, f, rc);
     return rc;
 }
 
-static int cushion_rhs_eval(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
-                            const double y[], double f[])
+/* The same with s = sin(theta), co = cos(theta) given. */
+static int cushion_rhs_trig(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                            const double y[], double s, double co, double f[])
 {
     const sw_derived_t *d = &M->d;
     const double ag = u->ag, ge = u->ge; /* m/s^2 */
     const double th = y[M->ith], z = y[M->iz], dth = y[M->idth], dz = y[M->idz];
-    const double s = sin(th), co = cos(th), h = d->h;
+    const double h = d->h;
     contact_t k;
     sw_cushion_contact(d, s, co, z, dth, dz, S->track_rate ? CT_PUSH | CT_MOMENTS : CT_PUSH, &k);
     if (S->track_rate)
@@ -314,16 +329,20 @@ static void cushion_rest(sw_model_t *M, double y[])
 }
 
 /* b^2 sin^2(theta) - z |z| (m^2): > 0 while an edge of the base is off the
- * cushion; *der (may be NULL) gets its time derivative. */
-static double cushion_lift(const sw_model_t *M, const double y[], double *der)
+ * cushion (b |sin theta| > z), smooth through theta = 0 and z = 0; *der
+ * (may be NULL) gets its time derivative.  s = sin(theta), co = cos(theta). */
+static double lift_trig(const sw_model_t *M, const double y[], double s, double co, double *der)
 {
-    /* b^2 sin^2(theta) - z |z|: > 0 when an edge is above the unloaded
-     * surface (b |sin theta| > z), smooth through theta = 0 and z = 0 */
-    const double b = M->d.b, th = y[M->ith], z = y[M->iz];
-    const double s = sin(th), co = cos(th); /* one sincos, as the event layer asks for der */
+    const double b = M->d.b, z = y[M->iz];
     if (der)
         *der = 2.0 * b * b * s * co * y[M->idth] - 2.0 * fabs(z) * y[M->idz];
     return b * b * s * s - z * fabs(z);
+}
+
+static double cushion_lift(const sw_model_t *M, const double y[], double *der)
+{
+    const double th = y[M->ith];
+    return lift_trig(M, y, sin(th), cos(th), der);
 }
 
 /* ---- energies and margins ------------------------------------------------ */
@@ -552,7 +571,7 @@ static int cushion_candidates(const sw_model_t *M, int cut_kinks, double h, cons
      * tolerance leaves the contact unresolved). */
     if (cut_kinks)
         for (int ev = SW_EVF_LIFT; ev <= SW_EVF_FLY_IN; ev++)
-            c[n++] = (sw_evcand_t){(unsigned char)ev, SW_ROLE_CUT, SW_RULE_KINK, 0};
+            c[n++] = (sw_evcand_t){(unsigned char)ev, SW_ROLE_CUT, SW_RULE_KINK, 1};
     if ((y0[M->ith] * y0[M->idth] > 0.0) != (y1[M->ith] * y1[M->idth] > 0.0))
         c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};
     if (a0 < al && (a1 >= al || al - fmax(a0, a1) < v))
@@ -563,12 +582,11 @@ static int cushion_candidates(const sw_model_t *M, int cut_kinks, double h, cons
 }
 
 /* Value and time derivative of event ev at y with f = y' (none depends
- * on the input); theta changes sign smoothly on a cushion: events on
- * theta^2. */
-static void cushion_event_fn(const sw_model_t *M, int ev, const sw_input_at_t *u, const double y[],
-                             const double f[], double *val, double *der)
+ * on the input), s = sin(theta), co = cos(theta); theta changes sign
+ * smoothly on a cushion: events on theta^2. */
+static void cushion_event_fn(const sw_model_t *M, int ev, const double y[], const double f[],
+                             double s, double co, double *val, double *der)
 {
-    (void)u;
     const double th = y[M->ith], w = y[M->idth];
     switch (ev) {
         case SW_EVF_OVERTURN:
@@ -585,28 +603,46 @@ static void cushion_event_fn(const sw_model_t *M, int ev, const sw_input_at_t *u
             return;
         case SW_EVF_LIFT:
         case SW_EVF_LIFT_IN: {
-            const double v = cushion_lift(M, y, der), sg = ev == SW_EVF_LIFT ? 1.0 : -1.0;
+            const double v = lift_trig(M, y, s, co, der), sg = ev == SW_EVF_LIFT ? 1.0 : -1.0;
             *val = sg * v;
             *der *= sg;
             return;
         }
         default: { /* b^2 sin^2(theta) + z |z| */
-            const double b = M->d.b, sn = sin(th), z = y[M->iz];
+            const double b = M->d.b, z = y[M->iz];
             const double sg = ev == SW_EVF_FLY_IN ? 1.0 : -1.0; /* rises when the base flies */
-            *val = sg * (b * b * sn * sn + z * fabs(z));
-            *der = sg * (2.0 * b * b * sn * cos(th) * w + 2.0 * fabs(z) * y[M->idz]);
+            *val = sg * (b * b * s * s + z * fabs(z));
+            *der = sg * (2.0 * b * b * s * co * w + 2.0 * fabs(z) * y[M->idz]);
             return;
         }
     }
 }
 
-/* ... with y' the model's own: the polish's one call per iterate. */
-static void cushion_event_at(const sw_model_t *M, sw_model_scratch_t *S, int ev,
-                             const sw_input_at_t *u, const double y[], double *val, double *der)
+/* f at y, then each event function there, with one sine and cosine of
+ * theta for the right-hand side and the contact's events alike. */
+static void cushion_events(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                           const double y[], const sw_evcand_t c[], int n, double f[], double v[],
+                           double d[])
 {
-    double f[SW_NMAX];
-    cushion_rhs(M, S, u, y, f);
-    cushion_event_fn(M, ev, u, y, f, val, der);
+    const double th = y[M->ith];
+    double key[2 + SW_NMAX], s = 0.0, co = 0.0;
+    int rc, trig = 0;
+    if (!(S->memo_on && memo_get(M, S, u, y, key, f, &rc))) {
+        s = sin(th);
+        co = cos(th);
+        trig = 1;
+        rc = cushion_rhs_trig(M, S, u, y, s, co, f);
+        if (S->memo_on)
+            memo_put(M, S, key, f, rc);
+    }
+    for (int i = 0; i < n; i++) {
+        if (!trig && c[i].ev >= SW_EVF_LIFT) {
+            s = sin(th);
+            co = cos(th);
+            trig = 1;
+        }
+        cushion_event_fn(M, c[i].ev, y, f, s, co, &v[i], &d[i]);
+    }
 }
 
 static int cushion_uplift_side(const sw_model_t *M, const sw_input_at_t *u, const double y[])
@@ -752,8 +788,7 @@ const sw_model_ops_t sw_model_cushion = {
     .rhs = cushion_rhs,
     .rest = cushion_rest,
     .candidates = cushion_candidates,
-    .event_fn = cushion_event_fn,
-    .event_at = cushion_event_at,
+    .events = cushion_events,
     .uplift_side = cushion_uplift_side,
     .output = cushion_output,
     .follow = cushion_follow,

@@ -134,7 +134,7 @@ typedef struct {
     unsigned char ev;    /* SW_EVF_* */
     unsigned char role;  /* SW_ROLE_* */
     unsigned char rule;  /* SW_RULE_* */
-    unsigned char clear; /* skip when clearly below 0 over the whole step (uplift) */
+    unsigned char clear; /* skip when clearly below 0 over the whole step (uplift, kinks) */
 } sw_evcand_t;
 
 #define SW_MAX_CANDS 8
@@ -166,15 +166,15 @@ struct sw_model_ops {
      * how many (<= SW_MAX_CANDS). */
     int (*candidates)(const sw_model_t *M, int cut_kinks, double h, const double y0[],
                       const double y1[], sw_evcand_t c[]);
-    /* value and time derivative of event function ev at y, f = y', under
-     * the input's value u there (the one f was computed with) */
-    void (*event_fn)(const sw_model_t *M, int ev, const sw_input_at_t *u, const double y[],
-                     const double f[], double *val, double *der);
-    /* the same at y under u, the model evaluating f = y' itself (its
-     * right-hand side, then event_fn): the polish's one call per iterate.
-     * May write the scratch S, as rhs. */
-    void (*event_at)(const sw_model_t *M, sw_model_scratch_t *S, int ev, const sw_input_at_t *u,
-                     const double y[], double *val, double *der);
+    /* f = y' at y under the input's value u there (as rhs), and the value
+     * v[i] and time derivative d[i] of the event function of each c[i],
+     * i < n, at y: the event layer's one call per end of a step (every
+     * candidate) and per polish iterate (one), so a model computes what
+     * its functions share (an angle's sine) once.  May write the scratch
+     * S, as rhs. */
+    void (*events)(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                   const double y[], const sw_evcand_t c[], int n, double f[], double v[],
+                   double d[]);
     /* at theta = 0: the velocity map on y, the side flips; NULL: never
      * impacts */
     void (*impact)(sw_model_t *M, double y[]);

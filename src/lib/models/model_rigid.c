@@ -318,21 +318,28 @@ static void rigid_event_fn(const sw_model_t *M, int ev, const sw_input_at_t *u, 
     }
 }
 
-/* ... with y' the model's own: the polish's one call per iterate. */
-static void bare_event_at(const sw_model_t *M, sw_model_scratch_t *S, int ev,
-                          const sw_input_at_t *u, const double y[], double *val, double *der)
+/* f at y, then each event function there: the event layer's one call. */
+static SW_ALWAYS_INLINE void rigid_events_of(const sw_model_t *M, sw_model_scratch_t *S,
+                                             sw_model_kind model, const sw_input_at_t *u,
+                                             const double y[], const sw_evcand_t c[], int n,
+                                             double f[], double v[], double d[])
 {
-    double f[SW_NMAX];
-    rigid_rhs_of(M, S, SW_MODEL_BARE, u->ag, u->ge, y, f);
-    rigid_event_fn(M, ev, u, y, f, val, der);
+    rigid_rhs_of(M, S, model, u->ag, u->ge, y, f);
+    for (int i = 0; i < n; i++) rigid_event_fn(M, c[i].ev, u, y, f, &v[i], &d[i]);
 }
 
-static void frame_event_at(const sw_model_t *M, sw_model_scratch_t *S, int ev,
-                           const sw_input_at_t *u, const double y[], double *val, double *der)
+static void bare_events(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                        const double y[], const sw_evcand_t c[], int n, double f[], double v[],
+                        double d[])
 {
-    double f[SW_NMAX];
-    rigid_rhs_of(M, S, SW_MODEL_FRAME, u->ag, u->ge, y, f);
-    rigid_event_fn(M, ev, u, y, f, val, der);
+    rigid_events_of(M, S, SW_MODEL_BARE, u, y, c, n, f, v, d);
+}
+
+static void frame_events(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                         const double y[], const sw_evcand_t c[], int n, double f[], double v[],
+                         double d[])
+{
+    rigid_events_of(M, S, SW_MODEL_FRAME, u, y, c, n, f, v, d);
 }
 
 /* ---- maps and tests ------------------------------------------------------------ */
@@ -561,8 +568,7 @@ const sw_model_ops_t sw_model_bare = {
     .rhs = bare_rhs,
     .fixed = SW_FIXED_RK_ROW(bare),
     .candidates = rigid_candidates,
-    .event_fn = rigid_event_fn,
-    .event_at = bare_event_at,
+    .events = bare_events,
     .impact = bare_impact,
     .land = bare_land,
     .uplift_side = bare_uplift_side,
@@ -593,8 +599,7 @@ const sw_model_ops_t sw_model_frame = {
     .rhs = frame_rhs,
     .fixed = SW_FIXED_RK_ROW(frame),
     .candidates = rigid_candidates,
-    .event_fn = rigid_event_fn,
-    .event_at = frame_event_at,
+    .events = frame_events,
     .impact = frame_impact,
     .land = frame_land,
     .uplift_side = frame_uplift_side,
