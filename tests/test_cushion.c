@@ -144,9 +144,11 @@ static void test_rate_cap(void **state)
     assert_true(M.rate_cap == INFINITY);
 }
 
-/* The right-hand side remembers its last answers (model_cushion.c): an
- * answer given again is the one a fresh evaluation gives, bit for bit,
- * whatever came between, and a changed input or state is evaluated anew. */
+/* The right-hand side remembers its answers at the last ends of a step
+ * the event layer examined (ops->events, model_cushion.c): an answer
+ * given again, by either call, is the one a fresh evaluation gives, bit
+ * for bit, whatever came between, and a changed input or state is
+ * evaluated anew. */
 static void test_rhs_memo(void **state)
 {
     (void)state;
@@ -168,17 +170,28 @@ static void test_rhs_memo(void **state)
         ys[k][M.idz] = -0.01 * k;
         us[k] = (sw_input_at_t){.ag = 0.5 * (k % 4), .ge = G + 0.1 * (k % 2)};
     }
-    /* the same states in an order that hits and misses the memory */
-    const int order[] = {0, 1, 2, 0, 3, 4, 5, 6, 7, 1, 0, 7, 7, 2, 6, 3, 0};
+    /* the same states in an order that hits and misses the memory, asked
+     * by the event layer (even places) and by a stage (odd places) */
+    const int order[] = {0, 1, 2, 0, 3, 4, 5, 6, 7, 1, 0, 7, 7, 2, 6, 3, 0, 3, 3, 2};
+    const sw_evcand_t lift = {.ev = SW_EVF_LIFT, .role = SW_ROLE_LIFT, .rule = SW_RULE_RISE};
     for (size_t i = 0; i < sizeof order / sizeof order[0]; i++) {
         const int k = order[i];
-        double f[SW_NMAX], g[SW_NMAX];
-        const int rc = M.ops->rhs(&M, &S, &us[k], ys[k], f);
-        const int rg = M.ops->rhs(&M, &fresh, &us[k], ys[k], g);
+        double f[SW_NMAX], g[SW_NMAX], v, d, vg, dg;
+        int rc = 0, rg = 0;
+        if (i % 2 == 0) {
+            M.ops->events(&M, &S, &us[k], ys[k], &lift, 1, f, &v, &d);
+            M.ops->events(&M, &fresh, &us[k], ys[k], &lift, 1, g, &vg, &dg);
+            assert_memory_equal(&v, &vg, sizeof v);
+            assert_memory_equal(&d, &dg, sizeof d);
+        } else {
+            rc = M.ops->rhs(&M, &S, &us[k], ys[k], f);
+            rg = M.ops->rhs(&M, &fresh, &us[k], ys[k], g);
+        }
         assert_int_equal(rc, rg);
         assert_memory_equal(f, g, (size_t)M.n * sizeof f[0]);
     }
     assert_int_equal(S.memo_n, SW_RHS_MEMO);
+    assert_int_equal(fresh.memo_n, 0);
     /* the same state under another input is another answer */
     double f1[SW_NMAX], f2[SW_NMAX];
     sw_input_at_t u = us[0];

@@ -30,6 +30,7 @@
 #include "cushion_contact.h"
 #include "model_ops.h"
 #include "model_traits.h"
+#include "numeric.h"
 #include "swaywatch/model.h"
 
 /* ---- rest --------------------------------------------------------------- */
@@ -215,54 +216,62 @@ static int finite_or_fail(const sw_model_t *M, const double f[])
     return GSL_SUCCESS;
 }
 
-static int cushion_rhs_trig(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
-                            const double y[], double s, double co, double f[]);
+static SW_ALWAYS_INLINE int cushion_rhs_trig(const sw_model_t *M, sw_model_scratch_t *S,
+                                             const sw_input_at_t *u, const double y[], double s,
+                                             double co, double f[]);
 
 /* The right-hand side is a function of (a_g, g_eff, y) alone (the mode
- * selects nothing on a cushion), and it is asked again for states it has
- * seen: the event layer looks at both ends of each step, whose start was
- * the step's first stage, and the next step's first stage is the end the
- * event layer looked at.  The last few answers, kept in the scratch with
- * their arguments bit for bit, give the very same numbers without the
- * contact's cost.  Not while the rate is tracked: that call must see it. */
-static inline int same_bits(const double *a, const double *b, int n)
+ * selects nothing on a cushion), and the fixed steps ask for the same
+ * one three times: the event layer evaluates it at the end of each step
+ * (ops->events), and the next step's first stage and the event layer's
+ * look at that step's start are the same state under the same input
+ * (unless the input's interval changed there, or a map moved the state).
+ * The answers at the last ends the event layer examined are kept in the
+ * scratch with their arguments, compared bit for bit, and give the very
+ * same numbers without the contact's cost.  Only those: the other stages
+ * never come back.  Not while the rate is tracked: that call must see
+ * it. */
+static inline int same_bits(double a, double b)
 {
-    for (int k = 0; k < n; k++) {
-        uint64_t x, y;
-        memcpy(&x, &a[k], sizeof x);
-        memcpy(&y, &b[k], sizeof y);
-        if (x != y)
-            return 0;
-    }
-    return 1;
+    uint64_t x, y;
+    memcpy(&x, &a, sizeof x);
+    memcpy(&y, &b, sizeof y);
+    return x == y;
 }
 
-/* f from the memory into f (1), or 0 with the key made in key. */
+/* f from the memory into f with its status in *rc (1), or 0. */
 static int memo_get(const sw_model_t *M, const sw_model_scratch_t *S, const sw_input_at_t *u,
-                    const double y[], double key[], double f[], int *rc)
+                    const double y[], double f[], int *rc)
 {
-    const int nk = 2 + M->n;
-    key[0] = u->ag;
-    key[1] = u->ge;
-    memcpy(key + 2, y, (size_t)M->n * sizeof(double));
-    if (!S->track_rate)
-        for (int i = 0; i < S->memo_n; i++)
-            if (same_bits(S->memo[i].key, key, nk)) {
-                memcpy(f, S->memo[i].f, (size_t)M->n * sizeof(double));
-                *rc = S->memo[i].rc;
-                return 1;
-            }
+    if (!S->memo_on || S->track_rate)
+        return 0;
+    for (int i = 0; i < S->memo_n; i++) {
+        const int k = (S->memo_next + SW_RHS_MEMO - 1 - i) % SW_RHS_MEMO; /* newest first */
+        if (!same_bits(S->memo[k].ag, u->ag) || !same_bits(S->memo[k].ge, u->ge))
+            continue;
+        int j = 0;
+        while (j < M->n && same_bits(S->memo[k].y[j], y[j])) j++;
+        if (j < M->n)
+            continue;
+        for (j = 0; j < M->n; j++) f[j] = S->memo[k].f[j];
+        *rc = S->memo[k].rc;
+        return 1;
+    }
     return 0;
 }
 
-static void memo_put(const sw_model_t *M, sw_model_scratch_t *S, const double key[],
-                     const double f[], int rc)
+static void memo_put(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
+                     const double y[], const double f[], int rc)
 {
-    const int j = S->memo_next;
-    memcpy(S->memo[j].key, key, (size_t)(2 + M->n) * sizeof(double));
-    memcpy(S->memo[j].f, f, (size_t)M->n * sizeof(double));
-    S->memo[j].rc = rc;
-    S->memo_next = (j + 1) % SW_RHS_MEMO;
+    const int k = S->memo_next;
+    S->memo[k].ag = u->ag;
+    S->memo[k].ge = u->ge;
+    for (int j = 0; j < M->n; j++) {
+        S->memo[k].y[j] = y[j];
+        S->memo[k].f[j] = f[j];
+    }
+    S->memo[k].rc = rc;
+    S->memo_next = (k + 1) % SW_RHS_MEMO;
     if (S->memo_n < SW_RHS_MEMO)
         S->memo_n++;
 }
@@ -270,20 +279,17 @@ static void memo_put(const sw_model_t *M, sw_model_scratch_t *S, const double ke
 static int cushion_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
                        const double y[], double f[])
 {
-    double key[2 + SW_NMAX];
     int rc;
-    if (S->memo_on && memo_get(M, S, u, y, key, f, &rc))
+    if (memo_get(M, S, u, y, f, &rc))
         return rc;
     const double th = y[M->ith];
-    rc = cushion_rhs_trig(M, S, u, y, sin(th), cos(th), f);
-    if (S->memo_on)
-        memo_put(M, S, key, f, rc);
-    return rc;
+    return cushion_rhs_trig(M, S, u, y, sin(th), cos(th), f);
 }
 
 /* The same with s = sin(theta), co = cos(theta) given. */
-static int cushion_rhs_trig(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
-                            const double y[], double s, double co, double f[])
+static SW_ALWAYS_INLINE int cushion_rhs_trig(const sw_model_t *M, sw_model_scratch_t *S,
+                                             const sw_input_at_t *u, const double y[], double s,
+                                             double co, double f[])
 {
     const sw_derived_t *d = &M->d;
     const double ag = u->ag, ge = u->ge; /* m/s^2 */
@@ -625,15 +631,15 @@ static void cushion_events(const sw_model_t *M, sw_model_scratch_t *S, const sw_
                            double d[])
 {
     const double th = y[M->ith];
-    double key[2 + SW_NMAX], s = 0.0, co = 0.0;
+    double s = 0.0, co = 0.0;
     int rc, trig = 0;
-    if (!(S->memo_on && memo_get(M, S, u, y, key, f, &rc))) {
+    if (!memo_get(M, S, u, y, f, &rc)) {
         s = sin(th);
         co = cos(th);
         trig = 1;
         rc = cushion_rhs_trig(M, S, u, y, s, co, f);
         if (S->memo_on)
-            memo_put(M, S, key, f, rc);
+            memo_put(M, S, u, y, f, rc);
     }
     for (int i = 0; i < n; i++) {
         if (!trig && c[i].ev >= SW_EVF_LIFT) {

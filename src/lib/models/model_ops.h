@@ -60,15 +60,15 @@ typedef struct {
 
 /* What a model's right-hand side writes as it goes: its scratch, one per
  * package, passed beside the model. */
-#define SW_RHS_MEMO 6 /* right-hand sides remembered: a step's stages and its ends */
+#define SW_RHS_MEMO 2 /* right-hand sides remembered: the ends of the last two steps */
 typedef struct {
     double trig[3];   /* model_rigid.c: an angle (NAN: none yet), its sin and cos */
     int track_rate;   /* cushion: the right-hand side records rate_seen */
     double rate_seen; /* rad/s, fastest contact rate met by the stages of a step */
-    /* cushion: the last right-hand sides, keyed by (a_g, g_eff, y) */
+    /* cushion: the right-hand sides at the last ends the event layer
+     * examined, with the (a_g, g_eff, y) they are for */
     struct {
-        double key[2 + SW_NMAX];
-        double f[SW_NMAX];
+        double ag, ge, y[SW_NMAX], f[SW_NMAX];
         int rc;
     } memo[SW_RHS_MEMO];
     int memo_on;           /* remember (the step layer says: fixed steps) */
