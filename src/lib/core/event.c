@@ -90,7 +90,9 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
     const sw_model_t *M = W->ms.m;
     const double t1 = t0 + h;
     const sw_input_at_t u0 = sw_input_at(M->in, M->g, t0), u1 = sw_input_at(M->in, M->g, t1);
-    sw_ends_t E = {.y0 = y0, .y1 = y1};
+    sw_ends_t E; /* not zeroed: the two calls below write what is read */
+    E.y0 = y0;
+    E.y1 = y1;
     M->ops->events(M, W->ms.s, &u0, y0, c, nc, E.f0, E.v0, E.d0);
     M->ops->events(M, W->ms.s, &u1, y1, c, nc, E.f1, E.v1, E.d1);
     /* the earliest cutting event ends the step */
