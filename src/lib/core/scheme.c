@@ -28,8 +28,9 @@
 
 /* The fixed-step schemes' bodies are written once (fixed_rk.h); a model
  * that instantiates them with its right-hand side inlined per stage (the
- * bare and frame models, model_rigid.c) has its own, and the generic ones
- * here serve the others (the cushion; any model added without them): the
+ * bare and frame models, model_rigid.c; the cushion, model_cushion.c) has
+ * its own, and the generic ones here serve any model added without them:
+ * the
  * model's right-hand side through its ops table, once per stage.  The
  * package picks its body once, when it is built (step.c): no dispatch per
  * step or per stage. */

@@ -28,6 +28,7 @@
 #include <gsl/gsl_poly.h>
 
 #include "cushion_contact.h"
+#include "fixed_rk.h"
 #include "model_ops.h"
 #include "model_traits.h"
 #include "numeric.h"
@@ -240,8 +241,8 @@ static inline int same_bits(double a, double b)
 }
 
 /* f from the memory into f with its status in *rc (1), or 0. */
-static int memo_get(const sw_model_t *M, const sw_model_scratch_t *S, const sw_input_at_t *u,
-                    const double y[], double f[], int *rc)
+static SW_ALWAYS_INLINE int memo_get(const sw_model_t *M, const sw_model_scratch_t *S,
+                                     const sw_input_at_t *u, const double y[], double f[], int *rc)
 {
     if (!S->memo_on || S->track_rate)
         return 0;
@@ -276,8 +277,8 @@ static void memo_put(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_
         S->memo_n++;
 }
 
-static int cushion_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
-                       const double y[], double f[])
+static SW_ALWAYS_INLINE int cushion_rhs(const sw_model_t *M, sw_model_scratch_t *S,
+                                        const sw_input_at_t *u, const double y[], double f[])
 {
     int rc;
     if (memo_get(M, S, u, y, f, &rc))
@@ -285,6 +286,16 @@ static int cushion_rhs(const sw_model_t *M, sw_model_scratch_t *S, const sw_inpu
     const double th = y[M->ith];
     return cushion_rhs_trig(M, S, u, y, sin(th), cos(th), f);
 }
+
+/* The fixed-step schemes' bodies with the right-hand side inlined into
+ * every stage (fixed_rk.h), as the rigid models have them: no call
+ * through the ops table per stage. */
+static SW_ALWAYS_INLINE void cushion_stage(const sw_model_t *M, sw_model_scratch_t *S,
+                                           const sw_input_at_t *u, const double y[], double f[])
+{
+    cushion_rhs(M, S, u, y, f);
+}
+SW_FIXED_RK(cushion, M->n, cushion_stage)
 
 /* The same with s = sin(theta), co = cos(theta) given. */
 static SW_ALWAYS_INLINE int cushion_rhs_trig(const sw_model_t *M, sw_model_scratch_t *S,
@@ -792,6 +803,7 @@ const sw_model_ops_t sw_model_cushion = {
     .traits = &cushion_traits,
     .setup = cushion_setup,
     .rhs = cushion_rhs,
+    .fixed = SW_FIXED_RK_ROW(cushion),
     .rest = cushion_rest,
     .candidates = cushion_candidates,
     .events = cushion_events,
