@@ -240,12 +240,13 @@ static inline int same_bits(double a, double b)
     return x == y;
 }
 
-/* f from the memory into f with its status in *rc (1), or 0. */
+/* f from the memory into f with its status in *rc: the entry's index,
+ * or -1. */
 static SW_ALWAYS_INLINE int memo_get(const sw_model_t *M, const sw_model_scratch_t *S,
                                      const sw_input_at_t *u, const double y[], double f[], int *rc)
 {
     if (!S->memo_on || S->track_rate)
-        return 0;
+        return -1;
     for (int i = 0; i < S->memo_n; i++) {
         const int k = (S->memo_next + SW_RHS_MEMO - 1 - i) % SW_RHS_MEMO; /* newest first */
         if (!same_bits(S->memo[k].ag, u->ag) || !same_bits(S->memo[k].ge, u->ge))
@@ -256,13 +257,15 @@ static SW_ALWAYS_INLINE int memo_get(const sw_model_t *M, const sw_model_scratch
             continue;
         for (j = 0; j < M->n; j++) f[j] = S->memo[k].f[j];
         *rc = S->memo[k].rc;
-        return 1;
+        return k;
     }
-    return 0;
+    return -1;
 }
 
+/* Keep f at (u, y), and sin and cos of theta there (s, co), which the
+ * events at the next step's start take again. */
 static void memo_put(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
-                     const double y[], const double f[], int rc)
+                     const double y[], const double f[], int rc, double s, double co)
 {
     const int k = S->memo_next;
     S->memo[k].ag = u->ag;
@@ -272,6 +275,8 @@ static void memo_put(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_
         S->memo[k].f[j] = f[j];
     }
     S->memo[k].rc = rc;
+    S->memo[k].sin_cos[0] = s;
+    S->memo[k].sin_cos[1] = co;
     S->memo_next = (k + 1) % SW_RHS_MEMO;
     if (S->memo_n < SW_RHS_MEMO)
         S->memo_n++;
@@ -281,7 +286,7 @@ static SW_ALWAYS_INLINE int cushion_rhs(const sw_model_t *M, sw_model_scratch_t 
                                         const sw_input_at_t *u, const double y[], double f[])
 {
     int rc;
-    if (memo_get(M, S, u, y, f, &rc))
+    if (memo_get(M, S, u, y, f, &rc) >= 0)
         return rc;
     const double th = y[M->ith];
     return cushion_rhs_trig(M, S, u, y, sin(th), cos(th), f);
@@ -345,21 +350,31 @@ static void cushion_rest(sw_model_t *M, double y[])
     M->side = 1;
 }
 
-/* b^2 sin^2(theta) - z |z| (m^2): > 0 while an edge of the base is off the
- * cushion (b |sin theta| > z), smooth through theta = 0 and z = 0; *der
- * (may be NULL) gets its time derivative.  s = sin(theta), co = cos(theta). */
-static double lift_trig(const sw_model_t *M, const double y[], double s, double co, double *der)
+/* The two terms of the contact's event functions at y, b^2 sin^2(theta)
+ * and z |z| (m^2), and their time derivatives (m^2/s); s = sin(theta),
+ * co = cos(theta).  An edge of the base is off the cushion while
+ * P - Q > 0 (b |sin theta| > z), the whole base while P + Q < 0; both
+ * smooth through theta = 0 and z = 0. */
+typedef struct {
+    double P, Q, dP, dQ;
+} edge_t;
+
+static edge_t edge_terms(const sw_model_t *M, const double y[], double s, double co)
 {
     const double b = M->d.b, z = y[M->iz];
-    if (der)
-        *der = 2.0 * b * b * s * co * y[M->idth] - 2.0 * fabs(z) * y[M->idz];
-    return b * b * s * s - z * fabs(z);
+    return (edge_t){.P = b * b * s * s,
+                    .Q = z * fabs(z),
+                    .dP = 2.0 * b * b * s * co * y[M->idth],
+                    .dQ = 2.0 * fabs(z) * y[M->idz]};
 }
 
-static double cushion_lift(const sw_model_t *M, const double y[], double *der)
+/* b^2 sin^2(theta) - z |z| (m^2): > 0 while an edge of the base is off
+ * the cushion. */
+static double cushion_lift(const sw_model_t *M, const double y[])
 {
     const double th = y[M->ith];
-    return lift_trig(M, y, sin(th), cos(th), der);
+    const edge_t e = edge_terms(M, y, sin(th), cos(th));
+    return e.P - e.Q;
 }
 
 /* ---- energies and margins ------------------------------------------------ */
@@ -599,10 +614,11 @@ static int cushion_candidates(const sw_model_t *M, int cut_kinks, double h, cons
 }
 
 /* Value and time derivative of event ev at y with f = y' (none depends
- * on the input), s = sin(theta), co = cos(theta); theta changes sign
- * smoothly on a cushion: events on theta^2. */
+ * on the input), e the contact's terms there (edge_terms) for the
+ * contact's events; theta changes sign smoothly on a cushion: events on
+ * theta^2. */
 static void cushion_event_fn(const sw_model_t *M, int ev, const double y[], const double f[],
-                             double s, double co, double *val, double *der)
+                             const edge_t *e, double *val, double *der)
 {
     const double th = y[M->ith], w = y[M->idth];
     switch (ev) {
@@ -618,47 +634,53 @@ static void cushion_event_fn(const sw_model_t *M, int ev, const double y[], cons
             *val = -th * w;
             *der = -(w * w + th * f[M->idth]);
             return;
-        case SW_EVF_LIFT:
-        case SW_EVF_LIFT_IN: {
-            const double v = lift_trig(M, y, s, co, der), sg = ev == SW_EVF_LIFT ? 1.0 : -1.0;
-            *val = sg * v;
-            *der *= sg;
+        case SW_EVF_LIFT: /* an edge leaves the cushion */
+            *val = e->P - e->Q;
+            *der = e->dP - e->dQ;
             return;
-        }
-        default: { /* b^2 sin^2(theta) + z |z| */
-            const double b = M->d.b, z = y[M->iz];
-            const double sg = ev == SW_EVF_FLY_IN ? 1.0 : -1.0; /* rises when the base flies */
-            *val = sg * (b * b * s * s + z * fabs(z));
-            *der = sg * (2.0 * b * b * s * co * w + 2.0 * fabs(z) * y[M->idz]);
+        case SW_EVF_LIFT_IN:
+            *val = -(e->P - e->Q);
+            *der = -(e->dP - e->dQ);
             return;
-        }
+        case SW_EVF_FLY: /* the last edge leaves it */
+            *val = -(e->P + e->Q);
+            *der = -(e->dP + e->dQ);
+            return;
+        default: /* SW_EVF_FLY_IN */
+            *val = e->P + e->Q;
+            *der = e->dP + e->dQ;
+            return;
     }
 }
 
 /* f at y, then each event function there, with one sine and cosine of
- * theta for the right-hand side and the contact's events alike. */
+ * theta for the right-hand side and the contact's events alike (kept with
+ * f where it is remembered: the next step's start is this end). */
 static void cushion_events(const sw_model_t *M, sw_model_scratch_t *S, const sw_input_at_t *u,
                            const double y[], const sw_evcand_t c[], int n, double f[], double v[],
                            double d[])
 {
-    const double th = y[M->ith];
-    double s = 0.0, co = 0.0;
-    int rc, trig = 0;
-    if (!memo_get(M, S, u, y, f, &rc)) {
+    double s, co;
+    int rc, terms = 0;
+    edge_t e = {0};
+    const int k = memo_get(M, S, u, y, f, &rc);
+    if (k >= 0) {
+        s = S->memo[k].sin_cos[0]; /* of the same theta, bit for bit */
+        co = S->memo[k].sin_cos[1];
+    } else {
+        const double th = y[M->ith];
         s = sin(th);
         co = cos(th);
-        trig = 1;
         rc = cushion_rhs_trig(M, S, u, y, s, co, f);
         if (S->memo_on)
-            memo_put(M, S, u, y, f, rc);
+            memo_put(M, S, u, y, f, rc, s, co);
     }
     for (int i = 0; i < n; i++) {
-        if (!trig && c[i].ev >= SW_EVF_LIFT) {
-            s = sin(th);
-            co = cos(th);
-            trig = 1;
+        if (!terms && c[i].ev >= SW_EVF_LIFT) {
+            e = edge_terms(M, y, s, co);
+            terms = 1;
         }
-        cushion_event_fn(M, c[i].ev, y, f, s, co, &v[i], &d[i]);
+        cushion_event_fn(M, c[i].ev, y, f, &e, &v[i], &d[i]);
     }
 }
 
@@ -682,7 +704,7 @@ static void cushion_follow(sw_model_t *M, const double y[])
 static int cushion_stepped(sw_model_t *M, const double y[], int lifted)
 {
     cushion_follow(M, y);
-    return lifted && cushion_lift(M, y, NULL) < 0.0 && motion_energy(M, y) < M->e_lift;
+    return lifted && cushion_lift(M, y) < 0.0 && motion_energy(M, y) < M->e_lift;
 }
 
 /* Moving unless its energy of motion is below rest_eps of the barrier. */

@@ -69,6 +69,7 @@ typedef struct {
      * examined, with the (a_g, g_eff, y) they are for */
     struct {
         double ag, ge, y[SW_NMAX], f[SW_NMAX];
+        double sin_cos[2]; /* sin and cos of y's theta */
         int rc;
     } memo[SW_RHS_MEMO];
     int memo_on;           /* remember (the step layer says: fixed steps) */
