@@ -600,7 +600,10 @@ static int cushion_candidates(const sw_model_t *M, int cut_kinks, double h, cons
      * across it loses the scheme's order, so the step is cut there.  The
      * adaptive schemes' error control shortens their steps instead (a cut
      * would also restart msbdf at order 1, and chatter where a loose
-     * tolerance leaves the contact unresolved). */
+     * tolerance leaves the contact unresolved).  These and the first lift
+     * are marked clear: a step whose ends are both well below the level
+     * (event.c's root_of) has no rise on its interpolant to search for,
+     * the common case while the base rests on the cushion. */
     if (cut_kinks)
         for (int ev = SW_EVF_LIFT; ev <= SW_EVF_FLY_IN; ev++)
             c[n++] = (sw_evcand_t){(unsigned char)ev, SW_ROLE_CUT, SW_RULE_KINK, 1};
@@ -609,7 +612,7 @@ static int cushion_candidates(const sw_model_t *M, int cut_kinks, double h, cons
     if (a0 < al && (a1 >= al || al - fmax(a0, a1) < v))
         c[n++] = (sw_evcand_t){SW_EVF_TIP, SW_ROLE_TIP, SW_RULE_RISE, 0};
     if (isnan(M->t_lift))
-        c[n++] = (sw_evcand_t){SW_EVF_LIFT, SW_ROLE_LIFT, SW_RULE_RISE, 0};
+        c[n++] = (sw_evcand_t){SW_EVF_LIFT, SW_ROLE_LIFT, SW_RULE_RISE, 1};
     return n;
 }
 
