@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "input.h"
+#include "numeric.h"
 #include "swaywatch/engine.h"
 #include "swaywatch/model.h"
 #include "swaywatch/scene.h"
@@ -263,8 +264,8 @@ static inline void sw_model_to_state(const sw_model_t *M, const double y[], sw_s
     s->side = M->phase == SW_PHASE_STUCK ? 0 : M->side;
 }
 
-static inline void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S, double t,
-                                   const double y[], sw_output_t *o)
+static SW_ALWAYS_INLINE void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S,
+                                             double t, const double y[], sw_output_t *o)
 {
     const sw_input_at_t u = sw_input_at(M->in, M->g, t);
     memset(o, 0, sizeof *o);
