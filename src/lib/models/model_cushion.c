@@ -590,10 +590,13 @@ static int cushion_candidates(const sw_model_t *M, int cut_kinks, double h, cons
                               const double y1[], sw_evcand_t c[])
 {
     const double al = M->d.alpha;
-    const double a0 = fabs(y0[M->ith]), a1 = fabs(y1[M->ith]);
-    const double v = h * fmax(fabs(y0[M->idth]), fabs(y1[M->idth]));
+    /* the comparisons themselves, not libm's fmax (a call, for NaN: the
+     * engine has checked both states finite), on every step */
+    const double a0 = fabs(y0[M->ith]), a1 = fabs(y1[M->ith]), amax = a0 > a1 ? a0 : a1;
+    const double w0 = fabs(y0[M->idth]), w1 = fabs(y1[M->idth]);
+    const double v = h * (w0 > w1 ? w0 : w1);
     int n = 0;
-    if (a1 >= M_PI_2 || M_PI_2 - fmax(a0, a1) < v)
+    if (a1 >= M_PI_2 || M_PI_2 - amax < v)
         c[n++] = (sw_evcand_t){SW_EVF_OVERTURN, SW_ROLE_CUT, SW_RULE_RISE, 0};
     /* Where an edge of the base reaches the cushion's surface the contact
      * force has a kink (with damping, a kink in F itself): a fixed step
@@ -609,7 +612,7 @@ static int cushion_candidates(const sw_model_t *M, int cut_kinks, double h, cons
             c[n++] = (sw_evcand_t){(unsigned char)ev, SW_ROLE_CUT, SW_RULE_KINK, 1};
     if ((y0[M->ith] * y0[M->idth] > 0.0) != (y1[M->ith] * y1[M->idth] > 0.0))
         c[n++] = (sw_evcand_t){SW_EVF_TURN, SW_ROLE_PEAK, SW_RULE_PLAIN, 0};
-    if (a0 < al && (a1 >= al || al - fmax(a0, a1) < v))
+    if (a0 < al && (a1 >= al || al - amax < v))
         c[n++] = (sw_evcand_t){SW_EVF_TIP, SW_ROLE_TIP, SW_RULE_RISE, 0};
     if (isnan(M->t_lift))
         c[n++] = (sw_evcand_t){SW_EVF_LIFT, SW_ROLE_LIFT, SW_RULE_RISE, 1};
