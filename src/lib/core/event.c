@@ -46,8 +46,9 @@ static double root_of(const sw_evcand_t *c, int i, double h, const sw_ends_t *E)
         return -1.0; /* crossed already: we are past this kink */
     /* Clearly below the threshold all step: the interpolant exceeds
      * max(v0, v1) by at most 4/27 h (|d0| + |d1|) (its two derivative
-     * terms), so it has no rise, and the search would find none. */
-    if (c->clear && v1 < 0.0 && v0 < 0.0 && fmax(v0, v1) < -0.5 * h * (fabs(d0) + fabs(d1)))
+     * terms), so it has no rise, and the search would find none.  (Both
+     * below 0: their larger one compared in place, no libm call.) */
+    if (c->clear && v1 < 0.0 && v0 < 0.0 && (v0 > v1 ? v0 : v1) < -0.5 * h * (fabs(d0) + fabs(d1)))
         return -1.0;
     /* on the event function's interpolant over the step */
     if (c->rule == SW_RULE_PLAIN)
