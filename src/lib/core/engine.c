@@ -114,14 +114,26 @@ static int failed(sw_pkg_t *P, double t1, double t, int code, double *tf)
     return code;
 }
 
+/* The input at t for package P: the engine's value at an end of the
+ * interval (X) when t is one, else evaluated there. */
+static inline sw_input_at_t input_at(const sw_pkg_t *P, const sw_input_ends_t *X, double t)
+{
+    if (t == X->t[0])
+        return X->u[0];
+    if (t == X->t[1])
+        return X->u[1];
+    return sw_input_at(P->m.in, P->m.g, t);
+}
+
 /* Advance one package on its support from P->t to t1 under the input
- * e->in.  The loop guards against a map that keeps re-triggering without
- * progress and against a step count no finite number of events explains;
+ * e->in (X: its values at the interval's ends).  The loop guards against a map that keeps
+ * re-triggering without progress and against a step count no finite number of events explains;
  * either is a fault, never a hang.  SW_OK, or the error at *tf that ends
  * the interval (the package is then at t1, to fault).  (Longer than 80
  * lines: the loop is the engine's one control flow, and splitting it
  * would hide the order of its cases.) */
-static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
+static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t1,
+                                           const sw_input_ends_t *X, double *tf)
 {
     sw_step_ctx_t *C = &e->sc;
     sw_pkg_ctx_t *E = &e->pc;
@@ -135,7 +147,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             break;
         if (P->m.phase == SW_PHASE_STUCK && P->m.ops->stands) {
             int side = 0;
-            const int r = sw_stuck_advance[P->m.ops->stands](P, t1, e->stuck_exact, &side);
+            const int r = sw_stuck_advance[P->m.ops->stands](P, X, t1, e->stuck_exact, &side);
             if (r == SW_STUCK_STILL)
                 break;
             if (r == SW_STUCK_MOVED)
@@ -150,7 +162,8 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
         const double t0 = P->t, rem = t1 - t0;
         double h;
         if (!checked) {
-            if (sw_step_input_unstable(C, W, t0, t1))
+            const sw_input_at_t u0 = input_at(P, X, t0), u1 = input_at(P, X, t1);
+            if (sw_step_input_unstable(C, W, &u0, &u1))
                 return failed(P, t1, t0, SW_EUNSTABLE, tf);
             checked = 1;
         }
@@ -190,10 +203,9 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
 
 /* The first time in [t0, t1] at which g_eff = g + a_z falls to 0 (the bed
  * falls away faster than gravity; linear between samples), or INFINITY. */
-static double take_off_time(const sw_pkg_t *P, double t0, double t1)
+static double take_off_time(const sw_pkg_t *P, const sw_input_ends_t *X, double t0, double t1)
 {
-    const sw_input_t *in = P->m.in;
-    const double g0 = sw_input_geff(in, P->m.g, t0), g1 = sw_input_geff(in, P->m.g, t1); /* m/s^2 */
+    const double g0 = input_at(P, X, t0).ge, g1 = input_at(P, X, t1).ge; /* m/s^2 */
     if (!(g0 > 0.0))
         return t0;
     if (g1 > 0.0)
@@ -207,10 +219,10 @@ static double take_off_time(const sw_pkg_t *P, double t0, double t1)
  * faster than gravity), for the summary; P->m.flying and P->fl_t0 say one
  * is going on.  Its support holds it horizontally in the air too
  * (physics.md): a long flight is where that is doubtful. */
-static void time_in_air(sw_pkg_ctx_t *C, sw_pkg_t *P, double t0, double t1)
+static void time_in_air(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_input_ends_t *X, double t0,
+                        double t1)
 {
-    const sw_input_t *in = P->m.in;
-    const double g0 = sw_input_geff(in, P->m.g, t0), g1 = sw_input_geff(in, P->m.g, t1); /* m/s^2 */
+    const double g0 = input_at(P, X, t0).ge, g1 = input_at(P, X, t1).ge;       /* m/s^2 */
     const double tz = g0 != g1 ? t0 + (t1 - t0) * (g0 / (g0 - g1)) : INFINITY; /* g_eff = 0 */
     if (!P->m.flying && (!(g0 > 0.0) || !(g1 > 0.0))) {
         P->m.flying = 1;
@@ -233,16 +245,21 @@ static void time_in_air(sw_pkg_ctx_t *C, sw_pkg_t *P, double t0, double t1)
  * whose equations hold in the air; for one that does neither, g_eff <= 0
  * is outside the model: an error.  SW_OK with P at t1, or the error at
  * *tf that stopped it: P is then at t1, or where the support segment
- * before a take-off ended (it takes off from there once it has faulted). */
+ * before a take-off ended (it takes off from there once it has faulted).
+ * The input at the interval's ends is evaluated here, once. */
 static int advance_flying(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
 {
     sw_pkg_ctx_t *C = &e->pc;
+    const sw_input_ends_t E = {
+        .t = {P->t, t1},
+        .u = {sw_input_at(P->m.in, P->m.g, P->t), sw_input_at(P->m.in, P->m.g, t1)}};
+    const sw_input_ends_t *X = &E;
     for (int guard = 0; P->t < t1 && P->m.phase != SW_PHASE_OVERTURNED; guard++) {
         if (guard > 1000000) /* take-offs and landings without progress */
             return failed(P, t1, P->t, SW_EFAULT, tf);
         if (P->m.ops->flies == SW_FLIES_INTEGRATED) {
-            time_in_air(C, P, P->t, t1);
-            return advance_ground(e, P, t1, tf);
+            time_in_air(C, P, X, P->t, t1);
+            return advance_ground(e, P, t1, X, tf);
         }
         if (P->m.flying) {
             const int still = sw_flight_advance(C, P, t1) == SW_STUCK_STILL;
@@ -252,7 +269,7 @@ static int advance_flying(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
                 break;
             continue;
         }
-        const double toff = take_off_time(P, P->t, t1); /* s */
+        const double toff = take_off_time(P, X, P->t, t1); /* s */
         if (toff <= P->t) {
             if (!P->m.ops->flies)
                 return failed(P, t1, P->t, SW_EFAULT, tf);
@@ -260,7 +277,7 @@ static int advance_flying(sw_engine_t *e, sw_pkg_t *P, double t1, double *tf)
             continue;
         }
         const double tg = sw_min2(toff, t1); /* s */
-        const int rc = advance_ground(e, P, tg, tf);
+        const int rc = advance_ground(e, P, tg, X, tf);
         if (rc != SW_OK || !(toff < t1))
             return rc;
         P->t = toff; /* g_eff is 0 here: it takes off next */
@@ -278,19 +295,25 @@ static void fault(sw_engine_t *e, sw_pkg_t *P, double t, int code)
 }
 
 /* Advance one package from P->t to t1: on its support, and in free flight
- * while the bed falls away from it.  Every error of the layers below comes
- * back here and faults the package; the interval goes on from where the
- * error left it (a segment on the support before a take-off). */
+ * while the bed falls away from it.  The input is evaluated at the
+ * interval's two ends here (or, for a package that flies or may, in
+ * advance_flying), once, and handed to the tests there (the take-off,
+ * the step layer's input check).  Every error of the
+ * layers below comes back here and faults the package; the interval goes
+ * on from where the error left it (a segment on the support before a
+ * take-off). */
 static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
 {
-    const sw_input_t *in = P->m.in;
     double tf; /* s, where an error happened */
     int rc;
-    if (!P->m.flying && P->m.ops->flies != SW_FLIES_INTEGRATED &&
-        sw_input_geff(in, P->m.g, P->t) > 0.0 && sw_input_geff(in, P->m.g, t1) > 0.0) {
+    if (!P->m.flying && P->m.ops->flies != SW_FLIES_INTEGRATED) {
+        const sw_input_ends_t X = {
+            .t = {P->t, t1},
+            .u = {sw_input_at(P->m.in, P->m.g, P->t), sw_input_at(P->m.in, P->m.g, t1)}};
         /* the bed does not fall away in [t, t1] (g_eff is linear between
          * samples): on the support throughout, the common case */
-        rc = advance_ground(e, P, t1, &tf);
+        rc = X.u[0].ge > 0.0 && X.u[1].ge > 0.0 ? advance_ground(e, P, t1, &X, &tf)
+                                                : advance_flying(e, P, t1, &tf);
     } else {
         rc = advance_flying(e, P, t1, &tf);
     }

@@ -177,15 +177,16 @@ void sw_step_forget(sw_stepper_t *W)
  * sqrt(kR |a|).  A fixed step beyond the scheme's stability bound for that
  * rate computes garbage, not a motion (states of 1e260 that still look
  * finite): a fault, not an integration.  Checked at the ends of the
- * interval, where the sampled input is largest. */
-int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double t0, double t1)
+ * interval, where the sampled input is largest: the engine evaluated it
+ * there and hands the values down. */
+int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, const sw_input_at_t *u0,
+                           const sw_input_at_t *u1)
 {
     const double stab = C->scheme->stab;
     if (!(stab > 0.0))
         return 0; /* GSL shortens its steps itself */
     const sw_model_t *M = W->ms.m;
-    const sw_input_at_t u0 = sw_input_at(M->in, M->g, t0), u1 = sw_input_at(M->in, M->g, t1);
-    const double ag0 = fabs(u0.ag), ag1 = fabs(u1.ag), ge0 = fabs(u0.ge), ge1 = fabs(u1.ge);
+    const double ag0 = fabs(u0->ag), ag1 = fabs(u1->ag), ge0 = fabs(u0->ge), ge1 = fabs(u1->ge);
     const double ag = ag0 > ag1 ? ag0 : ag1, ge = ge0 > ge1 ? ge0 : ge1; /* m/s^2 */
     const double a = ag > ge ? ag : ge;
     return !(M->kR * a * W->h * W->h <= stab * stab); /* NaN: unstable */

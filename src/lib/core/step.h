@@ -73,6 +73,8 @@ static inline void sw_step_restart(sw_stepper_t *W)
     W->restart = 1;
 }
 void sw_step_forget(sw_stepper_t *W); /* restart the error control's count (after a fault) */
-/* The input over [t0, t1] makes a fixed step unstable for P? */
-int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, double t0, double t1);
+/* The input over [t0, t1], u0 and u1 at its ends (the engine's values),
+ * makes a fixed step unstable for P? */
+int sw_step_input_unstable(const sw_step_ctx_t *C, const sw_stepper_t *W, const sw_input_at_t *u0,
+                           const sw_input_at_t *u1);
 #endif

@@ -13,8 +13,20 @@
 #include "input.h"
 #include "model_ops.h"
 #include "model_rigid.h"
+#include "numeric.h"
 #include "pkg.h"
 #include "stuck.h"
+
+/* The input at t: the engine's value at an end of the interval (X) when t
+ * is one, else evaluated here. */
+static inline sw_input_at_t input_at(const sw_pkg_t *P, const sw_input_ends_t *X, double t)
+{
+    if (t == X->t[0])
+        return X->u[0];
+    if (t == X->t[1])
+        return X->u[1];
+    return sw_input_at(P->m.in, P->m.g, t);
+}
 
 /* The bare block's uplift side at t (s), under the input there. */
 static inline int bare_side(const sw_pkg_t *P, double t)
@@ -23,17 +35,20 @@ static inline int bare_side(const sw_pkg_t *P, double t)
 }
 
 /* Bare block, stuck: no dynamics.  Earliest time in [t, t1] at which the bed
- * acceleration reaches the uplift threshold, or -1; *side gets the
- * direction.  Exact for sampled (linear) input; for a function input the
- * interval is scanned at the package's step and the crossing bisected. */
-static double bare_uplift(const sw_pkg_t *P, double t, double t1, int *side)
+ * acceleration reaches the uplift threshold (u: the input at t), or -1;
+ * *side gets the direction.  Exact for sampled (linear) input; for a
+ * function input the interval is scanned at the package's step and the
+ * crossing bisected. */
+static double bare_uplift(const sw_pkg_t *P, const sw_input_ends_t *X, double t, double t1,
+                          int *side)
 {
-    if ((*side = bare_side(P, t)) != 0)
+    const sw_input_at_t u = input_at(P, X, t);
+    if ((*side = sw_bare_uplift_side(&P->m, u.ag, u.ge)) != 0)
         return t;
     const sw_input_t *in = P->m.in;
     if (!in->fn) {
         const double ta = P->m.tan_alpha;
-        const double a0 = sw_input_ag(in, t), z0 = sw_input_geff(P->m.in, P->m.g, t);
+        const double a0 = u.ag, z0 = u.ge;
         const double best_fwd_q0 = a0 + ta * z0, best_fwd_q1 = in->ag_slope + ta * in->az_slope;
         const double back_q0 = a0 - ta * z0, back_q1 = in->ag_slope - ta * in->az_slope;
         double tu = INFINITY;
@@ -367,16 +382,18 @@ static int confirm_uplift(sw_pkg_t *P, double tp, double tu, double L, const dou
  * the interval, a bound on the free part D rules out a crossing at once (always, for a quiet road
  * or a frame at rest across a long gap); pieces it does not clear are halved down to w L <= 0.5 and
  * searched. */
-static double frame_advance(sw_pkg_t *P, double t1, int *side)
+static SW_ALWAYS_INLINE double frame_advance(sw_pkg_t *P, const sw_input_ends_t *X, double t1,
+                                             int *side)
 {
     const double w = P->m.d.omega_b, zw = P->m.d.zeta_b * w, ta = P->m.tan_alpha;
     const double s = P->m.in->ag_slope, small = 0.5 / w;
-    if ((*side = sw_frame_uplift_side(&P->m, sw_input_geff(P->m.in, P->m.g, P->t), P->y)) != 0)
+    const sw_input_at_t u = input_at(P, X, P->t);
+    if ((*side = sw_frame_uplift_side(&P->m, u.ge, P->y)) != 0)
         return P->t;
     double y[2] = {P->y[P->m.iu], P->y[P->m.idu]};
     /* D = u'' and D' at the start */
     double d[2];
-    d[0] = -(2.0 * zw * y[1] + w * w * y[0]) - sw_input_ag(P->m.in, P->t);
+    d[0] = -(2.0 * zw * y[1] + w * w * y[0]) - u.ag;
     d[1] = -2.0 * zw * d[0] - w * w * y[1] - s;
     double tp = P->t, L = t1 - tp;
     long pieces = 0;
@@ -395,7 +412,8 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
             return -2.0;
         nj_t c;
         double y1[2], d1[2];
-        const double a_tp = sw_input_ag(P->m.in, tp), a_tb = sw_input_ag(P->m.in, tb);
+        const sw_input_at_t up = input_at(P, X, tp), ub = input_at(P, X, tb);
+        const double a_tp = up.ag, a_tb = ub.ag;
         nj_coef_cached(P, L, &c);
         nj_state(P, &c, a_tp, s, y, y1);
         nj_free(P, &c, d, d1);
@@ -403,8 +421,7 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
          * (good over long pieces once D has decayed), and the chord of W
          * between its exact end values plus L^2/8 max|W''| with W'' = D''
          * (good over short pieces, where a_g and D nearly cancel). */
-        const double T0 = ta * sw_input_geff(P->m.in, P->m.g, tp),
-                     T1 = ta * sw_input_geff(P->m.in, P->m.g, tb);
+        const double T0 = ta * up.ge, T1 = ta * ub.ge;
         const double dd = -2.0 * zw * d[1] - w * w * d[0]; /* D'' and its rate */
         const double ddd[2] = {dd, -2.0 * zw * dd - w * w * d[1]};
         const int clear = fmax(fabs(a_tp + d[0]), fabs(a_tb + d1[0])) - fmin(T0, T1) +
@@ -440,7 +457,7 @@ static double frame_advance(sw_pkg_t *P, double t1, int *side)
 }
 
 /* The bare block: stands until the input reaches the threshold. */
-static int stuck_bare(sw_pkg_t *P, double t1, int exact, int *side)
+static int stuck_bare(sw_pkg_t *P, const sw_input_ends_t *X, double t1, int exact, int *side)
 {
     (void)exact;
     if (P->m.held) { /* see pkg.c's after_impact: stand for one step, then look again */
@@ -450,7 +467,7 @@ static int stuck_bare(sw_pkg_t *P, double t1, int exact, int *side)
         P->t += P->st.h;
         return SW_STUCK_MOVED;
     }
-    const double tu = bare_uplift(P, P->t, t1, side);
+    const double tu = bare_uplift(P, X, P->t, t1, side);
     if (tu < 0.0)
         return SW_STUCK_STILL;
     P->t = tu;
@@ -460,12 +477,12 @@ static int stuck_bare(sw_pkg_t *P, double t1, int exact, int *side)
 /* The exact solution serves sampled input under the fixed-step schemes;
  * pulses (a function input), a package held for a step, the adaptive
  * schemes and comparisons (stuck_stepped) step the stuck frame. */
-static int stuck_frame(sw_pkg_t *P, double t1, int exact, int *side)
+static int stuck_frame(sw_pkg_t *P, const sw_input_ends_t *X, double t1, int exact, int *side)
 {
     if (P->m.in->fn || P->m.held || !exact)
         return SW_STUCK_STEP;
     P->sum.steps++;
-    const double tu = frame_advance(P, t1, side);
+    const double tu = frame_advance(P, X, t1, side);
     return tu >= 0.0 ? SW_STUCK_LIFT : tu == -1.0 ? SW_STUCK_STILL : SW_STUCK_FAULT;
 }
 

@@ -5,6 +5,8 @@
 #ifndef SWAYWATCH_STUCK_H
 #define SWAYWATCH_STUCK_H
 
+#include "input.h"
+
 typedef struct sw_pkg sw_pkg_t;
 
 /* What a stuck package's exact advance did (stuck.c). */
@@ -16,7 +18,9 @@ enum {
     SW_STUCK_FAULT = 3  /* the exact advance made no progress: a fault, never a hang */
 };
 
-/* Advance a stuck package toward t1 exactly, one way per how its model
+/* Advance a stuck package from P->t toward t1 exactly (X: the input at
+ * the interval's ends, which the engine evaluated there), one way per how
+ * its model
  * stands (indexed by ops->stands; SW_STANDS_RIGID, the bare block: its
  * uplift time solved for on the linear input, or the pulse scanned at the
  * package's step and the crossing bisected; SW_STANDS_OSCILLATOR, the
@@ -24,7 +28,7 @@ enum {
  * exact is set (the scheme allows it), else SW_STUCK_STEP).  A table, as
  * an ops member was: the engine calls it on every sample of a package at
  * rest.  On SW_STUCK_LIFT, *side is the direction. */
-typedef int (*sw_stuck_fn)(sw_pkg_t *P, double t1, int exact, int *side);
+typedef int (*sw_stuck_fn)(sw_pkg_t *P, const sw_input_ends_t *X, double t1, int exact, int *side);
 extern const sw_stuck_fn sw_stuck_advance[]; /* SW_STANDS_KINDS rows */
 
 /* The exact step of the damped oscillator u'' + 2 zeta w u' + w^2 u = -a(t),

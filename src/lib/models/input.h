@@ -54,4 +54,13 @@ static inline sw_input_at_t sw_input_at(const sw_input_t *in, double g, double t
     return u;
 }
 
+/* The input at the two ends t[0], t[1] (s) of the interval the engine
+ * advances a package over, evaluated once there by the engine, which
+ * owns the interval: the layers below take these values where their
+ * time is one of these. */
+typedef struct {
+    double t[2];
+    sw_input_at_t u[2];
+} sw_input_ends_t;
+
 #endif
