@@ -138,7 +138,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
     sw_step_ctx_t *C = &e->sc;
     sw_pkg_ctx_t *E = &e->pc;
     sw_stepper_t *W = &P->st;
-    double y1[SW_NMAX], ys[SW_NMAX];
+    double y1[SW_NMAX];
     int guard = 0, same_t = 0, checked = 0;
     while (P->t < t1) {
         if (++guard > 100000000) /* cannot happen with a finite event count */
@@ -155,7 +155,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             if (r == SW_STUCK_FAULT)
                 return failed(P, t1, P->t, SW_EFAULT, tf);
             if (r == SW_STUCK_LIFT) {
-                sw_pkg_start_rocking(E, P, P->t, side);
+                sw_pkg_start_rocking(E, P, P->t, NULL, side);
                 continue;
             }
         }
@@ -176,25 +176,25 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
             return failed(P, t1, t0, SW_EFAULT, tf);
         C->step_y1 = y1;
         C->step_h = h;
-        double te; /* s, a cut's time (ys: the state there) */
+        sw_timed_t cut; /* a cut's time, the state and the input there */
         sw_timed_t timed[SW_MAX_CANDS];
         int nt;
-        const int ev = sw_event_find(C, W, t0, h, P->y, y1, &te, ys, timed, &nt);
+        const int ev = sw_event_find(C, W, t0, h, P->y, y1, &cut, timed, &nt);
         P->m.held = 0;
         if (ev == SW_EVF_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->m.n);
             P->t = (h == rem) ? t1 : t0 + h;
-            sw_pkg_stepped(E, P, timed, nt, SW_EVF_NONE);
+            sw_pkg_stepped(E, P, timed, nt, SW_EVF_NONE, NULL);
             continue;
         }
-        same_t = te - t0 <= 1e-12 * fmax(1.0, fabs(t0)) ? same_t + 1 : 0;
+        same_t = cut.t - t0 <= 1e-12 * fmax(1.0, fabs(t0)) ? same_t + 1 : 0;
         if (same_t > 64) { /* a map that keeps re-triggering without progress */
             sw_pkg_timed(E, P, timed, nt);
             return failed(P, t1, t0, SW_EFAULT, tf);
         }
-        memcpy(P->y, ys, sizeof(double) * (size_t)P->m.n);
-        P->t = te;
-        sw_pkg_stepped(E, P, timed, nt, ev);
+        memcpy(P->y, cut.y, sizeof(double) * (size_t)P->m.n);
+        P->t = cut.t;
+        sw_pkg_stepped(E, P, timed, nt, ev, &cut.u);
         sw_step_restart(W); /* the map changed the state: the scheme's history is gone */
     }
     P->t = t1;
@@ -354,12 +354,15 @@ static void report_states(sw_engine_t *e, double t)
                 fault(e, P, t, SW_EFAULT);
             continue;
         }
-        sw_model_output(&P->m, &P->scr, t, P->y, &o);
+        /* the input at the sample, evaluated here (the engine owns its
+         * time) and handed to the report */
+        const sw_input_at_t u = sw_input_at(P->m.in, P->m.g, t);
+        sw_model_output(&P->m, &P->scr, &u, t, P->y, &o);
         /* Last line of defence: a non-finite number is never reported; the
          * package faults and is reported at rest instead. */
         if (!output_finite(&o)) {
             fault(e, P, t, SW_EFAULT);
-            sw_model_output(&P->m, &P->scr, t, P->y, &o);
+            sw_model_output(&P->m, &P->scr, &u, t, P->y, &o);
         }
         o.pkg = i;
         o.t = e->pc.origin + t;
@@ -747,7 +750,7 @@ static void initial_uplift(sw_engine_t *e, sw_pkg_t *P, double t)
     const sw_input_at_t u = sw_input_at(P->m.in, P->m.g, t);
     const int side = P->m.ops->uplift_side(&P->m, &u, P->y);
     if (side)
-        sw_pkg_start_rocking(&e->pc, P, t, side);
+        sw_pkg_start_rocking(&e->pc, P, t, &u, side);
 }
 
 /* The stream starts (or starts again, after sw_engine_restart()) at t
@@ -1093,7 +1096,8 @@ int sw_engine_get_output(const sw_engine_t *e, size_t pkg, sw_output_t *out)
         return SW_EINVAL;
     const sw_pkg_t *P = &e->pk[pkg];
     const double t = e->started ? e->t : 0.0;
-    sw_model_output(&P->m, &P->scr, t, P->y, out);
+    const sw_input_at_t u = sw_input_at(P->m.in, P->m.g, t);
+    sw_model_output(&P->m, &P->scr, &u, t, P->y, out);
     out->t = e->pc.origin + t;
     out->pkg = pkg;
     return SW_OK;

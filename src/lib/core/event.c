@@ -71,7 +71,7 @@ static int find_peak(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_evcand_t 
     const double tau = root_of(c, i, h, E);
     if (!(tau > 0.0 && tau <= lim))
         return 0;
-    out->t = sw_event_polish(C, W, c->ev, t0, h, E->y0, tau, out->y);
+    sw_event_polish(C, W, c->ev, t0, h, E->y0, tau, out);
     return 1;
 }
 
@@ -85,7 +85,7 @@ int sw_event_keep_outcome(sw_evcand_t c[], int nc)
 }
 
 int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                    const double y1[], const sw_evcand_t c[], int nc, double *te, double ys[],
+                    const double y1[], const sw_evcand_t c[], int nc, sw_timed_t *cut,
                     sw_timed_t timed[], int *ntimed)
 {
     const sw_model_t *M = W->ms.m;
@@ -126,11 +126,14 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
             continue;
         sw_herm_state(M->n, h, y0, E.f0, y1, E.f1, tau, T->y);
         T->t = t0 + tau * h;
+        T->u = sw_input_at(M->in, M->g, T->t);
         n++;
     }
     *ntimed = n;
-    if (best != SW_EVF_NONE) /* the cut itself, on the scheme's own solution */
-        *te = sw_event_polish(C, W, best, t0, h, y0, lim, ys);
+    if (best != SW_EVF_NONE) { /* the cut itself, on the scheme's own solution */
+        cut->role = SW_ROLE_CUT;
+        sw_event_polish(C, W, best, t0, h, y0, lim, cut);
+    }
     return best;
 }
 
@@ -138,24 +141,30 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
  * the event function (the model's one call per iterate, its value and
  * derivative there), then make sure the returned instant is at or just
  * past the crossing (value >= 0): an uplift placed a hair early would leave
- * the package pushed the wrong way and chatter.  Leaves the state at the
- * event in y and returns its time. */
-double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0, double h,
-                       const double y0[], double tau, double y[])
+ * the package pushed the wrong way and chatter.  Leaves the event's time,
+ * the state and the input there in *at: the input is the last iterate's
+ * when that is the returned time, as it is unless the iterations ran
+ * out. */
+void sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0, double h,
+                     const double y0[], double tau, sw_timed_t *at)
 {
     const sw_model_t *M = W->ms.m;
     const sw_evcand_t c = {.ev = (unsigned char)ev};
     double ts = t0 + tau * h, v = 0.0, d = 0.0, f[SW_NMAX];
+    double tu = NAN; /* s, where at->u was evaluated */
+    double *y = at->y;
     if (tau == 0.0) {
         memcpy(y, y0, sizeof(double) * (size_t)M->n);
-        return t0;
+        ts = t0;
+        goto done;
     }
     const double t1 = t0 + h;
     for (int it = 0; it < 8; it++) {
         if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
-            return ts;
-        const sw_input_at_t u = sw_input_at(M->in, M->g, ts);
-        M->ops->events(M, W->ms.s, &u, y, &c, 1, f, &v, &d);
+            goto done;
+        at->u = sw_input_at(M->in, M->g, ts);
+        tu = ts;
+        M->ops->events(M, W->ms.s, &at->u, y, &c, 1, f, &v, &d);
         if (v == 0.0 || d == 0.0)
             break;
         double tn = ts - v / d;
@@ -174,8 +183,12 @@ double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t
         ts = fmin(t1, ts + dt);
         if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
             break;
-        const sw_input_at_t u = sw_input_at(M->in, M->g, ts);
-        M->ops->events(M, W->ms.s, &u, y, &c, 1, f, &v, &d);
+        at->u = sw_input_at(M->in, M->g, ts);
+        tu = ts;
+        M->ops->events(M, W->ms.s, &at->u, y, &c, 1, f, &v, &d);
     }
-    return ts;
+done:
+    if (tu != ts)
+        at->u = sw_input_at(M->in, M->g, ts);
+    at->t = ts;
 }

@@ -10,21 +10,25 @@
 #include "model_ops.h"
 #include "step.h"
 
-/* An event timed inside a step, handed back as CVODE's rootsfound are:
- * the package's phase machine reports it (sw_pkg_timed). */
+/* An event inside a step, handed back as CVODE's rootsfound are, with
+ * the input's value where it lies (the layer that found the time owns
+ * it): the package's phase machine reports it (sw_pkg_timed, and
+ * sw_pkg_stepped for the cut). */
 typedef struct {
-    int role;          /* SW_ROLE_PEAK, SW_ROLE_TIP or SW_ROLE_LIFT */
+    int role;          /* SW_ROLE_PEAK, SW_ROLE_TIP, SW_ROLE_LIFT, or SW_ROLE_CUT */
     double t;          /* s */
     double y[SW_NMAX]; /* the state at t */
+    sw_input_at_t u;   /* the input at t */
 } sw_timed_t;
 
 /* The earliest cutting event among the model's candidates c[0..nc) inside
  * the step (t0, y0) -> (t0 + h, y1) (SW_EVF_NONE if none), polished by
- * re-stepping: *te its time (s), ys the state there; the timed events
- * before it in timed[0..*ntimed), in the order of the candidates (timed
- * has room for nc), as CVODE hands back its root and rootsfound. */
+ * re-stepping: its time, the state and the input there in *cut; the
+ * timed events before it in timed[0..*ntimed), in the order of the
+ * candidates (timed has room for nc), as CVODE hands back its root and
+ * rootsfound. */
 int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                    const double y1[], const sw_evcand_t c[], int nc, double *te, double ys[],
+                    const double y1[], const sw_evcand_t c[], int nc, sw_timed_t *cut,
                     sw_timed_t timed[], int *ntimed);
 /* Keep the candidates that end a step (the dynamics), drop those that only
  * time a peak, a tip or a cushion's lift (the report); the count left. */
@@ -32,7 +36,7 @@ int sw_event_keep_outcome(sw_evcand_t c[], int nc);
 /* The same, asking the model for its candidates first: inline, because
  * most steps have none and the question is then all the work. */
 static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
-                                const double y0[], const double y1[], double *te, double ys[],
+                                const double y0[], const double y1[], sw_timed_t *cut,
                                 sw_timed_t timed[SW_MAX_CANDS], int *ntimed)
 {
     sw_evcand_t c[SW_MAX_CANDS];
@@ -41,10 +45,11 @@ static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, double 
     if (nc && C->outcome_only)
         nc = sw_event_keep_outcome(c, nc);
     *ntimed = 0;
-    return nc ? sw_event_locate(C, W, t0, h, y0, y1, c, nc, te, ys, timed, ntimed) : SW_EVF_NONE;
+    return nc ? sw_event_locate(C, W, t0, h, y0, y1, c, nc, cut, timed, ntimed) : SW_EVF_NONE;
 }
-/* Polish the event time by re-stepping; the state there in y; its time. */
-double sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0, double h,
-                       const double y0[], double tau, double y[]);
+/* Polish the time of event ev found at tau (a fraction of the step) by
+ * re-stepping: its time, the state and the input there in *at. */
+void sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0, double h,
+                     const double y0[], double tau, sw_timed_t *at);
 
 #endif

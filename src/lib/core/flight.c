@@ -59,7 +59,7 @@ void sw_flight_note(sw_pkg_ctx_t *C, sw_pkg_t *P, double dur)
     P->fl_long = 1;
     if (isnan(P->sum.flight_long_time))
         P->sum.flight_long_time = P->fl_t0;
-    sw_pkg_emit_at(C, P, SW_EV_FLIGHT, P->fl_t0 + SW_FLIGHT_LONG, C->origin + P->fl_t0, NULL);
+    sw_pkg_emit_at(C, P, SW_EV_FLIGHT, P->fl_t0 + SW_FLIGHT_LONG, NULL, C->origin + P->fl_t0, NULL);
 }
 
 void sw_flight_take_off(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
@@ -91,7 +91,7 @@ void sw_flight_take_off(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
         P->sum.uplifts++;
         if (isnan(P->sum.uplift_time))
             P->sum.uplift_time = t;
-        sw_pkg_emit_at(C, P, SW_EV_UPLIFT, t, 0.0, NULL);
+        sw_pkg_emit_at(C, P, SW_EV_UPLIFT, t, NULL, 0.0, NULL);
     }
 }
 
@@ -194,7 +194,7 @@ static void land(sw_pkg_ctx_t *C, sw_pkg_t *P)
             P->y[P->m.ith] = P->y[P->m.idth] = 0.0;
             P->m.phase = SW_PHASE_STUCK;
             P->sum.rests++;
-            sw_pkg_emit_at(C, P, SW_EV_REST, t, 0.0, NULL);
+            sw_pkg_emit_at(C, P, SW_EV_REST, t, NULL, 0.0, NULL);
             return;
         }
     }
@@ -205,7 +205,7 @@ static void land(sw_pkg_ctx_t *C, sw_pkg_t *P)
         P->y[P->m.idu] = du_after;
     P->beyond_alpha = fabs(th) >= P->m.d.alpha;
     P->sum.impacts++;
-    sw_pkg_emit_at(C, P, SW_EV_IMPACT, t, w, NULL);
+    sw_pkg_emit_at(C, P, SW_EV_IMPACT, t, NULL, w, NULL);
 }
 
 #define GRID_MIN 8    /* clearance samples in a piece of flight, at least */
@@ -283,7 +283,7 @@ int sw_flight_advance(sw_pkg_ctx_t *C, sw_pkg_t *P, double t1)
             double y_at[SW_NMAX];
             memcpy(y_at, P->y, sizeof y_at);
             y_at[P->m.ith] = edge;
-            sw_pkg_tip(C, P, t0 + tau, y_at);
+            sw_pkg_tip(C, P, t0 + tau, NULL, y_at);
         }
     }
     if (land_at >= 0.0) {

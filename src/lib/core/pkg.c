@@ -14,13 +14,20 @@
 #include "swaywatch/status.h"
 
 /* Report an event at time t with the package's current state, or with the
- * state vector y_at when the event lies inside a step (tipping). */
-void sw_pkg_emit_at(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info,
-                    const double *y_at)
+ * state vector y_at when the event lies inside a step (tipping), under
+ * the input at t: the event layer's where it found the time (it
+ * evaluated it there), else evaluated here. */
+void sw_pkg_emit_at(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t,
+                    const sw_input_at_t *u, double info, const double *y_at)
 {
     sw_event_t ev;
     sw_output_t o;
-    sw_model_output(&P->m, &P->scr, t, y_at ? y_at : P->y, &o);
+    sw_input_at_t here;
+    if (!u) {
+        here = sw_input_at(P->m.in, P->m.g, t);
+        u = &here;
+    }
+    sw_model_output(&P->m, &P->scr, u, t, y_at ? y_at : P->y, &o);
     ev.pkg = P->index;
     ev.kind = kind;
     ev.t = C->origin + t;
@@ -36,9 +43,10 @@ void sw_pkg_emit_at(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, 
         C->on_event(C->user, &ev);
 }
 
-static void emit(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info)
+static void emit(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, const sw_input_at_t *u,
+                 double info)
 {
-    sw_pkg_emit_at(C, P, kind, t, info, NULL);
+    sw_pkg_emit_at(C, P, kind, t, u, info, NULL);
 }
 
 void sw_pkg_track_theta(sw_pkg_t *P, double th)
@@ -67,10 +75,10 @@ void sw_pkg_fault(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int code)
 {
     P->sum.faults++;
     sw_pkg_rest(P);
-    emit(C, P, SW_EV_FAULT, t, code);
+    emit(C, P, SW_EV_FAULT, t, NULL, code);
 }
 
-void sw_pkg_start_rocking(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int side)
+void sw_pkg_start_rocking(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const sw_input_at_t *u, int side)
 {
     P->m.phase = SW_PHASE_ROCKING;
     P->m.side = side;
@@ -79,22 +87,23 @@ void sw_pkg_start_rocking(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int side)
     P->sum.uplifts++;
     if (isnan(P->sum.uplift_time))
         P->sum.uplift_time = t;
-    emit(C, P, SW_EV_UPLIFT, t, side);
+    emit(C, P, SW_EV_UPLIFT, t, u, side);
 }
 
 /* |theta| reached alpha at t (the state there: y_at). */
-void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
+void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const sw_input_at_t *u, const double y_at[])
 {
     if (isnan(P->sum.tip_time))
         P->sum.tip_time = t;
     P->beyond_alpha = 1;
-    sw_pkg_emit_at(C, P, SW_EV_TIP, t, (y_at[P->m.ith] < 0.0 ? -1.0 : 1.0) * P->m.d.alpha, y_at);
+    sw_pkg_emit_at(C, P, SW_EV_TIP, t, u, (y_at[P->m.ith] < 0.0 ? -1.0 : 1.0) * P->m.d.alpha, y_at);
 }
 
 /* The first edge of a package that never impacts (a cushion's) left its
  * support at t: uplift; info +1 when the rear edge lifts (the top tips
  * forward), -1 the front, 0 when the level base leaves at once. */
-static void lift(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
+static void lift(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const sw_input_at_t *u,
+                 const double y_at[])
 {
     const double th = y_at[P->m.ith];
     const double side = th == 0.0 ? 0.0 : th < 0.0 ? -1.0 : 1.0;
@@ -102,7 +111,7 @@ static void lift(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[])
     P->sum.uplifts++;
     if (isnan(P->sum.uplift_time))
         P->sum.uplift_time = t;
-    sw_pkg_emit_at(C, P, SW_EV_UPLIFT, t, side, y_at);
+    sw_pkg_emit_at(C, P, SW_EV_UPLIFT, t, u, side, y_at);
 }
 
 void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
@@ -111,9 +120,9 @@ void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n)
         if (ev[i].role == SW_ROLE_PEAK)
             sw_pkg_track_theta(P, ev[i].y[P->m.ith]);
         else if (ev[i].role == SW_ROLE_TIP)
-            sw_pkg_tip(C, P, ev[i].t, ev[i].y);
+            sw_pkg_tip(C, P, ev[i].t, &ev[i].u, ev[i].y);
         else
-            lift(C, P, ev[i].t, ev[i].y);
+            lift(C, P, ev[i].t, &ev[i].u, ev[i].y);
     }
 }
 
@@ -131,7 +140,7 @@ static SW_NOINLINE void after_step(sw_pkg_ctx_t *C, sw_pkg_t *P)
     P->m.t_lift = NAN;
     P->beyond_alpha = 0;
     P->sum.rests++;
-    emit(C, P, SW_EV_REST, P->t, 0.0);
+    emit(C, P, SW_EV_REST, P->t, NULL, 0.0);
 }
 
 /* Kinetic energy of theta' below rest_eps of the energy barrier? */
@@ -141,16 +150,16 @@ static int below_rest(const sw_pkg_ctx_t *C, const sw_pkg_t *P, double theta_dot
     return 0.5 * theta_dot * theta_dot / (p * p) < C->rest_eps * (1.0 - cos(P->m.d.alpha));
 }
 
-/* After an impact: the cascade ends (rest) when the rebound energy is below
- * rest_eps of the barrier; the package then stands, or starts to rock again
- * at once if its support is still beyond the uplift threshold. */
-static void after_impact(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
+/* After an impact at t (u: the input there): the cascade ends (rest) when
+ * the rebound energy is below rest_eps of the barrier; the package then
+ * stands, or starts to rock again at once if its support is still beyond
+ * the uplift threshold. */
+static void after_impact(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const sw_input_at_t *u)
 {
     if (!below_rest(C, P, P->y[P->m.idth]))
         return;
     P->m.ops->land(&P->m, P->y);
-    const sw_input_at_t u = sw_input_at(P->m.in, P->m.g, t);
-    const int side = P->m.ops->uplift_side(&P->m, &u, P->y);
+    const int side = P->m.ops->uplift_side(&P->m, u, P->y);
     if (side != 0 && t == P->m.t_lift) {
         /* Lifted and landed at the same instant: the support is at the
          * threshold and the step's own error pushed the package the wrong
@@ -163,13 +172,15 @@ static void after_impact(sw_pkg_ctx_t *C, sw_pkg_t *P, double t)
     if (side == 0) {
         P->m.phase = SW_PHASE_STUCK;
         P->sum.rests++;
-        emit(C, P, SW_EV_REST, t, 0.0);
+        emit(C, P, SW_EV_REST, t, u, 0.0);
     } else {
         P->m.side = side;
     }
 }
 
-static SW_NOINLINE void on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
+/* The cut ev at t, u the input there. */
+static SW_NOINLINE void on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t,
+                               const sw_input_at_t *u)
 {
     /* At an overturn the polished state lies just past pi/2 (by up to a
      * step's worth of theta'); the overturn map records pi/2. */
@@ -186,15 +197,15 @@ static SW_NOINLINE void on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
                  * cascade) */
                 P->y[P->m.ith] = 0.0;
                 P->m.ops->land(&P->m, P->y);
-                after_impact(C, P, t);
+                after_impact(C, P, t, u);
                 break;
             }
             P->y[P->m.ith] = 0.0;
             P->m.ops->impact(&P->m, P->y);
             P->beyond_alpha = 0;
             P->sum.impacts++;
-            emit(C, P, SW_EV_IMPACT, t, before);
-            after_impact(C, P, t);
+            emit(C, P, SW_EV_IMPACT, t, u, before);
+            after_impact(C, P, t, u);
             break;
         }
         case SW_EVF_OVERTURN: {
@@ -204,7 +215,7 @@ static SW_NOINLINE void on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
             P->m.phase = SW_PHASE_OVERTURNED;
             P->sum.overturned = 1;
             P->sum.overturn_time = t;
-            emit(C, P, SW_EV_OVERTURN, t, rate);
+            emit(C, P, SW_EV_OVERTURN, t, u, rate);
             for (int i = 0; i < P->m.n; i++)
                 if (i != P->m.ith)
                     P->y[i] = 0.0;
@@ -212,7 +223,7 @@ static SW_NOINLINE void on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
         }
         case SW_EVF_UPLIFT_FWD:
         case SW_EVF_UPLIFT_BACK:
-            sw_pkg_start_rocking(C, P, t, ev == SW_EVF_UPLIFT_FWD ? +1 : -1);
+            sw_pkg_start_rocking(C, P, t, u, ev == SW_EVF_UPLIFT_FWD ? +1 : -1);
             break;
         default: break; /* a kink: the step was cut there, nothing changes */
     }
@@ -221,12 +232,13 @@ static SW_NOINLINE void on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
 /* Called after every step: what most steps need (|theta| kept) inline,
  * the rest out of line, so that a step costs what it did when the engine
  * kept |theta| itself. */
-void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t timed[], int nt, int ev)
+void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t timed[], int nt, int ev,
+                    const sw_input_at_t *u)
 {
     if (nt)
         sw_pkg_timed(C, P, timed, nt);
     if (ev != SW_EVF_NONE) {
-        on_cut(C, P, ev, P->t);
+        on_cut(C, P, ev, P->t, u);
         return;
     }
     if (P->m.phase == SW_PHASE_ROCKING)
@@ -237,5 +249,6 @@ void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t timed[], int 
 
 void sw_pkg_on_cut(sw_pkg_ctx_t *C, sw_pkg_t *P, int ev, double t)
 {
-    on_cut(C, P, ev, t);
+    const sw_input_at_t u = sw_input_at(P->m.in, P->m.g, t);
+    on_cut(C, P, ev, t, &u);
 }

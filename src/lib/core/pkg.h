@@ -49,14 +49,20 @@ struct sw_pkg {
     double nj_cache[5]; /* stuck.c: exact stuck-frame step of length [0]: g, g', I1, I2 */
 };
 
-void sw_pkg_emit_at(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t, double info,
-                    const double *y_at);
+/* Report an event at t with the package's state, or with y_at (an event
+ * inside a step); u: the input at t where the caller has it (the event
+ * layer's), NULL to evaluate it here. */
+void sw_pkg_emit_at(sw_pkg_ctx_t *C, sw_pkg_t *P, sw_event_kind kind, double t,
+                    const sw_input_at_t *u, double info, const double *y_at);
 void sw_pkg_track_theta(sw_pkg_t *P, double theta);
 void sw_pkg_rest(sw_pkg_t *P);
 /* A fault at t (code: the error): at rest, counted and said. */
 void sw_pkg_fault(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int code);
-void sw_pkg_start_rocking(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, int side);
-void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const double y_at[]);
+/* Uplift and tipping at t (u: the input there, or NULL, as
+ * sw_pkg_emit_at). */
+void sw_pkg_start_rocking(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const sw_input_at_t *u, int side);
+void sw_pkg_tip(sw_pkg_ctx_t *C, sw_pkg_t *P, double t, const sw_input_at_t *u,
+                const double y_at[]);
 /* The events timed inside a step (sw_event_locate), in their order: a
  * peak of |theta| kept in the summary, a tip or a first lift reported. */
 void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
@@ -65,9 +71,11 @@ void sw_pkg_timed(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t ev[], int n);
  * them there: the step's end, or its cut, polished): with no cut (ev
  * SW_EVF_NONE), |theta| kept while rocking, the side as the model
  * follows it, and a package lifted since its last rest that its model
- * finds back at rest says so; at a cut ev, its map (sw_pkg_on_cut).  The
- * caller restarts the scheme after a cut (sw_step_restart). */
-void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t timed[], int nt, int ev);
+ * finds back at rest says so; at a cut ev, its map (sw_pkg_on_cut) under
+ * the input there, u (the event layer's).  The caller restarts the
+ * scheme after a cut (sw_step_restart). */
+void sw_pkg_stepped(sw_pkg_ctx_t *C, sw_pkg_t *P, const sw_timed_t timed[], int nt, int ev,
+                    const sw_input_at_t *u);
 /* A cutting event ev at t (P->t, P->y there): |theta| kept, the side as
  * the model says, then the event's map (a step's cut, and a flight's
  * overturn, flight.c). */

@@ -244,9 +244,10 @@ int sw_model_jacobian(double t, const double y[], double *dfdy, double dfdt[], v
 
 void sw_model_from_state(sw_model_t *M, double y[SW_NMAX], const sw_state_t *s);
 
-/* The state as the API gives it, and the report at t (s) of state y: the
- * common part, then the model's (ops->output).  Inline: every sample
- * reports every package. */
+/* The state as the API gives it, and the report at t (s) of state y
+ * under the input's value u there (the caller, which owns the time,
+ * evaluated it): the common part, then the model's (ops->output).
+ * Inline: every sample reports every package. */
 static inline void sw_model_to_state(const sw_model_t *M, const double y[], sw_state_t *s)
 {
     memset(s, 0, sizeof *s);
@@ -265,14 +266,14 @@ static inline void sw_model_to_state(const sw_model_t *M, const double y[], sw_s
 }
 
 static SW_ALWAYS_INLINE void sw_model_output(const sw_model_t *M, const sw_model_scratch_t *S,
-                                             double t, const double y[], sw_output_t *o)
+                                             const sw_input_at_t *u, double t, const double y[],
+                                             sw_output_t *o)
 {
-    const sw_input_at_t u = sw_input_at(M->in, M->g, t);
     memset(o, 0, sizeof *o);
     o->t = t;
     sw_model_to_state(M, y, &o->state);
-    o->a_g = u.ag;
-    M->ops->output(M, S, &u, y, o);
+    o->a_g = u->ag;
+    M->ops->output(M, S, u, y, o);
 }
 
 #endif
