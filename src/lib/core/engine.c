@@ -174,8 +174,8 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
         P->h_used = sw_max2(P->h_used, h);
         if (!finite_state(P, y1))
             return failed(P, t1, t0, SW_EFAULT, tf);
-        C->step_y1 = y1;
-        C->step_h = h;
+        W->step_y1 = y1;
+        W->step_h = h;
         sw_timed_t cut; /* a cut's time, the state and the input there */
         sw_timed_t timed[SW_MAX_CANDS];
         int nt;

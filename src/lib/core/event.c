@@ -65,13 +65,13 @@ static double root_of(const sw_evcand_t *c, int i, double h, const sw_ends_t *E)
 /* The peak of |theta| inside a step: where the turn function rises before
  * tau = lim, polished by re-stepping so that max |theta| is as accurate as
  * the scheme, even for long adaptive steps.  1 with the peak in *out. */
-static int find_peak(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_evcand_t *c, double t0,
-                     int i, double h, const sw_ends_t *E, double lim, sw_timed_t *out)
+static int find_peak(sw_stepper_t *W, const sw_evcand_t *c, double t0, int i, double h,
+                     const sw_ends_t *E, double lim, sw_timed_t *out)
 {
     const double tau = root_of(c, i, h, E);
     if (!(tau > 0.0 && tau <= lim))
         return 0;
-    sw_event_polish(C, W, c->ev, t0, h, E->y0, tau, out);
+    sw_event_polish(W, c->ev, t0, h, E->y0, tau, out);
     return 1;
 }
 
@@ -84,9 +84,8 @@ int sw_event_keep_outcome(sw_evcand_t c[], int nc)
     return n;
 }
 
-int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                    const double y1[], const sw_evcand_t c[], int nc, sw_timed_t *cut,
-                    sw_timed_t timed[], int *ntimed)
+int sw_event_locate(sw_stepper_t *W, double t0, double h, const double y0[], const double y1[],
+                    const sw_evcand_t c[], int nc, sw_timed_t *cut, sw_timed_t timed[], int *ntimed)
 {
     const sw_model_t *M = W->ms.m;
     const double t1 = t0 + h;
@@ -118,7 +117,7 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
         sw_timed_t *T = &timed[n];
         T->role = c[i].role;
         if (c[i].role == SW_ROLE_PEAK) {
-            n += find_peak(C, W, &c[i], t0, i, h, &E, lim, T);
+            n += find_peak(W, &c[i], t0, i, h, &E, lim, T);
             continue;
         }
         const double tau = root_of(&c[i], i, h, &E);
@@ -132,7 +131,7 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
     *ntimed = n;
     if (best != SW_EVF_NONE) { /* the cut itself, on the scheme's own solution */
         cut->role = SW_ROLE_CUT;
-        sw_event_polish(C, W, best, t0, h, y0, lim, cut);
+        sw_event_polish(W, best, t0, h, y0, lim, cut);
     }
     return best;
 }
@@ -145,8 +144,8 @@ int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h
  * the state and the input there in *at: the input is the last iterate's
  * when that is the returned time, as it is unless the iterations ran
  * out. */
-void sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0, double h,
-                     const double y0[], double tau, sw_timed_t *at)
+void sw_event_polish(sw_stepper_t *W, int ev, double t0, double h, const double y0[], double tau,
+                     sw_timed_t *at)
 {
     const sw_model_t *M = W->ms.m;
     const sw_evcand_t c = {.ev = (unsigned char)ev};
@@ -160,7 +159,7 @@ void sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0,
     }
     const double t1 = t0 + h;
     for (int it = 0; it < 8; it++) {
-        if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
+        if (W->restep(&W->ms, t0, ts - t0, y0, y) != SW_OK)
             goto done;
         at->u = sw_input_at(M->in, M->g, ts);
         tu = ts;
@@ -181,7 +180,7 @@ void sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0,
         double dt = d > 0.0 ? -2.0 * v / d : 0.0;
         dt = fmax(dt, 8.0 * DBL_EPSILON * fmax(1.0, fabs(ts)) * (1 << it));
         ts = fmin(t1, ts + dt);
-        if (C->scheme->restep(C, W, t0, ts - t0, y0, y) != SW_OK)
+        if (W->restep(&W->ms, t0, ts - t0, y0, y) != SW_OK)
             break;
         at->u = sw_input_at(M->in, M->g, ts);
         tu = ts;

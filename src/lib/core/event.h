@@ -27,9 +27,9 @@ typedef struct {
  * timed events before it in timed[0..*ntimed), in the order of the
  * candidates (timed has room for nc), as CVODE hands back its root and
  * rootsfound. */
-int sw_event_locate(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                    const double y1[], const sw_evcand_t c[], int nc, sw_timed_t *cut,
-                    sw_timed_t timed[], int *ntimed);
+int sw_event_locate(sw_stepper_t *W, double t0, double h, const double y0[], const double y1[],
+                    const sw_evcand_t c[], int nc, sw_timed_t *cut, sw_timed_t timed[],
+                    int *ntimed);
 /* Keep the candidates that end a step (the dynamics), drop those that only
  * time a peak, a tip or a cushion's lift (the report); the count left. */
 int sw_event_keep_outcome(sw_evcand_t c[], int nc);
@@ -45,11 +45,11 @@ static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, double 
     if (nc && C->outcome_only)
         nc = sw_event_keep_outcome(c, nc);
     *ntimed = 0;
-    return nc ? sw_event_locate(C, W, t0, h, y0, y1, c, nc, cut, timed, ntimed) : SW_EVF_NONE;
+    return nc ? sw_event_locate(W, t0, h, y0, y1, c, nc, cut, timed, ntimed) : SW_EVF_NONE;
 }
 /* Polish the time of event ev found at tau (a fraction of the step) by
  * re-stepping: its time, the state and the input there in *at. */
-void sw_event_polish(const sw_step_ctx_t *C, sw_stepper_t *W, int ev, double t0, double h,
-                     const double y0[], double tau, sw_timed_t *at);
+void sw_event_polish(sw_stepper_t *W, int ev, double t0, double h, const double y0[], double tau,
+                     sw_timed_t *at);
 
 #endif

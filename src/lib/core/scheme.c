@@ -9,8 +9,9 @@
  * (docs/cushion.md measures them against rkck, the default there); they
  * need the Jacobian (GSL does not check: without one they crash), which
  * the model takes by forward differences (sw_model_jacobian).  The fixed
- * steps' advance (sub-steps aligned to samples) and re-step are here;
- * GSL's are the step layer's (step.c).
+ * steps' advance (sub-steps aligned to samples) is here, and their
+ * re-step is their body (the model's or the generic one, bound by the
+ * stepper); GSL's are the step layer's (step.c).
  *
  * stab is the scheme's stability bound |lambda h| on the negative real axis
  * (Euler and Heun 2, RK4 2.785), the bound of the input's stiffness of the
@@ -74,12 +75,12 @@ static SW_NOINLINE int fixed_tracked(const sw_step_ctx_t *C, sw_stepper_t *W, do
         const double bound = lim < W->stab_rate ? lim : W->stab_rate;
         *hout = h;
         if (M->rate_cap * h <= bound) {
-            W->step(M, S, t0, h, y0, y1);
+            W->step(&W->ms, t0, h, y0, y1);
             return SW_OK;
         }
         S->rate_seen = 0.0;
         S->track_rate = 1;
-        W->step(M, S, t0, h, y0, y1);
+        W->step(&W->ms, t0, h, y0, y1);
         S->track_rate = 0;
         if (S->rate_seen * h <= bound * (1.0 + 1e-9) || tries >= 60)
             return SW_OK;
@@ -89,7 +90,8 @@ static SW_NOINLINE int fixed_tracked(const sw_step_ctx_t *C, sw_stepper_t *W, do
 
 /* The fixed schemes' advance: the package's body (W->step) over the step,
  * one call into the model for a model with its own bodies; the fixed
- * schemes' re-step is the body from (t0, y0). */
+ * schemes' re-step is the body from (t0, y0), which the stepper calls
+ * itself (W->restep). */
 static int fixed_step(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[],
                       double t1, double y1[], double *hout)
 {
@@ -98,22 +100,15 @@ static int fixed_step(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const 
         return fixed_tracked(C, W, t0, y0, t1, y1, hout);
     const double h = fixed_h(t1 - t0, W->h); /* s */
     *hout = h;
-    return W->step(M, W->ms.s, t0, h, y0, y1); /* a jump: the body is the step's cost */
-}
-
-static int fixed_restep(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
-                        const double y0[], double y1[])
-{
-    (void)C;
-    return W->step(W->ms.m, W->ms.s, t0, h, y0, y1);
+    return W->step(&W->ms, t0, h, y0, y1); /* a jump: the body is the step's cost */
 }
 
 /* One row per scheme: adding a scheme is adding a row.  stab: see the top
  * of this file.  gsl_odeiv2_step_* are variables, not constants: the rows
  * store their addresses. */
-#define FIXED(kind, body)                                                                      \
-    .advance = fixed_step, .restep = fixed_restep, .rk = SW_RK_##kind, .step = generic_##body, \
-    .cut_kinks = 1, .exact_stuck = 1
+#define FIXED(kind, body)                                                              \
+    .advance = fixed_step, .rk = SW_RK_##kind, .step = generic_##body, .cut_kinks = 1, \
+    .exact_stuck = 1
 #define ADAPTIVE(type) .adaptive = 1, .advance = sw_step_evolve, .gsl_type = &type
 static const sw_scheme_t schemes[] = {
     {.name = "rk4", .order = 4, .stab = 2.785, .region = 4, .default_dt = 1e-3, FIXED(RK4, rk4)},

@@ -37,8 +37,8 @@ struct sw_scheme {
     /* the solution at t0 + h inside the step being examined (step.c:
      * re-step from its start, or the Hermite interpolant of a multistep
      * scheme, which cannot restart without losing its history) */
-    int (*restep)(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                  double y1[]);
+    sw_fixed_step_fn restep; /* NULL for the fixed steps: their body is their
+                                re-step (the stepper binds it, sw_step_init) */
     /* fixed steps: which body (SW_RK_*, fixed_rk.h), the model's own
      * instantiation of it if it has one (ops->fixed), else this generic
      * one (the model's rhs per stage) */

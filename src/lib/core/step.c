@@ -3,11 +3,13 @@
  * for the engine's scheme (its step inside the scheme's stability region,
  * GSL's work space), and the adaptive schemes' step and re-steps: GSL
  * odeiv2 steppers under its error control, and a multistep scheme's
- * re-step on the interpolant.  The fixed-step schemes' advance and
- * re-step are scheme.c's, beside their bodies; a scheme's row points at
- * one of each.  Nothing here knows which model it steps. */
+ * re-step on the interpolant.  The fixed-step schemes' advance is
+ * scheme.c's, beside their bodies, and their re-step is the body itself;
+ * the stepper binds the row's advance and re-step (or the body) once.
+ * Nothing here knows which model it steps. */
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -101,6 +103,7 @@ int sw_step_init(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_model_t *M,
      * never asked twice */
     S->memo_on = !R->adaptive;
     W->step = R->rk && M->ops->fixed[R->rk] ? M->ops->fixed[R->rk] : R->step;
+    W->restep = R->restep ? R->restep : W->step;
     W->advance = R->advance;
     W->sys.function = sw_model_rhs;
     W->sys.jacobian = R->implicit ? sw_model_jacobian : NULL;
@@ -211,10 +214,15 @@ int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const dou
     return SW_OK;
 }
 
-int sw_restep_gsl(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                  double y1[])
+/* The stepper of a re-step's system: ms is its first member. */
+static sw_stepper_t *stepper_of(sw_model_sys_t *ms)
 {
-    (void)C;
+    return (sw_stepper_t *)(void *)((char *)ms - offsetof(sw_stepper_t, ms));
+}
+
+int sw_restep_gsl(sw_model_sys_t *ms, double t0, double h, const double y0[], double y1[])
+{
+    sw_stepper_t *W = stepper_of(ms);
     double yerr[SW_NMAX];
     memcpy(y1, y0, sizeof(double) * (size_t)W->ms.m->n);
     return gsl_odeiv2_step_apply(W->gstep, t0, h, y1, yerr, NULL, NULL, &W->sys) == GSL_SUCCESS
@@ -225,15 +233,15 @@ int sw_restep_gsl(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, 
 /* A multistep method cannot restart from the step's start without losing
  * its history: interpolate the step being examined (cubic Hermite, O(h^4))
  * instead of re-stepping. */
-int sw_restep_hermite(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
-                      const double y0[], double y1[])
+int sw_restep_hermite(sw_model_sys_t *ms, double t0, double h, const double y0[], double y1[])
 {
+    const sw_stepper_t *W = stepper_of(ms);
     double f0[SW_NMAX], f1[SW_NMAX];
     const sw_model_t *M = W->ms.m;
     const sw_input_at_t u0 = sw_input_at(M->in, M->g, t0),
-                        u1 = sw_input_at(M->in, M->g, t0 + C->step_h);
+                        u1 = sw_input_at(M->in, M->g, t0 + W->step_h);
     M->ops->rhs(M, W->ms.s, &u0, y0, f0);
-    M->ops->rhs(M, W->ms.s, &u1, C->step_y1, f1);
-    sw_herm_state(W->ms.m->n, C->step_h, y0, f0, C->step_y1, f1, h / C->step_h, y1);
+    M->ops->rhs(M, W->ms.s, &u1, W->step_y1, f1);
+    sw_herm_state(W->ms.m->n, W->step_h, y0, f0, W->step_y1, f1, h / W->step_h, y1);
     return SW_OK;
 }

@@ -14,27 +14,32 @@
 #include "scheme_ops.h"
 
 /* What the step and event layers of one engine share: its scheme and the
- * options they read, and the step being examined (for a multistep
- * re-step).  Owned by the engine, embedded in it. */
+ * options they read.  Owned by the engine, embedded in it. */
 struct sw_step_ctx {
     const sw_scheme_t *scheme;
-    int dt_forced;         /* a forced dt is refused, never sub-stepped */
-    int outcome_only;      /* peaks and tips are not timed (sw_engine_opts_t) */
-    double hmax;           /* s, longest step (SW_ACCURACY_HMAX under the accuracy option,
-                              else INFINITY) */
-    const double *step_y1; /* end of the step being examined */
-    double step_h;         /* s, its length */
+    int dt_forced;    /* a forced dt is refused, never sub-stepped */
+    int outcome_only; /* peaks and tips are not timed (sw_engine_opts_t) */
+    double hmax;      /* s, longest step (SW_ACCURACY_HMAX under the accuracy option,
+                         else INFINITY) */
 };
 
 /* The scheme's work space for one package (step.c), as GSL's step,
  * control and evolve objects are theirs: bound to the package's model. */
 struct sw_stepper {
-    sw_model_sys_t ms;     /* the model it steps and its scratch (GSL's params) */
+    sw_model_sys_t ms;     /* the model it steps and its scratch (GSL's params); first:
+                              a re-step reaches its stepper from it */
     double h;              /* s, largest internal step for this package */
     double stab_rate;      /* omega_max h at the edge of the scheme's stability region
                               for the modes at rest (INFINITY: adaptive, or no mode) */
     sw_advance_fn advance; /* the scheme's advance for this model */
     sw_fixed_step_fn step; /* fixed-step schemes: the body for this model */
+    /* the solution at t0 + h inside the step being examined, from its
+     * start (t0, y0): the fixed schemes' body, GSL's step, or a multistep
+     * scheme's interpolant (the scheme's row, bound here once);
+     * W->restep(&W->ms, t0, h, y0, y1) */
+    sw_fixed_step_fn restep;
+    const double *step_y1; /* end of the step being examined (the engine's) */
+    double step_h;         /* s, its length */
     gsl_odeiv2_system sys;
     gsl_odeiv2_step *gstep; /* adaptive schemes only */
     gsl_odeiv2_control *gctl;
@@ -46,13 +51,12 @@ struct sw_stepper {
 };
 
 /* The adaptive schemes' rows (GSL's evolve and step), and the re-step of
- * a multistep scheme on the interpolant of the step being examined */
+ * a multistep scheme on the interpolant of the step being examined; ms
+ * is the stepper's (&W->ms) */
 int sw_step_evolve(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, const double y0[], double t1,
                    double y1[], double *h);
-int sw_restep_gsl(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h, const double y0[],
-                  double y1[]);
-int sw_restep_hermite(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
-                      const double y0[], double y1[]);
+int sw_restep_gsl(sw_model_sys_t *ms, double t0, double h, const double y0[], double y1[]);
+int sw_restep_hermite(sw_model_sys_t *ms, double t0, double h, const double y0[], double y1[]);
 
 /* Set up the scheme's work space for P (after the model's set-up).
  * Returns SW_OK, SW_EUNSTABLE (forced dt above the stability bound; msg

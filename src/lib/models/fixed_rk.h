@@ -16,53 +16,59 @@
 #include "swaywatch/status.h"
 
 /* Defines prefix_euler, prefix_heun and prefix_rk4, the sw_fixed_step_fn
- * of each scheme: one step of length h (s) from (t, y) into yout (SW_OK), for a
- * state of n components, where stage(M, S, &u, y, f) writes f = y' at y
- * under the input's value u.  (Macros, not inline functions, so that the
- * bodies are the instantiating file's.) */
-#define SW_FIXED_RK(prefix, n, stage)                                                         \
-    static int prefix##_euler(const sw_model_t *M, sw_model_scratch_t *S, double t, double h, \
-                              const double y[], double yout[])                                \
-    {                                                                                         \
-        const int n_ = (n);                                                                   \
-        double k1[SW_NMAX];                                                                   \
-        const sw_input_at_t u = sw_input_at(M->in, M->g, t);                                  \
-        stage(M, S, &u, y, k1);                                                               \
-        for (int i = 0; i < n_; i++) yout[i] = y[i] + h * k1[i];                              \
-        return SW_OK;                                                                         \
-    }                                                                                         \
-    static int prefix##_heun(const sw_model_t *M, sw_model_scratch_t *S, double t, double h,  \
-                             const double y[], double yout[])                                 \
-    {                                                                                         \
-        const int n_ = (n);                                                                   \
-        double k1[SW_NMAX], k2[SW_NMAX], yt[SW_NMAX];                                         \
-        sw_input_at_t u = sw_input_at(M->in, M->g, t);                                        \
-        stage(M, S, &u, y, k1);                                                               \
-        for (int i = 0; i < n_; i++) yt[i] = y[i] + h * k1[i];                                \
-        u = sw_input_at(M->in, M->g, t + h);                                                  \
-        stage(M, S, &u, yt, k2);                                                              \
-        for (int i = 0; i < n_; i++) yout[i] = y[i] + 0.5 * h * (k1[i] + k2[i]);              \
-        return SW_OK;                                                                         \
-    }                                                                                         \
-    static int prefix##_rk4(const sw_model_t *M, sw_model_scratch_t *S, double t, double h,   \
-                            const double y[], double yout[])                                  \
-    {                                                                                         \
-        const int n_ = (n);                                                                   \
-        double k1[SW_NMAX], k2[SW_NMAX], k3[SW_NMAX], k4[SW_NMAX], yt[SW_NMAX];               \
-        const double h2 = 0.5 * h;                                                            \
-        sw_input_at_t u = sw_input_at(M->in, M->g, t);                                        \
-        stage(M, S, &u, y, k1);                                                               \
-        for (int i = 0; i < n_; i++) yt[i] = y[i] + h2 * k1[i];                               \
-        u = sw_input_at(M->in, M->g, t + h2);                                                 \
-        stage(M, S, &u, yt, k2);                                                              \
-        for (int i = 0; i < n_; i++) yt[i] = y[i] + h2 * k2[i];                               \
-        stage(M, S, &u, yt, k3);                                                              \
-        for (int i = 0; i < n_; i++) yt[i] = y[i] + h * k3[i];                                \
-        u = sw_input_at(M->in, M->g, t + h);                                                  \
-        stage(M, S, &u, yt, k4);                                                              \
-        for (int i = 0; i < n_; i++)                                                          \
-            yout[i] = y[i] + (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);         \
-        return SW_OK;                                                                         \
+ * of each scheme: one step of length h (s) from (t, y) into yout (SW_OK) of the
+ * system ms_ (its model M and scratch S), for a state of n components, where stage(M, S, &u, y, f)
+ * writes f = y' at y under the input's value u.  (Macros, not inline functions, so that the bodies
+ * are the instantiating file's.) */
+#define SW_FIXED_RK(prefix, n, stage)                                                    \
+    static int prefix##_euler(sw_model_sys_t *ms_, double t, double h, const double y[], \
+                              double yout[])                                             \
+    {                                                                                    \
+        const sw_model_t *M = ms_->m;                                                    \
+        sw_model_scratch_t *S = ms_->s;                                                  \
+        const int n_ = (n);                                                              \
+        double k1[SW_NMAX];                                                              \
+        const sw_input_at_t u = sw_input_at(M->in, M->g, t);                             \
+        stage(M, S, &u, y, k1);                                                          \
+        for (int i = 0; i < n_; i++) yout[i] = y[i] + h * k1[i];                         \
+        return SW_OK;                                                                    \
+    }                                                                                    \
+    static int prefix##_heun(sw_model_sys_t *ms_, double t, double h, const double y[],  \
+                             double yout[])                                              \
+    {                                                                                    \
+        const sw_model_t *M = ms_->m;                                                    \
+        sw_model_scratch_t *S = ms_->s;                                                  \
+        const int n_ = (n);                                                              \
+        double k1[SW_NMAX], k2[SW_NMAX], yt[SW_NMAX];                                    \
+        sw_input_at_t u = sw_input_at(M->in, M->g, t);                                   \
+        stage(M, S, &u, y, k1);                                                          \
+        for (int i = 0; i < n_; i++) yt[i] = y[i] + h * k1[i];                           \
+        u = sw_input_at(M->in, M->g, t + h);                                             \
+        stage(M, S, &u, yt, k2);                                                         \
+        for (int i = 0; i < n_; i++) yout[i] = y[i] + 0.5 * h * (k1[i] + k2[i]);         \
+        return SW_OK;                                                                    \
+    }                                                                                    \
+    static int prefix##_rk4(sw_model_sys_t *ms_, double t, double h, const double y[],   \
+                            double yout[])                                               \
+    {                                                                                    \
+        const sw_model_t *M = ms_->m;                                                    \
+        sw_model_scratch_t *S = ms_->s;                                                  \
+        const int n_ = (n);                                                              \
+        double k1[SW_NMAX], k2[SW_NMAX], k3[SW_NMAX], k4[SW_NMAX], yt[SW_NMAX];          \
+        const double h2 = 0.5 * h;                                                       \
+        sw_input_at_t u = sw_input_at(M->in, M->g, t);                                   \
+        stage(M, S, &u, y, k1);                                                          \
+        for (int i = 0; i < n_; i++) yt[i] = y[i] + h2 * k1[i];                          \
+        u = sw_input_at(M->in, M->g, t + h2);                                            \
+        stage(M, S, &u, yt, k2);                                                         \
+        for (int i = 0; i < n_; i++) yt[i] = y[i] + h2 * k2[i];                          \
+        stage(M, S, &u, yt, k3);                                                         \
+        for (int i = 0; i < n_; i++) yt[i] = y[i] + h * k3[i];                           \
+        u = sw_input_at(M->in, M->g, t + h);                                             \
+        stage(M, S, &u, yt, k4);                                                         \
+        for (int i = 0; i < n_; i++)                                                     \
+            yout[i] = y[i] + (h / 6.0) * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);    \
+        return SW_OK;                                                                    \
     }
 
 /* The bodies of SW_FIXED_RK(prefix, ...) as a row of sw_fixed_step_fn

@@ -84,11 +84,14 @@ typedef struct {
     sw_model_scratch_t *s;
 } sw_model_sys_t;
 
-/* One fixed step of length h (s) from (t, y) into yout: a fixed-step
- * scheme's body for one model (fixed_rk.h); SW_OK (an int, so that the
- * scheme's advance reaches it by a jump). */
-typedef int (*sw_fixed_step_fn)(const sw_model_t *M, sw_model_scratch_t *S, double t, double h,
-                                const double y[], double yout[]);
+/* One fixed step of length h (s) from (t, y) into yout of the system ms
+ * (a model and its scratch): a fixed-step scheme's body for one model
+ * (fixed_rk.h), which is also the scheme's re-step; SW_OK (an int, so
+ * that the scheme's advance reaches it by a jump).  The other schemes'
+ * re-steps take the same form (step.h: ms is the first member of their
+ * stepper), as GSL's step types' apply functions take their own state. */
+typedef int (*sw_fixed_step_fn)(sw_model_sys_t *ms, double t, double h, const double y[],
+                                double yout[]);
 
 /* The fixed-step schemes' bodies (fixed_rk.h): a scheme's row names its
  * body (struct sw_scheme's rk), a model may instantiate each with its
