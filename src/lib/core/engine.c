@@ -341,6 +341,16 @@ int sw_output_finite(const sw_output_t *o)
     return output_finite(o);
 }
 
+/* A report with a non-finite number at t: the package faults and is
+ * reported at rest instead, under the input at t.  Out of line: the
+ * report of every sample stays lean. */
+static SW_NOINLINE void report_fault(sw_engine_t *e, sw_pkg_t *P, double t, sw_output_t *o)
+{
+    fault(e, P, t, SW_EFAULT);
+    const sw_input_at_t u = sw_input_at(P->m.in, P->m.g, t);
+    sw_model_output(&P->m, &P->scr, &u, t, P->y, o);
+}
+
 static void report_states(sw_engine_t *e, double t)
 {
     for (size_t i = 0; i < e->n; i++) {
@@ -360,10 +370,8 @@ static void report_states(sw_engine_t *e, double t)
         sw_model_output(&P->m, &P->scr, &u, t, P->y, &o);
         /* Last line of defence: a non-finite number is never reported; the
          * package faults and is reported at rest instead. */
-        if (!output_finite(&o)) {
-            fault(e, P, t, SW_EFAULT);
-            sw_model_output(&P->m, &P->scr, &u, t, P->y, &o);
-        }
+        if (!output_finite(&o))
+            report_fault(e, P, t, &o);
         o.pkg = i;
         o.t = e->pc.origin + t;
         if (o.margin < P->sum.min_margin)
