@@ -179,7 +179,7 @@ static SW_ALWAYS_INLINE int advance_ground(sw_engine_t *e, sw_pkg_t *P, double t
         sw_timed_t cut; /* a cut's time, the state and the input there */
         sw_timed_t timed[SW_MAX_CANDS];
         int nt;
-        const int ev = sw_event_find(C, W, t0, h, P->y, y1, &cut, timed, &nt);
+        const int ev = sw_event_find(C, W, X, t0, h, P->y, y1, &cut, timed, &nt);
         P->m.held = 0;
         if (ev == SW_EVF_NONE) {
             memcpy(P->y, y1, sizeof(double) * (size_t)P->m.n);

@@ -84,12 +84,16 @@ int sw_event_keep_outcome(sw_evcand_t c[], int nc)
     return n;
 }
 
-int sw_event_locate(sw_stepper_t *W, double t0, double h, const double y0[], const double y1[],
-                    const sw_evcand_t c[], int nc, sw_timed_t *cut, sw_timed_t timed[], int *ntimed)
+int sw_event_locate(sw_stepper_t *W, const sw_input_ends_t *X, double t0, double h,
+                    const double y0[], const double y1[], const sw_evcand_t c[], int nc,
+                    sw_timed_t *cut, sw_timed_t timed[], int *ntimed)
 {
     const sw_model_t *M = W->ms.m;
     const double t1 = t0 + h;
-    const sw_input_at_t u0 = sw_input_at(M->in, M->g, t0), u1 = sw_input_at(M->in, M->g, t1);
+    /* the input at the step's ends: the engine's where they are the
+     * interval's (a step per sample), else evaluated here */
+    const sw_input_at_t u0 = t0 == X->t[0] ? X->u[0] : sw_input_at(M->in, M->g, t0),
+                        u1 = t1 == X->t[1] ? X->u[1] : sw_input_at(M->in, M->g, t1);
     sw_ends_t E; /* not zeroed: the two calls below write what is read */
     E.y0 = y0;
     E.y1 = y1;

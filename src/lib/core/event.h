@@ -22,22 +22,24 @@ typedef struct {
 } sw_timed_t;
 
 /* The earliest cutting event among the model's candidates c[0..nc) inside
- * the step (t0, y0) -> (t0 + h, y1) (SW_EVF_NONE if none), polished by
+ * the step (t0, y0) -> (t0 + h, y1) (SW_EVF_NONE if none; X: the input at
+ * the ends of the interval the engine advances over, as it evaluated
+ * them, taken at a step's end that is one of these), polished by
  * re-stepping: its time, the state and the input there in *cut; the
  * timed events before it in timed[0..*ntimed), in the order of the
  * candidates (timed has room for nc), as CVODE hands back its root and
  * rootsfound. */
-int sw_event_locate(sw_stepper_t *W, double t0, double h, const double y0[], const double y1[],
-                    const sw_evcand_t c[], int nc, sw_timed_t *cut, sw_timed_t timed[],
-                    int *ntimed);
+int sw_event_locate(sw_stepper_t *W, const sw_input_ends_t *X, double t0, double h,
+                    const double y0[], const double y1[], const sw_evcand_t c[], int nc,
+                    sw_timed_t *cut, sw_timed_t timed[], int *ntimed);
 /* Keep the candidates that end a step (the dynamics), drop those that only
  * time a peak, a tip or a cushion's lift (the report); the count left. */
 int sw_event_keep_outcome(sw_evcand_t c[], int nc);
 /* The same, asking the model for its candidates first: inline, because
  * most steps have none and the question is then all the work. */
-static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, double t0, double h,
-                                const double y0[], const double y1[], sw_timed_t *cut,
-                                sw_timed_t timed[SW_MAX_CANDS], int *ntimed)
+static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, const sw_input_ends_t *X,
+                                double t0, double h, const double y0[], const double y1[],
+                                sw_timed_t *cut, sw_timed_t timed[SW_MAX_CANDS], int *ntimed)
 {
     sw_evcand_t c[SW_MAX_CANDS];
     const sw_model_t *M = W->ms.m;
@@ -45,7 +47,7 @@ static inline int sw_event_find(const sw_step_ctx_t *C, sw_stepper_t *W, double 
     if (nc && C->outcome_only)
         nc = sw_event_keep_outcome(c, nc);
     *ntimed = 0;
-    return nc ? sw_event_locate(W, t0, h, y0, y1, c, nc, cut, timed, ntimed) : SW_EVF_NONE;
+    return nc ? sw_event_locate(W, X, t0, h, y0, y1, c, nc, cut, timed, ntimed) : SW_EVF_NONE;
 }
 /* Polish the time of event ev found at tau (a fraction of the step) by
  * re-stepping: its time, the state and the input there in *at. */
