@@ -126,9 +126,10 @@ static inline sw_input_at_t input_at(const sw_pkg_t *P, const sw_input_ends_t *X
 }
 
 /* Advance one package on its support from P->t to t1 under the input
- * e->in (X: its values at the interval's ends).  The loop guards against a map that keeps
- * re-triggering without progress and against a step count no finite number of events explains;
- * either is a fault, never a hang.  SW_OK, or the error at *tf that ends
+ * e->in (X: its values at the interval's ends).  The loop guards against
+ * a map that keeps re-triggering without progress and against a step
+ * count no finite number of events explains; either is a fault, never a
+ * hang.  SW_OK, or the error at *tf that ends
  * the interval (the package is then at t1, to fault).  (Longer than 80
  * lines: the loop is the engine's one control flow, and splitting it
  * would hide the order of its cases.) */
@@ -298,10 +299,9 @@ static void fault(sw_engine_t *e, sw_pkg_t *P, double t, int code)
  * while the bed falls away from it.  The input is evaluated at the
  * interval's two ends here (or, for a package that flies or may, in
  * advance_flying), once, and handed to the tests there (the take-off,
- * the step layer's input check).  Every error of the
- * layers below comes back here and faults the package; the interval goes
- * on from where the error left it (a segment on the support before a
- * take-off). */
+ * the step layer's input check).  Every error of the layers below comes
+ * back here and faults the package; the interval goes on from where the
+ * error left it (a segment on the support before a take-off). */
 static void advance_pkg(sw_engine_t *e, sw_pkg_t *P, double t1)
 {
     double tf; /* s, where an error happened */
